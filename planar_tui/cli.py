@@ -1,0 +1,229 @@
+"""The ``planar-tui`` command line (Typer).
+
+Batch jobs run from TOML presets and write CSV. Exit codes: 0 ok, 1 a job failed,
+2 bad input (preset or option), 130 interrupted. Progress bars go to stderr; tables
+and summaries to stdout. Heavy modules (numba, SALib, Textual) are imported only when
+a job or the app runs, so ``planar-tui --help`` is instant.
+"""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Annotated
+
+import typer
+from rich.console import Console
+
+from planar_tui import __version__
+from planar_tui.errors import Cancelled, ExitCode, PresetError
+from planar_tui.jobs import JOB_KINDS, JobResult
+from planar_tui.paths import bundled_presets, preset_description, resolve_preset
+from planar_tui.presets import Job, Preset, load_preset
+
+app = typer.Typer(
+    name="planar-tui",
+    help="Terminal workbench for planar robots: NOC dynamics, Sobol/eFAST sensitivity, "
+    "3-RRR workspace by interval analysis. Without a command, opens the Textual app.",
+    add_completion=False,
+    no_args_is_help=False,
+    pretty_exceptions_enable=False,
+)
+stdout = Console(highlight=False)
+stderr = Console(stderr=True, highlight=False)
+
+PresetArg = Annotated[
+    str, typer.Argument(help="Preset file, or a bundled preset name (see `planar-tui presets`).")
+]
+OutOption = Annotated[
+    Path | None,
+    typer.Option(
+        "--out", "-o", help="CSV file to write (with several jobs: FILE-1.csv, FILE-2.csv ...)."
+    ),
+]
+OutDirOption = Annotated[
+    Path, typer.Option("--out-dir", "-d", help="Folder for the presets' output files.")
+]
+
+
+def fail(message: str, code: ExitCode = ExitCode.BAD_INPUT) -> typer.Exit:
+    """Print ``message`` on stderr and return the exit to raise."""
+    stderr.print(message, markup=False, highlight=False, soft_wrap=True)
+    return typer.Exit(int(code))
+
+
+@contextmanager
+def reported_errors() -> Iterator[None]:
+    """Turn preset errors, interrupts and job failures into one line and an exit code."""
+    try:
+        yield
+    except PresetError as error:
+        raise fail(str(error), ExitCode.BAD_INPUT) from None
+    except (KeyboardInterrupt, Cancelled):
+        raise fail(
+            "interrupted: the running job's output was not written", ExitCode.INTERRUPTED
+        ) from None
+
+
+def load_presets(arguments: Sequence[str]) -> list[Preset]:
+    """Resolve and validate every preset before anything runs."""
+    return [load_preset(resolve_preset(argument)) for argument in arguments]
+
+
+def numbered_path(base: Path, number: int, count: int) -> Path:
+    """``base`` itself for a single job, ``stem-NUMBER.suffix`` when there are several."""
+    return base if count == 1 else base.with_name(f"{base.stem}-{number}{base.suffix or '.csv'}")
+
+
+def run_one(job: Job, progress_bars) -> JobResult:
+    """Run one job with its own rich progress bar."""
+    from planar_tui.progress import Progress
+
+    task = progress_bars.add_task(job.label, total=1.0)
+
+    def update(state) -> None:
+        stage = f"{job.label} {state.stage}".strip()
+        progress_bars.update(task, completed=state.completed, total=state.total, description=stage)
+
+    result = JOB_KINDS[job.kind].run(job, Progress(on_update=update))
+    progress_bars.update(task, completed=1.0, total=1.0, description=f"{job.label} done")
+    return result
+
+
+def execute(
+    jobs: Sequence[Job],
+    output_for: Callable[[Job], Path],
+    *,
+    extra_outputs: Callable[[Job, JobResult], dict[str, Path]] | None = None,
+    show: bool = True,
+) -> list[tuple[Job, JobResult, Path]]:
+    """Run ``jobs`` in order, writing each job's CSV atomically as soon as it finishes.
+
+    ``output_for(job)`` gives the main CSV path; ``extra_outputs(job, result)`` maps
+    names of ``result.extra_tables`` to paths; ``show`` prints each kind's terminal view.
+    A summary table follows the last job.
+    """
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+    from rich.table import Table
+
+    from planar_tui.csvio import write_csv_atomic
+
+    done: list[tuple[Job, JobResult, Path, float]] = []
+    columns = (
+        TextColumn("{task.description}"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+    )
+    import time
+
+    for job in jobs:
+        started = time.perf_counter()
+        with Progress(*columns, console=stderr, transient=False) as bars:
+            result = run_one(job, bars)
+        seconds = time.perf_counter() - started
+        path = write_csv_atomic(output_for(job), result.table)
+        for name, extra_path in (extra_outputs(job, result) if extra_outputs else {}).items():
+            write_csv_atomic(extra_path, result.extra_tables[name])
+        if show:
+            JOB_KINDS[job.kind].show(job, result, stdout)
+        done.append((job, result, path, seconds))
+
+    summary = Table(title="planar-tui run summary", title_justify="left")
+    for column in ("job", "output", "seconds", "result"):
+        summary.add_column(column)
+    for job, result, path, seconds in done:
+        summary.add_row(job.label, str(path), f"{seconds:.3f}", result.summary)
+    stdout.print(summary)
+    return [(job, result, path) for job, result, path, _ in done]
+
+
+def run_kind(kind: str, preset_argument: str, out: Path | None, out_dir: Path) -> None:
+    """Run every job of one kind in a preset (the ``simulate``/``torques``... commands)."""
+    with reported_errors():
+        (preset,) = load_presets([preset_argument])
+        jobs = preset.jobs_of(kind)
+        if not jobs:
+            raise PresetError(
+                preset.path, kind, f"no [{kind}] job in this preset", f"a [{kind}] table"
+            )
+        numbers = {job: k for k, job in enumerate(jobs, start=1)}
+
+        def output_for(job: Job) -> Path:
+            return numbered_path(out, numbers[job], len(jobs)) if out else out_dir / job.output
+
+        execute(jobs, output_for)
+
+
+def version_callback(value: bool) -> None:
+    if value:
+        stdout.print(f"planar-tui {__version__}")
+        raise typer.Exit()
+
+
+@app.callback(invoke_without_command=True)
+def root(
+    context: typer.Context,
+    version: Annotated[
+        bool,
+        typer.Option(
+            "--version", callback=version_callback, is_eager=True, help="Print the version."
+        ),
+    ] = False,
+) -> None:
+    """Without a command: open the Textual app on a bundled preset."""
+    if context.invoked_subcommand is None:
+        open_app(None)
+
+
+def open_app(preset_argument: str | None) -> None:
+    """Open the Textual workbench (imported only now)."""
+    try:
+        from planar_tui.app import run_app
+    except ImportError:  # the app arrives with its own issue
+        stdout.print(app.info.help or "")
+        raise typer.Exit() from None
+    with reported_errors():
+        run_app(preset_argument)
+
+
+@app.command()
+def simulate(preset: PresetArg, out: OutOption = None, out_dir: OutDirOption = Path(".")) -> None:
+    """Integrate the forward dynamics (RK4) of every simulate job; one CSV per job."""
+    run_kind("simulate", preset, out, out_dir)
+
+
+@app.command()
+def torques(preset: PresetArg, out: OutOption = None, out_dir: OutDirOption = Path(".")) -> None:
+    """Inverse dynamics at the listed states of every torques job; one CSV per job."""
+    run_kind("torques", preset, out, out_dir)
+
+
+@app.command()
+def run(
+    presets: Annotated[list[str], typer.Argument(help="Preset files or bundled preset names.")],
+    out_dir: OutDirOption = Path("."),
+) -> None:
+    """Run every job of every preset; output files named as the presets say."""
+    with reported_errors():
+        loaded = load_presets(presets)
+        execute([job for preset in loaded for job in preset.jobs], lambda job: out_dir / job.output)
+
+
+@app.command("presets")
+def list_presets() -> None:
+    """List the bundled presets, one line each."""
+    for path in bundled_presets():
+        stdout.print(f"{path.stem:<24} {preset_description(path)}", markup=False)
+
+
+def main() -> None:
+    """Console-script entry point."""
+    app(prog_name="planar-tui")
+
+
+if __name__ == "__main__":
+    main()
+    sys.exit(0)

@@ -1,0 +1,56 @@
+"""CSV tables and their atomic writing (temp file in the same folder, then rename)."""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+
+def format_cell(value: Any) -> str:
+    """One CSV cell: floats in shortest round-trip form (``repr``), so output is exact and
+    byte-identical for identical results; everything else through ``str``."""
+    if isinstance(value, float):
+        return repr(value)
+    if hasattr(value, "dtype") and getattr(value.dtype, "kind", "") == "f":
+        return repr(float(value))
+    return str(value)
+
+
+@dataclass(frozen=True)
+class CsvTable:
+    """A header (column names carrying units, e.g. ``t_s``) and rows of cells."""
+
+    header: tuple[str, ...]
+    rows: Sequence[Sequence[Any]]
+
+    def lines(self) -> list[str]:
+        """The table as CSV lines (no quoting needed: cells never hold commas)."""
+        out = [",".join(self.header)]
+        out.extend(",".join(format_cell(cell) for cell in row) for row in self.rows)
+        return out
+
+
+def write_csv_atomic(path: Path | str, table: CsvTable) -> Path:
+    """Write ``table`` to ``path`` so that ``path`` is either the whole new file or untouched.
+
+    The text goes to a temporary file in the destination folder, which is then renamed
+    over ``path`` (``os.replace`` is atomic on POSIX); on any error, including
+    ``KeyboardInterrupt``, the temporary file is removed.
+    """
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    handle, temp_name = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(handle, "w", encoding="utf-8", newline="\n") as stream:
+            for line in table.lines():
+                stream.write(line)
+                stream.write("\n")
+        os.replace(temp_name, path)
+    except BaseException:
+        Path(temp_name).unlink(missing_ok=True)
+        raise
+    return path
