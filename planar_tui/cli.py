@@ -216,7 +216,7 @@ def run(
 def list_presets() -> None:
     """List the bundled presets, one line each."""
     for path in bundled_presets():
-        stdout.print(f"{path.stem:<24} {preset_description(path)}", markup=False)
+        typer.echo(f"{path.stem:<24} {preset_description(path)}")
 
 
 def main() -> None:

@@ -1,0 +1,25 @@
+"""Shared fixtures: the repository paths and a CLI runner."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+REPO = Path(__file__).resolve().parent.parent
+PRESETS = REPO / "presets"
+REFERENCE = REPO.parent / "shared" / "reference"
+
+
+@pytest.fixture
+def cli():
+    """Invoke ``planar-tui`` in-process; returns click's Result (exit_code, stdout, stderr)."""
+    from planar_tui.cli import app
+
+    runner = CliRunner()
+
+    def invoke(*args: str):
+        return runner.invoke(app, [str(a) for a in args], catch_exceptions=False)
+
+    return invoke

@@ -1,0 +1,43 @@
+"""`planar-tui --help` imports no heavy module; batch runs never import Textual."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+
+from tests.conftest import REPO
+
+PROBE = """
+import json, sys
+from typer.testing import CliRunner
+from planar_tui.cli import app
+result = CliRunner().invoke(app, sys.argv[1:])
+heavy = ("numba", "SALib", "textual", "scipy", "mujoco", "numpy")
+print(json.dumps({"code": result.exit_code, "loaded": [m for m in heavy if m in sys.modules]}))
+"""
+
+
+def modules_loaded_by(*args: str) -> dict:
+    env = dict(os.environ, PYTHONPATH=str(REPO))
+    out = subprocess.run(
+        [sys.executable, "-c", PROBE, *args], capture_output=True, text=True, env=env, check=True, cwd=REPO
+    )
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def test_help_loads_no_heavy_module():
+    probe = modules_loaded_by("--help")
+    assert probe == {"code": 0, "loaded": []}
+
+
+def test_presets_list_loads_no_heavy_module():
+    assert modules_loaded_by("presets")["loaded"] == []
+
+
+def test_batch_run_never_imports_textual(tmp_path):
+    probe = modules_loaded_by("torques", "presets/paper-a-table1.toml", "--out-dir", str(tmp_path))
+    assert probe["code"] == 0
+    assert "textual" not in probe["loaded"]
+    assert "numba" in probe["loaded"]  # the probe can see a heavy import when there is one
