@@ -1,0 +1,572 @@
+r"""Dynamics of an n-link planar serial revolute robot by the Natural Orthogonal Complement.
+
+Paper A (Mehrafrooz et al. 2016), section 2, eqs. (1)-(8), with the conventions fixed by
+the project (see ``docs/dynamics.md``): y up, gravity :math:`(0, -g)`,
+:math:`E = \begin{bmatrix}0&-1\\1&0\end{bmatrix}` (rotation by +90°), relative joint angles
+(link i's absolute angle :math:`\phi_i = \sum_{j\le i}\theta_j`), centre of mass at mid-link,
+inertia :math:`I_i` about the centre of mass, and the planar term :math:`T^T W M T\dot\theta`
+identically zero.
+
+Notation used in every docstring:
+
+* :math:`a_i = l_i u_i`, :math:`u_i = [\cos\phi_i, \sin\phi_i]^T` (eq. 1), joint positions
+  :math:`p_1 = 0`, :math:`p_{i+1} = p_i + a_i`, centres of mass :math:`c_i = p_i + \tfrac12 a_i`;
+* :math:`\Omega_i = \sum_{j\le i}\dot\theta_j` and :math:`\dot\Omega_i = \sum_{j\le i}\ddot\theta_j`,
+  the absolute angular rate and acceleration of link i;
+* twist of link i :math:`t_i = [\Omega_i, \dot c_i^T]^T`, :math:`t = T\dot\theta` (eq. 4);
+* :math:`M = \mathrm{diag}(I_i, m_i, m_i)` (eq. 7), gravity wrench
+  :math:`w_{G,i} = [0, 0, -m_i g]^T` (eq. 8 with its sign misprint corrected).
+
+The equation of motion (eqs. 2-3) is
+
+.. math::  I(\theta)\ddot\theta + C(\theta,\dot\theta)\dot\theta - \gamma = \tau,\qquad
+           I = T^T M T,\quad C\dot\theta = T^T M \dot T\dot\theta,\quad \gamma = T^T w_G .
+
+Inverse dynamics is evaluated as :math:`T^T(M T\ddot\theta + M\dot T\dot\theta - w_G)` by a
+forward sweep (the twist rate :math:`T\ddot\theta + \dot T\dot\theta` of every link, i.e. the
+centre-of-mass accelerations, with gravity entered as an upward base acceleration) and a
+backward sweep that applies :math:`T^T` as suffix sums over the lower-triangular blocks of
+T: this is the recursive Newton-Euler algorithm, O(n) per evaluation, and equal to the NOC
+expression term by term (tested against the dense product in ``tests/``).
+
+All functions take float64 arrays and are compiled with :func:`kernels._jit.kernel`, so they
+can be called both from Python and from other kernels.
+"""
+
+import numpy as np
+from numba import prange
+
+from kernels._jit import kernel
+
+# Samples handled by one parallel task of the batched kernels; each task allocates its
+# scratch once, so the per-sample loop itself never touches the heap.
+_CHUNK = 1024
+
+
+# ---------------------------------------------------------------------------------------
+# Building blocks (allocation-free; work arrays are passed in)
+# ---------------------------------------------------------------------------------------
+
+
+# Rows of the kinematics work array ``kin`` (6, n) shared by the building blocks.
+_UX, _UY, _RATE, _ACCEL, _FX, _FY = 0, 1, 2, 3, 4, 5
+_KIN_ROWS = 6
+
+
+@kernel
+def _link_kinematics(theta_rad, omega_rad_s, alpha_rad_s2, row, kin):
+    r"""Absolute link directions, rates and accelerations from relative joint values.
+
+    .. math:: \phi_i = \sum_{j\le i}\theta_j,\; u_i = [\cos\phi_i,\sin\phi_i],\;
+              \Omega_i = \sum_{j\le i}\dot\theta_j,\; \dot\Omega_i = \sum_{j\le i}\ddot\theta_j
+
+    Reads row ``row`` of the (·, n) state arrays, writes rows ``_UX.._ACCEL`` of ``kin``.
+    (Building blocks index 2-D arrays by row instead of taking row views: a view per
+    sample costs about as much as the whole 6R evaluation.)
+    """
+    phi = 0.0
+    w = 0.0
+    wd = 0.0
+    for i in range(theta_rad.shape[1]):
+        phi += theta_rad[row, i]
+        w += omega_rad_s[row, i]
+        wd += alpha_rad_s2[row, i]
+        kin[_UX, i] = np.cos(phi)
+        kin[_UY, i] = np.sin(phi)
+        kin[_RATE, i] = w
+        kin[_ACCEL, i] = wd
+
+
+@kernel
+def _newton_euler(lengths_m, masses_kg, inertias_kgm2, prow, gravity_m_s2, kin, out, orow):
+    r"""Recursive evaluation of :math:`\tau = T^T(M T\ddot\theta + M\dot T\dot\theta - w_G)`.
+
+    Forward sweep: with :math:`\beta_i = \dot\Omega_i E u_i - \Omega_i^2 u_i`, the
+    acceleration of joint i+1 is :math:`A_{i+1} = A_i + l_i\beta_i`, :math:`A_1 = (0, g)` (gravity
+    as base acceleration, i.e. :math:`-w_G`), the centre of mass one
+    :math:`A_i + \tfrac12 l_i\beta_i`, and :math:`f_i = m_i(A_i + \tfrac12 l_i\beta_i)`: the
+    linear part of :math:`M(T\ddot\theta + \dot T\dot\theta) - w_G` (eqs. 4, 5, 8); the angular
+    part is :math:`I_i\dot\Omega_i`.
+
+    Backward sweep (:math:`T^T`, eq. 4, using :math:`(Ex)\cdot f = x\times f`):
+    :math:`\tau_j = \sum_{i\ge j}[I_i\dot\Omega_i + (c_i - p_j)\times f_i]`, computed as
+    :math:`\tau_j = \tau_{j+1} + a_j\times F_{j+1} + I_j\dot\Omega_j + \tfrac12 a_j\times f_j`,
+    :math:`F_j = \sum_{i\ge j} f_i`.
+
+    Parameters are read from row ``prow`` of the (·, n) parameter arrays, the link state
+    from ``kin`` (rows ``_FX``, ``_FY`` are scratch), the torques go to ``out[orow]``.
+    """
+    n = lengths_m.shape[1]
+    ax = 0.0
+    ay = gravity_m_s2
+    for i in range(n):
+        length = lengths_m[prow, i]
+        half = 0.5 * length
+        w2 = kin[_RATE, i] * kin[_RATE, i]
+        bx = -kin[_ACCEL, i] * kin[_UY, i] - w2 * kin[_UX, i]
+        by = kin[_ACCEL, i] * kin[_UX, i] - w2 * kin[_UY, i]
+        kin[_FX, i] = masses_kg[prow, i] * (ax + half * bx)
+        kin[_FY, i] = masses_kg[prow, i] * (ay + half * by)
+        ax += length * bx
+        ay += length * by
+    big_fx = 0.0
+    big_fy = 0.0
+    moment = 0.0
+    for i in range(n - 1, -1, -1):
+        hx = 0.5 * lengths_m[prow, i] * kin[_UX, i]
+        hy = 0.5 * lengths_m[prow, i] * kin[_UY, i]
+        fx = kin[_FX, i]
+        fy = kin[_FY, i]
+        moment += (
+            inertias_kgm2[prow, i] * kin[_ACCEL, i]
+            + hx * fy
+            - hy * fx
+            + 2.0 * (hx * big_fy - hy * big_fx)
+        )
+        big_fx += fx
+        big_fy += fy
+        out[orow, i] = moment
+
+
+@kernel
+def _mass_matrix_into(lengths_m, masses_kg, inertias_kgm2, prow, kin, out):
+    r"""Fill ``out`` with :math:`I = T^T M T` by composite-body suffix sums (O(n²), no division).
+
+    Block-wise, eq. (4) gives, for :math:`j \le k`,
+    :math:`I_{jk} = \sum_{i\ge k} [I_i + m_i (c_i-p_j)\cdot(c_i-p_k)]` (E is orthogonal), i.e.
+
+    .. math:: I_{jk} = D_k + (p_k - p_j)\cdot h_k,\qquad
+              D_k = \sum_{i\ge k}[I_i + m_i|c_i - p_k|^2],\quad h_k = \sum_{i\ge k} m_i (c_i - p_k),
+
+    the inertia and first moment of the composite of links k..n about joint k, built from
+    the tip: with :math:`\mathcal M_{k+1} = \sum_{i>k} m_i`,
+    :math:`D_k = D_{k+1} + 2a_k\cdot h_{k+1} + \mathcal M_{k+1}|a_k|^2 + I_k + \tfrac14 m_k|a_k|^2`,
+    :math:`h_k = h_{k+1} + \mathcal M_{k+1}a_k + \tfrac12 m_k a_k`.
+    """
+    n = lengths_m.shape[1]
+    outer_mass = 0.0
+    hx = 0.0
+    hy = 0.0
+    inertia = 0.0
+    for k in range(n - 1, -1, -1):
+        length = lengths_m[prow, k]
+        mass = masses_kg[prow, k]
+        ax = length * kin[_UX, k]
+        ay = length * kin[_UY, k]
+        inertia += (
+            2.0 * (ax * hx + ay * hy)
+            + (outer_mass + 0.25 * mass) * length * length
+            + inertias_kgm2[prow, k]
+        )
+        hx += (outer_mass + 0.5 * mass) * ax
+        hy += (outer_mass + 0.5 * mass) * ay
+        outer_mass += mass
+        out[k, k] = inertia
+        dx = 0.0
+        dy = 0.0
+        for j in range(k - 1, -1, -1):
+            dx += lengths_m[prow, j] * kin[_UX, j]
+            dy += lengths_m[prow, j] * kin[_UY, j]
+            value = inertia + dx * hx + dy * hy
+            out[j, k] = value
+            out[k, j] = value
+
+
+@kernel
+def _cholesky_solve_in_place(matrix, rhs, row):
+    r"""Solve :math:`A x = b` for SPD A by Cholesky :math:`A = L L^T`; A is overwritten by L
+    (strict lower triangle, reciprocal diagonal) and ``rhs[row]`` by x. No allocation."""
+    n = matrix.shape[0]
+    for j in range(n):
+        s = matrix[j, j]
+        for k in range(j):
+            s -= matrix[j, k] * matrix[j, k]
+        inv = 1.0 / np.sqrt(s)
+        matrix[j, j] = inv  # the diagonal holds 1 / L_jj
+        for i in range(j + 1, n):
+            s = matrix[i, j]
+            for k in range(j):
+                s -= matrix[i, k] * matrix[j, k]
+            matrix[i, j] = s * inv
+    for i in range(n):
+        s = rhs[row, i]
+        for k in range(i):
+            s -= matrix[i, k] * rhs[row, k]
+        rhs[row, i] = s * matrix[i, i]
+    for i in range(n - 1, -1, -1):
+        s = rhs[row, i]
+        for k in range(i + 1, n):
+            s -= matrix[k, i] * rhs[row, k]
+        rhs[row, i] = s * matrix[i, i]
+
+
+@kernel
+def _forward_dynamics_rows(
+    lengths_m,
+    masses_kg,
+    inertias_kgm2,
+    gravity_m_s2,
+    theta_rad,
+    omega_rad_s,
+    srow,
+    tau_Nm,
+    kin,
+    matrix,
+    alpha_rad_s2,
+    orow,
+):
+    r""":math:`\ddot\theta = I^{-1}(\tau - (C\dot\theta - \gamma))` for row-indexed 2-D arrays.
+
+    Parameters and torques are row 0 of (1, n) arrays, the state row ``srow`` of
+    ``theta_rad``/``omega_rad_s``, the result goes to ``alpha_rad_s2[orow]``.
+    """
+    n = lengths_m.shape[1]
+    _link_kinematics(theta_rad, omega_rad_s, omega_rad_s, srow, kin)
+    for i in range(n):
+        kin[_ACCEL, i] = 0.0  # bias forces are inverse dynamics at zero acceleration
+    _newton_euler(lengths_m, masses_kg, inertias_kgm2, 0, gravity_m_s2, kin, alpha_rad_s2, orow)
+    for i in range(n):
+        alpha_rad_s2[orow, i] = tau_Nm[0, i] - alpha_rad_s2[orow, i]
+    _mass_matrix_into(lengths_m, masses_kg, inertias_kgm2, 0, kin, matrix)
+    _cholesky_solve_in_place(matrix, alpha_rad_s2, orow)
+
+
+@kernel
+def forward_dynamics_work(n):
+    """Work arrays ``(kin (6, n), matrix (n, n))`` for :func:`forward_dynamics_into`."""
+    return np.zeros((_KIN_ROWS, n)), np.zeros((n, n))
+
+
+@kernel
+def _row(vector):
+    """(n,) -> (1, n) view."""
+    return vector.reshape((1, vector.shape[0]))
+
+
+@kernel
+def forward_dynamics_into(
+    lengths_m,
+    masses_kg,
+    inertias_kgm2,
+    gravity_m_s2,
+    theta_rad,
+    omega_rad_s,
+    tau_Nm,
+    work,
+    matrix,
+    alpha_rad_s2,
+):
+    r"""Allocation-free :func:`forward_dynamics` writing into ``alpha_rad_s2`` (n,).
+
+    ``work`` and ``matrix`` come from :func:`forward_dynamics_work`.
+    """
+    _forward_dynamics_rows(
+        _row(lengths_m),
+        _row(masses_kg),
+        _row(inertias_kgm2),
+        gravity_m_s2,
+        _row(theta_rad),
+        _row(omega_rad_s),
+        0,
+        _row(tau_Nm),
+        work,
+        matrix,
+        _row(alpha_rad_s2),
+        0,
+    )
+
+
+@kernel
+def energies(lengths_m, masses_kg, inertias_kgm2, gravity_m_s2, theta_rad, omega_rad_s):
+    r"""Kinetic and potential energy ``(kinetic_J, potential_J)`` (paper A, section 2).
+
+    .. math:: K = \tfrac12\dot\theta^T I(\theta)\dot\theta = \tfrac12 t^T M t
+              = \tfrac12\sum_i\left(I_i\Omega_i^2 + m_i|\dot c_i|^2\right),\qquad
+              V = \sum_i m_i g\, y_{c_i}
+
+    (the base joint at height 0). O(n), allocation-free.
+    """
+    kinetic = 0.0
+    potential = 0.0
+    phi = 0.0
+    rate = 0.0
+    vx = 0.0
+    vy = 0.0
+    y = 0.0
+    for i in range(lengths_m.shape[0]):
+        phi += theta_rad[i]
+        rate += omega_rad_s[i]
+        c = np.cos(phi)
+        s = np.sin(phi)
+        half = 0.5 * lengths_m[i]
+        # ċ_i = v(p_i) + ½ l_i Ω_i E u_i
+        cvx = vx - half * rate * s
+        cvy = vy + half * rate * c
+        kinetic += 0.5 * (inertias_kgm2[i] * rate * rate + masses_kg[i] * (cvx * cvx + cvy * cvy))
+        potential += masses_kg[i] * gravity_m_s2 * (y + half * s)
+        vx -= lengths_m[i] * rate * s
+        vy += lengths_m[i] * rate * c
+        y += lengths_m[i] * s
+    return kinetic, potential
+
+
+# ---------------------------------------------------------------------------------------
+# Public API
+# ---------------------------------------------------------------------------------------
+
+
+@kernel
+def twist_shaping_matrix(lengths_m, theta_rad):
+    r"""Twist-shaping matrix T (3n × n), paper A eq. (4): :math:`t = T\dot\theta`.
+
+    Block (i, j) (rows 3i..3i+2, column j) is
+
+    .. math:: T_{ij} = \begin{bmatrix}1\\ E\left(\sum_{k=j}^{i-1} a_k + \tfrac12 a_i\right)\end{bmatrix}
+              = \begin{bmatrix}1\\ E(c_i - p_j)\end{bmatrix}\ (i\ge j),\qquad T_{ij} = 0\ (i<j).
+
+    The twist of link i is ordered :math:`[\Omega_i, \dot c_{i,x}, \dot c_{i,y}]`. Dense; meant
+    for tests and documentation, the dynamics kernels never form it.
+    """
+    n = lengths_m.shape[0]
+    out = np.zeros((3 * n, n))
+    px = np.zeros(n + 1)
+    py = np.zeros(n + 1)
+    phi = 0.0
+    for i in range(n):
+        phi += theta_rad[i]
+        px[i + 1] = px[i] + lengths_m[i] * np.cos(phi)
+        py[i + 1] = py[i] + lengths_m[i] * np.sin(phi)
+    for i in range(n):
+        cx = 0.5 * (px[i] + px[i + 1])
+        cy = 0.5 * (py[i] + py[i + 1])
+        for j in range(i + 1):
+            out[3 * i, j] = 1.0
+            out[3 * i + 1, j] = -(cy - py[j])
+            out[3 * i + 2, j] = cx - px[j]
+    return out
+
+
+@kernel
+def twist_shaping_matrix_rate(lengths_m, theta_rad, omega_rad_s):
+    r"""Time derivative :math:`\dot T` (3n × n), paper A eq. (5).
+
+    .. math:: \dot T_{ij} = \begin{bmatrix}0\\ -\left(\sum_{k=j}^{i-1}\Omega_k a_k
+              + \tfrac12\Omega_i a_i\right)\end{bmatrix}\ (i\ge j),\qquad 0\ (i<j),
+
+    with :math:`\Omega_k = \sum_{p\le k}\dot\theta_p` (since :math:`\dot a_k = \Omega_k E a_k` and
+    :math:`E^2 = -1`).
+    """
+    n = lengths_m.shape[0]
+    out = np.zeros((3 * n, n))
+    # q[i] = Σ_{k<i} Ω_k a_k (prefix sums), so Σ_{k=j}^{i-1} Ω_k a_k = q[i] − q[j].
+    qx = np.zeros(n + 1)
+    qy = np.zeros(n + 1)
+    phi = 0.0
+    rate = 0.0
+    for i in range(n):
+        phi += theta_rad[i]
+        rate += omega_rad_s[i]
+        qx[i + 1] = qx[i] + rate * lengths_m[i] * np.cos(phi)
+        qy[i + 1] = qy[i] + rate * lengths_m[i] * np.sin(phi)
+    for i in range(n):
+        hx = 0.5 * (qx[i + 1] - qx[i])
+        hy = 0.5 * (qy[i + 1] - qy[i])
+        for j in range(i + 1):
+            out[3 * i + 1, j] = -(qx[i] - qx[j] + hx)
+            out[3 * i + 2, j] = -(qy[i] - qy[j] + hy)
+    return out
+
+
+@kernel
+def mass_matrix(lengths_m, masses_kg, inertias_kgm2, theta_rad):
+    r"""Generalised inertia matrix :math:`I(\theta) = T^T M T` (n × n), paper A eq. (3).
+
+    Evaluated without forming T or M: for :math:`j\le k`,
+
+    .. math:: I_{jk} = \sum_{i\ge k}\left[I_i + m_i (c_i - p_j)\cdot(c_i - p_k)\right]
+              = D_k + (p_k - p_j)\cdot h_k,
+
+    with :math:`D_k`, :math:`h_k` the inertia and first moment about joint k of the composite
+    body of links k..n (suffix sums from the tip, O(n²) total; see ``_mass_matrix_into``).
+    """
+    n = lengths_m.shape[0]
+    kin = np.zeros((_KIN_ROWS, n))
+    theta = _row(theta_rad)
+    _link_kinematics(theta, theta, theta, 0, kin)  # only the directions u_i are used
+    out = np.empty((n, n))
+    _mass_matrix_into(_row(lengths_m), _row(masses_kg), _row(inertias_kgm2), 0, kin, out)
+    return out
+
+
+@kernel
+def _newton_euler_single(
+    lengths_m, masses_kg, inertias_kgm2, gravity_m_s2, theta_rad, omega_rad_s, alpha_rad_s2
+):
+    n = lengths_m.shape[0]
+    kin = np.empty((_KIN_ROWS, n))
+    _link_kinematics(_row(theta_rad), _row(omega_rad_s), _row(alpha_rad_s2), 0, kin)
+    tau = np.empty((1, n))
+    _newton_euler(
+        _row(lengths_m), _row(masses_kg), _row(inertias_kgm2), 0, gravity_m_s2, kin, tau, 0
+    )
+    return tau[0]
+
+
+@kernel
+def velocity_product(lengths_m, masses_kg, inertias_kgm2, theta_rad, omega_rad_s):
+    r"""Velocity-product vector :math:`C(\theta,\dot\theta)\dot\theta = T^T M\dot T\dot\theta`, eq. (3).
+
+    The planar :math:`T^T W M T\dot\theta` term of eq. (3) is zero. Evaluated as inverse
+    dynamics with :math:`\ddot\theta = 0` and :math:`g = 0`; :math:`\dot T\dot\theta` has the
+    linear parts :math:`-\sum_{k<i}\Omega_k^2 a_k - \tfrac12\Omega_i^2 a_i` (eq. 5).
+    """
+    zeros = np.zeros(lengths_m.shape[0])
+    return _newton_euler_single(
+        lengths_m, masses_kg, inertias_kgm2, 0.0, theta_rad, omega_rad_s, zeros
+    )
+
+
+@kernel
+def gravity_vector(lengths_m, masses_kg, gravity_m_s2, theta_rad):
+    r"""Generalised gravity force :math:`\gamma = T^T w_G`, paper A eqs. (3), (8).
+
+    .. math:: \gamma_j = \sum_{i\ge j} (c_i - p_j)\times(0, -m_i g) = -g\sum_{i\ge j} m_i (c_i - p_j)_x
+
+    (link inertias do not enter; zeros are used.)
+    """
+    zeros = np.zeros(lengths_m.shape[0])
+    tau = _newton_euler_single(lengths_m, masses_kg, zeros, gravity_m_s2, theta_rad, zeros, zeros)
+    return -tau
+
+
+@kernel
+def inverse_dynamics(
+    lengths_m, masses_kg, inertias_kgm2, gravity_m_s2, theta_rad, omega_rad_s, alpha_rad_s2
+):
+    r"""Joint torques :math:`\tau = I(\theta)\ddot\theta + C(\theta,\dot\theta)\dot\theta - \gamma`, eq. (2).
+
+    Evaluated recursively as :math:`\tau = T^T(M T\ddot\theta + M\dot T\dot\theta - w_G)`
+    (Newton-Euler sweeps over the lower-triangular blocks of T, O(n)).
+
+    Parameters
+    ----------
+    lengths_m, masses_kg, inertias_kgm2 : (n,) float64
+        Link lengths, masses and centroidal moments of inertia.
+    gravity_m_s2 : float
+        g >= 0; gravity acts along -y.
+    theta_rad, omega_rad_s, alpha_rad_s2 : (n,) float64
+        Relative joint angles, rates and accelerations.
+
+    Returns
+    -------
+    tau_Nm : (n,) float64
+    """
+    return _newton_euler_single(
+        lengths_m, masses_kg, inertias_kgm2, gravity_m_s2, theta_rad, omega_rad_s, alpha_rad_s2
+    )
+
+
+@kernel(parallel=True)
+def inverse_dynamics_batch(
+    lengths_m, masses_kg, inertias_kgm2, gravity_m_s2, theta_rad, omega_rad_s, alpha_rad_s2
+):
+    r"""Inverse dynamics of S robots (own parameters each) in one shared state: (S, n) torques.
+
+    For every sample s, :math:`\tau_s = T^T(M_s T\ddot\theta + M_s\dot T\dot\theta - w_{G,s})`
+    :math:`= I_s\ddot\theta + C_s\dot\theta - \gamma_s` (eqs. 2-8), by the Newton-Euler sweeps of
+    :func:`inverse_dynamics`. The hot path of the Sobol/eFAST engine: the state-dependent
+    trigonometry and absolute rates are computed once, samples are split into chunks of
+    1024 run in parallel (``prange``), each chunk copies the (6, n) link-state work array once, and
+    the per-sample work is O(n) with no heap allocation.
+
+    Parameters
+    ----------
+    lengths_m, masses_kg, inertias_kgm2 : (S, n) float64
+    gravity_m_s2 : float
+    theta_rad, omega_rad_s, alpha_rad_s2 : (n,) float64
+        The shared state.
+
+    Returns
+    -------
+    tau_Nm : (S, n) float64
+    """
+    samples, n = lengths_m.shape
+    if masses_kg.shape != (samples, n) or inertias_kgm2.shape != (samples, n):
+        raise ValueError("lengths_m, masses_kg and inertias_kgm2 must have the same shape (S, n)")
+    if theta_rad.shape[0] != n or omega_rad_s.shape[0] != n or alpha_rad_s2.shape[0] != n:
+        raise ValueError("theta_rad, omega_rad_s, alpha_rad_s2 must have length n")
+    shared = np.empty((_KIN_ROWS, n))
+    _link_kinematics(_row(theta_rad), _row(omega_rad_s), _row(alpha_rad_s2), 0, shared)
+    out = np.empty((samples, n))
+    n_chunks = (samples + _CHUNK - 1) // _CHUNK
+    for chunk in prange(n_chunks):
+        kin = shared.copy()  # per task: rows _FX, _FY are scratch
+        for s in range(chunk * _CHUNK, min(samples, (chunk + 1) * _CHUNK)):
+            _newton_euler(lengths_m, masses_kg, inertias_kgm2, s, gravity_m_s2, kin, out, s)
+    return out
+
+
+@kernel(parallel=True)
+def inverse_dynamics_batch_states(
+    lengths_m, masses_kg, inertias_kgm2, gravity_m_s2, theta_rad, omega_rad_s, alpha_rad_s2
+):
+    r"""Inverse dynamics of one robot in S states: (S, n) torques (eq. 2 per state).
+
+    Parameters
+    ----------
+    lengths_m, masses_kg, inertias_kgm2 : (n,) float64
+    gravity_m_s2 : float
+    theta_rad, omega_rad_s, alpha_rad_s2 : (S, n) float64
+
+    Returns
+    -------
+    tau_Nm : (S, n) float64
+    """
+    samples, n = theta_rad.shape
+    if omega_rad_s.shape != (samples, n) or alpha_rad_s2.shape != (samples, n):
+        raise ValueError("theta_rad, omega_rad_s and alpha_rad_s2 must have the same shape (S, n)")
+    if lengths_m.shape[0] != n or masses_kg.shape[0] != n or inertias_kgm2.shape[0] != n:
+        raise ValueError("lengths_m, masses_kg, inertias_kgm2 must have length n")
+    lengths = _row(lengths_m)
+    masses = _row(masses_kg)
+    inertias = _row(inertias_kgm2)
+    out = np.empty((samples, n))
+    n_chunks = (samples + _CHUNK - 1) // _CHUNK
+    for chunk in prange(n_chunks):
+        kin = np.empty((_KIN_ROWS, n))
+        for s in range(chunk * _CHUNK, min(samples, (chunk + 1) * _CHUNK)):
+            _link_kinematics(theta_rad, omega_rad_s, alpha_rad_s2, s, kin)
+            _newton_euler(lengths, masses, inertias, 0, gravity_m_s2, kin, out, s)
+    return out
+
+
+@kernel
+def forward_dynamics(
+    lengths_m, masses_kg, inertias_kgm2, gravity_m_s2, theta_rad, omega_rad_s, tau_Nm
+):
+    r"""Joint accelerations :math:`\ddot\theta = I^{-1}(\tau + \gamma - C\dot\theta)`, eq. (2).
+
+    :math:`C\dot\theta - \gamma` comes from the Newton-Euler sweeps at :math:`\ddot\theta = 0`,
+    I from the composite-body sums of :func:`mass_matrix`, and the SPD system is solved by a
+    hand-written Cholesky factorisation. For loops use :func:`forward_dynamics_into` with
+    work arrays from :func:`forward_dynamics_work` (no allocation).
+
+    Returns
+    -------
+    alpha_rad_s2 : (n,) float64
+    """
+    work, matrix = forward_dynamics_work(lengths_m.shape[0])
+    alpha = np.empty(lengths_m.shape[0])
+    forward_dynamics_into(
+        lengths_m,
+        masses_kg,
+        inertias_kgm2,
+        gravity_m_s2,
+        theta_rad,
+        omega_rad_s,
+        tau_Nm,
+        work,
+        matrix,
+        alpha,
+    )
+    return alpha
