@@ -6,6 +6,7 @@ line in :data:`JOB_KINDS`. Nothing here imports numba, SALib or Textual.
 """
 
 from planar_tui.jobs.base import JobKind, JobResult, RobotKind
+from planar_tui.jobs.sensitivity import SENSITIVITY
 from planar_tui.jobs.simulate import SIMULATE
 from planar_tui.jobs.torques import TORQUES
 from planar_tui.model import SERIAL_ROBOT_KEYS, parse_serial_robot
@@ -19,6 +20,7 @@ JOB_KINDS: dict[str, JobKind] = {
     for kind in (
         SIMULATE,
         TORQUES,
+        SENSITIVITY,
     )
 }
 

@@ -1,0 +1,115 @@
+"""Sample (SALib), evaluate (batched Numba inverse dynamics), analyse (fast estimators).
+
+The unit-hypercube designs depend only on (method, D, N, seed), so they are drawn once per
+process and scaled per robot exactly as ``SALib.util.scale_samples`` does
+(``x (ub - lb) + lb``): the scaled matrix is bit-identical to SALib sampling the real
+problem. One design serves every posture and speed of a job: only the state changes.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+#: eFAST interference factor M (paper A, Saltelli et al. 1999).
+M_HARMONICS = 4
+
+
+@dataclass(frozen=True)
+class Problem:
+    """Uncertain inputs: names (``l1``…, ``m1``…, optionally ``I1``…) and uniform bounds."""
+
+    names: tuple[str, ...]
+    lower: np.ndarray
+    upper: np.ndarray
+    n_links: int
+
+    @property
+    def num_vars(self) -> int:
+        return len(self.names)
+
+    def salib(self) -> dict:
+        """The SALib problem dictionary."""
+        bounds = [[float(a), float(b)] for a, b in zip(self.lower, self.upper, strict=True)]
+        return {"num_vars": self.num_vars, "names": list(self.names), "bounds": bounds}
+
+
+def build_problem(robot, tolerance_length_m, tolerance_mass_kg, tolerance_inertia_kgm2=None):
+    """Inputs ``l_i ∈ [l_i ± δl]``, ``m_i ∈ [m_i ± δm]`` (and ``I_i ± δI`` if given)."""
+    lengths, masses, inertias = robot.arrays()
+    n = robot.n_links
+    names = [f"l{i}" for i in range(1, n + 1)] + [f"m{i}" for i in range(1, n + 1)]
+    nominal = [lengths, masses]
+    spread = [np.full(n, tolerance_length_m), np.full(n, tolerance_mass_kg)]
+    if tolerance_inertia_kgm2 is not None:
+        names += [f"I{i}" for i in range(1, n + 1)]
+        nominal.append(inertias)
+        spread.append(np.full(n, tolerance_inertia_kgm2))
+    centre = np.concatenate(nominal)
+    half = np.concatenate(spread)
+    return Problem(tuple(names), centre - half, centre + half, n)
+
+
+@lru_cache(maxsize=16)
+def unit_design(method: str, num_vars: int, samples: int, seed: int) -> np.ndarray:
+    """SALib's design on the unit hypercube (read-only, cached per process).
+
+    ``sobol``: ``SALib.sample.sobol.sample(N, calc_second_order=False)``, N (D + 2) rows;
+    ``efast``: ``SALib.sample.fast_sampler.sample(N, M=4)``, N D rows.
+    """
+    unit = {"num_vars": num_vars, "names": [f"x{i}" for i in range(num_vars)]}
+    unit["bounds"] = [[0.0, 1.0]] * num_vars
+    if method == "sobol":
+        from SALib.sample import sobol
+
+        design = sobol.sample(unit, samples, calc_second_order=False, seed=seed)
+    else:
+        from SALib.sample import fast_sampler
+
+        design = fast_sampler.sample(unit, samples, M=M_HARMONICS, seed=seed)
+    design.setflags(write=False)
+    return design
+
+
+def scaled_design(problem: Problem, method: str, samples: int, seed: int) -> np.ndarray:
+    """The design of ``problem``: unit design scaled as SALib scales it."""
+    unit = unit_design(method, problem.num_vars, samples, seed)
+    return unit * (problem.upper - problem.lower) + problem.lower
+
+
+def evaluate(design: np.ndarray, robot, theta_rad, omega_rad_s, alpha_rad_s2) -> np.ndarray:
+    """Joint torques (S, n) of every row of ``design``: one batched kernel call."""
+    from kernels.dynamics import inverse_dynamics_batch
+
+    n = robot.n_links
+    lengths = np.ascontiguousarray(design[:, :n])
+    masses = np.ascontiguousarray(design[:, n : 2 * n])
+    if design.shape[1] == 3 * n:
+        inertias = np.ascontiguousarray(design[:, 2 * n :])
+    else:
+        inertias = np.ascontiguousarray(np.broadcast_to(robot.arrays()[2], lengths.shape))
+    return inverse_dynamics_batch(
+        lengths,
+        masses,
+        inertias,
+        float(robot.gravity_m_s2),
+        np.asarray(theta_rad, dtype=np.float64),
+        np.asarray(omega_rad_s, dtype=np.float64),
+        np.asarray(alpha_rad_s2, dtype=np.float64),
+    )
+
+
+def analyse(method: str, outputs: np.ndarray, num_vars: int, seed: int) -> np.ndarray:
+    """(4, n, D) indices S1, S1 half-width, ST, ST half-width of every torque."""
+    from planar_tui.sensitivity.estimators import efast_indices, sobol_indices
+
+    if method == "sobol":
+        return sobol_indices(outputs, num_vars, seed)
+    return efast_indices(outputs, num_vars, seed, M_HARMONICS)
+
+
+def default_efast_samples(sobol_samples: int, num_vars: int) -> int:
+    """eFAST N per input matching the Sobol' cost N (D + 2) in model runs (> 4 M²)."""
+    return max(sobol_samples * (num_vars + 2) // num_vars, 4 * M_HARMONICS**2 + 1)

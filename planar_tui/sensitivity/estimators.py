@@ -1,0 +1,128 @@
+r"""Sobol' and eFAST indices from model outputs, fast, and SALib as the reference.
+
+:func:`sobol_indices` runs the jitted Saltelli-2010 estimators of
+:mod:`kernels.sensitivity_estimators` with the bootstrap rows SALib would draw
+(``default_rng(seed).integers(N, size=(N, R))``), so its S1, ST *and* confidence
+half-widths equal ``SALib.analyze.sobol.analyze(..., seed=seed)`` to round-off.
+
+:func:`efast_indices` is ``SALib.analyze.fast`` vectorised over outputs and bootstrap
+resamples (one real FFT per batch instead of one ``np.fft.fft`` per resample). With
+:math:`S_p = |\hat y_k / N|^2`, :math:`V = 2\sum_{k=1}^{\lceil N/2\rceil-1} S_k`,
+
+.. math::  S_1 = \frac{2\sum_{p=1}^{M} S_{p\omega}}{V},\qquad
+           S_T = 1 - \frac{2\sum_{k=1}^{\lfloor\omega/2\rfloor} S_k}{V}
+
+(paper A eqs. 38-40, Saltelli, Tarantola & Chan 1999), ω = ⌊(N-1)/2M⌋. The bootstrap
+takes R cyclic windows of half the curve starting at the positions SALib's
+``np.random.seed(seed); np.random.randint`` would draw. **Those eFAST confidence
+half-widths are unreliable** (SALib issue #649: a half window is not a search curve of the
+sampled frequencies); they are reported, labelled as such, never used to judge accuracy.
+
+Both return arrays of shape (4, n_out, D): S1, S1 half-width, ST, ST half-width.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from statistics import NormalDist
+
+import numpy as np
+
+#: Bootstrap resamples and confidence level: SALib's defaults.
+NUM_RESAMPLES = 100
+CONF_LEVEL = 0.95
+
+
+def _z_value(conf_level: float) -> float:
+    return NormalDist().inv_cdf(0.5 + conf_level / 2.0)
+
+
+def sobol_bootstrap_rows(n_base: int, seed: int, num_resamples: int = NUM_RESAMPLES):
+    """SALib's bootstrap rows, transposed to (R, N) for the kernel."""
+    rows = np.random.default_rng(seed).integers(n_base, size=(n_base, num_resamples))
+    return np.ascontiguousarray(rows.T)
+
+
+def sobol_indices(
+    outputs, num_vars: int, seed: int, num_resamples=NUM_RESAMPLES, conf_level=CONF_LEVEL
+):
+    """S1, ST and bootstrap half-widths of every column of ``outputs`` (Saltelli design,
+    no second order, N (D + 2) rows). ``seed`` > 0, as SALib's ``analyze`` treats 0 as none."""
+    from kernels.sensitivity_estimators import sobol_first_total
+
+    outputs = np.ascontiguousarray(outputs, dtype=np.float64)
+    n_base = outputs.shape[0] // (num_vars + 2)
+    rows = sobol_bootstrap_rows(n_base, seed, num_resamples)
+    return sobol_first_total(outputs, num_vars, rows, _z_value(conf_level))
+
+
+def _fourier_orders(curves, m_harmonics: int):
+    """eFAST S1 and ST of search curves ``curves`` (..., N) (SALib ``compute_orders``)."""
+    n = curves.shape[-1]
+    omega = (n - 1) // (2 * m_harmonics)
+    power = (np.abs(np.fft.rfft(curves, axis=-1)[..., 1 : math.ceil(n / 2)]) / n) ** 2
+    variance = 2.0 * power.sum(axis=-1)
+    first = 2.0 * power[..., np.arange(1, m_harmonics + 1) * omega - 1].sum(axis=-1)
+    rest = 2.0 * power[..., : omega // 2].sum(axis=-1)
+    return first / variance, 1.0 - rest / variance
+
+
+def efast_indices(
+    outputs,
+    num_vars: int,
+    seed: int,
+    m_harmonics=4,
+    num_resamples=NUM_RESAMPLES,
+    conf_level=CONF_LEVEL,
+):
+    """eFAST S1, ST and (unreliable, see module docstring) bootstrap half-widths of every
+    column of ``outputs`` (``fast_sampler`` design: D blocks of N rows)."""
+    outputs = np.asarray(outputs, dtype=np.float64)
+    n_curve = outputs.shape[0] // num_vars
+    n_out = outputs.shape[1]
+    starts = np.random.RandomState(seed).randint(0, n_curve, size=num_vars * num_resamples)
+    starts = starts.reshape(num_vars, num_resamples)
+    window = math.ceil(n_curve * 0.5)
+    z = _z_value(conf_level)
+    result = np.zeros((4, n_out, num_vars))
+    for i in range(num_vars):
+        curve = outputs[i * n_curve : (i + 1) * n_curve].T  # (n_out, N)
+        result[0, :, i], result[2, :, i] = _fourier_orders(curve, m_harmonics)
+        rows = (starts[i][:, None] + np.arange(window)[None, :]) % n_curve
+        s1, st = _fourier_orders(curve[:, rows], m_harmonics)  # (n_out, R)
+        result[1, :, i] = z * s1.std(axis=1, ddof=1)
+        result[3, :, i] = z * st.std(axis=1, ddof=1)
+    return result
+
+
+def _salib_per_column(analyze, problem, outputs, **options) -> np.ndarray:
+    """Run a SALib ``analyze`` on each output column; stack S1, S1_conf, ST, ST_conf.
+
+    SALib's eFAST warning about its bootstrap confidence intervals (SALib #649) is
+    acknowledged here: those half-widths are labelled unreliable wherever shown."""
+    analyses = []
+    for column in np.asarray(outputs).T:
+        with warnings.catch_warnings():
+            warnings.filterwarnings("ignore", message="FAST confidence intervals")
+            analyses.append(analyze(problem, np.ascontiguousarray(column), **options))
+    keys = ("S1", "S1_conf", "ST", "ST_conf")
+    return np.array([[np.asarray(a[k], dtype=np.float64) for a in analyses] for k in keys])
+
+
+def salib_sobol_indices(problem, outputs, seed, num_resamples=NUM_RESAMPLES, conf_level=CONF_LEVEL):
+    """The reference: ``SALib.analyze.sobol.analyze`` on each output column."""
+    from SALib.analyze import sobol
+
+    options = {"num_resamples": num_resamples, "conf_level": conf_level, "seed": seed}
+    return _salib_per_column(sobol.analyze, problem, outputs, calc_second_order=False, **options)
+
+
+def salib_efast_indices(
+    problem, outputs, seed, m_harmonics=4, num_resamples=NUM_RESAMPLES, conf_level=CONF_LEVEL
+):
+    """The reference: ``SALib.analyze.fast.analyze`` on each output column."""
+    from SALib.analyze import fast
+
+    options = {"num_resamples": num_resamples, "conf_level": conf_level, "seed": seed}
+    return _salib_per_column(fast.analyze, problem, outputs, M=m_harmonics, **options)

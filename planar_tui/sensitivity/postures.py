@@ -1,0 +1,142 @@
+r"""Postures of the sensitivity study: singular, isotropic (minimum condition number), explicit.
+
+The isotropic posture minimises the condition number :math:`\kappa = \sigma_{max}/\sigma_{min}`
+of the manipulator Jacobian (Angeles, *Fundamentals of Robotic Mechanical Systems*, 4th ed.,
+pp. 306-317, paper A ref. [19]):
+
+* 2R: the 2×2 positional Jacobian, columns :math:`E(p - o_i)`; it is isotropic
+  (:math:`\kappa = 1`) iff :math:`l_2 = l_1/\sqrt2` and :math:`\theta_2 = \pm 135°`.
+* n ≥ 3: the 3×n Jacobian with the orientation row, columns
+  :math:`[1;\ E(p - o_i)/L]`, with the characteristic length L a design variable optimised
+  with the angles. For 3R, :math:`JJ^T = 3I` forces the joint centres to be an equilateral
+  triangle with the end point at its centroid: :math:`l_1 = l_2 = \sqrt3\,l_3`,
+  :math:`\theta_2 = \pm120°`, :math:`\theta_3 = \pm150°`, :math:`L = l_3/\sqrt2`.
+
+:math:`\kappa` does not depend on :math:`\theta_1`; it is set to 0 (the robot's first link
+horizontal) and, of the two mirror-image solutions, the one with :math:`\theta_2 > 0` is
+returned (it is the one that reproduces paper A's Tables 4-5, see ``docs/sensitivity.md``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Posture:
+    """A posture of the study: its label, relative joint angles and Jacobian conditioning.
+
+    ``condition_number`` is :math:`\\kappa` of the Jacobian used to judge isotropy (the
+    positional one for 2R, the one with orientation row and ``characteristic_length_m``
+    for n ≥ 3).
+    """
+
+    label: str
+    theta_rad: tuple[float, ...]
+    condition_number: float
+    characteristic_length_m: float | None = None
+
+
+class NoIsotropicPosture(ValueError):
+    """The robot's minimum condition number is above 1 + tolerance."""
+
+
+def jacobian(lengths_m, theta_rad, characteristic_length_m: float | None = None) -> np.ndarray:
+    r"""Manipulator Jacobian of the end point of an n-link planar chain.
+
+    Column i is :math:`E(p - o_i)` (2 rows) when ``characteristic_length_m`` is None, else
+    :math:`[1;\ E(p - o_i)/L]` (3 rows), with :math:`o_i` joint i, p the end of link n and
+    :math:`E` the rotation by +90°.
+    """
+    lengths = np.asarray(lengths_m, dtype=np.float64)
+    phi = np.cumsum(np.asarray(theta_rad, dtype=np.float64))
+    links = lengths[:, None] * np.column_stack([np.cos(phi), np.sin(phi)])
+    to_end = np.cumsum(links[::-1], axis=0)[::-1]  # p - o_i
+    columns = np.column_stack([-to_end[:, 1], to_end[:, 0]]).T
+    if characteristic_length_m is None:
+        return columns
+    return np.vstack([np.ones(len(lengths)), columns / characteristic_length_m])
+
+
+def condition_number(matrix: np.ndarray) -> float:
+    """:math:`\\sigma_{max}/\\sigma_{min}` (``inf`` when singular)."""
+    sigma = np.linalg.svd(matrix, compute_uv=False)
+    return math.inf if sigma[-1] <= 1e-300 else float(sigma[0] / sigma[-1])
+
+
+def _isotropy_residual(variables, lengths_m, with_orientation):
+    """:math:`JJ^T\\,m/\\mathrm{tr}(JJ^T) - I` (upper triangle): zero iff κ = 1."""
+    theta = np.concatenate([[0.0], variables[: len(lengths_m) - 1]])
+    length = math.exp(variables[-1]) if with_orientation else None
+    j = jacobian(lengths_m, theta, length)
+    gram = j @ j.T
+    rows = gram.shape[0]
+    scaled = gram * rows / max(np.trace(gram), 1e-300) - np.eye(rows)
+    return scaled[np.triu_indices(rows)]
+
+
+def _wrap_deg(angle_rad: float) -> float:
+    """An angle in degrees wrapped to (-180, 180]."""
+    degrees = math.degrees(angle_rad) % 360.0
+    return degrees - 360.0 if degrees > 180.0 else degrees
+
+
+def isotropic_posture(lengths_m, tolerance: float = 0.01) -> Posture:
+    """The posture of minimum Jacobian condition number, or :class:`NoIsotropicPosture`.
+
+    Least squares on the isotropy residual from a fixed set of starting postures (so the
+    result is deterministic), then κ of the best solution. Raises when κ > 1 + tolerance.
+    """
+    from scipy.optimize import least_squares
+
+    lengths = np.asarray(lengths_m, dtype=np.float64)
+    n = len(lengths)
+    if n < 2:
+        raise NoIsotropicPosture("a 1-link robot has no isotropic posture (needs n >= 2)")
+    with_orientation = n >= 3
+    base = math.log(float(lengths.mean()))
+    best = None
+    for start_deg in (135.0, 120.0, 90.0, 60.0, 150.0, 170.0):
+        start = [math.radians(start_deg)] * (n - 1) + ([base] if with_orientation else [])
+        fit = least_squares(
+            _isotropy_residual, start, args=(lengths, with_orientation), xtol=1e-14, ftol=1e-14
+        )
+        length = math.exp(fit.x[-1]) if with_orientation else None
+        theta = np.concatenate([[0.0], fit.x[: n - 1]])
+        kappa = condition_number(jacobian(lengths, theta, length))
+        if best is None or kappa < best[0] - 1e-12:
+            best = (kappa, theta, length)
+    kappa, theta, length = best
+    degrees = [_wrap_deg(t) for t in theta]
+    if degrees[1] < 0:  # mirror image: same κ; keep θ2 > 0
+        degrees = [-d if d != 180.0 else d for d in degrees]
+    if not kappa <= 1.0 + tolerance:
+        requirement = "l2 = l1/√2" if n == 2 else ("l1 = l2 = √3·l3" if n == 3 else "")
+        raise NoIsotropicPosture(
+            f"no isotropic posture: the minimum condition number is {kappa:.6g} at "
+            f"theta = [{', '.join(f'{d:.2f}' for d in degrees)}] deg, above 1 + {tolerance:g}"
+            + (f" (isotropy needs {requirement})" if requirement else "")
+        )
+    return Posture("isotropic", tuple(math.radians(d) for d in degrees), kappa, length)
+
+
+def singular_posture(n_links: int, lengths_m=None) -> Posture:
+    """All joint angles 0: the arm stretched horizontally (Jacobian rank-deficient, κ = ∞)."""
+    return Posture("singular", (0.0,) * n_links, math.inf)
+
+
+def explicit_posture(theta_deg, lengths_m) -> Posture:
+    """Given relative joint angles (degrees); κ reported as for the isotropic search."""
+    theta = tuple(math.radians(float(t)) for t in theta_deg)
+    lengths = np.asarray(lengths_m, dtype=np.float64)
+    if len(lengths) >= 3:
+        length = float(np.sqrt(np.mean(lengths**2)))
+        kappa = condition_number(jacobian(lengths, theta, length))
+    else:
+        length = None
+        kappa = condition_number(jacobian(lengths, theta))
+    label = "theta_deg=" + "/".join(f"{float(t):g}" for t in theta_deg)
+    return Posture(label, theta, kappa, length)

@@ -1,0 +1,70 @@
+r"""Result records, the paper's "sensitivity percent", and the CSV table.
+
+Paper A prints, per torque, a percentage per input summing to 100 %. Its eqs. 18 and 39 and
+the 0.4-1.2 % eFAST entries of inputs a torque cannot depend on (only a total-index
+estimator yields those) say it normalised **total** indices; the comparison in
+``docs/sensitivity.md`` confirms it. So by default
+
+.. math:: P_j = 100\,\frac{\max(S_{Tj}, 0)}{\sum_k \max(S_{Tk}, 0)},
+
+and ``percent_of = "S1"`` normalises first-order indices instead (negative estimates of
+either are clipped to 0 first).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from planar_tui.csvio import CsvTable
+
+CSV_HEADER = (
+    "robot",
+    "posture",
+    "speed_rad_s",
+    "torque",
+    "parameter",
+    "method",
+    "S1",
+    "S1_conf",
+    "ST",
+    "ST_conf",
+    "percent",
+)
+
+
+@dataclass(frozen=True)
+class Analysis:
+    """The indices of one method at one posture and speed: arrays (4, n, D)."""
+
+    method: str
+    posture: str
+    speed_rad_s: float
+    names: tuple[str, ...]
+    indices: np.ndarray
+    percent: np.ndarray  # (n, D)
+
+
+def sensitivity_percent(indices: np.ndarray, percent_of: str = "ST") -> np.ndarray:
+    """(n, D) percentages: the chosen index clipped at 0, normalised per torque to 100."""
+    chosen = np.clip(indices[2 if percent_of == "ST" else 0], 0.0, None)
+    totals = chosen.sum(axis=1, keepdims=True)
+    return np.divide(100.0 * chosen, totals, out=np.zeros_like(chosen), where=totals > 0)
+
+
+def csv_table(robot_label: str, analyses: list[Analysis]) -> CsvTable:
+    """One row per posture × speed × torque × parameter × method, in run order."""
+    rows = []
+    groups: dict[tuple[str, float], list[Analysis]] = {}
+    for analysis in analyses:
+        groups.setdefault((analysis.posture, analysis.speed_rad_s), []).append(analysis)
+    for (posture, speed), group in groups.items():
+        for torque in range(group[0].indices.shape[1]):
+            for j, name in enumerate(group[0].names):
+                for a in group:
+                    s1, s1_conf, st, st_conf = (float(v) for v in a.indices[:, torque, j])
+                    percent = float(a.percent[torque, j])
+                    key = (robot_label, posture, float(speed), torque + 1, name, a.method)
+                    rows.append((*key, s1, s1_conf, st, st_conf, percent))
+    return CsvTable(CSV_HEADER, rows)
