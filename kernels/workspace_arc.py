@@ -1,0 +1,163 @@
+"""Exact leg-wise feasibility of a 3-RRR (the ``arc-distance`` form) and its 2-D bisection.
+
+Eliminating the active angle exactly: leg ``i`` closes at the platform point :math:`C_i` for
+some :math:`\\theta_i \\in [\\underline\\theta_i, \\overline\\theta_i]` iff the distance from
+:math:`C_i` to the arc :math:`B_i(\\theta) = A_i + l_1(\\cos\\theta, \\sin\\theta)` brackets
+:math:`l_2`:
+
+.. math:: d_{\\min,i}(C_i) \\le l_2 \\le d_{\\max,i}(C_i),
+
+because :math:`\\theta \\mapsto |C_i - B_i(\\theta)|` is continuous on a connected arc. With
+:math:`p = C_i - A_i = r(\\cos\\alpha, \\sin\\alpha)`, the distance to the circle point at
+angle :math:`t` grows with the angular separation :math:`|t - \\alpha| \\in [0, \\pi]`, so
+:math:`d_{\\min} = |r - l_1|` if :math:`\\alpha` lies on the arc, else the nearer endpoint, and
+:math:`d_{\\max} = r + l_1` if :math:`\\alpha + \\pi` lies on the arc, else the farther endpoint.
+
+Both functions are 1-Lipschitz in :math:`C_i`, so over an (x, y) box of half-diagonal
+:math:`\\rho` about its centre :math:`c` they lie within :math:`d(c) \\pm \\rho`: a box is
+*outside* if some leg has :math:`d_{\\min}(c) - \\rho > l_2` or
+:math:`d_{\\max}(c) + \\rho < l_2`, *inside* if every leg has
+:math:`d_{\\min}(c) + \\rho \\le l_2 \\le d_{\\max}(c) - \\rho`, else *boundary*. ``rho`` is
+enlarged by ``TOLERANCE_CM`` to absorb the round-off of a few libm calls (|error| < 1e-12 cm
+for coordinates below 1e3 cm).
+"""
+
+import math
+
+import numpy as np
+
+from kernels._jit import kernel
+from kernels.workspace3rrr import CHUNK_LIMIT, DONE, KEPT_FULL, STACK_FULL
+
+OUTSIDE = 0
+BOUNDARY = 1
+INSIDE = 2
+
+TOLERANCE_CM = 1e-9
+
+
+@kernel
+def _on_arc(angle, tlo, thi):
+    """True if ``angle`` (mod 2 pi) lies in ``[tlo, thi]`` (``thi - tlo < 2 pi``)."""
+    two_pi = 2.0 * math.pi
+    shifted = tlo + ((angle - tlo) % two_pi)
+    return shifted <= thi
+
+
+@kernel
+def arc_distance_range(px, py, l1, tlo, thi):
+    """``(d_min, d_max)`` from the point ``p`` (relative to the base joint) to the arc."""
+    if thi - tlo >= 2.0 * math.pi:
+        r = math.hypot(px, py)
+        return abs(r - l1), r + l1
+    r = math.hypot(px, py)
+    d_lo = math.hypot(px - l1 * math.cos(tlo), py - l1 * math.sin(tlo))
+    d_hi = math.hypot(px - l1 * math.cos(thi), py - l1 * math.sin(thi))
+    if r == 0.0:
+        return l1, l1
+    alpha = math.atan2(py, px)
+    dmin = abs(r - l1) if _on_arc(alpha, tlo, thi) else min(d_lo, d_hi)
+    dmax = r + l1 if _on_arc(alpha + math.pi, tlo, thi) else max(d_lo, d_hi)
+    return dmin, dmax
+
+
+@kernel
+def point_feasible(x, y, p, limits):
+    """Exact test at one platform position: every leg closes within its joint limits."""
+    for leg in range(3):
+        dmin, dmax = arc_distance_range(
+            x + p[2 + 2 * leg], y + p[3 + 2 * leg], p[0], limits[leg, 0], limits[leg, 1]
+        )
+        if dmin > p[1] or dmax < p[1]:
+            return False
+    return True
+
+
+@kernel
+def classify_box(xlo, xhi, ylo, yhi, p, limits):
+    """``OUTSIDE``, ``BOUNDARY`` or ``INSIDE`` for the (x, y) box (module docstring)."""
+    cx = 0.5 * (xlo + xhi)
+    cy = 0.5 * (ylo + yhi)
+    rho = 0.5 * math.hypot(xhi - xlo, yhi - ylo) + TOLERANCE_CM
+    l2 = p[1]
+    inside = True
+    for leg in range(3):
+        dmin, dmax = arc_distance_range(
+            cx + p[2 + 2 * leg], cy + p[3 + 2 * leg], p[0], limits[leg, 0], limits[leg, 1]
+        )
+        if dmin - rho > l2 or dmax + rho < l2:
+            return OUTSIDE
+        if dmin + rho > l2 or dmax - rho < l2:
+            inside = False
+    return INSIDE if inside else BOUNDARY
+
+
+@kernel
+def classify_boxes(boxes, p, limits, out):
+    """:func:`classify_box` for every row ``x_lo, x_hi, y_lo, y_hi`` of ``boxes``."""
+    for r in range(boxes.shape[0]):
+        out[r] = classify_box(boxes[r, 0], boxes[r, 1], boxes[r, 2], boxes[r, 3], p, limits)
+
+
+@kernel
+def points_feasible(xs, ys, p, limits, out):
+    """:func:`point_feasible` for every point."""
+    for r in range(xs.shape[0]):
+        out[r] = point_feasible(xs[r], ys[r], p, limits)
+
+
+@kernel
+def arc_bisect_chunk(p, limits, precision, stack, n_stack, kept, status, n_kept, max_boxes):
+    """At most ``max_boxes`` steps of the 2-D bisection with the exact leg-wise test.
+
+    Pop an (x, y) box; discard it if ``OUTSIDE``; keep it as inside if ``INSIDE`` (never split);
+    keep it as boundary if both widths are :math:`\\le \\varepsilon`; else halve its wider side.
+    Returns ``(n_stack, n_kept, processed, code)`` like ``bisect_chunk``.
+    """
+    processed = 0
+    cap_stack = stack.shape[0]
+    cap_kept = kept.shape[0]
+    while n_stack > 0:
+        if processed >= max_boxes:
+            return n_stack, n_kept, processed, CHUNK_LIMIT
+        if n_kept >= cap_kept:
+            return n_stack, n_kept, processed, KEPT_FULL
+        if n_stack + 1 >= cap_stack:
+            return n_stack, n_kept, processed, STACK_FULL
+        n_stack -= 1
+        row = n_stack
+        processed += 1
+        xlo = stack[row, 0]
+        xhi = stack[row, 1]
+        ylo = stack[row, 2]
+        yhi = stack[row, 3]
+        label = classify_box(xlo, xhi, ylo, yhi, p, limits)
+        if label == OUTSIDE:
+            continue
+        wx = xhi - xlo
+        wy = yhi - ylo
+        if label == INSIDE or (wx <= precision and wy <= precision):
+            kept[n_kept, 0] = xlo
+            kept[n_kept, 1] = xhi
+            kept[n_kept, 2] = ylo
+            kept[n_kept, 3] = yhi
+            status[n_kept] = label
+            n_kept += 1
+            continue
+        for j in range(4):
+            stack[n_stack + 1, j] = stack[row, j]
+        if wx >= wy:
+            mid = 0.5 * (xlo + xhi)
+            stack[row, 1] = mid
+            stack[n_stack + 1, 0] = mid
+        else:
+            mid = 0.5 * (ylo + yhi)
+            stack[row, 3] = mid
+            stack[n_stack + 1, 2] = mid
+        n_stack += 2
+    return n_stack, n_kept, processed, DONE
+
+
+def limits_array(limits_rad):
+    """Joint limits as a contiguous (3, 2) float64 array (radians)."""
+    return np.ascontiguousarray(np.asarray(limits_rad, dtype=np.float64).reshape(3, 2))
