@@ -140,8 +140,15 @@ def execute(
     return [(job, result, path) for job, result, path, _ in done]
 
 
-def run_kind(kind: str, preset_argument: str, out: Path | None, out_dir: Path) -> None:
-    """Run every job of one kind in a preset (the ``simulate``/``torques``... commands)."""
+def run_kind(
+    kind: str,
+    preset_argument: str,
+    out: Path | None,
+    out_dir: Path,
+    adjust: Callable[[Job], Job] | None = None,
+) -> None:
+    """Run every job of one kind in a preset (the ``simulate``/``torques``... commands);
+    ``adjust`` applies command-line overrides to each job before anything runs."""
     with reported_errors():
         (preset,) = load_presets([preset_argument])
         jobs = preset.jobs_of(kind)
@@ -149,6 +156,8 @@ def run_kind(kind: str, preset_argument: str, out: Path | None, out_dir: Path) -
             raise PresetError(
                 preset.path, kind, f"no [{kind}] job in this preset", f"a [{kind}] table"
             )
+        if adjust is not None:
+            jobs = tuple(adjust(job) for job in jobs)
         numbers = {job: k for k, job in enumerate(jobs, start=1)}
 
         def output_for(job: Job) -> Path:
@@ -190,6 +199,17 @@ def open_app(preset_argument: str | None) -> None:
 
 
 @app.command()
+def tui(
+    preset: Annotated[
+        str | None,
+        typer.Argument(help="Preset file or bundled preset name (default: paper-a-table1)."),
+    ] = None,
+) -> None:
+    """Open the Textual workbench on a preset (what `planar-tui` alone does)."""
+    open_app(preset)
+
+
+@app.command()
 def simulate(preset: PresetArg, out: OutOption = None, out_dir: OutDirOption = Path(".")) -> None:
     """Integrate the forward dynamics (RK4) of every simulate job; one CSV per job."""
     run_kind("simulate", preset, out, out_dir)
@@ -199,6 +219,33 @@ def simulate(preset: PresetArg, out: OutOption = None, out_dir: OutDirOption = P
 def torques(preset: PresetArg, out: OutOption = None, out_dir: OutDirOption = Path(".")) -> None:
     """Inverse dynamics at the listed states of every torques job; one CSV per job."""
     run_kind("torques", preset, out, out_dir)
+
+
+@app.command()
+def sensitivity(
+    preset: PresetArg,
+    method: Annotated[
+        list[str] | None,
+        typer.Option("--method", "-m", help="sobol or efast (repeatable); overrides `methods`."),
+    ] = None,
+    samples: Annotated[
+        int | None, typer.Option(help="Sobol' base N (a power of two); overrides `samples`.")
+    ] = None,
+    seed: Annotated[int | None, typer.Option(help="Seed >= 1; overrides `seed`.")] = None,
+    out: OutOption = None,
+    out_dir: OutDirOption = Path("."),
+) -> None:
+    """Sobol'/eFAST sensitivity of the joint torques of every sensitivity job; one CSV each."""
+
+    def adjust(job: Job) -> Job:
+        import dataclasses
+
+        from planar_tui.jobs.sensitivity import with_overrides
+
+        spec = with_overrides(job.spec, methods=method, samples=samples, seed=seed)
+        return dataclasses.replace(job, spec=spec)
+
+    run_kind("sensitivity", preset, out, out_dir, adjust)
 
 
 @app.command()
