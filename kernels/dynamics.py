@@ -239,8 +239,8 @@ def forward_dynamics_work(n):
 
 @kernel
 def _row(vector):
-    """(n,) -> (1, n) view."""
-    return vector.reshape((1, vector.shape[0]))
+    """(n,) -> (1, n) view (``vector[None, :]`` is free; ``reshape`` costs ~20 ns in numba)."""
+    return vector[None, :]
 
 
 @kernel

@@ -1,0 +1,325 @@
+"""Benchmark of the NOC dynamics kernels (``python benchmarks/bench_dynamics.py``).
+
+Rows (JIT warmed first, best of several repeats, baselines run in the same process):
+
+* batched 6R inverse dynamics, 10^6 samples with their own parameters, 1 and 2 threads;
+* MuJoCo ``mj_inverse`` in a Python loop, writing body_mass / body_inertia / body_pos /
+  body_ipos per sample (10^4 samples, scaled per sample);
+* a NumPy-vectorised Newton-Euler (loop over links, arrays over samples), 10^6 samples;
+* the paper A Table 1 simulation (6R, 1 s, RK4 step 1e-4 s): ``rk4_integrate`` vs MuJoCo's
+  own RK4 ``mj_step`` in a Python loop (10^4 steps);
+* one inverse / forward dynamics evaluation for n = 2..64 with the fitted exponent of
+  time ~ n^p (called from Python, and from a jitted loop, which removes the dispatch cost).
+"""
+
+import datetime
+import os
+import platform
+import sys
+import time
+from pathlib import Path
+
+import numba
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
+from kernels._jit import kernel
+from kernels.dynamics import (
+    forward_dynamics,
+    inverse_dynamics,
+    inverse_dynamics_batch,
+)
+from kernels.rk4 import rk4_integrate, rk4_record_count
+from tests.mujoco_model import chain_model, set_chain_parameters
+
+G = 9.81
+LENGTHS = np.array([0.25, 0.25, 0.20, 0.20, 0.15, 0.15])
+MASSES = np.array([0.484, 0.484, 0.387, 0.387, 0.290, 0.290])
+INERTIAS = np.array([2.54e-3, 2.54e-3, 1.31e-3, 1.31e-3, 5.61e-4, 5.61e-4])
+TORQUES = np.array([2.0, 0.3, 0.1, 0.03, 0.03, 0.001])
+
+
+def best_time(function, repeats=5):
+    """Best wall time of ``function()`` in seconds."""
+    best = np.inf
+    for _ in range(repeats):
+        start = time.perf_counter()
+        function()
+        best = min(best, time.perf_counter() - start)
+    return best
+
+
+def samples(count, rng):
+    """Parameters of ``count`` 6R robots: nominal ± 1 mm, ± 10 g, inertias ± 1 %."""
+    lengths = LENGTHS + rng.uniform(-1e-3, 1e-3, (count, 6))
+    masses = MASSES + rng.uniform(-1e-2, 1e-2, (count, 6))
+    inertias = INERTIAS * rng.uniform(0.99, 1.01, (count, 6))
+    return lengths, masses, inertias
+
+
+def numpy_newton_euler(lengths, masses, inertias, gravity, theta, omega, alpha):
+    """Vectorised over samples (S, n), looping over links: the same recursion in NumPy."""
+    phi, rate, accel = np.cumsum(theta), np.cumsum(omega), np.cumsum(alpha)
+    ux, uy = np.cos(phi), np.sin(phi)
+    bx = -accel * uy - rate**2 * ux
+    by = accel * ux - rate**2 * uy
+    n = lengths.shape[1]
+    fx, fy = np.empty_like(lengths), np.empty_like(lengths)
+    ax = np.zeros(lengths.shape[0])
+    ay = np.full(lengths.shape[0], gravity)
+    for i in range(n):
+        fx[:, i] = masses[:, i] * (ax + 0.5 * lengths[:, i] * bx[i])
+        fy[:, i] = masses[:, i] * (ay + 0.5 * lengths[:, i] * by[i])
+        ax = ax + lengths[:, i] * bx[i]
+        ay = ay + lengths[:, i] * by[i]
+    tau = np.empty_like(lengths)
+    big_fx = np.zeros_like(ax)
+    big_fy = np.zeros_like(ax)
+    moment = np.zeros_like(ax)
+    for i in range(n - 1, -1, -1):
+        hx, hy = 0.5 * lengths[:, i] * ux[i], 0.5 * lengths[:, i] * uy[i]
+        moment = moment + inertias[:, i] * accel[i] + hx * fy[:, i] - hy * fx[:, i]
+        moment = moment + 2.0 * (hx * big_fy - hy * big_fx)
+        big_fx = big_fx + fx[:, i]
+        big_fy = big_fy + fy[:, i]
+        tau[:, i] = moment
+    return tau
+
+
+def mujoco_inverse_loop(lengths, masses, inertias, theta, omega, alpha):
+    import mujoco
+
+    model, data = chain_model(LENGTHS, MASSES, INERTIAS, G)
+    data.qpos[:], data.qvel[:], data.qacc[:] = theta, omega, alpha
+    out = np.empty_like(lengths)
+    for s in range(lengths.shape[0]):
+        set_chain_parameters(model, lengths[s], masses[s], inertias[s])
+        mujoco.mj_inverse(model, data)
+        out[s] = data.qfrc_inverse
+    return out
+
+
+def simulate_kernel(every):
+    steps = 10_000
+    rows = rk4_record_count(steps, every)
+    theta, omega = np.zeros(6), np.zeros(6)
+    outputs = (
+        np.zeros(rows),
+        np.zeros((rows, 6)),
+        np.zeros((rows, 6)),
+        np.zeros(rows),
+        np.zeros(rows),
+    )
+    rk4_integrate(
+        LENGTHS, MASSES, INERTIAS, G, TORQUES, theta, omega, 1e-4, steps, every, 0, *outputs
+    )
+    return theta
+
+
+def simulate_mujoco():
+    import mujoco
+
+    model, data = chain_model(LENGTHS, MASSES, INERTIAS, G, timestep_s=1e-4)
+    data.qfrc_applied[:] = TORQUES
+    for _ in range(10_000):
+        mujoco.mj_step(model, data)
+    return data.qpos.copy()
+
+
+@kernel
+def _repeat_inverse(count, lengths, masses, inertias, theta, omega, alpha):
+    total = 0.0
+    for _ in range(count):
+        theta[0] += 1e-12
+        total += inverse_dynamics(lengths, masses, inertias, 9.81, theta, omega, alpha)[0]
+    return total
+
+
+@kernel
+def _repeat_forward(count, lengths, masses, inertias, theta, omega, tau):
+    total = 0.0
+    for _ in range(count):
+        theta[0] += 1e-12
+        total += forward_dynamics(lengths, masses, inertias, 9.81, theta, omega, tau)[0]
+    return total
+
+
+def scaling(rng):
+    """Per-call times (s) for n in 2..64: Python call of inverse_dynamics, jitted loops."""
+    sizes = [2, 4, 8, 16, 32, 64]
+    table = []
+    for n in sizes:
+        lengths, masses = rng.uniform(0.1, 0.3, n), rng.uniform(0.2, 1.0, n)
+        inertias = masses * lengths**2 / 12
+        theta, omega, alpha = rng.normal(size=(3, n))
+        calls = 20_000
+        python = best_time(
+            lambda: [
+                inverse_dynamics(lengths, masses, inertias, G, theta, omega, alpha)
+                for _ in range(calls)
+            ],
+            3,
+        )  # noqa: B023
+        _repeat_inverse(1, lengths, masses, inertias, theta, omega, alpha)
+        _repeat_forward(1, lengths, masses, inertias, theta, omega, alpha)
+        jit_inverse = best_time(
+            lambda: _repeat_inverse(calls, lengths, masses, inertias, theta, omega, alpha), 3
+        )  # noqa: B023
+        jit_forward = best_time(
+            lambda: _repeat_forward(calls, lengths, masses, inertias, theta, omega, alpha), 3
+        )  # noqa: B023
+        table.append((n, python / calls, jit_inverse / calls, jit_forward / calls))
+    return table
+
+
+def exponent(sizes, times):
+    """Least-squares slope of log(time) on log(n) over n >= 8 (past the fixed overheads)."""
+    sizes, times = np.asarray(sizes, float), np.asarray(times)
+    keep = sizes >= 8
+    return np.polyfit(np.log(sizes[keep]), np.log(times[keep]), 1)[0]
+
+
+def main():
+    rng = np.random.default_rng(20160601)
+    theta, omega, alpha = rng.uniform(-1, 1, (3, 6))
+    count = 1_000_000
+    params = samples(count, rng)
+    inverse_dynamics_batch(*(p[:10] for p in params), G, theta, omega, alpha)  # compile
+    simulate_kernel(10)
+
+    rows = []
+    thread_times = {}
+    for threads in (1, 2):
+        numba.set_num_threads(threads)
+        thread_times[threads] = (
+            best_time(lambda: inverse_dynamics_batch(*params, G, theta, omega, alpha)) / count
+        )
+    numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
+    mj_count = 10_000
+    mj_params = tuple(p[:mj_count] for p in params)
+    mj_time = best_time(lambda: mujoco_inverse_loop(*mj_params, theta, omega, alpha), 3) / mj_count
+    np_time = best_time(lambda: numpy_newton_euler(*params, G, theta, omega, alpha), 3) / count
+    agree_np = np.abs(
+        numpy_newton_euler(*params, G, theta, omega, alpha)
+        - inverse_dynamics_batch(*params, G, theta, omega, alpha)
+    ).max()
+    agree_mj = np.abs(
+        mujoco_inverse_loop(*mj_params, theta, omega, alpha)
+        - inverse_dynamics_batch(*mj_params, G, theta, omega, alpha)
+    ).max()
+    base = thread_times[1]
+    rows.append(
+        (
+            "batched 6R inverse dynamics, 10^6 samples, 1 thread",
+            f"{base * 1e9:.1f} ns/sample",
+            "1.00",
+        )
+    )
+    rows.append(
+        (
+            "  same, 2 threads",
+            f"{thread_times[2] * 1e9:.1f} ns/sample",
+            f"{thread_times[2] / base:.2f}",
+        )
+    )
+    rows.append(
+        (
+            f"MuJoCo mj_inverse Python loop (10^4 samples, max |Δτ| {agree_mj:.1e} N m)",
+            f"{mj_time * 1e9:.0f} ns/sample",
+            f"{mj_time / base:.0f}",
+        )
+    )
+    rows.append(
+        (
+            f"NumPy-vectorised Newton-Euler, 10^6 samples (max |Δτ| {agree_np:.1e} N m)",
+            f"{np_time * 1e9:.1f} ns/sample",
+            f"{np_time / base:.1f}",
+        )
+    )
+
+    sim_every10 = best_time(lambda: simulate_kernel(10))
+    sim_every1 = best_time(lambda: simulate_kernel(1))
+    sim_mj = best_time(simulate_mujoco, 3)
+    gap = np.abs(simulate_kernel(1) - simulate_mujoco()).max()
+    rows.append(
+        (
+            "Table 1 simulation, 1 s, RK4 1e-4 s, rk4_integrate, every=10",
+            f"{sim_every10 * 1e3:.2f} ms",
+            "1.00",
+        )
+    )
+    rows.append(
+        (
+            "  same, every=1 (energies every step)",
+            f"{sim_every1 * 1e3:.2f} ms",
+            f"{sim_every1 / sim_every10:.2f}",
+        )
+    )
+    rows.append(
+        (
+            f"  MuJoCo RK4 mj_step Python loop, 10^4 steps (final |Δθ| {gap:.1e} rad)",
+            f"{sim_mj * 1e3:.1f} ms",
+            f"{sim_mj / sim_every10:.1f}",
+        )
+    )
+
+    table = scaling(rng)
+    sizes = [r[0] for r in table]
+    for n, python, jit_inverse, jit_forward in table:
+        rows.append(
+            (
+                f"n = {n}: inverse_dynamics from Python | in jit loop | forward_dynamics in jit loop",
+                f"{python * 1e9:.0f} | {jit_inverse * 1e9:.0f} | {jit_forward * 1e9:.0f} ns",
+                "",
+            )
+        )
+    fits = [exponent(sizes, [r[k] for r in table]) for k in (1, 2, 3)]
+    rows.append(
+        ("fitted exponent p (time ~ n^p, n >= 8)", " | ".join(f"{p:.2f}" for p in fits), "")
+    )
+
+    header = (
+        f"bench_dynamics  {datetime.date.today().isoformat()}  {platform.machine()} "
+        f"{_cpu_name()}, {os.cpu_count()} cores, numba {numba.__version__}, numpy {np.__version__}, "
+        f"mujoco {_mujoco_version()}"
+    )
+    _print(header, rows)
+
+
+def _cpu_name():
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor()
+
+
+def _mujoco_version():
+    import mujoco
+
+    return mujoco.__version__
+
+
+def _print(header, rows):
+    try:
+        from rich.console import Console
+        from rich.table import Table
+    except ImportError:
+        print(header)
+        for row in rows:
+            print(" | ".join(row))
+        return
+    table = Table(title=header, title_justify="left")
+    table.add_column("case")
+    table.add_column("time", justify="right")
+    table.add_column("ratio", justify="right")
+    for row in rows:
+        table.add_row(*row)
+    Console(width=150).print(table)
+
+
+if __name__ == "__main__":
+    main()
