@@ -17,6 +17,7 @@ import os
 import platform
 import sys
 import time
+from functools import partial
 from pathlib import Path
 
 import numba
@@ -128,48 +129,43 @@ def simulate_mujoco():
 
 
 @kernel
-def _repeat_inverse(count, lengths, masses, inertias, theta, omega, alpha):
+def _repeat(count, forward, lengths, masses, inertias, theta, omega, alpha_or_tau):
+    """``count`` calls of inverse (or forward) dynamics inside compiled code."""
     total = 0.0
     for _ in range(count):
         theta[0] += 1e-12
-        total += inverse_dynamics(lengths, masses, inertias, 9.81, theta, omega, alpha)[0]
+        if forward:
+            total += forward_dynamics(lengths, masses, inertias, 9.81, theta, omega, alpha_or_tau)[
+                0
+            ]
+        else:
+            total += inverse_dynamics(lengths, masses, inertias, 9.81, theta, omega, alpha_or_tau)[
+                0
+            ]
     return total
 
 
-@kernel
-def _repeat_forward(count, lengths, masses, inertias, theta, omega, tau):
-    total = 0.0
+def _python_calls(count, lengths, masses, inertias, theta, omega, alpha):
     for _ in range(count):
-        theta[0] += 1e-12
-        total += forward_dynamics(lengths, masses, inertias, 9.81, theta, omega, tau)[0]
-    return total
+        inverse_dynamics(lengths, masses, inertias, G, theta, omega, alpha)
 
 
 def scaling(rng):
     """Per-call times (s) for n in 2..64: Python call of inverse_dynamics, jitted loops."""
-    sizes = [2, 4, 8, 16, 32, 64]
+    calls = 20_000
     table = []
-    for n in sizes:
+    for n in [2, 4, 8, 16, 32, 64]:
         lengths, masses = rng.uniform(0.1, 0.3, n), rng.uniform(0.2, 1.0, n)
         inertias = masses * lengths**2 / 12
-        theta, omega, alpha = rng.normal(size=(3, n))
-        calls = 20_000
-        python = best_time(
-            lambda: [
-                inverse_dynamics(lengths, masses, inertias, G, theta, omega, alpha)
-                for _ in range(calls)
-            ],
-            3,
-        )  # noqa: B023
-        _repeat_inverse(1, lengths, masses, inertias, theta, omega, alpha)
-        _repeat_forward(1, lengths, masses, inertias, theta, omega, alpha)
-        jit_inverse = best_time(
-            lambda: _repeat_inverse(calls, lengths, masses, inertias, theta, omega, alpha), 3
-        )  # noqa: B023
-        jit_forward = best_time(
-            lambda: _repeat_forward(calls, lengths, masses, inertias, theta, omega, alpha), 3
-        )  # noqa: B023
-        table.append((n, python / calls, jit_inverse / calls, jit_forward / calls))
+        args = (lengths, masses, inertias, *rng.normal(size=(3, n)))
+        _repeat(1, False, *args)
+        _repeat(1, True, *args)
+        times = [
+            best_time(partial(_python_calls, calls, *args)),
+            best_time(partial(_repeat, calls, False, *args), 9),
+            best_time(partial(_repeat, calls, True, *args), 9),
+        ]
+        table.append((n, *(t / calls for t in times)))
     return table
 
 
@@ -238,8 +234,8 @@ def main():
         )
     )
 
-    sim_every10 = best_time(lambda: simulate_kernel(10))
-    sim_every1 = best_time(lambda: simulate_kernel(1))
+    sim_every10 = best_time(lambda: simulate_kernel(10), 15)
+    sim_every1 = best_time(lambda: simulate_kernel(1), 15)
     sim_mj = best_time(simulate_mujoco, 3)
     gap = np.abs(simulate_kernel(1) - simulate_mujoco()).max()
     rows.append(
@@ -277,6 +273,16 @@ def main():
     fits = [exponent(sizes, [r[k] for r in table]) for k in (1, 2, 3)]
     rows.append(
         ("fitted exponent p (time ~ n^p, n >= 8)", " | ".join(f"{p:.2f}" for p in fits), "")
+    )
+    increments = [[r[k] - table[0][k] for r in table[2:]] for k in (1, 2, 3)]
+    rows.append(
+        (
+            "fitted exponent of the increment t(n) - t(2), n >= 8",
+            " | ".join(
+                f"{exponent(sizes[2:], inc):.2f}" if min(inc) > 0 else "noisy" for inc in increments
+            ),
+            "",
+        )
     )
 
     header = (
