@@ -93,6 +93,22 @@ def classify_box(xlo, xhi, ylo, yhi, p, limits):
 
 
 @kernel
+def refuted(xlo, xhi, ylo, yhi, p, limits, n):
+    """True if each cell of an ``n`` x ``n`` grid over the box is ``OUTSIDE`` (so is the box)."""
+    hx = (xhi - xlo) / n
+    hy = (yhi - ylo) / n
+    for i in range(n):
+        x0 = xlo + i * hx
+        x1 = xhi if i == n - 1 else xlo + (i + 1) * hx
+        for j in range(n):
+            y0 = ylo + j * hy
+            y1 = yhi if j == n - 1 else ylo + (j + 1) * hy
+            if classify_box(x0, x1, y0, y1, p, limits) != OUTSIDE:
+                return False
+    return True
+
+
+@kernel
 def classify_boxes(boxes, p, limits, out):
     """:func:`classify_box` for every row ``x_lo, x_hi, y_lo, y_hi`` of ``boxes``."""
     for r in range(boxes.shape[0]):
@@ -107,11 +123,15 @@ def points_feasible(xs, ys, p, limits, out):
 
 
 @kernel
-def arc_bisect_chunk(p, limits, precision, stack, n_stack, kept, status, n_kept, max_boxes):
+def arc_bisect_chunk(
+    p, limits, precision, leaf_grid, stack, n_stack, kept, status, n_kept, max_boxes
+):
     """At most ``max_boxes`` steps of the 2-D bisection with the exact leg-wise test.
 
     Pop an (x, y) box; discard it if ``OUTSIDE``; keep it as inside if ``INSIDE`` (never split);
-    keep it as boundary if both widths are :math:`\\le \\varepsilon`; else halve its wider side.
+    if both widths are :math:`\\le \\varepsilon`, keep it as boundary unless all cells of an
+    ``leaf_grid`` x ``leaf_grid`` grid over it are ``OUTSIDE`` (0: no such check); else halve
+    its wider side.
     Returns ``(n_stack, n_kept, processed, code)`` like ``bisect_chunk``.
     """
     processed = 0
@@ -136,7 +156,11 @@ def arc_bisect_chunk(p, limits, precision, stack, n_stack, kept, status, n_kept,
             continue
         wx = xhi - xlo
         wy = yhi - ylo
-        if label == INSIDE or (wx <= precision and wy <= precision):
+        leaf = wx <= precision and wy <= precision
+        refutable = leaf and label == BOUNDARY and leaf_grid > 0
+        if refutable and refuted(xlo, xhi, ylo, yhi, p, limits, leaf_grid):
+            continue
+        if label == INSIDE or leaf:
             kept[n_kept, 0] = xlo
             kept[n_kept, 1] = xhi
             kept[n_kept, 2] = ylo

@@ -249,6 +249,63 @@ def sensitivity(
 
 
 @app.command()
+def workspace(
+    preset: PresetArg,
+    form: Annotated[
+        str | None,
+        typer.Option(
+            help="natural, mean-value, slope, arc-distance or geometric; overrides `form`."
+        ),
+    ] = None,
+    precision: Annotated[
+        float | None, typer.Option(help="Precision epsilon in cm; overrides `precision_cm`.")
+    ] = None,
+    out: OutOption = None,
+    boxes: Annotated[
+        Path | None,
+        typer.Option(help="CSV of the kept boxes (with several jobs: FILE-1.csv ...)."),
+    ] = None,
+    show_map: Annotated[
+        bool, typer.Option("--map/--no-map", help="Print the character-cell map.")
+    ] = True,
+    out_dir: OutDirOption = Path("."),
+) -> None:
+    """3-RRR workspace of every workspace job: summary CSV, optional boxes CSV and map."""
+    from planar_tui.jobs.workspace import FORMS, with_overrides
+
+    with reported_errors():
+        if form is not None and form not in FORMS:
+            raise PresetError("--form", "form", f"is {form!r}", "one of " + ", ".join(FORMS))
+        if precision is not None and not precision > 0:
+            raise PresetError("--precision", "precision", f"is {precision:g}", "a number > 0")
+        (loaded,) = load_presets([preset])
+        jobs = loaded.jobs_of("workspace")
+        if not jobs:
+            raise PresetError(loaded.path, "workspace", "no [workspace] job", "a [workspace] table")
+        import dataclasses
+
+        jobs = tuple(
+            dataclasses.replace(
+                job, spec=with_overrides(job.spec, form=form, precision_cm=precision)
+            )
+            for job in jobs
+        )
+        numbers = {job: k for k, job in enumerate(jobs, start=1)}
+
+        def output_for(job: Job) -> Path:
+            return numbered_path(out, numbers[job], len(jobs)) if out else out_dir / job.output
+
+        def boxes_for(job: Job, result: JobResult) -> dict[str, Path]:
+            if boxes is not None:
+                return {"boxes": numbered_path(boxes, numbers[job], len(jobs))}
+            if job.spec.boxes_output:
+                return {"boxes": out_dir / job.spec.boxes_output}
+            return {}
+
+        execute(jobs, output_for, extra_outputs=boxes_for, show=show_map)
+
+
+@app.command()
 def run(
     presets: Annotated[list[str], typer.Argument(help="Preset files or bundled preset names.")],
     out_dir: OutDirOption = Path("."),

@@ -9,10 +9,13 @@ from planar_tui.jobs.base import JobKind, JobResult, RobotKind
 from planar_tui.jobs.sensitivity import SENSITIVITY
 from planar_tui.jobs.simulate import SIMULATE
 from planar_tui.jobs.torques import TORQUES
+from planar_tui.jobs.workspace import WORKSPACE
 from planar_tui.model import SERIAL_ROBOT_KEYS, parse_serial_robot
+from planar_tui.workspace.model import ROBOT3RRR_KEYS, parse_robot3rrr
 
 ROBOT_KINDS: dict[str, RobotKind] = {
     "robot": RobotKind("robot", SERIAL_ROBOT_KEYS, parse_serial_robot),
+    "robot3rrr": RobotKind("robot3rrr", ROBOT3RRR_KEYS, parse_robot3rrr),
 }
 
 JOB_KINDS: dict[str, JobKind] = {
@@ -21,6 +24,7 @@ JOB_KINDS: dict[str, JobKind] = {
         SIMULATE,
         TORQUES,
         SENSITIVITY,
+        WORKSPACE,
     )
 }
 

@@ -1,0 +1,155 @@
+"""Character-cell map of a workspace: one glyph per terminal cell, readable without colour.
+
+:func:`render_map` is the reusable part (the CLI prints it, the Textual app shows it in a
+``Static``); :func:`show_workspace` is the CLI's view of a finished job.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+INSIDE_GLYPH = "█"
+BOUNDARY_GLYPH = "▒"
+OUTSIDE_GLYPH = " "
+LEGEND = (
+    f"{INSIDE_GLYPH} inside (proved)   {BOUNDARY_GLYPH} boundary (kept, not proved)   blank outside"
+)
+#: Terminal cells are about twice as tall as wide.
+CELL_ASPECT = 2.0
+_LABEL_WIDTH = 8  # "-123.45 " then the axis line
+
+
+def _nice_step(span: float, target_ticks: int) -> float:
+    raw = span / max(target_ticks, 1)
+    magnitude = 10.0 ** math.floor(math.log10(raw)) if raw > 0 else 1.0
+    for factor in (1.0, 2.0, 5.0, 10.0):
+        if factor * magnitude >= raw:
+            return factor * magnitude
+    return 10.0 * magnitude
+
+
+def _label(value: float, step: float) -> str:
+    decimals = max(0, -math.floor(math.log10(step))) if step > 0 else 0
+    return f"{value:.{decimals}f}"
+
+
+def _coverage(boxes, status, extent, columns, rows):
+    """Area of inside and of boundary boxes falling in each cell (``rows x columns``)."""
+    xlo, xhi, ylo, yhi = extent
+    cw = (xhi - xlo) / columns
+    ch = (yhi - ylo) / rows
+    cover = np.zeros((2, rows, columns))
+    for (bx0, bx1, by0, by1), s in zip(boxes, status, strict=True):
+        layer = 0 if s == 2 else 1
+        i0 = max(0, int((bx0 - xlo) // cw))
+        i1 = min(columns - 1, int((bx1 - xlo) // cw))
+        j0 = max(0, int((by0 - ylo) // ch))
+        j1 = min(rows - 1, int((by1 - ylo) // ch))
+        for i in range(i0, i1 + 1):
+            ox = min(bx1, xlo + (i + 1) * cw) - max(bx0, xlo + i * cw)
+            if ox <= 0:
+                continue
+            for j in range(j0, j1 + 1):
+                oy = min(by1, ylo + (j + 1) * ch) - max(by0, ylo + j * ch)
+                if oy > 0:
+                    cover[layer, j, i] += ox * oy
+    return cover / (cw * ch)
+
+
+def fit_extent(boxes: np.ndarray, fallback: tuple[float, float, float, float]):
+    """The kept boxes' bounding box grown by 5 % (``fallback`` when there are none)."""
+    if len(boxes) == 0:
+        return fallback
+    xlo, xhi = float(boxes[:, 0].min()), float(boxes[:, 1].max())
+    ylo, yhi = float(boxes[:, 2].min()), float(boxes[:, 3].max())
+    pad = 0.05 * max(xhi - xlo, yhi - ylo)
+    return (xlo - pad, xhi + pad, ylo - pad, yhi + pad)
+
+
+def render_map(
+    boxes: np.ndarray,
+    status: np.ndarray,
+    extent: tuple[float, float, float, float] | None = None,
+    width: int = 80,
+    height: int | None = None,
+) -> list[str]:
+    """The workspace as lines of text, at most ``width`` columns.
+
+    Parameters
+    ----------
+    boxes, status
+        Rows ``x_lo, x_hi, y_lo, y_hi`` (cm) and their status (2 inside, 1 boundary).
+    extent
+        ``(x_lo, x_hi, y_lo, y_hi)`` shown, in cm; default: the boxes' bounding box + 5 %.
+    width, height
+        Size in terminal cells, axes and legend included; ``height`` defaults to an
+        aspect-true map (a cell is twice as tall as wide) of at most 40 plot rows.
+
+    A cell fully covered by inside boxes shows ``█``, any other covered cell ``▒``, an
+    empty cell a blank; the y axis is labelled on the left, the x axis below, in cm.
+    """
+    boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 4)
+    status = np.asarray(status).reshape(-1)
+    if extent is None:
+        extent = fit_extent(boxes, (0.0, 1.0, 0.0, 1.0))
+    xlo, xhi, ylo, yhi = extent
+    columns = max(10, width - _LABEL_WIDTH - 1)
+    if height is None:
+        rows = round(columns * (yhi - ylo) / (xhi - xlo) / CELL_ASPECT)
+        rows = int(min(40, max(5, rows)))
+    else:
+        rows = max(3, height - 4)
+    cover = _coverage(boxes, status, extent, columns, rows)
+    lines = []
+    ystep = _nice_step(yhi - ylo, max(2, rows // 4))
+    ch = (yhi - ylo) / rows
+    labelled = set()
+    for j in range(rows - 1, -1, -1):
+        y_top = ylo + (j + 1) * ch
+        tick = math.floor(y_top / ystep) * ystep
+        label = ""
+        if tick >= ylo + j * ch and tick not in labelled:
+            labelled.add(tick)
+            label = _label(tick, ystep)
+        cells = []
+        for i in range(columns):
+            inside, boundary = cover[0, j, i], cover[1, j, i]
+            if inside >= 1.0 - 1e-9:
+                cells.append(INSIDE_GLYPH)
+            elif inside + boundary > 1e-12:
+                cells.append(BOUNDARY_GLYPH)
+            else:
+                cells.append(OUTSIDE_GLYPH)
+        lines.append(f"{label:>{_LABEL_WIDTH - 1}} ┤" + "".join(cells))
+    axis = [" "] * columns
+    ticks = [" "] * (columns + _LABEL_WIDTH + 8)
+    xstep = _nice_step(xhi - xlo, max(2, columns // 12))
+    value = math.ceil(xlo / xstep) * xstep
+    last_end = -1
+    while value <= xhi:
+        i = int((value - xlo) / (xhi - xlo) * columns)
+        if 0 <= i < columns:
+            axis[i] = "┬"
+            text = _label(value, xstep)
+            start = _LABEL_WIDTH + i - len(text) // 2
+            if start > last_end and start + len(text) <= width:
+                ticks[start : start + len(text)] = list(text)
+                last_end = start + len(text)
+        value += xstep
+    lines.append(" " * (_LABEL_WIDTH - 1) + " └" + "".join(axis)[: columns - 1])
+    lines.append("".join(ticks).rstrip()[:width])
+    lines.append(f"{'x (cm) →, y (cm) ↑':>{min(width, 30)}}   " + LEGEND[: max(0, width - 33)])
+    return [line[:width] for line in lines]
+
+
+def show_workspace(job, result, console) -> None:
+    """Print the map of a finished workspace job (CLI view), fitted to the console width."""
+    outcome = result.data
+    if outcome is None or len(outcome.boxes) == 0:
+        console.print(result.summary, markup=False)
+        return
+    width = min(console.width or 80, 120)
+    for line in render_map(outcome.boxes, outcome.status, width=width):
+        console.print(line, markup=False, highlight=False, crop=True, soft_wrap=False)

@@ -1,0 +1,282 @@
+"""Runner of the ``[workspace]`` job: chunked bisection, certified bracket, union areas.
+
+Stages (each in kernel chunks of at most ``CHUNK_BOXES`` boxes, so progress is reported
+and Cancel/Ctrl-C is honoured within a fraction of a second):
+
+1. *Paper's Algorithm 1* over ``(x, y, θ1, θ2, θ3)`` with the chosen interval form
+   (``natural``, ``mean-value``, ``slope``), or the 2-D bisection with the exact leg-wise
+   test (``arc-distance``), down to ``precision_cm``.
+2. *Classification*: every kept (x, y) box is tested with the exact leg-wise test;
+   proved boxes are ``inside``, the rest ``boundary``.
+3. *Boundary-only refinement* (``refine_precision_cm``): boundary boxes are bisected
+   again with the exact test; inside boxes are never split.
+
+The areas are exact unions of the (x, y) projections: ``area_inside <= exact <= area_kept``.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from planar_tui.csvio import CsvTable
+from planar_tui.errors import PresetError
+from planar_tui.jobs.base import JobResult
+from planar_tui.jobs.workspace import WorkspaceSpec, default_search_box
+from planar_tui.presets import Job
+from planar_tui.progress import Progress
+from planar_tui.workspace.model import Robot3RRR
+
+#: Boxes per kernel call: ~50 ms of work at ~1 µs per 5-D box.
+CHUNK_BOXES = 50_000
+#: Leaf check of the arc-distance form: an n x n sub-grid may prove a leaf outside.
+LEAF_GRID = 8
+
+SUMMARY_HEADER = (
+    "form",
+    "precision_cm",
+    "refine_precision_cm",
+    "boxes_processed",
+    "boxes_kept",
+    "boxes_inside",
+    "area_kept_cm2",
+    "area_inside_cm2",
+    "area_geometric_cm2",
+    "area_geometric_error_cm2",
+    "seconds",
+)
+BOXES_HEADER = ("x_lo_cm", "x_hi_cm", "y_lo_cm", "y_hi_cm", "status")
+STATUS_NAMES = {1: "boundary", 2: "inside"}
+INSIDE = 2
+BOUNDARY = 1
+
+
+@dataclass
+class WorkspaceOutcome:
+    """Everything a workspace run produced (areas in cm², boxes as rows of
+    ``x_lo, x_hi, y_lo, y_hi`` with ``status`` 2 = inside, 1 = boundary)."""
+
+    form: str
+    precision_cm: float
+    refine_precision_cm: float | None
+    boxes: np.ndarray
+    status: np.ndarray
+    boxes_processed: int
+    area_kept_cm2: float
+    area_inside_cm2: float
+    geometric: object | None
+    seconds: float
+    extent_cm: tuple[float, float, float, float]
+
+    def summary_row(self) -> list:
+        g = self.geometric
+        return [
+            self.form,
+            self.precision_cm,
+            "" if self.refine_precision_cm is None else self.refine_precision_cm,
+            self.boxes_processed,
+            len(self.boxes),
+            int(np.count_nonzero(self.status == INSIDE)),
+            self.area_kept_cm2,
+            self.area_inside_cm2,
+            "" if g is None else g.area_cm2,
+            "" if g is None else g.error_bound_cm2,
+            round(self.seconds, 6),
+        ]
+
+
+class _Budget:
+    """Counts processed boxes across stages and stops at the job's budget."""
+
+    def __init__(self, job: Job, progress: Progress):
+        self.job = job
+        self.progress = progress
+        self.processed = 0
+
+    def spend(self, processed: int, fraction: float, detail: str) -> None:
+        self.processed += processed
+        if self.processed > self.job.spec.box_budget:
+            raise PresetError(
+                self.job.preset_path,
+                f"{self.job.label.split(':', 1)[1]}.box_budget",
+                f"the bisection exceeded {self.job.spec.box_budget:,} boxes; nothing was written",
+                "a larger box_budget or a coarser precision_cm",
+            )
+        self.progress.advance(
+            max(0.0, fraction - self.progress.completed), f"{self.processed:,} boxes, {detail}"
+        )
+
+
+def _grow(array: np.ndarray) -> np.ndarray:
+    grown = np.zeros((2 * array.shape[0], *array.shape[1:]), dtype=array.dtype)
+    grown[: array.shape[0]] = array
+    return grown
+
+
+def _interval_stage(form_code, p, spec, box, budget) -> np.ndarray:
+    """Paper's Algorithm 1 over 5-D boxes; returns the kept (x, y) boxes (may repeat)."""
+    from kernels.workspace3rrr import DONE, KEPT_FULL, STACK_FULL, bisect_chunk
+
+    limits = np.array(spec.limits_rad).ravel()
+    stack = np.zeros((256, 10))
+    stack[0, :4] = [box[0][0], box[0][1], box[1][0], box[1][1]]
+    stack[0, 4:] = limits
+    widths = stack[0, 1::2] - stack[0, 0::2]
+    root_volume = float(np.prod(widths))
+    kept = np.zeros((4096, 4))
+    n_stack, n_kept = 1, 0
+    while True:
+        n_stack, n_kept, processed, code = bisect_chunk(
+            form_code, p, spec.precision_cm, spec.angle_scale, stack, n_stack, kept, n_kept,
+            CHUNK_BOXES,
+        )  # fmt: skip
+        pending = stack[:n_stack]
+        volume = float(np.sum(np.prod(pending[:, 1::2] - pending[:, 0::2], axis=1)))
+        budget.spend(processed, 1.0 - volume / root_volume, f"{n_kept:,} kept")
+        if code == DONE:
+            return kept[:n_kept]
+        if code == KEPT_FULL:
+            kept = _grow(kept)
+        elif code == STACK_FULL:
+            stack = _grow(stack)
+
+
+def _arc_stage(p, limits, precision, seeds, budget):
+    """2-D bisection with the exact leg-wise test from the (x, y) boxes ``seeds``."""
+    from kernels.workspace3rrr import DONE, KEPT_FULL, STACK_FULL
+    from kernels.workspace_arc import arc_bisect_chunk
+
+    stack = np.zeros((max(256, 2 * len(seeds) + 64), 4))
+    stack[: len(seeds)] = seeds
+    root_area = float(np.sum((seeds[:, 1] - seeds[:, 0]) * (seeds[:, 3] - seeds[:, 2])))
+    kept = np.zeros((max(4096, len(seeds)), 4))
+    status = np.zeros(kept.shape[0], dtype=np.int64)
+    n_stack, n_kept = len(seeds), 0
+    while True:
+        n_stack, n_kept, processed, code = arc_bisect_chunk(
+            p, limits, precision, LEAF_GRID, stack, n_stack, kept, status, n_kept,
+            4 * CHUNK_BOXES,
+        )  # fmt: skip
+        pending = stack[:n_stack]
+        area = float(np.sum((pending[:, 1] - pending[:, 0]) * (pending[:, 3] - pending[:, 2])))
+        budget.spend(processed, 1.0 - area / max(root_area, 1e-300), f"{n_kept:,} kept")
+        if code == DONE:
+            return kept[:n_kept], status[:n_kept]
+        if code == KEPT_FULL:
+            kept = _grow(kept)
+            status = _grow(status)
+        elif code == STACK_FULL:
+            stack = _grow(stack)
+
+
+def kernel_parameters(robot: Robot3RRR, spec: WorkspaceSpec) -> np.ndarray:
+    """The kernels' parameter vector ``p`` for this robot and orientation."""
+    from kernels.workspace3rrr import parameter_vector
+
+    return parameter_vector(
+        robot.proximal_cm,
+        robot.distal_cm,
+        robot.leg_offsets_cm(spec.orientation_rad),
+        robot.base_side_cm,
+        robot.platform_side_cm,
+        spec.orientation_rad,
+    )
+
+
+def compute_workspace(robot: Robot3RRR, spec: WorkspaceSpec, budget: _Budget) -> WorkspaceOutcome:
+    """Run the stages of the module docstring for one robot and spec."""
+    from kernels import workspace3rrr as k5
+    from kernels.workspace_arc import classify_boxes, limits_array
+    from kernels.workspace_union import union_area
+
+    started = time.perf_counter()
+    box = spec.search_box_cm or default_search_box(robot, spec.orientation_rad, spec.precision_cm)
+    extent = (box[0][0], box[0][1], box[1][0], box[1][1])
+    p = kernel_parameters(robot, spec)
+    limits = limits_array(spec.limits_rad)
+    geometric = None
+    if spec.geometric_reference or spec.form == "geometric":
+        from planar_tui.workspace.geometry import geometric_area
+
+        geometric = geometric_area(robot, spec.limits_rad, spec.orientation_rad)
+    if spec.form == "geometric":
+        empty = np.zeros((0, 4))
+        return WorkspaceOutcome(
+            spec.form, spec.precision_cm, None, empty, np.zeros(0, np.int64), 0,
+            geometric.outer_cm2, geometric.inner_cm2, geometric,
+            time.perf_counter() - started, extent,
+        )  # fmt: skip
+
+    budget.progress.start(1.0, f"{spec.form} bisection")
+    if spec.form == "arc-distance":
+        boxes, status = _arc_stage(p, limits, spec.precision_cm, np.array([extent]), budget)
+    else:
+        code = {"natural": k5.NATURAL, "mean-value": k5.MEAN_VALUE, "slope": k5.SLOPE}[spec.form]
+        if spec.expanded:
+            code = k5.NATURAL_EXPANDED
+        boxes = np.unique(_interval_stage(code, p, spec, box, budget), axis=0)
+        status = np.zeros(len(boxes), dtype=np.int64)
+        classify_boxes(boxes, p, limits, status)
+        status = np.where(status == INSIDE, INSIDE, BOUNDARY)
+    if spec.refine_precision_cm is not None:
+        budget.progress.start(1.0, "boundary refinement")
+        inside = status == INSIDE
+        refined, refined_status = _arc_stage(
+            p, limits, spec.refine_precision_cm, np.ascontiguousarray(boxes[~inside]), budget
+        )
+        boxes = np.concatenate([boxes[inside], refined])
+        status = np.concatenate([status[inside], refined_status])
+    boxes = np.ascontiguousarray(boxes)
+    return WorkspaceOutcome(
+        form=spec.form + (" (expanded)" if spec.expanded else ""),
+        precision_cm=spec.precision_cm,
+        refine_precision_cm=spec.refine_precision_cm,
+        boxes=boxes,
+        status=status,
+        boxes_processed=budget.processed,
+        area_kept_cm2=float(union_area(boxes)),
+        area_inside_cm2=float(union_area(np.ascontiguousarray(boxes[status == INSIDE]))),
+        geometric=geometric,
+        seconds=time.perf_counter() - started,
+        extent_cm=extent,
+    )
+
+
+def boxes_table(outcome: WorkspaceOutcome) -> CsvTable:
+    """The kept boxes as CSV rows ``x_lo_cm, x_hi_cm, y_lo_cm, y_hi_cm, status``."""
+    rows = [
+        [float(b[0]), float(b[1]), float(b[2]), float(b[3]), STATUS_NAMES[int(s)]]
+        for b, s in zip(outcome.boxes, outcome.status, strict=True)
+    ]
+    return CsvTable(BOXES_HEADER, rows)
+
+
+def summary_line(outcome: WorkspaceOutcome) -> str:
+    """One line: form, precision, bracket, geometric area."""
+    text = (
+        f"{outcome.form} eps={outcome.precision_cm:g} cm: area in "
+        f"[{outcome.area_inside_cm2:.6g}, {outcome.area_kept_cm2:.6g}] cm^2, "
+        f"{len(outcome.boxes):,} boxes kept"
+    )
+    if outcome.geometric is not None:
+        g = outcome.geometric
+        text += f", geometric {g.area_cm2:.6g} ± {g.error_bound_cm2:.1e} cm^2"
+    return text
+
+
+def run_workspace(job: Job, progress: Progress) -> JobResult:
+    """Compute one ``[workspace]`` job; ``result.data`` is the :class:`WorkspaceOutcome`,
+    ``result.extra_tables["boxes"]`` the kept boxes."""
+    spec: WorkspaceSpec = job.spec
+    if not math.isfinite(spec.precision_cm) or spec.precision_cm <= 0:
+        raise PresetError(job.preset_path, "precision_cm", "must be > 0", "a positive number")
+    outcome = compute_workspace(job.robot, spec, _Budget(job, progress))
+    return JobResult(
+        table=CsvTable(SUMMARY_HEADER, [outcome.summary_row()]),
+        summary=summary_line(outcome),
+        extra_tables={"boxes": boxes_table(outcome)},
+        data=outcome,
+    )
