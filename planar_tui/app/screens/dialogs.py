@@ -1,0 +1,126 @@
+"""Modal screens: a path prompt (open, save, export), a yes/no question, a message, help."""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+from textual.app import ComposeResult
+from textual.binding import Binding
+from textual.containers import Horizontal, Vertical, VerticalScroll
+from textual.screen import ModalScreen
+from textual.widgets import Button, Input, Label, Static
+
+
+class PathDialog(ModalScreen[str | None]):
+    """Ask for a file path; dismisses with the text, or ``None`` on Escape."""
+
+    BINDINGS: ClassVar = [Binding("escape", "dismiss_none", "Cancel")]
+
+    def __init__(self, title: str, value: str = "", hint: str = ""):
+        super().__init__()
+        self.title_text = title
+        self.value = value
+        self.hint = hint
+
+    def compose(self) -> ComposeResult:
+        with Vertical(classes="dialog"):
+            yield Label(self.title_text, classes="dialog-title")
+            yield Input(self.value, id="path-input")
+            yield Static(self.hint or "Enter: OK   Escape: cancel", classes="dialog-hint")
+
+    def on_input_submitted(self, event: Input.Submitted) -> None:
+        self.dismiss(event.value.strip() or None)
+
+    def action_dismiss_none(self) -> None:
+        self.dismiss(None)
+
+
+class ConfirmDialog(ModalScreen[bool]):
+    """A yes/no question: ``y`` / Enter on Yes, ``n`` / Escape for No."""
+
+    BINDINGS: ClassVar = [
+        Binding("y", "answer(True)", "Yes"),
+        Binding("n,escape", "answer(False)", "No"),
+    ]
+
+    def __init__(self, question: str):
+        super().__init__()
+        self.question = question
+
+    def compose(self) -> ComposeResult:
+        with Vertical(classes="dialog"):
+            yield Label(self.question, classes="dialog-title")
+            with Horizontal(classes="dialog-buttons"):
+                yield Button("Yes (y)", id="yes", variant="error")
+                yield Button("No (n)", id="no", variant="primary")
+
+    def on_mount(self) -> None:
+        self.query_one("#no", Button).focus()
+
+    def on_button_pressed(self, event: Button.Pressed) -> None:
+        self.dismiss(event.button.id == "yes")
+
+    def action_answer(self, answer: bool) -> None:
+        self.dismiss(answer)
+
+
+class MessageDialog(ModalScreen[None]):
+    """A message (a job's error, a preset error) closed with Enter or Escape."""
+
+    BINDINGS: ClassVar = [Binding("escape,enter", "close", "Close")]
+
+    def __init__(self, title: str, message: str):
+        super().__init__()
+        self.title_text = title
+        self.message = message
+
+    def compose(self) -> ComposeResult:
+        with Vertical(classes="dialog"):
+            yield Label(self.title_text, classes="dialog-title error-title")
+            yield Static(self.message, id="message-text", markup=False)
+            yield Button("Close (Enter)", id="close", variant="primary")
+
+    def on_mount(self) -> None:
+        self.query_one("#close", Button).focus()
+
+    def on_button_pressed(self) -> None:
+        self.dismiss(None)
+
+    def action_close(self) -> None:
+        self.dismiss(None)
+
+
+HELP_TEXT = """\
+planar-tui workbench — keyboard only
+
+Tabs: Robot, Sensitivity, Workspace, Simulate. Tab / shift+tab move the focus; on the
+tab bar, left / right switch tabs. Every action is also in the command palette (ctrl+p).
+
+  F5          run the job of the current tab (also the Run button)
+  escape      cancel the running job (honoured within half a second)
+  ctrl+o      open a preset (a path or a bundled name such as paper-a-table1)
+  ctrl+s      save the preset (TOML the CLI runs unchanged)
+  ctrl+e      export the table (or the workspace boxes) on screen to CSV
+  ctrl+n      Robot tab: add a link        ctrl+r   Robot tab: remove the last link
+  ctrl+t      Sensitivity tab: show S1 / ST / percent / confidence
+  q, ctrl+q   quit (asks first only while a job runs; q outside text fields)
+  F1, ?       this help (? outside text fields)
+
+Fields take TOML values: 0.25, [0.25, 0.2], "singular" (quotes optional for words).
+Every edit is checked by the preset parser the CLI uses; the first problem is shown
+under the tabs, in the CLI's words.
+"""
+
+
+class HelpScreen(ModalScreen[None]):
+    """The key bindings and how fields are read."""
+
+    BINDINGS: ClassVar = [Binding("escape,q,f1,question_mark", "close", "Close")]
+
+    def compose(self) -> ComposeResult:
+        with VerticalScroll(classes="dialog help"):
+            yield Label("Help", classes="dialog-title")
+            yield Static(HELP_TEXT, markup=False, id="help-text")
+
+    def action_close(self) -> None:
+        self.dismiss(None)

@@ -1,0 +1,265 @@
+"""Pilot tests of the Textual workbench, one per flow, at 80×24 (tiny presets, quick jobs)."""
+
+from __future__ import annotations
+
+import asyncio
+import functools
+import shutil
+import time
+from pathlib import Path
+
+import pytest
+
+from planar_tui.app.app import WorkbenchApp
+from planar_tui.app.screens.dialogs import ConfirmDialog, HelpScreen, MessageDialog, PathDialog
+from planar_tui.app.workbench import Workbench
+
+DATA = Path(__file__).parent / "data" / "app"
+SIZE = (80, 24)
+
+
+def async_test(function):
+    """Run an async test in a fresh event loop (no pytest async plugin is installed)."""
+
+    @functools.wraps(function)
+    def wrapper(*args, **kwargs):
+        return asyncio.run(function(*args, **kwargs))
+
+    return wrapper
+
+
+def make_app(tmp_path: Path, name: str = "tiny.toml") -> WorkbenchApp:
+    """The app on a copy of a fixture preset, exporting into ``tmp_path``."""
+    path = tmp_path / name
+    shutil.copy(DATA / name, path)
+    return WorkbenchApp(Workbench.open(path), output_dir=tmp_path)
+
+
+async def finish(app: WorkbenchApp, pilot, timeout_s: float = 60.0) -> None:
+    """Wait for the running job's thread, its worker and the result message."""
+    deadline = time.monotonic() + timeout_s
+    while app.job_running:
+        assert time.monotonic() < deadline, "job did not finish in time"
+        await pilot.pause(0.05)
+    await app.workers.wait_for_complete()
+    await pilot.pause(0.1)
+
+
+async def run_tab(app: WorkbenchApp, pilot, name: str) -> None:
+    """Show a tab, press F5 and wait for the job to end."""
+    app.action_show_tab(name)
+    await pilot.pause()
+    await pilot.press("f5")
+    await finish(app, pilot)
+
+
+def validation(app: WorkbenchApp) -> str:
+    return str(app.query_one("#validation").render())
+
+
+@async_test
+async def test_tabs_visible_at_80x24(tmp_path):
+    app = make_app(tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        await pilot.pause()
+        first_line = app.export_text().splitlines()[0]
+        for title in ("Robot", "Sensitivity", "Workspace", "Simulate"):
+            assert title in first_line
+        assert validation(app).startswith("ok: tiny.toml")
+
+
+@async_test
+async def test_edit_link_shows_the_cli_message(tmp_path, cli):
+    app = make_app(tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        field = app.query_one("#link-2-lengths_m")
+        field.focus()
+        field.value = ""
+        await pilot.press("minus", "0", "full_stop", "2")  # typed, keyboard only
+        await pilot.pause()
+        shown = validation(app)
+        assert "robot.lengths_m: item 2 is -0.2, must be > 0" in shown
+        # the CLI reads the same values from a file and says the same thing
+        bad = tmp_path / "cli" / "tiny.toml"
+        bad.parent.mkdir()
+        bad.write_text((DATA / "tiny.toml").read_text().replace("[0.303, 0.214]", "[0.303, -0.2]"))
+        result = cli("simulate", bad, "--out", tmp_path / "x.csv")
+        assert result.exit_code == 2
+        assert shown == result.stderr.strip().replace(str(bad), str(tmp_path / "tiny.toml"))
+        field.value = "abc"
+        await pilot.pause()
+        assert "robot.lengths_m: item 2 is a string (expected a positive number)" in (
+            validation(app)
+        )
+        field.value = "0.214"
+        await pilot.pause()
+        assert validation(app).startswith("ok:")
+
+
+@async_test
+async def test_add_and_remove_link_keep_arrays_consistent(tmp_path):
+    app = make_app(tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        await pilot.press("ctrl+n")
+        await pilot.pause()
+        assert app.workbench.document["robot"]["lengths_m"] == [0.303, 0.214, 0.214]
+        # the simulate job's 2-value torques no longer fit 3 links: the CLI's message
+        assert "simulate.theta0_deg: has 2 values (expected 3, one per link)" in validation(app)
+        await pilot.press("ctrl+r")
+        await pilot.pause()
+        assert app.workbench.document["robot"]["lengths_m"] == [0.303, 0.214]
+        assert validation(app).startswith("ok:")
+
+
+@async_test
+async def test_small_sobol_run_shows_the_dominant_parameter(tmp_path):
+    # Singular posture: tau2 = g m2 l2 / 2, so with uniform ±1 mm and ±1 g tolerances
+    # Var(tau2) ∝ m2² (for l2) + l2² (for m2); l2's share is m2² / (m2² + l2²).
+    l2_m, m2_kg = 0.214, 0.796
+    expected_l2_percent = 100 * m2_kg**2 / (m2_kg**2 + l2_m**2)
+    app = make_app(tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        await run_tab(app, pilot, "sensitivity")
+        screen = app.export_text()
+        row = next(line for line in screen.splitlines() if "τ2 " in line and "singu" in line)
+        values = [float(v) for v in row.split("▕")[-1].split()[2:6]]
+        assert values.index(max(values)) == 1  # columns l1 l2 m1 m2: l2 dominates
+        assert values[1] == pytest.approx(expected_l2_percent, abs=2.0)
+        await pilot.press("ctrl+t")  # S1 view: same shape, fractions
+        await pilot.pause()
+        assert "S1: sobol" in app.export_text()
+
+
+@async_test
+async def test_short_simulation_is_plotted(tmp_path):
+    app = make_app(tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        await run_tab(app, pilot, "simulate")
+        pane = app.query_one("#pane-simulate")
+        assert pane.result is not None and len(pane.result.table.rows) == 41
+        screen = app.export_text()
+        assert "200 RK4 steps" in screen and "t (s)" in screen
+        assert "E total" in screen  # the energy plot's legend
+        assert "done in" in screen
+
+
+@async_test
+async def test_cancel_a_long_job_within_half_a_second(tmp_path):
+    app = make_app(tmp_path, "long.toml")
+    async with app.run_test(size=SIZE) as pilot:
+        app.action_show_tab("simulate")
+        await pilot.pause()
+        await pilot.press("f5")
+        started = time.monotonic()
+        while len(app.progress_refreshes) < 6:
+            assert time.monotonic() - started < 60
+            await pilot.pause(0.05)
+        window = app.progress_refreshes[-5:]
+        rate_hz = (len(window) - 1) / (window[-1] - window[0])
+        assert rate_hz >= 5.0
+        assert app.job_running
+        # While the worker burns CPU each pilot.press costs up to 2 s (the pilot waits for
+        # the process to go idle), so the quit question is answered through its actions.
+        await app.run_action("quit")  # a job runs: quitting asks first
+        await pilot.pause(0.05)
+        assert isinstance(app.screen, ConfirmDialog)
+        app.screen.action_answer(False)
+        await pilot.pause(0.05)
+        assert app.is_running and app.job_running
+        await pilot.press("escape")
+        await finish(app, pilot)
+        assert app.cancel_latencies_s and app.cancel_latencies_s[-1] < 0.5
+        assert "cancelled" in app.export_text()
+        assert not (tmp_path / "long-simulate.csv").exists()
+        # the app stays usable: the second, short job runs
+        app.query_one("#job-select").value = 1
+        await pilot.pause(0.2)
+        await pilot.press("f5")
+        await finish(app, pilot)
+        assert "done in" in app.export_text()
+
+
+@async_test
+async def test_save_load_and_the_cli_gives_the_same_csv(tmp_path, cli):
+    app = make_app(tmp_path)
+    saved = tmp_path / "saved.toml"
+    async with app.run_test(size=SIZE) as pilot:
+        app.action_show_tab("simulate")
+        await pilot.pause()
+        app.query_one("#pane-simulate #field-duration_s").value = "0.1"
+        await pilot.press("ctrl+s")
+        await pilot.pause()
+        assert isinstance(app.screen, PathDialog)
+        app.screen.query_one("#path-input").value = str(saved)
+        await pilot.press("enter")
+        await pilot.pause()
+        assert saved.is_file()
+        assert await app.open_preset(str(saved))
+        await pilot.pause()
+        assert app.workbench.document["simulate"]["duration_s"] == 0.1
+        await run_tab(app, pilot, "simulate")
+        await pilot.press("ctrl+e")
+        await pilot.pause()
+        app.screen.query_one("#path-input").value = str(tmp_path / "app.csv")
+        await pilot.press("enter")
+        await pilot.pause()
+    result = cli("simulate", saved, "--out", tmp_path / "cli.csv")
+    assert result.exit_code == 0, result.stderr
+    app_csv = (tmp_path / "app.csv").read_bytes()
+    assert app_csv == (tmp_path / "cli.csv").read_bytes()
+    assert app_csv.count(b"\n") == 1 + 21
+
+
+@async_test
+async def test_a_failing_job_opens_a_dialog_not_a_traceback(tmp_path, monkeypatch):
+    import dataclasses
+
+    from planar_tui.jobs import JOB_KINDS
+
+    broken = dataclasses.replace(JOB_KINDS["simulate"], runner="tests.test_app:exploding_runner")
+    monkeypatch.setitem(JOB_KINDS, "simulate", broken)
+    app = make_app(tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        await run_tab(app, pilot, "simulate")
+        assert isinstance(app.screen, MessageDialog)
+        assert "RuntimeError: the kernel exploded" in app.export_text()
+        await pilot.press("enter")
+        await pilot.pause()
+        assert not isinstance(app.screen, MessageDialog)
+        assert "failed" in app.export_text()
+
+
+def exploding_runner(job, progress):
+    progress.start(1, "exploding")
+    raise RuntimeError("the kernel exploded")
+
+
+@async_test
+async def test_help_palette_and_quit(tmp_path):
+    app = make_app(tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        await pilot.press("f1")
+        await pilot.pause()
+        assert isinstance(app.screen, HelpScreen)
+        await pilot.press("escape")
+        await pilot.pause()
+        titles = {command.title for command in app.get_system_commands(app.screen)}
+        for title in ("Run job", "Cancel job", "Open preset", "Save preset", "Export CSV",
+                      "Help", "Add link", "Remove link", "Sensitivity view"):  # fmt: skip
+            assert title in titles
+        await pilot.press("q")  # no job runs: quits without asking
+        await pilot.pause()
+    assert app.return_code == 0
+
+
+@async_test
+async def test_opening_a_bad_preset_keeps_the_current_one(tmp_path):
+    app = make_app(tmp_path)
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[robot]\nlengths_m = [1.0]\nmasses_kg = [1.0, 2.0]\n")
+    async with app.run_test(size=SIZE) as pilot:
+        assert not await app.open_preset(str(bad))
+        await pilot.pause()
+        assert isinstance(app.screen, MessageDialog)
+        assert "robot.masses_kg: has 2 values" in app.export_text()
+        assert app.workbench.path.name == "tiny.toml"
