@@ -34,20 +34,22 @@ def test_scaled_design_is_salib_sampling_the_real_problem():
 
 
 @pytest.mark.parametrize("seed", [1, 42])
-def test_sobol_equals_salib(seed):
-    problem, torques = _torques("sobol", 512)
-    ours = sobol_indices(torques, problem.num_vars, seed)
-    reference = salib_sobol_indices(problem.salib(), torques, seed)
-    # point estimates to 1e-12; with SALib's bootstrap rows the half-widths too
-    np.testing.assert_allclose(ours, reference, rtol=0, atol=1e-12)
-
-
-@pytest.mark.parametrize("seed", [1, 42])
-def test_efast_equals_salib(seed):
-    problem, torques = _torques("efast", 300)
-    ours = efast_indices(torques, problem.num_vars, seed)
-    reference = salib_efast_indices(problem.salib(), torques, seed)
-    np.testing.assert_allclose(ours, reference, rtol=0, atol=1e-12)
+@pytest.mark.parametrize(
+    ("method", "samples", "ours", "salib"),
+    [
+        ("sobol", 512, sobol_indices, salib_sobol_indices),
+        ("efast", 300, efast_indices, salib_efast_indices),
+    ],
+)
+def test_estimators_equal_salib(seed, method, samples, ours, salib):
+    """Point estimates to 1e-12; with SALib's bootstrap draws the half-widths too."""
+    problem, torques = _torques(method, samples)
+    np.testing.assert_allclose(
+        ours(torques, problem.num_vars, seed),
+        salib(problem.salib(), torques, seed),
+        rtol=0,
+        atol=1e-12,
+    )
 
 
 def test_sobol_bootstrap_is_statistically_consistent_across_seeds():
