@@ -263,3 +263,30 @@ async def test_opening_a_bad_preset_keeps_the_current_one(tmp_path):
         assert isinstance(app.screen, MessageDialog)
         assert "robot.masses_kg: has 2 values" in app.export_text()
         assert app.workbench.path.name == "tiny.toml"
+
+
+@async_test
+async def test_workspace_run_shows_map_area_and_exports_boxes(tmp_path, cli):
+    app = make_app(tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        await run_tab(app, pilot, "workspace")
+        screen = app.export_text()
+        assert "area in [" in screen and "boxes kept" in screen
+        assert "█" in screen and "▒" in screen  # inside and boundary cells of the map
+        assert "x (cm)" in screen
+        outcome = app.query_one("#pane-workspace").result.data
+        # the bracket holds the exact area of paper B's Table 3 (106.750 cm², issue 4)
+        assert outcome.area_inside_cm2 <= 106.75 <= outcome.area_kept_cm2
+        await pilot.press("ctrl+e")
+        await pilot.pause()
+        app.screen.query_one("#path-input").value = str(tmp_path / "ws.csv")
+        await pilot.press("enter")
+        await pilot.pause()
+    result = cli("workspace", tmp_path / "tiny.toml", "--out", tmp_path / "cli.csv",
+                 "--boxes", tmp_path / "cli-boxes.csv", "--no-map")  # fmt: skip
+    assert result.exit_code == 0, result.stderr
+    assert (tmp_path / "ws-boxes.csv").read_bytes() == (tmp_path / "cli-boxes.csv").read_bytes()
+    app_rows = (tmp_path / "ws.csv").read_text().splitlines()
+    cli_rows = (tmp_path / "cli.csv").read_text().splitlines()
+    assert app_rows[0] == cli_rows[0]  # same columns; the last one (seconds) differs per run
+    assert app_rows[1].rsplit(",", 1)[0] == cli_rows[1].rsplit(",", 1)[0]

@@ -61,8 +61,18 @@ masses_kg = [2.0, 1.0]
 
 @pytest.mark.parametrize(
     "value",
-    [0.1, 1e-4, 2.5e-300, -0.0, 7, True, "a \"quoted\" name", [1, 2.5], [[1.0, 2.0], [3.0]],
-     {"a": 1.5, "b": [1, 2]}],  # fmt: skip
+    [
+        0.1,
+        1e-4,
+        2.5e-300,
+        -0.0,
+        7,
+        True,
+        'a "quoted" name',
+        [1, 2.5],
+        [[1.0, 2.0], [3.0]],
+        {"a": 1.5, "b": [1, 2]},
+    ],  # fmt: skip
 )
 def test_format_value_is_exact_toml(value):
     parsed = tomllib.loads(f"v = {format_value(value)}")["v"]

@@ -136,7 +136,8 @@ class WorkbenchApp(App):
             bar.update(str(error))
             bar.set_class(True, "invalid")
             return False
-        bar.update(f"ok: {self.workbench.path.name}, {len(preset.jobs)} jobs valid")
+        count = len(preset.jobs)
+        bar.update(f"ok: {self.workbench.path.name}, {count} job{'s' if count != 1 else ''} valid")
         bar.set_class(False, "invalid")
         return True
 

@@ -78,9 +78,15 @@ class TableForm(Widget):
                 table[field.name] = parse_field(field.value)
         return table
 
+    def on_mount(self) -> None:
+        self._last = self.table()
+
     def on_input_changed(self, event: Input.Changed) -> None:
         event.stop()
-        self.post_message(self.Changed(self, self.table()))
+        table = self.table()
+        if table != getattr(self, "_last", table):  # not the inputs' initial values
+            self._last = table
+            self.post_message(self.Changed(self, table))
 
 
 class LinkEditor(Widget):
@@ -153,7 +159,8 @@ class LinkEditor(Widget):
         """Rebuild the grid with ``rows`` (after adding or removing a link)."""
         self.rows = rows
         await self.recompose()
-        self.post_message(self.Changed(self, self.values()))
+        self._last = self.values()
+        self.post_message(self.Changed(self, self._last))
 
     async def add_link(self) -> None:
         """Append a link copying the last one."""
@@ -166,6 +173,12 @@ class LinkEditor(Widget):
         if len(rows) > 1:
             await self.set_rows(rows[:-1])
 
+    def on_mount(self) -> None:
+        self._last = self.values()
+
     def on_input_changed(self, event: Input.Changed) -> None:
         event.stop()
-        self.post_message(self.Changed(self, self.values()))
+        values = self.values()
+        if values != getattr(self, "_last", values):  # not the inputs' initial values
+            self._last = values
+            self.post_message(self.Changed(self, values))
