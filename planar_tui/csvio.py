@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import os
 import tempfile
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -25,13 +25,19 @@ class CsvTable:
     """A header (column names carrying units, e.g. ``t_s``) and rows of cells."""
 
     header: tuple[str, ...]
-    rows: Sequence[Sequence[Any]]
+    rows: Sequence[Sequence[Any]] | Any  # or a 2-D float NumPy array (the fast path)
 
-    def lines(self) -> list[str]:
+    def lines(self) -> Iterator[str]:
         """The table as CSV lines (no quoting needed: cells never hold commas)."""
-        out = [",".join(self.header)]
-        out.extend(",".join(format_cell(cell) for cell in row) for row in self.rows)
-        return out
+        yield ",".join(self.header)
+        if getattr(getattr(self.rows, "dtype", None), "kind", "") == "f":
+            # a float array: one C-level %-format per row, ``%r`` = shortest round trip
+            row_format = ",".join(["%r"] * len(self.header))
+            for row in self.rows.tolist():
+                yield row_format % tuple(row)
+            return
+        for row in self.rows:
+            yield ",".join(format_cell(cell) for cell in row)
 
 
 def write_csv_atomic(path: Path | str, table: CsvTable) -> Path:
@@ -46,9 +52,7 @@ def write_csv_atomic(path: Path | str, table: CsvTable) -> Path:
     handle, temp_name = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     try:
         with os.fdopen(handle, "w", encoding="utf-8", newline="\n") as stream:
-            for line in table.lines():
-                stream.write(line)
-                stream.write("\n")
+            stream.writelines(line + "\n" for line in table.lines())
         os.replace(temp_name, path)
     except BaseException:
         Path(temp_name).unlink(missing_ok=True)

@@ -68,7 +68,7 @@ def run_simulate(job: Job, progress: Progress) -> JobResult:
         drift_J = float(np.max(np.abs(energy_J - energy_J[0])))
         summary += f", max |E - E0| = {drift_J:.2e} J"
     return JobResult(
-        table=CsvTable(simulate_header(n), table.tolist()),
+        table=CsvTable(simulate_header(n), table),
         summary=summary,
         data={
             "t_s": t_s,

@@ -38,7 +38,7 @@ def run_torques(job: Job, progress: Progress) -> JobResult:
     rows = np.column_stack([theta, omega, alpha, tau])
     peak = np.abs(tau).max(axis=0)
     return JobResult(
-        table=CsvTable(torques_header(robot.n_links), rows.tolist()),
+        table=CsvTable(torques_header(robot.n_links), rows),
         summary=f"{len(theta)} states, max |tau| = [{', '.join(f'{v:.4g}' for v in peak)}] N m",
         data={"tau_Nm": tau},
     )
