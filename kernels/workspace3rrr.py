@@ -53,7 +53,9 @@ SLOPE = 2
 NATURAL_EXPANDED = 3
 
 # Stack and kept-box layouts: one row per box.
-# stack row: x_lo, x_hi, y_lo, y_hi, t1_lo, t1_hi, t2_lo, t2_hi, t3_lo, t3_hi
+# stack row: x_lo, x_hi, y_lo, y_hi, t1_lo, t1_hi, t2_lo, t2_hi, t3_lo, t3_hi, split
+# (split: index 0-4 of the variable whose bisection made the box, -1 for the root)
+STACK_COLUMNS = 11
 # kept row:  x_lo, x_hi, y_lo, y_hi
 DONE = 0
 CHUNK_LIMIT = 1
@@ -257,7 +259,8 @@ def leg_enclosure(form, leg, xlo, xhi, ylo, yhi, tlo, thi, p):
 def bisect_chunk(form, p, precision, angle_scale, stack, n_stack, kept, n_kept, max_boxes):
     """Run at most ``max_boxes`` steps of Algorithm 1 on an explicit stack (no recursion).
 
-    Pop a box; if :math:`0 \\notin F_i` for some leg, discard it; else if its x and y widths
+    Pop a box; if :math:`0 \\notin F_i` for some leg, discard it (only the leg whose angle
+    was just bisected is re-evaluated: the others' enclosures are unchanged); else if its x and y widths
     are both :math:`\\le \\varepsilon`, append its (x, y) projection to ``kept``; else bisect
     the widest of :math:`x, y, k\\theta_1, k\\theta_2, k\\theta_3` and push both halves.
 
@@ -277,8 +280,11 @@ def bisect_chunk(form, p, precision, angle_scale, stack, n_stack, kept, n_kept, 
         n_stack -= 1
         row = n_stack
         processed += 1
+        # A theta_j bisection leaves F_i (i != j) as the parent's, which contained 0.
+        split = int(stack[row, 10])
+        first_leg, last_leg = (split - 2, split - 1) if split >= 2 else (0, 3)
         feasible = True
-        for leg in range(3):
+        for leg in range(first_leg, last_leg):
             flo, fhi = leg_enclosure(
                 form,
                 leg,
@@ -319,6 +325,8 @@ def bisect_chunk(form, p, precision, angle_scale, stack, n_stack, kept, n_kept, 
             stack[n_stack + 1, j] = stack[row, j]
         stack[row, 2 * widest + 1] = mid
         stack[n_stack + 1, 2 * widest] = mid
+        stack[row, 10] = widest
+        stack[n_stack + 1, 10] = widest
         n_stack += 2
     return n_stack, n_kept, processed, DONE
 

@@ -100,7 +100,7 @@ def render_map(
         rows = round(columns * (yhi - ylo) / (xhi - xlo) / CELL_ASPECT)
         rows = int(min(40, max(5, rows)))
     else:
-        rows = max(3, height - 4)
+        rows = max(3, height - 3)
     cover = _coverage(boxes, status, extent, columns, rows)
     lines = []
     ystep = _nice_step(yhi - ylo, max(2, rows // 4))
@@ -140,7 +140,7 @@ def render_map(
         value += xstep
     lines.append(" " * (_LABEL_WIDTH - 1) + " └" + "".join(axis)[: columns - 1])
     lines.append("".join(ticks).rstrip()[:width])
-    lines.append(f"{'x (cm) →, y (cm) ↑':>{min(width, 30)}}   " + LEGEND[: max(0, width - 33)])
+    lines.append(f"{'x (cm) →, y (cm) ↑':>{_LABEL_WIDTH + 18}}  {LEGEND}")
     return [line[:width] for line in lines]
 
 

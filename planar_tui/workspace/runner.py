@@ -118,13 +118,14 @@ def _grow(array: np.ndarray) -> np.ndarray:
 
 def _interval_stage(form_code, p, spec, box, budget) -> np.ndarray:
     """Paper's Algorithm 1 over 5-D boxes; returns the kept (x, y) boxes (may repeat)."""
-    from kernels.workspace3rrr import DONE, KEPT_FULL, STACK_FULL, bisect_chunk
+    from kernels.workspace3rrr import DONE, KEPT_FULL, STACK_COLUMNS, STACK_FULL, bisect_chunk
 
     limits = np.array(spec.limits_rad).ravel()
-    stack = np.zeros((256, 10))
+    stack = np.zeros((256, STACK_COLUMNS))
     stack[0, :4] = [box[0][0], box[0][1], box[1][0], box[1][1]]
-    stack[0, 4:] = limits
-    widths = stack[0, 1::2] - stack[0, 0::2]
+    stack[0, 4:10] = limits
+    stack[0, 10] = -1.0
+    widths = stack[0, 1:10:2] - stack[0, 0:10:2]
     root_volume = float(np.prod(widths))
     kept = np.zeros((4096, 4))
     n_stack, n_kept = 1, 0
@@ -134,7 +135,7 @@ def _interval_stage(form_code, p, spec, box, budget) -> np.ndarray:
             CHUNK_BOXES,
         )  # fmt: skip
         pending = stack[:n_stack]
-        volume = float(np.sum(np.prod(pending[:, 1::2] - pending[:, 0::2], axis=1)))
+        volume = float(np.sum(np.prod(pending[:, 1:10:2] - pending[:, 0:10:2], axis=1)))
         budget.spend(processed, 1.0 - volume / root_volume, f"{n_kept:,} kept")
         if code == DONE:
             return kept[:n_kept]
@@ -255,15 +256,13 @@ def boxes_table(outcome: WorkspaceOutcome) -> CsvTable:
 
 
 def summary_line(outcome: WorkspaceOutcome) -> str:
-    """One line: form, precision, bracket, geometric area."""
+    """One short line: form, precision, certified bracket, geometric area."""
     text = (
-        f"{outcome.form} eps={outcome.precision_cm:g} cm: area in "
-        f"[{outcome.area_inside_cm2:.6g}, {outcome.area_kept_cm2:.6g}] cm^2, "
-        f"{len(outcome.boxes):,} boxes kept"
+        f"{outcome.form} eps={outcome.precision_cm:.4g}: "
+        f"[{outcome.area_inside_cm2:.5g}, {outcome.area_kept_cm2:.5g}] cm2"
     )
     if outcome.geometric is not None:
-        g = outcome.geometric
-        text += f", geometric {g.area_cm2:.6g} ± {g.error_bound_cm2:.1e} cm^2"
+        text += f", exact {outcome.geometric.area_cm2:.5g}"
     return text
 
 

@@ -1,0 +1,162 @@
+"""`planar-tui workspace`: outputs, map, bad input, budget, cancel, bundled presets."""
+
+from __future__ import annotations
+
+import csv
+import dataclasses
+import time
+
+import numpy as np
+import pytest
+
+from planar_tui.errors import Cancelled
+from planar_tui.jobs import JOB_KINDS
+from planar_tui.presets import load_preset
+from planar_tui.progress import Progress
+from planar_tui.workspace.render import BOUNDARY_GLYPH, INSIDE_GLYPH, render_map
+from tests.conftest import PRESETS
+
+ROBOT = """
+[robot3rrr]
+base_side_cm = 120
+platform_side_cm = 40
+proximal_cm = 30
+distal_cm = {distal}
+"""
+JOB = """
+[workspace]
+joint_limits_deg = {limits}
+orientation_deg = 0
+precision_cm = {precision}
+form = "{form}"
+{extra}output = "ws.csv"
+"""
+
+
+def write_preset(tmp_path, *, distal=30, limits="[[50, 70], [140, 160], [260, 280]]",
+                 precision=0.0625, form="mean-value", extra=""):  # fmt: skip
+    path = tmp_path / "ws.toml"
+    path.write_text(
+        ROBOT.format(distal=distal)
+        + JOB.format(limits=limits, precision=precision, form=form, extra=extra),
+        encoding="utf-8",
+    )
+    return path
+
+
+def read_csv(path):
+    with open(path, encoding="utf-8") as f:
+        return list(csv.DictReader(f))
+
+
+def test_workspace_command_writes_summary_boxes_and_map(cli, tmp_path):
+    preset = write_preset(tmp_path)
+    result = cli("workspace", preset, "--out-dir", tmp_path, "--boxes", tmp_path / "boxes.csv")
+    assert result.exit_code == 0, result.output
+    (row,) = read_csv(tmp_path / "ws.csv")
+    assert row["form"] == "mean-value"
+    inside, kept = float(row["area_inside_cm2"]), float(row["area_kept_cm2"])
+    assert inside <= float(row["area_geometric_cm2"]) <= kept
+    boxes = read_csv(tmp_path / "boxes.csv")
+    assert len(boxes) == int(row["boxes_kept"])
+    assert {b["status"] for b in boxes} == {"inside", "boundary"}
+    assert INSIDE_GLYPH in result.stdout and BOUNDARY_GLYPH in result.stdout
+    assert "x (cm)" in result.stdout
+
+
+def test_form_and_precision_options_override_the_preset(cli, tmp_path):
+    preset = write_preset(tmp_path)
+    out = tmp_path / "s.csv"
+    args = ("workspace", preset, "--form", "arc-distance", "--precision", "0.125")
+    result = cli(*args, "--out", out, "--no-map")
+    assert result.exit_code == 0, result.output
+    (row,) = read_csv(out)
+    assert row["form"] == "arc-distance" and float(row["precision_cm"]) == 0.125
+    assert INSIDE_GLYPH not in result.stdout
+
+
+@pytest.mark.parametrize(
+    ("settings", "fragment"),
+    [
+        ({"limits": "[[70, 50], [140, 160], [260, 280]]"}, "joint_limits_deg"),
+        ({"limits": "[[50, 50], [140, 160], [260, 280]]"}, "empty or reversed"),
+        ({"precision": 0}, "precision_cm"),
+        ({"precision": -0.1}, "precision_cm"),
+        ({"distal": 0}, "distal_cm"),
+        ({"form": "taylor"}, "form"),
+        ({"extra": "search_box_cm = [[0, 10], [0, 10]]\n"}, "cannot contain"),
+        ({"extra": "search_box_cm = [[10, 0], [0, 10]]\n"}, "search_box_cm"),
+        ({"extra": "expanded = true\n"}, "expanded"),
+        ({"extra": "refine_precision_cm = 1.0\n"}, "refine_precision_cm"),
+    ],
+)
+def test_bad_input_is_one_line_exit_2_and_nothing_written(cli, tmp_path, settings, fragment):
+    preset = write_preset(tmp_path, **settings)
+    result = cli("workspace", preset, "--out-dir", tmp_path)
+    assert result.exit_code == 2
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: ") and fragment in lines[0]
+    assert not (tmp_path / "ws.csv").exists()
+
+
+@pytest.mark.parametrize(("option", "value"), [("--form", "exact"), ("--precision", "0")])
+def test_bad_command_line_values_exit_2(cli, tmp_path, option, value):
+    preset = write_preset(tmp_path)
+    result = cli("workspace", preset, option, value, "--out-dir", tmp_path)
+    assert result.exit_code == 2 and result.stderr.startswith("error: ")
+    assert not (tmp_path / "ws.csv").exists()
+
+
+def test_box_budget_stops_with_a_clear_message_and_writes_nothing(cli, tmp_path):
+    preset = write_preset(tmp_path, extra="box_budget = 1000\n")
+    result = cli("workspace", preset, "--out-dir", tmp_path, "--boxes", tmp_path / "b.csv")
+    assert result.exit_code == 2
+    assert "box_budget" in result.stderr and "exceeded 1,000 boxes" in result.stderr
+    assert not (tmp_path / "ws.csv").exists() and not (tmp_path / "b.csv").exists()
+
+
+def test_cancel_is_honoured_quickly_and_raises(tmp_path):
+    preset = load_preset(write_preset(tmp_path, precision=0.001))
+    (job,) = preset.jobs
+    job = dataclasses.replace(job, spec=dataclasses.replace(job.spec, geometric_reference=False))
+    JOB_KINDS["workspace"].run(
+        dataclasses.replace(job, spec=dataclasses.replace(job.spec, precision_cm=0.5))
+    )  # compile first
+    updates = []
+    started = time.perf_counter()
+
+    def stop() -> bool:
+        return len(updates) >= 2
+
+    with pytest.raises(Cancelled):
+        JOB_KINDS["workspace"].run(job, Progress(on_update=updates.append, should_stop=stop))
+    assert time.perf_counter() - started < 2.0
+    assert any("boxes" in u.detail for u in updates)
+
+
+def test_run_command_runs_workspace_jobs(cli, tmp_path):
+    preset = write_preset(tmp_path, form="arc-distance")
+    result = cli("run", preset, "--out-dir", tmp_path)
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "ws.csv").exists()
+
+
+def test_map_is_80_columns_labelled_and_readable_without_colour():
+    boxes = np.array([[0.0, 1.0, 0.0, 1.0], [1.0, 1.1, 0.0, 0.1], [5.0, 6.0, 2.0, 3.0]])
+    status = np.array([2, 1, 1])
+    lines = render_map(boxes, status, extent=(0.0, 10.0, 0.0, 5.0))
+    assert all(len(line) <= 80 for line in lines)
+    text = "\n".join(lines)
+    assert INSIDE_GLYPH in text and BOUNDARY_GLYPH in text
+    assert "┤" in text and "└" in text and "x (cm)" in text
+    assert any(line.strip().startswith("0") for line in lines[-3:])  # x tick labels
+    narrow = render_map(boxes, status, extent=(0.0, 10.0, 0.0, 5.0), width=50, height=12)
+    assert all(len(line) <= 50 for line in narrow) and len(narrow) == 12
+
+
+@pytest.mark.parametrize("table", [3, 4, 5])
+def test_bundled_paper_b_presets_load(table):
+    preset = load_preset(PRESETS / f"paper-b-table{table}.toml")
+    forms = {job.spec.form for job in preset.jobs}
+    assert {"mean-value", "arc-distance", "geometric"} <= forms
+    assert all(job.kind == "workspace" for job in preset.jobs)
