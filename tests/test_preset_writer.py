@@ -72,7 +72,7 @@ masses_kg = [2.0, 1.0]
         [1, 2.5],
         [[1.0, 2.0], [3.0]],
         {"a": 1.5, "b": [1, 2]},
-    ],  # fmt: skip
+    ],
 )
 def test_format_value_is_exact_toml(value):
     parsed = tomllib.loads(f"v = {format_value(value)}")["v"]
