@@ -283,8 +283,8 @@ async def test_workspace_run_shows_map_area_and_exports_boxes(tmp_path, cli):
         app.screen.query_one("#path-input").value = str(tmp_path / "ws.csv")
         await pilot.press("enter")
         await pilot.pause()
-    result = cli("workspace", tmp_path / "tiny.toml", "--out", tmp_path / "cli.csv",
-                 "--boxes", tmp_path / "cli-boxes.csv", "--no-map")  # fmt: skip
+    outputs = ("--out", tmp_path / "cli.csv", "--boxes", tmp_path / "cli-boxes.csv")
+    result = cli("workspace", tmp_path / "tiny.toml", *outputs, "--no-map")
     assert result.exit_code == 0, result.stderr
     assert (tmp_path / "ws-boxes.csv").read_bytes() == (tmp_path / "cli-boxes.csv").read_bytes()
     app_rows = (tmp_path / "ws.csv").read_text().splitlines()

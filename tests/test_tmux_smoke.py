@@ -63,7 +63,7 @@ def test_app_in_tmux_runs_a_workspace_job_and_quits(tmp_path):
             "-y",
             "24",
             command,
-        ],  # fmt: skip
+        ],
         check=True,
         env=env,
     )
