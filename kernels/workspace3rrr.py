@@ -38,12 +38,12 @@ from kernels.interval import (
     down,
     iadd,
     iadd_scalar,
-    icos,
     imul,
     iscale,
-    isin,
+    isincos,
     isqr,
     isub,
+    psincos,
     up,
 )
 
@@ -71,10 +71,8 @@ def _l2_squared(l2):
 
 
 @kernel
-def natural_compact(xlo, xhi, ylo, yhi, tlo, thi, dx, dy, l1, l2):
-    """Natural extension of :math:`(X + d_x - l_1\\cos\\Theta)^2 + (Y + d_y - l_1\\sin\\Theta)^2 - l_2^2`."""
-    clo, chi = icos(tlo, thi)
-    slo, shi = isin(tlo, thi)
+def _compact(xlo, xhi, ylo, yhi, slo, shi, clo, chi, dx, dy, l1, l2):
+    """:math:`(X + d_x - l_1 C)^2 + (Y + d_y - l_1 S) ^2 - l_2^2` given enclosures S, C."""
     alo, ahi = iadd_scalar(xlo, xhi, dx)
     blo, bhi = iscale(clo, chi, l1)
     ulo, uhi = isub(alo, ahi, blo, bhi)
@@ -86,6 +84,20 @@ def natural_compact(xlo, xhi, ylo, yhi, tlo, thi, dx, dy, l1, l2):
     slo, shi = iadd(u2lo, u2hi, v2lo, v2hi)
     klo, khi = _l2_squared(l2)
     return isub(slo, shi, klo, khi)
+
+
+@kernel
+def natural_compact(xlo, xhi, ylo, yhi, tlo, thi, dx, dy, l1, l2):
+    """Natural extension of :math:`(X + d_x - l_1\\cos\\Theta)^2 + (Y + d_y - l_1\\sin\\Theta)^2 - l_2^2`."""
+    slo, shi, clo, chi = isincos(tlo, thi)
+    return _compact(xlo, xhi, ylo, yhi, slo, shi, clo, chi, dx, dy, l1, l2)
+
+
+@kernel
+def point_value(x, y, t, dx, dy, l1, l2):
+    """Enclosure of :math:`f` at one point (the :math:`f(m)` of the centred forms)."""
+    slo, shi, clo, chi = psincos(t)
+    return _compact(x, x, y, y, slo, shi, clo, chi, dx, dy, l1, l2)
 
 
 @kernel
@@ -101,9 +113,8 @@ def mean_value(xlo, xhi, ylo, yhi, tlo, thi, dx, dy, l1, l2):
     mx = 0.5 * (xlo + xhi)
     my = 0.5 * (ylo + yhi)
     mt = 0.5 * (tlo + thi)
-    flo, fhi = natural_compact(mx, mx, my, my, mt, mt, dx, dy, l1, l2)
-    clo, chi = icos(tlo, thi)
-    slo, shi = isin(tlo, thi)
+    flo, fhi = point_value(mx, my, mt, dx, dy, l1, l2)
+    slo, shi, clo, chi = isincos(tlo, thi)
     pxlo, pxhi = iadd_scalar(xlo, xhi, dx)
     pylo, pyhi = iadd_scalar(ylo, yhi, dy)
     # D_x F = 2 U, D_y F = 2 V
@@ -140,9 +151,8 @@ def slope(xlo, xhi, ylo, yhi, tlo, thi, dx, dy, l1, l2):
     mx = 0.5 * (xlo + xhi)
     my = 0.5 * (ylo + yhi)
     mt = 0.5 * (tlo + thi)
-    flo, fhi = natural_compact(mx, mx, my, my, mt, mt, dx, dy, l1, l2)
-    clo, chi = icos(tlo, thi)
-    slo, shi = isin(tlo, thi)
+    flo, fhi = point_value(mx, my, mt, dx, dy, l1, l2)
+    slo, shi, clo, chi = isincos(tlo, thi)
     # S_x = X + m_x + 2 dx - 2 l1 cos(Theta)
     alo, ahi = iadd_scalar(xlo, xhi, mx)
     alo, ahi = iadd_scalar(alo, ahi, 2.0 * dx)
@@ -162,8 +172,7 @@ def slope(xlo, xhi, ylo, yhi, tlo, thi, dx, dy, l1, l2):
     uylo, uyhi = iadd_scalar(my, my, dy)
     mlo, mhi = iadd_scalar(tlo, thi, mt)
     mlo, mhi = iscale(mlo, mhi, 0.5)
-    cmlo, cmhi = icos(mlo, mhi)
-    smlo, smhi = isin(mlo, mhi)
+    smlo, smhi, cmlo, cmhi = isincos(mlo, mhi)
     alo, ahi = imul(uylo, uyhi, cmlo, cmhi)
     blo, bhi = imul(uxlo, uxhi, smlo, smhi)
     alo, ahi = isub(alo, ahi, blo, bhi)
@@ -198,8 +207,7 @@ def natural_expanded(leg, xlo, xhi, ylo, yhi, tlo, thi, p):
     sf = p[11]
     x2lo, x2hi = isqr(xlo, xhi)
     y2lo, y2hi = isqr(ylo, yhi)
-    clo, chi = icos(tlo, thi)
-    slo, shi = isin(tlo, thi)
+    slo, shi, clo, chi = isincos(tlo, thi)
     lclo, lchi = iscale(clo, chi, l1)
     lslo, lshi = iscale(slo, shi, l1)
     if leg == 1:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 import mpmath
+import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -106,6 +107,15 @@ def test_hull_intersection_width_midpoint():
     assert iv.icontains(1.0, 3.0, 3.0) and not iv.icontains(1.0, 3.0, 3.0000001)
 
 
-@pytest.mark.parametrize("value", [0.0, 1.0, -1.0, 1e-310, 1e300])
+@pytest.mark.parametrize("value", [0.0, 1.0, -1.0, 1e-310, -5e-324, 1e300, 2.0**-1022])
 def test_outward_rounding_moves_strictly(value):
     assert iv.down(value) < value < iv.up(value)
+
+
+@settings(deadline=None, max_examples=1000)
+@given(st.floats(min_value=-1e300, max_value=1e300))
+def test_outward_rounding_is_at_least_one_ulp(value):
+    """down/up go at least as far as np.nextafter (the arithmetic form is just faster)."""
+    assert iv.down(value) <= np.nextafter(value, -np.inf)
+    assert iv.up(value) >= np.nextafter(value, np.inf)
+    assert iv.down(value) >= value - 4 * abs(value) * 2.0**-52 - 1e-323
