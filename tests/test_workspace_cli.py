@@ -160,3 +160,21 @@ def test_bundled_paper_b_presets_load(table):
     forms = {job.spec.form for job in preset.jobs}
     assert {"mean-value", "arc-distance", "geometric"} <= forms
     assert all(job.kind == "workspace" for job in preset.jobs)
+
+
+def test_map_coverage_matches_a_brute_force_overlap():
+    from planar_tui.workspace.render import _coverage
+
+    rng = np.random.default_rng(3)
+    x, y, w = rng.uniform(-1, 10, 300), rng.uniform(-1, 5, 300), rng.uniform(0.01, 1.5, 300)
+    boxes = np.column_stack([x, x + w, y, y + 0.7 * w])
+    status = rng.integers(1, 3, 300)
+    cover = _coverage(boxes, status, (0.0, 10.0, 0.0, 5.0), 20, 10)
+    brute = np.zeros_like(cover)
+    for (x0, x1, y0, y1), s in zip(boxes, status, strict=True):
+        for i in range(20):
+            for j in range(10):
+                ox = max(0.0, min(x1, (i + 1) * 0.5) - max(x0, i * 0.5))
+                oy = max(0.0, min(y1, (j + 1) * 0.5) - max(y0, j * 0.5))
+                brute[0 if s == 2 else 1, j, i] += ox * oy / 0.25
+    np.testing.assert_allclose(cover, brute, atol=1e-12)

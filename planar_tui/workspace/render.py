@@ -35,27 +35,48 @@ def _label(value: float, step: float) -> str:
     return f"{value:.{decimals}f}"
 
 
+def _overlaps(lo, hi, origin, cell):
+    """For intervals no wider than a cell: first cell index, overlap with it, and overlap
+    with the next cell (0 when the interval ends in its first cell)."""
+    first = np.floor((lo - origin) / cell).astype(np.int64)
+    split = origin + (first + 1) * cell
+    head = np.minimum(hi, split) - lo
+    tail = np.where(hi > split, hi - split, 0.0)
+    return first, head, tail
+
+
 def _coverage(boxes, status, extent, columns, rows):
-    """Area of inside and of boundary boxes falling in each cell (``rows x columns``)."""
+    """Fraction of each cell covered by inside boxes (layer 0) and boundary boxes (layer 1).
+
+    Boxes smaller than a cell (the usual case) are spread over at most 2 x 2 cells in one
+    vectorised pass; larger ones are clipped cell by cell.
+    """
     xlo, xhi, ylo, yhi = extent
     cw = (xhi - xlo) / columns
     ch = (yhi - ylo) / rows
-    cover = np.zeros((2, rows, columns))
-    for (bx0, bx1, by0, by1), s in zip(boxes, status, strict=True):
-        layer = 0 if s == 2 else 1
+    cover = np.zeros((2, rows + 2, columns + 2))  # one guard cell on each side
+    layer = np.where(status == 2, 0, 1)
+    small = ((boxes[:, 1] - boxes[:, 0]) <= cw) & ((boxes[:, 3] - boxes[:, 2]) <= ch)
+    b = boxes[small]
+    i, xhead, xtail = _overlaps(b[:, 0], b[:, 1], xlo, cw)
+    j, yhead, ytail = _overlaps(b[:, 2], b[:, 3], ylo, ch)
+    for di, ox in ((0, xhead), (1, xtail)):
+        for dj, oy in ((0, yhead), (1, ytail)):
+            ii = np.clip(i + di, -1, columns) + 1
+            jj = np.clip(j + dj, -1, rows) + 1
+            np.add.at(cover, (layer[small], jj, ii), ox * oy)
+    for (bx0, bx1, by0, by1), lay in zip(boxes[~small], layer[~small], strict=True):
         i0 = max(0, int((bx0 - xlo) // cw))
         i1 = min(columns - 1, int((bx1 - xlo) // cw))
         j0 = max(0, int((by0 - ylo) // ch))
         j1 = min(rows - 1, int((by1 - ylo) // ch))
-        for i in range(i0, i1 + 1):
-            ox = min(bx1, xlo + (i + 1) * cw) - max(bx0, xlo + i * cw)
-            if ox <= 0:
-                continue
-            for j in range(j0, j1 + 1):
-                oy = min(by1, ylo + (j + 1) * ch) - max(by0, ylo + j * ch)
-                if oy > 0:
-                    cover[layer, j, i] += ox * oy
-    return cover / (cw * ch)
+        for ci in range(i0, i1 + 1):
+            ox = min(bx1, xlo + (ci + 1) * cw) - max(bx0, xlo + ci * cw)
+            for cj in range(j0, j1 + 1):
+                oy = min(by1, ylo + (cj + 1) * ch) - max(by0, ylo + cj * ch)
+                if ox > 0 and oy > 0:
+                    cover[lay, cj + 1, ci + 1] += ox * oy
+    return cover[:, 1:-1, 1:-1] / (cw * ch)
 
 
 def fit_extent(boxes: np.ndarray, fallback: tuple[float, float, float, float]):
