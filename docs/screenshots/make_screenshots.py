@@ -1,0 +1,52 @@
+"""Regenerate the workbench screenshots (SVG and plain text) at 80×24.
+
+Run from the repository root: ``python docs/screenshots/make_screenshots.py``. Each tab is
+shown on ``tests/data/app/tiny.toml`` after its job ran (the Robot tab as opened).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import sys
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(REPO))
+
+from planar_tui.app.app import WorkbenchApp  # noqa: E402
+from planar_tui.app.workbench import Workbench  # noqa: E402
+
+OUT = Path(__file__).resolve().parent
+SIZE = (80, 24)
+
+
+async def wait_for_job(app: WorkbenchApp, pilot) -> None:
+    while app.job_running:
+        await pilot.pause(0.05)
+    await app.workers.wait_for_complete()
+    await pilot.pause(0.3)
+
+
+def save(app: WorkbenchApp, name: str) -> None:
+    app.save_screenshot(str(OUT / f"{name}.svg"))
+    (OUT / f"{name}.txt").write_text(app.export_text(), encoding="utf-8")
+
+
+async def main() -> None:
+    app = WorkbenchApp(Workbench.open(Path("tests/data/app/tiny.toml")), output_dir="/tmp")
+    async with app.run_test(size=SIZE) as pilot:
+        await pilot.pause()
+        save(app, "robot")
+        for tab in ("sensitivity", "workspace", "simulate"):
+            app.action_show_tab(tab)
+            await pilot.pause()
+            await pilot.press("f5")
+            await wait_for_job(app, pilot)
+            save(app, tab)
+        await pilot.press("f1")
+        await pilot.pause()
+        save(app, "help")
+
+
+if __name__ == "__main__":
+    asyncio.run(main())
