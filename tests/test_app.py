@@ -291,3 +291,19 @@ async def test_workspace_run_shows_map_area_and_exports_boxes(tmp_path, cli):
     cli_rows = (tmp_path / "cli.csv").read_text().splitlines()
     assert app_rows[0] == cli_rows[0]  # same columns; the last one (seconds) differs per run
     assert app_rows[1].rsplit(",", 1)[0] == cli_rows[1].rsplit(",", 1)[0]
+
+
+@async_test
+async def test_no_color_keeps_every_state_readable(tmp_path, monkeypatch):
+    monkeypatch.setenv("NO_COLOR", "1")
+    app = make_app(tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        assert app.no_color  # Textual renders in monochrome
+        app.query_one("#link-1-masses_kg").value = "0"
+        await pilot.pause()
+        assert "error:" in app.export_text()  # the state is in the text, not only the colour
+        app.query_one("#link-1-masses_kg").value = "1.126"
+        await pilot.pause()
+        assert "ok:" in app.export_text()
+        await run_tab(app, pilot, "sensitivity")
+        assert "τ2" in app.export_text()
