@@ -1,10 +1,10 @@
-"""CSV tables and their atomic writing (temp file in the same folder, then rename)."""
+"""CSV tables and atomic file writing (temp file in the same folder, then rename)."""
 
 from __future__ import annotations
 
 import os
 import tempfile
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -40,8 +40,9 @@ class CsvTable:
             yield ",".join(format_cell(cell) for cell in row)
 
 
-def write_csv_atomic(path: Path | str, table: CsvTable) -> Path:
-    """Write ``table`` to ``path`` so that ``path`` is either the whole new file or untouched.
+def write_lines_atomic(path: Path | str, lines: Iterable[str]) -> Path:
+    """Write ``lines`` (each followed by a newline) so that ``path`` is either the whole
+    new file or untouched.
 
     The text goes to a temporary file in the destination folder, which is then renamed
     over ``path`` (``os.replace`` is atomic on POSIX); on any error, including
@@ -52,9 +53,19 @@ def write_csv_atomic(path: Path | str, table: CsvTable) -> Path:
     handle, temp_name = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     try:
         with os.fdopen(handle, "w", encoding="utf-8", newline="\n") as stream:
-            stream.writelines(line + "\n" for line in table.lines())
+            stream.writelines(line + "\n" for line in lines)
         os.replace(temp_name, path)
     except BaseException:
         Path(temp_name).unlink(missing_ok=True)
         raise
     return path
+
+
+def write_text_atomic(path: Path | str, text: str) -> Path:
+    """Write ``text`` atomically (see :func:`write_lines_atomic`); it ends with a newline."""
+    return write_lines_atomic(path, text.rstrip("\n").split("\n"))
+
+
+def write_csv_atomic(path: Path | str, table: CsvTable) -> Path:
+    """Write ``table`` atomically (see :func:`write_lines_atomic`)."""
+    return write_lines_atomic(path, table.lines())

@@ -277,7 +277,7 @@ class WorkbenchApp(App):
 
     def save_preset(self, target: str | Path) -> Path | None:
         """Write the validated document to ``target`` atomically; ``None`` if invalid."""
-        from planar_tui.app.files import write_text_atomic
+        from planar_tui.csvio import write_text_atomic
 
         try:
             text = self.workbench.to_toml()
