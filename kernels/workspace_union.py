@@ -50,15 +50,9 @@ def _update(lo, hi, delta, size, count, covered, full):
 
 
 @kernel
-def union_area(boxes):
-    """Area of the union of the rectangles ``x_lo, x_hi, y_lo, y_hi`` (rows of ``boxes``)."""
-    n = boxes.shape[0]
-    if n == 0:
-        return 0.0
-    ys = np.unique(np.concatenate((boxes[:, 2], boxes[:, 3])))
+def _sweep(boxes, order, event_x, ylo_index, yhi_index, ys):
+    """Sweep the sorted edge events over a segment tree of the y-segments ``ys``."""
     m = ys.shape[0] - 1
-    if m <= 0:
-        return 0.0
     size = 1
     while size < m:
         size *= 2
@@ -69,16 +63,9 @@ def union_area(boxes):
         full[node] = full[2 * node] + full[2 * node + 1]
     count = np.zeros(2 * size, dtype=np.int64)
     covered = np.zeros(2 * size)
-    event_x = np.empty(2 * n)
-    for k in range(n):
-        event_x[2 * k] = boxes[k, 0]
-        event_x[2 * k + 1] = boxes[k, 1]
-    order = np.argsort(event_x, kind="mergesort")
-    ylo_index = np.searchsorted(ys, boxes[:, 2])
-    yhi_index = np.searchsorted(ys, boxes[:, 3])
     area = 0.0
     previous = event_x[order[0]]
-    for e in range(2 * n):
+    for e in range(order.shape[0]):
         k2 = order[e]
         x = event_x[k2]
         area += covered[1] * (x - previous)
@@ -89,3 +76,21 @@ def union_area(boxes):
         delta = 1 if k2 % 2 == 0 else -1
         _update(ylo_index[k], yhi_index[k], delta, size, count, covered, full)
     return area
+
+
+def union_area(boxes):
+    """Area of the union of the rectangles ``x_lo, x_hi, y_lo, y_hi`` (rows of ``boxes``).
+
+    The sorting is done by numpy here; the sweep is the compiled :func:`_sweep`.
+    """
+    boxes = np.ascontiguousarray(boxes, dtype=np.float64).reshape(-1, 4)
+    if boxes.shape[0] == 0:
+        return 0.0
+    ys = np.unique(boxes[:, 2:4])
+    if ys.shape[0] < 2:
+        return 0.0
+    event_x = np.ascontiguousarray(boxes[:, 0:2]).reshape(-1)
+    order = np.argsort(event_x, kind="stable")
+    ylo_index = np.searchsorted(ys, boxes[:, 2])
+    yhi_index = np.searchsorted(ys, boxes[:, 3])
+    return float(_sweep(boxes, order, event_x, ylo_index, yhi_index, ys))
