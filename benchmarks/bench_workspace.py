@@ -162,7 +162,7 @@ def whole_process() -> None:
     floor = (
         "import numba, numpy as np\n"
         "from kernels.workspace_union import union_area\n"
-        "union_area(np.zeros((1, 4)))\n"
+        "union_area(np.array([[0.0, 1.0, 0.0, 1.0]]))\n"
     )
     subprocess.run([sys.executable, "-c", floor], check=True, cwd=REPO)
     print(

@@ -159,7 +159,7 @@ def _arc_stage(p, limits, precision, seeds, budget):
     while True:
         n_stack, n_kept, processed, code = arc_bisect_chunk(
             p, limits, precision, LEAF_GRID, stack, n_stack, kept, status, n_kept,
-            4 * CHUNK_BOXES,
+            2 * CHUNK_BOXES,
         )  # fmt: skip
         pending = stack[:n_stack]
         area = float(np.sum((pending[:, 1] - pending[:, 0]) * (pending[:, 3] - pending[:, 2])))
