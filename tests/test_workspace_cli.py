@@ -178,3 +178,64 @@ def test_map_coverage_matches_a_brute_force_overlap():
                 oy = max(0.0, min(y1, (j + 1) * 0.5) - max(y0, j * 0.5))
                 brute[0 if s == 2 else 1, j, i] += ox * oy / 0.25
     np.testing.assert_allclose(cover, brute, atol=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("form", "extra"),
+    [
+        ("natural", ""),
+        ("natural", "expanded = true\n"),
+        ("slope", "refine_precision_cm = 0.01\n"),
+        ("arc-distance", "refine_precision_cm = 0.01\n"),
+        ("geometric", ""),
+    ],
+)
+def test_every_form_brackets_the_geometric_area(cli, tmp_path, form, extra):
+    preset = write_preset(tmp_path, form=form, precision=0.125, extra=extra)
+    result = cli("workspace", preset, "--out-dir", tmp_path, "--no-map")
+    assert result.exit_code == 0, result.output
+    (row,) = read_csv(tmp_path / "ws.csv")
+    exact, error = float(row["area_geometric_cm2"]), float(row["area_geometric_error_cm2"])
+    assert float(row["area_inside_cm2"]) <= exact + error
+    assert exact - error <= float(row["area_kept_cm2"])
+    if form == "geometric":
+        assert float(row["area_kept_cm2"]) - float(row["area_inside_cm2"]) <= 2 * error
+
+
+def test_progress_reports_boxes_and_a_bracket_containing_the_exact_area(tmp_path):
+    import re
+
+    preset = load_preset(write_preset(tmp_path, form="arc-distance", precision=0.125,
+                                      extra="refine_precision_cm = 0.0005\n"))  # fmt: skip
+    (job,) = preset.jobs
+    updates = []
+    result = JOB_KINDS["workspace"].run(job, Progress(on_update=updates.append))
+    exact = result.data.geometric
+    brackets = [
+        tuple(float(v) for v in re.search(r"\[([^,]+), ([^\]]+)\] cm2", u.detail).groups())
+        for u in updates
+        if "cm2" in u.detail
+    ]
+    assert len(brackets) >= 2 and all("boxes" in u.detail for u in updates if u.detail)
+    for lower, upper in brackets:
+        assert lower <= exact.outer_cm2 * (1 + 1e-4) and exact.inner_cm2 <= upper * (1 + 1e-4)
+    assert brackets[-1][1] - brackets[-1][0] < brackets[0][1] - brackets[0][0]
+
+
+def test_explicit_points_in_the_preset(cli, tmp_path):
+    preset = tmp_path / "ws.toml"
+    preset.write_text(
+        "[robot3rrr]\nbase_joints_cm = [[0, 0], [120, 0], [60, 103.92304845413263]]\n"
+        "platform_points_cm = [[0, 0], [40, 0], [20, 40]]\n"
+        + JOB.format(
+            limits="[[50, 70], [140, 160], [260, 280]]",
+            precision=0.125,
+            form="arc-distance",
+            extra="",
+        ),
+        encoding="utf-8",
+    )
+    result = cli("workspace", preset, "--out-dir", tmp_path, "--no-map")
+    assert result.exit_code == 0, result.output
+    (row,) = read_csv(tmp_path / "ws.csv")
+    assert float(row["area_geometric_cm2"]) == pytest.approx(0.8794, abs=1e-4)

@@ -110,6 +110,15 @@ class _Budget:
         )
 
 
+def _xy_area(boxes: np.ndarray) -> float:
+    """Sum of the (x, y) areas of rows ``x_lo, x_hi, y_lo, y_hi, ...`` (>= their union)."""
+    return float(np.sum((boxes[:, 1] - boxes[:, 0]) * (boxes[:, 3] - boxes[:, 2])))
+
+
+def _bracket(lower: float, upper: float) -> str:
+    return f"area in [{lower:.5g}, {upper:.5g}] cm2"
+
+
 def _grow(array: np.ndarray) -> np.ndarray:
     grown = np.zeros((2 * array.shape[0], *array.shape[1:]), dtype=array.dtype)
     grown[: array.shape[0]] = array
@@ -129,14 +138,18 @@ def _interval_stage(form_code, p, spec, box, budget) -> np.ndarray:
     root_volume = float(np.prod(widths))
     kept = np.zeros((4096, 4))
     n_stack, n_kept = 1, 0
+    kept_area = 0.0  # sum over kept boxes: with repeats, an upper bound of their union
     while True:
+        previous = n_kept
         n_stack, n_kept, processed, code = bisect_chunk(
             form_code, p, spec.precision_cm, spec.angle_scale, stack, n_stack, kept, n_kept,
             CHUNK_BOXES,
         )  # fmt: skip
         pending = stack[:n_stack]
         volume = float(np.sum(np.prod(pending[:, 1:10:2] - pending[:, 0:10:2], axis=1)))
-        budget.spend(processed, 1.0 - volume / root_volume, f"{n_kept:,} kept")
+        kept_area += _xy_area(kept[previous:n_kept])
+        upper = kept_area + _xy_area(pending)
+        budget.spend(processed, 1.0 - volume / root_volume, _bracket(0.0, upper))
         if code == DONE:
             return kept[:n_kept]
         if code == KEPT_FULL:
@@ -145,25 +158,32 @@ def _interval_stage(form_code, p, spec, box, budget) -> np.ndarray:
             stack = _grow(stack)
 
 
-def _arc_stage(p, limits, precision, seeds, budget):
-    """2-D bisection with the exact leg-wise test from the (x, y) boxes ``seeds``."""
+def _arc_stage(p, limits, precision, seeds, budget, inside_cm2=0.0):
+    """2-D bisection with the exact leg-wise test from the (x, y) boxes ``seeds`` (disjoint);
+    ``inside_cm2`` is the area already proved inside, for the progress bracket."""
     from kernels.workspace3rrr import DONE, KEPT_FULL, STACK_FULL
     from kernels.workspace_arc import arc_bisect_chunk
 
     stack = np.zeros((max(256, 2 * len(seeds) + 64), 4))
     stack[: len(seeds)] = seeds
-    root_area = float(np.sum((seeds[:, 1] - seeds[:, 0]) * (seeds[:, 3] - seeds[:, 2])))
+    root_area = _xy_area(seeds)
     kept = np.zeros((max(4096, len(seeds)), 4))
     status = np.zeros(kept.shape[0], dtype=np.int64)
     n_stack, n_kept = len(seeds), 0
+    lower = upper = inside_cm2
     while True:
+        previous = n_kept
         n_stack, n_kept, processed, code = arc_bisect_chunk(
             p, limits, precision, LEAF_GRID, stack, n_stack, kept, status, n_kept,
             2 * CHUNK_BOXES,
         )  # fmt: skip
         pending = stack[:n_stack]
-        area = float(np.sum((pending[:, 1] - pending[:, 0]) * (pending[:, 3] - pending[:, 2])))
-        budget.spend(processed, 1.0 - area / max(root_area, 1e-300), f"{n_kept:,} kept")
+        area = _xy_area(pending)
+        new = slice(previous, n_kept)
+        lower += _xy_area(kept[new][status[new] == INSIDE])
+        upper += _xy_area(kept[new])
+        fraction = 1.0 - area / max(root_area, 1e-300)
+        budget.spend(processed, fraction, _bracket(lower, upper + area))
         if code == DONE:
             return kept[:n_kept], status[:n_kept]
         if code == KEPT_FULL:
@@ -226,7 +246,12 @@ def compute_workspace(robot: Robot3RRR, spec: WorkspaceSpec, budget: _Budget) ->
         budget.progress.start(1.0, "boundary refinement")
         inside = status == INSIDE
         refined, refined_status = _arc_stage(
-            p, limits, spec.refine_precision_cm, np.ascontiguousarray(boxes[~inside]), budget
+            p,
+            limits,
+            spec.refine_precision_cm,
+            np.ascontiguousarray(boxes[~inside]),
+            budget,
+            float(union_area(boxes[inside])),
         )
         boxes = np.concatenate([boxes[inside], refined])
         status = np.concatenate([status[inside], refined_status])
