@@ -11,6 +11,7 @@ from planar_tui.sensitivity.postures import (
     explicit_posture,
     isotropic_posture,
     jacobian,
+    minimum_condition,
 )
 
 
@@ -63,3 +64,67 @@ def test_explicit_posture_label_and_angles():
     assert posture.label == "theta_deg=0/45/-90"
     np.testing.assert_allclose(posture.theta_rad, np.radians([0, 45, -90]))
     assert posture.condition_number > 1
+
+
+def _kappa(lengths, theta, length=None):
+    return condition_number(jacobian(lengths, theta, length))
+
+
+@pytest.mark.parametrize("lengths", [[0.303, 0.214], [0.3, 0.5], [0.5, 0.1], [0.2, 0.2]])
+def test_2r_closed_form_matches_scipy_bounded_search(lengths):
+    """Independent method: scipy's bounded scalar minimiser of κ(θ2) on (0, π)."""
+    from scipy.optimize import minimize_scalar
+
+    kappa, theta, length = minimum_condition(tuple(lengths))
+    fit = minimize_scalar(
+        lambda t: _kappa(lengths, [0.0, t]),
+        bounds=(1e-3, math.pi - 1e-3),
+        method="bounded",
+        options={"xatol": 1e-12},
+    )
+    assert length is None
+    assert kappa == pytest.approx(fit.fun, rel=1e-9)
+    assert theta[1] == pytest.approx(fit.x, abs=1e-4)  # κ is flat at its minimum
+    assert kappa <= fit.fun + 1e-12  # the closed form is the exact minimum
+
+
+@pytest.mark.parametrize(
+    "lengths", [[0.303, 0.303, 0.175], [0.303, 0.151, 0.2], [0.5, 0.1, 0.1], [0.4, 0.3, 0.3]]
+)
+def test_3r_minimum_condition_matches_scipy_multistart(lengths):
+    """Independent method: scipy's Nelder-Mead and Powell on κ(θ2, θ3, log L) from a grid of
+    starts; ours (own Levenberg-Marquardt + Nelder-Mead) must reach the same minimum."""
+    from scipy.optimize import minimize
+
+    def kappa_of(v):
+        return _kappa(lengths, [0.0, v[0], v[1]], math.exp(v[2]))
+
+    best = math.inf
+    for t2 in (60, 150, -100):
+        for t3 in (90, -120):
+            for method in ("Nelder-Mead", "Powell"):
+                start = [math.radians(t2), math.radians(t3), math.log(0.2)]
+                tolerances = {"xatol": 1e-10, "fatol": 1e-14}
+                if method == "Powell":
+                    tolerances = {"xtol": 1e-10, "ftol": 1e-14}
+                fit = minimize(kappa_of, start, method=method, options=tolerances)
+                best = min(best, fit.fun)
+    kappa, theta, length = minimum_condition(tuple(lengths))
+    assert kappa == pytest.approx(_kappa(lengths, theta, length), rel=1e-12)  # as reported
+    assert kappa == pytest.approx(best, rel=1e-6)
+
+
+def test_parse_time_solve_imports_no_scipy():
+    """The isotropic check runs while presets load: it must stay light (no scipy)."""
+    import subprocess
+    import sys
+
+    from tests.conftest import REPO
+
+    probe = (
+        "import sys\nfrom planar_tui.sensitivity.postures import isotropic_posture\n"
+        "isotropic_posture([0.303, 0.303, 0.175]); isotropic_posture([0.303, 0.214])\n"
+        "print('scipy' in sys.modules)\n"
+    )
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, cwd=REPO)
+    assert out.stdout.strip() == "False", out.stderr

@@ -1,9 +1,9 @@
 """Sample (SALib), evaluate (batched Numba inverse dynamics), analyse (fast estimators).
 
-The unit-hypercube designs depend only on (method, D, N, seed), so they are drawn once per
-process and scaled per robot exactly as ``SALib.util.scale_samples`` does
-(``x (ub - lb) + lb``): the scaled matrix is bit-identical to SALib sampling the real
-problem. One design serves every posture and speed of a job: only the state changes.
+The unit-hypercube designs depend only on (method, D, N, seed), so SALib draws each once
+(kept per process and in the persistent :mod:`.design_cache`) and they are scaled per
+robot exactly as ``SALib.util.scale_samples`` does (``x (ub - lb) + lb``): the scaled
+matrix is bit-identical to SALib sampling the real problem. One design serves every posture and speed of a job: only the state changes.
 """
 
 from __future__ import annotations
@@ -52,9 +52,13 @@ def build_problem(robot, tolerance_length_m, tolerance_mass_kg, tolerance_inerti
     return Problem(tuple(names), centre - half, centre + half, n)
 
 
-@lru_cache(maxsize=16)
-def unit_design(method: str, num_vars: int, samples: int, seed: int) -> np.ndarray:
-    """SALib's design on the unit hypercube (read-only, cached per process).
+def design_rows(method: str, num_vars: int, samples: int) -> int:
+    """Rows of a design: N (D + 2) for Sobol' (no second order), N D for eFAST."""
+    return samples * (num_vars + 2) if method == "sobol" else samples * num_vars
+
+
+def salib_unit_design(method: str, num_vars: int, samples: int, seed: int) -> np.ndarray:
+    """SALib's design on the unit hypercube, drawn now.
 
     ``sobol``: ``SALib.sample.sobol.sample(N, calc_second_order=False)``, N (D + 2) rows;
     ``efast``: ``SALib.sample.fast_sampler.sample(N, M=4)``, N D rows.
@@ -64,11 +68,22 @@ def unit_design(method: str, num_vars: int, samples: int, seed: int) -> np.ndarr
     if method == "sobol":
         from SALib.sample import sobol
 
-        design = sobol.sample(unit, samples, calc_second_order=False, seed=seed)
-    else:
-        from SALib.sample import fast_sampler
+        return sobol.sample(unit, samples, calc_second_order=False, seed=seed)
+    from SALib.sample import fast_sampler
 
-        design = fast_sampler.sample(unit, samples, M=M_HARMONICS, seed=seed)
+    return fast_sampler.sample(unit, samples, M=M_HARMONICS, seed=seed)
+
+
+@lru_cache(maxsize=16)
+def unit_design(method: str, num_vars: int, samples: int, seed: int) -> np.ndarray:
+    """SALib's unit design (read-only), cached per process and on disk (:mod:`.design_cache`)."""
+    from planar_tui.sensitivity.design_cache import cached_design, design_key
+
+    design = cached_design(
+        design_key(method, num_vars, samples, seed, M_HARMONICS),
+        (design_rows(method, num_vars, samples), num_vars),
+        lambda: salib_unit_design(method, num_vars, samples, seed),
+    )
     design.setflags(write=False)
     return design
 

@@ -24,7 +24,9 @@ Both return arrays of shape (4, n_out, D): S1, S1 half-width, ST, ST half-width.
 from __future__ import annotations
 
 import math
+import os
 import warnings
+from functools import lru_cache
 from statistics import NormalDist
 
 import numpy as np
@@ -39,9 +41,20 @@ def _z_value(conf_level: float) -> float:
 
 
 def sobol_bootstrap_rows(n_base: int, seed: int, num_resamples: int = NUM_RESAMPLES):
-    """SALib's bootstrap rows, transposed to (R, N) for the kernel."""
+    """SALib's bootstrap rows, transposed to (R, N)."""
     rows = np.random.default_rng(seed).integers(n_base, size=(n_base, num_resamples))
     return np.ascontiguousarray(rows.T)
+
+
+@lru_cache(maxsize=8)
+def sobol_bootstrap_counts(n_base: int, seed: int, num_resamples: int = NUM_RESAMPLES):
+    """(R, N) draw counts of :func:`sobol_bootstrap_rows` (read-only, cached per process:
+    every job with the same N and seed shares them)."""
+    from kernels.sensitivity_estimators import resample_counts
+
+    counts = resample_counts(sobol_bootstrap_rows(n_base, seed, num_resamples), n_base)
+    counts.setflags(write=False)
+    return counts
 
 
 def sobol_indices(
@@ -53,19 +66,31 @@ def sobol_indices(
 
     outputs = np.ascontiguousarray(outputs, dtype=np.float64)
     n_base = outputs.shape[0] // (num_vars + 2)
-    rows = sobol_bootstrap_rows(n_base, seed, num_resamples)
-    return sobol_first_total(outputs, num_vars, rows, _z_value(conf_level))
+    counts = sobol_bootstrap_counts(n_base, seed, num_resamples)
+    return sobol_first_total(outputs, num_vars, counts, _z_value(conf_level))
 
 
 def _fourier_orders(curves, m_harmonics: int):
-    """eFAST S1 and ST of search curves ``curves`` (..., N) (SALib ``compute_orders``)."""
+    """eFAST S1 and ST of search curves ``curves`` (..., N) (SALib ``compute_orders``).
+
+    The power :math:`|\\hat y_k|^2` is left unscaled: the factors 2 and 1/N² of
+    :math:`S_k` cancel in both ratios."""
     n = curves.shape[-1]
     omega = (n - 1) // (2 * m_harmonics)
-    power = (np.abs(np.fft.rfft(curves, axis=-1)[..., 1 : math.ceil(n / 2)]) / n) ** 2
-    variance = 2.0 * power.sum(axis=-1)
-    first = 2.0 * power[..., np.arange(1, m_harmonics + 1) * omega - 1].sum(axis=-1)
-    rest = 2.0 * power[..., : omega // 2].sum(axis=-1)
+    band = np.fft.rfft(curves, axis=-1)[..., 1 : math.ceil(n / 2)]
+    power = band.real**2 + band.imag**2
+    variance = power.sum(axis=-1)
+    first = power[..., np.arange(1, m_harmonics + 1) * omega - 1].sum(axis=-1)
+    rest = power[..., : omega // 2].sum(axis=-1)
     return first / variance, 1.0 - rest / variance
+
+
+def _worker_count() -> int:
+    """CPUs this process may run on."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # not on Linux
+        return os.cpu_count() or 1
 
 
 def efast_indices(
@@ -77,7 +102,12 @@ def efast_indices(
     conf_level=CONF_LEVEL,
 ):
     """eFAST S1, ST and (unreliable, see module docstring) bootstrap half-widths of every
-    column of ``outputs`` (``fast_sampler`` design: D blocks of N rows)."""
+    column of ``outputs`` (``fast_sampler`` design: D blocks of N rows).
+
+    One task per (input, output) curve, run on a thread pool: NumPy's FFT releases the GIL.
+    Each task writes its own cells, so the result does not depend on the scheduling."""
+    from concurrent.futures import ThreadPoolExecutor
+
     outputs = np.asarray(outputs, dtype=np.float64)
     n_curve = outputs.shape[0] // num_vars
     n_out = outputs.shape[1]
@@ -86,13 +116,21 @@ def efast_indices(
     window = math.ceil(n_curve * 0.5)
     z = _z_value(conf_level)
     result = np.zeros((4, n_out, num_vars))
-    for i in range(num_vars):
-        curve = outputs[i * n_curve : (i + 1) * n_curve].T  # (n_out, N)
-        result[0, :, i], result[2, :, i] = _fourier_orders(curve, m_harmonics)
-        rows = (starts[i][:, None] + np.arange(window)[None, :]) % n_curve
-        s1, st = _fourier_orders(curve[:, rows], m_harmonics)  # (n_out, R)
-        result[1, :, i] = z * s1.std(axis=1, ddof=1)
-        result[3, :, i] = z * st.std(axis=1, ddof=1)
+
+    def one_curve(task: int) -> None:
+        i, t = divmod(task, n_out)
+        curve = outputs[i * n_curve : (i + 1) * n_curve, t]
+        result[0, t, i], result[2, t, i] = _fourier_orders(curve, m_harmonics)
+        # cyclic windows of the curve = slices of the curve repeated once
+        doubled = np.concatenate([curve, curve[: window - 1]])
+        windows = np.lib.stride_tricks.sliding_window_view(doubled, window)[starts[i]]
+        s1, st = _fourier_orders(windows, m_harmonics)  # (R,)
+        result[1, t, i] = z * s1.std(ddof=1)
+        result[3, t, i] = z * st.std(ddof=1)
+
+    tasks = range(num_vars * n_out)
+    with ThreadPoolExecutor(max_workers=min(_worker_count(), len(tasks))) as pool:
+        list(pool.map(one_curve, tasks))
     return result
 
 

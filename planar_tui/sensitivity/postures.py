@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -84,35 +85,81 @@ def _wrap_deg(angle_rad: float) -> float:
     return degrees - 360.0 if degrees > 180.0 else degrees
 
 
+def _kappa_of(variables, lengths_m) -> float:
+    """κ of the 3×n Jacobian at θ = (0, variables[:-1]), L = exp(variables[-1])."""
+    theta = np.concatenate([[0.0], variables[:-1]])
+    return condition_number(jacobian(lengths_m, theta, math.exp(variables[-1])))
+
+
+def _isotropic_2r(lengths):
+    r"""Closed form for 2R: :math:`\kappa + 1/\kappa = \|J\|_F^2/|\det J|
+    = (l_1^2 + 2l_2^2 + 2l_1l_2\cos\theta_2)/(l_1l_2|\sin\theta_2|)`, minimal at
+    :math:`\cos\theta_2 = -2l_1l_2/(l_1^2 + 2l_2^2)` (always in [-1, 0])."""
+    l1, l2 = float(lengths[0]), float(lengths[1])
+    theta2 = math.acos(-2.0 * l1 * l2 / (l1 * l1 + 2.0 * l2 * l2))
+    theta = np.array([0.0, theta2])
+    return condition_number(jacobian(lengths, theta)), theta, None
+
+
+def _starts(lengths) -> list[list[float]]:
+    """Fixed starting points (θ2 … θn, log L): Angeles' 3R design first, then fans."""
+    n = len(lengths)
+    starts = []
+    if n == 3:
+        starts.append([math.radians(120.0), math.radians(150.0), math.log(lengths[2] / 2**0.5)])
+    base = math.log(float(lengths.mean()))
+    for start_deg in (135.0, 120.0, 90.0, 60.0, 150.0, 170.0):
+        starts.append([math.radians(start_deg)] * (n - 1) + [base])
+    return starts
+
+
+def _isotropic_with_orientation(lengths):
+    """n ≥ 3: least squares on the isotropy residual from :func:`_starts` (deterministic)."""
+    from planar_tui.sensitivity.optimise import levenberg_marquardt
+
+    best = None
+    for start in _starts(lengths):
+        x = levenberg_marquardt(lambda v: _isotropy_residual(v, lengths, True), start)
+        kappa = _kappa_of(x, lengths)
+        if best is None or kappa < best[0] - 1e-12:
+            best = (kappa, x)
+    return best
+
+
+@lru_cache(maxsize=64)
+def minimum_condition(lengths_m: tuple[float, ...]):
+    """(κ, θ, L) of the posture of minimum condition number, θ1 = 0 (cached per process).
+
+    2R: closed form (L None). n ≥ 3: Levenberg-Marquardt on the isotropy residual from
+    fixed starts, then Nelder-Mead on κ itself from the best of them (the residual's
+    minimiser is κ's only when κ = 1).
+    """
+    from planar_tui.sensitivity.optimise import nelder_mead
+
+    lengths = np.asarray(lengths_m, dtype=np.float64)
+    if len(lengths) == 2:
+        return _isotropic_2r(lengths)
+    kappa, x = _isotropic_with_orientation(lengths)
+    polished = nelder_mead(lambda v: _kappa_of(v, lengths), x)
+    if _kappa_of(polished, lengths) < kappa:
+        x, kappa = polished, _kappa_of(polished, lengths)
+    return kappa, np.concatenate([[0.0], x[:-1]]), math.exp(x[-1])
+
+
 def isotropic_posture(lengths_m, tolerance: float = 0.01) -> Posture:
     """The posture of minimum Jacobian condition number, or :class:`NoIsotropicPosture`.
 
-    Least squares on the isotropy residual from a fixed set of starting postures (so the
-    result is deterministic), then κ of the best solution. Raises when κ > 1 + tolerance.
+    See :func:`minimum_condition`. Raises when κ > 1 + tolerance, giving the minimum κ
+    and where it is reached.
     """
-    from scipy.optimize import least_squares
-
     lengths = np.asarray(lengths_m, dtype=np.float64)
     n = len(lengths)
     if n < 2:
         raise NoIsotropicPosture("a 1-link robot has no isotropic posture (needs n >= 2)")
-    with_orientation = n >= 3
-    base = math.log(float(lengths.mean()))
-    best = None
-    for start_deg in (135.0, 120.0, 90.0, 60.0, 150.0, 170.0):
-        start = [math.radians(start_deg)] * (n - 1) + ([base] if with_orientation else [])
-        fit = least_squares(
-            _isotropy_residual, start, args=(lengths, with_orientation), xtol=1e-14, ftol=1e-14
-        )
-        length = math.exp(fit.x[-1]) if with_orientation else None
-        theta = np.concatenate([[0.0], fit.x[: n - 1]])
-        kappa = condition_number(jacobian(lengths, theta, length))
-        if best is None or kappa < best[0] - 1e-12:
-            best = (kappa, theta, length)
-    kappa, theta, length = best
+    kappa, theta, length = minimum_condition(tuple(float(v) for v in lengths))
     degrees = [_wrap_deg(t) for t in theta]
     if degrees[1] < 0:  # mirror image: same κ; keep θ2 > 0
-        degrees = [-d if d != 180.0 else d for d in degrees]
+        degrees = [(-d if d != 180.0 else d) + 0.0 for d in degrees]  # no -0.0
     if not kappa <= 1.0 + tolerance:
         requirement = "l2 = l1/√2" if n == 2 else ("l1 = l2 = √3·l3" if n == 3 else "")
         raise NoIsotropicPosture(
