@@ -197,3 +197,12 @@ def test_union_area_of_duplicates_and_nested_boxes():
     boxes = np.array([[0, 1, 0, 1], [0, 1, 0, 1], [0.25, 0.5, 0.25, 0.5], [2, 3, 0, 2.0]])
     assert union_area(boxes) == pytest.approx(3.0)
     assert union_area(np.zeros((0, 4))) == 0.0
+
+
+def test_unique_rows_equals_numpy_unique():
+    from planar_tui.workspace.runner import unique_rows
+
+    rng = np.random.default_rng(5)
+    boxes = rng.integers(0, 3, (500, 4)).astype(np.float64) * 0.5
+    np.testing.assert_array_equal(unique_rows(boxes), np.unique(boxes, axis=0))
+    assert unique_rows(np.zeros((0, 4))).shape == (0, 4)

@@ -119,6 +119,17 @@ def _bracket(lower: float, upper: float) -> str:
     return f"area in [{lower:.5g}, {upper:.5g}] cm2"
 
 
+def unique_rows(boxes: np.ndarray) -> np.ndarray:
+    """Distinct rows of ``boxes`` (lexicographic order); several times faster than
+    ``np.unique(axis=0)``, which sorts a structured view."""
+    if len(boxes) == 0:
+        return boxes.copy()
+    ordered = boxes[np.lexsort(boxes.T[::-1])]
+    first = np.ones(len(ordered), dtype=bool)
+    first[1:] = np.any(ordered[1:] != ordered[:-1], axis=1)
+    return np.ascontiguousarray(ordered[first])
+
+
 def _grow(array: np.ndarray) -> np.ndarray:
     grown = np.zeros((2 * array.shape[0], *array.shape[1:]), dtype=array.dtype)
     grown[: array.shape[0]] = array
@@ -238,7 +249,7 @@ def compute_workspace(robot: Robot3RRR, spec: WorkspaceSpec, budget: _Budget) ->
         code = {"natural": k5.NATURAL, "mean-value": k5.MEAN_VALUE, "slope": k5.SLOPE}[spec.form]
         if spec.expanded:
             code = k5.NATURAL_EXPANDED
-        boxes = np.unique(_interval_stage(code, p, spec, box, budget), axis=0)
+        boxes = unique_rows(_interval_stage(code, p, spec, box, budget))
         status = np.zeros(len(boxes), dtype=np.int64)
         classify_boxes(boxes, p, limits, status)
         status = np.where(status == INSIDE, INSIDE, BOUNDARY)
