@@ -13,9 +13,7 @@ import numpy as np
 INSIDE_GLYPH = "█"
 BOUNDARY_GLYPH = "▒"
 OUTSIDE_GLYPH = " "
-LEGEND = (
-    f"{INSIDE_GLYPH} inside (proved)   {BOUNDARY_GLYPH} boundary (kept, not proved)   blank outside"
-)
+LEGEND = f"{INSIDE_GLYPH} inside (proved)  {BOUNDARY_GLYPH} boundary (kept)  blank: outside"
 #: Terminal cells are about twice as tall as wide.
 CELL_ASPECT = 2.0
 _LABEL_WIDTH = 8  # "-123.45 " then the axis line
