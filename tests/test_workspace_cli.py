@@ -149,6 +149,7 @@ def test_map_is_80_columns_labelled_and_readable_without_colour():
     text = "\n".join(lines)
     assert INSIDE_GLYPH in text and BOUNDARY_GLYPH in text
     assert "┤" in text and "└" in text and "x (cm)" in text
+    assert lines[-1].endswith("outside")  # the legend is whole at 80 columns
     assert any(line.strip().startswith("0") for line in lines[-3:])  # x tick labels
     narrow = render_map(boxes, status, extent=(0.0, 10.0, 0.0, 5.0), width=50, height=12)
     assert all(len(line) <= 50 for line in narrow) and len(narrow) == 12
