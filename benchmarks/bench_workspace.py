@@ -28,7 +28,7 @@ from planar_tui.jobs.workspace import WorkspaceSpec  # noqa: E402
 from planar_tui.progress import Progress  # noqa: E402
 from planar_tui.workspace.geometry import geometric_area  # noqa: E402
 from planar_tui.workspace.model import Robot3RRR  # noqa: E402
-from planar_tui.workspace.runner import _Budget, compute_workspace  # noqa: E402
+from planar_tui.workspace.runner import BoxBudget, compute_workspace  # noqa: E402
 
 REFERENCE = REPO.parent / "shared" / "reference" / "paper_workspace_tables.csv"
 ROBOT = Robot3RRR()
@@ -64,7 +64,7 @@ def spec(table, form, precision=None, **extra):
 
 def timed(s):
     started = time.perf_counter()
-    out = compute_workspace(ROBOT, s, _Budget(_Job(s), Progress()))
+    out = compute_workspace(ROBOT, s, BoxBudget(_Job(s), Progress()))
     return time.perf_counter() - started, out
 
 

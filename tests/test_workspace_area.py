@@ -13,7 +13,7 @@ from planar_tui.jobs.workspace import WorkspaceSpec
 from planar_tui.progress import Progress
 from planar_tui.workspace.geometry import geometric_area, workspace_polygon
 from planar_tui.workspace.model import Robot3RRR
-from planar_tui.workspace.runner import _Budget, compute_workspace, kernel_parameters
+from planar_tui.workspace.runner import BoxBudget, compute_workspace, kernel_parameters
 from tests.conftest import REFERENCE
 
 ROBOT = Robot3RRR()
@@ -58,7 +58,7 @@ class _Job:
 
 
 def run(spec):
-    return compute_workspace(ROBOT, spec, _Budget(_Job(spec), Progress()))
+    return compute_workspace(ROBOT, spec, BoxBudget(_Job(spec), Progress()))
 
 
 @pytest.fixture(scope="module")

@@ -88,7 +88,7 @@ class WorkspaceOutcome:
         ]
 
 
-class _Budget:
+class BoxBudget:
     """Counts processed boxes across stages and stops at the job's budget."""
 
     def __init__(self, job: Job, progress: Progress):
@@ -218,7 +218,7 @@ def kernel_parameters(robot: Robot3RRR, spec: WorkspaceSpec) -> np.ndarray:
     )
 
 
-def compute_workspace(robot: Robot3RRR, spec: WorkspaceSpec, budget: _Budget) -> WorkspaceOutcome:
+def compute_workspace(robot: Robot3RRR, spec: WorkspaceSpec, budget: BoxBudget) -> WorkspaceOutcome:
     """Run the stages of the module docstring for one robot and spec."""
     from kernels import workspace3rrr as k5
     from kernels.workspace_arc import classify_boxes, limits_array
@@ -308,7 +308,7 @@ def run_workspace(job: Job, progress: Progress) -> JobResult:
     spec: WorkspaceSpec = job.spec
     if not math.isfinite(spec.precision_cm) or spec.precision_cm <= 0:
         raise PresetError(job.preset_path, "precision_cm", "must be > 0", "a positive number")
-    outcome = compute_workspace(job.robot, spec, _Budget(job, progress))
+    outcome = compute_workspace(job.robot, spec, BoxBudget(job, progress))
     return JobResult(
         table=CsvTable(SUMMARY_HEADER, [outcome.summary_row()]),
         summary=summary_line(outcome),
