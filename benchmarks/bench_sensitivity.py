@@ -96,9 +96,9 @@ def ours(job_list, methods=("sobol", "efast")):
         sizes = sample_sizes(spec, problem.num_vars)
         for method in methods:
             t0 = time.perf_counter()
-            design = engine.scaled_design(problem, method, sizes[method], spec.seed)
+            design = engine.unit_design(method, problem.num_vars, sizes[method], spec.seed)
             t1 = time.perf_counter()
-            torques = engine.evaluate(design, job.robot, *state(job))
+            torques = engine.evaluate(problem, design, job.robot, *state(job))
             t2 = time.perf_counter()
             indices = engine.analyse(method, torques, problem.num_vars, spec.seed)
             t3 = time.perf_counter()

@@ -466,6 +466,14 @@ def inverse_dynamics(
     )
 
 
+@kernel
+def shared_link_kinematics(theta_rad, omega_rad_s, alpha_rad_s2):
+    """The (6, n) link-state work array of one state (n,) shared by a batch's samples."""
+    kin = np.empty((_KIN_ROWS, theta_rad.shape[0]))
+    _link_kinematics(_row(theta_rad), _row(omega_rad_s), _row(alpha_rad_s2), 0, kin)
+    return kin
+
+
 @kernel(parallel=True)
 def inverse_dynamics_batch(
     lengths_m, masses_kg, inertias_kgm2, gravity_m_s2, theta_rad, omega_rad_s, alpha_rad_s2
@@ -495,8 +503,7 @@ def inverse_dynamics_batch(
         raise ValueError("lengths_m, masses_kg and inertias_kgm2 must have the same shape (S, n)")
     if theta_rad.shape[0] != n or omega_rad_s.shape[0] != n or alpha_rad_s2.shape[0] != n:
         raise ValueError("theta_rad, omega_rad_s, alpha_rad_s2 must have length n")
-    shared = np.empty((_KIN_ROWS, n))
-    _link_kinematics(_row(theta_rad), _row(omega_rad_s), _row(alpha_rad_s2), 0, shared)
+    shared = shared_link_kinematics(theta_rad, omega_rad_s, alpha_rad_s2)
     out = np.empty((samples, n))
     n_chunks = (samples + _CHUNK - 1) // _CHUNK
     for chunk in prange(n_chunks):

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from planar_tui.model import SerialRobot
-from planar_tui.sensitivity.engine import build_problem, evaluate, scaled_design
+from planar_tui.sensitivity.engine import build_problem, evaluate, scaled_design, unit_design
 from planar_tui.sensitivity.estimators import (
     efast_indices,
     salib_efast_indices,
@@ -19,8 +19,8 @@ POSTURE = np.radians([20.0, 120.0, 150.0])
 
 def _torques(method, samples, seed=7):
     problem = build_problem(ROBOT, 1e-3, 1e-2)
-    design = scaled_design(problem, method, samples, seed)
-    return problem, evaluate(design, ROBOT, POSTURE, np.full(3, 1.1), np.full(3, 0.5))
+    design = unit_design(method, problem.num_vars, samples, seed)
+    return problem, evaluate(problem, design, ROBOT, POSTURE, np.full(3, 1.1), np.full(3, 0.5))
 
 
 def test_scaled_design_is_salib_sampling_the_real_problem():
@@ -32,6 +32,22 @@ def test_scaled_design_is_salib_sampling_the_real_problem():
     assert np.array_equal(ours, theirs)
     ours = scaled_design(problem, "efast", 100, 3)
     assert np.array_equal(ours, fast_sampler.sample(problem.salib(), 100, M=4, seed=3))
+
+
+@pytest.mark.parametrize("inertia_tolerance", [None, 1e-3])
+def test_design_torques_equal_the_batch_kernel_on_the_scaled_design(inertia_tolerance):
+    """Scaling inside the kernel is bit-identical to scaling first (SALib's arithmetic)."""
+    from kernels.dynamics import inverse_dynamics_batch
+
+    problem = build_problem(ROBOT, 1e-3, 1e-2, inertia_tolerance)
+    scaled = scaled_design(problem, "sobol", 64, 3)
+    columns = [np.ascontiguousarray(scaled[:, k : k + 3]) for k in (0, 3, 6)]
+    if inertia_tolerance is None:
+        columns[2] = np.tile(ROBOT.arrays()[2], (len(scaled), 1))
+    state = (POSTURE, np.full(3, 1.1), np.full(3, 0.5))
+    expected = inverse_dynamics_batch(*columns, ROBOT.gravity_m_s2, *state)
+    unit = unit_design("sobol", problem.num_vars, 64, 3)
+    assert np.array_equal(evaluate(problem, unit, ROBOT, *state), expected)
 
 
 @pytest.mark.parametrize("seed", [1, 42])

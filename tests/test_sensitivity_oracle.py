@@ -29,7 +29,7 @@ import numpy as np
 import pytest
 
 from planar_tui.model import SerialRobot
-from planar_tui.sensitivity.engine import analyse, build_problem, evaluate, scaled_design
+from planar_tui.sensitivity.engine import analyse, build_problem, evaluate, unit_design
 from tests.sensitivity_support import isolated_design_cache  # noqa: F401 (autouse)
 
 ROBOTS = {
@@ -91,8 +91,8 @@ def test_singular_indices_match_closed_form(robot, tol_mass_kg, method, samples)
     n = len(lengths)
     model = SerialRobot(tuple(lengths), tuple(masses), (0.1,) * n)
     problem = build_problem(model, 1e-3, tol_mass_kg)
-    design = scaled_design(problem, method, samples, 42)
-    torques = evaluate(design, model, np.zeros(n), np.ones(n), np.zeros(n))
+    design = unit_design(method, problem.num_vars, samples, 42)
+    torques = evaluate(problem, design, model, np.zeros(n), np.ones(n), np.zeros(n))
     s1, s1_conf, st, st_conf = analyse(method, torques, 2 * n, 42)
     exact_first, exact_total = singular_indices(lengths, masses, 1e-3, tol_mass_kg)
     assert np.abs(s1 - exact_first).max() <= 0.01

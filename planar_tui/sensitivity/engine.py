@@ -94,21 +94,16 @@ def scaled_design(problem: Problem, method: str, samples: int, seed: int) -> np.
     return unit * (problem.upper - problem.lower) + problem.lower
 
 
-def evaluate(design: np.ndarray, robot, theta_rad, omega_rad_s, alpha_rad_s2) -> np.ndarray:
-    """Joint torques (S, n) of every row of ``design``: one batched kernel call."""
-    from kernels.dynamics import inverse_dynamics_batch
+def evaluate(problem: Problem, unit: np.ndarray, robot, theta_rad, omega_rad_s, alpha_rad_s2):
+    """Joint torques (S, n) of every row of the unit design ``unit`` scaled to ``problem``:
+    one batched kernel call, bit-identical to the torques of :func:`scaled_design`."""
+    from kernels.sensitivity_model import design_torques
 
-    n = robot.n_links
-    lengths = np.ascontiguousarray(design[:, :n])
-    masses = np.ascontiguousarray(design[:, n : 2 * n])
-    if design.shape[1] == 3 * n:
-        inertias = np.ascontiguousarray(design[:, 2 * n :])
-    else:
-        inertias = np.ascontiguousarray(np.broadcast_to(robot.arrays()[2], lengths.shape))
-    return inverse_dynamics_batch(
-        lengths,
-        masses,
-        inertias,
+    return design_torques(
+        unit,
+        problem.lower,
+        problem.upper,
+        np.ascontiguousarray(robot.arrays()[2], dtype=np.float64),
         float(robot.gravity_m_s2),
         np.asarray(theta_rad, dtype=np.float64),
         np.asarray(omega_rad_s, dtype=np.float64),

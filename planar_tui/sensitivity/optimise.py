@@ -35,9 +35,11 @@ def levenberg_marquardt(
     x0,
     *,
     xtol: float = 1e-14,
+    ftol: float = 1e-12,
     max_iterations: int = 200,
 ) -> np.ndarray:
-    """A local minimiser of ``||residual(x)||²`` from ``x0``."""
+    """A local minimiser of ``||residual(x)||²`` from ``x0``: stops when a step moves x by
+    less than ``xtol`` (relative) or lowers the cost by less than ``ftol`` (relative)."""
     x = np.array(x0, dtype=np.float64)
     r = residual(x)
     cost = float(r @ r)
@@ -55,13 +57,14 @@ def levenberg_marquardt(
             r_trial = residual(trial)
             cost_trial = float(r_trial @ r_trial)
             if cost_trial < cost:
+                converged = cost - cost_trial <= ftol * cost
                 x, r, cost = trial, r_trial, cost_trial
                 damping = max(damping * 0.3, 1e-12)
                 break
             damping *= 10.0
         else:
             break  # no descent direction left: a (local) minimum to round-off
-        if np.linalg.norm(step) <= xtol * (np.linalg.norm(x) + xtol):
+        if converged or np.linalg.norm(step) <= xtol * (np.linalg.norm(x) + xtol):
             break
     return x
 

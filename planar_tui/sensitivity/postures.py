@@ -68,6 +68,10 @@ def condition_number(matrix: np.ndarray) -> float:
     return math.inf if sigma[-1] <= 1e-300 else float(sigma[0] / sigma[-1])
 
 
+_EYE = {rows: np.eye(rows) for rows in (2, 3)}
+_UPPER = {rows: np.triu_indices(rows) for rows in (2, 3)}
+
+
 def _isotropy_residual(variables, lengths_m, with_orientation):
     """:math:`JJ^T\\,m/\\mathrm{tr}(JJ^T) - I` (upper triangle): zero iff κ = 1."""
     theta = np.concatenate([[0.0], variables[: len(lengths_m) - 1]])
@@ -75,8 +79,8 @@ def _isotropy_residual(variables, lengths_m, with_orientation):
     j = jacobian(lengths_m, theta, length)
     gram = j @ j.T
     rows = gram.shape[0]
-    scaled = gram * rows / max(np.trace(gram), 1e-300) - np.eye(rows)
-    return scaled[np.triu_indices(rows)]
+    scaled = gram * rows / max(np.trace(gram), 1e-300) - _EYE[rows]
+    return scaled[_UPPER[rows]]
 
 
 def _wrap_deg(angle_rad: float) -> float:

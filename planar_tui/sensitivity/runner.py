@@ -18,7 +18,7 @@ from planar_tui.sensitivity.engine import (
     build_problem,
     default_efast_samples,
     evaluate,
-    scaled_design,
+    unit_design,
 )
 from planar_tui.sensitivity.results import Analysis, csv_table, sensitivity_percent
 
@@ -44,7 +44,7 @@ def run_sensitivity(job: Job, progress: Progress) -> JobResult:
     progress.start(len(spec.methods), "sampling")
     designs = {}
     for method in spec.methods:
-        designs[method] = scaled_design(problem, method, sizes[method], spec.seed)
+        designs[method] = unit_design(method, problem.num_vars, sizes[method], spec.seed)
         progress.advance(1, method)
     states = [(method, speed) for speed in spec.speeds_rad_s for method in spec.methods]
     n = robot.n_links
@@ -53,7 +53,8 @@ def run_sensitivity(job: Job, progress: Progress) -> JobResult:
     progress.start(len(states), "evaluation")
     outputs = {}
     for method, speed in states:
-        outputs[method, speed] = evaluate(designs[method], robot, theta, np.full(n, speed), alpha)
+        omega = np.full(n, speed)
+        outputs[method, speed] = evaluate(problem, designs[method], robot, theta, omega, alpha)
         progress.advance(1, f"{method} {speed:g} rad/s")
     progress.start(len(states), "analysis")
     analyses = []
