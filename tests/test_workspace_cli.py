@@ -240,3 +240,23 @@ def test_explicit_points_in_the_preset(cli, tmp_path):
     assert result.exit_code == 0, result.output
     (row,) = read_csv(tmp_path / "ws.csv")
     assert float(row["area_geometric_cm2"]) == pytest.approx(0.8794, abs=1e-4)
+
+
+def test_ctrl_c_exits_130_quickly_and_writes_nothing(tmp_path):
+    import signal
+    import subprocess
+    import sys
+
+    preset = write_preset(tmp_path, limits="[[20, 70], [110, 160], [245, 295]]", precision=0.002)
+    command = [sys.executable, "-m", "planar_tui", "workspace", str(preset), "--out-dir",
+               str(tmp_path), "--boxes", str(tmp_path / "b.csv")]  # fmt: skip
+    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    time.sleep(4.0)  # start-up (Numba) and well into the bisection
+    assert process.poll() is None, "the job finished before it could be interrupted"
+    process.send_signal(signal.SIGINT)
+    sent = time.perf_counter()
+    _, stderr = process.communicate(timeout=30)
+    assert time.perf_counter() - sent < 2.0
+    assert process.returncode == 130, stderr.decode()
+    assert not (tmp_path / "ws.csv").exists() and not (tmp_path / "b.csv").exists()
+    assert not list(tmp_path.glob(".*.tmp"))
