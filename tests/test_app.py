@@ -121,13 +121,33 @@ async def test_small_sobol_run_shows_the_dominant_parameter(tmp_path):
     async with app.run_test(size=SIZE) as pilot:
         await run_tab(app, pilot, "sensitivity")
         screen = app.export_text()
-        row = next(line for line in screen.splitlines() if "τ2 " in line and "singu" in line)
-        values = [float(v) for v in row.split("▕")[-1].split()[2:6]]
+        row = next(line for line in screen.splitlines() if "▕ τ2 " in line)
+        values = [float(v) for v in row.split("▕")[-1].split()[1:5]]
         assert values.index(max(values)) == 1  # columns l1 l2 m1 m2: l2 dominates
         assert values[1] == pytest.approx(expected_l2_percent, abs=2.0)
+        assert "% of ST per torque · singular · 1 rad/s" in screen
+        assert "…" not in screen
         await pilot.press("ctrl+t")  # S1 view: same shape, fractions
         await pilot.pause()
-        assert "S1: sobol" in app.export_text()
+        assert "S1, first-order index" in app.export_text()
+
+
+@async_test
+async def test_form_fields_show_long_and_focused_values(tmp_path):
+    app = make_app(tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        app.action_show_tab("workspace")
+        await pilot.pause()
+        screen = app.export_text()
+        assert "[[20, 70], [110," in screen and "[245, 295]]" in screen  # wrapped, not cut
+        field = app.query_one("#pane-workspace #field-precision_cm")
+        field.focus()
+        await pilot.pause()
+        assert "0.9375" in app.export_text()  # a focused field still shows its value
+        await pilot.press("end", "5", "enter")  # enter moves on instead of a new line
+        await pilot.pause()
+        assert field.value == "0.93755" and app.focused is not field
+        assert app.workbench.document["workspace"]["precision_cm"] == 0.93755
 
 
 @async_test
@@ -274,7 +294,7 @@ async def test_workspace_run_shows_map_area_and_exports_boxes(tmp_path, cli):
         result = app.query_one("#pane-workspace").result
         assert result.summary[:24] in screen  # the runner's summary line (area bracket)
         assert "█" in screen and "▒" in screen  # inside and boundary cells of the map
-        assert "x (cm)" in screen
+        assert "x, y in cm" in screen and "┤" in screen  # legend, labelled y axis
         outcome = result.data
         # the bracket holds the exact area of paper B's Table 3 (106.750 cm², issue 4)
         assert outcome.area_inside_cm2 <= 106.75 <= outcome.area_kept_cm2

@@ -12,17 +12,45 @@ import pytest
 
 from planar_tui.app.app import WorkbenchApp
 from planar_tui.app.workbench import Workbench
+from planar_tui.jobs import JobResult
+from planar_tui.sensitivity.results import csv_table
+from tests.test_app_layout import load_6r
 
 REPO = Path(__file__).resolve().parent.parent
 PRESET = Path("tests") / "data" / "app" / "tiny.toml"  # relative: no machine path on screen
+PRESET_6R = Path("presets") / "paper-a-table1.toml"  # its default sensitivity job: 6R
 SIZES = [(80, 24), (120, 40)]
-SCREENS = ["robot", "sensitivity", "workspace", "simulate", "help", "invalid"]
+SCREENS = [
+    "robot", "sensitivity", "workspace", "simulate", "help", "invalid",
+    "sensitivity-6r", "sensitivity-6r-noform",
+]  # fmt: skip
+
+
+def show_6r_result(app: WorkbenchApp) -> None:
+    """The recorded 6R result (tests/data/app/sensitivity-6r.json) on the Sensitivity tab,
+    as if its job had just run (no job runs: the snapshot stays deterministic)."""
+    analyses = load_6r()
+    pane = app.query_one("#pane-sensitivity")
+    job = pane.current_job()
+    result = JobResult(
+        table=csv_table("6R", analyses),
+        summary="6R-PSM, paper A Table 1 singular, 1 speed(s), sobol N=1024, efast N=1194",
+        data={"analyses": analyses},
+    )
+    pane.show_result(job, result)
 
 
 def before(screen: str):
     async def run_before(pilot) -> None:
         app = pilot.app
-        if screen == "help":
+        if screen.startswith("sensitivity-6r"):
+            app.action_show_tab("sensitivity")
+            await pilot.pause()
+            if screen.endswith("noform"):
+                await pilot.press("ctrl+f")
+                await pilot.pause()
+            show_6r_result(app)
+        elif screen == "help":
             await pilot.press("f1")
         elif screen == "invalid":  # an edit the preset parser rejects, in the CLI's words
             app.query_one("#link-1-masses_kg").value = "0"
@@ -37,5 +65,5 @@ def before(screen: str):
 @pytest.mark.parametrize("screen", SCREENS)
 def test_screen(snap_compare, screen, size, monkeypatch):
     monkeypatch.chdir(REPO)
-    app = WorkbenchApp(Workbench.open(PRESET))
+    app = WorkbenchApp(Workbench.open(PRESET_6R if "6r" in screen else PRESET))
     assert snap_compare(app, terminal_size=size, run_before=before(screen))

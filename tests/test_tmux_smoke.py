@@ -75,7 +75,7 @@ def test_app_in_tmux_runs_a_workspace_job_and_quits(tmp_path):
         tmux(socket, "send-keys", "-t", "smoke", "F5")
         screen = wait_for(socket, lambda s: "done in" in s, 120, "the workspace job")
         assert "arc-distance eps=0.9375" in screen and "cm2" in screen, screen  # the summary
-        assert "█" in screen and "x (cm)" in screen, screen  # the map
+        assert "█" in screen and "x, y in cm" in screen, screen  # the map
         tmux(socket, "send-keys", "-t", "smoke", "q")
         deadline = time.monotonic() + 20
         while not status_file.exists():

@@ -62,7 +62,7 @@ class WorkbenchApp(App):
     BINDINGS: ClassVar = [
         Binding("q", "quit", "Quit"),
         Binding("f1,question_mark", "help", "Help", key_display="F1"),
-        Binding("f5", "run", "Run"),
+        Binding("f5", "run", "Run", key_display="F5"),
         Binding("escape", "cancel", "Cancel"),
         Binding("ctrl+o", "open", "Open", priority=True),
         Binding("ctrl+s", "save", "Save", priority=True),
@@ -399,6 +399,8 @@ class WorkbenchApp(App):
     def action_toggle_form(self) -> None:
         """Hide or show the settings form of a job tab (more room for results)."""
         self.query_one("#tabs").toggle_class("hide-form")
+        for pane in self.query(JobPane):
+            self.call_after_refresh(pane.rerender)
 
     def get_system_commands(self, screen: Screen) -> Iterable[SystemCommand]:
         yield from super().get_system_commands(screen)

@@ -91,24 +91,25 @@ class MessageDialog(ModalScreen[None]):
 
 
 HELP_TEXT = """\
-planar-tui workbench — keyboard only
-
-Tabs: Robot, Sensitivity, Workspace, Simulate. Tab / shift+tab move the focus; on the
-tab bar, left / right switch tabs. Every action is also in the command palette (ctrl+p).
+Keyboard only; every action is also in the command palette (ctrl+p).
+Tab bar: left / right switch tabs. tab / shift+tab move the focus;
+up / down / page up / page down scroll. Fields take TOML values
+(0.25, [0.25, 0.2], singular); enter moves to the next field; the
+CLI's preset parser checks every edit (error: / ok: under the tabs).
 
   F5          run the job of the current tab (also the Run button)
   escape      cancel the running job (honoured within half a second)
-  ctrl+o      open a preset (a path or a bundled name such as paper-a-table1)
+  ctrl+o      open a preset (a path or a bundled name)
   ctrl+s      save the preset (TOML the CLI runs unchanged)
-  ctrl+e      export the table (or the workspace boxes) on screen to CSV
-  ctrl+n      Robot tab: add a link        ctrl+r   Robot tab: remove the last link
-  ctrl+t      Sensitivity tab: show S1 / ST / percent / confidence
-  q, ctrl+q   quit (asks first only while a job runs; q outside text fields)
-  F1, ?       this help (? outside text fields)
-
-Fields take TOML values: 0.25, [0.25, 0.2], "singular" (quotes optional for words).
-Every edit is checked by the preset parser the CLI uses; the first problem is shown
-under the tabs, in the CLI's words.
+  ctrl+e      export the table on screen to CSV (workspace: + boxes)
+  ctrl+f      hide / show the settings form (room for the results)
+  ctrl+p      command palette: every action by name
+  q, ctrl+q   quit (asks only while a job runs; q outside fields)
+  F1, ?       this help (? outside fields)
+  ctrl+n      Robot tab: add a link (a copy of the last one)
+  ctrl+r      Robot tab: remove the last link
+  ctrl+t      Sensitivity tab: percent / S1 / ST / ± half-width
+Dialogs: enter OK or close, escape cancel or close, y / n answer.
 """
 
 
@@ -118,9 +119,12 @@ class HelpScreen(ModalScreen[None]):
     BINDINGS: ClassVar = [Binding("escape,q,f1,question_mark", "close", "Close")]
 
     def compose(self) -> ComposeResult:
-        with VerticalScroll(classes="dialog help"):
-            yield Label("Help", classes="dialog-title")
+        with VerticalScroll(classes="dialog help", id="help-scroll"):
+            yield Label("Help (escape closes)", classes="dialog-title")
             yield Static(HELP_TEXT, markup=False, id="help-text")
+
+    def on_mount(self) -> None:
+        self.query_one("#help-scroll").focus()
 
     def action_close(self) -> None:
         self.dismiss(None)

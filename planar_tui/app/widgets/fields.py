@@ -11,11 +11,12 @@ import tomllib
 from collections.abc import Sequence
 from typing import Any
 
+from textual import events
 from textual.app import ComposeResult
 from textual.containers import Grid, Vertical
 from textual.message import Message
 from textual.widget import Widget
-from textual.widgets import Input, Label
+from textual.widgets import Input, Label, TextArea
 
 from planar_tui.preset_writer import format_value
 
@@ -29,15 +30,45 @@ def parse_field(text: str) -> Any:
         return text
 
 
+class Field(TextArea):
+    """A one-value text field that wraps long values (``[[20, 70], [110, 160], …]``) onto
+    more lines instead of hiding their end; Enter moves to the next field."""
+
+    DEFAULT_CSS = """
+    Field { height: auto; max-height: 4; width: 1fr; padding: 0 1; }
+    Field:focus { background: $boost; }
+    """
+
+    def __init__(self, value: str = "", **kwargs: Any):
+        super().__init__(value, soft_wrap=True, compact=True, highlight_cursor_line=False, **kwargs)
+
+    @property
+    def value(self) -> str:
+        """The text, as :class:`~textual.widgets.Input` calls it."""
+        return self.text
+
+    @value.setter
+    def value(self, text: str) -> None:
+        self.text = text
+
+    async def _on_key(self, event: events.Key) -> None:
+        if event.key == "enter":  # a value is one line: Enter moves on, like in a form
+            event.stop()
+            event.prevent_default()
+            self.screen.focus_next()
+            return
+        await super()._on_key(event)
+
+
 class TableForm(Widget):
     """One labelled input per key of a TOML table (keys absent from the table stay empty
     and are left out, so the parser's defaults apply)."""
 
     DEFAULT_CSS = """
     TableForm { height: auto; }
-    TableForm Vertical { height: 2; }
+    TableForm Vertical { height: auto; }
     TableForm Label { width: 1fr; color: $text-muted; }
-    TableForm Input { width: 1fr; border: none; height: 1; padding: 0 1; }
+    TableForm Vertical:focus-within Label { color: $text; text-style: bold; }
     """
 
     class Changed(Message):
@@ -63,7 +94,7 @@ class TableForm(Widget):
             value = self.initial.get(key)
             with Vertical():
                 yield Label(key)
-                yield Input(
+                yield Field(
                     "" if value is None else format_value(value),
                     placeholder="(default)",
                     name=key,
@@ -73,7 +104,7 @@ class TableForm(Widget):
     def table(self) -> dict[str, Any]:
         """The table as typed (empty fields left out)."""
         table = dict(self.extra)
-        for field in self.query(Input):
+        for field in self.query(Field):
             if field.value.strip():
                 table[field.name] = parse_field(field.value)
         return table
@@ -81,7 +112,7 @@ class TableForm(Widget):
     def on_mount(self) -> None:
         self._last = self.table()
 
-    def on_input_changed(self, event: Input.Changed) -> None:
+    def on_text_area_changed(self, event: TextArea.Changed) -> None:
         event.stop()
         table = self.table()
         if table != getattr(self, "_last", table):  # not the inputs' initial values
@@ -99,7 +130,8 @@ class LinkEditor(Widget):
     LinkEditor { height: auto; }
     LinkEditor Grid { grid-size: 4; grid-columns: 6 1fr 1fr 1fr; height: auto;
                       grid-rows: 1; grid-gutter: 0 1; }
-    LinkEditor Input { border: none; height: 1; padding: 0 1; }
+    LinkEditor Input, LinkEditor Input:focus { border: none; height: 1; padding: 0 1; }
+    LinkEditor Input:focus { background: $boost; text-style: bold; }
     """
 
     COLUMNS = (("lengths_m", "length m"), ("masses_kg", "mass kg"), ("inertias_kgm2", "I kg m²"))

@@ -208,6 +208,14 @@ class JobPane(Vertical):
         self.job, self.result = job, result
         self.render_result(job, result)
 
+    def rerender(self) -> None:
+        """Draw the kept result again (the results area changed size)."""
+        if self.result is not None and self.job is not None and self.is_attached:
+            self.render_result(self.job, self.result)
+
+    def on_resize(self) -> None:
+        self.call_after_refresh(self.rerender)
+
     def render_result(self, job: Job, result: JobResult) -> None:
         """Default view: the summary and the first rows of the CSV table."""
         lines = [result.summary, "", *result.table.lines()[:12]]

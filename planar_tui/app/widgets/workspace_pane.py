@@ -13,6 +13,43 @@ from planar_tui.jobs import JobResult
 from planar_tui.presets import Job
 from planar_tui.progress import ProgressState
 
+#: Lines of :func:`planar_tui.workspace.render.render_map` below the plot rows.
+MAP_FOOTER_LINES = 3
+
+
+def fitted_map(boxes, status, width: int, height: int) -> list[str]:
+    """The CLI's aspect-true map (a cell twice as tall as wide) in at most ``width`` ×
+    ``height`` cells, without its legend line (the tab shows the legend wrapped).
+
+    ``render_map`` picks the plot rows from the width; when that is too tall the width is
+    narrowed until it fits. A y tick ``┤`` is kept only on rows that carry a label (the
+    others show the plain axis ``│``), so each label points at its row.
+    """
+    from planar_tui.workspace.render import render_map
+
+    lines = render_map(boxes, status, width=width)
+    while len(lines) > height and width > 20:
+        width = max(20, min(width - 1, width * height // len(lines)))
+        lines = render_map(boxes, status, width=width)
+    if lines and lines[-1].lstrip().startswith("x (cm)"):
+        lines = lines[:-1]
+    plot = lines[: len(lines) - MAP_FOOTER_LINES + 1]
+    for row, line in enumerate(plot):
+        tick = line.find("┤")
+        if tick > 0 and not line[:tick].strip():
+            plot[row] = f"{line[:tick]}│{line[tick + 1 :]}"
+    return plot + lines[len(plot) :]
+
+
+def map_legend() -> str:
+    """The map's legend (76 cells: one line when the form is hidden)."""
+    from planar_tui.workspace.render import BOUNDARY_GLYPH, INSIDE_GLYPH
+
+    return (
+        f"x, y in cm  {INSIDE_GLYPH} inside (proved)  "
+        f"{BOUNDARY_GLYPH} boundary (kept, not proved)  blank outside"
+    )
+
 
 class WorkspacePane(JobPane):
     """Form, precision, orientation, joint limits; the character-cell map and summary."""
@@ -22,29 +59,29 @@ class WorkspacePane(JobPane):
     def compose_results(self) -> ComposeResult:
         yield Static("Run the bisection (F5) to map the workspace.", id="result-text", markup=False)
         yield Static("", id="workspace-map", markup=False)
+        yield Static("", id="workspace-legend", markup=False)
 
     def show_progress(self, state: ProgressState) -> None:
         super().show_progress(state)
         self.query_one("#result-text", Static).update(f"running {state.stage}: {state.detail}")
 
     def render_result(self, job: Job, result: JobResult) -> None:
-        from planar_tui.workspace.render import render_map
-
         self.query_one("#result-text", Static).update(result.summary)
         outcome = result.data
         area = self.query_one("#workspace-map", Static)
+        legend = self.query_one("#workspace-legend", Static)
         if outcome is None or len(outcome.boxes) == 0:
             area.update("(no box kept: the workspace is empty at this precision)")
+            legend.update("")
             return
         results = self.query_one(".results")
-        width = max(20, results.size.width - 1)
-        height = max(8, results.size.height - self.query_one("#result-text").size.height - 1)
-        lines = render_map(outcome.boxes, outcome.status, width=width, height=height)
-        area.update("\n".join(lines))
-
-    def on_resize(self) -> None:
-        if self.result is not None and self.job is not None:
-            self.call_after_refresh(self.render_result, self.job, self.result)
+        width = max(20, results.content_region.width - 1)
+        legend_text = map_legend()
+        legend_lines = -(-len(legend_text) // width)
+        summary_lines = self.query_one("#result-text").size.height
+        height = max(8, results.content_region.height - summary_lines - legend_lines)
+        area.update("\n".join(fitted_map(outcome.boxes, outcome.status, width, height)))
+        legend.update(legend_text)
 
     def export_tables(self) -> dict[str, Any]:
         if self.result is None:
