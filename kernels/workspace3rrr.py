@@ -102,9 +102,11 @@ def point_value(x, y, t, dx, dy, l1, l2):
 
 @kernel
 def _times_centered(glo, ghi, xlo, xhi, m):
-    """:math:`G\\,(X - m)` with the difference rounded outward."""
-    dlo, dhi = iadd_scalar(xlo, xhi, -m)
-    return imul(glo, ghi, dlo, dhi)
+    """:math:`G\\,(X - m)` for ``m`` in X: :math:`X - m \\subseteq [-r, r]`, so the product is
+    :math:`[-|G| r, |G| r]` with :math:`|G| = \\max(|\\underline g|, |\\overline g|)`."""
+    r = max(up(xhi - m), up(m - xlo))
+    v = up(max(abs(glo), abs(ghi)) * r)
+    return -v, v
 
 
 @kernel
