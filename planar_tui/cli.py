@@ -9,7 +9,7 @@ a job or the app runs, so ``planar-tui --help`` is instant.
 from __future__ import annotations
 
 import sys
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Annotated
@@ -78,14 +78,19 @@ def numbered_path(base: Path, number: int, count: int) -> Path:
 
 
 def run_one(job: Job, progress_bars) -> JobResult:
-    """Run one job with its own rich progress bar."""
+    """Run one job with its own rich progress bar (stage and detail beside it)."""
     from planar_tui.progress import Progress
 
-    task = progress_bars.add_task(job.label, total=1.0)
+    task = progress_bars.add_task(job.label, total=1.0, detail="")
 
     def update(state) -> None:
-        stage = f"{job.label} {state.stage}".strip()
-        progress_bars.update(task, completed=state.completed, total=state.total, description=stage)
+        progress_bars.update(
+            task,
+            completed=state.completed,
+            total=state.total,
+            description=f"{job.label} {state.stage}".strip(),
+            detail=state.detail,
+        )
 
     result = JOB_KINDS[job.kind].run(job, Progress(on_update=update))
     progress_bars.update(task, completed=1.0, total=1.0, description=f"{job.label} done")
@@ -94,46 +99,58 @@ def run_one(job: Job, progress_bars) -> JobResult:
 
 def execute(
     jobs: Sequence[Job],
-    output_for: Callable[[Job], Path],
+    out_dir: Path,
     *,
-    extra_outputs: Callable[[Job, JobResult], dict[str, Path]] | None = None,
+    out: Path | None = None,
+    extra_out: Mapping[str, Path | None] | None = None,
     show: bool = True,
 ) -> list[tuple[Job, JobResult, Path]]:
-    """Run ``jobs`` in order, writing each job's CSV atomically as soon as it finishes.
+    """Run ``jobs`` in order, writing each job's CSV files atomically as soon as it finishes.
 
-    ``output_for(job)`` gives the main CSV path; ``extra_outputs(job, result)`` maps
-    names of ``result.extra_tables`` to paths; ``show`` prints each kind's terminal view.
-    A summary table follows the last job.
+    A job's main CSV goes to ``out_dir / job.output``, or to ``out`` (numbered
+    ``FILE-1.csv``, ``FILE-2.csv`` ... when there are several jobs). Extra tables (e.g. a
+    workspace's ``boxes``) go where the job kind's ``extra_outputs`` says, relative to
+    ``out_dir``, or to the paths in ``extra_out`` by table name (numbered likewise).
+    ``show`` prints each kind's terminal view. A summary table follows the last job.
     """
+    import time
+
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
     from rich.table import Table
 
     from planar_tui.csvio import write_csv_atomic
 
-    done: list[tuple[Job, JobResult, Path, float]] = []
     columns = (
         TextColumn("{task.description}"),
-        BarColumn(),
+        BarColumn(bar_width=24),
         MofNCompleteColumn(),
         TimeElapsedColumn(),
+        TextColumn("{task.fields[detail]}"),
     )
-    import time
-
-    for job in jobs:
+    done: list[tuple[Job, JobResult, Path, float]] = []
+    for number, job in enumerate(jobs, start=1):
         started = time.perf_counter()
         with Progress(*columns, console=stderr, transient=False) as bars:
             result = run_one(job, bars)
         seconds = time.perf_counter() - started
-        path = write_csv_atomic(output_for(job), result.table)
-        for name, extra_path in (extra_outputs(job, result) if extra_outputs else {}).items():
+        kind = JOB_KINDS[job.kind]
+        path = numbered_path(out, number, len(jobs)) if out else out_dir / job.output
+        extra_paths = {
+            name: out_dir / relative for name, relative in kind.extra_outputs(job.spec).items()
+        }
+        for name, override in (extra_out or {}).items():
+            if override is not None:
+                extra_paths[name] = numbered_path(override, number, len(jobs))
+        write_csv_atomic(path, result.table)
+        for name, extra_path in extra_paths.items():
             write_csv_atomic(extra_path, result.extra_tables[name])
         if show:
-            JOB_KINDS[job.kind].show(job, result, stdout)
+            kind.show(job, result, stdout)
         done.append((job, result, path, seconds))
 
     summary = Table(title="planar-tui run summary", title_justify="left")
     for column in ("job", "output", "seconds", "result"):
-        summary.add_column(column)
+        summary.add_column(column, overflow="fold")
     for job, result, path, seconds in done:
         summary.add_row(job.label, str(path), f"{seconds:.3f}", result.summary)
     stdout.print(summary)
@@ -146,6 +163,9 @@ def run_kind(
     out: Path | None,
     out_dir: Path,
     adjust: Callable[[Job], Job] | None = None,
+    *,
+    extra_out: Mapping[str, Path | None] | None = None,
+    show: bool = True,
 ) -> None:
     """Run every job of one kind in a preset (the ``simulate``/``torques``... commands);
     ``adjust`` applies command-line overrides to each job before anything runs."""
@@ -158,12 +178,7 @@ def run_kind(
             )
         if adjust is not None:
             jobs = tuple(adjust(job) for job in jobs)
-        numbers = {job: k for k, job in enumerate(jobs, start=1)}
-
-        def output_for(job: Job) -> Path:
-            return numbered_path(out, numbers[job], len(jobs)) if out else out_dir / job.output
-
-        execute(jobs, output_for)
+        execute(jobs, out_dir, out=out, extra_out=extra_out, show=show)
 
 
 def version_callback(value: bool) -> None:
@@ -271,38 +286,21 @@ def workspace(
     out_dir: OutDirOption = Path("."),
 ) -> None:
     """3-RRR workspace of every workspace job: summary CSV, optional boxes CSV and map."""
-    from planar_tui.jobs.workspace import FORMS, with_overrides
 
-    with reported_errors():
+    def adjust(job: Job) -> Job:
+        import dataclasses
+
+        from planar_tui.jobs.workspace import FORMS, with_overrides
+
         if form is not None and form not in FORMS:
             raise PresetError("--form", "form", f"is {form!r}", "one of " + ", ".join(FORMS))
         if precision is not None and not precision > 0:
             raise PresetError("--precision", "precision", f"is {precision:g}", "a number > 0")
-        (loaded,) = load_presets([preset])
-        jobs = loaded.jobs_of("workspace")
-        if not jobs:
-            raise PresetError(loaded.path, "workspace", "no [workspace] job", "a [workspace] table")
-        import dataclasses
-
-        jobs = tuple(
-            dataclasses.replace(
-                job, spec=with_overrides(job.spec, form=form, precision_cm=precision)
-            )
-            for job in jobs
+        return dataclasses.replace(
+            job, spec=with_overrides(job.spec, form=form, precision_cm=precision)
         )
-        numbers = {job: k for k, job in enumerate(jobs, start=1)}
 
-        def output_for(job: Job) -> Path:
-            return numbered_path(out, numbers[job], len(jobs)) if out else out_dir / job.output
-
-        def boxes_for(job: Job, result: JobResult) -> dict[str, Path]:
-            if boxes is not None:
-                return {"boxes": numbered_path(boxes, numbers[job], len(jobs))}
-            if job.spec.boxes_output:
-                return {"boxes": out_dir / job.spec.boxes_output}
-            return {}
-
-        execute(jobs, output_for, extra_outputs=boxes_for, show=show_map)
+    run_kind("workspace", preset, out, out_dir, adjust, extra_out={"boxes": boxes}, show=show_map)
 
 
 @app.command()
@@ -313,7 +311,7 @@ def run(
     """Run every job of every preset; output files named as the presets say."""
     with reported_errors():
         loaded = load_presets(presets)
-        execute([job for preset in loaded for job in preset.jobs], lambda job: out_dir / job.output)
+        execute([job for preset in loaded for job in preset.jobs], out_dir)
 
 
 @app.command("presets")

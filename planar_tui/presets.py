@@ -159,6 +159,15 @@ class TableReader:
             raise self.error(name, f"is {value!r}", wanted + _suggest(value, choices))
         return value
 
+    def relative_path(self, name: str, default: Any = _MISSING) -> str:
+        """A file name relative to the output folder (not absolute, no ``..``)."""
+        value = self.string(name, default)
+        if value is default and default is not _MISSING:
+            return value
+        if not value or Path(value).is_absolute() or ".." in Path(value).parts:
+            raise self.error(name, f"is {value!r}", "a file name relative to the output folder")
+        return value
+
     def boolean(self, name: str, default: Any = _MISSING) -> bool:
         """A TOML boolean."""
         value = self.raw(name, default, "true or false")
@@ -346,11 +355,7 @@ def parse_preset(path: Path | str, document: Mapping[str, Any]) -> Preset:
                 )
             spec = kind.parse(reader, robot)
             default_output = f"{path.stem}-{kind_name}-{index}.csv"
-            output = reader.string("output", default_output)
-            if not output or Path(output).is_absolute() or ".." in Path(output).parts:
-                raise reader.error(
-                    "output", f"is {output!r}", "a file name relative to the output folder"
-                )
+            output = reader.relative_path("output", default_output)
             jobs.append(Job(kind_name, index, f"{path.stem}:{prefix}", robot, spec, output, path))
     return Preset(path, robots, tuple(jobs), document)
 

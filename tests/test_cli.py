@@ -79,7 +79,9 @@ def test_torques_rows_match_listed_states_in_si_units(tmp_path, cli):
     masses = [0.484, 0.484, 0.387, 0.387, 0.290, 0.290]
     joints_x = [sum(lengths[:i]) for i in range(6)]
     for i in range(6):
-        expected = 9.81 * sum(masses[k] * (joints_x[k] + lengths[k] / 2 - joints_x[i]) for k in range(i, 6))
+        expected = 9.81 * sum(
+            masses[k] * (joints_x[k] + lengths[k] / 2 - joints_x[i]) for k in range(i, 6)
+        )
         assert rows[0][18 + i] == pytest.approx(expected, rel=1e-12)
 
 
@@ -116,7 +118,15 @@ def test_sigint_to_a_real_process_leaves_no_partial_csv(tmp_path):
     long_run.write_text(text)
     env = dict(os.environ, PYTHONPATH=str(REPO))
     process = subprocess.Popen(
-        [sys.executable, "-m", "planar_tui", "simulate", str(long_run), "--out-dir", str(tmp_path / "out")],
+        [
+            sys.executable,
+            "-m",
+            "planar_tui",
+            "simulate",
+            str(long_run),
+            "--out-dir",
+            str(tmp_path / "out"),
+        ],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         env=env,
@@ -128,3 +138,25 @@ def test_sigint_to_a_real_process_leaves_no_partial_csv(tmp_path):
     assert process.returncode == ExitCode.INTERRUPTED, err
     assert "Traceback" not in err
     assert not (tmp_path / "out").exists() or list((tmp_path / "out").iterdir()) == []
+
+
+WORKSPACE_SMALL = REPO / "tests" / "data" / "app" / "workspace-small.toml"
+
+
+def test_run_writes_the_extra_tables_a_preset_names(tmp_path, cli):
+    preset = tmp_path / "ws.toml"
+    preset.write_text(WORKSPACE_SMALL.read_text() + 'boxes_output = "boxes/small.csv"\n')
+    result = cli("run", preset, "--out-dir", tmp_path / "out")
+    assert result.exit_code == 0, result.output
+    header = (tmp_path / "out" / "boxes" / "small.csv").read_text().splitlines()[0]
+    assert header == "x_lo_cm,x_hi_cm,y_lo_cm,y_hi_cm,status"
+    assert (tmp_path / "out" / "small-workspace.csv").is_file()
+
+
+def test_extra_output_outside_the_output_folder_is_refused(tmp_path, cli):
+    preset = tmp_path / "ws.toml"
+    preset.write_text(WORKSPACE_SMALL.read_text() + 'boxes_output = "../escape.csv"\n')
+    result = cli("run", preset, "--out-dir", tmp_path / "out")
+    assert result.exit_code == 2
+    assert f"error: {preset}: workspace.boxes_output: is '../escape.csv'" in result.stderr
+    assert not (tmp_path / "out").exists() and not (tmp_path / "escape.csv").exists()

@@ -46,7 +46,9 @@ class JobKind:
     them back into a TOML table (for saving presets from the app); ``runner`` is
     ``"module:function"``, imported only when a job runs, with signature
     ``run(job: Job, progress: Progress) -> JobResult``; ``render`` optionally names
-    ``"module:function"`` printing the result in the terminal (``(job, result, console)``).
+    ``"module:function"`` printing the result in the terminal (``(job, result, console)``);
+    ``extra_outputs(spec)`` names the result's extra tables the preset asks to write, with
+    their file names relative to the output folder (e.g. ``{"boxes": "boxes.csv"}``).
     """
 
     name: str
@@ -57,6 +59,7 @@ class JobKind:
     runner: str
     summary: str
     render: str | None = None
+    extra_outputs: Callable[[Any], dict[str, str]] = lambda spec: {}
 
     def _load(self, target: str) -> Callable[..., Any]:
         module_name, function_name = target.split(":")

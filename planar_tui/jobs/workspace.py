@@ -128,7 +128,7 @@ def parse_workspace(reader: TableReader, robot: Robot3RRR) -> WorkspaceSpec:
         refine_precision_cm=refine,
         box_budget=reader.integer("box_budget", DEFAULT_BOX_BUDGET, minimum=1),
         geometric_reference=reader.boolean("geometric_reference", True),
-        boxes_output=reader.string("boxes_output", None),
+        boxes_output=reader.relative_path("boxes_output", None),
     )
 
 
@@ -188,4 +188,5 @@ WORKSPACE = JobKind(
     runner="planar_tui.workspace.runner:run_workspace",
     summary="3-RRR constant-orientation workspace by interval analysis",
     render="planar_tui.workspace.render:show_workspace",
+    extra_outputs=lambda spec: {"boxes": spec.boxes_output} if spec.boxes_output else {},
 )
