@@ -133,24 +133,6 @@ async def test_small_sobol_run_shows_the_dominant_parameter(tmp_path):
 
 
 @async_test
-async def test_form_fields_show_long_and_focused_values(tmp_path):
-    app = make_app(tmp_path)
-    async with app.run_test(size=SIZE) as pilot:
-        app.action_show_tab("workspace")
-        await pilot.pause()
-        screen = app.export_text()
-        assert "[[20, 70], [110," in screen and "[245, 295]]" in screen  # wrapped, not cut
-        field = app.query_one("#pane-workspace #field-precision_cm")
-        field.focus()
-        await pilot.pause()
-        assert "0.9375" in app.export_text()  # a focused field still shows its value
-        await pilot.press("end", "5", "enter")  # enter moves on instead of a new line
-        await pilot.pause()
-        assert field.value == "0.93755" and app.focused is not field
-        assert app.workbench.document["workspace"]["precision_cm"] == 0.93755
-
-
-@async_test
 async def test_short_simulation_is_plotted(tmp_path):
     app = make_app(tmp_path)
     async with app.run_test(size=SIZE) as pilot:
@@ -286,9 +268,21 @@ async def test_opening_a_bad_preset_keeps_the_current_one(tmp_path):
 
 
 @async_test
-async def test_workspace_run_shows_map_area_and_exports_boxes(tmp_path, cli):
+async def test_workspace_form_wraps_and_the_run_shows_map_area_and_boxes(tmp_path, cli):
     app = make_app(tmp_path)
     async with app.run_test(size=SIZE) as pilot:
+        app.action_show_tab("workspace")
+        await pilot.pause()
+        screen = app.export_text()
+        assert "[[20, 70], [110, 160]," in screen and "[245, 295]]" in screen  # wrapped, not cut
+        field = app.query_one("#pane-workspace #field-precision_cm")
+        field.focus()
+        await pilot.pause()
+        assert " 0.9375 " in app.export_text()  # a focused field still shows its value
+        await pilot.press("end", "0", "enter")  # enter moves on instead of a new line
+        await pilot.pause()
+        assert field.value == "0.93750" and app.focused is not field
+        assert app.workbench.document["workspace"]["precision_cm"] == 0.9375
         await run_tab(app, pilot, "workspace")
         screen = app.export_text()
         result = app.query_one("#pane-workspace").result

@@ -1,7 +1,9 @@
 """Regenerate the workbench screenshots (SVG and plain text) at 80×24.
 
 Run from the repository root: ``python docs/screenshots/make_screenshots.py``. Each tab is
-shown on ``tests/data/app/tiny.toml`` after its job ran (the Robot tab as opened).
+shown on ``tests/data/app/tiny.toml`` after its job ran (the Robot tab as opened), and
+``sensitivity-6r`` shows the bundled ``paper-a-table1`` preset's default 6R sensitivity job
+with the form hidden (``ctrl+f``), the widest table the app shows at 80 columns.
 """
 
 from __future__ import annotations
@@ -46,6 +48,13 @@ async def main() -> None:
         await pilot.press("f1")
         await pilot.pause()
         save(app, "help")
+    app = WorkbenchApp(Workbench.open(Path("presets/paper-a-table1.toml")), output_dir="/tmp")
+    async with app.run_test(size=SIZE) as pilot:
+        app.action_show_tab("sensitivity")
+        await pilot.pause()
+        await pilot.press("ctrl+f", "f5")
+        await wait_for_job(app, pilot)
+        save(app, "sensitivity-6r")
 
 
 if __name__ == "__main__":

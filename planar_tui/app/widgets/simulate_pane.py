@@ -57,8 +57,7 @@ class SimulatePane(JobPane):
                 t_s, theta_deg[:, joint].tolist(), marker=MARKERS[joint % len(MARKERS)],
                 label=f"θ{joint + 1}",
             )  # fmt: skip
-        plt.title("relative joint angles θi (deg, marker = joint number)")
-        plt.xlabel("t (s)")
+        plt.title("joint angles θi (deg; marker i) vs t (s)")
         angles.refresh()
         energy = self.query_one("#energy-plot", PlotextPlot)
         plt = energy.plt
@@ -69,7 +68,6 @@ class SimulatePane(JobPane):
         plt.plot(t_s, (kinetic + potential).tolist(), marker="E", label="E total")
         plt.plot(t_s, kinetic.tolist(), marker="k", label="kinetic")
         plt.plot(t_s, potential.tolist(), marker="p", label="potential")
-        plt.title("energy (J): E total, k kinetic, p potential")
-        plt.xlabel("t (s)")
+        plt.title("energy (J) vs t (s); markers E, k, p")
         energy.refresh()
         self.query_one("#result-text", Static).update(result.summary)
