@@ -1,23 +1,29 @@
 """Benchmark of the paper A Tables 4+5 reproduction (issue 3).
 
 Prints, for every job of presets/paper-a-table4.toml and paper-a-table5.toml (2R, 3R, 6R;
-singular and isotropic; Sobol' and eFAST):
+singular and isotropic; Sobol' and eFAST), in one process, split into sampling / model
+evaluation / analysis:
 
-1. our pipeline (SALib sampling with the per-process unit-design cache, one batched Numba
-   inverse-dynamics call, jitted Sobol' / vectorised eFAST estimators), split into
-   sampling / model evaluation / analysis, JIT warmed first;
+1. our pipeline with an empty design cache (SALib draws the unit designs), with the
+   designs on disk (a new run: the per-process memo cleared) and with them in memory;
+   model = one Numba kernel per design, analysis = jitted Sobol' / threaded-FFT eFAST;
 2. a plain SALib + NumPy pipeline on the same problems and N (SALib sampling per job, a
    vectorised NumPy Newton-Euler model, SALib's default ``analyze`` with its bootstrap),
-   in the same process, and the ratio;
+   and the ratios;
 3. the Sobol' N at which every bootstrap half-width is <= 0.01, and our time there;
-4. the whole-process wall time of ``planar-tui run paper-a-table4 paper-a-table5``.
+4. whole processes: ``planar-tui run paper-a-table4 paper-a-table5`` with a cold and a warm
+   design cache (Numba cache warm), and the SALib + NumPy pipeline as its own process
+   (imports included); medians, with the load average (the machine is shared).
 
-Run: ``/work/venv/bin/python benchmarks/bench_sensitivity.py``.
+Every cache used lives in a temporary folder (``PLANAR_TUI_CACHE_DIR``), never the user's.
+Run: ``/work/venv/bin/python benchmarks/bench_sensitivity.py [--runs 7]``.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import os
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -32,6 +38,7 @@ sys.path.insert(0, str(REPO))
 
 from planar_tui.presets import load_preset  # noqa: E402
 from planar_tui.sensitivity import engine  # noqa: E402
+from planar_tui.sensitivity.design_cache import ENV_VAR  # noqa: E402
 from planar_tui.sensitivity.runner import sample_sizes  # noqa: E402
 
 PRESETS = [REPO / "presets" / "paper-a-table4.toml", REPO / "presets" / "paper-a-table5.toml"]
@@ -87,7 +94,8 @@ def state(job):
 
 
 def ours(job_list, methods=("sobol", "efast")):
-    """Our pipeline; returns (sampling, evaluation, analysis) seconds and max Sobol' CI."""
+    """Our pipeline (as the runner: unit design, kernel, estimators); returns (sampling,
+    evaluation, analysis) seconds and the largest Sobol' half-width."""
     split = np.zeros(3)
     worst = 0.0
     for job in job_list:
@@ -152,45 +160,105 @@ def salib_numpy(job_list):
 def row(name, split, extra=""):
     total = split.sum()
     print(
-        f"| {name:<44} | {split[0]:8.3f} | {split[1]:8.3f} | {split[2]:8.3f} | {total:8.3f} | {extra}"
+        f"| {name:<48} | {split[0]:8.3f} | {split[1]:8.3f} | {split[2]:8.3f} | {total:8.3f} | {extra}"
     )
 
 
-def main():
+def load() -> str:
+    return (
+        " ".join(Path("/proc/loadavg").read_text().split()[:3])
+        if Path("/proc/loadavg").exists()
+        else "?"
+    )
+
+
+def walls(command, env, runs):
+    """Wall times of ``runs`` fresh processes, and the 1-min load average before each."""
+    times, loads = [], []
+    for _ in range(runs):
+        loads.append(load().split()[0])
+        t0 = time.perf_counter()
+        subprocess.run(command, capture_output=True, check=True, cwd=REPO, env=env)
+        times.append(time.perf_counter() - t0)
+    return times, loads
+
+
+def describe(name, times, loads):
+    print(
+        f"| {name} | {statistics.median(times):.2f} | {min(times):.2f} | {max(times):.2f} | "
+        f"{len(times)} | {', '.join(loads)} |"
+    )
+    return statistics.median(times)
+
+
+def in_process(cache_root: Path):
+    """Tables 1-3 of the report: pipelines in this process."""
     job_list = jobs()
-    ours(job_list[:1] + job_list[-1:])  # warm the JIT (cached machine code) and imports
-    engine.unit_design.cache_clear()
+    os.environ[ENV_VAR] = str(cache_root / "warm-up")
+    ours(job_list[:1] + job_list[-1:])  # load the compiled kernels (Numba cache) and imports
+    os.environ[ENV_VAR] = str(cache_root / "in-process")
     print(
         "| pipeline (Tables 4+5: 10 jobs, Sobol' N=8192, eFAST N=4000) | sampling s | "
         "model s | analysis s | total s | note"
     )
     print("|---|---:|---:|---:|---:|---|")
-    first, worst = ours(job_list)
-    row("ours, first pass (SALib samples unit designs)", first, f"max Sobol' CI ±{worst:.4f}")
-    again, _ = ours(job_list)
-    row("ours, designs cached in process", again)
+    engine.unit_design.cache_clear()
+    cold, worst = ours(job_list)
+    row("ours, design cache empty (SALib draws)", cold, f"max Sobol' CI ±{worst:.4f}")
+    engine.unit_design.cache_clear()
+    warm, _ = ours(job_list)
+    row("ours, designs read from the disk cache", warm)
+    memo, _ = ours(job_list)
+    row("ours, designs already in memory", memo)
     baseline = salib_numpy(job_list)
     row(
         "SALib + NumPy model + SALib analyze",
         baseline,
-        f"ratio {baseline.sum() / first.sum():.1f}× (first pass)",
+        f"ratio {baseline.sum() / cold.sum():.1f}× (cache empty), "
+        f"{baseline.sum() / warm.sum():.1f}× (disk cache)",
     )
     print(f"analysis share of the SALib pipeline: {100 * baseline[2] / baseline.sum():.0f} %")
     needed = 8192 * int(2 ** np.ceil(np.log2((worst / 0.01) ** 2)))
     big, worst_big = ours(jobs(needed), methods=("sobol",))
     row(f"ours, Sobol' only at N={needed}", big, f"max Sobol' CI ±{worst_big:.4f}")
+
+
+def whole_process(cache_root: Path, runs: int):
+    """Table 4 of the report: fresh processes, medians."""
+    print(f"\nwhole process, {runs} runs each, load average before: {load()}")
+    print("| process | median s | min s | max s | runs | 1-min load before each |")
+    print("|---|---:|---:|---:|---:|---|")
     with tempfile.TemporaryDirectory() as folder:
         command = [sys.executable, "-m", "planar_tui", "run", *map(str, PRESETS), "-d", folder]
-        subprocess.run(command, capture_output=True, check=True, cwd=REPO)  # warm-up
-        walls = []
-        for _ in range(3):
-            t0 = time.perf_counter()
-            subprocess.run(command, capture_output=True, check=True, cwd=REPO)
-            walls.append(time.perf_counter() - t0)
-    print(
-        f"whole process `planar-tui run paper-a-table4 paper-a-table5`: "
-        f"best {min(walls):.2f} s, median {sorted(walls)[1]:.2f} s (3 runs, compiled)"
-    )
+        env = dict(os.environ, PYTHONPATH=str(REPO))
+        cold_times, cold_loads = [], []
+        for k in range(max(3, runs // 2)):  # a new empty cache folder each time
+            env[ENV_VAR] = str(cache_root / f"cold-{k}")
+            t, lo = walls(command, env, 1)
+            cold_times += t
+            cold_loads += lo
+        describe("`planar-tui run` tables 4+5, design cache empty", cold_times, cold_loads)
+        env[ENV_VAR] = str(cache_root / "cold-0")  # now filled
+        ours_warm = describe(
+            "`planar-tui run` tables 4+5, design cache warm", *walls(command, env, runs)
+        )
+        baseline_command = [sys.executable, str(Path(__file__).resolve()), "--baseline-only"]
+        base = describe(
+            "SALib + NumPy pipeline process (imports included)",
+            *walls(baseline_command, env, max(3, runs // 2)),
+        )
+    print(f"whole-process ratio (medians): {base / ours_warm:.1f}×; load average after: {load()}")
+
+
+def main():
+    if "--baseline-only" in sys.argv:
+        salib_numpy(jobs())
+        return
+    runs = int(sys.argv[sys.argv.index("--runs") + 1]) if "--runs" in sys.argv else 7
+    print(f"load average at start: {load()}")
+    with tempfile.TemporaryDirectory() as root:
+        in_process(Path(root))
+        whole_process(Path(root), runs)
 
 
 if __name__ == "__main__":
