@@ -8,6 +8,7 @@ a job or the app runs, so ``planar-tui --help`` is instant.
 
 from __future__ import annotations
 
+import gc
 import sys
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
@@ -323,7 +324,13 @@ def list_presets() -> None:
 
 def main() -> None:
     """Console-script entry point."""
-    app(prog_name="planar-tui")
+    try:
+        app(prog_name="planar-tui")
+    finally:
+        # Exit without the interpreter's last full garbage collection over every object of
+        # numba, rich and typer: ~0.3 s of a jitted command's wall time (measured with
+        # `planar-tui run paper-a-table4 paper-a-table5`). Reference counting still frees.
+        gc.freeze()
 
 
 if __name__ == "__main__":
