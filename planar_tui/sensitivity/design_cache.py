@@ -18,6 +18,7 @@ only costs the speed-up.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import sys
 import tempfile
@@ -84,7 +85,8 @@ def _read(folder: Path, key: str, shape: tuple[int, int]) -> np.ndarray | None:
             valid = False
         if valid:
             return design
-        path.unlink(missing_ok=True)
+        with contextlib.suppress(OSError):  # read-only folder: ignored, drawn again
+            path.unlink(missing_ok=True)
     return None
 
 
