@@ -14,6 +14,13 @@ from tests.conftest import REPO
 from tests.sensitivity_support import isolated_design_cache  # noqa: F401 (autouse)
 
 CASES = [("sobol", 3, 64, 5), ("efast", 4, 100, 5)]
+ROBOT_2R = """[robot]
+lengths_m = [0.303, 0.214]
+masses_kg = [1.126, 0.796]
+inertias_kgm2 = [0.129, 0.045]
+
+[sensitivity]
+"""
 
 
 def fresh_unit_design(*key):
@@ -39,22 +46,33 @@ def test_cold_and_warm_designs_are_byte_identical_to_salib(key):
     assert entries(folder) == [entry]  # read back, not drawn again
 
 
-def test_warm_cache_hit_does_not_import_salib():
-    folder = design_cache.cache_dir()
-    fresh_unit_design(*CASES[0])
-    fresh_unit_design(*CASES[1])
-    probe = (
-        "import json, sys\n"
-        "from planar_tui.sensitivity.engine import unit_design\n"
-        f"unit_design(*{CASES[0]!r}); unit_design(*{CASES[1]!r})\n"
-        "print(json.dumps(sorted(m for m in ('SALib', 'scipy', 'pandas') if m in sys.modules)))\n"
-    )
+PROBE = """
+import json, sys
+from typer.testing import CliRunner
+from planar_tui.cli import app
+result = CliRunner().invoke(app, sys.argv[1:])
+heavy = ("SALib", "pandas", "scipy.stats", "scipy.optimize")
+print(json.dumps({"code": result.exit_code, "loaded": [m for m in heavy if m in sys.modules]}))
+"""
+
+
+def test_warm_run_imports_neither_salib_nor_scipy_optimize(tmp_path):
+    """Whole CLI runs in fresh processes: the cold one needs SALib (so the probe can see
+    it), the warm one reads both designs back and imports none of the heavy modules."""
+    preset = tmp_path / "job.toml"
+    body = 'posture = "isotropic"\nsamples = 64\nefast_samples = 80\n'
+    preset.write_text(ROBOT_2R + body, encoding="utf-8")
     env = dict(os.environ, PYTHONPATH=str(REPO))
-    out = subprocess.run(
-        [sys.executable, "-c", probe], capture_output=True, text=True, env=env, cwd=REPO, check=True
-    )
-    assert json.loads(out.stdout) == []
-    assert len(entries(folder)) == 2  # nothing new written
+    probes = []
+    for name in ("cold", "warm"):
+        command = [sys.executable, "-c", PROBE, "sensitivity", str(preset)]
+        command += ["-o", str(tmp_path / f"{name}.csv")]
+        out = subprocess.run(command, capture_output=True, text=True, env=env, cwd=REPO)
+        probes.append(json.loads(out.stdout.strip().splitlines()[-1]))
+    assert probes[0]["code"] == probes[1]["code"] == 0
+    assert "SALib" in probes[0]["loaded"]
+    assert probes[1]["loaded"] == []
+    assert len(entries(design_cache.cache_dir())) == 2
 
 
 @pytest.mark.parametrize(
@@ -118,12 +136,8 @@ def test_key_names_everything_the_design_depends_on():
 
 def test_csv_is_byte_identical_cold_warm_and_without_cache(tmp_path, cli, monkeypatch):
     preset = tmp_path / "job.toml"
-    preset.write_text(
-        "[robot]\nlengths_m = [0.303, 0.214]\nmasses_kg = [1.126, 0.796]\n"
-        "inertias_kgm2 = [0.129, 0.045]\n\n[sensitivity]\n"
-        'posture = "isotropic"\nsamples = 128\nefast_samples = 100\nseed = 9\n',
-        encoding="utf-8",
-    )
+    body = 'posture = "isotropic"\nsamples = 128\nefast_samples = 100\nseed = 9\n'
+    preset.write_text(ROBOT_2R + body, encoding="utf-8")
     outputs = []
     for name, folder in (("cold", "c"), ("warm", "c"), ("none", None)):
         monkeypatch.setenv(design_cache.ENV_VAR, str(tmp_path / folder) if folder else "")
