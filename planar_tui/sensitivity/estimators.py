@@ -74,14 +74,17 @@ def _fourier_orders(curves, m_harmonics: int):
     """eFAST S1 and ST of search curves ``curves`` (..., N) (SALib ``compute_orders``).
 
     The power :math:`|\\hat y_k|^2` is left unscaled: the factors 2 and 1/N² of
-    :math:`S_k` cancel in both ratios."""
+    :math:`S_k` cancel in both ratios. Sums of squares are taken over the (re, im) pairs
+    of the spectrum viewed as reals (``einsum``, no temporary power array)."""
     n = curves.shape[-1]
     omega = (n - 1) // (2 * m_harmonics)
-    band = np.fft.rfft(curves, axis=-1)[..., 1 : math.ceil(n / 2)]
-    power = band.real**2 + band.imag**2
-    variance = power.sum(axis=-1)
-    first = power[..., np.arange(1, m_harmonics + 1) * omega - 1].sum(axis=-1)
-    rest = power[..., : omega // 2].sum(axis=-1)
+    spectrum = np.fft.rfft(curves, axis=-1)
+    pairs = spectrum[..., 1 : math.ceil(n / 2)].view(np.float64)  # re, im of k = 1, 2 ...
+    variance = np.einsum("...i,...i->...", pairs, pairs)
+    low = pairs[..., : 2 * (omega // 2)]
+    rest = np.einsum("...i,...i->...", low, low)
+    harmonics = spectrum[..., np.arange(1, m_harmonics + 1) * omega]
+    first = (harmonics.real**2 + harmonics.imag**2).sum(axis=-1)
     return first / variance, 1.0 - rest / variance
 
 
