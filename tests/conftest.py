@@ -12,6 +12,16 @@ PRESETS = REPO / "presets"
 REFERENCE = REPO.parent / "shared" / "reference"
 
 
+@pytest.fixture(autouse=True)
+def isolated_design_cache(tmp_path_factory, monkeypatch):
+    """Every test gets its own empty Sobol'/eFAST design-cache folder
+    (``PLANAR_TUI_CACHE_DIR``), so no test reads or writes the user's cache
+    (``~/.cache/planar-tui``) and none passes thanks to an entry a previous run left."""
+    folder = tmp_path_factory.mktemp("design-cache")
+    monkeypatch.setenv("PLANAR_TUI_CACHE_DIR", str(folder))
+    return folder
+
+
 @pytest.fixture
 def cli():
     """Invoke ``planar-tui`` in-process; returns click's Result (exit_code, stdout, stderr)."""

@@ -22,7 +22,12 @@ print(json.dumps({"code": result.exit_code, "loaded": [m for m in heavy if m in 
 def modules_loaded_by(*args: str) -> dict:
     env = dict(os.environ, PYTHONPATH=str(REPO))
     out = subprocess.run(
-        [sys.executable, "-c", PROBE, *args], capture_output=True, text=True, env=env, check=True, cwd=REPO
+        [sys.executable, "-c", PROBE, *args],
+        capture_output=True,
+        text=True,
+        env=env,
+        check=True,
+        cwd=REPO,
     )
     return json.loads(out.stdout.strip().splitlines()[-1])
 

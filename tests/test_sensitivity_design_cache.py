@@ -11,7 +11,6 @@ import pytest
 from planar_tui.sensitivity import design_cache, engine
 from planar_tui.sensitivity.engine import salib_unit_design, unit_design
 from tests.conftest import REPO
-from tests.sensitivity_support import isolated_design_cache  # noqa: F401 (autouse)
 
 CASES = [("sobol", 3, 64, 5), ("efast", 4, 100, 5)]
 ROBOT_2R = """[robot]

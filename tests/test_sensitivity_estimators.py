@@ -11,7 +11,6 @@ from planar_tui.sensitivity.estimators import (
     salib_sobol_indices,
     sobol_indices,
 )
-from tests.sensitivity_support import isolated_design_cache  # noqa: F401 (autouse)
 
 ROBOT = SerialRobot((0.303, 0.303, 0.175), (1.126, 1.126, 0.650), (0.129, 0.129, 0.024))
 POSTURE = np.radians([20.0, 120.0, 150.0])

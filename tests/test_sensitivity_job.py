@@ -12,7 +12,6 @@ from planar_tui.jobs import JOB_KINDS
 from planar_tui.presets import load_preset
 from planar_tui.progress import Progress
 from planar_tui.sensitivity.render import sensitivity_bars, sensitivity_table
-from tests.sensitivity_support import isolated_design_cache  # noqa: F401 (autouse)
 
 ROBOT_3R = """
 [robot]

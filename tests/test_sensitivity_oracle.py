@@ -30,7 +30,6 @@ import pytest
 
 from planar_tui.model import SerialRobot
 from planar_tui.sensitivity.engine import analyse, build_problem, evaluate, unit_design
-from tests.sensitivity_support import isolated_design_cache  # noqa: F401 (autouse)
 
 ROBOTS = {
     "2R": ([0.303, 0.214], [1.126, 0.796]),

@@ -11,7 +11,6 @@ import pytest
 from planar_tui.jobs import JOB_KINDS
 from planar_tui.presets import load_preset
 from planar_tui.sensitivity.paper import compare, read_paper_cells, report
-from tests.sensitivity_support import isolated_design_cache  # noqa: F401 (autouse)
 
 ROOT = Path(__file__).resolve().parent.parent
 REFERENCE = ROOT.parent / "shared" / "reference" / "paper_sensitivity_tables.csv"

@@ -8,18 +8,10 @@ matrix is bit-identical to SALib sampling the real problem. One design serves ev
 
 from __future__ import annotations
 
-import os
 from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
-
-# Numba's OpenMP workers spin after every parallel region by default; on a busy 2-core
-# machine that spinning takes the CPU from the next region, the eFAST FFT threads and the
-# other processes (measured: `planar-tui run` Tables 4+5 median 2.5 s → 1.8 s at load 2).
-# libgomp reads this once, when the first parallel kernel starts it; a value set by the
-# user wins.
-os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 #: eFAST interference factor M (paper A, Saltelli et al. 1999).
 M_HARMONICS = 4
