@@ -149,11 +149,12 @@ def execute(
             kind.show(job, result, stdout)
         done.append((job, result, path, seconds))
 
-    summary = Table(title="planar-tui run summary", title_justify="left")
-    for column in ("job", "output", "seconds", "result"):
-        summary.add_column(column, overflow="fold")
+    summary = Table(title="planar-tui run summary", title_justify="left", show_lines=True)
+    summary.add_column("job", no_wrap=True)
+    summary.add_column("seconds", justify="right", no_wrap=True)
+    summary.add_column("output and result", overflow="fold")
     for job, result, path, seconds in done:
-        summary.add_row(job.label, str(path), f"{seconds:.3f}", result.summary)
+        summary.add_row(job.label, f"{seconds:.3f}", f"{path}\n{result.summary}")
     stdout.print(summary)
     return [(job, result, path) for job, result, path, _ in done]
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
+from rich.columns import Columns
 from rich.console import Group
 from rich.table import Table
 from rich.text import Text
@@ -93,10 +94,13 @@ def sensitivity_bars(analyses, method: str = "sobol", width: int = 50) -> Group:
             for j, cells in enumerate(_segment_widths(list(a.percent[torque]), width)):
                 bar.append(GLYPHS[j % len(GLYPHS)] * cells, style=COLOURS[j % len(COLOURS)])
             lines.append(bar)
-    legend = Text("legend: ")
+    # one unbreakable entry per parameter, so a narrow terminal wraps between entries
+    entries = [Text("legend:")]
     for j, name in enumerate(names):
-        legend.append(GLYPHS[j % len(GLYPHS)] * 2, style=COLOURS[j % len(COLOURS)])
-        legend.append(f" {name}  ")
+        entry = Text(GLYPHS[j % len(GLYPHS)] * 2, style=COLOURS[j % len(COLOURS)])
+        entry.append(f" {name}")
+        entries.append(entry)
+    legend = Columns(entries, padding=(0, 2))
     title = Text(f"{method} sensitivity percent, stacked to 100 % ({chosen[0].posture})")
     return Group(title, *lines, legend)
 

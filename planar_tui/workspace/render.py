@@ -28,6 +28,18 @@ def _nice_step(span: float, target_ticks: int) -> float:
     return 10.0 * magnitude
 
 
+def _axis_step(lo: float, hi: float, target_ticks: int, most_ticks: int) -> float:
+    """A 1-2-5 tick step giving about ``target_ticks`` labels on ``[lo, hi]`` and never fewer
+    than two (up to ``most_ticks``, the labels that fit), so every axis shows a scale."""
+    target = max(2, target_ticks)
+    while True:
+        step = _nice_step(hi - lo, target)
+        ticks = math.floor(hi / step) - math.ceil(lo / step) + 1
+        if ticks >= 2 or target >= most_ticks:
+            return step
+        target += 1
+
+
 def _label(value: float, step: float) -> str:
     decimals = max(0, -math.floor(math.log10(step))) if step > 0 else 0
     return f"{value:.{decimals}f}"
@@ -122,7 +134,7 @@ def render_map(
         rows = max(3, height - 3)
     cover = _coverage(boxes, status, extent, columns, rows)
     lines = []
-    ystep = _nice_step(yhi - ylo, max(2, rows // 4))
+    ystep = _axis_step(ylo, yhi, rows // 4, rows)
     ch = (yhi - ylo) / rows
     labelled = set()
     for j in range(rows - 1, -1, -1):
@@ -144,7 +156,7 @@ def render_map(
         lines.append(f"{label:>{_LABEL_WIDTH - 1}} ┤" + "".join(cells))
     axis = [" "] * columns
     ticks = [" "] * (columns + _LABEL_WIDTH + 8)
-    xstep = _nice_step(xhi - xlo, max(2, columns // 12))
+    xstep = _axis_step(xlo, xhi, columns // 12, columns // 6)
     value = math.ceil(xlo / xstep) * xstep
     last_end = -1
     while value <= xhi:
