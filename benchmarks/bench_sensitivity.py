@@ -36,43 +36,13 @@ import numpy as np
 REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
 
+from benchmarks.baselines import numpy_newton_euler  # noqa: E402
 from planar_tui.presets import load_preset  # noqa: E402
 from planar_tui.sensitivity import engine  # noqa: E402
 from planar_tui.sensitivity.design_cache import ENV_VAR  # noqa: E402
 from planar_tui.sensitivity.runner import sample_sizes  # noqa: E402
 
 PRESETS = [REPO / "presets" / "paper-a-table4.toml", REPO / "presets" / "paper-a-table5.toml"]
-
-
-def numpy_inverse_dynamics(lengths, masses, inertias, gravity, theta, omega, alpha):
-    """Plain NumPy Newton-Euler over all samples at once (the baseline model), (S, n)."""
-    phi, rate, accel = np.cumsum(theta), np.cumsum(omega), np.cumsum(alpha)
-    ux, uy = np.cos(phi), np.sin(phi)
-    samples, n = lengths.shape
-    ax = np.zeros(samples)
-    ay = np.full(samples, gravity)
-    fx = np.empty((samples, n))
-    fy = np.empty((samples, n))
-    for i in range(n):
-        bx = -accel[i] * uy[i] - rate[i] ** 2 * ux[i]
-        by = accel[i] * ux[i] - rate[i] ** 2 * uy[i]
-        fx[:, i] = masses[:, i] * (ax + 0.5 * lengths[:, i] * bx)
-        fy[:, i] = masses[:, i] * (ay + 0.5 * lengths[:, i] * by)
-        ax = ax + lengths[:, i] * bx
-        ay = ay + lengths[:, i] * by
-    tau = np.empty((samples, n))
-    big_fx = np.zeros(samples)
-    big_fy = np.zeros(samples)
-    moment = np.zeros(samples)
-    for i in range(n - 1, -1, -1):
-        hx = 0.5 * lengths[:, i] * ux[i]
-        hy = 0.5 * lengths[:, i] * uy[i]
-        moment = moment + inertias[:, i] * accel[i] + hx * fy[:, i] - hy * fx[:, i]
-        moment = moment + 2.0 * (hx * big_fy - hy * big_fx)
-        big_fx = big_fx + fx[:, i]
-        big_fy = big_fy + fy[:, i]
-        tau[:, i] = moment
-    return tau
 
 
 def jobs(samples=None):
@@ -139,7 +109,7 @@ def salib_numpy(job_list):
                 design = fast_sampler.sample(salib_problem, sizes[method], M=4, seed=spec.seed)
             t1 = time.perf_counter()
             inertias = np.broadcast_to(job.robot.arrays()[2], (len(design), n))
-            torques = numpy_inverse_dynamics(
+            torques = numpy_newton_euler(
                 design[:, :n], design[:, n:], inertias, job.robot.gravity_m_s2, *state(job)
             )
             t2 = time.perf_counter()
