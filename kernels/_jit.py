@@ -1,7 +1,10 @@
 """The one decorator factory every kernel is compiled with."""
 
+import importlib
 import os
+import sys
 
+import numba.np.linalg as numba_linalg
 from numba import njit
 
 # Numba's OpenMP workers spin after every parallel region by default; on a busy 2-core
@@ -10,6 +13,28 @@ from numba import njit
 # libgomp reads this once, when the first parallel kernel starts it; a value set by the
 # user wins.
 os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+
+
+def _import_arraymath_without_blas_probe() -> None:
+    """Import ``numba.np.arraymath`` without its import-time BLAS probe.
+
+    When the first kernel is compiled or loaded from the cache, numba imports
+    ``numba.np.arraymath``, which probes for BLAS by importing ``scipy.linalg`` (about
+    0.25 s, a third of a warm CLI process here). scipy is a dependency, so BLAS is there;
+    the probe is skipped and the real check stays where BLAS is used: numba's
+    ``np.dot``/``np.linalg`` code generation calls ``numba.np.linalg.ensure_blas`` itself.
+    """
+    if "numba.np.arraymath" in sys.modules:
+        return
+    probe = numba_linalg.ensure_blas
+    numba_linalg.ensure_blas = lambda: None
+    try:
+        importlib.import_module("numba.np.arraymath")  # registers np.dot with BLAS support
+    finally:
+        numba_linalg.ensure_blas = probe
+
+
+_import_arraymath_without_blas_probe()
 
 
 def kernel(function=None, *, parallel: bool = False):

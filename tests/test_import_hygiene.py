@@ -46,3 +46,21 @@ def test_batch_run_never_imports_textual(tmp_path):
     assert probe["code"] == 0
     assert "textual" not in probe["loaded"]
     assert "numba" in probe["loaded"]  # the probe can see a heavy import when there is one
+
+
+def test_loading_a_cached_kernel_skips_numbas_scipy_blas_probe_but_blas_still_works():
+    code = (
+        "import sys, numpy as np\n"
+        "from kernels.dynamics import inverse_dynamics\n"
+        "x = np.ones(3)\n"
+        "inverse_dynamics(x, x, x, 9.81, x, x, x)\n"
+        "before = 'scipy.linalg' in sys.modules\n"
+        "from numba import njit\n"
+        "dot = njit(lambda a, b: np.dot(a, b))\n"
+        "print(before, dot(np.eye(2) * 2.0, np.ones(2)).tolist())\n"
+    )
+    env = dict(os.environ, PYTHONPATH=str(REPO))
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True
+    )
+    assert out.stdout.split() == ["False", "[2.0,", "2.0]"]
