@@ -79,3 +79,24 @@ def test_format_value_is_exact_toml(value):
     assert parsed == value
     if isinstance(value, float):
         assert math.copysign(1, parsed) == math.copysign(1, value)
+
+
+def test_decimal_settings_survive_the_round_trip_exactly(tmp_path):
+    """Values are kept in the units the preset gave (0.9 mm must not come back as
+    0.9000000000000001 after a mm -> m -> mm conversion)."""
+    text = """
+[robot]
+lengths_m = [0.303, 0.214]
+masses_kg = [1.126, 0.796]
+
+[sensitivity]
+tolerance_length_mm = 0.9
+tolerance_mass_g = 1.3
+samples = 64
+methods = ["sobol"]
+"""
+    path = tmp_path / "decimals.toml"
+    path.write_text(text)
+    saved = tomllib.loads(dump_preset(load_preset(path), "decimals"))
+    assert saved["sensitivity"]["tolerance_length_mm"] == 0.9
+    assert saved["sensitivity"]["tolerance_mass_g"] == 1.3

@@ -30,8 +30,8 @@ class SensitivitySpec:
     posture: Any
     speeds_rad_s: tuple[float, ...]
     alpha_rad_s2: float
-    tolerance_length_m: float
-    tolerance_mass_kg: float
+    tolerance_length_mm: float
+    tolerance_mass_g: float
     tolerance_inertia_kgm2: float | None
     methods: tuple[str, ...]
     samples: int
@@ -39,6 +39,16 @@ class SensitivitySpec:
     seed: int
     percent_of: str
     isotropy_tolerance: float
+
+    @property
+    def tolerance_length_m(self) -> float:
+        """Half-width of every length's uniform range, in metres."""
+        return self.tolerance_length_mm * 1e-3
+
+    @property
+    def tolerance_mass_kg(self) -> float:
+        """Half-width of every mass's uniform range, in kilograms."""
+        return self.tolerance_mass_g * 1e-3
 
 
 def _is_power_of_two(value: int) -> bool:
@@ -85,18 +95,18 @@ def parse_sensitivity(reader: TableReader, robot: SerialRobot) -> SensitivitySpe
         if isinstance(speed, list)
         else (reader.number("speed_rad_s", 1.0),)
     )
-    tol_l_m = reader.number("tolerance_length_mm", 1.0, positive=True) * 1e-3
-    tol_m_kg = reader.number("tolerance_mass_g", 1.0, positive=True) * 1e-3
+    tol_l_mm = reader.number("tolerance_length_mm", 1.0, positive=True)
+    tol_m_g = reader.number("tolerance_mass_g", 1.0, positive=True)
     for name, tolerance, nominal, unit in (
-        ("tolerance_length_mm", tol_l_m, min(robot.lengths_m), "mm"),
-        ("tolerance_mass_g", tol_m_kg, min(robot.masses_kg), "g"),
+        ("tolerance_length_mm", tol_l_mm, min(robot.lengths_m) * 1e3, "mm"),
+        ("tolerance_mass_g", tol_m_g, min(robot.masses_kg) * 1e3, "g"),
     ):
         if tolerance >= nominal:
             raise reader.error(
                 name,
-                f"is {tolerance * 1e3:g} {unit}, not below the smallest nominal value "
-                f"{nominal * 1e3:g} {unit} (samples would be non-physical)",
-                f"0 < tolerance < {nominal * 1e3:g}",
+                f"is {tolerance:g} {unit}, not below the smallest nominal value "
+                f"{nominal:g} {unit} (samples would be non-physical)",
+                f"0 < tolerance < {nominal:g}",
             )
     tol_i = None
     if reader.boolean("vary_inertias", False):
@@ -130,8 +140,8 @@ def parse_sensitivity(reader: TableReader, robot: SerialRobot) -> SensitivitySpe
         posture=posture,
         speeds_rad_s=speeds,
         alpha_rad_s2=reader.number("alpha_rad_s2", 0.0),
-        tolerance_length_m=tol_l_m,
-        tolerance_mass_kg=tol_m_kg,
+        tolerance_length_mm=tol_l_mm,
+        tolerance_mass_g=tol_m_g,
         tolerance_inertia_kgm2=tol_i,
         methods=methods,
         samples=samples,
@@ -174,8 +184,8 @@ def dump_sensitivity(spec: SensitivitySpec) -> dict:
         if len(spec.speeds_rad_s) == 1
         else list(spec.speeds_rad_s),
         "alpha_rad_s2": spec.alpha_rad_s2,
-        "tolerance_length_mm": spec.tolerance_length_m * 1e3,
-        "tolerance_mass_g": spec.tolerance_mass_kg * 1e3,
+        "tolerance_length_mm": spec.tolerance_length_mm,
+        "tolerance_mass_g": spec.tolerance_mass_g,
         "methods": list(spec.methods),
         "samples": spec.samples,
         "seed": spec.seed,
