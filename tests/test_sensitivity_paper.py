@@ -1,12 +1,10 @@
-"""Paper A Tables 4-5: our percentages next to every printed cell (slow: full N).
+"""Paper A Tables 4-5: our percentages next to every printed cell (full N, a few seconds).
 
 Bounds asserted are the ones docs/sensitivity.md explains; they are not tuned to the
 paper: where the paper is inconsistent the test says so and checks the inconsistency.
 """
 
 from pathlib import Path
-
-import pytest
 
 from planar_tui.jobs import JOB_KINDS
 from planar_tui.presets import load_preset
@@ -32,7 +30,6 @@ def swap_3r_tau3(table, robot, torque, posture):
     return posture
 
 
-@pytest.mark.slow
 def test_paper_tables_4_and_5_report():
     cells = read_paper_cells(REFERENCE)
     results = run_tables()

@@ -164,7 +164,6 @@ def test_explicit_coordinates_reproduce_the_paper_layout():
     assert a.area_cm2 == pytest.approx(b.area_cm2, rel=1e-9)
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("table", [3, 4])
 def test_tables_3_and_4_every_form_at_the_papers_epsilon(table, geometric):
     for form in ("natural", "slope", "mean-value", "arc-distance"):
@@ -176,7 +175,6 @@ def test_tables_3_and_4_every_form_at_the_papers_epsilon(table, geometric):
         print(table, form, out.area_kept_cm2)
 
 
-@pytest.mark.slow
 def test_table5_mean_value_over_the_papers_precisions(geometric):
     previous = math.inf
     for precision in ("0.03125", "0.01562", "0.00781", "0.00391"):
