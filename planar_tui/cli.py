@@ -9,6 +9,7 @@ a job or the app runs, so ``planar-tui --help`` is instant.
 from __future__ import annotations
 
 import gc
+import os
 import sys
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
@@ -98,6 +99,48 @@ def run_one(job: Job, progress_bars) -> JobResult:
     return result
 
 
+def output_paths(
+    jobs: Sequence[Job],
+    out_dir: Path,
+    out: Path | None,
+    extra_out: Mapping[str, Path | None] | None,
+) -> list[tuple[Path, dict[str, Path]]]:
+    """Every job's main CSV path and its extra tables' paths, in job order.
+
+    The main CSV goes to ``out_dir / job.output``, or to ``out`` (numbered ``FILE-1.csv``,
+    ``FILE-2.csv`` ... when there are several jobs). Extra tables (e.g. a workspace's
+    ``boxes``) go where the job kind's ``extra_outputs`` says, relative to ``out_dir``, or
+    to the paths in ``extra_out`` by table name (numbered likewise).
+    """
+    plans = []
+    for number, job in enumerate(jobs, start=1):
+        main_path = numbered_path(out, number, len(jobs)) if out else out_dir / job.output
+        extra_paths = {
+            name: out_dir / relative
+            for name, relative in JOB_KINDS[job.kind].extra_outputs(job.spec).items()
+        }
+        for name, override in (extra_out or {}).items():
+            if override is not None:
+                extra_paths[name] = numbered_path(override, number, len(jobs))
+        plans.append((main_path, extra_paths))
+    return plans
+
+
+def check_writable(path: Path) -> None:
+    """Refuse, before any job runs, an output path that cannot be written: a folder, or a
+    path whose nearest existing ancestor is not a writable folder."""
+    if path.is_dir():
+        raise PresetError(path, "(output)", "is a folder", "a CSV file path")
+    ancestor = path.parent
+    while not ancestor.exists() and ancestor != ancestor.parent:
+        ancestor = ancestor.parent
+    if not ancestor.is_dir() or not os.access(ancestor, os.W_OK | os.X_OK):
+        raise PresetError(
+            path, "(output)", f"cannot be created: {ancestor} is not a writable folder",
+            "a path inside a writable folder",
+        )  # fmt: skip
+
+
 def execute(
     jobs: Sequence[Job],
     out_dir: Path,
@@ -108,10 +151,9 @@ def execute(
 ) -> list[tuple[Job, JobResult, Path]]:
     """Run ``jobs`` in order, writing each job's CSV files atomically as soon as it finishes.
 
-    A job's main CSV goes to ``out_dir / job.output``, or to ``out`` (numbered
-    ``FILE-1.csv``, ``FILE-2.csv`` ... when there are several jobs). Extra tables (e.g. a
-    workspace's ``boxes``) go where the job kind's ``extra_outputs`` says, relative to
-    ``out_dir``, or to the paths in ``extra_out`` by table name (numbered likewise).
+    Output paths (see :func:`output_paths`) are checked before the first job runs. A job
+    that raises an unexpected error, or an output that cannot be written, ends the run
+    with one ``error:`` line and exit code 1 (``PLANAR_TUI_DEBUG=1`` shows the traceback).
     ``show`` prints each kind's terminal view. A summary table follows the last job.
     """
     import time
@@ -121,6 +163,10 @@ def execute(
 
     from planar_tui.csvio import write_csv_atomic
 
+    plans = output_paths(jobs, out_dir, out, extra_out)
+    for main_path, extra_paths in plans:
+        for path in (main_path, *extra_paths.values()):
+            check_writable(path)
     columns = (
         TextColumn("{task.description}"),
         BarColumn(bar_width=24),
@@ -128,25 +174,32 @@ def execute(
         TimeElapsedColumn(),
         TextColumn("{task.fields[detail]}"),
     )
+    debug = os.environ.get("PLANAR_TUI_DEBUG", "") not in ("", "0")
     done: list[tuple[Job, JobResult, Path, float]] = []
-    for number, job in enumerate(jobs, start=1):
+    for job, (path, extra_paths) in zip(jobs, plans, strict=True):
         started = time.perf_counter()
-        with Progress(*columns, console=stderr, transient=False) as bars:
-            result = run_one(job, bars)
+        try:
+            with Progress(*columns, console=stderr, transient=False) as bars:
+                result = run_one(job, bars)
+        except (PresetError, Cancelled, KeyboardInterrupt):
+            raise
+        except Exception as error:
+            if debug:
+                raise
+            message = f"error: {job.label} failed: {type(error).__name__}: {error}"
+            raise fail(message, ExitCode.RUN_FAILED) from None
         seconds = time.perf_counter() - started
-        kind = JOB_KINDS[job.kind]
-        path = numbered_path(out, number, len(jobs)) if out else out_dir / job.output
-        extra_paths = {
-            name: out_dir / relative for name, relative in kind.extra_outputs(job.spec).items()
-        }
-        for name, override in (extra_out or {}).items():
-            if override is not None:
-                extra_paths[name] = numbered_path(override, number, len(jobs))
-        write_csv_atomic(path, result.table)
-        for name, extra_path in extra_paths.items():
-            write_csv_atomic(extra_path, result.extra_tables[name])
+        try:
+            write_csv_atomic(path, result.table)
+            for name, extra_path in extra_paths.items():
+                write_csv_atomic(extra_path, result.extra_tables[name])
+        except OSError as error:
+            where = error.filename or path
+            raise fail(
+                f"error: {where}: cannot write: {error.strerror}", ExitCode.RUN_FAILED
+            ) from None
         if show:
-            kind.show(job, result, stdout)
+            JOB_KINDS[job.kind].show(job, result, stdout)
         done.append((job, result, path, seconds))
 
     summary = Table(title="planar-tui run summary", title_justify="left", show_lines=True)

@@ -160,3 +160,34 @@ def test_extra_output_outside_the_output_folder_is_refused(tmp_path, cli):
     assert result.exit_code == 2
     assert f"error: {preset}: workspace.boxes_output: is '../escape.csv'" in result.stderr
     assert not (tmp_path / "out").exists() and not (tmp_path / "escape.csv").exists()
+
+
+def test_unwritable_outputs_are_refused_before_any_job_runs(tmp_path, cli):
+    blocker = tmp_path / "a-file"
+    blocker.write_text("")
+    for out, problem in (
+        (tmp_path, "is a folder"),
+        (blocker / "x.csv", f"cannot be created: {blocker} is not a writable folder"),
+    ):
+        result = cli("torques", TABLE1, "--out", out)
+        assert result.exit_code == 2
+        assert result.stderr.strip() == (
+            f"error: {out}: (output): {problem} (expected "
+            + ("a CSV file path)" if out == tmp_path else "a path inside a writable folder)")
+        )
+        assert "done" not in result.stderr  # checked before the job ran
+
+
+def test_a_failing_job_is_one_line_exit_1_and_no_file(tmp_path, cli, monkeypatch):
+    def broken(*args):
+        raise FloatingPointError("the kernel diverged")
+
+    # the runner imports the kernel when it runs, so patching the kernel module reaches it
+    monkeypatch.setattr("kernels.dynamics.inverse_dynamics_batch_states", broken)
+    result = cli("torques", TABLE1, "--out-dir", tmp_path)
+    assert result.exit_code == ExitCode.RUN_FAILED
+    assert result.stderr.strip().splitlines()[-1] == (
+        "error: paper-a-table1:torques failed: FloatingPointError: the kernel diverged"
+    )
+    assert "Traceback" not in result.stderr
+    assert list(tmp_path.iterdir()) == []
