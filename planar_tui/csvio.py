@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import os
 import tempfile
 from collections.abc import Iterable, Iterator, Sequence
@@ -40,13 +41,22 @@ class CsvTable:
             yield ",".join(format_cell(cell) for cell in row)
 
 
+@functools.cache
+def _new_file_mode() -> int:
+    """The mode ``open()`` would give a new file: ``0o666`` less the process umask."""
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return 0o666 & ~mask
+
+
 def write_lines_atomic(path: Path | str, lines: Iterable[str]) -> Path:
     """Write ``lines`` (each followed by a newline) so that ``path`` is either the whole
     new file or untouched.
 
     The text goes to a temporary file in the destination folder, which is then renamed
     over ``path`` (``os.replace`` is atomic on POSIX); on any error, including
-    ``KeyboardInterrupt``, the temporary file is removed.
+    ``KeyboardInterrupt``, the temporary file is removed. The file gets the permissions a
+    plain ``open()`` would give it (an existing file keeps its own).
     """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -54,6 +64,8 @@ def write_lines_atomic(path: Path | str, lines: Iterable[str]) -> Path:
     try:
         with os.fdopen(handle, "w", encoding="utf-8", newline="\n") as stream:
             stream.writelines(line + "\n" for line in lines)
+        mode = path.stat().st_mode & 0o777 if path.is_file() else _new_file_mode()
+        os.chmod(temp_name, mode)
         os.replace(temp_name, path)
     except BaseException:
         Path(temp_name).unlink(missing_ok=True)

@@ -42,3 +42,17 @@ def test_failure_while_writing_leaves_the_old_file_and_no_temp(tmp_path):
 def test_text_is_written_with_one_final_newline(tmp_path):
     path = write_text_atomic(tmp_path / "sub" / "p.toml", "[robot]\nx = 1\n\n")
     assert path.read_text() == "[robot]\nx = 1\n"
+
+
+def test_new_files_get_the_usual_permissions_and_old_files_keep_theirs(tmp_path):
+    import os
+
+    mask = os.umask(0o022)
+    os.umask(mask)
+    fresh = write_text_atomic(tmp_path / "new.csv", "a\n")
+    assert fresh.stat().st_mode & 0o777 == 0o666 & ~mask
+    kept = tmp_path / "old.csv"
+    kept.write_text("x\n")
+    kept.chmod(0o640)
+    write_text_atomic(kept, "y\n")
+    assert kept.stat().st_mode & 0o777 == 0o640
