@@ -128,76 +128,133 @@ def _newton_euler(lengths_m, masses_kg, inertias_kgm2, prow, gravity_m_s2, kin, 
         out[orow, i] = moment
 
 
+# Rows of the forward-dynamics work array (6, n) (same shape as ``kin``): link vectors
+# a_i, joint positions p_i, and the linear wrenches f_i of the bias sweep.
+_LX, _LY, _PX, _PY = 0, 1, 2, 3
+
+
 @kernel
-def _mass_matrix_into(lengths_m, masses_kg, inertias_kgm2, prow, kin, out):
-    r"""Fill ``out`` with :math:`I = T^T M T` by composite-body suffix sums (O(n²), no division).
+def _chain_forward_sweep(lengths_m, masses_kg, gravity_m_s2, theta_rad, omega_rad_s, work):
+    r"""Link vectors, joint positions and Newton-Euler linear wrenches at :math:`\ddot\theta = 0`.
 
-    Block-wise, eq. (4) gives, for :math:`j \le k`,
-    :math:`I_{jk} = \sum_{i\ge k} [I_i + m_i (c_i-p_j)\cdot(c_i-p_k)]` (E is orthogonal), i.e.
-
-    .. math:: I_{jk} = D_k + (p_k - p_j)\cdot h_k,\qquad
-              D_k = \sum_{i\ge k}[I_i + m_i|c_i - p_k|^2],\quad h_k = \sum_{i\ge k} m_i (c_i - p_k),
-
-    the inertia and first moment of the composite of links k..n about joint k, built from
-    the tip: with :math:`\mathcal M_{k+1} = \sum_{i>k} m_i`,
-    :math:`D_k = D_{k+1} + 2a_k\cdot h_{k+1} + \mathcal M_{k+1}|a_k|^2 + I_k + \tfrac14 m_k|a_k|^2`,
-    :math:`h_k = h_{k+1} + \mathcal M_{k+1}a_k + \tfrac12 m_k a_k`.
+    One pass from the base, with the trigonometry done once for both the bias forces and
+    the mass matrix: :math:`\phi_i = \sum_{j\le i}\theta_j`, :math:`a_i = l_i(\cos\phi_i, \sin\phi_i)`
+    (eq. 1), :math:`p_1 = 0`, :math:`p_{i+1} = p_i + a_i`, and, with :math:`\dot\Omega = 0`
+    (so :math:`l_i\beta_i = -\Omega_i^2 a_i`), :math:`A_1 = (0, g)`,
+    :math:`f_i = m_i(A_i - \tfrac12\Omega_i^2 a_i)`, :math:`A_{i+1} = A_i - \Omega_i^2 a_i`
+    (see :func:`_newton_euler`). Writes rows ``_LX, _LY, _PX, _PY, _FX, _FY`` of ``work``.
     """
-    n = lengths_m.shape[1]
+    phi = 0.0
+    rate = 0.0
+    acc_x = 0.0
+    acc_y = gravity_m_s2
+    px = 0.0
+    py = 0.0
+    for i in range(lengths_m.shape[0]):
+        phi += theta_rad[i]
+        rate += omega_rad_s[i]
+        ax = lengths_m[i] * np.cos(phi)
+        ay = lengths_m[i] * np.sin(phi)
+        w2 = rate * rate
+        work[_LX, i] = ax
+        work[_LY, i] = ay
+        work[_PX, i] = px
+        work[_PY, i] = py
+        work[_FX, i] = masses_kg[i] * (acc_x - 0.5 * w2 * ax)
+        work[_FY, i] = masses_kg[i] * (acc_y - 0.5 * w2 * ay)
+        acc_x -= w2 * ax
+        acc_y -= w2 * ay
+        px += ax
+        py += ay
+
+
+@kernel
+def _chain_backward_sweep(lengths_m, masses_kg, inertias_kgm2, tau_Nm, work, matrix, rhs, orow):
+    r"""Bias torques and the lower triangle of :math:`I = T^T M T` in one pass from the tip.
+
+    Bias (Newton-Euler backward sweep at :math:`\dot\Omega = 0`, see :func:`_newton_euler`):
+    :math:`(C\dot\theta - \gamma)_k = b_{k+1} + a_k\times F_{k+1} + \tfrac12 a_k\times f_k`,
+    :math:`F_k = \sum_{i\ge k} f_i`; ``rhs[orow, k]`` receives :math:`\tau_k - (C\dot\theta - \gamma)_k`.
+
+    Mass matrix (eq. 4 block-wise, E orthogonal), for :math:`j \le k`:
+
+    .. math:: I_{jk} = \sum_{i\ge k} [I_i + m_i (c_i-p_j)\cdot(c_i-p_k)] = D_k + (p_k - p_j)\cdot h_k,
+
+    :math:`D_k = \sum_{i\ge k}[I_i + m_i|c_i - p_k|^2]`, :math:`h_k = \sum_{i\ge k} m_i (c_i - p_k)`,
+    the inertia and first moment of the composite of links k..n about joint k, built from
+    the tip with :math:`\mathcal M_{k+1} = \sum_{i>k} m_i`:
+    :math:`D_k = D_{k+1} + 2a_k\cdot h_{k+1} + \mathcal M_{k+1}l_k^2 + I_k + \tfrac14 m_k l_k^2`,
+    :math:`h_k = h_{k+1} + \mathcal M_{k+1}a_k + \tfrac12 m_k a_k`. O(n²), no division; only
+    ``matrix[k, j]`` with ``j <= k`` is written (row k is contiguous).
+    """
+    n = lengths_m.shape[0]
+    big_fx = 0.0
+    big_fy = 0.0
+    bias = 0.0
     outer_mass = 0.0
     hx = 0.0
     hy = 0.0
     inertia = 0.0
-    for k in range(n - 1, -1, -1):
-        length = lengths_m[prow, k]
-        mass = masses_kg[prow, k]
-        ax = length * kin[_UX, k]
-        ay = length * kin[_UY, k]
+    for kk in range(n):
+        k = n - 1 - kk
+        ax = work[_LX, k]
+        ay = work[_LY, k]
+        fx = work[_FX, k]
+        fy = work[_FY, k]
+        bias += 0.5 * (ax * fy - ay * fx) + ax * big_fy - ay * big_fx
+        big_fx += fx
+        big_fy += fy
+        rhs[orow, k] = tau_Nm[k] - bias
+        length = lengths_m[k]
+        mass = masses_kg[k]
         inertia += (
             2.0 * (ax * hx + ay * hy)
             + (outer_mass + 0.25 * mass) * length * length
-            + inertias_kgm2[prow, k]
+            + inertias_kgm2[k]
         )
         hx += (outer_mass + 0.5 * mass) * ax
         hy += (outer_mass + 0.5 * mass) * ay
         outer_mass += mass
-        out[k, k] = inertia
-        dx = 0.0
-        dy = 0.0
-        for j in range(k - 1, -1, -1):
-            dx += lengths_m[prow, j] * kin[_UX, j]
-            dy += lengths_m[prow, j] * kin[_UY, j]
-            value = inertia + dx * hx + dy * hy
-            out[j, k] = value
-            out[k, j] = value
+        matrix[k, k] = inertia
+        pkx = work[_PX, k]
+        pky = work[_PY, k]
+        for j in range(k):
+            matrix[k, j] = inertia + (pkx - work[_PX, j]) * hx + (pky - work[_PY, j]) * hy
 
 
 @kernel
-def _cholesky_solve_in_place(matrix, rhs, row):
-    r"""Solve :math:`A x = b` for SPD A by Cholesky :math:`A = L L^T`; A is overwritten by L
-    (strict lower triangle, reciprocal diagonal) and ``rhs[row]`` by x. No allocation."""
+def _cholesky_solve_lower(matrix, rhs, row):
+    r"""Solve :math:`A x = b` for SPD A given by its lower triangle; ``rhs[row]`` becomes x.
+
+    Row-by-row Cholesky :math:`A = L L^T` fused with the forward substitution
+    :math:`L y = b` (row i of L and :math:`y_i` need only rows < i):
+    :math:`L_{ij} = (A_{ij} - \sum_{k<j} L_{ik}L_{jk}) / L_{jj}`,
+    :math:`L_{ii} = \sqrt{A_{ii} - \sum_{k<i} L_{ik}^2}`, :math:`y_i = (b_i - \sum_{k<i} L_{ik}y_k)/L_{ii}`;
+    then :math:`L^T x = y` column-wise from the last row, so every inner loop runs along a
+    contiguous row of L. The lower triangle is overwritten by L with :math:`1/L_{ii}` on the
+    diagonal; the strict upper triangle is neither read nor written. No allocation.
+    """
     n = matrix.shape[0]
-    for j in range(n):
-        s = matrix[j, j]
-        for k in range(j):
-            s -= matrix[j, k] * matrix[j, k]
-        inv = 1.0 / np.sqrt(s)
-        matrix[j, j] = inv  # the diagonal holds 1 / L_jj
-        for i in range(j + 1, n):
+    for i in range(n):
+        for j in range(i):
             s = matrix[i, j]
             for k in range(j):
                 s -= matrix[i, k] * matrix[j, k]
-            matrix[i, j] = s * inv
-    for i in range(n):
-        s = rhs[row, i]
+            matrix[i, j] = s * matrix[j, j]
+        s = matrix[i, i]
+        y = rhs[row, i]
         for k in range(i):
-            s -= matrix[i, k] * rhs[row, k]
-        rhs[row, i] = s * matrix[i, i]
-    for i in range(n - 1, -1, -1):
-        s = rhs[row, i]
-        for k in range(i + 1, n):
-            s -= matrix[k, i] * rhs[row, k]
-        rhs[row, i] = s * matrix[i, i]
+            s -= matrix[i, k] * matrix[i, k]
+            y -= matrix[i, k] * rhs[row, k]
+        inv = 1.0 / np.sqrt(s)
+        matrix[i, i] = inv
+        rhs[row, i] = y * inv
+    for ii in range(n):
+        i = n - 1 - ii
+        x = rhs[row, i] * matrix[i, i]
+        rhs[row, i] = x
+        for k in range(i):
+            rhs[row, k] -= matrix[i, k] * x
 
 
 @kernel
@@ -208,27 +265,23 @@ def _forward_dynamics_rows(
     gravity_m_s2,
     theta_rad,
     omega_rad_s,
-    srow,
     tau_Nm,
-    kin,
+    work,
     matrix,
     alpha_rad_s2,
     orow,
 ):
-    r""":math:`\ddot\theta = I^{-1}(\tau - (C\dot\theta - \gamma))` for row-indexed 2-D arrays.
+    r""":math:`\ddot\theta = I^{-1}(\tau - (C\dot\theta - \gamma))` into ``alpha_rad_s2[orow]``.
 
-    Parameters and torques are row 0 of (1, n) arrays, the state row ``srow`` of
-    ``theta_rad``/``omega_rad_s``, the result goes to ``alpha_rad_s2[orow]``.
+    Parameters, state and torques are (n,) arrays; ``work`` (6, n) and ``matrix`` (n, n)
+    come from :func:`forward_dynamics_work`. Two O(n)/O(n²) sweeps share the trigonometry
+    (bias torques and mass matrix together), then one fused Cholesky solve.
     """
-    n = lengths_m.shape[1]
-    _link_kinematics(theta_rad, omega_rad_s, omega_rad_s, srow, kin)
-    for i in range(n):
-        kin[_ACCEL, i] = 0.0  # bias forces are inverse dynamics at zero acceleration
-    _newton_euler(lengths_m, masses_kg, inertias_kgm2, 0, gravity_m_s2, kin, alpha_rad_s2, orow)
-    for i in range(n):
-        alpha_rad_s2[orow, i] = tau_Nm[0, i] - alpha_rad_s2[orow, i]
-    _mass_matrix_into(lengths_m, masses_kg, inertias_kgm2, 0, kin, matrix)
-    _cholesky_solve_in_place(matrix, alpha_rad_s2, orow)
+    _chain_forward_sweep(lengths_m, masses_kg, gravity_m_s2, theta_rad, omega_rad_s, work)
+    _chain_backward_sweep(
+        lengths_m, masses_kg, inertias_kgm2, tau_Nm, work, matrix, alpha_rad_s2, orow
+    )
+    _cholesky_solve_lower(matrix, alpha_rad_s2, orow)
 
 
 @kernel
@@ -261,14 +314,13 @@ def forward_dynamics_into(
     ``work`` and ``matrix`` come from :func:`forward_dynamics_work`.
     """
     _forward_dynamics_rows(
-        _row(lengths_m),
-        _row(masses_kg),
-        _row(inertias_kgm2),
+        lengths_m,
+        masses_kg,
+        inertias_kgm2,
         gravity_m_s2,
-        _row(theta_rad),
-        _row(omega_rad_s),
-        0,
-        _row(tau_Nm),
+        theta_rad,
+        omega_rad_s,
+        tau_Nm,
         work,
         matrix,
         _row(alpha_rad_s2),
@@ -387,14 +439,16 @@ def mass_matrix(lengths_m, masses_kg, inertias_kgm2, theta_rad):
               = D_k + (p_k - p_j)\cdot h_k,
 
     with :math:`D_k`, :math:`h_k` the inertia and first moment about joint k of the composite
-    body of links k..n (suffix sums from the tip, O(n²) total; see ``_mass_matrix_into``).
+    body of links k..n (suffix sums from the tip, O(n²) total; see ``_chain_backward_sweep``).
     """
     n = lengths_m.shape[0]
-    kin = np.zeros((_KIN_ROWS, n))
-    theta = _row(theta_rad)
-    _link_kinematics(theta, theta, theta, 0, kin)  # only the directions u_i are used
-    out = np.empty((n, n))
-    _mass_matrix_into(_row(lengths_m), _row(masses_kg), _row(inertias_kgm2), 0, kin, out)
+    work, out = forward_dynamics_work(n)
+    zeros = np.zeros(n)
+    _chain_forward_sweep(lengths_m, masses_kg, 0.0, theta_rad, zeros, work)
+    _chain_backward_sweep(lengths_m, masses_kg, inertias_kgm2, zeros, work, out, _row(zeros), 0)
+    for k in range(n):
+        for j in range(k):
+            out[j, k] = out[k, j]
     return out
 
 

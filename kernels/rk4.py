@@ -9,7 +9,7 @@ constant torque vector (zero for free fall). Paper A, section 2-1, integrates wi
 import numpy as np
 
 from kernels._jit import kernel
-from kernels.dynamics import _forward_dynamics_rows, _row, energies, forward_dynamics_work
+from kernels.dynamics import _forward_dynamics_rows, energies, forward_dynamics_work
 
 
 @kernel
@@ -68,36 +68,31 @@ def rk4_integrate(
     rows_written : int
     """
     n = lengths_m.shape[0]
-    kin, matrix = forward_dynamics_work(n)
-    lengths = _row(lengths_m)
-    masses = _row(masses_kg)
-    inertias = _row(inertias_kgm2)
-    torque = _row(torque_Nm)
+    work, matrix = forward_dynamics_work(n)
     d_theta = np.empty((4, n))  # stage derivatives k1..k4 of θ
     d_omega = np.empty((4, n))  # ... and of θ̇
-    theta = np.empty((1, n))  # θ at the stage point
-    omega = np.empty((1, n))  # θ̇ at the stage point
+    theta = np.empty(n)  # θ at the stage point
+    omega = np.empty(n)  # θ̇ at the stage point
     half = 0.5 * step_s
     sixth = step_s / 6.0
     rows = 0
     for k in range(start_step, start_step + n_steps + 1):
         if k > start_step:  # one RK4 step from k-1 to k
             for i in range(n):
-                theta[0, i] = theta_rad[i]
-                omega[0, i] = omega_rad_s[i]
+                theta[i] = theta_rad[i]
+                omega[i] = omega_rad_s[i]
             for stage in range(4):
                 for i in range(n):
-                    d_theta[stage, i] = omega[0, i]
+                    d_theta[stage, i] = omega[i]
                 _forward_dynamics_rows(
-                    lengths,
-                    masses,
-                    inertias,
+                    lengths_m,
+                    masses_kg,
+                    inertias_kgm2,
                     gravity_m_s2,
                     theta,
                     omega,
-                    0,
-                    torque,
-                    kin,
+                    torque_Nm,
+                    work,
                     matrix,
                     d_omega,
                     stage,
@@ -105,8 +100,8 @@ def rk4_integrate(
                 if stage < 3:
                     factor = step_s if stage == 2 else half
                     for i in range(n):
-                        theta[0, i] = theta_rad[i] + factor * d_theta[stage, i]
-                        omega[0, i] = omega_rad_s[i] + factor * d_omega[stage, i]
+                        theta[i] = theta_rad[i] + factor * d_theta[stage, i]
+                        omega[i] = omega_rad_s[i] + factor * d_omega[stage, i]
             for i in range(n):
                 theta_rad[i] += sixth * (
                     d_theta[0, i] + 2.0 * d_theta[1, i] + 2.0 * d_theta[2, i] + d_theta[3, i]
