@@ -129,28 +129,72 @@ def _newton_euler(lengths_m, masses_kg, inertias_kgm2, prow, gravity_m_s2, kin, 
 
 
 # Rows of the forward-dynamics work array (6, n) (same shape as ``kin``): link vectors
-# a_i, joint positions p_i, and the linear wrenches f_i of the bias sweep.
+# a_i, joint positions p_i, and the linear wrenches f_i (rows _FX, _FY) of the bias sweep.
 _LX, _LY, _PX, _PY = 0, 1, 2, 3
 
 
 @kernel
-def _chain_forward_sweep(lengths_m, masses_kg, gravity_m_s2, theta_rad, omega_rad_s, work):
-    r"""Link vectors, joint positions and Newton-Euler linear wrenches at :math:`\ddot\theta = 0`.
+def _forward_dynamics_rows(
+    lengths_m,
+    masses_kg,
+    inertias_kgm2,
+    gravity_m_s2,
+    theta_rad,
+    omega_rad_s,
+    tau_Nm,
+    work,
+    matrix,
+    alpha_rad_s2,
+    orow,
+    solve,
+):
+    r""":math:`\ddot\theta = I^{-1}(\tau - (C\dot\theta - \gamma))` into ``alpha_rad_s2[orow]``.
 
-    One pass from the base, with the trigonometry done once for both the bias forces and
-    the mass matrix: :math:`\phi_i = \sum_{j\le i}\theta_j`, :math:`a_i = l_i(\cos\phi_i, \sin\phi_i)`
-    (eq. 1), :math:`p_1 = 0`, :math:`p_{i+1} = p_i + a_i`, and, with :math:`\dot\Omega = 0`
-    (so :math:`l_i\beta_i = -\Omega_i^2 a_i`), :math:`A_1 = (0, g)`,
-    :math:`f_i = m_i(A_i - \tfrac12\Omega_i^2 a_i)`, :math:`A_{i+1} = A_i - \Omega_i^2 a_i`
-    (see :func:`_newton_euler`). Writes rows ``_LX, _LY, _PX, _PY, _FX, _FY`` of ``work``.
+    Parameters, state and torques are (n,) arrays; ``work`` (6, n) and ``matrix`` (n, n)
+    come from :func:`forward_dynamics_work`. With ``solve=False`` it stops after step 2:
+    the lower triangle of ``matrix`` holds :math:`I(\theta)` and ``alpha_rad_s2[orow]``
+    holds :math:`\tau - (C\dot\theta - \gamma)` (used by :func:`mass_matrix`).
+
+    One function body on purpose: the three steps as separate kernels cost ≈ 90 ns more per
+    6R call (numba does not inline them and increments/decrements the reference count of
+    every array argument around each call), about a third of the whole evaluation.
+
+    1. **Base to tip**, trigonometry once for both the bias forces and the mass matrix:
+       :math:`\phi_i = \sum_{j\le i}\theta_j`, :math:`a_i = l_i(\cos\phi_i, \sin\phi_i)` (eq. 1),
+       :math:`p_1 = 0`, :math:`p_{i+1} = p_i + a_i`, and the Newton-Euler forward sweep of
+       :func:`_newton_euler` at :math:`\dot\Omega = 0` (so :math:`l_i\beta_i = -\Omega_i^2 a_i`):
+       :math:`A_1 = (0, g)`, :math:`f_i = m_i(A_i - \tfrac12\Omega_i^2 a_i)`,
+       :math:`A_{i+1} = A_i - \Omega_i^2 a_i`.
+    2. **Tip to base**, bias torques and mass matrix in the same loop. Bias:
+       :math:`(C\dot\theta - \gamma)_k = b_{k+1} + a_k\times F_{k+1} + \tfrac12 a_k\times f_k`,
+       :math:`F_k = \sum_{i\ge k} f_i`. Mass matrix (eq. 4 block-wise, E orthogonal), for
+       :math:`j \le k`:
+
+       .. math:: I_{jk} = \sum_{i\ge k} [I_i + m_i (c_i-p_j)\cdot(c_i-p_k)] = D_k + (p_k - p_j)\cdot h_k,
+
+       :math:`D_k = \sum_{i\ge k}[I_i + m_i|c_i - p_k|^2]`, :math:`h_k = \sum_{i\ge k} m_i (c_i - p_k)`,
+       inertia and first moment of the composite of links k..n about joint k; with
+       :math:`\mathcal M_{k+1} = \sum_{i>k} m_i`:
+       :math:`D_k = D_{k+1} + 2a_k\cdot h_{k+1} + \mathcal M_{k+1}l_k^2 + I_k + \tfrac14 m_k l_k^2`,
+       :math:`h_k = h_{k+1} + \mathcal M_{k+1}a_k + \tfrac12 m_k a_k`. O(n²), no division;
+       only ``matrix[k, j]``, ``j <= k``, is written (row k is contiguous).
+    3. **Cholesky solve** of the SPD system, row by row, fused with the forward
+       substitution :math:`L y = b` (row i of L and :math:`y_i` need only rows < i):
+       :math:`L_{ij} = (I_{ij} - \sum_{k<j} L_{ik}L_{jk}) / L_{jj}`,
+       :math:`L_{ii} = \sqrt{I_{ii} - \sum_{k<i} L_{ik}^2}`,
+       :math:`y_i = (b_i - \sum_{k<i} L_{ik}y_k)/L_{ii}`; then :math:`L^T x = y` column-wise
+       from the last row, so every inner loop runs along a contiguous row of L. L overwrites
+       the lower triangle (:math:`1/L_{ii}` on the diagonal). No allocation anywhere.
     """
+    n = lengths_m.shape[0]
+    # 1. base to tip
     phi = 0.0
     rate = 0.0
     acc_x = 0.0
     acc_y = gravity_m_s2
     px = 0.0
     py = 0.0
-    for i in range(lengths_m.shape[0]):
+    for i in range(n):
         phi += theta_rad[i]
         rate += omega_rad_s[i]
         ax = lengths_m[i] * np.cos(phi)
@@ -166,28 +210,7 @@ def _chain_forward_sweep(lengths_m, masses_kg, gravity_m_s2, theta_rad, omega_ra
         acc_y -= w2 * ay
         px += ax
         py += ay
-
-
-@kernel
-def _chain_backward_sweep(lengths_m, masses_kg, inertias_kgm2, tau_Nm, work, matrix, rhs, orow):
-    r"""Bias torques and the lower triangle of :math:`I = T^T M T` in one pass from the tip.
-
-    Bias (Newton-Euler backward sweep at :math:`\dot\Omega = 0`, see :func:`_newton_euler`):
-    :math:`(C\dot\theta - \gamma)_k = b_{k+1} + a_k\times F_{k+1} + \tfrac12 a_k\times f_k`,
-    :math:`F_k = \sum_{i\ge k} f_i`; ``rhs[orow, k]`` receives :math:`\tau_k - (C\dot\theta - \gamma)_k`.
-
-    Mass matrix (eq. 4 block-wise, E orthogonal), for :math:`j \le k`:
-
-    .. math:: I_{jk} = \sum_{i\ge k} [I_i + m_i (c_i-p_j)\cdot(c_i-p_k)] = D_k + (p_k - p_j)\cdot h_k,
-
-    :math:`D_k = \sum_{i\ge k}[I_i + m_i|c_i - p_k|^2]`, :math:`h_k = \sum_{i\ge k} m_i (c_i - p_k)`,
-    the inertia and first moment of the composite of links k..n about joint k, built from
-    the tip with :math:`\mathcal M_{k+1} = \sum_{i>k} m_i`:
-    :math:`D_k = D_{k+1} + 2a_k\cdot h_{k+1} + \mathcal M_{k+1}l_k^2 + I_k + \tfrac14 m_k l_k^2`,
-    :math:`h_k = h_{k+1} + \mathcal M_{k+1}a_k + \tfrac12 m_k a_k`. O(n²), no division; only
-    ``matrix[k, j]`` with ``j <= k`` is written (row k is contiguous).
-    """
-    n = lengths_m.shape[0]
+    # 2. tip to base
     big_fx = 0.0
     big_fy = 0.0
     bias = 0.0
@@ -204,7 +227,7 @@ def _chain_backward_sweep(lengths_m, masses_kg, inertias_kgm2, tau_Nm, work, mat
         bias += 0.5 * (ax * fy - ay * fx) + ax * big_fy - ay * big_fx
         big_fx += fx
         big_fy += fy
-        rhs[orow, k] = tau_Nm[k] - bias
+        alpha_rad_s2[orow, k] = tau_Nm[k] - bias
         length = lengths_m[k]
         mass = masses_kg[k]
         inertia += (
@@ -220,21 +243,9 @@ def _chain_backward_sweep(lengths_m, masses_kg, inertias_kgm2, tau_Nm, work, mat
         pky = work[_PY, k]
         for j in range(k):
             matrix[k, j] = inertia + (pkx - work[_PX, j]) * hx + (pky - work[_PY, j]) * hy
-
-
-@kernel
-def _cholesky_solve_lower(matrix, rhs, row):
-    r"""Solve :math:`A x = b` for SPD A given by its lower triangle; ``rhs[row]`` becomes x.
-
-    Row-by-row Cholesky :math:`A = L L^T` fused with the forward substitution
-    :math:`L y = b` (row i of L and :math:`y_i` need only rows < i):
-    :math:`L_{ij} = (A_{ij} - \sum_{k<j} L_{ik}L_{jk}) / L_{jj}`,
-    :math:`L_{ii} = \sqrt{A_{ii} - \sum_{k<i} L_{ik}^2}`, :math:`y_i = (b_i - \sum_{k<i} L_{ik}y_k)/L_{ii}`;
-    then :math:`L^T x = y` column-wise from the last row, so every inner loop runs along a
-    contiguous row of L. The lower triangle is overwritten by L with :math:`1/L_{ii}` on the
-    diagonal; the strict upper triangle is neither read nor written. No allocation.
-    """
-    n = matrix.shape[0]
+    if not solve:
+        return
+    # 3. Cholesky factor + forward substitution, then back substitution
     for i in range(n):
         for j in range(i):
             s = matrix[i, j]
@@ -242,46 +253,19 @@ def _cholesky_solve_lower(matrix, rhs, row):
                 s -= matrix[i, k] * matrix[j, k]
             matrix[i, j] = s * matrix[j, j]
         s = matrix[i, i]
-        y = rhs[row, i]
+        y = alpha_rad_s2[orow, i]
         for k in range(i):
             s -= matrix[i, k] * matrix[i, k]
-            y -= matrix[i, k] * rhs[row, k]
+            y -= matrix[i, k] * alpha_rad_s2[orow, k]
         inv = 1.0 / np.sqrt(s)
         matrix[i, i] = inv
-        rhs[row, i] = y * inv
+        alpha_rad_s2[orow, i] = y * inv
     for ii in range(n):
         i = n - 1 - ii
-        x = rhs[row, i] * matrix[i, i]
-        rhs[row, i] = x
+        x = alpha_rad_s2[orow, i] * matrix[i, i]
+        alpha_rad_s2[orow, i] = x
         for k in range(i):
-            rhs[row, k] -= matrix[i, k] * x
-
-
-@kernel
-def _forward_dynamics_rows(
-    lengths_m,
-    masses_kg,
-    inertias_kgm2,
-    gravity_m_s2,
-    theta_rad,
-    omega_rad_s,
-    tau_Nm,
-    work,
-    matrix,
-    alpha_rad_s2,
-    orow,
-):
-    r""":math:`\ddot\theta = I^{-1}(\tau - (C\dot\theta - \gamma))` into ``alpha_rad_s2[orow]``.
-
-    Parameters, state and torques are (n,) arrays; ``work`` (6, n) and ``matrix`` (n, n)
-    come from :func:`forward_dynamics_work`. Two O(n)/O(n²) sweeps share the trigonometry
-    (bias torques and mass matrix together), then one fused Cholesky solve.
-    """
-    _chain_forward_sweep(lengths_m, masses_kg, gravity_m_s2, theta_rad, omega_rad_s, work)
-    _chain_backward_sweep(
-        lengths_m, masses_kg, inertias_kgm2, tau_Nm, work, matrix, alpha_rad_s2, orow
-    )
-    _cholesky_solve_lower(matrix, alpha_rad_s2, orow)
+            alpha_rad_s2[orow, k] -= matrix[i, k] * x
 
 
 @kernel
@@ -325,6 +309,7 @@ def forward_dynamics_into(
         matrix,
         _row(alpha_rad_s2),
         0,
+        True,
     )
 
 
@@ -439,13 +424,15 @@ def mass_matrix(lengths_m, masses_kg, inertias_kgm2, theta_rad):
               = D_k + (p_k - p_j)\cdot h_k,
 
     with :math:`D_k`, :math:`h_k` the inertia and first moment about joint k of the composite
-    body of links k..n (suffix sums from the tip, O(n²) total; see ``_chain_backward_sweep``).
+    body of links k..n (suffix sums from the tip, O(n²) total; see ``_forward_dynamics_rows``).
     """
     n = lengths_m.shape[0]
     work, out = forward_dynamics_work(n)
     zeros = np.zeros(n)
-    _chain_forward_sweep(lengths_m, masses_kg, 0.0, theta_rad, zeros, work)
-    _chain_backward_sweep(lengths_m, masses_kg, inertias_kgm2, zeros, work, out, _row(zeros), 0)
+    _forward_dynamics_rows(
+        lengths_m, masses_kg, inertias_kgm2, 0.0, theta_rad, zeros, zeros, work, out,
+        _row(zeros), 0, False,
+    )  # fmt: skip
     for k in range(n):
         for j in range(k):
             out[j, k] = out[k, j]

@@ -96,6 +96,7 @@ def rk4_integrate(
                     matrix,
                     d_omega,
                     stage,
+                    True,
                 )
                 if stage < 3:
                     factor = step_s if stage == 2 else half
