@@ -7,7 +7,8 @@ Rows (JIT warmed first, best of several repeats, baselines run in the same proce
   body_ipos per sample (10^4 samples, scaled per sample);
 * a NumPy-vectorised Newton-Euler (loop over links, arrays over samples), 10^6 samples;
 * the paper A Table 1 simulation (6R, 1 s, RK4 step 1e-4 s): ``rk4_integrate`` vs MuJoCo's
-  own RK4 ``mj_step`` in a Python loop (10^4 steps);
+  own RK4 ``mj_step`` in a Python loop (10^4 steps), with the time per forward-dynamics
+  call (simulation / 4·10^4, and ``forward_dynamics_into`` alone in a jitted loop);
 * one inverse / forward dynamics evaluation for n = 2..64 with the fitted exponent of
   time ~ n^p (called from Python, and from a jitted loop, which removes the dispatch cost).
 """
@@ -29,6 +30,8 @@ from benchmarks.baselines import numpy_newton_euler
 from kernels._jit import kernel
 from kernels.dynamics import (
     forward_dynamics,
+    forward_dynamics_into,
+    forward_dynamics_work,
     inverse_dynamics,
     inverse_dynamics_batch,
 )
@@ -114,6 +117,21 @@ def _repeat(count, forward, lengths, masses, inertias, theta, omega, alpha_or_ta
             total += inverse_dynamics(lengths, masses, inertias, 9.81, theta, omega, alpha_or_tau)[
                 0
             ]
+    return total
+
+
+@kernel
+def _repeat_forward_into(count, lengths, masses, inertias, theta, omega, tau):
+    """``count`` allocation-free forward dynamics (the RK4 stage evaluation) in compiled code."""
+    work, matrix = forward_dynamics_work(lengths.shape[0])
+    alpha = np.empty(lengths.shape[0])
+    total = 0.0
+    for _ in range(count):
+        theta[0] += 1e-12
+        forward_dynamics_into(
+            lengths, masses, inertias, 9.81, theta, omega, tau, work, matrix, alpha
+        )
+        total += alpha[0]
     return total
 
 
@@ -206,6 +224,10 @@ def main():
         )
     )
 
+    fd_calls = 40_000
+    fd_args = (LENGTHS, MASSES, INERTIAS, theta.copy(), omega.copy(), TORQUES)
+    _repeat_forward_into(1, *fd_args)
+    fd_time = best_time(partial(_repeat_forward_into, fd_calls, *fd_args), 15) / fd_calls
     sim_every10 = best_time(lambda: simulate_kernel(10), 15)
     sim_every1 = best_time(lambda: simulate_kernel(1), 15)
     sim_mj = best_time(simulate_mujoco, 3)
@@ -229,6 +251,20 @@ def main():
             f"  MuJoCo RK4 mj_step Python loop, 10^4 steps (final |Δθ| {gap:.1e} rad)",
             f"{sim_mj * 1e3:.1f} ms",
             f"{sim_mj / sim_every10:.1f}",
+        )
+    )
+    rows.append(
+        (
+            "  per forward dynamics: simulation time / (4 × 10^4 calls)",
+            f"{sim_every10 / 4e4 * 1e9:.0f} ns",
+            "",
+        )
+    )
+    rows.append(
+        (
+            "  one 6R forward_dynamics_into in a jit loop (allocation-free)",
+            f"{fd_time * 1e9:.0f} ns",
+            "",
         )
     )
 

@@ -311,7 +311,7 @@ def forward_dynamics_into(
         tau_Nm,
         work,
         matrix,
-        _row(alpha_rad_s2),
+        alpha_rad_s2[None, :],  # a (1, n) view, built in place
         0,
         True,
     )
