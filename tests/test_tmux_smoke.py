@@ -8,6 +8,7 @@ with ``q``. Polls the screen with a timeout instead of sleeping blindly.
 from __future__ import annotations
 
 import os
+import re
 import shlex
 import shutil
 import subprocess
@@ -15,6 +16,8 @@ import sys
 import time
 import uuid
 from pathlib import Path
+
+import pytest
 
 REPO = Path(__file__).resolve().parent.parent
 TMUX = shutil.which("tmux") or "/usr/bin/tmux"
@@ -38,11 +41,20 @@ def wait_for(socket: str, predicate, timeout_s: float, what: str) -> str:
     raise AssertionError(f"timed out waiting for {what}; screen was:\n{screen}")
 
 
-def test_app_in_tmux_runs_a_workspace_job_and_quits(tmp_path):
+# SGR parameters that select one of 256 colours or a 24-bit colour (foreground/background)
+RICH_COLOUR = re.compile(r"\x1b\[[0-9;]*[34]8;[25];")
+
+
+@pytest.mark.parametrize(
+    "terminal",
+    ["TERM=xterm-256color", "TERM=xterm TEXTUAL_COLOR_SYSTEM=standard"],
+    ids=["256-colours", "16-colours"],
+)
+def test_app_in_tmux_runs_a_workspace_job_and_quits(tmp_path, terminal):
     socket = f"planar-tui-{uuid.uuid4().hex[:8]}"
     status_file = tmp_path / "status"
     command = (
-        f"cd {shlex.quote(str(REPO))} && TERM=xterm-256color "
+        f"cd {shlex.quote(str(REPO))} && {terminal} "
         f"{shlex.quote(sys.executable)} -m planar_tui tui {PRESET}; "
         f"echo $? > {shlex.quote(str(status_file))}; sleep 30"
     )
@@ -76,6 +88,9 @@ def test_app_in_tmux_runs_a_workspace_job_and_quits(tmp_path):
         screen = wait_for(socket, lambda s: "done in" in s, 120, "the workspace job")
         assert "arc-distance eps=0.9375" in screen and "cm2" in screen, screen  # the summary
         assert "█" in screen and "x, y in cm" in screen, screen  # the map
+        if "standard" in terminal:  # a 16-colour terminal gets only its 16 colours
+            styled = tmux(socket, "capture-pane", "-e", "-p", "-t", "smoke")
+            assert "\x1b[" in styled and not RICH_COLOUR.search(styled), styled
         tmux(socket, "send-keys", "-t", "smoke", "q")
         deadline = time.monotonic() + 20
         while not status_file.exists():
