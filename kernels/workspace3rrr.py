@@ -64,6 +64,20 @@ STACK_FULL = 3
 
 
 @kernel
+def chunk_halt(processed, max_boxes, n_kept, kept_capacity, n_stack, stack_capacity):
+    """Why a bisection chunk must return before popping the next box: ``CHUNK_LIMIT``
+    (``max_boxes`` processed), ``KEPT_FULL``, ``STACK_FULL`` (a split pushes two boxes),
+    or ``DONE`` when it may go on."""
+    if processed >= max_boxes:
+        return CHUNK_LIMIT
+    if n_kept >= kept_capacity:
+        return KEPT_FULL
+    if n_stack + 1 >= stack_capacity:
+        return STACK_FULL
+    return DONE
+
+
+@kernel
 def _l2_squared(l2):
     """:math:`l_2^2` as an interval (the float product may round)."""
     s = l2 * l2
@@ -278,15 +292,10 @@ def bisect_chunk(form, p, precision, angle_scale, stack, n_stack, kept, n_kept, 
     ``CHUNK_LIMIT``, ``KEPT_FULL`` or ``STACK_FULL`` (grow the array and call again).
     """
     processed = 0
-    cap_stack = stack.shape[0]
-    cap_kept = kept.shape[0]
     while n_stack > 0:
-        if processed >= max_boxes:
-            return n_stack, n_kept, processed, CHUNK_LIMIT
-        if n_kept >= cap_kept:
-            return n_stack, n_kept, processed, KEPT_FULL
-        if n_stack + 1 >= cap_stack:
-            return n_stack, n_kept, processed, STACK_FULL
+        halt = chunk_halt(processed, max_boxes, n_kept, kept.shape[0], n_stack, stack.shape[0])
+        if halt != DONE:
+            return n_stack, n_kept, processed, halt
         n_stack -= 1
         row = n_stack
         processed += 1

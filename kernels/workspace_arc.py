@@ -27,7 +27,7 @@ import math
 import numpy as np
 
 from kernels._jit import kernel
-from kernels.workspace3rrr import CHUNK_LIMIT, DONE, KEPT_FULL, STACK_FULL
+from kernels.workspace3rrr import DONE, chunk_halt
 
 OUTSIDE = 0
 BOUNDARY = 1
@@ -135,15 +135,10 @@ def arc_bisect_chunk(
     Returns ``(n_stack, n_kept, processed, code)`` like ``bisect_chunk``.
     """
     processed = 0
-    cap_stack = stack.shape[0]
-    cap_kept = kept.shape[0]
     while n_stack > 0:
-        if processed >= max_boxes:
-            return n_stack, n_kept, processed, CHUNK_LIMIT
-        if n_kept >= cap_kept:
-            return n_stack, n_kept, processed, KEPT_FULL
-        if n_stack + 1 >= cap_stack:
-            return n_stack, n_kept, processed, STACK_FULL
+        halt = chunk_halt(processed, max_boxes, n_kept, kept.shape[0], n_stack, stack.shape[0])
+        if halt != DONE:
+            return n_stack, n_kept, processed, halt
         n_stack -= 1
         row = n_stack
         processed += 1

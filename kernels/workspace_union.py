@@ -14,41 +14,39 @@ from kernels._jit import kernel
 
 
 @kernel
+def _refresh(node, size, count, covered, full):
+    """Covered length of ``node``: all of it with a positive count, else what its children
+    cover (nothing for a leaf)."""
+    if count[node] > 0:
+        covered[node] = full[node]
+    elif node >= size:
+        covered[node] = 0.0
+    else:
+        covered[node] = covered[2 * node] + covered[2 * node + 1]
+
+
+@kernel
 def _update(lo, hi, delta, size, count, covered, full):
     """Add ``delta`` to the cover count of leaf segments ``[lo, hi)`` and refresh the
-    covered lengths: a node with a positive count is fully covered, else it covers what
-    its children cover (nothing for a leaf). The nodes whose count changes are children
+    covered lengths (see :func:`_refresh`). The nodes whose count changes are children
     of the two root paths from leaves ``lo`` and ``hi - 1``, refreshed bottom-up after."""
     left = lo + size
     right = hi + size
     while left < right:
         if left & 1:
             count[left] += delta
-            if count[left] > 0:
-                covered[left] = full[left]
-            elif left >= size:
-                covered[left] = 0.0
-            else:
-                covered[left] = covered[2 * left] + covered[2 * left + 1]
+            _refresh(left, size, count, covered, full)
             left += 1
         if right & 1:
             right -= 1
             count[right] += delta
-            if count[right] > 0:
-                covered[right] = full[right]
-            elif right >= size:
-                covered[right] = 0.0
-            else:
-                covered[right] = covered[2 * right] + covered[2 * right + 1]
+            _refresh(right, size, count, covered, full)
         left >>= 1
         right >>= 1
     for leaf in (lo + size, hi - 1 + size):
         node = leaf >> 1
         while node >= 1:
-            if count[node] > 0:
-                covered[node] = full[node]
-            else:
-                covered[node] = covered[2 * node] + covered[2 * node + 1]
+            _refresh(node, size, count, covered, full)
             node >>= 1
 
 
