@@ -25,10 +25,15 @@ CASES = {
         "did you mean duration_s?",
     ),
     "missing key": (edited("duration_s = 1.0\n", ""), "simulate[1].duration_s", "missing key"),
-    "missing robot": (
+    "robot table misspelt": (
         edited('[robot]\nname = "6R-PSM, paper A Table 1"', '[robot_]\nname = "x"'),
         "robot_",
         "unknown table",
+    ),
+    "missing robot": (
+        TABLE1[TABLE1.index("[[simulate]]") :],
+        "simulate[1]",
+        "no robot for this job (expected a [robot] table or a [simulate.robot] table)",
     ),
     "wrong type": (edited("step_s = 1e-4", 'step_s = "fast"'), "simulate[1].step_s", "is a string"),
     "wrong type bool": (edited("every = 10", "every = true"), "simulate[1].every", "is a boolean"),
