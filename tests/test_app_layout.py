@@ -18,8 +18,8 @@ import numpy as np
 import pytest
 from rich.console import Console
 
-from planar_tui.app.widgets.sensitivity_table import VIEWS, build_grid, fit_tables, heat_style
 from planar_tui.sensitivity.results import Analysis
+from planar_tui.sensitivity.tables import VIEWS, build_grid, fit_tables, heat_style
 
 DATA = Path(__file__).parent / "data" / "app"
 #: Results area at 80×24: beside the 30-cell form, and with the form hidden (ctrl+f).

@@ -1,6 +1,7 @@
 """The [sensitivity] job end to end: CSV, structure, determinism, bad input, cancel, views."""
 
 import csv
+import re
 from pathlib import Path
 
 import numpy as np
@@ -11,7 +12,8 @@ from planar_tui.errors import Cancelled, PresetError
 from planar_tui.jobs import JOB_KINDS
 from planar_tui.presets import load_preset
 from planar_tui.progress import Progress
-from planar_tui.sensitivity.render import sensitivity_bars, sensitivity_table
+from planar_tui.sensitivity.render import sensitivity_bars
+from planar_tui.sensitivity.tables import VIEWS, fit_tables
 
 ROBOT_3R = """
 [robot]
@@ -90,15 +92,22 @@ def test_speed_sweep_rows_and_bars(tmp_path):
     )
     _, result = run_job(write_preset(tmp_path, body))
     assert {row[2] for row in result.table.rows} == {0.8, 1.0, 1.2}
-    console = Console(width=100, record=True, color_system=None)
-    console.print(sensitivity_bars(result.data["analyses"], "sobol", width=40))
-    console.print(sensitivity_table(result.data["analyses"]))
-    text = console.export_text()
+    analyses = result.data["analyses"]
+    bars_console = Console(width=100, record=True, color_system=None)
+    bars_console.print(sensitivity_bars(analyses, "sobol", width=40))
+    text = bars_console.export_text()
     bars = [line for line in text.splitlines() if line.startswith("τ")]
     assert len(bars) == 3 * 3  # 3 torques × 3 speeds
     assert all(len(line.split("rad/s ")[1]) == 40 for line in bars)
-    assert text.count("│ τ") == 3  # the table: one row per torque
     assert "legend" in text and "m3" in text
+    table_console = Console(width=100, record=True, color_system=None)
+    table_console.print(fit_tables(analyses, VIEWS[0], 100).renderable)
+    table = table_console.export_text().splitlines()
+    assert [line for line in table if "rad/s" in line] == [
+        f"% of ST per torque · isotropic · {speed} rad/s" for speed in (0.8, 1, 1.2)
+    ]
+    rows = [line.split()[0] for line in table if re.match(r"τ\d ", line)]
+    assert rows == ["τ1", "τ2", "τ3"] * 3  # one table per speed, a row per torque
 
 
 def test_cancel_raises_between_chunks(tmp_path):

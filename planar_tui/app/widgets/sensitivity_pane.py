@@ -1,5 +1,5 @@
 """The Sensitivity tab: indices shaped like paper A's Table 4 (fitted to the width, see
-:mod:`~planar_tui.app.widgets.sensitivity_table`), a percent / S1 / ST / confidence toggle,
+:mod:`~planar_tui.sensitivity.tables`), a percent / S1 / ST / confidence toggle,
 and the Fig 5/6 stacked bars (the CLI's renderer)."""
 
 from __future__ import annotations
@@ -13,9 +13,9 @@ from textual.containers import ScrollableContainer
 from textual.widgets import Static
 
 from planar_tui.app.widgets.panes import JobPane
-from planar_tui.app.widgets.sensitivity_table import VIEWS, fit_tables
 from planar_tui.jobs import JobResult
 from planar_tui.presets import Job
+from planar_tui.sensitivity.tables import VIEWS, fit_tables
 
 #: Cells taken by a bar's label (``τ1 1.00 rad/s ``) and a margin.
 BAR_LABEL_CELLS = 16

@@ -1,4 +1,4 @@
-"""The Sensitivity tab's index tables, fitted to the pane's width without cutting a number.
+"""Sensitivity index tables fitted to a width without cutting a number (CLI and app).
 
 A table per speed, in the first of these layouts whose natural width fits the pane:
 
@@ -9,7 +9,7 @@ A table per speed, in the first of these layouts whose natural width fits the pa
 
 Rich never shrinks a column here (every column has its exact width and ``no_wrap``), so
 a number is never cut to "…": when even the narrowest layout is wider than the pane, it is
-shown at its natural width and the pane scrolls sideways. At 80 columns a 6R robot (12
+shown at its natural width (the app's pane scrolls sideways; a terminal wraps). At 80 columns a 6R robot (12
 parameters, both methods) fits as Table 4 with the form hidden (``ctrl+f``), transposed
 beside the form.
 
