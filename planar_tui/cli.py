@@ -259,11 +259,8 @@ def root(
 
 def open_app(preset_argument: str | None) -> None:
     """Open the Textual workbench (imported only now)."""
-    try:
-        from planar_tui.app import run_app
-    except ImportError:  # the app arrives with its own issue
-        stdout.print(app.info.help or "")
-        raise typer.Exit() from None
+    from planar_tui.app import run_app
+
     with reported_errors():
         run_app(preset_argument)
 
