@@ -1,3 +1,4 @@
+# ruff: noqa: E402  (the repository root goes on sys.path and numba is set up first)
 """Benchmark of the NOC dynamics kernels (``python benchmarks/bench_dynamics.py``).
 
 Rows (JIT warmed first, best of several repeats, baselines run in the same process):
@@ -26,16 +27,21 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from benchmarks.baselines import numpy_newton_euler
-from kernels._jit import kernel
-from kernels.dynamics import (
+from planar_tui.runtime import prepare_kernels
+
+prepare_kernels()  # before any kernel is imported
+
+from planar_tui.kernels._jit import kernel
+from planar_tui.kernels.dynamics import (
     forward_dynamics,
     forward_dynamics_into,
     forward_dynamics_work,
     inverse_dynamics,
     inverse_dynamics_batch,
 )
-from kernels.rk4 import rk4_integrate, rk4_record_count
+from planar_tui.kernels.rk4 import rk4_integrate, rk4_record_count
+
+from benchmarks.baselines import numpy_newton_euler
 from tests.mujoco_model import chain_model, set_chain_parameters
 
 G = 9.81

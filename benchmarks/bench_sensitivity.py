@@ -36,11 +36,15 @@ import numpy as np
 REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
 
+from planar_tui.runtime import prepare_kernels  # noqa: E402
+
+prepare_kernels()  # before any kernel is imported
+
 from benchmarks.baselines import numpy_newton_euler  # noqa: E402
 from planar_tui.presets import load_preset  # noqa: E402
 from planar_tui.sensitivity import engine  # noqa: E402
 from planar_tui.sensitivity.design_cache import ENV_VAR  # noqa: E402
-from planar_tui.sensitivity.runner import sample_sizes  # noqa: E402
+from planar_tui.sensitivity.job import sample_sizes  # noqa: E402
 
 PRESETS = [REPO / "presets" / "paper-a-table4.toml", REPO / "presets" / "paper-a-table5.toml"]
 

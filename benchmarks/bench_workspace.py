@@ -24,13 +24,17 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
 
-from planar_tui.jobs.workspace import WorkspaceSpec  # noqa: E402
-from planar_tui.progress import Progress  # noqa: E402
-from planar_tui.workspace.geometry import geometric_area  # noqa: E402
-from planar_tui.workspace.model import Robot3RRR  # noqa: E402
-from planar_tui.workspace.runner import BoxBudget, compute_workspace  # noqa: E402
+from planar_tui.runtime import prepare_kernels  # noqa: E402
 
-REFERENCE = REPO.parent / "shared" / "reference" / "paper_workspace_tables.csv"
+prepare_kernels()  # before any kernel is imported
+
+from planar_tui.progress import Progress  # noqa: E402
+from planar_tui.workspace.compute import BoxBudget, compute_workspace  # noqa: E402
+from planar_tui.workspace.geometry import geometric_area  # noqa: E402
+from planar_tui.workspace.job import WorkspaceSpec  # noqa: E402
+from planar_tui.workspace.robot import Robot3RRR  # noqa: E402
+
+REFERENCE = REPO / "tests" / "data" / "reference" / "paper_workspace_tables.csv"
 ROBOT = Robot3RRR()
 CASES = {
     3: (((20, 70), (110, 160), (245, 295)), 0.0, ((0, 120), (0, 120)), 0.1171875),
@@ -161,7 +165,7 @@ def whole_process() -> None:
     print("|---|---|---|")
     floor = (
         "import numba, numpy as np\n"
-        "from kernels.workspace_union import union_area\n"
+        "from planar_tui.kernels.workspace_union import union_area\n"
         "union_area(np.array([[0.0, 1.0, 0.0, 1.0]]))\n"
     )
     subprocess.run([sys.executable, "-c", floor], check=True, cwd=REPO)

@@ -36,7 +36,7 @@ can be called both from Python and from other kernels.
 import numpy as np
 from numba import prange
 
-from kernels._jit import kernel
+from ._jit import kernel
 
 # Samples handled by one parallel task of the batched kernels; each task allocates its
 # scratch once, so the per-sample loop itself never touches the heap.

@@ -18,7 +18,7 @@ All functions are scalar and allocation free, meant to be called from other kern
 
 import math
 
-from kernels._jit import kernel
+from ._jit import kernel
 
 _TWO_PI = 2.0 * math.pi
 

@@ -8,8 +8,8 @@ constant torque vector (zero for free fall). Paper A, section 2-1, integrates wi
 
 import numpy as np
 
-from kernels._jit import kernel
-from kernels.dynamics import _forward_dynamics_rows, energies, forward_dynamics_work
+from ._jit import kernel
+from .dynamics import _forward_dynamics_rows, energies, forward_dynamics_work
 
 
 @kernel

@@ -33,7 +33,7 @@ cancellation). The point estimates keep the two-pass variance of SALib.
 import numpy as np
 from numba import prange
 
-from kernels._jit import kernel
+from ._jit import kernel
 
 _EPS = np.finfo(np.float64).eps
 #: Per-row terms before the 2D input terms: A, B, A², B².

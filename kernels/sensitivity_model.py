@@ -10,8 +10,8 @@ matrix (tested) without materialising it or its column copies.
 import numpy as np
 from numba import prange
 
-from kernels._jit import kernel
-from kernels.dynamics import _CHUNK, _newton_euler, shared_link_kinematics
+from ._jit import kernel
+from .dynamics import _CHUNK, _newton_euler, shared_link_kinematics
 
 
 @kernel(parallel=True)

@@ -33,8 +33,8 @@ import math
 
 import numpy as np
 
-from kernels._jit import kernel
-from kernels.interval import (
+from ._jit import kernel
+from .interval import (
     down,
     iadd,
     iadd_scalar,

@@ -26,8 +26,8 @@ import math
 
 import numpy as np
 
-from kernels._jit import kernel
-from kernels.workspace3rrr import DONE, chunk_halt
+from ._jit import kernel
+from .workspace3rrr import DONE, chunk_halt
 
 OUTSIDE = 0
 BOUNDARY = 1

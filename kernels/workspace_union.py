@@ -10,7 +10,7 @@ round-off of the final float sums (no discretisation), :math:`O(n \\log n)`.
 
 import numpy as np
 
-from kernels._jit import kernel
+from ._jit import kernel
 
 
 @kernel

@@ -11,19 +11,21 @@ from __future__ import annotations
 import gc
 import os
 import sys
-from collections.abc import Callable, Iterator, Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 from rich.console import Console
 
 from planar_tui import __version__
 from planar_tui.errors import Cancelled, ExitCode, PresetError
-from planar_tui.jobs import JOB_KINDS, JobResult
-from planar_tui.paths import bundled_presets, preset_description, resolve_preset
-from planar_tui.presets import Job, Preset, load_preset
+from planar_tui.resources import bundled_presets, preset_description
+
+if TYPE_CHECKING:
+    from planar_tui.jobkind import Job
+    from planar_tui.presets import Preset
 
 app = typer.Typer(
     name="planar-tui",
@@ -71,22 +73,22 @@ def reported_errors() -> Iterator[None]:
 
 def load_presets(arguments: Sequence[str]) -> list[Preset]:
     """Resolve and validate every preset before anything runs."""
+    from planar_tui.presets import load_preset
+    from planar_tui.resources import resolve_preset
+
     return [load_preset(resolve_preset(argument)) for argument in arguments]
 
 
-def numbered_path(base: Path, number: int, count: int) -> Path:
-    """``base`` itself for a single job, ``stem-NUMBER.suffix`` when there are several."""
-    return base if count == 1 else base.with_name(f"{base.stem}-{number}{base.suffix or '.csv'}")
-
-
-def run_one(job: Job, progress_bars) -> JobResult:
-    """Run one job with its own rich progress bar (stage and detail beside it)."""
+@contextmanager
+def progress_bar(bars, job: Job):
+    """One rich progress bar for ``job`` (stage and detail beside it), as a
+    :class:`~planar_tui.progress.Progress` for the runner."""
     from planar_tui.progress import Progress
 
-    task = progress_bars.add_task(job.label, total=1.0, detail="")
+    task = bars.add_task(job.label, total=1.0, detail="")
 
     def update(state) -> None:
-        progress_bars.update(
+        bars.update(
             task,
             completed=state.completed,
             total=state.total,
@@ -94,51 +96,8 @@ def run_one(job: Job, progress_bars) -> JobResult:
             detail=state.detail,
         )
 
-    result = JOB_KINDS[job.kind].run(job, Progress(on_update=update))
-    progress_bars.update(task, completed=1.0, total=1.0, description=f"{job.label} done")
-    return result
-
-
-def output_paths(
-    jobs: Sequence[Job],
-    out_dir: Path,
-    out: Path | None,
-    extra_out: Mapping[str, Path | None] | None,
-) -> list[tuple[Path, dict[str, Path]]]:
-    """Every job's main CSV path and its extra tables' paths, in job order.
-
-    The main CSV goes to ``out_dir / job.output``, or to ``out`` (numbered ``FILE-1.csv``,
-    ``FILE-2.csv`` ... when there are several jobs). Extra tables (e.g. a workspace's
-    ``boxes``) go where the job kind's ``extra_outputs`` says, relative to ``out_dir``, or
-    to the paths in ``extra_out`` by table name (numbered likewise).
-    """
-    plans = []
-    for number, job in enumerate(jobs, start=1):
-        main_path = numbered_path(out, number, len(jobs)) if out else out_dir / job.output
-        extra_paths = {
-            name: out_dir / relative
-            for name, relative in JOB_KINDS[job.kind].extra_outputs(job.spec).items()
-        }
-        for name, override in (extra_out or {}).items():
-            if override is not None:
-                extra_paths[name] = numbered_path(override, number, len(jobs))
-        plans.append((main_path, extra_paths))
-    return plans
-
-
-def check_writable(path: Path) -> None:
-    """Refuse, before any job runs, an output path that cannot be written: a folder, or a
-    path whose nearest existing ancestor is not a writable folder."""
-    if path.is_dir():
-        raise PresetError(path, "(output)", "is a folder", "a CSV file path")
-    ancestor = path.parent
-    while not ancestor.exists() and ancestor != ancestor.parent:
-        ancestor = ancestor.parent
-    if not ancestor.is_dir() or not os.access(ancestor, os.W_OK | os.X_OK):
-        raise PresetError(
-            path, "(output)", f"cannot be created: {ancestor} is not a writable folder",
-            "a path inside a writable folder",
-        )  # fmt: skip
+    yield Progress(on_update=update)
+    bars.update(task, completed=1.0, total=1.0, description=f"{job.label} done")
 
 
 def execute(
@@ -148,25 +107,22 @@ def execute(
     out: Path | None = None,
     extra_out: Mapping[str, Path | None] | None = None,
     show: bool = True,
-) -> list[tuple[Job, JobResult, Path]]:
-    """Run ``jobs`` in order, writing each job's CSV files atomically as soon as it finishes.
+) -> None:
+    """Run ``jobs`` through the batch service, one progress bar each, then print a summary.
 
-    Output paths (see :func:`output_paths`) are checked before the first job runs. A job
-    that raises an unexpected error, or an output that cannot be written, ends the run
-    with one ``error:`` line and exit code 1 (``PLANAR_TUI_DEBUG=1`` shows the traceback).
-    ``show`` prints each kind's terminal view. A summary table follows the last job.
+    Output paths are checked before the first job runs; each job's files are written as
+    soon as it finishes. A job that raises an unexpected error, or an output that cannot be
+    written, ends the run with one ``error:`` line and exit code 1 (``PLANAR_TUI_DEBUG=1``
+    shows the traceback). ``show`` prints each kind's terminal view.
     """
-    import time
-
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
     from rich.table import Table
 
-    from planar_tui.csvio import write_csv_atomic
+    from planar_tui import batch
+    from planar_tui.registry import JOB_KINDS
 
-    plans = output_paths(jobs, out_dir, out, extra_out)
-    for main_path, extra_paths in plans:
-        for path in (main_path, *extra_paths.values()):
-            check_writable(path)
+    plans = batch.plan_outputs(jobs, out_dir, out, extra_out)
+    batch.check_plans(plans)
     columns = (
         TextColumn("{task.description}"),
         BarColumn(bar_width=24),
@@ -174,42 +130,37 @@ def execute(
         TimeElapsedColumn(),
         TextColumn("{task.fields[detail]}"),
     )
+
+    @contextmanager
+    def progress_for(job: Job):
+        with (
+            Progress(*columns, console=stderr, transient=False) as bars,
+            progress_bar(bars, job) as progress,
+        ):
+            yield progress
+
+    def render(job: Job, result) -> None:
+        view = JOB_KINDS[job.kind].render
+        if show and view is not None:
+            view(job, result, stdout)
+
     debug = os.environ.get("PLANAR_TUI_DEBUG", "") not in ("", "0")
-    done: list[tuple[Job, JobResult, Path, float]] = []
-    for job, (path, extra_paths) in zip(jobs, plans, strict=True):
-        started = time.perf_counter()
-        try:
-            with Progress(*columns, console=stderr, transient=False) as bars:
-                result = run_one(job, bars)
-        except (PresetError, Cancelled, KeyboardInterrupt):
-            raise
-        except Exception as error:
-            if debug:
-                raise
-            message = f"error: {job.label} failed: {type(error).__name__}: {error}"
-            raise fail(message, ExitCode.RUN_FAILED) from None
-        seconds = time.perf_counter() - started
-        try:
-            write_csv_atomic(path, result.table)
-            for name, extra_path in extra_paths.items():
-                write_csv_atomic(extra_path, result.extra_tables[name])
-        except OSError as error:
-            where = error.filename or path
-            raise fail(
-                f"error: {where}: cannot write: {error.strerror}", ExitCode.RUN_FAILED
-            ) from None
-        if show:
-            JOB_KINDS[job.kind].show(job, result, stdout)
-        done.append((job, result, path, seconds))
+    try:
+        rows = list(batch.run_plans(plans, progress_for, render))
+    except batch.JobFailed as error:
+        if debug:
+            raise error.__cause__ from None
+        raise fail(f"error: {error}", ExitCode.RUN_FAILED) from None
+    except batch.OutputFailed as error:
+        raise fail(f"error: {error}", ExitCode.RUN_FAILED) from None
 
     summary = Table(title="planar-tui run summary", title_justify="left", show_lines=True)
     summary.add_column("job", no_wrap=True)
     summary.add_column("seconds", justify="right", no_wrap=True)
     summary.add_column("output and result", overflow="fold")
-    for job, result, path, seconds in done:
-        summary.add_row(job.label, f"{seconds:.3f}", f"{path}\n{result.summary}")
+    for row in rows:
+        summary.add_row(row.label, f"{row.seconds:.3f}", f"{row.output}\n{row.summary}")
     stdout.print(summary)
-    return [(job, result, path) for job, result, path, _ in done]
 
 
 def run_kind(
@@ -217,13 +168,15 @@ def run_kind(
     preset_argument: str,
     out: Path | None,
     out_dir: Path,
-    adjust: Callable[[Job], Job] | None = None,
+    options: Mapping[str, object] | None = None,
     *,
     extra_out: Mapping[str, Path | None] | None = None,
     show: bool = True,
 ) -> None:
     """Run every job of one kind in a preset (the ``simulate``/``torques``... commands);
-    ``adjust`` applies command-line overrides to each job before anything runs."""
+    ``options`` are command-line overrides, applied and checked by the job kind."""
+    from planar_tui.batch import apply_overrides
+
     with reported_errors():
         (preset,) = load_presets([preset_argument])
         jobs = preset.jobs_of(kind)
@@ -231,8 +184,8 @@ def run_kind(
             raise PresetError(
                 preset.path, kind, f"no [{kind}] job in this preset", f"a [{kind}] table"
             )
-        if adjust is not None:
-            jobs = tuple(adjust(job) for job in jobs)
+        if options:
+            jobs = apply_overrides(jobs, options)
         execute(jobs, out_dir, out=out, extra_out=extra_out, show=show)
 
 
@@ -304,15 +257,8 @@ def sensitivity(
 ) -> None:
     """Sobol'/eFAST sensitivity of the joint torques of every sensitivity job; one CSV each."""
 
-    def adjust(job: Job) -> Job:
-        import dataclasses
-
-        from planar_tui.jobs.sensitivity import with_overrides
-
-        spec = with_overrides(job.spec, methods=method, samples=samples, seed=seed)
-        return dataclasses.replace(job, spec=spec)
-
-    run_kind("sensitivity", preset, out, out_dir, adjust)
+    options = {"methods": method, "samples": samples, "seed": seed}
+    run_kind("sensitivity", preset, out, out_dir, options)
 
 
 @app.command()
@@ -339,20 +285,9 @@ def workspace(
 ) -> None:
     """3-RRR workspace of every workspace job: summary CSV, optional boxes CSV and map."""
 
-    def adjust(job: Job) -> Job:
-        import dataclasses
-
-        from planar_tui.jobs.workspace import FORMS, with_overrides
-
-        if form is not None and form not in FORMS:
-            raise PresetError("--form", "form", f"is {form!r}", "one of " + ", ".join(FORMS))
-        if precision is not None and not precision > 0:
-            raise PresetError("--precision", "precision", f"is {precision:g}", "a number > 0")
-        return dataclasses.replace(
-            job, spec=with_overrides(job.spec, form=form, precision_cm=precision)
-        )
-
-    run_kind("workspace", preset, out, out_dir, adjust, extra_out={"boxes": boxes}, show=show_map)
+    options = {"form": form, "precision_cm": precision}
+    extra_out = {"boxes": boxes}
+    run_kind("workspace", preset, out, out_dir, options, extra_out=extra_out, show=show_map)
 
 
 @app.command()
@@ -375,6 +310,9 @@ def list_presets() -> None:
 
 def main() -> None:
     """Console-script entry point."""
+    from planar_tui.runtime import configure_process
+
+    configure_process()
     try:
         app(prog_name="planar-tui")
     finally:

@@ -2,43 +2,58 @@
 
 from __future__ import annotations
 
+import csv
 import functools
+import io
 import os
 import tempfile
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, TextIO
 
 
-def format_cell(value: Any) -> str:
-    """One CSV cell: floats in shortest round-trip form (``repr``), so output is exact and
-    byte-identical for identical results; everything else through ``str``."""
-    if isinstance(value, float):
-        return repr(value)
-    if hasattr(value, "dtype") and getattr(value.dtype, "kind", "") == "f":
-        return repr(float(value))
-    return str(value)
+def _cell(value: Any) -> Any:
+    """One CSV cell: NumPy scalars become Python scalars (floats keep their shortest
+    round-trip form, ``str(float) == repr(float)``); ``None`` becomes an empty cell."""
+    if hasattr(value, "item") and not isinstance(value, str):
+        return value.item()
+    return value
 
 
 @dataclass(frozen=True)
 class CsvTable:
-    """A header (column names carrying units, e.g. ``t_s``) and rows of cells."""
+    """A header (column names carrying units, e.g. ``t_s``) and rows of cells.
+
+    Written through the standard library's :mod:`csv` module (RFC 4180 quoting: a cell
+    holding a comma, a quote or a line break is quoted), one ``\\n`` per row.
+    """
 
     header: tuple[str, ...]
-    rows: Sequence[Sequence[Any]] | Any  # or a 2-D float NumPy array (the fast path)
+    rows: Sequence[Sequence[Any]] | Any  # or a 2-D float NumPy array
 
-    def lines(self) -> Iterator[str]:
-        """The table as CSV lines (no quoting needed: cells never hold commas)."""
-        yield ",".join(self.header)
+    def records(self) -> Iterator[list[Any]]:
+        """The header, then every row, as lists of cells ready for ``csv.writer``."""
+        yield list(self.header)
         if getattr(getattr(self.rows, "dtype", None), "kind", "") == "f":
-            # a float array: one C-level %-format per row, ``%r`` = shortest round trip
-            row_format = ",".join(["%r"] * len(self.header))
-            for row in self.rows.tolist():
-                yield row_format % tuple(row)
+            yield from self.rows.tolist()  # Python floats, C-level conversion
             return
         for row in self.rows:
-            yield ",".join(format_cell(cell) for cell in row)
+            yield [_cell(cell) for cell in row]
+
+    def write(self, stream: TextIO) -> None:
+        """Write the table as CSV to a text stream opened with ``newline=""``."""
+        csv.writer(stream, lineterminator="\n").writerows(self.records())
+
+    def lines(self) -> Iterator[str]:
+        """The table as CSV text lines (a quoted cell may span lines: see :meth:`write`)."""
+        buffer = io.StringIO()
+        writer = csv.writer(buffer, lineterminator="\n")
+        for record in self.records():
+            writer.writerow(record)
+            yield buffer.getvalue().removesuffix("\n")
+            buffer.seek(0)
+            buffer.truncate()
 
 
 @functools.cache
@@ -49,9 +64,9 @@ def _new_file_mode() -> int:
     return 0o666 & ~mask
 
 
-def write_lines_atomic(path: Path | str, lines: Iterable[str]) -> Path:
-    """Write ``lines`` (each followed by a newline) so that ``path`` is either the whole
-    new file or untouched.
+def write_atomic(path: Path | str, write: Callable[[TextIO], None]) -> Path:
+    """Write a text file by ``write(stream)`` so that ``path`` is either the whole new file
+    or untouched.
 
     The text goes to a temporary file in the destination folder, which is then renamed
     over ``path`` (``os.replace`` is atomic on POSIX); on any error, including
@@ -62,8 +77,8 @@ def write_lines_atomic(path: Path | str, lines: Iterable[str]) -> Path:
     path.parent.mkdir(parents=True, exist_ok=True)
     handle, temp_name = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     try:
-        with os.fdopen(handle, "w", encoding="utf-8", newline="\n") as stream:
-            stream.writelines(line + "\n" for line in lines)
+        with os.fdopen(handle, "w", encoding="utf-8", newline="") as stream:
+            write(stream)
         mode = path.stat().st_mode & 0o777 if path.is_file() else _new_file_mode()
         os.chmod(temp_name, mode)
         os.replace(temp_name, path)
@@ -74,10 +89,10 @@ def write_lines_atomic(path: Path | str, lines: Iterable[str]) -> Path:
 
 
 def write_text_atomic(path: Path | str, text: str) -> Path:
-    """Write ``text`` atomically (see :func:`write_lines_atomic`); it ends with a newline."""
-    return write_lines_atomic(path, text.rstrip("\n").split("\n"))
+    """Write ``text`` atomically (see :func:`write_atomic`); it ends with one newline."""
+    return write_atomic(path, lambda stream: stream.write(text.rstrip("\n") + "\n"))
 
 
 def write_csv_atomic(path: Path | str, table: CsvTable) -> Path:
-    """Write ``table`` atomically (see :func:`write_lines_atomic`)."""
-    return write_lines_atomic(path, table.lines())
+    """Write ``table`` as CSV atomically (see :func:`write_atomic`)."""
+    return write_atomic(path, table.write)

@@ -1,7 +1,7 @@
 """Writing presets back to TOML (what the app saves, the CLI runs unchanged).
 
-Every robot kind and job kind registered in :mod:`planar_tui.jobs` knows how to turn its
-parsed settings back into a TOML table (``dump``); this module assembles those tables
+Every robot kind and job kind registered in :mod:`planar_tui.registry` turns its parsed
+settings back into a TOML table (``dump``, from the declared keys); this module assembles those tables
 into a preset document and prints it. Scalars are printed by ``tomli_w`` (exact float
 round trip); arrays are kept on one line so a saved preset reads like a hand-written one.
 Round trip: ``load_preset(dump_preset(load_preset(p)))`` has the same robots and jobs.
@@ -13,6 +13,8 @@ from collections.abc import Mapping
 from typing import Any
 
 import tomli_w
+
+from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
 
 
 def format_value(value: Any) -> str:
@@ -56,8 +58,6 @@ def preset_document(preset: Any) -> dict[str, Any]:
     table (``[[sensitivity]]`` + ``[sensitivity.robot]``). A kind with several jobs, or
     written as ``[[kind]]`` in the original document, becomes an array of tables.
     """
-    from planar_tui.jobs import JOB_KINDS, ROBOT_KINDS
-
     document: dict[str, Any] = {
         name: dict(ROBOT_KINDS[name].dump(robot)) for name, robot in preset.robots.items()
     }

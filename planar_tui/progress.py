@@ -7,20 +7,25 @@ A runner works in chunks (RK4 step blocks, sample batches, bisection rounds) and
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from dataclasses import dataclass
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
 
 from planar_tui.errors import Cancelled
 
 
 @dataclass(frozen=True)
 class ProgressState:
-    """A snapshot of a running job: ``completed`` of ``total`` units in ``stage``."""
+    """A snapshot of a running job: ``completed`` of ``total`` units in ``stage``.
+
+    ``detail`` is a short text for people; ``figures`` holds the runner's live numbers
+    as data (e.g. the workspace's ``area_lower_cm2`` / ``area_upper_cm2`` bracket).
+    """
 
     completed: float
     total: float
     stage: str
     detail: str
+    figures: Mapping[str, float] = field(default_factory=dict)
 
 
 class Progress:
@@ -46,6 +51,7 @@ class Progress:
         self.total = 1.0
         self.stage = ""
         self.detail = ""
+        self.figures: dict[str, float] = {}
 
     def start(self, total: float, stage: str = "", detail: str = "") -> None:
         """Begin a stage of ``total`` units (``completed`` returns to 0)."""
@@ -56,11 +62,13 @@ class Progress:
         self._emit()
         self.check()
 
-    def advance(self, amount: float = 1.0, detail: str | None = None) -> None:
-        """Add ``amount`` completed units, report, then stop if asked to."""
+    def advance(self, amount: float = 1.0, detail: str | None = None, **figures: float) -> None:
+        """Add ``amount`` completed units, update the detail text and live ``figures``,
+        report, then stop if asked to."""
         self.completed = min(self.completed + amount, self.total)
         if detail is not None:
             self.detail = detail
+        self.figures.update(figures)
         self._emit()
         self.check()
 
@@ -71,4 +79,7 @@ class Progress:
 
     def _emit(self) -> None:
         if self._on_update is not None:
-            self._on_update(ProgressState(self.completed, self.total, self.stage, self.detail))
+            state = ProgressState(
+                self.completed, self.total, self.stage, self.detail, dict(self.figures)
+            )
+            self._on_update(state)

@@ -7,9 +7,15 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
+from planar_tui.runtime import prepare_kernels
+
 REPO = Path(__file__).resolve().parent.parent
 PRESETS = REPO / "presets"
-REFERENCE = REPO.parent / "shared" / "reference"
+REFERENCE = REPO / "tests" / "data" / "reference"
+
+# Like every front end, the suite sets numba up before any kernel is imported (the test
+# modules import kernels at module level): compiled kernels go to planar-tui's cache.
+prepare_kernels()
 
 
 @pytest.fixture(autouse=True)

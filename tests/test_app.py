@@ -216,9 +216,9 @@ async def test_save_load_and_the_cli_gives_the_same_csv(tmp_path, cli):
 async def test_a_failing_job_opens_a_dialog_not_a_traceback(tmp_path, monkeypatch):
     import dataclasses
 
-    from planar_tui.jobs import JOB_KINDS
+    from planar_tui.registry import JOB_KINDS
 
-    broken = dataclasses.replace(JOB_KINDS["simulate"], runner="tests.test_app:exploding_runner")
+    broken = dataclasses.replace(JOB_KINDS["simulate"], run=exploding_runner)
     monkeypatch.setitem(JOB_KINDS, "simulate", broken)
     app = make_app(tmp_path)
     async with app.run_test(size=SIZE) as pilot:
@@ -289,7 +289,7 @@ async def test_workspace_form_wraps_and_the_run_shows_map_area_and_boxes(tmp_pat
         assert result.summary[:24] in screen  # the runner's summary line (area bracket)
         assert "█" in screen and "▒" in screen  # inside and boundary cells of the map
         assert "x, y in cm" in screen and "┤" in screen  # legend, labelled y axis
-        outcome = result.data
+        outcome = result.outcome
         # the bracket holds the exact area of paper B's Table 3 (106.750 cm², issue 4)
         assert outcome.area_inside_cm2 <= 106.75 <= outcome.area_kept_cm2
         await pilot.press("ctrl+e")

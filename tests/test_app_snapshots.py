@@ -12,7 +12,7 @@ import pytest
 
 from planar_tui.app.app import WorkbenchApp
 from planar_tui.app.workbench import Workbench
-from planar_tui.jobs import JobResult
+from planar_tui.sensitivity.job import SensitivityResult
 from planar_tui.sensitivity.results import csv_table
 from tests.test_app_layout import load_6r
 
@@ -32,10 +32,13 @@ def show_6r_result(app: WorkbenchApp) -> None:
     analyses = load_6r()
     pane = app.query_one("#pane-sensitivity")
     job = pane.current_job()
-    result = JobResult(
+    result = SensitivityResult(
         table=csv_table("6R", analyses),
         summary="6R-PSM, paper A Table 1 singular, 1 speed(s), sobol N=1024, efast N=1194",
-        data={"analyses": analyses},
+        robot_label="6R",
+        posture=None,
+        analyses=analyses,
+        samples={"sobol": 1024, "efast": 1194},
     )
     pane.show_result(job, result)
 

@@ -93,12 +93,12 @@ def test_run_is_deterministic_byte_for_byte(tmp_path, cli):
 
 
 def test_interrupt_mid_run_exits_130_and_writes_nothing(tmp_path, cli, monkeypatch):
-    import planar_tui.runners.simulate as runner
+    import planar_tui.dynamics.simulate as runner
     from planar_tui.progress import Progress
 
     calls = []
 
-    def interrupting_advance(self, amount=1.0, detail=None):
+    def interrupting_advance(self, amount=1.0, detail=None, **figures):
         calls.append(amount)
         if len(calls) == 3:
             raise KeyboardInterrupt
@@ -183,7 +183,7 @@ def test_a_failing_job_is_one_line_exit_1_and_no_file(tmp_path, cli, monkeypatch
         raise FloatingPointError("the kernel diverged")
 
     # the runner imports the kernel when it runs, so patching the kernel module reaches it
-    monkeypatch.setattr("kernels.dynamics.inverse_dynamics_batch_states", broken)
+    monkeypatch.setattr("planar_tui.kernels.dynamics.inverse_dynamics_batch_states", broken)
     result = cli("torques", TABLE1, "--out-dir", tmp_path)
     assert result.exit_code == ExitCode.RUN_FAILED
     assert result.stderr.strip().splitlines()[-1] == (

@@ -11,8 +11,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
-from kernels.dynamics import (
+from planar_tui.kernels.dynamics import (
     energies,
     forward_dynamics,
     gravity_vector,
@@ -24,7 +23,8 @@ from kernels.dynamics import (
     twist_shaping_matrix_rate,
     velocity_product,
 )
-from kernels.rk4 import rk4_integrate, rk4_record_count
+from planar_tui.kernels.rk4 import rk4_integrate, rk4_record_count
+
 from tests.conftest import REFERENCE
 
 G = 9.81

@@ -8,9 +8,14 @@ no damping, armature or contacts both trajectories agree to round-off.
 import mujoco
 import numpy as np
 import pytest
+from planar_tui.kernels.dynamics import (
+    gravity_vector,
+    inverse_dynamics,
+    mass_matrix,
+    velocity_product,
+)
+from planar_tui.kernels.rk4 import rk4_integrate, rk4_record_count
 
-from kernels.dynamics import gravity_vector, inverse_dynamics, mass_matrix, velocity_product
-from kernels.rk4 import rk4_integrate, rk4_record_count
 from tests.mujoco_model import chain_model, mujoco_inverse, set_chain_parameters
 from tests.test_dynamics_kernels import G, random_robot, random_state, table1_robot
 

@@ -51,7 +51,9 @@ def test_batch_run_never_imports_textual(tmp_path):
 def test_loading_a_cached_kernel_skips_numbas_scipy_blas_probe_but_blas_still_works():
     code = (
         "import sys, numpy as np\n"
-        "from kernels.dynamics import inverse_dynamics\n"
+        "from planar_tui.runtime import prepare_kernels\n"
+        "prepare_kernels()\n"
+        "from planar_tui.kernels.dynamics import inverse_dynamics\n"
         "x = np.ones(3)\n"
         "inverse_dynamics(x, x, x, 9.81, x, x, x)\n"
         "before = 'scipy.linalg' in sys.modules\n"
@@ -64,3 +66,35 @@ def test_loading_a_cached_kernel_skips_numbas_scipy_blas_probe_but_blas_still_wo
         [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True
     )
     assert out.stdout.split() == ["False", "[2.0,", "2.0]"]
+
+
+def test_importing_the_package_and_its_kernels_changes_nothing_in_the_process():
+    """Process set-up happens where a front end starts (``planar_tui.runtime``), never as
+    a side effect of an import: no environment variable, no numba setting, no BLAS patch."""
+    code = (
+        "import os, sys, json\n"
+        "from numba import config\n"
+        "before = (dict(os.environ), config.CACHE_DIR)\n"
+        "import planar_tui.registry, planar_tui.presets, planar_tui.batch\n"
+        "import planar_tui.kernels.dynamics, planar_tui.kernels.workspace3rrr\n"
+        "after = (dict(os.environ), config.CACHE_DIR)\n"
+        "print(json.dumps([before == after, 'numba.np.arraymath' in sys.modules]))\n"
+    )
+    env = {k: v for k, v in os.environ.items() if k != "OMP_WAIT_POLICY"}
+    env["PYTHONPATH"] = str(REPO)
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True
+    )
+    assert json.loads(out.stdout) == [True, False]
+
+
+def test_prepare_kernels_refuses_to_run_after_a_kernel_was_imported():
+    code = (
+        "import planar_tui.kernels.rk4\n"
+        "from planar_tui.runtime import prepare_kernels\n"
+        "prepare_kernels()\n"
+    )
+    env = dict(os.environ, PYTHONPATH=str(REPO))
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env)
+    assert out.returncode == 1
+    assert "prepare_kernels() must run before importing planar_tui.kernels." in out.stderr

@@ -9,8 +9,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
-from kernels import interval as iv
+from planar_tui.kernels import interval as iv
 
 mpmath.iv.prec = 200  # oracle far more precise than float64
 

@@ -7,12 +7,12 @@ import shutil
 
 from numba import config
 
-from kernels._jit import KERNELS_FOLDER, kernel_cache_folder, kernel_source_digest
+from planar_tui.runtime import kernel_cache_folder, kernel_source_digest, kernels_folder
 
 
 def test_the_digest_changes_with_any_kernel_module(tmp_path):
     copy = tmp_path / "kernels"
-    shutil.copytree(KERNELS_FOLDER, copy, ignore=shutil.ignore_patterns("__pycache__"))
+    shutil.copytree(kernels_folder(), copy, ignore=shutil.ignore_patterns("__pycache__"))
     original = kernel_source_digest(copy)
     assert kernel_source_digest(copy) == original == kernel_source_digest()
     dynamics = copy / "dynamics.py"

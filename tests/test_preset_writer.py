@@ -8,9 +8,9 @@ from pathlib import Path
 
 import pytest
 
-from planar_tui.paths import bundled_presets
 from planar_tui.preset_writer import dump_preset, format_value
 from planar_tui.presets import load_preset, parse_preset
+from planar_tui.resources import bundled_presets
 
 DATA = Path(__file__).parent / "data" / "app"
 PRESETS = [*bundled_presets(), *sorted(DATA.glob("*.toml"))]

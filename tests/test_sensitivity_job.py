@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 from rich.console import Console
 
+from planar_tui.batch import run_job as run_batch_job
 from planar_tui.errors import Cancelled, PresetError
-from planar_tui.jobs import JOB_KINDS
 from planar_tui.presets import load_preset
 from planar_tui.progress import Progress
-from planar_tui.sensitivity.render import sensitivity_bars
+from planar_tui.sensitivity.bars import sensitivity_bars
 from planar_tui.sensitivity.tables import VIEWS, fit_tables
 
 ROBOT_3R = """
@@ -32,7 +32,7 @@ def write_preset(tmp_path: Path, body: str, robot: str = ROBOT_3R) -> Path:
 
 def run_job(path: Path, progress: Progress | None = None):
     (job,) = load_preset(path).jobs_of("sensitivity")
-    return job, JOB_KINDS["sensitivity"].run(job, progress)
+    return job, run_batch_job(job, progress)
 
 
 def rows_of(path: Path) -> list[dict]:
@@ -67,7 +67,7 @@ def test_sobol_mass_block_is_upper_triangular(tmp_path, posture):
     posture also on l_j (j < i)."""
     body = f'posture = {posture}\nmethods = ["sobol"]\nsamples = 128\nspeed_rad_s = 1.3\n'
     _, result = run_job(write_preset(tmp_path, body))
-    (analysis,) = result.data["analyses"]
+    (analysis,) = result.analyses
     s1, _, st, _ = analysis.indices
     for i in range(3):
         for j in range(i):
@@ -92,7 +92,7 @@ def test_speed_sweep_rows_and_bars(tmp_path):
     )
     _, result = run_job(write_preset(tmp_path, body))
     assert {row[2] for row in result.table.rows} == {0.8, 1.0, 1.2}
-    analyses = result.data["analyses"]
+    analyses = result.analyses
     bars_console = Console(width=100, record=True, color_system=None)
     bars_console.print(sensitivity_bars(analyses, "sobol", width=40))
     text = bars_console.export_text()
@@ -123,7 +123,7 @@ def test_cancel_raises_between_chunks(tmp_path):
 
 
 def test_ctrl_c_during_analysis_leaves_the_old_csv_untouched(tmp_path, cli, monkeypatch):
-    import planar_tui.sensitivity.runner as runner
+    import planar_tui.sensitivity.engine as runner
 
     def interrupted(*args):
         raise KeyboardInterrupt

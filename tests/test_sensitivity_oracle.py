@@ -28,7 +28,7 @@ absolute bound is required, as docs/sensitivity.md explains.
 import numpy as np
 import pytest
 
-from planar_tui.model import SerialRobot
+from planar_tui.dynamics.robot import SerialRobot
 from planar_tui.sensitivity.engine import analyse, build_problem, evaluate, unit_design
 
 ROBOTS = {

@@ -6,21 +6,21 @@ paper: where the paper is inconsistent the test says so and checks the inconsist
 
 from pathlib import Path
 
-from planar_tui.jobs import JOB_KINDS
+from planar_tui.batch import run_job
 from planar_tui.presets import load_preset
 from planar_tui.sensitivity.paper import compare, read_paper_cells, report
 
 ROOT = Path(__file__).resolve().parent.parent
-REFERENCE = ROOT.parent / "shared" / "reference" / "paper_sensitivity_tables.csv"
+REFERENCE = ROOT / "tests" / "data" / "reference" / "paper_sensitivity_tables.csv"
 
 
 def run_tables():
     results = []
     for table in ("4", "5"):
         for job in load_preset(ROOT / "presets" / f"paper-a-table{table}.toml").jobs:
-            result = JOB_KINDS[job.kind].run(job)
+            result = run_job(job)
             robot = f"{job.robot.n_links}R"
-            results.append((table, robot, result.data["analyses"]))
+            results.append((table, robot, result.analyses))
     return results
 
 

@@ -7,13 +7,13 @@ import math
 
 import numpy as np
 import pytest
+from planar_tui.kernels.workspace_arc import limits_array, points_feasible
 
-from kernels.workspace_arc import limits_array, points_feasible
-from planar_tui.jobs.workspace import WorkspaceSpec
 from planar_tui.progress import Progress
+from planar_tui.workspace.compute import BoxBudget, compute_workspace, kernel_parameters
 from planar_tui.workspace.geometry import geometric_area, workspace_polygon
-from planar_tui.workspace.model import Robot3RRR
-from planar_tui.workspace.runner import BoxBudget, compute_workspace, kernel_parameters
+from planar_tui.workspace.job import WorkspaceSpec
+from planar_tui.workspace.robot import Robot3RRR
 from tests.conftest import REFERENCE
 
 ROBOT = Robot3RRR()

@@ -9,11 +9,11 @@ import time
 import numpy as np
 import pytest
 
+from planar_tui.batch import run_job
 from planar_tui.errors import Cancelled
-from planar_tui.jobs import JOB_KINDS
 from planar_tui.presets import load_preset
 from planar_tui.progress import Progress
-from planar_tui.workspace.render import BOUNDARY_GLYPH, INSIDE_GLYPH, render_map
+from planar_tui.workspace.map import BOUNDARY_GLYPH, INSIDE_GLYPH, render_map
 from tests.conftest import PRESETS
 
 ROBOT = """
@@ -119,7 +119,7 @@ def test_cancel_is_honoured_quickly_and_raises(tmp_path):
     preset = load_preset(write_preset(tmp_path, precision=0.001))
     (job,) = preset.jobs
     job = dataclasses.replace(job, spec=dataclasses.replace(job.spec, geometric_reference=False))
-    JOB_KINDS["workspace"].run(
+    run_job(
         dataclasses.replace(job, spec=dataclasses.replace(job.spec, precision_cm=0.5))
     )  # compile first
     updates = []
@@ -129,7 +129,7 @@ def test_cancel_is_honoured_quickly_and_raises(tmp_path):
         return len(updates) >= 2
 
     with pytest.raises(Cancelled):
-        JOB_KINDS["workspace"].run(job, Progress(on_update=updates.append, should_stop=stop))
+        run_job(job, Progress(on_update=updates.append, should_stop=stop))
     assert time.perf_counter() - started < 2.0
     assert any("boxes" in u.detail for u in updates)
 
@@ -164,7 +164,7 @@ def test_bundled_paper_b_presets_load(table):
 
 
 def test_map_coverage_matches_a_brute_force_overlap():
-    from planar_tui.workspace.render import _coverage
+    from planar_tui.workspace.map import _coverage
 
     rng = np.random.default_rng(3)
     x, y, w = rng.uniform(-1, 10, 300), rng.uniform(-1, 5, 300), rng.uniform(0.01, 1.5, 300)
@@ -204,20 +204,22 @@ def test_every_form_brackets_the_geometric_area(cli, tmp_path, form, extra):
 
 
 def test_progress_reports_boxes_and_a_bracket_containing_the_exact_area(tmp_path):
-    import re
-
     preset = load_preset(write_preset(tmp_path, form="arc-distance", precision=0.125,
                                       extra="refine_precision_cm = 0.0005\n"))  # fmt: skip
     (job,) = preset.jobs
     updates = []
-    result = JOB_KINDS["workspace"].run(job, Progress(on_update=updates.append))
-    exact = result.data.geometric
+    result = run_job(job, Progress(on_update=updates.append))
+    exact = result.outcome.geometric
     brackets = [
-        tuple(float(v) for v in re.search(r"\[([^,]+), ([^\]]+)\] cm2", u.detail).groups())
+        (u.figures["area_lower_cm2"], u.figures["area_upper_cm2"])
         for u in updates
-        if "cm2" in u.detail
+        if "area_lower_cm2" in u.figures
     ]
     assert len(brackets) >= 2 and all("boxes" in u.detail for u in updates if u.detail)
+    # the text beside the bar shows the same bracket as the figures carry
+    last = updates[-1]
+    lower, upper = last.figures["area_lower_cm2"], last.figures["area_upper_cm2"]
+    assert f"area in [{lower:.5g}, {upper:.5g}] cm2" in last.detail
     for lower, upper in brackets:
         assert lower <= exact.outer_cm2 * (1 + 1e-4) and exact.inner_cm2 <= upper * (1 + 1e-4)
     assert brackets[-1][1] - brackets[-1][0] < brackets[0][1] - brackets[0][0]

@@ -9,9 +9,8 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
-from kernels import workspace3rrr as k5
-from kernels.workspace_arc import (
+from planar_tui.kernels import workspace3rrr as k5
+from planar_tui.kernels.workspace_arc import (
     BOUNDARY,
     INSIDE,
     OUTSIDE,
@@ -19,8 +18,9 @@ from kernels.workspace_arc import (
     classify_box,
     limits_array,
 )
-from kernels.workspace_union import union_area
-from planar_tui.workspace.model import Robot3RRR
+from planar_tui.kernels.workspace_union import union_area
+
+from planar_tui.workspace.robot import Robot3RRR
 
 PAPER = Robot3RRR()  # a = 120, b = 40, l1 = l2 = 30 cm (paper B, Table 2)
 FORMS = (k5.NATURAL, k5.MEAN_VALUE, k5.SLOPE, k5.NATURAL_EXPANDED)
@@ -200,7 +200,7 @@ def test_union_area_of_duplicates_and_nested_boxes():
 
 
 def test_unique_rows_equals_numpy_unique():
-    from planar_tui.workspace.runner import unique_rows
+    from planar_tui.workspace.compute import unique_rows
 
     rng = np.random.default_rng(5)
     boxes = rng.integers(0, 3, (500, 4)).astype(np.float64) * 0.5

@@ -170,7 +170,7 @@ class WorkbenchApp(App):
     @work(thread=True, exclusive=True, group="job", exit_on_error=False)
     def _run_worker(self, pane: JobPane, job: Any) -> None:
         """Run ``job`` with the CLI's runner; report the outcome as a :class:`JobFinished`."""
-        from planar_tui.jobs import JOB_KINDS
+        from planar_tui.registry import JOB_KINDS
 
         worker = get_current_worker()
         started = time.perf_counter()

@@ -13,8 +13,8 @@ import copy
 from pathlib import Path
 from typing import Any
 
-from planar_tui.paths import preset_description, resolve_preset
 from planar_tui.presets import Job, Preset, parse_preset, read_toml
+from planar_tui.resources import preset_description, resolve_preset
 
 #: The preset opened by ``planar-tui`` without an argument.
 DEFAULT_PRESET = "paper-a-table1"
@@ -122,7 +122,7 @@ class Workbench:
 
     def set_table(self, kind: str, index: int, table: dict[str, Any]) -> None:
         """Put ``table`` into the document (adding the kind, and its robot if missing)."""
-        from planar_tui.jobs import JOB_KINDS
+        from planar_tui.registry import JOB_KINDS
 
         value = self.document.get(kind)
         if value is None:
@@ -143,7 +143,7 @@ class Workbench:
 
     @staticmethod
     def robot_kinds() -> tuple[str, ...]:
-        from planar_tui.jobs import ROBOT_KINDS
+        from planar_tui.registry import ROBOT_KINDS
 
         return tuple(ROBOT_KINDS)
 

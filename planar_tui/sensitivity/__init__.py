@@ -11,7 +11,8 @@ Modules: :mod:`.postures` (singular, isotropic, explicit), :mod:`.optimise` (the
 minimisers of the isotropic search), :mod:`.estimators` (indices), :mod:`.engine` (sample,
 evaluate, analyse), :mod:`.design_cache` (SALib's designs on disk), :mod:`.results` (CSV
 rows, percent),
-:mod:`.render` (Table-4-shaped table, Fig 5/6 bars), :mod:`.runner` (the job),
+:mod:`.tables` (Table-4-shaped tables), :mod:`.bars` (Fig 5/6 bars), :mod:`.job` (the
+``[sensitivity]`` job kind: settings, runner, result, terminal view),
 :mod:`.paper` (comparison with paper A's Tables 4-5). Nothing here imports numba, SALib or
 scipy at module level.
 """

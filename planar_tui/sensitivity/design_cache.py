@@ -7,9 +7,8 @@ SALib (pandas, ``scipy.stats``: ~1.3 s) and re-running its Python-loop sampler. 
 the sampler; results never depend on the cache (a cache hit is byte-identical to a fresh
 draw, see ``tests/test_sensitivity_design_cache.py``).
 
-Folder: ``$PLANAR_TUI_CACHE_DIR`` if set (an empty value disables the persistent cache),
-else ``$XDG_CACHE_HOME/planar-tui`` or ``~/.cache/planar-tui`` (``%LOCALAPPDATA%`` on
-Windows, ``~/Library/Caches`` on macOS). A file is named by its key and the CRC-32 of its
+Folder: :func:`planar_tui.runtime.design_cache_folder` (``$PLANAR_TUI_CACHE_DIR`` if set,
+an empty value disabling the persistent cache; else planar-tui's user cache folder). A file is named by its key and the CRC-32 of its
 data, ``KEY.CRC.npy``; an entry that cannot be read, has the wrong shape or dtype, or fails
 its CRC is deleted and drawn again. Writes go to a temporary file renamed into place, so
 concurrent runs and interrupted writes never leave a partial entry; an unwritable folder
@@ -20,7 +19,6 @@ from __future__ import annotations
 
 import contextlib
 import os
-import sys
 import tempfile
 import zlib
 from collections.abc import Callable
@@ -28,23 +26,16 @@ from pathlib import Path
 
 import numpy as np
 
-ENV_VAR = "PLANAR_TUI_CACHE_DIR"
+from planar_tui.runtime import DESIGN_CACHE_ENV_VAR, design_cache_folder
+
+ENV_VAR = DESIGN_CACHE_ENV_VAR
 #: Bump when the file layout or key changes.
 FORMAT = 1
 
 
 def cache_dir() -> Path | None:
     """The cache folder (not created here), or None when disabled (``PLANAR_TUI_CACHE_DIR=""``)."""
-    configured = os.environ.get(ENV_VAR)
-    if configured is not None:
-        return Path(configured).expanduser() if configured.strip() else None
-    if sys.platform == "win32":
-        base = Path(os.environ.get("LOCALAPPDATA") or Path.home() / "AppData" / "Local")
-        return base / "planar-tui" / "Cache"
-    if sys.platform == "darwin":
-        return Path.home() / "Library" / "Caches" / "planar-tui"
-    xdg = os.environ.get("XDG_CACHE_HOME")
-    return (Path(xdg) if xdg else Path.home() / ".cache") / "planar-tui"
+    return design_cache_folder()
 
 
 _VERSIONS: str | None = None

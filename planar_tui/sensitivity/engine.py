@@ -97,7 +97,7 @@ def scaled_design(problem: Problem, method: str, samples: int, seed: int) -> np.
 def evaluate(problem: Problem, unit: np.ndarray, robot, theta_rad, omega_rad_s, alpha_rad_s2):
     """Joint torques (S, n) of every row of the unit design ``unit`` scaled to ``problem``:
     one batched kernel call, bit-identical to the torques of :func:`scaled_design`."""
-    from kernels.sensitivity_model import design_torques
+    from planar_tui.kernels.sensitivity_model import design_torques
 
     return design_torques(
         unit,

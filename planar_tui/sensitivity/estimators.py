@@ -50,7 +50,7 @@ def sobol_bootstrap_rows(n_base: int, seed: int, num_resamples: int = NUM_RESAMP
 def sobol_bootstrap_counts(n_base: int, seed: int, num_resamples: int = NUM_RESAMPLES):
     """(R, N) draw counts of :func:`sobol_bootstrap_rows` (read-only, cached per process:
     every job with the same N and seed shares them)."""
-    from kernels.sensitivity_estimators import resample_counts
+    from planar_tui.kernels.sensitivity_estimators import resample_counts
 
     counts = resample_counts(sobol_bootstrap_rows(n_base, seed, num_resamples), n_base)
     counts.setflags(write=False)
@@ -62,7 +62,7 @@ def sobol_indices(
 ):
     """S1, ST and bootstrap half-widths of every column of ``outputs`` (Saltelli design,
     no second order, N (D + 2) rows). ``seed`` > 0, as SALib's ``analyze`` treats 0 as none."""
-    from kernels.sensitivity_estimators import sobol_first_total
+    from planar_tui.kernels.sensitivity_estimators import sobol_first_total
 
     outputs = np.ascontiguousarray(outputs, dtype=np.float64)
     n_base = outputs.shape[0] // (num_vars + 2)

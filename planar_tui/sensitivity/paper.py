@@ -1,7 +1,7 @@
 """Our sensitivity percentages next to every printed cell of paper A's Tables 4-5.
 
 :func:`compare` takes the analyses of the bundled ``paper-a-table4``/``paper-a-table5``
-jobs and the paper's cells (``shared/reference/paper_sensitivity_tables.csv``: table,
+jobs and the paper's cells (``tests/data/reference/paper_sensitivity_tables.csv``: table,
 robot, torque, configuration, parameter, sobol_pct, efast_pct) and returns one row per
 printed (table, robot, posture, torque, method): our percentages, the paper's, and the
 largest absolute difference in percentage points. :func:`report` formats it as text.

@@ -184,7 +184,7 @@ def fit_tables(analyses: Sequence, view: View, width: int, percent_of: str = "ST
     Parameters
     ----------
     analyses
-        ``result.data["analyses"]`` of one sensitivity job (one posture).
+        ``result.analyses`` of one sensitivity job (one posture).
     view
         One of :data:`VIEWS`.
     width

@@ -15,7 +15,7 @@ from planar_tui.progress import ProgressState
 
 if TYPE_CHECKING:
     from planar_tui.app.app import WorkbenchApp
-    from planar_tui.jobs import JobResult
+    from planar_tui.jobkind import JobResult
     from planar_tui.presets import Job
 
 
@@ -40,7 +40,7 @@ class RobotPane(VerticalScroll):
         return self.app  # type: ignore[return-value]
 
     def compose(self) -> ComposeResult:
-        from planar_tui.jobs import ROBOT_KINDS
+        from planar_tui.registry import ROBOT_KINDS
 
         robot = self.bench.table("robot")
         with Horizontal(classes="robot-top"):
@@ -131,12 +131,12 @@ class JobPane(Vertical):
         return self.workbench_app.workbench
 
     def available(self) -> bool:
-        from planar_tui.jobs import JOB_KINDS
+        from planar_tui.registry import JOB_KINDS
 
         return self.kind in JOB_KINDS
 
     def form_keys(self) -> tuple[str, ...]:
-        from planar_tui.jobs import JOB_KINDS
+        from planar_tui.registry import JOB_KINDS
 
         kind = JOB_KINDS[self.kind]
         keys = (*kind.keys, "output")

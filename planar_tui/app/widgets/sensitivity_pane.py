@@ -13,7 +13,7 @@ from textual.containers import ScrollableContainer
 from textual.widgets import Static
 
 from planar_tui.app.widgets.panes import JobPane
-from planar_tui.jobs import JobResult
+from planar_tui.jobkind import JobResult
 from planar_tui.presets import Job
 from planar_tui.sensitivity.tables import VIEWS, fit_tables
 
@@ -44,9 +44,9 @@ class SensitivityPane(JobPane):
         return max(20, self.query_one("#sensitivity-results").scrollable_content_region.width)
 
     def render_result(self, job: Job, result: JobResult) -> None:
-        from planar_tui.sensitivity.render import sensitivity_bars
+        from planar_tui.sensitivity.bars import sensitivity_bars
 
-        analyses = result.data["analyses"]
+        analyses = result.analyses
         width = self.available_width()
         self.query_one("#result-text", Static).update(Text(result.summary))
         fitted = fit_tables(analyses, VIEWS[self.view], width, job.spec.percent_of)

@@ -10,7 +10,7 @@ from textual.widgets import Static
 from textual_plotext import PlotextPlot
 
 from planar_tui.app.widgets.panes import JobPane
-from planar_tui.jobs import JobResult
+from planar_tui.jobkind import JobResult
 from planar_tui.presets import Job
 
 #: One marker per joint, so curves are told apart without colour.
@@ -44,14 +44,13 @@ class SimulatePane(JobPane):
                 self.query_one(plot_id, PlotextPlot).plt.title(title)
 
     def render_result(self, job: Job, result: JobResult) -> None:
-        data = result.data
-        rows = thin(len(data["t_s"]))
-        t_s = data["t_s"][rows].tolist()
+        rows = thin(len(result.t_s))
+        t_s = result.t_s[rows].tolist()
         angles = self.query_one("#angles-plot", PlotextPlot)
         plt = angles.plt
         plt.clear_data()
         plt.clear_figure()
-        theta_deg = np.degrees(data["theta_rad"][rows])
+        theta_deg = np.degrees(result.theta_rad[rows])
         for joint in range(theta_deg.shape[1]):
             plt.plot(
                 t_s, theta_deg[:, joint].tolist(), marker=MARKERS[joint % len(MARKERS)],
@@ -63,8 +62,8 @@ class SimulatePane(JobPane):
         plt = energy.plt
         plt.clear_data()
         plt.clear_figure()
-        kinetic = data["kinetic_J"][rows]
-        potential = data["potential_J"][rows]
+        kinetic = result.kinetic_J[rows]
+        potential = result.potential_J[rows]
         plt.plot(t_s, (kinetic + potential).tolist(), marker="E", label="E total")
         plt.plot(t_s, kinetic.tolist(), marker="k", label="kinetic")
         plt.plot(t_s, potential.tolist(), marker="p", label="potential")

@@ -9,11 +9,11 @@ from textual.app import ComposeResult
 from textual.widgets import Static
 
 from planar_tui.app.widgets.panes import JobPane
-from planar_tui.jobs import JobResult
+from planar_tui.jobkind import JobResult
 from planar_tui.presets import Job
 from planar_tui.progress import ProgressState
 
-#: Lines of :func:`planar_tui.workspace.render.render_map` below the plot rows.
+#: Lines of :func:`planar_tui.workspace.map.render_map` below the plot rows.
 MAP_FOOTER_LINES = 3
 
 
@@ -25,7 +25,7 @@ def fitted_map(boxes, status, width: int, height: int) -> list[str]:
     narrowed until it fits. A y tick ``┤`` is kept only on rows that carry a label (the
     others show the plain axis ``│``), so each label points at its row.
     """
-    from planar_tui.workspace.render import render_map
+    from planar_tui.workspace.map import render_map
 
     lines = render_map(boxes, status, width=width)
     while len(lines) > height and width > 20:
@@ -43,7 +43,7 @@ def fitted_map(boxes, status, width: int, height: int) -> list[str]:
 
 def map_legend() -> str:
     """The map's legend (76 cells: one line when the form is hidden)."""
-    from planar_tui.workspace.render import BOUNDARY_GLYPH, INSIDE_GLYPH
+    from planar_tui.workspace.map import BOUNDARY_GLYPH, INSIDE_GLYPH
 
     return (
         f"x, y in cm  {INSIDE_GLYPH} inside (proved)  "
@@ -67,7 +67,7 @@ class WorkspacePane(JobPane):
 
     def render_result(self, job: Job, result: JobResult) -> None:
         self.query_one("#result-text", Static).update(result.summary)
-        outcome = result.data
+        outcome = result.outcome
         area = self.query_one("#workspace-map", Static)
         legend = self.query_one("#workspace-legend", Static)
         if outcome is None or len(outcome.boxes) == 0:

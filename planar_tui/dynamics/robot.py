@@ -2,11 +2,10 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
-from planar_tui.presets import TableReader
-
-SERIAL_ROBOT_KEYS = ("name", "gravity_m_s2", "lengths_m", "masses_kg", "inertias_kgm2")
+from planar_tui.jobkind import RobotKind
+from planar_tui.schema import number, numbers, setting, string
 
 
 def slender_rod_inertia_kgm2(mass_kg: float, length_m: float) -> float:
@@ -16,18 +15,37 @@ def slender_rod_inertia_kgm2(mass_kg: float, length_m: float) -> float:
 
 @dataclass(frozen=True)
 class SerialRobot:
-    """An n-link planar serial revolute robot (nR-PSM).
+    """An n-link planar serial revolute robot (nR-PSM), the ``[robot]`` table.
 
     Link ``i`` has length ``lengths_m[i]``, mass ``masses_kg[i]`` and moment of inertia
     ``inertias_kgm2[i]`` about its centre of mass (at mid-link), perpendicular to the plane.
     Gravity ``gravity_m_s2`` points along −y (0 for a horizontal plane).
     """
 
-    lengths_m: tuple[float, ...]
-    masses_kg: tuple[float, ...]
-    inertias_kgm2: tuple[float, ...] = field(default=())
-    gravity_m_s2: float = 9.81
-    name: str = ""
+    lengths_m: tuple[float, ...] = setting(
+        numbers(positive=True),
+        type_doc="n positive numbers",
+        doc="link lengths (n ≥ 1 sets the number of links)",
+    )
+    masses_kg: tuple[float, ...] = setting(
+        numbers(positive=True, length="lengths_m"),
+        type_doc="n positive numbers",
+        doc="link masses",
+    )
+    inertias_kgm2: tuple[float, ...] = setting(
+        numbers(positive=True, length="lengths_m"),
+        default=(),
+        default_doc="`m l²/12`",
+        type_doc="n positive numbers",
+        doc="moments of inertia about each link's centre of mass",
+    )
+    gravity_m_s2: float = setting(
+        number(minimum=0.0),
+        default=9.81,
+        type_doc="number ≥ 0",
+        doc="gravity, pointing along −y",
+    )
+    name: str = setting(string(), default="", type_doc="string", doc="a label")
 
     def __post_init__(self):
         if not self.inertias_kgm2:
@@ -41,6 +59,11 @@ class SerialRobot:
         """Number of links (and joints) n."""
         return len(self.lengths_m)
 
+    @property
+    def label(self) -> str:
+        """The robot's name, or ``nR`` when it has none."""
+        return self.name or f"{self.n_links}R"
+
     def arrays(self):
         """``(lengths_m, masses_kg, inertias_kgm2)`` as contiguous float64 NumPy arrays."""
         import numpy as np
@@ -51,28 +74,5 @@ class SerialRobot:
             np.array(self.inertias_kgm2, dtype=np.float64),
         )
 
-    def to_table(self) -> dict:
-        """The robot as a preset ``[robot]`` table (inertias always written out)."""
-        table: dict = {"name": self.name} if self.name else {}
-        table |= {
-            "gravity_m_s2": self.gravity_m_s2,
-            "lengths_m": list(self.lengths_m),
-            "masses_kg": list(self.masses_kg),
-            "inertias_kgm2": list(self.inertias_kgm2),
-        }
-        return table
 
-
-def parse_serial_robot(reader: TableReader) -> SerialRobot:
-    """Build a :class:`SerialRobot` from a ``[robot]`` table."""
-    lengths = reader.numbers("lengths_m", positive=True)
-    n = len(lengths)
-    masses = reader.numbers("masses_kg", positive=True, length=n)
-    inertias = reader.numbers("inertias_kgm2", (), positive=True, length=n)
-    return SerialRobot(
-        lengths_m=lengths,
-        masses_kg=masses,
-        inertias_kgm2=inertias,
-        gravity_m_s2=reader.number("gravity_m_s2", 9.81, minimum=0.0),
-        name=reader.string("name", ""),
-    )
+ROBOT_KIND = RobotKind("robot", SerialRobot)

@@ -1,7 +1,7 @@
 """Character-cell map of a workspace: one glyph per terminal cell, readable without colour.
 
-:func:`render_map` is the reusable part (the CLI prints it, the Textual app shows it in a
-``Static``); :func:`show_workspace` is the CLI's view of a finished job.
+:func:`render_map` is shared: the CLI prints it (``planar_tui.workspace.job``'s view) and
+the Textual app shows it in a ``Static``.
 """
 
 from __future__ import annotations
@@ -173,14 +173,3 @@ def render_map(
     lines.append("".join(ticks).rstrip()[:width])
     lines.append(f"{'x (cm) →, y (cm) ↑':>{_LABEL_WIDTH + 18}}  {LEGEND}")
     return [line[:width] for line in lines]
-
-
-def show_workspace(job, result, console) -> None:
-    """Print the map of a finished workspace job (CLI view), fitted to the console width."""
-    outcome = result.data
-    if outcome is None or len(outcome.boxes) == 0:
-        console.print(result.summary, markup=False)
-        return
-    width = min(console.width or 80, 120)
-    for line in render_map(outcome.boxes, outcome.status, width=width):
-        console.print(line, markup=False, highlight=False, crop=True, soft_wrap=False)

@@ -1,18 +1,29 @@
-"""Where the bundled presets live and how a preset argument is resolved."""
+"""The bundled presets (package data) and how a preset argument is resolved.
+
+The presets live in the repository's ``presets/`` folder, installed as the package
+``planar_tui.bundled_presets`` (``pyproject.toml``'s package-dir mapping), and are read
+with :mod:`importlib.resources`, so an editable install and one from the wheel see the
+same files.
+"""
 
 from __future__ import annotations
 
+from importlib import resources
 from pathlib import Path
 
 from planar_tui.errors import PresetError
 
-#: The repository's ``presets/`` folder (the project is installed editable).
-BUNDLED_PRESETS = Path(__file__).resolve().parent.parent / "presets"
+PRESETS_PACKAGE = "planar_tui.bundled_presets"
+
+
+def bundled_presets_folder() -> Path:
+    """The folder holding the bundled ``*.toml`` presets."""
+    return Path(str(resources.files(PRESETS_PACKAGE)))
 
 
 def bundled_presets() -> list[Path]:
     """The bundled preset files, sorted by name."""
-    return sorted(BUNDLED_PRESETS.glob("*.toml"))
+    return sorted(bundled_presets_folder().glob("*.toml"))
 
 
 def preset_description(path: Path) -> str:
@@ -31,7 +42,7 @@ def resolve_preset(argument: str | Path) -> Path:
     if path.is_file():
         return path
     name = path.name if path.suffix == ".toml" else f"{path.name}.toml"
-    bundled = BUNDLED_PRESETS / name
+    bundled = bundled_presets_folder() / name
     if path.parent == Path(".") and bundled.is_file():
         return bundled
     names = ", ".join(p.stem for p in bundled_presets())

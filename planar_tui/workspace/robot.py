@@ -12,30 +12,50 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from planar_tui.presets import TableReader
-
-ROBOT3RRR_KEYS = (
-    "name",
-    "base_side_cm",
-    "platform_side_cm",
-    "proximal_cm",
-    "distal_cm",
-    "base_joints_cm",
-    "platform_points_cm",
-)
+from planar_tui.jobkind import RobotKind
+from planar_tui.schema import number, setting, string
 
 
-@dataclass(frozen=True)
+def _three_points(reader, name, default, context, values):
+    """Three ``[x, y]`` points, one per leg (absent: the paper's layout)."""
+    if not reader.has(name):
+        return default
+    rows = reader.number_rows(name, columns=2)
+    if len(rows) != 3:
+        raise reader.error(name, f"has {len(rows)} points", "3 points [x, y], one per leg")
+    return rows
+
+
+def _positive_cm(default: float, doc: str):
+    return setting(number(positive=True), default=default, type_doc="number > 0", doc=doc)
+
+
+@dataclass(frozen=True, kw_only=True)
 class Robot3RRR:
-    """Geometry of a 3-RRR (lengths in cm); explicit points override the paper's layout."""
+    """Geometry of a 3-RRR, the ``[robot3rrr]`` table (lengths in cm); explicit points
+    override the paper's layout (defaults: paper B, Table 2)."""
 
-    base_side_cm: float = 120.0
-    platform_side_cm: float = 40.0
-    proximal_cm: float = 30.0
-    distal_cm: float = 30.0
-    base_joints: tuple[tuple[float, float], ...] | None = None
-    platform_points: tuple[tuple[float, float], ...] | None = None
-    name: str = ""
+    name: str = setting(string(), default="", type_doc="string", doc="a label")
+    base_side_cm: float = _positive_cm(120.0, "side `a` of the equilateral base")
+    platform_side_cm: float = _positive_cm(40.0, "base and height `b` of the platform")
+    proximal_cm: float = _positive_cm(30.0, "proximal (active) link length `l1`")
+    distal_cm: float = _positive_cm(30.0, "distal link length `l2`")
+    base_joints: tuple[tuple[float, float], ...] | None = setting(
+        _three_points,
+        name="base_joints_cm",
+        default=None,
+        default_doc="the paper's triangle",
+        type_doc="3 points `[x, y]`",
+        doc="explicit base joints `A1, A2, A3` (replace `base_side_cm`)",
+    )
+    platform_points: tuple[tuple[float, float], ...] | None = setting(
+        _three_points,
+        name="platform_points_cm",
+        default=None,
+        default_doc="the paper's triangle",
+        type_doc="3 points `[x, y]`",
+        doc="explicit platform points `q1, q2, q3` in the platform frame",
+    )
 
     @property
     def paper_layout(self) -> bool:
@@ -78,38 +98,5 @@ class Robot3RRR:
             min(cy + reach for _, cy in centres),
         )
 
-    def to_table(self) -> dict:
-        """The robot as a ``[robot3rrr]`` TOML table."""
-        table: dict = {
-            "base_side_cm": self.base_side_cm,
-            "platform_side_cm": self.platform_side_cm,
-            "proximal_cm": self.proximal_cm,
-            "distal_cm": self.distal_cm,
-        }
-        if self.name:
-            table["name"] = self.name
-        if self.base_joints is not None:
-            table["base_joints_cm"] = [list(p) for p in self.base_joints]
-        if self.platform_points is not None:
-            table["platform_points_cm"] = [list(p) for p in self.platform_points]
-        return table
 
-
-def parse_robot3rrr(reader: TableReader) -> Robot3RRR:
-    """Build a :class:`Robot3RRR` from a ``[robot3rrr]`` table (defaults: paper B, Table 2)."""
-    points = {}
-    for key in ("base_joints_cm", "platform_points_cm"):
-        if reader.has(key):
-            rows = reader.number_rows(key, columns=2)
-            if len(rows) != 3:
-                raise reader.error(key, f"has {len(rows)} points", "3 points [x, y], one per leg")
-            points[key] = rows
-    return Robot3RRR(
-        base_side_cm=reader.number("base_side_cm", 120.0, positive=True),
-        platform_side_cm=reader.number("platform_side_cm", 40.0, positive=True),
-        proximal_cm=reader.number("proximal_cm", 30.0, positive=True),
-        distal_cm=reader.number("distal_cm", 30.0, positive=True),
-        base_joints=points.get("base_joints_cm"),
-        platform_points=points.get("platform_points_cm"),
-        name=reader.string("name", ""),
-    )
+ROBOT_KIND = RobotKind("robot3rrr", Robot3RRR)

@@ -1,11 +1,8 @@
-"""Terminal views of sensitivity results, shared by the CLI and the Textual app.
+"""Figs 5/6 in the terminal, shared by the CLI and the Textual app.
 
-* the index tables: :func:`planar_tui.sensitivity.tables.fit_tables` (paper A's Table 4
-  shape — a row per torque and method, a column per parameter — or transposed when that
-  does not fit the width; numbers are never cut);
-* :func:`sensitivity_bars`: Figs 5/6 — one stacked 100 % bar per torque and speed, drawn
-  with block characters; each parameter has its own glyph (readable without colour) and
-  colour, explained by a legend.
+:func:`sensitivity_bars`: one stacked 100 % bar per torque and speed, drawn with block
+characters; each parameter has its own glyph (readable without colour) and colour,
+explained by a legend. (The index tables are :mod:`planar_tui.sensitivity.tables`.)
 """
 
 from __future__ import annotations
@@ -16,8 +13,6 @@ from collections.abc import Sequence
 from rich.columns import Columns
 from rich.console import Group
 from rich.text import Text
-
-from planar_tui.sensitivity.tables import VIEWS, fit_tables
 
 GLYPHS = "█▓▒░▚▞▙▟▛▜▀▄"
 COLOURS = (
@@ -67,13 +62,3 @@ def sensitivity_bars(analyses, method: str = "sobol", width: int = 50) -> Group:
     legend = Columns(entries, padding=(0, 2))
     title = Text(f"{method} sensitivity percent, stacked to 100 % ({chosen[0].posture})")
     return Group(title, *lines, legend)
-
-
-def show_sensitivity(job, result, console) -> None:
-    """The CLI view of one job: its index tables fitted to the terminal width (percent
-    view), and the stacked bars when speeds are swept."""
-    analyses = result.data["analyses"]
-    console.print(f"{result.data['robot']}: {job.label}", style="bold", markup=False)
-    console.print(fit_tables(analyses, VIEWS[0], console.width, job.spec.percent_of).renderable)
-    if len({a.speed_rad_s for a in analyses}) > 1:
-        console.print(sensitivity_bars(analyses, analyses[0].method))

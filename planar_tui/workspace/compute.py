@@ -16,7 +16,6 @@ The areas are exact unions of the (x, y) projections: ``area_inside <= exact <= 
 
 from __future__ import annotations
 
-import math
 import time
 from dataclasses import dataclass
 
@@ -24,11 +23,8 @@ import numpy as np
 
 from planar_tui.csvio import CsvTable
 from planar_tui.errors import PresetError
-from planar_tui.jobs.base import JobResult
-from planar_tui.jobs.workspace import WorkspaceSpec, default_search_box
-from planar_tui.presets import Job
 from planar_tui.progress import Progress
-from planar_tui.workspace.model import Robot3RRR
+from planar_tui.workspace.robot import Robot3RRR
 
 #: Boxes per kernel call: ~50 ms of work at ~1 µs per 5-D box.
 CHUNK_BOXES = 50_000
@@ -89,34 +85,40 @@ class WorkspaceOutcome:
 
 
 class BoxBudget:
-    """Counts processed boxes across stages and stops at the job's budget."""
+    """Counts processed boxes across stages, stops at the job's budget, and reports the
+    live area bracket as progress figures (``area_lower_cm2``, ``area_upper_cm2``,
+    ``boxes_processed``).
 
-    def __init__(self, job: Job, progress: Progress):
+    ``job`` needs ``spec.box_budget``, ``preset_path`` and ``key`` (a
+    :class:`~planar_tui.jobkind.Job`), for the message when the budget is exceeded.
+    """
+
+    def __init__(self, job, progress: Progress):
         self.job = job
         self.progress = progress
         self.processed = 0
 
-    def spend(self, processed: int, fraction: float, detail: str) -> None:
+    def spend(self, processed: int, fraction: float, lower_cm2: float, upper_cm2: float) -> None:
         self.processed += processed
         if self.processed > self.job.spec.box_budget:
             raise PresetError(
                 self.job.preset_path,
-                f"{self.job.label.split(':', 1)[1]}.box_budget",
+                f"{self.job.key}.box_budget",
                 f"the bisection exceeded {self.job.spec.box_budget:,} boxes; nothing was written",
                 "a larger box_budget or a coarser precision_cm",
             )
         self.progress.advance(
-            max(0.0, fraction - self.progress.completed), f"{self.processed:,} boxes, {detail}"
+            max(0.0, fraction - self.progress.completed),
+            f"{self.processed:,} boxes, area in [{lower_cm2:.5g}, {upper_cm2:.5g}] cm2",
+            area_lower_cm2=lower_cm2,
+            area_upper_cm2=upper_cm2,
+            boxes_processed=float(self.processed),
         )
 
 
 def _xy_area(boxes: np.ndarray) -> float:
     """Sum of the (x, y) areas of rows ``x_lo, x_hi, y_lo, y_hi, ...`` (>= their union)."""
     return float(np.sum((boxes[:, 1] - boxes[:, 0]) * (boxes[:, 3] - boxes[:, 2])))
-
-
-def _bracket(lower: float, upper: float) -> str:
-    return f"area in [{lower:.5g}, {upper:.5g}] cm2"
 
 
 def unique_rows(boxes: np.ndarray) -> np.ndarray:
@@ -138,7 +140,13 @@ def _grow(array: np.ndarray) -> np.ndarray:
 
 def _interval_stage(form_code, p, spec, box, budget) -> np.ndarray:
     """Paper's Algorithm 1 over 5-D boxes; returns the kept (x, y) boxes (may repeat)."""
-    from kernels.workspace3rrr import DONE, KEPT_FULL, STACK_COLUMNS, STACK_FULL, bisect_chunk
+    from planar_tui.kernels.workspace3rrr import (
+        DONE,
+        KEPT_FULL,
+        STACK_COLUMNS,
+        STACK_FULL,
+        bisect_chunk,
+    )
 
     limits = np.array(spec.limits_rad).ravel()
     stack = np.zeros((256, STACK_COLUMNS))
@@ -160,7 +168,7 @@ def _interval_stage(form_code, p, spec, box, budget) -> np.ndarray:
         volume = float(np.sum(np.prod(pending[:, 1:10:2] - pending[:, 0:10:2], axis=1)))
         kept_area += _xy_area(kept[previous:n_kept])
         upper = kept_area + _xy_area(pending)
-        budget.spend(processed, 1.0 - volume / root_volume, _bracket(0.0, upper))
+        budget.spend(processed, 1.0 - volume / root_volume, 0.0, upper)
         if code == DONE:
             return kept[:n_kept]
         if code == KEPT_FULL:
@@ -172,8 +180,8 @@ def _interval_stage(form_code, p, spec, box, budget) -> np.ndarray:
 def _arc_stage(p, limits, precision, seeds, budget, inside_cm2=0.0):
     """2-D bisection with the exact leg-wise test from the (x, y) boxes ``seeds`` (disjoint);
     ``inside_cm2`` is the area already proved inside, for the progress bracket."""
-    from kernels.workspace3rrr import DONE, KEPT_FULL, STACK_FULL
-    from kernels.workspace_arc import arc_bisect_chunk
+    from planar_tui.kernels.workspace3rrr import DONE, KEPT_FULL, STACK_FULL
+    from planar_tui.kernels.workspace_arc import arc_bisect_chunk
 
     stack = np.zeros((max(256, 2 * len(seeds) + 64), 4))
     stack[: len(seeds)] = seeds
@@ -194,7 +202,7 @@ def _arc_stage(p, limits, precision, seeds, budget, inside_cm2=0.0):
         lower += _xy_area(kept[new][status[new] == INSIDE])
         upper += _xy_area(kept[new])
         fraction = 1.0 - area / max(root_area, 1e-300)
-        budget.spend(processed, fraction, _bracket(lower, upper + area))
+        budget.spend(processed, fraction, lower, upper + area)
         if code == DONE:
             return kept[:n_kept], status[:n_kept]
         if code == KEPT_FULL:
@@ -204,9 +212,24 @@ def _arc_stage(p, limits, precision, seeds, budget, inside_cm2=0.0):
             stack = _grow(stack)
 
 
-def kernel_parameters(robot: Robot3RRR, spec: WorkspaceSpec) -> np.ndarray:
+def default_search_box(
+    robot: Robot3RRR, orientation_rad: float, precision_cm: float
+) -> tuple[tuple[float, float], tuple[float, float]]:
+    """A square about the reach box whose side is ``precision_cm * 2**n`` (smallest n), so
+    that the bisection's leaves are exactly ``precision_cm`` wide."""
+    xlo, xhi, ylo, yhi = robot.reach_box_cm(orientation_rad)
+    if xlo > xhi or ylo > yhi:  # the legs' reach discs do not meet: any small box will do
+        xlo = xhi = ylo = yhi = 0.0
+    side = precision_cm
+    while side < max(xhi - xlo, yhi - ylo):
+        side *= 2.0
+    cx, cy = 0.5 * (xlo + xhi), 0.5 * (ylo + yhi)
+    return ((cx - 0.5 * side, cx + 0.5 * side), (cy - 0.5 * side, cy + 0.5 * side))
+
+
+def kernel_parameters(robot: Robot3RRR, spec) -> np.ndarray:
     """The kernels' parameter vector ``p`` for this robot and orientation."""
-    from kernels.workspace3rrr import parameter_vector
+    from planar_tui.kernels.workspace3rrr import parameter_vector
 
     return parameter_vector(
         robot.proximal_cm,
@@ -218,11 +241,11 @@ def kernel_parameters(robot: Robot3RRR, spec: WorkspaceSpec) -> np.ndarray:
     )
 
 
-def compute_workspace(robot: Robot3RRR, spec: WorkspaceSpec, budget: BoxBudget) -> WorkspaceOutcome:
+def compute_workspace(robot: Robot3RRR, spec, budget: BoxBudget) -> WorkspaceOutcome:
     """Run the stages of the module docstring for one robot and spec."""
-    from kernels import workspace3rrr as k5
-    from kernels.workspace_arc import classify_boxes, limits_array
-    from kernels.workspace_union import union_area
+    from planar_tui.kernels import workspace3rrr as k5
+    from planar_tui.kernels.workspace_arc import classify_boxes, limits_array
+    from planar_tui.kernels.workspace_union import union_area
 
     started = time.perf_counter()
     box = spec.search_box_cm or default_search_box(robot, spec.orientation_rad, spec.precision_cm)
@@ -300,18 +323,3 @@ def summary_line(outcome: WorkspaceOutcome) -> str:
     if outcome.geometric is not None:
         text += f", exact {outcome.geometric.area_cm2:.5g}"
     return text
-
-
-def run_workspace(job: Job, progress: Progress) -> JobResult:
-    """Compute one ``[workspace]`` job; ``result.data`` is the :class:`WorkspaceOutcome`,
-    ``result.extra_tables["boxes"]`` the kept boxes."""
-    spec: WorkspaceSpec = job.spec
-    if not math.isfinite(spec.precision_cm) or spec.precision_cm <= 0:
-        raise PresetError(job.preset_path, "precision_cm", "must be > 0", "a positive number")
-    outcome = compute_workspace(job.robot, spec, BoxBudget(job, progress))
-    return JobResult(
-        table=CsvTable(SUMMARY_HEADER, [outcome.summary_row()]),
-        summary=summary_line(outcome),
-        extra_tables={"boxes": boxes_table(outcome)},
-        data=outcome,
-    )

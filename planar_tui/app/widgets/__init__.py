@@ -1,0 +1,1 @@
+"""Widgets and panes of the workbench."""

@@ -1,0 +1,178 @@
+"""The batch service below both front ends: plan outputs, check them, run jobs with
+progress and cancel, write results atomically, and collect summary rows.
+
+The CLI turns its options into calls here and prints; the app runs its jobs and exports
+its results through the same functions, so both name and write files identically.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from planar_tui.csvio import write_csv_atomic
+from planar_tui.errors import PresetError
+from planar_tui.jobkind import Job, JobResult
+from planar_tui.progress import Progress
+from planar_tui.registry import JOB_KINDS
+
+
+@dataclass(frozen=True)
+class OutputPlan:
+    """Where one job's results go: its main CSV and its extra tables by name."""
+
+    job: Job
+    main: Path
+    extras: Mapping[str, Path] = field(default_factory=dict)
+
+    def paths(self) -> tuple[Path, ...]:
+        """Every file this job writes, the main CSV first."""
+        return (self.main, *self.extras.values())
+
+
+@dataclass(frozen=True)
+class SummaryRow:
+    """One finished job for the run summary."""
+
+    label: str
+    seconds: float
+    output: Path
+    summary: str
+
+
+class JobFailed(Exception):
+    """A job raised an unexpected error (its cause is ``__cause__``)."""
+
+    def __init__(self, job: Job, error: BaseException):
+        super().__init__(f"{job.label} failed: {type(error).__name__}: {error}")
+        self.job = job
+
+
+class OutputFailed(Exception):
+    """A finished job's result could not be written."""
+
+    def __init__(self, path: Path | str, reason: str):
+        super().__init__(f"{path}: cannot write: {reason}")
+        self.path = path
+
+
+def numbered_path(base: Path, number: int, count: int) -> Path:
+    """``base`` itself for a single job, ``stem-NUMBER.suffix`` when there are several."""
+    return base if count == 1 else base.with_name(f"{base.stem}-{number}{base.suffix or '.csv'}")
+
+
+def plan_outputs(
+    jobs: Sequence[Job],
+    out_dir: Path,
+    out: Path | None = None,
+    extra_out: Mapping[str, Path | None] | None = None,
+) -> list[OutputPlan]:
+    """Every job's main CSV path and its extra tables' paths, in job order.
+
+    The main CSV goes to ``out_dir / job.output``, or to ``out`` (numbered ``FILE-1.csv``,
+    ``FILE-2.csv`` ... when there are several jobs). Extra tables (e.g. a workspace's
+    ``boxes``) go where the job kind's ``extra_outputs`` says, relative to ``out_dir``, or
+    to the paths in ``extra_out`` by table name (numbered likewise).
+    """
+    plans = []
+    for number, job in enumerate(jobs, start=1):
+        main = numbered_path(out, number, len(jobs)) if out else out_dir / job.output
+        extras = {
+            name: out_dir / relative
+            for name, relative in JOB_KINDS[job.kind].extra_outputs(job.spec).items()
+        }
+        for name, override in (extra_out or {}).items():
+            if override is not None:
+                extras[name] = numbered_path(override, number, len(jobs))
+        plans.append(OutputPlan(job, main, extras))
+    return plans
+
+
+def check_writable(path: Path) -> None:
+    """Refuse an output path that cannot be written: a folder, or a path whose nearest
+    existing ancestor is not a writable folder (:class:`PresetError`, exit code 2)."""
+    import os
+
+    if path.is_dir():
+        raise PresetError(path, "(output)", "is a folder", "a CSV file path")
+    ancestor = path.parent
+    while not ancestor.exists() and ancestor != ancestor.parent:
+        ancestor = ancestor.parent
+    if not ancestor.is_dir() or not os.access(ancestor, os.W_OK | os.X_OK):
+        raise PresetError(
+            path, "(output)", f"cannot be created: {ancestor} is not a writable folder",
+            "a path inside a writable folder",
+        )  # fmt: skip
+
+
+def check_plans(plans: Sequence[OutputPlan]) -> None:
+    """Check every planned output before any job runs."""
+    for plan in plans:
+        for path in plan.paths():
+            check_writable(path)
+
+
+def apply_overrides(jobs: Sequence[Job], options: Mapping[str, Any]) -> tuple[Job, ...]:
+    """The jobs with command-line options applied by their kinds (checked there)."""
+    import dataclasses
+
+    return tuple(
+        dataclasses.replace(job, spec=JOB_KINDS[job.kind].with_overrides(job.spec, options))
+        for job in jobs
+    )
+
+
+def run_job(job: Job, progress: Progress | None = None) -> JobResult:
+    """Run one job (kernels prepared first); writes nothing.
+
+    Raises :class:`~planar_tui.errors.Cancelled` when ``progress`` says stop, the job's
+    own :class:`~planar_tui.errors.PresetError` (e.g. a box budget), and
+    :class:`JobFailed` for anything unexpected.
+    """
+    from planar_tui.errors import Cancelled
+    from planar_tui.runtime import prepare_kernels
+
+    prepare_kernels()
+    try:
+        return JOB_KINDS[job.kind].run(job, progress or Progress())
+    except (PresetError, Cancelled, KeyboardInterrupt):
+        raise
+    except Exception as error:
+        raise JobFailed(job, error) from error
+
+
+def write_result(plan: OutputPlan, result: JobResult) -> list[Path]:
+    """Write a finished job's tables atomically (:class:`OutputFailed` on an OS error)."""
+    written = []
+    try:
+        written.append(write_csv_atomic(plan.main, result.table))
+        for name, path in plan.extras.items():
+            written.append(write_csv_atomic(path, result.extra_tables[name]))
+    except OSError as error:
+        raise OutputFailed(error.filename or plan.main, error.strerror or str(error)) from None
+    return written
+
+
+def run_plans(
+    plans: Sequence[OutputPlan],
+    progress_for: Callable[[Job], Any],
+    on_finished: Callable[[Job, JobResult], None] | None = None,
+) -> Iterator[SummaryRow]:
+    """Run the planned jobs in order, writing each job's files as soon as it finishes.
+
+    ``progress_for(job)`` is a context manager yielding the job's
+    :class:`~planar_tui.progress.Progress`; ``on_finished(job, result)`` is called after
+    the files are written (e.g. to print the job's view). Yields one summary row per job.
+    """
+    for plan in plans:
+        started = time.perf_counter()
+        with progress_for(plan.job) as progress:
+            result = run_job(plan.job, progress)
+        seconds = time.perf_counter() - started
+        write_result(plan, result)
+        if on_finished is not None:
+            on_finished(plan.job, result)
+        yield SummaryRow(plan.job.label, seconds, plan.main, result.summary)

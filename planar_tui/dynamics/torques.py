@@ -1,0 +1,97 @@
+"""The ``[torques]`` job: inverse dynamics ``τ = I θ̈ + C θ̇ − γ`` at listed states."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from planar_tui.csvio import CsvTable
+from planar_tui.dynamics.robot import SerialRobot
+from planar_tui.jobkind import Job, JobKind, JobResult
+from planar_tui.progress import Progress
+from planar_tui.schema import TableReader, number_rows, setting
+
+
+def _zero_rows(robot: SerialRobot, values: dict) -> tuple[tuple[float, ...], ...]:
+    """Default of a state array: zeros, as many rows as ``theta_deg``."""
+    return ((0.0,) * robot.n_links,) * len(values["theta_deg"])
+
+
+def _rows(doc: str, required: bool = False):
+    default = {} if required else {"default": _zero_rows, "default_doc": "zeros"}
+    return setting(
+        number_rows(columns="per-link"), type_doc="rows of n numbers", doc=doc, **default
+    )
+
+
+@dataclass(frozen=True, kw_only=True)
+class TorquesSpec:
+    """States (rows of relative joint angles, rates, accelerations) to evaluate."""
+
+    theta_deg: tuple[tuple[float, ...], ...] = _rows(
+        "relative joint angles, one state per row", required=True
+    )
+    omega_deg_s: tuple[tuple[float, ...], ...] = _rows("joint rates, as many rows as `theta_deg`")
+    alpha_deg_s2: tuple[tuple[float, ...], ...] = _rows("joint accelerations, as many rows")
+
+    @staticmethod
+    def check(values: dict, reader: TableReader, robot: SerialRobot) -> dict:
+        """Every array has as many rows as ``theta_deg``."""
+        count = len(values["theta_deg"])
+        for name in ("omega_deg_s", "alpha_deg_s2"):
+            if len(values[name]) != count:
+                raise reader.error(
+                    name, f"has {len(values[name])} rows", f"{count}, as many as theta_deg"
+                )
+        return values
+
+
+@dataclass(frozen=True, kw_only=True)
+class TorquesResult(JobResult):
+    """The joint torques, one row per state (N m)."""
+
+    tau_Nm: np.ndarray
+
+
+def torques_header(n_links: int) -> tuple[str, ...]:
+    """CSV columns of the torques job: the state in SI units, then the joint torques."""
+    joints = range(1, n_links + 1)
+    return (
+        *(f"theta{i}_rad" for i in joints),
+        *(f"omega{i}_rad_s" for i in joints),
+        *(f"alpha{i}_rad_s2" for i in joints),
+        *(f"tau{i}_Nm" for i in joints),
+    )
+
+
+def run_torques(job: Job, progress: Progress) -> TorquesResult:
+    """Evaluate the inverse dynamics at every listed state (one batched kernel call)."""
+    from planar_tui.kernels.dynamics import inverse_dynamics_batch_states
+
+    spec, robot = job.spec, job.robot
+    theta = np.radians(np.array(spec.theta_deg, dtype=np.float64))
+    omega = np.radians(np.array(spec.omega_deg_s, dtype=np.float64))
+    alpha = np.radians(np.array(spec.alpha_deg_s2, dtype=np.float64))
+    progress.start(len(theta), "inverse dynamics")
+    lengths_m, masses_kg, inertias_kgm2 = robot.arrays()
+    tau = inverse_dynamics_batch_states(
+        lengths_m, masses_kg, inertias_kgm2, robot.gravity_m_s2, theta, omega, alpha
+    )
+    progress.advance(len(theta))
+    rows = np.column_stack([theta, omega, alpha, tau])
+    peak = np.abs(tau).max(axis=0)
+    return TorquesResult(
+        table=CsvTable(torques_header(robot.n_links), rows),
+        summary=f"{len(theta)} states, max |tau| = [{', '.join(f'{v:.4g}' for v in peak)}] N m",
+        tau_Nm=tau,
+    )
+
+
+JOB_KIND = JobKind(
+    name="torques",
+    robot_kind="robot",
+    settings=TorquesSpec,
+    run=run_torques,
+    summary="inverse dynamics at listed states",
+)

@@ -1,0 +1,121 @@
+"""What a robot kind and a job kind are, what a job is and what running one returns.
+
+A job kind lives in one module of its domain package (``planar_tui/dynamics/simulate.py``,
+``planar_tui/sensitivity/job.py``, ``planar_tui/workspace/job.py`` ...), which holds its
+settings dataclass (the preset keys, declared once with :func:`planar_tui.schema.setting`),
+its runner, its result dataclass and its terminal view, and ends with one
+:class:`JobKind`; :mod:`planar_tui.registry` lists the kinds, one line each.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from planar_tui.csvio import CsvTable
+from planar_tui.progress import Progress
+from planar_tui.schema import TableReader, dump_settings, parse_settings, setting_keys
+
+
+@dataclass(frozen=True)
+class RobotKind:
+    """A robot table of a preset (``[robot]``, ``[robot3rrr]``): its model dataclass,
+    whose fields declare the table's keys."""
+
+    name: str
+    model: type
+
+    @property
+    def keys(self) -> tuple[str, ...]:
+        return setting_keys(self.model)
+
+    def parse(self, reader: TableReader) -> Any:
+        return parse_settings(self.model, reader)
+
+    def dump(self, robot: Any) -> dict[str, Any]:
+        return dump_settings(robot)
+
+
+@dataclass(frozen=True)
+class Job:
+    """One job of a preset, ready to run.
+
+    ``kind`` names the registered job kind, ``spec`` is that kind's parsed settings,
+    ``robot`` the robot model it runs on, ``output`` the CSV file name relative to the
+    output folder, ``label`` a short name for progress bars and summaries (``preset:key``),
+    ``key`` the job's table in the preset (``simulate``, ``simulate[2]``).
+    """
+
+    kind: str
+    index: int
+    label: str
+    robot: Any
+    spec: Any
+    output: str
+    preset_path: Path
+
+    @property
+    def key(self) -> str:
+        """The job's table in its preset: ``simulate`` or ``simulate[2]``."""
+        return self.label.rsplit(":", 1)[-1]
+
+
+@dataclass(frozen=True, kw_only=True)
+class JobResult:
+    """What every runner returns; each kind subclasses it with its typed payload.
+
+    ``table`` is the job's main CSV (the preset's ``output``); ``extra_tables`` holds
+    further CSVs by name (e.g. ``"boxes"``); ``summary`` is one line for the summary table.
+    """
+
+    table: CsvTable
+    summary: str
+    extra_tables: Mapping[str, CsvTable] = field(default_factory=dict)
+
+
+def _no_extra_outputs(spec: Any) -> dict[str, str]:
+    return {}
+
+
+@dataclass(frozen=True)
+class JobKind:
+    """A job table of a preset (``[simulate]``, ``[[torques]]`` ...).
+
+    ``settings`` is the settings dataclass (its declared keys are the table's keys;
+    ``output`` and the robot sub-table are added by the loader); ``run(job, progress)``
+    computes a :class:`JobResult` and writes nothing; ``render(job, result, console)``
+    prints it on a rich console (optional); ``extra_outputs(spec)`` names the extra
+    tables the preset asks to write, relative to the output folder (e.g.
+    ``{"boxes": "boxes.csv"}``); ``overrides(spec, options)`` applies and checks
+    command-line options (``None`` values keep the preset's).
+    """
+
+    name: str
+    robot_kind: str
+    settings: type
+    run: Callable[[Job, Progress], JobResult]
+    summary: str
+    render: Callable[[Job, JobResult, Any], None] | None = None
+    extra_outputs: Callable[[Any], dict[str, str]] = _no_extra_outputs
+    overrides: Callable[[Any, Mapping[str, Any]], Any] | None = None
+
+    @property
+    def keys(self) -> tuple[str, ...]:
+        """The job table's own keys, in declaration order."""
+        return setting_keys(self.settings)
+
+    def parse(self, reader: TableReader, robot: Any) -> Any:
+        """The table's settings, checked against the job's robot."""
+        return parse_settings(self.settings, reader, robot)
+
+    def dump(self, spec: Any) -> dict[str, Any]:
+        """The settings as a TOML table."""
+        return dump_settings(spec)
+
+    def with_overrides(self, spec: Any, options: Mapping[str, Any]) -> Any:
+        """The settings with command-line options applied (and checked)."""
+        if self.overrides is None or all(value is None for value in options.values()):
+            return spec
+        return self.overrides(spec, options)

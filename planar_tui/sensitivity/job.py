@@ -1,0 +1,356 @@
+"""The ``[sensitivity]`` job: Sobol'/eFAST sensitivity of the joint torques (paper A, §3).
+
+Settings (the preset keys), command-line overrides, the runner (sampling, evaluation,
+analysis), the typed result and the terminal view of one job kind.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from planar_tui.dynamics.robot import SerialRobot
+from planar_tui.errors import PresetError
+from planar_tui.jobkind import Job, JobKind, JobResult
+from planar_tui.progress import Progress
+from planar_tui.schema import TableReader, boolean, integer, number, setting, string
+
+METHODS = ("sobol", "efast")
+PERCENT_OF = ("ST", "S1")
+#: eFAST needs N > 4 M² with M = 4 (SALib ``fast_sampler``).
+EFAST_MIN_SAMPLES = 65
+
+
+def _read_speeds(reader: TableReader, name, default, robot, values) -> tuple[float, ...]:
+    """One speed (a number) or a sweep (a list of numbers)."""
+    if isinstance(reader.raw(name, 1.0), list):
+        return reader.numbers(name)
+    return (reader.number(name, 1.0),)
+
+
+def _dump_speeds(speeds: tuple[float, ...]) -> Any:
+    return speeds[0] if len(speeds) == 1 else list(speeds)
+
+
+def _read_methods(reader: TableReader, name, default, robot, values) -> tuple[str, ...]:
+    """A non-empty list of estimator names, duplicates dropped."""
+    methods = reader.raw(name, list(default))
+    if not isinstance(methods, list) or not methods:
+        raise reader.error(name, f"is {methods!r}", 'a list of "sobol", "efast"')
+    for method in methods:
+        if method not in METHODS:
+            raise reader.error(name, f"has {method!r}", 'a list of "sobol", "efast"')
+    return tuple(dict.fromkeys(methods))
+
+
+def _read_posture_request(reader: TableReader, name, default, robot, values) -> Any:
+    """``"singular"``, ``"isotropic"`` or n joint angles in degrees."""
+    if isinstance(reader.raw(name, default), list):
+        return reader.numbers(name, length=robot.n_links)
+    return reader.string(name, default, choices=("singular", "isotropic"))
+
+
+def _tolerance(unit: str, doc: str):
+    return setting(
+        number(positive=True),
+        default=1.0,
+        type_doc=f"0 < number < smallest {'length' if unit == 'mm' else 'mass'}",
+        doc=doc,
+    )
+
+
+@dataclass(frozen=True, kw_only=True)
+class SensitivitySpec:
+    """Settings of one sensitivity job (see ``docs/sensitivity.md``).
+
+    ``posture_request`` is what the preset asked for (key ``posture``); ``posture`` the
+    solved :class:`~planar_tui.sensitivity.postures.Posture` (derived, not a key).
+    ``efast_samples`` None means "match the Sobol' cost".
+    """
+
+    posture_request: Any = setting(
+        _read_posture_request,
+        name="posture",
+        default="singular",
+        type_doc='`"singular"`, `"isotropic"` or n angles in degrees',
+        doc="singular = all joint angles 0; isotropic = the posture minimising the Jacobian "
+        "condition number (2R closed form; 3R with orientation row and characteristic "
+        "length); a robot without one is refused, naming the minimum reached",
+    )
+    speeds_rad_s: tuple[float, ...] = setting(
+        _read_speeds,
+        name="speed_rad_s",
+        default=(1.0,),
+        default_doc="`1.0`",
+        dump=_dump_speeds,
+        type_doc="number or list",
+        doc="the joint speed of every joint; a list is a sweep (Figs 5-6)",
+    )
+    alpha_rad_s2: float = setting(
+        number(), default=0.0, type_doc="number", doc="the joint acceleration of every joint"
+    )
+    tolerance_length_mm: float = _tolerance("mm", "half-width of every length's range")
+    tolerance_mass_g: float = _tolerance("g", "half-width of every mass's range")
+    vary_inertias: bool = setting(
+        boolean(), default=False, type_doc="boolean", doc="add the inertias as inputs"
+    )
+    tolerance_inertia_kgm2: float | None = setting(
+        number(positive=True),
+        default=None,
+        default_doc="(needs `vary_inertias`)",
+        type_doc="number > 0",
+        doc="half-width of every inertia's range",
+    )
+    methods: tuple[str, ...] = setting(
+        _read_methods,
+        default=METHODS,
+        default_doc="both",
+        type_doc='list of `"sobol"`, `"efast"`',
+        doc="estimators (SALib samples; the analysis is jitted and equal to SALib's)",
+    )
+    samples: int = setting(
+        integer(minimum=1),
+        default=8192,
+        type_doc="power of two ≥ 8",
+        doc="Sobol' base N (N·(2D+2) model runs)",
+    )
+    efast_samples: int | None = setting(
+        integer(minimum=1),
+        default=None,
+        default_doc="same cost as Sobol'",
+        type_doc="integer > 64",
+        doc="eFAST N per input (M = 4)",
+    )
+    seed: int = setting(
+        integer(minimum=1),
+        default=42,
+        type_doc="integer ≥ 1",
+        doc="seed of sampling and bootstrap (SALib treats 0 as no seed)",
+    )
+    percent_of: str = setting(
+        string(choices=PERCENT_OF),
+        default="ST",
+        type_doc='`"ST"` or `"S1"`',
+        doc="index normalised to the `percent` column (the paper's: total)",
+    )
+    isotropy_tolerance: float = setting(
+        number(positive=True),
+        default=0.01,
+        type_doc="number > 0",
+        doc='largest accepted `κ − 1` for `"isotropic"`',
+    )
+    posture: Any = None
+
+    @staticmethod
+    def check(values: dict, reader: TableReader, robot: SerialRobot) -> dict:
+        """Tolerances below the nominal values, sample sizes, then solve the posture."""
+        for name, nominal, unit in (
+            ("tolerance_length_mm", min(robot.lengths_m) * 1e3, "mm"),
+            ("tolerance_mass_g", min(robot.masses_kg) * 1e3, "g"),
+        ):
+            if values[name] >= nominal:
+                raise reader.error(
+                    name,
+                    f"is {values[name]:g} {unit}, not below the smallest nominal value "
+                    f"{nominal:g} {unit} (samples would be non-physical)",
+                    f"0 < tolerance < {nominal:g}",
+                )
+        tolerance_inertia = values["tolerance_inertia_kgm2"]
+        if values["vary_inertias"]:
+            if tolerance_inertia is None:
+                raise reader.error("tolerance_inertia_kgm2", "missing key", "a positive number")
+            if tolerance_inertia >= min(robot.inertias_kgm2):
+                raise reader.error(
+                    "tolerance_inertia_kgm2",
+                    f"is {tolerance_inertia:g}, not below the smallest inertia",
+                    f"0 < tolerance < {min(robot.inertias_kgm2):g}",
+                )
+        elif tolerance_inertia is not None:
+            raise reader.error(
+                "tolerance_inertia_kgm2",
+                "is set but vary_inertias is false",
+                "vary_inertias = true",
+            )
+        check_samples(reader.error, values["methods"], values["samples"], values["efast_samples"])
+        values["posture"] = _solve_posture(reader, robot, values)
+        return values
+
+    @property
+    def tolerance_length_m(self) -> float:
+        """Half-width of every length's uniform range, in metres."""
+        return self.tolerance_length_mm * 1e-3
+
+    @property
+    def tolerance_mass_kg(self) -> float:
+        """Half-width of every mass's uniform range, in kilograms."""
+        return self.tolerance_mass_g * 1e-3
+
+    @property
+    def inertia_tolerance_kgm2(self) -> float | None:
+        """Half-width of every inertia's range when the inertias vary, else ``None``."""
+        return self.tolerance_inertia_kgm2 if self.vary_inertias else None
+
+
+def _is_power_of_two(value: int) -> bool:
+    return value >= 1 and value & (value - 1) == 0
+
+
+def check_samples(error, methods, samples: int, efast_samples: int | None) -> None:
+    """Sobol' N must be a power of two >= 8; eFAST N must exceed 4 M² = 64."""
+    if "sobol" in methods and not (_is_power_of_two(samples) and samples >= 8):
+        raise error("samples", f"is {samples}, not a power of two >= 8", "8, 16, ... 8192, ...")
+    if "efast" in methods and efast_samples is not None and efast_samples < EFAST_MIN_SAMPLES:
+        raise error("efast_samples", f"is {efast_samples}", "an integer > 4 M² = 64 (M = 4)")
+
+
+def _solve_posture(reader: TableReader, robot: SerialRobot, values: dict):
+    from planar_tui.sensitivity.postures import (
+        NoIsotropicPosture,
+        explicit_posture,
+        isotropic_posture,
+        singular_posture,
+    )
+
+    request = values["posture_request"]
+    if isinstance(request, tuple):
+        return explicit_posture(request, robot.lengths_m)
+    if request == "singular":
+        return singular_posture(robot.n_links)
+    try:
+        return isotropic_posture(robot.lengths_m, values["isotropy_tolerance"])
+    except NoIsotropicPosture as error:
+        raise reader.error(
+            "posture", f"robot has {error}", "a robot with an isotropic posture"
+        ) from None
+
+
+def with_overrides(spec: SensitivitySpec, options: Mapping[str, Any]) -> SensitivitySpec:
+    """The spec with command-line overrides (``methods``, ``samples``, ``seed``; ``None``
+    keeps the preset's value), checked like the preset's keys."""
+
+    def error(name, problem, expected):
+        return PresetError("command line", f"--{name.replace('_', '-')}", problem, expected)
+
+    changes: dict[str, Any] = {}
+    methods = options.get("methods")
+    if methods:
+        for method in methods:
+            if method not in METHODS:
+                raise error("method", f"is {method!r}", "sobol or efast")
+        changes["methods"] = tuple(dict.fromkeys(methods))
+    if options.get("samples") is not None:
+        changes["samples"] = options["samples"]
+    seed = options.get("seed")
+    if seed is not None:
+        if seed < 1:
+            raise error("seed", f"is {seed}", "an integer >= 1 (SALib treats 0 as no seed)")
+        changes["seed"] = seed
+    updated = dataclasses.replace(spec, **changes)
+    check_samples(error, updated.methods, updated.samples, updated.efast_samples)
+    return updated
+
+
+@dataclass(frozen=True, kw_only=True)
+class SensitivityResult(JobResult):
+    """Indices of one job: one :class:`~planar_tui.sensitivity.results.Analysis` per method
+    and speed, the robot's label, the solved posture and N per method."""
+
+    robot_label: str
+    posture: Any
+    analyses: list
+    samples: Mapping[str, int]
+
+
+def sample_sizes(spec: SensitivitySpec, num_vars: int) -> dict[str, int]:
+    """N per method: the Sobol' base N, and eFAST's (given, or matching the Sobol' cost)."""
+    from planar_tui.sensitivity.engine import default_efast_samples
+
+    efast = spec.efast_samples or default_efast_samples(spec.samples, num_vars)
+    return {"sobol": spec.samples, "efast": efast}
+
+
+def run_sensitivity(job: Job, progress: Progress) -> SensitivityResult:
+    """Indices of every torque for every method and speed of one job (one posture).
+
+    Progress goes through three stages (sampling, evaluation, analysis); a cancel raises
+    :class:`~planar_tui.errors.Cancelled` between chunks.
+    """
+    import numpy as np
+
+    from planar_tui.sensitivity.engine import analyse, build_problem, evaluate, unit_design
+    from planar_tui.sensitivity.results import Analysis, csv_table, sensitivity_percent
+
+    spec, robot = job.spec, job.robot
+    problem = build_problem(
+        robot, spec.tolerance_length_m, spec.tolerance_mass_kg, spec.inertia_tolerance_kgm2
+    )
+    sizes = sample_sizes(spec, problem.num_vars)
+    progress.start(len(spec.methods), "sampling")
+    designs = {}
+    for method in spec.methods:
+        designs[method] = unit_design(method, problem.num_vars, sizes[method], spec.seed)
+        progress.advance(1, method)
+    states = [(method, speed) for speed in spec.speeds_rad_s for method in spec.methods]
+    n = robot.n_links
+    alpha = np.full(n, spec.alpha_rad_s2)
+    theta = np.array(spec.posture.theta_rad)
+    progress.start(len(states), "evaluation")
+    outputs = {}
+    for method, speed in states:
+        omega = np.full(n, speed)
+        outputs[method, speed] = evaluate(problem, designs[method], robot, theta, omega, alpha)
+        progress.advance(1, f"{method} {speed:g} rad/s")
+    progress.start(len(states), "analysis")
+    analyses = []
+    for method, speed in states:
+        indices = analyse(method, outputs.pop((method, speed)), problem.num_vars, spec.seed)
+        percent = sensitivity_percent(indices, spec.percent_of)
+        analyses.append(
+            Analysis(method, spec.posture.label, speed, problem.names, indices, percent)
+        )
+        progress.advance(1, f"{method} {speed:g} rad/s")
+    label = robot.label
+    kappa = spec.posture.condition_number
+    sobol_conf = [float(a.indices[[1, 3]].max()) for a in analyses if a.method == "sobol"]
+    summary = (
+        f"{label} {spec.posture.label}"
+        + (f" (κ = {kappa:.6g})" if math.isfinite(kappa) else "")
+        + f", {len(spec.speeds_rad_s)} speed(s), "
+        + ", ".join(f"{m} N={sizes[m]}" for m in spec.methods)
+        + (f", max Sobol' CI ±{max(sobol_conf):.4f}" if sobol_conf else "")
+    )
+    return SensitivityResult(
+        table=csv_table(label, analyses),
+        summary=summary,
+        robot_label=label,
+        posture=spec.posture,
+        analyses=analyses,
+        samples=sizes,
+    )
+
+
+def render_sensitivity(job: Job, result: SensitivityResult, console) -> None:
+    """The CLI view of one job: its index tables fitted to the terminal width (percent
+    view), and the stacked bars (Figs 5/6) when speeds are swept."""
+    from planar_tui.sensitivity.bars import sensitivity_bars
+    from planar_tui.sensitivity.tables import VIEWS, fit_tables
+
+    analyses = result.analyses
+    console.print(f"{result.robot_label}: {job.label}", style="bold", markup=False)
+    console.print(fit_tables(analyses, VIEWS[0], console.width, job.spec.percent_of).renderable)
+    if len({a.speed_rad_s for a in analyses}) > 1:
+        console.print(sensitivity_bars(analyses, analyses[0].method))
+
+
+JOB_KIND = JobKind(
+    name="sensitivity",
+    robot_kind="robot",
+    settings=SensitivitySpec,
+    run=run_sensitivity,
+    summary="Sobol'/eFAST sensitivity of the joint torques to lengths and masses",
+    render=render_sensitivity,
+    overrides=with_overrides,
+)

@@ -1,0 +1,247 @@
+"""The ``[workspace]`` job: constant-orientation workspace of a 3-RRR (paper B).
+
+Settings (the preset keys), command-line overrides, the runner, the typed result and the
+terminal view (the character-cell map) of one job kind; the computation itself is
+:mod:`planar_tui.workspace.compute`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, replace
+from typing import Any
+
+from planar_tui.errors import PresetError
+from planar_tui.jobkind import Job, JobKind, JobResult
+from planar_tui.progress import Progress
+from planar_tui.schema import (
+    TableReader,
+    boolean,
+    integer,
+    number,
+    relative_path,
+    setting,
+    string,
+)
+from planar_tui.workspace.robot import Robot3RRR
+
+FORMS = ("natural", "mean-value", "slope", "arc-distance", "geometric")
+
+#: Default cap on the boxes processed by one job (each costs ~1 µs and ≤ 112 bytes).
+DEFAULT_BOX_BUDGET = 50_000_000
+
+
+def _joint_limits(reader: TableReader, name, default, robot, values):
+    """Three ``[min, max]`` rows in degrees, each non-empty and at most 360° wide."""
+    rows = reader.number_rows("joint_limits_deg", columns=2)
+    if len(rows) != 3:
+        raise reader.error("joint_limits_deg", f"has {len(rows)} rows", "3 rows [min, max]")
+    for leg, (lo, hi) in enumerate(rows, start=1):
+        if not lo < hi:
+            raise reader.error(
+                "joint_limits_deg",
+                f"leg {leg} range [{lo:g}, {hi:g}] is empty or reversed",
+                "min < max",
+            )
+        if hi - lo > 360.0:
+            raise reader.error(
+                "joint_limits_deg", f"leg {leg} range spans {hi - lo:g} deg", "at most 360 deg"
+            )
+    return rows
+
+
+def _search_box(reader: TableReader, name, default, robot: Robot3RRR, values):
+    """An (x, y) box in cm that contains the robot's reach at the job's orientation."""
+    if not reader.has("search_box_cm"):
+        return None
+    orientation_rad = math.radians(values["orientation_deg"])
+    rows = reader.number_rows("search_box_cm", columns=2)
+    if len(rows) != 2 or any(not lo < hi for lo, hi in rows):
+        raise reader.error(
+            "search_box_cm", f"is {[list(r) for r in rows]}", "[[x_min, x_max], [y_min, y_max]]"
+        )
+    (xlo, xhi), (ylo, yhi) = rows
+    rxlo, rxhi, rylo, ryhi = robot.reach_box_cm(orientation_rad)
+    if (
+        rxlo <= rxhi
+        and rylo <= ryhi
+        and not (xlo <= rxlo and rxhi <= xhi and ylo <= rylo and ryhi <= yhi)
+    ):
+        raise reader.error(
+            "search_box_cm",
+            "cannot contain the robot's reach "
+            f"x in [{rxlo:.4g}, {rxhi:.4g}], y in [{rylo:.4g}, {ryhi:.4g}] cm",
+            "a box containing it",
+        )
+    return rows
+
+
+@dataclass(frozen=True, kw_only=True)
+class WorkspaceSpec:
+    """Settings of one workspace computation (angles in degrees, lengths in cm)."""
+
+    joint_limits_deg: tuple[tuple[float, float], ...] = setting(
+        _joint_limits, type_doc="3 rows `[min, max]`", doc="active-joint limits θ1, θ2, θ3"
+    )
+    orientation_deg: float = setting(
+        number(), default=0.0, type_doc="number", doc="platform orientation φ"
+    )
+    precision_cm: float = setting(
+        number(positive=True), type_doc="number > 0", doc="bisection precision ε"
+    )
+    form: str = setting(
+        string(choices=FORMS),
+        default="mean-value",
+        type_doc=", ".join(f"`{f}`" for f in FORMS),
+        doc="interval form of the inclusion test (`geometric`: the exact area only)",
+    )
+    search_box_cm: tuple[tuple[float, float], tuple[float, float]] | None = setting(
+        _search_box,
+        default=None,
+        default_doc="a square about the reach",
+        type_doc="`[[x_min, x_max], [y_min, y_max]]`",
+        doc="initial (x, y) box; must contain the legs' reach",
+    )
+    angle_scale: float = setting(
+        number(positive=True),
+        default=10.0,
+        type_doc="number > 0",
+        doc="cm per radian when comparing angle and position widths in the 5-D bisection",
+    )
+    expanded: bool = setting(
+        boolean(),
+        default=False,
+        type_doc="boolean",
+        doc="natural form only: the paper's expanded eqs. 22-23 (paper layout)",
+    )
+    refine_precision_cm: float | None = setting(
+        number(positive=True),
+        default=None,
+        type_doc="number > 0, ≤ `precision_cm`",
+        doc="boundary-only refinement with the exact leg-wise test",
+    )
+    box_budget: int = setting(
+        integer(minimum=1),
+        default=DEFAULT_BOX_BUDGET,
+        type_doc="integer ≥ 1",
+        doc="most boxes one job may process (then it fails, writing nothing)",
+    )
+    geometric_reference: bool = setting(
+        boolean(),
+        default=True,
+        type_doc="boolean",
+        doc="also compute the exact (shapely) area and its error bound",
+    )
+    boxes_output: str | None = setting(
+        relative_path(),
+        default=None,
+        type_doc="relative path",
+        doc="CSV of the kept boxes (`--boxes` on the command line)",
+    )
+
+    @staticmethod
+    def check(values: dict, reader: TableReader, robot: Robot3RRR) -> dict:
+        """The expanded form needs the natural form and the paper's layout; the refinement
+        precision cannot exceed the precision."""
+        form = values["form"]
+        if values["expanded"] and form != "natural":
+            raise reader.error("expanded", f"is true with form = {form!r}", 'form = "natural"')
+        if values["expanded"] and not robot.paper_layout:
+            raise reader.error(
+                "expanded", "needs the paper's layout", "no base_joints_cm / platform_points_cm"
+            )
+        refine = values["refine_precision_cm"]
+        if refine is not None and refine > values["precision_cm"]:
+            raise reader.error(
+                "refine_precision_cm", f"is {refine:g} > precision_cm", "<= precision_cm"
+            )
+        return values
+
+    @property
+    def limits_rad(self) -> tuple[tuple[float, float], ...]:
+        """Joint limits in radians."""
+        return tuple((math.radians(lo), math.radians(hi)) for lo, hi in self.joint_limits_deg)
+
+    @property
+    def orientation_rad(self) -> float:
+        """Platform orientation :math:`\\varphi` in radians."""
+        return math.radians(self.orientation_deg)
+
+
+def with_overrides(spec: WorkspaceSpec, options: Mapping[str, Any]) -> WorkspaceSpec:
+    """The spec with command-line overrides ``form`` and ``precision_cm`` (``None`` keeps
+    the preset's value), checked like the preset's keys."""
+    form, precision_cm = options.get("form"), options.get("precision_cm")
+    if form is not None:
+        if form not in FORMS:
+            raise PresetError("--form", "form", f"is {form!r}", "one of " + ", ".join(FORMS))
+        spec = replace(spec, form=form, expanded=spec.expanded and form == "natural")
+    if precision_cm is not None:
+        if not (math.isfinite(precision_cm) and precision_cm > 0):
+            raise PresetError("--precision", "precision", f"is {precision_cm:g}", "a number > 0")
+        refine = spec.refine_precision_cm
+        spec = replace(
+            spec,
+            precision_cm=precision_cm,
+            refine_precision_cm=None if refine is None else min(refine, precision_cm),
+        )
+    return spec
+
+
+@dataclass(frozen=True, kw_only=True)
+class WorkspaceResult(JobResult):
+    """The workspace's boxes, certified area bracket and geometric reference
+    (:class:`~planar_tui.workspace.compute.WorkspaceOutcome`); the kept boxes are also
+    ``extra_tables["boxes"]``."""
+
+    outcome: Any
+
+
+def run_workspace(job: Job, progress: Progress) -> WorkspaceResult:
+    """Compute one ``[workspace]`` job."""
+    from planar_tui.csvio import CsvTable
+    from planar_tui.workspace.compute import (
+        SUMMARY_HEADER,
+        BoxBudget,
+        boxes_table,
+        compute_workspace,
+        summary_line,
+    )
+
+    outcome = compute_workspace(job.robot, job.spec, BoxBudget(job, progress))
+    return WorkspaceResult(
+        table=CsvTable(SUMMARY_HEADER, [outcome.summary_row()]),
+        summary=summary_line(outcome),
+        extra_tables={"boxes": boxes_table(outcome)},
+        outcome=outcome,
+    )
+
+
+def render_workspace(job: Job, result: WorkspaceResult, console) -> None:
+    """Print the map of a finished workspace job (CLI view), fitted to the console width."""
+    from planar_tui.workspace.map import render_map
+
+    outcome = result.outcome
+    if outcome is None or len(outcome.boxes) == 0:
+        console.print(result.summary, markup=False)
+        return
+    width = min(console.width or 80, 120)
+    for line in render_map(outcome.boxes, outcome.status, width=width):
+        console.print(line, markup=False, highlight=False, crop=True, soft_wrap=False)
+
+
+def _extra_outputs(spec: WorkspaceSpec) -> dict[str, str]:
+    return {"boxes": spec.boxes_output} if spec.boxes_output else {}
+
+
+JOB_KIND = JobKind(
+    name="workspace",
+    robot_kind="robot3rrr",
+    settings=WorkspaceSpec,
+    run=run_workspace,
+    summary="3-RRR constant-orientation workspace by interval analysis",
+    render=render_workspace,
+    extra_outputs=_extra_outputs,
+    overrides=with_overrides,
+)
