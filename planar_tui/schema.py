@@ -391,13 +391,14 @@ def dump_settings(settings: Any) -> dict[str, Any]:
     return table
 
 
-def markdown_table(settings_class: type) -> str:
-    """The README's table of a settings dataclass: key, type, default, meaning."""
+def markdown_table(settings_class: type, extra_rows: Sequence[str] = ()) -> str:
+    """The README's table of a settings dataclass: key, type, default, meaning (then
+    ``extra_rows``, already formatted)."""
     lines = ["| key | type | default | meaning |", "|---|---|---|---|"]
     for _, key in declared_keys(settings_class):
         default = key.documented_default()
         lines.append(f"| `{key.name}` | {key.type_doc} | {default} | {key.doc} |")
-    return "\n".join(lines)
+    return "\n".join([*lines, *extra_rows])
 
 
 # -- readers: one per kind of value -----------------------------------------------------

@@ -115,7 +115,7 @@ class SensitivitySpec:
         integer(minimum=1),
         default=8192,
         type_doc="power of two ≥ 8",
-        doc="Sobol' base N (N·(2D+2) model runs)",
+        doc="Sobol' base N (N·(D+2) model runs, D inputs)",
     )
     efast_samples: int | None = setting(
         integer(minimum=1),

@@ -1,0 +1,61 @@
+"""Each preset key is declared once: the declaration drives parsing, dumping, the allowed
+keys and the README's preset reference."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import pytest
+
+from planar_tui.errors import PresetError
+from planar_tui.presets import load_preset, reference_tables
+from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
+from planar_tui.schema import TableReader, declared_keys, dump_settings, parse_settings
+from tests.conftest import PRESETS, REPO
+
+
+@pytest.mark.parametrize("name", sorted(reference_tables()))
+def test_the_readme_holds_the_table_generated_from_the_declarations(name):
+    table = reference_tables()[name]
+    readme = (REPO / "README.md").read_text(encoding="utf-8")
+    assert table in readme, f"README.md lacks the [{name}] table; it should read:\n{table}"
+
+
+def test_every_setting_without_a_key_is_a_derived_value():
+    """The sensitivity spec's solved posture is the one field that is not a preset key."""
+    undeclared = {
+        kind.name: [
+            f.name
+            for f in dataclasses.fields(kind.settings)
+            if f.name not in dict(declared_keys(kind.settings))
+        ]
+        for kind in JOB_KINDS.values()
+    }
+    assert undeclared == {"simulate": [], "torques": [], "sensitivity": ["posture"],
+                          "workspace": []}  # fmt: skip
+
+
+@pytest.mark.parametrize("preset_path", sorted(PRESETS.glob("*.toml")), ids=lambda p: p.stem)
+def test_dump_then_parse_gives_the_same_settings(preset_path):
+    preset = load_preset(preset_path)
+    for job in preset.jobs:
+        kind = JOB_KINDS[job.kind]
+        table = dump_settings(job.spec)
+        again = kind.parse(TableReader(preset_path, table, job.kind, kind.keys), job.robot)
+        assert again == job.spec
+    for name, robot in preset.robots.items():
+        model = ROBOT_KINDS[name].model
+        table = dump_settings(robot)
+        assert (
+            parse_settings(model, TableReader(preset_path, table, name, ROBOT_KINDS[name].keys))
+            == robot
+        )
+
+
+def test_a_key_is_read_with_the_readers_message(tmp_path):
+    path = tmp_path / "p.toml"
+    path.write_text('[robot]\nlengths_m = [1.0]\nmasses_kg = [1.0]\n[simulate]\n'
+                    'duration_s = 1.0\nstep_s = 0.1\nevery = 0\n', encoding="utf-8")  # fmt: skip
+    with pytest.raises(PresetError) as error:
+        load_preset(path)
+    assert str(error.value) == f"error: {path}: simulate.every: is 0 (expected an integer >= 1)"
