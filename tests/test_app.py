@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import asyncio
+import csv
 import functools
 import shutil
 import time
 from pathlib import Path
 
 import pytest
+from textual.widgets import Button
 
 from planar_tui.app.app import WorkbenchApp
 from planar_tui.app.screens.dialogs import ConfirmDialog, HelpScreen, MessageDialog, PathDialog
@@ -143,20 +145,51 @@ async def test_short_simulation_is_plotted(tmp_path):
         assert "200 RK4 steps" in screen and "t (s)" in screen
         assert "E total" in screen  # the energy plot's legend
         assert "done in" in screen
+        # the tab's Run button asks the app (a message) to run the job again
+        first = pane.result
+        pane.query_one("#run", Button).press()
+        await pilot.pause()
+        await finish(app, pilot)
+        assert pane.result is not first and len(pane.result.table.rows) == 41
+        # exporting into a path that is not a folder: the batch service's message, no file
+        not_a_folder = tmp_path / "file"
+        not_a_folder.write_text("")
+        assert app.export_csv(pane, not_a_folder) == []
+        await pilot.pause()
+        assert isinstance(app.screen, MessageDialog)
+        assert "is not a writable folder" in app.export_text()
 
 
 @async_test
-async def test_cancel_a_long_job_within_half_a_second(tmp_path):
+async def test_cancel_a_long_job_within_half_a_second(tmp_path, monkeypatch):
     app = make_app(tmp_path, "long.toml")
+    # Observed from outside the app: when the tab draws progress, when the outcome arrives.
+    finished: list[tuple[float, bool]] = []
+    on_job_finished = WorkbenchApp.on_job_finished
+
+    def record_finished(self, message):
+        finished.append((time.perf_counter(), message.cancelled))
+        on_job_finished(self, message)
+
+    monkeypatch.setattr(WorkbenchApp, "on_job_finished", record_finished)
     async with app.run_test(size=SIZE) as pilot:
         app.action_show_tab("simulate")
         await pilot.pause()
+        pane = app.query_one("#pane-simulate")
+        refreshes: list[float] = []
+        show_progress = pane.show_progress
+
+        def record_refresh(state):
+            show_progress(state)
+            refreshes.append(time.perf_counter())
+
+        monkeypatch.setattr(pane, "show_progress", record_refresh)
         await pilot.press("f5")
         started = time.monotonic()
-        while len(app.progress_refreshes) < 6:
+        while len(refreshes) < 6:
             assert time.monotonic() - started < 60
             await pilot.pause(0.05)
-        window = app.progress_refreshes[-5:]
+        window = refreshes[-5:]
         rate_hz = (len(window) - 1) / (window[-1] - window[0])
         assert rate_hz >= 5.0
         assert app.job_running
@@ -168,9 +201,11 @@ async def test_cancel_a_long_job_within_half_a_second(tmp_path):
         app.screen.action_answer(False)
         await pilot.pause(0.05)
         assert app.is_running and app.job_running
-        await pilot.press("escape")
+        pressed = time.perf_counter()
+        await pilot.press("escape")  # the key is sent at once; the pilot then waits
         await finish(app, pilot)
-        assert app.cancel_latencies_s and app.cancel_latencies_s[-1] < 0.5
+        assert len(finished) == 1 and finished[0][1]  # one outcome: cancelled
+        assert finished[0][0] - pressed < 0.5
         assert "cancelled" in app.export_text()
         assert not (tmp_path / "long-simulate.csv").exists()
         # the app stays usable: the second, short job runs
@@ -202,12 +237,16 @@ async def test_save_load_and_the_cli_gives_the_same_csv(tmp_path, cli):
         await run_tab(app, pilot, "simulate")
         await pilot.press("ctrl+e")
         await pilot.pause()
-        app.screen.query_one("#path-input").value = str(tmp_path / "app.csv")
+        assert isinstance(app.screen, PathDialog)  # asks for a folder, the app's by default
+        assert app.screen.query_one("#path-input").value == str(tmp_path)
+        assert "Writes tiny-simulate.csv there" in app.export_text()
+        app.screen.query_one("#path-input").value = str(tmp_path / "app")
         await pilot.press("enter")
         await pilot.pause()
     result = cli("simulate", saved, "--out", tmp_path / "cli.csv")
     assert result.exit_code == 0, result.stderr
-    app_csv = (tmp_path / "app.csv").read_bytes()
+    assert [p.name for p in (tmp_path / "app").iterdir()] == ["tiny-simulate.csv"]  # job.output
+    app_csv = (tmp_path / "app" / "tiny-simulate.csv").read_bytes()
     assert app_csv == (tmp_path / "cli.csv").read_bytes()
     assert app_csv.count(b"\n") == 1 + 21
 
@@ -283,6 +322,8 @@ async def test_workspace_form_wraps_and_the_run_shows_map_area_and_boxes(tmp_pat
         await pilot.pause()
         assert field.value == "0.93750" and app.focused is not field
         assert app.workbench.document["workspace"]["precision_cm"] == 0.9375
+        # the preset names the boxes file, as `planar-tui run` would write it
+        app.query_one("#pane-workspace #field-boxes_output").value = "ws-boxes.csv"
         await run_tab(app, pilot, "workspace")
         screen = app.export_text()
         result = app.query_one("#pane-workspace").result
@@ -294,14 +335,16 @@ async def test_workspace_form_wraps_and_the_run_shows_map_area_and_boxes(tmp_pat
         assert outcome.area_inside_cm2 <= 106.75 <= outcome.area_kept_cm2
         await pilot.press("ctrl+e")
         await pilot.pause()
-        app.screen.query_one("#path-input").value = str(tmp_path / "ws.csv")
+        app.screen.query_one("#path-input").value = str(tmp_path / "app")
         await pilot.press("enter")
         await pilot.pause()
     outputs = ("--out", tmp_path / "cli.csv", "--boxes", tmp_path / "cli-boxes.csv")
     result = cli("workspace", tmp_path / "tiny.toml", *outputs, "--no-map")
     assert result.exit_code == 0, result.stderr
-    assert (tmp_path / "ws-boxes.csv").read_bytes() == (tmp_path / "cli-boxes.csv").read_bytes()
-    app_rows = (tmp_path / "ws.csv").read_text().splitlines()
+    exported = tmp_path / "app"
+    assert sorted(p.name for p in exported.iterdir()) == ["tiny-workspace.csv", "ws-boxes.csv"]
+    assert (exported / "ws-boxes.csv").read_bytes() == (tmp_path / "cli-boxes.csv").read_bytes()
+    app_rows = (exported / "tiny-workspace.csv").read_text().splitlines()
     cli_rows = (tmp_path / "cli.csv").read_text().splitlines()
     assert app_rows[0] == cli_rows[0]  # same columns; the last one (seconds) differs per run
     assert app_rows[1].rsplit(",", 1)[0] == cli_rows[1].rsplit(",", 1)[0]
@@ -321,3 +364,84 @@ async def test_no_color_keeps_every_state_readable(tmp_path, monkeypatch):
         assert "ok:" in app.export_text()
         await run_tab(app, pilot, "sensitivity")
         assert "τ2" in app.export_text()
+
+
+@async_test
+async def test_enter_in_a_field_moves_to_the_next_field_without_a_newline(tmp_path):
+    app = make_app(tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        app.action_show_tab("simulate")
+        await pilot.pause()
+        field = app.query_one("#pane-simulate #field-duration_s")
+        field.focus()
+        await pilot.press("end", "5", "enter")
+        await pilot.pause()
+        assert field.text == "0.25" and "\n" not in field.text
+        assert app.focused is app.query_one("#pane-simulate #field-step_s")
+        assert app.workbench.document["simulate"]["duration_s"] == 0.25
+        await pilot.press("enter")  # and on, field after field
+        await pilot.pause()
+        assert app.focused is app.query_one("#pane-simulate #field-theta0_deg")
+
+
+class TorquesTabApp(WorkbenchApp):
+    """The workbench with a tab for the torques kind, which has no dedicated pane."""
+
+    TABS = (*WorkbenchApp.TABS, ("Torques", "torques"))
+
+
+@async_test
+async def test_a_kind_without_its_own_pane_gets_the_generic_view(tmp_path):
+    from planar_tui.app.widgets.panes import JobPane
+    from planar_tui.csvio import CsvTable
+    from planar_tui.jobkind import JobResult
+
+    preset = Path(__file__).resolve().parent.parent / "presets" / "paper-a-table1.toml"
+    app = TorquesTabApp(Workbench.open(preset), output_dir=tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        pane = app.query_one("#pane-torques")
+        assert type(pane) is JobPane and pane.kind == "torques"
+        await run_tab(app, pilot, "torques")
+        assert pane.result is not None
+        screen = app.export_text()
+        assert "2 states, max |tau| = [" in screen  # the runner's summary
+        assert "theta1_rad," in screen  # the CSV's header, then its rows
+        assert "done in" in screen
+        # at most 12 CSV lines (header included), whatever the table's length
+        many = JobResult(table=CsvTable(("a_m", "b_m"), [[i, i] for i in range(40)]), summary="40")
+        pane.show_result(pane.job, many)
+        await pilot.pause()
+        lines = [line.split("▕")[-1].strip() for line in app.export_text().splitlines()]
+        assert "a_m,b_m" in lines and "10,10" in lines and "11,11" not in lines
+
+
+@async_test
+async def test_export_names_and_writes_files_as_planar_tui_run(tmp_path, cli):
+    preset = tmp_path / "small.toml"
+    text = (DATA / "workspace-small.toml").read_text()
+    preset.write_text(text.rstrip("\n") + '\nboxes_output = "small-boxes.csv"\n')
+    app = WorkbenchApp(Workbench.open(preset), output_dir=tmp_path / "app")
+    async with app.run_test(size=SIZE) as pilot:
+        await run_tab(app, pilot, "workspace")
+        await pilot.press("ctrl+e")
+        await pilot.pause()
+        assert app.screen.query_one("#path-input").value == str(tmp_path / "app")
+        await pilot.press("enter")  # the default folder
+        await pilot.pause()
+    result = cli("run", preset, "--out-dir", tmp_path / "cli")
+    assert result.exit_code == 0, result.stderr
+    names = sorted(p.name for p in (tmp_path / "app").iterdir())
+    assert names == sorted(p.name for p in (tmp_path / "cli").iterdir())
+    assert names == ["small-boxes.csv", "small-workspace.csv"]
+    boxes = (tmp_path / "app" / "small-boxes.csv").read_bytes()
+    assert boxes == (tmp_path / "cli" / "small-boxes.csv").read_bytes()
+    assert boxes.count(b"\n") > 100
+    app_rows, cli_rows = (
+        list(csv.reader((tmp_path / folder / "small-workspace.csv").read_text().splitlines()))
+        for folder in ("app", "cli")
+    )
+    assert app_rows[0] == cli_rows[0] and len(app_rows) == len(cli_rows) == 2
+    timing = app_rows[0].index("seconds")  # the one column that differs between runs
+    assert [row[:timing] + row[timing + 1 :] for row in app_rows] == [
+        row[:timing] + row[timing + 1 :] for row in cli_rows
+    ]

@@ -174,3 +174,14 @@ def test_help_lists_every_binding():
         keys.update(binding.key.split(","))
     for key in keys:
         assert re.search(rf"(^|[\s,(]){re.escape(names.get(key, key))}[\s,)]", HELP_TEXT), key
+
+
+def test_the_app_uses_public_textual_hooks_and_panes_post_messages():
+    """No private Textual API where a public hook serves; panes never call the app."""
+    app_folder = Path(__file__).resolve().parent.parent / "planar_tui" / "app"
+    for path in app_folder.rglob("*.py"):
+        source = path.read_text(encoding="utf-8")
+        for private in ("_compositor", "_background_screens", "_on_key", "planar_tui.cli"):
+            assert private not in source, f"{path.name} uses {private}"
+    for path in (app_folder / "widgets").glob("*.py"):
+        assert "self.app" not in path.read_text(encoding="utf-8"), path.name

@@ -12,11 +12,16 @@ def run_app(preset_argument: str | None = None) -> None:
     A bad preset raises the CLI's :class:`~planar_tui.errors.PresetError` before the
     terminal is taken over, so the CLI prints its one-line error and exits with 2.
 
-    Once the app has closed (terminal restored, no job thread left: quitting cancels a
-    running job first) the process ends with ``os._exit``: tearing down the numerical
-    modules took 0.5-0.8 s after a job, which made ``q`` feel slow. Nothing is pending by
-    then (files are written atomically when a job or a save finishes).
+    The process is set up first, as every front end sets it up
+    (:func:`planar_tui.runtime.configure_process`). Once the app has closed (terminal
+    restored, no job thread left: quitting cancels a running job first) the process ends
+    with ``os._exit``: tearing down the numerical modules took 0.5-0.8 s after a job,
+    which made ``q`` feel slow. Nothing is pending by then (files are written atomically
+    when a job or a save finishes).
     """
+    from planar_tui.runtime import configure_process
+
+    configure_process()
     from planar_tui.app.app import WorkbenchApp
     from planar_tui.app.workbench import Workbench
 

@@ -1,63 +1,43 @@
-"""The Textual workbench: four tabs over one preset, jobs run by the CLI's own runners.
+"""The Textual workbench: four tabs over one preset, jobs run by the batch service.
 
-A job runs as ``JOB_KINDS[job.kind].run(job, Progress(...))`` in a thread worker (the
-kernels release the GIL). The runner's progress snapshots are kept as they arrive and a
-UI timer shows the latest one every :data:`REFRESH_S` seconds; Cancel sets the flag that
-``Progress.check()`` polls between chunks, so the runner raises ``Cancelled``. Outcomes
-come back as messages; errors open a dialog, never a traceback.
+Jobs run in :class:`~planar_tui.app.job_runner.JobRunner` (a thread worker around
+:func:`planar_tui.batch.run_job`, as the CLI runs them); a UI timer shows the runner's
+latest progress snapshot every :data:`REFRESH_S` seconds; escape cancels at the runner's
+next chunk. The tabs post :mod:`~planar_tui.app.messages` (an edit, Run, Cancel) that the
+app handles here; outcomes come back as
+:class:`~planar_tui.app.job_runner.JobFinished`; errors open a dialog, never a traceback.
+Export names and writes files as ``planar-tui run --out-dir DIR`` does
+(:func:`planar_tui.batch.plan_outputs`, :func:`planar_tui.batch.write_result`).
 """
 
 from __future__ import annotations
 
-import threading
-import time
 from collections.abc import Iterable
 from pathlib import Path
 from typing import Any, ClassVar
 
-from textual import work
 from textual.app import App, ComposeResult, SystemCommand
 from textual.binding import Binding
-from textual.message import Message
 from textual.screen import Screen
 from textual.widgets import Footer, Static, TabbedContent, TabPane
-from textual.worker import get_current_worker
 
+from planar_tui.app.job_runner import JobFinished, JobRunner
+from planar_tui.app.messages import CancelRequested, DocumentEdited, RunRequested
 from planar_tui.app.screens.dialogs import ConfirmDialog, HelpScreen, MessageDialog, PathDialog
 from planar_tui.app.widgets.panes import JobPane, RobotPane
 from planar_tui.app.workbench import Workbench
-from planar_tui.errors import Cancelled, PresetError
-from planar_tui.progress import Progress, ProgressState
+from planar_tui.errors import PresetError
+
+__all__ = ["REFRESH_S", "JobFinished", "WorkbenchApp"]
 
 #: Seconds between two progress refreshes on screen (10 per second).
 REFRESH_S = 0.1
 
 
-class JobFinished(Message):
-    """A job ended: ``result`` on success, ``error`` on failure, ``cancelled`` otherwise."""
-
-    def __init__(
-        self,
-        pane: JobPane,
-        job: Any,
-        result: Any = None,
-        error: BaseException | None = None,
-        cancelled: bool = False,
-        seconds: float = 0.0,
-    ):
-        super().__init__()
-        self.pane = pane
-        self.job = job
-        self.result = result
-        self.error = error
-        self.cancelled = cancelled
-        self.seconds = seconds
-
-
 class WorkbenchApp(App):
     """planar-tui's terminal workbench."""
 
-    CSS_PATH = "app.tcss"
+    CSS_PATH = Path(__file__).with_name("app.tcss")  # absolute: subclasses elsewhere find it
     TITLE = "planar-tui"
     BINDINGS: ClassVar = [
         Binding("q", "quit", "Quit"),
@@ -82,32 +62,35 @@ class WorkbenchApp(App):
     def __init__(self, workbench: Workbench, output_dir: Path | str = "."):
         super().__init__()
         self.workbench = workbench
+        #: The folder ``ctrl+e`` offers (``planar-tui run --out-dir``'s default is ``.``).
         self.output_dir = Path(output_dir)
-        self._latest: ProgressState | None = None
-        self._running_pane: JobPane | None = None
-        self._thread_done = threading.Event()
-        self._thread_done.set()
-        self._cancel_requested_at: float | None = None
-        #: Measurements for tests and docs: refreshes shown, cancel latencies (s).
-        self.progress_refreshes: list[float] = []
-        self.cancel_latencies_s: list[float] = []
+        self.jobs = JobRunner(self)
 
     # -- layout ---------------------------------------------------------------------
-    def compose(self) -> ComposeResult:
+    @staticmethod
+    def pane_classes() -> dict[str, type]:
+        """The dedicated pane of each tab; a job kind without one gets :class:`JobPane`."""
         from planar_tui.app.widgets.sensitivity_pane import SensitivityPane
         from planar_tui.app.widgets.simulate_pane import SimulatePane
         from planar_tui.app.widgets.workspace_pane import WorkspacePane
 
-        panes = {
+        return {
             "robot": RobotPane,
             "sensitivity": SensitivityPane,
             "workspace": WorkspacePane,
             "simulate": SimulatePane,
         }
+
+    def compose(self) -> ComposeResult:
+        panes = self.pane_classes()
         with TabbedContent(id="tabs"):
             for title, name in self.TABS:
                 with TabPane(title, id=f"tab-{name}"):
-                    yield panes[name](id=f"pane-{name}")
+                    pane = panes.get(name)
+                    if pane is None:
+                        yield JobPane(self.workbench, kind=name, id=f"pane-{name}")
+                    else:
+                        yield pane(self.workbench, id=f"pane-{name}")
         yield Static("", id="validation", markup=False)
         yield Footer(compact=True)
 
@@ -120,12 +103,16 @@ class WorkbenchApp(App):
     @property
     def job_running(self) -> bool:
         """Whether a runner thread is still working."""
-        return not self._thread_done.is_set()
+        return self.jobs.running
 
     def current_pane(self) -> Any:
         tabs = self.query_one(TabbedContent)
         name = (tabs.active or "tab-robot").removeprefix("tab-")
         return self.query_one(f"#pane-{name}")
+
+    def on_document_edited(self, message: DocumentEdited) -> None:
+        """A tab edited the preset: check it again."""
+        self.revalidate()
 
     def revalidate(self) -> bool:
         """Check the whole document with the CLI's parser; show the first problem."""
@@ -144,7 +131,14 @@ class WorkbenchApp(App):
     # -- running jobs ---------------------------------------------------------------
     def action_run(self) -> None:
         """Run the job of the current tab."""
-        pane = self.current_pane()
+        self.run_pane_job(self.current_pane())
+
+    def on_run_requested(self, message: RunRequested) -> None:
+        """A tab's Run button."""
+        self.run_pane_job(message.pane)
+
+    def run_pane_job(self, pane: Any) -> None:
+        """Run the job of ``pane`` (a job tab) in the job runner."""
         if not isinstance(pane, JobPane) or not pane.available():
             self.notify("This tab has no job to run: choose Sensitivity, Workspace or Simulate.")
             return
@@ -158,65 +152,35 @@ class WorkbenchApp(App):
             self.push_screen(MessageDialog("Invalid preset", str(error)))
             return
         self.revalidate()
-        self._latest = None
-        self._running_pane = pane
-        self._cancel_requested_at = None
-        self._thread_done.clear()
         pane.controls().set_running(True)
-        self.refresh_bindings()
         pane.controls().status(f"starting {job.label}")
-        self._run_worker(pane, job)
-
-    @work(thread=True, exclusive=True, group="job", exit_on_error=False)
-    def _run_worker(self, pane: JobPane, job: Any) -> None:
-        """Run ``job`` with the CLI's runner; report the outcome as a :class:`JobFinished`."""
-        from planar_tui.registry import JOB_KINDS
-
-        worker = get_current_worker()
-        started = time.perf_counter()
-        progress = Progress(on_update=self._store_progress, should_stop=lambda: worker.is_cancelled)
-        try:
-            result = JOB_KINDS[job.kind].run(job, progress)
-        except Cancelled:
-            finished = JobFinished(pane, job, cancelled=True)
-        except Exception as error:  # shown in a dialog, never as a traceback
-            finished = JobFinished(pane, job, error=error)
-        else:
-            finished = JobFinished(pane, job, result=result)
-        finally:
-            if self._cancel_requested_at is not None:
-                self.cancel_latencies_s.append(time.perf_counter() - self._cancel_requested_at)
-            self._thread_done.set()
-        finished.seconds = time.perf_counter() - started
-        self.post_message(finished)
-
-    def _store_progress(self, state: ProgressState) -> None:
-        """Called in the worker thread: keep the latest snapshot for the UI timer."""
-        self._latest = state
+        self.jobs.start(pane, job)
+        self.refresh_bindings()
 
     def _refresh_progress(self) -> None:
-        state = self._latest
+        """The UI timer: show the running job's latest progress snapshot."""
         if len(self.screen_stack) > 1:
             return  # a dialog is up: redrawing the screen behind it would only slow it down
-        if self._running_pane is not None and state is not None and self.job_running:
-            self._running_pane.show_progress(state)
-            self.progress_refreshes.append(time.perf_counter())
+        state, pane = self.jobs.latest, self.jobs.pane
+        if pane is not None and state is not None and self.job_running:
+            pane.show_progress(state)
 
     def action_cancel(self) -> None:
         """Ask the running job to stop (the runner stops at its next chunk)."""
-        if not self.job_running:
-            return
-        self._cancel_requested_at = time.perf_counter()
-        for worker in self.workers:
-            if worker.group == "job":
-                worker.cancel()
-        if self._running_pane is not None:
-            self._running_pane.controls().status("cancelling…")
+        if self.jobs.cancel() and self.jobs.pane is not None:
+            self.jobs.pane.controls().status("cancelling…")
+
+    def on_cancel_requested(self, message: CancelRequested) -> None:
+        """A tab's Cancel button."""
+        self.action_cancel()
+
+    def on_unmount(self) -> None:
+        """Closing: stop a job still running (its thread must not outlive the app)."""
+        self.jobs.cancel()
 
     def on_job_finished(self, message: JobFinished) -> None:
+        """Show a job's outcome on its tab (a dialog for an error)."""
         pane = message.pane
-        if self._running_pane is pane:
-            self._running_pane = None
         if not pane.is_attached:
             return
         self.refresh_bindings()
@@ -292,54 +256,49 @@ class WorkbenchApp(App):
         return path
 
     def action_export(self) -> None:
-        """Export the table on screen (and workspace boxes) to CSV."""
+        """Write the result on screen into a folder, named as the CLI names it."""
+        from planar_tui.batch import plan_outputs
+
         pane = self.current_pane()
-        tables = pane.export_tables() if isinstance(pane, JobPane) else {}
-        if not tables:
+        if not isinstance(pane, JobPane) or pane.result is None or pane.job is None:
             self.notify("Nothing to export: run a job on this tab first.", severity="warning")
             return
-        default = self.output_dir / pane.job.output
+        job = pane.job
+        (plan,) = plan_outputs([job], Path())
+        names = ", ".join(str(path) for path in plan.paths())
 
         def chosen(answer: str | None) -> None:
             if answer:
                 self.export_csv(pane, answer)
 
-        hint = "Enter: write   Escape: cancel" + (
-            "   (boxes go to FILE-boxes.csv)" if len(tables) > 1 else ""
-        )
-        self.push_screen(PathDialog("Export CSV to", str(default), hint), chosen)
+        hint = f"Writes {names} there (as planar-tui run --out-dir).\nEnter: write   Escape: cancel"
+        self.push_screen(PathDialog("Export to folder", str(self.output_dir), hint), chosen)
 
-    def export_csv(self, pane: JobPane, target: str | Path) -> list[Path]:
-        """Write the pane's tables with the CLI's atomic CSV writer."""
-        from planar_tui.csvio import write_csv_atomic
+    def export_csv(self, pane: JobPane, out_dir: str | Path) -> list[Path]:
+        """Write the pane's result into ``out_dir`` exactly as ``planar-tui run --out-dir``
+        does: the job's ``output`` CSV and the extra tables its preset names (a workspace's
+        ``boxes_output``), through the batch service; nothing on an error (a dialog)."""
+        from planar_tui import batch
 
-        target = Path(target)
-        written = []
-        for suffix, table in pane.export_tables().items():
-            path = (
-                target.with_name(f"{target.stem}-{suffix}{target.suffix or '.csv'}")
-                if suffix
-                else target
-            )
-            written.append(write_csv_atomic(path, table))
+        if pane.job is None or pane.result is None:
+            return []
+        plans = batch.plan_outputs([pane.job], Path(out_dir))
+        try:
+            batch.check_plans(plans)
+            written = batch.write_result(plans[0], pane.result)
+        except (PresetError, batch.OutputFailed) as error:
+            self.push_screen(MessageDialog("Not exported", str(error)))
+            return []
         self.notify("Wrote " + ", ".join(map(str, written)))
         return written
 
     def export_text(self) -> str:
-        """The screen as plain text (for tests, docs and text screenshots)."""
-        import io
-
-        from rich.console import Console
+        """The screen as plain text (for tests, docs and text screenshots), read back from
+        Textual's public SVG screenshot (see :mod:`planar_tui.app.screen_text`)."""
+        from planar_tui.app.screen_text import svg_screen_text
 
         width, height = self.size
-        console = Console(
-            width=width, height=height, file=io.StringIO(), force_terminal=True,
-            color_system=None, record=True, legacy_windows=False, safe_box=False,
-        )  # fmt: skip
-        console.print(
-            self.screen._compositor.render_update(full=True, screen_stack=self._background_screens)
-        )
-        return console.export_text()
+        return svg_screen_text(self.export_screenshot(), width, height)
 
     # -- quitting, help, command palette --------------------------------------------
     async def action_quit(self) -> None:
@@ -409,7 +368,9 @@ class WorkbenchApp(App):
         yield SystemCommand("Open preset", "Open a TOML preset (ctrl+o)", self.action_open)
         yield SystemCommand("Save preset", "Save the preset as TOML (ctrl+s)", self.action_save)
         yield SystemCommand(
-            "Export CSV", "Write the table on screen to CSV (ctrl+e)", self.action_export
+            "Export CSV",
+            "Write the result's CSV files into a folder, as planar-tui run (ctrl+e)",
+            self.action_export,
         )
         yield SystemCommand("Help", "Key bindings (F1)", self.action_help)
         yield SystemCommand(

@@ -101,7 +101,7 @@ CLI's preset parser checks every edit (error: / ok: under the tabs).
   escape      cancel the running job (honoured within half a second)
   ctrl+o      open a preset (a path or a bundled name)
   ctrl+s      save the preset (TOML the CLI runs unchanged)
-  ctrl+e      export the table on screen to CSV (workspace: + boxes)
+  ctrl+e      export the result's CSV files to a folder (as the CLI)
   ctrl+f      hide / show the settings form (room for the results)
   ctrl+p      command palette: every action by name
   q, ctrl+q   quit (asks only while a job runs; q outside fields)

@@ -9,10 +9,10 @@ from __future__ import annotations
 
 import tomllib
 from collections.abc import Sequence
-from typing import Any
+from typing import Any, ClassVar
 
-from textual import events
 from textual.app import ComposeResult
+from textual.binding import Binding
 from textual.containers import Grid, Vertical
 from textual.message import Message
 from textual.widget import Widget
@@ -32,7 +32,15 @@ def parse_field(text: str) -> Any:
 
 class Field(TextArea):
     """A one-value text field that wraps long values (``[[20, 70], [110, 160], …]``) onto
-    more lines instead of hiding their end; Enter moves to the next field."""
+    more lines instead of hiding their end; Enter moves to the next field.
+
+    Enter is a priority binding: Textual checks it before the key reaches the text area,
+    so no line break is ever inserted (a value is one line).
+    """
+
+    BINDINGS: ClassVar = [
+        Binding("enter", "next_field", "Next field", show=False, priority=True),
+    ]
 
     DEFAULT_CSS = """
     Field { height: auto; max-height: 4; width: 1fr; padding: 0 1; }
@@ -51,13 +59,9 @@ class Field(TextArea):
     def value(self, text: str) -> None:
         self.text = text
 
-    async def _on_key(self, event: events.Key) -> None:
-        if event.key == "enter":  # a value is one line: Enter moves on, like in a form
-            event.stop()
-            event.prevent_default()
-            self.screen.focus_next()
-            return
-        await super()._on_key(event)
+    def action_next_field(self) -> None:
+        """Move the focus on, like Tab in a form."""
+        self.screen.focus_next()
 
 
 class TableForm(Widget):

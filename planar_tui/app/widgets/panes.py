@@ -1,22 +1,34 @@
-"""The four tabs: Robot (edit the robots), and one pane per job kind (form, run, results)."""
+"""The tabs: Robot (edit the robots), and one pane per job kind (form, run, results).
+
+Panes get the preset document (:class:`~planar_tui.app.workbench.Workbench`) when they
+are built and never call the app: they post :mod:`planar_tui.app.messages` (an edit, Run,
+Cancel) and the app handles them. A job kind without a dedicated pane gets
+:class:`JobPane` itself: its form, Run/Cancel/progress, and the job's summary and first
+CSV rows.
+"""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, ClassVar
+import itertools
+from typing import TYPE_CHECKING, Any
 
 from textual.app import ComposeResult
-from textual.containers import Horizontal, Vertical, VerticalScroll
+from textual.containers import Horizontal, ScrollableContainer, Vertical, VerticalScroll
 from textual.widgets import Button, Label, Select, Static
 
+from planar_tui.app.messages import CancelRequested, DocumentEdited, RunRequested
 from planar_tui.app.widgets.fields import LinkEditor, TableForm
 from planar_tui.app.widgets.job_controls import JobControls
 from planar_tui.app.widgets.robot_drawing import draw_serial_robot
 from planar_tui.progress import ProgressState
 
 if TYPE_CHECKING:
-    from planar_tui.app.app import WorkbenchApp
+    from planar_tui.app.workbench import Workbench
     from planar_tui.jobkind import JobResult
     from planar_tui.presets import Job
+
+#: Lines of the CSV (header included) shown by the generic result view.
+GENERIC_ROWS = 12
 
 
 def numbers_or_zeros(value: Any, n: int) -> list[float]:
@@ -29,15 +41,15 @@ def numbers_or_zeros(value: Any, n: int) -> list[float]:
 
 
 class RobotPane(VerticalScroll):
-    """The serial robot's links and gravity, a drawing, and the 3-RRR geometry."""
+    """The serial robot's links and gravity, a drawing, and the 3-RRR geometry.
 
-    @property
-    def bench(self):
-        return self.workbench_app.workbench
+    Edits go into ``workbench`` (the preset document), then a
+    :class:`~planar_tui.app.messages.DocumentEdited` tells the app.
+    """
 
-    @property
-    def workbench_app(self) -> WorkbenchApp:
-        return self.app  # type: ignore[return-value]
+    def __init__(self, workbench: Workbench, **kwargs: Any):
+        super().__init__(**kwargs)
+        self.bench = workbench
 
     def compose(self) -> ComposeResult:
         from planar_tui.registry import ROBOT_KINDS
@@ -81,7 +93,7 @@ class RobotPane(VerticalScroll):
     def _store_robot(self) -> None:
         self.bench.set_table("robot", 0, self.robot_table())
         self.query_one("#robot-drawing", Static).update(self.drawing())
-        self.workbench_app.revalidate()
+        self.post_message(DocumentEdited())
 
     def on_link_editor_changed(self, event: LinkEditor.Changed) -> None:
         self._store_robot()
@@ -91,7 +103,7 @@ class RobotPane(VerticalScroll):
             self._store_robot()
         else:
             self.bench.set_table(event.form.id.removeprefix("form-"), 0, event.table)
-            self.workbench_app.revalidate()
+            self.post_message(DocumentEdited())
 
     async def on_button_pressed(self, event: Button.Pressed) -> None:
         if event.button.id == "add-link":
@@ -111,24 +123,28 @@ class RobotPane(VerticalScroll):
 class JobPane(Vertical):
     """A job tab: which job of the preset, its settings form, results, Run/Cancel/progress.
 
-    Subclasses fill the results area (:meth:`compose_results`, :meth:`show_result`).
+    ``JobPane(workbench, kind="torques")`` is the generic tab of any job kind: the job's
+    summary and the first :data:`GENERIC_ROWS` lines of its CSV. Dedicated panes subclass
+    it, set :attr:`kind` and fill the results area (:meth:`compose_results`,
+    :meth:`render_result`).
     """
 
-    kind: ClassVar[str] = ""
+    DEFAULT_CSS = """
+    JobPane .generic-rows { height: 1fr; }
+    JobPane #result-rows { width: auto; }
+    """
 
-    def __init__(self, **kwargs: Any):
+    #: The job kind of the tab (a dedicated pane sets it; the generic one is given it).
+    kind: str = ""
+
+    def __init__(self, workbench: Workbench, kind: str | None = None, **kwargs: Any):
         super().__init__(**kwargs)
+        self.bench = workbench
+        if kind is not None:
+            self.kind = kind
         self.index = 0
         self.job: Job | None = None
         self.result: JobResult | None = None
-
-    @property
-    def workbench_app(self) -> WorkbenchApp:
-        return self.app  # type: ignore[return-value]
-
-    @property
-    def bench(self):
-        return self.workbench_app.workbench
 
     def available(self) -> bool:
         from planar_tui.registry import JOB_KINDS
@@ -168,7 +184,10 @@ class JobPane(Vertical):
         yield JobControls()
 
     def compose_results(self) -> ComposeResult:
+        """The results area; the generic one: the summary, then the CSV's first lines."""
         yield Static("Run the job (F5) to see its results.", id="result-text", markup=False)
+        with ScrollableContainer(classes="generic-rows"):
+            yield Static("", id="result-rows", markup=False)
 
     # -- editing --------------------------------------------------------------------
     def store_form(self) -> None:
@@ -178,7 +197,7 @@ class JobPane(Vertical):
 
     def on_table_form_changed(self, event: TableForm.Changed) -> None:
         self.store_form()
-        self.workbench_app.revalidate()
+        self.post_message(DocumentEdited())
 
     async def on_select_changed(self, event: Select.Changed) -> None:
         if event.select.id == "job-select" and event.value != self.index:
@@ -187,9 +206,11 @@ class JobPane(Vertical):
 
     def on_button_pressed(self, event: Button.Pressed) -> None:
         if event.button.id == "run":
-            self.workbench_app.action_run()
+            event.stop()
+            self.post_message(RunRequested(self))
         elif event.button.id == "cancel":
-            self.workbench_app.action_cancel()
+            event.stop()
+            self.post_message(CancelRequested())
 
     # -- running --------------------------------------------------------------------
     def current_job(self) -> Job:
@@ -217,12 +238,7 @@ class JobPane(Vertical):
         self.call_after_refresh(self.rerender)
 
     def render_result(self, job: Job, result: JobResult) -> None:
-        """Default view: the summary and the first rows of the CSV table."""
-        lines = [result.summary, "", *result.table.lines()[:12]]
-        self.query_one("#result-text", Static).update("\n".join(lines))
-
-    def export_tables(self) -> dict[str, Any]:
-        """Tables ``ctrl+e`` writes: ``""`` is the main CSV, others get a ``-NAME`` suffix."""
-        if self.result is None:
-            return {}
-        return {"": self.result.table}
+        """Generic view: the summary and the first lines of the CSV table (header first)."""
+        self.query_one("#result-text", Static).update(result.summary)
+        rows = itertools.islice(result.table.lines(), GENERIC_ROWS)
+        self.query_one("#result-rows", Static).update("\n".join(rows))

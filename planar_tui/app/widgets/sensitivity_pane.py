@@ -4,8 +4,6 @@ and the Fig 5/6 stacked bars (the CLI's renderer)."""
 
 from __future__ import annotations
 
-from typing import ClassVar
-
 from rich.console import Group
 from rich.text import Text
 from textual.app import ComposeResult
@@ -24,7 +22,7 @@ BAR_LABEL_CELLS = 16
 class SensitivityPane(JobPane):
     """Posture, speeds, tolerances, methods, samples, seed; the indices table and bars."""
 
-    kind: ClassVar[str] = "sensitivity"
+    kind = "sensitivity"
 
     DEFAULT_CSS = """
     #sensitivity-results { height: 1fr; scrollbar-gutter: stable; scrollbar-size: 1 1; }

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from typing import ClassVar
-
 import numpy as np
 from textual.app import ComposeResult
 from textual.widgets import Static
@@ -28,7 +26,7 @@ def thin(count: int, limit: int = MAX_POINTS) -> np.ndarray:
 class SimulatePane(JobPane):
     """Initial state, torques, duration and step; plots of θ_i(t) and E(t)."""
 
-    kind: ClassVar[str] = "simulate"
+    kind = "simulate"
 
     def compose_results(self) -> ComposeResult:
         yield Static("Run the simulation (F5) to plot it.", id="result-text", markup=False)

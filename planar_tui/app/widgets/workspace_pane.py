@@ -3,8 +3,6 @@ and box count while the bisection runs, and the summary."""
 
 from __future__ import annotations
 
-from typing import Any, ClassVar
-
 from textual.app import ComposeResult
 from textual.widgets import Static
 
@@ -54,7 +52,7 @@ def map_legend() -> str:
 class WorkspacePane(JobPane):
     """Form, precision, orientation, joint limits; the character-cell map and summary."""
 
-    kind: ClassVar[str] = "workspace"
+    kind = "workspace"
 
     def compose_results(self) -> ComposeResult:
         yield Static("Run the bisection (F5) to map the workspace.", id="result-text", markup=False)
@@ -82,8 +80,3 @@ class WorkspacePane(JobPane):
         height = max(8, results.content_region.height - summary_lines - legend_lines)
         area.update("\n".join(fitted_map(outcome.boxes, outcome.status, width, height)))
         legend.update(legend_text)
-
-    def export_tables(self) -> dict[str, Any]:
-        if self.result is None:
-            return {}
-        return {"": self.result.table, "boxes": self.result.extra_tables["boxes"]}
