@@ -99,8 +99,8 @@ def _ratio(numerator, n, variance, half):
 
 
 @kernel(parallel=True)
-def sobol_point_and_sums(outputs, num_vars, counts):
-    r"""Point estimates and bootstrap sums of every output column.
+def sobol_point_and_terms(outputs, num_vars):
+    r"""Point estimates and per-row bootstrap terms of every output column.
 
     Parameters
     ----------
@@ -108,25 +108,19 @@ def sobol_point_and_sums(outputs, num_vars, counts):
         Model outputs of a Saltelli/Sobol' design with ``calc_second_order=False``.
     num_vars : int
         D, the number of inputs.
-    counts : (R, N) float64
-        Times resample b draws row k (:func:`resample_counts`).
 
     Returns
     -------
     point : (2, n_out, D) float64
         S1 and ST.
-    sums : (n_out, R, 2 D + 4) float64
-        :math:`\sum_k c_{bk} g_k` of the per-row terms g of the standardised outputs: A, B,
-        A², B², then B (A_B^j - A) and (A - A_B^j)² for j = 1 … D.
-    varying : (n_out,) bool
-        Whether the A and B values of the rows drawn at least once are not all equal
-        (SALib's ``np.ptp != 0`` test; half-widths are 0 otherwise).
+    terms : (n_out, N, 2 D + 4) float64
+        The per-row terms g of the standardised outputs: A, B, A², B², then
+        B (A_B^j - A) and (A - A_B^j)² for j = 1 … D.
     """
     rows_total, n_out = outputs.shape
     step = num_vars + 2
     n_base = rows_total // step
     n_terms = 2 * num_vars + _LEAD
-    n_res = counts.shape[0]
     standard = np.empty((n_out, rows_total))
     first = np.empty((n_out, num_vars))
     total = np.empty((n_out, num_vars))
@@ -152,8 +146,19 @@ def sobol_point_and_sums(outputs, num_vars, counts):
                 ab = standard[t, base + 1 + j]
                 row[_LEAD + j] = b * (ab - a)
                 row[_LEAD + num_vars + j] = (a - ab) * (a - ab)
-    # sums[b, t] = counts[b] @ terms[t]: tasks of _GROUP resamples per output, so each
-    # term row is read once per group; branch-free multiply-adds over the contiguous terms
+    return point, terms
+
+
+@kernel(parallel=True)
+def bootstrap_sums(terms, counts):
+    r"""``sums[t, b] = counts[b] @ terms[t]``: :math:`\sum_k c_{bk} g_k` for the resamples
+    of ``counts`` (R', N) (any subset of rows of the full counts: each resample's sum is
+    independent of the others).
+
+    Tasks of ``_GROUP`` resamples per output, so each term row is read once per group;
+    branch-free multiply-adds over the contiguous terms. Returns (n_out, R', 2 D + 4)."""
+    n_out, n_base, n_terms = terms.shape
+    n_res = counts.shape[0]
     sums = np.zeros((n_out, n_res, n_terms))
     n_groups = (n_res + _GROUP - 1) // _GROUP
     for task in prange(n_out * n_groups):
@@ -167,8 +172,16 @@ def sobol_point_and_sums(outputs, num_vars, counts):
                 c = counts[b, k]
                 for f in range(n_terms):
                     acc[b, f] += c * row[f]
+    return sums
+
+
+@kernel
+def varying_outputs(terms, counts):
+    """Whether the A and B values of the rows drawn at least once by ``counts`` (R, N) are
+    not all equal, per output (SALib's ``np.ptp != 0`` test; half-widths are 0 otherwise)."""
+    n_out, n_base = terms.shape[0], terms.shape[1]
     drawn = np.zeros(n_base, dtype=np.bool_)
-    for b in range(n_res):
+    for b in range(counts.shape[0]):
         for k in range(n_base):
             drawn[k] = drawn[k] or counts[b, k] != 0.0
     varying = np.zeros(n_out, dtype=np.bool_)
@@ -180,7 +193,7 @@ def sobol_point_and_sums(outputs, num_vars, counts):
                 lo = min(lo, terms[t, k, 0], terms[t, k, 1])
                 hi = max(hi, terms[t, k, 0], terms[t, k, 1])
         varying[t] = hi - lo != 0.0
-    return point, sums, varying
+    return varying
 
 
 def resample_counts(resample_rows: np.ndarray, n_base: int) -> np.ndarray:
@@ -190,12 +203,19 @@ def resample_counts(resample_rows: np.ndarray, n_base: int) -> np.ndarray:
     return np.bincount(flat.ravel(), minlength=n_res * n_base).reshape(n_res, n_base) * 1.0
 
 
-def sobol_first_total(outputs, num_vars, counts, z_value):
+#: Multiply-adds of bootstrap sums per kernel call of :func:`sobol_first_total` (~20 ms).
+SUMS_PER_CALL = 1 << 25
+
+
+def sobol_first_total(outputs, num_vars, counts, z_value, on_chunk=None):
     r"""Sobol' S1, ST and their bootstrap half-widths for every output column.
 
-    ``outputs``, ``num_vars`` and ``counts`` as in :func:`sobol_point_and_sums` (``counts``
-    from SALib's bootstrap rows ``default_rng(seed).integers(N, size=(N, R))``, transposed);
-    ``z_value`` is :math:`z_{(1+c)/2}` of the confidence level c.
+    ``outputs`` and ``num_vars`` as in :func:`sobol_point_and_terms`; ``counts`` (R, N)
+    float64, how many times resample b draws row k (:func:`resample_counts` of SALib's
+    bootstrap rows ``default_rng(seed).integers(N, size=(N, R))``, transposed); ``z_value``
+    is :math:`z_{(1+c)/2}` of the confidence level c. The bootstrap sums are taken in
+    calls of about ``SUMS_PER_CALL`` multiply-adds (a subset of the resamples each);
+    ``on_chunk(fraction)`` runs after each.
 
     Returns
     -------
@@ -204,7 +224,18 @@ def sobol_first_total(outputs, num_vars, counts, z_value):
     """
     outputs = np.ascontiguousarray(outputs, dtype=np.float64)
     n_base = outputs.shape[0] // (num_vars + 2)
-    point, sums, varying = sobol_point_and_sums(outputs, num_vars, counts)
+    point, terms = sobol_point_and_terms(outputs, num_vars)
+    n_res = counts.shape[0]
+    per_resample = max(1, terms.size)
+    step = max(1, min(n_res, SUMS_PER_CALL // per_resample))
+    sums = np.empty((terms.shape[0], n_res, terms.shape[2]))
+    for b0 in range(0, n_res, step):
+        b1 = min(n_res, b0 + step)
+        sums[:, b0:b1] = bootstrap_sums(terms, counts[b0:b1])
+        if on_chunk is not None:
+            on_chunk((b1 - b0) / n_res)
+    varying = varying_outputs(terms, counts)
+    del terms
     sums = sums.transpose(1, 0, 2)  # (R, n_out, 2D + 4)
     mean = (sums[..., 0] + sums[..., 1]) / (2 * n_base)
     variance = (sums[..., 2] + sums[..., 3]) / (2 * n_base) - mean * mean

@@ -56,8 +56,9 @@ print(json.dumps({"code": result.exit_code, "loaded": [m for m in heavy if m in 
 
 
 def test_warm_run_imports_neither_salib_nor_scipy_optimize(tmp_path):
-    """Whole CLI runs in fresh processes: the cold one needs SALib (so the probe can see
-    it), the warm one reads both designs back and imports none of the heavy modules."""
+    """Whole CLI runs in fresh processes: the cold one draws the designs with
+    ``scipy.stats.qmc`` (so the probe can see it), the warm one reads both designs back
+    and imports none of the heavy modules."""
     preset = tmp_path / "job.toml"
     body = 'posture = "isotropic"\nsamples = 64\nefast_samples = 80\n'
     preset.write_text(ROBOT_2R + body, encoding="utf-8")
@@ -69,7 +70,7 @@ def test_warm_run_imports_neither_salib_nor_scipy_optimize(tmp_path):
         out = subprocess.run(command, capture_output=True, text=True, env=env, cwd=REPO)
         probes.append(json.loads(out.stdout.strip().splitlines()[-1]))
     assert probes[0]["code"] == probes[1]["code"] == 0
-    assert "SALib" in probes[0]["loaded"]
+    assert "scipy.stats" in probes[0]["loaded"]
     assert probes[1]["loaded"] == []
     assert len(entries(design_cache.cache_dir())) == 2
 

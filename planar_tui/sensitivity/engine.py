@@ -8,10 +8,14 @@ matrix is bit-identical to SALib sampling the real problem. One design serves ev
 
 from __future__ import annotations
 
+import importlib
+import math
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
+
+from planar_tui.progress import Progress
 
 #: eFAST interference factor M (paper A, Saltelli et al. 1999).
 M_HARMONICS = 4
@@ -58,7 +62,8 @@ def design_rows(method: str, num_vars: int, samples: int) -> int:
 
 
 def salib_unit_design(method: str, num_vars: int, samples: int, seed: int) -> np.ndarray:
-    """SALib's design on the unit hypercube, drawn now.
+    """SALib's design on the unit hypercube, drawn by SALib itself in one call (the
+    reference :func:`draw_unit_design` is checked against, byte for byte).
 
     ``sobol``: ``SALib.sample.sobol.sample(N, calc_second_order=False)``, N (D + 2) rows;
     ``efast``: ``SALib.sample.fast_sampler.sample(N, M=4)``, N D rows.
@@ -74,18 +79,120 @@ def salib_unit_design(method: str, num_vars: int, samples: int, seed: int) -> np
     return fast_sampler.sample(unit, samples, M=M_HARMONICS, seed=seed)
 
 
-@lru_cache(maxsize=16)
-def unit_design(method: str, num_vars: int, samples: int, seed: int) -> np.ndarray:
-    """SALib's unit design (read-only), cached per process and on disk (:mod:`.design_cache`)."""
+#: Sobol' base points drawn per chunk (a few ms each; a cancel check after each).
+SOBOL_CHUNK_POINTS = 1 << 14
+
+
+def _sobol_chunks(num_vars: int, samples: int, seed: int) -> Iterator[np.ndarray]:
+    """SALib's Saltelli design without second order, ``SOBOL_CHUNK_POINTS`` base points
+    (``D + 2`` rows each) at a time.
+
+    The same operations as ``SALib.sample.sobol.sample`` on the unit cube: one scrambled
+    ``scipy.stats.qmc.Sobol(2D, seed=seed)`` sequence, whose successive ``random(n)`` draws
+    continue it exactly, arranged as rows ``A, A_B^(1) … A_B^(D), B`` (copies only), and
+    SALib's scaling to [0, 1] (``x * 1 + 0``, exact)."""
+    from scipy.stats import qmc
+
+    engine = qmc.Sobol(d=2 * num_vars, scramble=True, seed=seed)
+    columns = np.arange(num_vars)
+    for start in range(0, samples, SOBOL_CHUNK_POINTS):
+        base = engine.random(min(SOBOL_CHUNK_POINTS, samples - start))
+        a, b = base[:, :num_vars], base[:, num_vars:]
+        block = np.empty((len(base), num_vars + 2, num_vars))
+        block[:, 0] = a
+        block[:, 1 : num_vars + 1] = a[:, None, :]
+        block[:, 1 + columns, columns] = b  # A_B^(k): column k of B in A
+        block[:, num_vars + 1] = b
+        yield block.reshape(-1, num_vars)
+
+
+def _efast_chunks(num_vars: int, samples: int, seed: int) -> Iterator[np.ndarray]:
+    """SALib's eFAST (``fast_sampler``, M = 4) search curves, one input's N rows at a time:
+    the operations of ``SALib.sample.fast_sampler.sample`` in the same order (one
+    ``default_rng(seed).random()`` phase per input)."""
+    n, m_harmonics = samples, M_HARMONICS
+    omega = np.zeros([num_vars])
+    omega[0] = math.floor((n - 1) / (2 * m_harmonics))
+    m = math.floor(omega[0] / (2 * m_harmonics))
+    if m >= (num_vars - 1):
+        omega[1:] = np.floor(np.linspace(1, m, num_vars - 1))
+    else:
+        omega[1:] = np.arange(num_vars - 1) % m + 1
+    s = (2 * math.pi / n) * np.arange(n)
+    rng = np.random.default_rng(seed)
+    omega2 = np.zeros([num_vars])
+    for i in range(num_vars):
+        omega2[i] = omega[0]
+        omega2[list(range(i)) + list(range(i + 1, num_vars))] = omega[1:]
+        phi = 2 * math.pi * rng.random()
+        block = np.zeros([n, num_vars])
+        for j in range(num_vars):
+            block[:, j] = 0.5 + (1 / math.pi) * np.arcsin(np.sin(omega2[j] * s + phi))
+        yield block
+
+
+def draw_unit_design(
+    method: str, num_vars: int, samples: int, seed: int, on_chunk: Callable[[float], None]
+) -> np.ndarray:
+    """SALib's unit design (byte-identical to :func:`salib_unit_design`), drawn in chunks
+    of a few milliseconds; ``on_chunk(fraction)`` runs after each (it may raise
+    :class:`~planar_tui.errors.Cancelled`)."""
+    rows = design_rows(method, num_vars, samples)
+    design = np.empty((rows, num_vars))
+    chunks = _sobol_chunks if method == "sobol" else _efast_chunks
+    filled = 0
+    for chunk in chunks(num_vars, samples, seed):
+        design[filled : filled + len(chunk)] = chunk
+        filled += len(chunk)
+        on_chunk(len(chunk) / rows)
+    return design
+
+
+_DESIGN_MEMO: dict[tuple, np.ndarray] = {}
+#: Designs kept per process.
+DESIGN_MEMO_SIZE = 16
+
+
+def unit_design(
+    method: str, num_vars: int, samples: int, seed: int, progress: Progress | None = None
+) -> np.ndarray:
+    """SALib's unit design (read-only), kept per process and on disk (:mod:`.design_cache`).
+
+    ``progress`` advances by the fraction of the design drawn after each chunk (by 1 on a
+    hit; its detail: the method) and is checked for a cancel, SciPy's import included;
+    ``unit_design.cache_clear()`` empties the per-process memo."""
     from planar_tui.sensitivity.design_cache import cached_design, design_key
 
-    design = cached_design(
-        design_key(method, num_vars, samples, seed, M_HARMONICS),
-        (design_rows(method, num_vars, samples), num_vars),
-        lambda: salib_unit_design(method, num_vars, samples, seed),
-    )
-    design.setflags(write=False)
+    drawn: list[float] = []
+
+    def chunk_done(fraction: float) -> None:
+        drawn.append(fraction)
+        if progress is not None:
+            progress.advance(fraction, method)
+
+    def draw() -> np.ndarray:
+        if progress is not None and method == "sobol":  # ~1 s the first time
+            progress.wait_for(importlib.import_module, "scipy.stats")
+        return draw_unit_design(method, num_vars, samples, seed, chunk_done)
+
+    key = (method, num_vars, samples, seed)
+    design = _DESIGN_MEMO.get(key)
+    if design is None:
+        design = cached_design(
+            design_key(method, num_vars, samples, seed, M_HARMONICS),
+            (design_rows(method, num_vars, samples), num_vars),
+            draw,
+        )
+        design.setflags(write=False)
+        while len(_DESIGN_MEMO) >= DESIGN_MEMO_SIZE:
+            del _DESIGN_MEMO[next(iter(_DESIGN_MEMO))]
+        _DESIGN_MEMO[key] = design
+    if not drawn and progress is not None:  # read back whole
+        progress.advance(1.0, method)
     return design
+
+
+unit_design.cache_clear = _DESIGN_MEMO.clear  # type: ignore[attr-defined]
 
 
 def scaled_design(problem: Problem, method: str, samples: int, seed: int) -> np.ndarray:
@@ -94,13 +201,29 @@ def scaled_design(problem: Problem, method: str, samples: int, seed: int) -> np.
     return unit * (problem.upper - problem.lower) + problem.lower
 
 
-def evaluate(problem: Problem, unit: np.ndarray, robot, theta_rad, omega_rad_s, alpha_rad_s2):
-    """Joint torques (S, n) of every row of the unit design ``unit`` scaled to ``problem``:
-    one batched kernel call, bit-identical to the torques of :func:`scaled_design`."""
+#: Link-rows (design rows × links) per kernel call of :func:`evaluate`: ~10-30 ms.
+EVALUATION_CHUNK_LINK_ROWS = 1 << 20
+
+
+def evaluate(
+    problem: Problem,
+    unit: np.ndarray,
+    robot,
+    theta_rad,
+    omega_rad_s,
+    alpha_rad_s2,
+    progress: Progress | None = None,
+    detail: str = "",
+):
+    """Joint torques (S, n) of every row of the unit design ``unit`` scaled to ``problem``,
+    bit-identical to the torques of :func:`scaled_design` (rows are independent).
+
+    Batched kernel calls of ``EVALUATION_CHUNK_LINK_ROWS / n`` rows; ``progress`` (if any)
+    advances by the fraction done (with ``detail``) after each, and may raise
+    :class:`~planar_tui.errors.Cancelled`."""
     from planar_tui.kernels.sensitivity_model import design_torques
 
-    return design_torques(
-        unit,
+    arguments = (
         problem.lower,
         problem.upper,
         np.ascontiguousarray(robot.arrays()[2], dtype=np.float64),
@@ -109,15 +232,44 @@ def evaluate(problem: Problem, unit: np.ndarray, robot, theta_rad, omega_rad_s, 
         np.asarray(omega_rad_s, dtype=np.float64),
         np.asarray(alpha_rad_s2, dtype=np.float64),
     )
+    rows = unit.shape[0]
+    step = max(256, EVALUATION_CHUNK_LINK_ROWS // problem.n_links)
+    torques = np.empty((rows, problem.n_links))
+    for start in range(0, rows, step):
+        stop = min(rows, start + step)
+        chunk = unit[start:stop]
+        if start == 0 and progress is not None:  # may load the kernel: ~0.2 s
+            torques[start:stop] = progress.wait_for(design_torques, chunk, *arguments)
+        else:
+            torques[start:stop] = design_torques(chunk, *arguments)
+        if progress is not None:
+            progress.advance((stop - start) / max(rows, 1), detail)
+    return torques
 
 
-def analyse(method: str, outputs: np.ndarray, num_vars: int, seed: int) -> np.ndarray:
-    """(4, n, D) indices S1, S1 half-width, ST, ST half-width of every torque."""
-    from planar_tui.sensitivity.estimators import efast_indices, sobol_indices
+def analyse(
+    method: str,
+    outputs: np.ndarray,
+    num_vars: int,
+    seed: int,
+    progress: Progress | None = None,
+    detail: str = "",
+) -> np.ndarray:
+    """(4, n, D) indices S1, S1 half-width, ST, ST half-width of every torque; ``progress``
+    (if any) advances by the fraction done after each chunk of the analysis."""
+    from planar_tui.sensitivity.estimators import (
+        efast_indices,
+        sobol_bootstrap_counts,
+        sobol_indices,
+    )
 
+    on_chunk = None if progress is None else (lambda fraction: progress.advance(fraction, detail))
     if method == "sobol":
-        return sobol_indices(outputs, num_vars, seed)
-    return efast_indices(outputs, num_vars, seed, M_HARMONICS)
+        if progress is not None:  # the bootstrap draw: ~0.7 s at N = 2**18, then cached
+            n_base = outputs.shape[0] // (num_vars + 2)
+            progress.wait_for(sobol_bootstrap_counts, n_base, seed)
+        return sobol_indices(outputs, num_vars, seed, on_chunk=on_chunk)
+    return efast_indices(outputs, num_vars, seed, M_HARMONICS, on_chunk=on_chunk)
 
 
 def default_efast_samples(sobol_samples: int, num_vars: int) -> int:

@@ -26,11 +26,14 @@ from __future__ import annotations
 import math
 import os
 import warnings
+from collections.abc import Callable
 from functools import lru_cache
 from statistics import NormalDist
 
 import numpy as np
 
+#: FFT input samples per eFAST task (a group of bootstrap windows): ~10-40 ms.
+FFT_SAMPLES_PER_TASK = 1 << 20
 #: Bootstrap resamples and confidence level: SALib's defaults.
 NUM_RESAMPLES = 100
 CONF_LEVEL = 0.95
@@ -58,16 +61,33 @@ def sobol_bootstrap_counts(n_base: int, seed: int, num_resamples: int = NUM_RESA
 
 
 def sobol_indices(
-    outputs, num_vars: int, seed: int, num_resamples=NUM_RESAMPLES, conf_level=CONF_LEVEL
+    outputs,
+    num_vars: int,
+    seed: int,
+    num_resamples=NUM_RESAMPLES,
+    conf_level=CONF_LEVEL,
+    on_chunk: Callable[[float], None] | None = None,
 ):
     """S1, ST and bootstrap half-widths of every column of ``outputs`` (Saltelli design,
-    no second order, N (D + 2) rows). ``seed`` > 0, as SALib's ``analyze`` treats 0 as none."""
+    no second order, N (D + 2) rows). ``seed`` > 0, as SALib's ``analyze`` treats 0 as none.
+
+    Output columns one at a time, resamples in chunks (columns and resamples are
+    independent, so the result is the same bytes as one pass over all of them);
+    ``on_chunk(fraction)`` runs after each chunk."""
     from planar_tui.kernels.sensitivity_estimators import sobol_first_total
 
-    outputs = np.ascontiguousarray(outputs, dtype=np.float64)
+    outputs = np.asarray(outputs, dtype=np.float64)
     n_base = outputs.shape[0] // (num_vars + 2)
+    n_out = outputs.shape[1]
     counts = sobol_bootstrap_counts(n_base, seed, num_resamples)
-    return sobol_first_total(outputs, num_vars, counts, _z_value(conf_level))
+    column_chunk = None if on_chunk is None else (lambda fraction: on_chunk(fraction / n_out))
+    result = np.empty((4, n_out, num_vars))
+    for t in range(n_out):
+        column = np.ascontiguousarray(outputs[:, t : t + 1])
+        result[:, t : t + 1] = sobol_first_total(
+            column, num_vars, counts, _z_value(conf_level), column_chunk
+        )
+    return result
 
 
 def _fourier_orders(curves, m_harmonics: int):
@@ -103,12 +123,16 @@ def efast_indices(
     m_harmonics=4,
     num_resamples=NUM_RESAMPLES,
     conf_level=CONF_LEVEL,
+    on_chunk: Callable[[float], None] | None = None,
 ):
     """eFAST S1, ST and (unreliable, see module docstring) bootstrap half-widths of every
     column of ``outputs`` (``fast_sampler`` design: D blocks of N rows).
 
-    One task per (input, output) curve, run on a thread pool: NumPy's FFT releases the GIL.
-    Each task writes its own cells, so the result does not depend on the scheduling."""
+    Tasks of one (input, output) curve and a group of its bootstrap windows (about
+    ``FFT_SAMPLES_PER_TASK`` samples; the curve's own orders with its first group) run on
+    a thread pool: NumPy's FFT releases the GIL. Each task writes its own cells, so the
+    result does not depend on the scheduling; ``on_chunk(fraction)`` runs after each
+    round of one task per worker."""
     from concurrent.futures import ThreadPoolExecutor
 
     outputs = np.asarray(outputs, dtype=np.float64)
@@ -117,23 +141,38 @@ def efast_indices(
     starts = np.random.RandomState(seed).randint(0, n_curve, size=num_vars * num_resamples)
     starts = starts.reshape(num_vars, num_resamples)
     window = math.ceil(n_curve * 0.5)
-    z = _z_value(conf_level)
+    group = max(1, FFT_SAMPLES_PER_TASK // window)
+    groups = range(0, num_resamples, group)
     result = np.zeros((4, n_out, num_vars))
+    boot = np.empty((2, n_out, num_vars, num_resamples))  # S1, ST of every window
 
-    def one_curve(task: int) -> None:
-        i, t = divmod(task, n_out)
+    def one_task(task: int) -> None:
+        curve_index, b0 = divmod(task, len(groups))
+        i, t = divmod(curve_index, n_out)
+        b0 *= group
         curve = outputs[i * n_curve : (i + 1) * n_curve, t]
-        result[0, t, i], result[2, t, i] = _fourier_orders(curve, m_harmonics)
+        if b0 == 0:
+            result[0, t, i], result[2, t, i] = _fourier_orders(curve, m_harmonics)
         # cyclic windows of the curve = slices of the curve repeated once
         doubled = np.concatenate([curve, curve[: window - 1]])
-        windows = np.lib.stride_tricks.sliding_window_view(doubled, window)[starts[i]]
-        s1, st = _fourier_orders(windows, m_harmonics)  # (R,)
-        result[1, t, i] = z * s1.std(ddof=1)
-        result[3, t, i] = z * st.std(ddof=1)
+        chosen = starts[i, b0 : b0 + group]
+        windows = np.lib.stride_tricks.sliding_window_view(doubled, window)[chosen]
+        b1 = b0 + len(chosen)
+        boot[0, t, i, b0:b1], boot[1, t, i, b0:b1] = _fourier_orders(windows, m_harmonics)
 
-    tasks = range(num_vars * n_out)
-    with ThreadPoolExecutor(max_workers=min(_worker_count(), len(tasks))) as pool:
-        list(pool.map(one_curve, tasks))
+    tasks = range(num_vars * n_out * len(groups))
+    workers = min(_worker_count(), len(tasks))
+    with ThreadPoolExecutor(max_workers=workers) as pool:
+        for start in range(0, len(tasks), workers):  # one task per worker between checks
+            batch = tasks[start : start + workers]
+            list(pool.map(one_task, batch))
+            if on_chunk is not None:
+                on_chunk(len(batch) / len(tasks))
+    z = _z_value(conf_level)
+    for t in range(n_out):
+        for i in range(num_vars):
+            result[1, t, i] = z * boot[0, t, i].std(ddof=1)
+            result[3, t, i] = z * boot[1, t, i].std(ddof=1)
     return result
 
 

@@ -275,8 +275,10 @@ def sample_sizes(spec: SensitivitySpec, num_vars: int) -> dict[str, int]:
 def run_sensitivity(job: Job, progress: Progress) -> SensitivityResult:
     """Indices of every torque for every method and speed of one job (one posture).
 
-    Progress goes through three stages (sampling, evaluation, analysis); a cancel raises
-    :class:`~planar_tui.errors.Cancelled` between chunks.
+    Progress goes through three stages (sampling, evaluation, analysis), each in chunks of
+    well under :data:`~planar_tui.progress.CHECK_INTERVAL_S` (design chunks, row chunks of
+    the design, one output column or one curve per worker), so a cancel raises
+    :class:`~planar_tui.errors.Cancelled` within a fraction of a second.
     """
     import numpy as np
 
@@ -291,8 +293,7 @@ def run_sensitivity(job: Job, progress: Progress) -> SensitivityResult:
     progress.start(len(spec.methods), "sampling")
     designs = {}
     for method in spec.methods:
-        designs[method] = unit_design(method, problem.num_vars, sizes[method], spec.seed)
-        progress.advance(1, method)
+        designs[method] = unit_design(method, problem.num_vars, sizes[method], spec.seed, progress)
     states = [(method, speed) for speed in spec.speeds_rad_s for method in spec.methods]
     n = robot.n_links
     alpha = np.full(n, spec.alpha_rad_s2)
@@ -301,17 +302,21 @@ def run_sensitivity(job: Job, progress: Progress) -> SensitivityResult:
     outputs = {}
     for method, speed in states:
         omega = np.full(n, speed)
-        outputs[method, speed] = evaluate(problem, designs[method], robot, theta, omega, alpha)
-        progress.advance(1, f"{method} {speed:g} rad/s")
+        outputs[method, speed] = evaluate(
+            problem, designs[method], robot, theta, omega, alpha, progress,
+            f"{method} {speed:g} rad/s",
+        )  # fmt: skip
     progress.start(len(states), "analysis")
     analyses = []
     for method, speed in states:
-        indices = analyse(method, outputs.pop((method, speed)), problem.num_vars, spec.seed)
+        indices = analyse(
+            method, outputs.pop((method, speed)), problem.num_vars, spec.seed, progress,
+            f"{method} {speed:g} rad/s",
+        )  # fmt: skip
         percent = sensitivity_percent(indices, spec.percent_of)
         analyses.append(
             Analysis(method, spec.posture.label, speed, problem.names, indices, percent)
         )
-        progress.advance(1, f"{method} {speed:g} rad/s")
     label = robot.label
     kappa = spec.posture.condition_number
     sobol_conf = [float(a.indices[[1, 3]].max()) for a in analyses if a.method == "sobol"]
