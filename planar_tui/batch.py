@@ -126,7 +126,8 @@ def apply_overrides(jobs: Sequence[Job], options: Mapping[str, Any]) -> tuple[Jo
 
 
 def run_job(job: Job, progress: Progress | None = None) -> JobResult:
-    """Run one job (kernels prepared first); writes nothing.
+    """Run one job (kernels prepared first, compiled first when not cached: the stage
+    :data:`planar_tui.warmup.STAGE`); writes nothing.
 
     Raises :class:`~planar_tui.errors.Cancelled` when ``progress`` says stop, the job's
     own :class:`~planar_tui.errors.PresetError` (e.g. a box budget), and
@@ -134,14 +135,32 @@ def run_job(job: Job, progress: Progress | None = None) -> JobResult:
     """
     from planar_tui.errors import Cancelled
     from planar_tui.runtime import prepare_kernels
+    from planar_tui.warmup import warm_kernels
 
     prepare_kernels()
+    progress = progress or Progress()
     try:
-        return JOB_KINDS[job.kind].run(job, progress or Progress())
-    except (PresetError, Cancelled, KeyboardInterrupt):
+        warm_kernels([job.kind], progress)
+        return JOB_KINDS[job.kind].run(job, progress)
+    except (PresetError, Cancelled, KeyboardInterrupt) as error:
+        _release(error, progress)
         raise
     except Exception as error:
+        _release(error, progress)
         raise JobFailed(job, error) from error
+
+
+def _release(error: BaseException, progress: Progress) -> None:
+    """Free what a failed or cancelled run holds even while the exception is kept (the app
+    keeps it to show it): the local variables of the finished frames of its traceback (a
+    workspace's boxes: gigabytes; the traceback's lines stay) and the partial results the
+    progress refers to. A front end that kept a :class:`ProgressState` drops its
+    ``partial`` likewise."""
+    import traceback
+
+    progress.partial = {}
+    if error.__traceback__ is not None:
+        traceback.clear_frames(error.__traceback__.tb_next)
 
 
 def write_result(plan: OutputPlan, result: JobResult) -> list[Path]:

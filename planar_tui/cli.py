@@ -86,8 +86,12 @@ def progress_bar(bars, job: Job):
     from planar_tui.progress import Progress
 
     task = bars.add_task(job.label, total=1.0, detail="")
+    warned = set()
 
     def update(state) -> None:
+        if state.warning and state.warning not in warned:
+            warned.add(state.warning)
+            bars.console.print(f"warning: {job.label}: {state.warning}", markup=False)
         bars.update(
             task,
             completed=state.completed,
@@ -299,6 +303,28 @@ def run(
     with reported_errors():
         loaded = load_presets(presets)
         execute([job for preset in loaded for job in preset.jobs], out_dir)
+
+
+@app.command("warmup")
+def warmup() -> None:
+    """Compile every job kind's kernels into the cache (for batch machines: later runs
+    start without the first-run compilation)."""
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+    from planar_tui import progress as core
+    from planar_tui.registry import JOB_KINDS
+    from planar_tui.warmup import warm_kernels
+
+    columns = (TextColumn("{task.description}"), BarColumn(bar_width=24), MofNCompleteColumn())
+    with reported_errors(), Progress(*columns, TimeElapsedColumn(), console=stderr) as bars:
+        task = bars.add_task("kernels", total=len(JOB_KINDS))
+
+        def update(state) -> None:
+            bars.update(task, completed=state.completed, description=state.detail[:40])
+
+        done = warm_kernels(JOB_KINDS, core.Progress(on_update=update))
+        bars.update(task, completed=len(JOB_KINDS), description="kernels ready")
+    stdout.print(f"compiled: {', '.join(done) or 'nothing (all cached)'}", markup=False)
 
 
 @app.command("presets")

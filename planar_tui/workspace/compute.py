@@ -1,5 +1,13 @@
 """Runner of the ``[workspace]`` job: chunked bisection, certified bracket, union areas.
 
+Before it starts, :func:`report_estimate` puts the estimated box count in the progress
+figures (``boxes_estimate``) and warns when it exceeds ``box_budget``. While it runs, the
+progress carries the boxes kept so far as read-only views into the runner's arrays
+(``ProgressState.partial``: ``boxes_cm`` (k, 4) rows ``x_lo, x_hi, y_lo, y_hi`` and
+``status`` (k,) 2 = inside, 1 = boundary, or ``None`` in the 5-D stage, where kept boxes
+may repeat and are classified at the end); in the refinement stage they are the refined
+boxes only (the inside boxes of the first stage are final). No copy is made per update.
+
 Stages (each in kernel chunks of at most ``CHUNK_BOXES`` boxes, so progress is reported
 and Cancel/Ctrl-C is honoured within a fraction of a second):
 
@@ -16,6 +24,7 @@ The areas are exact unions of the (x, y) projections: ``area_inside <= exact <= 
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass
 
@@ -132,6 +141,13 @@ def unique_rows(boxes: np.ndarray) -> np.ndarray:
     return np.ascontiguousarray(ordered[first])
 
 
+def _read_only(view: np.ndarray) -> np.ndarray:
+    """A read-only view of ``view`` (the runner's own array is not copied)."""
+    view = view.view()
+    view.flags.writeable = False
+    return view
+
+
 def _grow(array: np.ndarray) -> np.ndarray:
     grown = np.zeros((2 * array.shape[0], *array.shape[1:]), dtype=array.dtype)
     grown[: array.shape[0]] = array
@@ -168,6 +184,7 @@ def _interval_stage(form_code, p, spec, box, budget) -> np.ndarray:
         volume = float(np.sum(np.prod(pending[:, 1:10:2] - pending[:, 0:10:2], axis=1)))
         kept_area += _xy_area(kept[previous:n_kept])
         upper = kept_area + _xy_area(pending)
+        budget.progress.show_partial(boxes_cm=_read_only(kept[:n_kept]), status=None)
         budget.spend(processed, 1.0 - volume / root_volume, 0.0, upper)
         if code == DONE:
             return kept[:n_kept]
@@ -202,6 +219,9 @@ def _arc_stage(p, limits, precision, seeds, budget, inside_cm2=0.0):
         lower += _xy_area(kept[new][status[new] == INSIDE])
         upper += _xy_area(kept[new])
         fraction = 1.0 - area / max(root_area, 1e-300)
+        budget.progress.show_partial(
+            boxes_cm=_read_only(kept[:n_kept]), status=_read_only(status[:n_kept])
+        )
         budget.spend(processed, fraction, lower, upper + area)
         if code == DONE:
             return kept[:n_kept], status[:n_kept]
@@ -225,6 +245,55 @@ def default_search_box(
         side *= 2.0
     cx, cy = 0.5 * (xlo + xhi), 0.5 * (ylo + yhi)
     return ((cx - 0.5 * side, cx + 0.5 * side), (cy - 0.5 * side, cy + 0.5 * side))
+
+
+#: Processed boxes per (x, y) cell of side ε of the workspace's area, per 5-D form: an
+#: estimate fitted on paper B's Tables 3-5 at ε and ε/2, k = 10 (observed 28-72, expanded
+#: natural 915), rounded up.
+BOXES_PER_CELL = {"natural": 75.0, "mean-value": 65.0, "slope": 55.0, "expanded": 1000.0}
+#: Processed boxes of the arc-distance form per ε of the workspace's boundary length
+#: (observed 6.7-7.2 on the same cases).
+BOXES_PER_BOUNDARY_STEP = 8.0
+
+
+def estimate_boxes(robot: Robot3RRR, spec) -> int:
+    """About how many boxes the bisection will process (0 for ``geometric``), before it runs.
+
+    From the outer polygon of the exact workspace (shapely, 64 segments per turn: a few
+    ms): its area A and boundary length L. The 5-D forms refine the whole area down to ε,
+    with their θ boxes: ``BOXES_PER_CELL[form] · A / ε²``; the arc-distance form proves
+    inside boxes early and refines the boundary only: ``BOXES_PER_BOUNDARY_STEP · L / ε``;
+    a boundary refinement adds the latter at ``refine_precision_cm``. An estimate (within
+    about 2x of the counts of paper B's tables), not a bound.
+    """
+    from planar_tui.workspace.geometry import workspace_polygon
+
+    if spec.form == "geometric":
+        return 0
+    polygon = workspace_polygon(robot, spec.limits_rad, spec.orientation_rad, 64, True)
+    area, length = float(polygon.area), float(polygon.length)
+    eps = spec.precision_cm
+    if spec.form == "arc-distance":
+        boxes = BOXES_PER_BOUNDARY_STEP * length / eps
+    else:
+        per_cell = BOXES_PER_CELL["expanded" if spec.expanded else spec.form]
+        boxes = per_cell * area / (eps * eps)
+    if spec.refine_precision_cm is not None:
+        boxes += BOXES_PER_BOUNDARY_STEP * length / spec.refine_precision_cm
+    return math.ceil(boxes) + 1
+
+
+def report_estimate(robot: Robot3RRR, spec, progress: Progress) -> int:
+    """Put :func:`estimate_boxes` in ``progress.figures["boxes_estimate"]`` and warn
+    (``progress.warning``) when it exceeds the job's ``box_budget``."""
+    estimate = estimate_boxes(robot, spec)
+    progress.figures["boxes_estimate"] = float(estimate)
+    if estimate > spec.box_budget:
+        progress.warn(
+            f"about {estimate:,} boxes expected, more than box_budget = {spec.box_budget:,}: "
+            "the run will probably stop there (a coarser precision_cm or a larger box_budget)"
+        )
+    return estimate
 
 
 def kernel_parameters(robot: Robot3RRR, spec) -> np.ndarray:
@@ -265,6 +334,7 @@ def compute_workspace(robot: Robot3RRR, spec, budget: BoxBudget) -> WorkspaceOut
             time.perf_counter() - started, extent,
         )  # fmt: skip
 
+    report_estimate(robot, spec, budget.progress)
     budget.progress.start(1.0, f"{spec.form} bisection")
     if spec.form == "arc-distance":
         boxes, status = _arc_stage(p, limits, spec.precision_cm, np.array([extent]), budget)
