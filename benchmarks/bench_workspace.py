@@ -48,6 +48,7 @@ REFINE = {3: 0.1171875 / 128, 4: 0.3125 / 128, 5: 0.03125 / 256}
 class _Job:
     def __init__(self, spec):
         self.spec, self.preset_path, self.label = spec, "bench", "bench:workspace"
+        self.key = "workspace"
 
 
 def paper_row(table, form, precision):
@@ -62,7 +63,13 @@ def paper_row(table, form, precision):
 def spec(table, form, precision=None, **extra):
     limits, phi, box, eps = CASES[table]
     return WorkspaceSpec(
-        limits, phi, precision or eps, form, box, geometric_reference=False, **extra
+        joint_limits_deg=limits,
+        orientation_deg=phi,
+        precision_cm=precision or eps,
+        form=form,
+        search_box_cm=box,
+        geometric_reference=False,
+        **extra,
     )
 
 
