@@ -9,7 +9,8 @@ CLI's ``main``, the app, the batch service before it runs a job, the test suite)
   the eFAST FFT threads and other processes (``planar-tui run`` Tables 4+5: 2.5 → 1.8 s
   median at load 2).
 * :func:`prepare_kernels` before the first kernel module is imported: points numba's
-  cache at :func:`kernel_cache_folder` and loads ``numba.np.arraymath`` without its
+  cache at :func:`kernel_cache_folder` (or, when that cannot be written, a private
+  temporary folder, said once on stderr) and loads ``numba.np.arraymath`` without its
   import-time ``scipy.linalg`` BLAS probe (0.1-0.25 s of every jitted process).
 
 Cache folders come from one place, :func:`user_cache_folder` (``platformdirs``: XDG on
@@ -22,7 +23,9 @@ import hashlib
 import importlib
 import importlib.util
 import os
+import stat
 import sys
+import tempfile
 from pathlib import Path
 
 APP_NAME = "planar-tui"
@@ -84,6 +87,57 @@ def kernel_cache_folder() -> Path:
     return user_cache_folder() / f"numba-{digest}"
 
 
+def cache_folder_problem(folder: Path) -> str | None:
+    """Why ``folder`` cannot hold a cache (created here if missing), or ``None`` if a file
+    can be created in it."""
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryFile(dir=folder):
+            pass
+    except OSError as error:
+        return error.strerror or str(error)
+    return None
+
+
+def _private_folder(folder: Path) -> bool:
+    """Whether ``folder`` exists (or was just created) as a real folder of this user that
+    no one else can write: a shared temporary folder must not feed us someone's kernels."""
+    try:
+        folder.mkdir(mode=0o700, exist_ok=True)
+        info = folder.lstat()
+    except OSError:
+        return False
+    mine = not hasattr(os, "getuid") or info.st_uid == os.getuid()
+    return stat.S_ISDIR(info.st_mode) and mine and not info.st_mode & 0o022
+
+
+def fallback_kernel_cache_folder(name: str) -> Path:
+    """A temporary kernel cache: ``TMPDIR/planar-tui-USER/NAME`` when that folder is this
+    user's alone (so later runs reuse it), else a new private folder for this process."""
+    user = str(os.getuid()) if hasattr(os, "getuid") else "user"
+    shared = Path(tempfile.gettempdir()) / f"{APP_NAME}-{user}"
+    if _private_folder(shared) and cache_folder_problem(shared / name) is None:
+        return shared / name
+    return Path(tempfile.mkdtemp(prefix=f"{APP_NAME}-{name}-"))
+
+
+def usable_kernel_cache_folder() -> Path:
+    """:func:`kernel_cache_folder`, or when it cannot be written (a read-only home, a
+    full disk) a temporary one, said in one ``warning:`` line on stderr. Numba would
+    otherwise fall back to writing beside the kernels' sources, or compile every run."""
+    folder = kernel_cache_folder()
+    problem = cache_folder_problem(folder)
+    if problem is None:
+        return folder
+    fallback = fallback_kernel_cache_folder(folder.name)
+    print(
+        f"warning: kernel cache {folder} cannot be written ({problem}); using {fallback} "
+        "(set NUMBA_CACHE_DIR to choose a folder)",
+        file=sys.stderr,
+    )
+    return fallback
+
+
 def _import_arraymath_without_blas_probe() -> None:
     """Import ``numba.np.arraymath`` without its import-time BLAS probe.
 
@@ -109,7 +163,9 @@ def prepare_kernels() -> Path:
     """Set numba up for planar-tui's kernels; idempotent; returns the kernel cache folder.
 
     Must run before the first ``planar_tui.kernels`` module is imported: numba picks a
-    kernel's cache folder when the kernel is decorated.
+    kernel's cache folder when the kernel is decorated. The folder is
+    :func:`usable_kernel_cache_folder` (a temporary one, said once, if the user's cannot be
+    written).
     """
     global _kernel_cache
     if _kernel_cache is not None:
@@ -124,7 +180,7 @@ def prepare_kernels() -> Path:
     configure_process()
     from numba import config
 
-    folder = kernel_cache_folder()
+    folder = usable_kernel_cache_folder()
     config.CACHE_DIR = str(folder)
     _import_arraymath_without_blas_probe()
     _kernel_cache = folder
