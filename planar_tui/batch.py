@@ -75,13 +75,16 @@ def plan_outputs(
     The main CSV goes to ``out_dir / job.output``, or to ``out`` (numbered ``FILE-1.csv``,
     ``FILE-2.csv`` ... when there are several jobs). Extra tables (e.g. a workspace's
     ``boxes``) go where the job kind's ``extra_outputs`` says, relative to ``out_dir``, or
-    to the paths in ``extra_out`` by table name (numbered likewise).
+    to the paths in ``extra_out`` by table name (numbered likewise). Names from the preset
+    carry the job's ``variant`` (:func:`apply_overrides`); names given here are kept.
     """
     plans = []
     for number, job in enumerate(jobs, start=1):
         main = numbered_path(out, number, len(jobs)) if out else out_dir / job.output
+        if not out:
+            main = with_variant(main, job.variant)
         extras = {
-            name: out_dir / relative
+            name: with_variant(out_dir / relative, job.variant)
             for name, relative in JOB_KINDS[job.kind].extra_outputs(job.spec).items()
         }
         for name, override in (extra_out or {}).items():
@@ -115,14 +118,72 @@ def check_plans(plans: Sequence[OutputPlan]) -> None:
             check_writable(path)
 
 
-def apply_overrides(jobs: Sequence[Job], options: Mapping[str, Any]) -> tuple[Job, ...]:
-    """The jobs with command-line options applied by their kinds (checked there)."""
+def job_names(job: Job) -> tuple[str, ...]:
+    """The names ``--job`` selects a job by: its table key (``workspace[2]``), its label
+    (``paper-b-table3:workspace[2]``) and its output file name (``table3-slope.csv``)."""
+    return (job.key, job.label, job.output)
+
+
+def select_jobs(jobs: Sequence[Job], names: Sequence[str] | None) -> tuple[Job, ...]:
+    """The jobs any of ``names`` names (:func:`job_names`), in preset order; every job
+    when ``names`` is empty. A name that matches no job is a :class:`PresetError` listing
+    the valid keys (labels when the jobs come from several presets)."""
+    if not names:
+        return tuple(jobs)
+    for name in names:
+        if not any(name in job_names(job) for job in jobs):
+            several = len({job.preset_path for job in jobs}) > 1
+            valid = ", ".join(dict.fromkeys(job.label if several else job.key for job in jobs))
+            raise PresetError(
+                "command line", "--job", f"is {name!r}, no such job",
+                f"one of {valid or '(no job)'}, or a job's output file name",
+            )  # fmt: skip
+    return tuple(job for job in jobs if any(name in job_names(job) for name in names))
+
+
+def with_variant(path: Path, variant: str) -> Path:
+    """``path`` with ``variant`` appended to its stem (``a.csv`` -> ``a--form-slope.csv``)."""
+    return path.with_name(f"{path.stem}{variant}{path.suffix}") if variant else path
+
+
+def _option_text(value: Any) -> str:
+    """An override's value as it goes into a file name: lists joined by ``+``, floats in
+    shortest round-trip form (``0.1171875``, ``0.5``)."""
+    if isinstance(value, list | tuple):
+        return "+".join(_option_text(item) for item in value)
+    return repr(value) if isinstance(value, float) else str(value)
+
+
+def override_variant(
+    before: Any, after: Any, options: Mapping[str, Any], labels: Mapping[str, str]
+) -> str:
+    """``--OPTION-VALUE`` for each option that changed a setting from ``before`` to
+    ``after`` (``--form-mean-value--precision-0.5``), in the order of ``options``."""
+    return "".join(
+        f"--{labels.get(name, name)}-{_option_text(getattr(after, name))}"
+        for name in options
+        if getattr(before, name, None) != getattr(after, name, None)
+    )
+
+
+def apply_overrides(
+    jobs: Sequence[Job], options: Mapping[str, Any], labels: Mapping[str, str] | None = None
+) -> tuple[Job, ...]:
+    """The jobs with command-line options applied by their kinds (checked there).
+
+    A job whose settings an option changed gets the variant :func:`override_variant`
+    (option names from ``labels``, e.g. ``{"precision_cm": "precision"}``), so the files
+    the preset names say what was run: ``table3-natural--form-mean-value.csv``. An option
+    equal to the preset's value changes nothing, names included.
+    """
     import dataclasses
 
-    return tuple(
-        dataclasses.replace(job, spec=JOB_KINDS[job.kind].with_overrides(job.spec, options))
-        for job in jobs
-    )
+    updated = []
+    for job in jobs:
+        spec = JOB_KINDS[job.kind].with_overrides(job.spec, options)
+        variant = override_variant(job.spec, spec, options, labels or {})
+        updated.append(dataclasses.replace(job, spec=spec, variant=job.variant + variant))
+    return tuple(updated)
 
 
 def run_job(job: Job, progress: Progress | None = None) -> JobResult:

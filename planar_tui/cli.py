@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 from rich.console import Console
+from typer.core import TyperCommand, TyperGroup
 
 from planar_tui import __version__
 from planar_tui.errors import Cancelled, ExitCode, PresetError
@@ -27,10 +28,34 @@ if TYPE_CHECKING:
     from planar_tui.jobkind import Job
     from planar_tui.presets import Preset
 
+
+class _FlagsWithoutMetavar:
+    """Help for flags (``--map/--no-map``, ``--version``, ``--help``) without a value
+    placeholder: Typer's rich help otherwise prints ``<bool>`` after them, as if they took
+    a value. A flag's metavar is only ever shown in help."""
+
+    def get_params(self, ctx):
+        params = super().get_params(ctx)
+        for param in params:
+            if getattr(param, "is_flag", False) and param.metavar is None:
+                param.metavar = ""
+        return params
+
+
+class Group(_FlagsWithoutMetavar, TyperGroup):
+    """The ``planar-tui`` command group."""
+
+
+class Command(_FlagsWithoutMetavar, TyperCommand):
+    """A ``planar-tui`` command."""
+
+
 app = typer.Typer(
     name="planar-tui",
+    cls=Group,
     help="Terminal workbench for planar robots: NOC dynamics, Sobol/eFAST sensitivity, "
-    "3-RRR workspace by interval analysis. Without a command, opens the Textual app.",
+    "3-RRR workspace by interval analysis. Without a command, opens the Textual app "
+    "(in a terminal; without one, prints this help and exits with code 2).",
     add_completion=False,
     no_args_is_help=False,
     pretty_exceptions_enable=False,
@@ -50,6 +75,18 @@ OutOption = Annotated[
 OutDirOption = Annotated[
     Path, typer.Option("--out-dir", "-d", help="Folder for the presets' output files.")
 ]
+JobOption = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--job",
+        "-j",
+        metavar="NAME",
+        help="Run only this job, named by its table key (workspace[2], simulate), "
+        "PRESET:KEY or its output file name; repeatable.",
+    ),
+]
+#: How an override appears in the names of the files it changes (``--precision-0.5``).
+OVERRIDE_LABELS = {"precision_cm": "precision", "methods": "method"}
 
 
 def fail(message: str, code: ExitCode = ExitCode.BAD_INPUT) -> typer.Exit:
@@ -79,19 +116,80 @@ def load_presets(arguments: Sequence[str]) -> list[Preset]:
     return [load_preset(resolve_preset(argument)) for argument in arguments]
 
 
+def clock_text(seconds: float) -> str:
+    """``H:MM:SS`` of a duration (rounded to whole seconds)."""
+    whole = round(max(seconds, 0.0))
+    return f"{whole // 3600}:{whole % 3600 // 60:02d}:{whole % 60:02d}"
+
+
+def progress_figures(
+    completed: float, total: float, remaining_s: float | None, done_s: float | None = None
+) -> str:
+    """The figures beside a job's bar: percent, ``done/total`` when the runner counts whole
+    units (steps, states, evaluations; a workspace counts a fraction and shows its boxes in
+    the detail line), and ``ETA H:MM:SS`` (``-:--:--`` until known), or ``in H:MM:SS``
+    once the job is done (``done_s`` seconds after it started)."""
+    parts = [f"{100.0 * completed / total if total else 100.0:3.0f}%"]
+    if total > 1 and float(total).is_integer():
+        parts.append(f"{completed:,.0f}/{total:,.0f}")
+    if done_s is not None:
+        parts.append(f"in {clock_text(done_s)}")
+    else:
+        parts.append("ETA " + ("-:--:--" if remaining_s is None else clock_text(remaining_s)))
+    return "  ".join(parts)
+
+
+def job_progress_display(console: Console):
+    """A rich progress display for one job, complete at 80 columns: the job and stage on
+    their own line, then the bar with percent, count and ETA, then the runner's detail
+    (folded, never cut). Its task takes ``detail`` and ``done_s`` fields."""
+    from rich.progress import BarColumn, Progress, ProgressColumn
+    from rich.table import Column
+    from rich.text import Text
+
+    class FiguresColumn(ProgressColumn):
+        def render(self, task) -> Text:
+            figures = progress_figures(
+                task.completed, task.total or 0.0, task.time_remaining, task.fields["done_s"]
+            )
+            return Text(figures, no_wrap=True)
+
+    class JobProgress(Progress):
+        def get_renderables(self):
+            for task in self.tasks:
+                yield Text(task.description, overflow="fold")
+                yield self.make_tasks_table([task])
+                if task.fields.get("detail"):
+                    yield Text(f"  {task.fields['detail']}", overflow="fold")
+
+    bar = BarColumn(bar_width=None, table_column=Column(ratio=1))
+    figures = FiguresColumn(table_column=Column(no_wrap=True))
+    return JobProgress(bar, figures, console=console, transient=False, expand=True)
+
+
 @contextmanager
 def progress_bar(bars, job: Job):
-    """One rich progress bar for ``job`` (stage and detail beside it), as a
-    :class:`~planar_tui.progress.Progress` for the runner."""
+    """One progress task for ``job`` (stage, figures and detail), as a
+    :class:`~planar_tui.progress.Progress` for the runner. A new stage restarts the bar and
+    its speed estimate; the last line says ``done`` with the total time and the runner's
+    last detail (a workspace's final area bracket)."""
+    import time
+
     from planar_tui.progress import Progress
 
-    task = bars.add_task(job.label, total=1.0, detail="")
+    started = time.monotonic()
+    task = bars.add_task(job.label, total=1.0, detail="", done_s=None)
     warned = set()
+    stage = None
 
     def update(state) -> None:
+        nonlocal stage
         if state.warning and state.warning not in warned:
             warned.add(state.warning)
             bars.console.print(f"warning: {job.label}: {state.warning}", markup=False)
+        if state.stage != stage:
+            stage = state.stage
+            bars.reset(task, total=state.total, completed=state.completed)
         bars.update(
             task,
             completed=state.completed,
@@ -101,7 +199,9 @@ def progress_bar(bars, job: Job):
         )
 
     yield Progress(on_update=update)
-    bars.update(task, completed=1.0, total=1.0, description=f"{job.label} done")
+    (current,) = (t for t in bars.tasks if t.id == task)
+    done_s = time.monotonic() - started
+    bars.update(task, completed=current.total, description=f"{job.label} done", done_s=done_s)
 
 
 def execute(
@@ -119,7 +219,6 @@ def execute(
     written, ends the run with one ``error:`` line and exit code 1 (``PLANAR_TUI_DEBUG=1``
     shows the traceback). ``show`` prints each kind's terminal view.
     """
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
     from rich.table import Table
 
     from planar_tui import batch
@@ -127,20 +226,10 @@ def execute(
 
     plans = batch.plan_outputs(jobs, out_dir, out, extra_out)
     batch.check_plans(plans)
-    columns = (
-        TextColumn("{task.description}"),
-        BarColumn(bar_width=24),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        TextColumn("{task.fields[detail]}"),
-    )
 
     @contextmanager
     def progress_for(job: Job):
-        with (
-            Progress(*columns, console=stderr, transient=False) as bars,
-            progress_bar(bars, job) as progress,
-        ):
+        with job_progress_display(stderr) as bars, progress_bar(bars, job) as progress:
             yield progress
 
     def render(job: Job, result) -> None:
@@ -174,12 +263,14 @@ def run_kind(
     out_dir: Path,
     options: Mapping[str, object] | None = None,
     *,
+    names: Sequence[str] | None = None,
     extra_out: Mapping[str, Path | None] | None = None,
     show: bool = True,
 ) -> None:
-    """Run every job of one kind in a preset (the ``simulate``/``torques``... commands);
-    ``options`` are command-line overrides, applied and checked by the job kind."""
-    from planar_tui.batch import apply_overrides
+    """Run the jobs of one kind in a preset (the ``simulate``/``torques``... commands):
+    all of them, or those ``names`` selects (``--job``); ``options`` are command-line
+    overrides, applied and checked by the job kind."""
+    from planar_tui.batch import apply_overrides, select_jobs
 
     with reported_errors():
         (preset,) = load_presets([preset_argument])
@@ -188,8 +279,9 @@ def run_kind(
             raise PresetError(
                 preset.path, kind, f"no [{kind}] job in this preset", f"a [{kind}] table"
             )
+        jobs = select_jobs(jobs, names)
         if options:
-            jobs = apply_overrides(jobs, options)
+            jobs = apply_overrides(jobs, options, OVERRIDE_LABELS)
         execute(jobs, out_dir, out=out, extra_out=extra_out, show=show)
 
 
@@ -209,8 +301,16 @@ def root(
         ),
     ] = False,
 ) -> None:
-    """Without a command: open the Textual app on a bundled preset."""
+    """Without a command: open the Textual app on a bundled preset (in a terminal)."""
     if context.invoked_subcommand is None:
+        if not (sys.stdin.isatty() and sys.stdout.isatty()):
+            help_text = context.get_help()  # Typer's rich help prints itself, returns ""
+            if help_text:
+                typer.echo(help_text)
+            raise fail(
+                "error: no command given, and the app needs a terminal (stdin and stdout "
+                "are not both one): name a command, e.g. planar-tui run PRESET"
+            )
         open_app(None)
 
 
@@ -222,7 +322,7 @@ def open_app(preset_argument: str | None) -> None:
         run_app(preset_argument)
 
 
-@app.command()
+@app.command(cls=Command)
 def tui(
     preset: Annotated[
         str | None,
@@ -233,19 +333,34 @@ def tui(
     open_app(preset)
 
 
-@app.command()
-def simulate(preset: PresetArg, out: OutOption = None, out_dir: OutDirOption = Path(".")) -> None:
+@app.command(cls=Command)
+def simulate(
+    preset: PresetArg,
+    job_name: JobOption = None,
+    out: OutOption = None,
+    out_dir: OutDirOption = Path("."),
+) -> None:
     """Integrate the forward dynamics (RK4) of every simulate job; one CSV per job."""
-    run_kind("simulate", preset, out, out_dir)
+    run_kind("simulate", preset, out, out_dir, names=job_name)
 
 
-@app.command()
-def torques(preset: PresetArg, out: OutOption = None, out_dir: OutDirOption = Path(".")) -> None:
+@app.command(cls=Command)
+def torques(
+    preset: PresetArg,
+    job_name: JobOption = None,
+    out: OutOption = None,
+    out_dir: OutDirOption = Path("."),
+) -> None:
     """Inverse dynamics at the listed states of every torques job; one CSV per job."""
-    run_kind("torques", preset, out, out_dir)
+    run_kind("torques", preset, out, out_dir, names=job_name)
 
 
-@app.command()
+@app.command(
+    cls=Command,
+    help="Sobol'/eFAST sensitivity of the joint torques of every sensitivity job; one CSV "
+    "each.\n\nAn option that changes a job's setting is appended to the stem of the file "
+    "the preset names (tiny-sensitivity--samples-512.csv); a name given with --out is kept.",
+)
 def sensitivity(
     preset: PresetArg,
     method: Annotated[
@@ -256,16 +371,25 @@ def sensitivity(
         int | None, typer.Option(help="Sobol' base N (a power of two); overrides `samples`.")
     ] = None,
     seed: Annotated[int | None, typer.Option(help="Seed >= 1; overrides `seed`.")] = None,
+    job_name: JobOption = None,
     out: OutOption = None,
     out_dir: OutDirOption = Path("."),
 ) -> None:
     """Sobol'/eFAST sensitivity of the joint torques of every sensitivity job; one CSV each."""
 
     options = {"methods": method, "samples": samples, "seed": seed}
-    run_kind("sensitivity", preset, out, out_dir, options)
+    run_kind("sensitivity", preset, out, out_dir, options, names=job_name)
 
 
-@app.command()
+@app.command(
+    cls=Command,
+    help="3-RRR workspace of every workspace job: summary CSV, boxes CSV (--boxes or the "
+    "preset's boxes_output) and a map titled with the job, form and precision.\n\n"
+    "--form and --precision apply to every selected job; each one that changes a job's "
+    "setting is appended to the stem of the files the preset names (table3-natural.csv "
+    "run with --form mean-value writes table3-natural--form-mean-value.csv); names given "
+    "with --out and --boxes are kept.",
+)
 def workspace(
     preset: PresetArg,
     form: Annotated[
@@ -285,27 +409,40 @@ def workspace(
     show_map: Annotated[
         bool, typer.Option("--map/--no-map", help="Print the character-cell map.")
     ] = True,
+    job_name: JobOption = None,
     out_dir: OutDirOption = Path("."),
 ) -> None:
-    """3-RRR workspace of every workspace job: summary CSV, optional boxes CSV and map."""
+    """3-RRR workspace of every workspace job: summary CSV, boxes CSV and a titled map."""
 
     options = {"form": form, "precision_cm": precision}
     extra_out = {"boxes": boxes}
-    run_kind("workspace", preset, out, out_dir, options, extra_out=extra_out, show=show_map)
+    run_kind(
+        "workspace",
+        preset,
+        out,
+        out_dir,
+        options,
+        names=job_name,
+        extra_out=extra_out,
+        show=show_map,
+    )
 
 
-@app.command()
+@app.command(cls=Command)
 def run(
     presets: Annotated[list[str], typer.Argument(help="Preset files or bundled preset names.")],
+    job_name: JobOption = None,
     out_dir: OutDirOption = Path("."),
 ) -> None:
-    """Run every job of every preset; output files named as the presets say."""
+    """Run every job of every preset (or those --job names), files named as the presets say."""
+    from planar_tui.batch import select_jobs
+
     with reported_errors():
         loaded = load_presets(presets)
-        execute([job for preset in loaded for job in preset.jobs], out_dir)
+        execute(select_jobs([job for preset in loaded for job in preset.jobs], job_name), out_dir)
 
 
-@app.command("warmup")
+@app.command("warmup", cls=Command)
 def warmup() -> None:
     """Compile every job kind's kernels into the cache (for batch machines: later runs
     start without the first-run compilation)."""
@@ -327,7 +464,7 @@ def warmup() -> None:
     stdout.print(f"compiled: {', '.join(done) or 'nothing (all cached)'}", markup=False)
 
 
-@app.command("presets")
+@app.command("presets", cls=Command)
 def list_presets() -> None:
     """List the bundled presets, one line each."""
     for path in bundled_presets():

@@ -45,7 +45,9 @@ class Job:
     ``kind`` names the registered job kind, ``spec`` is that kind's parsed settings,
     ``robot`` the robot model it runs on, ``output`` the CSV file name relative to the
     output folder, ``label`` a short name for progress bars and summaries (``preset:key``),
-    ``key`` the job's table in the preset (``simulate``, ``simulate[2]``).
+    ``key`` the job's table in the preset (``simulate``, ``simulate[2]``); ``variant`` is
+    what command-line overrides changed (``--form-mean-value``), appended to the stem of
+    every output file the preset names (see :func:`planar_tui.batch.apply_overrides`).
     """
 
     kind: str
@@ -55,6 +57,7 @@ class Job:
     spec: Any
     output: str
     preset_path: Path
+    variant: str = ""
 
     @property
     def key(self) -> str:

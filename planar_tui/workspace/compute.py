@@ -118,7 +118,22 @@ class BoxBudget:
             )
         self.progress.advance(
             max(0.0, fraction - self.progress.completed),
-            f"{self.processed:,} boxes, area in [{lower_cm2:.5g}, {upper_cm2:.5g}] cm2",
+            self.bracket_text(lower_cm2, upper_cm2),
+            area_lower_cm2=lower_cm2,
+            area_upper_cm2=upper_cm2,
+            boxes_processed=float(self.processed),
+        )
+
+    def bracket_text(self, lower_cm2: float, upper_cm2: float) -> str:
+        """The progress detail: boxes processed so far and the area bracket."""
+        return f"{self.processed:,} boxes, area in [{lower_cm2:.5g}, {upper_cm2:.5g}] cm2"
+
+    def finish(self, lower_cm2: float, upper_cm2: float) -> None:
+        """Report the final, certified bracket as the last progress update (the last
+        in-progress bracket is looser: the inside boxes are classified at the end)."""
+        self.progress.advance(
+            self.progress.total,
+            self.bracket_text(lower_cm2, upper_cm2),
             area_lower_cm2=lower_cm2,
             area_upper_cm2=upper_cm2,
             boxes_processed=float(self.processed),
@@ -360,6 +375,9 @@ def compute_workspace(robot: Robot3RRR, spec, budget: BoxBudget) -> WorkspaceOut
         boxes = np.concatenate([boxes[inside], refined])
         status = np.concatenate([status[inside], refined_status])
     boxes = np.ascontiguousarray(boxes)
+    area_kept_cm2 = float(union_area(boxes))
+    area_inside_cm2 = float(union_area(np.ascontiguousarray(boxes[status == INSIDE])))
+    budget.finish(area_inside_cm2, area_kept_cm2)
     return WorkspaceOutcome(
         form=spec.form + (" (expanded)" if spec.expanded else ""),
         precision_cm=spec.precision_cm,
@@ -367,8 +385,8 @@ def compute_workspace(robot: Robot3RRR, spec, budget: BoxBudget) -> WorkspaceOut
         boxes=boxes,
         status=status,
         boxes_processed=budget.processed,
-        area_kept_cm2=float(union_area(boxes)),
-        area_inside_cm2=float(union_area(np.ascontiguousarray(boxes[status == INSIDE]))),
+        area_kept_cm2=area_kept_cm2,
+        area_inside_cm2=area_inside_cm2,
         geometric=geometric,
         seconds=time.perf_counter() - started,
         extent_cm=extent,

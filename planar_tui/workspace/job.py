@@ -218,11 +218,23 @@ def run_workspace(job: Job, progress: Progress) -> WorkspaceResult:
     )
 
 
+def map_title(job: Job, outcome) -> str:
+    """What a map shows: ``paper-b-table3:workspace[4]: mean-value, ε = 0.1172 cm`` (and
+    the refinement precision), as run, overrides included."""
+    title = f"{job.label}: {outcome.form}, ε = {outcome.precision_cm:.4g} cm"
+    if outcome.refine_precision_cm is not None:
+        title += f", boundary refined to {outcome.refine_precision_cm:.4g} cm"
+    return title
+
+
 def render_workspace(job: Job, result: WorkspaceResult, console) -> None:
-    """Print the map of a finished workspace job (CLI view), fitted to the console width."""
+    """Print the titled map of a finished workspace job (CLI view), fitted to the console
+    width; a job without boxes (the geometric form) prints its summary under the title."""
     from planar_tui.workspace.map import render_map
 
     outcome = result.outcome
+    if outcome is not None:
+        console.print(map_title(job, outcome), markup=False, highlight=False)
     if outcome is None or len(outcome.boxes) == 0:
         console.print(result.summary, markup=False)
         return

@@ -1,0 +1,145 @@
+"""What the CLI shows: no app without a terminal, help without value placeholders on
+flags, titled workspace maps with their final bracket, progress complete at 80 columns."""
+
+from __future__ import annotations
+
+import csv
+import io
+import re
+import subprocess
+import sys
+import time
+
+from planar_tui.errors import ExitCode
+from tests.conftest import REPO
+
+TINY = REPO / "tests" / "data" / "app" / "tiny.toml"
+
+WORKSPACE_PRESET = """
+[robot3rrr]
+base_side_cm = 120
+platform_side_cm = 40
+proximal_cm = 30
+distal_cm = 30
+
+[[workspace]]
+joint_limits_deg = [[20, 70], [110, 160], [245, 295]]
+precision_cm = 0.9375
+form = "mean-value"
+output = "ws-a.csv"
+
+[[workspace]]
+joint_limits_deg = [[20, 70], [110, 160], [245, 295]]
+precision_cm = 1.875
+form = "arc-distance"
+output = "ws-b.csv"
+"""
+
+
+def test_no_command_without_a_terminal_prints_help_and_exits_2_in_process(cli, monkeypatch):
+    opened = []
+    monkeypatch.setattr("planar_tui.app.run_app", opened.append)  # never the real app here
+    result = cli()
+    assert opened == []
+    assert result.exit_code == ExitCode.BAD_INPUT
+    assert "Usage: planar-tui" in result.stdout
+    (line,) = result.stderr.strip().splitlines()
+    assert line.startswith("error: ") and "terminal" in line
+
+
+def test_no_command_in_a_pipe_exits_2_quickly_with_the_usage():
+    started = time.monotonic()
+    try:
+        finished = subprocess.run(
+            [sys.executable, "-m", "planar_tui"],
+            stdin=subprocess.DEVNULL,
+            capture_output=True,
+            text=True,
+            timeout=20,
+            cwd=REPO,
+        )
+    except subprocess.TimeoutExpired as error:
+        raise AssertionError(
+            "`planar-tui` with stdout piped did not exit (the app ran?)"
+        ) from error
+    assert time.monotonic() - started < 20
+    assert finished.returncode == ExitCode.BAD_INPUT
+    assert "Usage: planar-tui" in finished.stdout
+    assert "\x1b[?1049h" not in finished.stdout  # no full-screen app escape codes
+    assert finished.stderr.strip().splitlines()[-1].startswith("error: ")
+
+
+def test_help_shows_no_value_placeholder_after_flags(cli):
+    for command in ([], ["workspace"], ["simulate"], ["run"]):
+        text = cli(*command, "--help").stdout
+        assert "<bool>" not in text and "BOOLEAN" not in text
+        flag_lines = [line for line in text.splitlines() if "--help" in line or "--map" in line]
+        assert flag_lines
+        for line in flag_lines:
+            assert "<" not in line, line
+    workspace_help = cli("workspace", "--help").stdout
+    assert "--job" in workspace_help and "--form-mean-value" in workspace_help
+
+
+def read_row(path):
+    with open(path, newline="", encoding="utf-8") as stream:
+        (row,) = list(csv.DictReader(stream))
+    return row
+
+
+def test_workspace_maps_are_titled_and_done_lines_show_the_final_bracket(cli, tmp_path):
+    preset = tmp_path / "ws.toml"
+    preset.write_text(WORKSPACE_PRESET, encoding="utf-8")
+    result = cli("workspace", preset, "--out-dir", tmp_path)
+    assert result.exit_code == 0, result.output
+    titles = [line for line in result.stdout.splitlines() if line.startswith("ws:workspace")]
+    assert titles == [
+        "ws:workspace[1]: mean-value, ε = 0.9375 cm",
+        "ws:workspace[2]: arc-distance, ε = 1.875 cm",
+    ]
+    stderr = result.stderr.splitlines()
+    for number, name in ((1, "ws-a.csv"), (2, "ws-b.csv")):
+        row = read_row(tmp_path / name)
+        inside, kept = float(row["area_inside_cm2"]), float(row["area_kept_cm2"])
+        assert 0 < inside < kept
+        done = stderr.index(f"ws:workspace[{number}] done")
+        details = [line for line in stderr[done + 1 : done + 3] if "area in" in line]
+        assert details == [f"  {int(row['boxes_processed']):,} boxes, area in "
+                           f"[{inside:.5g}, {kept:.5g}] cm2"]  # fmt: skip
+
+
+def test_cli_progress_at_80_columns_shows_count_percent_and_time_uncut(cli, tmp_path):
+    result = cli("simulate", TINY, "--out-dir", tmp_path)
+    assert result.exit_code == 0, result.output
+    lines = result.stderr.splitlines()
+    assert "tiny:simulate done" in lines
+    bar = lines[lines.index("tiny:simulate done") + 1]
+    assert re.search(r"━ 100%  200/200  in 0:00:\d\d$", bar), bar
+    assert all(len(line) <= 80 and "…" not in line for line in lines)
+
+
+class _Job:
+    label = "paper-b-table3:workspace[2]"
+
+
+def test_progress_display_mid_run_at_80_columns():
+    from rich.console import Console
+
+    from planar_tui.cli import job_progress_display, progress_bar
+
+    console = Console(width=80, record=True, force_terminal=True, file=io.StringIO())
+    bars = job_progress_display(console)
+    detail = "1,234,567 boxes, area in [102.67, 147.38] cm2 (a long detail, folded not cut)"
+    with progress_bar(bars, _Job()) as progress:
+        progress.start(5000, "natural-expanded bisection, a long stage name")
+        progress.advance(1000, detail)
+        time.sleep(0.05)
+        progress.advance(1100, detail)
+        console.print(bars.get_renderable())
+    text = console.export_text()
+    lines = text.splitlines()
+    assert "…" not in text and all(len(line) <= 80 for line in lines)
+    (figures,) = [line for line in lines if "%" in line]
+    assert re.search(r"━ +42%  2,100/5,000  ETA \d+:\d\d:\d\d$", figures), figures
+    assert "paper-b-table3:workspace[2] natural-expanded bisection" in text
+    assert "(a long detail, folded not" in text
