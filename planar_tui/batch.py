@@ -7,6 +7,8 @@ its results through the same functions, so both name and write files identically
 
 from __future__ import annotations
 
+import os
+import stat
 import time
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -18,6 +20,7 @@ from planar_tui.errors import PresetError
 from planar_tui.jobkind import Job, JobResult
 from planar_tui.progress import Progress
 from planar_tui.registry import JOB_KINDS
+from planar_tui.schema import NAME_MAX_BYTES, file_name_problem
 
 
 @dataclass(frozen=True)
@@ -94,28 +97,110 @@ def plan_outputs(
     return plans
 
 
-def check_writable(path: Path) -> None:
-    """Refuse an output path that cannot be written: a folder, or a path whose nearest
-    existing ancestor is not a writable folder (:class:`PresetError`, exit code 2)."""
-    import os
+def _output_error(path: Path | str, problem: str, expected: str) -> PresetError:
+    return PresetError(path, "(output)", problem, expected)
 
-    if path.is_dir():
-        raise PresetError(path, "(output)", "is a folder", "a CSV file path")
+
+def _name_max_bytes(folder: Path) -> int:
+    """The longest file name ``folder``'s file system takes (``NAME_MAX``, 255 if unknown)."""
+    try:
+        return os.pathconf(folder, "PC_NAME_MAX")
+    except (AttributeError, OSError, ValueError):
+        return NAME_MAX_BYTES
+
+
+def _nearest_existing(path: Path) -> Path:
     ancestor = path.parent
     while not ancestor.exists() and ancestor != ancestor.parent:
         ancestor = ancestor.parent
+    return ancestor
+
+
+def check_writable(path: Path) -> None:
+    """Refuse an output path that cannot be written, or whose writing would destroy what
+    is there (:class:`PresetError`, exit code 2): a name the file system cannot hold (a NUL
+    character, a component or path too long), a folder, a device node, FIFO or socket, a
+    read-only file, or a path whose nearest existing ancestor is not a writable folder."""
+    problem = file_name_problem(str(path))
+    if problem is not None:
+        raise _output_error(path, problem, "a file name the file system accepts")
+    ancestor = _nearest_existing(path)
+    name_max = _name_max_bytes(ancestor)
+    longest = max((len(os.fsencode(part)) for part in path.parts), default=0)
+    if longest > name_max:
+        raise _output_error(
+            path, f"has a name of {longest} bytes, longer than a file name may be ({name_max})",
+            "a file name the file system accepts",
+        )  # fmt: skip
+    try:
+        mode = os.stat(path).st_mode
+    except (FileNotFoundError, NotADirectoryError):
+        mode = None
+    except OSError as error:
+        raise _output_error(
+            path, f"cannot be checked: {error.strerror}", "a CSV file path"
+        ) from None
+    if mode is not None and stat.S_ISDIR(mode):
+        raise _output_error(path, "is a folder", "a CSV file path")
+    if mode is not None and not stat.S_ISREG(mode):
+        raise _output_error(
+            path, f"is {_file_kind(mode)}, not a regular file (it would be replaced)",
+            "a regular CSV file path",
+        )  # fmt: skip
+    # no write permission bit at all is read-only even for root, whom os.access lets write
+    if mode is not None and not (os.access(path, os.W_OK) and mode & 0o222):
+        raise _output_error(
+            path, "is a read-only file (it would be replaced)",
+            "a writable file, or a new path",
+        )  # fmt: skip
     if not ancestor.is_dir() or not os.access(ancestor, os.W_OK | os.X_OK):
-        raise PresetError(
-            path, "(output)", f"cannot be created: {ancestor} is not a writable folder",
+        raise _output_error(
+            path, f"cannot be created: {ancestor} is not a writable folder",
             "a path inside a writable folder",
         )  # fmt: skip
 
 
+def _file_kind(mode: int) -> str:
+    """How a non-regular file is named in messages."""
+    for test, name in (
+        (stat.S_ISFIFO, "a FIFO (named pipe)"),
+        (stat.S_ISCHR, "a character device"),
+        (stat.S_ISBLK, "a block device"),
+        (stat.S_ISSOCK, "a socket"),
+    ):
+        if test(mode):
+            return name
+    return "not a plain file"
+
+
+def _identity(path: Path) -> str:
+    """The absolute path with symbolic links resolved: two names of one file compare equal."""
+    return os.path.realpath(path)
+
+
 def check_plans(plans: Sequence[OutputPlan]) -> None:
-    """Check every planned output before any job runs."""
+    """Check every planned output before any job runs (:class:`PresetError`, exit code 2):
+    each must be writable without destroying something (:func:`check_writable`), no two
+    tables of the run may share a file (one would silently replace the other), and no
+    output may be a preset file of the run."""
+    presets = {_identity(plan.job.preset_path): plan.job for plan in plans}
+    writers: dict[str, str] = {}
     for plan in plans:
-        for path in plan.paths():
+        for name, path in (("output", plan.main), *plan.extras.items()):
             check_writable(path)
+            identity = _identity(path)
+            if identity in presets:
+                raise _output_error(
+                    path, f"is the preset file of {presets[identity].label} (it would be replaced)",
+                    "an output path other than the preset",
+                )  # fmt: skip
+            writer = f"{plan.job.label} ({name})"
+            if identity in writers:
+                raise _output_error(
+                    path, f"is written by both {writers[identity]} and {writer}",
+                    "one file per table (set distinct output paths)",
+                )  # fmt: skip
+            writers[identity] = writer
 
 
 def job_names(job: Job) -> tuple[str, ...]:

@@ -75,7 +75,10 @@ def write_atomic(path: Path | str, write: Callable[[TextIO], None]) -> Path:
     """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    handle, temp_name = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    # the temporary name keeps at most 64 characters of the name: ``.NAME.XXXXXXXX.tmp``
+    # must fit the file system's name limit whenever ``path``'s name does
+    prefix = f".{path.name[:64]}."
+    handle, temp_name = tempfile.mkstemp(prefix=prefix, suffix=".tmp", dir=path.parent)
     try:
         with os.fdopen(handle, "w", encoding="utf-8", newline="") as stream:
             write(stream)

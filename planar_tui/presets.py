@@ -48,10 +48,30 @@ def read_toml(path: Path | str) -> dict[str, Any]:
         raise PresetError(
             path, "(file)", f"cannot be read: {exc}", "a readable UTF-8 TOML file"
         ) from None
+    return parse_toml(path, text)
+
+
+def parse_toml(path: Path | str, text: str) -> dict[str, Any]:
+    """Parse TOML text; every way it can fail is a :class:`PresetError` about ``path``.
+
+    Besides syntax errors, the standard parser raises ``RecursionError`` on arrays or
+    inline tables nested hundreds of levels deep and ``ValueError`` on an integer longer
+    than Python's integer-parsing limit (4300 digits); both are refused here.
+    """
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise PresetError(path, "(syntax)", f"invalid TOML: {exc}", "valid TOML") from None
+    except RecursionError:
+        raise PresetError(
+            path, "(syntax)", "arrays or tables nested too deeply to read",
+            "at most a few levels of nesting",
+        ) from None  # fmt: skip
+    except ValueError as exc:  # an integer beyond int()'s digit limit
+        raise PresetError(
+            path, "(syntax)", f"a value cannot be read: {str(exc).split(':')[0]}",
+            "integers of at most 4300 digits",
+        ) from None  # fmt: skip
 
 
 def parse_preset(path: Path | str, document: Mapping[str, Any]) -> Preset:

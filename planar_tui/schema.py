@@ -20,6 +20,7 @@ from __future__ import annotations
 import dataclasses
 import difflib
 import math
+import os
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -40,6 +41,45 @@ def type_name(value: Any) -> str:
         list: "an array",
         dict: "a table",
     }.get(type(value), type(value).__name__)
+
+
+#: Largest integer a preset may hold anywhere (a signed 64-bit integer: NumPy and the
+#: kernels count in int64).
+INT64_MAX = 2**63 - 1
+#: Longest file-name component (bytes, UTF-8) and path (bytes) an output may have, where
+#: the file system does not say (POSIX ``NAME_MAX`` and Linux ``PATH_MAX``).
+NAME_MAX_BYTES = 255
+PATH_MAX_BYTES = 4096
+
+
+def shown(value: Any) -> str:
+    """``repr(value)`` for a message, with a very long integer or string shortened."""
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) >= 10**15:
+        digits = len(str(abs(value)))
+        return f"{str(value)[:6]}... ({digits} digits)"
+    text = repr(value)
+    return text if len(text) <= 80 else f"{text[:60]}... ({len(text)} characters)"
+
+
+def file_name_problem(value: str) -> str | None:
+    """Why ``value`` cannot be a file path on a usual file system, or ``None``: a NUL
+    character, a component longer than :data:`NAME_MAX_BYTES` or a path longer than
+    :data:`PATH_MAX_BYTES` (bytes in the file system's encoding, UTF-8 on Linux and macOS)."""
+    if "\0" in value:
+        return "holds a NUL character"
+    try:
+        encoded = os.fsencode(value)
+    except UnicodeEncodeError:
+        return "is not valid text in the file system's encoding"
+    if len(encoded) > PATH_MAX_BYTES:
+        return f"is {len(encoded)} bytes long, longer than a path may be ({PATH_MAX_BYTES})"
+    for part in encoded.split(b"/"):
+        if len(part) > NAME_MAX_BYTES:
+            return (
+                f"has a name of {len(part)} bytes, longer than a file name may be "
+                f"({NAME_MAX_BYTES})"
+            )
+    return None
 
 
 def suggest(name: str, allowed: Iterable[str]) -> str:
@@ -117,15 +157,22 @@ class TableReader:
         wanted = "a positive number" if positive else "a number"
         if isinstance(value, bool) or not isinstance(value, int | float):
             raise self.error(name, f"{where}is {type_name(value)}", wanted)
-        number = float(value)
+        try:
+            number = float(value)
+        except OverflowError:  # an integer beyond the largest float (about 1.8e308)
+            number = math.inf if value > 0 else -math.inf
         if not math.isfinite(number):
-            raise self.error(name, f"{where}is {value!r}, not a finite number", wanted)
+            raise self.error(name, f"{where}is {shown(value)}, not a finite number", wanted)
         if positive and number <= 0:
-            raise self.error(name, f"{where}is {value!r}, must be > 0", wanted)
+            raise self.error(name, f"{where}is {shown(value)}, must be > 0", wanted)
         if minimum is not None and number < minimum:
-            raise self.error(name, f"{where}is {value!r}, below the minimum", f">= {minimum:g}")
+            raise self.error(
+                name, f"{where}is {shown(value)}, below the minimum", f">= {minimum:g}"
+            )
         if maximum is not None and number > maximum:
-            raise self.error(name, f"{where}is {value!r}, above the maximum", f"<= {maximum:g}")
+            raise self.error(
+                name, f"{where}is {shown(value)}, above the maximum", f"<= {maximum:g}"
+            )
         return number
 
     def number(
@@ -143,8 +190,15 @@ class TableReader:
             return value
         return self._check_number(name, value, positive=positive, minimum=minimum, maximum=maximum)
 
-    def integer(self, name: str, default: Any = _MISSING, *, minimum: int | None = None) -> int:
-        """A TOML integer, optionally >= ``minimum``."""
+    def integer(
+        self,
+        name: str,
+        default: Any = _MISSING,
+        *,
+        minimum: int | None = None,
+        maximum: int = INT64_MAX,
+    ) -> int:
+        """A TOML integer, optionally >= ``minimum``, at most ``maximum`` (64-bit)."""
         wanted = "an integer" if minimum is None else f"an integer >= {minimum}"
         value = self.raw(name, default, wanted)
         if value is default and default is not _MISSING:
@@ -152,7 +206,11 @@ class TableReader:
         if isinstance(value, bool) or not isinstance(value, int):
             raise self.error(name, f"is {type_name(value)}", wanted)
         if minimum is not None and value < minimum:
-            raise self.error(name, f"is {value}", wanted)
+            raise self.error(name, f"is {shown(value)}", wanted)
+        if value > maximum:
+            raise self.error(
+                name, f"is {shown(value)}, above the maximum", f"{wanted} and <= {maximum:,}"
+            )
         return value
 
     def string(
@@ -166,7 +224,7 @@ class TableReader:
         if not isinstance(value, str):
             raise self.error(name, f"is {type_name(value)}", wanted)
         if choices is not None and value not in choices:
-            raise self.error(name, f"is {value!r}", wanted + suggest(value, choices))
+            raise self.error(name, f"is {shown(value)}", wanted + suggest(value, choices))
         return value
 
     def relative_path(self, name: str, default: Any = _MISSING) -> str:
@@ -175,7 +233,12 @@ class TableReader:
         if value is default and default is not _MISSING:
             return value
         if not value or Path(value).is_absolute() or ".." in Path(value).parts:
-            raise self.error(name, f"is {value!r}", "a file name relative to the output folder")
+            raise self.error(
+                name, f"is {shown(value)}", "a file name relative to the output folder"
+            )
+        problem = file_name_problem(value)
+        if problem is not None:
+            raise self.error(name, problem, "a file name the file system accepts")
         return value
 
     def boolean(self, name: str, default: Any = _MISSING) -> bool:
@@ -419,11 +482,11 @@ def number(*, positive: bool = False, minimum: float | None = None, maximum=None
     return read
 
 
-def integer(*, minimum: int | None = None):
-    """A TOML integer, optionally >= ``minimum``."""
+def integer(*, minimum: int | None = None, maximum: int = INT64_MAX):
+    """A TOML integer, optionally >= ``minimum``, at most ``maximum``."""
 
     def read(reader, name, default, context, values):
-        return reader.integer(name, default, minimum=minimum)
+        return reader.integer(name, default, minimum=minimum, maximum=maximum)
 
     return read
 
@@ -455,13 +518,21 @@ def relative_path():
     return read
 
 
-def numbers(*, length: Any = None, positive: bool = False):
-    """An array of finite numbers; ``length`` is a count, :data:`PER_LINK` or the name of
-    an earlier key whose array it must match."""
+def numbers(
+    *,
+    length: Any = None,
+    positive: bool = False,
+    minimum: float | None = None,
+    maximum: float | None = None,
+):
+    """An array of finite numbers, optionally > 0 or within bounds; ``length`` is a count,
+    :data:`PER_LINK` or the name of an earlier key whose array it must match."""
 
     def read(reader, name, default, context, values):
         n = _length(length, context, values)
-        return reader.numbers(name, default, length=n, positive=positive)
+        return reader.numbers(
+            name, default, length=n, positive=positive, minimum=minimum, maximum=maximum
+        )
 
     return read
 

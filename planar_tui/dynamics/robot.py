@@ -7,6 +7,16 @@ from dataclasses import dataclass
 from planar_tui.jobkind import RobotKind
 from planar_tui.schema import number, numbers, setting, string
 
+#: Bounds of every length, mass and inertia (SI), and the largest gravity: the dynamics
+#: multiply up to six such values, which then stay within double precision's range
+#: (1e-308 … 1e308); outside it a model of a robot is NaN or infinite, not a result.
+SCALE_MIN = 1e-50
+SCALE_MAX = 1e50
+
+
+def _physical(length: str | None = None):
+    return numbers(positive=True, length=length, minimum=SCALE_MIN, maximum=SCALE_MAX)
+
 
 def slender_rod_inertia_kgm2(mass_kg: float, length_m: float) -> float:
     """Moment of inertia of a thin uniform rod about its centre, ``m l² / 12``."""
@@ -23,26 +33,26 @@ class SerialRobot:
     """
 
     lengths_m: tuple[float, ...] = setting(
-        numbers(positive=True),
-        type_doc="n positive numbers",
+        _physical(),
+        type_doc="n numbers in [1e-50, 1e50]",
         doc="link lengths (n ≥ 1 sets the number of links)",
     )
     masses_kg: tuple[float, ...] = setting(
-        numbers(positive=True, length="lengths_m"),
-        type_doc="n positive numbers",
+        _physical("lengths_m"),
+        type_doc="n numbers in [1e-50, 1e50]",
         doc="link masses",
     )
     inertias_kgm2: tuple[float, ...] = setting(
-        numbers(positive=True, length="lengths_m"),
+        _physical("lengths_m"),
         default=(),
         default_doc="`m l²/12`",
-        type_doc="n positive numbers",
+        type_doc="n numbers in [1e-50, 1e50]",
         doc="moments of inertia about each link's centre of mass",
     )
     gravity_m_s2: float = setting(
-        number(minimum=0.0),
+        number(minimum=0.0, maximum=SCALE_MAX),
         default=9.81,
-        type_doc="number ≥ 0",
+        type_doc="number in [0, 1e50]",
         doc="gravity, pointing along −y",
     )
     name: str = setting(string(), default="", type_doc="string", doc="a label")

@@ -16,7 +16,7 @@ from planar_tui.dynamics.robot import SerialRobot
 from planar_tui.errors import PresetError
 from planar_tui.jobkind import Job, JobKind, JobResult
 from planar_tui.progress import Progress
-from planar_tui.schema import TableReader, boolean, integer, number, setting, string
+from planar_tui.schema import TableReader, boolean, integer, number, setting, shown, string
 
 METHODS = ("sobol", "efast")
 PERCENT_OF = ("ST", "S1")
@@ -39,10 +39,10 @@ def _read_methods(reader: TableReader, name, default, robot, values) -> tuple[st
     """A non-empty list of estimator names, duplicates dropped."""
     methods = reader.raw(name, list(default))
     if not isinstance(methods, list) or not methods:
-        raise reader.error(name, f"is {methods!r}", 'a list of "sobol", "efast"')
+        raise reader.error(name, f"is {shown(methods)}", 'a list of "sobol", "efast"')
     for method in methods:
         if method not in METHODS:
-            raise reader.error(name, f"has {method!r}", 'a list of "sobol", "efast"')
+            raise reader.error(name, f"has {shown(method)}", 'a list of "sobol", "efast"')
     return tuple(dict.fromkeys(methods))
 
 
