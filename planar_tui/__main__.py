@@ -1,5 +1,5 @@
-"""``python -m planar_tui`` runs the CLI."""
+"""``python -m planar_tui`` runs the CLI (through the same entry point as ``planar-tui``)."""
 
-from planar_tui.cli import main
+from planar_tui.entry import main
 
 main()

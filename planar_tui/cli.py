@@ -1,7 +1,7 @@
 """The ``planar-tui`` command line (Typer).
 
 Batch jobs run from TOML presets and write CSV. Exit codes: 0 ok, 1 a job failed,
-2 bad input (preset or option), 130 interrupted. Progress bars go to stderr; tables
+2 bad input (preset or option), 130 interrupted (Ctrl-C), 143 terminated (SIGTERM). Progress bars go to stderr; tables
 and summaries to stdout. Heavy modules (numba, SALib, Textual) are imported only when
 a job or the app runs, so ``planar-tui --help`` is instant.
 """
@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import gc
 import os
+import signal
 import sys
 from collections.abc import Iterator, Mapping, Sequence
 from contextlib import contextmanager
@@ -21,7 +22,7 @@ from rich.console import Console
 from typer.core import TyperCommand, TyperGroup
 
 from planar_tui import __version__
-from planar_tui.errors import Cancelled, ExitCode, PresetError
+from planar_tui.errors import Cancelled, ExitCode, PresetError, Terminated
 from planar_tui.resources import bundled_presets, preset_description
 
 if TYPE_CHECKING:
@@ -102,6 +103,10 @@ def reported_errors() -> Iterator[None]:
         yield
     except PresetError as error:
         raise fail(str(error), ExitCode.BAD_INPUT) from None
+    except Terminated:
+        raise fail(
+            "terminated: the running job's output was not written", ExitCode.TERMINATED
+        ) from None
     except (KeyboardInterrupt, Cancelled):
         raise fail(
             "interrupted: the running job's output was not written", ExitCode.INTERRUPTED
@@ -165,6 +170,21 @@ def job_progress_display(console: Console):
     bar = BarColumn(bar_width=None, table_column=Column(ratio=1))
     figures = FiguresColumn(table_column=Column(no_wrap=True))
     return JobProgress(bar, figures, console=console, transient=False, expand=True)
+
+
+def _raise_terminated(signum, frame) -> None:
+    raise Terminated("SIGTERM")
+
+
+@contextmanager
+def sigterm_as_interrupt() -> Iterator[None]:
+    """While jobs run, SIGTERM raises :class:`~planar_tui.errors.Terminated` (a
+    ``KeyboardInterrupt``) so it cleans up like Ctrl-C: no temporary file is left."""
+    previous = signal.signal(signal.SIGTERM, _raise_terminated)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
 
 
 @contextmanager
@@ -239,7 +259,8 @@ def execute(
 
     debug = os.environ.get("PLANAR_TUI_DEBUG", "") not in ("", "0")
     try:
-        rows = list(batch.run_plans(plans, progress_for, render))
+        with sigterm_as_interrupt():
+            rows = list(batch.run_plans(plans, progress_for, render))
     except batch.JobFailed as error:
         if debug:
             raise error.__cause__ from None
@@ -472,9 +493,13 @@ def list_presets() -> None:
 
 
 def main() -> None:
-    """Console-script entry point."""
+    """Run the CLI (called by :func:`planar_tui.entry.main`, the console script): Ctrl-C
+    raises ``KeyboardInterrupt`` again and SIGTERM has its default action, except while
+    jobs run (:func:`sigterm_as_interrupt`)."""
     from planar_tui.runtime import configure_process
 
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
     configure_process()
     try:
         app(prog_name="planar-tui")

@@ -6,7 +6,7 @@ import csv
 import functools
 import io
 import os
-import tempfile
+import secrets
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -64,6 +64,12 @@ def _new_file_mode() -> int:
     return 0o666 & ~mask
 
 
+def _temporary_name(path: Path) -> Path:
+    """A hidden ``.NAME.XXXXXXXX.tmp`` beside ``path``; NAME keeps at most 64 characters
+    of the name, so the temporary name fits the file system whenever ``path``'s does."""
+    return path.with_name(f".{path.name[:64]}.{secrets.token_hex(4)}.tmp")
+
+
 def write_atomic(path: Path | str, write: Callable[[TextIO], None]) -> Path:
     """Write a text file by ``write(stream)`` so that ``path`` is either the whole new file
     or untouched.
@@ -75,18 +81,24 @@ def write_atomic(path: Path | str, write: Callable[[TextIO], None]) -> Path:
     """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    # the temporary name keeps at most 64 characters of the name: ``.NAME.XXXXXXXX.tmp``
-    # must fit the file system's name limit whenever ``path``'s name does
-    prefix = f".{path.name[:64]}."
-    handle, temp_name = tempfile.mkstemp(prefix=prefix, suffix=".tmp", dir=path.parent)
+    temp: Path | None = None
     try:
+        while temp is None:
+            # the name is chosen before the file exists, so an interrupt (Ctrl-C, SIGTERM)
+            # arriving at any point, even just as the file is created, removes it below
+            temp = _temporary_name(path)
+            try:
+                handle = os.open(temp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+            except FileExistsError:  # another file of that name, not ours: draw again
+                temp = None
         with os.fdopen(handle, "w", encoding="utf-8", newline="") as stream:
             write(stream)
         mode = path.stat().st_mode & 0o777 if path.is_file() else _new_file_mode()
-        os.chmod(temp_name, mode)
-        os.replace(temp_name, path)
+        os.chmod(temp, mode)
+        os.replace(temp, path)
     except BaseException:
-        Path(temp_name).unlink(missing_ok=True)
+        if temp is not None:
+            temp.unlink(missing_ok=True)
         raise
     return path
 

@@ -13,6 +13,7 @@ class ExitCode(IntEnum):
     RUN_FAILED = 1
     BAD_INPUT = 2
     INTERRUPTED = 130
+    TERMINATED = 143
 
 
 class PresetError(ValueError):
@@ -41,3 +42,9 @@ class PresetError(ValueError):
 
 class Cancelled(Exception):
     """Raised inside a runner when the user asked it to stop (Ctrl-C, the app's Cancel)."""
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM (``kill``, ``timeout``, systemd, SLURM) during a batch run, raised like
+    Ctrl-C's ``KeyboardInterrupt`` so every clean-up that handles it (temporary files)
+    applies; the CLI then exits with 143 (128 + 15)."""

@@ -1,0 +1,92 @@
+"""Signals on real processes: SIGTERM (``kill``, ``timeout``, systemd, SLURM) is handled
+like Ctrl-C (exit 143, one ``terminated:`` line, no hidden temporary file left), and
+Ctrl-C while the CLI is still importing its modules prints no traceback (exit 130)."""
+
+from __future__ import annotations
+
+import os
+import re
+import signal
+import subprocess
+import sys
+import time
+import tomllib
+from pathlib import Path
+
+from planar_tui.errors import ExitCode
+from tests.conftest import PRESETS, REPO
+
+#: What the ``planar-tui`` console script runs (pyproject's [project.scripts]).
+CONSOLE_SCRIPT = "from planar_tui.entry import main; main()"
+
+
+def start(*args: str) -> subprocess.Popen:
+    env = dict(os.environ, PYTHONPATH=str(REPO))
+    return subprocess.Popen(
+        [sys.executable, "-c", CONSOLE_SCRIPT, *args],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        env=env,
+        text=True,
+    )
+
+
+def test_the_console_script_is_the_entry_module():
+    project = tomllib.loads((REPO / "pyproject.toml").read_text())["project"]
+    assert project["scripts"]["planar-tui"] == "planar_tui.entry:main"
+
+
+def test_sigterm_while_a_csv_is_written_leaves_no_temporary_file(tmp_path):
+    # a quick 2R run with many rows: most of its time is writing the CSV
+    preset = tmp_path / "rows.toml"
+    preset.write_text(
+        (PRESETS / "paper-a-table1.toml")
+        .read_text()
+        .replace("duration_s = 1.0", "duration_s = 40.0", 1)
+        .replace("every = 10", "every = 1", 1)
+    )
+    out = tmp_path / "out"
+    process = start("simulate", str(preset), "--out-dir", str(out))
+    deadline = time.monotonic() + 60
+    while not (out.exists() and any(p.suffix == ".tmp" for p in out.iterdir())):
+        assert process.poll() is None, process.communicate()
+        assert time.monotonic() < deadline, "no temporary file appeared"
+        time.sleep(0.002)
+    process.send_signal(signal.SIGTERM)
+    _, err = process.communicate(timeout=60)
+    assert process.returncode == ExitCode.TERMINATED == 143, err
+    assert err.strip().splitlines()[-1] == ("terminated: the running job's output was not written")
+    assert "Traceback" not in err
+    assert list(out.iterdir()) == []
+
+
+def wait_until_caught(process: subprocess.Popen, signum: int, timeout_s: float = 10.0) -> None:
+    """Wait until the process has a handler for ``signum`` (Linux: /proc/PID/status)."""
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline:
+        status = Path(f"/proc/{process.pid}/status").read_text()
+        found = re.search(r"^SigCgt:\s*([0-9a-f]+)", status, re.MULTILINE)
+        if found and int(found.group(1), 16) >> (signum - 1) & 1:
+            return
+        time.sleep(0.0005)
+    raise AssertionError(f"the process never caught signal {signum}")
+
+
+def test_ctrl_c_while_the_cli_is_importing_prints_no_traceback(tmp_path):
+    long_run = tmp_path / "long.toml"
+    text = (PRESETS / "paper-a-table1.toml").read_text()
+    long_run.write_text(text.replace("duration_s = 1.0", "duration_s = 600.0", 1))
+    for delay_s in (0.0, 0.005, 0.02, 0.04, 0.07, 0.1):
+        process = start("simulate", str(long_run), "--out-dir", str(tmp_path / "out"))
+        # the entry point's first act is to catch SIGTERM (Python alone never does); from
+        # then on typer, rich and the CLI are being imported (about 0.1 s)
+        wait_until_caught(process, signal.SIGTERM)
+        time.sleep(delay_s)
+        process.send_signal(signal.SIGINT)
+        _, err = process.communicate(timeout=60)
+        assert "Traceback" not in err, (delay_s, err)
+        assert process.returncode == ExitCode.INTERRUPTED, (delay_s, err)
+        assert err.strip().splitlines()[-1].startswith("interrupted"), err
+        if delay_s == 0.0:  # still importing: the entry point's own line
+            assert err.strip() == "interrupted: nothing was run"
+    assert not (tmp_path / "out").exists()
