@@ -271,6 +271,17 @@ def apply_overrides(
     return tuple(updated)
 
 
+def prepare_jobs(jobs: Sequence[Job]) -> tuple[Job, ...]:
+    """Every job ready to run, in order: each kind's ``prepare`` hook (e.g. the
+    sensitivity's isotropic posture solved, its resources checked after the overrides).
+
+    Parsing a preset stays cheap; this is the costly rest of validation, so call it for
+    every job before the first one runs: it raises the first job's
+    :class:`~planar_tui.errors.PresetError` (exit code 2) while nothing is written yet.
+    """
+    return tuple(JOB_KINDS[job.kind].prepared(job) for job in jobs)
+
+
 def run_job(job: Job, progress: Progress | None = None) -> JobResult:
     """Run one job (kernels prepared first, compiled first when not cached: the stage
     :data:`planar_tui.warmup.STAGE`); writes nothing.

@@ -234,7 +234,8 @@ def execute(
 ) -> None:
     """Run ``jobs`` through the batch service, one progress bar each, then print a summary.
 
-    Output paths are checked before the first job runs; each job's files are written as
+    Output paths are checked, then every job prepared (:func:`batch.prepare_jobs`: e.g.
+    isotropic postures solved), before the first job runs; each job's files are written as
     soon as it finishes. A job that raises an unexpected error, or an output that cannot be
     written, ends the run with one ``error:`` line and exit code 1 (``PLANAR_TUI_DEBUG=1``
     shows the traceback). ``show`` prints each kind's terminal view.
@@ -246,6 +247,7 @@ def execute(
 
     plans = batch.plan_outputs(jobs, out_dir, out, extra_out)
     batch.check_plans(plans)
+    plans = batch.plan_outputs(batch.prepare_jobs(jobs), out_dir, out, extra_out)
 
     @contextmanager
     def progress_for(job: Job):

@@ -92,7 +92,11 @@ class JobKind:
     prints it on a rich console (optional); ``extra_outputs(spec)`` names the extra
     tables the preset asks to write, relative to the output folder (e.g.
     ``{"boxes": "boxes.csv"}``); ``overrides(spec, options)`` applies and checks
-    command-line options (``None`` values keep the preset's).
+    command-line options (``None`` values keep the preset's); ``prepare(job)`` does the
+    costly part of validation that parsing skips so that it stays cheap enough for every
+    keystroke (e.g. solving the sensitivity's isotropic posture): it returns the job
+    ready to run or raises :class:`~planar_tui.errors.PresetError`; the batch service
+    calls it for every job before the first one runs (:func:`planar_tui.batch.prepare_jobs`).
     """
 
     name: str
@@ -103,6 +107,7 @@ class JobKind:
     render: Callable[[Job, JobResult, Any], None] | None = None
     extra_outputs: Callable[[Any], dict[str, str]] = _no_extra_outputs
     overrides: Callable[[Any, Mapping[str, Any]], Any] | None = None
+    prepare: Callable[[Job], Job] | None = None
 
     @property
     def keys(self) -> tuple[str, ...]:
@@ -116,6 +121,10 @@ class JobKind:
     def dump(self, spec: Any) -> dict[str, Any]:
         """The settings as a TOML table."""
         return dump_settings(spec)
+
+    def prepared(self, job: Job) -> Job:
+        """The job ready to run (see ``prepare``); :class:`PresetError` if it cannot run."""
+        return job if self.prepare is None else self.prepare(job)
 
     def with_overrides(self, spec: Any, options: Mapping[str, Any]) -> Any:
         """The settings with command-line options applied (and checked)."""

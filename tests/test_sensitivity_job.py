@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 from rich.console import Console
 
+from planar_tui.batch import prepare_jobs
 from planar_tui.batch import run_job as run_batch_job
 from planar_tui.errors import Cancelled, PresetError
 from planar_tui.presets import load_preset
@@ -154,8 +155,8 @@ def test_ctrl_c_during_analysis_leaves_the_old_csv_untouched(tmp_path, cli, monk
 )
 def test_bad_input_is_one_line_exit_2_nothing_written(tmp_path, cli, body, key, robot):
     preset = write_preset(tmp_path, body + 'output = "bad.csv"\n', robot)
-    with pytest.raises(PresetError, match=key):
-        load_preset(preset)
+    with pytest.raises(PresetError, match=key):  # parsing, or solving the posture
+        prepare_jobs(load_preset(preset).jobs)
     result = cli("sensitivity", preset, "--out-dir", tmp_path)
     assert result.exit_code == 2
     assert result.stderr.startswith("error: ") and result.stderr.count("\n") == 1
@@ -173,7 +174,7 @@ def test_cli_overrides_are_validated(tmp_path, cli):
 def test_bundled_presets_parse_with_the_paper_postures():
     root = Path(__file__).resolve().parent.parent / "presets"
     for name, count in (("paper-a-table4", 5), ("paper-a-table5", 5), ("paper-a-fig5-6", 2)):
-        jobs = load_preset(root / f"{name}.toml").jobs_of("sensitivity")
+        jobs = prepare_jobs(load_preset(root / f"{name}.toml").jobs_of("sensitivity"))
         assert len(jobs) == count
         for job in jobs:
             if job.spec.posture.label == "isotropic":

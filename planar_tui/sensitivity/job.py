@@ -67,7 +67,8 @@ class SensitivitySpec:
     """Settings of one sensitivity job (see ``docs/sensitivity.md``).
 
     ``posture_request`` is what the preset asked for (key ``posture``); ``posture`` the
-    solved :class:`~planar_tui.sensitivity.postures.Posture` (derived, not a key).
+    solved :class:`~planar_tui.sensitivity.postures.Posture` (derived, not a key), ``None``
+    until :func:`prepare_sensitivity` solves it.
     ``efast_samples`` None means "match the Sobol' cost".
     """
 
@@ -146,7 +147,8 @@ class SensitivitySpec:
 
     @staticmethod
     def check(values: dict, reader: TableReader, robot: SerialRobot) -> dict:
-        """Tolerances below the nominal values, sample sizes, then solve the posture."""
+        """Tolerances below the nominal values and sample sizes (cheap: the posture is
+        solved by :func:`prepare_sensitivity`, before the job runs)."""
         for name, nominal, unit in (
             ("tolerance_length_mm", min(robot.lengths_m) * 1e3, "mm"),
             ("tolerance_mass_g", min(robot.masses_kg) * 1e3, "g"),
@@ -175,7 +177,6 @@ class SensitivitySpec:
                 "vary_inertias = true",
             )
         check_samples(reader.error, values["methods"], values["samples"], values["efast_samples"])
-        values["posture"] = _solve_posture(reader, robot, values)
         return values
 
     @property
@@ -206,7 +207,10 @@ def check_samples(error, methods, samples: int, efast_samples: int | None) -> No
         raise error("efast_samples", f"is {efast_samples}", "an integer > 4 M² = 64 (M = 4)")
 
 
-def _solve_posture(reader: TableReader, robot: SerialRobot, values: dict):
+def solve_posture(job: Job):
+    """The job's posture: singular, explicit, or the isotropic one solved now (seconds for
+    a robot of hundreds of links); a robot without one is a :class:`PresetError` on the
+    job's ``posture`` key."""
     from planar_tui.sensitivity.postures import (
         NoIsotropicPosture,
         explicit_posture,
@@ -214,17 +218,29 @@ def _solve_posture(reader: TableReader, robot: SerialRobot, values: dict):
         singular_posture,
     )
 
-    request = values["posture_request"]
+    spec, robot = job.spec, job.robot
+    request = spec.posture_request
     if isinstance(request, tuple):
         return explicit_posture(request, robot.lengths_m)
     if request == "singular":
         return singular_posture(robot.n_links)
     try:
-        return isotropic_posture(robot.lengths_m, values["isotropy_tolerance"])
+        return isotropic_posture(robot.lengths_m, spec.isotropy_tolerance)
     except NoIsotropicPosture as error:
-        raise reader.error(
-            "posture", f"robot has {error}", "a robot with an isotropic posture"
+        raise PresetError(
+            job.preset_path,
+            f"{job.key}.posture",
+            f"robot has {error}",
+            "a robot with an isotropic posture",
         ) from None
+
+
+def prepare_sensitivity(job: Job) -> Job:
+    """The job with its posture solved (``spec.posture``), ready to run."""
+    if job.spec.posture is not None:
+        return job
+    spec = dataclasses.replace(job.spec, posture=solve_posture(job))
+    return dataclasses.replace(job, spec=spec)
 
 
 def with_overrides(spec: SensitivitySpec, options: Mapping[str, Any]) -> SensitivitySpec:
@@ -285,6 +301,7 @@ def run_sensitivity(job: Job, progress: Progress) -> SensitivityResult:
     from planar_tui.sensitivity.engine import analyse, build_problem, evaluate, unit_design
     from planar_tui.sensitivity.results import Analysis, csv_table, sensitivity_percent
 
+    job = prepare_sensitivity(job)  # a no-op when the batch service prepared it
     spec, robot = job.spec, job.robot
     problem = build_problem(
         robot, spec.tolerance_length_m, spec.tolerance_mass_kg, spec.inertia_tolerance_kgm2
@@ -358,4 +375,5 @@ JOB_KIND = JobKind(
     summary="Sobol'/eFAST sensitivity of the joint torques to lengths and masses",
     render=render_sensitivity,
     overrides=with_overrides,
+    prepare=prepare_sensitivity,
 )
