@@ -13,10 +13,25 @@ from pathlib import Path
 from typing import Any, TextIO
 
 
+#: First characters that make a spreadsheet read a text cell as a formula (OWASP, "CSV
+#: injection"): such a text cell is written with a leading ``'``.
+FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r")
+
+
+def text_cell(text: str) -> str:
+    """A text cell as written: with a ``'`` before a leading ``=``, ``+``, ``-``, ``@``,
+    tab or carriage return, so that no spreadsheet runs it as a formula (a robot named
+    ``=1+1`` is written ``'=1+1``). Numbers are never changed."""
+    return "'" + text if text.startswith(FORMULA_STARTS) else text
+
+
 def _cell(value: Any) -> Any:
     """One CSV cell: NumPy scalars become Python scalars (floats keep their shortest
-    round-trip form, ``str(float) == repr(float)``); ``None`` becomes an empty cell."""
-    if hasattr(value, "item") and not isinstance(value, str):
+    round-trip form, ``str(float) == repr(float)``); ``None`` becomes an empty cell; text
+    goes through :func:`text_cell`."""
+    if isinstance(value, str):
+        return text_cell(value)
+    if hasattr(value, "item"):
         return value.item()
     return value
 
@@ -26,7 +41,8 @@ class CsvTable:
     """A header (column names carrying units, e.g. ``t_s``) and rows of cells.
 
     Written through the standard library's :mod:`csv` module (RFC 4180 quoting: a cell
-    holding a comma, a quote or a line break is quoted), one ``\\n`` per row.
+    holding a comma, a quote or a line break is quoted), one ``\\n`` per row; text cells
+    that a spreadsheet would run as a formula get a leading ``'`` (:func:`text_cell`).
     """
 
     header: tuple[str, ...]

@@ -11,7 +11,10 @@ import pytest
 from planar_tui.csvio import CsvTable, write_csv_atomic
 from tests.conftest import REPO
 
-NAMES = ["2R, paper A Table 3", 'the "fast" arm', "two\nlines", "Rückenstütze ½ → π", "=1+1"]
+NAMES = ["2R, paper A Table 3", 'the "fast" arm', "two\nlines", "Rückenstütze ½ → π", "=1+1", "-x"]
+#: How a name is written where it differs: a text cell a spreadsheet would run as a
+#: formula gets a leading ' (README, "CSV formats").
+WRITTEN = {"=1+1": "'=1+1", "-x": "'-x"}
 
 
 def read_back(path):
@@ -23,7 +26,8 @@ def read_back(path):
 def test_a_table_round_trips_through_csv_reader(tmp_path, name):
     table = CsvTable(("robot", "value_m", "count"), [(name, 0.1, 3), (name, 1e-300, 0)])
     rows = read_back(write_csv_atomic(tmp_path / "t.csv", table))
-    assert rows == [["robot", "value_m", "count"], [name, "0.1", "3"], [name, "1e-300", "0"]]
+    cell = WRITTEN.get(name, name)
+    assert rows == [["robot", "value_m", "count"], [cell, "0.1", "3"], [cell, "1e-300", "0"]]
 
 
 def test_floats_keep_their_shortest_round_trip_form(tmp_path):
@@ -68,4 +72,18 @@ def test_every_csv_the_cli_writes_reads_back_with_one_field_count(tmp_path, cli,
         assert len(rows) > 1
     sensitivity = read_back(out / "tiny-sensitivity.csv")
     assert sensitivity[0][0] == "robot"
-    assert {row[0] for row in sensitivity[1:]} == {name}
+    assert {row[0] for row in sensitivity[1:]} == {WRITTEN.get(name, name)}
+
+
+@pytest.mark.parametrize("text", ["=1+1", "+1", "-x", "@SUM(A1)", "\tcmd"])
+def test_text_cells_a_spreadsheet_would_run_get_a_leading_quote(tmp_path, text):
+    table = CsvTable(("robot", "tau_Nm"), [(text, -1.5), ("plain", -0.0)])
+    rows = read_back(write_csv_atomic(tmp_path / "t.csv", table))
+    assert rows[1:] == [["'" + text, "-1.5"], ["plain", "-0.0"]]  # numbers untouched
+
+
+def test_negative_numbers_in_float_tables_are_untouched(tmp_path):
+    import numpy as np
+
+    table = CsvTable(("a", "b"), np.array([[-1.0, -2.5e-300]]))
+    assert read_back(write_csv_atomic(tmp_path / "f.csv", table))[1] == ["-1.0", "-2.5e-300"]
