@@ -62,6 +62,17 @@ class OutputFailed(Exception):
         self.path = path
 
 
+class NonFiniteResult(Exception):
+    """A finished job's result holds NaN or infinite values: it is not written."""
+
+    def __init__(self, job: Job, table: str, column: str):
+        super().__init__(
+            f"{job.label}: the result holds NaN or infinite values (first in the {table} "
+            f"column {column}); nothing was written"
+        )
+        self.job = job
+
+
 def numbered_path(base: Path, number: int, count: int) -> Path:
     """``base`` itself for a single job, ``stem-NUMBER.suffix`` when there are several."""
     return base if count == 1 else base.with_name(f"{base.stem}-{number}{base.suffix or '.csv'}")
@@ -320,8 +331,19 @@ def _release(error: BaseException, progress: Progress) -> None:
         traceback.clear_frames(error.__traceback__.tb_next)
 
 
+def check_finite(job: Job, result: JobResult) -> None:
+    """Refuse a result holding NaN or infinities (:class:`NonFiniteResult`): a diverged
+    integration or an overflow is a failure, never a table."""
+    for name, table in (("main", result.table), *result.extra_tables.items()):
+        column = table.first_non_finite_column()
+        if column is not None:
+            raise NonFiniteResult(job, "output" if name == "main" else name, column)
+
+
 def write_result(plan: OutputPlan, result: JobResult) -> list[Path]:
-    """Write a finished job's tables atomically (:class:`OutputFailed` on an OS error)."""
+    """Write a finished job's tables atomically, none if any holds NaN or infinities
+    (:class:`NonFiniteResult`); :class:`OutputFailed` on an OS error."""
+    check_finite(plan.job, result)
     written = []
     try:
         written.append(write_csv_atomic(plan.main, result.table))

@@ -267,7 +267,7 @@ def execute(
         if debug:
             raise error.__cause__ from None
         raise fail(f"error: {error}", ExitCode.RUN_FAILED) from None
-    except batch.OutputFailed as error:
+    except (batch.OutputFailed, batch.NonFiniteResult) as error:
         raise fail(f"error: {error}", ExitCode.RUN_FAILED) from None
 
     summary = Table(title="planar-tui run summary", title_justify="left", show_lines=True)

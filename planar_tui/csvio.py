@@ -5,13 +5,13 @@ from __future__ import annotations
 import csv
 import functools
 import io
+import math
 import os
 import secrets
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, TextIO
-
 
 #: First characters that make a spreadsheet read a text cell as a formula (OWASP, "CSV
 #: injection"): such a text cell is written with a leading ``'``.
@@ -56,6 +56,22 @@ class CsvTable:
             return
         for row in self.rows:
             yield [_cell(cell) for cell in row]
+
+    def first_non_finite_column(self) -> str | None:
+        """The first column holding a NaN or an infinity, or ``None`` (one vectorised test
+        for a float array; a pass over the cells otherwise)."""
+        if getattr(getattr(self.rows, "dtype", None), "kind", "") == "f":
+            import numpy as np
+
+            finite = np.isfinite(self.rows)
+            if finite.all():
+                return None
+            return self.header[int(np.flatnonzero(~finite.all(axis=0))[0])]
+        for row in self.rows:
+            for name, cell in zip(self.header, row, strict=False):
+                if isinstance(cell, float) and not math.isfinite(cell):  # np.float64 too
+                    return name
+        return None
 
     def write(self, stream: TextIO) -> None:
         """Write the table as CSV to a text stream opened with ``newline=""``."""

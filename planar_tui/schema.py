@@ -318,6 +318,26 @@ class TableReader:
         return tuple(rows)
 
 
+class OptionReader(TableReader):
+    """Command-line options read with the preset keys' own readers, so that an option is
+    checked exactly as its key is (whatever else the run asks for); errors name the file
+    ``command line`` and the option (``--samples``)."""
+
+    def __init__(self, options: Mapping[str, Any], option_names: Mapping[str, str]):
+        self.option_names = dict(option_names)
+        super().__init__("command line", options, "", tuple(options))
+
+    def key(self, name: str) -> str:
+        return self.option_names.get(name, "--" + name.replace("_", "-"))
+
+
+def read_option(settings_class: type, reader: TableReader, attribute: str) -> Any:
+    """The value of one declared key of ``settings_class`` read from ``reader`` with the
+    key's reader (no default: the option was given)."""
+    key = dict(declared_keys(settings_class))[attribute]
+    return key.read(reader, key.name, REQUIRED, None, {})
+
+
 # -- declarations ---------------------------------------------------------------------
 #: A key without a default must be present in the table.
 REQUIRED: Any = _MISSING

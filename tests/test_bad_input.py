@@ -104,3 +104,120 @@ def test_bad_input_is_one_line_exit_2_nothing_written(case, tmp_path, cli):
     assert problem in lines[0], lines[0]
     assert len(lines[0]) < 400  # a 5000-digit value is not echoed whole
     assert not (tmp_path / "out").exists()
+
+
+SENSITIVITY = TWO_LINKS + '[sensitivity]\nmethods = ["sobol"]\nsamples = 8\noutput = "s.csv"\n'
+WORKSPACE = """[robot3rrr]
+[workspace]
+joint_limits_deg = [[20, 70], [110, 160], [245, 295]]
+precision_cm = 1.0
+"""
+
+
+def links(n: int) -> str:
+    values = ", ".join(["0.1"] * n)
+    return f"[robot]\nlengths_m = [{values}]\nmasses_kg = [{values}]\n"
+
+
+LIMIT_CASES = {
+    "1e18 simulation steps": (
+        TWO_LINKS + "[simulate]\nduration_s = 1e14\nstep_s = 1e-4\n",
+        "simulate.duration_s",
+        "1e+18 steps of 2 links needs about 3.19e+04 years of computing (limit 1 day)",
+    ),
+    "a simulation too long to hold in memory": (
+        TWO_LINKS + "[simulate]\nduration_s = 1e3\nstep_s = 1e-6\n",
+        "simulate.duration_s",
+        "1e+09 steps of 2 links needs about 358 GiB of memory (limit ",
+    ),
+    "every = 10**30": (
+        TWO_LINKS + "[simulate]\nduration_s = 1\nstep_s = 0.1\nevery = 1" + "0" * 30 + "\n",
+        "simulate.every",
+        "is 100000... (31 digits), above the maximum",
+    ),
+    "samples = 2**40": (
+        SENSITIVITY.replace("samples = 8", f"samples = {2**40}"),
+        "sensitivity.samples",
+        f"samples = {2**40}: needs about 2.27e+03 TiB of memory (limit ",
+    ),
+    "a 5000-link sensitivity": (
+        links(5000) + "[sensitivity]\n",
+        "sensitivity.samples",
+        "5000 links, 1 speed(s), samples = 8192: needs about 41.7 TiB of memory",
+    ),
+    "a seed beyond 32 bits": (
+        SENSITIVITY + f"seed = {2**32}\n",
+        "sensitivity.seed",
+        "is 4294967296, above the maximum (expected an integer >= 1 and <= 4,294,967,295)",
+    ),
+    "a seed beyond 64 bits": (
+        SENSITIVITY + f"seed = {2**64}\n",
+        "sensitivity.seed",
+        "above the maximum",
+    ),
+    "a huge box_budget": (
+        WORKSPACE + "box_budget = 1000000000000\n",
+        "workspace.box_budget",
+        "is 1,000,000,000,000 boxes: needs about 102 TiB of memory",
+    ),
+}
+
+
+@pytest.mark.parametrize("case", list(LIMIT_CASES))
+def test_what_cannot_run_is_refused_with_the_estimate(case, tmp_path, cli):
+    text, key, problem = LIMIT_CASES[case]
+    preset = tmp_path / "big.toml"
+    preset.write_text(text, encoding="utf-8")
+    result = cli("run", preset, "--out-dir", tmp_path / "out")
+    assert result.exit_code == 2, result.output
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1, result.stderr
+    assert lines[0].startswith(f"error: {preset}: {key}: "), lines[0]
+    assert problem in lines[0], lines[0]
+    assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize(
+    "options, problem",
+    [
+        (("--samples", "-8", "--method", "efast"), "command line: --samples: is -8"),
+        (("--samples", "0", "--method", "efast"), "command line: --samples: is 0"),
+        (("--seed", str(2**32)), "command line: --seed: is 4294967296, above the maximum"),
+        (("--samples", str(2**40)), "sensitivity.samples: 2 links, 1 speed(s), samples"),
+    ],
+)
+def test_every_sensitivity_option_is_checked_whatever_the_method(tmp_path, cli, options, problem):
+    preset = tmp_path / "s.toml"
+    preset.write_text(SENSITIVITY.replace('["sobol"]', '["sobol", "efast"]'))
+    result = cli("sensitivity", preset, "--out-dir", tmp_path / "out", *options)
+    assert result.exit_code == 2, result.output
+    assert problem in result.stderr and result.stderr.count("\n") == 1, result.stderr
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_non_finite_result_is_a_failure_and_not_written(tmp_path, cli):
+    preset = tmp_path / "diverges.toml"
+    preset.write_text(
+        TWO_LINKS.replace("masses_kg", "gravity_m_s2 = 1e50\nmasses_kg")
+        + "[simulate]\nduration_s = 10\nstep_s = 0.01\ntheta0_deg = [10, 10]\n"
+        + 'omega0_deg_s = [1e40, 1e40]\noutput = "nan.csv"\n'
+    )
+    result = cli("simulate", preset, "--out-dir", tmp_path / "out")
+    assert result.exit_code == 1, result.output
+    assert result.stderr.strip().splitlines()[-1] == (
+        "error: diverges:simulate: the result holds NaN or infinite values (first in the "
+        "output column theta1_rad); nothing was written"
+    )
+    assert not (tmp_path / "out").exists()
+
+
+def test_the_first_non_finite_column_of_each_table_kind():
+    import numpy as np
+
+    from planar_tui.csvio import CsvTable
+
+    array = np.array([[0.0, 1.0, 2.0], [0.0, 1.0, np.inf]])
+    assert CsvTable(("a", "b", "c"), array).first_non_finite_column() == "c"
+    assert CsvTable(("a", "b"), array[:, :2]).first_non_finite_column() is None
+    rows = [["6R", 1.0, float("nan")], ["6R", np.float64("-inf"), 0.0]]
+    assert CsvTable(("robot", "S1", "ST"), rows).first_non_finite_column() == "ST"

@@ -16,12 +16,27 @@ from planar_tui.dynamics.robot import SerialRobot
 from planar_tui.errors import PresetError
 from planar_tui.jobkind import Job, JobKind, JobResult
 from planar_tui.progress import Progress
-from planar_tui.schema import TableReader, boolean, integer, number, setting, shown, string
+from planar_tui.schema import (
+    OptionReader,
+    TableReader,
+    boolean,
+    integer,
+    number,
+    read_option,
+    setting,
+    shown,
+    string,
+)
 
 METHODS = ("sobol", "efast")
 PERCENT_OF = ("ST", "S1")
 #: eFAST needs N > 4 M² with M = 4 (SALib ``fast_sampler``).
 EFAST_MIN_SAMPLES = 65
+#: Largest seed: eFAST's bootstrap draws with ``np.random.RandomState(seed)``, which takes
+#: 32-bit seeds (SALib's Sobol' sampling would take any).
+SEED_MAX = 2**32 - 1
+#: Rough cost of one model run (an inverse dynamics, batched): 0.3 µs + 20 ns per link.
+MODEL_RUN_SECONDS = (3e-7, 2e-8)
 
 
 def _read_speeds(reader: TableReader, name, default, robot, values) -> tuple[float, ...]:
@@ -126,9 +141,9 @@ class SensitivitySpec:
         doc="eFAST N per input (M = 4)",
     )
     seed: int = setting(
-        integer(minimum=1),
+        integer(minimum=1, maximum=SEED_MAX),
         default=42,
-        type_doc="integer ≥ 1",
+        type_doc="integer in [1, 2³² − 1]",
         doc="seed of sampling and bootstrap (SALib treats 0 as no seed)",
     )
     percent_of: str = setting(
@@ -177,6 +192,7 @@ class SensitivitySpec:
                 "vary_inertias = true",
             )
         check_samples(reader.error, values["methods"], values["samples"], values["efast_samples"])
+        check_resources(reader.error, SensitivitySpec(**values), robot)
         return values
 
     @property
@@ -205,6 +221,41 @@ def check_samples(error, methods, samples: int, efast_samples: int | None) -> No
         raise error("samples", f"is {samples}, not a power of two >= 8", "8, 16, ... 8192, ...")
     if "efast" in methods and efast_samples is not None and efast_samples < EFAST_MIN_SAMPLES:
         raise error("efast_samples", f"is {efast_samples}", "an integer > 4 M² = 64 (M = 4)")
+
+
+def resource_estimate(spec: SensitivitySpec, robot: SerialRobot) -> tuple[float, float]:
+    """Rough peak memory (bytes) and computing time (s) of a job: the unit designs (drawn
+    and cached), one output matrix per method and speed, the Sobol' bootstrap's
+    resample indices and counts (N × 1000 each), and one model run per design row and
+    speed."""
+    from planar_tui.sensitivity.engine import design_rows
+    from planar_tui.sensitivity.estimators import NUM_RESAMPLES
+
+    n = robot.n_links
+    num_vars = (3 if spec.vary_inertias else 2) * n
+    sizes = sample_sizes(spec, num_vars)
+    rows = {method: design_rows(method, num_vars, sizes[method]) for method in spec.methods}
+    speeds = len(spec.speeds_rad_s)
+    memory = sum(r * (2 * num_vars + speeds * n + 2 * n) * 8.0 for r in rows.values())
+    if "sobol" in spec.methods:
+        memory += 2.0 * spec.samples * NUM_RESAMPLES * 8
+    per_run = MODEL_RUN_SECONDS[0] + MODEL_RUN_SECONDS[1] * n
+    return memory, sum(rows.values()) * speeds * per_run
+
+
+def check_resources(error, spec: SensitivitySpec, robot: SerialRobot) -> None:
+    """Refuse a job whose estimated memory or time exceeds :mod:`planar_tui.limits`."""
+    from planar_tui.limits import memory_problem, time_problem
+
+    memory, seconds = resource_estimate(spec, robot)
+    problem = memory_problem(memory) or time_problem(seconds)
+    if problem is not None:
+        raise error(
+            "samples",
+            f"{robot.n_links} links, {len(spec.speeds_rad_s)} speed(s), samples = "
+            f"{shown(spec.samples)}: {problem}",
+            "fewer samples, links or speeds",
+        )
 
 
 def solve_posture(job: Job):
@@ -236,9 +287,15 @@ def solve_posture(job: Job):
 
 
 def prepare_sensitivity(job: Job) -> Job:
-    """The job with its posture solved (``spec.posture``), ready to run."""
+    """The job with its resources checked again (command-line overrides change them) and
+    its posture solved (``spec.posture``), ready to run."""
     if job.spec.posture is not None:
         return job
+
+    def error(name, problem, expected):
+        return PresetError(job.preset_path, f"{job.key}.{name}", problem, expected)
+
+    check_resources(error, job.spec, job.robot)
     spec = dataclasses.replace(job.spec, posture=solve_posture(job))
     return dataclasses.replace(job, spec=spec)
 
@@ -250,6 +307,9 @@ def with_overrides(spec: SensitivitySpec, options: Mapping[str, Any]) -> Sensiti
     def error(name, problem, expected):
         return PresetError("command line", f"--{name.replace('_', '-')}", problem, expected)
 
+    given = {name: options[name] for name in ("samples", "seed") if options.get(name) is not None}
+    reader = OptionReader(given, {})
+    checked = {name: read_option(SensitivitySpec, reader, name) for name in given}
     changes: dict[str, Any] = {}
     methods = options.get("methods")
     if methods:
@@ -257,13 +317,7 @@ def with_overrides(spec: SensitivitySpec, options: Mapping[str, Any]) -> Sensiti
             if method not in METHODS:
                 raise error("method", f"is {method!r}", "sobol or efast")
         changes["methods"] = tuple(dict.fromkeys(methods))
-    if options.get("samples") is not None:
-        changes["samples"] = options["samples"]
-    seed = options.get("seed")
-    if seed is not None:
-        if seed < 1:
-            raise error("seed", f"is {seed}", "an integer >= 1 (SALib treats 0 as no seed)")
-        changes["seed"] = seed
+    changes |= checked
     updated = dataclasses.replace(spec, **changes)
     check_samples(error, updated.methods, updated.samples, updated.efast_samples)
     return updated

@@ -30,6 +30,8 @@ FORMS = ("natural", "mean-value", "slope", "arc-distance", "geometric")
 
 #: Default cap on the boxes processed by one job (each costs ~1 µs and ≤ 112 bytes).
 DEFAULT_BOX_BUDGET = 50_000_000
+#: Most memory one processed box may hold (kept boxes, the bisection stack).
+BYTES_PER_BOX = 112
 
 
 def _joint_limits(reader: TableReader, name, default, robot, values):
@@ -75,6 +77,24 @@ def _search_box(reader: TableReader, name, default, robot: Robot3RRR, values):
             "a box containing it",
         )
     return rows
+
+
+def _checked_box_budget(budget: int, reader: TableReader) -> int:
+    """The box budget within the memory limit (:mod:`planar_tui.limits`, at most
+    :data:`BYTES_PER_BOX` per box): a larger budget set in the preset is refused, the
+    default is lowered to fit."""
+    from planar_tui.limits import memory_limit_bytes, memory_problem
+
+    problem = memory_problem(budget * BYTES_PER_BOX)
+    if problem is None:
+        return budget
+    if not reader.has("box_budget"):
+        return memory_limit_bytes() // BYTES_PER_BOX
+    raise reader.error(
+        "box_budget",
+        f"is {budget:,} boxes: {problem} at {BYTES_PER_BOX} bytes a box",
+        f"at most {memory_limit_bytes() // BYTES_PER_BOX:,} boxes",
+    )
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -124,8 +144,9 @@ class WorkspaceSpec:
     box_budget: int = setting(
         integer(minimum=1),
         default=DEFAULT_BOX_BUDGET,
-        type_doc="integer ≥ 1",
-        doc="most boxes one job may process (then it fails, writing nothing)",
+        type_doc="integer ≥ 1, × 112 bytes ≤ the memory limit",
+        doc="most boxes one job may process (then it fails, writing nothing); the default "
+        "is lowered to fit the memory limit",
     )
     geometric_reference: bool = setting(
         boolean(),
@@ -156,6 +177,7 @@ class WorkspaceSpec:
             raise reader.error(
                 "refine_precision_cm", f"is {refine:g} > precision_cm", "<= precision_cm"
             )
+        values["box_budget"] = _checked_box_budget(values["box_budget"], reader)
         return values
 
     @property
