@@ -115,7 +115,8 @@ def test_3r_minimum_condition_matches_scipy_multistart(lengths):
 
 
 def test_parse_time_solve_imports_no_scipy():
-    """The isotropic check runs while presets load: it must stay light (no scipy)."""
+    """The isotropic check runs before every job (batch.prepare_jobs): it must stay light
+    (no scipy)."""
     import subprocess
     import sys
 
