@@ -100,7 +100,7 @@ def in_process_cases(samples: int, precision_cm: float):
     workspace = robot_job(
         "workspace",
         "joint_limits_deg = [[50, 70], [140, 160], [260, 280]]\n"
-        f"precision_cm = {precision_cm}\ngeometric_reference = false\nbox_budget = 1000000000",
+        f"precision_cm = {precision_cm}\ngeometric_reference = false",
         robot="3rrr",
     )
 

@@ -77,7 +77,11 @@ def test_out_onto_a_fifo_is_refused(tmp_path, cli):
     assert stat.S_ISFIFO(os.stat(fifo).st_mode)
 
 
-def test_out_onto_dev_null_is_refused_and_the_node_kept(cli):
+def test_out_onto_dev_null_is_refused_and_the_node_kept(cli, monkeypatch):
+    def must_not_write(plan, result):  # a regression must not replace the machine's node
+        raise AssertionError(f"would have written {plan.main}")
+
+    monkeypatch.setattr("planar_tui.batch.write_result", must_not_write)
     result = cli("torques", TABLE1, "--out", "/dev/null")
     refused(result, "/dev/null", "is a character device, not a regular file")
     assert stat.S_ISCHR(os.stat("/dev/null").st_mode)
