@@ -105,11 +105,15 @@ async def test_add_and_remove_link_keep_arrays_consistent(tmp_path):
         await pilot.press("ctrl+n")
         await pilot.pause()
         assert app.workbench.document["robot"]["lengths_m"] == [0.303, 0.214, 0.214]
-        # the simulate job's 2-value torques no longer fit 3 links: the CLI's message
-        assert "simulate.theta0_deg: has 2 values (expected 3, one per link)" in validation(app)
+        # the simulate job's per-link arrays follow the robot (the new link gets zeros)
+        simulate = app.workbench.document["simulate"]
+        assert simulate["theta0_deg"] == [30, -60, 0.0]
+        assert simulate["torques_Nm"] == [0.5, 0.1, 0.0]
+        assert validation(app).startswith("ok:")
         await pilot.press("ctrl+r")
         await pilot.pause()
         assert app.workbench.document["robot"]["lengths_m"] == [0.303, 0.214]
+        assert simulate["theta0_deg"] == [30, -60] and simulate["torques_Nm"] == [0.5, 0.1]
         assert validation(app).startswith("ok:")
 
 
@@ -224,7 +228,12 @@ async def test_save_load_and_the_cli_gives_the_same_csv(tmp_path, cli):
         app.action_show_tab("simulate")
         await pilot.pause()
         app.query_one("#pane-simulate #field-duration_s").value = "0.1"
-        await pilot.press("ctrl+s")
+        await pilot.pause()
+        await pilot.press("ctrl+s")  # the preset's own file: saved in place, no question
+        await pilot.pause()
+        assert not isinstance(app.screen, PathDialog)
+        assert "duration_s = 0.1\n" in (tmp_path / "tiny.toml").read_text()
+        await app.run_action("save_as")  # the palette's "Save as" asks for a path
         await pilot.pause()
         assert isinstance(app.screen, PathDialog)
         app.screen.query_one("#path-input").value = str(saved)

@@ -21,9 +21,10 @@ from textual.binding import Binding
 from textual.screen import Screen
 from textual.widgets import Footer, Static, TabbedContent, TabPane
 
+from planar_tui.app.file_actions import FileActions
 from planar_tui.app.job_runner import JobFinished, JobRunner
 from planar_tui.app.messages import CancelRequested, DocumentEdited, RunRequested
-from planar_tui.app.screens.dialogs import ConfirmDialog, HelpScreen, MessageDialog, PathDialog
+from planar_tui.app.screens.dialogs import HelpScreen, MessageDialog
 from planar_tui.app.widgets.panes import JobPane, RobotPane
 from planar_tui.app.workbench import Workbench
 from planar_tui.errors import PresetError
@@ -34,8 +35,9 @@ __all__ = ["REFRESH_S", "JobFinished", "WorkbenchApp"]
 REFRESH_S = 0.1
 
 
-class WorkbenchApp(App):
-    """planar-tui's terminal workbench."""
+class WorkbenchApp(FileActions, App):
+    """planar-tui's terminal workbench (open, save, export, undo and quit in
+    :class:`~planar_tui.app.file_actions.FileActions`)."""
 
     CSS_PATH = Path(__file__).with_name("app.tcss")  # absolute: subclasses elsewhere find it
     TITLE = "planar-tui"
@@ -46,6 +48,7 @@ class WorkbenchApp(App):
         Binding("escape", "cancel", "Cancel"),
         Binding("ctrl+o", "open", "Open", priority=True),
         Binding("ctrl+s", "save", "Save", priority=True),
+        Binding("ctrl+z", "undo", "Undo", priority=True, show=False),
         Binding("ctrl+e", "export", "Export", priority=True),
         Binding("ctrl+f", "toggle_form", "Form", priority=True),
         Binding("ctrl+n", "pane_action('add_link')", "Add link", priority=True),
@@ -95,7 +98,7 @@ class WorkbenchApp(App):
         yield Footer(compact=True)
 
     def on_mount(self) -> None:
-        self.sub_title = str(self.workbench.path)
+        self.show_document_state()
         self.set_interval(REFRESH_S, self._refresh_progress)
         self.revalidate()
 
@@ -110,9 +113,10 @@ class WorkbenchApp(App):
         name = (tabs.active or "tab-robot").removeprefix("tab-")
         return self.query_one(f"#pane-{name}")
 
-    def on_document_edited(self, message: DocumentEdited) -> None:
-        """A tab edited the preset: check it again."""
+    async def on_document_edited(self, message: DocumentEdited) -> None:
+        """A tab edited the preset: check it again (and mark it modified)."""
         self.revalidate()
+        await self.after_edit()
 
     def revalidate(self) -> bool:
         """Check the whole document with the CLI's parser; show the first problem."""
@@ -124,7 +128,7 @@ class WorkbenchApp(App):
             bar.set_class(True, "invalid")
             return False
         count = len(preset.jobs)
-        bar.update(f"ok: {self.workbench.path.name}, {count} job{'s' if count != 1 else ''} valid")
+        bar.update(f"ok: {self.document_label()}, {count} job{'s' if count != 1 else ''} valid")
         bar.set_class(False, "invalid")
         return True
 
@@ -201,97 +205,7 @@ class WorkbenchApp(App):
             controls.status(f"done in {message.seconds:.2f} s")
             pane.show_result(message.job, message.result)
 
-    # -- presets and export ---------------------------------------------------------
-    def action_open(self) -> None:
-        """Open a preset (a path or a bundled preset name)."""
-        if self.job_running:
-            self.notify("Cancel the running job first.", severity="warning")
-            return
-
-        def opened(answer: str | None) -> None:
-            if answer:
-                self.call_later(self.open_preset, answer)
-
-        self.push_screen(
-            PathDialog("Open preset (path or bundled name)", str(self.workbench.path)), opened
-        )
-
-    async def open_preset(self, argument: str) -> bool:
-        """Load a preset into every tab; a bad one is reported and the current one kept."""
-        try:
-            bench = Workbench.open(argument)
-        except PresetError as error:
-            self.push_screen(MessageDialog("Cannot open preset", str(error)))
-            return False
-        self.workbench = bench
-        self.sub_title = str(bench.path)
-        await self.recompose()
-        self.revalidate()
-        self.notify(f"Opened {bench.path}")
-        return True
-
-    def action_save(self) -> None:
-        """Save the preset as TOML (validated first)."""
-
-        def chosen(answer: str | None) -> None:
-            if answer:
-                self.save_preset(answer)
-
-        self.push_screen(PathDialog("Save preset as", str(self.workbench.path)), chosen)
-
-    def save_preset(self, target: str | Path) -> Path | None:
-        """Write the validated document to ``target`` atomically; ``None`` if invalid."""
-        from planar_tui.csvio import write_text_atomic
-
-        try:
-            text = self.workbench.to_toml()
-        except PresetError as error:
-            self.push_screen(MessageDialog("Not saved: the preset is invalid", str(error)))
-            return None
-        path = write_text_atomic(Path(target), text)
-        self.workbench.path = path
-        self.sub_title = str(path)
-        self.revalidate()
-        self.notify(f"Saved {path}")
-        return path
-
-    def action_export(self) -> None:
-        """Write the result on screen into a folder, named as the CLI names it."""
-        from planar_tui.batch import plan_outputs
-
-        pane = self.current_pane()
-        if not isinstance(pane, JobPane) or pane.result is None or pane.job is None:
-            self.notify("Nothing to export: run a job on this tab first.", severity="warning")
-            return
-        job = pane.job
-        (plan,) = plan_outputs([job], Path())
-        names = ", ".join(str(path) for path in plan.paths())
-
-        def chosen(answer: str | None) -> None:
-            if answer:
-                self.export_csv(pane, answer)
-
-        hint = f"Writes {names} there (as planar-tui run --out-dir).\nEnter: write   Escape: cancel"
-        self.push_screen(PathDialog("Export to folder", str(self.output_dir), hint), chosen)
-
-    def export_csv(self, pane: JobPane, out_dir: str | Path) -> list[Path]:
-        """Write the pane's result into ``out_dir`` exactly as ``planar-tui run --out-dir``
-        does: the job's ``output`` CSV and the extra tables its preset names (a workspace's
-        ``boxes_output``), through the batch service; nothing on an error (a dialog)."""
-        from planar_tui import batch
-
-        if pane.job is None or pane.result is None:
-            return []
-        plans = batch.plan_outputs([pane.job], Path(out_dir))
-        try:
-            batch.check_plans(plans)
-            written = batch.write_result(plans[0], pane.result)
-        except (PresetError, batch.OutputFailed) as error:
-            self.push_screen(MessageDialog("Not exported", str(error)))
-            return []
-        self.notify("Wrote " + ", ".join(map(str, written)))
-        return written
-
+    # -- the screen as text -----------------------------------------------------------
     def export_text(self) -> str:
         """The screen as plain text (for tests, docs and text screenshots), read back from
         Textual's public SVG screenshot (see :mod:`planar_tui.app.screen_text`)."""
@@ -301,19 +215,6 @@ class WorkbenchApp(App):
         return svg_screen_text(self.export_screenshot(), width, height)
 
     # -- quitting, help, command palette --------------------------------------------
-    async def action_quit(self) -> None:
-        """Quit; asks first only while a job is running."""
-        if not self.job_running:
-            self.exit()
-            return
-
-        def answered(yes: bool | None) -> None:
-            if yes:
-                self.action_cancel()
-                self.exit()
-
-        self.push_screen(ConfirmDialog("A job is running. Cancel it and quit?"), answered)
-
     def action_help(self) -> None:
         """Show the key bindings."""
         if not isinstance(self.screen, HelpScreen):
@@ -367,6 +268,8 @@ class WorkbenchApp(App):
         yield SystemCommand("Cancel job", "Stop the running job (escape)", self.action_cancel)
         yield SystemCommand("Open preset", "Open a TOML preset (ctrl+o)", self.action_open)
         yield SystemCommand("Save preset", "Save the preset as TOML (ctrl+s)", self.action_save)
+        yield SystemCommand("Save as", "Save the preset under another path", self.action_save_as)
+        yield SystemCommand("Undo", "Undo the latest edit (ctrl+z)", self.action_undo)
         yield SystemCommand(
             "Export CSV",
             "Write the result's CSV files into a folder, as planar-tui run (ctrl+e)",

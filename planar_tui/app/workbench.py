@@ -10,11 +10,17 @@ document (and so the saved preset) only once it is edited or run.
 from __future__ import annotations
 
 import copy
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
+from planar_tui.app.history import PER_LINK_KEYS, EditHistory, link_count, resize_per_link
+from planar_tui.app.saving import same_value
+from planar_tui.errors import PresetError
 from planar_tui.presets import Job, Preset, parse_preset, read_toml
 from planar_tui.resources import preset_description, resolve_preset
+
+T = TypeVar("T")
 
 #: The preset opened by ``planar-tui`` without an argument.
 DEFAULT_PRESET = "paper-a-table1"
@@ -81,21 +87,67 @@ class Workbench:
     document
         The parsed TOML document.
     description
-        The preset's first comment line (kept when saving).
+        The preset's first comment line (written when there is no original text).
+    original_text
+        The file's text: saving applies the edits into it (comments and order kept, see
+        :mod:`planar_tui.app.saving`).
+
+    :attr:`history` holds the document before each edit (``ctrl+z``), :attr:`saved` the
+    document as last opened or saved (:attr:`modified` compares them), :attr:`notes` what
+    an edit changed besides itself (per-link arrays resized), for the app to show.
     """
 
-    def __init__(self, path: Path | str, document: dict[str, Any], description: str = ""):
+    def __init__(
+        self,
+        path: Path | str,
+        document: dict[str, Any],
+        description: str = "",
+        original_text: str | None = None,
+    ):
         self.path = Path(path)
         self.document = document
         self.description = description
+        self.original_text = original_text
+        self.saved = copy.deepcopy(document)
+        self.history = EditHistory()
+        self.notes: list[str] = []
 
     @classmethod
     def open(cls, argument: str | Path | None) -> Workbench:
-        """Open a preset path or bundled name (default :data:`DEFAULT_PRESET`), validated."""
+        """Open a preset path or bundled name (default :data:`DEFAULT_PRESET`), validated;
+        every failure is a :class:`PresetError` (even what the TOML parser did not expect:
+        nesting too deep, integers too long)."""
         path = resolve_preset(argument or DEFAULT_PRESET)
-        bench = cls(path, read_toml(path), preset_description(path))
+        document = guarded(path, lambda: read_toml(path))
+        text = path.read_text(encoding="utf-8")
+        bench = cls(path, document, preset_description(path), text)
         bench.validate()
         return bench
+
+    # -- edits, undo, saved state -----------------------------------------------------
+    @property
+    def modified(self) -> bool:
+        """Whether the document differs from the file as last opened or saved."""
+        return not same_value(self.document, self.saved)
+
+    def undo(self) -> bool:
+        """Go back to the document before the latest edit; ``False`` if there is none."""
+        state = self.history.pop()
+        if state is None:
+            return False
+        self.document = state
+        return True
+
+    def mark_saved(self, path: Path, text: str) -> None:
+        """The document was written to ``path`` as ``text`` (the next save starts there)."""
+        self.path = Path(path)
+        self.original_text = text
+        self.saved = copy.deepcopy(self.document)
+
+    def take_notes(self) -> list[str]:
+        """The notes of the edits since the last call (and forget them)."""
+        notes, self.notes = self.notes, []
+        return notes
 
     # -- tables -----------------------------------------------------------------------
     def tables(self, kind: str) -> list[dict[str, Any]]:
@@ -121,9 +173,16 @@ class Workbench:
         return default_table(kind, n_links)
 
     def set_table(self, kind: str, index: int, table: dict[str, Any]) -> None:
-        """Put ``table`` into the document (adding the kind, and its robot if missing)."""
+        """Put ``table`` into the document (adding the kind, and its robot if missing);
+        the document before is kept for undo. When the edit changes a serial robot's link
+        count, the per-link arrays of the jobs using that robot are resized (see
+        :meth:`resize_jobs`)."""
         from planar_tui.registry import JOB_KINDS
 
+        tables = self.tables(kind)
+        before = tables[index] if index < len(tables) else None
+        if before is None or not same_value(before, table):
+            self.history.record(self.document, (kind, index))
         value = self.document.get(kind)
         if value is None:
             self.document[kind] = table
@@ -140,6 +199,39 @@ class Workbench:
             robot_kind = JOB_KINDS[kind].robot_kind
             if robot_kind not in self.document and robot_kind not in table:
                 self.document[robot_kind] = default_table(robot_kind)
+        self._resize_per_link(kind, before or {}, table)
+
+    def _resize_per_link(self, kind: str, before: dict[str, Any], table: dict[str, Any]) -> None:
+        """After an edit of ``kind``'s table: if it changed a serial robot's link count
+        (the preset's ``[robot]`` or a job's own), resize the per-link arrays using it."""
+        if kind == "robot":
+            old, new = link_count(before), link_count(table)
+            if old is not None and new is not None and old != new:
+                self.resize_jobs(new)
+            return
+        old, new = link_count(before.get("robot")), link_count(table.get("robot"))
+        if old is not None and new is not None and old != new:
+            self._note_resized([f"{kind}.{key}" for key in resize_per_link(table, kind, new)], new)
+
+    def resize_jobs(self, n_links: int) -> None:
+        """Resize the per-link arrays (``theta0_deg``, ``torques_Nm`` rows, a posture's
+        angles …) of every job on the preset's ``[robot]`` to ``n_links`` (new links get
+        zeros), noting which."""
+        from planar_tui.registry import JOB_KINDS
+
+        changed = []
+        for kind in PER_LINK_KEYS:
+            if kind not in JOB_KINDS or JOB_KINDS[kind].robot_kind != "robot":
+                continue
+            for table in self.tables(kind):
+                if "robot" not in table:  # a job with its own robot keeps its arrays
+                    changed += [f"{kind}.{key}" for key in resize_per_link(table, kind, n_links)]
+        self._note_resized(changed, n_links)
+
+    def _note_resized(self, keys: list[str], n_links: int) -> None:
+        if keys:
+            names = ", ".join(dict.fromkeys(keys))
+            self.notes.append(f"{names} resized to {n_links} links (new links: 0)")
 
     @staticmethod
     def robot_kinds() -> tuple[str, ...]:
@@ -149,8 +241,9 @@ class Workbench:
 
     # -- validation and jobs ----------------------------------------------------------
     def validate(self) -> Preset:
-        """Parse the whole document as the CLI would; raises its :class:`PresetError`."""
-        return parse_preset(self.path, self.document)
+        """Parse the whole document as the CLI would; raises its :class:`PresetError`
+        (also for what the parser did not expect, see :func:`guarded`)."""
+        return guarded(self.path, lambda: parse_preset(self.path, self.document), self.document)
 
     def job(self, kind: str, index: int = 0) -> Job:
         """The validated job ``index`` of ``kind`` (its table must be in the document)."""
@@ -164,7 +257,57 @@ class Workbench:
         ]
 
     def to_toml(self) -> str:
-        """The validated document as TOML text (see :mod:`planar_tui.preset_writer`)."""
+        """The validated document as TOML text: applied into the original file's text
+        (comments, order and formatting kept, :func:`planar_tui.app.saving.merge_document`),
+        or printed by :mod:`planar_tui.preset_writer` when there is none."""
+        from planar_tui.app.saving import merge_document
         from planar_tui.preset_writer import dump_preset
 
-        return dump_preset(self.validate(), self.description)
+        preset = self.validate()
+        if self.original_text is None:
+            return dump_preset(preset, self.description)
+        return merge_document(self.original_text, self.document)
+
+
+def guarded(path: Path, action: Callable[[], T], document: Any = None) -> T:
+    """``action()``, with any failure but a :class:`PresetError` turned into one: TOML
+    nested too deep (``RecursionError``), an integer too long to read or too large for a
+    float (``ValueError``, ``OverflowError``) … The key is found in ``document`` when
+    given (see :func:`find_unreadable`)."""
+    try:
+        return action()
+    except PresetError:
+        raise
+    except Exception as error:
+        key, problem, expected = find_unreadable(document)
+        if key is None:
+            problem = f"cannot be read: {type(error).__name__}: {error}"
+            if isinstance(error, RecursionError):
+                problem = "is nested too deep to read"
+        raise PresetError(path, key or "(syntax)", problem, expected) from None
+
+
+#: Nesting depth beyond which a value cannot be part of a preset.
+MAX_DEPTH = 20
+
+
+def find_unreadable(document: Any) -> tuple[str | None, str, str]:
+    """The first value in ``document`` no preset key can hold: an integer beyond a
+    float's range, or arrays nested deeper than :data:`MAX_DEPTH`; ``(dotted key, problem,
+    expected)``, the key ``None`` when there is none. Walks without recursion."""
+    stack: list[tuple[str, Any, int]] = [("", document, 0)]
+    while stack:
+        key, value, depth = stack.pop()
+        if depth > MAX_DEPTH:
+            return key, "is nested too deep", f"at most {MAX_DEPTH} levels of arrays and tables"
+        if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 1023:
+            digits = len(str(abs(value))) if value.bit_length() < 10_000 else "thousands of"
+            return key, f"is an integer of {digits} digits", "a number within ±1.8e308"
+        if isinstance(value, dict):
+            items = [(f"{key}.{k}" if key else str(k), v) for k, v in value.items()]
+        elif isinstance(value, list):
+            items = [(f"{key}[{i + 1}]", v) for i, v in enumerate(value)]
+        else:
+            continue
+        stack.extend((k, v, depth + 1) for k, v in reversed(items))
+    return None, "", "a preset of plain TOML values"

@@ -1,4 +1,5 @@
-"""Modal screens: a path prompt (open, save, export), a yes/no question, a message, help."""
+"""Modal screens: a path prompt (open, save, export), a yes/no question, save / discard /
+cancel, a message, help. Every dialog fits 80×24 with its buttons whole."""
 
 from __future__ import annotations
 
@@ -36,11 +37,47 @@ class PathDialog(ModalScreen[str | None]):
 
 
 class ConfirmDialog(ModalScreen[bool]):
-    """A yes/no question: ``y`` / Enter on Yes, ``n`` / Escape for No."""
+    """A yes/no question: ``y`` / Enter on Yes, ``n`` / Escape for No; ``detail`` (e.g.
+    the files an export would overwrite) is shown under the question."""
 
     BINDINGS: ClassVar = [
         Binding("y", "answer(True)", "Yes"),
         Binding("n,escape", "answer(False)", "No"),
+    ]
+
+    def __init__(self, question: str, detail: str = "", yes: str = "Yes (y)", no: str = "No (n)"):
+        super().__init__()
+        self.question = question
+        self.detail = detail
+        self.labels = (yes, no)
+
+    def compose(self) -> ComposeResult:
+        with Vertical(classes="dialog"):
+            yield Label(self.question, classes="dialog-title")
+            if self.detail:
+                yield Static(self.detail, classes="dialog-detail", markup=False)
+            with Horizontal(classes="dialog-buttons"):
+                yield Button(self.labels[0], id="yes", variant="error")
+                yield Button(self.labels[1], id="no", variant="primary")
+
+    def on_mount(self) -> None:
+        self.query_one("#no", Button).focus()
+
+    def on_button_pressed(self, event: Button.Pressed) -> None:
+        self.dismiss(event.button.id == "yes")
+
+    def action_answer(self, answer: bool) -> None:
+        self.dismiss(answer)
+
+
+class UnsavedDialog(ModalScreen[str | None]):
+    """Unsaved edits: dismisses with ``"save"`` (``s``), ``"discard"`` (``d``) or ``None``
+    (Cancel, ``c`` / Escape)."""
+
+    BINDINGS: ClassVar = [
+        Binding("s", "answer('save')", "Save"),
+        Binding("d", "answer('discard')", "Discard"),
+        Binding("c,escape", "answer(None)", "Cancel"),
     ]
 
     def __init__(self, question: str):
@@ -51,16 +88,17 @@ class ConfirmDialog(ModalScreen[bool]):
         with Vertical(classes="dialog"):
             yield Label(self.question, classes="dialog-title")
             with Horizontal(classes="dialog-buttons"):
-                yield Button("Yes (y)", id="yes", variant="error")
-                yield Button("No (n)", id="no", variant="primary")
+                yield Button("Save (s)", id="save", variant="primary")
+                yield Button("Discard (d)", id="discard", variant="error")
+                yield Button("Cancel (esc)", id="cancel")
 
     def on_mount(self) -> None:
-        self.query_one("#no", Button).focus()
+        self.query_one("#save", Button).focus()
 
     def on_button_pressed(self, event: Button.Pressed) -> None:
-        self.dismiss(event.button.id == "yes")
+        self.dismiss(None if event.button.id == "cancel" else event.button.id)
 
-    def action_answer(self, answer: bool) -> None:
+    def action_answer(self, answer: str | None) -> None:
         self.dismiss(answer)
 
 
@@ -96,20 +134,20 @@ Tab bar: left / right switch tabs. tab / shift+tab move the focus;
 up / down / page up / page down scroll. Fields take TOML values
 (0.25, [0.25, 0.2], singular); enter moves to the next field; the
 CLI's preset parser checks every edit (error: / ok: under the tabs).
-
   F5          run the job of the current tab (also the Run button)
   escape      cancel the running job (honoured within half a second)
   ctrl+o      open a preset (a path or a bundled name)
-  ctrl+s      save the preset (TOML the CLI runs unchanged)
+  ctrl+s      save (comments kept; a bundled preset asks for a path)
+  ctrl+z      undo the latest edit
   ctrl+e      export the result's CSV files to a folder (as the CLI)
   ctrl+f      hide / show the settings form (room for the results)
   ctrl+p      command palette: every action by name
-  q, ctrl+q   quit (asks only while a job runs; q outside fields)
+  q, ctrl+q   quit (asks if edits are unsaved or a job runs)
   F1, ?       this help (? outside fields)
   ctrl+n      Robot tab: add a link (a copy of the last one)
   ctrl+r      Robot tab: remove the last link
   ctrl+t      Sensitivity tab: percent / S1 / ST / ± half-width
-Dialogs: enter OK or close, escape cancel or close, y / n answer.
+Dialogs: enter OK, escape cancel or close, keys y, n, s, d answer.
 """
 
 

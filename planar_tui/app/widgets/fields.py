@@ -22,11 +22,13 @@ from planar_tui.preset_writer import format_value
 
 
 def parse_field(text: str) -> Any:
-    """A TOML value from a field's text; unparseable text is kept as a string."""
+    """A TOML value from a field's text; unparseable text is kept as a string (also text
+    the TOML parser chokes on: 600 ``[`` are a ``RecursionError``, an integer of 5000
+    digits a ``ValueError``), so the preset parser names the field."""
     text = text.strip()
     try:
         return tomllib.loads(f"v = {text}")["v"]
-    except tomllib.TOMLDecodeError:
+    except (tomllib.TOMLDecodeError, RecursionError, ValueError):
         return text
 
 
