@@ -338,6 +338,12 @@ async def test_adding_and_removing_a_link_resizes_every_job(tmp_path):
         assert validation(app).startswith("ok:")
         await pilot.press("ctrl+r")  # 1 link
         await pilot.pause()
+        assert app.workbench.document["simulate"][0]["theta0_deg"] == [30]
+        assert validation(app).startswith("ok:")
+        await pilot.press("ctrl+z")  # one step: the link and the arrays come back
+        await pilot.pause()
+        assert app.workbench.document["simulate"][0]["theta0_deg"] == [30, -60]
+        assert app.query_one("#link-2-lengths_m").value == "0.2"
         assert validation(app).startswith("ok:")
         await run_tab(app, pilot, "simulate")
         assert app.query_one("#pane-simulate").result is not None
@@ -373,6 +379,12 @@ async def test_every_dialog_shows_its_choices_at_80x24(tmp_path, monkeypatch):
             app.pop_screen()
             await pilot.pause()
 
+        # quitting while a job runs (the question that showed only its buttons' top borders)
+        monkeypatch.setattr(type(app.jobs), "running", property(lambda self: True))
+        app.set_focus(None)
+        await pilot.press("q")
+        await check(2, "A job is running. Cancel it and quit?", "Yes (y)", "No (n)")
+        monkeypatch.undo()
         app.push_screen(MessageDialog("Not saved", "error: x.toml: key: problem (expected y)"))
         await check(1, "Close (Enter)", "Not saved")
         await pilot.press("ctrl+o")  # a path dialog (no buttons: enter / escape)
@@ -384,8 +396,9 @@ async def test_every_dialog_shows_its_choices_at_80x24(tmp_path, monkeypatch):
         app.set_focus(None)
         await pilot.press("q")
         await check(3, "unsaved changes")  # save / discard / cancel
-        (tmp_path / "exists.toml").write_text("")
-        app.confirm_save(tmp_path / "exists.toml", "", None)
+        monkeypatch.chdir(tmp_path)  # a short path: the whole of it shows
+        Path("exists.toml").write_text("")
+        app.confirm_save(Path("exists.toml"), "", None)
         await check(2, "This file exists. Overwrite it?", "exists.toml")
         # the export's question, listing many files
         pane = app.query_one("#pane-simulate")
@@ -393,13 +406,6 @@ async def test_every_dialog_shows_its_choices_at_80x24(tmp_path, monkeypatch):
         (tmp_path / "tiny-simulate.csv").write_text("")
         app.confirm_export(pane, tmp_path)
         await check(2, "Overwrite 1 file?", "Overwrite (y)")
-        # quitting while a job runs, nothing unsaved
-        app.workbench.saved = app.workbench.document
-        monkeypatch.setattr(type(app.jobs), "running", property(lambda self: True))
-        app.set_focus(None)
-        await pilot.press("q")
-        await check(2, "A job is running. Cancel it and quit?")
-        monkeypatch.undo()
 
 
 # -- 6. what used to crash the app: a dialog or the error line, the edits kept ----------
