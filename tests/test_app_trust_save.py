@@ -70,7 +70,11 @@ async def type_into(pilot, selector: str, text: str) -> None:
 
 # -- 1. unsaved edits: marker, undo, questions before quitting or opening --------------
 @async_test
-async def test_modified_marker_and_undo(tmp_path):
+async def test_modified_marker_and_undo(tmp_path, monkeypatch):
+    import planar_tui.app.history
+
+    # however slowly the keys arrive (a loaded machine), one field's typing is one step
+    monkeypatch.setattr(planar_tui.app.history, "COALESCE_S", 60.0)
     app = make_app(tmp_path)
     original = {k: dict(v) for k, v in app.workbench.document.items()}
     async with app.run_test(size=SIZE) as pilot:
@@ -82,11 +86,9 @@ async def test_modified_marker_and_undo(tmp_path):
         assert app.workbench.document["simulate"]["duration_s"] == 0.15
         assert app.sub_title == "tiny.toml (modified)"
         assert validation(app).startswith("ok: tiny.toml (modified),")
-        await pilot.press("ctrl+z")  # the whole typed value is one step (and the clearing)
+        await pilot.press("ctrl+z")  # clearing and typing the value: one step
         await pilot.pause()
-        await pilot.press("ctrl+z")
-        await pilot.pause()
-        assert app.workbench.document == original
+        assert app.workbench.document == original and len(app.workbench.history) == 0
         assert app.query_one("#pane-simulate #field-duration_s").value == "0.2"  # the form too
         assert app.sub_title == "tiny.toml" and "(modified)" not in validation(app)
         await pilot.press("ctrl+z")  # nothing left: says so
@@ -509,3 +511,23 @@ async def test_typing_600_brackets_or_a_310_digit_integer_shows_the_error_line(t
         assert "Not saved: the preset is invalid" in app.export_text()
         app.pop_screen()
         assert app.is_running and field.value == "1" * 310
+
+
+def test_undo_steps_one_per_field_and_one_per_link(monkeypatch):
+    import planar_tui.app.history
+
+    monkeypatch.setattr(planar_tui.app.history, "COALESCE_S", 60.0)  # all edits "at once"
+    bench = Workbench.open(DATA / "tiny.toml")
+    robot = dict(bench.document["robot"])  # gravity 9.81, 2 links
+    for gravity in (9, 9.7):  # typed into one field: "9", then "9.7"
+        robot = robot | {"gravity_m_s2": gravity}
+        bench.set_table("robot", 0, robot)
+    for n in (3, 4):  # two links added
+        robot = robot | {"lengths_m": [0.3] * n, "masses_kg": [1.0] * n, "inertias_kgm2": [0.1] * n}
+        bench.set_table("robot", 0, robot)
+    assert len(bench.history) == 3
+    assert bench.undo() and len(bench.document["robot"]["lengths_m"]) == 3
+    assert bench.undo() and bench.document["robot"]["lengths_m"] == [0.303, 0.214]
+    assert bench.document["robot"]["gravity_m_s2"] == 9.7
+    assert bench.undo() and bench.document["robot"]["gravity_m_s2"] == 9.81
+    assert not bench.undo() and not bench.modified

@@ -84,6 +84,9 @@ class FileActions:
             await pane.recompose()
             if isinstance(pane, JobPane):
                 self.call_after_refresh(pane.rerender)
+                if self.jobs.running and pane is self.jobs.pane:
+                    pane.controls().set_running(True)
+                    pane.controls().status("running…")
         for pane_id, field_id in where[:1]:
             found = self.query(f"#{pane_id} #{field_id}") if field_id else []
             if found:

@@ -182,7 +182,7 @@ class Workbench:
         tables = self.tables(kind)
         before = tables[index] if index < len(tables) else None
         if before is None or not same_value(before, table):
-            self.history.record(self.document, (kind, index))
+            self.history.record(self.document, edit_group(kind, index, before or {}, table))
         value = self.document.get(kind)
         if value is None:
             self.document[kind] = table
@@ -267,6 +267,16 @@ class Workbench:
         if self.original_text is None:
             return dump_preset(preset, self.description)
         return merge_document(self.original_text, self.document)
+
+
+def edit_group(kind: str, index: int, before: dict[str, Any], after: dict[str, Any]) -> Any:
+    """What an edit changed, for the undo history: the table, its changed keys and its link
+    count (typing into one field repeats the group and is one step; each added or
+    removed link is a step of its own)."""
+    keys = frozenset(
+        k for k in before.keys() | after.keys() if not same_value(before.get(k), after.get(k))
+    )
+    return kind, index, keys, link_count(after)
 
 
 def guarded(path: Path, action: Callable[[], T], document: Any = None) -> T:
