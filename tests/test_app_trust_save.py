@@ -177,6 +177,8 @@ async def test_save_as_onto_an_existing_file_asks_first(tmp_path):
     other = tmp_path / "other.toml"
     other.write_text("# someone else's preset\n")
     async with app.run_test(size=SIZE) as pilot:
+        titles = {command.title for command in app.get_system_commands(app.screen)}
+        assert {"Save as", "Undo"} <= titles  # in the command palette
         app.query_one("#robot-form #field-gravity_m_s2").value = "9.8"
         await pilot.pause()
         for answer in ("n", "y"):
