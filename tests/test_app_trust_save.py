@@ -455,7 +455,7 @@ async def test_export_onto_a_folder_or_a_bad_path_shows_a_dialog(tmp_path):
     async with app.run_test(size=SIZE) as pilot:
         await run_tab(app, pilot, "simulate")
         pane = app.query_one("#pane-simulate")
-        for out_dir, reason in ((folder, "is a folder"), (f"{tmp_path}/a\0b", "null")):
+        for out_dir, reason in ((folder, "is a folder"), (f"{tmp_path}/a\0b", "NUL character")):
             app.confirm_export(pane, out_dir)
             await pilot.pause()
             assert isinstance(app.screen, MessageDialog)
@@ -501,8 +501,8 @@ async def test_typing_600_brackets_or_a_310_digit_integer_shows_the_error_line(t
         assert app.workbench.document["simulate"]["duration_s"] == "[" * 600
         field.value = "1" * 310
         await pilot.pause()
-        line = validation(app)
-        assert "simulate.duration_s: is an integer of 310 digits" in line
+        line = validation(app)  # the parser names the key and the size
+        assert "simulate.duration_s: " in line and "310 digits" in line
         await pilot.press("f5")  # running it: a dialog, not a crash
         await pilot.pause()
         assert isinstance(app.screen, MessageDialog)
@@ -533,3 +533,32 @@ def test_undo_steps_one_per_field_and_one_per_link(monkeypatch):
     assert bench.document["robot"]["gravity_m_s2"] == 9.7
     assert bench.undo() and bench.document["robot"]["gravity_m_s2"] == 9.81
     assert not bench.undo() and not bench.modified
+
+
+def test_any_parser_failure_becomes_a_preset_error_naming_the_key():
+    import pytest
+
+    from planar_tui.app.workbench import guarded
+    from planar_tui.errors import PresetError
+
+    def fails(error: Exception):
+        def action():
+            raise error
+
+        return action
+
+    document = {"simulate": {"theta0_deg": [0, 10**400]}, "robot": {"name": [[[[]]]]}}
+    with pytest.raises(PresetError) as caught:
+        guarded(Path("p.toml"), fails(OverflowError("int too large")), document)
+    assert caught.value.key == "simulate.theta0_deg[2]"
+    assert caught.value.problem == "is an integer of 401 digits"
+    deep: list = []
+    for _ in range(30):
+        deep = [deep]
+    with pytest.raises(PresetError) as caught:
+        guarded(Path("p.toml"), fails(RecursionError()), {"robot": {"name": deep}})
+    assert caught.value.key.startswith("robot.name[1][1]")
+    assert caught.value.problem == "is nested too deep"
+    with pytest.raises(PresetError) as caught:  # no document: the file as a whole
+        guarded(Path("p.toml"), fails(RecursionError()))
+    assert str(caught.value).startswith("error: p.toml: (syntax): is nested too deep to read")
