@@ -20,7 +20,7 @@ from textual.widgets import Select, TabbedContent
 
 from planar_tui.app.app import WorkbenchApp
 from planar_tui.app.widgets.fields import Field, LinkEditor
-from planar_tui.app.widgets.job_controls import JobControls, progress_text
+from planar_tui.app.widgets.job_controls import JobControls
 from planar_tui.app.workbench import Workbench
 from planar_tui.progress import ProgressState
 from tests.test_app import SIZE, async_test, finish, make_app, run_tab, validation
@@ -381,6 +381,8 @@ async def test_isotropic_posture_angles_and_kappa_are_shown(tmp_path):
 
 # -- 9. progress with count, percent and ETA; quitting waits only for the worker ---------
 def test_progress_text_leads_with_percent_count_and_eta():
+    from planar_tui.app.widgets.job_controls import progress_text
+
     state = ProgressState(9000, 20000, "sampling", "sobol")
     assert progress_text(state, 3.2) == " 45% 9.0k/20k eta 3s sampling sobol"
     assert progress_text(ProgressState(0, 8, "analysis", ""), None) == "  0% 0/8 eta … analysis"
