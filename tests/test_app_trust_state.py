@@ -183,6 +183,7 @@ async def test_workspace_says_cancelled_not_running_after_a_cancel(tmp_path, mon
 
     endless = dataclasses.replace(JOB_KINDS["workspace"], run=endless_bisection)
     monkeypatch.setitem(JOB_KINDS, "workspace", endless)
+    monkeypatch.setattr("planar_tui.warmup.warm_kernels", lambda kinds, progress: None)
     app = make_app(tmp_path, "workspace-small.toml")
     async with app.run_test(size=SIZE) as pilot:
         app.action_show_tab("workspace")
