@@ -90,9 +90,15 @@ JobOption = Annotated[
 OVERRIDE_LABELS = {"precision_cm": "precision", "methods": "method"}
 
 
+#: Whether this process has printed its one-line outcome (see :func:`main`).
+_REPORTED = False
+
+
 def fail(message: str, code: ExitCode = ExitCode.BAD_INPUT) -> typer.Exit:
     """Print ``message`` on stderr and return the exit to raise."""
+    global _REPORTED
     stderr.print(message, markup=False, highlight=False, soft_wrap=True)
+    _REPORTED = True
     return typer.Exit(int(code))
 
 
@@ -293,9 +299,9 @@ def run_kind(
     """Run the jobs of one kind in a preset (the ``simulate``/``torques``... commands):
     all of them, or those ``names`` selects (``--job``); ``options`` are command-line
     overrides, applied and checked by the job kind."""
-    from planar_tui.batch import apply_overrides, select_jobs
-
     with reported_errors():
+        from planar_tui.batch import apply_overrides, select_jobs
+
         (preset,) = load_presets([preset_argument])
         jobs = preset.jobs_of(kind)
         if not jobs:
@@ -339,9 +345,9 @@ def root(
 
 def open_app(preset_argument: str | None) -> None:
     """Open the Textual workbench (imported only now)."""
-    from planar_tui.app import run_app
-
     with reported_errors():
+        from planar_tui.app import run_app
+
         run_app(preset_argument)
 
 
@@ -458,9 +464,9 @@ def run(
     out_dir: OutDirOption = Path("."),
 ) -> None:
     """Run every job of every preset (or those --job names), files named as the presets say."""
-    from planar_tui.batch import select_jobs
-
     with reported_errors():
+        from planar_tui.batch import select_jobs
+
         loaded = load_presets(presets)
         execute(select_jobs([job for preset in loaded for job in preset.jobs], job_name), out_dir)
 
@@ -505,6 +511,12 @@ def main() -> None:
     configure_process()
     try:
         app(prog_name="planar-tui")
+    except SystemExit as exit_:
+        # Typer turns a Ctrl-C outside the commands' own handling (while a command's
+        # modules load, say) into a silent exit 130: say it in one line too.
+        if exit_.code == ExitCode.INTERRUPTED and not _REPORTED:
+            os.write(2, b"interrupted: nothing was written\n")
+        raise
     finally:
         # Exit without the interpreter's last full garbage collection over every object of
         # numba, rich and typer: ~0.3 s of a jitted command's wall time (measured with

@@ -107,33 +107,71 @@ def parse_preset(path: Path | str, document: Mapping[str, Any]) -> Preset:
     for kind_name, value in document.items():
         if kind_name not in JOB_KINDS:
             continue
-        kind = JOB_KINDS[kind_name]
         tables = value if isinstance(value, list) else [value]
         for index, table in enumerate(tables, start=1):
             prefix = f"{kind_name}[{index}]" if isinstance(value, list) else kind_name
-            reader = TableReader(path, table, prefix, (*kind.keys, "output", kind.robot_kind))
-            robot_kind = ROBOT_KINDS[kind.robot_kind]
-            if reader.has(kind.robot_kind):
-                own = reader.raw(kind.robot_kind)
-                if not isinstance(own, dict):
-                    raise reader.error(kind.robot_kind, f"is {type_name(own)}", "a table")
-                robot = robot_kind.parse(
-                    TableReader(path, own, reader.key(kind.robot_kind), robot_kind.keys)
-                )
-            elif kind.robot_kind in robots:
-                robot = robots[kind.robot_kind]
-            else:
-                raise PresetError(
-                    path,
-                    prefix,
-                    "no robot for this job",
-                    f"a [{kind.robot_kind}] table or a [{kind_name}.{kind.robot_kind}] table",
-                )
-            spec = kind.parse(reader, robot)
-            default_output = f"{path.stem}-{kind_name}-{index}.csv"
-            output = reader.relative_path("output", default_output)
-            jobs.append(Job(kind_name, index, f"{path.stem}:{prefix}", robot, spec, output, path))
+            jobs.append(_parse_job_table(path, kind_name, table, prefix, index, robots))
     return Preset(path, robots, tuple(jobs), document)
+
+
+def _parse_job_table(
+    path: Path, kind_name: str, table: Any, prefix: str, index: int, robots: Mapping[str, Any]
+) -> Job:
+    """One job table (``prefix`` names it in messages) on its own robot or the preset's
+    robot of its kind in ``robots``."""
+    kind = JOB_KINDS[kind_name]
+    reader = TableReader(path, table, prefix, (*kind.keys, "output", kind.robot_kind))
+    robot_kind = ROBOT_KINDS[kind.robot_kind]
+    if reader.has(kind.robot_kind):
+        own = reader.raw(kind.robot_kind)
+        if not isinstance(own, dict):
+            raise reader.error(kind.robot_kind, f"is {type_name(own)}", "a table")
+        robot = robot_kind.parse(
+            TableReader(path, own, reader.key(kind.robot_kind), robot_kind.keys)
+        )
+    elif kind.robot_kind in robots:
+        robot = robots[kind.robot_kind]
+    else:
+        raise PresetError(
+            path,
+            prefix,
+            "no robot for this job",
+            f"a [{kind.robot_kind}] table or a [{kind_name}.{kind.robot_kind}] table",
+        )
+    spec = kind.parse(reader, robot)
+    output = reader.relative_path("output", f"{path.stem}-{kind_name}-{index}.csv")
+    return Job(kind_name, index, f"{path.stem}:{prefix}", robot, spec, output, path)
+
+
+def parse_job(path: Path | str, document: Mapping[str, Any], kind: str, index: int) -> Job:
+    """Validate one job of a document, job ``index`` (1-based) of ``kind``, and only what
+    it needs: its table and the robot it runs on (its own, or the preset's of its kind).
+
+    A problem elsewhere in the document (another job, a robot this job does not use) does
+    not stop it; the messages are :func:`parse_preset`'s.
+    """
+    path = Path(path)
+    value = document.get(kind)
+    tables = value if isinstance(value, list) else [value]
+    if kind not in JOB_KINDS or value is None or not 1 <= index <= len(tables):
+        raise PresetError(path, f"{kind}[{index}]", "no such job", f"a [{kind}] table")
+    table = tables[index - 1]
+    prefix = f"{kind}[{index}]" if isinstance(value, list) else kind
+    if not isinstance(table, dict):
+        raise PresetError(path, prefix, f"is {type_name(table)}", f"a table [{kind}]")
+    robot_name = JOB_KINDS[kind].robot_kind
+    robots = {}
+    if robot_name not in table and robot_name in document:
+        robot_table = document[robot_name]
+        if not isinstance(robot_table, dict):
+            raise PresetError(
+                path, robot_name, f"is {type_name(robot_table)}", f"a table [{robot_name}]"
+            )
+        robot_kind = ROBOT_KINDS[robot_name]
+        robots[robot_name] = robot_kind.parse(
+            TableReader(path, robot_table, robot_name, robot_kind.keys)
+        )
+    return _parse_job_table(path, kind, table, prefix, index, robots)
 
 
 def load_preset(path: Path | str) -> Preset:

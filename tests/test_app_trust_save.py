@@ -503,10 +503,10 @@ async def test_typing_600_brackets_or_a_310_digit_integer_shows_the_error_line(t
         await pilot.pause()
         line = validation(app)  # the parser names the key and the size
         assert "simulate.duration_s: " in line and "310 digits" in line
-        await pilot.press("f5")  # running it: a dialog, not a crash
+        await pilot.press("f5")  # running it: refused with the reason, not a crash
         await pilot.pause()
-        assert isinstance(app.screen, MessageDialog)
-        app.pop_screen()
+        assert app.is_running and not app.job_running
+        assert "310 digits" in validation(app)
         await pilot.press("ctrl+s")  # saving it: refused with the reason
         await pilot.pause()
         assert isinstance(app.screen, MessageDialog)

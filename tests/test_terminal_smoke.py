@@ -59,7 +59,9 @@ def test_app_in_a_terminal_runs_a_workspace_job_and_quits(terminal):
             columns=80,
             rows=24,
         )
-        term.wait_for(lambda s: "Workspace" in s and "ok: workspace-small" in s, 60, "the app")
+        term.wait_for(
+            lambda s: "Workspace" in s and "workspace-small.toml, 1 job" in s, 60, "the app"
+        )
         term.send(RIGHT)
         term.send(RIGHT)
         term.wait_for(lambda s: "precision_cm" in s, 20, "the Workspace tab")

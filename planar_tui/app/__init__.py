@@ -13,7 +13,8 @@ def run_app(preset_argument: str | None = None) -> None:
     terminal is taken over, so the CLI prints its one-line error and exits with 2.
 
     The process is set up first, as every front end sets it up
-    (:func:`planar_tui.runtime.configure_process`). Once the app has closed (terminal
+    (:func:`planar_tui.runtime.configure_process`); the app compiles the kernels not yet
+    cached in a background thread while the user edits (first run only). Once the app has closed (terminal
     restored, no job thread left: quitting cancels a running job first) the process ends
     with ``os._exit``: tearing down the numerical modules took 0.5-0.8 s after a job,
     which made ``q`` feel slow. Nothing is pending by then (files are written atomically
@@ -25,7 +26,7 @@ def run_app(preset_argument: str | None = None) -> None:
     from planar_tui.app.app import WorkbenchApp
     from planar_tui.app.workbench import Workbench
 
-    app = WorkbenchApp(Workbench.open(preset_argument))
+    app = WorkbenchApp(Workbench.open(preset_argument), warm_kernels=True)
     app.run()
     code = app.return_code or 0
     sys.stdout.flush()

@@ -22,9 +22,9 @@ from textual.screen import Screen
 from textual.widgets import Footer, Static, TabbedContent, TabPane
 
 from planar_tui.app.file_actions import FileActions
-from planar_tui.app.job_runner import JobFinished, JobRunner
+from planar_tui.app.job_runner import BatchFinished, BatchJobDone, JobFinished, JobRunner
 from planar_tui.app.messages import CancelRequested, DocumentEdited, RunRequested
-from planar_tui.app.screens.dialogs import HelpScreen, MessageDialog
+from planar_tui.app.screens.dialogs import HelpScreen, MessageDialog, PathDialog
 from planar_tui.app.widgets.panes import JobPane, RobotPane
 from planar_tui.app.workbench import Workbench
 from planar_tui.errors import PresetError
@@ -54,20 +54,40 @@ class WorkbenchApp(FileActions, App):
         Binding("ctrl+n", "pane_action('add_link')", "Add link", priority=True),
         Binding("ctrl+r", "pane_action('remove_link')", "Del link", priority=True),
         Binding("ctrl+t", "pane_action('toggle_view')", "S1/ST/%", priority=True),
+        Binding("ctrl+g", "goto_problem", "Go to error", priority=True),
+        Binding("f9", "run_all", "Run all", key_display="F9"),
+        *(
+            Binding(str(number), f"show_tab_number({number})", f"Tab {number}", show=False)
+            for number in range(1, 6)
+        ),
+        *(
+            Binding(key, f"show_tab_number({number})", f"Tab {number}", show=False, priority=True)
+            for number, key in enumerate(("f2", "f3", "f4", "f6", "f7"), start=1)
+        ),
     ]
     TABS = (
         ("Robot", "robot"),
         ("Sensitivity", "sensitivity"),
         ("Workspace", "workspace"),
         ("Simulate", "simulate"),
+        ("Torques", "torques"),
     )
 
-    def __init__(self, workbench: Workbench, output_dir: Path | str = "."):
+    def __init__(
+        self, workbench: Workbench, output_dir: Path | str = ".", *, warm_kernels: bool = False
+    ):
         super().__init__()
         self.workbench = workbench
+        #: Compile the kernels not yet cached in a background thread at start (what
+        #: ``planar-tui`` does; tests leave it off to keep their timings their own).
+        self.warm_kernels_at_start = warm_kernels
         #: The folder ``ctrl+e`` offers (``planar-tui run --out-dir``'s default is ``.``).
         self.output_dir = Path(output_dir)
         self.jobs = JobRunner(self)
+        #: The document's problems as last checked (first one: the validation line).
+        self.problems: list[PresetError] = []
+        #: Quit was confirmed while a job ran: exit once its worker has stopped.
+        self.quitting = False
 
     # -- layout ---------------------------------------------------------------------
     @staticmethod
@@ -99,6 +119,11 @@ class WorkbenchApp(FileActions, App):
 
     def on_mount(self) -> None:
         self.show_document_state()
+        if self.warm_kernels_at_start:
+            self.run_worker(
+                self._warm_kernels, name="warm-up", group="warm-up", thread=True,
+                exit_on_error=False,
+            )  # fmt: skip
         self.set_interval(REFRESH_S, self._refresh_progress)
         self.revalidate()
 
@@ -119,18 +144,78 @@ class WorkbenchApp(FileActions, App):
         await self.after_edit()
 
     def revalidate(self) -> bool:
-        """Check the whole document with the CLI's parser; show the first problem."""
-        bar = self.query_one("#validation", Static)
-        try:
-            preset = self.workbench.validate()
-        except PresetError as error:
-            bar.update(str(error))
+        """Check every job and robot with the CLI's parser, each job on its own; show the
+        first problem (reason first) on the validation line, mark each bad field on its
+        tab, and dim the results whose inputs changed."""
+        from planar_tui.app.problems import status_line
+
+        bars = self.query("#validation")
+        if not bars:  # closing, or between two compositions
+            return False
+        bar = bars.first(Static)
+        self.problems = self.workbench.problems()
+        self.mark_problems()
+        for pane in self.query(JobPane):
+            pane.update_stale()
+        if self.problems:
+            bar.update(status_line(self.problems, self.workbench.display_name()))
             bar.set_class(True, "invalid")
             return False
-        count = len(preset.jobs)
+        count = len(self.workbench.validate().jobs)
         bar.update(f"ok: {self.document_label()}, {count} job{'s' if count != 1 else ''} valid")
         bar.set_class(False, "invalid")
         return True
+
+    def mark_problems(self) -> None:
+        """Mark the fields the problems name, on every tab (each tab marks its own)."""
+        from planar_tui.app.problems import locate, reason
+
+        located = [
+            (where, reason(error))
+            for error in self.problems
+            if (where := locate(error, self.workbench.robot_kinds())) is not None
+        ]
+        for pane in self.query("RobotPane, JobPane"):
+            pane.mark_problems(located)
+
+    async def action_goto_problem(self) -> None:
+        """Jump to the first problem's field (switching tab and job if needed)."""
+        if not self.problems:
+            self.notify("No problem: every job is valid.")
+            return
+        await self.goto_problem(self.problems[0])
+
+    async def goto_problem(self, error: PresetError) -> None:
+        """Show the tab (and the job or robot) of ``error`` and focus its marked field."""
+        from planar_tui.app.problems import locate, reason
+
+        where = locate(error, self.workbench.robot_kinds())
+        pane = self.problem_pane(where) if where is not None else None
+        if pane is None:
+            self.notify(reason(error), title="Not on a tab", severity="error")
+            return
+        if isinstance(pane, JobPane) and pane.index != where.index:
+            pane.index = where.index
+            await pane.recompose()
+        elif isinstance(pane, RobotPane):
+            target = (where.table, where.index) if where.robot else None
+            if pane.target != target:
+                pane.target = target
+                await pane.recompose()
+        self.action_show_tab(pane.id.removeprefix("pane-"))
+        self.revalidate()
+        marked = pane.query(".-bad")
+        if marked:
+            self.call_after_refresh(marked.first().focus)
+        else:
+            self.notify(reason(error), severity="error")
+
+    def problem_pane(self, where: Any) -> Any:
+        """The tab that shows the place ``where``; ``None`` when no tab does."""
+        if where.robot or where.table in self.workbench.robot_kinds():
+            return self.query_one(RobotPane)
+        panes = self.query(f"#pane-{where.table}")
+        return panes.first() if panes else None
 
     # -- running jobs ---------------------------------------------------------------
     def action_run(self) -> None:
@@ -150,16 +235,130 @@ class WorkbenchApp(FileActions, App):
             self.notify("A job is already running (escape cancels it).", severity="warning")
             return
         try:
-            job = pane.current_job()
+            job = pane.current_job()  # this job alone: others' problems do not stop it
         except PresetError as error:
+            from planar_tui.app.problems import reason
+
             self.revalidate()
-            self.push_screen(MessageDialog("Invalid preset", str(error)))
+            self.notify(reason(error), title="Not run", severity="error")
+            self.call_later(self.goto_problem, error)
             return
         self.revalidate()
+        pane.run_inputs = pane.inputs()
         pane.controls().set_running(True)
-        pane.controls().status(f"starting {job.label}")
+        pane.controls().status(f"starting {job.key}")
         self.jobs.start(pane, job)
         self.refresh_bindings()
+
+    def action_run_all(self) -> None:
+        """Run every job of the preset in order into a folder, as ``planar-tui run``."""
+        from planar_tui import batch
+
+        if self.job_running:
+            self.notify("A job is already running (escape cancels it).", severity="warning")
+            return
+        try:
+            jobs = self.workbench.validate().jobs
+        except PresetError as error:
+            from planar_tui.app.problems import reason
+
+            self.notify(reason(error), title="Not run", severity="error")
+            self.call_later(self.goto_problem, error)
+            return
+        names = ", ".join(str(p) for plan in batch.plan_outputs(jobs, Path()) for p in plan.paths())
+        hint = (
+            f"Runs {len(jobs)} jobs in order and writes {names} there, as planar-tui run "
+            "--out-dir does.\nEnter: run   Escape: cancel"
+        )
+
+        def chosen(answer: str | None) -> None:
+            if answer:
+                self.run_all(answer)
+
+        self.push_screen(PathDialog("Run all jobs into folder", str(self.output_dir), hint), chosen)
+
+    def run_all(self, out_dir: str | Path) -> bool:
+        """Run every job of the preset through the batch service into ``out_dir`` (files
+        checked before the first job, each written when its job ends); ``False`` when the
+        preset or a path is refused (a dialog says why)."""
+        from planar_tui import batch
+
+        try:
+            jobs = self.workbench.validate().jobs
+            plans = batch.plan_outputs(jobs, Path(out_dir))
+            batch.check_plans(plans)
+        except PresetError as error:
+            self.push_screen(MessageDialog("Not run", str(error)))
+            return False
+        host = self.current_pane()
+        if not isinstance(host, JobPane) or not host.available():
+            host = self.query_one(f"#pane-{jobs[0].kind}", JobPane)
+            self.action_show_tab(jobs[0].kind)
+        self.batch_inputs = {pane.id: pane.inputs() for pane in self.query(JobPane)}
+        self.batch_dir = Path(out_dir)
+        host.controls().set_running(True)
+        host.controls().status(f"starting {len(jobs)} jobs")
+        self.jobs.start_all(host, plans)
+        self.refresh_bindings()
+        return True
+
+    def on_batch_job_done(self, message: BatchJobDone) -> None:
+        """A job of "run all" ended (files written): show it on its tab when selected."""
+        job = message.job
+        for pane in self.query(f"#pane-{job.kind}").results(JobPane):
+            if pane.index == job.index - 1 and pane.is_attached:
+                pane.show_result(job, message.result, self.batch_inputs.get(pane.id))
+
+    def on_batch_finished(self, message: BatchFinished) -> None:
+        """ "Run all" ended: say how, on the controls it used."""
+        self.refresh_bindings()
+        done = len(message.rows)
+        if message.pane.is_attached:
+            controls = message.pane.controls()
+            controls.set_running(False)
+            where = f"files in {self.batch_dir}"
+            if message.cancelled:
+                text = f"run all cancelled: {done} of {message.total} jobs done ({where})"
+            elif message.error is not None:
+                text = f"run all failed after {done} of {message.total} jobs ({where})"
+            else:
+                controls.finished()
+                text = f"run all: {done} jobs done in {message.seconds:.2f} s ({where})"
+            controls.status(text)
+        if message.error is not None:
+            error = message.error
+            shown = (
+                str(error) if isinstance(error, PresetError) else f"{type(error).__name__}: {error}"
+            )
+            self.push_screen(MessageDialog("Run all failed", shown))
+        self.exit_if_quitting()
+
+    def _warm_kernels(self) -> None:
+        """Worker thread: compile the kernels of every job kind not cached yet
+        (:func:`planar_tui.warmup.warm_kernels`), so the first F5 starts at once; says so
+        in two notifications, and stops within 0.05 s when the app closes."""
+        from textual.worker import get_current_worker
+
+        from planar_tui.errors import Cancelled
+        from planar_tui.progress import Progress
+        from planar_tui.registry import JOB_KINDS
+        from planar_tui.runtime import prepare_kernels
+        from planar_tui.warmup import missing, warm_kernels
+
+        worker = get_current_worker()
+        prepare_kernels()
+        todo = missing(JOB_KINDS)
+        if not todo:
+            return
+        self.call_from_thread(
+            self.notify,
+            f"Compiling the kernels of {', '.join(todo)} in the background (first run only).",
+        )
+        try:
+            warm_kernels(todo, Progress(should_stop=lambda: worker.is_cancelled))
+        except Cancelled:
+            return
+        self.call_from_thread(self.notify, "Kernels compiled: jobs start at once.")
 
     def _refresh_progress(self) -> None:
         """The UI timer: show the running job's latest progress snapshot."""
@@ -170,9 +369,10 @@ class WorkbenchApp(FileActions, App):
             pane.show_progress(state)
 
     def action_cancel(self) -> None:
-        """Ask the running job to stop (the runner stops at its next chunk)."""
-        if self.jobs.cancel() and self.jobs.pane is not None:
-            self.jobs.pane.controls().status("cancelling…")
+        """Ask the running job to stop (the runner stops at its next chunk); the controls
+        say ``cancelling…`` until its worker has stopped."""
+        if self.jobs.cancel() and self.jobs.pane is not None and self.jobs.pane.is_attached:
+            self.jobs.pane.controls().show_cancelling()
 
     def on_cancel_requested(self, message: CancelRequested) -> None:
         """A tab's Cancel button."""
@@ -185,25 +385,33 @@ class WorkbenchApp(FileActions, App):
     def on_job_finished(self, message: JobFinished) -> None:
         """Show a job's outcome on its tab (a dialog for an error)."""
         pane = message.pane
-        if not pane.is_attached:
-            return
         self.refresh_bindings()
+        if self.exit_if_quitting() or not pane.is_attached:
+            return
         controls = pane.controls()
         controls.set_running(False)
         if message.cancelled:
             controls.status(f"cancelled after {message.seconds:.2f} s; nothing written")
+            pane.run_ended("was cancelled")
             self.notify("Job cancelled.")
         elif message.error is not None:
-            controls.status("failed")
             error = message.error
             text = (
                 str(error) if isinstance(error, PresetError) else f"{type(error).__name__}: {error}"
             )
+            controls.status(f"failed after {message.seconds:.2f} s: {text}")
+            pane.run_ended("failed")
             self.push_screen(MessageDialog(f"{message.job.label} failed", text))
         else:
             controls.finished()
             controls.status(f"done in {message.seconds:.2f} s")
-            pane.show_result(message.job, message.result)
+            pane.show_result(message.job, message.result, getattr(pane, "run_inputs", None))
+
+    def exit_if_quitting(self) -> bool:
+        """Quit was confirmed while a job ran: its worker has stopped now, so exit."""
+        if self.quitting:
+            self.exit()
+        return self.quitting
 
     # -- the screen as text -----------------------------------------------------------
     def export_text(self) -> str:
@@ -224,6 +432,19 @@ class WorkbenchApp(FileActions, App):
         """Switch to a tab by name."""
         self.query_one(TabbedContent).active = f"tab-{name}"
 
+    def action_show_tab_number(self, number: int) -> None:
+        """Switch to tab ``number`` (1-based: keys 1-5 outside fields, F2-F4, F6, F7)."""
+        if 1 <= number <= len(self.TABS):
+            self.action_show_tab(self.TABS[number - 1][1])
+            self.call_after_refresh(self.focus_tab_content)
+
+    def focus_tab_content(self) -> None:
+        """Put the focus on the tab bar (off a field of the hidden tab), where the number
+        keys go on working."""
+        from textual.widgets import Tabs
+
+        self.query_one(TabbedContent).query_one(Tabs).focus()
+
     def action_pane(self, action: str) -> None:
         """Switch to a tab and run its own action (for the command palette)."""
         pane_name, method = action.split(".")
@@ -240,6 +461,8 @@ class WorkbenchApp(FileActions, App):
             return hasattr(pane, f"action_{parameters[0]}")
         if action == "cancel":
             return self.job_running
+        if action == "goto_problem":
+            return bool(self.problems)
         if action in ("toggle_form", "run") and self.is_mounted:
             try:
                 return isinstance(self.current_pane(), JobPane)
@@ -266,6 +489,14 @@ class WorkbenchApp(FileActions, App):
         yield from super().get_system_commands(screen)
         yield SystemCommand("Run job", "Run the job of the current tab (F5)", self.action_run)
         yield SystemCommand("Cancel job", "Stop the running job (escape)", self.action_cancel)
+        yield SystemCommand(
+            "Run all jobs",
+            "Every job of the preset in order, files into a folder, as planar-tui run (F9)",
+            self.action_run_all,
+        )
+        yield SystemCommand(
+            "Go to error", "Jump to the first problem's field (ctrl+g)", self.action_goto_problem
+        )
         yield SystemCommand("Open preset", "Open a TOML preset (ctrl+o)", self.action_open)
         yield SystemCommand("Save preset", "Save the preset as TOML (ctrl+s)", self.action_save)
         yield SystemCommand("Save as", "Save the preset under another path", self.action_save_as)

@@ -44,6 +44,7 @@ class FileActions:
 
     workbench: Workbench
     output_dir: Path
+    quitting: bool
 
     # -- the modified marker ----------------------------------------------------------
     def dialog_open(self) -> bool:
@@ -54,8 +55,9 @@ class FileActions:
         return isinstance(self.screen, ModalScreen)
 
     def document_label(self) -> str:
-        """The preset's file name, ``(modified)`` after an unsaved edit."""
-        name = self.workbench.path.name
+        """The preset as a person names it (:meth:`Workbench.display_name`), ``(modified)``
+        after an unsaved edit."""
+        name = self.workbench.display_name()
         return f"{name} (modified)" if self.workbench.modified else name
 
     def show_document_state(self) -> None:
@@ -122,7 +124,11 @@ class FileActions:
         self.push_screen(UnsavedDialog(question), answered)
 
     async def action_quit(self) -> None:
-        """Quit; asks first about unsaved edits, or while a job is running."""
+        """Quit; asks first about unsaved edits, or while a job is running. Once a quit is
+        confirmed during a job, a second quit exits at once."""
+        if self.quitting:
+            self.exit()
+            return
         if self.dialog_open():
             return
         if self.workbench.modified:
@@ -139,9 +145,16 @@ class FileActions:
             self.quit_now()
 
     def quit_now(self) -> None:
-        """Cancel a running job and close the app."""
+        """Close the app. A running job is cancelled first and the app exits as soon as its
+        worker has stopped (``exit_if_quitting``); the screen says so meanwhile."""
+        if not self.jobs.running:
+            self.exit()
+            return
+        self.quitting = True
         self.action_cancel()
-        self.exit()
+        self.notify("Quitting once the job has stopped (q again: quit now).")
+        if not self.jobs.running:
+            self.exit()
 
     # -- open -------------------------------------------------------------------------
     def action_open(self) -> None:

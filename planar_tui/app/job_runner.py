@@ -52,6 +52,37 @@ class JobFinished(Message):
         self.seconds = seconds
 
 
+class BatchJobDone(Message):
+    """One job of a "run all" finished and its files are written."""
+
+    def __init__(self, job: Job, result: JobResult):
+        super().__init__()
+        self.job = job
+        self.result = result
+
+
+class BatchFinished(Message):
+    """A "run all" ended: ``rows`` (the summary rows of the jobs done, their files
+    written), ``error`` or ``cancelled`` when it stopped early; ``seconds`` in all."""
+
+    def __init__(
+        self,
+        pane: Any,
+        rows: list,
+        total: int,
+        error: BaseException | None = None,
+        cancelled: bool = False,
+        seconds: float = 0.0,
+    ):
+        super().__init__()
+        self.pane = pane
+        self.rows = rows
+        self.total = total
+        self.error = error
+        self.cancelled = cancelled
+        self.seconds = seconds
+
+
 class JobRunner:
     """Runs the app's jobs, one at a time, and reports each outcome to ``app``.
 
@@ -97,6 +128,26 @@ class JobRunner:
             exit_on_error=False,
         )
 
+    def start_all(self, pane: Any, plans: list) -> None:
+        """Run every planned job in order as ``planar-tui run`` does
+        (:func:`planar_tui.batch.run_plans`: each job's files written when it finishes),
+        showing progress on ``pane``; posts :class:`BatchJobDone` per job, then
+        :class:`BatchFinished`."""
+        if self.running:
+            raise RuntimeError("a job is already running")
+        self.pane = pane
+        self.latest = None
+        self._stop.clear()
+        self._done.clear()
+        self._app.run_worker(
+            lambda: self._work_all(pane, plans),
+            name="run all",
+            group=self.GROUP,
+            thread=True,
+            exclusive=True,
+            exit_on_error=False,
+        )
+
     def cancel(self) -> bool:
         """Ask the running job to stop at its next chunk; ``False`` when none runs."""
         if not self.running:
@@ -129,6 +180,48 @@ class JobRunner:
         else:
             finished = JobFinished(pane, job, result=result)
         finally:
+            self.latest = None  # its partial results (views of the run's arrays) go too
+            self._done.set()
+        finished.seconds = time.perf_counter() - started
+        self._app.post_message(finished)
+
+    def _work_all(self, pane: Any, plans: list) -> None:
+        """The worker thread of "run all": the batch service's loop over the plans."""
+        import contextlib
+        import dataclasses
+
+        from planar_tui.batch import JobFailed, OutputFailed, run_plans
+
+        worker = get_current_worker()
+        started = time.perf_counter()
+        numbers = {id(plan.job): n for n, plan in enumerate(plans, start=1)}
+        rows: list = []
+
+        @contextlib.contextmanager
+        def progress_for(job: Job):
+            prefix = f"job {numbers[id(job)]}/{len(plans)} {job.key}:"
+
+            def store(state: ProgressState) -> None:
+                self._store(dataclasses.replace(state, stage=f"{prefix} {state.stage}"))
+
+            yield Progress(
+                on_update=store, should_stop=lambda: self._stop.is_set() or worker.is_cancelled
+            )
+
+        def done(job: Job, result: JobResult) -> None:
+            self._app.post_message(BatchJobDone(job, result))
+
+        finished = BatchFinished(pane, rows, len(plans))
+        try:
+            rows.extend(run_plans(plans, progress_for, done))
+        except Cancelled:
+            finished.cancelled = True
+        except JobFailed as failure:
+            finished.error = failure.__cause__ or failure
+        except (OutputFailed, Exception) as error:
+            finished.error = error
+        finally:
+            self.latest = None
             self._done.set()
         finished.seconds = time.perf_counter() - started
         self._app.post_message(finished)

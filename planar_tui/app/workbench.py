@@ -17,7 +17,7 @@ from typing import Any, TypeVar
 from planar_tui.app.history import PER_LINK_KEYS, EditHistory, link_count, resize_per_link
 from planar_tui.app.saving import same_value
 from planar_tui.errors import PresetError
-from planar_tui.presets import Job, Preset, parse_preset, read_toml
+from planar_tui.presets import Job, Preset, parse_job, parse_preset, read_toml
 from planar_tui.resources import preset_description, resolve_preset
 
 T = TypeVar("T")
@@ -246,8 +246,78 @@ class Workbench:
         return guarded(self.path, lambda: parse_preset(self.path, self.document), self.document)
 
     def job(self, kind: str, index: int = 0) -> Job:
-        """The validated job ``index`` of ``kind`` (its table must be in the document)."""
-        return self.validate().jobs_of(kind)[index]
+        """The validated job ``index`` (0-based) of ``kind``, checked on its own: a problem
+        in another job or in a robot it does not use does not stop it."""
+        return guarded(
+            self.path, lambda: parse_job(self.path, self.document, kind, index + 1), self.document
+        )
+
+    def problems(self) -> list[PresetError]:
+        """Every problem of the document, one per robot table and job at most, in document
+        order (each job checked on its own, see :meth:`job`); empty when it is valid."""
+        from planar_tui.registry import JOB_KINDS
+
+        found: list[PresetError] = []
+        for kind in self.document:
+            for index in range(len(self.tables(kind)) if kind in JOB_KINDS else 0):
+                try:
+                    self.job(kind, index)
+                except PresetError as error:
+                    found.append(error)
+        try:
+            self.validate()  # what no job covers: unknown tables, robots no job uses
+        except PresetError as error:
+            found.append(error)
+        unique = {(error.key, error.problem): error for error in reversed(found)}
+        return sorted(unique.values(), key=self._document_position)
+
+    def _document_position(self, error: PresetError) -> int:
+        """Where the table an error names comes in the document (for ordering)."""
+        top = error.key.split(".", 1)[0].split("[", 1)[0]
+        names = list(self.document)
+        return names.index(top) if top in names else -1
+
+    def display_name(self) -> str:
+        """The preset as a person names it: a bundled preset by its name, a file under the
+        current folder by its relative path, any other by its file name."""
+        from planar_tui.resources import bundled_presets
+
+        if self.path.resolve() in {p.resolve() for p in bundled_presets()}:
+            return self.path.stem
+        try:
+            return str(self.path.resolve().relative_to(Path.cwd().resolve()))
+        except ValueError:
+            return self.path.name
+
+    # -- robots of jobs (the Robot tab's picker) ----------------------------------------
+    def robot_targets(self) -> list[tuple[str, str, int | None]]:
+        """The robots the Robot tab can edit: ``(label, robot kind, None)`` for the preset's
+        robots, then ``(label, kind, index)`` for each job that carries its own robot."""
+        from planar_tui.registry import JOB_KINDS
+
+        targets: list[tuple[str, str, int | None]] = [("preset robots", "", None)]
+        for kind in self.document:
+            if kind not in JOB_KINDS:
+                continue
+            robot_kind = JOB_KINDS[kind].robot_kind
+            many = isinstance(self.document[kind], list)
+            for index, table in enumerate(self.tables(kind)):
+                if isinstance(table, dict) and isinstance(table.get(robot_kind), dict):
+                    name = f"{kind}[{index + 1}]" if many else kind
+                    targets.append((f"{name} {robot_kind}", kind, index))
+        return targets
+
+    def job_robot(self, kind: str, index: int) -> dict[str, Any]:
+        """The own robot table of job ``index`` of ``kind`` (edited in place)."""
+        from planar_tui.registry import JOB_KINDS
+
+        return self.tables(kind)[index][JOB_KINDS[kind].robot_kind]
+
+    def set_job_robot(self, kind: str, index: int, robot: dict[str, Any]) -> None:
+        """Replace the own robot table of job ``index`` of ``kind``."""
+        from planar_tui.registry import JOB_KINDS
+
+        self.tables(kind)[index][JOB_KINDS[kind].robot_kind] = robot
 
     def job_labels(self, kind: str) -> list[str]:
         """One label per table of ``kind``: ``kind[i] → output``."""

@@ -129,20 +129,19 @@ class MessageDialog(ModalScreen[None]):
 
 
 HELP_TEXT = """\
-Keyboard only; every action is also in the command palette (ctrl+p).
-Tab bar: left / right switch tabs. tab / shift+tab move the focus;
-up / down / page up / page down scroll. Fields take TOML values
-(0.25, [0.25, 0.2], singular); enter moves to the next field; the
-CLI's preset parser checks every edit (error: / ok: under the tabs).
+Every action is in the palette (ctrl+p). Tabs: 1 2 3 4 5 outside
+fields, F2 F3 F4 F6 F7 anywhere. Fields take TOML; enter: next field.
+Each job is checked alone: a bad field gets a red border and reason.
   F5          run the job of the current tab (also the Run button)
-  escape      cancel the running job (honoured within half a second)
+  F9          run all jobs in order into a folder, as planar-tui run
+  escape      cancel the job ("cancelling…" until it has stopped)
+  ctrl+g      go to the first error (switches tab, job and robot)
   ctrl+o      open a preset (a path or a bundled name)
   ctrl+s      save (comments kept; a bundled preset asks for a path)
   ctrl+z      undo the latest edit
   ctrl+e      export the result's CSV files to a folder (as the CLI)
   ctrl+f      hide / show the settings form (room for the results)
-  ctrl+p      command palette: every action by name
-  q, ctrl+q   quit (asks if edits are unsaved or a job runs)
+  q, ctrl+q   quit (asks about unsaved edits or a running job)
   F1, ?       this help (? outside fields)
   ctrl+n      Robot tab: add a link (a copy of the last one)
   ctrl+r      Robot tab: remove the last link

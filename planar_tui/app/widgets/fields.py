@@ -16,7 +16,7 @@ from textual.binding import Binding
 from textual.containers import Grid, Vertical
 from textual.message import Message
 from textual.widget import Widget
-from textual.widgets import Input, Label, TextArea
+from textual.widgets import Input, Label, Static, TextArea
 
 from planar_tui.preset_writer import format_value
 
@@ -45,12 +45,15 @@ class Field(TextArea):
     ]
 
     DEFAULT_CSS = """
-    Field { height: auto; max-height: 4; width: 1fr; padding: 0 1; }
-    Field:focus { background: $boost; }
+    Field { height: auto; max-height: 6; width: 1fr; padding: 0 1 0 0;
+            border: none; border-left: blank; }
+    Field:focus { background: $boost; border: none; border-left: thick $accent; }
+    Field.-bad { border: tall $error; border-left: thick $error; }
+    Field.-bad:focus { border: tall $error; border-left: thick $accent; }
     """
 
     def __init__(self, value: str = "", **kwargs: Any):
-        super().__init__(value, soft_wrap=True, compact=True, highlight_cursor_line=False, **kwargs)
+        super().__init__(value, soft_wrap=True, highlight_cursor_line=False, **kwargs)
 
     @property
     def value(self) -> str:
@@ -74,7 +77,9 @@ class TableForm(Widget):
     TableForm { height: auto; }
     TableForm Vertical { height: auto; }
     TableForm Label { width: 1fr; color: $text-muted; }
-    TableForm Vertical:focus-within Label { color: $text; text-style: bold; }
+    TableForm Vertical:focus-within > Label { color: $text; text-style: bold; }
+    TableForm .field-error { color: $text-error; display: none; }
+    TableForm .field-error.-shown { display: block; }
     """
 
     class Changed(Message):
@@ -106,6 +111,26 @@ class TableForm(Widget):
                     name=key,
                     id=f"field-{key}",
                 )
+                yield Static("", id=f"error-{key}", classes="field-error", markup=False)
+
+    def mark(self, key: str, message: str) -> Field | None:
+        """Mark the field of ``key`` as invalid (red border, ``message`` under it); returns
+        the field, ``None`` when the form has no such key."""
+        if key not in self.keys:
+            return None
+        field = self.query_one(f"#field-{key}", Field)
+        field.add_class("-bad")
+        note = self.query_one(f"#error-{key}", Static)
+        note.update(f"▲ {message}")
+        note.add_class("-shown")
+        return field
+
+    def clear_marks(self) -> None:
+        """Remove every invalid mark."""
+        for field in self.query(Field).filter(".-bad"):
+            field.remove_class("-bad")
+        for note in self.query(".field-error.-shown"):
+            note.remove_class("-shown")
 
     def table(self) -> dict[str, Any]:
         """The table as typed (empty fields left out)."""
@@ -136,8 +161,12 @@ class LinkEditor(Widget):
     LinkEditor { height: auto; }
     LinkEditor Grid { grid-size: 4; grid-columns: 6 1fr 1fr 1fr; height: auto;
                       grid-rows: 1; grid-gutter: 0 1; }
-    LinkEditor Input, LinkEditor Input:focus { border: none; height: 1; padding: 0 1; }
-    LinkEditor Input:focus { background: $boost; text-style: bold; }
+    LinkEditor Input, LinkEditor Input:focus { border: none; height: 1; padding: 0 1 0 0;
+                                               border-left: blank; }
+    LinkEditor Input:focus { background: $boost; text-style: bold; border-left: thick $accent; }
+    LinkEditor Input.-bad { text-style: reverse; color: $text-error; }
+    LinkEditor #links-error { color: $text-error; display: none; }
+    LinkEditor #links-error.-shown { display: block; }
     """
 
     COLUMNS = (("lengths_m", "length m"), ("masses_kg", "mass kg"), ("inertias_kgm2", "I kg m²"))
@@ -160,6 +189,11 @@ class LinkEditor(Widget):
         self.rows = self._rows_of(robot_table)
 
     @classmethod
+    def column_keys(cls) -> tuple[str, ...]:
+        """The robot keys the grid edits."""
+        return tuple(key for key, _ in cls.COLUMNS)
+
+    @classmethod
     def _rows_of(cls, table: dict[str, Any]) -> list[list[str]]:
         columns = [table.get(key, []) for key, _ in cls.COLUMNS]
         columns = [c if isinstance(c, list) else [c] for c in columns]
@@ -175,6 +209,31 @@ class LinkEditor(Widget):
                 yield Label(f"{i + 1}")
                 for (key, title), text in zip(self.COLUMNS, row, strict=True):
                     yield Input(text, name=key, id=f"link-{i + 1}-{key}", tooltip=title)
+        yield Static("", id="links-error", markup=False)
+
+    def mark(self, key: str, item: int | None, message: str) -> Input | None:
+        """Mark the cell of link ``item`` (1-based) in column ``key``, or the whole column
+        when ``item`` is ``None``, with ``message`` under the grid; returns the first
+        marked cell (``None`` when ``key`` is not a column)."""
+        cells = [
+            cell
+            for cell in self.query(Input)
+            if cell.name == key and (item is None or cell.id == f"link-{item}-{key}")
+        ]
+        for cell in cells:
+            cell.add_class("-bad")
+        if not cells:
+            return None
+        note = self.query_one("#links-error", Static)
+        note.update(f"▲ {message}")
+        note.add_class("-shown")
+        return cells[0]
+
+    def clear_marks(self) -> None:
+        """Remove every invalid mark."""
+        for cell in self.query(Input).filter(".-bad"):
+            cell.remove_class("-bad")
+        self.query_one("#links-error").remove_class("-shown")
 
     def current_rows(self) -> list[list[str]]:
         """The text of every cell, row by row."""

@@ -47,32 +47,108 @@ class RobotPane(VerticalScroll):
     :class:`~planar_tui.app.messages.DocumentEdited` tells the app.
     """
 
+    can_focus = False  # its fields take the focus and scroll into view
+
     def __init__(self, workbench: Workbench, **kwargs: Any):
         super().__init__(**kwargs)
         self.bench = workbench
+        #: Whose robot the tab edits: ``None`` for the preset's robots, else a job's own
+        #: robot, ``(kind, index)`` (the job picker).
+        self.target: tuple[str, int] | None = None
+
+    def robot_kind(self) -> str:
+        """The robot kind edited: ``robot`` for the preset, the job's kind's robot else."""
+        from planar_tui.registry import JOB_KINDS
+
+        return "robot" if self.target is None else JOB_KINDS[self.target[0]].robot_kind
 
     def compose(self) -> ComposeResult:
         from planar_tui.registry import ROBOT_KINDS
 
-        robot = self.bench.table("robot")
-        with Horizontal(classes="robot-top"):
-            with Vertical(classes="robot-links"):
-                yield Label("Serial robot [robot]", classes="section")
-                yield TableForm(("name", "gravity_m_s2"), robot, id="robot-form")
-                yield LinkEditor(robot, id="links")
-                with Horizontal(classes="link-buttons"):
-                    yield Button("Add link ^n", id="add-link", compact=True)
-                    yield Button("Remove link ^r", id="remove-link", compact=True)
-            yield Static(self.drawing(), id="robot-drawing", markup=False)
+        targets = self.bench.robot_targets()
+        if len(targets) > 1:
+            current = next(
+                i for i, (_, kind, index) in enumerate(targets)
+                if (None if index is None else (kind, index)) == self.target
+            )  # fmt: skip
+            yield Select(
+                [(label, i) for i, (label, _, _) in enumerate(targets)],
+                value=current,
+                allow_blank=False,
+                compact=True,
+                id="robot-select",
+            )
+        own = self.target is not None
+        if self.robot_kind() == "robot":
+            robot = self.serial_table()
+            where = f"{targets_label(targets, self.target)} robot" if own else "[robot]"
+            with Horizontal(classes="robot-top"):
+                with Vertical(classes="robot-links"):
+                    yield Label(f"Serial robot {where}", classes="section")
+                    yield TableForm(("name", "gravity_m_s2"), robot, id="robot-form")
+                    yield LinkEditor(robot, id="links")
+                    with Horizontal(classes="link-buttons"):
+                        yield Button("Add link ^n", id="add-link", compact=True)
+                        yield Button("Remove link ^r", id="remove-link", compact=True)
+                yield Static(self.drawing(), id="robot-drawing", markup=False)
         for name, kind in ROBOT_KINDS.items():
-            if name == "robot":
+            if name == "robot" or (own and name != self.robot_kind()):
                 continue
+            table = self.bench.job_robot(*self.target) if own else self.bench.table(name)
             yield Label(f"{name} [{name}] (joint limits: Workspace tab)", classes="section")
-            yield TableForm(kind.keys, self.bench.table(name), id=f"form-{name}")
+            yield TableForm(kind.keys, table, id=f"form-{name}")
+
+    def serial_table(self) -> dict[str, Any]:
+        """The serial robot table edited: the preset's ``[robot]`` or the job's own."""
+        if self.target is None:
+            return self.bench.table("robot")
+        return self.bench.job_robot(*self.target)
+
+    async def on_select_changed(self, event: Select.Changed) -> None:
+        """The job picker: edit another job's robot (or the preset's)."""
+        if event.select.id != "robot-select":
+            return
+        _, kind, index = self.bench.robot_targets()[int(event.value)]
+        target = None if index is None else (kind, index)
+        if target != self.target:
+            self.target = target
+            await self.recompose()
+            self.post_message(DocumentEdited())  # the marks of the new target
+
+    def mark_problems(self, problems: list[tuple[Any, str]]) -> list[Any]:
+        """Mark the fields of the robot on screen named by ``(location, message)`` pairs;
+        returns the marked widgets."""
+        for form in self.query(TableForm):
+            form.clear_marks()
+        for editor in self.query(LinkEditor):
+            editor.clear_marks()
+        marked = []
+        for location, message in problems:
+            widget = self.widget_for(location, message)
+            if widget is not None:
+                marked.append(widget)
+        return marked
+
+    def widget_for(self, location: Any, message: str) -> Any:
+        """Mark and return the field of ``location`` when it is on this tab now."""
+        if self.target is None:
+            if location.robot or location.table not in self.bench.robot_kinds():
+                return None
+            kind = location.table
+        else:
+            if (location.table, location.index) != self.target or not location.robot:
+                return None
+            kind = location.robot
+        if kind == "robot":
+            if location.field in LinkEditor.column_keys():
+                return self.query_one(LinkEditor).mark(location.field, location.item, message)
+            return self.query_one("#robot-form", TableForm).mark(location.field, message)
+        forms = self.query(f"#form-{kind}")
+        return forms.first(TableForm).mark(location.field, message) if forms else None
 
     def drawing(self) -> str:
         """The robot at the Simulate tab's initial angles (zeros when not numbers)."""
-        robot = self.bench.table("robot")
+        robot = self.serial_table()
         lengths = robot.get("lengths_m")
         if not isinstance(lengths, list) or not all(
             isinstance(v, int | float) and not isinstance(v, bool) and v > 0 for v in lengths
@@ -83,15 +159,22 @@ class RobotPane(VerticalScroll):
         return title + draw_serial_robot([float(v) for v in lengths], theta, 34, 11)
 
     def robot_table(self) -> dict[str, Any]:
-        """The ``[robot]`` table as edited."""
+        """The serial robot table as edited."""
         table = self.query_one("#robot-form", TableForm).table()
         table |= self.query_one(LinkEditor).values()
         if "inertias_kgm2" not in table:
             table.pop("inertias_kgm2", None)
         return table
 
+    def _store(self, kind: str, table: dict[str, Any]) -> None:
+        """Put an edited robot table where it belongs: the preset's or the job's own."""
+        if self.target is None:
+            self.bench.set_table(kind, 0, table)
+        else:
+            self.bench.set_job_robot(*self.target, table)
+
     def _store_robot(self) -> None:
-        self.bench.set_table("robot", 0, self.robot_table())
+        self._store("robot", self.robot_table())
         self.query_one("#robot-drawing", Static).update(self.drawing())
         self.post_message(DocumentEdited())
 
@@ -102,7 +185,7 @@ class RobotPane(VerticalScroll):
         if event.form.id == "robot-form":
             self._store_robot()
         else:
-            self.bench.set_table(event.form.id.removeprefix("form-"), 0, event.table)
+            self._store(event.form.id.removeprefix("form-"), event.table)
             self.post_message(DocumentEdited())
 
     async def on_button_pressed(self, event: Button.Pressed) -> None:
@@ -113,11 +196,21 @@ class RobotPane(VerticalScroll):
 
     async def action_add_link(self) -> None:
         """Append a link (a copy of the last one)."""
-        await self.query_one(LinkEditor).add_link()
+        for editor in self.query(LinkEditor):
+            await editor.add_link()
 
     async def action_remove_link(self) -> None:
         """Remove the last link."""
-        await self.query_one(LinkEditor).remove_link()
+        for editor in self.query(LinkEditor):
+            await editor.remove_link()
+
+
+def targets_label(targets: list[tuple[str, str, int | None]], target: Any) -> str:
+    """The job name of the picker's ``target`` (``sensitivity[2]``)."""
+    for label, kind, index in targets:
+        if index is not None and (kind, index) == target:
+            return label.rsplit(" ", 1)[0]
+    return ""
 
 
 class JobPane(Vertical):
@@ -145,6 +238,12 @@ class JobPane(Vertical):
         self.index = 0
         self.job: Job | None = None
         self.result: JobResult | None = None
+        #: The inputs the shown result was computed from (see :meth:`inputs`).
+        self.ran_inputs: Any = None
+        #: Why the shown result is not current (``None``: it is), e.g. an edit since.
+        self.stale_reason: str | None = None
+        #: How the last run ended, when it left the shown result behind (a cancel, a failure).
+        self.last_outcome: str | None = None
 
     def available(self) -> bool:
         from planar_tui.registry import JOB_KINDS
@@ -152,12 +251,15 @@ class JobPane(Vertical):
         return self.kind in JOB_KINDS
 
     def form_keys(self) -> tuple[str, ...]:
+        """The job table's keys; a job's own robot is edited on the Robot tab."""
         from planar_tui.registry import JOB_KINDS
 
-        kind = JOB_KINDS[self.kind]
-        keys = (*kind.keys, "output")
-        table = self.bench.table(self.kind, self.index)
-        return (*keys, kind.robot_kind) if kind.robot_kind in table else keys
+        return (*JOB_KINDS[self.kind].keys, "output")
+
+    def robot_kind(self) -> str:
+        from planar_tui.registry import JOB_KINDS
+
+        return JOB_KINDS[self.kind].robot_kind
 
     def compose(self) -> ComposeResult:
         if not self.available():
@@ -174,13 +276,18 @@ class JobPane(Vertical):
                 compact=True,
                 id="job-select",
             )
+        table = self.bench.table(self.kind, self.index)
+        form = VerticalScroll(classes="form")
+        form.can_focus = False  # its fields take the focus and scroll into view
         with Horizontal(classes="pane-body"):
-            with VerticalScroll(classes="form"):
-                yield TableForm(
-                    self.form_keys(), self.bench.table(self.kind, self.index), id="job-form"
-                )
+            with form:
+                if isinstance(table.get(self.robot_kind()), dict):
+                    yield Label("own robot: Robot tab", classes="own-robot")
+                yield TableForm(self.form_keys(), table, id="job-form")
             with Vertical(classes="results"):
+                yield Static("", id="stale-note", markup=False)
                 yield from self.compose_results()
+        yield Static("", id="pane-problem", markup=False)
         yield JobControls()
 
     def compose_results(self) -> ComposeResult:
@@ -191,9 +298,58 @@ class JobPane(Vertical):
 
     # -- editing --------------------------------------------------------------------
     def store_form(self) -> None:
-        """Put the form's table into the document."""
+        """Put the form's table into the document (the job's own robot, edited on the
+        Robot tab, is kept as the document has it)."""
         table = self.query_one("#job-form", TableForm).table()
+        current = self.bench.table(self.kind, self.index)
+        if self.robot_kind() in current:
+            table[self.robot_kind()] = current[self.robot_kind()]
         self.bench.set_table(self.kind, self.index, table)
+
+    def mark_problems(self, problems: list[tuple[Any, str]]) -> list[Any]:
+        """Show this tab's own problems, ``(location, message)`` pairs: the bad field
+        marked, and the job's first problem on the line above the controls; returns the
+        marked fields."""
+        if not self.available():
+            return []
+        form = self.query_one("#job-form", TableForm)
+        form.clear_marks()
+        mine = [
+            (location, message)
+            for location, message in problems
+            if (location.table, location.index) == (self.kind, self.index)
+        ]
+        line = self.query_one("#pane-problem", Static)
+        line.update(f"error: {mine[0][1]}" if mine else "")
+        line.set_class(bool(mine), "-shown")
+        marked = []
+        for location, message in mine:
+            field = None if location.robot else form.mark(location.field, message)
+            if field is not None:
+                marked.append(field)
+        return marked
+
+    # -- stale results ----------------------------------------------------------------
+    def inputs(self) -> Any:
+        """What the job's result depends on: its table and the preset robot of its kind."""
+        import copy
+
+        table = self.bench.table(self.kind, self.index)
+        return copy.deepcopy((self.index, table, self.bench.document.get(self.robot_kind())))
+
+    def update_stale(self) -> None:
+        """Dim the shown result and say why when it no longer matches the inputs."""
+        if self.result is None or not self.is_attached:
+            return
+        reason = self.last_outcome
+        if reason is None and self.job is not None and self.job.index - 1 != self.index:
+            reason = f"result of {self.job.key}, not of the job selected"
+        elif reason is None and self.inputs() != self.ran_inputs:
+            reason = "inputs changed since this run"
+        self.stale_reason = reason
+        note = self.query_one("#stale-note", Static)
+        note.update(f"stale: {reason}; F5 runs it again" if reason else "")
+        self.query_one(".results").set_class(reason is not None, "stale")
 
     def on_table_form_changed(self, event: TableForm.Changed) -> None:
         self.store_form()
@@ -203,6 +359,8 @@ class JobPane(Vertical):
         if event.select.id == "job-select" and event.value != self.index:
             self.index = int(event.value)
             await self.recompose()
+            self.rerender()
+            self.post_message(DocumentEdited())  # the marks of the job now shown
 
     def on_button_pressed(self, event: Button.Pressed) -> None:
         if event.button.id == "run":
@@ -224,15 +382,32 @@ class JobPane(Vertical):
     def show_progress(self, state: ProgressState) -> None:
         self.controls().show_progress(state)
 
-    def show_result(self, job: Job, result: JobResult) -> None:
-        """Keep the result (for export) and draw it."""
+    def show_result(self, job: Job, result: JobResult, inputs: Any = None) -> None:
+        """Keep the result (for export) and the inputs it came from, and draw it."""
         self.job, self.result = job, result
+        self.ran_inputs = self.inputs() if inputs is None else inputs
+        self.last_outcome = None
         self.render_result(job, result)
+        self.update_stale()
+
+    def run_ended(self, outcome: str) -> None:
+        """A run was cancelled or failed: the result shown (if any) is from before it."""
+        self.last_outcome = f"the last run {outcome}; this result is from an earlier run"
+        self.placeholder(f"The last run {outcome}.")
+        self.update_stale()
+
+    def placeholder(self, text: str) -> None:
+        """Replace a running job's live text (a tab without a result shows ``text``)."""
+        if self.result is not None:
+            self.rerender()
+        else:
+            self.query_one("#result-text", Static).update(text)
 
     def rerender(self) -> None:
         """Draw the kept result again (the results area changed size)."""
         if self.result is not None and self.job is not None and self.is_attached:
             self.render_result(self.job, self.result)
+            self.update_stale()
 
     def on_resize(self) -> None:
         self.call_after_refresh(self.rerender)

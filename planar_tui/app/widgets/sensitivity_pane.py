@@ -19,6 +19,17 @@ from planar_tui.sensitivity.tables import VIEWS, fit_tables
 BAR_LABEL_CELLS = 16
 
 
+def posture_line(posture) -> str:
+    """The solved posture: ``posture isotropic θ = [0.0, 135.0]° κ = 1.000`` (relative joint angles)."""
+    import math
+
+    if posture is None:
+        return ""
+    angles = ", ".join(f"{math.degrees(t):.1f}" for t in posture.theta_rad)
+    name = posture.label.split("=", 1)[0] if "=" in posture.label else posture.label
+    return f"posture {name} θ = [{angles}]° κ = {posture.condition_number:.3f}"
+
+
 class SensitivityPane(JobPane):
     """Posture, speeds, tolerances, methods, samples, seed; the indices table and bars."""
 
@@ -34,6 +45,7 @@ class SensitivityPane(JobPane):
     def compose_results(self) -> ComposeResult:
         with ScrollableContainer(id="sensitivity-results"):
             yield Static("Run the analysis (F5) to see the indices.", id="result-text")
+            yield Static("", id="sensitivity-posture", markup=False)
             yield Static("", id="sensitivity-table")
             yield Static("", id="sensitivity-bars")
 
@@ -47,6 +59,7 @@ class SensitivityPane(JobPane):
         analyses = result.analyses
         width = self.available_width()
         self.query_one("#result-text", Static).update(Text(result.summary))
+        self.query_one("#sensitivity-posture", Static).update(posture_line(result.posture))
         fitted = fit_tables(analyses, VIEWS[self.view], width, job.spec.percent_of)
         table = self.query_one("#sensitivity-table", Static)
         # never shrunk: a table wider than the pane scrolls sideways

@@ -3,6 +3,9 @@ and box count while the bisection runs, and the summary."""
 
 from __future__ import annotations
 
+import time
+
+import numpy as np
 from textual.app import ComposeResult
 from textual.widgets import Static
 
@@ -13,6 +16,8 @@ from planar_tui.progress import ProgressState
 
 #: Lines of :func:`planar_tui.workspace.map.render_map` below the plot rows.
 MAP_FOOTER_LINES = 3
+#: Seconds between two redraws of the map of the boxes kept so far while a job runs.
+PARTIAL_MAP_EVERY_S = 0.5
 
 
 def fitted_map(boxes, status, width: int, height: int) -> list[str]:
@@ -53,6 +58,7 @@ class WorkspacePane(JobPane):
     """Form, precision, orientation, joint limits; the character-cell map and summary."""
 
     kind = "workspace"
+    _partial_drawn_s = 0.0
 
     def compose_results(self) -> ComposeResult:
         yield Static("Run the bisection (F5) to map the workspace.", id="result-text", markup=False)
@@ -60,8 +66,34 @@ class WorkspacePane(JobPane):
         yield Static("", id="workspace-legend", markup=False)
 
     def show_progress(self, state: ProgressState) -> None:
+        """The running bisection: its stage and bracket, a warning when the estimated box
+        count exceeds the budget, and the map of the boxes kept so far (redrawn at most
+        every :data:`PARTIAL_MAP_EVERY_S`)."""
         super().show_progress(state)
-        self.query_one("#result-text", Static).update(f"running {state.stage}: {state.detail}")
+        text = f"running {state.stage}: {state.detail}"
+        if state.warning:
+            text = f"warning: {state.warning}\n{text}"
+        self.query_one("#result-text", Static).update(text)
+        boxes = state.partial.get("boxes_cm")
+        now = time.monotonic()
+        if boxes is not None and len(boxes) and now - self._partial_drawn_s >= PARTIAL_MAP_EVERY_S:
+            self._partial_drawn_s = now
+            status = state.partial.get("status")
+            if status is None:  # the 5-D stage: kept boxes, none proved inside yet
+                status = np.ones(len(boxes), dtype=np.int64)
+            self.draw_map(boxes, status, "(so far)")
+
+    def draw_map(self, boxes, status, note: str = "") -> None:
+        """Draw boxes on the map area, fitted to the results area."""
+        area = self.query_one("#workspace-map", Static)
+        results = self.query_one(".results")
+        width = max(20, results.content_region.width - 1)
+        legend_text = map_legend() + (f"  {note}" if note else "")
+        legend_lines = -(-len(legend_text) // width)
+        summary_lines = self.query_one("#result-text").size.height
+        height = max(8, results.content_region.height - summary_lines - legend_lines)
+        area.update("\n".join(fitted_map(boxes, status, width, height)))
+        self.query_one("#workspace-legend", Static).update(legend_text)
 
     def render_result(self, job: Job, result: JobResult) -> None:
         self.query_one("#result-text", Static).update(result.summary)
@@ -72,11 +104,4 @@ class WorkspacePane(JobPane):
             area.update("(no box kept: the workspace is empty at this precision)")
             legend.update("")
             return
-        results = self.query_one(".results")
-        width = max(20, results.content_region.width - 1)
-        legend_text = map_legend()
-        legend_lines = -(-len(legend_text) // width)
-        summary_lines = self.query_one("#result-text").size.height
-        height = max(8, results.content_region.height - summary_lines - legend_lines)
-        area.update("\n".join(fitted_map(outcome.boxes, outcome.status, width, height)))
-        legend.update(legend_text)
+        self.draw_map(outcome.boxes, outcome.status)
