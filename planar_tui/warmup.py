@@ -15,8 +15,9 @@ caller's :class:`~planar_tui.progress.Progress` is checked every
 :data:`~planar_tui.progress.POLL_S`: a cancel returns at once and the compilation finishes
 in the background, harmlessly filling the cache. After a kind's example ran, a marker file
 ``warm-KIND-DIGEST`` is written in the kernel cache folder
-(:func:`planar_tui.runtime.prepare_kernels`); the digest covers the kind's runner module
-and numba's version (the kernel folder is per version of the kernels' sources already).
+(:func:`planar_tui.runtime.prepare_kernels`); the digest covers the kind's runner module,
+numba's version and where the kernel sources are with their stamps (numba's own cache is
+keyed by those: a fresh clone elsewhere compiles again, so it must warm up again).
 
 Callers: :func:`planar_tui.batch.run_job` (every job), ``planar-tui warmup`` (every kind,
 for batch machines) and the app at start, in a background thread:
@@ -55,15 +56,33 @@ EXAMPLES = {
 _lock = threading.Lock()
 
 
+def kernel_sources_stamp() -> bytes:
+    """Where the kernel sources are and their ``(mtime, size)`` stamps: numba files a cached
+    kernel under its source's path and keeps it only while the source's stamp is unchanged,
+    so a fresh clone elsewhere (or a checkout touching ``kernels/``) compiles again even
+    though the kernel cache folder (named by the sources' digest) is the same."""
+    from planar_tui.runtime import kernels_folder
+
+    folder = kernels_folder()
+    stamps = [str(folder)]
+    for path in sorted(folder.glob("*.py")):
+        stat = path.stat()
+        stamps.append(f"{path.name}:{stat.st_mtime_ns}:{stat.st_size}")
+    return "\0".join(stamps).encode()
+
+
 def marker(kind: str) -> Path:
-    """The file that says ``kind``'s kernels are compiled into the current kernel cache."""
+    """The file that says ``kind``'s kernels are compiled into the current kernel cache:
+    named by the kind's runner module, numba's version and :func:`kernel_sources_stamp`."""
     import numba
 
     from planar_tui.registry import JOB_KINDS
     from planar_tui.runtime import prepare_kernels
 
     module = sys.modules[JOB_KINDS[kind].run.__module__]
-    digest = hashlib.sha256(Path(module.__file__).read_bytes() + numba.__version__.encode())
+    digest = hashlib.sha256(
+        Path(module.__file__).read_bytes() + numba.__version__.encode() + kernel_sources_stamp()
+    )
     return prepare_kernels() / f"warm-{kind}-{digest.hexdigest()[:12]}"
 
 

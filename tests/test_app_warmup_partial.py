@@ -58,12 +58,14 @@ async def test_the_last_progress_snapshot_is_dropped_when_a_job_ends(tmp_path):
 
 @async_test
 async def test_kernels_are_warmed_in_the_background_at_start(tmp_path, monkeypatch):
-    """Only the torques kind is 'missing' (its marker redirected to an empty folder): the
-    app compiles it through the real warm-up at start, says so twice, and marks it."""
-    real_marker = warmup.marker
+    """Only the torques kind is 'missing' (its marker redirected to an empty folder, the
+    others' to a file that exists): the app compiles it through the real warm-up at start,
+    says so twice, and marks it."""
+    present = tmp_path / "warm-others"
+    present.touch()
     monkeypatch.setattr(
         warmup, "marker", lambda kind: tmp_path / "warm-torques" if kind == "torques"
-        else real_marker(kind),
+        else present,
     )  # fmt: skip
     app = WorkbenchApp(Workbench.open(DATA / "tiny.toml"), warm_kernels=True)
     notes = []
