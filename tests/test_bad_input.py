@@ -91,9 +91,9 @@ CASES = {
 }
 
 
-@pytest.mark.parametrize("case", list(CASES))
-def test_bad_input_is_one_line_exit_2_nothing_written(case, tmp_path, cli):
-    text, key, problem = CASES[case]
+def refused_line(cli, tmp_path, text: str, key: str, problem: str) -> str:
+    """Run ``text`` as a preset: exit 2, one ``error: PRESET: KEY: …`` line holding
+    ``problem``, nothing written; returns the line."""
     preset = tmp_path / "bad.toml"
     preset.write_text(text, encoding="utf-8")
     result = cli("run", preset, "--out-dir", tmp_path / "out")
@@ -102,8 +102,14 @@ def test_bad_input_is_one_line_exit_2_nothing_written(case, tmp_path, cli):
     assert len(lines) == 1, result.stderr
     assert lines[0].startswith(f"error: {preset}: {key}: "), lines[0]
     assert problem in lines[0], lines[0]
-    assert len(lines[0]) < 400  # a 5000-digit value is not echoed whole
     assert not (tmp_path / "out").exists()
+    return lines[0]
+
+
+@pytest.mark.parametrize("case", list(CASES))
+def test_bad_input_is_one_line_exit_2_nothing_written(case, tmp_path, cli):
+    line = refused_line(cli, tmp_path, *CASES[case])
+    assert len(line) < 400  # a 5000-digit value is not echoed whole
 
 
 SENSITIVITY = TWO_LINKS + '[sensitivity]\nmethods = ["sobol"]\nsamples = 8\noutput = "s.csv"\n'
@@ -165,16 +171,7 @@ LIMIT_CASES = {
 
 @pytest.mark.parametrize("case", list(LIMIT_CASES))
 def test_what_cannot_run_is_refused_with_the_estimate(case, tmp_path, cli):
-    text, key, problem = LIMIT_CASES[case]
-    preset = tmp_path / "big.toml"
-    preset.write_text(text, encoding="utf-8")
-    result = cli("run", preset, "--out-dir", tmp_path / "out")
-    assert result.exit_code == 2, result.output
-    lines = result.stderr.strip().splitlines()
-    assert len(lines) == 1, result.stderr
-    assert lines[0].startswith(f"error: {preset}: {key}: "), lines[0]
-    assert problem in lines[0], lines[0]
-    assert not (tmp_path / "out").exists()
+    refused_line(cli, tmp_path, *LIMIT_CASES[case])
 
 
 @pytest.mark.parametrize(
