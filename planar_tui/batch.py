@@ -294,8 +294,9 @@ def prepare_jobs(jobs: Sequence[Job]) -> tuple[Job, ...]:
 
 
 def run_job(job: Job, progress: Progress | None = None) -> JobResult:
-    """Run one job (kernels prepared first, compiled first when not cached: the stage
-    :data:`planar_tui.warmup.STAGE`); writes nothing.
+    """Run one job (prepared by its kind if :func:`prepare_jobs` did not already; kernels
+    compiled first when not cached: the stage :data:`planar_tui.warmup.STAGE`); writes
+    nothing.
 
     Raises :class:`~planar_tui.errors.Cancelled` when ``progress`` says stop, the job's
     own :class:`~planar_tui.errors.PresetError` (e.g. a box budget), and
@@ -308,8 +309,10 @@ def run_job(job: Job, progress: Progress | None = None) -> JobResult:
     prepare_kernels()
     progress = progress or Progress()
     try:
+        kind = JOB_KINDS[job.kind]
+        job = kind.prepared(job)  # a no-op for a job prepare_jobs prepared already
         warm_kernels([job.kind], progress)
-        return JOB_KINDS[job.kind].run(job, progress)
+        return kind.run(job, progress)
     except (PresetError, Cancelled, KeyboardInterrupt) as error:
         _release(error, progress)
         raise

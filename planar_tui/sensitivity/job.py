@@ -343,7 +343,8 @@ def sample_sizes(spec: SensitivitySpec, num_vars: int) -> dict[str, int]:
 
 
 def run_sensitivity(job: Job, progress: Progress) -> SensitivityResult:
-    """Indices of every torque for every method and speed of one job (one posture).
+    """Indices of every torque for every method and speed of one job (one posture), the job
+    prepared (:func:`prepare_sensitivity`, done by the batch service).
 
     Progress goes through three stages (sampling, evaluation, analysis), each in chunks of
     well under :data:`~planar_tui.progress.CHECK_INTERVAL_S` (design chunks, row chunks of
@@ -355,7 +356,6 @@ def run_sensitivity(job: Job, progress: Progress) -> SensitivityResult:
     from planar_tui.sensitivity.engine import analyse, build_problem, evaluate, unit_design
     from planar_tui.sensitivity.results import Analysis, csv_table, sensitivity_percent
 
-    job = prepare_sensitivity(job)  # a no-op when the batch service prepared it
     spec, robot = job.spec, job.robot
     problem = build_problem(
         robot, spec.tolerance_length_m, spec.tolerance_mass_kg, spec.inertia_tolerance_kgm2
