@@ -554,7 +554,7 @@ def numbers(
             name, default, length=n, positive=positive, minimum=minimum, maximum=maximum
         )
 
-    return read
+    return per_link(read, "list") if length == PER_LINK else read
 
 
 def number_rows(*, columns: Any = None):
@@ -563,7 +563,25 @@ def number_rows(*, columns: Any = None):
     def read(reader, name, default, context, values):
         return reader.number_rows(name, default, columns=_length(columns, context, values))
 
+    return per_link(read, "rows") if columns == PER_LINK else read
+
+
+def per_link(read: Callable[..., Any], shape: str) -> Callable[..., Any]:
+    """Mark a reader as reading one value per link of the robot (``shape`` ``"list"``) or
+    rows of one value per link (``"rows"``): what must follow the robot when it gains or
+    loses a link (:func:`per_link_keys`)."""
+    read.per_link = shape  # type: ignore[attr-defined]
     return read
+
+
+def per_link_keys(settings_class: type) -> dict[str, str]:
+    """The keys of a settings dataclass holding one value per link (``"list"``) or rows of
+    them (``"rows"``), by key name, from their readers (:func:`per_link`)."""
+    return {
+        key.name: key.read.per_link
+        for _, key in declared_keys(settings_class)
+        if getattr(key.read, "per_link", None)
+    }
 
 
 def per_link_zeros(context: Any, values: Mapping[str, Any]) -> tuple[float, ...]:

@@ -59,3 +59,15 @@ def test_a_key_is_read_with_the_readers_message(tmp_path):
     with pytest.raises(PresetError) as error:
         load_preset(path)
     assert str(error.value) == f"error: {path}: simulate.every: is 0 (expected an integer >= 1)"
+
+
+def test_the_per_link_keys_come_from_the_declarations():
+    """What follows the robot when it gains or loses a link (the app resizes these)."""
+    from planar_tui.schema import per_link_keys
+
+    assert {name: per_link_keys(kind.settings) for name, kind in JOB_KINDS.items()} == {
+        "simulate": {"theta0_deg": "list", "omega0_deg_s": "list", "torques_Nm": "list"},
+        "torques": {"theta_deg": "rows", "omega_deg_s": "rows", "alpha_deg_s2": "rows"},
+        "sensitivity": {"posture": "list"},
+        "workspace": {},
+    }

@@ -14,16 +14,6 @@ COALESCE_S = 1.5
 #: Undo steps kept.
 MAX_STEPS = 200
 
-#: The per-link arrays of each job kind on the serial robot: ``"list"`` one value per
-#: link, ``"rows"`` rows of one value per link (what the kinds read with
-#: ``numbers(length=PER_LINK)`` / ``number_rows(columns="per-link")``; sensitivity's
-#: ``posture`` when it lists angles).
-PER_LINK_KEYS: dict[str, dict[str, str]] = {
-    "simulate": {"theta0_deg": "list", "omega0_deg_s": "list", "torques_Nm": "list"},
-    "torques": {"theta_deg": "rows", "omega_deg_s": "rows", "alpha_deg_s2": "rows"},
-    "sensitivity": {"posture": "list"},
-}
-
 
 class EditHistory:
     """Document states before each edit, newest last (undo pops one)."""
@@ -68,10 +58,14 @@ def resized(values: list[Any], n: int) -> list[Any]:
 
 
 def resize_per_link(table: dict[str, Any], kind: str, n: int) -> list[str]:
-    """Resize the per-link arrays of a ``kind`` job table to ``n`` links in place (new
-    links get zeros); the keys changed."""
+    """Resize the per-link arrays of a ``kind`` job table (the keys its settings declare
+    per link, :func:`planar_tui.schema.per_link_keys`) to ``n`` links in place (new links
+    get zeros); the keys changed."""
+    from planar_tui.registry import JOB_KINDS
+    from planar_tui.schema import per_link_keys
+
     changed = []
-    for key, shape in PER_LINK_KEYS.get(kind, {}).items():
+    for key, shape in per_link_keys(JOB_KINDS[kind].settings).items():
         value = table.get(key)
         if not isinstance(value, list):
             continue  # absent (the default fits any robot) or a word ("singular")

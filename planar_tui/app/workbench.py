@@ -14,7 +14,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any, TypeVar
 
-from planar_tui.app.history import PER_LINK_KEYS, EditHistory, link_count, resize_per_link
+from planar_tui.app.history import EditHistory, link_count, resize_per_link
 from planar_tui.app.saving import same_value
 from planar_tui.errors import PresetError
 from planar_tui.presets import Job, Preset, parse_job, parse_preset, read_toml
@@ -220,8 +220,8 @@ class Workbench:
         from planar_tui.registry import JOB_KINDS
 
         changed = []
-        for kind in PER_LINK_KEYS:
-            if kind not in JOB_KINDS or JOB_KINDS[kind].robot_kind != "robot":
+        for kind in JOB_KINDS:
+            if JOB_KINDS[kind].robot_kind != "robot":
                 continue
             for table in self.tables(kind):
                 if "robot" not in table:  # a job with its own robot keeps its arrays

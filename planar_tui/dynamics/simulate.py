@@ -17,7 +17,15 @@ from planar_tui.dynamics.robot import SerialRobot
 from planar_tui.jobkind import Job, JobKind, JobResult
 from planar_tui.limits import memory_problem, time_problem
 from planar_tui.progress import Progress
-from planar_tui.schema import TableReader, integer, number, numbers, per_link_zeros, setting
+from planar_tui.schema import (
+    PER_LINK,
+    TableReader,
+    integer,
+    number,
+    numbers,
+    per_link_zeros,
+    setting,
+)
 
 #: Most RK4 steps per kernel call (about 30 ms for a 6R robot).
 STEPS_PER_CHUNK = 20_000
@@ -51,7 +59,7 @@ def next_chunk_steps(steps: int, seconds: float, left: int) -> int:
 
 def _per_link(doc: str, default_doc: str = "zeros") -> Any:
     return setting(
-        numbers(length="per-link"),
+        numbers(length=PER_LINK),
         default=per_link_zeros,
         default_doc=default_doc,
         type_doc="n numbers",

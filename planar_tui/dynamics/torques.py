@@ -10,7 +10,7 @@ from planar_tui.csvio import CsvTable
 from planar_tui.dynamics.robot import SerialRobot
 from planar_tui.jobkind import Job, JobKind, JobResult
 from planar_tui.progress import Progress
-from planar_tui.schema import TableReader, number_rows, setting
+from planar_tui.schema import PER_LINK, TableReader, number_rows, setting
 
 
 def _zero_rows(robot: SerialRobot, values: dict) -> tuple[tuple[float, ...], ...]:
@@ -20,9 +20,7 @@ def _zero_rows(robot: SerialRobot, values: dict) -> tuple[tuple[float, ...], ...
 
 def _rows(doc: str, required: bool = False):
     default = {} if required else {"default": _zero_rows, "default_doc": "zeros"}
-    return setting(
-        number_rows(columns="per-link"), type_doc="rows of n numbers", doc=doc, **default
-    )
+    return setting(number_rows(columns=PER_LINK), type_doc="rows of n numbers", doc=doc, **default)
 
 
 @dataclass(frozen=True, kw_only=True)

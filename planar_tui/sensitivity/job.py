@@ -22,6 +22,7 @@ from planar_tui.schema import (
     boolean,
     integer,
     number,
+    per_link,
     read_option,
     setting,
     shown,
@@ -66,6 +67,9 @@ def _read_posture_request(reader: TableReader, name, default, robot, values) -> 
     if isinstance(reader.raw(name, default), list):
         return reader.numbers(name, length=robot.n_links)
     return reader.string(name, default, choices=("singular", "isotropic"))
+
+
+per_link(_read_posture_request, "list")  # when it lists angles
 
 
 def _tolerance(unit: str, doc: str):
