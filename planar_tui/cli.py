@@ -8,6 +8,7 @@ a job or the app runs, so ``planar-tui --help`` is instant.
 
 from __future__ import annotations
 
+import dataclasses
 import gc
 import os
 import signal
@@ -253,7 +254,8 @@ def execute(
 
     plans = batch.plan_outputs(jobs, out_dir, out, extra_out)
     batch.check_plans(plans)
-    plans = batch.plan_outputs(batch.prepare_jobs(jobs), out_dir, out, extra_out)
+    prepared = batch.prepare_jobs(jobs)
+    plans = [dataclasses.replace(plan, job=job) for plan, job in zip(plans, prepared, strict=True)]
 
     @contextmanager
     def progress_for(job: Job):

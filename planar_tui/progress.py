@@ -59,6 +59,14 @@ class ProgressState:
         """``completed / total`` in [0, 1]."""
         return min(max(self.completed / self.total, 0.0), 1.0) if self.total > 0 else 0.0
 
+    def eta_s(self, now_s: float | None = None) -> float | None:
+        """Seconds left in the stage at its rate so far,
+        ``(total − completed) · elapsed / completed``; ``None`` before any work."""
+        elapsed_s = (time.monotonic() if now_s is None else now_s) - self.stage_started_s
+        if self.completed <= 0 or elapsed_s <= 0:
+            return None
+        return (self.total - self.completed) * elapsed_s / self.completed
+
 
 class Progress:
     """Receives a runner's progress and tells it when to stop.

@@ -109,3 +109,11 @@ def test_box_estimate_is_near_the_real_count_and_partial_boxes_are_views():
     assert len(partial) > 1 and all(not view.flags.writeable for view in partial)
     assert all(view.base is not None and view.shape[1] == 4 for view in partial)  # views
     assert 0 < len(partial[0]) <= len(partial[-1])
+
+
+def test_the_eta_is_the_stage_rate_extrapolated():
+    from planar_tui.progress import ProgressState
+
+    state = ProgressState(25.0, 100.0, "integrating", "", stage_started_s=10.0)
+    assert state.eta_s(now_s=12.0) == 6.0  # 25 units in 2 s: 75 more take 6 s
+    assert ProgressState(0.0, 100.0, "x", "", stage_started_s=10.0).eta_s(12.0) is None

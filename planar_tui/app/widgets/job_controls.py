@@ -9,8 +9,6 @@ status says ``cancelling…`` until the worker has really stopped (the app then 
 
 from __future__ import annotations
 
-import time
-
 from textual.app import ComposeResult
 from textual.containers import Horizontal
 from textual.widgets import Button, Label, ProgressBar
@@ -39,26 +37,6 @@ def format_duration(seconds: float) -> str:
     return f"{hours}:{minutes:02d}:{seconds:02d}"
 
 
-class StageClock:
-    """Times the current stage of a run to estimate what is left (ETA) from its rate."""
-
-    def __init__(self) -> None:
-        self.stage = ""
-        self.started = 0.0
-        self.completed = 0.0
-
-    def eta_s(self, state: ProgressState, now: float | None = None) -> float | None:
-        """Seconds left in ``state``'s stage at its rate so far; ``None`` before any work."""
-        now = time.monotonic() if now is None else now
-        if state.stage != self.stage or state.completed < self.completed:
-            self.stage, self.started = state.stage, now
-        self.completed = state.completed
-        elapsed = now - self.started
-        if state.completed <= 0 or elapsed <= 0:
-            return None
-        return (state.total - state.completed) * elapsed / state.completed
-
-
 def progress_text(state: ProgressState, eta_s: float | None) -> str:
     """``45% 9.0k/20k eta 3s stage detail`` (the figures first)."""
     total = max(state.total, 1e-300)
@@ -81,7 +59,6 @@ class JobControls(Horizontal):
 
     def __init__(self, **kwargs) -> None:
         super().__init__(**kwargs)
-        self.clock = StageClock()
         #: A cancel was asked and the worker has not stopped yet.
         self.cancelling = False
 
@@ -96,8 +73,6 @@ class JobControls(Horizontal):
         self.query_one("#run", Button).disabled = running
         self.query_one("#cancel", Button).disabled = not running
         self.cancelling = False
-        if running:
-            self.clock = StageClock()
 
     def show_cancelling(self) -> None:
         """Say ``cancelling…`` until the worker has stopped (progress keeps it)."""
@@ -107,7 +82,7 @@ class JobControls(Horizontal):
     def show_progress(self, state: ProgressState) -> None:
         """Show a runner's progress snapshot: bar, percent, done/total, ETA, stage."""
         self.query_one(ProgressBar).update(total=state.total, progress=state.completed)
-        text = progress_text(state, self.clock.eta_s(state))
+        text = progress_text(state, state.eta_s())
         self.status(f"cancelling… {text}" if self.cancelling else text)
 
     def finished(self) -> None:
