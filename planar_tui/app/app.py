@@ -153,7 +153,7 @@ class WorkbenchApp(FileActions, App):
         if not bars:  # closing, or between two compositions
             return False
         bar = bars.first(Static)
-        self.problems = self.workbench.problems()
+        preset, self.problems = self.workbench.check()
         self.mark_problems()
         for pane in self.query(JobPane):
             pane.update_stale()
@@ -161,7 +161,7 @@ class WorkbenchApp(FileActions, App):
             bar.update(status_line(self.problems, self.workbench.display_name()))
             bar.set_class(True, "invalid")
             return False
-        count = len(self.workbench.validate().jobs)
+        count = len(preset.jobs)
         bar.update(f"ok: {self.document_label()}, {count} job{'s' if count != 1 else ''} valid")
         bar.set_class(False, "invalid")
         return True

@@ -252,24 +252,28 @@ class Workbench:
             self.path, lambda: parse_job(self.path, self.document, kind, index + 1), self.document
         )
 
-    def problems(self) -> list[PresetError]:
-        """Every problem of the document, one per robot table and job at most, in document
-        order (each job checked on its own, see :meth:`job`); empty when it is valid."""
+    def check(self) -> tuple[Preset | None, list[PresetError]]:
+        """The validated preset and no problem, or ``None`` and every problem of the
+        document, one per robot table and job at most, in document order (each job checked
+        on its own, see :meth:`job`). A valid document is parsed once."""
         from planar_tui.registry import JOB_KINDS
 
-        found: list[PresetError] = []
+        try:
+            return self.validate(), []
+        except PresetError as error:
+            found = [error]  # may be what no job covers: an unknown table, an unused robot
         for kind in self.document:
             for index in range(len(self.tables(kind)) if kind in JOB_KINDS else 0):
                 try:
                     self.job(kind, index)
                 except PresetError as error:
                     found.append(error)
-        try:
-            self.validate()  # what no job covers: unknown tables, robots no job uses
-        except PresetError as error:
-            found.append(error)
         unique = {(error.key, error.problem): error for error in reversed(found)}
-        return sorted(unique.values(), key=self._document_position)
+        return None, sorted(unique.values(), key=self._document_position)
+
+    def problems(self) -> list[PresetError]:
+        """Every problem of the document (see :meth:`check`); empty when it is valid."""
+        return self.check()[1]
 
     def _document_position(self, error: PresetError) -> int:
         """Where the table an error names comes in the document (for ordering)."""
