@@ -97,6 +97,8 @@ class JobKind:
     keystroke (e.g. solving the sensitivity's isotropic posture): it returns the job
     ready to run or raises :class:`~planar_tui.errors.PresetError`; the batch service
     calls it for every job before the first one runs (:func:`planar_tui.batch.prepare_jobs`).
+    ``point_figures(job, result)`` gives the kind's summary figures of one result as
+    ordered columns (name with unit -> number or text): one sweep row per point.
     """
 
     name: str
@@ -108,6 +110,7 @@ class JobKind:
     extra_outputs: Callable[[Any], dict[str, str]] = _no_extra_outputs
     overrides: Callable[[Any, Mapping[str, Any]], Any] | None = None
     prepare: Callable[[Job], Job] | None = None
+    point_figures: Callable[[Job, JobResult], dict[str, Any]] | None = None
 
     @property
     def keys(self) -> tuple[str, ...]:
