@@ -30,10 +30,11 @@ class OutputPlan:
     job: Job
     main: Path
     extras: Mapping[str, Path] = field(default_factory=dict)
+    figure: Path | None = None
 
     def paths(self) -> tuple[Path, ...]:
-        """Every file this job writes, the main CSV first."""
-        return (self.main, *self.extras.values())
+        """Every file this job writes, the main CSV first, the figure last."""
+        return (self.main, *self.extras.values(), *((self.figure,) if self.figure else ()))
 
 
 @dataclass(frozen=True)
@@ -83,14 +84,17 @@ def plan_outputs(
     out_dir: Path,
     out: Path | None = None,
     extra_out: Mapping[str, Path | None] | None = None,
+    plot: Path | None = None,
 ) -> list[OutputPlan]:
-    """Every job's main CSV path and its extra tables' paths, in job order.
+    """Every job's main CSV path, its extra tables' paths and its figure, in job order.
 
     The main CSV goes to ``out_dir / job.output``, or to ``out`` (numbered ``FILE-1.csv``,
     ``FILE-2.csv`` ... when there are several jobs). Extra tables (e.g. a workspace's
     ``boxes``) go where the job kind's ``extra_outputs`` says, relative to ``out_dir``, or
     to the paths in ``extra_out`` by table name (numbered likewise). Names from the preset
     carry the job's ``variant`` (:func:`apply_overrides`); names given here are kept.
+    The figure goes to ``plot`` (numbered likewise) or to the job's ``plot`` key,
+    relative to ``out_dir``; no figure without either.
     """
     plans = []
     for number, job in enumerate(jobs, start=1):
@@ -104,7 +108,10 @@ def plan_outputs(
         for name, override in (extra_out or {}).items():
             if override is not None:
                 extras[name] = numbered_path(override, number, len(jobs))
-        plans.append(OutputPlan(job, main, extras))
+        figure = numbered_path(plot, number, len(jobs)) if plot else None
+        if figure is None and getattr(job.spec, "plot", None):
+            figure = with_variant(out_dir / job.spec.plot, job.variant)
+        plans.append(OutputPlan(job, main, extras, figure))
     return plans
 
 
@@ -197,7 +204,8 @@ def check_plans(plans: Sequence[OutputPlan]) -> None:
     presets = {_identity(plan.job.preset_path): plan.job for plan in plans}
     writers: dict[str, str] = {}
     for plan in plans:
-        for name, path in (("output", plan.main), *plan.extras.items()):
+        figure = (("plot", plan.figure),) if plan.figure else ()
+        for name, path in (("output", plan.main), *plan.extras.items(), *figure):
             check_writable(path)
             identity = _identity(path)
             if identity in presets:
@@ -345,13 +353,18 @@ def check_finite(job: Job, result: JobResult) -> None:
 
 def write_result(plan: OutputPlan, result: JobResult) -> list[Path]:
     """Write a finished job's tables atomically, none if any holds NaN or infinities
-    (:class:`NonFiniteResult`); :class:`OutputFailed` on an OS error."""
+    (:class:`NonFiniteResult`), then its figure if planned (matplotlib is imported only
+    then, :mod:`planar_tui.figures`); :class:`OutputFailed` on an OS error."""
     check_finite(plan.job, result)
     written = []
     try:
         written.append(write_csv_atomic(plan.main, result.table))
         for name, path in plan.extras.items():
             written.append(write_csv_atomic(path, result.extra_tables[name]))
+        if plan.figure is not None:
+            from planar_tui.figures import save_result_figure
+
+            written.append(save_result_figure(plan.job, result, plan.figure))
     except OSError as error:
         raise OutputFailed(error.filename or plan.main, error.strerror or str(error)) from None
     return written

@@ -87,6 +87,15 @@ JobOption = Annotated[
         "PRESET:KEY or its output file name; repeatable.",
     ),
 ]
+PlotOption = Annotated[
+    Path | None,
+    typer.Option(
+        "--plot",
+        metavar="FILE",
+        help="Also draw the result's figure into FILE (.svg, .png or .pdf; with several "
+        "jobs: FILE-1.png, FILE-2.png ...); overrides the jobs' `plot` keys.",
+    ),
+]
 #: How an override appears in the names of the files it changes (``--precision-0.5``).
 OVERRIDE_LABELS = {"precision_cm": "precision", "methods": "method"}
 
@@ -118,6 +127,18 @@ def reported_errors() -> Iterator[None]:
         raise fail(
             "interrupted: the running job's output was not written", ExitCode.INTERRUPTED
         ) from None
+
+
+def check_figure_option(path: Path | None, option: str = "--plot") -> None:
+    """Refuse a figure path whose suffix names no format (:class:`PresetError`, exit 2)."""
+    from planar_tui.schema import FIGURE_SUFFIXES, figure_suffix_problem
+
+    problem = None if path is None else figure_suffix_problem(str(path))
+    if problem is not None:
+        raise PresetError(
+            "command line", option, f"is {str(path)!r}: {problem}",
+            "a file ending " + ", ".join(FIGURE_SUFFIXES),
+        )  # fmt: skip
 
 
 def load_presets(arguments: Sequence[str]) -> list[Preset]:
@@ -238,6 +259,7 @@ def execute(
     out: Path | None = None,
     extra_out: Mapping[str, Path | None] | None = None,
     show: bool = True,
+    plot: Path | None = None,
 ) -> None:
     """Run ``jobs`` through the batch service, one progress bar each, then print a summary.
 
@@ -252,7 +274,7 @@ def execute(
     from planar_tui import batch
     from planar_tui.registry import JOB_KINDS
 
-    plans = batch.plan_outputs(jobs, out_dir, out, extra_out)
+    plans = batch.plan_outputs(jobs, out_dir, out, extra_out, plot)
     batch.check_plans(plans)
     prepared = batch.prepare_jobs(jobs)
     plans = [dataclasses.replace(plan, job=job) for plan, job in zip(plans, prepared, strict=True)]
@@ -297,6 +319,7 @@ def run_kind(
     names: Sequence[str] | None = None,
     extra_out: Mapping[str, Path | None] | None = None,
     show: bool = True,
+    plot: Path | None = None,
 ) -> None:
     """Run the jobs of one kind in a preset (the ``simulate``/``torques``... commands):
     all of them, or those ``names`` selects (``--job``); ``options`` are command-line
@@ -304,6 +327,7 @@ def run_kind(
     with reported_errors():
         from planar_tui.batch import apply_overrides, select_jobs
 
+        check_figure_option(plot)
         (preset,) = load_presets([preset_argument])
         jobs = preset.jobs_of(kind)
         if not jobs:
@@ -313,7 +337,7 @@ def run_kind(
         jobs = select_jobs(jobs, names)
         if options:
             jobs = apply_overrides(jobs, options, OVERRIDE_LABELS)
-        execute(jobs, out_dir, out=out, extra_out=extra_out, show=show)
+        execute(jobs, out_dir, out=out, extra_out=extra_out, show=show, plot=plot)
 
 
 def version_callback(value: bool) -> None:
@@ -370,9 +394,10 @@ def simulate(
     job_name: JobOption = None,
     out: OutOption = None,
     out_dir: OutDirOption = Path("."),
+    plot: PlotOption = None,
 ) -> None:
     """Integrate the forward dynamics (RK4) of every simulate job; one CSV per job."""
-    run_kind("simulate", preset, out, out_dir, names=job_name)
+    run_kind("simulate", preset, out, out_dir, names=job_name, plot=plot)
 
 
 @app.command(cls=Command)
@@ -381,9 +406,10 @@ def torques(
     job_name: JobOption = None,
     out: OutOption = None,
     out_dir: OutDirOption = Path("."),
+    plot: PlotOption = None,
 ) -> None:
     """Inverse dynamics at the listed states of every torques job; one CSV per job."""
-    run_kind("torques", preset, out, out_dir, names=job_name)
+    run_kind("torques", preset, out, out_dir, names=job_name, plot=plot)
 
 
 @app.command(
@@ -405,11 +431,12 @@ def sensitivity(
     job_name: JobOption = None,
     out: OutOption = None,
     out_dir: OutDirOption = Path("."),
+    plot: PlotOption = None,
 ) -> None:
     """Sobol'/eFAST sensitivity of the joint torques of every sensitivity job; one CSV each."""
 
     options = {"methods": method, "samples": samples, "seed": seed}
-    run_kind("sensitivity", preset, out, out_dir, options, names=job_name)
+    run_kind("sensitivity", preset, out, out_dir, options, names=job_name, plot=plot)
 
 
 @app.command(
@@ -442,6 +469,7 @@ def workspace(
     ] = True,
     job_name: JobOption = None,
     out_dir: OutDirOption = Path("."),
+    plot: PlotOption = None,
 ) -> None:
     """3-RRR workspace of every workspace job: summary CSV, boxes CSV and a titled map."""
 
@@ -456,6 +484,7 @@ def workspace(
         names=job_name,
         extra_out=extra_out,
         show=show_map,
+        plot=plot,
     )
 
 
@@ -464,13 +493,53 @@ def run(
     presets: Annotated[list[str], typer.Argument(help="Preset files or bundled preset names.")],
     job_name: JobOption = None,
     out_dir: OutDirOption = Path("."),
+    plot: PlotOption = None,
 ) -> None:
     """Run every job of every preset (or those --job names), files named as the presets say."""
     with reported_errors():
         from planar_tui.batch import select_jobs
 
+        check_figure_option(plot)
         loaded = load_presets(presets)
-        execute(select_jobs([job for preset in loaded for job in preset.jobs], job_name), out_dir)
+        jobs = select_jobs([job for preset in loaded for job in preset.jobs], job_name)
+        execute(jobs, out_dir, plot=plot)
+
+
+@app.command("plot", cls=Command)
+def plot_csv(
+    result: Annotated[Path, typer.Argument(help="A CSV file planar-tui wrote (any kind).")],
+    out: Annotated[
+        Path | None,
+        typer.Option(
+            "--out", "-o", help="Figure file (.svg, .png or .pdf; default: RESULT.png beside it)."
+        ),
+    ] = None,
+) -> None:
+    """Draw the figure of a result CSV (its kind recognised from its header), e.g. a
+    cluster run's result, later, on a laptop."""
+    with reported_errors():
+        from planar_tui.batch import check_writable
+
+        check_figure_option(out, "--out")
+        target = out if out is not None else result.with_suffix(".png")
+        from planar_tui.figures import UnknownTable, read_table, save_table_figure
+
+        try:
+            table = read_table(result)
+        except FileNotFoundError:
+            raise PresetError(result, "(file)", "no such file", "a result CSV") from None
+        except (OSError, UnicodeDecodeError, ValueError) as error:
+            raise PresetError(
+                result, "(file)", f"cannot be read: {error}", "a result CSV"
+            ) from None
+        check_writable(target)
+        try:
+            written = save_table_figure(table, target, result.name)
+        except UnknownTable as error:
+            raise PresetError(result, "(header)", *error.args) from None
+        except OSError as error:
+            raise fail(f"error: {target}: cannot write: {error.strerror or error}") from None
+    stdout.print(f"wrote {written}", markup=False)
 
 
 @app.command("warmup", cls=Command)

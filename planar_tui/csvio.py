@@ -102,9 +102,9 @@ def _temporary_name(path: Path) -> Path:
     return path.with_name(f".{path.name[:64]}.{secrets.token_hex(4)}.tmp")
 
 
-def write_atomic(path: Path | str, write: Callable[[TextIO], None]) -> Path:
-    """Write a text file by ``write(stream)`` so that ``path`` is either the whole new file
-    or untouched.
+def write_atomic(path: Path | str, write: Callable[[Any], None], *, binary: bool = False) -> Path:
+    """Write a text file (a binary one with ``binary``: a figure) by ``write(stream)`` so
+    that ``path`` is either the whole new file or untouched.
 
     The text goes to a temporary file in the destination folder, which is then renamed
     over ``path`` (``os.replace`` is atomic on POSIX); on any error, including
@@ -123,8 +123,12 @@ def write_atomic(path: Path | str, write: Callable[[TextIO], None]) -> Path:
                 handle = os.open(temp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
             except FileExistsError:  # another file of that name, not ours: draw again
                 temp = None
-        with os.fdopen(handle, "w", encoding="utf-8", newline="") as stream:
-            write(stream)
+        if binary:
+            with os.fdopen(handle, "wb") as stream:
+                write(stream)
+        else:
+            with os.fdopen(handle, "w", encoding="utf-8", newline="") as stream:
+                write(stream)
         mode = path.stat().st_mode & 0o777 if path.is_file() else _new_file_mode()
         os.chmod(temp, mode)
         os.replace(temp, path)

@@ -557,6 +557,49 @@ def numbers(
     return per_link(read, "list") if length == PER_LINK else read
 
 
+#: The figure formats a ``plot`` key or ``--plot`` takes, by file suffix.
+FIGURE_SUFFIXES = (".svg", ".png", ".pdf")
+
+
+def figure_suffix_problem(value: str) -> str | None:
+    """Why ``value`` cannot name a figure file (its suffix is not one of
+    :data:`FIGURE_SUFFIXES`, case-insensitive), or ``None``."""
+    suffix = Path(value).suffix
+    if suffix.lower() in FIGURE_SUFFIXES:
+        return None
+    return f"has the suffix {suffix!r}" if suffix else "has no suffix"
+
+
+def figure_path():
+    """A figure file name relative to the output folder, ending ``.svg``, ``.png`` or
+    ``.pdf`` (the format)."""
+
+    def read(reader, name, default, context, values):
+        value = reader.relative_path(name, default)
+        if value is default:
+            return value
+        problem = figure_suffix_problem(value)
+        if problem is not None:
+            allowed = ", ".join(FIGURE_SUFFIXES)
+            raise reader.error(name, f"is {shown(value)}: {problem}", f"a file ending {allowed}")
+        return value
+
+    return read
+
+
+def plot_setting() -> Any:
+    """The ``plot`` key every job table takes (declared here once; each settings class
+    holds ``plot: str | None = plot_setting()``): the figure of the job's result, written
+    beside its CSV (:mod:`planar_tui.figures`)."""
+    return setting(
+        figure_path(),
+        default=None,
+        type_doc="relative path ending `.svg`, `.png` or `.pdf`",
+        default_doc="(none)",
+        doc="figure of the result, format from the suffix (`--plot FILE` on the command line)",
+    )
+
+
 def number_rows(*, columns: Any = None):
     """A non-empty array of arrays of finite numbers (``columns`` as for :func:`numbers`)."""
 

@@ -24,6 +24,7 @@ from planar_tui.schema import (
     number,
     numbers,
     per_link_zeros,
+    plot_setting,
     setting,
 )
 
@@ -87,6 +88,7 @@ class SimulateSpec:
         type_doc="integer ≥ 1",
         doc="write every k-th step (t = 0 always)",
     )
+    plot: str | None = plot_setting()
 
     @staticmethod
     def check(values: dict, reader: TableReader, robot: SerialRobot) -> dict:

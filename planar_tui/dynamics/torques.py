@@ -10,7 +10,7 @@ from planar_tui.csvio import CsvTable
 from planar_tui.dynamics.robot import SerialRobot
 from planar_tui.jobkind import Job, JobKind, JobResult
 from planar_tui.progress import Progress
-from planar_tui.schema import PER_LINK, TableReader, number_rows, setting
+from planar_tui.schema import PER_LINK, TableReader, number_rows, plot_setting, setting
 
 
 def _zero_rows(robot: SerialRobot, values: dict) -> tuple[tuple[float, ...], ...]:
@@ -32,6 +32,7 @@ class TorquesSpec:
     )
     omega_deg_s: tuple[tuple[float, ...], ...] = _rows("joint rates, as many rows as `theta_deg`")
     alpha_deg_s2: tuple[tuple[float, ...], ...] = _rows("joint accelerations, as many rows")
+    plot: str | None = plot_setting()
 
     @staticmethod
     def check(values: dict, reader: TableReader, robot: SerialRobot) -> dict:

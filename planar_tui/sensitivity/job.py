@@ -23,6 +23,7 @@ from planar_tui.schema import (
     integer,
     number,
     per_link,
+    plot_setting,
     read_option,
     setting,
     shown,
@@ -162,6 +163,7 @@ class SensitivitySpec:
         type_doc="number > 0",
         doc='largest accepted `κ − 1` for `"isotropic"`',
     )
+    plot: str | None = plot_setting()
     posture: Any = None
 
     @staticmethod

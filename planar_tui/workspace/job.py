@@ -20,6 +20,7 @@ from planar_tui.schema import (
     boolean,
     integer,
     number,
+    plot_setting,
     relative_path,
     setting,
     string,
@@ -160,6 +161,7 @@ class WorkspaceSpec:
         type_doc="relative path",
         doc="CSV of the kept boxes (`--boxes` on the command line)",
     )
+    plot: str | None = plot_setting()
 
     @staticmethod
     def check(values: dict, reader: TableReader, robot: Robot3RRR) -> dict:

@@ -1,0 +1,115 @@
+"""Which figure a result or a CSV gets, and writing it (atomically, format by suffix).
+
+A table's kind is recognised from its header (:data:`RECOGNISERS`, first match wins; extra
+columns are fine); a typed result of a kind with its own figure (:data:`FROM_RESULT`) is
+drawn from the result, which knows the robot; any other result is drawn from its main
+table, recognised like a CSV (the sweep and motion-uncertainty kinds).
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+from planar_tui.csvio import CsvTable
+
+#: (kind, module, recogniser, drawing function), tried in order: a sweep's table also holds
+#: its kind's summary columns, so it comes first.
+RECOGNISERS: tuple[tuple[str, str, str, str], ...] = (
+    ("sweep", "sweep", "matches", "draw"),
+    ("sensitivity", "sensitivity", "matches", "draw"),
+    ("motion uncertainty indices", "sensitivity", "matches_motion", "draw"),
+    ("workspace boxes", "workspace", "matches_boxes", "from_boxes_table"),
+    ("workspace summary", "workspace", "matches_summary", "from_summary_table"),
+    ("motion uncertainty band", "uncertainty", "matches", "draw"),
+    ("simulate", "simulate", "matches", "draw"),
+    ("torques", "torques", "matches", "draw"),
+)
+#: Job kinds whose typed result draws more than its CSV holds: job kind -> module.
+FROM_RESULT = {
+    "simulate": "simulate",
+    "torques": "torques",
+    "sensitivity": "sensitivity",
+    "workspace": "workspace",
+}
+
+
+class UnknownTable(ValueError):
+    """A table whose header is no result CSV this project writes."""
+
+
+def _module(name: str) -> Any:
+    return importlib.import_module(f"planar_tui.figures.{name}")
+
+
+def recognise(header: tuple[str, ...] | list[str]) -> str | None:
+    """The kind of result a CSV header belongs to (``"simulate"``, ``"sweep"`` ...), or
+    ``None``. Imports no matplotlib."""
+    header = tuple(header)
+    for kind, module, test, _ in RECOGNISERS:
+        if getattr(_module(module), test)(header):
+            return kind
+    return None
+
+
+def _drawer(header: tuple[str, ...]) -> Callable[[CsvTable, str], Any]:
+    for _, module, test, draw in RECOGNISERS:
+        if getattr(_module(module), test)(header):
+            return getattr(_module(module), draw)
+    kinds = ", ".join(dict.fromkeys(kind for kind, *_ in RECOGNISERS))
+    shown = ",".join(header[:4]) + (",..." if len(header) > 4 else "")
+    raise UnknownTable(
+        f"is {shown!r}, the header of no result CSV of planar-tui",
+        f"the header of a {kinds} CSV",
+    )
+
+
+def figure_for_table(table: CsvTable, title: str = "") -> Any:
+    """The figure of a result table (:class:`UnknownTable` if its header is unknown)."""
+    return _drawer(tuple(table.header))(table, title)
+
+
+def figure_for_result(job: Any, result: Any) -> Any:
+    """The figure of a finished job: from the typed result where its kind has one
+    (:data:`FROM_RESULT`), else from its main table."""
+    module = FROM_RESULT.get(job.kind)
+    if module is not None:
+        return _module(module).from_result(job, result)
+    return figure_for_table(result.table, job.label)
+
+
+def _saved(figure: Any, path: Path | str, dpi: float | None) -> Path:
+    from planar_tui.figures.canvas import DPI, save
+
+    try:
+        return save(figure, path, dpi=dpi or DPI)
+    finally:
+        figure.clear()
+
+
+def save_result_figure(
+    job: Any, result: Any, path: Path | str, *, dpi: float | None = None
+) -> Path:
+    """Draw a finished job's figure and write it to ``path`` (``.svg``, ``.png``, ``.pdf``)."""
+    return _saved(figure_for_result(job, result), path, dpi)
+
+
+def save_table_figure(table: CsvTable, path: Path | str, title: str = "", *,
+                      dpi: float | None = None) -> Path:  # fmt: skip
+    """Draw a result table's figure and write it to ``path``."""
+    return _saved(figure_for_table(table, title), path, dpi)
+
+
+def read_table(path: Path | str) -> CsvTable:
+    """A result CSV read back (see :func:`planar_tui.figures.table.read_csv`)."""
+    from planar_tui.figures.table import read_csv
+
+    return read_csv(path)
+
+
+def save_csv_figure(csv_path: Path | str, path: Path | str, *, dpi: float | None = None) -> Path:
+    """Draw the figure of a result CSV file (titled with its name) into ``path``."""
+    table = read_table(csv_path)
+    return save_table_figure(table, path, Path(csv_path).name, dpi=dpi)

@@ -1,0 +1,206 @@
+"""Figure of a 3-RRR workspace (paper B, figures 4-6): the kept boxes coloured inside /
+boundary, the exact boundary (the geometric form's inner polygon,
+:func:`planar_tui.workspace.geometry.workspace_polygon`) drawn over them, and the robot at
+a pose inside the workspace (base triangle, legs, platform); axes in cm, equal aspect.
+
+The pose: the platform point at a point inside the exact workspace, then each leg's
+passive joint :math:`B_i` where the circles :math:`|B - A_i| = l_1` and
+:math:`|B - C_i| = l_2` meet, the solution whose active angle lies within the joint's
+limits (:math:`C_i = (x, y) + R(\\varphi) q_i`).
+
+From the CSVs alone: the boxes CSV (``x_lo_cm, x_hi_cm, y_lo_cm, y_hi_cm, status``) gives
+the boxes; the summary CSV gives the certified bracket
+``area_inside_cm2 ≤ exact ≤ area_kept_cm2`` beside the exact area, as bars.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from planar_tui.csvio import CsvTable
+from planar_tui.figures.canvas import new_figure
+from planar_tui.figures.table import column, has_columns, text_column
+
+BOXES = ("x_lo_cm", "x_hi_cm", "y_lo_cm", "y_hi_cm", "status")
+SUMMARY = ("form", "precision_cm", "area_kept_cm2", "area_inside_cm2")
+INSIDE_COLOUR, BOUNDARY_COLOUR = "#4c9f70", "#f2b134"
+#: Boxes above which the box layers are rasterised in SVG and PDF (the file stays small).
+RASTER_ABOVE = 2000
+#: Segments per turn of the drawn exact boundary.
+BOUNDARY_SEGMENTS = 720
+
+
+def matches_boxes(header: tuple[str, ...]) -> bool:
+    return has_columns(header, BOXES)
+
+
+def matches_summary(header: tuple[str, ...]) -> bool:
+    return has_columns(header, SUMMARY)
+
+
+def draw_boxes(ax: Any, boxes: Any, inside: Any) -> None:
+    """The kept boxes as two collections (inside, boundary), one rectangle per box."""
+    import numpy as np
+    from matplotlib.collections import PolyCollection
+
+    for mask, face, label in ((inside, INSIDE_COLOUR, "inside (proved)"),
+                              (~inside, BOUNDARY_COLOUR, "boundary (kept)")):  # fmt: skip
+        b = boxes[mask]
+        verts = np.stack(
+            [b[:, [0, 2]], b[:, [1, 2]], b[:, [1, 3]], b[:, [0, 3]]], axis=1
+        ) if len(b) else np.zeros((0, 4, 2))  # fmt: skip
+        collection = PolyCollection(
+            verts,
+            facecolors=face,
+            edgecolors="none",
+            label=label,
+            gid=label.split()[0],
+            rasterized=len(boxes) > RASTER_ABOVE,
+        )
+        ax.add_collection(collection)
+    if len(boxes):
+        ax.set_xlim(boxes[:, 0].min(), boxes[:, 1].max())
+        ax.set_ylim(boxes[:, 2].min(), boxes[:, 3].max())
+
+
+def _polygon_rings(polygon: Any) -> list[Any]:
+    """Exterior and interior rings of a shapely (multi)polygon as coordinate arrays."""
+    import numpy as np
+
+    parts = getattr(polygon, "geoms", [polygon])
+    rings = []
+    for part in parts:
+        if part.is_empty or not hasattr(part, "exterior"):
+            continue
+        rings.append(np.asarray(part.exterior.coords))
+        rings.extend(np.asarray(ring.coords) for ring in part.interiors)
+    return rings
+
+
+def leg_pose(a, c, l1, l2, lo, hi) -> tuple[float, float] | None:
+    """The passive joint ``B`` of a leg from base joint ``a`` to platform point ``c``
+    whose active angle lies in ``[lo, hi]`` (radians, modulo 2π), or ``None``."""
+    dx, dy = c[0] - a[0], c[1] - a[1]
+    d = math.hypot(dx, dy)
+    if d == 0 or d > l1 + l2 or d < abs(l1 - l2):
+        return None
+    base = math.atan2(dy, dx)
+    spread = math.acos(max(-1.0, min(1.0, (l1 * l1 + d * d - l2 * l2) / (2 * l1 * d))))
+    for angle in (base + spread, base - spread):
+        if (angle - lo) % (2 * math.pi) <= (hi - lo) + 1e-9:
+            return (a[0] + l1 * math.cos(angle), a[1] + l1 * math.sin(angle))
+    return None
+
+
+def draw_robot(ax: Any, robot: Any, spec: Any, point: tuple[float, float]) -> bool:
+    """The 3-RRR with its platform point at ``point``: base triangle, legs, platform.
+    False (nothing drawn) when a leg cannot reach within its limits."""
+    phi = spec.orientation_rad
+    c_, s_ = math.cos(phi), math.sin(phi)
+    base = robot.base_joints_cm()
+    platform = [(point[0] + c_ * qx - s_ * qy, point[1] + s_ * qx + c_ * qy)
+                for qx, qy in robot.platform_points_cm()]  # fmt: skip
+    joints = [leg_pose(a, c, robot.proximal_cm, robot.distal_cm, lo, hi)
+              for a, c, (lo, hi) in zip(base, platform, spec.limits_rad, strict=True)]  # fmt: skip
+    if any(b is None for b in joints):
+        return False
+    closed = [*base, base[0]]
+    ax.fill(*zip(*closed, strict=True), color="0.85", zorder=0, gid="base")
+    ax.plot(*zip(*closed, strict=True), color="0.4", lw=1.0, gid="base")
+    for a, b, c in zip(base, joints, platform, strict=True):
+        ax.plot([a[0], b[0], c[0]], [a[1], b[1], c[1]], "-o", color="#3a5fcd", lw=1.6,
+                ms=3.5, gid="leg")  # fmt: skip
+    tri = [*platform, platform[0]]
+    ax.fill(*zip(*tri, strict=True), color="#c0504d", alpha=0.5, gid="platform")
+    ax.plot(*point, marker="+", color="k", ms=8, gid="point")
+    return True
+
+
+def draw(boxes: Any, inside: Any, title: str, robot: Any = None, spec: Any = None,
+         summary: str = "") -> Any:  # fmt: skip
+    """Boxes (rows ``x_lo, x_hi, y_lo, y_hi``; ``inside`` a boolean per box), with the
+    exact boundary and the robot when ``robot`` and ``spec`` are given."""
+    with_robot = robot is not None and spec is not None
+    fig = new_figure(12.0 if with_robot else 7.0, 6.0)
+    if with_robot:
+        overview, ax = fig.subplots(1, 2)
+    else:
+        ax, overview = fig.add_subplot(), None
+    draw_boxes(ax, boxes, inside)
+    if with_robot:
+        from planar_tui.workspace.geometry import workspace_polygon
+
+        polygon = workspace_polygon(robot, spec.limits_rad, spec.orientation_rad,
+                                    BOUNDARY_SEGMENTS, False)  # fmt: skip
+        for k, ring in enumerate(_polygon_rings(polygon)):
+            for target in (ax, overview):
+                target.plot(ring[:, 0], ring[:, 1], color="k", lw=1.0, gid="exact",
+                            label="exact boundary" if k == 0 else None)  # fmt: skip
+        if not polygon.is_empty:
+            centre = polygon.centroid
+            inner = centre if polygon.contains(centre) else polygon.representative_point()
+            draw_robot(overview, robot, spec, (inner.x, inner.y))
+            ax.plot(inner.x, inner.y, marker="+", color="k", ms=10)
+            if not len(boxes):
+                x0, y0, x1, y1 = polygon.bounds
+                pad = 0.05 * max(x1 - x0, y1 - y0, 1e-9)
+                ax.set(xlim=(x0 - pad, x1 + pad), ylim=(y0 - pad, y1 + pad))
+        overview.set(xlabel="x (cm)", ylabel="y (cm)", aspect="equal",
+                     title="the robot at a pose inside")  # fmt: skip
+        overview.grid(alpha=0.3)
+    ax.set(xlabel="x (cm)", ylabel="y (cm)", aspect="equal", title=summary or "workspace")
+    ax.grid(alpha=0.3)
+    ax.legend(loc="upper right", fontsize="small")
+    fig.suptitle(title)
+    return fig
+
+
+def from_boxes_table(table: CsvTable, title: str) -> Any:
+    """The boxes of a boxes CSV (no robot: no exact boundary, no pose)."""
+    import numpy as np
+
+    boxes = (
+        np.column_stack([column(table, name) for name in BOXES[:4]])
+        if table.rows
+        else np.zeros((0, 4))
+    )
+    inside = np.array([s == "inside" for s in text_column(table, "status")], dtype=bool)
+    return draw(boxes.reshape(-1, 4), inside, title, summary=f"{len(boxes)} kept boxes")
+
+
+def from_summary_table(table: CsvTable, title: str) -> Any:
+    """The certified area bracket of each summary row beside the exact area."""
+    import numpy as np
+
+    forms = text_column(table, "form")
+    kept, inside = column(table, "area_kept_cm2"), column(table, "area_inside_cm2")
+    exact = column(table, "area_geometric_cm2") if "area_geometric_cm2" in table.header else None
+    fig = new_figure(7.0, 1.2 + 0.5 * len(forms))
+    ax = fig.add_subplot()
+    y = np.arange(len(forms))
+    ax.barh(y, kept - inside, left=inside, color=BOUNDARY_COLOUR, label="bracket [inside, kept]")
+    ax.barh(y, inside, color=INSIDE_COLOUR, alpha=0.35, label="inside (proved)")
+    if exact is not None and np.isfinite(exact).any():
+        ax.plot(exact, y, "k|", ms=16, mew=2, label="exact (geometric)")
+    labels = [f"{f}, ε = {e:g}" for f, e in zip(forms, column(table, "precision_cm"), strict=True)]
+    ax.set_yticks(y, labels)
+    ax.set(xlabel="area (cm²)", title="certified area bracket")
+    ax.legend(fontsize="small", loc="lower right")
+    fig.suptitle(title)
+    return fig
+
+
+def from_result(job: Any, result: Any) -> Any:
+    """The figure of a finished workspace job: boxes, exact boundary, the robot."""
+    import numpy as np
+
+    from planar_tui.workspace.compute import INSIDE
+    from planar_tui.workspace.job import map_title
+
+    outcome = result.outcome
+    if outcome is None:
+        return from_summary_table(result.table, job.label)
+    boxes = np.asarray(outcome.boxes)[:, :4] if len(outcome.boxes) else np.zeros((0, 4))
+    inside = np.asarray(outcome.status) == INSIDE
+    return draw(boxes, inside, map_title(job, outcome), job.robot, job.spec, result.summary)
