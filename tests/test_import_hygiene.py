@@ -14,7 +14,7 @@ import json, sys
 from typer.testing import CliRunner
 from planar_tui.cli import app
 result = CliRunner().invoke(app, sys.argv[1:])
-heavy = ("numba", "SALib", "textual", "scipy", "mujoco", "numpy")
+heavy = ("numba", "SALib", "textual", "scipy", "mujoco", "numpy", "matplotlib")
 print(json.dumps({"code": result.exit_code, "loaded": [m for m in heavy if m in sys.modules]}))
 """
 
@@ -46,6 +46,18 @@ def test_batch_run_never_imports_textual(tmp_path):
     assert probe["code"] == 0
     assert "textual" not in probe["loaded"]
     assert "numba" in probe["loaded"]  # the probe can see a heavy import when there is one
+
+
+def test_a_warm_batch_run_never_imports_matplotlib(tmp_path):
+    """Figures cost nothing unless asked for: `run paper-b-table3` (kernels cached by a
+    first run) imports no matplotlib; with `--plot` it does (the probe sees it)."""
+    probe = modules_loaded_by("run", "paper-b-table3", "--out-dir", str(tmp_path))
+    assert probe["code"] == 0 and "numba" in probe["loaded"]
+    assert "matplotlib" not in probe["loaded"]
+    plotted = modules_loaded_by(
+        "torques", "paper-a-table1", "--out-dir", str(tmp_path), "--plot", str(tmp_path / "t.svg")
+    )
+    assert plotted["code"] == 0 and "matplotlib" in plotted["loaded"]
 
 
 def test_loading_a_cached_kernel_skips_numbas_scipy_blas_probe_but_blas_still_works():

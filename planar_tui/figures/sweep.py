@@ -4,7 +4,7 @@ path, the job kind's summary figures, ``status``, ``message``, ``seconds``).
 Varied keys are the columns after ``point`` named as preset key paths (a job key such as
 ``orientation_deg``, a robot key ``robot3rrr.distal_cm``, a list element
 ``robot.lengths_m[2]``) that take at least two values; the figures are the other numeric
-columns but ``seconds``. One varied key: each figure against it as a line, the failed
+columns but ``seconds`` and the settings echoed by the kind's summary (``precision_cm``). One varied key: each figure against it as a line, the failed
 points marked with a red ✕ on the axis. Two: a heat map per figure (a full grid), or the
 points coloured by the figure (a sampled design), failed points marked ✕.
 """
@@ -20,7 +20,7 @@ from planar_tui.figures.canvas import new_figure
 from planar_tui.figures.table import column, text_column
 
 #: Most figures drawn (the first ones in column order).
-MOST_PANELS = 6
+MOST_PANELS = 9
 BOOKKEEPING = ("point", "status", "message", "seconds")
 
 
@@ -54,8 +54,9 @@ def split_columns(table: CsvTable) -> tuple[list[str], list[str]]:
         finite = values[np.isfinite(values)]
         if not len(finite):
             continue
-        if is_key_path(name, keys) and len(np.unique(finite)) > 1 and not figures:
-            varied.append(name)
+        if is_key_path(name, keys):
+            if len(np.unique(finite)) > 1 and not figures:
+                varied.append(name)  # a setting that stays put (an echoed ε) is no figure
         else:
             figures.append(name)
     if not varied and figures:  # no key path: the first numeric column that varies

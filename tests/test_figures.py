@@ -1,0 +1,304 @@
+"""Figures (planar_tui.figures): every kind drawn from a bundled preset's result (small
+settings) to SVG and PNG, its artists counted and compared with the result's numbers, and
+the `plot` command on every CSV kind."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import struct
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from planar_tui import batch, figures
+from planar_tui.figures.canvas import DPI
+from planar_tui.presets import load_preset
+from tests.conftest import PRESETS, REPO
+
+FIXTURES = REPO / "tests" / "data" / "figures"
+
+
+def _run(preset: str, key: str, **changes):
+    job = next(j for j in load_preset(PRESETS / f"{preset}.toml").jobs if j.key == key)
+    if changes:
+        job = dataclasses.replace(job, spec=dataclasses.replace(job.spec, **changes))
+    (job,) = batch.prepare_jobs([job])
+    return job, batch.run_job(job)
+
+
+@pytest.fixture(scope="module")
+def results():
+    """One small run per kind, shared by the module's tests."""
+    return {
+        "simulate": _run("paper-a-table1", "simulate[1]", duration_s=0.05, every=5),
+        "torques": _run("paper-a-table1", "torques"),
+        "sensitivity": _run("paper-a-fig5-6", "sensitivity[1]", samples=64, efast_samples=80),
+        "workspace": _run("paper-b-table3", "workspace[4]", precision_cm=0.9375),
+    }
+
+
+@pytest.fixture(scope="module")
+def drawn(results):
+    """Each kind's figure, drawn once."""
+    return {kind: figures.figure_for_result(*pair) for kind, pair in results.items()}
+
+
+def _by_gid(fig, gid: str, kind: str = "lines") -> list:
+    return [a for ax in fig.axes for a in getattr(ax, kind) if a.get_gid() == gid]
+
+
+def png_size(path: Path) -> tuple[int, int]:
+    """Width and height from a PNG's IHDR chunk."""
+    data = path.read_bytes()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    return struct.unpack(">II", data[16:24])
+
+
+@pytest.mark.parametrize("kind", ["simulate", "torques", "sensitivity", "workspace"])
+def test_each_kind_saves_as_svg_and_png_of_the_figure_size(results, drawn, kind, tmp_path):
+    fig = drawn[kind]
+    width, height = fig.get_size_inches()
+    from planar_tui.figures.canvas import save
+
+    svg = save(fig, tmp_path / "f.svg")
+    png = save(fig, tmp_path / "f.png")
+    assert svg.read_text(encoding="utf-8").lstrip().startswith("<?xml")
+    assert "<svg" in svg.read_text(encoding="utf-8")
+    assert png_size(png) == (round(width * DPI), round(height * DPI))
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["f.png", "f.svg"]  # no temp file
+
+
+def test_simulate_figure_has_a_line_per_joint_and_the_tip_of_the_csv_angles(results, drawn):
+    job, result = results["simulate"]
+    fig = drawn["simulate"]
+    n = job.robot.n_links
+    series = _by_gid(fig, "series")
+    assert len(series) == 2 * n + 3 + 1  # angles, rates, 3 energies, the drift
+    (tip,) = _by_gid(fig, "tip")
+    assert len(_by_gid(fig, "arm")) == 5
+    # the tip by an explicit sum over the links of the CSV's angles
+    rows = np.asarray(result.table.rows)
+    for row, (x, y) in zip(rows, tip.get_xydata(), strict=True):
+        phi = xs = ys = 0.0
+        for length, theta in zip(job.robot.lengths_m, row[1 : n + 1], strict=True):
+            phi += theta
+            xs += length * math.cos(phi)
+            ys += length * math.sin(phi)
+        assert (x, y) == pytest.approx((xs, ys), abs=1e-12)
+
+
+def test_torques_figure_has_one_bar_per_joint_and_state_of_the_csv_height(results, drawn):
+    job, result = results["torques"]
+    ax = drawn["torques"].axes[0]
+    heights = [bar.get_height() for container in ax.containers for bar in container]
+    tau = np.asarray(result.table.rows)[:, -job.robot.n_links :]
+    assert heights == pytest.approx(tau.T.ravel().tolist(), abs=0.0)
+    assert len(_by_gid(drawn["torques"], "arm")) == len(tau)
+
+
+def test_sensitivity_bars_stack_the_csv_percent_per_speed_and_method(results, drawn):
+    job, result = results["sensitivity"]
+    fig = drawn["sensitivity"]
+    bar_axes = [ax for ax in fig.axes if ax.get_gid() == "bars"]
+    n, speeds, methods = job.robot.n_links, len(job.spec.speeds_rad_s), len(job.spec.methods)
+    d = 2 * n
+    assert len(bar_axes) == n
+    rows = result.table.rows
+    header = result.table.header
+    col = {name: header.index(name) for name in header}
+    for torque, ax in enumerate(bar_axes, start=1):
+        bars = [p for p in ax.patches if p.get_height() >= 0 and p.get_width() > 0]
+        assert len(bars) == speeds * methods * d
+        # every bar's segments: the CSV's percents of that torque, speed and method
+        for speed in job.spec.speeds_rad_s:
+            for method in job.spec.methods:
+                expected = [
+                    r[col["percent"]]
+                    for r in rows
+                    if r[col["torque"]] == torque
+                    and r[col["speed_rad_s"]] == speed
+                    and r[col["method"]] == method
+                ]
+                assert sum(expected) == pytest.approx(100.0)
+                assert any(
+                    [b.get_height() for b in bars[k : k + d]] == pytest.approx(expected, abs=1e-9)
+                    for k in range(0, len(bars), d)
+                )
+    # one error bar per segment whose index has a half-width (here every ST_conf > 0)
+    from matplotlib.container import ErrorbarContainer
+
+    error_bars = [c for ax in bar_axes for c in ax.containers if isinstance(c, ErrorbarContainer)]
+    assert len(error_bars) == sum(1 for r in rows if r[col["ST_conf"]] > 0) > 0
+    (matrix,) = [ax for ax in fig.axes if ax.get_gid() == "matrix"]
+    cells = [t for t in matrix.texts if t.get_gid() == "cell"]
+    middle = sorted(job.spec.speeds_rad_s)[len(job.spec.speeds_rad_s) // 2]
+    at_middle = [r for r in rows if r[col["speed_rad_s"]] == middle]
+    assert len(cells) == n * methods * d == len(at_middle)
+    assert sorted(t.get_text() for t in cells) == sorted(
+        f"{r[col['percent']]:.1f}" for r in at_middle
+    )
+
+
+def test_workspace_figure_boxes_exact_boundary_and_a_robot_pose_within_its_limits(results, drawn):
+    job, result = results["workspace"]
+    fig = drawn["workspace"]
+    statuses = [row[-1] for row in result.extra_tables["boxes"].rows]
+    inside = [c for ax in fig.axes for c in ax.collections if c.get_gid() == "inside"]
+    boundary = [c for ax in fig.axes for c in ax.collections if c.get_gid() == "boundary"]
+    assert len(inside[0].get_paths()) == statuses.count("inside")
+    assert len(boundary[0].get_paths()) == statuses.count("boundary")
+    # the exact boundary: its shoelace area is the geometric area (720 segments a turn)
+    rings = _by_gid(fig, "exact")
+    area = sum(
+        0.5 * abs(np.dot(x, np.roll(y, 1)) - np.dot(y, np.roll(x, 1)))
+        for x, y in (ring.get_data() for ring in rings[::2])
+    )
+    assert area == pytest.approx(result.outcome.geometric.area_cm2, rel=2e-3)
+    # the legs: A -> B of length l1 at an angle within the limits, B -> C of length l2
+    legs = _by_gid(fig, "leg")
+    assert len(legs) == 3
+    robot = job.robot
+    for (lo, hi), leg in zip(job.spec.joint_limits_deg, legs, strict=True):
+        (ax_, ay), (bx, by), (cx, cy) = leg.get_xydata()
+        assert math.hypot(bx - ax_, by - ay) == pytest.approx(robot.proximal_cm, rel=1e-12)
+        assert math.hypot(cx - bx, cy - by) == pytest.approx(robot.distal_cm, rel=1e-12)
+        angle = math.degrees(math.atan2(by - ay, bx - ax_)) % 360
+        assert lo - 1e-9 <= angle <= hi + 1e-9
+    (point,) = _by_gid(fig, "point")
+    px, py = point.get_xydata()[0]
+    boxes = np.asarray(result.outcome.boxes)
+    assert np.any(
+        (boxes[:, 0] <= px) & (px <= boxes[:, 1]) & (boxes[:, 2] <= py) & (py <= boxes[:, 3])
+    )
+
+
+FIXTURE_KINDS = {
+    "sweep-orientation.csv": "sweep",
+    "sweep-grid.csv": "sweep",
+    "motion-band.csv": "motion uncertainty band",
+    "motion-indices.csv": "motion uncertainty indices",
+}
+
+
+def test_sweep_figures_mark_the_failed_points():
+    one = figures.figure_for_table(figures.read_table(FIXTURES / "sweep-orientation.csv"))
+    failed = _by_gid(one, "failed")
+    assert failed and all(len(line.get_xdata()) == 1 for line in failed)
+    assert failed[0].get_xdata()[0] == 10  # point 4: orientation 10 deg
+    lines = _by_gid(one, "sweep")
+    assert len(lines) == 7 and all(len(line.get_xdata()) == 4 for line in lines)
+    two = figures.figure_for_table(figures.read_table(FIXTURES / "sweep-grid.csv"))
+    heat = _by_gid(two, "heat", "images")
+    assert len(heat) == 2 and heat[0].get_array().shape == (3, 3)
+    assert heat[0].get_array().mask[1, 1]  # point 5 (distal 30, orientation 0) failed
+    assert _by_gid(two, "failed")[0].get_xydata().tolist() == [[0.0, 30.0]]
+
+
+def test_motion_band_figure_has_a_band_and_a_mean_per_output():
+    table = figures.read_table(FIXTURES / "motion-band.csv")
+    fig = figures.figure_for_table(table)
+    assert len(_by_gid(fig, "band", "collections")) == 4
+    means = _by_gid(fig, "mean")
+    assert len(means) == 4
+    assert means[2].get_ydata().tolist() == [row[11] for row in table.rows]  # tip_x_m_mean
+
+
+def test_motion_indices_figure_has_a_panel_per_output():
+    fig = figures.figure_for_table(figures.read_table(FIXTURES / "motion-indices.csv"))
+    bar_axes = [ax for ax in fig.axes if ax.get_gid() == "bars"]
+    assert [ax.get_title() for ax in bar_axes] == ["theta1_rad", "tip_x_m"]
+    assert all(len(ax.patches) >= 2 * 2 * 4 for ax in bar_axes)
+
+
+@pytest.fixture(scope="module")
+def csv_files(results, tmp_path_factory):
+    """Every CSV kind the project writes, plus the sweep and motion-uncertainty shapes."""
+    folder = tmp_path_factory.mktemp("csv")
+    files = {}
+    for kind, (job, result) in results.items():
+        (plan,) = batch.plan_outputs([job], folder)
+        plan = dataclasses.replace(
+            plan, extras={"boxes": folder / "boxes.csv"} if kind == "workspace" else {}
+        )
+        written = batch.write_result(plan, result)
+        files[written[0].name] = "workspace summary" if kind == "workspace" else kind
+        if kind == "workspace":
+            files["boxes.csv"] = "workspace boxes"
+    for name, kind in FIXTURE_KINDS.items():
+        (folder / name).write_bytes((FIXTURES / name).read_bytes())
+        files[name] = kind
+    return folder, files
+
+
+def test_plot_command_draws_every_csv_kind(cli, csv_files, tmp_path):
+    folder, files = csv_files
+    assert len(set(files.values())) == 8 and len(files) == 9
+    for name, kind in files.items():
+        table = figures.read_table(folder / name)
+        assert figures.recognise(table.header) == kind, name
+        out = tmp_path / f"{name}.svg"
+        result = cli("plot", folder / name, "--out", out)
+        assert result.exit_code == 0, result.output
+        assert out.stat().st_size > 1000
+    # the default: RESULT.png beside the CSV
+    name = next(n for n, k in files.items() if k == "torques")
+    assert cli("plot", folder / name).exit_code == 0
+    assert png_size((folder / name).with_suffix(".png"))[0] > 100
+
+
+@pytest.mark.parametrize(
+    ("text", "fragment"),
+    [
+        ("a,b\n1,2\n", "(header): is 'a,b', the header of no result CSV"),
+        ("", "(file): cannot be read"),
+    ],
+)
+def test_plot_of_a_csv_it_does_not_know_is_one_line_exit_2(cli, tmp_path, text, fragment):
+    path = tmp_path / "x.csv"
+    path.write_text(text, encoding="utf-8")
+    result = cli("plot", path)
+    assert result.exit_code == 2
+    assert result.stderr.count("\n") == 1 and fragment in result.stderr
+    assert result.stderr.startswith(f"error: {path}: ")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["x.csv"]
+
+
+@pytest.mark.parametrize("command", [["plot", "RESULT"], ["torques", "paper-a-table1"]])
+def test_a_figure_suffix_that_names_no_format_is_exit_2(cli, tmp_path, command):
+    args = [str(tmp_path / "r.csv") if a == "RESULT" else a for a in command]
+    option = "--out" if command[0] == "plot" else "--plot"
+    extra = ["--out-dir", tmp_path] if option == "--plot" else []
+    result = cli(*args, option, tmp_path / "f.gif", *extra)
+    assert result.exit_code == 2
+    assert result.stderr == (
+        f"error: command line: {option}: is '{tmp_path / 'f.gif'}': has the suffix '.gif' "
+        "(expected a file ending .svg, .png, .pdf)\n"
+    )
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_plot_option_with_several_jobs_writes_numbered_figures(cli, tmp_path):
+    result = cli("simulate", "paper-a-table1", "--out-dir", tmp_path, "--plot", tmp_path / "s.png")
+    assert result.exit_code == 0, result.output
+    assert png_size(tmp_path / "s-1.png")[0] > 100 and png_size(tmp_path / "s-2.png")[0] > 100
+
+
+def test_plot_key_of_a_job_table_writes_its_figure_and_is_checked(cli, tmp_path):
+    text = (PRESETS / "paper-a-table1.toml").read_text(encoding="utf-8")
+    preset = tmp_path / "p.toml"
+    preset.write_text(
+        text.replace('output = "table1-6r-torques.csv"', 'output = "t.csv"\nplot = "t.pdf"')
+    )
+    out = tmp_path / "out"
+    assert cli("torques", preset, "--out-dir", out).exit_code == 0
+    assert (out / "t.pdf").read_bytes()[:5] == b"%PDF-"
+    preset.write_text(text.replace('output = "table1-6r-torques.csv"', 'plot = "t.jpg"'))
+    result = cli("torques", preset, "--out-dir", tmp_path / "bad")
+    assert result.exit_code == 2
+    assert result.stderr == (
+        f"error: {preset}: torques.plot: is 't.jpg': has the suffix '.jpg' "
+        "(expected a file ending .svg, .png, .pdf)\n"
+    )
+    assert not (tmp_path / "bad").exists()
