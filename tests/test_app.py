@@ -451,3 +451,27 @@ async def test_export_names_and_writes_files_as_planar_tui_run(tmp_path, cli):
     assert [row[:timing] + row[timing + 1 :] for row in app_rows] == [
         row[:timing] + row[timing + 1 :] for row in cli_rows
     ]
+
+
+@async_test
+async def test_ctrl_l_writes_the_figure_beside_the_csv_export_writes(tmp_path):
+    app = make_app(tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        await pilot.press("ctrl+l")  # nothing run yet: a warning, no file
+        await pilot.pause()
+        assert not list(tmp_path.glob("*.png"))
+        await run_tab(app, pilot, "simulate")
+        await pilot.press("ctrl+l")
+        await app.workers.wait_for_complete()
+        await pilot.pause(0.1)
+        figure = tmp_path / "tiny-simulate.png"  # the CSV export names, as .png
+        assert figure.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+        assert any(f"Wrote {figure}" in n.message for n in app._notifications)
+        # again: the file exists, so it asks; "n" keeps it
+        stamp = figure.stat().st_mtime_ns
+        await pilot.press("ctrl+l")
+        await pilot.pause()
+        assert isinstance(app.screen, ConfirmDialog)
+        await pilot.press("n")
+        await pilot.pause()
+        assert figure.stat().st_mtime_ns == stamp

@@ -55,6 +55,7 @@ class WorkbenchApp(FileActions, App):
         Binding("ctrl+r", "pane_action('remove_link')", "Del link", priority=True),
         Binding("ctrl+t", "pane_action('toggle_view')", "S1/ST/%", priority=True),
         Binding("ctrl+g", "goto_problem", "Go to error", priority=True),
+        Binding("ctrl+l", "figure", "Figure", priority=True, show=False),
         Binding("f9", "run_all", "Run all", key_display="F9"),
         *(
             Binding(str(number), f"show_tab_number({number})", f"Tab {number}", show=False)
@@ -505,6 +506,11 @@ class WorkbenchApp(FileActions, App):
             "Export CSV",
             "Write the result's CSV files into a folder, as planar-tui run (ctrl+e)",
             self.action_export,
+        )
+        yield SystemCommand(
+            "Write figure",
+            "Draw the result as a figure beside the CSV Export writes (ctrl+l)",
+            self.action_figure,
         )
         yield SystemCommand("Help", "Key bindings (F1)", self.action_help)
         yield SystemCommand(

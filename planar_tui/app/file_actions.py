@@ -330,6 +330,66 @@ class FileActions:
         )
         self.push_screen(dialog, answered)
 
+    # -- figure -----------------------------------------------------------------------
+    def figure_path(self, pane: JobPane) -> Path:
+        """Where the pane's figure goes: the job's ``plot`` key, else the CSV that Export
+        would write into the output folder with the suffix ``.png`` (beside it)."""
+        from planar_tui.batch import plan_outputs
+
+        (plan,) = plan_outputs([pane.job], self.output_dir)
+        return plan.figure or plan.main.with_suffix(".png")
+
+    def action_figure(self) -> None:
+        """Write the figure of the result on screen beside its CSV (``ctrl+l``), asking
+        before it replaces a file; drawn in a thread (matplotlib, about a second)."""
+        if self.dialog_open():
+            return
+        from planar_tui.app.widgets.panes import JobPane
+
+        pane = self.current_pane()
+        if not isinstance(pane, JobPane) or pane.result is None or pane.job is None:
+            self.notify("No figure: run a job on this tab first.", severity="warning")
+            return
+        path = self.figure_path(pane)
+        if not existing_files([path]):
+            self.write_figure(pane, path)
+            return
+
+        def answered(yes: bool | None) -> None:
+            if yes:
+                self.write_figure(pane, path)
+
+        dialog = ConfirmDialog(
+            "Overwrite 1 file?", detail=str(path), yes="Overwrite (y)", no="Cancel (n)"
+        )
+        self.push_screen(dialog, answered)
+
+    def write_figure(self, pane: JobPane, path: Path) -> None:
+        """Draw and write the pane's figure in a worker thread; notify the path, or show
+        why it failed in a dialog (nothing written)."""
+        from planar_tui import batch
+
+        try:
+            batch.check_writable(path)
+        except PresetError as error:
+            self.push_screen(MessageDialog("No figure written", str(error)))
+            return
+        job, result = pane.job, pane.result
+
+        def draw() -> None:
+            from planar_tui.figures import save_result_figure
+
+            try:
+                written = save_result_figure(job, result, path)
+            except (OSError, ValueError) as error:
+                message = f"{path}: cannot write: {error}"
+                self.call_from_thread(self.push_screen, MessageDialog("No figure written", message))
+                return
+            self.call_from_thread(self.notify, f"Wrote {written}", title="Figure")
+
+        self.notify(f"Drawing {path} …", title="Figure")
+        self.run_worker(draw, thread=True, group="figure", exit_on_error=False)
+
     def export_csv(self, pane: JobPane, out_dir: str | Path) -> list[Path]:
         """Write the pane's result into ``out_dir`` exactly as ``planar-tui run --out-dir``
         does: the job's ``output`` CSV and the extra tables its preset names (a workspace's

@@ -140,6 +140,8 @@ Each job is checked alone: a bad field gets a red border and reason.
   ctrl+s      save (comments kept; a bundled preset asks for a path)
   ctrl+z      undo the latest edit
   ctrl+e      export the result's CSV files to a folder (as the CLI)
+  ctrl+l      write the result's figure (PNG, or the plot key) beside
+              the CSV that export writes into the output folder
   ctrl+f      hide / show the settings form (room for the results)
   q, ctrl+q   quit (asks about unsaved edits or a running job)
   F1, ?       this help (? outside fields)
