@@ -362,12 +362,23 @@ def write_result(plan: OutputPlan, result: JobResult) -> list[Path]:
         for name, path in plan.extras.items():
             written.append(write_csv_atomic(path, result.extra_tables[name]))
         if plan.figure is not None:
-            from planar_tui.figures import save_result_figure
-
-            written.append(save_result_figure(plan.job, result, plan.figure))
+            written.append(_write_figure(plan, result))
     except OSError as error:
         raise OutputFailed(error.filename or plan.main, error.strerror or str(error)) from None
     return written
+
+
+def _write_figure(plan: OutputPlan, result: JobResult) -> Path:
+    """Draw and write the job's figure; a result the figure cannot show (no varied column
+    in a sweep, say) is :class:`OutputFailed`, never a traceback."""
+    from planar_tui.figures import save_result_figure
+
+    try:
+        return save_result_figure(plan.job, result, plan.figure)
+    except OSError:
+        raise
+    except Exception as error:
+        raise OutputFailed(plan.figure, f"cannot draw the figure: {error}") from None
 
 
 def run_plans(

@@ -108,10 +108,16 @@ def test_sensitivity_bars_stack_the_csv_percent_per_speed_and_method(results, dr
     rows = result.table.rows
     header = result.table.header
     col = {name: header.index(name) for name in header}
+    from matplotlib.container import ErrorbarContainer
+
     for torque, ax in enumerate(bar_axes, start=1):
-        bars = [p for p in ax.patches if p.get_height() >= 0 and p.get_width() > 0]
+        bars = [p for p in ax.patches if p.get_width() > 0]
         assert len(bars) == speeds * methods * d
-        # every bar's segments: the CSV's percents of that torque, speed and method
+        # the stacks, bottom to top, at each x: the CSV's percents of one speed and method
+        stacks: dict[float, list] = {}
+        for bar in sorted(bars, key=lambda b: (b.get_x(), b.get_y())):
+            stacks.setdefault(round(bar.get_x(), 9), []).append(bar.get_height())
+        assert len(stacks) == speeds * methods
         for speed in job.spec.speeds_rad_s:
             for method in job.spec.methods:
                 expected = [
@@ -122,15 +128,12 @@ def test_sensitivity_bars_stack_the_csv_percent_per_speed_and_method(results, dr
                     and r[col["method"]] == method
                 ]
                 assert sum(expected) == pytest.approx(100.0)
-                assert any(
-                    [b.get_height() for b in bars[k : k + d]] == pytest.approx(expected, abs=1e-9)
-                    for k in range(0, len(bars), d)
-                )
-    # one error bar per segment whose index has a half-width (here every ST_conf > 0)
-    from matplotlib.container import ErrorbarContainer
-
-    error_bars = [c for ax in bar_axes for c in ax.containers if isinstance(c, ErrorbarContainer)]
-    assert len(error_bars) == sum(1 for r in rows if r[col["ST_conf"]] > 0) > 0
+                assert any(s == pytest.approx(expected, abs=1e-9) for s in stacks.values())
+        # one error bar per segment whose index has a half-width (here every ST_conf > 0)
+        (error_bars,) = [c for c in ax.containers if isinstance(c, ErrorbarContainer)]
+        (segments,) = error_bars.lines[2]
+        with_conf = [r for r in rows if r[col["torque"]] == torque and r[col["ST_conf"]] > 0]
+        assert len(segments.get_segments()) == len(with_conf) > 0
     (matrix,) = [ax for ax in fig.axes if ax.get_gid() == "matrix"]
     cells = [t for t in matrix.texts if t.get_gid() == "cell"]
     middle = sorted(job.spec.speeds_rad_s)[len(job.spec.speeds_rad_s) // 2]
@@ -283,6 +286,12 @@ def test_plot_option_with_several_jobs_writes_numbered_figures(cli, tmp_path):
     result = cli("simulate", "paper-a-table1", "--out-dir", tmp_path, "--plot", tmp_path / "s.png")
     assert result.exit_code == 0, result.output
     assert png_size(tmp_path / "s-1.png")[0] > 100 and png_size(tmp_path / "s-2.png")[0] > 100
+    one = tmp_path / "one"
+    result = cli(
+        "run", "paper-a-table1", "--job", "torques", "--out-dir", one, "--plot", one / "t.svg"
+    )
+    assert result.exit_code == 0, result.output
+    assert sorted(p.name for p in one.iterdir()) == ["t.svg", "table1-6r-torques.csv"]
 
 
 def test_plot_key_of_a_job_table_writes_its_figure_and_is_checked(cli, tmp_path):

@@ -30,7 +30,9 @@ def small_png(figure, path: Path) -> int:
     buffer = io.BytesIO()
     figure.savefig(buffer, format="png", dpi=DPI)
     figure.clear()
-    image = Image.open(buffer).convert("RGB").quantize(colors=COLOURS, method=Image.Quantize.MEDIANCUT)
+    image = (
+        Image.open(buffer).convert("RGB").quantize(colors=COLOURS, method=Image.Quantize.MEDIANCUT)
+    )
     image.save(path, format="PNG", optimize=True)
     return path.stat().st_size
 
@@ -66,6 +68,7 @@ def main(names: list[str]) -> None:
     text = page.read_text(encoding="utf-8")
     kept = text[: text.index(MARKER) + len(MARKER)]
     page.write_text(kept + "\n\n" + "\n".join(sections), encoding="utf-8")
+
 
 if __name__ == "__main__":
     main(sys.argv[1:])

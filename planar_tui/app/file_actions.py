@@ -381,7 +381,7 @@ class FileActions:
 
             try:
                 written = save_result_figure(job, result, path)
-            except (OSError, ValueError) as error:
+            except Exception as error:  # any drawing failure: a dialog, never a crash
                 message = f"{path}: cannot write: {error}"
                 self.call_from_thread(self.push_screen, MessageDialog("No figure written", message))
                 return

@@ -116,8 +116,11 @@ def draw(table: CsvTable, title: str) -> Any:
     width = 0.8 / len(methods)
     for g, group in enumerate(groups):
         ax = fig.add_subplot(grid[g // cols, g % cols], gid="bars")
-        for s, value in enumerate(swept):
-            for m, method in enumerate(methods):
+        tops: list[tuple[float, float, float]] = []  # (x, top of a segment, half-width)
+        for m, method in enumerate(methods):
+            # segments[p]: (x, share, bottom) of parameter p at every swept value
+            segments: list[list[tuple[float, float, float]]] = [[] for _ in params]
+            for s, value in enumerate(swept):
                 rows = where.get((group, value, method))
                 if not rows:
                     continue
@@ -130,14 +133,21 @@ def draw(table: CsvTable, title: str) -> Any:
                     if r is None:
                         continue
                     share = float(ix.percent[r])
-                    ax.bar(x, share, width * 0.9, bottom=bottom, color=colour(p, len(params)),
-                           edgecolor="white", linewidth=0.3, hatch="//" if m else None)  # fmt: skip
+                    segments[p].append((x, share, bottom))
                     bottom += share
                     if math.isfinite(conf[r]) and conf[r] > 0:
-                        ax.errorbar(x, bottom, yerr=conf[r], fmt="none", ecolor="k",
-                                    elinewidth=0.6, capsize=1.5, gid="conf")  # fmt: skip
+                        tops.append((x, bottom, conf[r]))
                 ax.text(x, 101, METHOD_LABELS.get(method, method)[0].upper(), ha="center",
                         va="bottom", fontsize="x-small")  # fmt: skip
+            for p, bars in enumerate(segments):
+                if bars:
+                    xs, shares, bottoms = zip(*bars, strict=True)
+                    ax.bar(xs, shares, width * 0.9, bottom=bottoms, color=colour(p, len(params)),
+                           edgecolor="white", linewidth=0.3, hatch="//" if m else None)  # fmt: skip
+        if tops:
+            xs, ys, half = zip(*tops, strict=True)
+            ax.errorbar(xs, ys, yerr=half, fmt="none", ecolor="k", elinewidth=0.6, capsize=1.5,
+                        gid="conf")  # fmt: skip
         ax.set_xticks(range(len(swept)), [f"{v:g}" for v in swept])
         ax.set(ylim=(0, 108), title=group, xlabel=ix.swept_label)
         if g % cols == 0:
