@@ -134,11 +134,12 @@ def _nearest_existing(path: Path) -> Path:
     return ancestor
 
 
-def check_writable(path: Path) -> None:
+def check_writable(path: Path, what: str = "CSV file") -> None:
     """Refuse an output path that cannot be written, or whose writing would destroy what
     is there (:class:`PresetError`, exit code 2): a name the file system cannot hold (a NUL
     character, a component or path too long), a folder, a device node, FIFO or socket, a
-    read-only file, or a path whose nearest existing ancestor is not a writable folder."""
+    read-only file, or a path whose nearest existing ancestor is not a writable folder.
+    ``what`` names the file in messages (``"figure file"``)."""
     problem = file_name_problem(str(path))
     if problem is not None:
         raise _output_error(path, problem, "a file name the file system accepts")
@@ -156,14 +157,14 @@ def check_writable(path: Path) -> None:
         mode = None
     except OSError as error:
         raise _output_error(
-            path, f"cannot be checked: {error.strerror}", "a CSV file path"
+            path, f"cannot be checked: {error.strerror}", f"a {what} path"
         ) from None
     if mode is not None and stat.S_ISDIR(mode):
-        raise _output_error(path, "is a folder", "a CSV file path")
+        raise _output_error(path, "is a folder", f"a {what} path")
     if mode is not None and not stat.S_ISREG(mode):
         raise _output_error(
             path, f"is {_file_kind(mode)}, not a regular file (it would be replaced)",
-            "a regular CSV file path",
+            f"a regular {what} path",
         )  # fmt: skip
     # no write permission bit at all is read-only even for root, whom os.access lets write
     if mode is not None and not (os.access(path, os.W_OK) and mode & 0o222):
@@ -206,7 +207,7 @@ def check_plans(plans: Sequence[OutputPlan]) -> None:
     for plan in plans:
         figure = (("plot", plan.figure),) if plan.figure else ()
         for name, path in (("output", plan.main), *plan.extras.items(), *figure):
-            check_writable(path)
+            check_writable(path, "figure file" if name == "plot" else "CSV file")
             identity = _identity(path)
             if identity in presets:
                 raise _output_error(

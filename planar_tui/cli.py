@@ -532,11 +532,13 @@ def plot_csv(
             raise PresetError(
                 result, "(file)", f"cannot be read: {error}", "a result CSV"
             ) from None
-        check_writable(target)
+        check_writable(target, "figure file")
         try:
             written = save_table_figure(table, target, result.name)
         except UnknownTable as error:
             raise PresetError(result, "(header)", *error.args) from None
+        except ValueError as error:  # a recognised table the figure cannot show
+            raise PresetError(result, "(content)", f"cannot be drawn: {error}") from None
         except OSError as error:
             raise fail(f"error: {target}: cannot write: {error.strerror or error}") from None
     stdout.print(f"wrote {written}", markup=False)

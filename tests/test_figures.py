@@ -311,3 +311,21 @@ def test_plot_key_of_a_job_table_writes_its_figure_and_is_checked(cli, tmp_path)
         "(expected a file ending .svg, .png, .pdf)\n"
     )
     assert not (tmp_path / "bad").exists()
+
+
+def test_a_sweep_without_a_varied_column_and_a_folder_as_figure_are_one_line_exit_2(cli, tmp_path):
+    flat = tmp_path / "flat.csv"
+    flat.write_text("point,orientation_deg,area_kept_cm2,status,message,seconds\n1,0,5.0,ok,,0.1\n")
+    result = cli("plot", flat)
+    assert result.exit_code == 2
+    assert result.stderr == (
+        f"error: {flat}: (content): cannot be drawn: the sweep has no varied numeric column\n"
+    )
+    folder = tmp_path / "f.png"
+    folder.mkdir()
+    result = cli("torques", "paper-a-table1", "--out-dir", tmp_path, "--plot", folder)
+    assert result.exit_code == 2
+    assert (
+        result.stderr == f"error: {folder}: (output): is a folder (expected a figure file path)\n"
+    )
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["f.png", "flat.csv"]

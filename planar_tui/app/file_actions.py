@@ -370,7 +370,7 @@ class FileActions:
         from planar_tui import batch
 
         try:
-            batch.check_writable(path)
+            batch.check_writable(path, "figure file")
         except PresetError as error:
             self.push_screen(MessageDialog("No figure written", str(error)))
             return
