@@ -14,6 +14,18 @@ extrema inside the interval into account; the test for an interior extremum is w
 by a few ulps so that it errs towards the (always valid) answer ``±1``.
 
 All functions are scalar and allocation free, meant to be called from other kernels.
+
+Domain: bounded, non-empty intervals, ``lo <= hi`` with both bounds finite floats (every
+interval the workspace kernels form). On that domain every result holds the exact real
+result and is itself a non-empty set of reals: ``lo <= hi``, ``lo < +inf`` and
+``hi > -inf``. A bound whose value overflows is rounded outward past the largest float
+:math:`M` (``hi = +inf``, ``lo = -inf``); a lower bound that overflows upwards becomes
+:math:`M` (not ``+inf``, which would leave an interval holding no real number), an upper
+bound that overflows downwards :math:`-M`; so ``iadd(M, M, M, M) = (M, inf)`` and
+``isqr(1.4e154, 1.5e154) = (M, inf)``. Inputs outside the domain are not checked: an empty
+input (``lo > hi``) gives an unspecified, possibly non-empty result (test
+:func:`iintersect`'s output before using it), and an unbounded input may give NaN bounds
+(``inf - inf``, ``0 * inf``) or results that are not enclosures.
 """
 
 import math
@@ -26,25 +38,33 @@ _TWO_PI = 2.0 * math.pi
 #: 2**-52: |v| * _REL >= ulp(v) for every normal v; _TINY = the smallest subnormal.
 _REL = 2.220446049250313e-16
 _TINY = 5e-324
+#: The largest finite float M.
+_MAX = 1.7976931348623157e308
 
 
 @kernel
 def down(value):
-    """A float below ``value``: at most ``np.nextafter(value, -inf)`` (one or two ulps down).
+    """A float below ``value``: at most ``np.nextafter(value, -inf)`` (one or two ulps down);
+    ``-inf`` stays, ``+inf`` (an overflowed lower bound) becomes the largest float.
 
     :math:`v - (|v| 2^{-52} + 2^{-1074})` rounded to nearest: :math:`|v| 2^{-52} \\ge
     \\mathrm{ulp}(v)`, so the result is a float strictly below ``v``. Two multiply-adds
     instead of a libm ``nextafter`` call per bound make the kernels twice as fast.
     """
-    if math.isinf(value):
+    if value > _MAX:  # +inf: a lower bound that overflowed; the real value is >= M
+        return _MAX
+    if value < -_MAX:
         return value
     return value - (abs(value) * _REL + _TINY)
 
 
 @kernel
 def up(value):
-    """A float above ``value``: at least ``np.nextafter(value, inf)`` (see :func:`down`)."""
-    if math.isinf(value):
+    """A float above ``value``: at least ``np.nextafter(value, inf)``; ``+inf`` stays,
+    ``-inf`` (an overflowed upper bound) becomes minus the largest float (see :func:`down`)."""
+    if value < -_MAX:  # -inf: an upper bound that overflowed; the real value is <= -M
+        return -_MAX
+    if value > _MAX:
         return value
     return value + (abs(value) * _REL + _TINY)
 
