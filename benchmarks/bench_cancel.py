@@ -1,7 +1,7 @@
 """Cancel latency per stage: ``python benchmarks/bench_cancel.py [--runs 5]``.
 
 For every stage of every runner (simulate integrating; sensitivity sampling, evaluation,
-analysis; workspace bisection; compiling kernels), a run is started, a timer thread asks
+analysis; workspace bisection and leg-wise paving; compiling kernels), a run is started, a timer thread asks
 it to cancel a moment after the stage began (``Progress.request_cancel``, as the app's
 escape and the CLI's Ctrl-C do) and the time until the runner raises ``Cancelled`` is
 measured. Prints the median, min and max of ``--runs`` runs per stage (goal: ≤ 0.2 s,
@@ -88,7 +88,8 @@ def robot_job(kind: str, body: str, robot: str = "6r"):
 
 def in_process_cases(samples: int, precision_cm: float):
     """(job, stage, run, delay) per in-process stage; ``samples`` the Sobol' N of the
-    sensitivity job, ``precision_cm`` the workspace's ε (mean-value, paper B Table 5)."""
+    sensitivity job, ``precision_cm`` the workspace's ε (mean-value, paper B Table 5, joint
+    strategy); the leg-wise paving runs issue 12's 120° case at ε = 0.01 cm."""
     from planar_tui import batch
     from planar_tui.sensitivity import engine
 
@@ -100,7 +101,13 @@ def in_process_cases(samples: int, precision_cm: float):
     workspace = robot_job(
         "workspace",
         "joint_limits_deg = [[50, 70], [140, 160], [260, 280]]\n"
-        f"precision_cm = {precision_cm}\ngeometric_reference = false",
+        f'precision_cm = {precision_cm}\ngeometric_reference = false\nstrategy = "joint"',
+        robot="3rrr",
+    )
+    legwise = robot_job(  # issue 12's 120° case: about 1 s of paving at ε = 0.01 cm
+        "workspace",
+        "joint_limits_deg = [[-30, 90], [90, 210], [210, 330]]\norientation_deg = -20\n"
+        "precision_cm = 0.01\ngeometric_reference = false",
         robot="3rrr",
     )
 
@@ -118,6 +125,7 @@ def in_process_cases(samples: int, precision_cm: float):
         ("sensitivity, Sobol'", "analysis", lambda p: batch.run_job(sobol_only, p), 0.05),
         ("sensitivity, both", "analysis", lambda p: batch.run_job(sensitivity, p), 0.3),
         ("workspace", "mean-value bisection", lambda p: batch.run_job(workspace, p), 0.1),
+        ("workspace", "mean-value leg-wise paving", lambda p: batch.run_job(legwise, p), 0.1),
     ]
 
 

@@ -42,14 +42,17 @@ _ROBOT = """[robot]
 lengths_m = [0.3, 0.2]
 masses_kg = [1.0, 0.8]
 """
-#: A tiny job per kind whose run calls every kernel the kind's runner calls.
+#: Tiny jobs per kind whose runs call every kernel the kind's runner calls.
 EXAMPLES = {
     "simulate": _ROBOT + "[simulate]\nduration_s = 0.002\nstep_s = 0.001\n",
     "torques": _ROBOT + "[torques]\ntheta_deg = [[0, 10]]\n",
     "sensitivity": _ROBOT + "[sensitivity]\nsamples = 8\nefast_samples = 65\n",
-    "workspace": (
-        "[robot3rrr]\n[workspace]\njoint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n"
+    "workspace": "[robot3rrr]\n"
+    + "".join(
+        "[[workspace]]\njoint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n"
         "precision_cm = 8.0\nrefine_precision_cm = 4.0\ngeometric_reference = false\n"
+        f'strategy = "{strategy}"\n'
+        for strategy in ("legwise", "joint")
     ),
 }
 
@@ -131,8 +134,8 @@ def _run_example(kind: str) -> None:
         with tempfile.TemporaryDirectory(prefix="planar-tui-warmup-") as folder:
             path = Path(folder) / f"warmup-{kind}.toml"
             path.write_text(EXAMPLES[kind], encoding="utf-8")
-            (job,) = load_preset(path).jobs_of(kind)
-            JOB_KINDS[kind].run(JOB_KINDS[kind].prepared(job), Progress())
+            for job in load_preset(path).jobs_of(kind):
+                JOB_KINDS[kind].run(JOB_KINDS[kind].prepared(job), Progress())
         with contextlib.suppress(OSError):  # read-only cache: compiled in memory anyway
             marker(kind).touch()
 

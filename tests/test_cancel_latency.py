@@ -60,7 +60,10 @@ def test_cancel_is_reported_as_a_final_state():
     assert not any(s.cancelled for s in states[:-1])
 
 
-FINE = "joint_limits_deg = [[50, 70], [140, 160], [260, 280]]\ngeometric_reference = false\n"
+FINE = (
+    "joint_limits_deg = [[50, 70], [140, 160], [260, 280]]\ngeometric_reference = false\n"
+    'strategy = "joint"\n'
+)
 
 
 def test_cancelled_workspace_run_releases_its_memory():

@@ -249,7 +249,12 @@ def test_ctrl_c_exits_130_quickly_and_writes_nothing(tmp_path):
     import subprocess
     import sys
 
-    preset = write_preset(tmp_path, limits="[[20, 70], [110, 160], [245, 295]]", precision=0.002)
+    preset = write_preset(
+        tmp_path,
+        limits="[[20, 70], [110, 160], [245, 295]]",
+        precision=0.002,
+        extra='strategy = "joint"\n',  # the leg-wise paving ends before the signal
+    )
     command = [sys.executable, "-m", "planar_tui", "workspace", str(preset), "--out-dir",
                str(tmp_path), "--boxes", str(tmp_path / "b.csv")]  # fmt: skip
     process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE)

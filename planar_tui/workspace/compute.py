@@ -11,11 +11,14 @@ boxes only (the inside boxes of the first stage are final). No copy is made per 
 Stages (each in kernel chunks of at most ``CHUNK_BOXES`` boxes, so progress is reported
 and Cancel/Ctrl-C is honoured within a fraction of a second):
 
-1. *Paper's Algorithm 1* over ``(x, y, θ1, θ2, θ3)`` with the chosen interval form
-   (``natural``, ``mean-value``, ``slope``), or the 2-D bisection with the exact leg-wise
-   test (``arc-distance``), down to ``precision_cm``.
+1. *Paving* down to ``precision_cm`` with the chosen interval form (``natural``,
+   ``mean-value``, ``slope``): ``strategy = "legwise"`` paves (x, y) boxes and decides each
+   leg by its own 1-D θ search (:mod:`planar_tui.workspace.legwise`; boxes it proves are
+   inside and not split), ``"joint"`` is the paper's Algorithm 1 over
+   ``(x, y, θ1, θ2, θ3)``; or the 2-D bisection with the exact leg-wise test
+   (``arc-distance``).
 2. *Classification*: every kept (x, y) box is tested with the exact leg-wise test;
-   proved boxes are ``inside``, the rest ``boundary``.
+   boxes it proves (or the leg-wise paving proved) are ``inside``, the rest ``boundary``.
 3. *Boundary-only refinement* (``refine_precision_cm``): boundary boxes are bisected
    again with the exact test; inside boxes are never split.
 
@@ -42,6 +45,7 @@ LEAF_GRID = 8
 
 SUMMARY_HEADER = (
     "form",
+    "strategy",
     "precision_cm",
     "refine_precision_cm",
     "boxes_processed",
@@ -75,11 +79,17 @@ class WorkspaceOutcome:
     geometric: object | None
     seconds: float
     extent_cm: tuple[float, float, float, float]
+    #: ``legwise`` or ``joint`` for the interval forms, ``""`` for arc-distance and geometric.
+    strategy: str = ""
+    #: (x, y) boxes the leg-wise paving decided (0 otherwise); its ``boxes_processed``
+    #: counts the (x, y, θ_i) boxes on which a leg's form was evaluated.
+    xy_boxes: int = 0
 
     def summary_row(self) -> list:
         g = self.geometric
         return [
             self.form,
+            self.strategy,
             self.precision_cm,
             "" if self.refine_precision_cm is None else self.refine_precision_cm,
             self.boxes_processed,
@@ -269,6 +279,10 @@ BOXES_PER_CELL = {"natural": 75.0, "mean-value": 65.0, "slope": 55.0, "expanded"
 #: Processed boxes of the arc-distance form per ε of the workspace's boundary length
 #: (observed 6.7-7.2 on the same cases).
 BOXES_PER_BOUNDARY_STEP = 8.0
+#: Leg boxes (x, y, θ_i) the leg-wise paving evaluates per ε of the boundary length, per
+#: form: fitted on paper B's Tables 3-5 and the 120° case of issue 12 (observed 67-445
+#: with mean-value and slope, 1.5-3x that with natural).
+LEG_BOXES_PER_BOUNDARY_STEP = {"natural": 400.0, "mean-value": 180.0, "slope": 180.0}
 
 
 def estimate_boxes(robot: Robot3RRR, spec) -> int:
@@ -278,6 +292,8 @@ def estimate_boxes(robot: Robot3RRR, spec) -> int:
     ms): its area A and boundary length L. The 5-D forms refine the whole area down to ε,
     with their θ boxes: ``BOXES_PER_CELL[form] · A / ε²``; the arc-distance form proves
     inside boxes early and refines the boundary only: ``BOXES_PER_BOUNDARY_STEP · L / ε``;
+    the leg-wise paving too, evaluating a few θ pieces per leg and (x, y) box:
+    ``LEG_BOXES_PER_BOUNDARY_STEP[form] · L / ε``;
     a boundary refinement adds the latter at ``refine_precision_cm``. An estimate (within
     about 2x of the counts of paper B's tables), not a bound.
     """
@@ -290,6 +306,10 @@ def estimate_boxes(robot: Robot3RRR, spec) -> int:
     eps = spec.precision_cm
     if spec.form == "arc-distance":
         boxes = BOXES_PER_BOUNDARY_STEP * length / eps
+    elif spec.strategy == "legwise":
+        boxes = (
+            LEG_BOXES_PER_BOUNDARY_STEP["natural" if spec.expanded else spec.form] * length / eps
+        )
     else:
         per_cell = BOXES_PER_CELL["expanded" if spec.expanded else spec.form]
         boxes = per_cell * area / (eps * eps)
@@ -350,17 +370,26 @@ def compute_workspace(robot: Robot3RRR, spec, budget: BoxBudget) -> WorkspaceOut
         )  # fmt: skip
 
     report_estimate(robot, spec, budget.progress)
-    budget.progress.start(1.0, f"{spec.form} bisection")
+    interval_form = spec.form in ("natural", "mean-value", "slope")
+    legwise = interval_form and spec.strategy == "legwise"
+    xy_boxes = 0
+    budget.progress.start(1.0, f"{spec.form} {'leg-wise paving' if legwise else 'bisection'}")
     if spec.form == "arc-distance":
         boxes, status = _arc_stage(p, limits, spec.precision_cm, np.array([extent]), budget)
     else:
         code = {"natural": k5.NATURAL, "mean-value": k5.MEAN_VALUE, "slope": k5.SLOPE}[spec.form]
         if spec.expanded:
             code = k5.NATURAL_EXPANDED
-        boxes = unique_rows(_interval_stage(code, p, spec, box, budget))
+        if spec.strategy == "legwise":
+            from planar_tui.workspace.legwise import legwise_stage
+
+            boxes, proved, xy_boxes = legwise_stage(code, p, spec, box, budget, _read_only)
+        else:
+            boxes = unique_rows(_interval_stage(code, p, spec, box, budget))
+            proved = np.zeros(len(boxes), dtype=np.int64)
         status = np.zeros(len(boxes), dtype=np.int64)
         classify_boxes(boxes, p, limits, status)
-        status = np.where(status == INSIDE, INSIDE, BOUNDARY)
+        status = np.where((status == INSIDE) | (proved == INSIDE), INSIDE, BOUNDARY)
     if spec.refine_precision_cm is not None:
         budget.progress.start(1.0, "boundary refinement")
         inside = status == INSIDE
@@ -390,6 +419,8 @@ def compute_workspace(robot: Robot3RRR, spec, budget: BoxBudget) -> WorkspaceOut
         geometric=geometric,
         seconds=time.perf_counter() - started,
         extent_cm=extent,
+        strategy=spec.strategy if interval_form else "",
+        xy_boxes=xy_boxes,
     )
 
 

@@ -28,6 +28,9 @@ from planar_tui.schema import (
 from planar_tui.workspace.robot import Robot3RRR
 
 FORMS = ("natural", "mean-value", "slope", "arc-distance", "geometric")
+#: How the interval forms pave: per (x, y) box a 1-D θ search per leg, or the paper's
+#: bisection of (x, y, θ1, θ2, θ3) boxes.
+STRATEGIES = ("legwise", "joint")
 
 #: Default cap on the boxes processed by one job (each costs ~1 µs and ≤ 112 bytes).
 DEFAULT_BOX_BUDGET = 50_000_000
@@ -117,6 +120,13 @@ class WorkspaceSpec:
         type_doc=", ".join(f"`{f}`" for f in FORMS),
         doc="interval form of the inclusion test (`geometric`: the exact area only)",
     )
+    strategy: str = setting(
+        string(choices=STRATEGIES),
+        default="legwise",
+        type_doc=", ".join(f"`{s}`" for s in STRATEGIES),
+        doc="natural, mean-value, slope: pave (x, y) deciding each leg by its own θ search "
+        "(`legwise`), or bisect (x, y, θ1, θ2, θ3) boxes as paper B (`joint`)",
+    )
     search_box_cm: tuple[tuple[float, float], tuple[float, float]] | None = setting(
         _search_box,
         default=None,
@@ -128,7 +138,8 @@ class WorkspaceSpec:
         number(positive=True),
         default=10.0,
         type_doc="number > 0",
-        doc="cm per radian when comparing angle and position widths in the 5-D bisection",
+        doc="cm per radian comparing angle and position widths (joint: the bisected "
+        "variable; legwise: θ pieces down to the box width / k)",
     )
     expanded: bool = setting(
         boolean(),
@@ -146,8 +157,9 @@ class WorkspaceSpec:
         integer(minimum=1),
         default=DEFAULT_BOX_BUDGET,
         type_doc="integer ≥ 1, × 112 bytes ≤ the memory limit",
-        doc="most boxes one job may process (then it fails, writing nothing); the default "
-        "is lowered to fit the memory limit",
+        doc="most boxes one job may process (legwise: (x, y, θ_i) boxes a leg's form is "
+        "evaluated on; then it fails, writing nothing); the default is lowered to fit the "
+        "memory limit",
     )
     geometric_reference: bool = setting(
         boolean(),

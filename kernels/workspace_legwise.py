@@ -1,0 +1,186 @@
+"""Leg-wise interval paving of the 3-RRR workspace: (x, y) boxes, a 1-D θ search per leg.
+
+Each leg constraint :math:`f_i(x, y, \\theta_i)` (see :mod:`kernels.workspace3rrr`) depends
+on its own angle only, so an (x, y) box :math:`B` lies in the workspace iff every leg
+separately closes: :math:`\\forall (x, y) \\in B\\; \\exists \\theta_i \\in
+[\\underline\\theta_i, \\overline\\theta_i]: f_i = 0`. Per box and leg the joint range is
+cut into pieces :math:`T_k` (a 1-D bisection, stackless depth-first) and
+:math:`F_i(B, T_k)` is enclosed by the chosen interval form:
+
+* :math:`\\underline F > 0` or :math:`\\overline F < 0` on a piece: :math:`f_i` has that
+  sign on all of :math:`B \\times T_k`;
+* pieces of **both signs** prove the leg over the whole box: for every :math:`(x, y) \\in
+  B`, :math:`f_i(x, y, \\cdot)` is continuous on the connected range and changes sign
+  between the two pieces, so it has a root in the range (intermediate value theorem);
+* **every** piece of one sign refutes the leg: no root for any :math:`(x, y) \\in B`;
+* otherwise the leg is undecided: pieces holding 0 reached the smallest width
+  :math:`\\max(w_x, w_y) / k` (``angle_scale`` :math:`k` in cm per radian).
+
+A box is *outside* if one leg is refuted, *inside* if all three are proved, else it is
+halved across its wider side until both widths are :math:`\\le \\varepsilon` and kept as
+*boundary*. A child inherits each leg's state: a proved leg stays proved (a sub-box), an
+undecided leg keeps the hull :math:`[t_{lo}, t_{hi}]` of its undecided pieces and the sign
+:math:`\\sigma` of the pieces outside that hull (all of one sign, or the leg would be
+proved; 0 when none was found), since a sign proved over the parent holds over the child.
+So the cost per box is a sum over the legs, not the product of the joint 5-D bisection.
+
+Frontier row layout (``ROW_COLUMNS``): ``x_lo, x_hi, y_lo, y_hi`` then per leg
+``t_lo, t_hi, state`` with ``state`` = ``LEG_PROVED`` or the sign :math:`\\sigma`.
+
+:func:`pave_level` decides a slice of a frontier of (x, y) boxes in parallel (``prange``);
+each box's outcome depends on that box only, so the boxes and areas do not depend on the
+number of threads, and the caller keeps the frontier's order.
+"""
+
+import math
+
+import numba
+import numpy as np
+
+from ._jit import kernel
+from .workspace3rrr import leg_enclosure
+
+ROW_COLUMNS = 13
+#: Leg state beside the signs -1, 0, +1.
+LEG_PROVED = 2.0
+
+# Outcome of one leg (leg_search) and of one box (pave_level).
+OUT = 0
+UNDECIDED = 1
+PROVED = 2
+# Box outcomes: OUT, BOUNDARY (a leaf kept undecided), INSIDE, SPLIT.
+BOUNDARY = 1
+INSIDE = 2
+SPLIT = 3
+
+#: Deepest θ bisection of one leg search (pieces of 2**-MAX_DEPTH of the hull).
+MAX_DEPTH = 40
+#: Parallel lanes per call: box i goes to lane i % LANES (interleaved, so that neighbouring
+#: boxes of similar cost are spread over the threads).
+LANES = 64
+
+
+@kernel
+def leg_search(form, leg, xlo, xhi, ylo, yhi, tlo, thi, sign, min_width, p):
+    """Decide leg ``leg`` over the (x, y) box from its hull ``[tlo, thi]`` and inherited sign.
+
+    Returns ``(outcome, new_tlo, new_thi, new_sign, evaluations)`` with ``outcome`` one of
+    ``OUT``, ``UNDECIDED`` (then the new hull and sign) or ``PROVED`` (module docstring).
+    """
+    width = thi - tlo
+    hull_lo = math.inf
+    hull_hi = -math.inf
+    evaluations = 0
+    depth = 0
+    index = 0  # piece ``index`` of the 2**depth equal pieces of [tlo, thi]
+    while True:
+        step = width * 2.0**-depth
+        lo = tlo + index * step
+        hi = thi if index + 1 == 1 << depth else tlo + (index + 1) * step
+        flo, fhi = leg_enclosure(form, leg, xlo, xhi, ylo, yhi, lo, hi, p)
+        evaluations += 1
+        piece_sign = 1.0 if flo > 0.0 else (-1.0 if fhi < 0.0 else 0.0)
+        if piece_sign != 0.0:
+            if sign == 0.0:
+                sign = piece_sign
+            elif piece_sign != sign:
+                return PROVED, tlo, thi, sign, evaluations
+        elif hi - lo > min_width and depth < MAX_DEPTH:
+            depth += 1  # descend to the left half
+            index *= 2
+            continue
+        else:
+            hull_lo = min(hull_lo, lo)
+            hull_hi = max(hull_hi, hi)
+        # next piece: climb while this is a right child, then go to the right sibling
+        while depth > 0 and index % 2 == 1:
+            depth -= 1
+            index //= 2
+        if depth == 0:
+            break
+        index += 1
+    if hull_lo > hull_hi:
+        return OUT, tlo, thi, sign, evaluations
+    return UNDECIDED, hull_lo, hull_hi, sign, evaluations
+
+
+@kernel
+def decide_box(form, p, precision, angle_scale, rows, r, children, c):
+    """Decide row ``r`` of ``rows``: write its updated row to ``children[c]`` (kept or
+    first child) and, when split, the second half to ``children[c + 1]``.
+
+    Returns ``(outcome, evaluations)``: ``OUT``, ``BOUNDARY``, ``INSIDE`` or ``SPLIT``.
+    """
+    for j in range(ROW_COLUMNS):
+        children[c, j] = rows[r, j]
+    xlo = rows[r, 0]
+    xhi = rows[r, 1]
+    ylo = rows[r, 2]
+    yhi = rows[r, 3]
+    wx = xhi - xlo
+    wy = yhi - ylo
+    min_width = max(wx, wy) / angle_scale
+    evaluations = 0
+    inside = True
+    for leg in range(3):
+        col = 4 + 3 * leg
+        state = rows[r, col + 2]
+        if state == LEG_PROVED:
+            continue
+        outcome, tlo, thi, sign, n = leg_search(
+            form, leg, xlo, xhi, ylo, yhi, rows[r, col], rows[r, col + 1], state, min_width, p
+        )
+        evaluations += n
+        if outcome == OUT:
+            return OUT, evaluations
+        if outcome == PROVED:
+            children[c, col + 2] = LEG_PROVED
+        else:
+            inside = False
+            children[c, col] = tlo
+            children[c, col + 1] = thi
+            children[c, col + 2] = sign
+    if inside:
+        return INSIDE, evaluations
+    if wx <= precision and wy <= precision:
+        return BOUNDARY, evaluations
+    for j in range(ROW_COLUMNS):
+        children[c + 1, j] = children[c, j]
+    if wx >= wy:
+        mid = 0.5 * (xlo + xhi)
+        children[c, 1] = mid
+        children[c + 1, 0] = mid
+    else:
+        mid = 0.5 * (ylo + yhi)
+        children[c, 3] = mid
+        children[c + 1, 2] = mid
+    return SPLIT, evaluations
+
+
+@kernel(parallel=True)
+def pave_level(form, p, precision, angle_scale, rows, start, stop, children, outcome, evaluations):
+    """Decide rows ``start .. stop - 1`` of a frontier in parallel.
+
+    Row ``start + i`` writes ``children[2 i]`` (the kept box or the first half) and
+    ``children[2 i + 1]`` (the second half), ``outcome[i]`` and ``evaluations[i]`` (interval
+    evaluations). Boxes go to ``LANES`` interleaved lanes run by ``prange``.
+    """
+    n = stop - start
+    lanes = min(LANES, n)
+    for lane in numba.prange(lanes):
+        for i in range(lane, n, lanes):
+            code, count = decide_box(
+                form, p, precision, angle_scale, rows, start + i, children, 2 * i
+            )
+            outcome[i] = code
+            evaluations[i] = count
+
+
+def root_row(box, limits_rad):
+    """The frontier's first row: the (x, y) search box, every leg undecided over its
+    whole range with no sign known."""
+    row = np.zeros(ROW_COLUMNS)
+    row[:4] = [box[0][0], box[0][1], box[1][0], box[1][1]]
+    for leg, (lo, hi) in enumerate(limits_rad):
+        row[4 + 3 * leg : 7 + 3 * leg] = [lo, hi, 0.0]
+    return row
