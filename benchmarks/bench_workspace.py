@@ -5,6 +5,13 @@ precision, with seconds, boxes processed, the certified bracket [inside, kept], 
 paper's area and the ratio of the paper's MATLAB/INTLAB time to ours; then the
 arc-distance form with boundary-only refinement (bracket width in % of the exact area).
 
+Part 1b, the leg-wise paving (issue 12): issue 12's 120° case (joint limits
+``[[-30, 90], [90, 210], [210, 330]]``, φ = −20°, paper B's robot) and paper B's Tables 3-5,
+every interval form, leg-wise on one thread beside the paper's joint 5-D bisection (box
+counts side by side), with the exact area; then the parallel paving of a paving of about
+1 s on one thread, with 1, 2 (and every) thread(s), best of 3 interleaved runs each, with
+the load average before and after (the machine is shared).
+
 Part 2, whole processes through the CLI (median of 3 fresh processes, Numba cache warm):
 the issue's targets, beside the floor of any Numba process on this machine (Python +
 ``import numba`` + loading one cached kernel), measured in the same run.
@@ -62,6 +69,7 @@ def paper_row(table, form, precision):
 
 def spec(table, form, precision=None, **extra):
     limits, phi, box, eps = CASES[table]
+    extra.setdefault("strategy", "joint")  # the paper's Algorithm 1
     return WorkspaceSpec(
         joint_limits_deg=limits,
         orientation_deg=phi,
@@ -144,6 +152,131 @@ def in_process() -> None:
         print(f"| {table} | {CASES[table][3]:g} | {mv:.4f} | {arc:.4f} | {mv / arc:,.0f}x |")
 
 
+#: Issue 12's case: 120° joint ranges, φ = −20°, paper B's robot.
+WIDE = (((-30, 90), (90, 210), (210, 330)), -20.0)
+INTERVAL_FORMS = ("natural", "mean-value", "slope")
+
+
+def load() -> str:
+    return " ".join(Path("/proc/loadavg").read_text().split()[:3])
+
+
+def wide_spec(form, precision, strategy, **extra):
+    limits, phi = WIDE
+    return WorkspaceSpec(
+        joint_limits_deg=limits, orientation_deg=phi, precision_cm=precision, form=form,
+        strategy=strategy, geometric_reference=False, **extra,
+    )  # fmt: skip
+
+
+def timed_or_budget(s):
+    """``timed(s)``, or ``(seconds, None)`` when the run stops at its box budget."""
+    from planar_tui.errors import PresetError
+
+    started = time.perf_counter()
+    try:
+        return timed(s)
+    except PresetError:
+        return time.perf_counter() - started, None
+
+
+def legwise_vs_joint(joint_at_fine: bool) -> None:
+    import numba
+
+    threads = numba.get_num_threads()
+    numba.set_num_threads(1)
+    try:
+        for form in INTERVAL_FORMS:  # load / compile both strategies' kernels
+            timed(wide_spec(form, 4.0, "legwise"))
+            timed(wide_spec(form, 4.0, "joint"))
+        phi = WIDE[1]
+        g = geometric_area(ROBOT, wide_spec("geometric", 1.0, "legwise").limits_rad,
+                           math.radians(phi))  # fmt: skip
+        print(f"\n## Leg-wise vs joint, one thread (load before: {load()})\n")
+        print(f"120° case: exact area {g.inner_cm2:.4f}-{g.outer_cm2:.4f} cm² (shapely bracket)\n")
+        print(
+            "| case | form | ε (cm) | legwise s | legwise (x, y) boxes | legwise leg boxes "
+            "| legwise [inside, kept] cm² | joint s | joint 5-D boxes | joint [inside, kept] cm² "
+            "| joint / legwise boxes |"
+        )
+        print("|---|---|---|---:|---:|---:|---|---:|---:|---|---:|")
+        for eps in (0.1, 0.05):
+            for form in INTERVAL_FORMS:
+                lw_s, lw = timed(wide_spec(form, eps, "legwise"))
+                if eps < 0.1 and not joint_at_fine:
+                    j_s, j = None, None
+                else:
+                    j_s, j = timed_or_budget(wide_spec(form, eps, "joint"))
+                if j is None:
+                    joint = ("–", "–", "–", "–") if j_s is None else (
+                        f"{j_s:.1f} (stopped)", "> 50,000,000 (budget)", "–", "–")  # fmt: skip
+                else:
+                    joint = (
+                        f"{j_s:.2f}", f"{j.boxes_processed:,}",
+                        f"[{j.area_inside_cm2:.2f}, {j.area_kept_cm2:.2f}]",
+                        f"{j.boxes_processed / lw.boxes_processed:,.0f}",
+                    )  # fmt: skip
+                print(
+                    f"| 120° | {form} | {eps:g} | {lw_s:.3f} | {lw.xy_boxes:,} "
+                    f"| {lw.boxes_processed:,} | [{lw.area_inside_cm2:.2f}, {lw.area_kept_cm2:.2f}] "
+                    f"| {joint[0]} | {joint[1]} | {joint[2]} | {joint[3]} |"
+                )
+        for table in CASES:
+            _, phi_t, _, eps = CASES[table]
+            gt = geometric_area(ROBOT, spec(table, "geometric").limits_rad, math.radians(phi_t))
+            forms = ("mean-value",) if table == 5 else INTERVAL_FORMS
+            for form in forms:
+                lw_s, lw = timed(spec(table, form, strategy="legwise"))
+                j_s, j = timed(spec(table, form))
+                print(
+                    f"| Table {table} (exact {gt.area_cm2:.4g}) | {form} | {eps:g} | {lw_s:.3f} "
+                    f"| {lw.xy_boxes:,} | {lw.boxes_processed:,} "
+                    f"| [{lw.area_inside_cm2:.5g}, {lw.area_kept_cm2:.5g}] | {j_s:.3f} "
+                    f"| {j.boxes_processed:,} | [{j.area_inside_cm2:.5g}, {j.area_kept_cm2:.5g}] "
+                    f"| {j.boxes_processed / lw.boxes_processed:,.0f} |"
+                )
+        print(f"\nload after: {load()}")
+    finally:
+        numba.set_num_threads(threads)
+
+
+def parallel_paving(precision: float = 0.008, runs: int = 3) -> None:
+    """Leg-wise paving of the 120° case (mean-value) on 1, 2 and every thread: best of
+    ``runs`` interleaved runs each, identical boxes checked."""
+    import os
+
+    import numba
+    import numpy as np
+
+    counts = sorted({1, 2, min(os.cpu_count() or 1, numba.config.NUMBA_NUM_THREADS)})
+    s = wide_spec("mean-value", precision, "legwise")
+    before = load()
+    best, outs = {}, {}
+    for _ in range(runs):
+        for n in counts:
+            numba.set_num_threads(n)
+            seconds, out = timed(s)
+            best[n] = min(best.get(n, math.inf), seconds)
+            outs[n] = out
+    numba.set_num_threads(counts[-1])
+    same = all(
+        np.array_equal(outs[n].boxes, outs[1].boxes) and np.array_equal(outs[n].status, outs[1].status)
+        for n in counts
+    )  # fmt: skip
+    print(f"\n## Parallel leg-wise paving (120° case, mean-value, ε = {precision:g} cm)\n")
+    print(f"{os.cpu_count()} CPUs; load average before {before}, after {load()}; "
+          f"same boxes and areas for every thread count: {same}\n")  # fmt: skip
+    print("| threads | best of 3 (s) | speed-up | leg boxes | [inside, kept] cm² |")
+    print("|---:|---:|---:|---:|---|")
+    for n in counts:
+        o = outs[n]
+        print(
+            f"| {n} | {best[n]:.3f} | {best[1] / best[n]:.2f}x | {o.boxes_processed:,} "
+            f"| [{o.area_inside_cm2:.3f}, {o.area_kept_cm2:.3f}] |"
+        )
+
+
+JOINT = 'strategy = "joint"\n'
 PRESET = """
 [robot3rrr]
 [workspace]
@@ -182,8 +315,9 @@ def whole_process() -> None:
     )
     print(f"| planar-tui --help | {wall([sys.executable, '-m', 'planar_tui', '--help']):.2f} | – |")
     runs = [
-        ("Table 3 mean-value eps=0.1172", 3, "mean-value", None, "", "0.5"),
-        ("Table 5 mean-value eps=0.00391", 5, "mean-value", None, "", "3"),
+        ("Table 3 mean-value eps=0.1172", 3, "mean-value", None, JOINT, "0.5"),
+        ("Table 5 mean-value eps=0.00391", 5, "mean-value", None, JOINT, "3"),
+        ("Table 3 mean-value eps=0.1172, leg-wise", 3, "mean-value", None, "", "–"),
         ("Table 3 arc-distance eps=0.1172", 3, "arc-distance", None, "", "–"),
     ] + [
         (f"Table {t} arc-distance + refinement", t, "arc-distance",
@@ -208,5 +342,22 @@ def whole_process() -> None:
 
 
 if __name__ == "__main__":
-    in_process()
-    whole_process()
+    import argparse
+
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--part", choices=("all", "paper", "legwise", "parallel", "cli"),
+                        default="all")  # fmt: skip
+    parser.add_argument(
+        "--quick",
+        action="store_true",
+        help="skip the joint 5-D bisection at ε = 0.05 (stops at its budget)",
+    )
+    args = parser.parse_args()
+    if args.part in ("all", "paper"):
+        in_process()
+    if args.part in ("all", "legwise"):
+        legwise_vs_joint(joint_at_fine=not args.quick)
+    if args.part in ("all", "parallel"):
+        parallel_paving()
+    if args.part in ("all", "cli"):
+        whole_process()
