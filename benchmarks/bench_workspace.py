@@ -240,6 +240,31 @@ def legwise_vs_joint(joint_at_fine: bool) -> None:
         numba.set_num_threads(threads)
 
 
+def _kernel_share(s) -> float:
+    """CPU time inside ``pave_level`` over the whole run's, on one thread (CPU time, so that
+    the machine's other load does not count)."""
+    import numba
+    from planar_tui.kernels import workspace_legwise
+
+    original = workspace_legwise.pave_level
+    inside = [0.0]
+
+    def measured(*args):
+        started = time.process_time()
+        original(*args)
+        inside[0] += time.process_time() - started
+
+    numba.set_num_threads(1)
+    workspace_legwise.pave_level = measured
+    try:
+        started = time.process_time()
+        compute_workspace(ROBOT, s, BoxBudget(_Job(s), Progress()))
+        total = time.process_time() - started
+    finally:
+        workspace_legwise.pave_level = original
+    return inside[0] / total
+
+
 def parallel_paving(precision: float = 0.008, runs: int = 3) -> None:
     """Leg-wise paving of the 120° case (mean-value) on 1, 2 and every thread: best of
     ``runs`` interleaved runs each, identical boxes checked."""
@@ -258,6 +283,7 @@ def parallel_paving(precision: float = 0.008, runs: int = 3) -> None:
             seconds, out = timed(s)
             best[n] = min(best.get(n, math.inf), seconds)
             outs[n] = out
+    share = _kernel_share(s)
     numba.set_num_threads(counts[-1])
     same = all(
         np.array_equal(outs[n].boxes, outs[1].boxes) and np.array_equal(outs[n].status, outs[1].status)
@@ -266,6 +292,8 @@ def parallel_paving(precision: float = 0.008, runs: int = 3) -> None:
     print(f"\n## Parallel leg-wise paving (120° case, mean-value, ε = {precision:g} cm)\n")
     print(f"{os.cpu_count()} CPUs; load average before {before}, after {load()}; "
           f"same boxes and areas for every thread count: {same}\n")  # fmt: skip
+    print(f"CPU time in the parallel kernel on one thread: {100 * share:.1f} % (Amdahl bound "
+          f"on 2 threads: {1 / (1 - share + share / 2):.2f}x)\n")  # fmt: skip
     print("| threads | best of 3 (s) | speed-up | leg boxes | [inside, kept] cm² |")
     print("|---:|---:|---:|---:|---|")
     for n in counts:

@@ -39,6 +39,7 @@ import numpy as np
 
 from ._jit import kernel
 from .workspace3rrr import leg_enclosure
+from .workspace_arc import classify_box
 
 ROW_COLUMNS = 13
 #: Leg state beside the signs -1, 0, +1.
@@ -174,6 +175,17 @@ def pave_level(form, p, precision, angle_scale, rows, start, stop, children, out
             )
             outcome[i] = code
             evaluations[i] = count
+
+
+@kernel(parallel=True)
+def classify_boxes_parallel(boxes, p, limits, out):
+    """:func:`kernels.workspace_arc.classify_box` (the exact leg-wise test) for every row
+    ``x_lo, x_hi, y_lo, y_hi`` of ``boxes``, rows spread over the threads."""
+    n = boxes.shape[0]
+    lanes = min(LANES, n)
+    for lane in numba.prange(lanes):
+        for r in range(lane, n, lanes):
+            out[r] = classify_box(boxes[r, 0], boxes[r, 1], boxes[r, 2], boxes[r, 3], p, limits)
 
 
 def root_row(box, limits_rad):

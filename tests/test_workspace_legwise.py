@@ -11,6 +11,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from planar_tui.kernels.workspace_arc import limits_array, points_feasible
+from planar_tui.kernels.workspace_union import union_area
 
 from planar_tui.presets import load_preset
 from planar_tui.progress import Progress
@@ -99,6 +100,10 @@ def test_legwise_brackets_contain_the_exact_area_for_every_form(case, exact):
         assert_brackets(out, exact[case])
         # both counts recorded: (x, y, θ_i) leg boxes evaluated >= 1 per (x, y) box
         assert out.boxes_processed >= out.xy_boxes
+        # a paving: disjoint boxes, so the areas (sums) are those of the unions
+        assert union_area(out.boxes) == pytest.approx(out.area_kept_cm2, rel=1e-12)
+        inside = np.ascontiguousarray(out.boxes[out.status == 2])
+        assert union_area(inside) == pytest.approx(out.area_inside_cm2, rel=1e-12)
 
 
 @pytest.mark.parametrize("case", [3, 4])
@@ -191,7 +196,7 @@ def test_random_geometries_both_strategies_bracket_the_exact_area(geometry):
 
 
 def test_thread_count_does_not_change_boxes_or_areas():
-    spec = spec_for(120, "slope", "legwise", 0.1)
+    spec = spec_for(120, "slope", "legwise", 0.1, refine_precision_cm=0.05)
     before = numba.get_num_threads()
     results = []
     try:

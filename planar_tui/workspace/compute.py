@@ -380,15 +380,18 @@ def compute_workspace(robot: Robot3RRR, spec, budget: BoxBudget) -> WorkspaceOut
         code = {"natural": k5.NATURAL, "mean-value": k5.MEAN_VALUE, "slope": k5.SLOPE}[spec.form]
         if spec.expanded:
             code = k5.NATURAL_EXPANDED
-        if spec.strategy == "legwise":
+        if legwise:
+            from planar_tui.kernels.workspace_legwise import classify_boxes_parallel
             from planar_tui.workspace.legwise import legwise_stage
 
             boxes, proved, xy_boxes = legwise_stage(code, p, spec, box, budget, _read_only)
+            status = np.zeros(len(boxes), dtype=np.int64)
+            classify_boxes_parallel(boxes, p, limits, status)
         else:
             boxes = unique_rows(_interval_stage(code, p, spec, box, budget))
             proved = np.zeros(len(boxes), dtype=np.int64)
-        status = np.zeros(len(boxes), dtype=np.int64)
-        classify_boxes(boxes, p, limits, status)
+            status = np.zeros(len(boxes), dtype=np.int64)
+            classify_boxes(boxes, p, limits, status)
         status = np.where((status == INSIDE) | (proved == INSIDE), INSIDE, BOUNDARY)
     if spec.refine_precision_cm is not None:
         budget.progress.start(1.0, "boundary refinement")
@@ -404,8 +407,12 @@ def compute_workspace(robot: Robot3RRR, spec, budget: BoxBudget) -> WorkspaceOut
         boxes = np.concatenate([boxes[inside], refined])
         status = np.concatenate([status[inside], refined_status])
     boxes = np.ascontiguousarray(boxes)
-    area_kept_cm2 = float(union_area(boxes))
-    area_inside_cm2 = float(union_area(np.ascontiguousarray(boxes[status == INSIDE])))
+    if legwise:  # a paving (and its refinement): disjoint boxes, the union's area is the sum
+        area_kept_cm2 = _xy_area(boxes)
+        area_inside_cm2 = _xy_area(boxes[status == INSIDE])
+    else:
+        area_kept_cm2 = float(union_area(boxes))
+        area_inside_cm2 = float(union_area(np.ascontiguousarray(boxes[status == INSIDE])))
     budget.finish(area_inside_cm2, area_kept_cm2)
     return WorkspaceOutcome(
         form=spec.form + (" (expanded)" if spec.expanded else ""),
