@@ -488,21 +488,53 @@ def workspace(
     )
 
 
+WorkersOption = Annotated[
+    int | None,
+    typer.Option(
+        "--workers",
+        "-w",
+        min=1,
+        help="Sweeps: points run on a local Dask cluster of N worker processes "
+        "(default: the machine's cores); 1 runs them in this process.",
+    ),
+]
+SchedulerOption = Annotated[
+    str | None,
+    typer.Option(
+        "--scheduler",
+        envvar="PLANAR_TUI_SCHEDULER",
+        metavar="ADDRESS",
+        help="Sweeps: submit the points to this existing Dask scheduler (tcp://host:8786).",
+    ),
+]
+ResumeOption = Annotated[
+    bool,
+    typer.Option("--resume", help="Sweeps: finish an interrupted sweep from its checkpoint."),
+]
+
+
 @app.command(cls=Command)
 def run(
     presets: Annotated[list[str], typer.Argument(help="Preset files or bundled preset names.")],
     job_name: JobOption = None,
     out_dir: OutDirOption = Path("."),
     plot: PlotOption = None,
+    workers: WorkersOption = None,
+    scheduler: SchedulerOption = None,
+    resume: ResumeOption = False,
 ) -> None:
-    """Run every job of every preset (or those --job names), files named as the presets say."""
+    """Run every job of every preset (or those --job names), files named as the presets
+    say, then the presets' sweeps (not with --job)."""
     with reported_errors():
         from planar_tui.batch import select_jobs
 
         check_figure_option(plot)
         loaded = load_presets(presets)
         jobs = select_jobs([job for preset in loaded for job in preset.jobs], job_name)
-        execute(jobs, out_dir, plot=plot)
+        prepared = prepare_sweeps([] if job_name else loaded, out_dir, jobs)
+        if jobs:
+            execute(jobs, out_dir, plot=plot)
+        run_sweeps(prepared, out_dir, workers, scheduler, resume)
 
 
 @app.command("plot", cls=Command)
@@ -542,6 +574,112 @@ def plot_csv(
         except OSError as error:
             raise fail(f"error: {target}: cannot write: {error.strerror or error}") from None
     stdout.print(f"wrote {written}", markup=False)
+
+
+@app.command("sweep", cls=Command)
+def sweep_command(
+    preset: PresetArg,
+    workers: WorkersOption = None,
+    scheduler: SchedulerOption = None,
+    resume: ResumeOption = False,
+    out_dir: OutDirOption = Path("."),
+) -> None:
+    """Run the preset's sweeps ([[sweep]] tables): one CSV each, one row per point."""
+    with reported_errors():
+        (loaded,) = load_presets([preset])
+        prepared = prepare_sweeps([loaded], out_dir)
+        if not prepared:
+            raise PresetError(loaded.path, "sweep", "no [[sweep]] table in this preset",
+                              "a [[sweep]] table")  # fmt: skip
+        run_sweeps(prepared, out_dir, workers, scheduler, resume)
+
+
+def prepare_sweeps(loaded: Sequence[Preset], out_dir: Path, jobs: Sequence[Job] = ()) -> list:
+    """Every sweep of the presets with its points, all validated, and their outputs
+    checked (none on a job's file), before anything runs."""
+    from planar_tui.batch import _output_error, plan_outputs
+    from planar_tui.sweep.points import make_points
+    from planar_tui.sweep.service import check_outputs, output_path
+    from planar_tui.sweep.spec import parse_sweeps
+
+    sweeps = [sweep for preset in loaded for sweep in parse_sweeps(preset)]
+    prepared = [(sweep, make_points(sweep)) for sweep in sweeps]
+    check_outputs(sweeps, out_dir)
+    job_files = {path.resolve() for plan in plan_outputs(jobs, out_dir) for path in plan.paths()}
+    for sweep in sweeps:
+        if output_path(sweep, out_dir).resolve() in job_files:
+            raise _output_error(output_path(sweep, out_dir), "is also a job's output",
+                                "one file per table")  # fmt: skip
+    return prepared
+
+
+def sweep_progress_display(console: Console):
+    """A rich display with one bar per sweep: points done/total, failures, rate, ETA."""
+    from rich import progress as bar
+    from rich.text import Text
+
+    class RateColumn(bar.ProgressColumn):
+        def render(self, task) -> Text:
+            speed = task.finished_speed or task.speed
+            return Text("-- pt/s" if speed is None else f"{speed:.3g} pt/s")
+
+    return bar.Progress(
+        bar.TextColumn("{task.description}"), bar.BarColumn(bar_width=None),
+        bar.MofNCompleteColumn(), bar.TextColumn("{task.fields[failed]} failed"), RateColumn(),
+        bar.TextColumn("ETA"), bar.TimeRemainingColumn(), console=console, expand=True,
+    )  # fmt: skip
+
+
+def run_sweeps(
+    prepared: Sequence, out_dir: Path, workers: int | None, scheduler: str | None, resume: bool
+) -> None:
+    """Run validated sweeps, one progress bar each; a summary line per sweep on stdout.
+    Exit code 1 when a point failed (its row says why); Ctrl-C keeps the checkpoint."""
+    from planar_tui.progress import Progress
+    from planar_tui.sweep.execute import default_workers
+    from planar_tui.sweep.service import run_sweep
+
+    count = workers or default_workers()
+    failed = 0
+    try:
+        with sigterm_as_interrupt():
+            for sweep, points in prepared:
+                with sweep_progress_display(stderr) as bars:
+                    task = bars.add_task(sweep.label, total=len(points), failed=0)
+
+                    def update(state, bars=bars, task=task, label=sweep.label) -> None:
+                        if state.stage == label:
+                            bars.update(task, completed=state.completed,
+                                        failed=int(state.figures.get("failed", 0)))  # fmt: skip
+
+                    def announce(text: str, bars=bars) -> None:
+                        bars.console.print(text, markup=False, highlight=False, soft_wrap=True)
+
+                    result = run_sweep(
+                        sweep, Progress(on_update=update), points=points, workers=count,
+                        scheduler=scheduler, out_dir=out_dir, resume=resume, announce=announce,
+                    )  # fmt: skip
+                failed += result.failed
+                resumed = f", {result.resumed} from the checkpoint" if result.resumed else ""
+                stdout.print(
+                    f"{sweep.label}: {len(points)} points, {result.failed} failed{resumed} "
+                    f"-> {result.output}", markup=False, highlight=False, soft_wrap=True,
+                )  # fmt: skip
+    except Terminated:
+        raise fail(
+            "terminated: finished points are in the sweep's checkpoint (--resume "
+            "finishes it); no sweep CSV was written",
+            ExitCode.TERMINATED,
+        ) from None
+    except (KeyboardInterrupt, Cancelled):
+        raise fail(
+            "interrupted: finished points are in the sweep's checkpoint (--resume "
+            "finishes it); no sweep CSV was written",
+            ExitCode.INTERRUPTED,
+        ) from None
+    if failed:
+        raise fail(f"error: {failed} sweep point(s) failed (status failed in the CSV)",
+                   ExitCode.RUN_FAILED)  # fmt: skip
 
 
 @app.command("warmup", cls=Command)

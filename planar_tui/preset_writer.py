@@ -73,6 +73,8 @@ def preset_document(preset: Any) -> dict[str, Any]:
     for name, tables in jobs_by_kind.items():
         as_array = len(tables) > 1 or isinstance(raw.get(name), list)
         document[name] = tables if as_array else tables[0]
+    if "sweep" in raw:  # read by planar_tui.sweep; kept as written
+        document["sweep"] = raw["sweep"]
     return document
 
 

@@ -14,7 +14,8 @@ import json, sys
 from typer.testing import CliRunner
 from planar_tui.cli import app
 result = CliRunner().invoke(app, sys.argv[1:])
-heavy = ("numba", "SALib", "textual", "scipy", "mujoco", "numpy", "matplotlib")
+heavy = ("numba", "SALib", "textual", "scipy", "mujoco", "numpy", "matplotlib", "dask",
+         "distributed")
 print(json.dumps({"code": result.exit_code, "loaded": [m for m in heavy if m in sys.modules]}))
 """
 

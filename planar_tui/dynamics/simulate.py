@@ -200,10 +200,25 @@ def run_simulate(job: Job, progress: Progress) -> SimulateResult:
     )
 
 
+def point_figures(job: Job, result: SimulateResult) -> dict[str, float]:
+    """A sweep row's figures: the final time and state (relative angles and rates, SI) and
+    the largest energy drift ``max_t |E(t) − E(0)|`` over the recorded rows (J; the work of
+    the torques when they are not zero)."""
+    n = result.theta_rad.shape[1]
+    energy_J = result.kinetic_J + result.potential_J
+    figures = {"t_end_s": float(result.t_s[-1])}
+    figures.update({f"theta{i}_end_rad": float(result.theta_rad[-1, i - 1]) for i in range(1, n + 1)})
+    figures.update({f"omega{i}_end_rad_s": float(result.omega_rad_s[-1, i - 1])
+                    for i in range(1, n + 1)})  # fmt: skip
+    figures["energy_drift_max_J"] = float(np.max(np.abs(energy_J - energy_J[0])))
+    return figures
+
+
 JOB_KIND = JobKind(
     name="simulate",
     robot_kind="robot",
     settings=SimulateSpec,
     run=run_simulate,
     summary="RK4 forward dynamics under constant torques",
+    point_figures=point_figures,
 )

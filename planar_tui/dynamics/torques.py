@@ -87,10 +87,17 @@ def run_torques(job: Job, progress: Progress) -> TorquesResult:
     )
 
 
+def point_figures(job: Job, result: TorquesResult) -> dict[str, float]:
+    """A sweep row's figures: per joint the largest ``|τ_i|`` over the states (N m)."""
+    peak = np.abs(result.tau_Nm).max(axis=0)
+    return {f"tau{i}_abs_max_Nm": float(v) for i, v in enumerate(peak, start=1)}
+
+
 JOB_KIND = JobKind(
     name="torques",
     robot_kind="robot",
     settings=TorquesSpec,
     run=run_torques,
     summary="inverse dynamics at listed states",
+    point_figures=point_figures,
 )

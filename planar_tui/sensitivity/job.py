@@ -427,6 +427,32 @@ def render_sensitivity(job: Job, result: SensitivityResult, console) -> None:
         console.print(sensitivity_bars(analyses, analyses[0].method))
 
 
+def point_figures(job: Job, result: SensitivityResult) -> dict[str, Any]:
+    """A sweep row's figures, per torque ``i`` (at each speed, suffixed ``_w2``, ``_w3`` …
+    from the second on): the dominant parameter by the percent of the job's first method,
+    its percent, the lengths' and the masses' shares (sums of their percents), and the
+    largest Sobol' 95 % half-width of ``S1`` and ``ST`` over the parameters (empty without
+    Sobol')."""
+    method = job.spec.methods[0]
+    figures: dict[str, Any] = {}
+    for k, speed in enumerate(job.spec.speeds_rad_s, start=1):
+        at = {a.method: a for a in result.analyses if a.speed_rad_s == speed}
+        chosen, sobol = at[method], at.get("sobol")
+        suffix = "" if k == 1 else f"_w{k}"
+        names = chosen.names
+        for i, percent in enumerate(chosen.percent, start=1):
+            top = int(percent.argmax())
+            figures[f"tau{i}_dominant{suffix}"] = names[top]
+            figures[f"tau{i}_dominant_percent{suffix}"] = float(percent[top])
+            for group, prefix in (("lengths", "l"), ("masses", "m")):
+                share = sum(float(p) for p, name in zip(percent, names, strict=True)
+                            if name.startswith(prefix))  # fmt: skip
+                figures[f"tau{i}_{group}_percent{suffix}"] = share
+            halfwidth = "" if sobol is None else float(sobol.indices[[1, 3], i - 1].max())
+            figures[f"tau{i}_sobol_halfwidth_max{suffix}"] = halfwidth
+    return figures
+
+
 JOB_KIND = JobKind(
     name="sensitivity",
     robot_kind="robot",
@@ -436,4 +462,5 @@ JOB_KIND = JobKind(
     render=render_sensitivity,
     overrides=with_overrides,
     prepare=prepare_sensitivity,
+    point_figures=point_figures,
 )

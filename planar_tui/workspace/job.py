@@ -279,6 +279,13 @@ def render_workspace(job: Job, result: WorkspaceResult, console) -> None:
         console.print(line, markup=False, highlight=False, crop=True, soft_wrap=False)
 
 
+def point_figures(job: Job, result: WorkspaceResult) -> dict[str, Any]:
+    """A sweep row's figures: the summary CSV's columns but its ``seconds`` (the sweep row
+    has its own timing)."""
+    header, (row,) = result.table.header, result.table.rows
+    return {name: value for name, value in zip(header, row, strict=True) if name != "seconds"}
+
+
 def _extra_outputs(spec: WorkspaceSpec) -> dict[str, str]:
     return {"boxes": spec.boxes_output} if spec.boxes_output else {}
 
@@ -292,4 +299,5 @@ JOB_KIND = JobKind(
     render=render_workspace,
     extra_outputs=_extra_outputs,
     overrides=with_overrides,
+    point_figures=point_figures,
 )

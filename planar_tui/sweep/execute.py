@@ -1,0 +1,157 @@
+"""Running point tasks: in this process, one after the other, or on Dask.
+
+``--workers 1`` runs in-process and imports no Dask. Otherwise the points go to a Dask
+scheduler: a :class:`distributed.LocalCluster` of worker processes (one thread each; the
+kernels compile once per worker, or load from the shared cache folder), or an existing
+scheduler by address (``--scheduler``, ``PLANAR_TUI_SCHEDULER``). Tasks carry the point's
+settings, not arrays. A worker process that dies is replaced by its nanny and its points
+are run again by the scheduler (Dask's own rescheduling).
+
+Outcomes are handed over as they arrive (``on_outcome``); the caller's
+:class:`~planar_tui.progress.Progress` is checked at least every 0.1 s, and a cancel
+(or Ctrl-C) cancels every outstanding task before :class:`Cancelled` propagates.
+"""
+
+from __future__ import annotations
+
+import os
+import queue
+import threading
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
+from dataclasses import dataclass
+from typing import Any
+
+from planar_tui.progress import Progress
+from planar_tui.sweep.worker import PointOutcome, PointTask, run_point
+
+#: Environment variable naming an existing Dask scheduler (``tcp://host:8786``).
+SCHEDULER_ENV_VAR = "PLANAR_TUI_SCHEDULER"
+#: How often the Dask runner checks for a cancel while it waits (seconds).
+POLL_S = 0.1
+
+
+def default_workers() -> int:
+    """The machine's cores available to this process."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # macOS, Windows
+        return max(1, os.cpu_count() or 1)
+
+
+def run_in_process(
+    tasks: Sequence[PointTask], progress: Progress, on_outcome: Callable[[PointOutcome], None]
+) -> None:
+    """Run the tasks one after the other in this process; a cancel of ``progress`` stops
+    the running point within its runner's check interval."""
+    child = Progress(should_stop=lambda: progress.cancel_requested)
+    for task in tasks:
+        progress.check()
+        on_outcome(run_point(task, child))
+
+
+@dataclass(frozen=True)
+class DaskTarget:
+    """Where Dask work goes: an existing scheduler's ``address``, or a local cluster of
+    ``workers`` processes."""
+
+    workers: int
+    address: str | None = None
+
+
+@contextmanager
+def dask_client(target: DaskTarget, announce: Callable[[str], None]) -> Iterator[Any]:
+    """A ``distributed.Client`` on the target; a local cluster is started here (worker
+    processes, one thread each, dashboard on a free port, announced) and shut down on
+    leaving, Ctrl-C included."""
+    import logging
+
+    from distributed import Client, LocalCluster
+
+    if target.address is not None:
+        client = Client(target.address, timeout="30s")
+        try:
+            announce(f"dask: scheduler {target.address}, dashboard {client.dashboard_link}")
+            yield client
+        finally:
+            client.close()
+        return
+    cluster = LocalCluster(
+        n_workers=target.workers, threads_per_worker=1, processes=True,
+        dashboard_address=":0", silence_logs=logging.ERROR,
+    )  # fmt: skip
+    try:
+        client = Client(cluster)
+        try:
+            announce(
+                f"dask: local cluster of {target.workers} worker processes, dashboard "
+                f"{cluster.dashboard_link}" + _dashboard_note()
+            )
+            yield client
+        finally:
+            client.close()
+    finally:
+        cluster.close()
+
+
+def _dashboard_note() -> str:
+    import importlib.util
+
+    return "" if importlib.util.find_spec("bokeh") else " (install bokeh to serve it)"
+
+
+def run_on_dask(
+    client: Any,
+    tasks: Sequence[PointTask],
+    progress: Progress,
+    on_outcome: Callable[[PointOutcome], None],
+    key_prefix: str,
+) -> None:
+    """Submit every task to ``client`` and hand over outcomes as they complete. A cancel
+    (``progress``) or Ctrl-C cancels the outstanding tasks, then propagates."""
+    from distributed import as_completed
+
+    futures = [
+        client.submit(run_point, task, key=f"{key_prefix}-{task.number}", pure=False)
+        for task in tasks
+    ]
+    arrived: queue.Queue = queue.Queue()
+    finished = threading.Event()
+
+    def collect() -> None:
+        try:
+            for future in as_completed(futures):
+                arrived.put(future)
+                if finished.is_set():
+                    return
+        except Exception:  # the client closed under it (a cancel): nothing more to hand over
+            pass
+
+    threading.Thread(target=collect, name="planar-tui-sweep-collect", daemon=True).start()
+    try:
+        for _ in range(len(futures)):
+            while True:
+                progress.check()
+                try:
+                    future = arrived.get(timeout=POLL_S)
+                    break
+                except queue.Empty:
+                    continue
+            on_outcome(_outcome(future, tasks))
+    except BaseException:
+        finished.set()
+        client.cancel(futures, force=True)
+        raise
+    finished.set()
+
+
+def _outcome(future: Any, tasks: Sequence[PointTask]) -> PointOutcome:
+    """A completed future's outcome; a task Dask gave up on (its workers kept dying) is a
+    failed point."""
+    try:
+        return future.result()
+    except Exception as error:
+        number = int(str(future.key).rsplit("-", 1)[1])
+        task = next(t for t in tasks if t.number == number)
+        message = f"{task.job.label} failed on Dask: {type(error).__name__}: {error}"
+        return PointOutcome(number, "failed", " ".join(message.split()), {}, 0.0)

@@ -1,0 +1,47 @@
+"""The sweep CSV: one row per point, in point order, whatever order the points finished in.
+
+Columns: ``point``, one per varied key path (named by the path, units as in the key), the
+job kind's summary figures (``JobKind.point_figures``: every column any point reported, in
+the order they first appear), then ``status`` (``ok`` / ``failed``), ``message`` and
+``seconds`` (the point's wall time: the one column that differs between runs).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+from planar_tui.csvio import CsvTable
+from planar_tui.sweep.worker import PointOutcome
+
+TRAILING = ("status", "message", "seconds")
+
+
+def figure_columns(outcomes: Sequence[PointOutcome]) -> list[str]:
+    """Every figure any point reported, in the order they first appear (points in order)."""
+    columns: dict[str, None] = {}
+    for outcome in sorted(outcomes, key=lambda o: o.number):
+        columns.update(dict.fromkeys(outcome.figures))
+    return list(columns)
+
+
+def row(
+    number: int, values: Sequence[Any], outcome: PointOutcome, columns: Sequence[str]
+) -> list[Any]:
+    """One point's row (a figure the point did not report is an empty cell)."""
+    figures = [outcome.figures.get(name, "") for name in columns]
+    return [number, *values, *figures, outcome.status, outcome.message,
+            round(outcome.seconds, 6)]  # fmt: skip
+
+
+def sweep_table(
+    paths: Sequence[str],
+    values: Mapping[int, Sequence[Any]],
+    outcomes: Mapping[int, PointOutcome],
+) -> CsvTable:
+    """The sweep's table from every point's ``values`` and ``outcomes`` (by point number)."""
+    ordered = [outcomes[number] for number in sorted(outcomes)]
+    columns = figure_columns(ordered)
+    header = ("point", *paths, *columns, *TRAILING)
+    rows = [row(o.number, values[o.number], o, columns) for o in ordered]
+    return CsvTable(header, rows)
