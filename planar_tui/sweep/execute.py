@@ -22,6 +22,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any
 
+from planar_tui.errors import PresetError
 from planar_tui.progress import Progress
 from planar_tui.sweep.worker import PointOutcome, PointTask, run_point
 
@@ -69,7 +70,13 @@ def dask_client(target: DaskTarget, announce: Callable[[str], None]) -> Iterator
     from distributed import Client, LocalCluster
 
     if target.address is not None:
-        client = Client(target.address, timeout="30s")
+        try:
+            client = Client(target.address, timeout="30s")
+        except (OSError, TimeoutError, ValueError) as error:
+            raise PresetError(
+                "command line", "--scheduler", f"cannot reach {target.address}: {error}",
+                "the address of a running Dask scheduler (tcp://host:8786)",
+            ) from None  # fmt: skip
         try:
             announce(f"dask: scheduler {target.address}, dashboard {client.dashboard_link}")
             yield client
@@ -83,6 +90,7 @@ def dask_client(target: DaskTarget, announce: Callable[[str], None]) -> Iterator
     try:
         client = Client(cluster)
         try:
+            client.register_plugin(_ignore_interrupts_plugin(), name="planar-tui-ignore-sigint")
             announce(
                 f"dask: local cluster of {target.workers} worker processes, dashboard "
                 f"{cluster.dashboard_link}" + _dashboard_note()
@@ -92,6 +100,26 @@ def dask_client(target: DaskTarget, announce: Callable[[str], None]) -> Iterator
             client.close()
     finally:
         cluster.close()
+
+
+def _ignore_interrupts_plugin() -> Any:
+    """A worker plugin for a local cluster's workers: Ctrl-C in the terminal reaches every
+    process of the group, and the client alone handles it (cancels the tasks, shuts the
+    cluster down); a worker would otherwise print a traceback as it dies. Restarted
+    workers get it too."""
+    from distributed import WorkerPlugin
+
+    class IgnoreInterrupts(WorkerPlugin):
+        idempotent = True
+
+        def setup(self, worker) -> None:
+            import signal
+            import threading
+
+            if threading.current_thread() is threading.main_thread():
+                signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+    return IgnoreInterrupts()
 
 
 def _dashboard_note() -> str:
