@@ -111,3 +111,16 @@ def test_prepare_kernels_refuses_to_run_after_a_kernel_was_imported():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env)
     assert out.returncode == 1
     assert "prepare_kernels() must run before importing planar_tui.kernels." in out.stderr
+
+
+def test_a_sweep_on_one_worker_imports_no_dask(tmp_path):
+    preset = tmp_path / "sweep.toml"
+    preset.write_text(
+        (REPO / "presets" / "paper-a-table1.toml").read_text()
+        + '\n[[sweep]]\njob = "simulate"\nvalues.step_s = [0.01, 0.02]\n'
+    )
+    probe = modules_loaded_by("sweep", str(preset), "--workers", "1", "--out-dir", str(tmp_path))
+    assert probe["code"] == 0
+    assert "numba" in probe["loaded"]
+    assert "dask" not in probe["loaded"] and "distributed" not in probe["loaded"]
+    assert (tmp_path / "sweep-sweep-1.csv").exists()

@@ -207,7 +207,9 @@ def point_figures(job: Job, result: SimulateResult) -> dict[str, float]:
     n = result.theta_rad.shape[1]
     energy_J = result.kinetic_J + result.potential_J
     figures = {"t_end_s": float(result.t_s[-1])}
-    figures.update({f"theta{i}_end_rad": float(result.theta_rad[-1, i - 1]) for i in range(1, n + 1)})
+    figures.update(
+        {f"theta{i}_end_rad": float(result.theta_rad[-1, i - 1]) for i in range(1, n + 1)}
+    )
     figures.update({f"omega{i}_end_rad_s": float(result.omega_rad_s[-1, i - 1])
                     for i in range(1, n + 1)})  # fmt: skip
     figures["energy_drift_max_J"] = float(np.max(np.abs(energy_J - energy_J[0])))

@@ -71,7 +71,7 @@ def dask_client(target: DaskTarget, announce: Callable[[str], None]) -> Iterator
 
     if target.address is not None:
         try:
-            client = Client(target.address, timeout="30s")
+            client = Client(target.address)  # waits distributed.comm.timeouts.connect
         except (OSError, TimeoutError, ValueError) as error:
             raise PresetError(
                 "command line", "--scheduler", f"cannot reach {target.address}: {error}",

@@ -3,7 +3,8 @@
 Columns: ``point``, one per varied key path (named by the path, units as in the key), the
 job kind's summary figures (``JobKind.point_figures``: every column any point reported, in
 the order they first appear), then ``status`` (``ok`` / ``failed``), ``message`` and
-``seconds`` (the point's wall time: the one column that differs between runs).
+``seconds`` (the point's wall time: the one column that differs between runs). A figure
+named like a varied key (a workspace sweep over ``precision_cm``) is not repeated.
 """
 
 from __future__ import annotations
@@ -17,12 +18,14 @@ from planar_tui.sweep.worker import PointOutcome
 TRAILING = ("status", "message", "seconds")
 
 
-def figure_columns(outcomes: Sequence[PointOutcome]) -> list[str]:
-    """Every figure any point reported, in the order they first appear (points in order)."""
+def figure_columns(outcomes: Sequence[PointOutcome], paths: Sequence[str] = ()) -> list[str]:
+    """Every figure any point reported, in the order they first appear (points in order),
+    but those named like a varied key path (a workspace's ``precision_cm``: its column is
+    already there)."""
     columns: dict[str, None] = {}
     for outcome in sorted(outcomes, key=lambda o: o.number):
         columns.update(dict.fromkeys(outcome.figures))
-    return list(columns)
+    return [name for name in columns if name not in paths]
 
 
 def row(
@@ -41,7 +44,7 @@ def sweep_table(
 ) -> CsvTable:
     """The sweep's table from every point's ``values`` and ``outcomes`` (by point number)."""
     ordered = [outcomes[number] for number in sorted(outcomes)]
-    columns = figure_columns(ordered)
+    columns = figure_columns(ordered, paths)
     header = ("point", *paths, *columns, *TRAILING)
     rows = [row(o.number, values[o.number], o, columns) for o in ordered]
     return CsvTable(header, rows)

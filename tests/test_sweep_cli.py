@@ -1,0 +1,110 @@
+"""``planar-tui sweep`` and ``run`` on real processes: Ctrl-C on a 2-process local cluster
+exits 130 with the finished points checkpointed and no CSV, ``--resume`` finishes the
+sweep without recomputing them and gives the uninterrupted result; ``run`` runs the
+sweeps after the jobs."""
+
+from __future__ import annotations
+
+import csv
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+from planar_tui.errors import ExitCode
+from planar_tui.presets import load_preset
+from planar_tui.sweep.service import run_sweep
+from planar_tui.sweep.spec import parse_sweeps
+from tests.conftest import REPO
+from tests.sweep_presets import TORQUES, TORQUES_BASE, WORKSPACE, WORKSPACE_BASE, write
+
+CONSOLE_SCRIPT = "from planar_tui.entry import main; main()"
+
+
+def read_rows(path):
+    with open(path, newline="") as stream:
+        return list(csv.DictReader(stream))
+
+
+def test_ctrl_c_then_resume_gives_the_whole_result_without_recomputing(tmp_path, cli):
+    preset = write(tmp_path, "p.toml", WORKSPACE, """[[sweep]]
+job = "workspace"
+values.orientation_deg = { from = -30, to = 30, count = 10 }
+values.precision_cm = [0.2]
+output = "interrupted.csv"
+""", **WORKSPACE_BASE)  # fmt: skip
+    out = tmp_path / "out"
+    checkpoint = out / "interrupted.csv.checkpoint.jsonl"
+    process = subprocess.Popen(
+        [sys.executable, "-c", CONSOLE_SCRIPT, "sweep", str(preset), "--workers", "2",
+         "--out-dir", str(out)],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
+        env=dict(os.environ, PYTHONPATH=str(REPO)),
+    )  # fmt: skip
+    deadline = time.monotonic() + 90
+    while not (checkpoint.exists() and len(checkpoint.read_text().splitlines()) >= 3):
+        assert process.poll() is None, process.communicate()
+        assert time.monotonic() < deadline, "no point finished"
+        time.sleep(0.02)
+    os.killpg(process.pid, signal.SIGINT)  # as a terminal's Ctrl-C: the whole group
+    _, err = process.communicate(timeout=60)
+    assert process.returncode == ExitCode.INTERRUPTED, err
+    assert "dask: local cluster of 2 worker processes, dashboard http" in err
+    assert err.strip().splitlines()[-1].startswith("interrupted: finished points are in the")
+    assert "Traceback" not in err
+    assert not (out / "interrupted.csv").exists()
+    records = [json.loads(line) for line in checkpoint.read_text().splitlines()[1:]]
+    finished = {r["number"]: r["seconds"] for r in records}
+    assert 2 <= len(finished) < 10
+
+    result = cli("sweep", preset, "--out-dir", out, "--resume", "--workers", "1")
+    assert result.exit_code == 0, result.output
+    assert f"10 points, 0 failed, {len(finished)} from the checkpoint" in result.stdout
+    rows = read_rows(out / "interrupted.csv")
+    for row in rows:  # a resumed point keeps the timing of its first run: not run again
+        if int(row["point"]) in finished:
+            assert float(row["seconds"]) == round(finished[int(row["point"])], 6)
+    assert not checkpoint.exists()
+    (sweep,) = parse_sweeps(load_preset(preset))
+    whole = run_sweep(sweep)
+    assert [list(r.values())[:-1] for r in rows] == [
+        [str(c) for c in row[:-1]] for row in whole.table.rows
+    ]
+
+
+def test_run_runs_the_sweeps_after_the_jobs(tmp_path, cli):
+    preset = write(tmp_path, "p.toml", TORQUES, """[[sweep]]
+job = "torques"
+values."robot.masses_kg[2]" = [1.0, 2.0]
+output = "masses.csv"
+""", **TORQUES_BASE)  # fmt: skip
+    result = cli("run", preset, "--out-dir", tmp_path, "--workers", "1")
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "tq.csv").exists()
+    assert "p:sweep[1]: 2 points, 0 failed" in result.stdout
+    assert [r["robot.masses_kg[2]"] for r in read_rows(tmp_path / "masses.csv")] == ["1.0", "2.0"]
+    # with --job only the named jobs run, no sweep
+    (tmp_path / "masses.csv").unlink()
+    result = cli("run", preset, "--out-dir", tmp_path, "--job", "torques[1]")
+    assert result.exit_code == 0 and not (tmp_path / "masses.csv").exists()
+
+
+def test_sweep_without_sweeps_and_an_unreachable_scheduler(tmp_path, cli):
+    plain = write(tmp_path, "plain.toml", TORQUES, **TORQUES_BASE)
+    result = cli("sweep", plain, "--out-dir", tmp_path / "out")
+    assert result.exit_code == 2
+    assert result.stderr.strip() == f"error: {plain}: sweep: no [[sweep]] table in this " \
+                                    "preset (expected a [[sweep]] table)"  # fmt: skip
+    preset = write(tmp_path, "p.toml", TORQUES, '[[sweep]]\njob = "torques"\n'
+                   'values."robot.masses_kg[2]" = [1.0]\n', **TORQUES_BASE)  # fmt: skip
+    import dask
+
+    with dask.config.set({"distributed.comm.timeouts.connect": "1s"}):
+        result = cli("sweep", preset, "--out-dir", tmp_path / "out", "--scheduler",
+                     "tcp://127.0.0.1:9")  # fmt: skip
+    assert result.exit_code == 2
+    last = result.stderr.strip().splitlines()[-1]
+    assert last.startswith("error: command line: --scheduler: cannot reach tcp://127.0.0.1:9")
+    assert not (tmp_path / "out" / "p-sweep-1.csv").exists()
