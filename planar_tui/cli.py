@@ -14,7 +14,7 @@ import os
 import signal
 import sys
 from collections.abc import Iterator, Mapping, Sequence
-from contextlib import contextmanager
+from contextlib import ExitStack, contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated
 
@@ -616,6 +616,7 @@ def prepare_sweeps(loaded: Sequence[Preset], out_dir: Path, jobs: Sequence[Job] 
 def sweep_progress_display(console: Console):
     """A rich display with one bar per sweep: points done/total, failures, rate, ETA."""
     from rich import progress as bar
+    from rich.table import Column
     from rich.text import Text
 
     class RateColumn(bar.ProgressColumn):
@@ -625,7 +626,7 @@ def sweep_progress_display(console: Console):
 
     return bar.Progress(
         bar.TextColumn("{task.description}"), bar.BarColumn(bar_width=None),
-        bar.MofNCompleteColumn(), bar.TextColumn("{task.fields[failed]} failed"), RateColumn(),
+        bar.MofNCompleteColumn(), bar.TextColumn("{task.fields[failed]} failed"), RateColumn(table_column=Column(no_wrap=True)),
         bar.TextColumn("ETA"), bar.TimeRemainingColumn(), console=console, expand=True,
     )  # fmt: skip
 
@@ -642,7 +643,15 @@ def run_sweeps(
     count = workers or default_workers()
     failed = 0
     try:
-        with sigterm_as_interrupt():
+        with sigterm_as_interrupt(), ExitStack() as stack:
+            client = None
+            if prepared and (scheduler is not None or count > 1):
+                from planar_tui.sweep.execute import DaskTarget, dask_client
+
+                def announce(text: str) -> None:
+                    stderr.print(text, markup=False, highlight=False, soft_wrap=True)
+
+                client = stack.enter_context(dask_client(DaskTarget(count, scheduler), announce))
             for sweep, points in prepared:
                 with sweep_progress_display(stderr) as bars:
                     task = bars.add_task(sweep.label, total=len(points), failed=0)
@@ -652,12 +661,9 @@ def run_sweeps(
                             bars.update(task, completed=state.completed,
                                         failed=int(state.figures.get("failed", 0)))  # fmt: skip
 
-                    def announce(text: str, bars=bars) -> None:
-                        bars.console.print(text, markup=False, highlight=False, soft_wrap=True)
-
                     result = run_sweep(
-                        sweep, Progress(on_update=update), points=points, workers=count,
-                        scheduler=scheduler, out_dir=out_dir, resume=resume, announce=announce,
+                        sweep, Progress(on_update=update), points=points, out_dir=out_dir,
+                        resume=resume, client=client,
                     )  # fmt: skip
                 failed += result.failed
                 resumed = f", {result.resumed} from the checkpoint" if result.resumed else ""

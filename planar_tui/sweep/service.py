@@ -13,6 +13,7 @@ import secrets
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 from planar_tui.csvio import CsvTable, write_atomic, write_csv_atomic
 from planar_tui.progress import Progress
@@ -82,13 +83,15 @@ def run_sweep(
     resume: bool = False,
     on_outcome: Callable[[PointOutcome], None] | None = None,
     announce: Callable[[str], None] = lambda text: None,
+    client: Any = None,
 ) -> SweepRun:
     """Run every point of ``sweep`` and return them (see :class:`SweepRun`).
 
     ``points`` are :func:`make_points`'s (made and validated here when not given: a
     :class:`~planar_tui.errors.PresetError` before anything runs). ``workers == 1`` without
     a ``scheduler`` runs in this process (no Dask import); otherwise a local Dask cluster
-    of ``workers`` processes, or the scheduler at ``scheduler``. With ``out_dir`` the CSV,
+    of ``workers`` processes, or the scheduler at ``scheduler``; or the Dask ``client``
+    given (e.g. one local cluster for several sweeps, :func:`execute.dask_client`). With ``out_dir`` the CSV,
     the checkpoint and the point CSVs are written there; ``resume`` continues from the
     checkpoint of the same sweep. ``progress`` counts points (figure ``failed``); its
     cancel, or Ctrl-C, stops the run with :class:`~planar_tui.errors.Cancelled` /
@@ -140,11 +143,13 @@ def run_sweep(
             if on_outcome is not None:
                 on_outcome(outcome)
 
-        if workers <= 1 and scheduler is None:
+        prefix = f"planar-tui-{sweep.fingerprint()[:8]}-{secrets.token_hex(4)}"
+        if client is not None:
+            execute.run_on_dask(client, tasks, progress, finished_point, prefix)
+        elif workers <= 1 and scheduler is None:
             execute.run_in_process(tasks, progress, finished_point)
         elif tasks:
             target = execute.DaskTarget(workers, scheduler)
-            prefix = f"planar-tui-{sweep.fingerprint()[:8]}-{secrets.token_hex(4)}"
             with execute.dask_client(target, announce) as client:
                 execute.run_on_dask(client, tasks, progress, finished_point, prefix)
         if output is not None:
