@@ -222,3 +222,13 @@ def test_a_preset_with_sweeps_loads_edits_and_saves(tmp_path):
     (again,) = parse_sweeps(load_preset(saved))
     assert list(design(again)) == [(28.0,), (30.0,), (32.0,)]
     assert parse_toml(saved, saved.read_text())["sweep"] == preset.raw["sweep"]
+
+
+def test_the_readme_documents_every_sweep_key():
+    from planar_tui.sweep.spec import SWEEP_KEYS
+    from tests.conftest import REPO
+
+    readme = (REPO / "README.md").read_text(encoding="utf-8")
+    section = readme[readme.index("\n## Sweeps\n") : readme.index("\n## CSV formats\n")]
+    documented = [line.split("`")[1] for line in section.splitlines() if line.startswith("| `")]
+    assert documented == list(SWEEP_KEYS)

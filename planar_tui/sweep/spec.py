@@ -30,7 +30,7 @@ from planar_tui.sweep.paths import KeyPath, current_value, index_problem, parse_
 DEFAULT_MAX_POINTS = 100_000
 COMBINE = ("grid", "zip")
 SAMPLE_METHODS = ("sobol", "lhs", "uniform")
-SWEEP_KEYS = ("job", "values", "ranges", "sample", "combine", "output", "point_outputs",
+SWEEP_KEYS = ("job", "values", "combine", "ranges", "sample", "output", "point_outputs",
               "max_points")  # fmt: skip
 #: The preset's top-level table of sweeps.
 TABLE = "sweep"

@@ -96,3 +96,15 @@ def run_point(task: PointTask, progress: Progress | None = None) -> PointOutcome
         status, message, figures, tables = FAILED, _one_line(text), {}, {}
     return PointOutcome(task.number, status, message, figures,
                         time.perf_counter() - started, tables)  # fmt: skip
+
+
+def warm_worker(kind: str) -> None:
+    """Load what a point of job kind ``kind`` needs in a worker process (the package, the
+    kernels from the shared cache, by a tiny example job) before the first point: a
+    start-up cost a benchmark keeps out of the points' timings."""
+    from planar_tui.runtime import configure_process, prepare_kernels
+    from planar_tui.warmup import _run_example
+
+    configure_process()
+    prepare_kernels()
+    _run_example(kind)

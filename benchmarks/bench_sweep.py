@@ -1,0 +1,172 @@
+"""Sweeps on Dask (``python benchmarks/bench_sweep.py [--points 64] [--precision 0.1]``).
+
+Prints three tables, each against a baseline measured in this process:
+
+* per-task overhead: 400 trivial points (one inverse-dynamics state of a 2R robot, a few
+  µs of work) in-process and on a warm 2-process local cluster; the overhead per point is
+  ``wall · workers / points − compute``, where ``compute`` is the points' own mean
+  ``seconds`` (goal: ≤ 20 ms a point);
+* the speed-up of a 64-point workspace sweep (paper B's robot, Table 3 limits, orientations
+  −31.5..31.5°, mean-value form, ε = 0.1 cm: about 0.5 s a point) on 2 workers over 1
+  (in-process), with the cluster warm and with its start-up counted (goal ≥ 1.8×);
+* 1/2/4/8/16 workers, as many of them as this machine has cores (goal ≥ 12× on 16); the
+  rest are reported as not measured.
+
+Every sweep's CSV is checked equal to the in-process one in every column but ``seconds``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(REPO))
+
+TRIVIAL = """# trivial points
+[robot]
+lengths_m = [0.3, 0.2]
+masses_kg = [1.0, 0.5]
+
+[torques]
+theta_deg = [[10, 20]]
+
+[[sweep]]
+job = "torques"
+values."theta_deg[1][1]" = {{ from = 0, to = 90, count = {count} }}
+"""
+
+WORKSPACE = """# workspace points
+[robot3rrr]
+base_side_cm = 120
+platform_side_cm = 40
+proximal_cm = 30
+distal_cm = 30
+
+[workspace]
+form = "mean-value"
+precision_cm = {precision}
+joint_limits_deg = [[20, 70], [110, 160], [245, 295]]
+geometric_reference = false
+
+[[sweep]]
+job = "workspace"
+values.orientation_deg = {{ from = -31.5, to = 31.5, count = {count} }}
+"""
+
+
+def sweep_from(folder: Path, text: str):
+    from planar_tui.presets import load_preset
+    from planar_tui.sweep.spec import parse_sweeps
+
+    path = folder / f"bench-{abs(hash(text))}.toml"
+    path.write_text(text)
+    (sweep,) = parse_sweeps(load_preset(path))
+    return sweep
+
+
+def timed(function):
+    start = time.perf_counter()
+    result = function()
+    return time.perf_counter() - start, result
+
+
+def without_seconds(run):
+    return [tuple(row[:-1]) for row in run.table.rows]
+
+
+def warm(client) -> None:
+    """Import the package and load the kernels in every worker (what a first point does)."""
+    from planar_tui.sweep.worker import warm_worker
+
+    client.run(warm_worker, "torques")
+    client.run(warm_worker, "workspace")
+
+
+def load() -> list[str]:
+    """The 1, 5 and 15 minute load averages."""
+    return Path("/proc/loadavg").read_text().split()[:3]
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--points", type=int, default=64)
+    parser.add_argument("--precision", type=float, default=0.1)
+    parser.add_argument("--trivial", type=int, default=400)
+    args = parser.parse_args()
+
+    from distributed import Client, LocalCluster
+
+    from planar_tui.runtime import configure_process, prepare_kernels
+    from planar_tui.sweep.execute import default_workers
+    from planar_tui.sweep.service import run_sweep
+
+    configure_process()
+    prepare_kernels()
+    cores = default_workers()
+    print(f"machine: {cores} cores; load {load()}")
+    with tempfile.TemporaryDirectory() as scratch:
+        folder = Path(scratch)
+        trivial = sweep_from(folder, TRIVIAL.format(count=args.trivial))
+        work = sweep_from(folder, WORKSPACE.format(precision=args.precision, count=args.points))
+        run_sweep(trivial, workers=1)  # kernels loaded in this process
+        alone_s, alone = timed(lambda: run_sweep(trivial, workers=1))
+        compute_s = statistics.mean(o.seconds for o in alone.outcomes.values())
+        started_s, cluster = timed(lambda: LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0"))  # fmt: skip
+        with cluster, Client(cluster) as client:
+            warm(client)
+            spread_s, spread = timed(lambda: run_sweep(trivial, client=client))
+            assert without_seconds(spread) == without_seconds(alone)
+            spread_compute = statistics.mean(o.seconds for o in spread.outcomes.values())
+            print(f"\nper-task overhead, {args.trivial} trivial points (goal <= 20 ms a point)")
+            print("| runner | wall s | compute ms/point | overhead ms/point |")
+            print("|---|---:|---:|---:|")
+            overhead = 1e3 * (alone_s / args.trivial - compute_s)
+            print(
+                f"| in-process (baseline) | {alone_s:.3f} | {1e3 * compute_s:.3f} | {overhead:.3f} |"
+            )
+            overhead = 1e3 * (spread_s * 2 / args.trivial - spread_compute)
+            print(f"| 2 worker processes | {spread_s:.3f} | {1e3 * spread_compute:.3f} | "
+                  f"{overhead:.3f} |")  # fmt: skip
+
+            one_s, one = timed(lambda: run_sweep(work, workers=1))
+            per_point = statistics.mean(o.seconds for o in one.outcomes.values())
+            two_s, two = timed(lambda: run_sweep(work, client=client))
+            assert without_seconds(two) == without_seconds(one)
+        print(f"\n{args.points}-point workspace sweep, {per_point:.2f} s a point in-process "
+              "(goal >= 1.8x on 2 workers)")  # fmt: skip
+        print("| workers | wall s | speed-up |")
+        print("|---|---:|---:|")
+        print(f"| 1 (in-process, baseline) | {one_s:.2f} | 1.00x |")
+        print(f"| 2, warm cluster | {two_s:.2f} | {one_s / two_s:.2f}x |")
+        print(f"| 2, cluster start-up ({started_s:.2f} s) counted | {two_s + started_s:.2f} | "
+              f"{one_s / (two_s + started_s):.2f}x |")  # fmt: skip
+
+        print("\nworkers table (goal >= 12x on 16)")
+        print("| workers | wall s | speed-up |")
+        print("|---|---:|---:|")
+        for workers in (1, 2, 4, 8, 16):
+            if workers > cores:
+                print(f"| {workers} | not measured: this machine has {cores} cores | |")
+                continue
+            if workers == 1:
+                print(f"| 1 | {one_s:.2f} | 1.00x |")
+                continue
+            with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                              dashboard_address=":0") as cluster, Client(cluster) as client:  # fmt: skip
+                warm(client)
+                wall_s, run = timed(lambda client=client: run_sweep(work, client=client))
+                assert without_seconds(run) == without_seconds(one)
+            print(f"| {workers} | {wall_s:.2f} | {one_s / wall_s:.2f}x |")
+    print(f"\nload after the runs: {load()}")
+
+
+if __name__ == "__main__":
+    os.environ.setdefault("PYTHONWARNINGS", "ignore")
+    main()
