@@ -100,6 +100,7 @@ def test_sweep_without_sweeps_and_an_unreachable_scheduler(tmp_path, cli):
     preset = write(tmp_path, "p.toml", TORQUES, '[[sweep]]\njob = "torques"\n'
                    'values."robot.masses_kg[2]" = [1.0]\n', **TORQUES_BASE)  # fmt: skip
     import dask
+    import distributed  # noqa: F401 (its defaults loaded first: set() restores what it found)
 
     with dask.config.set({"distributed.comm.timeouts.connect": "1s"}):
         result = cli("sweep", preset, "--out-dir", tmp_path / "out", "--scheduler",

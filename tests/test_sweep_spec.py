@@ -232,3 +232,34 @@ def test_the_readme_documents_every_sweep_key():
     section = readme[readme.index("\n## Sweeps\n") : readme.index("\n## CSV formats\n")]
     documented = [line.split("`")[1] for line in section.splitlines() if line.startswith("| `")]
     assert documented == list(SWEEP_KEYS)
+
+
+def test_the_app_edits_and_saves_a_preset_with_sweeps(tmp_path):
+    """A [[sweep]] table neither stops the app's validation nor is lost when it saves."""
+    import asyncio
+
+    from planar_tui.app.app import WorkbenchApp
+    from planar_tui.app.workbench import Workbench
+    from tests.test_app import SIZE, validation
+
+    sweep = '[[sweep]]\njob = "workspace"\nvalues.orientation_deg = [-5, 5]\n'
+    path = write(tmp_path, "p.toml", WORKSPACE, sweep, **WORKSPACE_BASE)
+
+    async def edit_and_save() -> None:
+        app = WorkbenchApp(Workbench.open(path), output_dir=tmp_path)
+        async with app.run_test(size=SIZE) as pilot:
+            await pilot.pause()
+            assert validation(app).startswith("ok: p.toml")
+            app.action_show_tab("workspace")
+            await pilot.pause()
+            app.query_one("#pane-workspace #field-orientation_deg").value = "3"
+            await pilot.pause()
+            assert app.workbench.modified
+            await pilot.press("ctrl+s")
+            await pilot.pause()
+
+    asyncio.run(edit_and_save())
+    text = path.read_text()
+    assert "orientation_deg = 3\n" in text and text.endswith(sweep)
+    (again,) = parse_sweeps(load_preset(path))
+    assert list(design(again)) == [(-5,), (5,)]
