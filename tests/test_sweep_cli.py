@@ -91,7 +91,7 @@ output = "masses.csv"
     assert result.exit_code == 0 and not (tmp_path / "masses.csv").exists()
 
 
-def test_sweep_without_sweeps_and_an_unreachable_scheduler(tmp_path, cli):
+def test_sweep_without_sweeps_and_an_unreachable_scheduler(tmp_path, cli, monkeypatch):
     plain = write(tmp_path, "plain.toml", TORQUES, **TORQUES_BASE)
     result = cli("sweep", plain, "--out-dir", tmp_path / "out")
     assert result.exit_code == 2
@@ -105,7 +105,12 @@ def test_sweep_without_sweeps_and_an_unreachable_scheduler(tmp_path, cli):
     with dask.config.set({"distributed.comm.timeouts.connect": "1s"}):
         result = cli("sweep", preset, "--out-dir", tmp_path / "out", "--scheduler",
                      "tcp://127.0.0.1:9")  # fmt: skip
-    assert result.exit_code == 2
-    last = result.stderr.strip().splitlines()[-1]
-    assert last.startswith("error: command line: --scheduler: cannot reach tcp://127.0.0.1:9")
+        assert result.exit_code == 2
+        last = result.stderr.strip().splitlines()[-1]
+        assert last.startswith("error: command line: --scheduler: cannot reach tcp://127.0.0.1:9")
+        monkeypatch.setenv("PLANAR_TUI_SCHEDULER", "tcp://127.0.0.1:7")  # the same, by name
+        result = cli("sweep", preset, "--out-dir", tmp_path / "out")
+        assert result.exit_code == 2
+        last = result.stderr.strip().splitlines()[-1]
+        assert last.startswith("error: command line: --scheduler: cannot reach tcp://127.0.0.1:7")
     assert not (tmp_path / "out" / "p-sweep-1.csv").exists()
