@@ -10,7 +10,9 @@ Prints three tables, each against a baseline measured in this process:
   −31.5..31.5°, mean-value form, ε = 0.12 cm: about 0.5 s a point on an idle core) on 2 workers over 1
   (in-process), with the cluster warm and with its start-up counted (goal ≥ 1.8×);
   the last column, CPU time over wall time of each computing process, says how much of a
-  core each got (1.00: a core of its own; less: the machine was shared);
+  core each got (1.00: a core of its own; less: the machine was shared), and ``busy`` the
+  share of the wall time the workers spent inside points (100 %: the scheduler never
+  left a worker waiting);
 * 1/2/4/8/16 workers, as many of them as this machine has cores (goal ≥ 12× on 16); the
   rest are reported as not measured.
 
@@ -145,14 +147,16 @@ def main() -> None:
             two_s, two = timed(lambda: run_sweep(work, client=client))
             two_cpu = (sum(client.run(time.process_time).values()) - workers_before) / two_s / 2
             assert without_seconds(two) == without_seconds(one)
+            busy = sum(o.seconds for o in two.outcomes.values()) / two_s / 2
         print(f"\n{args.points}-point workspace sweep, {per_point:.2f} s a point in-process "
               "(goal >= 1.8x on 2 workers)")  # fmt: skip
-        print("| workers | wall s | speed-up | CPU s per wall s, per process |")
-        print("|---|---:|---:|---:|")
-        print(f"| 1 (in-process, baseline) | {one_s:.2f} | 1.00x | {one_cpu:.2f} |")
-        print(f"| 2, warm cluster | {two_s:.2f} | {one_s / two_s:.2f}x | {two_cpu:.2f} |")
+        print("| workers | wall s | speed-up | CPU s per wall s, per process | busy |")
+        print("|---|---:|---:|---:|---:|")
+        print(f"| 1 (in-process, baseline) | {one_s:.2f} | 1.00x | {one_cpu:.2f} | |")
+        print(f"| 2, warm cluster | {two_s:.2f} | {one_s / two_s:.2f}x | {two_cpu:.2f} | "
+              f"{100 * busy:.0f} % |")  # fmt: skip
         print(f"| 2, cluster start-up ({started_s:.2f} s) counted | {two_s + started_s:.2f} | "
-              f"{one_s / (two_s + started_s):.2f}x | |")  # fmt: skip
+              f"{one_s / (two_s + started_s):.2f}x | | |")  # fmt: skip
 
         print("\nworkers table (goal >= 12x on 16)")
         print("| workers | wall s | speed-up |")
