@@ -22,7 +22,13 @@ from textual.screen import Screen
 from textual.widgets import Footer, Static, TabbedContent, TabPane
 
 from planar_tui.app.file_actions import FileActions
-from planar_tui.app.job_runner import BatchFinished, BatchJobDone, JobFinished, JobRunner
+from planar_tui.app.job_runner import (
+    BatchFinished,
+    BatchJobDone,
+    JobFinished,
+    JobRunner,
+    SweepFinished,
+)
 from planar_tui.app.messages import CancelRequested, DocumentEdited, RunRequested
 from planar_tui.app.screens.dialogs import HelpScreen, MessageDialog, PathDialog
 from planar_tui.app.widgets.panes import JobPane, RobotPane
@@ -57,6 +63,7 @@ class WorkbenchApp(FileActions, App):
         Binding("ctrl+g", "goto_problem", "Go to error", priority=True),
         Binding("ctrl+l", "figure", "Figure", priority=True, show=False),
         Binding("f9", "run_all", "Run all", key_display="F9"),
+        Binding("f8", "sweep", "Sweep", key_display="F8"),
         *(
             Binding(str(number), f"show_tab_number({number})", f"Tab {number}", show=False)
             for number in range(1, 6)
@@ -89,6 +96,8 @@ class WorkbenchApp(FileActions, App):
         self.problems: list[PresetError] = []
         #: Quit was confirmed while a job ran: exit once its worker has stopped.
         self.quitting = False
+        #: The latest finished sweep (its screen opens again from the palette).
+        self.last_sweep: Any = None
 
     # -- layout ---------------------------------------------------------------------
     @staticmethod
@@ -303,6 +312,111 @@ class WorkbenchApp(FileActions, App):
         self.refresh_bindings()
         return True
 
+    # -- sweeps ----------------------------------------------------------------------
+    def action_sweep(self) -> None:
+        """Run the current tab's job as a sweep: a dialog asks for the keys and values."""
+        from planar_tui.app.screens.sweep import SweepDialog
+        from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
+        from planar_tui.sweep.paths import allowed_paths
+        from planar_tui.sweep.spec import build_sweep
+
+        pane = self.current_pane()
+        if not isinstance(pane, JobPane) or not pane.available():
+            self.notify("A sweep varies a job: choose a job tab first.", severity="warning")
+            return
+        if self.job_running:
+            self.notify("A job is already running (escape cancels it).", severity="warning")
+            return
+        try:
+            job = pane.current_job()
+            preset = self.workbench.validate()
+        except PresetError as error:
+            from planar_tui.app.problems import reason
+
+            self.revalidate()
+            self.notify(reason(error), title="No sweep: fix the preset first", severity="error")
+            self.call_later(self.goto_problem, error)
+            return
+        kind = JOB_KINDS[job.kind]
+        paths = allowed_paths(kind.keys, kind.robot_kind, ROBOT_KINDS[kind.robot_kind].keys)
+
+        def build(values: dict, combine: str) -> Any:
+            return build_sweep(preset, job.key, values=values, combine=combine)
+
+        def chosen(answer: tuple[Any, int, Any] | None) -> None:
+            if answer is None:
+                return
+            sweep, workers, points = answer
+            pane.controls().set_running(True)
+            pane.controls().status(f"starting {sweep.point_count} points of {job.key}")
+            self.jobs.start_sweep(pane, sweep, workers, points)
+            self.refresh_bindings()
+
+        self.push_screen(SweepDialog(job.key, paths, build), chosen)
+
+    def on_sweep_finished(self, message: SweepFinished) -> None:
+        """A sweep ended: open its screen (a dialog for an error)."""
+        self.refresh_bindings()
+        if self.exit_if_quitting():
+            return
+        pane = message.pane
+        if pane.is_attached:
+            controls = pane.controls()
+            controls.set_running(False)
+            if message.cancelled:
+                controls.status(f"sweep cancelled after {message.seconds:.2f} s; nothing kept")
+            elif message.error is not None:
+                controls.status(f"sweep not run: {message.error}")
+            else:
+                controls.finished()
+                run = message.run
+                failed = f", {run.failed} failed" if run.failed else ""
+                controls.status(
+                    f"sweep: {len(run.outcomes)} points{failed} in {message.seconds:.2f} s"
+                )
+        if message.cancelled:
+            self.notify("Sweep cancelled.")
+        elif message.error is not None:
+            error = message.error
+            text = (
+                error.message
+                if isinstance(error, PresetError)
+                else f"{type(error).__name__}: {error}"
+            )
+            self.push_screen(MessageDialog("Sweep not run", text))
+        else:
+            self.last_sweep = message.run
+            self.action_show_sweep()
+
+    def action_show_sweep(self) -> None:
+        """Show the latest sweep's table and plot."""
+        from planar_tui.app.screens.sweep import SweepScreen
+
+        if self.last_sweep is None:
+            self.notify("No sweep has run yet (F8 on a job tab starts one).")
+            return
+        self.push_screen(SweepScreen(self.last_sweep, self.export_sweep))
+
+    def export_sweep(self, run: Any) -> None:
+        """Ask for a file and write the sweep CSV there (atomically)."""
+        from planar_tui.batch import check_writable
+        from planar_tui.csvio import write_csv_atomic
+
+        def chosen(answer: str | None) -> None:
+            if not answer:
+                return
+            path = Path(answer)
+            try:
+                check_writable(path)
+                write_csv_atomic(path, run.table)
+            except (PresetError, OSError) as error:
+                self.push_screen(MessageDialog("Not exported", str(error)))
+                return
+            self.notify(f"Wrote {path}")
+
+        default = self.output_dir / run.sweep.output
+        self.push_screen(PathDialog("Export the sweep CSV to", str(default)), chosen)
+
     def on_batch_job_done(self, message: BatchJobDone) -> None:
         """A job of "run all" ended (files written): show it on its tab when selected."""
         job = message.job
@@ -464,7 +578,7 @@ class WorkbenchApp(FileActions, App):
             return self.job_running
         if action == "goto_problem":
             return bool(self.problems)
-        if action in ("toggle_form", "run") and self.is_mounted:
+        if action in ("toggle_form", "run", "sweep") and self.is_mounted:
             try:
                 return isinstance(self.current_pane(), JobPane)
             except Exception:
@@ -494,6 +608,14 @@ class WorkbenchApp(FileActions, App):
             "Run all jobs",
             "Every job of the preset in order, files into a folder, as planar-tui run (F9)",
             self.action_run_all,
+        )
+        yield SystemCommand(
+            "Run as sweep",
+            "Vary keys of the current tab's job over values, one row per point (F8)",
+            self.action_sweep,
+        )
+        yield SystemCommand(
+            "Show sweep result", "The latest sweep's table and plot", self.action_show_sweep
         )
         yield SystemCommand(
             "Go to error", "Jump to the first problem's field (ctrl+g)", self.action_goto_problem

@@ -282,7 +282,13 @@ class FileActions:
 
     # -- export -----------------------------------------------------------------------
     def action_export(self) -> None:
-        """Write the result on screen into a folder, named as the CLI names it."""
+        """Write the result on screen into a folder, named as the CLI names it (on the
+        sweep screen: the sweep CSV into a file)."""
+        from planar_tui.app.screens.sweep import SweepScreen
+
+        if isinstance(self.screen, SweepScreen):
+            self.screen.action_export()
+            return
         if self.dialog_open():
             return
         from planar_tui.app.widgets.panes import JobPane

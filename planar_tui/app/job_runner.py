@@ -148,6 +148,27 @@ class JobRunner:
             exit_on_error=False,
         )
 
+    def start_sweep(self, pane: Any, sweep: Any, workers: int = 1, points: Any = None) -> None:
+        """Run every point of ``sweep`` (:func:`planar_tui.sweep.service.run_sweep`: in this
+        process with ``workers == 1``, else on a local Dask cluster of ``workers``
+        processes), showing progress on ``pane``; posts :class:`SweepFinished`. ``points``
+        are the sweep's validated points (made and checked in the thread when ``None``).
+        Nothing is written (the sweep screen exports the CSV)."""
+        if self.running:
+            raise RuntimeError("a job is already running")
+        self.pane = pane
+        self.latest = None
+        self._stop.clear()
+        self._done.clear()
+        self._app.run_worker(
+            lambda: self._work_sweep(pane, sweep, workers, points),
+            name=sweep.label,
+            group=self.GROUP,
+            thread=True,
+            exclusive=True,
+            exit_on_error=False,
+        )
+
     def cancel(self) -> bool:
         """Ask the running job to stop at its next chunk; ``False`` when none runs."""
         if not self.running:
@@ -181,6 +202,31 @@ class JobRunner:
             finished = JobFinished(pane, job, result=result)
         finally:
             self.latest = None  # its partial results (views of the run's arrays) go too
+            self._done.set()
+        finished.seconds = time.perf_counter() - started
+        self._app.post_message(finished)
+
+    def _work_sweep(self, pane: Any, sweep: Any, workers: int, points: Any) -> None:
+        """The worker thread of a sweep: validate every point, then run them."""
+        from planar_tui.sweep.points import make_points
+        from planar_tui.sweep.service import run_sweep
+
+        worker = get_current_worker()
+        started = time.perf_counter()
+        progress = Progress(
+            on_update=self._store,
+            should_stop=lambda: self._stop.is_set() or worker.is_cancelled,
+        )
+        finished = SweepFinished(pane, sweep)
+        try:
+            points = make_points(sweep) if points is None else points
+            finished.run = run_sweep(sweep, progress, points=points, workers=workers)
+        except (Cancelled, KeyboardInterrupt):
+            finished.cancelled = True
+        except Exception as error:  # a point invalid for its key: a dialog says which
+            finished.error = error
+        finally:
+            self.latest = None
             self._done.set()
         finished.seconds = time.perf_counter() - started
         self._app.post_message(finished)
@@ -225,3 +271,26 @@ class JobRunner:
             self._done.set()
         finished.seconds = time.perf_counter() - started
         self._app.post_message(finished)
+
+
+class SweepFinished(Message):
+    """A sweep ended: ``run`` (a :class:`~planar_tui.sweep.service.SweepRun`) when every
+    point ran (some may have failed: their rows say why), ``error`` when it could not run
+    (a point invalid for its key), ``cancelled`` otherwise; ``seconds`` in all."""
+
+    def __init__(
+        self,
+        pane: Any,
+        sweep: Any,
+        run: Any = None,
+        error: BaseException | None = None,
+        cancelled: bool = False,
+        seconds: float = 0.0,
+    ):
+        super().__init__()
+        self.pane = pane
+        self.sweep = sweep
+        self.run = run
+        self.error = error
+        self.cancelled = cancelled
+        self.seconds = seconds

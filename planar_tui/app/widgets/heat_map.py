@@ -49,9 +49,7 @@ def heat_map_lines(
     line per value of ``down`` (largest first) with its label, the cells, and last the
     labels of ``across`` (first and last) under the cells.
     """
-    finite = [
-        float(v) for row in grid for v in row if v is not None and math.isfinite(float(v))
-    ]
+    finite = [float(v) for row in grid for v in row if v is not None and math.isfinite(float(v))]
     lo, hi = (min(finite), max(finite)) if finite else (0.0, 0.0)
     labels = [_label(value) for value in down]
     label_width = max([len(text) for text in labels] + [len(down_name)])
