@@ -3,7 +3,9 @@
 Run from the repository root: ``python docs/screenshots/make_screenshots.py``. Each tab is
 shown on ``tests/data/app/tiny.toml`` after its job ran (the Robot tab as opened), and
 ``sensitivity-6r`` shows the bundled ``paper-a-table1`` preset's default 6R sensitivity job
-with the form hidden (``ctrl+f``), the widest table the app shows at 80 columns.
+with the form hidden (``ctrl+f``), the widest table the app shows at 80 columns;
+``sweep`` is the result screen of an ``F8`` sweep of tiny's simulation (a heat map of the
+second joint's final angle over its link mass and the duration).
 """
 
 from __future__ import annotations
@@ -48,6 +50,24 @@ async def main() -> None:
         await pilot.press("f1")
         await pilot.pause()
         save(app, "help")
+        await pilot.press("escape")
+        app.action_show_tab("simulate")
+        await pilot.pause()
+        await pilot.press("f8")
+        await pilot.pause()
+        for field, text in (
+            ("#sweep-key-1", "robot.masses_kg[2]"),
+            ("#sweep-values-1", "0.5..1.5 x6"),
+            ("#sweep-key-2", "duration_s"),
+            ("#sweep-values-2", "0.1..0.2 x5"),
+        ):
+            app.screen.query_one(field).value = text
+        await pilot.press("enter")
+        await wait_for_job(app, pilot)
+        sweep = app.screen
+        sweep.query_one("#sweep-figure").value = "theta2_end_rad"
+        await pilot.pause(0.3)
+        save(app, "sweep")
     app = WorkbenchApp(Workbench.open(Path("presets/paper-a-table1.toml")), output_dir="/tmp")
     async with app.run_test(size=SIZE) as pilot:
         app.action_show_tab("sensitivity")
@@ -57,5 +77,24 @@ async def main() -> None:
         save(app, "sensitivity-6r")
 
 
+def sync_readme() -> None:
+    """Put each text capture into the README's code block under its ``[SVG](…NAME.svg)``
+    heading, so the README shows what the app shows."""
+    import re
+
+    readme = REPO / "README.md"
+    text = readme.read_text(encoding="utf-8")
+    for capture in sorted(OUT.glob("*.txt")):
+        pattern = re.compile(
+            r"(\(docs/screenshots/" + re.escape(capture.stem) + r"\.svg\)[^\n]*\n\n```text\n)"
+            r"(.*?)(```)",
+            re.DOTALL,
+        )
+        body = capture.read_text(encoding="utf-8").rstrip("\n") + "\n"
+        text = pattern.sub(lambda match, body=body: match[1] + body + match[3], text)
+    readme.write_text(text, encoding="utf-8")
+
+
 if __name__ == "__main__":
     asyncio.run(main())
+    sync_readme()

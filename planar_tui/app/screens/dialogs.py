@@ -134,7 +134,7 @@ fields, F2 F3 F4 F6 F7 anywhere. Fields take TOML; enter: next field.
 Each job is checked alone: a bad field gets a red border and reason.
   F5          run the job of the current tab (also the Run button)
   F9          run all jobs in order into a folder, as planar-tui run
-  F8          run the tab's job as a sweep (keys and values in a dialog)
+  F8          run the tab's job as a sweep over keys and values
   escape      cancel the job ("cancelling…" until it has stopped)
   ctrl+g      go to the first error (switches tab, job and robot)
   ctrl+o      open a preset (a path or a bundled name)
