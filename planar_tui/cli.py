@@ -583,26 +583,37 @@ def sweep_command(
     scheduler: SchedulerOption = None,
     resume: ResumeOption = False,
     out_dir: OutDirOption = Path("."),
+    plot: PlotOption = None,
 ) -> None:
     """Run the preset's sweeps ([[sweep]] tables): one CSV each, one row per point."""
     with reported_errors():
+        if plot is not None:
+            check_figure_option(plot)
         (loaded,) = load_presets([preset])
-        prepared = prepare_sweeps([loaded], out_dir)
+        prepared = prepare_sweeps([loaded], out_dir, plot=plot)
         if not prepared:
             raise PresetError(loaded.path, "sweep", "no [[sweep]] table in this preset",
                               "a [[sweep]] table")  # fmt: skip
         run_sweeps(prepared, out_dir, workers, scheduler, resume)
 
 
-def prepare_sweeps(loaded: Sequence[Preset], out_dir: Path, jobs: Sequence[Job] = ()) -> list:
+def prepare_sweeps(
+    loaded: Sequence[Preset], out_dir: Path, jobs: Sequence[Job] = (), plot: Path | None = None
+) -> list:
     """Every sweep of the presets with its points, all validated, and their outputs
-    checked (none on a job's file), before anything runs."""
-    from planar_tui.batch import _output_error, plan_outputs
+    checked (none on a job's file), before anything runs; ``plot`` (``--plot``) replaces
+    the sweeps' ``plot`` keys (numbered ``FILE-1.png`` ... for several sweeps)."""
+    from planar_tui.batch import _output_error, numbered_path, plan_outputs
     from planar_tui.sweep.points import make_points
     from planar_tui.sweep.service import check_outputs, output_path
     from planar_tui.sweep.spec import parse_sweeps
 
     sweeps = [sweep for preset in loaded for sweep in parse_sweeps(preset)]
+    if plot is not None:
+        sweeps = [
+            dataclasses.replace(sweep, plot=str(numbered_path(plot, number, len(sweeps))))
+            for number, sweep in enumerate(sweeps, start=1)
+        ]
     prepared = [(sweep, make_points(sweep)) for sweep in sweeps]
     check_outputs(sweeps, out_dir)
     job_files = {path.resolve() for plan in plan_outputs(jobs, out_dir) for path in plan.paths()}
@@ -636,6 +647,7 @@ def run_sweeps(
 ) -> None:
     """Run validated sweeps, one progress bar each; a summary line per sweep on stdout.
     Exit code 1 when a point failed (its row says why); Ctrl-C keeps the checkpoint."""
+    from planar_tui.batch import OutputFailed
     from planar_tui.progress import Progress
     from planar_tui.sweep.execute import default_workers
     from planar_tui.sweep.service import run_sweep
@@ -667,9 +679,11 @@ def run_sweeps(
                     )  # fmt: skip
                 failed += result.failed
                 resumed = f", {result.resumed} from the checkpoint" if result.resumed else ""
+                figure = "" if result.figure is None else f", figure {result.figure}"
                 stdout.print(
                     f"{sweep.label}: {len(points)} points, {result.failed} failed{resumed} "
-                    f"-> {result.output}", markup=False, highlight=False, soft_wrap=True,
+                    f"-> {result.output}{figure}", markup=False, highlight=False,
+                    soft_wrap=True,
                 )  # fmt: skip
     except Terminated:
         raise fail(
@@ -677,6 +691,8 @@ def run_sweeps(
             "finishes it); no sweep CSV was written",
             ExitCode.TERMINATED,
         ) from None
+    except OutputFailed as error:
+        raise fail(f"error: {error}", ExitCode.RUN_FAILED) from None
     except (KeyboardInterrupt, Cancelled):
         raise fail(
             "interrupted: finished points are in the sweep's checkpoint (--resume "

@@ -34,6 +34,7 @@ class SweepRun:
     outcomes: dict[int, PointOutcome] = field(default_factory=dict)
     resumed: int = 0
     output: Path | None = None
+    figure: Path | None = None
 
     @property
     def failed(self) -> int:
@@ -45,6 +46,21 @@ class SweepRun:
         """The sweep CSV of the points finished so far (all of them once it ran)."""
         values = {point.number: point.values for point in self.points}
         return sweep_table([path.text for path in self.sweep.paths], values, self.outcomes)
+
+
+def write_figure(run: SweepRun, path: Path) -> Path:
+    """Draw the sweep's figure (:mod:`planar_tui.figures.sweep`: a line against one
+    varied key, a heat map against two) into ``path``, atomically; a sweep the figure
+    cannot show (no varied numeric key) is :class:`~planar_tui.batch.OutputFailed`."""
+    from planar_tui.batch import OutputFailed
+    from planar_tui.figures.dispatch import save_table_figure
+
+    try:
+        return save_table_figure(run.table, path, title=run.sweep.label)
+    except OSError as error:
+        raise OutputFailed(path, error.strerror or str(error)) from None
+    except Exception as error:
+        raise OutputFailed(path, f"cannot draw the figure: {error}") from None
 
 
 def output_path(sweep: Sweep, out_dir: Path) -> Path:
@@ -63,6 +79,8 @@ def check_outputs(sweeps: Sequence[Sweep], out_dir: Path) -> None:
         paths = [output, checkpoint_path(output)]
         if sweep.point_outputs is not None:
             paths.append(out_dir / sweep.point_outputs / "point-1.csv")
+        if sweep.plot is not None:
+            paths.append(out_dir / sweep.plot)
         for path in paths:
             check_writable(path)
         identity = output.resolve()
@@ -155,6 +173,8 @@ def run_sweep(
         if output is not None:
             write_csv_atomic(output, run.table)
             run.output = output
+            if sweep.plot is not None:
+                run.figure = write_figure(run, out_dir / sweep.plot)
     except BaseException:
         if writer is not None:
             writer.close()

@@ -23,14 +23,14 @@ from planar_tui.errors import PresetError
 from planar_tui.jobkind import Job
 from planar_tui.presets import Preset
 from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
-from planar_tui.schema import TableReader, shown, suggest, type_name
+from planar_tui.schema import TableReader, figure_path, shown, suggest, type_name
 from planar_tui.sweep.paths import KeyPath, current_value, index_problem, parse_key_path
 
 #: Most points a sweep may have unless its ``max_points`` says more.
 DEFAULT_MAX_POINTS = 100_000
 COMBINE = ("grid", "zip")
 SAMPLE_METHODS = ("sobol", "lhs", "uniform")
-SWEEP_KEYS = ("job", "values", "combine", "ranges", "sample", "output", "point_outputs",
+SWEEP_KEYS = ("job", "values", "combine", "ranges", "sample", "output", "point_outputs", "plot",
               "max_points")  # fmt: skip
 #: The preset's top-level table of sweeps.
 TABLE = "sweep"
@@ -51,8 +51,9 @@ class Sweep:
     start from (``""``: the job's own table; the robot kind's name: the robot table it runs
     on) and their parsed values as TOML (``defaults``), the varied key paths with their
     values (``values``, combined by ``combine``) or ranges (``ranges`` sampled by
-    ``sample``), the CSV ``output`` and optional ``point_outputs`` folder (both relative to
-    the output folder), and ``source``, the sweep's table as written (for the fingerprint).
+    ``sample``), the CSV ``output``, the optional ``point_outputs`` folder and ``plot``
+    figure (all relative to the output folder), and ``source``, the sweep's table as
+    written (for the fingerprint).
     """
 
     preset_path: Path
@@ -67,6 +68,7 @@ class Sweep:
     combine: str = "grid"
     output: str = ""
     point_outputs: str | None = None
+    plot: str | None = None
     max_points: int = DEFAULT_MAX_POINTS
     source: Mapping[str, Any] = field(default_factory=dict)
 
@@ -96,7 +98,8 @@ class Sweep:
         fingerprint belongs to another sweep and is never resumed."""
         text = json.dumps(
             {"version": __version__, "kind": self.job.kind, "key": self.job.key,
-             "tables": self.tables, "sweep": self.source},
+             "tables": self.tables,
+             "sweep": {k: v for k, v in self.source.items() if k != "plot"}},
             sort_keys=True, default=repr,
         )  # fmt: skip
         return hashlib.sha256(text.encode()).hexdigest()
@@ -268,11 +271,12 @@ def parse_sweep_table(preset: Preset, table: Any, name: str, number: int = 1) ->
         )
     output = reader.relative_path("output", f"{path.stem}-sweep-{number}.csv")
     point_outputs = reader.relative_path("point_outputs", None)
+    plot = figure_path()(reader, "plot", None, None, {})
     return Sweep(
         preset_path=path, name=name, job=job, document=preset.raw, tables=tables,
         defaults=defaults, values=tuple(values), ranges=tuple(ranges), sample=sample,
-        combine=combine, output=output, point_outputs=point_outputs, max_points=max_points,
-        source=table,
+        combine=combine, output=output, point_outputs=point_outputs, plot=plot,
+        max_points=max_points, source=table,
     )  # fmt: skip
 
 

@@ -1,0 +1,68 @@
+"""A sweep's figure: the ``plot`` key of a ``[[sweep]]`` table and ``planar-tui sweep
+--plot FILE`` draw the sweep CSV's figure (a line against one varied key) beside the CSV;
+a bad suffix is refused before anything runs; a sweep the figure cannot show is one line."""
+
+from __future__ import annotations
+
+import csv
+import xml.etree.ElementTree as ET
+
+from tests.sweep_presets import TORQUES, TORQUES_BASE, write
+
+SWEEP = """[[sweep]]
+job = "torques"
+values."robot.masses_kg[2]" = [1.0, 1.5, 2.0]
+output = "masses.csv"
+"""
+
+
+def _is_svg(path) -> bool:
+    return ET.parse(path).getroot().tag.endswith("svg")
+
+
+def test_plot_key_draws_the_sweep_figure_beside_its_csv(tmp_path, cli):
+    preset = write(tmp_path, "p.toml", TORQUES, SWEEP + 'plot = "masses.svg"\n', **TORQUES_BASE)
+    result = cli("sweep", preset, "--workers", "1", "--out-dir", tmp_path / "out")
+    assert result.exit_code == 0, result.output
+    assert _is_svg(tmp_path / "out" / "masses.svg")
+    assert "figure " in result.stdout and "masses.svg" in result.stdout
+    rows = list(csv.DictReader((tmp_path / "out" / "masses.csv").read_text().splitlines()))
+    assert [row["robot.masses_kg[2]"] for row in rows] == ["1.0", "1.5", "2.0"]
+
+
+def test_plot_option_overrides_the_key_and_checks_the_suffix(tmp_path, cli):
+    preset = write(tmp_path, "p.toml", TORQUES, SWEEP + 'plot = "masses.svg"\n', **TORQUES_BASE)
+    out = tmp_path / "out"
+    bad = cli("sweep", preset, "--workers", "1", "--out-dir", out, "--plot", "fig.gif")
+    assert bad.exit_code == 2 and not out.exists()
+    assert "fig.gif" in bad.output and ".svg" in bad.output and "Traceback" not in bad.output
+    good = cli("sweep", preset, "--workers", "1", "--out-dir", out, "--plot", out / "f.png")
+    assert good.exit_code == 0, good.output
+    assert (out / "f.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert not (out / "masses.svg").exists()
+
+
+def test_bad_plot_key_is_one_line_and_nothing_runs(tmp_path, cli):
+    preset = write(tmp_path, "p.toml", TORQUES, SWEEP + 'plot = "masses.txt"\n', **TORQUES_BASE)
+    result = cli("sweep", preset, "--workers", "1", "--out-dir", tmp_path / "out")
+    assert result.exit_code == 2
+    (line,) = result.output.strip().splitlines()
+    assert "sweep[1].plot" in line and ".svg, .png, .pdf" in line
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_sweep_the_figure_cannot_show_is_one_line_after_the_csv(tmp_path, cli):
+    # one point: no column varies, so there is nothing to draw against
+    sweep = """[[sweep]]
+job = "torques"
+values."theta_deg[1]" = [[10, 20]]
+output = "postures.csv"
+plot = "postures.svg"
+"""
+    preset = write(tmp_path, "p.toml", TORQUES, sweep, **TORQUES_BASE)
+    result = cli("sweep", preset, "--workers", "1", "--out-dir", tmp_path / "out")
+    assert result.exit_code == 1
+    assert "postures.svg: cannot write: cannot draw the figure" in result.output
+    assert "Traceback" not in result.output
+    assert (tmp_path / "out" / "postures.csv").exists()
+    assert not (tmp_path / "out" / "postures.svg").exists()
