@@ -1,4 +1,5 @@
-"""The ``[workspace]`` job: constant-orientation workspace of a 3-RRR (paper B).
+"""The ``[workspace]`` job: the workspace of a 3-RRR (paper B) at one orientation or over a
+range of them (:mod:`planar_tui.workspace.orientation`).
 
 Settings (the preset keys), command-line overrides, the runner, the typed result and the
 terminal view (the character-cell map) of one job kind; the computation itself is
@@ -24,6 +25,13 @@ from planar_tui.schema import (
     relative_path,
     setting,
     string,
+)
+from planar_tui.workspace.orientation import (
+    MODES,
+    check_orientation,
+    default_form,
+    reach_box_for,
+    read_orientation,
 )
 from planar_tui.workspace.robot import Robot3RRR
 
@@ -61,14 +69,13 @@ def _search_box(reader: TableReader, name, default, robot: Robot3RRR, values):
     """An (x, y) box in cm that contains the robot's reach at the job's orientation."""
     if not reader.has("search_box_cm"):
         return None
-    orientation_rad = math.radians(values["orientation_deg"])
     rows = reader.number_rows("search_box_cm", columns=2)
     if len(rows) != 2 or any(not lo < hi for lo, hi in rows):
         raise reader.error(
             "search_box_cm", f"is {[list(r) for r in rows]}", "[[x_min, x_max], [y_min, y_max]]"
         )
     (xlo, xhi), (ylo, yhi) = rows
-    rxlo, rxhi, rylo, ryhi = robot.reach_box_cm(orientation_rad)
+    rxlo, rxhi, rylo, ryhi = reach_box_for(robot, values["orientation_deg"])
     if (
         rxlo <= rxhi
         and rylo <= ryhi
@@ -108,15 +115,26 @@ class WorkspaceSpec:
     joint_limits_deg: tuple[tuple[float, float], ...] = setting(
         _joint_limits, type_doc="3 rows `[min, max]`", doc="active-joint limits θ1, θ2, θ3"
     )
-    orientation_deg: float = setting(
-        number(), default=0.0, type_doc="number", doc="platform orientation φ"
+    orientation_deg: float | tuple[float, float] = setting(
+        read_orientation,
+        default=0.0,
+        type_doc="number, or `[lo, hi]` (lo < hi, at most 360 apart)",
+        doc="platform orientation φ, or a range of them (needs `orientation_mode`)",
+    )
+    orientation_mode: str | None = setting(
+        string(choices=MODES),
+        default=None,
+        type_doc="`maximal` or `total`",
+        default_doc="(none; required with a range)",
+        doc="over a range: positions reachable with some φ (`maximal`) or with every φ (`total`)",
     )
     precision_cm: float = setting(
         number(positive=True), type_doc="number > 0", doc="bisection precision ε"
     )
     form: str = setting(
         string(choices=FORMS),
-        default="mean-value",
+        default=default_form,
+        default_doc='`"mean-value"` (`"arc-distance"` with a range of φ)',
         type_doc=", ".join(f"`{f}`" for f in FORMS),
         doc="interval form of the inclusion test (`geometric`: the exact area only)",
     )
@@ -179,6 +197,7 @@ class WorkspaceSpec:
     def check(values: dict, reader: TableReader, robot: Robot3RRR) -> dict:
         """The expanded form needs the natural form and the paper's layout; the refinement
         precision cannot exceed the precision."""
+        check_orientation(values, reader)
         form = values["form"]
         if values["expanded"] and form != "natural":
             raise reader.error("expanded", f"is true with form = {form!r}", 'form = "natural"')
@@ -201,7 +220,9 @@ class WorkspaceSpec:
 
     @property
     def orientation_rad(self) -> float:
-        """Platform orientation :math:`\\varphi` in radians."""
+        """Platform orientation :math:`\\varphi` in radians (a single orientation only)."""
+        if isinstance(self.orientation_deg, tuple):
+            raise ValueError("orientation_deg is a range: no single orientation")
         return math.radians(self.orientation_deg)
 
 
@@ -212,6 +233,13 @@ def with_overrides(spec: WorkspaceSpec, options: Mapping[str, Any]) -> Workspace
     if form is not None:
         if form not in FORMS:
             raise PresetError("--form", "form", f"is {form!r}", "one of " + ", ".join(FORMS))
+        if isinstance(spec.orientation_deg, tuple) and form != "arc-distance":
+            raise PresetError(
+                "--form",
+                "form",
+                f"is {form!r} for a job with orientation_deg = [lo, hi]",
+                "arc-distance (the only form over a range of orientations)",
+            )
         spec = replace(spec, form=form, expanded=spec.expanded and form == "natural")
     if precision_cm is not None:
         if not (math.isfinite(precision_cm) and precision_cm > 0):
@@ -244,10 +272,20 @@ def run_workspace(job: Job, progress: Progress) -> WorkspaceResult:
         compute_workspace,
         summary_line,
     )
+    from planar_tui.workspace.orientation import (
+        ORIENTATION_HEADER,
+        compute_orientation_workspace,
+        orientation_columns,
+    )
 
-    outcome = compute_workspace(job.robot, job.spec, BoxBudget(job, progress))
+    budget = BoxBudget(job, progress)
+    if isinstance(job.spec.orientation_deg, tuple):
+        outcome = compute_orientation_workspace(job.robot, job.spec, budget)
+    else:
+        outcome = compute_workspace(job.robot, job.spec, budget)
+    row = outcome.summary_row() + orientation_columns(job.spec)
     return WorkspaceResult(
-        table=CsvTable(SUMMARY_HEADER, [outcome.summary_row()]),
+        table=CsvTable(SUMMARY_HEADER + ORIENTATION_HEADER, [row]),
         summary=summary_line(outcome),
         extra_tables={"boxes": boxes_table(outcome)},
         outcome=outcome,
@@ -257,7 +295,11 @@ def run_workspace(job: Job, progress: Progress) -> WorkspaceResult:
 def map_title(job: Job, outcome) -> str:
     """What a map shows: ``paper-b-table3:workspace[4]: mean-value, ε = 0.1172 cm`` (and
     the refinement precision), as run, overrides included."""
+    from planar_tui.workspace.orientation import describe
+
     title = f"{job.label}: {outcome.form}, ε = {outcome.precision_cm:.4g} cm"
+    if isinstance(job.spec.orientation_deg, tuple):
+        title += f", {describe(job.spec)}"
     if outcome.refine_precision_cm is not None:
         title += f", boundary refined to {outcome.refine_precision_cm:.4g} cm"
     return title
