@@ -34,6 +34,12 @@ from planar_tui.workspace.orientation import (
     read_orientation,
 )
 from planar_tui.workspace.robot import Robot3RRR
+from planar_tui.workspace.singularity import (
+    check_singularity,
+    prepare_workspace,
+    read_centre,
+    read_elbow,
+)
 
 FORMS = ("natural", "mean-value", "slope", "arc-distance", "geometric")
 #: How the interval forms pave: per (x, y) box a 1-D θ search per leg, or the paper's
@@ -191,6 +197,35 @@ class WorkspaceSpec:
         type_doc="relative path",
         doc="CSV of the kept boxes (`--boxes` on the command line)",
     )
+    singularities: bool = setting(
+        boolean(),
+        default=False,
+        type_doc="boolean",
+        doc="also map the type II singularities and certify the singularity-free circle",
+    )
+    elbow: tuple[int, int, int] | None = setting(
+        read_elbow,
+        default=None,
+        type_doc="3 signs, each `1` or `-1`",
+        default_doc="(the mode the limits allow at the centre)",
+        doc="working mode per leg: θ = α + β (`1`) or α − β (`-1`)",
+    )
+    circle_centre_cm: tuple[float, float] | None = setting(
+        read_centre,
+        default=None,
+        type_doc="`[x, y]`",
+        default_doc="(the workspace's centroid)",
+        doc="centre of the singularity-free circle (must be reachable)",
+    )
+    singularity_precision_cm: float | None = setting(
+        number(positive=True),
+        default=None,
+        type_doc="number > 0",
+        default_doc="`precision_cm`",
+        doc="bisection precision of the singularity paving",
+    )
+    #: ``(x, y, elbow)`` of the circle, resolved by ``prepare`` (a derived value).
+    circle: Any = None
     plot: str | None = plot_setting()
 
     @staticmethod
@@ -198,6 +233,7 @@ class WorkspaceSpec:
         """The expanded form needs the natural form and the paper's layout; the refinement
         precision cannot exceed the precision."""
         check_orientation(values, reader)
+        check_singularity(values, reader)
         form = values["form"]
         if values["expanded"] and form != "natural":
             raise reader.error("expanded", f"is true with form = {form!r}", 'form = "natural"')
@@ -260,6 +296,8 @@ class WorkspaceResult(JobResult):
     ``extra_tables["boxes"]``."""
 
     outcome: Any
+    #: :class:`~planar_tui.workspace.singularity.SingularityOutcome` with ``singularities``.
+    singularity: Any = None
 
 
 def run_workspace(job: Job, progress: Progress) -> WorkspaceResult:
@@ -277,18 +315,31 @@ def run_workspace(job: Job, progress: Progress) -> WorkspaceResult:
         compute_orientation_workspace,
         orientation_columns,
     )
+    from planar_tui.workspace.singularity import (
+        HEADER,
+        compute_singularities,
+        singularity_columns,
+    )
 
     budget = BoxBudget(job, progress)
+    singular = None
     if isinstance(job.spec.orientation_deg, tuple):
         outcome = compute_orientation_workspace(job.robot, job.spec, budget)
     else:
         outcome = compute_workspace(job.robot, job.spec, budget)
-    row = outcome.summary_row() + orientation_columns(job.spec)
+        if job.spec.singularities:
+            job = JOB_KIND.prepared(job)
+            singular = compute_singularities(job.robot, job.spec, outcome.extent_cm, budget, job)
+    row = outcome.summary_row() + orientation_columns(job.spec) + singularity_columns(singular)
+    summary = summary_line(outcome)
+    if singular is not None:
+        summary += f"; {singular.describe()}"
     return WorkspaceResult(
-        table=CsvTable(SUMMARY_HEADER + ORIENTATION_HEADER, [row]),
-        summary=summary_line(outcome),
+        table=CsvTable(SUMMARY_HEADER + ORIENTATION_HEADER + HEADER, [row]),
+        summary=summary,
         extra_tables={"boxes": boxes_table(outcome)},
         outcome=outcome,
+        singularity=singular,
     )
 
 
@@ -317,7 +368,10 @@ def render_workspace(job: Job, result: WorkspaceResult, console) -> None:
         console.print(result.summary, markup=False)
         return
     width = min(console.width or 80, 120)
-    for line in render_map(outcome.boxes, outcome.status, width=width):
+    singular = result.singularity
+    if singular is not None:
+        console.print(singular.describe(), markup=False, highlight=False)
+    for line in render_map(outcome.boxes, outcome.status, width=width, **overlays(singular)):
         console.print(line, markup=False, highlight=False, crop=True, soft_wrap=False)
 
 
@@ -326,6 +380,14 @@ def point_figures(job: Job, result: WorkspaceResult) -> dict[str, Any]:
     has its own timing)."""
     header, (row,) = result.table.header, result.table.rows
     return {name: value for name, value in zip(header, row, strict=True) if name != "seconds"}
+
+
+def overlays(singular) -> dict:
+    """``render_map`` keywords drawing the singular boxes and the circle (none without)."""
+    if singular is None:
+        return {}
+    centre = singular.centre_cm
+    return {"singular": singular.singular_boxes, "circle": (*centre, singular.radius_lo_cm)}
 
 
 def _extra_outputs(spec: WorkspaceSpec) -> dict[str, str]:
@@ -342,4 +404,5 @@ JOB_KIND = JobKind(
     extra_outputs=_extra_outputs,
     overrides=with_overrides,
     point_figures=point_figures,
+    prepare=prepare_workspace,
 )
