@@ -153,7 +153,7 @@ def test_cli_writes_the_orientation_columns_and_the_reference(cli, tmp_path):
     extra = 'orientation_deg = [-5, 5]\norientation_mode = "maximal"\n'
     result = cli("workspace", write(tmp_path, extra, "true"), "--out-dir", tmp_path)
     assert result.exit_code == 0, result.output
-    assert "maximal over φ in [-5, 5]°" in result.output
+    assert "maximal, φ ∈ [-5, 5]°" in result.output
     with open(tmp_path / "ws.csv", encoding="utf-8") as f:
         (row,) = list(csv.DictReader(f))
     assert row["orientation_mode"] == "maximal"

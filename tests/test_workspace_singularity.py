@@ -160,7 +160,7 @@ def test_the_map_and_the_summary_show_the_singularities_and_the_circle(cli, tmp_
     result = cli("workspace", path, "--out-dir", tmp_path)
     assert result.exit_code == 0, result.output
     assert "×" in result.output and "o" in result.output and "+" in result.output
-    assert "singularity-free circle about" in result.output
+    assert "singularity-free: r ∈ [" in result.output
     with open(tmp_path / "ws.csv", encoding="utf-8") as f:
         (row,) = list(csv.DictReader(f))
     assert float(row["circle_radius_lo_cm"]) <= float(row["circle_radius_hi_cm"])

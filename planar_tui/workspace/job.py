@@ -314,6 +314,7 @@ def run_workspace(job: Job, progress: Progress) -> WorkspaceResult:
         ORIENTATION_HEADER,
         compute_orientation_workspace,
         orientation_columns,
+        summary_text,
     )
     from planar_tui.workspace.singularity import (
         HEADER,
@@ -330,12 +331,17 @@ def run_workspace(job: Job, progress: Progress) -> WorkspaceResult:
         if job.spec.singularities:
             job = JOB_KIND.prepared(job)
             singular = compute_singularities(job.robot, job.spec, outcome.extent_cm, budget, job)
-    row = outcome.summary_row() + orientation_columns(job.spec) + singularity_columns(singular)
+    # the new columns go before the last one, the (not reproducible) wall time
+    base = outcome.summary_row()
+    row = [*base[:-1], *orientation_columns(job.spec), *singularity_columns(singular), base[-1]]
+    header = (*SUMMARY_HEADER[:-1], *ORIENTATION_HEADER, *HEADER, SUMMARY_HEADER[-1])
     summary = summary_line(outcome)
+    if isinstance(job.spec.orientation_deg, tuple):
+        summary = summary_text(job.spec, outcome)
     if singular is not None:
         summary += f"; {singular.describe()}"
     return WorkspaceResult(
-        table=CsvTable(SUMMARY_HEADER + ORIENTATION_HEADER + HEADER, [row]),
+        table=CsvTable(header, [row]),
         summary=summary,
         extra_tables={"boxes": boxes_table(outcome)},
         outcome=outcome,
@@ -399,7 +405,8 @@ JOB_KIND = JobKind(
     robot_kind="robot3rrr",
     settings=WorkspaceSpec,
     run=run_workspace,
-    summary="3-RRR constant-orientation workspace by interval analysis",
+    summary="3-RRR workspace by interval analysis: one orientation or a range of them, "
+    "with its type II singularities and singularity-free circle",
     render=render_workspace,
     extra_outputs=_extra_outputs,
     overrides=with_overrides,

@@ -255,8 +255,21 @@ ORIENTATION_HEADER = ("orientation_mode", "orientation_lo_deg", "orientation_hi_
 
 
 def describe(spec) -> str:
-    """``φ = 10°`` or ``maximal over φ in [-10, 10]°`` for titles and summaries."""
+    """``φ = 10°`` or ``maximal, φ ∈ [-10, 10]°`` for titles and summaries."""
     if isinstance(spec.orientation_deg, tuple):
         lo, hi = spec.orientation_deg
-        return f"{spec.orientation_mode} over φ in [{lo:g}, {hi:g}]°"
+        return f"{spec.orientation_mode}, φ ∈ [{lo:g}, {hi:g}]°"
     return f"φ = {spec.orientation_deg:g}°"
+
+
+def summary_text(spec, outcome) -> str:
+    """One short line: form, ε, mode and range, the certified bracket and the sampled
+    reference's bracket."""
+    text = (
+        f"{outcome.form} eps={outcome.precision_cm:.4g}, {describe(spec)}: "
+        f"[{outcome.area_inside_cm2:.5g}, {outcome.area_kept_cm2:.5g}] cm2"
+    )
+    if outcome.geometric is not None:
+        g = outcome.geometric
+        text += f", sampled reference [{g.inner_cm2:.5g}, {g.outer_cm2:.5g}]"
+    return text

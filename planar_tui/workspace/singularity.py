@@ -197,10 +197,11 @@ class SingularityOutcome:
         return [*self.centre_cm, self.radius_lo_cm, self.radius_hi_cm]
 
     def describe(self) -> str:
-        signs = ", ".join(f"{s:+d}" for s in self.elbow)
+        """``singularity-free: r ∈ [lo, hi] cm about (x, y), elbow [+1 -1 +1]``."""
+        signs = " ".join(f"{s:+d}" for s in self.elbow)
         return (
-            f"singularity-free circle about ({self.centre_cm[0]:.4g}, {self.centre_cm[1]:.4g})"
-            f" cm, elbow [{signs}]: r in [{self.radius_lo_cm:.5g}, {self.radius_hi_cm:.5g}] cm"
+            f"singularity-free: r ∈ [{self.radius_lo_cm:.5g}, {self.radius_hi_cm:.5g}] cm "
+            f"about ({self.centre_cm[0]:.4g}, {self.centre_cm[1]:.4g}), elbow [{signs}]"
         )
 
 
