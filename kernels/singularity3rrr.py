@@ -29,9 +29,11 @@ tolerance ``TOLERANCE_CM`` for their float round-off.
 
 **Bisection** (:func:`singular_bisect_chunk`): a box is ``GOOD`` (all legs *in*, det
 enclosure excluding 0: no singular point, every point in :math:`W_s`), ``OUT`` (some leg
-*out*), else split down to ``precision``; leaves are kept as ``SINGULAR`` (det enclosure
-holding 0: may hold a singular point) or ``EDGE`` (no singular point, but not proved in
-:math:`W_s`). Every singular point of :math:`W_s` lies in a ``SINGULAR`` leaf.
+*out*), else split down to ``precision``; a leaf is looked at on a grid of sub-boxes
+(:func:`leaf_verdict`) and kept as ``SINGULAR`` (some sub-box's det enclosure holds 0: it
+may hold a singular point) or ``EDGE`` (no singular point, but not proved in :math:`W_s`).
+Every singular point of :math:`W_s` lies in a ``SINGULAR`` leaf. A box that may hold a base
+joint (``ρ_i = 0``, where :math:`\\alpha_i` is undefined) is never proved anything.
 
 **Singularity-free circle** about a centre :math:`c \\in W_s` with :math:`\\det A(c) \\ne 0`:
 :math:`r^* = \\sup\\{r : \\bar D(c, r) \\subseteq W_s,\\ \\det A \\ne 0 \\text{ on it}\\}`,

@@ -29,8 +29,9 @@ singularities = true
 """
 
 
-def run(tmp_path, extra="elbow = [1, -1, 1]\n", phi=0, precision=0.25, limits=None):
+def run(tmp_path, extra="elbow = [1, -1, 1]\n", phi=0, precision=0.25, limits=None, robot=""):
     text = TABLE3.format(extra=extra, phi=phi, precision=precision)
+    text = text.replace("[robot3rrr]\n", f"[robot3rrr]\n{robot}")
     if limits is not None:
         text = text.replace("[[20, 70], [110, 160], [245, 295]]", limits)
     path = tmp_path / "s.toml"
@@ -123,18 +124,27 @@ def ray_radius(job, centre, reach, directions=720, step=0.004):
 WIDE = "[[-30, 90], [90, 210], [210, 330]]"  # the issue's 120° ranges (φ = -20°)
 
 
+#: A geometry drawn at random (numpy seed 1, 4th draw): a, b, l1, l2 in cm.
+RANDOM_ROBOT = (
+    "base_side_cm = 108.1\nplatform_side_cm = 23.4\nproximal_cm = 34.9\ndistal_cm = 31.5\n"
+)
+
+
 @pytest.mark.parametrize(
-    ("elbow", "phi", "limits", "least_points"),
+    ("elbow", "phi", "limits", "robot", "least_points"),
     [
-        ("[1, -1, 1]", 0, None, 2),  # paper B Table 3: the curve grazes the workspace's edge
-        ("[1, -1, 1]", -20, WIDE, 100),
-        ("[-1, -1, 1]", -20, WIDE, 100),
+        ("[1, -1, 1]", 0, None, "", 2),  # paper B Table 3: the curve hugs the workspace's edge
+        ("[1, -1, 1]", -20, WIDE, "", 100),
+        ("[-1, -1, 1]", -20, WIDE, "", 100),
+        ("[1, -1, 1]", -10, WIDE, RANDOM_ROBOT, 100),
     ],
 )
 def test_dense_float_trace_and_ray_search_agree_with_the_certified_paving(
-    tmp_path, elbow, phi, limits, least_points
+    tmp_path, elbow, phi, limits, robot, least_points
 ):
-    job, result = run(tmp_path, f"elbow = {elbow}\n", phi=phi, precision=0.5, limits=limits)
+    job, result = run(
+        tmp_path, f"elbow = {elbow}\n", phi=phi, precision=0.5, limits=limits, robot=robot
+    )
     singular = result.singularity
     leaves = singular.singular_boxes
     points = traced_curve(job, result.outcome.extent_cm)

@@ -15,8 +15,6 @@ from __future__ import annotations
 import math
 import time
 
-import numpy as np
-
 from planar_tui.workspace.robot import Robot3RRR
 
 MODES = ("maximal", "total")
@@ -120,8 +118,10 @@ def search_box(robot: Robot3RRR, spec) -> tuple[tuple[float, float], tuple[float
     return ((cx - 0.5 * side, cx + 0.5 * side), (cy - 0.5 * side, cy + 0.5 * side))
 
 
-def geometry_vector(robot: Robot3RRR) -> np.ndarray:
+def geometry_vector(robot: Robot3RRR):
     """``[l1, l2, q1, q2, q3, A1, A2, A3]`` flattened (cm), the kernels' ``g``."""
+    import numpy as np
+
     values = [robot.proximal_cm, robot.distal_cm]
     for point in (*robot.platform_points_cm(), *robot.base_joints_cm()):
         values += [float(point[0]), float(point[1])]
@@ -138,6 +138,8 @@ def phi_min_rad(robot: Robot3RRR, precision_cm: float) -> float:
 def _range_stage(robot, spec, seeds, precision, budget, inside_cm2=0.0):
     """2-D bisection of the disjoint (x, y) boxes ``seeds`` with the orientation-range test;
     returns the kept boxes and their status (2 inside, 1 boundary)."""
+    import numpy as np
+
     from planar_tui.kernels.workspace3rrr import DONE, KEPT_FULL, STACK_FULL
     from planar_tui.kernels.workspace_arc import limits_array
     from planar_tui.kernels.workspace_orientation import (
@@ -195,6 +197,8 @@ def compute_orientation_workspace(robot: Robot3RRR, spec, budget):
     """The maximal or total orientation workspace of ``spec`` (``orientation_deg`` a range)
     as a :class:`~planar_tui.workspace.compute.WorkspaceOutcome`: the bisection down to
     ``precision_cm``, then the boundary boxes again down to ``refine_precision_cm``."""
+    import numpy as np
+
     from planar_tui.kernels.workspace_union import union_area
     from planar_tui.workspace.compute import INSIDE, WorkspaceOutcome
 

@@ -20,10 +20,12 @@ import dataclasses
 import math
 import time
 from dataclasses import dataclass
-
-import numpy as np
+from typing import TYPE_CHECKING
 
 from planar_tui.errors import PresetError
+
+if TYPE_CHECKING:
+    import numpy as np
 
 #: Wall time aimed at per kernel chunk.
 CHUNK_S = 0.05
@@ -93,6 +95,8 @@ def leg_angles(robot, orientation_rad, point):
 def det_at(robot, orientation_rad, point, elbow) -> float:
     """:math:`\\det A` at ``point`` in the mode ``elbow`` (rows :math:`[u_i^T, u_i \\times
     r_i]`), in floating point."""
+    import numpy as np
+
     c, s = math.cos(orientation_rad), math.sin(orientation_rad)
     rows = []
     for (qx, qy), (ax, ay), angles, sign in zip(
@@ -207,6 +211,8 @@ class SingularityOutcome:
 
 def kernel_inputs(robot, spec):
     """``(g, r, elbow, limits)`` of :mod:`planar_tui.kernels.singularity3rrr`."""
+    import numpy as np
+
     from planar_tui.kernels.workspace_arc import limits_array
     from planar_tui.workspace.orientation import geometry_vector
 
@@ -220,6 +226,8 @@ def compute_singularities(robot, spec, extent, budget, job) -> SingularityOutcom
     """Pave ``extent`` (``x_lo, x_hi, y_lo, y_hi``, holding the workspace) down to
     ``singularity_precision_cm`` (default ``precision_cm``); ``spec.circle`` resolved by
     :func:`prepare_workspace`."""
+    import numpy as np
+
     from planar_tui.kernels.singularity3rrr import box_status, singular_bisect_chunk
     from planar_tui.kernels.workspace3rrr import DONE, KEPT_FULL, STACK_FULL
     from planar_tui.workspace.compute import _grow, _xy_area
