@@ -249,9 +249,10 @@ def leaf_verdict(xlo, xhi, ylo, yhi, g, r, elbow, limits, cx, cy, sign, n):
 @kernel
 def singular_bisect_chunk(
     g, r, elbow, limits, precision, leaf_grid, cx, cy, sign, stack, n_stack, kept, status,
-    n_kept, max_boxes, bounds,
+    n_kept, max_work, bounds,
 ):  # fmt: skip
-    """At most ``max_boxes`` steps of the bisection of the module docstring.
+    """Steps of the bisection of the module docstring until ``max_work`` box tests were
+    made (a box costs 1, a leaf's sub-grid ``2 leaf_grid²`` more).
 
     ``bounds`` ``[r_in, r_out]`` is updated in place (start it at the distances from
     ``(cx, cy)`` to the search box's edges); ``sign`` is that of :math:`\\det A(c)`
@@ -259,13 +260,15 @@ def singular_bisect_chunk(
     ``arc_bisect_chunk``; kept leaves carry ``SINGULAR`` or ``EDGE``.
     """
     processed = 0
+    work = 0
     while n_stack > 0:
-        halt = chunk_halt(processed, max_boxes, n_kept, kept.shape[0], n_stack, stack.shape[0])
+        halt = chunk_halt(work, max_work, n_kept, kept.shape[0], n_stack, stack.shape[0])
         if halt != DONE:
             return n_stack, n_kept, processed, halt
         n_stack -= 1
         row = n_stack
         processed += 1
+        work += 1
         xlo = stack[row, 0]
         xhi = stack[row, 1]
         ylo = stack[row, 2]
@@ -285,6 +288,7 @@ def singular_bisect_chunk(
             singular, bad, witness = leaf_verdict(
                 xlo, xhi, ylo, yhi, g, r, elbow, limits, cx, cy, sign, leaf_grid
             )
+            work += 2 * leaf_grid * leaf_grid
             kept[n_kept, 0] = xlo
             kept[n_kept, 1] = xhi
             kept[n_kept, 2] = ylo

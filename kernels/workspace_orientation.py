@@ -60,7 +60,7 @@ ay3]`` (cm); ``limits`` the (3, 2) joint limits in radians.
 import math
 
 from ._jit import kernel
-from .workspace3rrr import DONE, chunk_halt
+from .workspace3rrr import CHUNK_LIMIT, DONE, chunk_halt
 from .workspace_arc import arc_distance_range
 
 MAXIMAL = 0
@@ -106,18 +106,21 @@ def piece_status(cx, cy, rho_xy, phi_mid, phi_half, g, limits):
 
 @kernel
 def classify_box_range(xlo, xhi, ylo, yhi, mode, phi_lo, phi_hi, phi_min, g, limits, pieces):
-    """``OUTSIDE``, ``BOUNDARY`` or ``INSIDE`` of the box for the maximal (``mode`` =
-    ``MAXIMAL``) or total (``TOTAL``) orientation workspace over ``[phi_lo, phi_hi]``
-    (module docstring); ``pieces`` is a scratch array of ``(PIECE_STACK, 2)``."""
+    """``(label, work)``: ``OUTSIDE``, ``BOUNDARY`` or ``INSIDE`` of the box for the maximal
+    (``mode`` = ``MAXIMAL``) or total (``TOTAL``) orientation workspace over ``[phi_lo,
+    phi_hi]`` (module docstring), and the orientation pieces looked at (the work done);
+    ``pieces`` is a scratch array of ``(PIECE_STACK, 2)``."""
     cx = 0.5 * (xlo + xhi)
     cy = 0.5 * (ylo + yhi)
     rho_xy = 0.5 * math.hypot(xhi - xlo, yhi - ylo)
     pieces[0, 0] = phi_lo
     pieces[0, 1] = phi_hi
     n = 1
+    work = 0
     undecided = False
     while n > 0:
         n -= 1
+        work += 1
         lo = pieces[n, 0]
         hi = pieces[n, 1]
         mid = 0.5 * (lo + hi)
@@ -125,15 +128,15 @@ def classify_box_range(xlo, xhi, ylo, yhi, mode, phi_lo, phi_hi, phi_min, g, lim
         at_point = piece_status(cx, cy, rho_xy, mid, 0.0, g, limits)
         if mode == MAXIMAL:
             if at_point == PIECE_IN:
-                return INSIDE
+                return INSIDE, work
             verdict = piece_status(cx, cy, rho_xy, mid, half, g, limits)
             if verdict == PIECE_IN:
-                return INSIDE
+                return INSIDE, work
             if verdict == PIECE_OUT:
                 continue
         else:
             if at_point == PIECE_OUT:
-                return OUTSIDE
+                return OUTSIDE, work
             verdict = piece_status(cx, cy, rho_xy, mid, half, g, limits)
             if verdict == PIECE_IN:
                 continue
@@ -146,8 +149,8 @@ def classify_box_range(xlo, xhi, ylo, yhi, mode, phi_lo, phi_hi, phi_min, g, lim
         else:
             undecided = True
     if undecided:
-        return BOUNDARY
-    return OUTSIDE if mode == MAXIMAL else INSIDE
+        return BOUNDARY, work
+    return (OUTSIDE if mode == MAXIMAL else INSIDE), work
 
 
 @kernel
@@ -157,25 +160,31 @@ def classify_boxes_range(boxes, mode, phi_lo, phi_hi, phi_min, g, limits, pieces
         out[r] = classify_box_range(
             boxes[r, 0], boxes[r, 1], boxes[r, 2], boxes[r, 3],
             mode, phi_lo, phi_hi, phi_min, g, limits, pieces,
-        )  # fmt: skip
+        )[0]  # fmt: skip
 
 
 @kernel
 def range_bisect_chunk(
     mode, phi_lo, phi_hi, phi_min, g, limits, precision, stack, n_stack, kept, status,
-    n_kept, max_boxes, pieces,
+    n_kept, max_boxes, max_work, pieces,
 ):  # fmt: skip
-    """At most ``max_boxes`` steps of the 2-D bisection with :func:`classify_box_range`.
+    """At most ``max_boxes`` steps of the 2-D bisection with :func:`classify_box_range`,
+    stopping early once ``max_work`` orientation pieces were looked at (a box's cost
+    varies by orders of magnitude: the work, not the box count, bounds a chunk's time).
 
     Pop an (x, y) box; drop it if ``OUTSIDE``; keep it if ``INSIDE`` (never split) or if
     both widths are :math:`\\le \\varepsilon` (as ``BOUNDARY``); else halve its wider side.
-    Returns ``(n_stack, n_kept, processed, code)`` like ``arc_bisect_chunk``.
+    Returns ``(n_stack, n_kept, processed, code, work)`` (``code`` as
+    ``arc_bisect_chunk``'s; ``CHUNK_LIMIT`` also when the work ran out).
     """
     processed = 0
+    work = 0
     while n_stack > 0:
         halt = chunk_halt(processed, max_boxes, n_kept, kept.shape[0], n_stack, stack.shape[0])
+        if halt == DONE and work >= max_work:
+            halt = CHUNK_LIMIT
         if halt != DONE:
-            return n_stack, n_kept, processed, halt
+            return n_stack, n_kept, processed, halt, work
         n_stack -= 1
         row = n_stack
         processed += 1
@@ -183,9 +192,10 @@ def range_bisect_chunk(
         xhi = stack[row, 1]
         ylo = stack[row, 2]
         yhi = stack[row, 3]
-        label = classify_box_range(
+        label, cost = classify_box_range(
             xlo, xhi, ylo, yhi, mode, phi_lo, phi_hi, phi_min, g, limits, pieces
         )
+        work += cost
         if label == OUTSIDE:
             continue
         wx = xhi - xlo
@@ -209,4 +219,4 @@ def range_bisect_chunk(
             stack[row, 3] = mid
             stack[n_stack + 1, 2] = mid
         n_stack += 2
-    return n_stack, n_kept, processed, DONE
+    return n_stack, n_kept, processed, DONE, work

@@ -164,3 +164,28 @@ def test_cli_writes_the_orientation_columns_and_the_reference(cli, tmp_path):
     assert float(row["area_inside_cm2"]) <= reference + error
     assert reference - error <= float(row["area_kept_cm2"])
     assert cli("workspace", write(tmp_path, extra), "--form", "slope").exit_code == 2
+
+
+@pytest.mark.parametrize(
+    ("body", "stage"),
+    [
+        ('orientation_deg = [-30, 30]\norientation_mode = "maximal"\nprecision_cm = 0.004\n'
+         "geometric_reference = false", "maximal orientation workspace"),
+        ('orientation_deg = [-30, 30]\norientation_mode = "total"\nprecision_cm = 1.0',
+         "sampled reference"),
+        ("precision_cm = 1.0\nsingularities = true\nelbow = [1, -1, 1]\n"
+         "singularity_precision_cm = 0.0005\ngeometric_reference = false",
+         "type II singularities"),
+    ],
+)  # fmt: skip
+def test_cancel_stops_the_new_stages_within_a_fraction_of_a_second(body, stage):
+    from benchmarks.bench_cancel import cancel_latency, robot_job
+    from planar_tui import batch
+
+    job = robot_job(
+        "workspace", f"joint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n{body}", "3rrr"
+    )
+    job = batch.prepare_jobs([job])[0]
+    latency, asked = cancel_latency(lambda progress: batch.run_job(job, progress), stage, 0.1)
+    assert asked.startswith(stage)
+    assert latency <= 0.5

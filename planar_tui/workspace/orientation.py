@@ -164,17 +164,17 @@ def _range_stage(robot, spec, seeds, precision, budget, inside_cm2=0.0):
     status = np.zeros(kept.shape[0], dtype=np.int64)
     n_stack, n_kept = len(seeds), 0
     lower = upper = inside_cm2
-    chunk = 256
+    work = 4096  # orientation pieces per call, scaled to about CHUNK_S of work
     while True:
         previous = n_kept
         started = time.perf_counter()
-        n_stack, n_kept, processed, code = range_bisect_chunk(
+        n_stack, n_kept, processed, code, done = range_bisect_chunk(
             mode, lo, hi, phi_min, g, limits, precision, stack, n_stack, kept, status,
-            n_kept, chunk, pieces,
+            n_kept, 1 << 40, work, pieces,
         )  # fmt: skip
         elapsed = time.perf_counter() - started
-        if processed == chunk:  # aim at CHUNK_S of work per call
-            chunk = int(min(max(chunk * CHUNK_S / max(elapsed, 1e-6), 64), 4 * chunk))
+        if done >= work:
+            work = int(min(max(done * CHUNK_S / max(elapsed, 1e-6), 256), 4 * work))
         pending = stack[:n_stack]
         area = _xy_area(pending)
         new = slice(previous, n_kept)

@@ -229,7 +229,7 @@ def compute_singularities(robot, spec, extent, budget, job) -> SingularityOutcom
     import numpy as np
 
     from planar_tui.kernels.singularity3rrr import box_status, singular_bisect_chunk
-    from planar_tui.kernels.workspace3rrr import DONE, KEPT_FULL, STACK_FULL
+    from planar_tui.kernels.workspace3rrr import CHUNK_LIMIT, DONE, KEPT_FULL, STACK_FULL
     from planar_tui.workspace.compute import _grow, _xy_area
 
     started = time.perf_counter()
@@ -255,17 +255,17 @@ def compute_singularities(robot, spec, extent, budget, job) -> SingularityOutcom
     root_area = _xy_area(stack[:1])
     kept = np.zeros((4096, 4))
     status = np.zeros(4096, dtype=np.int64)
-    n_stack, n_kept, processed_here, chunk = 1, 0, 0, 256
+    n_stack, n_kept, processed_here, work = 1, 0, 0, 1024  # box tests per call
     progress.start(1.0, "type II singularities")
     while True:
         tic = time.perf_counter()
         n_stack, n_kept, processed, code = singular_bisect_chunk(
             g, r, elbow, limits, precision, LEAF_GRID, cx, cy, sign, stack, n_stack, kept,
-            status, n_kept, chunk, bounds,
+            status, n_kept, work, bounds,
         )  # fmt: skip
-        if processed == chunk:
+        if code == CHUNK_LIMIT:  # aim at CHUNK_S of work per call
             elapsed = time.perf_counter() - tic
-            chunk = int(min(max(chunk * CHUNK_S / max(elapsed, 1e-6), 64), 4 * chunk))
+            work = int(min(max(work * CHUNK_S / max(elapsed, 1e-6), 256), 4 * work))
         processed_here += processed
         budget.processed += processed
         if budget.processed > spec.box_budget:
