@@ -96,6 +96,14 @@ def _search_box(reader: TableReader, name, default, robot: Robot3RRR, values):
     return rows
 
 
+def constructor_default(value, read, **key):
+    """:func:`~planar_tui.schema.setting` with a callable preset default (``key["default"]``)
+    whose dataclass field still defaults to ``value`` when the spec is built in code."""
+    field = setting(read, **key)
+    field.default = value
+    return field
+
+
 def _checked_box_budget(budget: int, reader: TableReader) -> int:
     """The box budget within the memory limit (:mod:`planar_tui.limits`, at most
     :data:`BYTES_PER_BOX` per box): a larger budget set in the preset is refused, the
@@ -137,7 +145,8 @@ class WorkspaceSpec:
     precision_cm: float = setting(
         number(positive=True), type_doc="number > 0", doc="bisection precision ε"
     )
-    form: str = setting(
+    form: str = constructor_default(
+        "mean-value",  # a spec built in code; a preset's default depends on orientation_deg
         string(choices=FORMS),
         default=default_form,
         default_doc='`"mean-value"` (`"arc-distance"` with a range of φ)',
