@@ -53,6 +53,14 @@ EXAMPLES = {
         "precision_cm = 8.0\nrefine_precision_cm = 4.0\ngeometric_reference = false\n"
         f'strategy = "{strategy}"\n'
         for strategy in ("legwise", "joint")
+    )
+    + (
+        "[[workspace]]\njoint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n"
+        'precision_cm = 8.0\nform = "arc-distance"\ngeometric_reference = false\n'
+        "singularities = true\nelbow = [1, -1, 1]\n"
+        "[[workspace]]\njoint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n"
+        'orientation_deg = [-1, 1]\norientation_mode = "total"\nprecision_cm = 8.0\n'
+        "geometric_reference = false\n"
     ),
 }
 

@@ -203,4 +203,6 @@ def from_result(job: Any, result: Any) -> Any:
         return from_summary_table(result.table, job.label)
     boxes = np.asarray(outcome.boxes)[:, :4] if len(outcome.boxes) else np.zeros((0, 4))
     inside = np.asarray(outcome.status) == INSIDE
+    if isinstance(job.spec.orientation_deg, tuple):  # a range of φ: no single exact boundary
+        return draw(boxes, inside, map_title(job, outcome), summary=result.summary)
     return draw(boxes, inside, map_title(job, outcome), job.robot, job.spec, result.summary)

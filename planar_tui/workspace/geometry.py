@@ -29,7 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 #: Radius of the polygon standing in for an unbounded angular cone (cm), scaled up by
-#: the robot's size in :func:`_leg_region`.
+#: the robot's size in :func:`leg_region`.
 _FAR = 10.0
 
 
@@ -87,7 +87,7 @@ def _cone(start, stop, radius):
     return Polygon(np.vstack([[[0.0, 0.0]], _arc_points(radius, start, stop, 64, True)]))
 
 
-def _leg_region(l1, l2, lo, hi, segments_per_turn, outward):
+def leg_region(l1, l2, lo, hi, segments_per_turn, outward):
     """Polygon of leg feasibility relative to its base joint (inner or outer approximation)."""
     from shapely import union_all
 
@@ -124,7 +124,7 @@ def workspace_polygon(robot, limits_rad, orientation_rad, segments_per_turn, out
 
     regions = []
     for (dx, dy), (lo, hi) in zip(robot.leg_offsets_cm(orientation_rad), limits_rad, strict=True):
-        leg = _leg_region(robot.proximal_cm, robot.distal_cm, lo, hi, segments_per_turn, outward)
+        leg = leg_region(robot.proximal_cm, robot.distal_cm, lo, hi, segments_per_turn, outward)
         regions.append(affinity.translate(leg, -dx, -dy))
     return intersection_all(regions)
 

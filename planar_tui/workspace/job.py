@@ -1,4 +1,5 @@
-"""The ``[workspace]`` job: constant-orientation workspace of a 3-RRR (paper B).
+"""The ``[workspace]`` job: the workspace of a 3-RRR (paper B) at one orientation or over a
+range of them (:mod:`planar_tui.workspace.orientation`).
 
 Settings (the preset keys), command-line overrides, the runner, the typed result and the
 terminal view (the character-cell map) of one job kind; the computation itself is
@@ -25,7 +26,20 @@ from planar_tui.schema import (
     setting,
     string,
 )
+from planar_tui.workspace.orientation import (
+    MODES,
+    check_orientation,
+    default_form,
+    reach_box_for,
+    read_orientation,
+)
 from planar_tui.workspace.robot import Robot3RRR
+from planar_tui.workspace.singularity import (
+    check_singularity,
+    prepare_workspace,
+    read_centre,
+    read_elbow,
+)
 
 FORMS = ("natural", "mean-value", "slope", "arc-distance", "geometric")
 #: How the interval forms pave: per (x, y) box a 1-D θ search per leg, or the paper's
@@ -61,14 +75,13 @@ def _search_box(reader: TableReader, name, default, robot: Robot3RRR, values):
     """An (x, y) box in cm that contains the robot's reach at the job's orientation."""
     if not reader.has("search_box_cm"):
         return None
-    orientation_rad = math.radians(values["orientation_deg"])
     rows = reader.number_rows("search_box_cm", columns=2)
     if len(rows) != 2 or any(not lo < hi for lo, hi in rows):
         raise reader.error(
             "search_box_cm", f"is {[list(r) for r in rows]}", "[[x_min, x_max], [y_min, y_max]]"
         )
     (xlo, xhi), (ylo, yhi) = rows
-    rxlo, rxhi, rylo, ryhi = robot.reach_box_cm(orientation_rad)
+    rxlo, rxhi, rylo, ryhi = reach_box_for(robot, values["orientation_deg"])
     if (
         rxlo <= rxhi
         and rylo <= ryhi
@@ -81,6 +94,14 @@ def _search_box(reader: TableReader, name, default, robot: Robot3RRR, values):
             "a box containing it",
         )
     return rows
+
+
+def constructor_default(value, read, **key):
+    """:func:`~planar_tui.schema.setting` with a callable preset default (``key["default"]``)
+    whose dataclass field still defaults to ``value`` when the spec is built in code."""
+    field = setting(read, **key)
+    field.default = value
+    return field
 
 
 def _checked_box_budget(budget: int, reader: TableReader) -> int:
@@ -108,15 +129,27 @@ class WorkspaceSpec:
     joint_limits_deg: tuple[tuple[float, float], ...] = setting(
         _joint_limits, type_doc="3 rows `[min, max]`", doc="active-joint limits θ1, θ2, θ3"
     )
-    orientation_deg: float = setting(
-        number(), default=0.0, type_doc="number", doc="platform orientation φ"
+    orientation_deg: float | tuple[float, float] = setting(
+        read_orientation,
+        default=0.0,
+        type_doc="number, or `[lo, hi]` (lo < hi, at most 360 apart)",
+        doc="platform orientation φ, or a range of them (needs `orientation_mode`)",
+    )
+    orientation_mode: str | None = setting(
+        string(choices=MODES),
+        default=None,
+        type_doc="`maximal` or `total`",
+        default_doc="(none; required with a range)",
+        doc="over a range: positions reachable with some φ (`maximal`) or with every φ (`total`)",
     )
     precision_cm: float = setting(
         number(positive=True), type_doc="number > 0", doc="bisection precision ε"
     )
-    form: str = setting(
+    form: str = constructor_default(
+        "mean-value",  # a spec built in code; a preset's default depends on orientation_deg
         string(choices=FORMS),
-        default="mean-value",
+        default=default_form,
+        default_doc='`"mean-value"` (`"arc-distance"` with a range of φ)',
         type_doc=", ".join(f"`{f}`" for f in FORMS),
         doc="interval form of the inclusion test (`geometric`: the exact area only)",
     )
@@ -173,12 +206,43 @@ class WorkspaceSpec:
         type_doc="relative path",
         doc="CSV of the kept boxes (`--boxes` on the command line)",
     )
+    singularities: bool = setting(
+        boolean(),
+        default=False,
+        type_doc="boolean",
+        doc="also map the type II singularities and certify the singularity-free circle",
+    )
+    elbow: tuple[int, int, int] | None = setting(
+        read_elbow,
+        default=None,
+        type_doc="3 signs, each `1` or `-1`",
+        default_doc="(the mode the limits allow at the centre)",
+        doc="working mode per leg: θ = α + β (`1`) or α − β (`-1`)",
+    )
+    circle_centre_cm: tuple[float, float] | None = setting(
+        read_centre,
+        default=None,
+        type_doc="`[x, y]`",
+        default_doc="(the workspace's centroid)",
+        doc="centre of the singularity-free circle (must be reachable)",
+    )
+    singularity_precision_cm: float | None = setting(
+        number(positive=True),
+        default=None,
+        type_doc="number > 0",
+        default_doc="`precision_cm`",
+        doc="bisection precision of the singularity paving",
+    )
+    #: ``(x, y, elbow)`` of the circle, resolved by ``prepare`` (a derived value).
+    circle: Any = None
     plot: str | None = plot_setting()
 
     @staticmethod
     def check(values: dict, reader: TableReader, robot: Robot3RRR) -> dict:
         """The expanded form needs the natural form and the paper's layout; the refinement
         precision cannot exceed the precision."""
+        check_orientation(values, reader)
+        check_singularity(values, reader)
         form = values["form"]
         if values["expanded"] and form != "natural":
             raise reader.error("expanded", f"is true with form = {form!r}", 'form = "natural"')
@@ -201,7 +265,9 @@ class WorkspaceSpec:
 
     @property
     def orientation_rad(self) -> float:
-        """Platform orientation :math:`\\varphi` in radians."""
+        """Platform orientation :math:`\\varphi` in radians (a single orientation only)."""
+        if isinstance(self.orientation_deg, tuple):
+            raise ValueError("orientation_deg is a range: no single orientation")
         return math.radians(self.orientation_deg)
 
 
@@ -212,6 +278,13 @@ def with_overrides(spec: WorkspaceSpec, options: Mapping[str, Any]) -> Workspace
     if form is not None:
         if form not in FORMS:
             raise PresetError("--form", "form", f"is {form!r}", "one of " + ", ".join(FORMS))
+        if isinstance(spec.orientation_deg, tuple) and form != "arc-distance":
+            raise PresetError(
+                "--form",
+                "form",
+                f"is {form!r} for a job with orientation_deg = [lo, hi]",
+                "arc-distance (the only form over a range of orientations)",
+            )
         spec = replace(spec, form=form, expanded=spec.expanded and form == "natural")
     if precision_cm is not None:
         if not (math.isfinite(precision_cm) and precision_cm > 0):
@@ -232,6 +305,8 @@ class WorkspaceResult(JobResult):
     ``extra_tables["boxes"]``."""
 
     outcome: Any
+    #: :class:`~planar_tui.workspace.singularity.SingularityOutcome` with ``singularities``.
+    singularity: Any = None
 
 
 def run_workspace(job: Job, progress: Progress) -> WorkspaceResult:
@@ -244,20 +319,53 @@ def run_workspace(job: Job, progress: Progress) -> WorkspaceResult:
         compute_workspace,
         summary_line,
     )
+    from planar_tui.workspace.orientation import (
+        ORIENTATION_HEADER,
+        compute_orientation_workspace,
+        orientation_columns,
+        summary_text,
+    )
+    from planar_tui.workspace.singularity import (
+        HEADER,
+        compute_singularities,
+        singularity_columns,
+    )
 
-    outcome = compute_workspace(job.robot, job.spec, BoxBudget(job, progress))
+    budget = BoxBudget(job, progress)
+    singular = None
+    if isinstance(job.spec.orientation_deg, tuple):
+        outcome = compute_orientation_workspace(job.robot, job.spec, budget)
+    else:
+        outcome = compute_workspace(job.robot, job.spec, budget)
+        if job.spec.singularities:
+            job = JOB_KIND.prepared(job)
+            singular = compute_singularities(job.robot, job.spec, outcome.extent_cm, budget, job)
+    # the new columns go before the last one, the (not reproducible) wall time
+    base = outcome.summary_row()
+    row = [*base[:-1], *orientation_columns(job.spec), *singularity_columns(singular), base[-1]]
+    header = (*SUMMARY_HEADER[:-1], *ORIENTATION_HEADER, *HEADER, SUMMARY_HEADER[-1])
+    summary = summary_line(outcome)
+    if isinstance(job.spec.orientation_deg, tuple):
+        summary = summary_text(job.spec, outcome)
+    if singular is not None:
+        summary += f"; {singular.describe()}"
     return WorkspaceResult(
-        table=CsvTable(SUMMARY_HEADER, [outcome.summary_row()]),
-        summary=summary_line(outcome),
+        table=CsvTable(header, [row]),
+        summary=summary,
         extra_tables={"boxes": boxes_table(outcome)},
         outcome=outcome,
+        singularity=singular,
     )
 
 
 def map_title(job: Job, outcome) -> str:
     """What a map shows: ``paper-b-table3:workspace[4]: mean-value, ε = 0.1172 cm`` (and
     the refinement precision), as run, overrides included."""
+    from planar_tui.workspace.orientation import describe
+
     title = f"{job.label}: {outcome.form}, ε = {outcome.precision_cm:.4g} cm"
+    if isinstance(job.spec.orientation_deg, tuple):
+        title += f", {describe(job.spec)}"
     if outcome.refine_precision_cm is not None:
         title += f", boundary refined to {outcome.refine_precision_cm:.4g} cm"
     return title
@@ -275,7 +383,10 @@ def render_workspace(job: Job, result: WorkspaceResult, console) -> None:
         console.print(result.summary, markup=False)
         return
     width = min(console.width or 80, 120)
-    for line in render_map(outcome.boxes, outcome.status, width=width):
+    singular = result.singularity
+    if singular is not None:
+        console.print(singular.describe(), markup=False, highlight=False)
+    for line in render_map(outcome.boxes, outcome.status, width=width, **overlays(singular)):
         console.print(line, markup=False, highlight=False, crop=True, soft_wrap=False)
 
 
@@ -284,6 +395,14 @@ def point_figures(job: Job, result: WorkspaceResult) -> dict[str, Any]:
     has its own timing)."""
     header, (row,) = result.table.header, result.table.rows
     return {name: value for name, value in zip(header, row, strict=True) if name != "seconds"}
+
+
+def overlays(singular) -> dict:
+    """``render_map`` keywords drawing the singular boxes and the circle (none without)."""
+    if singular is None:
+        return {}
+    centre = singular.centre_cm
+    return {"singular": singular.singular_boxes, "circle": (*centre, singular.radius_lo_cm)}
 
 
 def _extra_outputs(spec: WorkspaceSpec) -> dict[str, str]:
@@ -295,9 +414,11 @@ JOB_KIND = JobKind(
     robot_kind="robot3rrr",
     settings=WorkspaceSpec,
     run=run_workspace,
-    summary="3-RRR constant-orientation workspace by interval analysis",
+    summary="3-RRR workspace by interval analysis: one orientation or a range of them, "
+    "with its type II singularities and singularity-free circle",
     render=render_workspace,
     extra_outputs=_extra_outputs,
     overrides=with_overrides,
     point_figures=point_figures,
+    prepare=prepare_workspace,
 )

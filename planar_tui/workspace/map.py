@@ -14,6 +14,13 @@ INSIDE_GLYPH = "█"
 BOUNDARY_GLYPH = "▒"
 OUTSIDE_GLYPH = " "
 LEGEND = f"{INSIDE_GLYPH} inside (proved)  {BOUNDARY_GLYPH} boundary (kept)  blank: outside"
+SINGULAR_GLYPH = "×"
+CIRCLE_GLYPH = "o"
+CENTRE_GLYPH = "+"
+SINGULAR_LEGEND = (
+    f"{SINGULAR_GLYPH} may be type II singular  {CIRCLE_GLYPH} singularity-free circle "
+    f"(r_in) about {CENTRE_GLYPH}"
+)
 #: Terminal cells are about twice as tall as wide.
 CELL_ASPECT = 2.0
 _LABEL_WIDTH = 8  # "-123.45 " then the axis line
@@ -105,6 +112,8 @@ def render_map(
     extent: tuple[float, float, float, float] | None = None,
     width: int = 80,
     height: int | None = None,
+    singular: np.ndarray | None = None,
+    circle: tuple[float, float, float] | None = None,
 ) -> list[str]:
     """The workspace as lines of text, at most ``width`` columns.
 
@@ -117,6 +126,11 @@ def render_map(
     width, height
         Size in terminal cells, axes and legend included; ``height`` defaults to an
         aspect-true map (a cell is twice as tall as wide) of at most 40 plot rows.
+
+    singular, circle
+        Optional overlays: boxes that may hold a type II singularity (``×`` on every cell
+        they touch) and a circle ``(x, y, r)`` in cm (``o`` on the cells it crosses, ``+``
+        at its centre), with a second legend line.
 
     A cell fully covered by inside boxes shows ``█``, any other covered cell ``▒``, an
     empty cell a blank; the y axis is labelled on the left, the x axis below, in cm.
@@ -133,6 +147,7 @@ def render_map(
     else:
         rows = max(3, height - 3)
     cover = _coverage(boxes, status, extent, columns, rows)
+    marks = _marks(extent, columns, rows, singular, circle)
     lines = []
     ystep = _axis_step(ylo, yhi, rows // 4, rows)
     ch = (yhi - ylo) / rows
@@ -147,7 +162,9 @@ def render_map(
         cells = []
         for i in range(columns):
             inside, boundary = cover[0, j, i], cover[1, j, i]
-            if inside >= 1.0 - 1e-9:
+            if marks[j][i]:
+                cells.append(marks[j][i])
+            elif inside >= 1.0 - 1e-9:
                 cells.append(INSIDE_GLYPH)
             elif inside + boundary > 1e-12:
                 cells.append(BOUNDARY_GLYPH)
@@ -172,4 +189,42 @@ def render_map(
     lines.append(" " * (_LABEL_WIDTH - 1) + " └" + "".join(axis)[: columns - 1])
     lines.append("".join(ticks).rstrip()[:width])
     lines.append(f"{'x (cm) →, y (cm) ↑':>{_LABEL_WIDTH + 18}}  {LEGEND}")
+    if singular is not None or circle is not None:
+        lines.append(" " * (_LABEL_WIDTH + 20) + SINGULAR_LEGEND)
     return [line[:width] for line in lines]
+
+
+def _marks(extent, columns, rows, singular, circle) -> list[list[str]]:
+    """Overlay glyphs per cell (``""`` for none): singular boxes, then the circle's cells
+    (the circle passes between the cell's nearest and farthest points) and its centre."""
+    marks = [[""] * columns for _ in range(rows)]
+    xlo, xhi, ylo, yhi = extent
+    cw, ch = (xhi - xlo) / columns, (yhi - ylo) / rows
+    if singular is not None and len(singular):
+        boxes = np.asarray(singular, dtype=np.float64).reshape(-1, 4)
+        i0 = np.clip(np.floor((boxes[:, 0] - xlo) / cw), 0, columns - 1).astype(int)
+        i1 = np.clip(np.ceil((boxes[:, 1] - xlo) / cw) - 1, 0, columns - 1).astype(int)
+        j0 = np.clip(np.floor((boxes[:, 2] - ylo) / ch), 0, rows - 1).astype(int)
+        j1 = np.clip(np.ceil((boxes[:, 3] - ylo) / ch) - 1, 0, rows - 1).astype(int)
+        inside = (
+            (boxes[:, 1] > xlo) & (boxes[:, 0] < xhi) & (boxes[:, 3] > ylo) & (boxes[:, 2] < yhi)
+        )
+        for a, b, c, d in zip(i0[inside], i1[inside], j0[inside], j1[inside], strict=True):
+            for j in range(c, max(c, d) + 1):
+                for i in range(a, max(a, b) + 1):
+                    marks[j][i] = SINGULAR_GLYPH
+    if circle is not None:
+        cx, cy, radius = circle
+        for j in range(rows):
+            y0, y1 = ylo + j * ch, ylo + (j + 1) * ch
+            dy_near = max(y0 - cy, 0.0, cy - y1)
+            dy_far = max(abs(y0 - cy), abs(y1 - cy))
+            for i in range(columns):
+                x0, x1 = xlo + i * cw, xlo + (i + 1) * cw
+                near = math.hypot(max(x0 - cx, 0.0, cx - x1), dy_near)
+                far = math.hypot(max(abs(x0 - cx), abs(x1 - cx)), dy_far)
+                if x0 <= cx < x1 and y0 <= cy < y1:
+                    marks[j][i] = CENTRE_GLYPH
+                elif near <= radius <= far and not marks[j][i]:
+                    marks[j][i] = CIRCLE_GLYPH
+    return marks

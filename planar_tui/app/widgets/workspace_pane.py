@@ -20,20 +20,23 @@ MAP_FOOTER_LINES = 3
 PARTIAL_MAP_EVERY_S = 0.5
 
 
-def fitted_map(boxes, status, width: int, height: int) -> list[str]:
+def fitted_map(boxes, status, width: int, height: int, **overlays) -> list[str]:
     """The CLI's aspect-true map (a cell twice as tall as wide) in at most ``width`` ×
     ``height`` cells, without its legend line (the tab shows the legend wrapped).
 
     ``render_map`` picks the plot rows from the width; when that is too tall the width is
     narrowed until it fits. A y tick ``┤`` is kept only on rows that carry a label (the
-    others show the plain axis ``│``), so each label points at its row.
+    others show the plain axis ``│``), so each label points at its row. ``overlays`` are
+    ``render_map``'s ``singular`` and ``circle``.
     """
     from planar_tui.workspace.map import render_map
 
-    lines = render_map(boxes, status, width=width)
+    lines = render_map(boxes, status, width=width, **overlays)
     while len(lines) > height and width > 20:
         width = max(20, min(width - 1, width * height // len(lines)))
-        lines = render_map(boxes, status, width=width)
+        lines = render_map(boxes, status, width=width, **overlays)
+    while lines and not lines[-1].lstrip().startswith("x (cm)") and overlays:
+        lines = lines[:-1]  # the overlays' legend line: the tab shows its own
     if lines and lines[-1].lstrip().startswith("x (cm)"):
         lines = lines[:-1]
     plot = lines[: len(lines) - MAP_FOOTER_LINES + 1]
@@ -83,16 +86,21 @@ class WorkspacePane(JobPane):
                 status = np.ones(len(boxes), dtype=np.int64)
             self.draw_map(boxes, status, "(so far)")
 
-    def draw_map(self, boxes, status, note: str = "") -> None:
-        """Draw boxes on the map area, fitted to the results area."""
+    def draw_map(self, boxes, status, note: str = "", **overlays) -> None:
+        """Draw boxes on the map area, fitted to the results area (``overlays``: the
+        singular boxes and the circle, see ``render_map``)."""
+        from planar_tui.workspace.map import SINGULAR_LEGEND
+
         area = self.query_one("#workspace-map", Static)
         results = self.query_one(".results")
         width = max(20, results.content_region.width - 1)
         legend_text = map_legend() + (f"  {note}" if note else "")
+        if overlays:
+            legend_text += f"  {SINGULAR_LEGEND}"
         legend_lines = -(-len(legend_text) // width)
         summary_lines = self.query_one("#result-text").size.height
         height = max(8, results.content_region.height - summary_lines - legend_lines)
-        area.update("\n".join(fitted_map(boxes, status, width, height)))
+        area.update("\n".join(fitted_map(boxes, status, width, height, **overlays)))
         self.query_one("#workspace-legend", Static).update(legend_text)
 
     def render_result(self, job: Job, result: JobResult) -> None:
@@ -104,4 +112,6 @@ class WorkspacePane(JobPane):
             area.update("(no box kept: the workspace is empty at this precision)")
             legend.update("")
             return
-        self.draw_map(outcome.boxes, outcome.status)
+        from planar_tui.workspace.job import overlays
+
+        self.draw_map(outcome.boxes, outcome.status, **overlays(result.singularity))

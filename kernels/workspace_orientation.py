@@ -1,0 +1,222 @@
+"""Orientation workspaces of a 3-RRR: the platform orientation ranges over an interval.
+
+For a platform position :math:`p = (x, y)` and orientation :math:`\\varphi`, leg ``i``'s
+platform point relative to its base joint is :math:`v_i(p, \\varphi) = p + R(\\varphi) q_i -
+A_i`, and the leg closes within its joint limits iff
+:math:`d_{\\min,i}(v_i) \\le l_2 \\le d_{\\max,i}(v_i)` (the exact leg-wise test of
+:mod:`kernels.workspace_arc`; both distances are 1-Lipschitz in :math:`v_i`). With
+:math:`\\Phi = [\\varphi_{lo}, \\varphi_{hi}]`:
+
+* the **maximal** workspace :math:`W_\\exists = \\{p : \\exists \\varphi \\in \\Phi,\\ p \\in
+  W(\\varphi)\\}`,
+* the **total orientation** workspace :math:`W_\\forall = \\{p : \\forall \\varphi \\in \\Phi,\\
+  p \\in W(\\varphi)\\}`.
+
+**Enclosure over a box and a piece of** :math:`\\Phi`. For an (x, y) box :math:`X` with centre
+:math:`c` and half-diagonal :math:`\\rho_{xy}`, and a piece :math:`[m - h, m + h]` of
+:math:`\\Phi`: for every :math:`p \\in X`, :math:`|\\varphi - m| \\le h`,
+
+.. math:: |v_i(p, \\varphi) - v_i(c, m)| \\le |p - c| + |R(\\varphi) q_i - R(m) q_i|
+          \\le \\rho_{xy} + 2 |q_i| \\sin(h / 2) =: \\rho_i
+
+(the chord of an arc of angle :math:`|\\varphi - m| \\le h \\le \\pi` on the circle of radius
+:math:`|q_i|`). By the Lipschitz property, over the whole set
+:math:`X \\times [m - h, m + h]` leg ``i`` is
+
+* ``IN`` (closes everywhere) if :math:`d_{\\min}(v_i(c, m)) + \\rho_i \\le l_2 \\le
+  d_{\\max}(v_i(c, m)) - \\rho_i`,
+* ``OUT`` (fails everywhere) if :math:`d_{\\min} - \\rho_i > l_2` or
+  :math:`d_{\\max} + \\rho_i < l_2`,
+
+and the piece is *all in* when every leg is ``IN`` (every :math:`(p, \\varphi)` feasible),
+*out* when some leg is ``OUT`` (every :math:`(p, \\varphi)` infeasible). A point orientation
+is the piece with :math:`h = 0` (:math:`\\rho_i = \\rho_{xy}`). ``rho`` is enlarged by
+``TOLERANCE_CM`` for the round-off of a few libm calls.
+
+**Classification of a box** (:func:`classify_box_range`), with :math:`\\Phi` bisected into
+pieces down to the width ``phi_min`` (a depth-first stack of pieces):
+
+*Maximal.* ``INSIDE`` as soon as one piece's midpoint orientation :math:`m` is *all in* at
+the point :math:`m`, or one piece is *all in*: then every :math:`p \\in X` is feasible at
+that :math:`\\varphi \\in \\Phi`, so :math:`X \\subseteq W_\\exists`. ``OUTSIDE`` if every
+piece of a cover of :math:`\\Phi` is *out*: then every :math:`(p, \\varphi) \\in X \\times
+\\Phi` is infeasible, so :math:`X \\cap W_\\exists = \\emptyset`. A piece neither *all in*
+nor *out* is split while wider than ``phi_min``; else ``BOUNDARY``.
+
+*Total.* ``OUTSIDE`` as soon as some leg is ``OUT`` at one piece's midpoint orientation
+:math:`m` (a point): every :math:`p \\in X` is infeasible at :math:`m \\in \\Phi`, so
+:math:`X \\cap W_\\forall = \\emptyset`. ``INSIDE`` if every piece of a cover of
+:math:`\\Phi` is *all in*: every :math:`(p, \\varphi) \\in X \\times \\Phi` is feasible, so
+:math:`X \\subseteq W_\\forall`. Otherwise as above.
+
+The 2-D bisection (:func:`range_bisect_chunk`) is that of ``arc_bisect_chunk`` with this
+test: inside boxes are never split, outside boxes dropped, boxes at the precision kept as
+boundary. With :math:`\\Phi` a single point both modes reduce to the exact leg-wise test.
+
+Geometry vector ``g``: ``[l1, l2, qx1, qy1, qx2, qy2, qx3, qy3, ax1, ay1, ax2, ay2, ax3,
+ay3]`` (cm); ``limits`` the (3, 2) joint limits in radians.
+"""
+
+import math
+
+from ._jit import kernel
+from .workspace3rrr import CHUNK_LIMIT, DONE, chunk_halt
+from .workspace_arc import arc_distance_range
+
+MAXIMAL = 0
+TOTAL = 1
+
+OUTSIDE = 0
+BOUNDARY = 1
+INSIDE = 2
+
+#: Piece verdicts: some leg fails everywhere, undecided, every leg closes everywhere.
+PIECE_OUT = 0
+PIECE_UNKNOWN = 1
+PIECE_IN = 2
+
+TOLERANCE_CM = 1e-9
+#: Rows of the orientation-piece stack: a depth-first bisection needs one per level.
+PIECE_STACK = 128
+
+
+@kernel
+def piece_status(cx, cy, rho_xy, phi_mid, phi_half, g, limits):
+    """``PIECE_IN``, ``PIECE_OUT`` or ``PIECE_UNKNOWN`` for the box of centre ``(cx, cy)`` and
+    half-diagonal ``rho_xy`` over the orientations ``[phi_mid - phi_half, phi_mid +
+    phi_half]`` (module docstring)."""
+    c = math.cos(phi_mid)
+    s = math.sin(phi_mid)
+    chord = 2.0 * math.sin(0.5 * min(phi_half, math.pi))
+    l2 = g[1]
+    all_in = True
+    for leg in range(3):
+        qx = g[2 + 2 * leg]
+        qy = g[3 + 2 * leg]
+        rho = rho_xy + chord * math.hypot(qx, qy) + TOLERANCE_CM
+        vx = cx + c * qx - s * qy - g[8 + 2 * leg]
+        vy = cy + s * qx + c * qy - g[9 + 2 * leg]
+        dmin, dmax = arc_distance_range(vx, vy, g[0], limits[leg, 0], limits[leg, 1])
+        if dmin - rho > l2 or dmax + rho < l2:
+            return PIECE_OUT
+        if dmin + rho > l2 or dmax - rho < l2:
+            all_in = False
+    return PIECE_IN if all_in else PIECE_UNKNOWN
+
+
+@kernel
+def classify_box_range(xlo, xhi, ylo, yhi, mode, phi_lo, phi_hi, phi_min, g, limits, pieces):
+    """``(label, work)``: ``OUTSIDE``, ``BOUNDARY`` or ``INSIDE`` of the box for the maximal
+    (``mode`` = ``MAXIMAL``) or total (``TOTAL``) orientation workspace over ``[phi_lo,
+    phi_hi]`` (module docstring), and the orientation pieces looked at (the work done);
+    ``pieces`` is a scratch array of ``(PIECE_STACK, 2)``."""
+    cx = 0.5 * (xlo + xhi)
+    cy = 0.5 * (ylo + yhi)
+    rho_xy = 0.5 * math.hypot(xhi - xlo, yhi - ylo)
+    pieces[0, 0] = phi_lo
+    pieces[0, 1] = phi_hi
+    n = 1
+    work = 0
+    undecided = False
+    while n > 0:
+        n -= 1
+        work += 1
+        lo = pieces[n, 0]
+        hi = pieces[n, 1]
+        mid = 0.5 * (lo + hi)
+        half = max(hi - mid, mid - lo)
+        at_point = piece_status(cx, cy, rho_xy, mid, 0.0, g, limits)
+        if mode == MAXIMAL:
+            if at_point == PIECE_IN:
+                return INSIDE, work
+            verdict = piece_status(cx, cy, rho_xy, mid, half, g, limits)
+            if verdict == PIECE_IN:
+                return INSIDE, work
+            if verdict == PIECE_OUT:
+                continue
+        else:
+            if at_point == PIECE_OUT:
+                return OUTSIDE, work
+            verdict = piece_status(cx, cy, rho_xy, mid, half, g, limits)
+            if verdict == PIECE_IN:
+                continue
+        if hi - lo > phi_min and n + 2 <= pieces.shape[0]:
+            pieces[n, 0] = mid
+            pieces[n, 1] = hi
+            pieces[n + 1, 0] = lo
+            pieces[n + 1, 1] = mid
+            n += 2
+        else:
+            undecided = True
+    if undecided:
+        return BOUNDARY, work
+    return (OUTSIDE if mode == MAXIMAL else INSIDE), work
+
+
+@kernel
+def classify_boxes_range(boxes, mode, phi_lo, phi_hi, phi_min, g, limits, pieces, out):
+    """:func:`classify_box_range` for every row ``x_lo, x_hi, y_lo, y_hi`` of ``boxes``."""
+    for r in range(boxes.shape[0]):
+        out[r] = classify_box_range(
+            boxes[r, 0], boxes[r, 1], boxes[r, 2], boxes[r, 3],
+            mode, phi_lo, phi_hi, phi_min, g, limits, pieces,
+        )[0]  # fmt: skip
+
+
+@kernel
+def range_bisect_chunk(
+    mode, phi_lo, phi_hi, phi_min, g, limits, precision, stack, n_stack, kept, status,
+    n_kept, max_boxes, max_work, pieces,
+):  # fmt: skip
+    """At most ``max_boxes`` steps of the 2-D bisection with :func:`classify_box_range`,
+    stopping early once ``max_work`` orientation pieces were looked at (a box's cost
+    varies by orders of magnitude: the work, not the box count, bounds a chunk's time).
+
+    Pop an (x, y) box; drop it if ``OUTSIDE``; keep it if ``INSIDE`` (never split) or if
+    both widths are :math:`\\le \\varepsilon` (as ``BOUNDARY``); else halve its wider side.
+    Returns ``(n_stack, n_kept, processed, code, work)`` (``code`` as
+    ``arc_bisect_chunk``'s; ``CHUNK_LIMIT`` also when the work ran out).
+    """
+    processed = 0
+    work = 0
+    while n_stack > 0:
+        halt = chunk_halt(processed, max_boxes, n_kept, kept.shape[0], n_stack, stack.shape[0])
+        if halt == DONE and work >= max_work:
+            halt = CHUNK_LIMIT
+        if halt != DONE:
+            return n_stack, n_kept, processed, halt, work
+        n_stack -= 1
+        row = n_stack
+        processed += 1
+        xlo = stack[row, 0]
+        xhi = stack[row, 1]
+        ylo = stack[row, 2]
+        yhi = stack[row, 3]
+        label, cost = classify_box_range(
+            xlo, xhi, ylo, yhi, mode, phi_lo, phi_hi, phi_min, g, limits, pieces
+        )
+        work += cost
+        if label == OUTSIDE:
+            continue
+        wx = xhi - xlo
+        wy = yhi - ylo
+        if label == INSIDE or (wx <= precision and wy <= precision):
+            kept[n_kept, 0] = xlo
+            kept[n_kept, 1] = xhi
+            kept[n_kept, 2] = ylo
+            kept[n_kept, 3] = yhi
+            status[n_kept] = label
+            n_kept += 1
+            continue
+        for j in range(4):
+            stack[n_stack + 1, j] = stack[row, j]
+        if wx >= wy:
+            mid = 0.5 * (xlo + xhi)
+            stack[row, 1] = mid
+            stack[n_stack + 1, 0] = mid
+        else:
+            mid = 0.5 * (ylo + yhi)
+            stack[row, 3] = mid
+            stack[n_stack + 1, 2] = mid
+        n_stack += 2
+    return n_stack, n_kept, processed, DONE, work

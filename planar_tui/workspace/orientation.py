@@ -1,0 +1,279 @@
+"""Orientation workspaces: ``orientation_deg = [lo, hi]`` with ``orientation_mode``.
+
+The *maximal* workspace holds the positions reachable with at least one orientation of the
+range, the *total orientation* workspace those reachable with every one. Both are paved in
+(x, y) by :func:`planar_tui.kernels.workspace_orientation.range_bisect_chunk`, whose box
+test treats φ as an interval variable, bisected per box (the classification rules and their
+proofs are in that module's docstring), giving a certified bracket
+``area_inside <= exact <= area_kept`` like the single-orientation job. The optional
+reference (``geometric_reference``) is the certified sampled bracket of
+:mod:`planar_tui.workspace.orientation_reference`.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+from planar_tui.workspace.robot import Robot3RRR
+
+MODES = ("maximal", "total")
+#: Wall time aimed at per kernel chunk (progress and Ctrl-C are handled between chunks).
+CHUNK_S = 0.05
+
+
+def read_orientation(reader, name, default, robot, values):
+    """``orientation_deg``: one number (a single orientation) or ``[lo, hi]`` in degrees
+    with ``lo < hi`` and ``hi - lo <= 360``."""
+    if not reader.has(name) or not isinstance(reader.raw(name), list):
+        return reader.number(name, default)
+    row = reader.numbers(name)
+    if len(row) != 2:
+        raise reader.error(name, f"has {len(row)} values", "a number or [lo, hi]")
+    lo, hi = row
+    if not lo < hi:
+        raise reader.error(name, f"range [{lo:g}, {hi:g}] is empty or reversed", "lo < hi")
+    if hi - lo > 360.0:
+        raise reader.error(name, f"range spans {hi - lo:g} deg", "at most 360 deg")
+    return (lo, hi)
+
+
+def check_orientation(values: dict, reader) -> None:
+    """``orientation_mode`` goes with a range and only with one; a range takes the
+    ``arc-distance`` form only (its default there)."""
+    mode = values["orientation_mode"]
+    ranged = isinstance(values["orientation_deg"], tuple)
+    if ranged and mode is None:
+        raise reader.error(
+            "orientation_mode",
+            "missing key with orientation_deg = [lo, hi]",
+            '"maximal" or "total"',
+        )
+    if not ranged and mode is not None:
+        raise reader.error(
+            "orientation_mode",
+            f"is {mode!r} with a single orientation_deg",
+            "orientation_deg = [lo, hi], or no orientation_mode",
+        )
+    if ranged and values["form"] != "arc-distance":
+        raise reader.error(
+            "form",
+            f"is {values['form']!r} with orientation_deg = [lo, hi]",
+            '"arc-distance" (the only form over a range of orientations)',
+        )
+
+
+def default_form(robot, values) -> str:
+    """The form's default: ``arc-distance`` over a range of orientations, else
+    ``mean-value``."""
+    return "arc-distance" if isinstance(values.get("orientation_deg"), tuple) else "mean-value"
+
+
+def _arc_extent(q: tuple[float, float], lo: float, hi: float) -> tuple[float, ...]:
+    """``(min, max)`` of the x and y components of :math:`R(\\varphi) q` over
+    :math:`\\varphi \\in [lo, hi]` (radians): the ends and the axis crossings inside."""
+    radius, angle = math.hypot(*q), math.atan2(q[1], q[0])
+    angles = [lo, hi]
+    for k in range(4):  # phi + angle = k pi / 2 (mod 2 pi): an x or y extreme
+        base = k * 0.5 * math.pi - angle
+        first = base + 2.0 * math.pi * math.ceil((lo - base) / (2.0 * math.pi))
+        angles += [t for t in (first, first + 2.0 * math.pi) if lo <= t <= hi]
+    xs = [radius * math.cos(t + angle) for t in angles]
+    ys = [radius * math.sin(t + angle) for t in angles]
+    return min(xs), max(xs), min(ys), max(ys)
+
+
+def reach_box_for(robot: Robot3RRR, orientation_deg) -> tuple[float, float, float, float]:
+    """Bounding box of the legs' reach at one orientation, or of the union of the reaches
+    over a range: at each φ the reach is :math:`\\cap_i D(A_i - R(\\varphi) q_i, l_1 + l_2)`,
+    whose x extent lies in :math:`[\\max_i \\min_\\varphi c_{x,i} - L, \\min_i \\max_\\varphi
+    c_{x,i} + L]` (y alike)."""
+    if not isinstance(orientation_deg, tuple):
+        return robot.reach_box_cm(math.radians(orientation_deg))
+    lo, hi = (math.radians(v) for v in orientation_deg)
+    reach = robot.proximal_cm + robot.distal_cm
+    extents = [_arc_extent(q, lo, hi) for q in robot.platform_points_cm()]
+    bases = robot.base_joints_cm()
+    # centre c_i = A_i - R q_i: its min is A_i - max(R q_i)
+    return (
+        max(a[0] - e[1] for a, e in zip(bases, extents, strict=True)) - reach,
+        min(a[0] - e[0] for a, e in zip(bases, extents, strict=True)) + reach,
+        max(a[1] - e[3] for a, e in zip(bases, extents, strict=True)) - reach,
+        min(a[1] - e[2] for a, e in zip(bases, extents, strict=True)) + reach,
+    )
+
+
+def search_box(robot: Robot3RRR, spec) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The job's ``search_box_cm`` or a square about the reach box whose side is
+    ``precision_cm * 2**n`` (smallest n)."""
+    if spec.search_box_cm is not None:
+        return spec.search_box_cm
+    xlo, xhi, ylo, yhi = reach_box_for(robot, spec.orientation_deg)
+    if xlo > xhi or ylo > yhi:
+        xlo = xhi = ylo = yhi = 0.0
+    side = spec.precision_cm
+    while side < max(xhi - xlo, yhi - ylo):
+        side *= 2.0
+    cx, cy = 0.5 * (xlo + xhi), 0.5 * (ylo + yhi)
+    return ((cx - 0.5 * side, cx + 0.5 * side), (cy - 0.5 * side, cy + 0.5 * side))
+
+
+def geometry_vector(robot: Robot3RRR):
+    """``[l1, l2, q1, q2, q3, A1, A2, A3]`` flattened (cm), the kernels' ``g``."""
+    import numpy as np
+
+    values = [robot.proximal_cm, robot.distal_cm]
+    for point in (*robot.platform_points_cm(), *robot.base_joints_cm()):
+        values += [float(point[0]), float(point[1])]
+    return np.array(values)
+
+
+def phi_min_rad(robot: Robot3RRR, precision_cm: float) -> float:
+    """Narrowest orientation piece: its chord term :math:`2|q|\\sin(h/2) \\le |q| h` stays
+    below ``precision_cm / 2`` for the farthest platform point (h the half-width)."""
+    farthest = max(math.hypot(*q) for q in robot.platform_points_cm())
+    return precision_cm / max(farthest, 1e-300)
+
+
+def _range_stage(robot, spec, seeds, precision, budget, inside_cm2=0.0):
+    """2-D bisection of the disjoint (x, y) boxes ``seeds`` with the orientation-range test;
+    returns the kept boxes and their status (2 inside, 1 boundary)."""
+    import numpy as np
+
+    from planar_tui.kernels.workspace3rrr import DONE, KEPT_FULL, STACK_FULL
+    from planar_tui.kernels.workspace_arc import limits_array
+    from planar_tui.kernels.workspace_orientation import (
+        INSIDE,
+        MAXIMAL,
+        PIECE_STACK,
+        TOTAL,
+        range_bisect_chunk,
+    )
+    from planar_tui.workspace.compute import _grow, _read_only, _xy_area
+
+    mode = MAXIMAL if spec.orientation_mode == "maximal" else TOTAL
+    lo, hi = (math.radians(v) for v in spec.orientation_deg)
+    g = geometry_vector(robot)
+    limits = limits_array(spec.limits_rad)
+    phi_min = phi_min_rad(robot, precision)
+    pieces = np.zeros((PIECE_STACK, 2))
+    stack = np.zeros((max(256, 2 * len(seeds) + 64), 4))
+    stack[: len(seeds)] = seeds
+    root_area = _xy_area(seeds)
+    kept = np.zeros((max(4096, len(seeds)), 4))
+    status = np.zeros(kept.shape[0], dtype=np.int64)
+    n_stack, n_kept = len(seeds), 0
+    lower = upper = inside_cm2
+    work = 4096  # orientation pieces per call, scaled to about CHUNK_S of work
+    while True:
+        previous = n_kept
+        started = time.perf_counter()
+        n_stack, n_kept, processed, code, done = range_bisect_chunk(
+            mode, lo, hi, phi_min, g, limits, precision, stack, n_stack, kept, status,
+            n_kept, 1 << 40, work, pieces,
+        )  # fmt: skip
+        elapsed = time.perf_counter() - started
+        if done >= work:
+            work = int(min(max(done * CHUNK_S / max(elapsed, 1e-6), 256), 4 * work))
+        pending = stack[:n_stack]
+        area = _xy_area(pending)
+        new = slice(previous, n_kept)
+        lower += _xy_area(kept[new][status[new] == INSIDE])
+        upper += _xy_area(kept[new])
+        budget.progress.show_partial(
+            boxes_cm=_read_only(kept[:n_kept]), status=_read_only(status[:n_kept])
+        )
+        budget.spend(processed, 1.0 - area / max(root_area, 1e-300), lower, upper + area)
+        if code == DONE:
+            return kept[:n_kept], status[:n_kept]
+        if code == KEPT_FULL:
+            kept = _grow(kept)
+            status = _grow(status)
+        elif code == STACK_FULL:
+            stack = _grow(stack)
+
+
+def compute_orientation_workspace(robot: Robot3RRR, spec, budget):
+    """The maximal or total orientation workspace of ``spec`` (``orientation_deg`` a range)
+    as a :class:`~planar_tui.workspace.compute.WorkspaceOutcome`: the bisection down to
+    ``precision_cm``, then the boundary boxes again down to ``refine_precision_cm``."""
+    import numpy as np
+
+    from planar_tui.kernels.workspace_union import union_area
+    from planar_tui.workspace.compute import INSIDE, WorkspaceOutcome
+
+    started = time.perf_counter()
+    box = search_box(robot, spec)
+    extent = (box[0][0], box[0][1], box[1][0], box[1][1])
+    geometric = None
+    if spec.geometric_reference:
+        from planar_tui.workspace.orientation_reference import reference_area
+
+        budget.progress.start(1.0, "sampled reference")
+        geometric = budget.progress.wait_for(
+            reference_area, robot, spec.limits_rad, spec.orientation_deg, spec.orientation_mode
+        )
+    budget.progress.start(1.0, f"{spec.orientation_mode} orientation workspace")
+    boxes, status = _range_stage(robot, spec, np.array([extent]), spec.precision_cm, budget)
+    if spec.refine_precision_cm is not None:
+        budget.progress.start(1.0, "boundary refinement")
+        inside = status == INSIDE
+        refined, refined_status = _range_stage(
+            robot,
+            spec,
+            np.ascontiguousarray(boxes[~inside]),
+            spec.refine_precision_cm,
+            budget,
+            float(union_area(boxes[inside])),
+        )
+        boxes = np.concatenate([boxes[inside], refined])
+        status = np.concatenate([status[inside], refined_status])
+    boxes = np.ascontiguousarray(boxes)
+    area_kept = float(union_area(boxes))
+    area_inside = float(union_area(np.ascontiguousarray(boxes[status == INSIDE])))
+    budget.finish(area_inside, area_kept)
+    return WorkspaceOutcome(
+        form=spec.form,
+        precision_cm=spec.precision_cm,
+        refine_precision_cm=spec.refine_precision_cm,
+        boxes=boxes,
+        status=status,
+        boxes_processed=budget.processed,
+        area_kept_cm2=area_kept,
+        area_inside_cm2=area_inside,
+        geometric=geometric,
+        seconds=time.perf_counter() - started,
+        extent_cm=extent,
+    )
+
+
+def orientation_columns(spec) -> list:
+    """The summary's ``orientation_mode, orientation_lo_deg, orientation_hi_deg`` (a single
+    orientation: no mode, ``lo = hi = φ``)."""
+    if isinstance(spec.orientation_deg, tuple):
+        return [spec.orientation_mode, *spec.orientation_deg]
+    return ["", spec.orientation_deg, spec.orientation_deg]
+
+
+ORIENTATION_HEADER = ("orientation_mode", "orientation_lo_deg", "orientation_hi_deg")
+
+
+def describe(spec) -> str:
+    """``φ = 10°`` or ``maximal, φ ∈ [-10, 10]°`` for titles and summaries."""
+    if isinstance(spec.orientation_deg, tuple):
+        lo, hi = spec.orientation_deg
+        return f"{spec.orientation_mode}, φ ∈ [{lo:g}, {hi:g}]°"
+    return f"φ = {spec.orientation_deg:g}°"
+
+
+def summary_text(spec, outcome) -> str:
+    """One short line: form, ε, mode and range, the certified bracket and the sampled
+    reference's bracket."""
+    text = (
+        f"{outcome.form} eps={outcome.precision_cm:.4g}, {describe(spec)}: "
+        f"[{outcome.area_inside_cm2:.5g}, {outcome.area_kept_cm2:.5g}] cm2"
+    )
+    if outcome.geometric is not None:
+        g = outcome.geometric
+        text += f", sampled reference [{g.inner_cm2:.5g}, {g.outer_cm2:.5g}]"
+    return text
