@@ -329,3 +329,30 @@ def test_a_sweep_without_a_varied_column_and_a_folder_as_figure_are_one_line_exi
         result.stderr == f"error: {folder}: (output): is a folder (expected a figure file path)\n"
     )
     assert sorted(p.name for p in tmp_path.iterdir()) == ["f.png", "flat.csv"]
+
+
+def test_workspace_figure_draws_the_singular_boxes_and_the_free_circle(tmp_path):
+    """A job with ``singularities = true``: one rectangle per box that may be singular and
+    the circle of the certified radius ``r_in`` about the centre, as the result says."""
+    from matplotlib.patches import Circle
+
+    preset = tmp_path / "singular.toml"
+    preset.write_text(
+        "[robot3rrr]\nbase_side_cm = 120\nplatform_side_cm = 40\nproximal_cm = 30\n"
+        "distal_cm = 30\n\n[workspace]\njoint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n"
+        'orientation_deg = 0\nprecision_cm = 0.5\nform = "arc-distance"\nsingularities = true\n'
+        'elbow = [1, -1, 1]\nsingularity_precision_cm = 0.25\noutput = "s.csv"\n'
+    )
+    (job,) = batch.prepare_jobs(load_preset(preset).jobs)
+    result = batch.run_job(job)
+    singular = result.singularity.singular_boxes
+    assert len(singular) > 0
+    fig = figures.figure_for_result(job, result)
+    (collection,) = _by_gid(fig, "singular", "collections")
+    assert len(collection.get_paths()) == len(singular)
+    (circle,) = [p for ax in fig.axes for p in ax.patches if p.get_gid() == "circle"]
+    assert isinstance(circle, Circle)
+    assert circle.get_radius() == result.singularity.radius_lo_cm
+    assert tuple(circle.center) == tuple(result.singularity.centre_cm)
+    figures.save_result_figure(job, result, tmp_path / "s.svg")
+    assert (tmp_path / "s.svg").stat().st_size > 0

@@ -117,10 +117,35 @@ def draw_robot(ax: Any, robot: Any, spec: Any, point: tuple[float, float]) -> bo
     return True
 
 
+def draw_singularity(ax: Any, singularity: Any) -> None:
+    """Type II singularities over the boxes: the boxes that may hold a singular pose (one
+    collection, ``gid`` ``"singular"``, one rectangle each) and the certified
+    singularity-free circle of radius ``radius_lo_cm`` about its centre (``gid``
+    ``"circle"``), the centre marked."""
+    import numpy as np
+    from matplotlib.collections import PolyCollection
+    from matplotlib.patches import Circle
+
+    b = np.asarray(singularity.singular_boxes).reshape(-1, 4)
+    verts = np.stack([b[:, [0, 2]], b[:, [1, 2]], b[:, [1, 3]], b[:, [0, 3]]], axis=1)
+    ax.add_collection(PolyCollection(
+        verts, facecolors="#c0392b", edgecolors="#c0392b", linewidths=0.5, zorder=3,
+        gid="singular",
+        label="may be singular (type II)", rasterized=len(b) > RASTER_ABOVE,
+    ))  # fmt: skip
+    x, y = singularity.centre_cm
+    ax.add_patch(Circle((x, y), singularity.radius_lo_cm, fill=False, color="#1f4e79",
+                        lw=1.5, gid="circle", zorder=4,
+                        label=f"singularity-free, r ≥ {singularity.radius_lo_cm:.4g} cm"))  # fmt: skip
+    ax.plot(x, y, marker="+", color="#1f4e79", ms=10, gid="circle-centre")
+
+
 def draw(boxes: Any, inside: Any, title: str, robot: Any = None, spec: Any = None,
-         summary: str = "") -> Any:  # fmt: skip
+         summary: str = "", singularity: Any = None) -> Any:  # fmt: skip
     """Boxes (rows ``x_lo, x_hi, y_lo, y_hi``; ``inside`` a boolean per box), with the
-    exact boundary and the robot when ``robot`` and ``spec`` are given."""
+    exact boundary and the robot when ``robot`` and ``spec`` are given, and the type II
+    singularities and singularity-free circle when ``singularity`` is given
+    (:class:`~planar_tui.workspace.singularity.SingularityOutcome`)."""
     with_robot = robot is not None and spec is not None
     fig = new_figure(12.0 if with_robot else 7.0, 6.0)
     if with_robot:
@@ -128,6 +153,8 @@ def draw(boxes: Any, inside: Any, title: str, robot: Any = None, spec: Any = Non
     else:
         ax, overview = fig.add_subplot(), None
     draw_boxes(ax, boxes, inside)
+    if singularity is not None:
+        draw_singularity(ax, singularity)
     if with_robot:
         from planar_tui.workspace.geometry import workspace_polygon
 
@@ -149,7 +176,10 @@ def draw(boxes: Any, inside: Any, title: str, robot: Any = None, spec: Any = Non
         overview.set(xlabel="x (cm)", ylabel="y (cm)", aspect="equal",
                      title="the robot at a pose inside")  # fmt: skip
         overview.grid(alpha=0.3)
-    ax.set(xlabel="x (cm)", ylabel="y (cm)", aspect="equal", title=summary or "workspace")
+    import textwrap
+
+    ax.set(xlabel="x (cm)", ylabel="y (cm)", aspect="equal",
+           title=textwrap.fill(summary or "workspace", 64))  # fmt: skip
     ax.grid(alpha=0.3)
     ax.legend(loc="upper right", fontsize="small")
     fig.suptitle(title)
@@ -205,4 +235,5 @@ def from_result(job: Any, result: Any) -> Any:
     inside = np.asarray(outcome.status) == INSIDE
     if isinstance(job.spec.orientation_deg, tuple):  # a range of φ: no single exact boundary
         return draw(boxes, inside, map_title(job, outcome), summary=result.summary)
-    return draw(boxes, inside, map_title(job, outcome), job.robot, job.spec, result.summary)
+    return draw(boxes, inside, map_title(job, outcome), job.robot, job.spec, result.summary,
+                getattr(result, "singularity", None))  # fmt: skip
