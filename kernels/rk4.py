@@ -22,6 +22,71 @@ def rk4_record_count(n_steps_total, every):
 
 
 @kernel
+def rk4_step(
+    lengths_m,
+    masses_kg,
+    inertias_kgm2,
+    gravity_m_s2,
+    torque_Nm,
+    theta_rad,
+    omega_rad_s,
+    step_s,
+    work,
+    matrix,
+    d_theta,
+    d_omega,
+    theta,
+    omega,
+):
+    r"""One classical RK4 step of :math:`x = (\theta, \dot\theta)`, in place, allocation-free.
+
+    .. math:: k_1 = f(x_k),\; k_2 = f(x_k + \tfrac h2 k_1),\; k_3 = f(x_k + \tfrac h2 k_2),\;
+              k_4 = f(x_k + h k_3),\quad x_{k+1} = x_k + \tfrac h6(k_1 + 2k_2 + 2k_3 + k_4)
+
+    with :math:`f(\theta,\omega) = (\omega, \ddot\theta(\theta,\omega,\tau))`. ``work`` and
+    ``matrix`` come from :func:`kernels.dynamics.forward_dynamics_work`; ``d_theta``,
+    ``d_omega`` (4, n) hold the stage derivatives and ``theta``, ``omega`` (n,) the stage
+    point. The one step of :func:`rk4_integrate` and of the batched motion kernels
+    (:mod:`kernels.motion_rk4`), so they agree to the last bit.
+    """
+    n = lengths_m.shape[0]
+    half = 0.5 * step_s
+    sixth = step_s / 6.0
+    for i in range(n):
+        theta[i] = theta_rad[i]
+        omega[i] = omega_rad_s[i]
+    for stage in range(4):
+        for i in range(n):
+            d_theta[stage, i] = omega[i]
+        _forward_dynamics_rows(
+            lengths_m,
+            masses_kg,
+            inertias_kgm2,
+            gravity_m_s2,
+            theta,
+            omega,
+            torque_Nm,
+            work,
+            matrix,
+            d_omega,
+            stage,
+            True,
+        )
+        if stage < 3:
+            factor = step_s if stage == 2 else half
+            for i in range(n):
+                theta[i] = theta_rad[i] + factor * d_theta[stage, i]
+                omega[i] = omega_rad_s[i] + factor * d_omega[stage, i]
+    for i in range(n):
+        theta_rad[i] += sixth * (
+            d_theta[0, i] + 2.0 * d_theta[1, i] + 2.0 * d_theta[2, i] + d_theta[3, i]
+        )
+        omega_rad_s[i] += sixth * (
+            d_omega[0, i] + 2.0 * d_omega[1, i] + 2.0 * d_omega[2, i] + d_omega[3, i]
+        )
+
+
+@kernel
 def rk4_integrate(
     lengths_m,
     masses_kg,
@@ -73,43 +138,13 @@ def rk4_integrate(
     d_omega = np.empty((4, n))  # ... and of θ̇
     theta = np.empty(n)  # θ at the stage point
     omega = np.empty(n)  # θ̇ at the stage point
-    half = 0.5 * step_s
-    sixth = step_s / 6.0
     rows = 0
     for k in range(start_step, start_step + n_steps + 1):
         if k > start_step:  # one RK4 step from k-1 to k
-            for i in range(n):
-                theta[i] = theta_rad[i]
-                omega[i] = omega_rad_s[i]
-            for stage in range(4):
-                for i in range(n):
-                    d_theta[stage, i] = omega[i]
-                _forward_dynamics_rows(
-                    lengths_m,
-                    masses_kg,
-                    inertias_kgm2,
-                    gravity_m_s2,
-                    theta,
-                    omega,
-                    torque_Nm,
-                    work,
-                    matrix,
-                    d_omega,
-                    stage,
-                    True,
-                )
-                if stage < 3:
-                    factor = step_s if stage == 2 else half
-                    for i in range(n):
-                        theta[i] = theta_rad[i] + factor * d_theta[stage, i]
-                        omega[i] = omega_rad_s[i] + factor * d_omega[stage, i]
-            for i in range(n):
-                theta_rad[i] += sixth * (
-                    d_theta[0, i] + 2.0 * d_theta[1, i] + 2.0 * d_theta[2, i] + d_theta[3, i]
-                )
-                omega_rad_s[i] += sixth * (
-                    d_omega[0, i] + 2.0 * d_omega[1, i] + 2.0 * d_omega[2, i] + d_omega[3, i]
-                )
+            rk4_step(
+                lengths_m, masses_kg, inertias_kgm2, gravity_m_s2, torque_Nm,
+                theta_rad, omega_rad_s, step_s, work, matrix, d_theta, d_omega, theta, omega,
+            )  # fmt: skip
         # the initial state of a chunk is the previous chunk's last step: record it only once
         if k % every == 0 and (k > start_step or k == 0):
             t_out[rows] = k * step_s
