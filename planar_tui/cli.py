@@ -440,6 +440,37 @@ def sensitivity(
 
 
 @app.command(
+    "motion",
+    cls=Command,
+    help="Monte-Carlo band and Sobol'/eFAST indices of the motion of every "
+    "motion_uncertainty job under length and mass tolerances: band CSV, indices CSV (the "
+    "job's indices_output, or OUTPUT-indices.csv) and a Table-4-shaped table per time.\n\n"
+    "An option that changes a job's setting is appended to the stem of the files the preset "
+    "names; a name given with --out is kept.",
+)
+def motion(
+    preset: PresetArg,
+    method: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--method", "-m", help="montecarlo, sobol or efast (repeatable); overrides `methods`."
+        ),
+    ] = None,
+    samples: Annotated[int | None, typer.Option(help="N; overrides `samples`.")] = None,
+    seed: Annotated[int | None, typer.Option(help="Seed >= 1; overrides `seed`.")] = None,
+    device: Annotated[
+        str | None, typer.Option(help="cpu, cuda or auto; overrides `device`.")
+    ] = None,
+    job_name: JobOption = None,
+    out: OutOption = None,
+    out_dir: OutDirOption = Path("."),
+) -> None:
+    """Band and indices of the motion under tolerances of every motion_uncertainty job."""
+    options = {"methods": method, "samples": samples, "seed": seed, "device": device}
+    run_kind("motion_uncertainty", preset, out, out_dir, options, names=job_name)
+
+
+@app.command(
     cls=Command,
     help="3-RRR workspace of every workspace job: summary CSV, boxes CSV (--boxes or the "
     "preset's boxes_output) and a map titled with the job, form and precision.\n\n"

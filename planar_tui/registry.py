@@ -9,6 +9,7 @@ Nothing imported here loads numba, SALib or Textual (runners import them when th
 from planar_tui.dynamics import robot as serial_robot
 from planar_tui.dynamics import simulate, torques
 from planar_tui.jobkind import JobKind, RobotKind
+from planar_tui.motion import job as motion_uncertainty
 from planar_tui.sensitivity import job as sensitivity
 from planar_tui.workspace import job as workspace
 from planar_tui.workspace import robot as robot3rrr
@@ -28,6 +29,7 @@ JOB_KINDS: dict[str, JobKind] = {
         torques.JOB_KIND,
         sensitivity.JOB_KIND,
         workspace.JOB_KIND,
+        motion_uncertainty.JOB_KIND,
     )
 }
 

@@ -47,6 +47,9 @@ EXAMPLES = {
     "simulate": _ROBOT + "[simulate]\nduration_s = 0.002\nstep_s = 0.001\n",
     "torques": _ROBOT + "[torques]\ntheta_deg = [[0, 10]]\n",
     "sensitivity": _ROBOT + "[sensitivity]\nsamples = 8\nefast_samples = 65\n",
+    "motion_uncertainty": _ROBOT
+    + "[motion_uncertainty]\nduration_s = 0.002\nstep_s = 0.001\nsamples = 128\n"
+    + 'methods = ["montecarlo", "sobol", "efast"]\n',
     "workspace": "[robot3rrr]\n"
     + "".join(
         "[[workspace]]\njoint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n"

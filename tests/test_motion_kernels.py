@@ -10,7 +10,6 @@ import subprocess
 import sys
 
 import numpy as np
-
 from planar_tui.kernels.dynamics import energies
 from planar_tui.kernels.motion_rk4 import design_parameters, rk4_batch
 from planar_tui.kernels.rk4 import rk4_integrate
@@ -30,8 +29,16 @@ def test_one_robot_equals_rk4_integrate_to_the_last_bit():
     n_steps, step_s = 300, 1e-4
     theta, omega = theta0.copy(), omega0.copy()
     rows = n_steps + 1
-    records = [np.empty(rows), np.empty((rows, 6)), np.empty((rows, 6)), np.empty(rows), np.empty(rows)]
-    rk4_integrate(lengths, masses, inertias, 9.81, TORQUES, theta, omega, step_s, n_steps, 1, 0, *records)
+    records = [
+        np.empty(rows),
+        np.empty((rows, 6)),
+        np.empty((rows, 6)),
+        np.empty(rows),
+        np.empty(rows),
+    ]
+    rk4_integrate(
+        lengths, masses, inertias, 9.81, TORQUES, theta, omega, step_s, n_steps, 1, 0, *records
+    )
     params = np.stack([lengths, masses, inertias])[None].copy()
     batch_theta, batch_omega = theta0[None].copy(), omega0[None].copy()
     for chunk in (1, 99, 200):  # chunked in time: the same bits

@@ -33,7 +33,8 @@ def test_every_setting_without_a_key_is_a_derived_value():
         for kind in JOB_KINDS.values()
     }
     assert undeclared == {"simulate": [], "torques": [], "sensitivity": ["posture"],
-                          "workspace": ["circle"]}  # fmt: skip
+                          "workspace": ["circle"], "motion_uncertainty": ["indices_file",
+                          "device_used", "device_note"]}  # fmt: skip
 
 
 @pytest.mark.parametrize("preset_path", sorted(PRESETS.glob("*.toml")), ids=lambda p: p.stem)
@@ -71,4 +72,5 @@ def test_the_per_link_keys_come_from_the_declarations():
         "torques": {"theta_deg": "rows", "omega_deg_s": "rows", "alpha_deg_s2": "rows"},
         "sensitivity": {"posture": "list"},
         "workspace": {},
+        "motion_uncertainty": {"theta0_deg": "list", "omega0_deg_s": "list", "torques_Nm": "list"},
     }

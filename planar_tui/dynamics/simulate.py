@@ -58,7 +58,8 @@ def next_chunk_steps(steps: int, seconds: float, left: int) -> int:
     return max(1, min(target, grown, STEPS_PER_CHUNK, left))
 
 
-def _per_link(doc: str, default_doc: str = "zeros") -> Any:
+def per_link_numbers(doc: str, default_doc: str = "zeros") -> Any:
+    """A per-link array of numbers (one per link; default zeros), e.g. `torques_Nm`."""
     return setting(
         numbers(length=PER_LINK),
         default=per_link_zeros,
@@ -79,9 +80,9 @@ class SimulateSpec:
     )
     step_s: float = setting(number(positive=True), type_doc="number > 0, ≤ `duration_s`",
                             doc="RK4 step")  # fmt: skip
-    theta0_deg: tuple[float, ...] = _per_link("initial relative joint angles")
-    omega0_deg_s: tuple[float, ...] = _per_link("initial joint rates")
-    torques_Nm: tuple[float, ...] = _per_link("constant joint torques", "zeros (free fall)")
+    theta0_deg: tuple[float, ...] = per_link_numbers("initial relative joint angles")
+    omega0_deg_s: tuple[float, ...] = per_link_numbers("initial joint rates")
+    torques_Nm: tuple[float, ...] = per_link_numbers("constant joint torques", "zeros (free fall)")
     every: int = setting(
         integer(minimum=1),
         default=1,

@@ -36,7 +36,11 @@ CSV_HEADER = (
 
 @dataclass(frozen=True)
 class Analysis:
-    """The indices of one method at one posture and speed: arrays (4, n, D)."""
+    """The indices of one method at one posture and speed: arrays (4, n, D).
+
+    ``outputs`` names the n outputs in tables (default ``τ1 … τn``, the torques) and
+    ``context`` replaces "posture · speed" in a table's title (e.g. ``t = 1 s`` for the
+    motion job, whose analyses share a time instead of a posture and speed)."""
 
     method: str
     posture: str
@@ -44,6 +48,12 @@ class Analysis:
     names: tuple[str, ...]
     indices: np.ndarray
     percent: np.ndarray  # (n, D)
+    outputs: tuple[str, ...] = ()
+    context: str = ""
+
+    def output_labels(self) -> tuple[str, ...]:
+        """The n outputs' row labels: ``outputs``, or the torques ``τ1 … τn``."""
+        return self.outputs or tuple(f"τ{i + 1}" for i in range(self.indices.shape[1]))
 
 
 def sensitivity_percent(indices: np.ndarray, percent_of: str = "ST") -> np.ndarray:

@@ -48,7 +48,7 @@ class View:
 
 #: The views ``ctrl+t`` cycles through.
 VIEWS = (
-    View("percent", "% of {percent_of} per torque", None, 1, 100.0),
+    View("percent", "% of {percent_of} per {row}", None, 1, 100.0),
     View("S1", "S1, first-order index", 0, 2, 1.0),
     View("ST", "ST, total index", 2, 2, 1.0),
     View("confidence", "± 95 % half-width of ST (eFAST's unreliable, SALib #649)", 3, 3, None),
@@ -127,6 +127,7 @@ def build_grid(chosen: Sequence, view: View, transposed: bool, short: bool) -> G
     dominant = [v.argmax(axis=1) if view.heat_scale else None for v in values]
     labels = [method_label(a.method, short) for a in chosen]
     several = len(chosen) > 1
+    outputs = chosen[0].output_labels()
 
     def cell(k: int, torque: int, parameter: int) -> Text:
         value = float(values[k][torque, parameter])
@@ -139,16 +140,17 @@ def build_grid(chosen: Sequence, view: View, transposed: bool, short: bool) -> G
         cells = [Text(key if k == 0 else "")]
         return [*cells, Text(labels[k], style="italic")] if several else cells
 
-    lead = ["τ" if not transposed else ""] + ([""] if several else [])
+    corner = "τ" if not chosen[0].outputs else ""
+    lead = [corner if not transposed else ""] + ([""] if several else [])
     rows = []
     if not transposed:
         header = lead + list(chosen[0].names)
         for torque in range(n_torques):
             for k in range(len(chosen)):
                 cells = [cell(k, torque, j) for j in range(n_params)]
-                rows.append(label_cells(f"τ{torque + 1}", k) + cells)
+                rows.append(label_cells(outputs[torque], k) + cells)
     else:
-        header = lead + [f"τ{i + 1}" for i in range(n_torques)]
+        header = lead + list(outputs)
         for j, name in enumerate(chosen[0].names):
             for k in range(len(chosen)):
                 cells = [cell(k, torque, j) for torque in range(n_torques)]
@@ -203,13 +205,15 @@ def fit_tables(analyses: Sequence, view: View, width: int, percent_of: str = "ST
     natural, transposed, short, grids = min(candidates, key=lambda candidate: candidate[0])
     parts: list[RenderableType] = []
     posture = analyses[0].posture
-    title = view.title.format(percent_of=percent_of)
+    row = "output" if analyses[0].outputs else "torque"
+    title = view.title.format(percent_of=percent_of, row=row)
     for speed, grid in zip(groups, grids, strict=True):
-        parts.append(Text(f"{title} · {posture} · {speed:g} rad/s", style="bold"))
+        context = groups[speed][0].context or f"{posture} · {speed:g} rad/s"
+        parts.append(Text(f"{title} · {context}", style="bold"))
         parts.append(grid.table())
     notes = []
     if view.heat_scale:
-        notes.append("bold: largest of each torque")
+        notes.append(f"bold: largest of each {row}")
     if short and len(next(iter(groups.values()))) > 1:
         notes.append("S = Sobol', E = eFAST")
     if notes:

@@ -1,0 +1,225 @@
+r"""Sample robots, integrate them all (CPU or CUDA), take the outputs, the band and indices.
+
+The inputs and designs are the sensitivity package's (:func:`~planar_tui.sensitivity.engine.build_problem`,
+:func:`~planar_tui.sensitivity.engine.unit_design`, SALib's Sobol'/eFAST designs, cached);
+Monte Carlo adds ``default_rng(seed).random((N, D))``. Every row of every design is one
+robot; all of them are integrated together (:mod:`kernels.motion_rk4` or
+:mod:`kernels.motion_cuda`), in calls of about :data:`CALL_SECONDS` for progress and cancel,
+stopping at every recorded step to take the outputs: the relative joint angles
+:math:`\theta_i` and the tip :math:`(x, y) = \sum_i l_i(\cos\phi_i, \sin\phi_i)`,
+:math:`\phi_i = \sum_{j\le i}\theta_j`.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from planar_tui.progress import Progress
+
+#: Wall time one kernel call aims at (Ctrl-C and cancel are checked between calls).
+CALL_SECONDS = 0.05
+#: Robots per CPU kernel call at most (a call then stays well under a second per step).
+CPU_BLOCK_ROBOTS = 4096
+#: Percentiles of the band.
+PERCENTILES = (5.0, 50.0, 95.0)
+
+
+@dataclass(frozen=True)
+class Design:
+    """Every robot of a job: the unit design (S, D), and which rows each method owns."""
+
+    unit: np.ndarray
+    rows: dict[str, slice]
+
+    @property
+    def samples(self) -> int:
+        return self.unit.shape[0]
+
+    def band_rows(self) -> np.ndarray:
+        """Rows of independent uniform robots for the band: the Monte-Carlo rows, else the
+        Sobol' design's A and B rows (2N), else every eFAST row."""
+        if "montecarlo" in self.rows:
+            return np.arange(self.samples)[self.rows["montecarlo"]]
+        if "sobol" in self.rows:
+            rows = np.arange(self.samples)[self.rows["sobol"]]
+            step = self.unit.shape[1] + 2
+            blocks = rows.reshape(-1, step)
+            return np.sort(np.concatenate([blocks[:, 0], blocks[:, -1]]))
+        return np.arange(self.samples)[self.rows["efast"]]
+
+
+def montecarlo_design(num_vars: int, samples: int, seed: int) -> np.ndarray:
+    """N independent uniform points of the unit cube, ``default_rng(seed).random((N, D))``."""
+    return np.random.default_rng(seed).random((samples, num_vars))
+
+
+def build_design(
+    methods: Sequence[str], num_vars: int, samples: int, seed: int, progress: Progress | None
+) -> Design:
+    """The designs of ``methods`` stacked, in that order (sampling stage of ``progress``)."""
+    from planar_tui.sensitivity.engine import unit_design
+
+    parts, rows, start = [], {}, 0
+    for method in methods:
+        if method == "montecarlo":
+            part = montecarlo_design(num_vars, samples, seed)
+            if progress is not None:
+                progress.advance(1.0, method)
+        else:
+            part = unit_design(method, num_vars, samples, seed, progress)
+        parts.append(part)
+        rows[method] = slice(start, start + len(part))
+        start += len(part)
+    return Design(np.concatenate(parts), rows)
+
+
+def tip_position(lengths_m: np.ndarray, theta_rad: np.ndarray) -> np.ndarray:
+    r"""(S, 2) tip positions :math:`\sum_i l_i(\cos\phi_i, \sin\phi_i)` of (S, n) lengths
+    and relative angles."""
+    phi = np.cumsum(theta_rad, axis=1)
+    return np.stack(
+        [(lengths_m * np.cos(phi)).sum(axis=1), (lengths_m * np.sin(phi)).sum(axis=1)], axis=1
+    )
+
+
+def output_names(n_links: int, outputs: Sequence[str]) -> tuple[str, ...]:
+    """Column stems of the outputs: ``theta1_rad`` … ``thetan_rad`` and/or ``tip_x_m``, ``tip_y_m``."""
+    names: list[str] = []
+    if "angles" in outputs:
+        names += [f"theta{i}_rad" for i in range(1, n_links + 1)]
+    if "tip" in outputs:
+        names += ["tip_x_m", "tip_y_m"]
+    return tuple(names)
+
+
+def output_labels(names: Sequence[str]) -> tuple[str, ...]:
+    """Short row labels for tables and plots: ``θ1``…, ``tip x``, ``tip y``."""
+    return tuple(
+        f"θ{name[5:-4]}" if name.startswith("theta") else name[:-2].replace("_", " ")
+        for name in names
+    )
+
+
+def take_outputs(
+    lengths_m: np.ndarray, theta_rad: np.ndarray, outputs: Sequence[str]
+) -> np.ndarray:
+    """(S, n_out) outputs of (S, n) angles, in :func:`output_names` order."""
+    columns = []
+    if "angles" in outputs:
+        columns.append(theta_rad)
+    if "tip" in outputs:
+        columns.append(tip_position(lengths_m, theta_rad))
+    return np.concatenate(columns, axis=1)
+
+
+def band_statistics(values: np.ndarray) -> np.ndarray:
+    """(5, n_out) mean, standard deviation (``ddof = 1``; 0 for one robot), 5th, 50th and
+    95th percentile over the rows of (S, n_out) values."""
+    std = values.std(axis=0, ddof=1) if len(values) > 1 else np.zeros(values.shape[1])
+    return np.vstack([values.mean(axis=0), std, np.percentile(values, PERCENTILES, axis=0)])
+
+
+class CpuRobots:
+    """The robots on the CPU: parameters (S, 3, n) and states, :func:`kernels.motion_rk4.rk4_batch`
+    in blocks of at most :data:`CPU_BLOCK_ROBOTS` robots."""
+
+    device = "cpu"
+
+    def __init__(self, params, theta_rad, omega_rad_s, gravity_m_s2, torque_Nm):
+        self.params = params
+        self.theta = theta_rad
+        self.omega = omega_rad_s
+        self.gravity_m_s2 = float(gravity_m_s2)
+        self.torque = torque_Nm
+        samples = params.shape[0]
+        self.blocks = [
+            (start, min(samples, start + CPU_BLOCK_ROBOTS))
+            for start in range(0, samples, CPU_BLOCK_ROBOTS)
+        ]
+
+    def advance(self, block: tuple[int, int], step_s: float, n_steps: int) -> None:
+        from planar_tui.kernels.motion_rk4 import rk4_batch
+
+        a, b = block
+        rk4_batch(self.params[a:b], self.gravity_m_s2, self.torque, self.theta[a:b],
+                  self.omega[a:b], step_s, n_steps)  # fmt: skip
+
+    def angles(self) -> np.ndarray:
+        return self.theta
+
+
+class CudaRobots:
+    """The robots on a CUDA GPU (:class:`kernels.motion_cuda.CudaBatch`), one block."""
+
+    device = "cuda"
+
+    def __init__(self, batch):
+        self.batch = batch
+        self.blocks = [(0, batch.samples)]
+
+    def advance(self, block: tuple[int, int], step_s: float, n_steps: int) -> None:
+        self.batch.advance(step_s, n_steps)
+
+    def angles(self) -> np.ndarray:
+        return self.batch.angles()
+
+
+def make_robots(device, problem, design, rod_inertias, robot, theta0_rad, omega0_rad_s, torque_Nm):
+    """``(robots, params)``: the integrator of ``device`` (``cpu``/``cuda``) holding every
+    design row's robot at the initial state, and the (S, 3, n) parameters (made on the host
+    too: the tip needs the lengths)."""
+    from planar_tui.kernels.motion_rk4 import design_parameters
+
+    inertias = np.ascontiguousarray(robot.arrays()[2])
+    unit = np.ascontiguousarray(design.unit)
+    params = design_parameters(unit, problem.lower, problem.upper, inertias, rod_inertias)
+    samples = design.samples
+    theta = np.repeat(np.asarray(theta0_rad, dtype=np.float64)[None, :], samples, axis=0)
+    omega = np.repeat(np.asarray(omega0_rad_s, dtype=np.float64)[None, :], samples, axis=0)
+    torque = np.ascontiguousarray(torque_Nm, dtype=np.float64)
+    if device == "cuda":
+        from planar_tui.kernels.motion_cuda import CudaBatch
+
+        batch = CudaBatch(unit, problem.lower, problem.upper, inertias, rod_inertias, theta,
+                          omega, robot.gravity_m_s2, torque)  # fmt: skip
+        return CudaRobots(batch), params
+    return CpuRobots(params, theta, omega, robot.gravity_m_s2, torque), params
+
+
+def integrate(
+    robots,
+    step_s: float,
+    stops: Sequence[int],
+    on_stop: Callable[[int, np.ndarray], None],
+    progress: Progress | None = None,
+) -> None:
+    """Advance every robot from step 0 through the sorted global step indices ``stops``
+    (0 first), calling ``on_stop(k, angles)`` at each. Calls of ``n`` steps of one block of
+    robots are sized to about :data:`CALL_SECONDS` from the last call's time; ``progress``
+    counts robot-steps and is checked after each call."""
+    from planar_tui.dynamics.simulate import CHUNK_GROWTH
+
+    done = 0
+    steps = 1
+    on_stop(0, robots.angles())
+    for stop in stops[1:]:
+        while done < stop:
+            n_steps = min(steps, stop - done)
+            slowest = 0.0
+            for block in robots.blocks:
+                started = time.perf_counter()
+                robots.advance(block, step_s, n_steps)
+                slowest = max(slowest, time.perf_counter() - started)
+                if progress is not None:
+                    t_s = (done + n_steps) * step_s
+                    progress.advance((block[1] - block[0]) * n_steps, f"t = {t_s:.4g} s")
+            done += n_steps
+            target = (
+                n_steps * CHUNK_GROWTH if slowest <= 0 else int(n_steps * CALL_SECONDS / slowest)
+            )
+            steps = max(1, min(target, n_steps * CHUNK_GROWTH))
+        on_stop(stop, robots.angles())

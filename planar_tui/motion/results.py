@@ -1,0 +1,162 @@
+"""The motion job's indices per time, its CSV tables, terminal view and sweep figures.
+
+Indices come from the sensitivity package's estimators
+(:func:`planar_tui.sensitivity.engine.analyse`: Sobol' with SALib's bootstrap, eFAST) on
+the outputs of each method's robots at each time of ``at_s``. An output that does not vary
+over those robots (a joint that cannot move, a time-0 angle) has no index: it is given 0
+for every input and a note, never a NaN or a warning.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from planar_tui.csvio import CsvTable
+
+#: The band's statistics, in CSV column order.
+BAND_STATISTICS = ("mean", "std", "p5", "p50", "p95")
+INDICES_HEADER = (
+    "output",
+    "t_s",
+    "parameter",
+    "method",
+    "S1",
+    "S1_conf",
+    "ST",
+    "ST_conf",
+    "percent",
+)
+
+
+def band_header(names: Sequence[str]) -> tuple[str, ...]:
+    """``t_s``, then per output ``NAME_mean, NAME_std, NAME_p5, NAME_p50, NAME_p95``."""
+    return ("t_s", *(f"{name}_{stat}" for name in names for stat in BAND_STATISTICS))
+
+
+def band_table(t_s: np.ndarray, band: np.ndarray, names: Sequence[str]) -> CsvTable:
+    """The band CSV: one row per recorded time; ``band`` is (R, 5, n_out)."""
+    columns = band.transpose(0, 2, 1).reshape(len(t_s), -1)  # per output its 5 statistics
+    return CsvTable(band_header(names), np.column_stack([t_s, columns]))
+
+
+def indices_table(analyses: Sequence, names: Sequence[str]) -> CsvTable:
+    """The indices CSV: one row per time × output × parameter × method."""
+    rows = []
+    times: dict[float, list] = {}
+    for analysis in analyses:
+        times.setdefault(analysis.speed_rad_s, []).append(analysis)
+    for t_s, group in times.items():
+        for k, name in enumerate(names):
+            for j, parameter in enumerate(group[0].names):
+                for a in group:
+                    s1, s1_conf, st, st_conf = (float(v) for v in a.indices[:, k, j])
+                    rows.append((name, float(t_s), parameter, a.method, s1, s1_conf, st,
+                                 st_conf, float(a.percent[k, j])))  # fmt: skip
+    return CsvTable(INDICES_HEADER, rows)
+
+
+def analyse_times(design, at_outputs, spec, problem, labels, methods, progress):
+    """``(analyses, notes)``: an :class:`~planar_tui.sensitivity.results.Analysis` per time
+    of ``at_outputs`` ({step: (S, n_out)}) and index method; outputs without variance over
+    a method's robots get zeros and a note."""
+    from planar_tui.sensitivity.engine import analyse
+    from planar_tui.sensitivity.results import Analysis, sensitivity_percent
+
+    analyses, notes = [], []
+    num_vars = problem.num_vars
+    for step in sorted(at_outputs):
+        t_s = step * spec.step_s
+        for method in methods:
+            outputs = at_outputs[step][design.rows[method]]
+            varying = np.ptp(outputs, axis=0) > 0
+            indices = np.zeros((4, outputs.shape[1], num_vars))
+            detail = f"{method} t = {t_s:g} s"
+            if varying.any():
+                chosen = np.ascontiguousarray(outputs[:, varying])
+                indices[:, varying] = analyse(method, chosen, num_vars, spec.seed, progress, detail)
+            else:
+                progress.advance(1.0, detail)
+            for k in np.flatnonzero(~varying):
+                notes.append(
+                    f"{labels[k]} at t = {t_s:g} s does not vary over the {method} robots: "
+                    "no variance to apportion, every index 0"
+                )
+            percent = sensitivity_percent(indices, "ST")
+            analyses.append(
+                Analysis(
+                    method,
+                    "",
+                    t_s,
+                    problem.names,
+                    indices,
+                    percent,
+                    tuple(labels),
+                    f"t = {t_s:g} s",
+                )
+            )
+    return analyses, tuple(notes)
+
+
+def band_grid(result, row: int = -1):
+    """A rich table of every output's band statistics at recorded row ``row``."""
+    from rich import box
+    from rich.table import Table
+
+    from planar_tui.motion.engine import output_labels
+
+    table = Table(box=box.SIMPLE_HEAD, show_edge=False, pad_edge=False, padding=(0, 1, 0, 0))
+    table.add_column("output", no_wrap=True)
+    for stat in BAND_STATISTICS:
+        table.add_column(stat, justify="right", no_wrap=True)
+    for k, label in enumerate(output_labels(result.names)):
+        table.add_row(label, *(f"{v:.5g}" for v in result.band[row, :, k]))
+    return table
+
+
+def render(job, result, console) -> None:
+    """The terminal view: the band at the last recorded time, then paper A's Table 4
+    shape per time (percent of ST; fitted to the width, never cut), then the notes."""
+    from rich.text import Text
+
+    from planar_tui.sensitivity.tables import VIEWS, fit_tables
+
+    console.print(f"{result.robot_label}: {job.label}", style="bold", markup=False)
+    console.print(f"{result.robots} robots integrated on {result.device}", markup=False,
+                  highlight=False, soft_wrap=True)  # fmt: skip
+    console.print(
+        Text(f"band over the robots at t = {result.t_s[-1]:g} s; angles rad, tip m", style="bold")
+    )
+    console.print(band_grid(result))
+    if result.analyses:
+        console.print(fit_tables(result.analyses, VIEWS[0], console.width, "ST").renderable)
+    for note in result.notes:
+        console.print(f"note: {note}", markup=False, highlight=False)
+
+
+def dominant_parameters(result) -> dict[str, str]:
+    """Per output, the input of largest total index (first index method, last time);
+    ``""`` where the output does not vary."""
+    if not result.analyses:
+        return {}
+    last_t = result.analyses[-1].speed_rad_s
+    analysis = next(a for a in result.analyses if a.speed_rad_s == last_t)
+    total = analysis.indices[2]
+    return {
+        name: (analysis.names[int(total[k].argmax())] if total[k].any() else "")
+        for k, name in enumerate(result.names)
+    }
+
+
+def figures(result) -> dict[str, Any]:
+    """Sweep-row columns: ``NAME_mean``, ``NAME_std`` at the last recorded time per output,
+    then ``NAME_dominant`` (see :func:`dominant_parameters`) when indices were computed."""
+    row: dict[str, Any] = {}
+    for k, name in enumerate(result.names):
+        row[f"{name}_mean"] = float(result.band[-1, 0, k])
+        row[f"{name}_std"] = float(result.band[-1, 1, k])
+    for name, parameter in dominant_parameters(result).items():
+        row[f"{name}_dominant"] = parameter
+    return row

@@ -1,0 +1,113 @@
+"""``planar-tui motion`` and ``planar-tui run`` on motion uncertainty jobs: files, tables,
+bad input, and the device: ``cuda`` without a usable GPU is one line and exit 2, ``auto``
+falls back to the CPU and says so, and ``cuda`` on numba's CUDA simulator gives the CPU's
+band."""
+
+from __future__ import annotations
+
+import csv
+import os
+import subprocess
+import sys
+
+import numpy as np
+
+PRESET = """# tiny motion uncertainty
+[robot]
+lengths_m = [0.3, 0.2]
+masses_kg = [1.0, 0.8]
+
+[motion_uncertainty]
+duration_s = 0.01
+step_s = 0.001
+torques_Nm = [1.0, 0.2]
+samples = 16
+methods = ["montecarlo", "sobol"]
+at_s = [0.005, 0.01]
+every = 5
+device = "{device}"
+output = "tiny.csv"
+"""
+
+
+def write_preset(folder, device="cpu", **changes):
+    text = PRESET.format(device=device)
+    for key, value in changes.items():
+        text = text.replace(f"{key} = ", f"{key} = {value}\n# was: ", 1)
+    path = folder / "tiny.toml"
+    path.write_text(text)
+    return path
+
+
+def read_csv(path):
+    with open(path, newline="") as stream:
+        return list(csv.reader(stream))
+
+
+def test_motion_command_writes_band_and_indices(cli, tmp_path):
+    preset = write_preset(tmp_path)
+    result = cli("motion", preset, "--out-dir", tmp_path)
+    assert result.exit_code == 0, result.stderr
+    band = read_csv(tmp_path / "tiny.csv")
+    assert band[0][:3] == ["t_s", "theta1_rad_mean", "theta1_rad_std"]
+    assert [float(row[0]) for row in band[1:]] == [0.0, 0.005, 0.01]
+    indices = read_csv(tmp_path / "tiny-indices.csv")
+    assert indices[0] == ["output", "t_s", "parameter", "method", "S1", "S1_conf", "ST",
+                          "ST_conf", "percent"]  # fmt: skip
+    # 2 times × 4 outputs × 4 parameters × 1 method
+    assert len(indices) - 1 == 2 * 4 * 4
+    assert "% of ST per output · t = 0.01 s" in result.stdout
+    assert "112 robots integrated on cpu\n" in result.stdout  # 16 + 16 (4 + 2)
+
+
+def test_run_command_runs_motion_jobs_and_overrides_rename(cli, tmp_path):
+    preset = write_preset(tmp_path)
+    result = cli("run", preset, "--out-dir", tmp_path)
+    assert result.exit_code == 0, result.stderr
+    assert (tmp_path / "tiny.csv").exists() and (tmp_path / "tiny-indices.csv").exists()
+    result = cli("motion", preset, "--method", "montecarlo", "--out-dir", tmp_path)
+    assert result.exit_code == 0, result.stderr
+    assert (tmp_path / "tiny--method-montecarlo.csv").exists()
+
+
+def test_bad_input_is_one_line_and_writes_nothing(cli, tmp_path):
+    preset = write_preset(tmp_path, methods='["montecarlo", "bootstrap"]')
+    result = cli("motion", preset, "--out-dir", tmp_path)
+    assert result.exit_code == 2
+    assert result.stderr.strip().count("\n") == 0
+    assert "motion_uncertainty.methods: has 'bootstrap'" in result.stderr
+    assert '"montecarlo", "sobol", "efast"' in result.stderr
+    assert not (tmp_path / "tiny.csv").exists()
+    result = cli("motion", write_preset(tmp_path), "--samples", "12", "--out-dir", tmp_path)
+    assert result.exit_code == 2 and "--samples: is 12, not a power of two" in result.stderr
+
+
+def run_cli(preset, out_dir, **env):
+    environment = {k: v for k, v in os.environ.items() if k != "NUMBA_ENABLE_CUDASIM"}
+    environment.update(env)
+    command = [sys.executable, "-m", "planar_tui", "motion", str(preset), "--out-dir", str(out_dir)]
+    return subprocess.run(command, env=environment, capture_output=True, text=True)
+
+
+def test_cuda_without_a_usable_gpu_is_one_line_and_auto_falls_back(tmp_path):
+    no_gpu = {"CUDA_VISIBLE_DEVICES": ""}
+    done = run_cli(write_preset(tmp_path, "cuda"), tmp_path, **no_gpu)
+    assert done.returncode == 2
+    (line,) = done.stderr.strip().splitlines()
+    assert line.startswith("error: ") and "motion_uncertainty.device: no usable CUDA GPU" in line
+    assert not (tmp_path / "tiny.csv").exists()
+    done = run_cli(write_preset(tmp_path, "auto"), tmp_path, **no_gpu)
+    assert done.returncode == 0, done.stderr
+    assert "robots integrated on cpu (no usable CUDA GPU" in done.stdout
+
+
+def test_cuda_device_on_the_simulator_gives_the_cpu_band(tmp_path):
+    cpu_dir, gpu_dir = tmp_path / "cpu", tmp_path / "gpu"
+    assert run_cli(write_preset(tmp_path, "cpu"), cpu_dir).returncode == 0
+    done = run_cli(write_preset(tmp_path, "cuda"), gpu_dir, NUMBA_ENABLE_CUDASIM="1")
+    assert done.returncode == 0, done.stderr
+    assert "robots integrated on cuda\n" in done.stdout
+    cpu = np.array(read_csv(cpu_dir / "tiny.csv")[1:], dtype=float)
+    gpu = np.array(read_csv(gpu_dir / "tiny.csv")[1:], dtype=float)
+    assert np.allclose(gpu, cpu, rtol=1e-12, atol=1e-15)
+    assert read_csv(cpu_dir / "tiny-indices.csv")[0] == read_csv(gpu_dir / "tiny-indices.csv")[0]

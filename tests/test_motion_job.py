@@ -1,0 +1,166 @@
+"""The ``[motion_uncertainty]`` job against known answers.
+
+A 1-link robot in zero gravity under a constant torque from rest turns by
+θ(T) = τT²/(2(I + m l²/4)) (RK4 is exact for a constant acceleration): its Monte-Carlo
+mean and standard deviation and its Sobol' indices over (l, m) are checked against 2-D
+Gauss-Legendre quadrature of that formula, within four standard errors of the estimator
+(Sobol': twice SALib's 95 % bootstrap half-width, 1.96 standard errors). A pendulum whose
+inertia is m l²/12 cannot depend on m (structure zero); a robot that cannot move has
+outputs without variance (zeros and a note, no NaN, no warning: the suite turns warnings
+into errors); S = 1 equals the simulate job's CSV.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+
+import numpy as np
+import pytest
+
+from planar_tui.batch import run_job
+from planar_tui.motion import engine
+from planar_tui.motion.job import prepare_motion
+from planar_tui.presets import parse_preset
+from planar_tui.progress import Progress
+from planar_tui.registry import JOB_KINDS
+
+# 1-link, zero gravity, τ = 1 N m from rest for T = 0.5 s; l = 0.5 ± 0.2 m, m = 2 ± 1 kg
+L0, DL, M0, DM, INERTIA, TAU, T = 0.5, 0.2, 2.0, 1.0, 0.01, 1.0, 0.5
+
+
+def job_of(robot: dict, motion: dict):
+    (job,) = parse_preset("motion.toml", {"robot": robot, "motion_uncertainty": motion}).jobs
+    return job
+
+
+def one_link_job(methods, samples):
+    return job_of(
+        {"lengths_m": [L0], "masses_kg": [M0], "inertias_kgm2": [INERTIA], "gravity_m_s2": 0.0},
+        {
+            "duration_s": T, "step_s": 0.05, "torques_Nm": [TAU], "methods": methods,
+            "samples": samples, "tolerance_length_mm": DL * 1e3, "tolerance_mass_g": DM * 1e3,
+        },
+    )  # fmt: skip
+
+
+def theta_closed_form(length_m, mass_kg):
+    return TAU * T**2 / (2.0 * (INERTIA + mass_kg * length_m**2 / 4.0))
+
+
+def quadrature(points: int = 48):
+    """Nodes and weights of the uniform distribution on the (l, m) box; f on the grid."""
+    x, w = np.polynomial.legendre.leggauss(points)
+    lengths, masses = L0 + DL * x, M0 + DM * x
+    weights = w / 2.0  # the uniform density on [-1, 1]
+    f = theta_closed_form(lengths[:, None], masses[None, :])
+    return weights, f
+
+
+def exact_moments():
+    w, f = quadrature()
+    mean = w @ f @ w
+    variance = w @ (f - mean) ** 2 @ w
+    fourth = w @ (f - mean) ** 4 @ w
+    var_l = w @ ((f @ w) - mean) ** 2  # Var_l E[f | l]
+    var_m = w @ ((w @ f) - mean) ** 2
+    total_l = w @ (w @ (f - (w @ f)[None, :]) ** 2)  # E_m Var_l(f | m)
+    total_m = w @ ((f - (f @ w)[:, None]) ** 2 @ w)
+    return mean, variance, fourth, (var_l, var_m), (total_l, total_m)
+
+
+def test_montecarlo_mean_and_std_match_quadrature():
+    job = one_link_job(["montecarlo"], 4096)
+    result = run_job(job)
+    mean, variance, fourth, _, _ = exact_moments()
+    n = result.robots
+    got_mean, got_std = result.band[-1, 0, 0], result.band[-1, 1, 0]
+    assert result.t_s[-1] == pytest.approx(T)
+    assert abs(got_mean - mean) <= 4 * np.sqrt(variance / n)
+    se_std = np.sqrt((fourth - variance**2) / (4 * variance * n))  # delta method
+    assert abs(got_std - np.sqrt(variance)) <= 4 * se_std
+    assert "indices" not in result.extra_tables  # Monte Carlo gives the band only
+
+
+def test_sobol_indices_match_quadrature():
+    job = one_link_job(["sobol"], 2048)
+    result = run_job(job)
+    _, variance, _, first, total = exact_moments()
+    (analysis,) = result.analyses
+    theta = 0  # the outputs: theta1, tip x, tip y
+    for j in range(2):
+        s1, s1_conf, st, st_conf = analysis.indices[:, theta, j]
+        assert abs(s1 - first[j] / variance) <= 2 * s1_conf
+        assert abs(st - total[j] / variance) <= 2 * st_conf
+    assert min(first) / variance > 0.2  # both matter: the check is not vacuous
+    assert result.extra_tables["indices"].header[:4] == ("output", "t_s", "parameter", "method")
+    figures = JOB_KINDS["motion_uncertainty"].point_figures(job, result)
+    assert figures["theta1_rad_dominant"] == ("m1" if total[1] > total[0] else "l1")
+    assert figures["theta1_rad_mean"] == result.band[-1, 0, 0]
+
+
+def test_pendulum_with_rod_inertia_does_not_depend_on_its_mass():
+    """I = m l²/12 follows the sampled mass: θ̈ = -3g cos θ / (2l), free of m."""
+    job = job_of(
+        {"lengths_m": [0.4], "masses_kg": [1.0]},
+        {"duration_s": 0.3, "step_s": 1e-3, "theta0_deg": [20.0], "methods": ["sobol", "efast"],
+         "samples": 128, "tolerance_length_mm": 50, "tolerance_mass_g": 300},
+    )  # fmt: skip
+    result = run_job(job)
+    sobol, efast = result.analyses
+    assert sobol.names == efast.names == ("l1", "m1")
+    # Sobol': the robots of A and A_B^(m) move alike to round-off, every index of m is 0
+    assert np.abs(sobol.indices[:, :, 1]).max() <= 1e-9
+    # eFAST has a floor for an input that does not matter (Fourier interference, the
+    # 0.4-1.2 % of paper A's Table 4 for inputs a torque cannot depend on)
+    assert np.abs(efast.indices[0, :, 1]).max() <= 1e-3
+    assert np.abs(efast.indices[2, :, 1]).max() <= 1e-2
+    for analysis in result.analyses:
+        assert analysis.indices[2, :, 0].min() > 0.9  # l does matter
+    assert result.notes == ()
+
+
+def test_outputs_without_variance_give_zeros_and_a_note_not_nan():
+    """Zero gravity, no torque, at rest: the joints cannot move (θ ≡ 0, tip y ≡ 0)."""
+    job = job_of(
+        {"lengths_m": [0.3, 0.2], "masses_kg": [1.0, 0.5], "gravity_m_s2": 0.0},
+        {"duration_s": 0.01, "step_s": 1e-3, "methods": ["montecarlo", "sobol", "efast"],
+         "samples": 128, "at_s": [0.005, 0.01]},
+    )  # fmt: skip
+    result = run_job(job)
+    table = result.extra_tables["indices"]
+    text = io.StringIO()
+    table.write(text)
+    rows = list(csv.DictReader(io.StringIO(text.getvalue())))
+    assert rows and not any("nan" in value.lower() for row in rows for value in row.values())
+    for row in rows:
+        if row["output"] != "tip_x_m":
+            assert float(row["S1"]) == float(row["ST"]) == float(row["percent"]) == 0.0
+    assert any(float(row["ST"]) > 0 for row in rows if row["output"] == "tip_x_m")
+    assert len(result.notes) == 2 * 2 * 3  # 2 times × 2 methods × (θ1, θ2, tip y)
+    assert "θ1 at t = 0.005 s does not vary over the sobol robots" in result.notes[0]
+    assert result.table.first_non_finite_column() is None
+
+
+def test_one_robot_equals_the_simulate_jobs_csv():
+    """The engine on S = 1 robot with the nominal parameters records the simulate job's
+    angles to the last bit (the band of one robot is that robot)."""
+    robot = {"lengths_m": [0.25, 0.2, 0.15], "masses_kg": [0.484, 0.387, 0.29]}
+    settings = {"duration_s": 0.05, "step_s": 1e-4, "theta0_deg": [10.0, -20.0, 5.0],
+                "torques_Nm": [2.0, 0.3, 0.1], "every": 50}  # fmt: skip
+    (sim,) = parse_preset("s.toml", {"robot": robot, "simulate": settings}).jobs
+    simulated = run_job(sim).table
+    rows = np.array([[float(v) for v in r] for r in list(simulated.records())[1:]])
+    motion = prepare_motion(job_of(robot, {**settings, "methods": ["montecarlo"], "samples": 2}))
+    lengths, masses, inertias = motion.robot.arrays()
+    params = np.stack([lengths, masses, inertias])[None].copy()
+    theta0 = np.radians(np.array(settings["theta0_deg"]))[None].copy()
+    robots = engine.CpuRobots(
+        params, theta0, np.zeros((1, 3)), 9.81, np.array(settings["torques_Nm"])
+    )
+    recorded = {}
+    engine.integrate(robots, 1e-4, motion.spec.record_steps(),
+                     lambda k, angles: recorded.setdefault(k, angles.copy()), Progress())  # fmt: skip
+    assert motion.spec.record_steps() == (0, 50, 100, 150, 200, 250, 300, 350, 400, 450, 500)
+    got = np.array([recorded[k][0] for k in motion.spec.record_steps()])
+    assert np.array_equal(got, rows[:, 1:4])
