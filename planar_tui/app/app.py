@@ -66,11 +66,11 @@ class WorkbenchApp(FileActions, App):
         Binding("f8", "sweep", "Sweep", key_display="F8"),
         *(
             Binding(str(number), f"show_tab_number({number})", f"Tab {number}", show=False)
-            for number in range(1, 6)
+            for number in range(1, 7)
         ),
         *(
             Binding(key, f"show_tab_number({number})", f"Tab {number}", show=False, priority=True)
-            for number, key in enumerate(("f2", "f3", "f4", "f6", "f7"), start=1)
+            for number, key in enumerate(("f2", "f3", "f4", "f6", "f7", "f12"), start=1)
         ),
     ]
     TABS = (
@@ -79,6 +79,7 @@ class WorkbenchApp(FileActions, App):
         ("Workspace", "workspace"),
         ("Simulate", "simulate"),
         ("Torques", "torques"),
+        ("Motion", "motion_uncertainty"),
     )
 
     def __init__(
@@ -103,6 +104,7 @@ class WorkbenchApp(FileActions, App):
     @staticmethod
     def pane_classes() -> dict[str, type]:
         """The dedicated pane of each tab; a job kind without one gets :class:`JobPane`."""
+        from planar_tui.app.widgets.motion_pane import MotionPane
         from planar_tui.app.widgets.sensitivity_pane import SensitivityPane
         from planar_tui.app.widgets.simulate_pane import SimulatePane
         from planar_tui.app.widgets.workspace_pane import WorkspacePane
@@ -112,6 +114,7 @@ class WorkbenchApp(FileActions, App):
             "sensitivity": SensitivityPane,
             "workspace": WorkspacePane,
             "simulate": SimulatePane,
+            "motion_uncertainty": MotionPane,
         }
 
     def compose(self) -> ComposeResult:
@@ -548,7 +551,7 @@ class WorkbenchApp(FileActions, App):
         self.query_one(TabbedContent).active = f"tab-{name}"
 
     def action_show_tab_number(self, number: int) -> None:
-        """Switch to tab ``number`` (1-based: keys 1-5 outside fields, F2-F4, F6, F7)."""
+        """Switch to tab ``number`` (1-based: keys 1-6 outside fields, F2-F4, F6, F7, F12)."""
         if 1 <= number <= len(self.TABS):
             self.action_show_tab(self.TABS[number - 1][1])
             self.call_after_refresh(self.focus_tab_content)

@@ -51,6 +51,16 @@ DEFAULT_TABLES: dict[str, dict[str, Any]] = {
         "seed": 42,
         "output": "app-sensitivity.csv",
     },
+    "motion_uncertainty": {
+        "duration_s": 0.5,
+        "step_s": 0.001,
+        "tolerance_length_mm": 1.0,
+        "tolerance_mass_g": 10.0,
+        "methods": ["montecarlo", "sobol"],
+        "samples": 128,
+        "seed": 42,
+        "output": "app-motion.csv",
+    },
     "robot3rrr": {
         "base_side_cm": 120.0,
         "platform_side_cm": 40.0,

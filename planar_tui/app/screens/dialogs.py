@@ -129,8 +129,8 @@ class MessageDialog(ModalScreen[None]):
 
 
 HELP_TEXT = """\
-Every action is in the palette (ctrl+p). Tabs: 1 2 3 4 5 outside
-fields, F2 F3 F4 F6 F7 anywhere. Fields take TOML; enter: next field.
+Every action is in the palette (ctrl+p). Tabs: 1 2 3 4 5 6 outside
+fields, F2 F3 F4 F6 F7 F12 anywhere. Fields take TOML; enter: next field.
 Each job is checked alone: a bad field gets a red border and reason.
   F5          run the job of the current tab (also the Run button)
   F9          run all jobs in order into a folder, as planar-tui run

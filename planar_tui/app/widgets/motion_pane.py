@@ -1,0 +1,98 @@
+"""The Motion tab: the band of every output over time (mean and 5-95 % band,
+textual-plotext) beside the Table-4-shaped index tables of the CLI
+(:mod:`~planar_tui.sensitivity.tables`); ``ctrl+t`` steps the plot through the outputs
+(θ1 … θn, tip x, tip y)."""
+
+from __future__ import annotations
+
+from rich.console import Group
+from rich.text import Text
+from textual.app import ComposeResult
+from textual.containers import ScrollableContainer
+from textual.widgets import Static
+from textual_plotext import PlotextPlot
+
+from planar_tui.app.widgets.panes import JobPane
+from planar_tui.app.widgets.simulate_pane import thin
+from planar_tui.jobkind import JobResult
+from planar_tui.presets import Job
+
+
+def band_series(result, output: int) -> dict[str, list[float]]:
+    """The plotted curves of one output: t, mean, 5th and 95th percentile (thinned)."""
+    rows = thin(len(result.t_s))
+    band = result.band[rows, :, output]
+    return {
+        "t_s": result.t_s[rows].tolist(),
+        "mean": band[:, 0].tolist(),
+        "p5": band[:, 2].tolist(),
+        "p95": band[:, 4].tolist(),
+    }
+
+
+#: Lines of the band plot (the results area scrolls below it).
+PLOT_LINES = 16
+
+
+class MotionPane(JobPane):
+    """Simulation, tolerances, methods, times, outputs, device; band plot and indices."""
+
+    kind = "motion_uncertainty"
+
+    DEFAULT_CSS = """
+    #motion-results { height: 1fr; scrollbar-gutter: stable; scrollbar-size: 1 1; }
+    #motion-results Static { width: 100%; }
+    """
+
+    #: The output the plot shows (``ctrl+t`` steps through them).
+    output = 0
+
+    def compose_results(self) -> ComposeResult:
+        with ScrollableContainer(id="motion-results"):
+            yield Static("Run the study (F5) to plot the band.", id="result-text", markup=False)
+            yield PlotextPlot(id="band-plot")
+            yield Static("", id="motion-tables")
+
+    def on_mount(self) -> None:
+        if self.available():  # the app's stylesheet gives every plot 1fr: this one scrolls
+            self.query_one("#band-plot", PlotextPlot).styles.height = PLOT_LINES
+
+    def render_result(self, job: Job, result: JobResult) -> None:
+        from planar_tui.motion.engine import output_labels
+        from planar_tui.motion.results import band_grid
+        from planar_tui.sensitivity.tables import VIEWS, fit_tables
+
+        labels = output_labels(result.names)
+        self.output %= len(labels)
+        series = band_series(result, self.output)
+        plot = self.query_one("#band-plot", PlotextPlot)
+        plt = plot.plt
+        plt.clear_data()
+        plt.clear_figure()
+        plt.plot(series["t_s"], series["p95"], marker="+", label="95 %")
+        plt.plot(series["t_s"], series["mean"], marker="o", label="mean")
+        plt.plot(series["t_s"], series["p5"], marker="-", label="5 %")
+        unit = "rad" if result.names[self.output].endswith("_rad") else "m"
+        plt.title(f"{labels[self.output]} ({unit}) vs t (s): o mean, + - 5-95 %")
+        plot.refresh()
+        self.query_one("#result-text", Static).update(result.summary)
+        grid, natural = band_grid(result)
+        parts = [
+            Text(f"band at t = {result.t_s[-1]:g} s (ctrl+t: next output)", style="bold"),
+            grid,
+        ]
+        width = max(20, self.query_one("#motion-results").scrollable_content_region.width)
+        tables = self.query_one("#motion-tables", Static)
+        natural = max(width, natural)
+        if result.analyses:
+            fitted = fit_tables(result.analyses, VIEWS[0], width, "ST")
+            parts.append(fitted.renderable)
+            natural = max(natural, fitted.width)
+        parts += [Text(f"note: {note}", style="dim") for note in result.notes]
+        tables.styles.width = natural  # never shrunk: a wide table scrolls sideways
+        tables.update(Group(*parts))
+
+    def action_toggle_view(self) -> None:
+        """Plot the next output's band."""
+        self.output += 1
+        self.rerender()

@@ -1,0 +1,39 @@
+"""The Motion tab: a run shows the summary, the band plot (ctrl+t steps through the
+outputs) and the indices table; the CLI writes the same band from the saved preset."""
+
+from __future__ import annotations
+
+from tests.test_app import SIZE, async_test, make_app, run_tab
+
+
+@async_test
+async def test_motion_run_plots_the_band_and_shows_the_tables(tmp_path):
+    app = make_app(tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        await run_tab(app, pilot, "motion_uncertainty")
+        await pilot.press("ctrl+f")  # hide the form: the results take the width
+        await pilot.pause(0.2)
+        pane = app.query_one("#pane-motion_uncertainty")
+        result = pane.result
+        assert result is not None and result.robots == 128 + 128 * 6
+        assert [a.context for a in result.analyses] == ["t = 0.5 s"]
+        screen = app.export_text()
+        assert "robots × 500 steps on cpu" in " ".join(screen.split())
+        assert "θ1 (rad) vs t (s)" in screen and "oo mean" in screen  # title and legend
+        results = pane.query_one("#motion-results")
+        results.scroll_to(y=16, animate=False)  # below the plot: the band table
+        await pilot.pause(0.2)
+        row = next(line for line in app.export_text().splitlines() if " tip x " in line)
+        assert f"{result.band[-1, 0, 2]:.5g}" in row  # the mean, never cut to "…"
+        assert f"{result.band[-1, 4, 2]:.5g}" in row  # the 95th percentile, last column
+        results.scroll_end(animate=False)
+        await pilot.pause(0.2)
+        tables = app.export_text()
+        assert "% of ST per output · t = 0.5 s" in tables and "tip y" in tables
+        # the band table equals the band CSV's last row
+        last = dict(zip(result.table.header, list(result.table.records())[-1], strict=True))
+        assert float(last["tip_x_m_mean"]) == float(f"{result.band[-1, 0, 2]:.17g}")
+        results.scroll_home(animate=False)
+        await pilot.press("ctrl+t")
+        await pilot.pause(0.2)
+        assert "θ2 (rad) vs t (s)" in app.export_text()
