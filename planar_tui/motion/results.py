@@ -101,19 +101,25 @@ def analyse_times(design, at_outputs, spec, problem, labels, methods, progress):
 
 
 def band_grid(result, row: int = -1):
-    """A rich table of every output's band statistics at recorded row ``row``."""
+    """``(table, width)``: a rich table of every output's band statistics at recorded row
+    ``row`` (5 significant digits) with exact, unshrinkable columns, and its width."""
     from rich import box
     from rich.table import Table
 
     from planar_tui.motion.engine import output_labels
 
+    rows = [
+        [label, *(f"{v:.5g}" for v in result.band[row, :, k])]
+        for k, label in enumerate(output_labels(result.names))
+    ]
+    header = ["output", *BAND_STATISTICS]
+    widths = [max(len(cell) for cell in column) for column in zip(header, *rows, strict=True)]
     table = Table(box=box.SIMPLE_HEAD, show_edge=False, pad_edge=False, padding=(0, 1, 0, 0))
-    table.add_column("output", no_wrap=True)
-    for stat in BAND_STATISTICS:
-        table.add_column(stat, justify="right", no_wrap=True)
-    for k, label in enumerate(output_labels(result.names)):
-        table.add_row(label, *(f"{v:.5g}" for v in result.band[row, :, k]))
-    return table
+    for c, (title, width) in enumerate(zip(header, widths, strict=True)):
+        table.add_column(title, justify="left" if c == 0 else "right", width=width, no_wrap=True)
+    for cells in rows:
+        table.add_row(*cells)
+    return table, sum(widths) + len(widths)
 
 
 def render(job, result, console) -> None:
@@ -129,7 +135,7 @@ def render(job, result, console) -> None:
     console.print(
         Text(f"band over the robots at t = {result.t_s[-1]:g} s; angles rad, tip m", style="bold")
     )
-    console.print(band_grid(result))
+    console.print(band_grid(result)[0])
     if result.analyses:
         console.print(fit_tables(result.analyses, VIEWS[0], console.width, "ST").renderable)
     for note in result.notes:
