@@ -98,6 +98,9 @@ def in_process_cases(samples: int, precision_cm: float):
         sensitivity, spec=dataclasses.replace(sensitivity.spec, methods=("sobol",))
     )
     simulate = robot_job("simulate", "duration_s = 200.0\nstep_s = 1e-4\nevery = 1000")
+    motion = robot_job(
+        "motion_uncertainty", 'duration_s = 1.0\nstep_s = 1e-4\nmethods = ["sobol"]\nsamples = 256'
+    )
     workspace = robot_job(
         "workspace",
         "joint_limits_deg = [[50, 70], [140, 160], [260, 280]]\n"
@@ -120,6 +123,7 @@ def in_process_cases(samples: int, precision_cm: float):
 
     return [
         ("simulate", "integrating", lambda p: batch.run_job(simulate, p), 0.05),
+        ("motion", "integrating", lambda p: batch.run_job(motion, p), 0.1),
         ("sensitivity", "sampling", fresh_designs(sensitivity), 0.02),
         ("sensitivity", "evaluation", lambda p: batch.run_job(sensitivity, p), 0.02),
         ("sensitivity, Sobol'", "analysis", lambda p: batch.run_job(sobol_only, p), 0.05),

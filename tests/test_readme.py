@@ -12,11 +12,18 @@ from tests.conftest import REPO
 README = (REPO / "README.md").read_text(encoding="utf-8")
 TINY = REPO / "tests" / "data" / "app" / "tiny.toml"
 
-#: Added to the tiny preset: a torques job and the workspace's boxes CSV.
+#: Added to the tiny preset: a torques job, a motion job and the workspace's boxes CSV.
 EXTRA = """
 [torques]
 theta_deg = [[0, 0], [10, 20]]
 output = "tiny-torques.csv"
+
+[motion_uncertainty]
+duration_s = 0.002
+step_s = 0.001
+samples = 8
+methods = ["sobol"]
+output = "tiny-motion.csv"
 """
 
 
@@ -70,8 +77,22 @@ def test_csv_column_lists_match_the_files_the_commands_write(cli, tmp_path):
         "sensitivity": header(tmp_path / "tiny-sensitivity.csv"),
         "workspace summary": header(tmp_path / "tiny-workspace.csv"),
         "workspace boxes": header(tmp_path / "boxes.csv"),
+        "motion_uncertainty indices": header(tmp_path / "tiny-motion-indices.csv"),
     }
     assert documented_columns(n_links=2) == written
+    assert header(tmp_path / "tiny-motion.csv") == documented_band_columns(n_links=2)
+
+
+def documented_band_columns(n_links: int) -> list[str]:
+    """The motion band CSV's columns as the README says: ``t_s``, then per output
+    (``theta1_rad … thetan_rad, tip_x_m, tip_y_m``) ``NAME_mean, NAME_std …``."""
+    text = re.search(r"^- The \*\*motion_uncertainty band\*\* CSV.*?(?=^- )",
+                     section("CSV formats"), re.M | re.S).group(0)  # fmt: skip
+    quoted = re.findall(r"`([^`]+)`", " ".join(text.split()))
+    outputs = next(q for q in quoted if "…" in q)
+    statistics = next(q for q in quoted if q.startswith("NAME_"))
+    suffixes = [item.strip().removeprefix("NAME") for item in statistics.split(",")]
+    return ["t_s"] + [name + suffix for name in expand(outputs, n_links) for suffix in suffixes]
 
 
 def test_the_python_version_is_the_one_the_package_requires():
