@@ -69,11 +69,13 @@ def rk4_batch(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n
         theta = np.empty(n)
         omega = np.empty(n)
         for s in range(task * ROBOTS_PER_TASK, min(samples, (task + 1) * ROBOTS_PER_TASK)):
-            p = params[s]
+            lengths = params[s, 0]  # views made once per robot, not per step
+            masses = params[s, 1]
+            inertias = params[s, 2]
             q = theta_rad[s]
             w = omega_rad_s[s]
             for _ in range(n_steps):
                 rk4_step(
-                    p[0], p[1], p[2], gravity_m_s2, torque_Nm, q, w, step_s,
+                    lengths, masses, inertias, gravity_m_s2, torque_Nm, q, w, step_s,
                     work, matrix, d_theta, d_omega, theta, omega,
                 )  # fmt: skip
