@@ -464,10 +464,11 @@ def motion(
     job_name: JobOption = None,
     out: OutOption = None,
     out_dir: OutDirOption = Path("."),
+    plot: PlotOption = None,
 ) -> None:
     """Band and indices of the motion under tolerances of every motion_uncertainty job."""
     options = {"methods": method, "samples": samples, "seed": seed, "device": device}
-    run_kind("motion_uncertainty", preset, out, out_dir, options, names=job_name)
+    run_kind("motion_uncertainty", preset, out, out_dir, options, names=job_name, plot=plot)
 
 
 @app.command(
