@@ -1,7 +1,8 @@
 """Regenerate the workbench screenshots (SVG and plain text) at 80×24.
 
 Run from the repository root: ``python docs/screenshots/make_screenshots.py``. Each tab is
-shown on ``tests/data/app/tiny.toml`` after its job ran (the Robot tab as opened), and
+shown on ``tests/data/app/tiny.toml`` after its job ran (the Robot tab as opened; Motion
+with its form hidden, ``ctrl+f``, so the band plot has the width), and
 ``sensitivity-6r`` shows the bundled ``paper-a-table1`` preset's default 6R sensitivity job
 with the form hidden (``ctrl+f``), the widest table the app shows at 80 columns;
 ``sweep`` is the result screen of an ``F8`` sweep of tiny's simulation (a heat map of the
@@ -47,6 +48,14 @@ async def main() -> None:
             await pilot.press("f5")
             await wait_for_job(app, pilot)
             save(app, tab)
+        app.action_show_tab("motion_uncertainty")  # the default job; form hidden: the band plot
+        await pilot.pause()
+        await pilot.press("f5")
+        await wait_for_job(app, pilot)
+        await pilot.press("ctrl+f")
+        await pilot.pause(0.3)
+        save(app, "motion")
+        await pilot.press("ctrl+f")
         await pilot.press("f1")
         await pilot.pause()
         save(app, "help")
