@@ -82,6 +82,11 @@ def test_bad_input_is_one_line_and_writes_nothing(cli, tmp_path):
     assert result.exit_code == 2 and "--samples: is 12, not a power of two" in result.stderr
 
 
+def read_rows(path):
+    with open(path, newline="") as stream:
+        return list(csv.DictReader(stream))
+
+
 def run_cli(preset, out_dir, **env):
     environment = {k: v for k, v in os.environ.items() if k != "NUMBA_ENABLE_CUDASIM"}
     environment.update(env)
@@ -111,3 +116,32 @@ def test_cuda_device_on_the_simulator_gives_the_cpu_band(tmp_path):
     gpu = np.array(read_csv(gpu_dir / "tiny.csv")[1:], dtype=float)
     assert np.allclose(gpu, cpu, rtol=1e-12, atol=1e-15)
     assert read_csv(cpu_dir / "tiny-indices.csv")[0] == read_csv(gpu_dir / "tiny-indices.csv")[0]
+
+
+def test_a_sweep_of_the_motion_job_gives_each_points_figures(cli, tmp_path):
+    """In-process sweep over the mass tolerance: a point's figures are those of a separate
+    run of the job at that tolerance (band CSV's last row), and the spread grows with it."""
+    preset = write_preset(tmp_path)
+    text = preset.read_text() + (
+        '\n[[sweep]]\njob = "motion_uncertainty"\n'
+        'values = { tolerance_mass_g = [1.0, 50.0] }\noutput = "sweep.csv"\n'
+    )
+    preset.write_text(text)
+    result = cli("sweep", preset, "--workers", "1", "--out-dir", tmp_path)
+    assert result.exit_code == 0, result.stderr
+    rows = read_rows(tmp_path / "sweep.csv")
+    assert [row["status"] for row in rows] == ["ok", "ok"]
+    separate = tmp_path / "separate"
+    single = (
+        preset.read_text()
+        .split("[[sweep]]")[0]
+        .replace("torques_Nm", "tolerance_mass_g = 50.0\ntorques_Nm")
+    )
+    (tmp_path / "single.toml").write_text(single)
+    assert cli("motion", tmp_path / "single.toml", "--out-dir", separate).exit_code == 0
+    band = read_rows(separate / "tiny.csv")[-1]
+    for name in ("theta1_rad", "theta2_rad", "tip_x_m", "tip_y_m"):
+        for stat in ("mean", "std"):
+            assert float(rows[1][f"{name}_{stat}"]) == float(band[f"{name}_{stat}"])
+    assert float(rows[1]["theta2_rad_std"]) > 2 * float(rows[0]["theta2_rad_std"])
+    assert rows[1]["theta2_rad_dominant"] in ("l1", "l2", "m1", "m2")
