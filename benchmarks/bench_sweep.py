@@ -105,10 +105,10 @@ def main() -> None:
     parser.add_argument("--trivial", type=int, default=400)
     args = parser.parse_args()
 
-    from distributed import Client, LocalCluster
+    from distributed import Client
 
     from planar_tui.runtime import configure_process, prepare_kernels
-    from planar_tui.sweep.execute import default_workers
+    from planar_tui.sweep.execute import default_workers, local_cluster
     from planar_tui.sweep.service import run_sweep
 
     configure_process()
@@ -122,8 +122,7 @@ def main() -> None:
         run_sweep(trivial, workers=1)  # kernels loaded in this process
         alone_s, alone = timed(lambda: run_sweep(trivial, workers=1))
         compute_s = statistics.mean(o.seconds for o in alone.outcomes.values())
-        started_s, cluster = timed(lambda: LocalCluster(
-            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0"))  # fmt: skip
+        started_s, cluster = timed(lambda: local_cluster(2))
         with cluster, Client(cluster) as client:
             warm(client)
             spread_s, spread = timed(lambda: run_sweep(trivial, client=client))
@@ -170,8 +169,7 @@ def main() -> None:
                 wall_s = one_s if workers == 1 else two_s
                 print(f"| {workers} | {wall_s:.2f} | {one_s / wall_s:.2f}x |")
                 continue
-            with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                              dashboard_address=":0") as cluster, Client(cluster) as client:  # fmt: skip
+            with local_cluster(workers) as cluster, Client(cluster) as client:
                 warm(client)
                 wall_s, run = timed(lambda client=client: run_sweep(work, client=client))
                 assert without_seconds(run) == without_seconds(one)

@@ -17,10 +17,11 @@ from tests.sweep_presets import SENSITIVITY, WORKSPACE, WORKSPACE_BASE, write
 
 @pytest.fixture(scope="module")
 def cluster():
-    from distributed import Client, LocalCluster
+    from distributed import Client
 
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                      dashboard_address=":0") as local, Client(local) as client:  # fmt: skip
+    from planar_tui.sweep.execute import local_cluster
+
+    with local_cluster(2) as local, Client(local) as client:
         client.wait_for_workers(2, timeout=60)
         yield local, client
 
@@ -82,3 +83,19 @@ values.precision_cm = [0.3, 0.25]
     client.wait_for_workers(2, timeout=60)
     after = set(client.run(os.getpid).values())
     assert victim not in after and len(after) == 2  # the nanny started a new process
+
+
+def _kernel_threads() -> int:
+    import numba
+
+    return numba.get_num_threads()
+
+
+def test_local_workers_share_the_cores_among_their_kernels(cluster):
+    """Each worker process's Numba kernels get the machine's cores divided among the
+    workers (2 workers on 2 cores: one thread each), not every core each."""
+    from planar_tui.sweep.execute import default_workers
+
+    _, client = cluster
+    threads = client.run(_kernel_threads)
+    assert sorted(threads.values()) == [max(1, default_workers() // 2)] * 2

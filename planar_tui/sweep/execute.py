@@ -60,6 +60,25 @@ class DaskTarget:
     address: str | None = None
 
 
+def kernel_threads(workers: int) -> int:
+    """Numba threads for each of ``workers`` local worker processes: the machine's cores
+    shared among them (at least 1), so N workers with parallel kernels (the leg-wise
+    paving, the batched RK4) run N × threads ≤ cores threads, not N × cores."""
+    return max(1, default_workers() // max(1, workers))
+
+
+def local_cluster(workers: int, **options: Any) -> Any:
+    """A :class:`distributed.LocalCluster` of ``workers`` worker processes, one Dask
+    thread each, dashboard on a free port, each process's Numba kernels limited to
+    :func:`kernel_threads` threads (``NUMBA_NUM_THREADS`` in the workers' environment,
+    set by their nannies before Numba loads)."""
+    from distributed import LocalCluster
+
+    env = {"NUMBA_NUM_THREADS": str(kernel_threads(workers))}
+    return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                        dashboard_address=":0", env=env, **options)  # fmt: skip
+
+
 @contextmanager
 def dask_client(target: DaskTarget, announce: Callable[[str], None]) -> Iterator[Any]:
     """A ``distributed.Client`` on the target; a local cluster is started here (worker
@@ -67,7 +86,7 @@ def dask_client(target: DaskTarget, announce: Callable[[str], None]) -> Iterator
     leaving, Ctrl-C included."""
     import logging
 
-    from distributed import Client, LocalCluster
+    from distributed import Client
 
     if target.address is not None:
         try:
@@ -83,10 +102,7 @@ def dask_client(target: DaskTarget, announce: Callable[[str], None]) -> Iterator
         finally:
             client.close()
         return
-    cluster = LocalCluster(
-        n_workers=target.workers, threads_per_worker=1, processes=True,
-        dashboard_address=":0", silence_logs=logging.ERROR,
-    )  # fmt: skip
+    cluster = local_cluster(target.workers, silence_logs=logging.ERROR)
     try:
         client = Client(cluster)
         try:
