@@ -643,7 +643,11 @@ def prepare_sweeps(
     sweeps = [sweep for preset in loaded for sweep in parse_sweeps(preset)]
     if plot is not None:
         sweeps = [
-            dataclasses.replace(sweep, plot=str(numbered_path(plot, number, len(sweeps))))
+            # absolute: a path given on the command line is taken from the current folder,
+            # as the jobs' --plot is, not from --out-dir as the preset's plot key is
+            dataclasses.replace(
+                sweep, plot=str(numbered_path(plot, number, len(sweeps)).absolute())
+            )
             for number, sweep in enumerate(sweeps, start=1)
         ]
     prepared = [(sweep, make_points(sweep)) for sweep in sweeps]

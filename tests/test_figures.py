@@ -356,3 +356,16 @@ def test_workspace_figure_draws_the_singular_boxes_and_the_free_circle(tmp_path)
     assert tuple(circle.center) == tuple(result.singularity.centre_cm)
     figures.save_result_figure(job, result, tmp_path / "s.svg")
     assert (tmp_path / "s.svg").stat().st_size > 0
+
+
+def test_sweep_figure_leaves_out_columns_that_echo_the_varied_key():
+    """A workspace sweep over ``orientation_deg`` reports ``orientation_lo_deg`` and
+    ``orientation_hi_deg`` equal to it: echoes of the key, not figures to plot."""
+    from planar_tui.csvio import CsvTable
+    from planar_tui.figures.sweep import split_columns
+
+    header = ("point", "orientation_deg", "area_kept_cm2", "orientation_lo_deg", "status",
+              "message", "seconds")  # fmt: skip
+    rows = [(1, -10.0, 90.5, -10.0, "ok", "", 0.1), (2, 0.0, 106.8, 0.0, "ok", "", 0.1),
+            (3, 10.0, 90.5, 10.0, "ok", "", 0.1)]  # fmt: skip
+    assert split_columns(CsvTable(header, rows)) == (["orientation_deg"], ["area_kept_cm2"])

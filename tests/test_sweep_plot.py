@@ -42,6 +42,15 @@ def test_plot_option_overrides_the_key_and_checks_the_suffix(tmp_path, cli):
     assert not (out / "masses.svg").exists()
 
 
+def test_plot_option_is_taken_from_the_current_folder_not_the_out_dir(tmp_path, cli, monkeypatch):
+    preset = write(tmp_path, "p.toml", TORQUES, SWEEP, **TORQUES_BASE)
+    monkeypatch.chdir(tmp_path)
+    result = cli("sweep", preset, "--workers", "1", "--out-dir", "out", "--plot", "out/f.svg")
+    assert result.exit_code == 0, result.output
+    assert _is_svg(tmp_path / "out" / "f.svg")
+    assert not (tmp_path / "out" / "out").exists()
+
+
 def test_bad_plot_key_is_one_line_and_nothing_runs(tmp_path, cli):
     preset = write(tmp_path, "p.toml", TORQUES, SWEEP + 'plot = "masses.txt"\n', **TORQUES_BASE)
     result = cli("sweep", preset, "--workers", "1", "--out-dir", tmp_path / "out")

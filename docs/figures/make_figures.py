@@ -1,5 +1,6 @@
-"""Regenerate the figure gallery: every job of every bundled preset, run at the preset's
-own settings, drawn as a small PNG in docs/figures/, and the gallery part of docs/figures.md.
+"""Regenerate the figure gallery: every job and sweep of every bundled preset, run at the
+preset's own settings (sweeps in this process), drawn as a small PNG in docs/figures/, and
+the gallery part of docs/figures.md.
 
     python docs/figures/make_figures.py            # every preset (about a minute on 2 cores)
     python docs/figures/make_figures.py paper-b-table3
@@ -43,10 +44,12 @@ def file_stem(preset: str, key: str) -> str:
 
 def main(names: list[str]) -> None:
     from planar_tui import batch
-    from planar_tui.figures import figure_for_result
+    from planar_tui.figures import figure_for_result, figure_for_table
     from planar_tui.presets import load_preset
     from planar_tui.resources import bundled_presets, preset_description
     from planar_tui.runtime import configure_process
+    from planar_tui.sweep.service import run_sweep
+    from planar_tui.sweep.spec import parse_sweeps
 
     configure_process()
     presets = [p for p in bundled_presets() if not names or p.stem in names]
@@ -61,6 +64,14 @@ def main(names: list[str]) -> None:
             print(f"{stem}.png {size / 1024:.0f} KB", flush=True)
             lines += [f"**{job.key}** (`{job.output}`): {result.summary}", "",
                       f"![{path.stem} {job.key}](figures/{stem}.png)", ""]  # fmt: skip
+        for sweep in parse_sweeps(preset):
+            run = run_sweep(sweep, workers=1)
+            stem = file_stem(path.stem, sweep.name)
+            size = small_png(figure_for_table(run.table, sweep.label), HERE / f"{stem}.png")
+            print(f"{stem}.png {size / 1024:.0f} KB", flush=True)
+            lines += [f"**{sweep.name}** (`{sweep.output}`): {len(run.outcomes)} points of "
+                      f"{sweep.job.key}, {run.failed} failed", "",
+                      f"![{path.stem} {sweep.name}](figures/{stem}.png)", ""]  # fmt: skip
         sections.append("\n".join(lines))
     if names:
         return

@@ -4,7 +4,8 @@ path, the job kind's summary figures, ``status``, ``message``, ``seconds``).
 Varied keys are the columns after ``point`` named as preset key paths (a job key such as
 ``orientation_deg``, a robot key ``robot3rrr.distal_cm``, a list element
 ``robot.lengths_m[2]``) that take at least two values; the figures are the other numeric
-columns but ``seconds`` and the settings echoed by the kind's summary (``precision_cm``). One varied key: each figure against it as a line, the failed
+columns but ``seconds`` and the settings echoed by the kind's summary (``precision_cm``,
+or a column equal to a varied key's, such as ``orientation_lo_deg``). One varied key: each figure against it as a line, the failed
 points marked with a red ✕ on the axis. Two: a heat map per figure (a full grid), or the
 points coloured by the figure (a sampled design), failed points marked ✕.
 """
@@ -65,7 +66,17 @@ def split_columns(table: CsvTable) -> tuple[list[str], list[str]]:
                 varied.append(name)
                 figures.remove(name)
                 break
-    return varied, figures
+    echoes = [name for name in figures
+              if any(_same(column(table, name), column(table, key)) for key in varied)]  # fmt: skip
+    return varied, [name for name in figures if name not in echoes]
+
+
+def _same(values: Any, other: Any) -> bool:
+    """Whether a figure column repeats a varied key's values (a workspace's
+    ``orientation_lo_deg`` in a sweep over ``orientation_deg``): an echo, not a figure."""
+    import numpy as np
+
+    return bool(np.array_equal(values, other, equal_nan=True))
 
 
 def draw(table: CsvTable, title: str) -> Any:
