@@ -55,7 +55,7 @@ import math
 
 from ._jit import kernel
 from .interval import down, iadd, iadd_scalar, imul, iscale, isincos, isqr, isqrt, isub, up
-from .workspace3rrr import DONE, chunk_halt
+from .workspace3rrr import DONE, chunk_halt, keep_xy_box, split_xy_widest
 
 GOOD = 3
 SINGULAR = 2
@@ -289,24 +289,11 @@ def singular_bisect_chunk(
                 xlo, xhi, ylo, yhi, g, r, elbow, limits, cx, cy, sign, leaf_grid
             )
             work += 2 * leaf_grid * leaf_grid
-            kept[n_kept, 0] = xlo
-            kept[n_kept, 1] = xhi
-            kept[n_kept, 2] = ylo
-            kept[n_kept, 3] = yhi
-            status[n_kept] = SINGULAR if singular else EDGE
-            n_kept += 1
+            label = SINGULAR if singular else EDGE
+            n_kept = keep_xy_box(kept, status, n_kept, xlo, xhi, ylo, yhi, label)
             bounds[0] = min(bounds[0], bad)
             bounds[1] = min(bounds[1], witness)
             continue
-        for j in range(4):
-            stack[n_stack + 1, j] = stack[row, j]
-        if wx >= wy:
-            mid = 0.5 * (xlo + xhi)
-            stack[row, 1] = mid
-            stack[n_stack + 1, 0] = mid
-        else:
-            mid = 0.5 * (ylo + yhi)
-            stack[row, 3] = mid
-            stack[n_stack + 1, 2] = mid
+        split_xy_widest(stack, row, n_stack + 1, 4)
         n_stack += 2
     return n_stack, n_kept, processed, DONE

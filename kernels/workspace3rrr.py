@@ -78,6 +78,42 @@ def chunk_halt(processed, max_boxes, n_kept, kept_capacity, n_stack, stack_capac
 
 
 @kernel
+def keep_xy_box(kept, status, n_kept, xlo, xhi, ylo, yhi, label):
+    """Write the (x, y) box ``[xlo, xhi] × [ylo, yhi]`` with ``label`` as row ``n_kept``
+    of ``kept`` (columns ``x_lo, x_hi, y_lo, y_hi``) and ``status``; returns
+    ``n_kept + 1``. The keep step of the 2-D pavings (arc-distance, orientation,
+    singularity)."""
+    kept[n_kept, 0] = xlo
+    kept[n_kept, 1] = xhi
+    kept[n_kept, 2] = ylo
+    kept[n_kept, 3] = yhi
+    status[n_kept] = label
+    return n_kept + 1
+
+
+@kernel
+def split_xy_widest(boxes, row, child, columns):
+    """Halve the (x, y) box of ``boxes[row]`` (columns ``x_lo, x_hi, y_lo, y_hi``) across its
+    wider side (x on a tie): ``boxes[child]`` becomes a copy of the first ``columns``
+    columns of the row, then the row keeps the lower half and the child the upper. The
+    split step of the 2-D pavings (arc-distance, orientation, singularity, leg-wise)."""
+    for j in range(columns):
+        boxes[child, j] = boxes[row, j]
+    xlo = boxes[row, 0]
+    xhi = boxes[row, 1]
+    ylo = boxes[row, 2]
+    yhi = boxes[row, 3]
+    if xhi - xlo >= yhi - ylo:
+        mid = 0.5 * (xlo + xhi)
+        boxes[row, 1] = mid
+        boxes[child, 0] = mid
+    else:
+        mid = 0.5 * (ylo + yhi)
+        boxes[row, 3] = mid
+        boxes[child, 2] = mid
+
+
+@kernel
 def _l2_squared(l2):
     """:math:`l_2^2` as an interval (the float product may round)."""
     s = l2 * l2

@@ -27,7 +27,7 @@ import math
 import numpy as np
 
 from ._jit import kernel
-from .workspace3rrr import DONE, chunk_halt
+from .workspace3rrr import DONE, chunk_halt, keep_xy_box, split_xy_widest
 
 OUTSIDE = 0
 BOUNDARY = 1
@@ -156,23 +156,9 @@ def arc_bisect_chunk(
         if refutable and refuted(xlo, xhi, ylo, yhi, p, limits, leaf_grid):
             continue
         if label == INSIDE or leaf:
-            kept[n_kept, 0] = xlo
-            kept[n_kept, 1] = xhi
-            kept[n_kept, 2] = ylo
-            kept[n_kept, 3] = yhi
-            status[n_kept] = label
-            n_kept += 1
+            n_kept = keep_xy_box(kept, status, n_kept, xlo, xhi, ylo, yhi, label)
             continue
-        for j in range(4):
-            stack[n_stack + 1, j] = stack[row, j]
-        if wx >= wy:
-            mid = 0.5 * (xlo + xhi)
-            stack[row, 1] = mid
-            stack[n_stack + 1, 0] = mid
-        else:
-            mid = 0.5 * (ylo + yhi)
-            stack[row, 3] = mid
-            stack[n_stack + 1, 2] = mid
+        split_xy_widest(stack, row, n_stack + 1, 4)
         n_stack += 2
     return n_stack, n_kept, processed, DONE
 

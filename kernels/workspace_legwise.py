@@ -38,7 +38,7 @@ import numba
 import numpy as np
 
 from ._jit import kernel
-from .workspace3rrr import leg_enclosure
+from .workspace3rrr import leg_enclosure, split_xy_widest
 from .workspace_arc import classify_box
 
 ROW_COLUMNS = 13
@@ -145,16 +145,7 @@ def decide_box(form, p, precision, angle_scale, rows, r, children, c):
         return INSIDE, evaluations
     if wx <= precision and wy <= precision:
         return BOUNDARY, evaluations
-    for j in range(ROW_COLUMNS):
-        children[c + 1, j] = children[c, j]
-    if wx >= wy:
-        mid = 0.5 * (xlo + xhi)
-        children[c, 1] = mid
-        children[c + 1, 0] = mid
-    else:
-        mid = 0.5 * (ylo + yhi)
-        children[c, 3] = mid
-        children[c + 1, 2] = mid
+    split_xy_widest(children, c, c + 1, ROW_COLUMNS)
     return SPLIT, evaluations
 
 
