@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import threading
 import time
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from textual.message import Message
@@ -27,29 +28,26 @@ if TYPE_CHECKING:
     from planar_tui.jobkind import Job, JobResult
 
 
-class JobFinished(Message):
-    """A job ended: ``result`` on success, ``error`` on failure, ``cancelled`` otherwise.
+class RunEnded(Message):
+    """What every kind of run posts when its thread ends: ``pane`` (the widget that asked
+    for it and shows the outcome), ``error`` on failure, ``cancelled`` when stopped,
+    ``seconds`` from start to end; each subclass adds what the run produced."""
 
-    ``pane`` is the widget that asked for the job (it shows the outcome); ``seconds`` the
-    time from the job's start to its end.
-    """
-
-    def __init__(
-        self,
-        pane: Any,
-        job: Job,
-        result: JobResult | None = None,
-        error: BaseException | None = None,
-        cancelled: bool = False,
-        seconds: float = 0.0,
-    ):
+    def __init__(self, pane: Any):
         super().__init__()
         self.pane = pane
+        self.error: BaseException | None = None
+        self.cancelled = False
+        self.seconds = 0.0
+
+
+class JobFinished(RunEnded):
+    """A job ended: ``result`` (a :class:`~planar_tui.jobkind.JobResult`) on success."""
+
+    def __init__(self, pane: Any, job: Job):
+        super().__init__(pane)
         self.job = job
-        self.result = result
-        self.error = error
-        self.cancelled = cancelled
-        self.seconds = seconds
+        self.result: JobResult | None = None
 
 
 class BatchJobDone(Message):
@@ -61,26 +59,25 @@ class BatchJobDone(Message):
         self.result = result
 
 
-class BatchFinished(Message):
+class BatchFinished(RunEnded):
     """A "run all" ended: ``rows`` (the summary rows of the jobs done, their files
-    written), ``error`` or ``cancelled`` when it stopped early; ``seconds`` in all."""
+    written) of ``total``; ``error`` or ``cancelled`` when it stopped early."""
 
-    def __init__(
-        self,
-        pane: Any,
-        rows: list,
-        total: int,
-        error: BaseException | None = None,
-        cancelled: bool = False,
-        seconds: float = 0.0,
-    ):
-        super().__init__()
-        self.pane = pane
-        self.rows = rows
+    def __init__(self, pane: Any, total: int):
+        super().__init__(pane)
+        self.rows: list = []
         self.total = total
-        self.error = error
-        self.cancelled = cancelled
-        self.seconds = seconds
+
+
+class SweepFinished(RunEnded):
+    """A sweep ended: ``run`` (a :class:`~planar_tui.sweep.service.SweepRun`) when every
+    point ran (some may have failed: their rows say why); ``error`` when it could not run
+    (a point invalid for its key)."""
+
+    def __init__(self, pane: Any, sweep: Any):
+        super().__init__(pane)
+        self.sweep = sweep
+        self.run: Any = None
 
 
 class JobRunner:
@@ -112,41 +109,46 @@ class JobRunner:
         return not self._done.is_set()
 
     def start(self, pane: Any, job: Job) -> None:
-        """Run ``job`` for ``pane`` in a thread worker (one job at a time)."""
-        if self.running:
-            raise RuntimeError("a job is already running")
-        self.pane = pane
-        self.latest = None
-        self._stop.clear()
-        self._done.clear()
-        self._app.run_worker(
-            lambda: self._work(pane, job),
-            name=job.label,
-            group=self.GROUP,
-            thread=True,
-            exclusive=True,
-            exit_on_error=False,
-        )
+        """Run ``job`` for ``pane`` (:func:`planar_tui.batch.run_job`, as the CLI runs it);
+        posts :class:`JobFinished`."""
+        from planar_tui.batch import run_job
+
+        finished = JobFinished(pane, job)
+
+        def compute(stopping: Callable[[], bool]) -> None:
+            finished.result = run_job(job, Progress(on_update=self._store, should_stop=stopping))
+
+        self._launch(job.label, finished, compute)
 
     def start_all(self, pane: Any, plans: list) -> None:
         """Run every planned job in order as ``planar-tui run`` does
         (:func:`planar_tui.batch.run_plans`: each job's files written when it finishes),
         showing progress on ``pane``; posts :class:`BatchJobDone` per job, then
         :class:`BatchFinished`."""
-        if self.running:
-            raise RuntimeError("a job is already running")
-        self.pane = pane
-        self.latest = None
-        self._stop.clear()
-        self._done.clear()
-        self._app.run_worker(
-            lambda: self._work_all(pane, plans),
-            name="run all",
-            group=self.GROUP,
-            thread=True,
-            exclusive=True,
-            exit_on_error=False,
-        )
+        import contextlib
+        import dataclasses
+
+        from planar_tui.batch import run_plans
+
+        finished = BatchFinished(pane, len(plans))
+        numbers = {id(plan.job): n for n, plan in enumerate(plans, start=1)}
+
+        def compute(stopping: Callable[[], bool]) -> None:
+            @contextlib.contextmanager
+            def progress_for(job: Job):
+                prefix = f"job {numbers[id(job)]}/{len(plans)} {job.key}:"
+
+                def store(state: ProgressState) -> None:
+                    self._store(dataclasses.replace(state, stage=f"{prefix} {state.stage}"))
+
+                yield Progress(on_update=store, should_stop=stopping)
+
+            def done(job: Job, result: JobResult) -> None:
+                self._app.post_message(BatchJobDone(job, result))
+
+            finished.rows.extend(run_plans(plans, progress_for, done))
+
+        self._launch("run all", finished, compute)
 
     def start_sweep(self, pane: Any, sweep: Any, workers: int = 1, points: Any = None) -> None:
         """Run every point of ``sweep`` (:func:`planar_tui.sweep.service.run_sweep`: in this
@@ -154,19 +156,54 @@ class JobRunner:
         processes), showing progress on ``pane``; posts :class:`SweepFinished`. ``points``
         are the sweep's validated points (made and checked in the thread when ``None``).
         Nothing is written (the sweep screen exports the CSV)."""
+        from planar_tui.sweep.points import make_points
+        from planar_tui.sweep.service import run_sweep
+
+        finished = SweepFinished(pane, sweep)
+
+        def compute(stopping: Callable[[], bool]) -> None:
+            checked = make_points(sweep) if points is None else points
+            progress = Progress(on_update=self._store, should_stop=stopping)
+            finished.run = run_sweep(sweep, progress, points=checked, workers=workers)
+
+        self._launch(sweep.label, finished, compute)
+
+    def _launch(
+        self, name: str, finished: RunEnded, compute: Callable[[Callable[[], bool]], None]
+    ) -> None:
+        """Run ``compute(stopping)`` in a thread worker (one run at a time), showing progress
+        on ``finished.pane``; ``stopping()`` says whether a cancel was asked (or the app is
+        closing). Then fill in and post ``finished``: a cancel sets ``cancelled``, a failure
+        ``error`` (a job's own error rather than the batch service's wrapper: shown in a
+        dialog, never as a traceback)."""
         if self.running:
             raise RuntimeError("a job is already running")
-        self.pane = pane
+        self.pane = finished.pane
         self.latest = None
         self._stop.clear()
         self._done.clear()
+
+        def work() -> None:
+            from planar_tui.batch import JobFailed
+
+            worker = get_current_worker()  # cancelled by Textual when the app closes
+            started = time.perf_counter()
+            try:
+                compute(lambda: self._stop.is_set() or worker.is_cancelled)
+            except (Cancelled, KeyboardInterrupt):
+                finished.cancelled = True
+            except JobFailed as failure:
+                finished.error = failure.__cause__ or failure
+            except Exception as error:  # e.g. the job's own PresetError (a box budget)
+                finished.error = error
+            finally:
+                self.latest = None  # its partial results (views of the run's arrays) go too
+                self._done.set()
+            finished.seconds = time.perf_counter() - started
+            self._app.post_message(finished)
+
         self._app.run_worker(
-            lambda: self._work_sweep(pane, sweep, workers, points),
-            name=sweep.label,
-            group=self.GROUP,
-            thread=True,
-            exclusive=True,
-            exit_on_error=False,
+            work, name=name, group=self.GROUP, thread=True, exclusive=True, exit_on_error=False
         )
 
     def cancel(self) -> bool:
@@ -179,118 +216,3 @@ class JobRunner:
     def _store(self, state: ProgressState) -> None:
         """Called in the worker thread: keep the latest snapshot for the UI timer."""
         self.latest = state
-
-    def _work(self, pane: Any, job: Job) -> None:
-        """The worker thread: run the job, then post its :class:`JobFinished`."""
-        from planar_tui.batch import JobFailed, run_job
-
-        worker = get_current_worker()  # cancelled by Textual when the app closes
-        started = time.perf_counter()
-        progress = Progress(
-            on_update=self._store,
-            should_stop=lambda: self._stop.is_set() or worker.is_cancelled,
-        )
-        try:
-            result = run_job(job, progress)
-        except Cancelled:
-            finished = JobFinished(pane, job, cancelled=True)
-        except JobFailed as failure:  # shown in a dialog, never as a traceback
-            finished = JobFinished(pane, job, error=failure.__cause__ or failure)
-        except Exception as error:  # e.g. the job's own PresetError (a box budget)
-            finished = JobFinished(pane, job, error=error)
-        else:
-            finished = JobFinished(pane, job, result=result)
-        finally:
-            self.latest = None  # its partial results (views of the run's arrays) go too
-            self._done.set()
-        finished.seconds = time.perf_counter() - started
-        self._app.post_message(finished)
-
-    def _work_sweep(self, pane: Any, sweep: Any, workers: int, points: Any) -> None:
-        """The worker thread of a sweep: validate every point, then run them."""
-        from planar_tui.sweep.points import make_points
-        from planar_tui.sweep.service import run_sweep
-
-        worker = get_current_worker()
-        started = time.perf_counter()
-        progress = Progress(
-            on_update=self._store,
-            should_stop=lambda: self._stop.is_set() or worker.is_cancelled,
-        )
-        finished = SweepFinished(pane, sweep)
-        try:
-            points = make_points(sweep) if points is None else points
-            finished.run = run_sweep(sweep, progress, points=points, workers=workers)
-        except (Cancelled, KeyboardInterrupt):
-            finished.cancelled = True
-        except Exception as error:  # a point invalid for its key: a dialog says which
-            finished.error = error
-        finally:
-            self.latest = None
-            self._done.set()
-        finished.seconds = time.perf_counter() - started
-        self._app.post_message(finished)
-
-    def _work_all(self, pane: Any, plans: list) -> None:
-        """The worker thread of "run all": the batch service's loop over the plans."""
-        import contextlib
-        import dataclasses
-
-        from planar_tui.batch import JobFailed, OutputFailed, run_plans
-
-        worker = get_current_worker()
-        started = time.perf_counter()
-        numbers = {id(plan.job): n for n, plan in enumerate(plans, start=1)}
-        rows: list = []
-
-        @contextlib.contextmanager
-        def progress_for(job: Job):
-            prefix = f"job {numbers[id(job)]}/{len(plans)} {job.key}:"
-
-            def store(state: ProgressState) -> None:
-                self._store(dataclasses.replace(state, stage=f"{prefix} {state.stage}"))
-
-            yield Progress(
-                on_update=store, should_stop=lambda: self._stop.is_set() or worker.is_cancelled
-            )
-
-        def done(job: Job, result: JobResult) -> None:
-            self._app.post_message(BatchJobDone(job, result))
-
-        finished = BatchFinished(pane, rows, len(plans))
-        try:
-            rows.extend(run_plans(plans, progress_for, done))
-        except Cancelled:
-            finished.cancelled = True
-        except JobFailed as failure:
-            finished.error = failure.__cause__ or failure
-        except (OutputFailed, Exception) as error:
-            finished.error = error
-        finally:
-            self.latest = None
-            self._done.set()
-        finished.seconds = time.perf_counter() - started
-        self._app.post_message(finished)
-
-
-class SweepFinished(Message):
-    """A sweep ended: ``run`` (a :class:`~planar_tui.sweep.service.SweepRun`) when every
-    point ran (some may have failed: their rows say why), ``error`` when it could not run
-    (a point invalid for its key), ``cancelled`` otherwise; ``seconds`` in all."""
-
-    def __init__(
-        self,
-        pane: Any,
-        sweep: Any,
-        run: Any = None,
-        error: BaseException | None = None,
-        cancelled: bool = False,
-        seconds: float = 0.0,
-    ):
-        super().__init__()
-        self.pane = pane
-        self.sweep = sweep
-        self.run = run
-        self.error = error
-        self.cancelled = cancelled
-        self.seconds = seconds
