@@ -349,7 +349,6 @@ def compute_workspace(robot: Robot3RRR, spec, budget: BoxBudget) -> WorkspaceOut
     """Run the stages of the module docstring for one robot and spec."""
     from planar_tui.kernels import workspace3rrr as k5
     from planar_tui.kernels.workspace_arc import classify_boxes, limits_array
-    from planar_tui.kernels.workspace_union import union_area
 
     started = time.perf_counter()
     box = spec.search_box_cm or default_search_box(robot, spec.orientation_rad, spec.precision_cm)
@@ -393,21 +392,38 @@ def compute_workspace(robot: Robot3RRR, spec, budget: BoxBudget) -> WorkspaceOut
             status = np.zeros(len(boxes), dtype=np.int64)
             classify_boxes(boxes, p, limits, status)
         status = np.where((status == INSIDE) | (proved == INSIDE), INSIDE, BOUNDARY)
+
+    def refine(seeds, inside_cm2):
+        return _arc_stage(p, limits, spec.refine_precision_cm, seeds, budget, inside_cm2)
+
+    return finished_outcome(
+        spec, boxes, status, refine, budget, geometric, started, extent,
+        form=spec.form + (" (expanded)" if spec.expanded else ""), disjoint=legwise,
+        strategy=spec.strategy if interval_form else "", xy_boxes=xy_boxes,
+    )  # fmt: skip
+
+
+def finished_outcome(
+    spec, boxes, status, refine, budget, geometric, started, extent, *, form, disjoint=False,
+    **extra,
+) -> WorkspaceOutcome:  # fmt: skip
+    """The stages every paving ends with: with ``refine_precision_cm``, the boundary boxes
+    paved again by ``refine(seeds, inside_cm2)`` (returning boxes and status); then the
+    certified areas ``inside = |∪ inside boxes|``, ``kept = |∪ kept boxes|`` (plain sums
+    when the boxes are ``disjoint``, as a paving's are; unions otherwise) reported to the
+    budget, and the :class:`WorkspaceOutcome` (``extra``: its optional fields)."""
+    from planar_tui.kernels.workspace_union import union_area
+
     if spec.refine_precision_cm is not None:
         budget.progress.start(1.0, "boundary refinement")
         inside = status == INSIDE
-        refined, refined_status = _arc_stage(
-            p,
-            limits,
-            spec.refine_precision_cm,
-            np.ascontiguousarray(boxes[~inside]),
-            budget,
-            float(union_area(boxes[inside])),
+        refined, refined_status = refine(
+            np.ascontiguousarray(boxes[~inside]), float(union_area(boxes[inside]))
         )
         boxes = np.concatenate([boxes[inside], refined])
         status = np.concatenate([status[inside], refined_status])
     boxes = np.ascontiguousarray(boxes)
-    if legwise:  # a paving (and its refinement): disjoint boxes, the union's area is the sum
+    if disjoint:  # a paving (and its refinement): disjoint boxes, the union's area is the sum
         area_kept_cm2 = _xy_area(boxes)
         area_inside_cm2 = _xy_area(boxes[status == INSIDE])
     else:
@@ -415,7 +431,7 @@ def compute_workspace(robot: Robot3RRR, spec, budget: BoxBudget) -> WorkspaceOut
         area_inside_cm2 = float(union_area(np.ascontiguousarray(boxes[status == INSIDE])))
     budget.finish(area_inside_cm2, area_kept_cm2)
     return WorkspaceOutcome(
-        form=spec.form + (" (expanded)" if spec.expanded else ""),
+        form=form,
         precision_cm=spec.precision_cm,
         refine_precision_cm=spec.refine_precision_cm,
         boxes=boxes,
@@ -426,8 +442,7 @@ def compute_workspace(robot: Robot3RRR, spec, budget: BoxBudget) -> WorkspaceOut
         geometric=geometric,
         seconds=time.perf_counter() - started,
         extent_cm=extent,
-        strategy=spec.strategy if interval_form else "",
-        xy_boxes=xy_boxes,
+        **extra,
     )
 
 

@@ -199,8 +199,7 @@ def compute_orientation_workspace(robot: Robot3RRR, spec, budget):
     ``precision_cm``, then the boundary boxes again down to ``refine_precision_cm``."""
     import numpy as np
 
-    from planar_tui.kernels.workspace_union import union_area
-    from planar_tui.workspace.compute import INSIDE, WorkspaceOutcome
+    from planar_tui.workspace.compute import finished_outcome
 
     started = time.perf_counter()
     box = search_box(robot, spec)
@@ -215,35 +214,12 @@ def compute_orientation_workspace(robot: Robot3RRR, spec, budget):
         )
     budget.progress.start(1.0, f"{spec.orientation_mode} orientation workspace")
     boxes, status = _range_stage(robot, spec, np.array([extent]), spec.precision_cm, budget)
-    if spec.refine_precision_cm is not None:
-        budget.progress.start(1.0, "boundary refinement")
-        inside = status == INSIDE
-        refined, refined_status = _range_stage(
-            robot,
-            spec,
-            np.ascontiguousarray(boxes[~inside]),
-            spec.refine_precision_cm,
-            budget,
-            float(union_area(boxes[inside])),
-        )
-        boxes = np.concatenate([boxes[inside], refined])
-        status = np.concatenate([status[inside], refined_status])
-    boxes = np.ascontiguousarray(boxes)
-    area_kept = float(union_area(boxes))
-    area_inside = float(union_area(np.ascontiguousarray(boxes[status == INSIDE])))
-    budget.finish(area_inside, area_kept)
-    return WorkspaceOutcome(
-        form=spec.form,
-        precision_cm=spec.precision_cm,
-        refine_precision_cm=spec.refine_precision_cm,
-        boxes=boxes,
-        status=status,
-        boxes_processed=budget.processed,
-        area_kept_cm2=area_kept,
-        area_inside_cm2=area_inside,
-        geometric=geometric,
-        seconds=time.perf_counter() - started,
-        extent_cm=extent,
+
+    def refine(seeds, inside_cm2):
+        return _range_stage(robot, spec, seeds, spec.refine_precision_cm, budget, inside_cm2)
+
+    return finished_outcome(
+        spec, boxes, status, refine, budget, geometric, started, extent, form=spec.form
     )
 
 
