@@ -15,20 +15,11 @@ from typing import Any
 import numpy as np
 
 from planar_tui.csvio import CsvTable
+from planar_tui.sensitivity.results import INDEX_COLUMNS, grouped, index_rows
 
 #: The band's statistics, in CSV column order.
 BAND_STATISTICS = ("mean", "std", "p5", "p50", "p95")
-INDICES_HEADER = (
-    "output",
-    "t_s",
-    "parameter",
-    "method",
-    "S1",
-    "S1_conf",
-    "ST",
-    "ST_conf",
-    "percent",
-)
+INDICES_HEADER = ("output", "t_s", *INDEX_COLUMNS)
 
 
 def band_header(names: Sequence[str]) -> tuple[str, ...]:
@@ -43,18 +34,13 @@ def band_table(t_s: np.ndarray, band: np.ndarray, names: Sequence[str]) -> CsvTa
 
 
 def indices_table(analyses: Sequence, names: Sequence[str]) -> CsvTable:
-    """The indices CSV: one row per time × output × parameter × method."""
-    rows = []
-    times: dict[float, list] = {}
-    for analysis in analyses:
-        times.setdefault(analysis.speed_rad_s, []).append(analysis)
-    for t_s, group in times.items():
-        for k, name in enumerate(names):
-            for j, parameter in enumerate(group[0].names):
-                for a in group:
-                    s1, s1_conf, st, st_conf = (float(v) for v in a.indices[:, k, j])
-                    rows.append((name, float(t_s), parameter, a.method, s1, s1_conf, st,
-                                 st_conf, float(a.percent[k, j])))  # fmt: skip
+    """The indices CSV: one row per time × output × parameter × method (the time is the
+    analyses' ``speed_rad_s`` slot, see :func:`analyse_times`)."""
+    rows = [
+        (names[k], float(t_s), *cells)
+        for t_s, group in grouped(analyses, lambda a: a.speed_rad_s).items()
+        for k, cells in index_rows(group)
+    ]
     return CsvTable(INDICES_HEADER, rows)
 
 

@@ -13,25 +13,17 @@ either are clipped to 0 first).
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from planar_tui.csvio import CsvTable
 
-CSV_HEADER = (
-    "robot",
-    "posture",
-    "speed_rad_s",
-    "torque",
-    "parameter",
-    "method",
-    "S1",
-    "S1_conf",
-    "ST",
-    "ST_conf",
-    "percent",
-)
+#: The index columns of a sensitivity-shaped CSV, after the columns that say which output.
+INDEX_COLUMNS = ("parameter", "method", "S1", "S1_conf", "ST", "ST_conf", "percent")
+CSV_HEADER = ("robot", "posture", "speed_rad_s", "torque", *INDEX_COLUMNS)
 
 
 @dataclass(frozen=True)
@@ -63,18 +55,33 @@ def sensitivity_percent(indices: np.ndarray, percent_of: str = "ST") -> np.ndarr
     return np.divide(100.0 * chosen, totals, out=np.zeros_like(chosen), where=totals > 0)
 
 
+def grouped(analyses: Sequence[Analysis], key: Callable[[Analysis], Any]) -> dict:
+    """The analyses by ``key`` (e.g. posture and speed), in run order."""
+    groups: dict[Any, list[Analysis]] = {}
+    for analysis in analyses:
+        groups.setdefault(key(analysis), []).append(analysis)
+    return groups
+
+
+def index_rows(group: Sequence[Analysis]) -> Iterator[tuple[int, tuple]]:
+    """The :data:`INDEX_COLUMNS` cells of a group of analyses sharing their inputs (one
+    per method): per output ``k``, parameter and method, ``(k, cells)``."""
+    for k in range(group[0].indices.shape[1]):
+        for j, name in enumerate(group[0].names):
+            for a in group:
+                s1, s1_conf, st, st_conf = (float(v) for v in a.indices[:, k, j])
+                yield k, (name, a.method, s1, s1_conf, st, st_conf, float(a.percent[k, j]))
+
+
 def csv_table(robot_label: str, analyses: list[Analysis]) -> CsvTable:
     """One row per posture × speed × torque × parameter × method, in run order."""
-    rows = []
-    groups: dict[tuple[str, float], list[Analysis]] = {}
-    for analysis in analyses:
-        groups.setdefault((analysis.posture, analysis.speed_rad_s), []).append(analysis)
-    for (posture, speed), group in groups.items():
-        for torque in range(group[0].indices.shape[1]):
-            for j, name in enumerate(group[0].names):
-                for a in group:
-                    s1, s1_conf, st, st_conf = (float(v) for v in a.indices[:, torque, j])
-                    percent = float(a.percent[torque, j])
-                    key = (robot_label, posture, float(speed), torque + 1, name, a.method)
-                    rows.append((*key, s1, s1_conf, st, st_conf, percent))
+    rows = [
+        (robot_label, posture, float(speed), torque + 1, *cells)
+        for (posture, speed), group in grouped(analyses, _posture_speed).items()
+        for torque, cells in index_rows(group)
+    ]
     return CsvTable(CSV_HEADER, rows)
+
+
+def _posture_speed(analysis: Analysis) -> tuple[str, float]:
+    return analysis.posture, analysis.speed_rad_s
