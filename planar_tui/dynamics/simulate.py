@@ -70,8 +70,9 @@ def per_link_numbers(doc: str, default_doc: str = "zeros") -> Any:
 
 
 @dataclass(frozen=True, kw_only=True)
-class SimulateSpec:
-    """Settings of one forward-dynamics run (angles are relative joint angles)."""
+class RunSettings:
+    """The keys of a constant-torque RK4 run from a given state, declared once for every
+    job that integrates the robot (``[simulate]``, ``[motion_uncertainty]``)."""
 
     duration_s: float = setting(
         number(positive=True),
@@ -83,6 +84,29 @@ class SimulateSpec:
     theta0_deg: tuple[float, ...] = per_link_numbers("initial relative joint angles")
     omega0_deg_s: tuple[float, ...] = per_link_numbers("initial joint rates")
     torques_Nm: tuple[float, ...] = per_link_numbers("constant joint torques", "zeros (free fall)")
+
+    @staticmethod
+    def check_step(values: dict, reader: TableReader) -> None:
+        """The step must not exceed the duration."""
+        duration_s, step_s = values["duration_s"], values["step_s"]
+        if step_s > duration_s:
+            raise reader.error(
+                "step_s",
+                f"is {step_s:g} s, longer than duration_s = {duration_s:g} s",
+                "step_s <= duration_s",
+            )
+
+    @property
+    def n_steps(self) -> int:
+        """Number of RK4 steps: ``round(duration_s / step_s)``."""
+        return max(1, round(self.duration_s / self.step_s))
+
+
+@dataclass(frozen=True, kw_only=True)
+class SimulateSpec(RunSettings):
+    """Settings of one forward-dynamics run (angles are relative joint angles): the run's
+    keys (:class:`RunSettings`), then what it records."""
+
     every: int = setting(
         integer(minimum=1),
         default=1,
@@ -95,14 +119,8 @@ class SimulateSpec:
     def check(values: dict, reader: TableReader, robot: SerialRobot) -> dict:
         """The step must not exceed the duration; the run must fit the time and memory
         limits (:mod:`planar_tui.limits`)."""
-        duration_s, step_s = values["duration_s"], values["step_s"]
-        if step_s > duration_s:
-            raise reader.error(
-                "step_s",
-                f"is {step_s:g} s, longer than duration_s = {duration_s:g} s",
-                "step_s <= duration_s",
-            )
-        n_steps = duration_s / step_s
+        RunSettings.check_step(values, reader)
+        n_steps = values["duration_s"] / values["step_s"]
         problem = time_problem(n_steps * rk4_step_seconds(robot.n_links))
         if problem is None:
             rows = n_steps / values["every"] + 1
@@ -114,11 +132,6 @@ class SimulateSpec:
                 "a shorter duration_s, a longer step_s or a larger every",
             )
         return values
-
-    @property
-    def n_steps(self) -> int:
-        """Number of RK4 steps: ``round(duration_s / step_s)``."""
-        return max(1, round(self.duration_s / self.step_s))
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from planar_tui.dynamics.robot import SerialRobot
-from planar_tui.dynamics.simulate import per_link_numbers, rk4_step_seconds
+from planar_tui.dynamics.simulate import RunSettings, rk4_step_seconds
 from planar_tui.errors import PresetError
 from planar_tui.jobkind import Job, JobKind, JobResult
 from planar_tui.limits import memory_problem, time_problem
@@ -32,6 +32,7 @@ from planar_tui.schema import (
     shown,
     string,
 )
+from planar_tui.sensitivity.job import tolerance_setting
 
 METHODS = ("montecarlo", "sobol", "efast")
 OUTPUTS = ("angles", "tip")
@@ -74,7 +75,7 @@ def _read_times(reader: TableReader, name, default, robot, values) -> tuple[floa
 
 
 @dataclass(frozen=True, kw_only=True)
-class MotionSpec:
+class MotionSpec(RunSettings):
     """Settings of one motion uncertainty job (see ``docs/motion.md``).
 
     ``indices_file`` is the indices CSV's name (``indices_output`` or the default made
@@ -82,16 +83,6 @@ class MotionSpec:
     ``device_note`` what the summary says about it.
     """
 
-    duration_s: float = setting(
-        number(positive=True),
-        type_doc="number > 0",
-        doc="simulated time; `round(duration_s / step_s)` RK4 steps",
-    )
-    step_s: float = setting(number(positive=True), type_doc="number > 0, ≤ `duration_s`",
-                            doc="RK4 step")  # fmt: skip
-    theta0_deg: tuple[float, ...] = per_link_numbers("initial relative joint angles")
-    omega0_deg_s: tuple[float, ...] = per_link_numbers("initial joint rates")
-    torques_Nm: tuple[float, ...] = per_link_numbers("constant joint torques", "zeros (free fall)")
     every: int | None = setting(
         integer(minimum=1),
         default=None,
@@ -99,18 +90,8 @@ class MotionSpec:
         type_doc="integer ≥ 1",
         doc="record the band every k-th step (t = 0 and the end always)",
     )
-    tolerance_length_mm: float = setting(
-        number(positive=True),
-        default=1.0,
-        type_doc="0 < number < smallest length",
-        doc="half-width of every length's range",
-    )
-    tolerance_mass_g: float = setting(
-        number(positive=True),
-        default=1.0,
-        type_doc="0 < number < smallest mass",
-        doc="half-width of every mass's range",
-    )
+    tolerance_length_mm: float = tolerance_setting("mm", "half-width of every length's range")
+    tolerance_mass_g: float = tolerance_setting("g", "half-width of every mass's range")
     tolerance_inertia_kgm2: float | None = setting(
         number(positive=True),
         default=None,
@@ -174,12 +155,7 @@ class MotionSpec:
     def check(values: dict, reader: TableReader, robot: SerialRobot) -> dict:
         """Step within the duration, tolerances below the nominal values, sample sizes
         the methods accept, and the run within the time and memory limits."""
-        if values["step_s"] > values["duration_s"]:
-            raise reader.error(
-                "step_s",
-                f"is {values['step_s']:g} s, longer than duration_s = {values['duration_s']:g} s",
-                "step_s <= duration_s",
-            )
+        RunSettings.check_step(values, reader)
         for name, nominal, unit in (
             ("tolerance_length_mm", min(robot.lengths_m) * 1e3, "mm"),
             ("tolerance_mass_g", min(robot.masses_kg) * 1e3, "g"),
@@ -196,10 +172,6 @@ class MotionSpec:
         check_resources(reader.error, MotionSpec(**values), robot)
         values["indices_file"] = values["indices_output"] or default_indices_name(reader)
         return values
-
-    @property
-    def n_steps(self) -> int:
-        return max(1, round(self.duration_s / self.step_s))
 
     @property
     def record_every(self) -> int:

@@ -73,7 +73,9 @@ def _read_posture_request(reader: TableReader, name, default, robot, values) -> 
 per_link(_read_posture_request, "list")  # when it lists angles
 
 
-def _tolerance(unit: str, doc: str):
+def tolerance_setting(unit: str, doc: str):
+    """A tolerance key (``mm`` of every length, ``g`` of every mass): the half-width of
+    the uniform range about each nominal value."""
     return setting(
         number(positive=True),
         default=1.0,
@@ -113,8 +115,8 @@ class SensitivitySpec:
     alpha_rad_s2: float = setting(
         number(), default=0.0, type_doc="number", doc="the joint acceleration of every joint"
     )
-    tolerance_length_mm: float = _tolerance("mm", "half-width of every length's range")
-    tolerance_mass_g: float = _tolerance("g", "half-width of every mass's range")
+    tolerance_length_mm: float = tolerance_setting("mm", "half-width of every length's range")
+    tolerance_mass_g: float = tolerance_setting("g", "half-width of every mass's range")
     vary_inertias: bool = setting(
         boolean(), default=False, type_doc="boolean", doc="add the inertias as inputs"
     )
