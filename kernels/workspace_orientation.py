@@ -61,21 +61,16 @@ import math
 
 from ._jit import kernel
 from .workspace3rrr import CHUNK_LIMIT, DONE, chunk_halt, keep_xy_box, split_xy_widest
-from .workspace_arc import arc_distance_range
+from .workspace_arc import BOUNDARY, INSIDE, OUTSIDE, TOLERANCE_CM, arc_distance_range
 
 MAXIMAL = 0
 TOTAL = 1
-
-OUTSIDE = 0
-BOUNDARY = 1
-INSIDE = 2
 
 #: Piece verdicts: some leg fails everywhere, undecided, every leg closes everywhere.
 PIECE_OUT = 0
 PIECE_UNKNOWN = 1
 PIECE_IN = 2
 
-TOLERANCE_CM = 1e-9
 #: Rows of the orientation-piece stack: a depth-first bisection needs one per level.
 PIECE_STACK = 128
 

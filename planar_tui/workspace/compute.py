@@ -222,8 +222,26 @@ def _interval_stage(form_code, p, spec, box, budget) -> np.ndarray:
 def _arc_stage(p, limits, precision, seeds, budget, inside_cm2=0.0):
     """2-D bisection with the exact leg-wise test from the (x, y) boxes ``seeds`` (disjoint);
     ``inside_cm2`` is the area already proved inside, for the progress bracket."""
-    from planar_tui.kernels.workspace3rrr import DONE, KEPT_FULL, STACK_FULL
     from planar_tui.kernels.workspace_arc import arc_bisect_chunk
+
+    def chunk(stack, n_stack, kept, status, n_kept):
+        return arc_bisect_chunk(
+            p, limits, precision, LEAF_GRID, stack, n_stack, kept, status, n_kept,
+            2 * CHUNK_BOXES,
+        )  # fmt: skip
+
+    return bisect_in_chunks(seeds, budget, chunk, inside_cm2)
+
+
+def bisect_in_chunks(seeds, budget: BoxBudget, chunk, inside_cm2: float = 0.0):
+    """Drive a 2-D bisection kernel from the disjoint (x, y) boxes ``seeds`` until it is
+    done, one ``chunk(stack, n_stack, kept, status, n_kept) -> (n_stack, n_kept, processed,
+    code)`` call at a time (a kernel's chunk: :func:`~planar_tui.kernels.workspace3rrr.
+    chunk_halt` codes), growing the stack or the kept arrays when one is full. After each
+    chunk the budget gets the boxes processed, the fraction of the seeds' area decided and
+    the live bracket ``[inside_cm2 + inside kept, kept + pending]``, and the progress the
+    kept boxes so far (read-only views). Returns the kept boxes and their status."""
+    from planar_tui.kernels.workspace3rrr import DONE, KEPT_FULL, STACK_FULL
 
     stack = np.zeros((max(256, 2 * len(seeds) + 64), 4))
     stack[: len(seeds)] = seeds
@@ -234,20 +252,15 @@ def _arc_stage(p, limits, precision, seeds, budget, inside_cm2=0.0):
     lower = upper = inside_cm2
     while True:
         previous = n_kept
-        n_stack, n_kept, processed, code = arc_bisect_chunk(
-            p, limits, precision, LEAF_GRID, stack, n_stack, kept, status, n_kept,
-            2 * CHUNK_BOXES,
-        )  # fmt: skip
-        pending = stack[:n_stack]
-        area = _xy_area(pending)
+        n_stack, n_kept, processed, code = chunk(stack, n_stack, kept, status, n_kept)
+        area = _xy_area(stack[:n_stack])
         new = slice(previous, n_kept)
         lower += _xy_area(kept[new][status[new] == INSIDE])
         upper += _xy_area(kept[new])
-        fraction = 1.0 - area / max(root_area, 1e-300)
         budget.progress.show_partial(
             boxes_cm=_read_only(kept[:n_kept]), status=_read_only(status[:n_kept])
         )
-        budget.spend(processed, fraction, lower, upper + area)
+        budget.spend(processed, 1.0 - area / max(root_area, 1e-300), lower, upper + area)
         if code == DONE:
             return kept[:n_kept], status[:n_kept]
         if code == KEPT_FULL:

@@ -137,19 +137,18 @@ def phi_min_rad(robot: Robot3RRR, precision_cm: float) -> float:
 
 def _range_stage(robot, spec, seeds, precision, budget, inside_cm2=0.0):
     """2-D bisection of the disjoint (x, y) boxes ``seeds`` with the orientation-range test;
-    returns the kept boxes and their status (2 inside, 1 boundary)."""
+    returns the kept boxes and their status (2 inside, 1 boundary). Each chunk is sized to
+    about ``CHUNK_S`` of work (orientation pieces, measured as it goes)."""
     import numpy as np
 
-    from planar_tui.kernels.workspace3rrr import DONE, KEPT_FULL, STACK_FULL
     from planar_tui.kernels.workspace_arc import limits_array
     from planar_tui.kernels.workspace_orientation import (
-        INSIDE,
         MAXIMAL,
         PIECE_STACK,
         TOTAL,
         range_bisect_chunk,
     )
-    from planar_tui.workspace.compute import _grow, _read_only, _xy_area
+    from planar_tui.workspace.compute import bisect_in_chunks
 
     mode = MAXIMAL if spec.orientation_mode == "maximal" else TOTAL
     lo, hi = (math.radians(v) for v in spec.orientation_deg)
@@ -157,16 +156,10 @@ def _range_stage(robot, spec, seeds, precision, budget, inside_cm2=0.0):
     limits = limits_array(spec.limits_rad)
     phi_min = phi_min_rad(robot, precision)
     pieces = np.zeros((PIECE_STACK, 2))
-    stack = np.zeros((max(256, 2 * len(seeds) + 64), 4))
-    stack[: len(seeds)] = seeds
-    root_area = _xy_area(seeds)
-    kept = np.zeros((max(4096, len(seeds)), 4))
-    status = np.zeros(kept.shape[0], dtype=np.int64)
-    n_stack, n_kept = len(seeds), 0
-    lower = upper = inside_cm2
     work = 4096  # orientation pieces per call, scaled to about CHUNK_S of work
-    while True:
-        previous = n_kept
+
+    def chunk(stack, n_stack, kept, status, n_kept):
+        nonlocal work
         started = time.perf_counter()
         n_stack, n_kept, processed, code, done = range_bisect_chunk(
             mode, lo, hi, phi_min, g, limits, precision, stack, n_stack, kept, status,
@@ -175,22 +168,9 @@ def _range_stage(robot, spec, seeds, precision, budget, inside_cm2=0.0):
         elapsed = time.perf_counter() - started
         if done >= work:
             work = int(min(max(done * CHUNK_S / max(elapsed, 1e-6), 256), 4 * work))
-        pending = stack[:n_stack]
-        area = _xy_area(pending)
-        new = slice(previous, n_kept)
-        lower += _xy_area(kept[new][status[new] == INSIDE])
-        upper += _xy_area(kept[new])
-        budget.progress.show_partial(
-            boxes_cm=_read_only(kept[:n_kept]), status=_read_only(status[:n_kept])
-        )
-        budget.spend(processed, 1.0 - area / max(root_area, 1e-300), lower, upper + area)
-        if code == DONE:
-            return kept[:n_kept], status[:n_kept]
-        if code == KEPT_FULL:
-            kept = _grow(kept)
-            status = _grow(status)
-        elif code == STACK_FULL:
-            stack = _grow(stack)
+        return n_stack, n_kept, processed, code
+
+    return bisect_in_chunks(seeds, budget, chunk, inside_cm2)
 
 
 def compute_orientation_workspace(robot: Robot3RRR, spec, budget):
