@@ -775,11 +775,17 @@ def main() -> None:
     jobs run (:func:`sigterm_as_interrupt`)."""
     from planar_tui.runtime import configure_process
 
-    signal.signal(signal.SIGINT, signal.default_int_handler)
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)
-    configure_process()
     try:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+        signal.signal(signal.SIGTERM, signal.SIG_DFL)
+        configure_process()
         app(prog_name="planar-tui")
+    except KeyboardInterrupt:
+        # Ctrl-C before Typer's own handling starts: while it builds the Click command
+        # from the commands' signatures (~50 ms after the imports).
+        if not _REPORTED:
+            os.write(2, b"interrupted: nothing was written\n")
+        sys.exit(ExitCode.INTERRUPTED)
     except SystemExit as exit_:
         # Typer turns a Ctrl-C outside the commands' own handling (while a command's
         # modules load, say) into a silent exit 130: say it in one line too.
