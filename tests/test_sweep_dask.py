@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import os
 import signal
+import time
 
 import pytest
 
@@ -99,3 +100,31 @@ def test_local_workers_share_the_cores_among_their_kernels(cluster):
     _, client = cluster
     threads = client.run(_kernel_threads)
     assert sorted(threads.values()) == [max(1, default_workers() // 2)] * 2
+
+
+def _worker_settings(dask_worker) -> tuple:
+    import dask
+
+    return (
+        dask_worker._tick_interval,
+        dask.config.get("distributed.worker.profile.enabled"),
+        dask.config.get("distributed.worker.memory.monitor-interval"),
+    )
+
+
+def test_local_cluster_processes_keep_their_housekeeping_to_once_a_second(cluster):
+    """Dask's idle housekeeping (event-loop tick every 20 ms, profiler every 10 ms, memory
+    check every 0.1 s) is turned down in the scheduler and in every worker, also in one a
+    nanny starts again after a crash: ticks once a second, no profiler."""
+    _, client = cluster
+    assert client.run_on_scheduler(lambda dask_scheduler: dask_scheduler._tick_interval) == 1.0
+    address, victim = next(iter(client.run(os.getpid).items()))
+    os.kill(victim, signal.SIGKILL)
+    deadline = time.monotonic() + 60
+    while address in (workers := client.scheduler_info()["workers"]) or len(workers) < 2:
+        assert time.monotonic() < deadline, "the nanny did not start a new worker"
+        time.sleep(0.05)
+    assert victim not in client.run(os.getpid).values()
+    settings = client.run(_worker_settings)
+    assert len(settings) == 2
+    assert set(settings.values()) == {(1.0, False, "1s")}
