@@ -313,6 +313,14 @@ def test_plot_key_of_a_job_table_writes_its_figure_and_is_checked(cli, tmp_path)
     assert not (tmp_path / "bad").exists()
 
 
+def test_every_job_table_has_the_plot_key():
+    from planar_tui.presets import JOB_KINDS
+
+    for name, kind in JOB_KINDS.items():
+        names = {field.name for field in dataclasses.fields(kind.settings)}
+        assert "plot" in names, f"[{name}] has no plot key"
+
+
 def test_a_sweep_without_a_varied_column_and_a_folder_as_figure_are_one_line_exit_2(cli, tmp_path):
     flat = tmp_path / "flat.csv"
     flat.write_text("point,orientation_deg,area_kept_cm2,status,message,seconds\n1,0,5.0,ok,,0.1\n")

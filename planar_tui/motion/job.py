@@ -26,6 +26,7 @@ from planar_tui.schema import (
     TableReader,
     integer,
     number,
+    plot_setting,
     read_option,
     relative_path,
     setting,
@@ -147,6 +148,7 @@ class MotionSpec(RunSettings):
         type_doc="relative path",
         doc="CSV file of the indices (with `sobol` or `efast`)",
     )
+    plot: str | None = plot_setting()
     indices_file: str = dataclasses.field(default="", compare=False)
     device_used: str | None = None
     device_note: str = ""
