@@ -585,8 +585,11 @@ def plot_csv(
         from planar_tui.batch import check_writable
 
         check_figure_option(out, "--out")
+        if result.is_dir():
+            raise PresetError(result, "(file)", "is a folder", "a result CSV file")
         target = out if out is not None else result.with_suffix(".png")
-        from planar_tui.figures import UnknownTable, read_table, save_table_figure
+        from planar_tui.figures import UnknownTable, figure_for_table, read_table
+        from planar_tui.figures.canvas import save
 
         try:
             table = read_table(result)
@@ -598,11 +601,13 @@ def plot_csv(
             ) from None
         check_writable(target, "figure file")
         try:
-            written = save_table_figure(table, target, result.name)
+            figure = figure_for_table(table, result.name)
         except UnknownTable as error:
             raise PresetError(result, "(header)", *error.args) from None
-        except ValueError as error:  # a recognised table the figure cannot show
+        except ValueError as error:  # no rows, or a recognised table the figure cannot show
             raise PresetError(result, "(content)", f"cannot be drawn: {error}") from None
+        try:
+            written = save(figure, target)
         except OSError as error:
             raise fail(f"error: {target}: cannot write: {error.strerror or error}") from None
     stdout.print(f"wrote {written}", markup=False)

@@ -327,7 +327,7 @@ def test_a_sweep_without_a_varied_column_and_a_folder_as_figure_are_one_line_exi
     result = cli("plot", flat)
     assert result.exit_code == 2
     assert result.stderr == (
-        f"error: {flat}: (content): cannot be drawn: the sweep has no varied numeric column\n"
+        f"error: {flat}: (content): cannot be drawn: the sweep has no varied key column\n"
     )
     folder = tmp_path / "f.png"
     folder.mkdir()
@@ -377,3 +377,236 @@ def test_sweep_figure_leaves_out_columns_that_echo_the_varied_key():
     rows = [(1, -10.0, 90.5, -10.0, "ok", "", 0.1), (2, 0.0, 106.8, 0.0, "ok", "", 0.1),
             (3, 10.0, 90.5, 10.0, "ok", "", 0.1)]  # fmt: skip
     assert split_columns(CsvTable(header, rows)) == (["orientation_deg"], ["area_kept_cm2"])
+
+
+# -- sweeps over text and list-valued keys --------------------------------------------
+
+FORMS_HEADER = ("point,form,strategy,precision_cm,boxes_processed,area_kept_cm2,"
+                "orientation_lo_deg,status,message,seconds")  # fmt: skip
+
+
+def _table(tmp_path, header: str, rows: list[str]):
+    path = tmp_path / "sweep.csv"
+    path.write_text("\n".join([header, *rows]) + "\n", encoding="utf-8")
+    return figures.read_table(path)
+
+
+def test_a_sweep_over_a_text_key_puts_its_values_on_the_x_axis(tmp_path):
+    from planar_tui.figures.sweep import split_columns
+
+    table = _table(tmp_path, FORMS_HEADER, [
+        "1,natural,legwise,0.9375,3907,137.1,0.0,ok,,0.3",
+        "2,slope,legwise,0.9375,4496,140.6,0.0,ok,,0.1",
+        "3,mean-value,legwise,0.9375,5628,145.9,0.0,failed,boom,0.1",
+    ])  # fmt: skip
+    varied, shown = split_columns(table)
+    assert varied == ["form"]  # not boxes_processed, the first output that varies
+    assert shown[:2] == ["boxes_processed", "area_kept_cm2"]
+    fig = figures.figure_for_table(table)
+    ax = fig.axes[1]  # area_kept_cm2
+    assert ax.get_xlabel() == "form" and ax.get_ylabel() == "area_kept_cm2"
+    assert [t.get_text() for t in ax.get_xticklabels()] == ["natural", "slope", "mean-value"]
+    (points,) = [line for line in ax.lines if line.get_gid() == "sweep"]
+    assert points.get_xydata().tolist() == [[0.0, 137.1], [1.0, 140.6]]
+    assert points.get_linestyle() == "None"  # categories: points, no line between them
+    (failed,) = [line for line in ax.lines if line.get_gid() == "failed"]
+    assert failed.get_xdata().tolist() == [2.0]
+
+
+def test_a_text_key_with_a_numeric_key_draws_one_line_per_value(tmp_path):
+    header = "point,form,orientation_deg,strategy,area_kept_cm2,status,message,seconds"
+    rows = [f"{k},{form},{phi},legwise,{area},ok,,0.1" for k, (form, phi, area) in enumerate(
+        [("natural", -10, 167.9), ("natural", 0, 137.1), ("natural", 10, 167.8),
+         ("mean-value", -10, 166.1), ("mean-value", 0, 145.9), ("mean-value", 10, 166.2)],
+        start=1)]  # fmt: skip
+    fig = figures.figure_for_table(_table(tmp_path, header, rows))
+    (ax,) = fig.axes
+    lines = [line for line in ax.lines if line.get_gid() == "sweep"]
+    assert [line.get_label() for line in lines] == ["form = natural", "form = mean-value"]
+    assert lines[0].get_xydata().tolist() == [[-10, 167.9], [0, 137.1], [10, 167.8]]
+    assert lines[1].get_xydata().tolist() == [[-10, 166.1], [0, 145.9], [10, 166.2]]
+    assert ax.get_xlabel() == "orientation_deg"
+
+
+def test_two_text_keys_draw_a_heat_map_with_labelled_ticks(tmp_path):
+    header = "point,form,strategy,area_kept_cm2,status,message,seconds"
+    cells = {("natural", "legwise"): 1.0, ("natural", "joint"): 2.0,
+             ("slope", "legwise"): 3.0, ("slope", "joint"): 4.0,
+             ("mean-value", "legwise"): 5.0, ("mean-value", "joint"): 6.0}  # fmt: skip
+    rows = [f"{k},{form},{strategy},{value},ok,,0.1"
+            for k, ((form, strategy), value) in enumerate(cells.items(), start=1)]  # fmt: skip
+    fig = figures.figure_for_table(_table(tmp_path, header, rows))
+    (image,) = _by_gid(fig, "heat", "images")
+    ax = image.axes
+    assert [t.get_text() for t in ax.get_xticklabels()] == ["natural", "slope", "mean-value"]
+    assert [t.get_text() for t in ax.get_yticklabels()] == ["legwise", "joint"]
+    assert np.asarray(image.get_array()).tolist() == [[1.0, 3.0, 5.0], [2.0, 4.0, 6.0]]
+
+
+def test_a_list_valued_key_is_categorical_in_memory_and_read_back(tmp_path):
+    from planar_tui.csvio import CsvTable, write_csv_atomic
+
+    header = ("point", "theta_deg[1]", "tau1_Nm", "status", "message", "seconds")
+    rows = [(1, [0, 0], 1.5, "ok", "", 0.1), (2, [10, 20], 2.5, "ok", "", 0.1)]
+    table = CsvTable(header, rows)
+    write_csv_atomic(tmp_path / "lists.csv", table)
+    for source in (table, figures.read_table(tmp_path / "lists.csv")):
+        (ax,) = figures.figure_for_table(source).axes
+        assert [t.get_text() for t in ax.get_xticklabels()] == ["[0, 0]", "[10, 20]"]
+        (points,) = _by_gid(ax.figure, "sweep")
+        assert points.get_xydata().tolist() == [[0.0, 1.5], [1.0, 2.5]]
+
+
+def test_an_output_column_is_never_an_axis(cli, tmp_path):
+    # no key column varies (one form), only outputs do: refused, not drawn against one
+    table = _table(tmp_path, FORMS_HEADER, [
+        "1,natural,legwise,0.9375,3907,137.1,0.0,ok,,0.3",
+        "2,natural,legwise,0.9375,4496,140.6,0.0,ok,,0.1",
+    ])  # fmt: skip
+    with pytest.raises(ValueError, match="no varied key column"):
+        figures.figure_for_table(table)
+    result = cli("plot", tmp_path / "sweep.csv")
+    assert result.exit_code == 2
+    assert result.stderr == (
+        f"error: {tmp_path / 'sweep.csv'}: (content): cannot be drawn: "
+        "the sweep has no varied key column\n"
+    )
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["sweep.csv"]
+
+
+# -- tables the plot command refuses ---------------------------------------------------
+
+
+def test_plot_of_a_header_without_rows_is_one_line_exit_2_for_every_kind(cli, csv_files, tmp_path):
+    folder, files = csv_files
+    for name, kind in files.items():
+        header = (folder / name).read_text(encoding="utf-8").splitlines()[0]
+        empty = tmp_path / name
+        empty.write_text(header + "\n", encoding="utf-8")
+        assert figures.recognise(figures.read_table(empty).header) == kind
+        result = cli("plot", empty, "--out", tmp_path / "f.svg")
+        assert result.exit_code == 2, (name, result.output)
+        assert result.stderr == (
+            f"error: {empty}: (content): cannot be drawn: the table has a header but no data rows\n"
+        )
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(files)  # nothing written
+
+
+def test_plot_of_a_folder_is_one_line_exit_2(cli, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    for argument in (".", str(tmp_path)):
+        result = cli("plot", argument)
+        assert result.exit_code == 2
+        assert (
+            result.stderr
+            == f"error: {argument}: (file): is a folder (expected a result CSV file)\n"
+        )
+    assert list(tmp_path.iterdir()) == []
+
+
+# -- bundled presets' sweep and motion-uncertainty results ------------------------------
+
+
+def _shrunk(tmp_path, preset: str, replacements: dict[str, str]) -> Path:
+    """A bundled preset with smaller settings (each replacement must apply)."""
+    text = (PRESETS / f"{preset}.toml").read_text(encoding="utf-8")
+    for old, new in replacements.items():
+        assert old in text, old
+        text = text.replace(old, new)
+    path = tmp_path / f"{preset}.toml"
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def _saved_as_svg_and_png(fig, folder: Path) -> None:
+    from planar_tui.figures.canvas import save
+
+    width, height = fig.get_size_inches()
+    svg, png = save(fig, folder / "f.svg"), save(fig, folder / "f.png")
+    assert "<svg" in svg.read_text(encoding="utf-8") and svg.stat().st_size > 10_000
+    assert png_size(png) == (round(width * DPI), round(height * DPI))
+
+
+def test_bundled_orientation_sweep_figure_to_svg_and_png(tmp_path):
+    from planar_tui.sweep.service import run_sweep
+    from planar_tui.sweep.spec import parse_sweeps
+
+    path = _shrunk(tmp_path, "sweep-3rrr-orientation", {
+        "precision_cm = 0.46875 ": "precision_cm = 0.9375 ",
+        "refine_precision_cm = 0.029296875": "refine_precision_cm = 0.46875",
+        "count = 25": "count = 3",
+    })  # fmt: skip
+    (sweep,) = parse_sweeps(load_preset(path))
+    run = run_sweep(sweep)
+    fig = figures.figure_for_table(run.table, sweep.label)
+    panel = {ax.get_ylabel(): ax for ax in fig.axes if ax.get_visible()}
+    assert all(ax.get_xlabel() == "orientation_deg" for ax in panel.values())
+    assert "orientation_lo_deg" not in panel and "precision_cm" not in panel  # echoes
+    kept, inside, exact = (
+        _by_gid(panel[name].figure, "sweep")[list(panel).index(name)].get_xydata()
+        for name in ("area_kept_cm2", "area_inside_cm2", "area_geometric_cm2")
+    )
+    assert kept[:, 0].tolist() == inside[:, 0].tolist() == [-60.0, 0.0, 60.0]
+    # the drawn bracket holds the exact area at every orientation; phi = 0 is Table 3's
+    assert np.all(inside[:, 1] <= exact[:, 1]) and np.all(exact[:, 1] <= kept[:, 1])
+    assert exact[1, 1] == pytest.approx(106.750, abs=1e-3)
+    _saved_as_svg_and_png(fig, tmp_path)
+
+
+def test_bundled_motion_uncertainty_figures_to_svg_and_png(tmp_path):
+    path = _shrunk(tmp_path, "paper-a-table1-motion", {
+        "duration_s = 1.0": "duration_s = 0.02",
+        "samples = 256": "samples = 8",
+        "at_s = [0.25, 0.5, 1.0]": "at_s = [0.01, 0.02]",
+    })  # fmt: skip
+    (job,) = batch.prepare_jobs(load_preset(path).jobs)
+    result = batch.run_job(job)
+    band = figures.figure_for_result(job, result)
+    means = _by_gid(band, "mean")
+    outputs = [ax.get_title() for ax in band.axes if ax.get_visible()]
+    assert len(means) == len(outputs) == result.band.shape[2]
+    for k, line in enumerate(means):
+        assert line.get_xdata().tolist() == result.t_s.tolist()
+        assert line.get_ydata().tolist() == result.band[:, 0, k].tolist()
+    # the first output's band: the polygon between its 5th and 95th percentiles
+    polygon = _by_gid(band, "band", "collections")[0].get_paths()[0].vertices
+    assert polygon[:, 1].min() == pytest.approx(result.band[:, 2, 0].min(), abs=0)
+    assert polygon[:, 1].max() == pytest.approx(result.band[:, 4, 0].max(), abs=0)
+    _saved_as_svg_and_png(band, tmp_path)
+    indices = figures.figure_for_table(result.extra_tables["indices"], job.label)
+    assert [ax.get_title() for ax in indices.axes if ax.get_gid() == "bars"][:1] == outputs[:1]
+    (tmp_path / "f.svg").unlink()
+    _saved_as_svg_and_png(indices, tmp_path)
+
+
+# -- the simulate figure's energy balance ------------------------------------------------
+
+
+def test_simulate_energy_panel_is_the_drift_net_of_the_torques_work(tmp_path):
+    """Table 1's torque run: the energy grows by the work of the constant torques,
+    ``W = Σ τ_i (θ_i(t) − θ_i(0))``; net of it, RK4 at 1e-4 s conserves energy."""
+    job, result = _run("paper-a-table1", "simulate[1]", duration_s=0.3, every=10)
+    assert any(job.spec.torques_Nm)
+    fig = figures.figure_for_result(job, result)
+    (ax,) = [ax for ax in fig.axes if ax.get_ylabel() == "E − E(0) − W (J)"]
+    (line,) = ax.lines
+    energy = result.kinetic_J + result.potential_J
+    work = sum(tau * (result.theta_rad[:, i] - result.theta_rad[0, i])
+               for i, tau in enumerate(job.spec.torques_Nm))  # fmt: skip
+    assert np.max(np.abs(energy - energy[0])) > 0.5  # the torques' work, not drift
+    assert np.max(np.abs(line.get_ydata())) < 1e-9
+    assert line.get_ydata() == pytest.approx(energy - energy[0] - work, abs=1e-12)
+    assert ax.get_title().startswith("drift, max ")
+    fig.canvas.draw()  # the title fits over its panel
+    assert ax.title.get_window_extent().width < ax.get_window_extent().width
+
+
+def test_simulate_figure_from_a_csv_alone_makes_no_drift_claim(results):
+    _, result = results["simulate"]
+    fig = figures.figure_for_table(result.table)
+    (ax,) = [ax for ax in fig.axes if ax.get_ylabel() == "E(t) − E(0) (J)"]
+    energy = result.kinetic_J + result.potential_J
+    assert ax.lines[0].get_ydata().tolist() == (energy - energy[0]).tolist()
+    assert ax.get_title().startswith("energy change, max ") and "drift" not in ax.get_title()
+    fig.canvas.draw()
+    assert ax.title.get_window_extent().width < ax.get_window_extent().width

@@ -6,8 +6,10 @@ from __future__ import annotations
 
 import csv
 import xml.etree.ElementTree as ET
+from pathlib import Path
 
 from tests.sweep_presets import TORQUES, TORQUES_BASE, write
+from tests.test_app import async_test
 
 SWEEP = """[[sweep]]
 job = "torques"
@@ -75,3 +77,34 @@ plot = "postures.svg"
     assert "Traceback" not in result.output
     assert (tmp_path / "out" / "postures.csv").exists()
     assert not (tmp_path / "out" / "postures.svg").exists()
+
+
+@async_test
+async def test_app_figure_key_on_the_sweep_screen_writes_the_sweep_figure(tmp_path):
+    """ctrl+l on a finished sweep (a text key: the workspace form) writes the sweep's
+    figure beside the CSV the sweep screen exports, the forms on the x axis."""
+    from planar_tui.app.screens.sweep import SweepScreen
+    from tests.test_app import SIZE, finish, make_app
+    from tests.test_app_sweep import _fill, _open_dialog
+
+    app = make_app(tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        dialog = await _open_dialog(app, pilot, "workspace")
+        _fill(dialog, [("form", '"natural", "slope"')])
+        await pilot.press("enter")
+        await finish(app, pilot)
+        await pilot.pause(0.2)
+        screen = app.screen
+        assert isinstance(screen, SweepScreen), screen
+        assert "ctrl+l writes the figure" in str(screen.query_one("#sweep-heat").render())
+        await pilot.press("ctrl+l")
+        await app.workers.wait_for_complete()
+        await pilot.pause(0.1)
+        figure = tmp_path / Path(screen.run.sweep.output).with_suffix(".png")
+        assert any(f"Wrote {figure}" in n.message for n in app._notifications)
+        assert app.screen is screen
+    assert figure.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    from planar_tui.figures import figure_for_table
+
+    ax = figure_for_table(screen.run.table).axes[0]
+    assert [t.get_text() for t in ax.get_xticklabels()] == ["natural", "slope"]

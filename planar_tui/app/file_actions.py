@@ -345,9 +345,28 @@ class FileActions:
         (plan,) = plan_outputs([pane.job], self.output_dir)
         return plan.figure or plan.main.with_suffix(".png")
 
+    def sweep_figure_path(self, run: Any) -> Path:
+        """Where a sweep's figure goes: its ``plot`` key in the output folder (as
+        ``planar-tui sweep --out-dir`` puts it), else the CSV the sweep screen exports by
+        default with the suffix ``.png`` (beside it)."""
+        from planar_tui.sweep.service import output_path
+
+        if run.sweep.plot is not None:
+            return self.output_dir / run.sweep.plot
+        return output_path(run.sweep, self.output_dir).with_suffix(".png")
+
     def action_figure(self) -> None:
-        """Write the figure of the result on screen beside its CSV (``ctrl+l``), asking
-        before it replaces a file; drawn in a thread (matplotlib, about a second)."""
+        """Write the figure of the result on screen beside its CSV (``ctrl+l``; on the
+        sweep screen, the sweep's figure), asking before it replaces a file; drawn in a
+        thread (matplotlib, about a second)."""
+        from planar_tui.app.screens.sweep import SweepScreen
+
+        if isinstance(self.screen, SweepScreen):
+            from planar_tui.sweep.service import write_figure
+
+            run = self.screen.run
+            self.confirm_figure(self.sweep_figure_path(run), lambda path: write_figure(run, path))
+            return
         if self.dialog_open():
             return
         from planar_tui.app.widgets.panes import JobPane
@@ -356,23 +375,34 @@ class FileActions:
         if not isinstance(pane, JobPane) or pane.result is None or pane.job is None:
             self.notify("No figure: run a job on this tab first.", severity="warning")
             return
-        path = self.figure_path(pane)
+        job, result = pane.job, pane.result
+
+        def save(path: Path) -> Path:
+            from planar_tui.figures import save_result_figure
+
+            return save_result_figure(job, result, path)
+
+        self.confirm_figure(self.figure_path(pane), save)
+
+    def confirm_figure(self, path: Path, save: Callable[[Path], Path]) -> None:
+        """Write a figure with ``save`` into ``path`` (:meth:`write_figure`), asking first
+        when the file exists."""
         if not existing_files([path]):
-            self.write_figure(pane, path)
+            self.write_figure(path, save)
             return
 
         def answered(yes: bool | None) -> None:
             if yes:
-                self.write_figure(pane, path)
+                self.write_figure(path, save)
 
         dialog = ConfirmDialog(
             "Overwrite 1 file?", detail=str(path), yes="Overwrite (y)", no="Cancel (n)"
         )
         self.push_screen(dialog, answered)
 
-    def write_figure(self, pane: JobPane, path: Path) -> None:
-        """Draw and write the pane's figure in a worker thread; notify the path, or show
-        why it failed in a dialog (nothing written)."""
+    def write_figure(self, path: Path, save: Callable[[Path], Path]) -> None:
+        """Draw and write a figure (``save(path)``) in a worker thread; notify the path,
+        or show why it failed in a dialog (nothing written)."""
         from planar_tui import batch
 
         try:
@@ -380,15 +410,15 @@ class FileActions:
         except PresetError as error:
             self.push_screen(MessageDialog("No figure written", str(error)))
             return
-        job, result = pane.job, pane.result
 
         def draw() -> None:
-            from planar_tui.figures import save_result_figure
-
             try:
-                written = save_result_figure(job, result, path)
+                written = save(path)
             except Exception as error:  # any drawing failure: a dialog, never a crash
-                message = f"{path}: cannot write: {error}"
+                from planar_tui.batch import OutputFailed
+
+                message = str(error) if isinstance(error, OutputFailed) else (
+                    f"{path}: cannot write: {error}")  # fmt: skip
                 self.call_from_thread(self.push_screen, MessageDialog("No figure written", message))
                 return
             self.call_from_thread(self.notify, f"Wrote {written}", title="Figure")

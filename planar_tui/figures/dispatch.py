@@ -67,8 +67,12 @@ def _drawer(header: tuple[str, ...]) -> Callable[[CsvTable, str], Any]:
 
 
 def figure_for_table(table: CsvTable, title: str = "") -> Any:
-    """The figure of a result table (:class:`UnknownTable` if its header is unknown)."""
-    return _drawer(tuple(table.header))(table, title)
+    """The figure of a result table (:class:`UnknownTable` if its header is unknown,
+    ``ValueError`` if it has no data rows or its drawer cannot show it)."""
+    drawer = _drawer(tuple(table.header))
+    if len(table.rows) == 0:
+        raise ValueError("the table has a header but no data rows")
+    return drawer(table, title)
 
 
 def figure_for_result(job: Any, result: Any) -> Any:

@@ -1,10 +1,17 @@
-"""Figure of a simulation: joint angles and rates against time, the energies and the
-energy drift :math:`E(t) - E(0)`, and (when the robot is known) the tip's path in the
-plane with the arm drawn at a few instants (:mod:`planar_tui.figures.arm`).
+"""Figure of a simulation: joint angles and rates against time, the energies, the energy
+balance, and (when the robot is known) the tip's path in the plane with the arm drawn at a
+few instants (:mod:`planar_tui.figures.arm`).
+
+The energy-balance panel: with the constant joint torques ``τ`` known (a finished job's
+``torques_Nm``), the work they have done is ``W(t) = Σ τ_i (θ_i(t) − θ_i(0))`` (relative
+joint angles, the generalised coordinates), so the panel shows the integrator's drift
+``E(t) − E(0) − W(t)``, zero for an exact solution. The simulate CSV does not hold the
+torques, so a figure drawn from the file alone shows ``E(t) − E(0)`` with no claim of
+drift (it is the torques' work unless they are zero).
 
 Read from the simulate CSV (``t_s, theta*_rad, omega*_rad_s, kinetic_J, potential_J,
-energy_J``); the CSV does not hold the link lengths, so a figure drawn from the file
-alone has no tip panel.
+energy_J``); the CSV does not hold the link lengths either, so a figure drawn from the
+file alone has no tip panel.
 """
 
 from __future__ import annotations
@@ -25,8 +32,18 @@ def matches(header: tuple[str, ...]) -> bool:
     return has_columns(header, REQUIRED)
 
 
-def draw(table: CsvTable, title: str, lengths_m: Any = None) -> Any:
-    """The figure of a simulate table; ``lengths_m`` adds the tip's path and the arm."""
+def work_J(theta_rad: Any, torques_Nm: Any) -> Any:
+    """The work of constant joint torques since the first row, ``Σ τ_i (θ_i(t) − θ_i(0))``
+    (J), from the relative joint angles ``theta_rad`` (rows × joints)."""
+    import numpy as np
+
+    theta_rad = np.asarray(theta_rad, dtype=float)
+    return (theta_rad - theta_rad[0]) @ np.asarray(torques_Nm, dtype=float)
+
+
+def draw(table: CsvTable, title: str, lengths_m: Any = None, torques_Nm: Any = None) -> Any:
+    """The figure of a simulate table; ``lengths_m`` adds the tip's path and the arm,
+    ``torques_Nm`` (the run's constant torques) the drift ``E − E(0) − W`` (module doc)."""
     import numpy as np
 
     header = table.header
@@ -53,10 +70,14 @@ def draw(table: CsvTable, title: str, lengths_m: Any = None) -> Any:
         ax_energy.plot(t, column(table, name), label=label, gid="series")
     ax_energy.plot(t, energy, color="k", lw=1.4, label="total E", gid="series")
     ax_energy.set(xlabel="t (s)", ylabel="energy (J)", title="energy")
-    ax_drift.plot(t, energy - energy[0], color="k", gid="series")
-    drift = float(np.max(np.abs(energy - energy[0]))) if len(energy) else 0.0
-    ax_drift.set(xlabel="t (s)", ylabel="E(t) − E(0) (J)",
-                 title=f"E(t) − E(0), max {drift:.2e} J (drift under zero torques)")  # fmt: skip
+    change = energy - energy[0]
+    if torques_Nm is not None and len(torques_Nm) == n:
+        balance, label, name = change - work_J(theta, torques_Nm), "E − E(0) − W", "drift"
+    else:
+        balance, label, name = change, "E(t) − E(0)", "energy change"
+    ax_drift.plot(t, balance, color="k", gid="series")
+    largest = float(np.max(np.abs(balance)))
+    ax_drift.set(xlabel="t (s)", ylabel=f"{label} (J)", title=f"{name}, max {largest:.2e} J")
     for ax in (ax_theta, ax_omega, ax_energy):
         ax.legend(fontsize="small", ncols=2 if n > 3 else 1)
     for ax in (ax_theta, ax_omega, ax_energy, ax_drift):
@@ -85,5 +106,6 @@ def _tip_panel(ax: Any, lengths_m: Any, t: Any, theta: Any) -> None:
 
 
 def from_result(job: Any, result: Any) -> Any:
-    """The figure of a finished simulate job (the arm drawn with the job's robot)."""
-    return draw(result.table, job.label, job.robot.lengths_m)
+    """The figure of a finished simulate job (the arm drawn with the job's robot, the
+    energy drift net of the work of its torques)."""
+    return draw(result.table, job.label, job.robot.lengths_m, job.spec.torques_Nm)

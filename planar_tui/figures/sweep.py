@@ -1,23 +1,36 @@
 """Figure of a sweep (issue 10's CSV: ``point``, one column per varied key named by its
 path, the job kind's summary figures, ``status``, ``message``, ``seconds``).
 
-Varied keys are the columns after ``point`` named as preset key paths (a job key such as
-``orientation_deg``, a robot key ``robot3rrr.distal_cm``, a list element
-``robot.lengths_m[2]``) that take at least two values; the figures are the other numeric
-columns but ``seconds`` and the settings echoed by the kind's summary (``precision_cm``,
-or a column equal to a varied key's, such as ``orientation_lo_deg``). One varied key: each figure against it as a line, the failed
-points marked with a red ✕ on the axis. Two: a heat map per figure (a full grid), or the
-points coloured by the figure (a sampled design), failed points marked ✕.
+Varied keys are the leading columns after ``point`` named as preset key paths (a job key
+such as ``orientation_deg`` or ``form``, a robot key ``robot3rrr.distal_cm``, a list
+element ``robot.lengths_m[2]``) that take at least two values; a key whose cells are all
+numbers is numeric, any other (text such as a workspace ``form``, a list such as a
+posture) is categorical, its values in order of first appearance. The figures are the
+other numeric columns but ``seconds`` and the settings echoed by the kind's summary
+(``precision_cm``, or a column equal to a varied key's, such as ``orientation_lo_deg``). A
+figure is never taken as an axis: a table where no key column varies is refused.
+
+- One numeric key: each figure against it as a line.
+- One categorical key: each figure as points over the categories (tick labels).
+- A categorical key and a numeric key: one line per category against the numeric key.
+- Two numeric keys: a heat map per figure (a full grid), or the points coloured by the
+  figure (a sampled design).
+- Two categorical keys: a heat map over the categories (labelled ticks; a cell holding
+  several points shows their mean).
+
+Failed points are marked with a red ✕ (on the x axis for a line, in the cell for a heat
+map); with more than two varied keys the first two are the axes.
 """
 
 from __future__ import annotations
 
 import math
 import re
+from dataclasses import dataclass
 from typing import Any
 
 from planar_tui.csvio import CsvTable
-from planar_tui.figures.canvas import new_figure
+from planar_tui.figures.canvas import colour, new_figure
 from planar_tui.figures.table import column, text_column
 
 #: Most figures drawn (the first ones in column order).
@@ -42,6 +55,52 @@ def is_key_path(name: str, keys: set[str]) -> bool:
     return bare in keys or (bare.split(".", 1)[-1] in keys and "." in bare)
 
 
+def _is_number(cell: Any) -> bool:
+    import numpy as np
+
+    return isinstance(cell, int | float | np.number) and not isinstance(cell, bool | np.bool_)
+
+
+def is_numeric(table: CsvTable, name: str) -> bool:
+    """Whether every non-empty cell of column ``name`` is a number (not text, a list or a
+    boolean)."""
+    if getattr(getattr(table.rows, "dtype", None), "kind", "") == "f":
+        return True
+    index = table.header.index(name)
+    cells = [row[index] for row in table.rows if index < len(row)]
+    return all(_is_number(cell) for cell in cells if cell is not None and cell != "")
+
+
+@dataclass(frozen=True)
+class Axis:
+    """A varied key as an axis: ``values`` per row (the numbers, or the category index),
+    and for a categorical key its ``categories`` (tick labels, in order of appearance)."""
+
+    name: str
+    values: Any
+    categories: tuple[str, ...] | None = None
+
+    @property
+    def categorical(self) -> bool:
+        return self.categories is not None
+
+
+def key_axis(table: CsvTable, name: str) -> Axis:
+    """Column ``name`` as an :class:`Axis` (numeric or categorical, see the module doc)."""
+    import numpy as np
+
+    if is_numeric(table, name):
+        return Axis(name, column(table, name))
+    labels = text_column(table, name)
+    categories = tuple(dict.fromkeys(labels))
+    index = {label: k for k, label in enumerate(categories)}
+    return Axis(name, np.array([index[label] for label in labels], dtype=float), categories)
+
+
+def _varies(table: CsvTable, name: str) -> bool:
+    return len(set(text_column(table, name)) - {""}) > 1
+
+
 def split_columns(table: CsvTable) -> tuple[list[str], list[str]]:
     """(varied keys, figures) of a sweep table (see the module doc)."""
     import numpy as np
@@ -51,21 +110,15 @@ def split_columns(table: CsvTable) -> tuple[list[str], list[str]]:
     for name in table.header[1:]:
         if name in BOOKKEEPING:
             continue
-        values = column(table, name)
-        finite = values[np.isfinite(values)]
-        if not len(finite):
-            continue
         if is_key_path(name, keys):
-            if len(np.unique(finite)) > 1 and not figures:
-                varied.append(name)  # a setting that stays put (an echoed ε) is no figure
-        else:
-            figures.append(name)
-    if not varied and figures:  # no key path: the first numeric column that varies
-        for name in list(figures):
-            if len(np.unique(column(table, name)[np.isfinite(column(table, name))])) > 1:
+            # the keys lead; a key setting after the first figure, or one that stays put
+            # (an echoed ε or strategy), is neither an axis nor a figure
+            if not figures and _varies(table, name):
                 varied.append(name)
-                figures.remove(name)
-                break
+            continue
+        values = column(table, name)
+        if np.isfinite(values).any():
+            figures.append(name)
     echoes = [name for name in figures
               if any(_same(column(table, name), column(table, key)) for key in varied)]  # fmt: skip
     return varied, [name for name in figures if name not in echoes]
@@ -80,56 +133,118 @@ def _same(values: Any, other: Any) -> bool:
 
 
 def draw(table: CsvTable, title: str) -> Any:
-    """Figures against one varied key (lines) or two (heat maps)."""
+    """The figures against one varied key or two (see the module doc)."""
     import numpy as np
 
     varied, figures = split_columns(table)
     if not varied:
-        raise ValueError("the sweep has no varied numeric column")
+        raise ValueError("the sweep has no varied key column")
     failed = np.array([s != "ok" for s in text_column(table, "status")], dtype=bool)
+    axes_keys = [key_axis(table, name) for name in varied[:2]]
+    if len(axes_keys) == 2 and axes_keys[0].categorical and not axes_keys[1].categorical:
+        axes_keys.reverse()  # the numeric key across, one line per category
     shown = figures[:MOST_PANELS]
     cols = min(max(len(shown), 1), 3)
     rows = max(1, math.ceil(len(shown) / cols))
     fig = new_figure(4.2 * cols + 0.6, 3.4 * rows + 0.6)
     axes = fig.subplots(rows, cols, squeeze=False).ravel()
-    x = column(table, varied[0])
     for ax, name in zip(axes, shown, strict=False):
         y = column(table, name)
-        if len(varied) == 1:
-            order = np.argsort(x, kind="stable")
-            ok = order[~failed[order]]
-            ax.plot(x[ok], y[ok], "-o", ms=3.5, gid="sweep")
-            if failed.any():
-                ax.plot(x[failed], np.zeros(failed.sum()), "x", color="red", ms=8, mew=2,
-                        transform=ax.get_xaxis_transform(), clip_on=False, gid="failed",
-                        label="failed")  # fmt: skip
-                ax.legend(fontsize="small")
-            ax.set(xlabel=varied[0], ylabel=name)
-            ax.grid(alpha=0.3)
+        if len(axes_keys) == 1:
+            _line(ax, axes_keys[0], y, failed)
+            ax.set(ylabel=name)
+        elif axes_keys[1].categorical and not axes_keys[0].categorical:
+            _lines_per_category(ax, axes_keys[0], axes_keys[1], y, failed)
+            ax.set(ylabel=name)
         else:
-            _heat(fig, ax, x, column(table, varied[1]), y, failed, varied, name)
+            _heat(fig, ax, axes_keys[0], axes_keys[1], y, failed, name)
     for ax in axes[len(shown) :]:
         ax.set_visible(False)
     fig.suptitle(title)
     return fig
 
 
-def _heat(fig, ax, x, y, value, failed, varied, name) -> None:
-    """A heat map of ``value`` over a full (x, y) grid, else coloured points."""
+def _failed_on_axis(ax: Any, x: Any) -> None:
+    """A red ✕ on the x axis at each failed point's ``x``."""
     import numpy as np
 
-    xs, ys = np.unique(x[np.isfinite(x)]), np.unique(y[np.isfinite(y)])
-    if len(xs) * len(ys) == len(x):
-        grid = np.full((len(ys), len(xs)), np.nan)
-        grid[np.searchsorted(ys, y), np.searchsorted(xs, x)] = np.where(failed, np.nan, value)
-        image = ax.imshow(grid, origin="lower", aspect="auto", cmap="viridis", gid="heat",
+    if len(x):
+        ax.plot(x, np.zeros(len(x)), "x", color="red", ms=8, mew=2, clip_on=False,
+                transform=ax.get_xaxis_transform(), gid="failed", label="failed")  # fmt: skip
+
+
+def _ticks(ax: Any, axis: Axis, which: str) -> None:
+    """Label a categorical axis with its categories."""
+    if axis.categorical:
+        getattr(ax, f"set_{which}ticks")(range(len(axis.categories)), axis.categories)
+        if which == "x":
+            ax.tick_params(axis="x", labelrotation=20 if len(axis.categories) > 3 else 0)
+
+
+def _line(ax: Any, across: Axis, y: Any, failed: Any) -> None:
+    """The figure against one key: a line (numeric) or points per category."""
+    import numpy as np
+
+    x = across.values
+    order = np.argsort(x, kind="stable")
+    ok = order[~failed[order]]
+    ax.plot(x[ok], y[ok], "o" if across.categorical else "-o", ms=5 if across.categorical
+            else 3.5, gid="sweep")  # fmt: skip
+    _failed_on_axis(ax, x[failed])
+    if failed.any():
+        ax.legend(fontsize="small")
+    if across.categorical:
+        ax.set_xlim(-0.5, len(across.categories) - 0.5)
+    _ticks(ax, across, "x")
+    ax.set(xlabel=across.name)
+    ax.grid(alpha=0.3)
+
+
+def _lines_per_category(ax: Any, across: Axis, by: Axis, y: Any, failed: Any) -> None:
+    """The figure against the numeric key ``across``, one line per category of ``by``."""
+    import numpy as np
+
+    count = len(by.categories)
+    for k, category in enumerate(by.categories):
+        rows = np.flatnonzero((by.values == k) & ~failed)
+        rows = rows[np.argsort(across.values[rows], kind="stable")]
+        ax.plot(across.values[rows], y[rows], "-o", ms=3.5, color=colour(k, count),
+                label=f"{by.name} = {category}", gid="sweep")  # fmt: skip
+    _failed_on_axis(ax, across.values[failed])
+    ax.legend(fontsize="x-small")
+    ax.set(xlabel=across.name)
+    ax.grid(alpha=0.3)
+
+
+def _heat(fig, ax, across: Axis, down: Axis, value, failed, name) -> None:
+    """A heat map of ``value`` over a full grid of the two keys (categories on their own
+    cells; a cell with several points: their mean), else coloured points."""
+    import numpy as np
+
+    x, y = across.values, down.values
+    xs = np.arange(len(across.categories)) if across.categorical else np.unique(x[np.isfinite(x)])
+    ys = np.arange(len(down.categories)) if down.categorical else np.unique(y[np.isfinite(y)])
+    both = across.categorical and down.categorical
+    if both or len(xs) * len(ys) == len(x):
+        good = ~failed & np.isfinite(value)
+        sums = np.zeros((len(ys), len(xs)))
+        counts = np.zeros((len(ys), len(xs)))
+        cells = (np.searchsorted(ys, y[good]), np.searchsorted(xs, x[good]))
+        np.add.at(sums, cells, value[good])
+        np.add.at(counts, cells, 1)
+        with np.errstate(invalid="ignore"):
+            grid = np.where(counts > 0, sums / np.maximum(counts, 1), np.nan)
+        image = ax.imshow(np.ma.masked_invalid(grid), origin="lower", aspect="auto",
+                          cmap="viridis", gid="heat",
                           extent=_extent(xs) + _extent(ys))  # fmt: skip
     else:
         image = ax.scatter(x[~failed], y[~failed], c=value[~failed], cmap="viridis", gid="heat")
     if failed.any():
         ax.plot(x[failed], y[failed], "x", color="red", ms=8, mew=2, gid="failed")
     fig.colorbar(image, ax=ax, label=name)
-    ax.set(xlabel=varied[0], ylabel=varied[1])
+    _ticks(ax, across, "x")
+    _ticks(ax, down, "y")
+    ax.set(xlabel=across.name, ylabel=down.name)
 
 
 def _extent(values) -> tuple[float, float]:

@@ -24,15 +24,16 @@ def _cell(text: str) -> Any:
 
 
 def read_csv(path: Path | str) -> CsvTable:
-    """The table in a CSV file (header, then rows of numbers, text and ``None``);
-    ``OSError`` or ``UnicodeDecodeError`` when it cannot be read, ``ValueError`` when it
-    holds no header."""
+    """The table in a CSV file (header, then rows of numbers, text and ``None``; blank
+    lines skipped); ``OSError`` or ``UnicodeDecodeError`` when it cannot be read,
+    ``ValueError`` when it holds no header."""
     with open(path, encoding="utf-8", newline="") as stream:
         records = list(csv.reader(stream))
     if not records or not records[0]:
         raise ValueError("the file is empty (no header line)")
     header = tuple(records[0])
-    return CsvTable(header, [[_cell(text) for text in record] for record in records[1:]])
+    rows = [[_cell(text) for text in record] for record in records[1:] if record]
+    return CsvTable(header, rows)
 
 
 def column(table: CsvTable, name: str) -> Any:

@@ -51,7 +51,7 @@ class SweepRun:
 def write_figure(run: SweepRun, path: Path) -> Path:
     """Draw the sweep's figure (:mod:`planar_tui.figures.sweep`: a line against one
     varied key, a heat map against two) into ``path``, atomically; a sweep the figure
-    cannot show (no varied numeric key) is :class:`~planar_tui.batch.OutputFailed`."""
+    cannot show (no varied key) is :class:`~planar_tui.batch.OutputFailed`."""
     from planar_tui.batch import OutputFailed
     from planar_tui.figures.dispatch import save_table_figure
 

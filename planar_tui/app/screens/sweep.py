@@ -33,6 +33,7 @@ from planar_tui.app.sweep_data import (
 )
 from planar_tui.app.widgets.heat_map import heat_map_lines
 from planar_tui.errors import PresetError
+from planar_tui.figures.sweep import is_numeric
 
 #: Most rows the sweep screen's table shows (the CSV export has them all).
 MAX_TABLE_ROWS = 2000
@@ -152,7 +153,8 @@ class SweepDialog(ModalScreen[tuple[Any, int, Any] | None]):
 
 class SweepScreen(Screen[None]):
     """A finished sweep: its table (one row per point) and a figure plotted against one
-    varied key or two. Escape closes it; ``ctrl+e`` exports the sweep CSV."""
+    varied key or two. Escape closes it; ``ctrl+e`` exports the sweep CSV, ``ctrl+l``
+    (the app's) writes its figure."""
 
     BINDINGS: ClassVar = [
         Binding("escape,q", "close", "Close"),
@@ -175,28 +177,25 @@ class SweepScreen(Screen[None]):
         self.table = run.table
         self.paths = [path.text for path in run.sweep.paths]
         self.figures = numeric_figures(self.table, self.paths)
-        #: The varied keys whose values are numbers (a list-valued key cannot be an axis).
-        self.plottable_paths = [path for path in self.paths if self._numeric_path(path)]
-
-    def _numeric_path(self, path: str) -> bool:
-        column = list(self.table.header).index(path)
-        return all(isinstance(row[column], int | float) and not isinstance(row[column], bool)
-                   for row in self.table.rows)  # fmt: skip
+        #: The varied keys whose values are numbers: the axes here (a text or list-valued
+        #: key is one series per value; the figure file, ctrl+l, puts it on an axis).
+        self.plottable_paths = [path for path in self.paths if is_numeric(self.table, path)]
 
     def compose(self) -> ComposeResult:
         run = self.run
         failed = f", {run.failed} failed" if run.failed else ""
         yield Static(
             f"{run.sweep.label}: {len(run.outcomes)} points{failed}  (escape closes, ctrl+e "
-            "exports the CSV)", id="sweep-title", markup=False,
+            "exports the CSV, ctrl+l writes the figure)", id="sweep-title", markup=False,
         )  # fmt: skip
         yield DataTable(id="sweep-table", zebra_stripes=True)
         with Horizontal(classes="sweep-pickers"):
+            # no value given when there is no option (a sweep over text keys only)
             yield Select([(name, name) for name in self.figures], compact=True,
-                         value=self.figures[0] if self.figures else Select.BLANK,
+                         **({"value": self.figures[0]} if self.figures else {}),
                          prompt="figure", id="sweep-figure")  # fmt: skip
             yield Select([(path, path) for path in self.plottable_paths], compact=True,
-                         value=self.plottable_paths[0] if self.plottable_paths else Select.BLANK,
+                         **({"value": self.plottable_paths[0]} if self.plottable_paths else {}),
                          prompt="across", id="sweep-across")  # fmt: skip
             downs = [(NO_KEY, NO_KEY)] + [(p, p) for p in self.plottable_paths[1:]]
             down = self.plottable_paths[1] if len(self.plottable_paths) > 1 else NO_KEY
@@ -219,7 +218,8 @@ class SweepScreen(Screen[None]):
 
     def choice(self, selector: str) -> str | None:
         value = self.query_one(selector, Select).value
-        return None if value in (Select.BLANK, NO_KEY) else str(value)
+        # the options are text; no selection is a sentinel (Select.NULL, or BLANK before)
+        return value if isinstance(value, str) and value != NO_KEY else None
 
     def draw(self) -> None:
         """Plot the chosen figure: a line against one key, a heat map against two."""
@@ -229,7 +229,9 @@ class SweepScreen(Screen[None]):
         two = down is not None and down != across
         plot.display, heat.display = not two, two
         if figure is None or across is None:
-            heat.update("No numeric figure or key to plot.")
+            heat.update("No numeric figure or key to plot here"
+                        + ("; ctrl+l writes the figure, the keys' values on its axes."
+                           if figure is not None else "."))  # fmt: skip
             plot.display, heat.display = False, True
             return
         if two:
