@@ -19,6 +19,7 @@ from __future__ import annotations
 from typing import Any
 
 from planar_tui.csvio import CsvTable
+from planar_tui.dynamics.simulate import energy_drift_J
 from planar_tui.figures.canvas import colour, new_figure
 from planar_tui.figures.table import column, has_columns, numbered
 
@@ -30,15 +31,6 @@ ARM_POSES = 5
 
 def matches(header: tuple[str, ...]) -> bool:
     return has_columns(header, REQUIRED)
-
-
-def work_J(theta_rad: Any, torques_Nm: Any) -> Any:
-    """The work of constant joint torques since the first row, ``Σ τ_i (θ_i(t) − θ_i(0))``
-    (J), from the relative joint angles ``theta_rad`` (rows × joints)."""
-    import numpy as np
-
-    theta_rad = np.asarray(theta_rad, dtype=float)
-    return (theta_rad - theta_rad[0]) @ np.asarray(torques_Nm, dtype=float)
 
 
 def draw(table: CsvTable, title: str, lengths_m: Any = None, torques_Nm: Any = None) -> Any:
@@ -70,11 +62,10 @@ def draw(table: CsvTable, title: str, lengths_m: Any = None, torques_Nm: Any = N
         ax_energy.plot(t, column(table, name), label=label, gid="series")
     ax_energy.plot(t, energy, color="k", lw=1.4, label="total E", gid="series")
     ax_energy.set(xlabel="t (s)", ylabel="energy (J)", title="energy")
-    change = energy - energy[0]
     if torques_Nm is not None and len(torques_Nm) == n:
-        balance, label, name = change - work_J(theta, torques_Nm), "E − E(0) − W", "drift"
+        balance, label, name = energy_drift_J(energy, theta, torques_Nm), "E − E(0) − W", "drift"
     else:
-        balance, label, name = change, "E(t) − E(0)", "energy change"
+        balance, label, name = energy - energy[0], "E(t) − E(0)", "energy change"
     ax_drift.plot(t, balance, color="k", gid="series")
     largest = float(np.max(np.abs(balance)))
     ax_drift.set(xlabel="t (s)", ylabel=f"{label} (J)", title=f"{name}, max {largest:.2e} J")
