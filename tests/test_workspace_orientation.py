@@ -240,3 +240,37 @@ def test_a_failed_overlay_is_snapped_and_kept_on_its_side_of_the_exact_one():
     outer = _overlay(first, second, failing, True)
     assert inner.difference(exact).area == 0.0 and exact.difference(outer).area == 0.0
     assert exact.area - 1e-3 < inner.area < exact.area < outer.area < exact.area + 1e-3
+
+
+@pytest.mark.parametrize("mode", ["maximal", "total"])
+def test_orientation_paving_is_parallel_and_the_same_on_1_and_2_threads(mode):
+    """Issue 12: pave in parallel with the same boxes and areas whatever the thread count
+    (``range_level`` is a ``prange`` kernel over each level's frontier)."""
+    import numba
+    from planar_tui.kernels.workspace_orientation import range_level
+
+    assert range_level.targetoptions.get("parallel")
+    spec = WorkspaceSpec(
+        joint_limits_deg=TABLE3,
+        orientation_deg=(-10.0, 10.0),
+        orientation_mode=mode,
+        precision_cm=0.5,
+        refine_precision_cm=0.25,
+        form="arc-distance",
+        geometric_reference=False,
+    )
+    before = numba.get_num_threads()
+    results = []
+    try:
+        for threads in (1, 2):
+            numba.set_num_threads(threads)
+            results.append(
+                compute_orientation_workspace(Robot3RRR(), spec, BoxBudget(_Job(spec), Progress()))
+            )
+    finally:
+        numba.set_num_threads(before)
+    one, two = results
+    assert len(one.boxes) > 100 and (one.status == 2).any()
+    assert np.array_equal(one.boxes, two.boxes) and np.array_equal(one.status, two.status)
+    assert (one.area_inside_cm2, one.area_kept_cm2) == (two.area_inside_cm2, two.area_kept_cm2)
+    assert one.boxes_processed == two.boxes_processed
