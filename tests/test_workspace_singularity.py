@@ -197,6 +197,28 @@ def test_bad_centres_and_modes_are_refused_before_any_job_runs(cli, tmp_path, ex
 
 
 @pytest.mark.parametrize(
+    ("extra", "line"),
+    [
+        (
+            "elbow = [1, 1]\n",
+            "workspace.elbow: has 2 values (expected 3 signs, each 1 or -1 (one per leg))",
+        ),
+        (
+            "elbow = [1, -1, 1]\ncircle_centre_cm = [1]\n",
+            "workspace.circle_centre_cm: has 1 values (expected a point [x, y] in cm)",
+        ),
+    ],
+)
+def test_wrong_lengths_name_what_the_key_holds(cli, tmp_path, extra, line):
+    path = tmp_path / "s.toml"
+    path.write_text(TABLE3.format(extra=extra, phi=0, precision=1.0))
+    result = cli("workspace", path, "--out-dir", tmp_path)
+    assert result.exit_code == 2, result.output
+    assert result.output == f"error: {path}: {line}\n"
+    assert not (tmp_path / "ws.csv").exists()
+
+
+@pytest.mark.parametrize(
     ("text", "message"),
     [
         ("singularities = false\nelbow = [1, 1, 1]\n", "elbow: is set without singularities"),

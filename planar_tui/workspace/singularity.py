@@ -33,6 +33,8 @@ CHUNK_S = 0.05
 LEAF_GRID = 4
 #: |det A| below this fraction of (l1 + l2)^3 (|q|max + 1) counts as singular at the centre.
 SINGULAR_RELATIVE = 1e-9
+#: What a wrong ``elbow`` is told to expect.
+ELBOW_DOC = "3 signs, each 1 or -1 (one per leg)"
 HEADER = ("circle_centre_x_cm", "circle_centre_y_cm", "circle_radius_lo_cm", "circle_radius_hi_cm")
 
 
@@ -40,9 +42,9 @@ def read_elbow(reader, name, default, robot, values):
     """Three elbow signs, each ``1`` or ``-1``."""
     if not reader.has(name):
         return default
-    signs = reader.numbers(name, length=3)
+    signs = reader.numbers(name, length=3, items_doc=ELBOW_DOC)
     if any(s not in (1.0, -1.0) for s in signs):
-        raise reader.error(name, f"is {list(signs)}", "3 signs, each 1 or -1 (one per leg)")
+        raise reader.error(name, f"is {list(signs)}", ELBOW_DOC)
     return tuple(int(s) for s in signs)
 
 
@@ -50,7 +52,7 @@ def read_centre(reader, name, default, robot, values):
     """A point ``[x, y]`` in cm."""
     if not reader.has(name):
         return default
-    point = reader.numbers(name, length=2)
+    point = reader.numbers(name, length=2, items_doc="a point [x, y] in cm")
     return (point[0], point[1])
 
 
