@@ -175,6 +175,8 @@ def test_the_map_and_the_summary_show_the_singularities_and_the_circle(cli, tmp_
         (row,) = list(csv.DictReader(f))
     assert float(row["circle_radius_lo_cm"]) <= float(row["circle_radius_hi_cm"])
     assert float(row["circle_centre_x_cm"]) == pytest.approx(40.0)
+    assert row["elbow"] == "1 -1 1"  # the working mode the radius holds for
+    assert list(row)[-2:] == ["elbow", "seconds"]
 
 
 @pytest.mark.parametrize(

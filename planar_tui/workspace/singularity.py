@@ -35,7 +35,15 @@ LEAF_GRID = 4
 SINGULAR_RELATIVE = 1e-9
 #: What a wrong ``elbow`` is told to expect.
 ELBOW_DOC = "3 signs, each 1 or -1 (one per leg)"
-HEADER = ("circle_centre_x_cm", "circle_centre_y_cm", "circle_radius_lo_cm", "circle_radius_hi_cm")
+#: The summary's circle columns: centre, certified radius bracket and the working mode the
+#: radius holds for (``elbow``: the three signs, e.g. ``1 -1 1``).
+HEADER = (
+    "circle_centre_x_cm",
+    "circle_centre_y_cm",
+    "circle_radius_lo_cm",
+    "circle_radius_hi_cm",
+    "elbow",
+)
 
 
 def read_elbow(reader, name, default, robot, values):
@@ -200,7 +208,9 @@ class SingularityOutcome:
         return self.boxes[self.status == SINGULAR]
 
     def columns(self) -> list:
-        return [*self.centre_cm, self.radius_lo_cm, self.radius_hi_cm]
+        """The summary's :data:`HEADER` cells (``elbow`` as ``"1 -1 1"``)."""
+        elbow = " ".join(str(s) for s in self.elbow)
+        return [*self.centre_cm, self.radius_lo_cm, self.radius_hi_cm, elbow]
 
     def describe(self) -> str:
         """``singularity-free: r ∈ [lo, hi] cm about (x, y), elbow [+1 -1 +1]``."""
