@@ -1,4 +1,4 @@
-"""Exact leg-wise feasibility of a 3-RRR (the ``arc-distance`` form) and its 2-D bisection.
+"""Exact leg-wise feasibility of a 3-RRR (the ``arc-distance`` form) and its 2-D paving.
 
 Eliminating the active angle exactly: leg ``i`` closes at the platform point :math:`C_i` for
 some :math:`\\theta_i \\in [\\underline\\theta_i, \\overline\\theta_i]` iff the distance from
@@ -20,18 +20,30 @@ Both functions are 1-Lipschitz in :math:`C_i`, so over an (x, y) box of half-dia
 :math:`d_{\\min}(c) + \\rho \\le l_2 \\le d_{\\max}(c) - \\rho`, else *boundary*. ``rho`` is
 enlarged by ``TOLERANCE_CM`` to absorb the round-off of a few libm calls (|error| < 1e-12 cm
 for coordinates below 1e3 cm).
+
+The 2-D paving is breadth-first: :func:`arc_level` decides a slice of a frontier of (x, y)
+boxes in parallel (``prange``) and the caller appends the kept boxes and the halves in
+frontier order, so the boxes, their order and the areas do not depend on the number of
+threads.
 """
 
 import math
 
+import numba
 import numpy as np
 
 from ._jit import kernel
-from .workspace3rrr import DONE, chunk_halt, keep_xy_box, split_xy_widest
+from .workspace3rrr import split_xy_widest
 
 OUTSIDE = 0
 BOUNDARY = 1
 INSIDE = 2
+#: Outcome of a box in a paving level beside the labels: halved into two children.
+SPLIT = 3
+
+#: Parallel lanes of the level-wise pavings: box i goes to lane i % LANES (interleaved, so
+#: that neighbouring boxes of similar cost are spread over the threads).
+LANES = 64
 
 TOLERANCE_CM = 1e-9
 
@@ -123,44 +135,48 @@ def points_feasible(xs, ys, p, limits, out):
 
 
 @kernel
-def arc_bisect_chunk(
-    p, limits, precision, leaf_grid, stack, n_stack, kept, status, n_kept, max_boxes
-):
-    """At most ``max_boxes`` steps of the 2-D bisection with the exact leg-wise test.
+def settle_xy_box(label, rows, r, children, c, precision):
+    """The step after a box's label in the level-wise 2-D pavings (arc-distance,
+    orientation range): copy row ``r`` of ``rows`` (``x_lo, x_hi, y_lo, y_hi``) to
+    ``children[c]``; an ``OUTSIDE`` box is dropped, an ``INSIDE`` box is kept (never split),
+    a box with both widths :math:`\\le \\varepsilon` is kept with its label, any other
+    is halved across its wider side (``children[c]`` and ``children[c + 1]``). Returns
+    ``OUTSIDE``, ``BOUNDARY``, ``INSIDE`` (kept with that label) or ``SPLIT``."""
+    for j in range(4):
+        children[c, j] = rows[r, j]
+    if label == OUTSIDE:
+        return OUTSIDE
+    leaf = rows[r, 1] - rows[r, 0] <= precision and rows[r, 3] - rows[r, 2] <= precision
+    if label == INSIDE or leaf:
+        return label
+    split_xy_widest(children, c, c + 1, 4)
+    return SPLIT
 
-    Pop an (x, y) box; discard it if ``OUTSIDE``; keep it as inside if ``INSIDE`` (never split);
-    if both widths are :math:`\\le \\varepsilon`, keep it as boundary unless all cells of an
-    ``leaf_grid`` x ``leaf_grid`` grid over it are ``OUTSIDE`` (0: no such check); else halve
-    its wider side.
-    Returns ``(n_stack, n_kept, processed, code)`` like ``bisect_chunk``.
-    """
-    processed = 0
-    while n_stack > 0:
-        halt = chunk_halt(processed, max_boxes, n_kept, kept.shape[0], n_stack, stack.shape[0])
-        if halt != DONE:
-            return n_stack, n_kept, processed, halt
-        n_stack -= 1
-        row = n_stack
-        processed += 1
-        xlo = stack[row, 0]
-        xhi = stack[row, 1]
-        ylo = stack[row, 2]
-        yhi = stack[row, 3]
-        label = classify_box(xlo, xhi, ylo, yhi, p, limits)
-        if label == OUTSIDE:
-            continue
-        wx = xhi - xlo
-        wy = yhi - ylo
-        leaf = wx <= precision and wy <= precision
-        refutable = leaf and label == BOUNDARY and leaf_grid > 0
-        if refutable and refuted(xlo, xhi, ylo, yhi, p, limits, leaf_grid):
-            continue
-        if label == INSIDE or leaf:
-            n_kept = keep_xy_box(kept, status, n_kept, xlo, xhi, ylo, yhi, label)
-            continue
-        split_xy_widest(stack, row, n_stack + 1, 4)
-        n_stack += 2
-    return n_stack, n_kept, processed, DONE
+
+@kernel(parallel=True)
+def arc_level(p, limits, precision, leaf_grid, rows, start, stop, children, outcome):
+    """Decide rows ``start .. stop - 1`` of a frontier of (x, y) boxes with the exact
+    leg-wise test, in parallel: a box is labelled by :func:`classify_box`; a ``BOUNDARY``
+    leaf (both widths :math:`\\le \\varepsilon`) whose ``leaf_grid`` x ``leaf_grid``
+    cells are all ``OUTSIDE`` is dropped (0: no such check); then
+    :func:`settle_xy_box`. Row ``start + i`` writes ``children[2 i]``, ``children[2 i + 1]``
+    and ``outcome[i]``. Each box's outcome depends on that box only, so the result does
+    not depend on the number of threads (boxes go to ``LANES`` interleaved lanes)."""
+    n = stop - start
+    lanes = min(LANES, n)
+    for lane in numba.prange(lanes):
+        for i in range(lane, n, lanes):
+            r = start + i
+            xlo = rows[r, 0]
+            xhi = rows[r, 1]
+            ylo = rows[r, 2]
+            yhi = rows[r, 3]
+            label = classify_box(xlo, xhi, ylo, yhi, p, limits)
+            leaf = xhi - xlo <= precision and yhi - ylo <= precision
+            refutable = leaf and label == BOUNDARY and leaf_grid > 0
+            if refutable and refuted(xlo, xhi, ylo, yhi, p, limits, leaf_grid):
+                label = OUTSIDE
+            outcome[i] = settle_xy_box(label, rows, r, children, 2 * i, precision)
 
 
 def limits_array(limits_rad):

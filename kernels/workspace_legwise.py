@@ -39,7 +39,7 @@ import numpy as np
 
 from ._jit import kernel
 from .workspace3rrr import leg_enclosure, split_xy_widest
-from .workspace_arc import classify_box
+from .workspace_arc import LANES, classify_box
 
 ROW_COLUMNS = 13
 #: Leg state beside the signs -1, 0, +1.
@@ -56,9 +56,6 @@ SPLIT = 3
 
 #: Deepest θ bisection of one leg search (pieces of 2**-MAX_DEPTH of the hull).
 MAX_DEPTH = 40
-#: Parallel lanes per call: box i goes to lane i % LANES (interleaved, so that neighbouring
-#: boxes of similar cost are spread over the threads).
-LANES = 64
 
 
 @kernel

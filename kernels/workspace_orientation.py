@@ -49,7 +49,8 @@ nor *out* is split while wider than ``phi_min``; else ``BOUNDARY``.
 :math:`\\Phi` is *all in*: every :math:`(p, \\varphi) \\in X \\times \\Phi` is feasible, so
 :math:`X \\subseteq W_\\forall`. Otherwise as above.
 
-The 2-D bisection (:func:`range_bisect_chunk`) is that of ``arc_bisect_chunk`` with this
+The 2-D paving (:func:`range_level`, one level of a breadth-first frontier at a time, in
+parallel) is the arc-distance form's (:func:`kernels.workspace_arc.arc_level`) with this
 test: inside boxes are never split, outside boxes dropped, boxes at the precision kept as
 boundary. With :math:`\\Phi` a single point both modes reduce to the exact leg-wise test.
 
@@ -59,9 +60,19 @@ ay3]`` (cm); ``limits`` the (3, 2) joint limits in radians.
 
 import math
 
+import numba
+import numpy as np
+
 from ._jit import kernel
-from .workspace3rrr import CHUNK_LIMIT, DONE, chunk_halt, keep_xy_box, split_xy_widest
-from .workspace_arc import BOUNDARY, INSIDE, OUTSIDE, TOLERANCE_CM, arc_distance_range
+from .workspace_arc import (
+    BOUNDARY,
+    INSIDE,
+    LANES,
+    OUTSIDE,
+    TOLERANCE_CM,
+    arc_distance_range,
+    settle_xy_box,
+)
 
 MAXIMAL = 0
 TOTAL = 1
@@ -158,46 +169,31 @@ def classify_boxes_range(boxes, mode, phi_lo, phi_hi, phi_min, g, limits, pieces
         )[0]  # fmt: skip
 
 
-@kernel
-def range_bisect_chunk(
-    mode, phi_lo, phi_hi, phi_min, g, limits, precision, stack, n_stack, kept, status,
-    n_kept, max_boxes, max_work, pieces,
+@kernel(parallel=True)
+def range_level(
+    mode, phi_lo, phi_hi, phi_min, g, limits, precision, rows, start, stop, children, outcome,
+    work,
 ):  # fmt: skip
-    """At most ``max_boxes`` steps of the 2-D bisection with :func:`classify_box_range`,
-    stopping early once ``max_work`` orientation pieces were looked at (a box's cost
-    varies by orders of magnitude: the work, not the box count, bounds a chunk's time).
+    """Decide rows ``start .. stop - 1`` of a frontier of (x, y) boxes with
+    :func:`classify_box_range`, in parallel, then
+    :func:`~kernels.workspace_arc.settle_xy_box` (outside dropped, inside kept unsplit,
+    leaves at the precision kept as boundary, the rest halved across the wider side).
 
-    Pop an (x, y) box; drop it if ``OUTSIDE``; keep it if ``INSIDE`` (never split) or if
-    both widths are :math:`\\le \\varepsilon` (as ``BOUNDARY``); else halve its wider side.
-    Returns ``(n_stack, n_kept, processed, code, work)`` (``code`` as
-    ``arc_bisect_chunk``'s; ``CHUNK_LIMIT`` also when the work ran out).
+    Row ``start + i`` writes ``children[2 i]``, ``children[2 i + 1]``, ``outcome[i]``
+    (``OUTSIDE``, ``BOUNDARY``, ``INSIDE`` or ``SPLIT``) and ``work[i]`` (orientation pieces
+    looked at). Boxes go to ``LANES`` interleaved lanes run by ``prange``, each with its own
+    piece stack; a box's outcome depends on that box only, so the result does not depend on
+    the number of threads.
     """
-    processed = 0
-    work = 0
-    while n_stack > 0:
-        halt = chunk_halt(processed, max_boxes, n_kept, kept.shape[0], n_stack, stack.shape[0])
-        if halt == DONE and work >= max_work:
-            halt = CHUNK_LIMIT
-        if halt != DONE:
-            return n_stack, n_kept, processed, halt, work
-        n_stack -= 1
-        row = n_stack
-        processed += 1
-        xlo = stack[row, 0]
-        xhi = stack[row, 1]
-        ylo = stack[row, 2]
-        yhi = stack[row, 3]
-        label, cost = classify_box_range(
-            xlo, xhi, ylo, yhi, mode, phi_lo, phi_hi, phi_min, g, limits, pieces
-        )
-        work += cost
-        if label == OUTSIDE:
-            continue
-        wx = xhi - xlo
-        wy = yhi - ylo
-        if label == INSIDE or (wx <= precision and wy <= precision):
-            n_kept = keep_xy_box(kept, status, n_kept, xlo, xhi, ylo, yhi, label)
-            continue
-        split_xy_widest(stack, row, n_stack + 1, 4)
-        n_stack += 2
-    return n_stack, n_kept, processed, DONE, work
+    n = stop - start
+    lanes = min(LANES, n)
+    for lane in numba.prange(lanes):
+        pieces = np.empty((PIECE_STACK, 2))
+        for i in range(lane, n, lanes):
+            r = start + i
+            label, cost = classify_box_range(
+                rows[r, 0], rows[r, 1], rows[r, 2], rows[r, 3],
+                mode, phi_lo, phi_hi, phi_min, g, limits, pieces,
+            )  # fmt: skip
+            work[i] = cost
+            outcome[i] = settle_xy_box(label, rows, r, children, 2 * i, precision)

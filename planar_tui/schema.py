@@ -259,8 +259,11 @@ class TableReader:
         minimum: float | None = None,
         maximum: float | None = None,
         non_empty: bool = True,
+        items_doc: str | None = None,
     ) -> tuple[float, ...]:
-        """An array of finite numbers, optionally of a given length and > 0."""
+        """An array of finite numbers, optionally of a given length and > 0. ``items_doc``
+        is what a wrong length is told to expect (default ``"<length>, one per link"``), e.g.
+        ``"3 signs, each 1 or -1 (one per leg)"`` or ``"[x, y]"``."""
         kind = "positive numbers" if positive else "numbers"
         wanted = f"an array of {length} {kind}" if length is not None else f"an array of {kind}"
         value = self.raw(name, default, wanted)
@@ -269,7 +272,9 @@ class TableReader:
         if not isinstance(value, list):
             raise self.error(name, f"is {type_name(value)}", wanted)
         if length is not None and len(value) != length:
-            raise self.error(name, f"has {len(value)} values", f"{length}, one per link")
+            raise self.error(
+                name, f"has {len(value)} values", items_doc or f"{length}, one per link"
+            )
         if non_empty and not value:
             raise self.error(name, "is empty", wanted)
         return tuple(
@@ -285,9 +290,16 @@ class TableReader:
         )
 
     def number_rows(
-        self, name: str, default: Any = _MISSING, *, columns: int | None = None
+        self,
+        name: str,
+        default: Any = _MISSING,
+        *,
+        columns: int | None = None,
+        row_doc: str | None = None,
     ) -> tuple[tuple[float, ...], ...]:
-        """A non-empty array of arrays of finite numbers, each with ``columns`` values."""
+        """A non-empty array of arrays of finite numbers, each with ``columns`` values.
+        ``row_doc`` is what a row of the wrong length is told to expect (default
+        ``"<columns>, one per link"``), e.g. ``"[min, max]"`` or ``"[x, y]"``."""
         wanted = f"an array of arrays of {columns} numbers" if columns else "an array of arrays"
         value = self.raw(name, default, wanted)
         if value is default and default is not _MISSING:
@@ -300,7 +312,9 @@ class TableReader:
                 raise self.error(name, f"row {r + 1} is {type_name(row)}", wanted)
             if columns is not None and len(row) != columns:
                 raise self.error(
-                    name, f"row {r + 1} has {len(row)} values", f"{columns}, one per link"
+                    name,
+                    f"row {r + 1} has {len(row)} values",
+                    row_doc or f"{columns}, one per link",
                 )
             rows.append(
                 tuple(

@@ -183,3 +183,26 @@ def test_table5_mean_value_over_the_papers_precisions(geometric):
         assert geometric[5].outer_cm2 <= out.area_kept_cm2 < previous
         assert out.area_kept_cm2 <= paper_area(5, "mean-value", precision) + 0.0005
         previous = out.area_kept_cm2
+
+
+def test_arc_distance_paving_is_parallel_and_the_same_on_1_and_2_threads():
+    """The arc-distance paving and its boundary refinement run level by level on every
+    core (``arc_level`` is a ``prange`` kernel) with identical boxes, order and areas."""
+    import numba
+    from planar_tui.kernels.workspace_arc import arc_level
+
+    assert arc_level.targetoptions.get("parallel")
+    spec = spec_for(4, "arc-distance", 0.625, refine_precision_cm=0.15625)
+    before = numba.get_num_threads()
+    results = []
+    try:
+        for threads in (1, 2):
+            numba.set_num_threads(threads)
+            results.append(run(spec))
+    finally:
+        numba.set_num_threads(before)
+    one, two = results
+    assert len(one.boxes) > 1000  # a real paving: many levels and slices
+    assert np.array_equal(one.boxes, two.boxes) and np.array_equal(one.status, two.status)
+    assert (one.area_inside_cm2, one.area_kept_cm2) == (two.area_inside_cm2, two.area_kept_cm2)
+    assert one.boxes_processed == two.boxes_processed

@@ -99,6 +99,31 @@ def test_bad_input_is_one_line_exit_2_and_nothing_written(cli, tmp_path, setting
     assert not (tmp_path / "ws.csv").exists()
 
 
+@pytest.mark.parametrize(
+    ("settings", "line"),
+    [
+        (
+            {"extra": "search_box_cm = [[0, 120, 3], [0, 120]]\n"},
+            "workspace.search_box_cm: row 1 has 3 values (expected [min, max] in cm)",
+        ),
+        (
+            {"limits": "[[50, 70], [140], [260, 280]]"},
+            "workspace.joint_limits_deg: row 2 has 1 values (expected [min, max] in degrees)",
+        ),
+        (
+            {"distal": "30\nplatform_points_cm = [[0, 0], [40, 0, 1], [20, 40]]"},
+            "robot3rrr.platform_points_cm: row 2 has 3 values (expected a point [x, y] in cm)",
+        ),
+    ],
+)
+def test_wrong_row_lengths_name_what_a_row_holds(cli, tmp_path, settings, line):
+    preset = write_preset(tmp_path, **settings)
+    result = cli("workspace", preset, "--out-dir", tmp_path)
+    assert result.exit_code == 2
+    assert result.stderr == f"error: {preset}: {line}\n"
+    assert not (tmp_path / "ws.csv").exists()
+
+
 @pytest.mark.parametrize(("option", "value"), [("--form", "exact"), ("--precision", "0")])
 def test_bad_command_line_values_exit_2(cli, tmp_path, option, value):
     preset = write_preset(tmp_path)

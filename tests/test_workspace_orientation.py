@@ -189,3 +189,88 @@ def test_cancel_stops_the_new_stages_within_a_fraction_of_a_second(body, stage):
     latency, asked = cancel_latency(lambda progress: batch.run_job(job, progress), stage, 0.1)
     assert asked.startswith(stage)
     assert latency <= 0.5
+
+
+def test_a_total_workspace_that_vanishes_inside_the_range_has_an_empty_reference():
+    """The reviewer's preset (r12 geos.toml): the running intersection over φ becomes empty
+    part-way (GEOS used to fail on it: "Unable to determine overlay result geometry
+    dimension"); the reference is then empty and the certified bracket holds it."""
+    robot = Robot3RRR(
+        base_side_cm=100.94572997602054,
+        platform_side_cm=58.062514021537595,
+        proximal_cm=34.64940819451931,
+        distal_cm=50.19484602462308,
+    )
+    limits = (
+        (34.15538907306626, 168.73114725643143),
+        (112.43905315095893, 140.15560485901807),
+        (263.026966301221, 433.70709400261893),
+    )
+    phi = (-67.74067727622524, -16.36482984849)
+    limits_rad = tuple((math.radians(a), math.radians(b)) for a, b in limits)
+    inner, outer = reference_polygons(robot, limits_rad, phi, "total")  # default samples
+    assert inner.area == 0.0 and outer.area == 0.0
+    # each single orientation of the range has a workspace: emptiness is the range's doing
+    lo_only, _ = reference_polygons(robot, limits_rad, (phi[0], phi[0] + 1.0), "total", 16)
+    assert lo_only.area > 100.0
+    outcome = run(robot, limits, phi, "total", 3.0)
+    assert outcome.area_inside_cm2 <= outer.area
+    assert inner.area <= outcome.area_kept_cm2
+
+
+def test_a_failed_overlay_is_snapped_and_kept_on_its_side_of_the_exact_one():
+    """When GEOS fails on an overlay the retry on the 1e-6 cm grid is eroded (inner) or
+    dilated (outer): still inside / around the exact intersection of two discs."""
+    import shapely
+    from shapely.errors import GEOSException
+
+    from planar_tui.workspace.orientation_reference import GRID_CM, _overlay
+
+    first = shapely.Point(0.0, 0.0).buffer(10.0, quad_segs=64)
+    second = shapely.Point(7.3, 1.1).buffer(6.0, quad_segs=64)
+    exact = shapely.intersection(first, second)
+
+    def failing(a, b, grid_size=None):
+        if grid_size is None:
+            raise GEOSException("Unable to determine overlay result geometry dimension")
+        assert grid_size == GRID_CM
+        return shapely.intersection(a, b, grid_size=grid_size)
+
+    inner = _overlay(first, second, failing, False)
+    outer = _overlay(first, second, failing, True)
+    assert inner.difference(exact).area == 0.0 and exact.difference(outer).area == 0.0
+    assert exact.area - 1e-3 < inner.area < exact.area < outer.area < exact.area + 1e-3
+
+
+@pytest.mark.parametrize("mode", ["maximal", "total"])
+def test_orientation_paving_is_parallel_and_the_same_on_1_and_2_threads(mode):
+    """Issue 12: pave in parallel with the same boxes and areas whatever the thread count
+    (``range_level`` is a ``prange`` kernel over each level's frontier)."""
+    import numba
+    from planar_tui.kernels.workspace_orientation import range_level
+
+    assert range_level.targetoptions.get("parallel")
+    spec = WorkspaceSpec(
+        joint_limits_deg=TABLE3,
+        orientation_deg=(-10.0, 10.0),
+        orientation_mode=mode,
+        precision_cm=0.5,
+        refine_precision_cm=0.25,
+        form="arc-distance",
+        geometric_reference=False,
+    )
+    before = numba.get_num_threads()
+    results = []
+    try:
+        for threads in (1, 2):
+            numba.set_num_threads(threads)
+            results.append(
+                compute_orientation_workspace(Robot3RRR(), spec, BoxBudget(_Job(spec), Progress()))
+            )
+    finally:
+        numba.set_num_threads(before)
+    one, two = results
+    assert len(one.boxes) > 100 and (one.status == 2).any()
+    assert np.array_equal(one.boxes, two.boxes) and np.array_equal(one.status, two.status)
+    assert (one.area_inside_cm2, one.area_kept_cm2) == (two.area_inside_cm2, two.area_kept_cm2)
+    assert one.boxes_processed == two.boxes_processed

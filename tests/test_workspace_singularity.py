@@ -175,6 +175,8 @@ def test_the_map_and_the_summary_show_the_singularities_and_the_circle(cli, tmp_
         (row,) = list(csv.DictReader(f))
     assert float(row["circle_radius_lo_cm"]) <= float(row["circle_radius_hi_cm"])
     assert float(row["circle_centre_x_cm"]) == pytest.approx(40.0)
+    assert row["elbow"] == "1 -1 1"  # the working mode the radius holds for
+    assert list(row)[-2:] == ["elbow", "seconds"]
 
 
 @pytest.mark.parametrize(
@@ -193,6 +195,28 @@ def test_bad_centres_and_modes_are_refused_before_any_job_runs(cli, tmp_path, ex
     assert result.exit_code == 2, result.output
     assert result.output.startswith("error: ") and result.output.count("\n") == 1
     assert message in result.output
+    assert not (tmp_path / "ws.csv").exists()
+
+
+@pytest.mark.parametrize(
+    ("extra", "line"),
+    [
+        (
+            "elbow = [1, 1]\n",
+            "workspace.elbow: has 2 values (expected 3 signs, each 1 or -1 (one per leg))",
+        ),
+        (
+            "elbow = [1, -1, 1]\ncircle_centre_cm = [1]\n",
+            "workspace.circle_centre_cm: has 1 values (expected a point [x, y] in cm)",
+        ),
+    ],
+)
+def test_wrong_lengths_name_what_the_key_holds(cli, tmp_path, extra, line):
+    path = tmp_path / "s.toml"
+    path.write_text(TABLE3.format(extra=extra, phi=0, precision=1.0))
+    result = cli("workspace", path, "--out-dir", tmp_path)
+    assert result.exit_code == 2, result.output
+    assert result.output == f"error: {path}: {line}\n"
     assert not (tmp_path / "ws.csv").exists()
 
 

@@ -8,8 +8,9 @@ progress carries the boxes kept so far as read-only views into the runner's arra
 may repeat and are classified at the end); in the refinement stage they are the refined
 boxes only (the inside boxes of the first stage are final). No copy is made per update.
 
-Stages (each in kernel chunks of at most ``CHUNK_BOXES`` boxes, so progress is reported
-and Cancel/Ctrl-C is honoured within a fraction of a second):
+Stages (each in kernel chunks of at most ``CHUNK_BOXES`` boxes, or for the 2-D pavings
+slices of about ``SLICE_TARGET_S`` (:func:`pave_in_levels`), so progress is reported and
+Cancel/Ctrl-C is honoured within a fraction of a second):
 
 1. *Paving* down to ``precision_cm`` with the chosen interval form (``natural``,
    ``mean-value``, ``slope``): ``strategy = "legwise"`` paves (x, y) boxes and decides each
@@ -42,6 +43,10 @@ from planar_tui.workspace.robot import Robot3RRR
 CHUNK_BOXES = 50_000
 #: Leaf check of the arc-distance form: an n x n sub-grid may prove a leaf outside.
 LEAF_GRID = 8
+#: Wall time one slice of a level-wise 2-D paving (:func:`pave_in_levels`) aims at.
+SLICE_TARGET_S = 0.05
+#: Largest slice of a level-wise 2-D paving (boxes per kernel call).
+MAX_SLICE_BOXES = 1 << 16
 
 SUMMARY_HEADER = (
     "form",
@@ -220,54 +225,73 @@ def _interval_stage(form_code, p, spec, box, budget) -> np.ndarray:
 
 
 def _arc_stage(p, limits, precision, seeds, budget, inside_cm2=0.0):
-    """2-D bisection with the exact leg-wise test from the (x, y) boxes ``seeds`` (disjoint);
+    """2-D paving with the exact leg-wise test from the (x, y) boxes ``seeds`` (disjoint);
     ``inside_cm2`` is the area already proved inside, for the progress bracket."""
-    from planar_tui.kernels.workspace_arc import arc_bisect_chunk
+    from planar_tui.kernels.workspace_arc import arc_level
 
-    def chunk(stack, n_stack, kept, status, n_kept):
-        return arc_bisect_chunk(
-            p, limits, precision, LEAF_GRID, stack, n_stack, kept, status, n_kept,
-            2 * CHUNK_BOXES,
-        )  # fmt: skip
+    def decide(rows, start, stop, children, outcome):
+        arc_level(p, limits, precision, LEAF_GRID, rows, start, stop, children, outcome)
 
-    return bisect_in_chunks(seeds, budget, chunk, inside_cm2)
+    return pave_in_levels(seeds, budget, decide, inside_cm2)
 
 
-def bisect_in_chunks(seeds, budget: BoxBudget, chunk, inside_cm2: float = 0.0):
-    """Drive a 2-D bisection kernel from the disjoint (x, y) boxes ``seeds`` until it is
-    done, one ``chunk(stack, n_stack, kept, status, n_kept) -> (n_stack, n_kept, processed,
-    code)`` call at a time (a kernel's chunk: :func:`~planar_tui.kernels.workspace3rrr.
-    chunk_halt` codes), growing the stack or the kept arrays when one is full. After each
-    chunk the budget gets the boxes processed, the fraction of the seeds' area decided and
+def pave_in_levels(seeds, budget: BoxBudget, decide, inside_cm2: float = 0.0):
+    """Drive a level-wise 2-D paving from the disjoint (x, y) boxes ``seeds`` until no box
+    is left: each level (frontier) is decided in slices by ``decide(rows, start, stop,
+    children, outcome)``, a parallel kernel writing per row ``start + i`` its
+    :func:`~planar_tui.kernels.workspace_arc.settle_xy_box` outcome and children
+    (``children[2 i]``, ``children[2 i + 1]``). Kept boxes and the halves of split ones are
+    appended in frontier order, so the result is the same whatever the number of threads.
+    A slice is sized to about ``SLICE_TARGET_S`` of wall time (measured as it goes); after
+    each, the budget gets the boxes decided, the fraction of the seeds' area decided and
     the live bracket ``[inside_cm2 + inside kept, kept + pending]``, and the progress the
-    kept boxes so far (read-only views). Returns the kept boxes and their status."""
-    from planar_tui.kernels.workspace3rrr import DONE, KEPT_FULL, STACK_FULL
+    kept boxes so far (read-only views): progress and Cancel/Ctrl-C within a fraction of a
+    second. Returns the kept boxes and their status."""
+    from planar_tui.kernels.workspace_arc import SPLIT
+    from planar_tui.workspace.legwise import append_rows
 
-    stack = np.zeros((max(256, 2 * len(seeds) + 64), 4))
-    stack[: len(seeds)] = seeds
-    root_area = _xy_area(seeds)
-    kept = np.zeros((max(4096, len(seeds)), 4))
-    status = np.zeros(kept.shape[0], dtype=np.int64)
-    n_stack, n_kept = len(seeds), 0
+    frontier = np.array(seeds, dtype=np.float64).reshape(-1, 4)
+    root_area = _xy_area(frontier)
+    kept = np.zeros((4096, 4))
+    status = np.zeros(4096, dtype=np.int64)
+    n_kept = 0
     lower = upper = inside_cm2
-    while True:
-        previous = n_kept
-        n_stack, n_kept, processed, code = chunk(stack, n_stack, kept, status, n_kept)
-        area = _xy_area(stack[:n_stack])
-        new = slice(previous, n_kept)
-        lower += _xy_area(kept[new][status[new] == INSIDE])
-        upper += _xy_area(kept[new])
-        budget.progress.show_partial(
-            boxes_cm=_read_only(kept[:n_kept]), status=_read_only(status[:n_kept])
-        )
-        budget.spend(processed, 1.0 - area / max(root_area, 1e-300), lower, upper + area)
-        if code == DONE:
-            return kept[:n_kept], status[:n_kept]
-        if code == KEPT_FULL:
-            kept = _grow(kept)
-            status = _grow(status)
-        elif code == STACK_FULL:
-            stack = _grow(stack)
+    slice_boxes = 256
+    while len(frontier):
+        following = np.zeros((2 * len(frontier), 4))
+        n_following = 0
+        start = 0
+        while start < len(frontier):
+            stop = min(len(frontier), start + slice_boxes)
+            n = stop - start
+            children = np.empty((2 * n, 4))
+            outcome = np.empty(n, dtype=np.int64)
+            started = time.perf_counter()
+            decide(frontier, start, stop, children, outcome)
+            elapsed = time.perf_counter() - started
+            if elapsed > SLICE_TARGET_S and slice_boxes > 16:
+                slice_boxes //= 2
+            elif elapsed < SLICE_TARGET_S / 4 and slice_boxes < MAX_SLICE_BOXES:
+                slice_boxes *= 2
+            keep = (outcome == BOUNDARY) | (outcome == INSIDE)
+            new_rows = children[0::2][keep]
+            kept, _ = append_rows(kept, n_kept, new_rows)
+            status, n_kept = append_rows(status, n_kept, outcome[keep])
+            lower += _xy_area(new_rows[outcome[keep] == INSIDE])
+            upper += _xy_area(new_rows)
+            split = outcome == SPLIT
+            n_split = int(split.sum())
+            following[n_following : n_following + 2 * n_split : 2] = children[0::2][split]
+            following[n_following + 1 : n_following + 2 * n_split : 2] = children[1::2][split]
+            n_following += 2 * n_split
+            start = stop
+            pending = _xy_area(frontier[stop:]) + _xy_area(following[:n_following])
+            budget.progress.show_partial(
+                boxes_cm=_read_only(kept[:n_kept]), status=_read_only(status[:n_kept])
+            )
+            budget.spend(n, 1.0 - pending / max(root_area, 1e-300), lower, upper + pending)
+        frontier = following[:n_following]
+    return kept[:n_kept], status[:n_kept]
 
 
 def default_search_box(

@@ -54,7 +54,7 @@ BYTES_PER_BOX = 112
 
 def _joint_limits(reader: TableReader, name, default, robot, values):
     """Three ``[min, max]`` rows in degrees, each non-empty and at most 360° wide."""
-    rows = reader.number_rows("joint_limits_deg", columns=2)
+    rows = reader.number_rows("joint_limits_deg", columns=2, row_doc="[min, max] in degrees")
     if len(rows) != 3:
         raise reader.error("joint_limits_deg", f"has {len(rows)} rows", "3 rows [min, max]")
     for leg, (lo, hi) in enumerate(rows, start=1):
@@ -75,7 +75,7 @@ def _search_box(reader: TableReader, name, default, robot: Robot3RRR, values):
     """An (x, y) box in cm that contains the robot's reach at the job's orientation."""
     if not reader.has("search_box_cm"):
         return None
-    rows = reader.number_rows("search_box_cm", columns=2)
+    rows = reader.number_rows("search_box_cm", columns=2, row_doc="[min, max] in cm")
     if len(rows) != 2 or any(not lo < hi for lo, hi in rows):
         raise reader.error(
             "search_box_cm", f"is {[list(r) for r in rows]}", "[[x_min, x_max], [y_min, y_max]]"

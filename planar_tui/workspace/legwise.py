@@ -22,7 +22,7 @@ SLICE_BOXES = 8192
 SLICE_TARGET_S = 0.05
 
 
-def _append(array: np.ndarray, count: int, rows: np.ndarray) -> tuple[np.ndarray, int]:
+def append_rows(array: np.ndarray, count: int, rows: np.ndarray) -> tuple[np.ndarray, int]:
     """Append ``rows`` after the first ``count`` rows of ``array`` (doubling it when full)."""
     needed = count + len(rows)
     if needed > array.shape[0]:
@@ -87,8 +87,8 @@ def legwise_stage(form_code, p, spec, box, budget, read_only):
             xy_boxes += n
             keep = (outcome == BOUNDARY) | (outcome == INSIDE)
             new_rows = children[0::2][keep, :4]
-            kept, _ = _append(kept, n_kept, new_rows)
-            status, n_kept = _append(status, n_kept, outcome[keep])
+            kept, _ = append_rows(kept, n_kept, new_rows)
+            status, n_kept = append_rows(status, n_kept, outcome[keep])
             inside_area += _area(new_rows[outcome[keep] == INSIDE])
             kept_area += _area(new_rows)
             split = outcome == SPLIT

@@ -17,10 +17,13 @@ LEGEND = f"{INSIDE_GLYPH} inside (proved)  {BOUNDARY_GLYPH} boundary (kept)  bla
 SINGULAR_GLYPH = "×"
 CIRCLE_GLYPH = "o"
 CENTRE_GLYPH = "+"
-SINGULAR_LEGEND = (
-    f"{SINGULAR_GLYPH} may be type II singular  {CIRCLE_GLYPH} singularity-free circle "
-    f"(r_in) about {CENTRE_GLYPH}"
+#: The overlays' legend, item by item (``render_map`` wraps it to the map's width).
+SINGULAR_LEGEND_ITEMS = (
+    f"{SINGULAR_GLYPH} may be type II singular",
+    f"{CIRCLE_GLYPH} singularity-free circle (r_in)",
+    f"{CENTRE_GLYPH} its centre",
 )
+SINGULAR_LEGEND = "  ".join(SINGULAR_LEGEND_ITEMS)
 #: Terminal cells are about twice as tall as wide.
 CELL_ASPECT = 2.0
 _LABEL_WIDTH = 8  # "-123.45 " then the axis line
@@ -130,7 +133,7 @@ def render_map(
     singular, circle
         Optional overlays: boxes that may hold a type II singularity (``×`` on every cell
         they touch) and a circle ``(x, y, r)`` in cm (``o`` on the cells it crosses, ``+``
-        at its centre), with a second legend line.
+        at its centre), with their legend below, wrapped to ``width``.
 
     A cell fully covered by inside boxes shows ``█``, any other covered cell ``▒``, an
     empty cell a blank; the y axis is labelled on the left, the x axis below, in cm.
@@ -190,8 +193,20 @@ def render_map(
     lines.append("".join(ticks).rstrip()[:width])
     lines.append(f"{'x (cm) →, y (cm) ↑':>{_LABEL_WIDTH + 18}}  {LEGEND}")
     if singular is not None or circle is not None:
-        lines.append(" " * (_LABEL_WIDTH + 20) + SINGULAR_LEGEND)
+        lines += _wrapped(SINGULAR_LEGEND_ITEMS, _LABEL_WIDTH + 20, width)
     return [line[:width] for line in lines]
+
+
+def _wrapped(items, indent: int, width: int) -> list[str]:
+    """``items`` two spaces apart on lines of at most ``width`` columns, indented by
+    ``indent`` (less where a line would not fit)."""
+    texts = []
+    for item in items:
+        if texts and indent + len(texts[-1]) + 2 + len(item) <= width:
+            texts[-1] += "  " + item
+        else:
+            texts.append(item)
+    return [" " * min(indent, max(0, width - len(text))) + text for text in texts]
 
 
 def _marks(extent, columns, rows, singular, circle) -> list[list[str]]:

@@ -2,9 +2,9 @@
 
 The *maximal* workspace holds the positions reachable with at least one orientation of the
 range, the *total orientation* workspace those reachable with every one. Both are paved in
-(x, y) by :func:`planar_tui.kernels.workspace_orientation.range_bisect_chunk`, whose box
-test treats φ as an interval variable, bisected per box (the classification rules and their
-proofs are in that module's docstring), giving a certified bracket
+(x, y) level by level, in parallel, by
+:func:`planar_tui.kernels.workspace_orientation.range_level`, whose box test treats φ as
+an interval variable, bisected per box (the classification rules and their proofs are in that module's docstring), giving a certified bracket
 ``area_inside <= exact <= area_kept`` like the single-orientation job. The optional
 reference (``geometric_reference``) is the certified sampled bracket of
 :mod:`planar_tui.workspace.orientation_reference`.
@@ -18,8 +18,6 @@ import time
 from planar_tui.workspace.robot import Robot3RRR
 
 MODES = ("maximal", "total")
-#: Wall time aimed at per kernel chunk (progress and Ctrl-C are handled between chunks).
-CHUNK_S = 0.05
 
 
 def read_orientation(reader, name, default, robot, values):
@@ -136,41 +134,29 @@ def phi_min_rad(robot: Robot3RRR, precision_cm: float) -> float:
 
 
 def _range_stage(robot, spec, seeds, precision, budget, inside_cm2=0.0):
-    """2-D bisection of the disjoint (x, y) boxes ``seeds`` with the orientation-range test;
-    returns the kept boxes and their status (2 inside, 1 boundary). Each chunk is sized to
-    about ``CHUNK_S`` of work (orientation pieces, measured as it goes)."""
+    """Level-wise 2-D paving of the disjoint (x, y) boxes ``seeds`` with the orientation-range
+    test, every level in parallel (:func:`planar_tui.workspace.compute.pave_in_levels`);
+    returns the kept boxes and their status (2 inside, 1 boundary)."""
     import numpy as np
 
     from planar_tui.kernels.workspace_arc import limits_array
-    from planar_tui.kernels.workspace_orientation import (
-        MAXIMAL,
-        PIECE_STACK,
-        TOTAL,
-        range_bisect_chunk,
-    )
-    from planar_tui.workspace.compute import bisect_in_chunks
+    from planar_tui.kernels.workspace_orientation import MAXIMAL, TOTAL, range_level
+    from planar_tui.workspace.compute import pave_in_levels
 
     mode = MAXIMAL if spec.orientation_mode == "maximal" else TOTAL
     lo, hi = (math.radians(v) for v in spec.orientation_deg)
     g = geometry_vector(robot)
     limits = limits_array(spec.limits_rad)
     phi_min = phi_min_rad(robot, precision)
-    pieces = np.zeros((PIECE_STACK, 2))
-    work = 4096  # orientation pieces per call, scaled to about CHUNK_S of work
 
-    def chunk(stack, n_stack, kept, status, n_kept):
-        nonlocal work
-        started = time.perf_counter()
-        n_stack, n_kept, processed, code, done = range_bisect_chunk(
-            mode, lo, hi, phi_min, g, limits, precision, stack, n_stack, kept, status,
-            n_kept, 1 << 40, work, pieces,
+    def decide(rows, start, stop, children, outcome):
+        work = np.empty(stop - start, dtype=np.int64)
+        range_level(
+            mode, lo, hi, phi_min, g, limits, precision, rows, start, stop, children, outcome,
+            work,
         )  # fmt: skip
-        elapsed = time.perf_counter() - started
-        if done >= work:
-            work = int(min(max(done * CHUNK_S / max(elapsed, 1e-6), 256), 4 * work))
-        return n_stack, n_kept, processed, code
 
-    return bisect_in_chunks(seeds, budget, chunk, inside_cm2)
+    return pave_in_levels(seeds, budget, decide, inside_cm2)
 
 
 def compute_orientation_workspace(robot: Robot3RRR, spec, budget):

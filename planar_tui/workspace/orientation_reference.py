@@ -26,6 +26,18 @@ is called with :math:`r / \\cos(\\pi / (4 n))` (``n`` segments per quarter circl
 chords lie at least :math:`r` out: the dilation contains, the erosion is contained in, the
 exact one. This module is independent of the interval kernels (it is what the tests compare
 them with).
+
+The intersections and unions keep only the polygonal parts of each result (a line or point
+where regions touch has no area) and an intersection stops as soon as it is empty (a total
+workspace that vanishes part-way along the range). Should GEOS still fail on an overlay
+(``GEOSException``, e.g. "Unable to determine overlay result geometry dimension" on nearly
+degenerate slivers), it is retried on :func:`shapely.make_valid` operands snapped to a
+:data:`GRID_CM` grid; snap rounding moves the result's boundary by at most
+:math:`\\sqrt2/2` grid cells, so the snapped result is then eroded (inner side) or dilated
+(outer side) by :data:`GRID_CM` (chord-corrected as above), which keeps
+``inner ⊆ W ⊆ outer`` up to sets of zero area. The grid, 1e-6 cm, is far below any
+certified tolerance (the paper's finest ε is about 0.015 cm; the brackets are compared to
+1e-9 relative).
 """
 
 from __future__ import annotations
@@ -38,10 +50,63 @@ QUAD_SEGMENTS = 16
 SEGMENTS_PER_TURN = 1024
 #: Default samples: about one per 0.05° of the range, between 16 and 800.
 DEGREES_PER_SAMPLE = 0.05
+#: Snap grid (cm) of the fallback overlay when GEOS fails on the exact one.
+GRID_CM = 1e-6
 
 
 def _margin(radius_cm: float) -> float:
     return radius_cm / math.cos(math.pi / (4 * QUAD_SEGMENTS)) * (1 + 1e-9) + 1e-12
+
+
+def _polygonal(geometry):
+    """The polygonal part of ``geometry`` (lines and points where regions touch dropped)."""
+    from shapely import MultiPolygon, Polygon, get_parts
+
+    if geometry.geom_type in ("Polygon", "MultiPolygon"):
+        return geometry
+    polygons = []
+    for part in get_parts(geometry):
+        if part.geom_type == "Polygon":
+            polygons.append(part)
+        elif part.geom_type == "MultiPolygon":
+            polygons.extend(get_parts(part))
+    return MultiPolygon(polygons) if polygons else Polygon()
+
+
+def _overlay(first, second, operation, outward):
+    """``operation(first, second)`` (shapely's ``intersection`` or ``union``), polygonal;
+    on a GEOS failure, the snapped retry of the module docstring, dilated (``outward``) or
+    eroded so that it stays an outer or inner bound."""
+    from shapely import make_valid
+    from shapely.errors import GEOSException
+
+    try:
+        return _polygonal(operation(first, second))
+    except GEOSException:
+        pass
+    snapped = _polygonal(operation(make_valid(first), make_valid(second), grid_size=GRID_CM))
+    margin = _margin(GRID_CM)
+    return _polygonal(snapped.buffer(margin if outward else -margin, quad_segs=QUAD_SEGMENTS))
+
+
+def combine(geometries, operation, outward):
+    """The intersection (``operation = "intersection"``) or union of ``geometries`` as an
+    outer (``outward``) or inner bound, robust as the module docstring says."""
+    import shapely
+
+    parts = [_polygonal(g) for g in geometries]
+    if operation == "union":
+        try:
+            return _polygonal(shapely.union_all(parts))
+        except shapely.errors.GEOSException:
+            pass
+    binary = getattr(shapely, operation)
+    running = parts[0]
+    for part in parts[1:]:
+        if operation == "intersection" and running.is_empty:
+            break
+        running = _overlay(running, part, binary, outward)
+    return running
 
 
 def reference_polygons(
@@ -49,7 +114,7 @@ def reference_polygons(
 ):
     """``(inner, outer)`` shapely polygons with ``inner ⊆ W ⊆ outer`` for the ``mode``
     (``"maximal"`` or ``"total"``) workspace over ``orientation_deg = (lo, hi)``."""
-    from shapely import affinity, intersection_all, union_all
+    from shapely import affinity
 
     from planar_tui.workspace.geometry import leg_region
 
@@ -67,15 +132,19 @@ def reference_polygons(
     else:
         inner_legs = [leg.buffer(-margin, quad_segs=QUAD_SEGMENTS) for leg in inner_legs]
 
-    def at(legs, phi):
+    def at(legs, phi, outward):
         offsets = robot.leg_offsets_cm(phi)
-        return intersection_all(
-            [affinity.translate(leg, -dx, -dy) for leg, (dx, dy) in zip(legs, offsets, strict=True)]
-        )
+        moved = [
+            affinity.translate(leg, -dx, -dy) for leg, (dx, dy) in zip(legs, offsets, strict=True)
+        ]
+        return combine(moved, "intersection", outward)
 
     phis = [math.radians(lo) + k * step for k in range(samples + 1)]
-    combine = union_all if mode == "maximal" else intersection_all
-    return combine([at(inner_legs, p) for p in phis]), combine([at(outer_legs, p) for p in phis])
+    operation = "union" if mode == "maximal" else "intersection"
+    return tuple(
+        combine([at(legs, p, outward) for p in phis], operation, outward)
+        for legs, outward in ((inner_legs, False), (outer_legs, True))
+    )
 
 
 def reference_area(robot, limits_rad, orientation_deg, mode, samples=None):

@@ -20,7 +20,7 @@ def _three_points(reader, name, default, context, values):
     """Three ``[x, y]`` points, one per leg (absent: the paper's layout)."""
     if not reader.has(name):
         return default
-    rows = reader.number_rows(name, columns=2)
+    rows = reader.number_rows(name, columns=2, row_doc="a point [x, y] in cm")
     if len(rows) != 3:
         raise reader.error(name, f"has {len(rows)} points", "3 points [x, y], one per leg")
     return rows

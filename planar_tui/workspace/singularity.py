@@ -33,16 +33,26 @@ CHUNK_S = 0.05
 LEAF_GRID = 4
 #: |det A| below this fraction of (l1 + l2)^3 (|q|max + 1) counts as singular at the centre.
 SINGULAR_RELATIVE = 1e-9
-HEADER = ("circle_centre_x_cm", "circle_centre_y_cm", "circle_radius_lo_cm", "circle_radius_hi_cm")
+#: What a wrong ``elbow`` is told to expect.
+ELBOW_DOC = "3 signs, each 1 or -1 (one per leg)"
+#: The summary's circle columns: centre, certified radius bracket and the working mode the
+#: radius holds for (``elbow``: the three signs, e.g. ``1 -1 1``).
+HEADER = (
+    "circle_centre_x_cm",
+    "circle_centre_y_cm",
+    "circle_radius_lo_cm",
+    "circle_radius_hi_cm",
+    "elbow",
+)
 
 
 def read_elbow(reader, name, default, robot, values):
     """Three elbow signs, each ``1`` or ``-1``."""
     if not reader.has(name):
         return default
-    signs = reader.numbers(name, length=3)
+    signs = reader.numbers(name, length=3, items_doc=ELBOW_DOC)
     if any(s not in (1.0, -1.0) for s in signs):
-        raise reader.error(name, f"is {list(signs)}", "3 signs, each 1 or -1 (one per leg)")
+        raise reader.error(name, f"is {list(signs)}", ELBOW_DOC)
     return tuple(int(s) for s in signs)
 
 
@@ -50,7 +60,7 @@ def read_centre(reader, name, default, robot, values):
     """A point ``[x, y]`` in cm."""
     if not reader.has(name):
         return default
-    point = reader.numbers(name, length=2)
+    point = reader.numbers(name, length=2, items_doc="a point [x, y] in cm")
     return (point[0], point[1])
 
 
@@ -198,7 +208,9 @@ class SingularityOutcome:
         return self.boxes[self.status == SINGULAR]
 
     def columns(self) -> list:
-        return [*self.centre_cm, self.radius_lo_cm, self.radius_hi_cm]
+        """The summary's :data:`HEADER` cells (``elbow`` as ``"1 -1 1"``)."""
+        elbow = " ".join(str(s) for s in self.elbow)
+        return [*self.centre_cm, self.radius_lo_cm, self.radius_hi_cm, elbow]
 
     def describe(self) -> str:
         """``singularity-free: r ∈ [lo, hi] cm about (x, y), elbow [+1 -1 +1]``."""
