@@ -82,15 +82,39 @@ def test_bad_input_is_one_line_and_writes_nothing(cli, tmp_path):
     assert result.exit_code == 2 and "--samples: is 12, not a power of two" in result.stderr
 
 
+def test_problems_of_a_value_an_option_set_name_the_option(cli, tmp_path):
+    """The resources are checked again once the options are applied: a run too long
+    because of ``--samples`` or ``--method`` blames that option, not the preset (whose own
+    values passed when it was read); nothing is written."""
+    preset = write_preset(tmp_path, duration_s="10")  # 10 000 steps of 1 ms
+    result = cli("motion", preset, "--samples", "4194304", "--out-dir", tmp_path)
+    assert result.exit_code == 2
+    assert result.stderr == (
+        "error: command line: --samples: 29360128 robots of 2 links × 10000 steps: needs "
+        "about 3.43 days of computing (limit 1 day) (expected fewer samples, a shorter "
+        "duration_s or a longer step_s)\n"
+    )  # 4194304 × (1 + 2 + 4) robots × 10⁴ steps × 1.008 µs
+    big = write_preset(tmp_path, duration_s="10", samples="1048576", methods='["montecarlo"]')
+    result = cli("motion", big, "-m", "sobol", "-m", "efast", "--out-dir", tmp_path)
+    assert result.exit_code == 2
+    assert result.stderr == (
+        "error: command line: --method: 10485760 robots of 2 links × 10000 steps: needs "
+        "about 1.22 days of computing (limit 1 day) (expected fewer samples, a shorter "
+        "duration_s or a longer step_s)\n"
+    )  # 2²⁰ × ((4 + 2) + 4) robots (the options replace the preset's methods)
+    assert list(tmp_path.glob("*.csv")) == []
+
+
 def read_rows(path):
     with open(path, newline="") as stream:
         return list(csv.DictReader(stream))
 
 
-def run_cli(preset, out_dir, **env):
+def run_cli(preset, out_dir, *options, **env):
     environment = {k: v for k, v in os.environ.items() if k != "NUMBA_ENABLE_CUDASIM"}
     environment.update(env)
-    command = [sys.executable, "-m", "planar_tui", "motion", str(preset), "--out-dir", str(out_dir)]
+    command = [sys.executable, "-m", "planar_tui", "motion", str(preset), "--out-dir",
+               str(out_dir), *options]  # fmt: skip
     return subprocess.run(command, env=environment, capture_output=True, text=True)
 
 
@@ -104,6 +128,14 @@ def test_cuda_without_a_usable_gpu_is_one_line_and_auto_falls_back(tmp_path):
     done = run_cli(write_preset(tmp_path, "auto"), tmp_path, **no_gpu)
     assert done.returncode == 0, done.stderr
     assert "robots integrated on cpu (no usable CUDA GPU" in done.stdout
+    # the preset says cpu: --device cuda is the option's problem, not the preset's
+    out_dir = tmp_path / "option"
+    done = run_cli(write_preset(tmp_path, "cpu"), out_dir, "--device", "cuda", **no_gpu)
+    assert done.returncode == 2
+    (line,) = done.stderr.strip().splitlines()
+    assert line.startswith("error: command line: --device: no usable CUDA GPU (")
+    assert line.endswith('(expected "cpu" or "auto", or a machine with a usable CUDA GPU)')
+    assert not out_dir.exists()
 
 
 def test_cuda_device_on_the_simulator_gives_the_cpu_band(tmp_path):

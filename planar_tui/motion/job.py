@@ -79,9 +79,11 @@ def _read_times(reader: TableReader, name, default, robot, values) -> tuple[floa
 class MotionSpec(RunSettings):
     """Settings of one motion uncertainty job (see ``docs/motion.md``).
 
-    ``indices_file`` is the indices CSV's name (``indices_output`` or the default made
-    from ``output``, derived, not a key); ``device_used`` is the device :func:`prepare_motion` chose (derived, not a key) and
-    ``device_note`` what the summary says about it.
+    Derived fields, not keys: ``indices_file`` is the indices CSV's name
+    (``indices_output`` or the default made from ``output``); ``device_used`` is the device
+    :func:`prepare_motion` chose and ``device_note`` what the summary says about it;
+    ``overridden`` names the keys command-line options set (:func:`with_overrides`), so
+    that :func:`prepare_motion` blames the option, not the preset, for their problems.
     """
 
     every: int | None = setting(
@@ -152,6 +154,7 @@ class MotionSpec(RunSettings):
     indices_file: str = dataclasses.field(default="", compare=False)
     device_used: str | None = None
     device_note: str = ""
+    overridden: tuple[str, ...] = dataclasses.field(default=(), compare=False)
 
     @staticmethod
     def check(values: dict, reader: TableReader, robot: SerialRobot) -> dict:
@@ -253,15 +256,29 @@ def check_resources(error, spec: MotionSpec, robot: SerialRobot) -> None:
         )
 
 
+#: The command-line option of each key :func:`with_overrides` sets.
+OPTIONS = {"methods": "--method", "samples": "--samples", "seed": "--seed", "device": "--device"}
+
+
 def prepare_motion(job: Job) -> Job:
     """The job with its resources checked again (overrides change them) and its device
-    chosen: ``cuda`` without a usable GPU is a :class:`PresetError` on ``device``."""
+    chosen: ``cuda`` without a usable GPU is a :class:`PresetError` on ``device``.
+
+    A problem with a value a command-line option set names the option (``command line:
+    --device``), not the preset's key: the device when ``--device`` set it, the resources
+    (checked on the preset's values when it was read) when ``--samples`` or ``--method``
+    changed them."""
     from planar_tui.motion.device import resolve
 
     if job.spec.device_used is not None:
         return job
+    overridden = job.spec.overridden
 
     def error(name, problem, expected):
+        causes = ("samples", "methods") if name == "samples" else (name,)
+        option = next((OPTIONS[key] for key in causes if key in overridden), None)
+        if option is not None:
+            return PresetError("command line", option, problem, expected)
         return PresetError(job.preset_path, f"{job.key}.{name}", problem, expected)
 
     check_resources(error, job.spec, job.robot)
@@ -292,7 +309,8 @@ def with_overrides(spec: MotionSpec, options: Mapping[str, Any]) -> MotionSpec:
             if method not in METHODS:
                 raise error("method", f"is {method!r}", "montecarlo, sobol or efast")
         changes["methods"] = tuple(dict.fromkeys(methods))
-    updated = dataclasses.replace(spec, **changes)
+    overridden = tuple(key for key in OPTIONS if key in changes or key in spec.overridden)
+    updated = dataclasses.replace(spec, **changes, overridden=overridden)
     check_samples(error, updated.methods, updated.samples)
     return updated
 
