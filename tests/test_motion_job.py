@@ -188,3 +188,38 @@ def test_one_robot_equals_the_simulate_jobs_csv():
     assert motion.spec.record_steps() == (0, 50, 100, 150, 200, 250, 300, 350, 400, 450, 500)
     got = np.array([recorded[k][0] for k in motion.spec.record_steps()])
     assert np.array_equal(got, rows[:, 1:4])
+
+
+def test_the_motion_engine_sizes_its_calls_with_the_simulate_jobs_rule(monkeypatch):
+    """``integrate`` takes each call's steps from ``next_chunk_steps`` (the one home of the
+    rule), clipped at the next stop, and visits every stop."""
+    from planar_tui.dynamics import simulate
+
+    asked = []
+
+    def rule(steps, seconds, left, most=None):
+        asked.append((steps, left, most))
+        return 3
+
+    monkeypatch.setattr(simulate, "next_chunk_steps", rule)
+
+    class Robots:
+        def __init__(self):
+            self.blocks = [(0, 2), (2, 4)]
+            self.calls = []
+
+        def advance(self, block, step_s, n_steps):
+            self.calls.append((block, n_steps))
+
+        def angles(self):
+            return np.zeros((4, 1))
+
+    robots = Robots()
+    stops = []
+    engine.integrate(robots, 0.1, (0, 4, 10), lambda k, angles: stops.append(k))
+    assert stops == [0, 4, 10]
+    # 1 step, then the rule's 3 (the second clipped at stop 4 after 1 step: 3 left)
+    assert [n for block, n in robots.calls if block == (0, 2)] == [1, 3, 3, 3]
+    assert [n for block, n in robots.calls if block == (2, 4)] == [1, 3, 3, 3]
+    # after each call: the steps it took, the steps to the last stop, no cap
+    assert asked == [(1, 9, None), (3, 6, None), (3, 3, None), (3, 0, None)]
