@@ -82,6 +82,48 @@ def test_bad_input_is_one_line_and_writes_nothing(cli, tmp_path):
     assert result.exit_code == 2 and "--samples: is 12, not a power of two" in result.stderr
 
 
+def test_a_single_output_and_method_are_one_item_lists(cli, tmp_path):
+    """``outputs = "tip"`` and ``methods = "sobol"`` read as ``["tip"]``, ``["sobol"]``,
+    as ``at_s`` takes one number."""
+    preset = write_preset(tmp_path, methods='"sobol"', at_s="0.01")
+    preset.write_text(preset.read_text().replace("every = 5", 'every = 5\noutputs = "tip"'))
+    result = cli("motion", preset, "--out-dir", tmp_path)
+    assert result.exit_code == 0, result.stderr
+    band = read_csv(tmp_path / "tiny.csv")
+    assert band[0] == ["t_s", *(f"tip_{axis}_m_{stat}" for axis in "xy"
+                                for stat in ("mean", "std", "p5", "p50", "p95"))]  # fmt: skip
+    indices = read_csv(tmp_path / "tiny-indices.csv")
+    assert {(row[0], row[1], row[3]) for row in indices[1:]} == {
+        ("tip_x_m", "0.01", "sobol"), ("tip_y_m", "0.01", "sobol")
+    }  # fmt: skip
+    assert "96 robots integrated on cpu\n" in result.stdout  # 16 × (4 + 2)
+
+
+def test_bad_times_and_choices_name_the_allowed_values(cli, tmp_path):
+    """One line naming the file, the key and the allowed values; nothing written."""
+    preset = write_preset(tmp_path, at_s='"end"')
+    result = cli("motion", preset, "--out-dir", tmp_path)
+    assert result.exit_code == 2
+    assert result.stderr == (
+        f"error: {preset}: motion_uncertainty.at_s: is 'end' (expected a number or a list of "
+        "numbers in (0, duration_s = 0.01 s])\n"
+    )
+    preset = write_preset(tmp_path, at_s="[0.005, 0.02]")
+    result = cli("motion", preset, "--out-dir", tmp_path)
+    assert result.stderr == (
+        f"error: {preset}: motion_uncertainty.at_s: has 0.02 s (expected a number or a list "
+        "of numbers in (0, duration_s = 0.01 s])\n"
+    )
+    preset = write_preset(tmp_path, methods='"bootstrap"')
+    result = cli("motion", preset, "--out-dir", tmp_path)
+    assert result.exit_code == 2
+    assert result.stderr == (
+        f"error: {preset}: motion_uncertainty.methods: has 'bootstrap' (expected one of "
+        '"montecarlo", "sobol", "efast" or a non-empty list of them)\n'
+    )
+    assert not list(tmp_path.glob("*.csv"))
+
+
 def test_problems_of_a_value_an_option_set_name_the_option(cli, tmp_path):
     """The resources are checked again once the options are applied: a run too long
     because of ``--samples`` or ``--method`` blames that option, not the preset (whose own

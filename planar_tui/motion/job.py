@@ -46,10 +46,15 @@ EFAST_MIN_SAMPLES = 65
 
 
 def _read_choices(allowed: tuple[str, ...]):
-    expected = "a non-empty list of " + ", ".join(f'"{a}"' for a in allowed)
+    """A reader of one of ``allowed`` or a non-empty list of them (a single string is a
+    one-item list), duplicates dropped, in the given order."""
+    choices = ", ".join(f'"{a}"' for a in allowed)
+    expected = f"one of {choices} or a non-empty list of them"
 
     def read(reader: TableReader, name, default, robot, values) -> tuple[str, ...]:
         chosen = reader.raw(name, list(default))
+        if isinstance(chosen, str):
+            chosen = [chosen]
         if not isinstance(chosen, list) or not chosen:
             raise reader.error(name, f"is {shown(chosen)}", expected)
         for item in chosen:
@@ -64,15 +69,18 @@ def _read_times(reader: TableReader, name, default, robot, values) -> tuple[floa
     """A time or a list of times in (0, duration_s], sorted, duplicates dropped."""
     if not reader.has(name):
         return None
-    raw = reader.raw(name)
-    times = reader.numbers(name) if isinstance(raw, list) else (reader.number(name),)
     duration_s = values["duration_s"]
-    for t_s in times:
-        if not 0 < t_s <= duration_s:
-            raise reader.error(
-                name, f"has {t_s:g} s", f"times in (0, duration_s = {duration_s:g} s]"
-            )
-    return tuple(sorted(set(times)))
+    expected = f"a number or a list of numbers in (0, duration_s = {duration_s:g} s]"
+    raw = reader.raw(name)
+    items, verb = (raw, "has") if isinstance(raw, list) else ([raw], "is")
+    if not items:
+        raise reader.error(name, "is empty", expected)
+    for item in items:
+        if isinstance(item, bool) or not isinstance(item, int | float):
+            raise reader.error(name, f"{verb} {shown(item)}", expected)
+        if not 0 < item <= duration_s:  # also NaN, ±inf; no float() of a huge integer
+            raise reader.error(name, f"{verb} {shown(item)} s", expected)
+    return tuple(sorted({float(t_s) for t_s in items}))
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -107,7 +115,7 @@ class MotionSpec(RunSettings):
     methods: tuple[str, ...] = setting(
         _read_choices(METHODS),
         default=("montecarlo", "sobol"),
-        type_doc='list of `"montecarlo"`, `"sobol"`, `"efast"`',
+        type_doc='`"montecarlo"`, `"sobol"`, `"efast"` or a list of them',
         doc="Monte Carlo (band), Sobol' and eFAST (indices; SALib's designs)",
     )
     samples: int = setting(
@@ -127,14 +135,14 @@ class MotionSpec(RunSettings):
         _read_times,
         default=None,
         default_doc="`duration_s`",
-        type_doc="number or list in (0, `duration_s`]",
+        type_doc="number or list of numbers in (0, `duration_s`]",
         doc="times of the indices (rounded to a step)",
     )
     outputs: tuple[str, ...] = setting(
         _read_choices(OUTPUTS),
         default=OUTPUTS,
         default_doc="both",
-        type_doc='list of `"angles"`, `"tip"`',
+        type_doc='`"angles"`, `"tip"` or a list of them',
         doc="relative joint angles θ1…θn (rad) and/or the tip's x, y (m)",
     )
     device: str = setting(
