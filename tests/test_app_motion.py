@@ -37,3 +37,21 @@ async def test_motion_run_plots_the_band_and_shows_the_tables(tmp_path):
         await pilot.press("ctrl+t")
         await pilot.pause(0.2)
         assert "θ2 (rad) vs t (s)" in app.export_text()
+
+
+def test_the_docs_name_the_tab_keys_the_app_binds():
+    """README's tab keys and docs/motion.md's Motion-tab key are the app's bindings (F8 is
+    the sweep, not a tab)."""
+    from planar_tui.app.app import WorkbenchApp
+    from tests.conftest import REPO
+
+    tab_keys = {}  # tab number -> its keys
+    for binding in WorkbenchApp.BINDINGS:
+        if binding.action.startswith("show_tab_number("):
+            tab_keys.setdefault(int(binding.action[16:-1]), []).append(binding.key)
+    function_keys = [keys[1].upper() for _, keys in sorted(tab_keys.items())]
+    readme = " ".join((REPO / "README.md").read_text(encoding="utf-8").split())
+    listed = " ".join(f"`{key}`" for key in function_keys)
+    assert f"keys `1`…`6` outside fields, {listed} anywhere" in readme
+    motion = " ".join((REPO / "docs" / "motion.md").read_text(encoding="utf-8").split())
+    assert f"(Motion tab, key `{tab_keys[6][0]}` / `{function_keys[5]}`)" in motion
