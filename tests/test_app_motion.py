@@ -3,11 +3,15 @@ outputs) and the indices table; the CLI writes the same band from the saved pres
 
 from __future__ import annotations
 
+import csv
+
+import numpy as np
+
 from tests.test_app import SIZE, async_test, make_app, run_tab
 
 
 @async_test
-async def test_motion_run_plots_the_band_and_shows_the_tables(tmp_path):
+async def test_motion_run_plots_the_band_and_shows_the_tables(tmp_path, cli):
     app = make_app(tmp_path)
     async with app.run_test(size=SIZE) as pilot:
         await run_tab(app, pilot, "motion_uncertainty")
@@ -37,6 +41,21 @@ async def test_motion_run_plots_the_band_and_shows_the_tables(tmp_path):
         await pilot.press("ctrl+t")
         await pilot.pause(0.2)
         assert "θ2 (rad) vs t (s)" in app.export_text()
+        await pilot.press("ctrl+s")  # the preset's own file, now with the motion table
+        await pilot.pause(0.2)
+    saved = tmp_path / "tiny.toml"
+    assert "[motion_uncertainty]" in saved.read_text()
+    done = cli("motion", saved, "--out", tmp_path / "cli.csv")
+    assert done.exit_code == 0, done.stderr
+    with open(tmp_path / "cli.csv", newline="") as stream:
+        header, *records = list(csv.reader(stream))
+    assert tuple(header) == result.table.header
+    band = np.array(records, dtype=float)  # (R, 1 + 5 per output)
+    assert np.array_equal(band[:, 0], result.t_s)
+    assert np.array_equal(band[:, 1:].reshape(len(band), -1, 5), result.band.transpose(0, 2, 1))
+    # and the on-screen band row holds the CLI's last-row tip x statistics
+    cells = row.split()[2:]  # "tip x" and then the mean, std, p5, p50, p95
+    assert cells == [f"{value:.5g}" for value in band[-1, 11:16]]
 
 
 def test_the_docs_name_the_tab_keys_the_app_binds():
