@@ -74,3 +74,29 @@ def test_the_docs_name_the_tab_keys_the_app_binds():
     assert f"keys `1`…`6` outside fields, {listed} anywhere" in readme
     motion = " ".join((REPO / "docs" / "motion.md").read_text(encoding="utf-8").split())
     assert f"(Motion tab, key `{tab_keys[6][0]}` / `{function_keys[5]}`)" in motion
+
+
+@async_test
+async def test_a_wide_results_area_puts_the_tables_beside_the_plot(tmp_path):
+    """From 150 columns of results the band and index tables stand beside the plot (the
+    issue's "band plot beside the table"); narrower, below it."""
+    app = make_app(tmp_path)
+    async with app.run_test(size=(170, 40)) as pilot:
+        await run_tab(app, pilot, "motion_uncertainty")
+        pane = app.query_one("#pane-motion_uncertainty")
+        plot, tables = pane.query_one("#band-plot"), pane.query_one("#motion-tables")
+        # with the form: about 137 columns of results, the tables below the plot
+        assert pane.query_one("#motion-results").scrollable_content_region.width < 150
+        assert not pane.query_one("#motion-body").has_class("beside")
+        assert plot.region.bottom <= tables.region.y
+        await pilot.press("ctrl+f")  # without the form: the whole width
+        await pilot.pause(0.3)
+        assert pane.query_one("#motion-results").scrollable_content_region.width >= 150
+        assert pane.query_one("#motion-body").has_class("beside")
+        assert plot.region.y == tables.region.y and plot.region.right < tables.region.x
+        assert plot.region.width >= 60
+        result = pane.result
+        screen = app.export_text()
+        row = next(line for line in screen.splitlines() if " tip x " in line and "±" not in line)
+        assert row.rstrip().endswith(f"{result.band[-1, 4, 2]:.5g}")  # whole, at the right
+        assert "θ1 (rad) vs t (s)" in screen

@@ -223,3 +223,21 @@ def test_the_motion_engine_sizes_its_calls_with_the_simulate_jobs_rule(monkeypat
     assert [n for block, n in robots.calls if block == (2, 4)] == [1, 3, 3, 3]
     # after each call: the steps it took, the steps to the last stop, no cap
     assert asked == [(1, 9, None), (3, 6, None), (3, 3, None), (3, 0, None)]
+
+
+def test_the_band_table_is_as_wide_as_rich_draws_it():
+    """The width ``band_grid`` gives (the app sizes the tables beside the plot by it) is
+    Rich's own measure, and at that width no number is cut to "…"."""
+    from rich.console import Console
+    from rich.measure import Measurement
+
+    from planar_tui.motion.results import band_grid
+
+    result = run_job(one_link_job(["montecarlo"], 64))
+    table, width = band_grid(result)
+    console = Console(width=200, record=True, color_system=None)
+    assert Measurement.get(console, console.options, table).maximum == width
+    narrow = Console(width=width, record=True, color_system=None)
+    narrow.print(table)
+    text = narrow.export_text()
+    assert "…" not in text and f"{result.band[-1, 4, 0]:.5g}" in text
