@@ -3,11 +3,15 @@ outputs) and the indices table; the CLI writes the same band from the saved pres
 
 from __future__ import annotations
 
+import csv
+
+import numpy as np
+
 from tests.test_app import SIZE, async_test, make_app, run_tab
 
 
 @async_test
-async def test_motion_run_plots_the_band_and_shows_the_tables(tmp_path):
+async def test_motion_run_plots_the_band_and_shows_the_tables(tmp_path, cli):
     app = make_app(tmp_path)
     async with app.run_test(size=SIZE) as pilot:
         await run_tab(app, pilot, "motion_uncertainty")
@@ -37,3 +41,62 @@ async def test_motion_run_plots_the_band_and_shows_the_tables(tmp_path):
         await pilot.press("ctrl+t")
         await pilot.pause(0.2)
         assert "θ2 (rad) vs t (s)" in app.export_text()
+        await pilot.press("ctrl+s")  # the preset's own file, now with the motion table
+        await pilot.pause(0.2)
+    saved = tmp_path / "tiny.toml"
+    assert "[motion_uncertainty]" in saved.read_text()
+    done = cli("motion", saved, "--out", tmp_path / "cli.csv")
+    assert done.exit_code == 0, done.stderr
+    with open(tmp_path / "cli.csv", newline="") as stream:
+        header, *records = list(csv.reader(stream))
+    assert tuple(header) == result.table.header
+    band = np.array(records, dtype=float)  # (R, 1 + 5 per output)
+    assert np.array_equal(band[:, 0], result.t_s)
+    assert np.array_equal(band[:, 1:].reshape(len(band), -1, 5), result.band.transpose(0, 2, 1))
+    # and the on-screen band row holds the CLI's last-row tip x statistics
+    cells = row.split()[2:]  # "tip x" and then the mean, std, p5, p50, p95
+    assert cells == [f"{value:.5g}" for value in band[-1, 11:16]]
+
+
+def test_the_docs_name_the_tab_keys_the_app_binds():
+    """README's tab keys and docs/motion.md's Motion-tab key are the app's bindings (F8 is
+    the sweep, not a tab)."""
+    from planar_tui.app.app import WorkbenchApp
+    from tests.conftest import REPO
+
+    tab_keys = {}  # tab number -> its keys
+    for binding in WorkbenchApp.BINDINGS:
+        if binding.action.startswith("show_tab_number("):
+            tab_keys.setdefault(int(binding.action[16:-1]), []).append(binding.key)
+    function_keys = [keys[1].upper() for _, keys in sorted(tab_keys.items())]
+    readme = " ".join((REPO / "README.md").read_text(encoding="utf-8").split())
+    listed = " ".join(f"`{key}`" for key in function_keys)
+    assert f"keys `1`…`6` outside fields, {listed} anywhere" in readme
+    motion = " ".join((REPO / "docs" / "motion.md").read_text(encoding="utf-8").split())
+    assert f"(Motion tab, key `{tab_keys[6][0]}` / `{function_keys[5]}`)" in motion
+
+
+@async_test
+async def test_a_wide_results_area_puts_the_tables_beside_the_plot(tmp_path):
+    """From 150 columns of results the band and index tables stand beside the plot (the
+    issue's "band plot beside the table"); narrower, below it."""
+    app = make_app(tmp_path)
+    async with app.run_test(size=(170, 40)) as pilot:
+        await run_tab(app, pilot, "motion_uncertainty")
+        pane = app.query_one("#pane-motion_uncertainty")
+        plot, tables = pane.query_one("#band-plot"), pane.query_one("#motion-tables")
+        # with the form: about 137 columns of results, the tables below the plot
+        assert pane.query_one("#motion-results").scrollable_content_region.width < 150
+        assert not pane.query_one("#motion-body").has_class("beside")
+        assert plot.region.bottom <= tables.region.y
+        await pilot.press("ctrl+f")  # without the form: the whole width
+        await pilot.pause(0.3)
+        assert pane.query_one("#motion-results").scrollable_content_region.width >= 150
+        assert pane.query_one("#motion-body").has_class("beside")
+        assert plot.region.y == tables.region.y and plot.region.right < tables.region.x
+        assert plot.region.width >= 60
+        result = pane.result
+        screen = app.export_text()
+        row = next(line for line in screen.splitlines() if " tip x " in line and "±" not in line)
+        assert row.rstrip().endswith(f"{result.band[-1, 4, 2]:.5g}")  # whole, at the right
+        assert "θ1 (rad) vs t (s)" in screen

@@ -82,15 +82,81 @@ def test_bad_input_is_one_line_and_writes_nothing(cli, tmp_path):
     assert result.exit_code == 2 and "--samples: is 12, not a power of two" in result.stderr
 
 
+def test_a_single_output_and_method_are_one_item_lists(cli, tmp_path):
+    """``outputs = "tip"`` and ``methods = "sobol"`` read as ``["tip"]``, ``["sobol"]``,
+    as ``at_s`` takes one number."""
+    preset = write_preset(tmp_path, methods='"sobol"', at_s="0.01")
+    preset.write_text(preset.read_text().replace("every = 5", 'every = 5\noutputs = "tip"'))
+    result = cli("motion", preset, "--out-dir", tmp_path)
+    assert result.exit_code == 0, result.stderr
+    band = read_csv(tmp_path / "tiny.csv")
+    assert band[0] == ["t_s", *(f"tip_{axis}_m_{stat}" for axis in "xy"
+                                for stat in ("mean", "std", "p5", "p50", "p95"))]  # fmt: skip
+    indices = read_csv(tmp_path / "tiny-indices.csv")
+    assert {(row[0], row[1], row[3]) for row in indices[1:]} == {
+        ("tip_x_m", "0.01", "sobol"), ("tip_y_m", "0.01", "sobol")
+    }  # fmt: skip
+    assert "96 robots integrated on cpu\n" in result.stdout  # 16 × (4 + 2)
+
+
+def test_bad_times_and_choices_name_the_allowed_values(cli, tmp_path):
+    """One line naming the file, the key and the allowed values; nothing written."""
+    preset = write_preset(tmp_path, at_s='"end"')
+    result = cli("motion", preset, "--out-dir", tmp_path)
+    assert result.exit_code == 2
+    assert result.stderr == (
+        f"error: {preset}: motion_uncertainty.at_s: is 'end' (expected a number or a list of "
+        "numbers in (0, duration_s = 0.01 s])\n"
+    )
+    preset = write_preset(tmp_path, at_s="[0.005, 0.02]")
+    result = cli("motion", preset, "--out-dir", tmp_path)
+    assert result.stderr == (
+        f"error: {preset}: motion_uncertainty.at_s: has 0.02 s (expected a number or a list "
+        "of numbers in (0, duration_s = 0.01 s])\n"
+    )
+    preset = write_preset(tmp_path, methods='"bootstrap"')
+    result = cli("motion", preset, "--out-dir", tmp_path)
+    assert result.exit_code == 2
+    assert result.stderr == (
+        f"error: {preset}: motion_uncertainty.methods: has 'bootstrap' (expected one of "
+        '"montecarlo", "sobol", "efast" or a non-empty list of them)\n'
+    )
+    assert not list(tmp_path.glob("*.csv"))
+
+
+def test_problems_of_a_value_an_option_set_name_the_option(cli, tmp_path):
+    """The resources are checked again once the options are applied: a run too long
+    because of ``--samples`` or ``--method`` blames that option, not the preset (whose own
+    values passed when it was read); nothing is written."""
+    preset = write_preset(tmp_path, duration_s="10")  # 10 000 steps of 1 ms
+    result = cli("motion", preset, "--samples", "4194304", "--out-dir", tmp_path)
+    assert result.exit_code == 2
+    assert result.stderr == (
+        "error: command line: --samples: 29360128 robots of 2 links × 10000 steps: needs "
+        "about 3.43 days of computing (limit 1 day) (expected fewer samples, a shorter "
+        "duration_s or a longer step_s)\n"
+    )  # 4194304 × (1 + 2 + 4) robots × 10⁴ steps × 1.008 µs
+    big = write_preset(tmp_path, duration_s="10", samples="1048576", methods='["montecarlo"]')
+    result = cli("motion", big, "-m", "sobol", "-m", "efast", "--out-dir", tmp_path)
+    assert result.exit_code == 2
+    assert result.stderr == (
+        "error: command line: --method: 10485760 robots of 2 links × 10000 steps: needs "
+        "about 1.22 days of computing (limit 1 day) (expected fewer samples, a shorter "
+        "duration_s or a longer step_s)\n"
+    )  # 2²⁰ × ((4 + 2) + 4) robots (the options replace the preset's methods)
+    assert list(tmp_path.glob("*.csv")) == []
+
+
 def read_rows(path):
     with open(path, newline="") as stream:
         return list(csv.DictReader(stream))
 
 
-def run_cli(preset, out_dir, **env):
+def run_cli(preset, out_dir, *options, **env):
     environment = {k: v for k, v in os.environ.items() if k != "NUMBA_ENABLE_CUDASIM"}
     environment.update(env)
-    command = [sys.executable, "-m", "planar_tui", "motion", str(preset), "--out-dir", str(out_dir)]
+    command = [sys.executable, "-m", "planar_tui", "motion", str(preset), "--out-dir",
+               str(out_dir), *options]  # fmt: skip
     return subprocess.run(command, env=environment, capture_output=True, text=True)
 
 
@@ -104,6 +170,14 @@ def test_cuda_without_a_usable_gpu_is_one_line_and_auto_falls_back(tmp_path):
     done = run_cli(write_preset(tmp_path, "auto"), tmp_path, **no_gpu)
     assert done.returncode == 0, done.stderr
     assert "robots integrated on cpu (no usable CUDA GPU" in done.stdout
+    # the preset says cpu: --device cuda is the option's problem, not the preset's
+    out_dir = tmp_path / "option"
+    done = run_cli(write_preset(tmp_path, "cpu"), out_dir, "--device", "cuda", **no_gpu)
+    assert done.returncode == 2
+    (line,) = done.stderr.strip().splitlines()
+    assert line.startswith("error: command line: --device: no usable CUDA GPU (")
+    assert line.endswith('(expected "cpu" or "auto", or a machine with a usable CUDA GPU)')
+    assert not out_dir.exists()
 
 
 def test_cuda_device_on_the_simulator_gives_the_cpu_band(tmp_path):

@@ -2,8 +2,9 @@
 
 A 1-link robot in zero gravity under a constant torque from rest turns by
 θ(T) = τT²/(2(I + m l²/4)) (RK4 is exact for a constant acceleration): its Monte-Carlo
-mean and standard deviation and its Sobol' indices over (l, m) are checked against 2-D
-Gauss-Legendre quadrature of that formula, within four standard errors of the estimator
+mean and standard deviation and its Sobol' indices over (l, m), and over (l, m, I) with
+``tolerance_inertia_kgm2``, are checked against 2-D and 3-D Gauss-Legendre quadrature of
+that formula, within four standard errors of the estimator
 (Sobol': twice SALib's 95 % bootstrap half-width, 1.96 standard errors). A pendulum whose
 inertia is m l²/12 cannot depend on m (structure zero); a robot that cannot move has
 outputs without variance (zeros and a note, no NaN, no warning: the suite turns warnings
@@ -25,8 +26,12 @@ from planar_tui.presets import parse_preset
 from planar_tui.progress import Progress
 from planar_tui.registry import JOB_KINDS
 
-# 1-link, zero gravity, τ = 1 N m from rest for T = 0.5 s; l = 0.5 ± 0.2 m, m = 2 ± 1 kg
+# 1-link, zero gravity, τ = 1 N m from rest for T = 0.5 s; l = 0.5 ± 0.2 m, m = 2 ± 1 kg;
+# I = 0.01 kg m² fixed, or I = 0.1 ± 0.06 kg m² as a third input (a quarter of the variance;
+# l still dominates)
 L0, DL, M0, DM, INERTIA, TAU, T = 0.5, 0.2, 2.0, 1.0, 0.01, 1.0, 0.5
+#: (nominal inertia, its tolerance or None) per case: inputs (l, m) or (l, m, I).
+CASES = {"l-m": (INERTIA, None), "l-m-I": (0.1, 0.06)}
 
 
 def job_of(robot: dict, motion: dict):
@@ -34,45 +39,61 @@ def job_of(robot: dict, motion: dict):
     return job
 
 
-def one_link_job(methods, samples):
+def one_link_job(methods, samples, inertia=INERTIA, tolerance_inertia=None):
+    settings = {
+        "duration_s": T, "step_s": 0.05, "torques_Nm": [TAU], "methods": methods,
+        "samples": samples, "tolerance_length_mm": DL * 1e3, "tolerance_mass_g": DM * 1e3,
+    }  # fmt: skip
+    if tolerance_inertia is not None:
+        settings["tolerance_inertia_kgm2"] = tolerance_inertia
     return job_of(
-        {"lengths_m": [L0], "masses_kg": [M0], "inertias_kgm2": [INERTIA], "gravity_m_s2": 0.0},
-        {
-            "duration_s": T, "step_s": 0.05, "torques_Nm": [TAU], "methods": methods,
-            "samples": samples, "tolerance_length_mm": DL * 1e3, "tolerance_mass_g": DM * 1e3,
-        },
-    )  # fmt: skip
+        {"lengths_m": [L0], "masses_kg": [M0], "inertias_kgm2": [inertia], "gravity_m_s2": 0.0},
+        settings,
+    )
 
 
-def theta_closed_form(length_m, mass_kg):
-    return TAU * T**2 / (2.0 * (INERTIA + mass_kg * length_m**2 / 4.0))
+def theta_closed_form(length_m, mass_kg, inertia_kgm2):
+    return TAU * T**2 / (2.0 * (inertia_kgm2 + mass_kg * length_m**2 / 4.0))
 
 
-def quadrature(points: int = 48):
-    """Nodes and weights of the uniform distribution on the (l, m) box; f on the grid."""
+def exact_moments(inertia=INERTIA, tolerance_inertia=None, points: int = 48):
+    """Mean, variance, fourth central moment, first-order and total partial variances
+    (per input) of θ(T) under the uniform inputs, by Gauss-Legendre quadrature on the
+    (l, m) or (l, m, I) box."""
     x, w = np.polynomial.legendre.leggauss(points)
-    lengths, masses = L0 + DL * x, M0 + DM * x
-    weights = w / 2.0  # the uniform density on [-1, 1]
-    f = theta_closed_form(lengths[:, None], masses[None, :])
-    return weights, f
+    w = w / 2.0  # the uniform density on [-1, 1]
+    axes = [L0 + DL * x, M0 + DM * x]
+    if tolerance_inertia is not None:
+        axes.append(inertia + tolerance_inertia * x)
+    d = len(axes)
+    grid = np.meshgrid(*axes, indexing="ij")
+    f = theta_closed_form(*grid) if d == 3 else theta_closed_form(*grid, inertia)
+    weights = np.ones(())
+    for _ in range(d):
+        weights = np.multiply.outer(weights, w)  # the joint weights, shape (points,) * d
+
+    def expect(values):
+        return float((weights * values).sum())
+
+    mean = expect(f)
+    variance = expect((f - mean) ** 2)
+    fourth = expect((f - mean) ** 4)
+    first, total = [], []
+    for a in range(d):
+        others = tuple(i for i in range(d) if i != a)
+        given_a = (weights * f).sum(axis=others) / w  # E[f | x_a]
+        first.append(float(w @ (given_a - mean) ** 2))  # Var_a E[f | x_a]
+        given_others = np.expand_dims(np.moveaxis(f, a, -1) @ w, a)  # E[f | x_~a]
+        total.append(expect((f - given_others) ** 2))  # E_~a Var_a(f | x_~a)
+    return mean, variance, fourth, tuple(first), tuple(total)
 
 
-def exact_moments():
-    w, f = quadrature()
-    mean = w @ f @ w
-    variance = w @ (f - mean) ** 2 @ w
-    fourth = w @ (f - mean) ** 4 @ w
-    var_l = w @ ((f @ w) - mean) ** 2  # Var_l E[f | l]
-    var_m = w @ ((w @ f) - mean) ** 2
-    total_l = w @ (w @ (f - (w @ f)[None, :]) ** 2)  # E_m Var_l(f | m)
-    total_m = w @ ((f - (f @ w)[:, None]) ** 2 @ w)
-    return mean, variance, fourth, (var_l, var_m), (total_l, total_m)
-
-
-def test_montecarlo_mean_and_std_match_quadrature():
-    job = one_link_job(["montecarlo"], 4096)
+@pytest.mark.parametrize("case", CASES)
+def test_montecarlo_mean_and_std_match_quadrature(case):
+    inertia, tolerance_inertia = CASES[case]
+    job = one_link_job(["montecarlo"], 4096, inertia, tolerance_inertia)
     result = run_job(job)
-    mean, variance, fourth, _, _ = exact_moments()
+    mean, variance, fourth, _, _ = exact_moments(inertia, tolerance_inertia)
     n = result.robots
     got_mean, got_std = result.band[-1, 0, 0], result.band[-1, 1, 0]
     assert result.t_s[-1] == pytest.approx(T)
@@ -82,20 +103,23 @@ def test_montecarlo_mean_and_std_match_quadrature():
     assert "indices" not in result.extra_tables  # Monte Carlo gives the band only
 
 
-def test_sobol_indices_match_quadrature():
-    job = one_link_job(["sobol"], 2048)
+@pytest.mark.parametrize("case", CASES)
+def test_sobol_indices_match_quadrature(case):
+    inertia, tolerance_inertia = CASES[case]
+    job = one_link_job(["sobol"], 2048, inertia, tolerance_inertia)
     result = run_job(job)
-    _, variance, _, first, total = exact_moments()
+    _, variance, _, first, total = exact_moments(inertia, tolerance_inertia)
     (analysis,) = result.analyses
+    assert analysis.names == ("l1", "m1", "I1")[: len(first)]
     theta = 0  # the outputs: theta1, tip x, tip y
-    for j in range(2):
+    for j in range(len(first)):
         s1, s1_conf, st, st_conf = analysis.indices[:, theta, j]
         assert abs(s1 - first[j] / variance) <= 2 * s1_conf
         assert abs(st - total[j] / variance) <= 2 * st_conf
-    assert min(first) / variance > 0.2  # both matter: the check is not vacuous
+    assert min(first) / variance > 0.1  # every input matters: the check is not vacuous
     assert result.extra_tables["indices"].header[:4] == ("output", "t_s", "parameter", "method")
     figures = JOB_KINDS["motion_uncertainty"].point_figures(job, result)
-    assert figures["theta1_rad_dominant"] == ("m1" if total[1] > total[0] else "l1")
+    assert figures["theta1_rad_dominant"] == ("l1", "m1", "I1")[int(np.argmax(total))]
     assert figures["theta1_rad_mean"] == result.band[-1, 0, 0]
 
 
@@ -164,3 +188,56 @@ def test_one_robot_equals_the_simulate_jobs_csv():
     assert motion.spec.record_steps() == (0, 50, 100, 150, 200, 250, 300, 350, 400, 450, 500)
     got = np.array([recorded[k][0] for k in motion.spec.record_steps()])
     assert np.array_equal(got, rows[:, 1:4])
+
+
+def test_the_motion_engine_sizes_its_calls_with_the_simulate_jobs_rule(monkeypatch):
+    """``integrate`` takes each call's steps from ``next_chunk_steps`` (the one home of the
+    rule), clipped at the next stop, and visits every stop."""
+    from planar_tui.dynamics import simulate
+
+    asked = []
+
+    def rule(steps, seconds, left, most=None):
+        asked.append((steps, left, most))
+        return 3
+
+    monkeypatch.setattr(simulate, "next_chunk_steps", rule)
+
+    class Robots:
+        def __init__(self):
+            self.blocks = [(0, 2), (2, 4)]
+            self.calls = []
+
+        def advance(self, block, step_s, n_steps):
+            self.calls.append((block, n_steps))
+
+        def angles(self):
+            return np.zeros((4, 1))
+
+    robots = Robots()
+    stops = []
+    engine.integrate(robots, 0.1, (0, 4, 10), lambda k, angles: stops.append(k))
+    assert stops == [0, 4, 10]
+    # 1 step, then the rule's 3 (the second clipped at stop 4 after 1 step: 3 left)
+    assert [n for block, n in robots.calls if block == (0, 2)] == [1, 3, 3, 3]
+    assert [n for block, n in robots.calls if block == (2, 4)] == [1, 3, 3, 3]
+    # after each call: the steps it took, the steps to the last stop, no cap
+    assert asked == [(1, 9, None), (3, 6, None), (3, 3, None), (3, 0, None)]
+
+
+def test_the_band_table_is_as_wide_as_rich_draws_it():
+    """The width ``band_grid`` gives (the app sizes the tables beside the plot by it) is
+    Rich's own measure, and at that width no number is cut to "…"."""
+    from rich.console import Console
+    from rich.measure import Measurement
+
+    from planar_tui.motion.results import band_grid
+
+    result = run_job(one_link_job(["montecarlo"], 64))
+    table, width = band_grid(result)
+    console = Console(width=200, record=True, color_system=None)
+    assert Measurement.get(console, console.options, table).maximum == width
+    narrow = Console(width=width, record=True, color_system=None)
+    narrow.print(table)
+    text = narrow.export_text()
+    assert "…" not in text and f"{result.band[-1, 4, 0]:.5g}" in text

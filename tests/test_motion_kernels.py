@@ -1,6 +1,7 @@
 """The batched RK4 of the motion uncertainty job: S = 1 equals ``rk4_integrate`` to the
-last bit, parameters are SALib's scaling, free fall keeps every robot's energy, and the
-CUDA kernel (numba's CUDA simulator, in a subprocess) equals the CPU kernel."""
+last bit, parameters are SALib's scaling (``SALib.util.scale_samples``; D = 2n and, with
+the inertias as inputs, D = 3n), free fall keeps every robot's energy, and the CUDA kernel
+(numba's CUDA simulator, in a subprocess) equals the CPU kernel for D = 2n and D = 3n."""
 
 from __future__ import annotations
 
@@ -10,6 +11,7 @@ import subprocess
 import sys
 
 import numpy as np
+import pytest
 from planar_tui.kernels.dynamics import energies
 from planar_tui.kernels.motion_rk4 import design_parameters, rk4_batch
 from planar_tui.kernels.rk4 import rk4_integrate
@@ -61,6 +63,29 @@ def test_parameters_are_salib_scaling_and_rod_inertias_follow_the_sample():
     assert np.all(params[:, 2, 1] == 0.002)
 
 
+def salib_scaled(unit, lower, upper):
+    from SALib.util import scale_samples
+
+    bounds = [[lo, hi] for lo, hi in zip(lower, upper, strict=True)]
+    return scale_samples(unit.copy(), {"num_vars": len(lower), "bounds": bounds})
+
+
+def test_parameters_are_salib_scaling_with_inertias_as_inputs():
+    """D = 3n: the inertias are the design's last n columns, scaled like the others; a
+    rod's m l²/12 and the nominal inertias are not used."""
+    rng = np.random.default_rng(4)
+    unit = rng.random((40, 6))
+    lower = np.array([0.29, 0.19, 0.9, 0.7, 0.004, 0.001])
+    upper = np.array([0.31, 0.21, 1.1, 0.9, 0.012, 0.003])
+    nominal_inertia = np.array([0.008, 0.002])
+    params = design_parameters(unit, lower, upper, nominal_inertia, np.array([True, False]))
+    scaled = salib_scaled(unit, lower, upper)
+    assert np.array_equal(params[:, 0], scaled[:, 0:2])
+    assert np.array_equal(params[:, 1], scaled[:, 2:4])
+    assert np.array_equal(params[:, 2], scaled[:, 4:6])
+    assert len(np.unique(params[:, 2, 0])) == 40  # sampled, not one nominal value
+
+
 def test_free_fall_keeps_every_robots_energy():
     rng = np.random.default_rng(7)
     lengths, masses, inertias = TABLE1
@@ -77,11 +102,13 @@ def test_free_fall_keeps_every_robots_energy():
 
 
 SIMULATED = """
-import json, numpy as np
+import json, sys, numpy as np
 from planar_tui.kernels import motion_cuda, motion_rk4
 rng = np.random.default_rng(5)
-unit = rng.random((6, 4))
-lower = np.array([0.29, 0.19, 0.9, 0.7]); upper = lower + 0.02
+num_vars = int(sys.argv[1])  # 4: lengths, masses; 6: and inertias
+unit = rng.random((6, num_vars))
+lower = np.array([0.29, 0.19, 0.9, 0.7, 0.006, 0.002][:num_vars])
+upper = lower + np.array([0.02, 0.02, 0.02, 0.02, 0.008, 0.004][:num_vars])
 inertias = np.array([0.01, 0.004]); rod = np.array([True, False])
 theta = np.tile(np.radians([20.0, -30.0]), (6, 1)); omega = np.zeros((6, 2))
 torque = np.array([1.5, 0.2])
@@ -92,18 +119,30 @@ motion_rk4.rk4_batch(params, 9.81, torque, theta, omega, 1e-3, 15)
 print(json.dumps({"params": bool(np.array_equal(params, batch.parameters())),
                   "error": float(np.abs(batch.angles() - theta).max()),
                   "moved": float(np.abs(theta - np.radians([20.0, -30.0])).max()),
+                  "inertias": params[:, 2].tolist(),
                   "usable": motion_cuda.usable()}))
 """
 
 
-def test_cuda_kernel_on_the_simulator_equals_the_cpu_kernel():
+@pytest.mark.parametrize("num_vars", [4, 6], ids=["lengths-masses", "with-inertias"])
+def test_cuda_kernel_on_the_simulator_equals_the_cpu_kernel(num_vars):
     """numba's CUDA simulator must be on before numba.cuda is imported: a fresh process."""
     env = {**os.environ, "NUMBA_ENABLE_CUDASIM": "1"}
     done = subprocess.run(
-        [sys.executable, "-c", SIMULATED], env=env, capture_output=True, text=True, check=True
-    )
+        [sys.executable, "-c", SIMULATED, str(num_vars)],
+        env=env, capture_output=True, text=True, check=True,
+    )  # fmt: skip
     report = json.loads(done.stdout.strip().splitlines()[-1])
     assert report["usable"] is None
     assert report["params"]  # made on the "GPU" from the unit design: the same bits
     assert report["moved"] > 1e-3
     assert report["error"] <= 1e-13
+    inertias = np.array(report["inertias"])
+    if num_vars == 6:  # the design's columns 4 and 5, scaled (independent of the kernels)
+        rng = np.random.default_rng(5)
+        unit = rng.random((6, 6))
+        lower = np.array([0.006, 0.002])
+        upper = lower + np.array([0.008, 0.004])
+        assert np.array_equal(inertias, unit[:, 4:] * (upper - lower) + lower)
+    else:  # link 1 a rod (m l²/12 of its sample), link 2 its nominal inertia
+        assert np.all(inertias[:, 1] == 0.004) and len(np.unique(inertias[:, 0])) == 6

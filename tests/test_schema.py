@@ -34,7 +34,7 @@ def test_every_setting_without_a_key_is_a_derived_value():
     }
     assert undeclared == {"simulate": [], "torques": [], "sensitivity": ["posture"],
                           "workspace": ["circle"], "motion_uncertainty": ["indices_file",
-                          "device_used", "device_note"]}  # fmt: skip
+                          "device_used", "device_note", "overridden"]}  # fmt: skip
 
 
 @pytest.mark.parametrize("preset_path", sorted(PRESETS.glob("*.toml")), ids=lambda p: p.stem)

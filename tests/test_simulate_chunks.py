@@ -9,7 +9,7 @@ import time
 import numpy as np
 import pytest
 
-from planar_tui.dynamics.simulate import run_simulate
+from planar_tui.dynamics.simulate import next_chunk_steps, run_simulate
 from planar_tui.errors import Cancelled
 from planar_tui.presets import parse_preset
 from planar_tui.progress import Progress
@@ -68,3 +68,15 @@ def test_adaptively_chunked_run_is_bit_identical_to_one_kernel_call():
     assert result.theta_rad.tobytes() == out[1].tobytes()
     assert result.omega_rad_s.tobytes() == out[2].tobytes()
     assert result.kinetic_J.tobytes() == out[3].tobytes()
+
+
+def test_the_chunk_rule_grows_to_about_50_ms_with_or_without_a_cap():
+    """One rule for every time-stepping job: fast calls grow 8-fold (the simulate job's
+    capped at its 20 000 steps, the motion job's not), slow ones shrink to about 0.05 s of
+    work, never past the steps left, at least one step."""
+    assert next_chunk_steps(10_000, 0.001, 10**9, 20_000) == 20_000
+    assert next_chunk_steps(10_000, 0.001, 10**9) == 80_000
+    assert next_chunk_steps(1_000, 0.01, 10**9) == 5_000  # 1000 × 0.05 / 0.01
+    assert next_chunk_steps(100, 0.5, 10**9) == 10
+    assert next_chunk_steps(100, 0.0, 50) == 50
+    assert next_chunk_steps(5, 10.0, 100) == 1

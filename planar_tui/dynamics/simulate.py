@@ -49,13 +49,17 @@ def rk4_step_seconds(n_links: int) -> float:
     return 5e-7 * n_links + 1e-9 * n_links**3
 
 
-def next_chunk_steps(steps: int, seconds: float, left: int) -> int:
+def next_chunk_steps(steps: int, seconds: float, left: int, most: int | None = None) -> int:
     """Steps of the next kernel call after ``steps`` steps took ``seconds``: about
     :data:`CHUNK_SECONDS` of work, growing at most :data:`CHUNK_GROWTH`-fold, at most
-    :data:`STEPS_PER_CHUNK` and the ``left`` steps."""
+    ``most`` steps (``None``: no cap) and the ``left`` steps; at least one.
+
+    The one chunk rule of every time-stepping job: the simulate job caps it at
+    :data:`STEPS_PER_CHUNK`, the motion job (whose calls hold many robots) does not."""
     grown = steps * CHUNK_GROWTH
     target = grown if seconds <= 0 else int(steps * CHUNK_SECONDS / seconds)
-    return max(1, min(target, grown, STEPS_PER_CHUNK, left))
+    cap = grown if most is None else min(grown, most)
+    return max(1, min(target, cap, left))
 
 
 def per_link_numbers(doc: str, default_doc: str = "zeros") -> Any:
@@ -193,7 +197,8 @@ def run_simulate(job: Job, progress: Progress) -> SimulateResult:
         done += chunk
         t_end_s = done * spec.step_s
         progress.advance(chunk, f"t = {t_end_s:.4g} s", t_s=t_end_s)
-        chunk = next_chunk_steps(chunk, time.perf_counter() - started, n_steps - done)
+        elapsed_s = time.perf_counter() - started
+        chunk = next_chunk_steps(chunk, elapsed_s, n_steps - done, STEPS_PER_CHUNK)
     if row != rows:
         raise RuntimeError(f"RK4 wrote {row} records, expected {rows}")
 

@@ -4,8 +4,10 @@ The inputs and designs are the sensitivity package's (:func:`~planar_tui.sensiti
 :func:`~planar_tui.sensitivity.engine.unit_design`, SALib's Sobol'/eFAST designs, cached);
 Monte Carlo adds ``default_rng(seed).random((N, D))``. Every row of every design is one
 robot; all of them are integrated together (:mod:`kernels.motion_rk4` or
-:mod:`kernels.motion_cuda`), in calls of about :data:`CALL_SECONDS` for progress and cancel,
-stopping at every recorded step to take the outputs: the relative joint angles
+:mod:`kernels.motion_cuda`), in calls of about
+:data:`~planar_tui.dynamics.simulate.CHUNK_SECONDS` for progress and cancel (sized by the
+simulate job's :func:`~planar_tui.dynamics.simulate.next_chunk_steps`), stopping at every
+recorded step to take the outputs: the relative joint angles
 :math:`\theta_i` and the tip :math:`(x, y) = \sum_i l_i(\cos\phi_i, \sin\phi_i)`,
 :math:`\phi_i = \sum_{j\le i}\theta_j`.
 """
@@ -20,8 +22,6 @@ import numpy as np
 
 from planar_tui.progress import Progress
 
-#: Wall time one kernel call aims at (Ctrl-C and cancel are checked between calls).
-CALL_SECONDS = 0.05
 #: Robots per CPU kernel call at most (a call then stays well under a second per step).
 CPU_BLOCK_ROBOTS = 4096
 #: Percentiles of the band.
@@ -199,9 +199,10 @@ def integrate(
 ) -> None:
     """Advance every robot from step 0 through the sorted global step indices ``stops``
     (0 first), calling ``on_stop(k, angles)`` at each. Calls of ``n`` steps of one block of
-    robots are sized to about :data:`CALL_SECONDS` from the last call's time; ``progress``
-    counts robot-steps and is checked after each call."""
-    from planar_tui.dynamics.simulate import CHUNK_GROWTH
+    robots are sized by :func:`~planar_tui.dynamics.simulate.next_chunk_steps` (no step
+    cap) from the slowest block's last call; ``progress`` counts robot-steps and is
+    checked after each call."""
+    from planar_tui.dynamics.simulate import next_chunk_steps
 
     done = 0
     steps = 1
@@ -218,8 +219,5 @@ def integrate(
                     t_s = (done + n_steps) * step_s
                     progress.advance((block[1] - block[0]) * n_steps, f"t = {t_s:.4g} s")
             done += n_steps
-            target = (
-                n_steps * CHUNK_GROWTH if slowest <= 0 else int(n_steps * CALL_SECONDS / slowest)
-            )
-            steps = max(1, min(target, n_steps * CHUNK_GROWTH))
+            steps = next_chunk_steps(n_steps, slowest, stops[-1] - done)
         on_stop(stop, robots.angles())

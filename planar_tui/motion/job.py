@@ -46,10 +46,15 @@ EFAST_MIN_SAMPLES = 65
 
 
 def _read_choices(allowed: tuple[str, ...]):
-    expected = "a non-empty list of " + ", ".join(f'"{a}"' for a in allowed)
+    """A reader of one of ``allowed`` or a non-empty list of them (a single string is a
+    one-item list), duplicates dropped, in the given order."""
+    choices = ", ".join(f'"{a}"' for a in allowed)
+    expected = f"one of {choices} or a non-empty list of them"
 
     def read(reader: TableReader, name, default, robot, values) -> tuple[str, ...]:
         chosen = reader.raw(name, list(default))
+        if isinstance(chosen, str):
+            chosen = [chosen]
         if not isinstance(chosen, list) or not chosen:
             raise reader.error(name, f"is {shown(chosen)}", expected)
         for item in chosen:
@@ -64,24 +69,29 @@ def _read_times(reader: TableReader, name, default, robot, values) -> tuple[floa
     """A time or a list of times in (0, duration_s], sorted, duplicates dropped."""
     if not reader.has(name):
         return None
-    raw = reader.raw(name)
-    times = reader.numbers(name) if isinstance(raw, list) else (reader.number(name),)
     duration_s = values["duration_s"]
-    for t_s in times:
-        if not 0 < t_s <= duration_s:
-            raise reader.error(
-                name, f"has {t_s:g} s", f"times in (0, duration_s = {duration_s:g} s]"
-            )
-    return tuple(sorted(set(times)))
+    expected = f"a number or a list of numbers in (0, duration_s = {duration_s:g} s]"
+    raw = reader.raw(name)
+    items, verb = (raw, "has") if isinstance(raw, list) else ([raw], "is")
+    if not items:
+        raise reader.error(name, "is empty", expected)
+    for item in items:
+        if isinstance(item, bool) or not isinstance(item, int | float):
+            raise reader.error(name, f"{verb} {shown(item)}", expected)
+        if not 0 < item <= duration_s:  # also NaN, ±inf; no float() of a huge integer
+            raise reader.error(name, f"{verb} {shown(item)} s", expected)
+    return tuple(sorted({float(t_s) for t_s in items}))
 
 
 @dataclass(frozen=True, kw_only=True)
 class MotionSpec(RunSettings):
     """Settings of one motion uncertainty job (see ``docs/motion.md``).
 
-    ``indices_file`` is the indices CSV's name (``indices_output`` or the default made
-    from ``output``, derived, not a key); ``device_used`` is the device :func:`prepare_motion` chose (derived, not a key) and
-    ``device_note`` what the summary says about it.
+    Derived fields, not keys: ``indices_file`` is the indices CSV's name
+    (``indices_output`` or the default made from ``output``); ``device_used`` is the device
+    :func:`prepare_motion` chose and ``device_note`` what the summary says about it;
+    ``overridden`` names the keys command-line options set (:func:`with_overrides`), so
+    that :func:`prepare_motion` blames the option, not the preset, for their problems.
     """
 
     every: int | None = setting(
@@ -105,7 +115,7 @@ class MotionSpec(RunSettings):
     methods: tuple[str, ...] = setting(
         _read_choices(METHODS),
         default=("montecarlo", "sobol"),
-        type_doc='list of `"montecarlo"`, `"sobol"`, `"efast"`',
+        type_doc='`"montecarlo"`, `"sobol"`, `"efast"` or a list of them',
         doc="Monte Carlo (band), Sobol' and eFAST (indices; SALib's designs)",
     )
     samples: int = setting(
@@ -125,14 +135,14 @@ class MotionSpec(RunSettings):
         _read_times,
         default=None,
         default_doc="`duration_s`",
-        type_doc="number or list in (0, `duration_s`]",
+        type_doc="number or list of numbers in (0, `duration_s`]",
         doc="times of the indices (rounded to a step)",
     )
     outputs: tuple[str, ...] = setting(
         _read_choices(OUTPUTS),
         default=OUTPUTS,
         default_doc="both",
-        type_doc='list of `"angles"`, `"tip"`',
+        type_doc='`"angles"`, `"tip"` or a list of them',
         doc="relative joint angles θ1…θn (rad) and/or the tip's x, y (m)",
     )
     device: str = setting(
@@ -152,6 +162,7 @@ class MotionSpec(RunSettings):
     indices_file: str = dataclasses.field(default="", compare=False)
     device_used: str | None = None
     device_note: str = ""
+    overridden: tuple[str, ...] = dataclasses.field(default=(), compare=False)
 
     @staticmethod
     def check(values: dict, reader: TableReader, robot: SerialRobot) -> dict:
@@ -253,15 +264,29 @@ def check_resources(error, spec: MotionSpec, robot: SerialRobot) -> None:
         )
 
 
+#: The command-line option of each key :func:`with_overrides` sets.
+OPTIONS = {"methods": "--method", "samples": "--samples", "seed": "--seed", "device": "--device"}
+
+
 def prepare_motion(job: Job) -> Job:
     """The job with its resources checked again (overrides change them) and its device
-    chosen: ``cuda`` without a usable GPU is a :class:`PresetError` on ``device``."""
+    chosen: ``cuda`` without a usable GPU is a :class:`PresetError` on ``device``.
+
+    A problem with a value a command-line option set names the option (``command line:
+    --device``), not the preset's key: the device when ``--device`` set it, the resources
+    (checked on the preset's values when it was read) when ``--samples`` or ``--method``
+    changed them."""
     from planar_tui.motion.device import resolve
 
     if job.spec.device_used is not None:
         return job
+    overridden = job.spec.overridden
 
     def error(name, problem, expected):
+        causes = ("samples", "methods") if name == "samples" else (name,)
+        option = next((OPTIONS[key] for key in causes if key in overridden), None)
+        if option is not None:
+            return PresetError("command line", option, problem, expected)
         return PresetError(job.preset_path, f"{job.key}.{name}", problem, expected)
 
     check_resources(error, job.spec, job.robot)
@@ -292,7 +317,8 @@ def with_overrides(spec: MotionSpec, options: Mapping[str, Any]) -> MotionSpec:
             if method not in METHODS:
                 raise error("method", f"is {method!r}", "montecarlo, sobol or efast")
         changes["methods"] = tuple(dict.fromkeys(methods))
-    updated = dataclasses.replace(spec, **changes)
+    overridden = tuple(key for key in OPTIONS if key in changes or key in spec.overridden)
+    updated = dataclasses.replace(spec, **changes, overridden=overridden)
     check_samples(error, updated.methods, updated.samples)
     return updated
 

@@ -105,7 +105,8 @@ def band_grid(result, row: int = -1):
         table.add_column(title, justify="left" if c == 0 else "right", width=width, no_wrap=True)
     for cells in rows:
         table.add_row(*cells)
-    return table, sum(widths) + len(widths)
+    # the cells, a space of padding and a space of the box's divider between two columns
+    return table, sum(widths) + 2 * (len(widths) - 1)
 
 
 def render(job, result, console) -> None:

@@ -1,14 +1,15 @@
 """The Motion tab: the band of every output over time (mean and 5-95 % band,
-textual-plotext) beside the Table-4-shaped index tables of the CLI
-(:mod:`~planar_tui.sensitivity.tables`); ``ctrl+t`` steps the plot through the outputs
-(θ1 … θn, tip x, tip y)."""
+textual-plotext) and the band table and Table-4-shaped index tables of the CLI
+(:mod:`~planar_tui.sensitivity.tables`): beside the plot when the results area has at least
+:data:`BESIDE_COLUMNS` columns, else below it; ``ctrl+t`` steps the plot through the
+outputs (θ1 … θn, tip x, tip y)."""
 
 from __future__ import annotations
 
 from rich.console import Group
 from rich.text import Text
 from textual.app import ComposeResult
-from textual.containers import ScrollableContainer
+from textual.containers import Container, ScrollableContainer
 from textual.widgets import Static
 from textual_plotext import PlotextPlot
 
@@ -32,6 +33,9 @@ def band_series(result, output: int) -> dict[str, list[float]]:
 
 #: Lines of the band plot (the results area scrolls below it).
 PLOT_LINES = 16
+#: Columns of the results area from which the tables stand beside the plot (then fitted
+#: to half of them), not below it.
+BESIDE_COLUMNS = 150
 
 
 class MotionPane(JobPane):
@@ -42,6 +46,9 @@ class MotionPane(JobPane):
     DEFAULT_CSS = """
     #motion-results { height: 1fr; scrollbar-gutter: stable; scrollbar-size: 1 1; }
     #motion-results Static { width: 100%; }
+    #motion-body { height: auto; layout: vertical; }
+    #motion-body.beside { layout: horizontal; }
+    #motion-body.beside #motion-tables { margin-left: 1; }
     """
 
     #: The output the plot shows (``ctrl+t`` steps through them).
@@ -50,8 +57,9 @@ class MotionPane(JobPane):
     def compose_results(self) -> ComposeResult:
         with ScrollableContainer(id="motion-results"):
             yield Static("Run the study (F5) to plot the band.", id="result-text", markup=False)
-            yield PlotextPlot(id="band-plot")
-            yield Static("", id="motion-tables")
+            with Container(id="motion-body"):
+                yield PlotextPlot(id="band-plot")
+                yield Static("", id="motion-tables")
 
     def on_mount(self) -> None:
         if self.available():  # the app's stylesheet gives every plot 1fr: this one scrolls
@@ -76,19 +84,32 @@ class MotionPane(JobPane):
         plt.title(f"{labels[self.output]} ({unit}) vs t (s): o mean, + - 5-95 %")
         plot.refresh()
         self.query_one("#result-text", Static).update(result.summary)
-        grid, natural = band_grid(result)
-        parts = [
-            Text(f"band at t = {result.t_s[-1]:g} s (ctrl+t: next output)", style="bold"),
-            grid,
-        ]
-        width = max(20, self.query_one("#motion-results").scrollable_content_region.width)
+        grid, band_width = band_grid(result)
+
+        def fitted(width: int) -> tuple[list, int]:
+            """The band and index tables fitted to ``width`` and their widest line."""
+            parts = [
+                Text(f"band at t = {result.t_s[-1]:g} s (ctrl+t: next output)", style="bold"),
+                grid,
+            ]
+            natural = band_width
+            if result.analyses:
+                indices = fit_tables(result.analyses, VIEWS[0], width, "ST")
+                parts.append(indices.renderable)
+                natural = max(natural, indices.width)
+            parts += [Text(f"note: {note}", style="dim") for note in result.notes]
+            return parts, natural
+
+        area = max(20, self.query_one("#motion-results").scrollable_content_region.width)
+        beside = False
+        if area >= BESIDE_COLUMNS:  # the tables in half the width, the plot the rest (1fr)
+            parts, natural = fitted(area // 2)
+            beside = natural <= area // 2
+        if not beside:
+            parts, natural = fitted(area)
+            natural = max(area, natural)
+        self.query_one("#motion-body").set_class(beside, "beside")
         tables = self.query_one("#motion-tables", Static)
-        natural = max(width, natural)
-        if result.analyses:
-            fitted = fit_tables(result.analyses, VIEWS[0], width, "ST")
-            parts.append(fitted.renderable)
-            natural = max(natural, fitted.width)
-        parts += [Text(f"note: {note}", style="dim") for note in result.notes]
         tables.styles.width = natural  # never shrunk: a wide table scrolls sideways
         tables.update(Group(*parts))
 
