@@ -197,30 +197,69 @@ def _identity(path: Path) -> str:
     return os.path.realpath(path)
 
 
-def check_plans(plans: Sequence[OutputPlan]) -> None:
-    """Check every planned output before any job runs (:class:`PresetError`, exit code 2):
-    each must be writable without destroying something (:func:`check_writable`), no two
-    tables of the run may share a file (one would silently replace the other), and no
-    output may be a preset file of the run."""
-    presets = {_identity(plan.job.preset_path): plan.job for plan in plans}
-    writers: dict[str, str] = {}
+@dataclass(frozen=True)
+class PlannedFile:
+    """One file (or, with ``folder``, a folder the writer owns: a sweep's point files)
+    that a run will write; ``writer`` names who writes it in messages
+    (``paper:torques (output)``), ``what`` the kind of file (``"figure file"``);
+    ``probe`` is the path checked for writability (a folder's first point file)."""
+
+    path: Path
+    writer: str
+    what: str = "CSV file"
+    folder: bool = False
+    probe: Path | None = None
+
+
+def plan_files(plans: Sequence[OutputPlan]) -> list[PlannedFile]:
+    """The files of planned jobs (:func:`plan_outputs`): CSVs, extra tables, figures."""
+    files = []
     for plan in plans:
         figure = (("plot", plan.figure),) if plan.figure else ()
         for name, path in (("output", plan.main), *plan.extras.items(), *figure):
-            check_writable(path, "figure file" if name == "plot" else "CSV file")
-            identity = _identity(path)
-            if identity in presets:
+            what = "figure file" if name == "plot" else "CSV file"
+            files.append(PlannedFile(path, f"{plan.job.label} ({name})", what))
+    return files
+
+
+def check_planned(files: Sequence[PlannedFile], presets: Mapping[Path, str] | None = None) -> None:
+    """Check every file a run plans, before anything runs (:class:`PresetError`, exit code
+    2): each must be writable without destroying something (:func:`check_writable`), none
+    may be one of the ``presets`` (path -> the label of a job of it), no two may be one file, and no file or folder may lie in
+    (or be) a planned folder (a sweep's ``point_outputs``, which its points fill)."""
+    preset_ids = {_identity(path): label for path, label in (presets or {}).items()}
+    writers: dict[str, str] = {}
+    folders: list[tuple[str, PlannedFile]] = []
+    for planned in files:
+        check_writable(planned.probe or planned.path, planned.what)
+        identity = _identity(planned.path)
+        if identity in preset_ids:
+            raise _output_error(
+                planned.path, f"is the preset file of {preset_ids[identity]} (it would be replaced)",
+                "an output path other than the preset",
+            )  # fmt: skip
+        if identity in writers:
+            raise _output_error(
+                planned.path, f"is written by both {writers[identity]} and {planned.writer}",
+                "one file per table (set distinct output paths)",
+            )  # fmt: skip
+        writers[identity] = planned.writer
+        if planned.folder:
+            folders.append((identity, planned))
+    for folder, owner in folders:
+        for identity, writer in writers.items():
+            inside = identity.startswith(folder.rstrip(os.sep) + os.sep)
+            if writer != owner.writer and inside:
                 raise _output_error(
-                    path, f"is the preset file of {presets[identity].label} (it would be replaced)",
-                    "an output path other than the preset",
+                    owner.path, f"is {owner.writer}'s folder of point files, and {writer} "
+                    f"writes {identity} inside it", "a folder of its own for the point files",
                 )  # fmt: skip
-            writer = f"{plan.job.label} ({name})"
-            if identity in writers:
-                raise _output_error(
-                    path, f"is written by both {writers[identity]} and {writer}",
-                    "one file per table (set distinct output paths)",
-                )  # fmt: skip
-            writers[identity] = writer
+
+
+def check_plans(plans: Sequence[OutputPlan]) -> None:
+    """Check every planned job output before any job runs (:func:`check_planned`, with
+    the jobs' presets)."""
+    check_planned(plan_files(plans), {plan.job.preset_path: plan.job.label for plan in plans})
 
 
 def job_names(job: Job) -> tuple[str, ...]:

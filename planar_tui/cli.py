@@ -141,6 +141,14 @@ def check_figure_option(path: Path | None, option: str = "--plot") -> None:
         )  # fmt: skip
 
 
+def check_workers(workers: int | None) -> None:
+    """Refuse ``--workers`` below 1 (:class:`PresetError`, exit 2), in one line as the job
+    options' ranges are (checked here, not by Typer, whose usage box takes many lines)."""
+    if workers is not None and workers < 1:
+        raise PresetError("command line", "--workers", f"is {workers}, below 1",
+                          "an integer >= 1 (1 runs the points in this process)")  # fmt: skip
+
+
 def load_presets(arguments: Sequence[str]) -> list[Preset]:
     """Resolve and validate every preset before anything runs."""
     from planar_tui.presets import load_preset
@@ -525,7 +533,6 @@ WorkersOption = Annotated[
     typer.Option(
         "--workers",
         "-w",
-        min=1,
         help="Sweeps: points run on a local Dask cluster of N worker processes "
         "(default: the machine's cores); 1 runs them in this process.",
     ),
@@ -561,9 +568,11 @@ def run(
         from planar_tui.batch import select_jobs
 
         check_figure_option(plot)
+        check_workers(workers)
         loaded = load_presets(presets)
         jobs = select_jobs([job for preset in loaded for job in preset.jobs], job_name)
-        prepared = prepare_sweeps([] if job_name else loaded, out_dir, jobs)
+        prepared = prepare_sweeps([] if job_name else loaded, out_dir, jobs, job_plot=plot,
+                                  resume=resume)  # fmt: skip
         if jobs:
             execute(jobs, out_dir, plot=plot)
         run_sweeps(prepared, out_dir, workers, scheduler, resume)
@@ -626,8 +635,9 @@ def sweep_command(
     with reported_errors():
         if plot is not None:
             check_figure_option(plot)
+        check_workers(workers)
         (loaded,) = load_presets([preset])
-        prepared = prepare_sweeps([loaded], out_dir, plot=plot)
+        prepared = prepare_sweeps([loaded], out_dir, plot=plot, resume=resume)
         if not prepared:
             raise PresetError(loaded.path, "sweep", "no [[sweep]] table in this preset",
                               "a [[sweep]] table")  # fmt: skip
@@ -635,14 +645,25 @@ def sweep_command(
 
 
 def prepare_sweeps(
-    loaded: Sequence[Preset], out_dir: Path, jobs: Sequence[Job] = (), plot: Path | None = None
+    loaded: Sequence[Preset],
+    out_dir: Path,
+    jobs: Sequence[Job] = (),
+    plot: Path | None = None,
+    *,
+    job_plot: Path | None = None,
+    resume: bool = False,
 ) -> list:
-    """Every sweep of the presets with its points, all validated, and their outputs
-    checked (none on a job's file), before anything runs; ``plot`` (``--plot``) replaces
-    the sweeps' ``plot`` keys (numbered ``FILE-1.png`` ... for several sweeps)."""
-    from planar_tui.batch import _output_error, numbered_path, plan_outputs
+    """Every sweep of the presets with its points, all validated, before anything runs:
+    the run's planned files (the ``jobs``' files, their figures under ``job_plot``, and
+    every sweep's) checked together by :func:`planar_tui.batch.check_planned`, each
+    ``plot`` checked drawable, and a checkpoint of the same sweep refused without
+    ``resume`` (one of another sweep is replaced, said on stderr). ``plot`` (``--plot``
+    of ``sweep``) replaces the sweeps' ``plot`` keys (numbered ``FILE-1.png`` ... for
+    several sweeps)."""
+    from planar_tui.batch import check_planned, numbered_path, plan_files, plan_outputs
+    from planar_tui.sweep.checkpoint import checkpoint_path, existing_fingerprint
     from planar_tui.sweep.points import make_points
-    from planar_tui.sweep.service import check_outputs, output_path
+    from planar_tui.sweep.service import check_figure, output_path, planned_files
     from planar_tui.sweep.spec import parse_sweeps
 
     sweeps = [sweep for preset in loaded for sweep in parse_sweeps(preset)]
@@ -656,12 +677,28 @@ def prepare_sweeps(
             for number, sweep in enumerate(sweeps, start=1)
         ]
     prepared = [(sweep, make_points(sweep)) for sweep in sweeps]
-    check_outputs(sweeps, out_dir)
-    job_files = {path.resolve() for plan in plan_outputs(jobs, out_dir) for path in plan.paths()}
-    for sweep in sweeps:
-        if output_path(sweep, out_dir).resolve() in job_files:
-            raise _output_error(output_path(sweep, out_dir), "is also a job's output",
-                                "one file per table")  # fmt: skip
+    files = plan_files(plan_outputs(jobs, out_dir, plot=job_plot))
+    files += [planned for sweep in sweeps for planned in planned_files(sweep, out_dir)]
+    presets = {job.preset_path: job.label for job in jobs}
+    presets.update({sweep.preset_path: sweep.label for sweep in sweeps})
+    check_planned(files, presets)
+    for sweep, points in prepared:
+        check_figure(sweep, points)
+    for sweep, _ in prepared:
+        checkpoint = checkpoint_path(output_path(sweep, out_dir))
+        found = existing_fingerprint(checkpoint)
+        if found is None or (resume and found == sweep.fingerprint()):
+            continue
+        if found == sweep.fingerprint():
+            raise PresetError(
+                checkpoint, "(checkpoint)",
+                f"holds finished points of {sweep.label}, an interrupted run",
+                "--resume to finish it, or delete the file to start over",
+            )  # fmt: skip
+        stderr.print(
+            f"note: {checkpoint} belongs to an earlier version of {sweep.label} (the preset "
+            "changed): it is replaced", markup=False, highlight=False, soft_wrap=True,
+        )  # fmt: skip
     return prepared
 
 
@@ -687,7 +724,11 @@ def run_sweeps(
     prepared: Sequence, out_dir: Path, workers: int | None, scheduler: str | None, resume: bool
 ) -> None:
     """Run validated sweeps, one progress bar each; a summary line per sweep on stdout.
-    Exit code 1 when a point failed (its row says why); Ctrl-C keeps the checkpoint."""
+    Exit code 1 when a point failed (its row says why) or a sweep's file could not be
+    written (one ``error:`` line each; the later sweeps still run). Every sweep's
+    checkpoint is kept until all of them are done, then those of the sweeps whose CSV was
+    written are deleted: Ctrl-C keeps them all, so ``--resume`` rebuilds the finished
+    sweeps from theirs and computes only what is left."""
     from planar_tui.batch import OutputFailed
     from planar_tui.progress import Progress
     from planar_tui.sweep.execute import default_workers
@@ -695,6 +736,8 @@ def run_sweeps(
 
     count = workers or default_workers()
     failed = 0
+    unwritten = 0
+    done = []
     try:
         with sigterm_as_interrupt(), ExitStack() as stack:
             client = None
@@ -714,10 +757,18 @@ def run_sweeps(
                             bars.update(task, completed=state.completed,
                                         failed=int(state.figures.get("failed", 0)))  # fmt: skip
 
-                    result = run_sweep(
-                        sweep, Progress(on_update=update), points=points, out_dir=out_dir,
-                        resume=resume, client=client,
-                    )  # fmt: skip
+                    try:
+                        result = run_sweep(
+                            sweep, Progress(on_update=update), points=points, out_dir=out_dir,
+                            resume=resume, client=client, keep_checkpoint=True,
+                        )  # fmt: skip
+                    except OutputFailed as error:
+                        unwritten += 1
+                        stderr.print(f"error: {sweep.label}: {error} (finished points are "
+                                     "in its checkpoint)", markup=False, highlight=False,
+                                     soft_wrap=True)  # fmt: skip
+                        continue
+                done.append(result)
                 failed += result.failed
                 resumed = f", {result.resumed} from the checkpoint" if result.resumed else ""
                 figure = "" if result.figure is None else f", figure {result.figure}"
@@ -726,23 +777,30 @@ def run_sweeps(
                     f"-> {result.output}{figure}", markup=False, highlight=False,
                     soft_wrap=True,
                 )  # fmt: skip
+                if result.figure_error is not None:
+                    unwritten += 1
+                    stderr.print(f"error: {sweep.label}: {result.figure_error}", markup=False,
+                                 highlight=False, soft_wrap=True)  # fmt: skip
     except Terminated:
         raise fail(
-            "terminated: finished points are in the sweep's checkpoint (--resume "
-            "finishes it); no sweep CSV was written",
+            "terminated: finished points are in the sweeps' checkpoints (--resume "
+            "finishes them); the running sweep's CSV was not written",
             ExitCode.TERMINATED,
         ) from None
-    except OutputFailed as error:
-        raise fail(f"error: {error}", ExitCode.RUN_FAILED) from None
     except (KeyboardInterrupt, Cancelled):
         raise fail(
-            "interrupted: finished points are in the sweep's checkpoint (--resume "
-            "finishes it); no sweep CSV was written",
+            "interrupted: finished points are in the sweeps' checkpoints (--resume "
+            "finishes them); the running sweep's CSV was not written",
             ExitCode.INTERRUPTED,
         ) from None
-    if failed:
-        raise fail(f"error: {failed} sweep point(s) failed (status failed in the CSV)",
-                   ExitCode.RUN_FAILED)  # fmt: skip
+    for result in done:
+        if result.checkpoint is not None:
+            result.checkpoint.unlink(missing_ok=True)
+    if failed or unwritten:
+        parts = [f"{failed} sweep point(s) failed (status failed in the CSV)"] if failed else []
+        if unwritten:
+            parts.append(f"{unwritten} sweep file(s) not written (see above)")
+        raise fail("error: " + "; ".join(parts), ExitCode.RUN_FAILED)
 
 
 @app.command("warmup", cls=Command)

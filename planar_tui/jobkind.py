@@ -97,6 +97,10 @@ class JobKind:
     keystroke (e.g. solving the sensitivity's isotropic posture): it returns the job
     ready to run or raises :class:`~planar_tui.errors.PresetError`; the batch service
     calls it for every job before the first one runs (:func:`planar_tui.batch.prepare_jobs`).
+    ``check(job)`` is the part of ``prepare`` that computes nothing (a device usable
+    here, say): a sweep runs it on every point before the first one runs
+    (:func:`planar_tui.sweep.points.make_points`), so a point that cannot run is refused
+    up front rather than failing (:class:`~planar_tui.errors.PresetError`).
     ``point_figures(job, result)`` gives the kind's summary figures of one result as
     ordered columns (name with unit -> number or text): one sweep row per point.
     """
@@ -110,6 +114,7 @@ class JobKind:
     extra_outputs: Callable[[Any], dict[str, str]] = _no_extra_outputs
     overrides: Callable[[Any, Mapping[str, Any]], Any] | None = None
     prepare: Callable[[Job], Job] | None = None
+    check: Callable[[Job], None] | None = None
     point_figures: Callable[[Job, JobResult], dict[str, Any]] | None = None
 
     @property

@@ -164,6 +164,52 @@ async def test_cancel_stops_a_sweep_promptly(tmp_path):
         await pilot.press("escape")
         await finish(app, pilot)
         assert time.monotonic() - asked < 2.0
-        assert not isinstance(app.screen, SweepScreen)
         assert "cancelled" in str(app.query_one("#pane-simulate #job-status").render())
-        assert app.last_sweep is None
+        assert app.last_sweep is None or app.last_sweep.cancelled
+
+
+@async_test
+async def test_a_cancelled_sweep_shows_and_exports_its_finished_points(tmp_path):
+    """Cancel after the two short points finished: the sweep screen opens on all five
+    rows, the two finished ones with their figures (θ1 at the end of separate runs of the
+    same jobs), the three others marked cancelled; ctrl+e exports that table."""
+    app = make_app(tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        dialog = await _open_dialog(app, pilot, "simulate")
+        _fill(dialog, [("duration_s", "0.01, 0.02, 30000, 40000, 50000")])
+        await pilot.press("enter")
+        deadline = time.monotonic() + 120
+        while True:
+            state = app.jobs.latest
+            label = "" if state is None else state.stage
+            if state is not None and label.endswith(":sweep") and state.completed >= 2:
+                break
+            assert time.monotonic() < deadline, "the two short points did not finish"
+            await pilot.pause(0.05)
+        await pilot.press("escape")
+        await finish(app, pilot)
+        await pilot.pause(0.2)
+        screen = app.screen
+        assert isinstance(screen, SweepScreen), screen
+        assert "cancelled: 2 of 5 points run" in str(screen.query_one("#sweep-title").render())
+        table = screen.query_one("#sweep-table", DataTable)
+        assert table.row_count == 5
+        rows = list(screen.table.rows)
+        header = list(screen.table.header)
+        status = [row[header.index("status")] for row in rows]
+        assert status == ["ok", "ok", "cancelled", "cancelled", "cancelled"]
+        document = (tmp_path / "tiny.toml").read_text()
+        for row in rows[:2]:
+            path = tmp_path / f"point-{row[0]}.toml"
+            path.write_text(document.replace("duration_s = 0.2", f"duration_s = {row[1]!r}"))
+            (job,) = [job for job in load_preset(path).jobs if job.kind == "simulate"]
+            final = list(csv.reader(run_job(job).table.lines()))[-1]
+            assert row[header.index("theta1_end_rad")] == float(final[1])
+        await pilot.press("ctrl+e")
+        await pilot.pause()
+        app.screen.query_one(Input).value = str(tmp_path / "partial.csv")
+        await pilot.press("enter")
+        await pilot.pause(0.2)
+        with open(tmp_path / "partial.csv", newline="") as stream:
+            written = list(csv.reader(stream))
+        assert [row[header.index("status")] for row in written[1:]] == status

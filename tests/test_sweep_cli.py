@@ -114,3 +114,53 @@ def test_sweep_without_sweeps_and_an_unreachable_scheduler(tmp_path, cli, monkey
         last = result.stderr.strip().splitlines()[-1]
         assert last.startswith("error: command line: --scheduler: cannot reach tcp://127.0.0.1:7")
     assert not (tmp_path / "out" / "p-sweep-1.csv").exists()
+
+
+def test_resume_after_ctrl_c_in_the_second_sweep_recomputes_none_of_the_first(tmp_path, cli):
+    """Ctrl-C during the second sweep keeps the first one's checkpoint (its CSV is
+    written); ``--resume`` rebuilds the first from it (every point from the checkpoint,
+    its timings kept) and runs only the second's unfinished points."""
+    preset = tmp_path / "two.toml"
+    preset.write_text(TORQUES.format(**TORQUES_BASE) + WORKSPACE.split("\n", 1)[1].format(
+        **WORKSPACE_BASE) + """
+[[sweep]]
+job = "torques"
+values."robot.masses_kg[2]" = [1.0, 2.0, 3.0]
+output = "first.csv"
+
+[[sweep]]
+job = "workspace"
+values.orientation_deg = { from = -30, to = 30, count = 10 }
+values.precision_cm = [0.2]
+output = "second.csv"
+""")  # fmt: skip
+    out = tmp_path / "out"
+    first, second = (out / f"{name}.csv.checkpoint.jsonl" for name in ("first", "second"))
+    process = subprocess.Popen(
+        [sys.executable, "-c", CONSOLE_SCRIPT, "sweep", str(preset), "--workers", "1",
+         "--out-dir", str(out)],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
+        env=dict(os.environ, PYTHONPATH=str(REPO)),
+    )  # fmt: skip
+    deadline = time.monotonic() + 90
+    while not (second.exists() and len(second.read_text().splitlines()) >= 3):
+        assert process.poll() is None, process.communicate()
+        assert time.monotonic() < deadline, "no point of the second sweep finished"
+        time.sleep(0.02)
+    os.killpg(process.pid, signal.SIGINT)
+    _, err = process.communicate(timeout=60)
+    assert process.returncode == ExitCode.INTERRUPTED, err
+    assert (out / "first.csv").exists() and not (out / "second.csv").exists()
+    kept = {json.loads(line)["number"]: json.loads(line)["seconds"]
+            for line in first.read_text().splitlines()[1:]}  # fmt: skip
+    assert sorted(kept) == [1, 2, 3]
+    done = len(second.read_text().splitlines()) - 1
+    assert 2 <= done < 10
+
+    result = cli("sweep", preset, "--out-dir", out, "--resume", "--workers", "1")
+    assert result.exit_code == 0, result.output
+    assert "two:sweep[1]: 3 points, 0 failed, 3 from the checkpoint" in result.stdout
+    assert f"two:sweep[2]: 10 points, 0 failed, {done} from the checkpoint" in result.stdout
+    for row in read_rows(out / "first.csv"):  # not run again: the first run's timings
+        assert float(row["seconds"]) == round(kept[int(row["point"])], 6)
+    assert not first.exists() and not second.exists()

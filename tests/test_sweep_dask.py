@@ -128,3 +128,16 @@ def test_local_cluster_processes_keep_their_housekeeping_to_once_a_second(cluste
     settings = client.run(_worker_settings)
     assert len(settings) == 2
     assert set(settings.values()) == {(1.0, False, "1s")}
+
+
+def test_the_printed_dashboard_address_serves_the_dashboard(cluster):
+    """The address the CLI prints (``cluster.dashboard_link``) answers with the dashboard:
+    bokeh, a dependency, serves it (without bokeh the scheduler serves no page there)."""
+    import urllib.request
+
+    local, _ = cluster
+    with urllib.request.urlopen(local.dashboard_link, timeout=30) as response:
+        page = response.read().decode()
+    assert response.status == 200
+    assert "needs bokeh" not in page  # what the scheduler serves when bokeh is missing
+    assert "<html" in page.lower() and "Dask" in page

@@ -62,7 +62,7 @@ def test_bad_plot_key_is_one_line_and_nothing_runs(tmp_path, cli):
     assert not (tmp_path / "out").exists()
 
 
-def test_a_sweep_the_figure_cannot_show_is_one_line_after_the_csv(tmp_path, cli):
+def test_a_sweep_the_figure_cannot_show_is_refused_before_anything_runs(tmp_path, cli):
     # one point: no column varies, so there is nothing to draw against
     sweep = """[[sweep]]
 job = "torques"
@@ -72,11 +72,11 @@ plot = "postures.svg"
 """
     preset = write(tmp_path, "p.toml", TORQUES, sweep, **TORQUES_BASE)
     result = cli("sweep", preset, "--workers", "1", "--out-dir", tmp_path / "out")
-    assert result.exit_code == 1
-    assert "postures.svg: cannot write: cannot draw the figure" in result.output
+    assert result.exit_code == 2
+    assert result.stderr.strip().splitlines() == [result.stderr.strip()]
+    assert "sweep[1].plot: the sweep has 1 point" in result.stderr
     assert "Traceback" not in result.output
-    assert (tmp_path / "out" / "postures.csv").exists()
-    assert not (tmp_path / "out" / "postures.svg").exists()
+    assert not (tmp_path / "out").exists()
 
 
 @async_test
@@ -108,3 +108,33 @@ async def test_app_figure_key_on_the_sweep_screen_writes_the_sweep_figure(tmp_pa
 
     ax = figure_for_table(screen.run.table).axes[0]
     assert [t.get_text() for t in ax.get_xticklabels()] == ["natural", "slope"]
+
+
+def test_a_figure_write_that_fails_is_one_line_and_the_later_sweeps_still_run(
+    tmp_path, cli, monkeypatch
+):
+    import planar_tui.figures.dispatch as dispatch
+
+    def full(table, path, title=""):
+        raise OSError(28, "No space left on device", str(path))
+
+    monkeypatch.setattr(dispatch, "save_table_figure", full)
+    sweep = """[[sweep]]
+job = "torques"
+values."robot.masses_kg[2]" = [1.0, 2.0]
+output = "one.csv"
+plot = "one.svg"
+
+[[sweep]]
+job = "torques"
+values."robot.masses_kg[1]" = [1.0, 2.0]
+output = "two.csv"
+"""
+    preset = write(tmp_path, "p.toml", TORQUES, sweep, **TORQUES_BASE)
+    out = tmp_path / "out"
+    result = cli("sweep", preset, "--workers", "1", "--out-dir", out)
+    assert result.exit_code == 1
+    assert "Traceback" not in result.output
+    assert "one.svg: cannot write: No space left on device" in result.stderr
+    assert (out / "one.csv").exists() and (out / "two.csv").exists()
+    assert sorted(p.name for p in out.iterdir()) == ["one.csv", "two.csv"]  # no checkpoint

@@ -367,7 +367,10 @@ class WorkbenchApp(FileActions, App):
             controls = pane.controls()
             controls.set_running(False)
             if message.cancelled:
-                controls.status(f"sweep cancelled after {message.seconds:.2f} s; nothing kept")
+                kept = 0 if message.run is None else len(message.run.outcomes)
+                total = "?" if message.run is None else len(message.run.points)
+                controls.status(f"sweep cancelled after {message.seconds:.2f} s; {kept} of "
+                                f"{total} points finished (kept)")  # fmt: skip
             elif message.error is not None:
                 controls.status(f"sweep not run: {message.error}")
             else:
@@ -378,7 +381,10 @@ class WorkbenchApp(FileActions, App):
                     f"sweep: {len(run.outcomes)} points{failed} in {message.seconds:.2f} s"
                 )
         if message.cancelled:
-            self.notify("Sweep cancelled.")
+            self.notify("Sweep cancelled: its finished points are kept.")
+            if message.run is not None and message.run.outcomes:
+                self.last_sweep = message.run
+                self.action_show_sweep()
         elif message.error is not None:
             error = message.error
             text = (

@@ -71,7 +71,8 @@ class BatchFinished(RunEnded):
 
 class SweepFinished(RunEnded):
     """A sweep ended: ``run`` (a :class:`~planar_tui.sweep.service.SweepRun`) when every
-    point ran (some may have failed: their rows say why); ``error`` when it could not run
+    point ran (some may have failed: their rows say why), or the points finished before a
+    cancel (``cancelled``; the run marks the others); ``error`` when it could not run
     (a point invalid for its key)."""
 
     def __init__(self, pane: Any, sweep: Any):
@@ -155,16 +156,27 @@ class JobRunner:
         process with ``workers == 1``, else on a local Dask cluster of ``workers``
         processes), showing progress on ``pane``; posts :class:`SweepFinished`. ``points``
         are the sweep's validated points (made and checked in the thread when ``None``).
-        Nothing is written (the sweep screen exports the CSV)."""
+        Nothing is written (the sweep screen exports the CSV). A cancelled sweep's
+        finished points are kept: ``finished.run`` is the partial run (``cancelled``)."""
         from planar_tui.sweep.points import make_points
-        from planar_tui.sweep.service import run_sweep
+        from planar_tui.sweep.service import SweepRun, run_sweep
 
         finished = SweepFinished(pane, sweep)
 
         def compute(stopping: Callable[[], bool]) -> None:
             checked = make_points(sweep) if points is None else points
             progress = Progress(on_update=self._store, should_stop=stopping)
-            finished.run = run_sweep(sweep, progress, points=checked, workers=workers)
+            done: dict = {}
+
+            def keep(outcome: Any) -> None:
+                done[outcome.number] = outcome
+
+            try:
+                finished.run = run_sweep(sweep, progress, points=checked, workers=workers,
+                                         on_outcome=keep)  # fmt: skip
+            except (Cancelled, KeyboardInterrupt):
+                finished.run = SweepRun(sweep, checked, done, cancelled=True)
+                raise
 
         self._launch(sweep.label, finished, compute)
 

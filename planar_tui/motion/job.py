@@ -268,9 +268,10 @@ def check_resources(error, spec: MotionSpec, robot: SerialRobot) -> None:
 OPTIONS = {"methods": "--method", "samples": "--samples", "seed": "--seed", "device": "--device"}
 
 
-def prepare_motion(job: Job) -> Job:
-    """The job with its resources checked again (overrides change them) and its device
-    chosen: ``cuda`` without a usable GPU is a :class:`PresetError` on ``device``.
+def _checked_device(job: Job) -> tuple[str, str]:
+    """The job's resources checked again (overrides change them) and its device chosen
+    (:func:`~planar_tui.motion.device.resolve`): ``(device, note)``; ``cuda`` without a
+    usable GPU is a :class:`PresetError` on ``device``.
 
     A problem with a value a command-line option set names the option (``command line:
     --device``), not the preset's key: the device when ``--device`` set it, the resources
@@ -278,8 +279,6 @@ def prepare_motion(job: Job) -> Job:
     changed them."""
     from planar_tui.motion.device import resolve
 
-    if job.spec.device_used is not None:
-        return job
     overridden = job.spec.overridden
 
     def error(name, problem, expected):
@@ -293,6 +292,21 @@ def prepare_motion(job: Job) -> Job:
     used, note = resolve(job.spec.device)
     if used is None:
         raise error("device", note, '"cpu" or "auto", or a machine with a usable CUDA GPU')
+    return used, note
+
+
+def check_motion(job: Job) -> None:
+    """Refuse a job that cannot run here (resources, an unusable ``cuda`` device) without
+    computing anything: the job kind's ``check``, run on every sweep point."""
+    _checked_device(job)
+
+
+def prepare_motion(job: Job) -> Job:
+    """The job with its resources checked again (overrides change them) and its device
+    chosen: ``cuda`` without a usable GPU is a :class:`PresetError` on ``device``."""
+    if job.spec.device_used is not None:
+        return job
+    used, note = _checked_device(job)
     spec = dataclasses.replace(job.spec, device_used=used, device_note=note)
     return dataclasses.replace(job, spec=spec)
 
@@ -444,5 +458,6 @@ JOB_KIND = JobKind(
     extra_outputs=extra_outputs,
     overrides=with_overrides,
     prepare=prepare_motion,
+    check=check_motion,
     point_figures=point_figures,
 )

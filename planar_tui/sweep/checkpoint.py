@@ -7,7 +7,11 @@ count, then one JSON line per finished point, appended and flushed to disk (``fs
 before the next is taken. JSON writes floats in their shortest round-trip form, so a
 resumed point's figures are the very numbers computed. A line cut short by a crash is
 ignored (that point runs again); a checkpoint with another fingerprint (the preset
-changed) is replaced, never resumed. The checkpoint is removed once the CSV is written.
+changed) is replaced, never resumed. The CLI removes the checkpoints of a run's sweeps
+once every sweep of the run is done and its CSV written, so ``--resume`` after an
+interrupt in a later sweep rebuilds the finished ones from their checkpoints; a run
+without ``--resume`` refuses to start over a checkpoint of the same sweep
+(:func:`existing_fingerprint`).
 """
 
 from __future__ import annotations
@@ -26,6 +30,24 @@ SUFFIX = ".checkpoint.jsonl"
 def checkpoint_path(output: Path) -> Path:
     """Where the checkpoint of the sweep writing ``output`` lives."""
     return output.with_name(output.name + SUFFIX)
+
+
+def existing_fingerprint(path: Path) -> str | None:
+    """The fingerprint in the checkpoint at ``path``: ``None`` when there is no file,
+    ``""`` when its first line names none (unreadable, cut short)."""
+    try:
+        with open(path, encoding="utf-8") as stream:
+            first = stream.readline()
+    except FileNotFoundError:
+        return None
+    except (OSError, UnicodeDecodeError):
+        return ""
+    try:
+        header = json.loads(first)
+    except json.JSONDecodeError:
+        return ""
+    fingerprint = header.get("fingerprint") if isinstance(header, dict) else None
+    return fingerprint if isinstance(fingerprint, str) else ""
 
 
 def read_finished(path: Path, fingerprint: str, total: int) -> dict[int, PointOutcome]:
@@ -75,11 +97,6 @@ class CheckpointWriter:
 
     def close(self) -> None:
         self._stream.close()
-
-    def remove(self) -> None:
-        """Close and delete the checkpoint (the sweep's CSV is written)."""
-        self.close()
-        self.path.unlink(missing_ok=True)
 
 
 def _record(outcome: PointOutcome) -> str:

@@ -133,7 +133,7 @@ def dask_client(target: DaskTarget, announce: Callable[[str], None]) -> Iterator
             client.register_plugin(_ignore_interrupts_plugin(), name="planar-tui-ignore-sigint")
             announce(
                 f"dask: local cluster of {target.workers} worker processes, dashboard "
-                f"{cluster.dashboard_link}" + _dashboard_note()
+                f"{cluster.dashboard_link}"
             )
             yield client
         finally:
@@ -160,12 +160,6 @@ def _ignore_interrupts_plugin() -> Any:
                 signal.signal(signal.SIGINT, signal.SIG_IGN)
 
     return IgnoreInterrupts()
-
-
-def _dashboard_note() -> str:
-    import importlib.util
-
-    return "" if importlib.util.find_spec("bokeh") else " (install bokeh to serve it)"
 
 
 def run_on_dask(

@@ -95,12 +95,16 @@ def point_job(sweep: Sweep, values: tuple[Any, ...]) -> Job:
 
 
 def make_points(sweep: Sweep) -> list[Point]:
-    """Every point, validated before anything runs: the first invalid point is a
-    :class:`PresetError` naming the sweep, the point's values and the key."""
+    """Every point, validated before anything runs (parsed like a preset job, then the job
+    kind's ``check``: e.g. a motion point's device usable here): the first invalid point
+    is a :class:`PresetError` naming the sweep, the point's values and the key."""
+    check = JOB_KINDS[sweep.job.kind].check
     points = []
     for number, values in enumerate(design(sweep), start=1):
         try:
             job = point_job(sweep, values)
+            if check is not None:
+                check(job)
         except PresetError as error:
             raise PresetError(
                 sweep.preset_path,

@@ -13,7 +13,7 @@ import secrets
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from planar_tui.csvio import CsvTable, write_atomic, write_csv_atomic
 from planar_tui.progress import Progress
@@ -21,13 +21,19 @@ from planar_tui.sweep.checkpoint import CheckpointWriter, checkpoint_path, read_
 from planar_tui.sweep.points import Point, make_points
 from planar_tui.sweep.spec import Sweep
 from planar_tui.sweep.table import sweep_table
-from planar_tui.sweep.worker import FAILED, PointOutcome, PointTask
+from planar_tui.sweep.worker import CANCELLED, FAILED, PointOutcome, PointTask
+
+if TYPE_CHECKING:
+    from planar_tui.batch import PlannedFile
 
 
 @dataclass
 class SweepRun:
     """A sweep's points and their outcomes by point number (``resumed`` of them read from
-    a checkpoint), and where its CSV went (``None`` when nothing was written)."""
+    a checkpoint), where its CSV and figure went (``None`` when nothing was written), why
+    its figure was not written (``figure_error``) and its checkpoint while it is kept.
+    A ``cancelled`` run (the app's, stopped part-way) keeps its finished points; its
+    table marks the others ``cancelled``."""
 
     sweep: Sweep
     points: list[Point]
@@ -35,6 +41,9 @@ class SweepRun:
     resumed: int = 0
     output: Path | None = None
     figure: Path | None = None
+    figure_error: str | None = None
+    checkpoint: Path | None = None
+    cancelled: bool = False
 
     @property
     def failed(self) -> int:
@@ -43,9 +52,15 @@ class SweepRun:
 
     @property
     def table(self) -> CsvTable:
-        """The sweep CSV of the points finished so far (all of them once it ran)."""
+        """The sweep CSV of the points finished so far (all of them once it ran); a
+        cancelled run's also lists the points not run, status ``cancelled``."""
         values = {point.number: point.values for point in self.points}
-        return sweep_table([path.text for path in self.sweep.paths], values, self.outcomes)
+        outcomes = dict(self.outcomes)
+        if self.cancelled:
+            for point in self.points:
+                outcomes.setdefault(point.number, PointOutcome(
+                    point.number, CANCELLED, "not run: the sweep was cancelled", {}, 0.0))  # fmt: skip
+        return sweep_table([path.text for path in self.sweep.paths], values, outcomes)
 
 
 def write_figure(run: SweepRun, path: Path) -> Path:
@@ -68,26 +83,53 @@ def output_path(sweep: Sweep, out_dir: Path) -> Path:
     return out_dir / sweep.output
 
 
-def check_outputs(sweeps: Sequence[Sweep], out_dir: Path) -> None:
-    """Refuse, before anything runs, a sweep CSV, checkpoint or point folder that cannot be
-    written (:func:`planar_tui.batch.check_writable`), or two sweeps on one file."""
-    from planar_tui.batch import _output_error, check_writable
+def planned_files(sweep: Sweep, out_dir: Path) -> list[PlannedFile]:
+    """Every file the sweep writes in ``out_dir`` (for
+    :func:`planar_tui.batch.check_planned`): its CSV, its checkpoint, its figure and its
+    point-file folder (which it owns whole; its first point file probed)."""
+    from planar_tui.batch import PlannedFile
 
-    seen: dict[Path, str] = {}
-    for sweep in sweeps:
-        output = output_path(sweep, out_dir)
-        paths = [output, checkpoint_path(output)]
-        if sweep.point_outputs is not None:
-            paths.append(out_dir / sweep.point_outputs / "point-1.csv")
-        if sweep.plot is not None:
-            paths.append(out_dir / sweep.plot)
-        for path in paths:
-            check_writable(path)
-        identity = output.resolve()
-        if identity in seen:
-            raise _output_error(output, f"is written by both {seen[identity]} and {sweep.label}",
-                                "one file per sweep (set distinct output paths)")  # fmt: skip
-        seen[identity] = sweep.label
+    output = output_path(sweep, out_dir)
+    files = [PlannedFile(output, f"{sweep.label} (output)"),
+             PlannedFile(checkpoint_path(output), f"{sweep.label} (checkpoint)")]  # fmt: skip
+    if sweep.plot is not None:
+        files.append(PlannedFile(out_dir / sweep.plot, f"{sweep.label} (plot)", "figure file"))
+    if sweep.point_outputs is not None:
+        folder = out_dir / sweep.point_outputs
+        files.append(PlannedFile(folder, f"{sweep.label} (point_outputs)", "point file",
+                                 folder=True, probe=folder / "point-1.csv"))  # fmt: skip
+    return files
+
+
+def figure_problem(sweep: Sweep, points: Sequence[Point]) -> str | None:
+    """Why the sweep's figure cannot be drawn whatever the points compute (no varied key
+    column, by :func:`planar_tui.figures.sweep.split_columns` on the key columns), or
+    ``None``."""
+    from planar_tui.figures.sweep import split_columns
+
+    paths = [path.text for path in sweep.paths]
+    keys = CsvTable(("point", *paths, "status"),
+                    [[p.number, *p.values, "ok"] for p in points])  # fmt: skip
+    try:
+        varied, _ = split_columns(keys)
+    except (TypeError, ValueError):  # a key whose values are no numbers
+        varied = []
+    if varied:
+        return None
+    if len(points) < 2:
+        return f"the sweep has {len(points)} point: a figure needs a key that varies"
+    return "no varied key takes two numeric values: a figure needs one"
+
+
+def check_figure(sweep: Sweep, points: Sequence[Point]) -> None:
+    """Refuse, before anything runs, a ``plot`` the sweep's figure cannot draw
+    (:func:`figure_problem`; :class:`~planar_tui.errors.PresetError`, exit code 2)."""
+    from planar_tui.errors import PresetError
+
+    problem = None if sweep.plot is None else figure_problem(sweep, points)
+    if problem is not None:
+        raise PresetError(sweep.preset_path, f"{sweep.name}.plot", problem,
+                          "a plot only for a sweep with a varied numeric key")  # fmt: skip
 
 
 def run_sweep(
@@ -102,6 +144,7 @@ def run_sweep(
     on_outcome: Callable[[PointOutcome], None] | None = None,
     announce: Callable[[str], None] = lambda text: None,
     client: Any = None,
+    keep_checkpoint: bool = False,
 ) -> SweepRun:
     """Run every point of ``sweep`` and return them (see :class:`SweepRun`).
 
@@ -114,8 +157,13 @@ def run_sweep(
     checkpoint of the same sweep. ``progress`` counts points (figure ``failed``); its
     cancel, or Ctrl-C, stops the run with :class:`~planar_tui.errors.Cancelled` /
     ``KeyboardInterrupt``: the checkpoint stays, no CSV is written. ``on_outcome`` sees
-    every point as it finishes (resumed ones first, in order).
+    every point as it finishes (resumed ones first, in order). The checkpoint is deleted
+    once the CSV is written, unless ``keep_checkpoint`` (the CLI deletes a run's
+    checkpoints once all its sweeps are done: ``run.checkpoint``). A CSV or point file that
+    cannot be written is :class:`~planar_tui.batch.OutputFailed` (the checkpoint stays);
+    a figure that cannot be written is ``run.figure_error`` (the CSV is written).
     """
+    from planar_tui.batch import OutputFailed
     from planar_tui.registry import JOB_KINDS  # noqa: F401 (the kinds' modules, loaded once)
     from planar_tui.sweep import execute
     from planar_tui.warmup import warm_kernels
@@ -130,6 +178,7 @@ def run_sweep(
         checkpoint = checkpoint_path(output)
         finished = read_finished(checkpoint, sweep.fingerprint(), total) if resume else {}
         writer = CheckpointWriter(checkpoint, sweep.fingerprint(), total, finished)
+        run.checkpoint = checkpoint
         run.outcomes.update(finished)
         run.resumed = len(finished)
     width = len(str(total))
@@ -153,7 +202,10 @@ def run_sweep(
         def finished_point(outcome: PointOutcome) -> None:
             if folder is not None:
                 for name, text in outcome.tables.items():
-                    write_atomic(folder / name, lambda stream, text=text: stream.write(text))
+                    try:
+                        write_atomic(folder / name, lambda stream, text=text: stream.write(text))
+                    except OSError as error:
+                        raise OutputFailed(folder / name, error.strerror or str(error)) from None
             if writer is not None:
                 writer.add(outcome)
             run.outcomes[outcome.number] = outcome
@@ -171,16 +223,22 @@ def run_sweep(
             with execute.dask_client(target, announce) as client:
                 execute.run_on_dask(client, tasks, progress, finished_point, prefix)
         if output is not None:
-            write_csv_atomic(output, run.table)
+            try:
+                write_csv_atomic(output, run.table)
+            except OSError as error:
+                raise OutputFailed(output, error.strerror or str(error)) from None
             run.output = output
-            if sweep.plot is not None:
-                run.figure = write_figure(run, out_dir / sweep.plot)
-    except BaseException:
+    finally:
         if writer is not None:
             writer.close()
-        raise
-    if writer is not None:
-        writer.remove()
+    if run.checkpoint is not None and not keep_checkpoint:
+        run.checkpoint.unlink(missing_ok=True)
+        run.checkpoint = None
+    if output is not None and sweep.plot is not None:
+        try:
+            run.figure = write_figure(run, out_dir / sweep.plot)
+        except OutputFailed as error:
+            run.figure_error = str(error)
     return run
 
 

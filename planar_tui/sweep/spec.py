@@ -150,23 +150,34 @@ def find_job(preset: Preset, text: Any, reader: TableReader) -> Job:
     raise reader.error("job", f"is {shown(text)}, no such job", expected + suggest(text, valid))
 
 
-def _read_values(reader: TableReader, name: str, entry: Any) -> tuple[Any, ...]:
-    """A ``values`` entry: a non-empty list, or ``{from, to, count}`` evenly spaced with
-    both ends included (``from + (to − from)·i/(count − 1)``)."""
+def _values_count(reader: TableReader, name: str, entry: Any) -> int:
+    """How many values a ``values`` entry has (checked, nothing built): a non-empty list's
+    length, or ``{from, to, count}``'s ``count``."""
     key = f"values.{_quoted(name)}"
     expected = "a non-empty array of values, or { from = A, to = B, count = N }"
     if isinstance(entry, list):
         if not entry:
             raise reader.error(key, "is empty", expected)
-        return tuple(entry)
+        return len(entry)
     if not isinstance(entry, dict):
         raise reader.error(key, f"is {type_name(entry)}", expected)
     spaced = TableReader(reader.path, entry, reader.key(key), ("from", "to", "count"))
-    start, stop = spaced.number("from"), spaced.number("to")
+    spaced.number("from"), spaced.number("to")
     count = spaced.raw("count", expected="an integer >= 1")
     if isinstance(count, int) and not isinstance(count, bool) and count < 1:
         raise spaced.error("count", f"is {count}, below 1", "an integer >= 1")
-    count = spaced.integer("count", minimum=1)
+    return spaced.integer("count", minimum=1)
+
+
+def _read_values(reader: TableReader, name: str, entry: Any) -> tuple[Any, ...]:
+    """A ``values`` entry (checked by :func:`_values_count` first): a non-empty list, or
+    ``{from, to, count}`` evenly spaced with both ends included
+    (``from + (to − from)·i/(count − 1)``)."""
+    if isinstance(entry, list):
+        return tuple(entry)
+    spaced = TableReader(reader.path, entry, reader.key(f"values.{_quoted(name)}"),
+                         ("from", "to", "count"))  # fmt: skip
+    start, stop, count = spaced.number("from"), spaced.number("to"), spaced.integer("count")
     if count == 1:
         return (start,)
     return (*(start + (stop - start) * i / (count - 1) for i in range(count - 1)), stop)
@@ -237,6 +248,7 @@ def parse_sweep_table(preset: Preset, table: Any, name: str, number: int = 1) ->
             group, f"is {what}", "a table of key paths, e.g. { orientation_deg = [...] }"
         )
     seen: dict[tuple, str] = {}
+    lengths: dict[KeyPath, int] = {}
     for text, entry in entries.items():
         parsed = key_path(group, text)
         place = (parsed.table, parsed.key, parsed.indices)
@@ -245,30 +257,32 @@ def parse_sweep_table(preset: Preset, table: Any, name: str, number: int = 1) ->
                                "each key path once")  # fmt: skip
         seen[place] = text
         if has_values:
-            values.append((parsed, _read_values(reader, text, entry)))
+            lengths[parsed] = _values_count(reader, text, entry)
         else:
             ranges.append((parsed, *_read_range(reader, text, entry)))
     if has_values:
         if reader.has("sample"):
             raise reader.error("sample", "is given with values", "sample only with ranges")
         combine = reader.string("combine", "grid", choices=COMBINE)
-        lengths = [len(v) for _, v in values]
-        if combine == "zip" and len(set(lengths)) > 1:
-            listed = ", ".join(f"{p.text}: {len(v)}" for p, v in values)
+        if combine == "zip" and len(set(lengths.values())) > 1:
+            listed = ", ".join(f"{p.text}: {n}" for p, n in lengths.items())
             raise reader.error("combine", f'is "zip" but the lists differ in length ({listed})',
                                'lists of one length, or combine = "grid"')  # fmt: skip
-        count = math.prod(lengths) if combine == "grid" else lengths[0]
+        counts = list(lengths.values())
+        count = math.prod(counts) if combine == "grid" else counts[0]
     else:
         if reader.has("combine"):
             raise reader.error("combine", "is given with ranges", "combine only with values")
         sample = _read_sample(reader)
         count = sample.count
+    # counted before any value is made: a count of 10^9 is refused, not built
     if count > max_points:
         raise reader.error(
             "max_points" if reader.has("max_points") else group,
             f"the sweep has {count:,} points, more than max_points = {max_points:,}",
             f"at most {max_points:,} points, or a larger max_points",
         )
+    values = [(path, _read_values(reader, path.text, entries[path.text])) for path in lengths]
     output = reader.relative_path("output", f"{path.stem}-sweep-{number}.csv")
     point_outputs = reader.relative_path("point_outputs", None)
     plot = figure_path()(reader, "plot", None, None, {})

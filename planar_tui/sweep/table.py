@@ -2,7 +2,8 @@
 
 Columns: ``point``, one per varied key path (named by the path, units as in the key), the
 job kind's summary figures (``JobKind.point_figures``: every column any point reported, in
-the order they first appear), then ``status`` (``ok`` / ``failed``), ``message`` and
+the order they first appear), then ``status`` (``ok`` / ``failed``; ``cancelled`` for a point a cancelled app sweep did
+not run), ``message`` and
 ``seconds`` (the point's wall time: the one column that differs between runs). A figure
 named like a varied key (a workspace sweep over ``precision_cm``) is not repeated.
 """
@@ -13,7 +14,7 @@ from collections.abc import Mapping, Sequence
 from typing import Any
 
 from planar_tui.csvio import CsvTable
-from planar_tui.sweep.worker import PointOutcome
+from planar_tui.sweep.worker import CANCELLED, PointOutcome
 
 TRAILING = ("status", "message", "seconds")
 
@@ -31,10 +32,11 @@ def figure_columns(outcomes: Sequence[PointOutcome], paths: Sequence[str] = ()) 
 def row(
     number: int, values: Sequence[Any], outcome: PointOutcome, columns: Sequence[str]
 ) -> list[Any]:
-    """One point's row (a figure the point did not report is an empty cell)."""
+    """One point's row (a figure the point did not report is an empty cell, as are the
+    seconds of a point not run)."""
     figures = [outcome.figures.get(name, "") for name in columns]
-    return [number, *values, *figures, outcome.status, outcome.message,
-            round(outcome.seconds, 6)]  # fmt: skip
+    seconds = "" if outcome.status == CANCELLED else round(outcome.seconds, 6)
+    return [number, *values, *figures, outcome.status, outcome.message, seconds]
 
 
 def sweep_table(

@@ -18,6 +18,9 @@ from planar_tui.progress import Progress
 
 OK = "ok"
 FAILED = "failed"
+#: A point a cancelled sweep did not run (a row of the app's partial table; never in a CSV
+#: the CLI writes).
+CANCELLED = "cancelled"
 
 
 @dataclass(frozen=True)

@@ -184,9 +184,12 @@ class SweepScreen(Screen[None]):
     def compose(self) -> ComposeResult:
         run = self.run
         failed = f", {run.failed} failed" if run.failed else ""
+        done = f"{len(run.outcomes)} points"
+        if run.cancelled:
+            done = f"cancelled: {len(run.outcomes)} of {len(run.points)} points run"
         yield Static(
-            f"{run.sweep.label}: {len(run.outcomes)} points{failed}  (escape closes, ctrl+e "
-            "exports the CSV, ctrl+l writes the figure)", id="sweep-title", markup=False,
+            f"{run.sweep.label}: {done}{failed}  (escape closes, ctrl+e exports the CSV, "
+            "ctrl+l writes the figure)", id="sweep-title", markup=False,
         )  # fmt: skip
         yield DataTable(id="sweep-table", zebra_stripes=True)
         with Horizontal(classes="sweep-pickers"):
