@@ -188,8 +188,8 @@ class SweepScreen(Screen[None]):
         if run.cancelled:
             done = f"cancelled: {len(run.outcomes)} of {len(run.points)} points run"
         yield Static(
-            f"{run.sweep.label}: {done}{failed}  (escape closes, ctrl+e exports the CSV, "
-            "ctrl+l writes the figure)", id="sweep-title", markup=False,
+            f"{run.sweep.label}: {done}{failed}  (escape closes; ctrl+e: CSV, ctrl+l: figure)",
+            id="sweep-title", markup=False,
         )  # fmt: skip
         yield DataTable(id="sweep-table", zebra_stripes=True)
         with Horizontal(classes="sweep-pickers"):
