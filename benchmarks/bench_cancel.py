@@ -114,6 +114,20 @@ def in_process_cases(samples: int, precision_cm: float):
         robot="3rrr",
     )
 
+    def orientation(precision_cm: float, refine: str = ""):  # 120° case, every orientation
+        return robot_job(
+            "workspace",
+            "joint_limits_deg = [[-30, 90], [90, 210], [210, 330]]\n"
+            'orientation_deg = [-180, 180]\norientation_mode = "maximal"\n'
+            f"precision_cm = {precision_cm}\n{refine}geometric_reference = false",
+            robot="3rrr",
+        )
+
+    # a fine paving's first, large boxes (each bisected Φ for seconds before pieces had a
+    # floor from the box's size) and a fine refinement of coarse boundary boxes
+    fine_range = orientation(0.0002)
+    refined_range = orientation(0.5, "refine_precision_cm = 0.0005\n")
+
     def fresh_designs(job):
         def run(progress):
             engine.unit_design.cache_clear()
@@ -130,6 +144,13 @@ def in_process_cases(samples: int, precision_cm: float):
         ("sensitivity, both", "analysis", lambda p: batch.run_job(sensitivity, p), 0.3),
         ("workspace", "mean-value bisection", lambda p: batch.run_job(workspace, p), 0.1),
         ("workspace", "mean-value leg-wise paving", lambda p: batch.run_job(legwise, p), 0.1),
+        ("workspace, orientation range", "maximal", lambda p: batch.run_job(fine_range, p), 0.3),
+        (
+            "workspace, orientation range",
+            "boundary refinement",
+            lambda p: batch.run_job(refined_range, p),
+            0.3,
+        ),
     ]
 
 

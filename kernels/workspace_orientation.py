@@ -41,7 +41,18 @@ the point :math:`m`, or one piece is *all in*: then every :math:`p \\in X` is fe
 that :math:`\\varphi \\in \\Phi`, so :math:`X \\subseteq W_\\exists`. ``OUTSIDE`` if every
 piece of a cover of :math:`\\Phi` is *out*: then every :math:`(p, \\varphi) \\in X \\times
 \\Phi` is infeasible, so :math:`X \\cap W_\\exists = \\emptyset`. A piece neither *all in*
-nor *out* is split while wider than ``phi_min``; else ``BOUNDARY``.
+nor *out* is split while wider than ``max(phi_min, rho_xy / |q|max)``; else ``BOUNDARY``.
+
+The narrowest piece grows with the box (``rho_xy`` its half-diagonal, ``|q|max`` the
+farthest platform point): a piece whose chord term :math:`|q| h` is below the box's own
+:math:`\\rho_{xy}` rarely decides a box that splitting it in (x, y) would not, and without
+the floor one large box of a fine paving bisected Φ down to ``phi_min`` (seconds per box,
+with no progress or cancel in between). Leaves at the precision (``rho_xy ≤ precision/√2 <
+|q|max · phi_min``) keep ``phi_min``, so every verdict stays certified and only the level
+that decides a region changes. The areas can move by a few boxes at the precision, because
+a box is tested through its bounding disc and a half's disc is not inside its parent's (on
+12 random robots and ranges, both modes, the inside and kept areas were the same as with
+``phi_min`` everywhere on 9 and within 0.02 % on the others).
 
 *Total.* ``OUTSIDE`` as soon as some leg is ``OUT`` at one piece's midpoint orientation
 :math:`m` (a point): every :math:`p \\in X` is infeasible at :math:`m \\in \\Phi`, so
@@ -119,6 +130,9 @@ def classify_box_range(xlo, xhi, ylo, yhi, mode, phi_lo, phi_hi, phi_min, g, lim
     cx = 0.5 * (xlo + xhi)
     cy = 0.5 * (ylo + yhi)
     rho_xy = 0.5 * math.hypot(xhi - xlo, yhi - ylo)
+    # pieces no narrower than the box's own blur: |q|·width ≥ rho_xy (see module docstring)
+    q_far = max(math.hypot(g[2], g[3]), math.hypot(g[4], g[5]), math.hypot(g[6], g[7]))
+    narrowest = max(phi_min, rho_xy / max(q_far, 1e-300))
     pieces[0, 0] = phi_lo
     pieces[0, 1] = phi_hi
     n = 1
@@ -146,7 +160,7 @@ def classify_box_range(xlo, xhi, ylo, yhi, mode, phi_lo, phi_hi, phi_min, g, lim
             verdict = piece_status(cx, cy, rho_xy, mid, half, g, limits)
             if verdict == PIECE_IN:
                 continue
-        if hi - lo > phi_min and n + 2 <= pieces.shape[0]:
+        if hi - lo > narrowest and n + 2 <= pieces.shape[0]:
             pieces[n, 0] = mid
             pieces[n, 1] = hi
             pieces[n + 1, 0] = lo

@@ -242,7 +242,8 @@ def pave_in_levels(seeds, budget: BoxBudget, decide, inside_cm2: float = 0.0):
     :func:`~planar_tui.kernels.workspace_arc.settle_xy_box` outcome and children
     (``children[2 i]``, ``children[2 i + 1]``). Kept boxes and the halves of split ones are
     appended in frontier order, so the result is the same whatever the number of threads.
-    A slice is sized to about ``SLICE_TARGET_S`` of wall time (measured as it goes); after
+    A slice is sized to about ``SLICE_TARGET_S`` of wall time (measured as it goes, from one
+    box up, halved down to one box when a slice runs long); after
     each, the budget gets the boxes decided, the fraction of the seeds' area decided and
     the live bracket ``[inside_cm2 + inside kept, kept + pending]``, and the progress the
     kept boxes so far (read-only views): progress and Cancel/Ctrl-C within a fraction of a
@@ -256,7 +257,7 @@ def pave_in_levels(seeds, budget: BoxBudget, decide, inside_cm2: float = 0.0):
     status = np.zeros(4096, dtype=np.int64)
     n_kept = 0
     lower = upper = inside_cm2
-    slice_boxes = 256
+    slice_boxes = 1  # grows while slices are quick: one box can take a long time
     while len(frontier):
         following = np.zeros((2 * len(frontier), 4))
         n_following = 0
@@ -269,7 +270,7 @@ def pave_in_levels(seeds, budget: BoxBudget, decide, inside_cm2: float = 0.0):
             started = time.perf_counter()
             decide(frontier, start, stop, children, outcome)
             elapsed = time.perf_counter() - started
-            if elapsed > SLICE_TARGET_S and slice_boxes > 16:
+            if elapsed > SLICE_TARGET_S and slice_boxes > 1:
                 slice_boxes //= 2
             elif elapsed < SLICE_TARGET_S / 4 and slice_boxes < MAX_SLICE_BOXES:
                 slice_boxes *= 2
