@@ -193,9 +193,9 @@ def test_sweep_figures_mark_the_failed_points():
     lines = _by_gid(one, "sweep")
     assert len(lines) == 7 and all(len(line.get_xdata()) == 4 for line in lines)
     two = figures.figure_for_table(figures.read_table(FIXTURES / "sweep-grid.csv"))
-    heat = _by_gid(two, "heat", "images")
-    assert len(heat) == 2 and heat[0].get_array().shape == (3, 3)
-    assert heat[0].get_array().mask[1, 1]  # point 5 (distal 30, orientation 0) failed
+    heat = _by_gid(two, "heat", "collections")
+    assert len(heat) == 2 and heat[0].get_array().shape == (9,)  # 3 x 3 cells, row-major
+    assert heat[0].get_array().mask[4]  # point 5 (distal 30, orientation 0) failed
     assert _by_gid(two, "failed")[0].get_xydata().tolist() == [[0.0, 30.0]]
 
 
@@ -436,11 +436,11 @@ def test_two_text_keys_draw_a_heat_map_with_labelled_ticks(tmp_path):
     rows = [f"{k},{form},{strategy},{value},ok,,0.1"
             for k, ((form, strategy), value) in enumerate(cells.items(), start=1)]  # fmt: skip
     fig = figures.figure_for_table(_table(tmp_path, header, rows))
-    (image,) = _by_gid(fig, "heat", "images")
+    (image,) = _by_gid(fig, "heat", "collections")
     ax = image.axes
     assert [t.get_text() for t in ax.get_xticklabels()] == ["natural", "slope", "mean-value"]
     assert [t.get_text() for t in ax.get_yticklabels()] == ["legwise", "joint"]
-    assert np.asarray(image.get_array()).tolist() == [[1.0, 3.0, 5.0], [2.0, 4.0, 6.0]]
+    assert np.asarray(image.get_array()).tolist() == [1.0, 3.0, 5.0, 2.0, 4.0, 6.0]
 
 
 def test_a_list_valued_key_is_categorical_in_memory_and_read_back(tmp_path):
@@ -478,8 +478,12 @@ def test_an_output_column_is_never_an_axis(cli, tmp_path):
 
 
 def test_plot_of_a_header_without_rows_is_one_line_exit_2_for_every_kind(cli, csv_files, tmp_path):
+    """Every kind but the workspace boxes (see the next test): the message names what is
+    expected."""
     folder, files = csv_files
-    for name, kind in files.items():
+    refused = {name: kind for name, kind in files.items() if kind != "workspace boxes"}
+    assert len(refused) == len(files) - 1
+    for name, kind in refused.items():
         header = (folder / name).read_text(encoding="utf-8").splitlines()[0]
         empty = tmp_path / name
         empty.write_text(header + "\n", encoding="utf-8")
@@ -487,9 +491,31 @@ def test_plot_of_a_header_without_rows_is_one_line_exit_2_for_every_kind(cli, cs
         result = cli("plot", empty, "--out", tmp_path / "f.svg")
         assert result.exit_code == 2, (name, result.output)
         assert result.stderr == (
-            f"error: {empty}: (content): cannot be drawn: the table has a header but no data rows\n"
+            f"error: {empty}: (content): cannot be drawn: the table has a header but no data "
+            "rows (expected at least one row)\n"
         )
-    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(files)  # nothing written
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(refused)  # nothing written
+
+
+def test_plot_of_the_boxes_csv_of_a_geometric_workspace_job_draws_empty_cm_axes(cli, tmp_path):
+    """The geometric form keeps no boxes, so its boxes CSV is header-only in normal use:
+    drawn as the empty axes in cm with a note, not refused."""
+    job, result = _run("paper-b-table3", "workspace[7]")
+    assert job.spec.form == "geometric"
+    (plan,) = batch.plan_outputs([job], tmp_path)
+    boxes = tmp_path / "boxes.csv"
+    batch.write_result(dataclasses.replace(plan, extras={"boxes": boxes}), result)
+    assert boxes.read_text(encoding="utf-8").splitlines() == [
+        "x_lo_cm,x_hi_cm,y_lo_cm,y_hi_cm,status"
+    ]
+    out = tmp_path / "boxes.svg"
+    plotted = cli("plot", boxes, "--out", out)
+    assert plotted.exit_code == 0, plotted.output
+    assert out.stat().st_size > 1000
+    (ax,) = figures.figure_for_table(figures.read_table(boxes)).axes
+    assert [t.get_text() for t in ax.texts if t.get_gid() == "note"] == ["no boxes kept"]
+    assert (ax.get_xlabel(), ax.get_ylabel(), ax.get_aspect()) == ("x (cm)", "y (cm)", 1.0)
+    assert all(len(c.get_paths()) == 0 for c in ax.collections)
 
 
 def test_plot_of_a_folder_is_one_line_exit_2(cli, tmp_path, monkeypatch):
@@ -610,3 +636,64 @@ def test_simulate_figure_from_a_csv_alone_makes_no_drift_claim(results):
     assert ax.get_title().startswith("energy change, max ") and "drift" not in ax.get_title()
     fig.canvas.draw()
     assert ax.title.get_window_extent().width < ax.get_window_extent().width
+
+
+# -- sweep heat maps over uneven values, sweeps where every point failed ---------------
+
+
+def test_a_heat_map_over_uneven_values_centres_each_cell_on_its_values(tmp_path):
+    orientations, precisions = [5, 10, 40], [0.5, 1, 2, 4]
+    values = {(5, 0.5): 11.0, (5, 1): 12.5, (5, 2): 13.0, (5, 4): 14.25,
+              (10, 0.5): 21.0, (10, 1): 22.0, (10, 2): 23.5, (10, 4): 24.0,
+              (40, 0.5): 31.5, (40, 1): 32.0, (40, 2): 33.0, (40, 4): 34.75}  # fmt: skip
+    rows, number = [], 0
+    for phi in orientations:
+        for eps in precisions:
+            number += 1
+            status = "failed,boom" if (phi, eps) == (10, 2) else "ok,"
+            cell = "" if status != "ok," else values[phi, eps]
+            rows.append(f"{number},{phi},{eps},{cell},{status},0.1")
+    header = "point,orientation_deg,precision_cm,area_kept_cm2,status,message,seconds"
+    fig = figures.figure_for_table(_table(tmp_path, header, rows))
+    (heat,) = _by_gid(fig, "heat", "collections")
+    colours = heat.get_array()
+    centres = []
+    for path, colour in zip(heat.get_paths(), colours, strict=True):
+        corners = path.vertices[:4]
+        centre = (
+            (corners[:, 0].min() + corners[:, 0].max()) / 2,
+            (corners[:, 1].min() + corners[:, 1].max()) / 2,
+        )
+        centres.append(centre)
+        if centre == (10, 2):
+            assert colour is np.ma.masked  # the failed point: no colour
+        else:
+            assert colour == values[centre]
+    assert sorted(centres) == sorted(values)  # one cell per point, on its values
+    (failed,) = _by_gid(fig, "failed")
+    assert failed.get_xydata().tolist() == [[10.0, 2.0]]
+
+
+def test_a_sweep_where_every_point_failed_draws_the_failures_along_its_keys(cli, tmp_path):
+    header = "point,orientation_deg,status,message,seconds"
+    rows = ["1,5.0,failed,boom,0.2", "2,10.0,failed,boom,0.1"]
+    path = tmp_path / "sweep.csv"
+    path.write_text("\n".join([header, *rows]) + "\n", encoding="utf-8")
+    fig = figures.figure_for_table(figures.read_table(path))
+    (ax,) = [ax for ax in fig.axes if ax.get_visible()]
+    (failed,) = _by_gid(fig, "failed")
+    assert failed.get_xdata().tolist() == [5.0, 10.0]
+    assert ax.get_xlabel() == "orientation_deg"
+    assert [t.get_text() for t in ax.texts if t.get_gid() == "note"] == ["no point succeeded"]
+    result = cli("plot", path, "--out", tmp_path / "f.svg")
+    assert result.exit_code == 0, result.output
+    # two keys, and figure columns left empty by the failures
+    header = "point,orientation_deg,precision_cm,area_kept_cm2,status,message,seconds"
+    rows = [f"{k},{phi},{eps},,failed,boom,0.1" for k, (phi, eps) in enumerate(
+        [(5, 1), (5, 2), (10, 1), (10, 2)], start=1)]  # fmt: skip
+    fig = figures.figure_for_table(_table(tmp_path, header, rows))
+    (ax,) = [ax for ax in fig.axes if ax.get_visible()]
+    (failed,) = _by_gid(fig, "failed")
+    assert failed.get_xydata().tolist() == [[5, 1], [5, 2], [10, 1], [10, 2]]
+    assert (ax.get_xlabel(), ax.get_ylabel()) == ("orientation_deg", "precision_cm")
+    assert [t.get_text() for t in ax.texts if t.get_gid() == "note"] == ["no point succeeded"]

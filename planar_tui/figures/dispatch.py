@@ -35,6 +35,11 @@ FROM_RESULT = {
     "workspace": "workspace",
 }
 
+#: Kinds whose header-only CSV the project writes in normal use, drawn rather than refused:
+#: the boxes of a geometric-form workspace job (that form keeps no boxes) or of an empty
+#: workspace.
+DRAWN_EMPTY = frozenset({"workspace boxes"})
+
 
 class UnknownTable(ValueError):
     """A table whose header is no result CSV this project writes."""
@@ -54,10 +59,10 @@ def recognise(header: tuple[str, ...] | list[str]) -> str | None:
     return None
 
 
-def _drawer(header: tuple[str, ...]) -> Callable[[CsvTable, str], Any]:
-    for _, module, test, draw in RECOGNISERS:
+def _drawer(header: tuple[str, ...]) -> tuple[str, Callable[[CsvTable, str], Any]]:
+    for kind, module, test, draw in RECOGNISERS:
         if getattr(_module(module), test)(header):
-            return getattr(_module(module), draw)
+            return kind, getattr(_module(module), draw)
     kinds = ", ".join(dict.fromkeys(kind for kind, *_ in RECOGNISERS))
     shown = ",".join(header[:4]) + (",..." if len(header) > 4 else "")
     raise UnknownTable(
@@ -68,10 +73,11 @@ def _drawer(header: tuple[str, ...]) -> Callable[[CsvTable, str], Any]:
 
 def figure_for_table(table: CsvTable, title: str = "") -> Any:
     """The figure of a result table (:class:`UnknownTable` if its header is unknown,
-    ``ValueError`` if it has no data rows or its drawer cannot show it)."""
-    drawer = _drawer(tuple(table.header))
-    if len(table.rows) == 0:
-        raise ValueError("the table has a header but no data rows")
+    ``ValueError`` if it has no data rows, unless its kind is in :data:`DRAWN_EMPTY`, or
+    its drawer cannot show it)."""
+    kind, drawer = _drawer(tuple(table.header))
+    if len(table.rows) == 0 and kind not in DRAWN_EMPTY:
+        raise ValueError("the table has a header but no data rows (expected at least one row)")
     return drawer(table, title)
 
 

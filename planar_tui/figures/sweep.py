@@ -18,8 +18,15 @@ figure is never taken as an axis: a table where no key column varies is refused.
 - Two categorical keys: a heat map over the categories (labelled ticks; a cell holding
   several points shows their mean).
 
+A heat map's cell is centred on its values: half as wide (and as tall) as the distance
+to the nearer neighbouring value, so unevenly spaced values leave blank space between
+their cells rather than drawing cells off their values; a single value (and a category)
+gets a cell of width 1.
+
 Failed points are marked with a red ✕ (on the x axis for a line, in the cell for a heat
-map); with more than two varied keys the first two are the axes.
+map); with more than two varied keys the first two are the axes. With no figure to draw
+(every point failed), one panel along the varied keys holds the failed points' ✕ marks
+and a note.
 """
 
 from __future__ import annotations
@@ -143,6 +150,8 @@ def draw(table: CsvTable, title: str) -> Any:
     axes_keys = [key_axis(table, name) for name in varied[:2]]
     if len(axes_keys) == 2 and axes_keys[0].categorical and not axes_keys[1].categorical:
         axes_keys.reverse()  # the numeric key across, one line per category
+    if not figures or failed.all():
+        return _failures_only(axes_keys, failed, title)
     shown = figures[:MOST_PANELS]
     cols = min(max(len(shown), 1), 3)
     rows = max(1, math.ceil(len(shown) / cols))
@@ -160,6 +169,33 @@ def draw(table: CsvTable, title: str) -> Any:
             _heat(fig, ax, axes_keys[0], axes_keys[1], y, failed, name)
     for ax in axes[len(shown) :]:
         ax.set_visible(False)
+    fig.suptitle(title)
+    return fig
+
+
+def _failures_only(axes_keys: list[Axis], failed: Any, title: str) -> Any:
+    """One panel along the varied key(s): the failed points' ✕ marks and a note that no
+    point succeeded (or that the table holds no figure column)."""
+    fig = new_figure(6.0, 3.4 if len(axes_keys) == 1 else 4.6)
+    ax = fig.add_subplot()
+    across = axes_keys[0]
+    if len(axes_keys) == 1:
+        _failed_on_axis(ax, across.values[failed])
+        ax.set_yticks([])
+    else:
+        down = axes_keys[1]
+        ax.plot(across.values[failed], down.values[failed], "x", color="red", ms=8, mew=2,
+                gid="failed", label="failed")  # fmt: skip
+        _ticks(ax, down, "y")
+        ax.set(ylabel=down.name)
+    for axis, set_limits in zip(axes_keys, (ax.set_xlim, ax.set_ylim), strict=False):
+        if axis.categorical:
+            set_limits(-0.5, len(axis.categories) - 0.5)
+    _ticks(ax, across, "x")
+    ax.set(xlabel=across.name)
+    note = "no point succeeded" if failed.all() else "the table holds no figure column"
+    ax.text(0.5, 0.5, note, transform=ax.transAxes, ha="center", va="center", gid="note")
+    ax.grid(alpha=0.3)
     fig.suptitle(title)
     return fig
 
@@ -217,9 +253,12 @@ def _lines_per_category(ax: Any, across: Axis, by: Axis, y: Any, failed: Any) ->
 
 
 def _heat(fig, ax, across: Axis, down: Axis, value, failed, name) -> None:
-    """A heat map of ``value`` over a full grid of the two keys (categories on their own
-    cells; a cell with several points: their mean), else coloured points."""
+    """A heat map of ``value`` over a full grid of the two keys, one rectangle per cell
+    centred on its two values (:func:`_half_widths`; categories on their own cells; a
+    cell with several points: their mean, a cell with none left blank), else coloured
+    points."""
     import numpy as np
+    from matplotlib.collections import PolyCollection
 
     x, y = across.values, down.values
     xs = np.arange(len(across.categories)) if across.categorical else np.unique(x[np.isfinite(x)])
@@ -234,9 +273,16 @@ def _heat(fig, ax, across: Axis, down: Axis, value, failed, name) -> None:
         np.add.at(counts, cells, 1)
         with np.errstate(invalid="ignore"):
             grid = np.where(counts > 0, sums / np.maximum(counts, 1), np.nan)
-        image = ax.imshow(np.ma.masked_invalid(grid), origin="lower", aspect="auto",
-                          cmap="viridis", gid="heat",
-                          extent=_extent(xs) + _extent(ys))  # fmt: skip
+        hx, hy = _half_widths(xs), _half_widths(ys)
+        cx, cy = np.meshgrid(xs, ys)  # row-major: the cell of (ys[i], xs[j]) at i * nx + j
+        wx, wy = np.meshgrid(hx, hy)
+        x0, x1, y0, y1 = (cx - wx).ravel(), (cx + wx).ravel(), (cy - wy).ravel(), (cy + wy).ravel()
+        verts = np.stack([np.column_stack(corner) for corner in
+                          ((x0, y0), (x1, y0), (x1, y1), (x0, y1))], axis=1)  # fmt: skip
+        image = PolyCollection(verts, array=np.ma.masked_invalid(grid.ravel()),
+                               cmap="viridis", edgecolors="none", gid="heat")  # fmt: skip
+        ax.add_collection(image)
+        ax.set(xlim=(x0.min(), x1.max()), ylim=(y0.min(), y1.max()))
     else:
         image = ax.scatter(x[~failed], y[~failed], c=value[~failed], cmap="viridis", gid="heat")
     if failed.any():
@@ -247,6 +293,14 @@ def _heat(fig, ax, across: Axis, down: Axis, value, failed, name) -> None:
     ax.set(xlabel=across.name, ylabel=down.name)
 
 
-def _extent(values) -> tuple[float, float]:
-    half = 0.5 * (values[1] - values[0]) if len(values) > 1 else 0.5
-    return (float(values[0] - half), float(values[-1] + half))
+def _half_widths(values: Any) -> Any:
+    """Half the width of each value's cell: half the distance to the nearer neighbouring
+    value (sorted, distinct ``values``), so every cell is centred on its value and no two
+    overlap; 0.5 for a single value."""
+    import numpy as np
+
+    values = np.asarray(values, dtype=float)
+    if len(values) < 2:
+        return np.full(len(values), 0.5)
+    gaps = np.diff(values)
+    return 0.5 * np.minimum(np.r_[gaps[0], gaps], np.r_[gaps, gaps[-1]])

@@ -187,14 +187,19 @@ def draw(boxes: Any, inside: Any, title: str, robot: Any = None, spec: Any = Non
 
 
 def from_boxes_table(table: CsvTable, title: str) -> Any:
-    """The boxes of a boxes CSV (no robot: no exact boundary, no pose)."""
+    """The boxes of a boxes CSV (no robot: no exact boundary, no pose); a header-only CSV
+    (a geometric-form job keeps no boxes, nor does an empty workspace): the empty axes in
+    cm with a "no boxes kept" note."""
     import numpy as np
 
-    boxes = (
-        np.column_stack([column(table, name) for name in BOXES[:4]])
-        if table.rows
-        else np.zeros((0, 4))
-    )
+    if not len(table.rows):
+        fig = draw(np.zeros((0, 4)), np.zeros(0, dtype=bool), title, summary="no boxes kept")
+        ax = fig.axes[0]
+        ax.get_legend().remove()
+        ax.text(0.5, 0.5, "no boxes kept", transform=ax.transAxes, ha="center", va="center",
+                gid="note")  # fmt: skip
+        return fig
+    boxes = np.column_stack([column(table, name) for name in BOXES[:4]])
     inside = np.array([s == "inside" for s in text_column(table, "status")], dtype=bool)
     return draw(boxes.reshape(-1, 4), inside, title, summary=f"{len(boxes)} kept boxes")
 
