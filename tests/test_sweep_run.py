@@ -241,3 +241,17 @@ point_outputs = "pts"
     for number in range(1, 6):
         name = f"point-{number}.csv"
         assert (out / "pts" / name).read_text() == (whole / "pts" / name).read_text()
+
+
+def test_the_sweep_service_imports_without_dask():
+    """docs/sweeps.md: every ``planar_tui.sweep`` module imports without Dask."""
+    import subprocess
+    import sys
+
+    from tests.conftest import REPO
+
+    code = ("import sys, planar_tui.sweep.service, planar_tui.sweep.execute; "
+            "print(sorted({'dask', 'distributed'} & set(sys.modules)))")  # fmt: skip
+    probe = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                           cwd=REPO, check=True)  # fmt: skip
+    assert probe.stdout.strip() == "[]", probe.stderr
