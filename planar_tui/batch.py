@@ -225,8 +225,10 @@ def plan_files(plans: Sequence[OutputPlan]) -> list[PlannedFile]:
 def check_planned(files: Sequence[PlannedFile], presets: Mapping[Path, str] | None = None) -> None:
     """Check every file a run plans, before anything runs (:class:`PresetError`, exit code
     2): each must be writable without destroying something (:func:`check_writable`), none
-    may be one of the ``presets`` (path -> the label of a job of it), no two may be one file, and no file or folder may lie in
-    (or be) a planned folder (a sweep's ``point_outputs``, which its points fill)."""
+    may be one of the ``presets`` (path -> the label of a job of it), no two may be one file,
+    none may lie inside another planned file (``a.csv/b.csv`` beside ``a.csv``), and no
+    file or folder may lie in (or be) a planned folder (a sweep's ``point_outputs``, which
+    its points fill)."""
     preset_ids = {_identity(path): label for path, label in (presets or {}).items()}
     writers: dict[str, str] = {}
     folders: list[tuple[str, PlannedFile]] = []
@@ -246,6 +248,17 @@ def check_planned(files: Sequence[PlannedFile], presets: Mapping[Path, str] | No
         writers[identity] = planned.writer
         if planned.folder:
             folders.append((identity, planned))
+    files_by_identity = {_identity(planned.path): planned for planned in files}
+    for identity, planned in files_by_identity.items():
+        parent = os.path.dirname(identity)
+        while parent != os.path.dirname(parent):
+            holder = files_by_identity.get(parent)
+            if holder is not None and not holder.folder:
+                raise _output_error(
+                    planned.path, f"lies inside {holder.path}, which {holder.writer} writes "
+                    "as a file", "a path that is not inside another planned file",
+                )  # fmt: skip
+            parent = os.path.dirname(parent)
     for folder, owner in folders:
         for identity, writer in writers.items():
             inside = identity.startswith(folder.rstrip(os.sep) + os.sep)

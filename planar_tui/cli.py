@@ -732,7 +732,7 @@ def run_sweeps(
     from planar_tui.batch import OutputFailed
     from planar_tui.progress import Progress
     from planar_tui.sweep.execute import default_workers
-    from planar_tui.sweep.service import run_sweep
+    from planar_tui.sweep.service import resume_note, run_sweep
 
     count = workers or default_workers()
     failed = 0
@@ -770,7 +770,7 @@ def run_sweeps(
                         continue
                 done.append(result)
                 failed += result.failed
-                resumed = f", {result.resumed} from the checkpoint" if result.resumed else ""
+                resumed = resume_note(result)
                 figure = "" if result.figure is None else f", figure {result.figure}"
                 stdout.print(
                     f"{sweep.label}: {len(points)} points, {result.failed} failed{resumed} "

@@ -152,6 +152,33 @@ async def test_bad_key_stays_in_the_dialog_with_the_reason(tmp_path):
 
 
 @async_test
+async def test_a_superscript_worker_count_and_a_repeated_key_stay_in_the_dialog(tmp_path):
+    """ "²" passes ``str.isdigit`` but not ``int()``; a second row of the first row's key
+    once replaced it silently."""
+    app = make_app(tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        dialog = await _open_dialog(app, pilot, "workspace")
+        _fill(dialog, [("orientation_deg", "0, 1")])
+        dialog.query_one("#sweep-workers", Input).value = "²"
+        await pilot.press("enter")
+        await pilot.pause()
+        assert app.screen is dialog
+        assert str(dialog.query_one("#sweep-problem").render()) == (
+            "error: workers '²' (expected a whole number ≥ 1)"
+        )
+        dialog.query_one("#sweep-workers", Input).value = "1"
+        _fill(dialog, [("orientation_deg", "0, 1"), ("orientation_deg", "5, 6, 7")])
+        await pilot.press("enter")
+        await pilot.pause()
+        assert app.screen is dialog and not app.job_running
+        assert str(dialog.query_one("#sweep-problem").render()) == (
+            "error: row 2: orientation_deg is already row 1's key"
+        )
+        await pilot.press("escape")
+        await pilot.pause()
+
+
+@async_test
 async def test_cancel_stops_a_sweep_promptly(tmp_path):
     app = make_app(tmp_path)
     async with app.run_test(size=SIZE) as pilot:

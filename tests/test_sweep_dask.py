@@ -7,6 +7,7 @@ from __future__ import annotations
 import os
 import signal
 import time
+from pathlib import Path
 
 import pytest
 
@@ -141,3 +142,68 @@ def test_the_printed_dashboard_address_serves_the_dashboard(cluster):
     assert response.status == 200
     assert "needs bokeh" not in page  # what the scheduler serves when bokeh is missing
     assert "<html" in page.lower() and "Dask" in page
+
+
+def _descendants(pid: int) -> set[int]:
+    """Every live process below ``pid`` (Linux: /proc/PID/task/TID/children)."""
+    found, todo = set(), [pid]
+    while todo:
+        parent = todo.pop()
+        for task in Path(f"/proc/{parent}/task").glob("*"):
+            try:
+                children = {int(c) for c in (task / "children").read_text().split()}
+            except OSError:  # gone meanwhile
+                continue
+            todo += sorted(children - found)
+            found |= children
+    return found
+
+
+def _running(pid: int) -> bool:
+    """Whether ``pid`` is a process that has not exited (a zombie has)."""
+    try:
+        status = Path(f"/proc/{pid}/status").read_text()
+    except OSError:
+        return False
+    return "\nState:\tZ" not in status and "\nState:\tX" not in status
+
+
+@pytest.mark.parametrize("delay_s", [0.0, 0.3])
+def test_ctrl_c_while_the_local_cluster_starts_prints_one_line_and_leaves_no_process(
+    tmp_path, delay_s
+):
+    """SIGINT from the moment the first worker process of ``--workers 2`` appears (the
+    cluster is starting, ~0.5 s before it is up): exit 130, the one ``interrupted:`` line
+    (Dask's exit hook once failed on the half-started cluster: 28 more lines), and every
+    process the run started has exited."""
+    from planar_tui.errors import ExitCode
+    from tests.test_signals import start
+
+    preset = write(tmp_path, "p.toml", WORKSPACE, """[[sweep]]
+job = "workspace"
+values.orientation_deg = { from = -20, to = 20, count = 20 }
+output = "a.csv"
+""", **{**WORKSPACE_BASE, "precision_cm": 0.05})  # fmt: skip
+    process = start("sweep", str(preset), "--workers", "2", "--out-dir", str(tmp_path / "out"))
+    deadline = time.monotonic() + 60
+    while not (started := _descendants(process.pid)):
+        assert process.poll() is None, process.communicate()
+        assert time.monotonic() < deadline, "no worker process appeared"
+        time.sleep(0.002)
+    until = time.monotonic() + delay_s
+    while time.monotonic() < until:
+        started |= _descendants(process.pid)
+        time.sleep(0.005)
+    process.send_signal(signal.SIGINT)
+    _, err = process.communicate(timeout=60)
+    assert process.returncode == ExitCode.INTERRUPTED == 130, err
+    lines = [line for line in err.splitlines() if not line.startswith(("dask:", "p:sweep[1]"))]
+    assert lines == [
+        "interrupted: finished points are in the sweeps' checkpoints (--resume finishes "
+        "them); the running sweep's CSV was not written"
+    ], err
+    assert "Traceback" not in err and "Exception ignored" not in err
+    deadline = time.monotonic() + 10
+    while any(_running(pid) for pid in started):
+        assert time.monotonic() < deadline, [pid for pid in started if _running(pid)]
+        time.sleep(0.05)

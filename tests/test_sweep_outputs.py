@@ -14,7 +14,7 @@ import pytest
 
 from planar_tui.presets import load_preset
 from planar_tui.sweep.spec import parse_sweeps
-from tests.sweep_presets import TORQUES, TORQUES_BASE, write
+from tests.sweep_presets import TORQUES, TORQUES_BASE, WORKSPACE, WORKSPACE_BASE, write
 
 SWEEP = '[[sweep]]\njob = "torques"\nvalues."robot.masses_kg[2]" = [1.0, 2.0]\n'
 
@@ -60,6 +60,16 @@ def listing(folder):
             ("grid.png", "written by both"),
         ),
         ('output = "s.csv"\n', ("run",), ("tq.csv", "written by both")),
+        (
+            'output = "a.csv"\n' + SWEEP + 'output = "a.csv/b.csv"\n',
+            ("sweep",),
+            ("a.csv/b.csv", "lies inside", "a.csv, which p:sweep[1] (output) writes as a file"),
+        ),
+        (
+            'output = "a.csv"\npoint_outputs = "a.csv/pts"\n',
+            ("sweep",),
+            ("a.csv/pts", "lies inside", "p:sweep[1] (output) writes as a file"),
+        ),
     ],
 )
 def test_colliding_planned_files_are_refused_before_anything_runs(tmp_path, cli, keys,
@@ -75,6 +85,21 @@ def test_colliding_planned_files_are_refused_before_anything_runs(tmp_path, cli,
     preset.write_text(body + "\n" + SWEEP + keys)
     args = [part.format(out=out) for part in command]
     refused(cli(args[0], preset, "--out-dir", out, "--workers", "1", *args[1:]), *parts)
+    assert listing(out) == []
+
+
+def test_a_job_table_inside_its_own_csv_is_refused_before_anything_runs(tmp_path, cli):
+    """``boxes_output = "ws.csv/boxes.csv"`` beside ``output = "ws.csv"``: once half-written
+    (the CSV, then the boxes could not be)."""
+    body = WORKSPACE.format(**WORKSPACE_BASE).replace(
+        'output = "ws.csv"', 'output = "ws.csv"\nboxes_output = "ws.csv/boxes.csv"'
+    )
+    preset = tmp_path / "p.toml"
+    preset.write_text(body)
+    out = tmp_path / "out"
+    out.mkdir()
+    refused(cli("run", preset, "--out-dir", out), "ws.csv/boxes.csv", "lies inside",
+            "p:workspace[1] (output) writes as a file")  # fmt: skip
     assert listing(out) == []
 
 
@@ -201,3 +226,21 @@ def test_a_motion_point_on_an_unusable_cuda_device_is_refused_up_front(tmp_path,
         "motion_uncertainty.device",
     )
     assert listing(tmp_path) == ["m.toml"]
+
+
+@pytest.mark.parametrize("where", ["create", "add"])
+def test_a_checkpoint_that_cannot_be_written_is_one_error_line(tmp_path, cli, monkeypatch, where):
+    from planar_tui.sweep import checkpoint
+
+    def full(*args, **kwargs):
+        raise OSError(28, os.strerror(28))
+
+    monkeypatch.setattr(checkpoint, "write_text_atomic" if where == "create" else "_record", full)
+    preset = write(tmp_path, "p.toml", TORQUES, SWEEP + 'output = "m.csv"\n', **TORQUES_BASE)
+    result = cli("sweep", preset, "--out-dir", tmp_path, "--workers", "1")
+    assert result.exit_code == 1, result.output
+    assert "Traceback" not in result.output
+    errors = [line for line in result.stderr.splitlines() if line.startswith("error:")]
+    assert len(errors) == 2, result.stderr
+    assert "m.csv.checkpoint.jsonl: cannot write: No space left on device" in errors[0]
+    assert not (tmp_path / "m.csv").exists()

@@ -177,3 +177,81 @@ def test_a_changed_preset_does_not_resume_stale_points(tmp_path):
         max_abs_torques(separate(tmp_path, TORQUES, **{**TORQUES_BASE, "l1": 0.5, "m2": m}))[0]
         for m in (1.0, 2.0)
     ]
+
+
+def _interrupted_after(sweep, out, count):
+    """Run ``sweep`` into ``out`` and cancel it once ``count`` points have finished."""
+    progress = Progress()
+    seen = []
+
+    def cancel(outcome):
+        seen.append(outcome.number)
+        if len(seen) == count:
+            progress.request_cancel()
+
+    with pytest.raises(Cancelled):
+        run_sweep(sweep, progress, out_dir=out, on_outcome=cancel)
+
+
+def test_a_sweep_started_afresh_removes_the_earlier_point_files(tmp_path):
+    masses = ", ".join(str(1.0 + k / 10) for k in range(10))
+    ten = the_sweep(tmp_path, TORQUES, TORQUES_BASE, f"""job = "torques"
+values."robot.masses_kg[2]" = [{masses}]
+output = "s.csv"
+point_outputs = "pts"
+""")  # fmt: skip
+    out = tmp_path / "out"
+    _interrupted_after(ten, out, 2)
+    assert sorted(p.name for p in (out / "pts").iterdir()) == ["point-01.csv", "point-02.csv"]
+    (out / "pts" / "notes.txt").write_text("mine")  # not a point file: kept
+    three = the_sweep(tmp_path, TORQUES, TORQUES_BASE, """job = "torques"
+values."robot.masses_kg[2]" = [1.0, 1.5, 2.0]
+output = "s.csv"
+point_outputs = "pts"
+""")  # fmt: skip
+    run_sweep(three, out_dir=out, resume=True)  # another sweep's checkpoint: afresh
+    names = sorted(p.name for p in (out / "pts").iterdir())
+    assert names == ["notes.txt", "point-1.csv", "point-2.csv", "point-3.csv"]
+
+
+def test_resume_rewrites_the_missing_point_files_of_finished_points(tmp_path, monkeypatch):
+    from planar_tui.sweep import execute
+
+    sweep = the_sweep(tmp_path, TORQUES, TORQUES_BASE, """job = "torques"
+values."robot.masses_kg[2]" = [1.0, 1.5, 2.0, 2.5, 3.0]
+output = "s.csv"
+point_outputs = "pts"
+""")  # fmt: skip
+    out = tmp_path / "out"
+    _interrupted_after(sweep, out, 3)
+    for number in (1, 3):
+        (out / "pts" / f"point-{number}.csv").unlink()
+    computed = []
+    real = execute.run_point
+    monkeypatch.setattr(execute, "run_point", lambda task, p=None: computed.append(task.number)
+                        or real(task, p))  # fmt: skip
+    run = run_sweep(sweep, out_dir=out, resume=True)
+    assert sorted(computed) == [1, 3, 4, 5]
+    assert (run.resumed, run.recomputed) == (1, 2)
+    from planar_tui.sweep.service import resume_note
+
+    assert resume_note(run) == ", 1 from the checkpoint, 2 run again (point files missing)"
+    whole = tmp_path / "whole"
+    run_sweep(sweep, out_dir=whole)  # uninterrupted
+    for number in range(1, 6):
+        name = f"point-{number}.csv"
+        assert (out / "pts" / name).read_text() == (whole / "pts" / name).read_text()
+
+
+def test_the_sweep_service_imports_without_dask():
+    """docs/sweeps.md: every ``planar_tui.sweep`` module imports without Dask."""
+    import subprocess
+    import sys
+
+    from tests.conftest import REPO
+
+    code = ("import sys, planar_tui.sweep.service, planar_tui.sweep.execute; "
+            "print(sorted({'dask', 'distributed'} & set(sys.modules)))")  # fmt: skip
+    probe = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                           cwd=REPO, check=True)  # fmt: skip
+    assert probe.stdout.strip() == "[]", probe.stderr

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import os
 import queue
+import signal
 import threading
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
@@ -104,10 +105,34 @@ def local_cluster(workers: int, **options: Any) -> Any:
 
 
 @contextmanager
+def deferred_signals(*signums: int) -> Iterator[None]:
+    """Hold back ``signums`` (their Python handlers: Ctrl-C's ``KeyboardInterrupt``, the
+    CLI's SIGTERM) while the block runs, and deliver each one that came to its handler on
+    leaving. Only the process's Python handlers change (in the main thread; elsewhere the
+    block runs as is): child processes started meanwhile get their own defaults."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    caught: list[int] = []
+    previous = {signum: signal.getsignal(signum) for signum in signums}
+    for signum in signums:
+        signal.signal(signum, lambda number, frame: caught.append(number))
+    try:
+        yield
+    finally:
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+        for signum in dict.fromkeys(caught):
+            signal.raise_signal(signum)
+
+
+@contextmanager
 def dask_client(target: DaskTarget, announce: Callable[[str], None]) -> Iterator[Any]:
     """A ``distributed.Client`` on the target; a local cluster is started here (worker
     processes, one thread each, dashboard on a free port, announced) and shut down on
-    leaving, Ctrl-C included."""
+    leaving, Ctrl-C included. Ctrl-C or SIGTERM while the cluster starts is held back until
+    the cluster exists (:func:`deferred_signals`), then shuts it down: a cluster
+    interrupted half-way would be left to Dask's exit hook, which fails on it."""
     import logging
 
     from distributed import Client
@@ -126,8 +151,10 @@ def dask_client(target: DaskTarget, announce: Callable[[str], None]) -> Iterator
         finally:
             client.close()
         return
-    cluster = local_cluster(target.workers, silence_logs=logging.ERROR)
+    cluster = None
     try:
+        with deferred_signals(signal.SIGINT, signal.SIGTERM):
+            cluster = local_cluster(target.workers, silence_logs=logging.ERROR)
         client = Client(cluster)
         try:
             client.register_plugin(_ignore_interrupts_plugin(), name="planar-tui-ignore-sigint")
@@ -139,7 +166,8 @@ def dask_client(target: DaskTarget, announce: Callable[[str], None]) -> Iterator
         finally:
             client.close()
     finally:
-        cluster.close()
+        if cluster is not None:
+            cluster.close()
 
 
 def _ignore_interrupts_plugin() -> Any:

@@ -21,7 +21,14 @@ from planar_tui.sweep.checkpoint import CheckpointWriter, checkpoint_path, read_
 from planar_tui.sweep.points import Point, make_points
 from planar_tui.sweep.spec import Sweep
 from planar_tui.sweep.table import sweep_table
-from planar_tui.sweep.worker import CANCELLED, FAILED, PointOutcome, PointTask
+from planar_tui.sweep.worker import (
+    CANCELLED,
+    FAILED,
+    OK,
+    PointOutcome,
+    PointTask,
+    point_file_names,
+)
 
 if TYPE_CHECKING:
     from planar_tui.batch import PlannedFile
@@ -33,12 +40,14 @@ class SweepRun:
     a checkpoint), where its CSV and figure went (``None`` when nothing was written), why
     its figure was not written (``figure_error``) and its checkpoint while it is kept.
     A ``cancelled`` run (the app's, stopped part-way) keeps its finished points; its
-    table marks the others ``cancelled``."""
+    table marks the others ``cancelled``. ``recomputed``: finished points of the
+    checkpoint run again because a point file of theirs was missing."""
 
     sweep: Sweep
     points: list[Point]
     outcomes: dict[int, PointOutcome] = field(default_factory=dict)
     resumed: int = 0
+    recomputed: int = 0
     output: Path | None = None
     figure: Path | None = None
     figure_error: str | None = None
@@ -173,14 +182,6 @@ def run_sweep(
     total = len(points)
     run = SweepRun(sweep, points)
     output = None if out_dir is None else output_path(sweep, out_dir)
-    writer = None
-    if output is not None:
-        checkpoint = checkpoint_path(output)
-        finished = read_finished(checkpoint, sweep.fingerprint(), total) if resume else {}
-        writer = CheckpointWriter(checkpoint, sweep.fingerprint(), total, finished)
-        run.checkpoint = checkpoint
-        run.outcomes.update(finished)
-        run.resumed = len(finished)
     width = len(str(total))
     folder = (
         None if out_dir is None or sweep.point_outputs is None else out_dir / sweep.point_outputs
@@ -188,6 +189,28 @@ def run_sweep(
 
     def stem(number: int) -> str | None:
         return None if sweep.point_outputs is None else f"point-{number:0{width}d}"
+
+    writer = None
+    if output is not None:
+        checkpoint = checkpoint_path(output)
+        finished = read_finished(checkpoint, sweep.fingerprint(), total) if resume else {}
+        if folder is not None:
+            jobs = {point.number: point.job for point in points}
+            missing = [number for number, outcome in finished.items() if outcome.status == OK
+                       and not all((folder / name).is_file()
+                                   for name in point_file_names(stem(number), jobs[number]))]  # fmt: skip
+            for number in missing:
+                del finished[number]
+            run.recomputed = len(missing)
+            if not finished:  # afresh: the folder is the sweep's, its earlier points go
+                remove_point_files(folder)
+        try:
+            writer = CheckpointWriter(checkpoint, sweep.fingerprint(), total, finished)
+        except OSError as error:
+            raise OutputFailed(checkpoint, error.strerror or str(error)) from None
+        run.checkpoint = checkpoint
+        run.outcomes.update(finished)
+        run.resumed = len(finished)
 
     tasks = [PointTask(p.number, p.job, stem(p.number)) for p in points
              if p.number not in run.outcomes]  # fmt: skip
@@ -207,7 +230,10 @@ def run_sweep(
                     except OSError as error:
                         raise OutputFailed(folder / name, error.strerror or str(error)) from None
             if writer is not None:
-                writer.add(outcome)
+                try:
+                    writer.add(outcome)
+                except OSError as error:
+                    raise OutputFailed(writer.path, error.strerror or str(error)) from None
             run.outcomes[outcome.number] = outcome
             progress.advance(1, _detail(run), failed=run.failed)
             if on_outcome is not None:
@@ -242,7 +268,31 @@ def run_sweep(
     return run
 
 
+def remove_point_files(folder: Path) -> None:
+    """Delete the ``point-*.csv`` files of an earlier run from a sweep's point-file
+    folder (which the sweep owns whole), before a run starting afresh writes its own; a
+    file that cannot be deleted is :class:`~planar_tui.batch.OutputFailed`."""
+    from planar_tui.batch import OutputFailed
+
+    for path in sorted(folder.glob("point-*.csv")):
+        try:
+            if path.is_file():
+                path.unlink()
+        except OSError as error:
+            raise OutputFailed(path, f"cannot delete the earlier point file: "
+                               f"{error.strerror or error}") from None  # fmt: skip
+
+
 def _detail(run: SweepRun) -> str:
     done = len(run.outcomes)
     text = f"{done}/{len(run.points)} points, {run.failed} failed"
-    return text + (f", {run.resumed} from the checkpoint" if run.resumed else "")
+    return text + resume_note(run)
+
+
+def resume_note(run: SweepRun) -> str:
+    """``, N from the checkpoint`` and ``, M run again (point files missing)`` as they
+    apply (the progress detail's and the CLI summary's words)."""
+    text = f", {run.resumed} from the checkpoint" if run.resumed else ""
+    if run.recomputed:
+        text += f", {run.recomputed} run again (point files missing)"
+    return text

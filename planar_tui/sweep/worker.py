@@ -63,6 +63,15 @@ def _csv_text(table) -> str:
     return buffer.getvalue()
 
 
+def point_file_names(stem: str, job: Job) -> list[str]:
+    """The CSV files a finished ``ok`` point of ``job`` writes with ``point_outputs``:
+    ``stem.csv``, then ``stem-TABLE.csv`` for each of its kind's extra tables."""
+    from planar_tui.registry import JOB_KINDS
+
+    extras = JOB_KINDS[job.kind].extra_outputs(job.spec)
+    return [f"{stem}.csv", *(f"{stem}-{name}.csv" for name in extras)]
+
+
 def run_point(task: PointTask, progress: Progress | None = None) -> PointOutcome:
     """Run one point through the batch service; any failure of the point (a box budget,
     no isotropic posture, a diverged result, an unexpected error) becomes a ``failed``
@@ -84,9 +93,9 @@ def run_point(task: PointTask, progress: Progress | None = None) -> PointOutcome
             figures = {name: _scalar(v) for name, v in kind.point_figures(job, result).items()}
         tables = {}
         if task.tables_stem is not None:
-            tables[f"{task.tables_stem}.csv"] = _csv_text(result.table)
-            for name in kind.extra_outputs(job.spec):
-                tables[f"{task.tables_stem}-{name}.csv"] = _csv_text(result.extra_tables[name])
+            texts = [_csv_text(result.table)]
+            texts += [_csv_text(result.extra_tables[name]) for name in kind.extra_outputs(job.spec)]
+            tables = dict(zip(point_file_names(task.tables_stem, job), texts, strict=True))
         status, message = OK, ""
     except (Cancelled, KeyboardInterrupt):
         raise

@@ -102,8 +102,10 @@ class SweepDialog(ModalScreen[tuple[Any, int, Any] | None]):
         line.add_class("-shown")
 
     def chosen_values(self) -> dict[str, Any]:
-        """The key paths typed with their values (raises :class:`ValuesError`)."""
+        """The key paths typed with their values (raises :class:`ValuesError`; two rows
+        of one key too)."""
         values: dict[str, Any] = {}
+        rows: dict[str, int] = {}
         for row in (1, 2):
             key = self.query_one(f"#sweep-key-{row}", Input).value.strip()
             text = self.query_one(f"#sweep-values-{row}", Input).value
@@ -111,6 +113,9 @@ class SweepDialog(ModalScreen[tuple[Any, int, Any] | None]):
                 continue
             if not key:
                 raise ValuesError(f"row {row}: values without a key path")
+            if key in rows:
+                raise ValuesError(f"row {row}: {key} is already row {rows[key]}'s key")
+            rows[key] = row
             values[key] = parse_values(text)
         if not values:
             raise ValuesError("no key path: type one (e.g. " + self.paths[0] + ")")
@@ -123,7 +128,8 @@ class SweepDialog(ModalScreen[tuple[Any, int, Any] | None]):
         try:
             values = self.chosen_values()
             workers_text = self.query_one("#sweep-workers", Input).value.strip()
-            if not workers_text.isdigit() or int(workers_text) < 1:
+            # isdecimal: "²" is a digit int() does not read
+            if not workers_text.isdecimal() or int(workers_text) < 1:
                 raise ValuesError(f"workers {workers_text!r} (expected a whole number ≥ 1)")
             combine = str(self.query_one("#sweep-combine", Select).value)
             sweep = self.build(values, combine)
