@@ -5,7 +5,9 @@ A 1-link robot in zero gravity under a constant torque from rest turns by
 mean and standard deviation and its Sobol' indices over (l, m), and over (l, m, I) with
 ``tolerance_inertia_kgm2``, are checked against 2-D and 3-D Gauss-Legendre quadrature of
 that formula, within four standard errors of the estimator
-(Sobol': twice SALib's 95 % bootstrap half-width, 1.96 standard errors). A pendulum whose
+(Sobol': twice SALib's 95 % bootstrap half-width, 1.96 standard errors); with eFAST alone
+the band (from N extra Monte-Carlo robots) against the 3-D quadrature and a straight arm's
+tip x = l1 + l2 against √(2/3)·tolerance, within three. A pendulum whose
 inertia is m l²/12 cannot depend on m (structure zero); a robot that cannot move has
 outputs without variance (zeros and a note, no NaN, no warning: the suite turns warnings
 into errors); S = 1 equals the simulate job's CSV.
@@ -241,3 +243,78 @@ def test_the_band_table_is_as_wide_as_rich_draws_it():
     narrow.print(table)
     text = narrow.export_text()
     assert "…" not in text and f"{result.band[-1, 4, 0]:.5g}" in text
+
+
+# eFAST alone at N = 128 with three inputs: every input's search curve gives the other two
+# the same frequency 1, so eFAST's rows correlate the inputs (r = 1/3 between every pair)
+# and their standard deviation of θ(T) is 35 % high (about 4 standard errors at N = 128).
+EFAST_ALONE_SAMPLES = 128
+
+
+def test_efast_alone_band_matches_quadrature():
+    """The band of an eFAST-only job comes from N extra Monte-Carlo robots: its mean and
+    standard deviation of θ(T) match 3-D quadrature within three standard errors of N
+    independent robots (eFAST's own rows are off by four)."""
+    inertia, tolerance_inertia = CASES["l-m-I"]
+    job = one_link_job(["efast"], EFAST_ALONE_SAMPLES, inertia, tolerance_inertia)
+    result = run_job(job)
+    mean, variance, fourth, _, _ = exact_moments(inertia, tolerance_inertia)
+    n = EFAST_ALONE_SAMPLES
+    got_mean, got_std = result.band[-1, 0, 0], result.band[-1, 1, 0]
+    assert abs(got_mean - mean) <= 3 * np.sqrt(variance / n)
+    se_std = np.sqrt((fourth - variance**2) / (4 * variance * n))  # delta method
+    assert abs(got_std - np.sqrt(variance)) <= 3 * se_std
+    assert result.robots == n * 3 + n  # eFAST's N D, and N for the band
+    assert result.notes[0].startswith(f"band from {n} extra Monte-Carlo robots")
+    assert "extra Monte-Carlo robots" in result.summary
+    (analysis,) = result.analyses
+    assert analysis.method == "efast"  # the extra robots give no indices
+
+
+def test_efast_alone_band_of_a_sum_of_two_lengths():
+    """A straight 2-link arm that cannot move (zero gravity, no torque, at rest) has its tip
+    at x = l1 + l2: standard deviation √(2/3)·tolerance for independent uniform lengths
+    (eFAST's rows give 1.22 times that at D = 4, N = 128), within three standard errors."""
+    tolerance_m = 1e-3
+    job = job_of(
+        {"lengths_m": [0.25, 0.25], "masses_kg": [0.5, 0.5], "gravity_m_s2": 0.0},
+        {"duration_s": 0.01, "step_s": 1e-3, "methods": ["efast"], "outputs": ["tip"],
+         "samples": EFAST_ALONE_SAMPLES, "tolerance_length_mm": tolerance_m * 1e3},
+    )  # fmt: skip
+    result = run_job(job)
+    n = EFAST_ALONE_SAMPLES
+    variance = 2 * tolerance_m**2 / 3
+    fourth = 2.4 * variance**2  # the triangular distribution's kurtosis is 2.4
+    got_mean, got_std = result.band[-1, 0, 0], result.band[-1, 1, 0]
+    assert abs(got_mean - 0.5) <= 3 * np.sqrt(variance / n)
+    se_std = np.sqrt((fourth - variance**2) / (4 * variance * n))
+    assert abs(got_std - np.sqrt(variance)) <= 3 * se_std
+
+
+def test_the_band_rows_are_uncorrelated_uniform_robots():
+    """Whatever the methods, the band's rows have uncorrelated inputs (every pair's |r|
+    within four standard errors, 4/√rows, of 0) and uniform means: the Monte-Carlo rows,
+    the Sobol' design's A and B rows (scrambled Sobol' points), and with eFAST alone the
+    extra Monte-Carlo rows (eFAST's own rows at D = 4, N = 128 have r = 0.5 between every
+    pair)."""
+    for methods in (["efast"], ["sobol"], ["efast", "sobol"], ["montecarlo", "efast"]):
+        design = engine.build_design(methods, 4, EFAST_ALONE_SAMPLES, 42, None)
+        unit = design.unit[design.band_rows()]
+        correlation = np.corrcoef(unit.T)[~np.eye(4, dtype=bool)]
+        assert np.abs(correlation).max() < 4 / np.sqrt(len(unit)), methods
+        assert np.abs(unit.mean(axis=0) - 0.5).max() < 4 * np.sqrt(1 / 12 / len(unit)), methods
+
+
+def test_the_resource_check_counts_the_band_robots_of_efast_alone():
+    """eFAST alone at N = 2·10⁶ with 4 inputs: its 8·10⁶ robots × 10⁴ steps (0.93 days)
+    fit the 1-day limit, the 2·10⁶ Monte-Carlo robots of the band make it 1.17 days."""
+    from planar_tui.errors import PresetError
+
+    robot = {"lengths_m": [0.25, 0.25], "masses_kg": [0.5, 0.5]}
+    with pytest.raises(PresetError) as refused:
+        job_of(robot, {"duration_s": 10.0, "step_s": 1e-3, "methods": ["efast"],
+                       "samples": 2_000_000})  # fmt: skip
+    assert refused.value.key == "motion_uncertainty.samples"
+    assert refused.value.problem.startswith(
+        "10000000 robots of 2 links × 10000 steps: needs about 1.17 days"
+    )

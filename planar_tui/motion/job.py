@@ -3,8 +3,10 @@
 Every link length and mass (optionally inertia) is uniform on ``nominal ± tolerance`` (as
 in ``[sensitivity]``); every sampled robot is integrated by RK4 under the constant torques
 (as in ``[simulate]``). Results: the band (mean, standard deviation, 5/50/95 % percentiles of
-every output at every recorded step), Sobol'/eFAST indices of every output at the times
-``at_s``, a Table-4-shaped table per time. Details: ``docs/motion.md``.
+every output at every recorded step, over independent uniform robots: the Monte-Carlo or
+Sobol' A/B robots, or N extra Monte-Carlo robots when eFAST runs alone), Sobol'/eFAST
+indices of every output at the times ``at_s``, a Table-4-shaped table per time. Details:
+``docs/motion.md``.
 """
 
 from __future__ import annotations
@@ -116,14 +118,15 @@ class MotionSpec(RunSettings):
         _read_choices(METHODS),
         default=("montecarlo", "sobol"),
         type_doc='`"montecarlo"`, `"sobol"`, `"efast"` or a list of them',
-        doc="Monte Carlo (band), Sobol' and eFAST (indices; SALib's designs)",
+        doc="Monte Carlo (band), Sobol' and eFAST (indices; SALib's designs); eFAST alone "
+        "adds N Monte-Carlo robots for the band",
     )
     samples: int = setting(
         integer(minimum=2),
         default=1024,
         type_doc="integer ≥ 2 (Sobol': power of two ≥ 8; eFAST: > 64)",
         doc="Monte Carlo: N robots; Sobol': base N (N·(D+2) robots, D inputs); eFAST: N per "
-        "input (N·D robots)",
+        "input (N·D robots, and N Monte-Carlo robots for the band without montecarlo or sobol)",
     )
     seed: int = setting(
         integer(minimum=1, maximum=SEED_MAX),
@@ -234,12 +237,29 @@ def num_inputs(spec: MotionSpec, robot: SerialRobot) -> int:
 
 
 def robot_count(spec: MotionSpec, robot: SerialRobot) -> int:
-    """Robots integrated: N (Monte Carlo) + N (D + 2) (Sobol') + N D (eFAST)."""
+    """Robots integrated: N (Monte Carlo) + N (D + 2) (Sobol') + N D (eFAST), over the
+    designs of :func:`~planar_tui.motion.engine.design_methods` (eFAST alone: N more
+    Monte-Carlo robots for the band)."""
+    from planar_tui.motion.engine import design_methods
     from planar_tui.sensitivity.engine import design_rows
 
     d = num_inputs(spec, robot)
     return sum(
-        spec.samples if m == "montecarlo" else design_rows(m, d, spec.samples) for m in spec.methods
+        spec.samples if m == "montecarlo" else design_rows(m, d, spec.samples)
+        for m in design_methods(spec.methods)
+    )
+
+
+def extra_band_note(spec: MotionSpec) -> str:
+    """What the job says when its band comes from extra Monte-Carlo robots (eFAST alone),
+    else ``""`` (:func:`~planar_tui.motion.engine.design_methods` adds none)."""
+    from planar_tui.motion.engine import design_methods
+
+    if design_methods(spec.methods) == tuple(spec.methods):
+        return ""
+    return (
+        f"band from {spec.samples} extra Monte-Carlo robots (seed {spec.seed}) beside eFAST's: "
+        "eFAST's search curves correlate the inputs, its robots are not independent draws"
     )
 
 
@@ -344,7 +364,8 @@ class MotionResult(JobResult):
     ``t_s`` (R,) recorded times; ``band`` (R, 5, n_out): mean, std, p5, p50, p95;
     ``names`` the outputs' column stems; ``analyses``: one
     :class:`~planar_tui.sensitivity.results.Analysis` per time and index method;
-    ``notes``: outputs without variance (indices 0), ``device`` what ran (and why,
+    ``notes``: where the band's extra Monte-Carlo robots come from (eFAST alone), outputs
+    without variance (indices 0); ``device`` what ran (and why,
     when ``auto`` fell back to the CPU)."""
 
     robot_label: str
@@ -374,7 +395,7 @@ def run_motion(job: Job, progress: Progress) -> MotionResult:
                             inertia_tol)  # fmt: skip
     lengths, masses, inertias = robot.arrays()
     rod = inertias == masses * lengths * lengths / 12.0
-    progress.start(len(spec.methods), "sampling")
+    progress.start(len(engine.design_methods(spec.methods)), "sampling")
     design = engine.build_design(spec.methods, problem.num_vars, spec.samples, spec.seed, progress)
     robots, params = engine.make_robots(
         spec.device_used, problem, design, rod, robot,
@@ -408,6 +429,9 @@ def run_motion(job: Job, progress: Progress) -> MotionResult:
     analyses, notes = analyse_times(
         design, at_outputs, spec, problem, labels, index_methods, progress
     )
+    band_note = extra_band_note(spec)
+    if band_note:
+        notes = (band_note, *notes)
     t_s = np.array(record_steps) * spec.step_s
     last = band[-1]
     summary = (
@@ -416,6 +440,7 @@ def run_motion(job: Job, progress: Progress) -> MotionResult:
             f"{label} {m:.4g}±{s:.2g}" for label, m, s in zip(labels, last[0], last[1], strict=True)
         )
         + f" at t = {t_s[-1]:g} s"
+        + (f"; band from {spec.samples} extra Monte-Carlo robots" if band_note else "")
     )
     return MotionResult(
         table=band_table(t_s, band, names),
