@@ -13,6 +13,7 @@ import gc
 import os
 import signal
 import sys
+import threading
 from collections.abc import Iterator, Mapping, Sequence
 from contextlib import ExitStack, contextmanager
 from pathlib import Path
@@ -102,6 +103,25 @@ OVERRIDE_LABELS = {"precision_cm": "precision", "methods": "method"}
 
 #: Whether this process has printed its one-line outcome (see :func:`main`).
 _REPORTED = False
+#: Set by every Ctrl-C (:func:`_interrupt`). The ``KeyboardInterrupt`` it raises can land
+#: where Python can only report it and go on (a weakref callback of the import system:
+#: "Exception ignored in ..."), so the runners' progress checks ask this too
+#: (``should_stop``) and such a report is silenced (:func:`_unraisable`).
+_INTERRUPTED = threading.Event()
+
+
+def _interrupt(signum, frame) -> None:
+    _INTERRUPTED.set()
+    raise KeyboardInterrupt
+
+
+def _unraisable(unraisable) -> None:
+    """``sys.unraisablehook``: a Ctrl-C that could not be raised where it landed stops
+    the run at its next progress check instead of printing a traceback and being lost."""
+    if isinstance(unraisable.exc_value, KeyboardInterrupt):
+        _INTERRUPTED.set()
+        return
+    sys.__unraisablehook__(unraisable)
 
 
 def fail(message: str, code: ExitCode = ExitCode.BAD_INPUT) -> typer.Exit:
@@ -254,7 +274,7 @@ def progress_bar(bars, job: Job):
             detail=state.detail,
         )
 
-    yield Progress(on_update=update)
+    yield Progress(on_update=update, should_stop=_INTERRUPTED.is_set)
     (current,) = (t for t in bars.tasks if t.id == task)
     done_s = time.monotonic() - started
     bars.update(task, completed=current.total, description=f"{job.label} done", done_s=done_s)
@@ -759,7 +779,8 @@ def run_sweeps(
 
                     try:
                         result = run_sweep(
-                            sweep, Progress(on_update=update), points=points, out_dir=out_dir,
+                            sweep, Progress(on_update=update, should_stop=_INTERRUPTED.is_set),
+                            points=points, out_dir=out_dir,
                             resume=resume, client=client, keep_checkpoint=True,
                         )  # fmt: skip
                     except OutputFailed as error:
@@ -820,7 +841,9 @@ def warmup() -> None:
         def update(state) -> None:
             bars.update(task, completed=state.completed, description=state.detail[:40])
 
-        done = warm_kernels(JOB_KINDS, core.Progress(on_update=update))
+        done = warm_kernels(
+            JOB_KINDS, core.Progress(on_update=update, should_stop=_INTERRUPTED.is_set)
+        )
         bars.update(task, completed=len(JOB_KINDS), description="kernels ready")
     stdout.print(f"compiled: {', '.join(done) or 'nothing (all cached)'}", markup=False)
 
@@ -834,12 +857,13 @@ def list_presets() -> None:
 
 def main() -> None:
     """Run the CLI (called by :func:`planar_tui.entry.main`, the console script): Ctrl-C
-    raises ``KeyboardInterrupt`` again and SIGTERM has its default action, except while
-    jobs run (:func:`sigterm_as_interrupt`)."""
+    raises ``KeyboardInterrupt`` again (and is remembered, :data:`_INTERRUPTED`) and
+    SIGTERM has its default action, except while jobs run (:func:`sigterm_as_interrupt`)."""
     from planar_tui.runtime import configure_process
 
     try:
-        signal.signal(signal.SIGINT, signal.default_int_handler)
+        sys.unraisablehook = _unraisable
+        signal.signal(signal.SIGINT, _interrupt)
         signal.signal(signal.SIGTERM, signal.SIG_DFL)
         configure_process()
         app(prog_name="planar-tui")

@@ -93,3 +93,45 @@ def test_ctrl_c_while_the_cli_is_importing_prints_no_traceback(tmp_path):
         if delay_s == 0.0:  # still importing: the entry point's own line
             assert err.strip() == "interrupted: nothing was run"
     assert not (tmp_path / "out").exists()
+
+
+#: The console script, with a Ctrl-C that lands where Python can only report it: the job
+#: runner drops a weakref whose callback raises KeyboardInterrupt ("Exception ignored in
+#: ..."), as a SIGINT arriving during an import's module-lock callback does.
+UNRAISABLE_CTRL_C = """
+import sys, weakref
+from planar_tui import batch
+from planar_tui.entry import main
+
+run_job = batch.run_job
+
+class Dropped:
+    pass
+
+def interrupt(_):
+    raise KeyboardInterrupt
+
+def run_job_after_a_lost_ctrl_c(job, progress=None):
+    dropped = Dropped()
+    ref = weakref.ref(dropped, interrupt)
+    del dropped  # the callback raises where Python can only report it
+    return run_job(job, progress)
+
+batch.run_job = run_job_after_a_lost_ctrl_c
+sys.argv[0] = "planar-tui"
+main()
+"""
+
+
+def test_a_ctrl_c_python_could_only_report_still_stops_the_run(tmp_path):
+    out = tmp_path / "out"
+    env = dict(os.environ, PYTHONPATH=str(REPO))
+    done = subprocess.run(
+        [sys.executable, "-c", UNRAISABLE_CTRL_C, "simulate",
+         str(PRESETS / "paper-a-table1.toml"), "--out-dir", str(out)],
+        capture_output=True, text=True, env=env, timeout=120,
+    )  # fmt: skip
+    assert done.returncode == ExitCode.INTERRUPTED, done.stderr
+    assert "Traceback" not in done.stderr and "Exception ignored" not in done.stderr
+    assert done.stderr.strip().splitlines()[-1].startswith("interrupted"), done.stderr
+    assert not out.exists() or list(out.iterdir()) == []
