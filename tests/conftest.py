@@ -1,4 +1,5 @@
-"""Shared fixtures: the repository paths and a CLI runner."""
+"""Shared fixtures and helpers: the repository paths, a CLI runner, and a run on 1 and 2
+Numba threads."""
 
 from __future__ import annotations
 
@@ -16,6 +17,22 @@ REFERENCE = REPO / "tests" / "data" / "reference"
 # Like every front end, the suite sets numba up before any kernel is imported (the test
 # modules import kernels at module level): compiled kernels go to planar-tui's cache.
 prepare_kernels()
+
+
+def on_one_and_two_threads(run):
+    """``[run(), run()]`` with Numba's kernels on 1, then 2 threads (the setting restored
+    after), for the tests that a parallel kernel's result does not depend on the count."""
+    import numba
+
+    before = numba.get_num_threads()
+    results = []
+    try:
+        for threads in (1, 2):
+            numba.set_num_threads(threads)
+            results.append(run())
+    finally:
+        numba.set_num_threads(before)
+    return results
 
 
 @pytest.fixture(autouse=True)

@@ -14,7 +14,7 @@ from planar_tui.workspace.compute import BoxBudget, compute_workspace, kernel_pa
 from planar_tui.workspace.geometry import geometric_area, workspace_polygon
 from planar_tui.workspace.job import WorkspaceSpec
 from planar_tui.workspace.robot import Robot3RRR
-from tests.conftest import REFERENCE
+from tests.conftest import REFERENCE, on_one_and_two_threads
 
 ROBOT = Robot3RRR()
 # (table, joint limits deg, phi deg, paper eps cm, search box, exact area known from planning)
@@ -188,20 +188,11 @@ def test_table5_mean_value_over_the_papers_precisions(geometric):
 def test_arc_distance_paving_is_parallel_and_the_same_on_1_and_2_threads():
     """The arc-distance paving and its boundary refinement run level by level on every
     core (``arc_level`` is a ``prange`` kernel) with identical boxes, order and areas."""
-    import numba
     from planar_tui.kernels.workspace_arc import arc_level
 
     assert arc_level.targetoptions.get("parallel")
     spec = spec_for(4, "arc-distance", 0.625, refine_precision_cm=0.15625)
-    before = numba.get_num_threads()
-    results = []
-    try:
-        for threads in (1, 2):
-            numba.set_num_threads(threads)
-            results.append(run(spec))
-    finally:
-        numba.set_num_threads(before)
-    one, two = results
+    one, two = on_one_and_two_threads(lambda: run(spec))
     assert len(one.boxes) > 1000  # a real paving: many levels and slices
     assert np.array_equal(one.boxes, two.boxes) and np.array_equal(one.status, two.status)
     assert (one.area_inside_cm2, one.area_kept_cm2) == (two.area_inside_cm2, two.area_kept_cm2)

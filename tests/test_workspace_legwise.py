@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
@@ -24,7 +23,7 @@ from planar_tui.workspace.compute import (
 from planar_tui.workspace.geometry import geometric_area
 from planar_tui.workspace.job import WorkspaceSpec
 from planar_tui.workspace.robot import Robot3RRR
-from tests.conftest import PRESETS
+from tests.conftest import PRESETS, on_one_and_two_threads
 
 PAPER = Robot3RRR()
 INTERVAL_FORMS = ("natural", "mean-value", "slope")
@@ -197,15 +196,7 @@ def test_random_geometries_both_strategies_bracket_the_exact_area(geometry):
 
 def test_thread_count_does_not_change_boxes_or_areas():
     spec = spec_for(120, "slope", "legwise", 0.1, refine_precision_cm=0.05)
-    before = numba.get_num_threads()
-    results = []
-    try:
-        for threads in (1, 2):
-            numba.set_num_threads(threads)
-            results.append(run(spec))
-    finally:
-        numba.set_num_threads(before)
-    one, two = results
+    one, two = on_one_and_two_threads(lambda: run(spec))
     assert np.array_equal(one.boxes, two.boxes) and np.array_equal(one.status, two.status)
     assert (one.area_inside_cm2, one.area_kept_cm2) == (two.area_inside_cm2, two.area_kept_cm2)
     assert one.boxes_processed == two.boxes_processed and one.xy_boxes == two.xy_boxes

@@ -14,6 +14,7 @@ from planar_tui.workspace.job import WorkspaceSpec
 from planar_tui.workspace.orientation import compute_orientation_workspace, reach_box_for
 from planar_tui.workspace.orientation_reference import reference_polygons
 from planar_tui.workspace.robot import Robot3RRR
+from tests.conftest import on_one_and_two_threads
 
 TABLE3 = ((20.0, 70.0), (110.0, 160.0), (245.0, 295.0))
 
@@ -246,7 +247,6 @@ def test_a_failed_overlay_is_snapped_and_kept_on_its_side_of_the_exact_one():
 def test_orientation_paving_is_parallel_and_the_same_on_1_and_2_threads(mode):
     """Issue 12: pave in parallel with the same boxes and areas whatever the thread count
     (``range_level`` is a ``prange`` kernel over each level's frontier)."""
-    import numba
     from planar_tui.kernels.workspace_orientation import range_level
 
     assert range_level.targetoptions.get("parallel")
@@ -259,17 +259,9 @@ def test_orientation_paving_is_parallel_and_the_same_on_1_and_2_threads(mode):
         form="arc-distance",
         geometric_reference=False,
     )
-    before = numba.get_num_threads()
-    results = []
-    try:
-        for threads in (1, 2):
-            numba.set_num_threads(threads)
-            results.append(
-                compute_orientation_workspace(Robot3RRR(), spec, BoxBudget(_Job(spec), Progress()))
-            )
-    finally:
-        numba.set_num_threads(before)
-    one, two = results
+    one, two = on_one_and_two_threads(
+        lambda: compute_orientation_workspace(Robot3RRR(), spec, BoxBudget(_Job(spec), Progress()))
+    )
     assert len(one.boxes) > 100 and (one.status == 2).any()
     assert np.array_equal(one.boxes, two.boxes) and np.array_equal(one.status, two.status)
     assert (one.area_inside_cm2, one.area_kept_cm2) == (two.area_inside_cm2, two.area_kept_cm2)
