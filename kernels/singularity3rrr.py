@@ -257,7 +257,8 @@ def singular_bisect_chunk(
     ``bounds`` ``[r_in, r_out]`` is updated in place (start it at the distances from
     ``(cx, cy)`` to the search box's edges); ``sign`` is that of :math:`\\det A(c)`
     (0: no circle). Returns ``(n_stack, n_kept, processed, code)`` like
-    ``arc_bisect_chunk``; kept leaves carry ``SINGULAR`` or ``EDGE``.
+    :func:`kernels.workspace3rrr.bisect_chunk` (``code`` from :func:`chunk_halt`); kept
+    leaves carry ``SINGULAR`` or ``EDGE``.
     """
     processed = 0
     work = 0
