@@ -683,7 +683,12 @@ def prepare_sweeps(
     from planar_tui.batch import check_planned, numbered_path, plan_files, plan_outputs
     from planar_tui.sweep.checkpoint import checkpoint_path, existing_fingerprint
     from planar_tui.sweep.points import make_points
-    from planar_tui.sweep.service import check_figure, output_path, planned_files
+    from planar_tui.sweep.service import (
+        check_figure,
+        check_point_outputs,
+        output_path,
+        planned_files,
+    )
     from planar_tui.sweep.spec import parse_sweeps
 
     sweeps = [sweep for preset in loaded for sweep in parse_sweeps(preset)]
@@ -704,6 +709,7 @@ def prepare_sweeps(
     check_planned(files, presets)
     for sweep, points in prepared:
         check_figure(sweep, points)
+        check_point_outputs(sweep, out_dir)
     for sweep, _ in prepared:
         checkpoint = checkpoint_path(output_path(sweep, out_dir))
         found = existing_fingerprint(checkpoint)

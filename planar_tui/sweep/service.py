@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Any
 from planar_tui.csvio import CsvTable, write_atomic, write_csv_atomic
 from planar_tui.progress import Progress
 from planar_tui.sweep.checkpoint import CheckpointWriter, checkpoint_path, read_finished
+from planar_tui.sweep.pointfiles import PointFileRecord, check_point_folder, manifest_path
 from planar_tui.sweep.points import Point, make_points
 from planar_tui.sweep.spec import Sweep
 from planar_tui.sweep.table import sweep_table
@@ -107,7 +108,18 @@ def planned_files(sweep: Sweep, out_dir: Path) -> list[PlannedFile]:
         folder = out_dir / sweep.point_outputs
         files.append(PlannedFile(folder, f"{sweep.label} (point_outputs)", "point file",
                                  folder=True, probe=folder / "point-1.csv"))  # fmt: skip
+        files.append(PlannedFile(manifest_path(output), f"{sweep.label} (point-file record)",
+                                 "record file"))  # fmt: skip
     return files
+
+
+def check_point_outputs(sweep: Sweep, out_dir: Path) -> None:
+    """Refuse, before anything runs, a point folder that is a symbolic link or holds
+    point files this sweep did not write (:func:`pointfiles.check_point_folder`)."""
+    if sweep.point_outputs is not None:
+        output = output_path(sweep, out_dir)
+        check_point_folder(sweep.preset_path, f"{sweep.name}.point_outputs",
+                           out_dir / sweep.point_outputs, out_dir, manifest_path(output))  # fmt: skip
 
 
 def figure_problem(sweep: Sweep, points: Sequence[Point]) -> str | None:
@@ -191,6 +203,7 @@ def run_sweep(
         return None if sweep.point_outputs is None else f"point-{number:0{width}d}"
 
     writer = None
+    record = None
     if output is not None:
         checkpoint = checkpoint_path(output)
         finished = read_finished(checkpoint, sweep.fingerprint(), total) if resume else {}
@@ -202,8 +215,11 @@ def run_sweep(
             for number in missing:
                 del finished[number]
             run.recomputed = len(missing)
-            if not finished:  # afresh: the folder is the sweep's, its earlier points go
-                remove_point_files(folder)
+            check_point_folder(sweep.preset_path, f"{sweep.name}.point_outputs", folder,
+                               out_dir, manifest_path(output))  # fmt: skip
+            record = PointFileRecord(manifest_path(output), folder)
+            if not finished:  # afresh: the files this sweep wrote before go, and only those
+                record.start_afresh()
         try:
             writer = CheckpointWriter(checkpoint, sweep.fingerprint(), total, finished)
         except OSError as error:
@@ -226,6 +242,8 @@ def run_sweep(
             if folder is not None:
                 for name, text in outcome.tables.items():
                     try:
+                        if record is not None:
+                            record.add(name)
                         write_atomic(folder / name, lambda stream, text=text: stream.write(text))
                     except OSError as error:
                         raise OutputFailed(folder / name, error.strerror or str(error)) from None
@@ -266,21 +284,6 @@ def run_sweep(
         except OutputFailed as error:
             run.figure_error = str(error)
     return run
-
-
-def remove_point_files(folder: Path) -> None:
-    """Delete the ``point-*.csv`` files of an earlier run from a sweep's point-file
-    folder (which the sweep owns whole), before a run starting afresh writes its own; a
-    file that cannot be deleted is :class:`~planar_tui.batch.OutputFailed`."""
-    from planar_tui.batch import OutputFailed
-
-    for path in sorted(folder.glob("point-*.csv")):
-        try:
-            if path.is_file():
-                path.unlink()
-        except OSError as error:
-            raise OutputFailed(path, f"cannot delete the earlier point file: "
-                               f"{error.strerror or error}") from None  # fmt: skip
 
 
 def _detail(run: SweepRun) -> str:
