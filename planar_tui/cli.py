@@ -767,11 +767,12 @@ def run_sweeps(
     try:
         with sigterm_as_interrupt(), ExitStack() as stack:
             client = None
+
+            def announce(text: str) -> None:
+                stderr.print(text, markup=False, highlight=False, soft_wrap=True)
+
             if prepared and (scheduler is not None or count > 1):
                 from planar_tui.sweep.execute import DaskTarget, dask_client
-
-                def announce(text: str) -> None:
-                    stderr.print(text, markup=False, highlight=False, soft_wrap=True)
 
                 client = stack.enter_context(dask_client(DaskTarget(count, scheduler), announce))
             for sweep, points in prepared:
@@ -788,6 +789,7 @@ def run_sweeps(
                             sweep, Progress(on_update=update, should_stop=_INTERRUPTED.is_set),
                             points=points, out_dir=out_dir,
                             resume=resume, client=client, keep_checkpoint=True,
+                            announce=announce,
                         )  # fmt: skip
                     except OutputFailed as error:
                         unwritten += 1

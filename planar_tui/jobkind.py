@@ -102,7 +102,9 @@ class JobKind:
     (:func:`planar_tui.sweep.points.make_points`), so a point that cannot run is refused
     up front rather than failing (:class:`~planar_tui.errors.PresetError`).
     ``point_figures(job, result)`` gives the kind's summary figures of one result as
-    ordered columns (name with unit -> number or text): one sweep row per point.
+    ordered columns (name with unit -> number or text): one sweep row per point;
+    ``figure_names(job)``, where a kind declares it, names those columns without running
+    the job (a resumed sweep checks its checkpoint's records against them).
     """
 
     name: str
@@ -116,6 +118,7 @@ class JobKind:
     prepare: Callable[[Job], Job] | None = None
     check: Callable[[Job], None] | None = None
     point_figures: Callable[[Job, JobResult], dict[str, Any]] | None = None
+    figure_names: Callable[[Job], tuple[str, ...]] | None = None
 
     @property
     def keys(self) -> tuple[str, ...]:

@@ -257,6 +257,13 @@ def point_figures(job: Job, result: SimulateResult) -> dict[str, float]:
     return figures
 
 
+def figure_names(job: Job) -> tuple[str, ...]:
+    """The columns :func:`point_figures` reports for ``job``, without running it."""
+    n = job.robot.n_links
+    return ("t_end_s", *(f"theta{i}_end_rad" for i in range(1, n + 1)),
+            *(f"omega{i}_end_rad_s" for i in range(1, n + 1)), "energy_drift_max_J")  # fmt: skip
+
+
 JOB_KIND = JobKind(
     name="simulate",
     robot_kind="robot",
@@ -264,4 +271,5 @@ JOB_KIND = JobKind(
     run=run_simulate,
     summary="RK4 forward dynamics under constant torques",
     point_figures=point_figures,
+    figure_names=figure_names,
 )

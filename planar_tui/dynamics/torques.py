@@ -93,6 +93,11 @@ def point_figures(job: Job, result: TorquesResult) -> dict[str, float]:
     return {f"tau{i}_abs_max_Nm": float(v) for i, v in enumerate(peak, start=1)}
 
 
+def figure_names(job: Job) -> tuple[str, ...]:
+    """The columns :func:`point_figures` reports for ``job``, without running it."""
+    return tuple(f"tau{i}_abs_max_Nm" for i in range(1, job.robot.n_links + 1))
+
+
 JOB_KIND = JobKind(
     name="torques",
     robot_kind="robot",
@@ -100,4 +105,5 @@ JOB_KIND = JobKind(
     run=run_torques,
     summary="inverse dynamics at listed states",
     point_figures=point_figures,
+    figure_names=figure_names,
 )

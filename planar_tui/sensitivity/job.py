@@ -455,6 +455,18 @@ def point_figures(job: Job, result: SensitivityResult) -> dict[str, Any]:
     return figures
 
 
+def figure_names(job: Job) -> tuple[str, ...]:
+    """The columns :func:`point_figures` reports for ``job``, without running it."""
+    groups = ("dominant", "dominant_percent", "lengths_percent", "masses_percent",
+              "sobol_halfwidth_max")  # fmt: skip
+    return tuple(
+        f"tau{i}_{group}{'' if k == 1 else f'_w{k}'}"
+        for k in range(1, len(job.spec.speeds_rad_s) + 1)
+        for i in range(1, job.robot.n_links + 1)
+        for group in groups
+    )
+
+
 JOB_KIND = JobKind(
     name="sensitivity",
     robot_kind="robot",
@@ -465,4 +477,5 @@ JOB_KIND = JobKind(
     overrides=with_overrides,
     prepare=prepare_sensitivity,
     point_figures=point_figures,
+    figure_names=figure_names,
 )

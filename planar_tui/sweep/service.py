@@ -169,23 +169,25 @@ def run_sweep(
 ) -> SweepRun:
     """Run every point of ``sweep`` and return them (see :class:`SweepRun`).
 
-    ``points`` are :func:`make_points`'s (made and validated here when not given: a
-    :class:`~planar_tui.errors.PresetError` before anything runs). ``workers == 1`` without
-    a ``scheduler`` runs in this process (no Dask import); otherwise a local Dask cluster
-    of ``workers`` processes, or the scheduler at ``scheduler``; or the Dask ``client``
-    given (e.g. one local cluster for several sweeps, :func:`execute.dask_client`). With ``out_dir`` the CSV,
-    the checkpoint and the point CSVs are written there; ``resume`` continues from the
-    checkpoint of the same sweep. ``progress`` counts points (figure ``failed``); its
-    cancel, or Ctrl-C, stops the run with :class:`~planar_tui.errors.Cancelled` /
-    ``KeyboardInterrupt``: the checkpoint stays, no CSV is written. ``on_outcome`` sees
-    every point as it finishes (resumed ones first, in order). The checkpoint is deleted
-    once the CSV is written, unless ``keep_checkpoint`` (the CLI deletes a run's
-    checkpoints once all its sweeps are done: ``run.checkpoint``). A CSV or point file that
-    cannot be written is :class:`~planar_tui.batch.OutputFailed` (the checkpoint stays);
-    a figure that cannot be written is ``run.figure_error`` (the CSV is written).
+        ``points`` are :func:`make_points`'s (made and validated here when not given: a
+        :class:`~planar_tui.errors.PresetError` before anything runs). ``workers == 1`` without
+        a ``scheduler`` runs in this process (no Dask import); otherwise a local Dask cluster
+        of ``workers`` processes, or the scheduler at ``scheduler``; or the Dask ``client``
+        given (e.g. one local cluster for several sweeps, :func:`execute.dask_client`). With ``out_dir`` the CSV,
+        the checkpoint and the point CSVs are written there; ``resume`` continues from the
+        checkpoint of the same sweep. ``progress`` counts points (figure ``failed``); its
+        cancel, or Ctrl-C, stops the run with :class:`~planar_tui.errors.Cancelled` /
+        ``KeyboardInterrupt``: the checkpoint stays, no CSV is written. A checkpoint record that
+    is not a finished point of this sweep is dropped with one ``announce`` line (warning),
+    and its point runs again. ``on_outcome`` sees
+        every point as it finishes (resumed ones first, in order). The checkpoint is deleted
+        once the CSV is written, unless ``keep_checkpoint`` (the CLI deletes a run's
+        checkpoints once all its sweeps are done: ``run.checkpoint``). A CSV or point file that
+        cannot be written is :class:`~planar_tui.batch.OutputFailed` (the checkpoint stays);
+        a figure that cannot be written is ``run.figure_error`` (the CSV is written).
     """
     from planar_tui.batch import OutputFailed
-    from planar_tui.registry import JOB_KINDS  # noqa: F401 (the kinds' modules, loaded once)
+    from planar_tui.registry import JOB_KINDS
     from planar_tui.sweep import execute
     from planar_tui.warmup import warm_kernels
 
@@ -206,9 +208,17 @@ def run_sweep(
     record = None
     if output is not None:
         checkpoint = checkpoint_path(output)
-        finished = read_finished(checkpoint, sweep.fingerprint(), total) if resume else {}
+        finished = {}
+        jobs = {point.number: point.job for point in points}
+        if resume:
+            names = JOB_KINDS[sweep.job.kind].figure_names
+
+            def columns(number: int) -> tuple[str, ...] | None:
+                return None if names is None else names(jobs[number])
+
+            finished = read_finished(checkpoint, sweep.fingerprint(), total, columns,
+                                     lambda text: announce(f"warning: {text}"))  # fmt: skip
         if folder is not None:
-            jobs = {point.number: point.job for point in points}
             missing = [number for number, outcome in finished.items() if outcome.status == OK
                        and not all((folder / name).is_file()
                                    for name in point_file_names(stem(number), jobs[number]))]  # fmt: skip
