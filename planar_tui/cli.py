@@ -162,11 +162,11 @@ def check_figure_option(path: Path | None, option: str = "--plot") -> None:
 
 
 def check_workers(workers: int | None) -> None:
-    """Refuse ``--workers`` below 1 (:class:`PresetError`, exit 2), in one line as the job
-    options' ranges are (checked here, not by Typer, whose usage box takes many lines)."""
-    if workers is not None and workers < 1:
-        raise PresetError("command line", "--workers", f"is {workers}, below 1",
-                          "an integer >= 1 (1 runs the points in this process)")  # fmt: skip
+    """Refuse ``--workers`` out of range (:class:`PresetError`, exit 2), in one line as the
+    job options' ranges are (checked here, not by Typer, whose usage box takes many lines)."""
+    from planar_tui.sweep.budget import check_workers as check
+
+    check(workers)
 
 
 def load_presets(arguments: Sequence[str]) -> list[Preset]:
@@ -593,6 +593,7 @@ def run(
         jobs = select_jobs([job for preset in loaded for job in preset.jobs], job_name)
         prepared = prepare_sweeps([] if job_name else loaded, out_dir, jobs, job_plot=plot,
                                   resume=resume)  # fmt: skip
+        check_sweep_budget(prepared, workers, scheduler)
         if jobs:
             execute(jobs, out_dir, plot=plot)
         run_sweeps(prepared, out_dir, workers, scheduler, resume)
@@ -661,7 +662,16 @@ def sweep_command(
         if not prepared:
             raise PresetError(loaded.path, "sweep", "no [[sweep]] table in this preset",
                               "a [[sweep]] table")  # fmt: skip
+        check_sweep_budget(prepared, workers, scheduler)
         run_sweeps(prepared, out_dir, workers, scheduler, resume)
+
+
+def check_sweep_budget(prepared: Sequence, workers: int | None, scheduler: str | None) -> None:
+    """Refuse sweeps over the limits before anything runs (:mod:`planar_tui.sweep.budget`)."""
+    if prepared:
+        from planar_tui.sweep.budget import check_sweep_budget as check
+
+        check(prepared, workers, scheduler)
 
 
 def prepare_sweeps(

@@ -104,7 +104,10 @@ class JobKind:
     ``point_figures(job, result)`` gives the kind's summary figures of one result as
     ordered columns (name with unit -> number or text): one sweep row per point;
     ``figure_names(job)``, where a kind declares it, names those columns without running
-    the job (a resumed sweep checks its checkpoint's records against them).
+    the job (a resumed sweep checks its checkpoint's records against them);
+    ``estimate(job)``, where a kind declares it, is the job's rough ``(memory_bytes,
+    seconds)`` (the ones its checks hold against :mod:`planar_tui.limits`): a sweep sums
+    its points' to refuse what cannot finish.
     """
 
     name: str
@@ -119,6 +122,7 @@ class JobKind:
     check: Callable[[Job], None] | None = None
     point_figures: Callable[[Job, JobResult], dict[str, Any]] | None = None
     figure_names: Callable[[Job], tuple[str, ...]] | None = None
+    estimate: Callable[[Job], tuple[float, float]] | None = None
 
     @property
     def keys(self) -> tuple[str, ...]:

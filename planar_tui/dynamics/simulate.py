@@ -106,6 +106,19 @@ class RunSettings:
         return max(1, round(self.duration_s / self.step_s))
 
 
+def simulate_estimate(n_steps: float, every: int, n_links: int) -> tuple[float, float]:
+    """``(memory_bytes, seconds)`` of a run: ``n_steps / every + 1`` rows of ``2n + 4``
+    cells, ``n_steps`` RK4 steps (:func:`rk4_step_seconds`)."""
+    rows = n_steps / every + 1
+    return rows * (2 * n_links + 4) * BYTES_PER_CELL, n_steps * rk4_step_seconds(n_links)
+
+
+def estimate(job: Job) -> tuple[float, float]:
+    """``(memory_bytes, seconds)`` of ``job`` (:func:`simulate_estimate`)."""
+    return simulate_estimate(job.spec.duration_s / job.spec.step_s, job.spec.every,
+                             job.robot.n_links)  # fmt: skip
+
+
 @dataclass(frozen=True, kw_only=True)
 class SimulateSpec(RunSettings):
     """Settings of one forward-dynamics run (angles are relative joint angles): the run's
@@ -125,10 +138,8 @@ class SimulateSpec(RunSettings):
         limits (:mod:`planar_tui.limits`)."""
         RunSettings.check_step(values, reader)
         n_steps = values["duration_s"] / values["step_s"]
-        problem = time_problem(n_steps * rk4_step_seconds(robot.n_links))
-        if problem is None:
-            rows = n_steps / values["every"] + 1
-            problem = memory_problem(rows * (2 * robot.n_links + 4) * BYTES_PER_CELL)
+        memory, seconds = simulate_estimate(n_steps, values["every"], robot.n_links)
+        problem = time_problem(seconds) or memory_problem(memory)
         if problem is not None:
             raise reader.error(
                 "duration_s",
@@ -272,4 +283,5 @@ JOB_KIND = JobKind(
     summary="RK4 forward dynamics under constant torques",
     point_figures=point_figures,
     figure_names=figure_names,
+    estimate=estimate,
 )

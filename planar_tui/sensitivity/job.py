@@ -478,4 +478,5 @@ JOB_KIND = JobKind(
     prepare=prepare_sensitivity,
     point_figures=point_figures,
     figure_names=figure_names,
+    estimate=lambda job: resource_estimate(job.spec, job.robot),
 )

@@ -15,10 +15,10 @@ Outcomes are handed over as they arrive (``on_outcome``); the caller's
 from __future__ import annotations
 
 import os
-import queue
 import signal
 import threading
-from collections.abc import Callable, Iterator, Sequence
+import time
+from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any
@@ -42,14 +42,17 @@ def default_workers() -> int:
 
 
 def run_in_process(
-    tasks: Sequence[PointTask], progress: Progress, on_outcome: Callable[[PointOutcome], None]
+    tasks: Iterable[PointTask | PointOutcome],
+    progress: Progress,
+    on_outcome: Callable[[PointOutcome], None],
 ) -> None:
-    """Run the tasks one after the other in this process; a cancel of ``progress`` stops
-    the running point within its runner's check interval."""
+    """Run the tasks one after the other in this process (an outcome among them, a point
+    that could not be made, is handed over as it is); a cancel of ``progress`` stops the
+    running point within its runner's check interval."""
     child = Progress(should_stop=lambda: progress.cancel_requested)
     for task in tasks:
         progress.check()
-        on_outcome(run_point(task, child))
+        on_outcome(task if isinstance(task, PointOutcome) else run_point(task, child))
 
 
 @dataclass(frozen=True)
@@ -190,58 +193,65 @@ def _ignore_interrupts_plugin() -> Any:
     return IgnoreInterrupts()
 
 
+#: Most tasks a sweep has submitted to Dask and not yet collected: more are submitted as
+#: these finish, so a sweep of 100 000 points starts at once and the scheduler holds a
+#: window of them, not all.
+DASK_WINDOW = 1_000
+
+
 def run_on_dask(
     client: Any,
-    tasks: Sequence[PointTask],
+    tasks: Iterable[PointTask | PointOutcome],
     progress: Progress,
     on_outcome: Callable[[PointOutcome], None],
     key_prefix: str,
 ) -> None:
-    """Submit every task to ``client`` and hand over outcomes as they complete. A cancel
+    """Submit the tasks to ``client`` (at most :data:`DASK_WINDOW` outstanding; an outcome
+    among them is handed over as it is) and hand over outcomes as they complete. A cancel
     (``progress``) or Ctrl-C cancels the outstanding tasks, then propagates."""
     from distributed import as_completed
 
-    futures = [
-        client.submit(run_point, task, key=f"{key_prefix}-{task.number}", pure=False)
-        for task in tasks
-    ]
-    arrived: queue.Queue = queue.Queue()
-    finished = threading.Event()
+    pending = iter(tasks)
+    futures: dict[Any, PointTask] = {}
+    completed = as_completed()
 
-    def collect() -> None:
-        try:
-            for future in as_completed(futures):
-                arrived.put(future)
-                if finished.is_set():
-                    return
-        except Exception:  # the client closed under it (a cancel): nothing more to hand over
-            pass
+    def submit_next() -> bool:
+        """Submit the next task (handing over outcomes met on the way); False when none
+        is left."""
+        for task in pending:
+            if isinstance(task, PointOutcome):
+                on_outcome(task)
+                continue
+            future = client.submit(run_point, task, key=f"{key_prefix}-{task.number}",
+                                   pure=False)  # fmt: skip
+            futures[future] = task
+            completed.add(future)
+            return True
+        return False
 
-    threading.Thread(target=collect, name="planar-tui-sweep-collect", daemon=True).start()
     try:
-        for _ in range(len(futures)):
-            while True:
-                progress.check()
-                try:
-                    future = arrived.get(timeout=POLL_S)
-                    break
-                except queue.Empty:
-                    continue
-            on_outcome(_outcome(future, tasks))
+        while len(futures) < DASK_WINDOW and submit_next():
+            progress.check()
+        while futures:
+            progress.check()
+            batch = completed.next_batch(block=False)
+            if not batch:
+                time.sleep(POLL_S / 5)
+                continue
+            for future in batch:
+                task = futures.pop(future)
+                on_outcome(_outcome(future, task))
+                submit_next()
     except BaseException:
-        finished.set()
-        client.cancel(futures, force=True)
+        client.cancel(list(futures), force=True)
         raise
-    finished.set()
 
 
-def _outcome(future: Any, tasks: Sequence[PointTask]) -> PointOutcome:
+def _outcome(future: Any, task: PointTask) -> PointOutcome:
     """A completed future's outcome; a task Dask gave up on (its workers kept dying) is a
     failed point."""
     try:
         return future.result()
     except Exception as error:
-        number = int(str(future.key).rsplit("-", 1)[1])
-        task = next(t for t in tasks if t.number == number)
         message = f"{task.job.label} failed on Dask: {type(error).__name__}: {error}"
-        return PointOutcome(number, "failed", " ".join(message.split()), {}, 0.0)
+        return PointOutcome(task.number, "failed", " ".join(message.split()), {}, 0.0)

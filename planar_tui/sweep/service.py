@@ -10,16 +10,17 @@ through it) and ``on_outcome`` for rows as they finish; the CLI adds ``out_dir``
 from __future__ import annotations
 
 import secrets
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from planar_tui.csvio import CsvTable, write_atomic, write_csv_atomic
+from planar_tui.errors import PresetError
 from planar_tui.progress import Progress
 from planar_tui.sweep.checkpoint import CheckpointWriter, checkpoint_path, read_finished
 from planar_tui.sweep.pointfiles import PointFileRecord, check_point_folder, manifest_path
-from planar_tui.sweep.points import Point, make_points
+from planar_tui.sweep.points import Point, SweepPoints, make_points
 from planar_tui.sweep.spec import Sweep
 from planar_tui.sweep.table import sweep_table
 from planar_tui.sweep.worker import (
@@ -33,6 +34,7 @@ from planar_tui.sweep.worker import (
 
 if TYPE_CHECKING:
     from planar_tui.batch import PlannedFile
+    from planar_tui.jobkind import Job
 
 
 @dataclass
@@ -45,7 +47,7 @@ class SweepRun:
     checkpoint run again because a point file of theirs was missing."""
 
     sweep: Sweep
-    points: list[Point]
+    points: Sequence[Point]
     outcomes: dict[int, PointOutcome] = field(default_factory=dict)
     resumed: int = 0
     recomputed: int = 0
@@ -64,13 +66,21 @@ class SweepRun:
     def table(self) -> CsvTable:
         """The sweep CSV of the points finished so far (all of them once it ran); a
         cancelled run's also lists the points not run, status ``cancelled``."""
-        values = {point.number: point.values for point in self.points}
         outcomes = dict(self.outcomes)
         if self.cancelled:
-            for point in self.points:
-                outcomes.setdefault(point.number, PointOutcome(
-                    point.number, CANCELLED, "not run: the sweep was cancelled", {}, 0.0))  # fmt: skip
+            for number in range(1, len(self.points) + 1):
+                outcomes.setdefault(number, PointOutcome(
+                    number, CANCELLED, "not run: the sweep was cancelled", {}, 0.0))  # fmt: skip
+        values = {number: point_values(self.points, number) for number in outcomes}
         return sweep_table([path.text for path in self.sweep.paths], values, outcomes)
+
+
+def point_values(points: Sequence[Point], number: int) -> tuple[Any, ...]:
+    """The values of point ``number`` (1-based), without making its job when ``points``
+    are :class:`~planar_tui.sweep.points.SweepPoints`."""
+    if isinstance(points, SweepPoints):
+        return points.values(number - 1)
+    return points[number - 1].values
 
 
 def write_figure(run: SweepRun, path: Path) -> Path:
@@ -130,7 +140,7 @@ def figure_problem(sweep: Sweep, points: Sequence[Point]) -> str | None:
 
     paths = [path.text for path in sweep.paths]
     keys = CsvTable(("point", *paths, "status"),
-                    [[p.number, *p.values, "ok"] for p in points])  # fmt: skip
+                    [[n, *point_values(points, n), "ok"] for n in range(1, len(points) + 1)])  # fmt: skip
     try:
         varied, _ = split_columns(keys)
     except (TypeError, ValueError):  # a key whose values are no numbers
@@ -204,24 +214,36 @@ def run_sweep(
     def stem(number: int) -> str | None:
         return None if sweep.point_outputs is None else f"point-{number:0{width}d}"
 
+    def job_of(number: int) -> Job | None:
+        try:
+            return points[number - 1].job
+        except PresetError:  # not valid now (a device gone): its record is not resumed
+            return None
+
     writer = None
     record = None
     if output is not None:
         checkpoint = checkpoint_path(output)
         finished = {}
-        jobs = {point.number: point.job for point in points}
         if resume:
             names = JOB_KINDS[sweep.job.kind].figure_names
 
             def columns(number: int) -> tuple[str, ...] | None:
-                return None if names is None else names(jobs[number])
+                job = job_of(number)
+                return () if job is None else None if names is None else names(job)
 
             finished = read_finished(checkpoint, sweep.fingerprint(), total, columns,
                                      lambda text: announce(f"warning: {text}"))  # fmt: skip
         if folder is not None:
-            missing = [number for number, outcome in finished.items() if outcome.status == OK
-                       and not all((folder / name).is_file()
-                                   for name in point_file_names(stem(number), jobs[number]))]  # fmt: skip
+
+            def files_missing(number: int) -> bool:
+                job = job_of(number)
+                return job is None or not all(
+                    (folder / name).is_file() for name in point_file_names(stem(number), job)
+                )
+
+            missing = [number for number, outcome in finished.items()
+                       if outcome.status == OK and files_missing(number)]  # fmt: skip
             for number in missing:
                 del finished[number]
             run.recomputed = len(missing)
@@ -238,8 +260,21 @@ def run_sweep(
         run.outcomes.update(finished)
         run.resumed = len(finished)
 
-    tasks = [PointTask(p.number, p.job, stem(p.number)) for p in points
-             if p.number not in run.outcomes]  # fmt: skip
+    resumed = set(run.outcomes)
+
+    def tasks() -> Iterator[PointTask | PointOutcome]:
+        """The points left, each made as it is reached; one found invalid only now (not
+        among those checked up front) is a failed point."""
+        for number in range(1, total + 1):
+            if number in resumed:
+                continue
+            try:
+                point = points[number - 1]
+            except PresetError as error:
+                yield PointOutcome(number, FAILED, error.message, {}, 0.0)
+                continue
+            yield PointTask(number, point.job, stem(number))
+
     try:
         warm_kernels([sweep.job.kind], progress)
         progress.start(total, sweep.label, _detail(run))
@@ -269,13 +304,13 @@ def run_sweep(
 
         prefix = f"planar-tui-{sweep.fingerprint()[:8]}-{secrets.token_hex(4)}"
         if client is not None:
-            execute.run_on_dask(client, tasks, progress, finished_point, prefix)
+            execute.run_on_dask(client, tasks(), progress, finished_point, prefix)
         elif workers <= 1 and scheduler is None:
-            execute.run_in_process(tasks, progress, finished_point)
-        elif tasks:
+            execute.run_in_process(tasks(), progress, finished_point)
+        elif total > len(resumed):
             target = execute.DaskTarget(workers, scheduler)
             with execute.dask_client(target, announce) as client:
-                execute.run_on_dask(client, tasks, progress, finished_point, prefix)
+                execute.run_on_dask(client, tasks(), progress, finished_point, prefix)
         if output is not None:
             try:
                 write_csv_atomic(output, run.table)

@@ -28,6 +28,8 @@ from planar_tui.sweep.paths import KeyPath, current_value, index_problem, parse_
 
 #: Most points a sweep may have unless its ``max_points`` says more.
 DEFAULT_MAX_POINTS = 100_000
+#: The largest ``max_points`` (a sweep's values and CSV rows are held in memory).
+MAX_POINTS = 1_000_000
 COMBINE = ("grid", "zip")
 SAMPLE_METHODS = ("sobol", "lhs", "uniform")
 SWEEP_KEYS = ("job", "values", "combine", "ranges", "sample", "output", "point_outputs", "plot",
@@ -235,7 +237,7 @@ def parse_sweep_table(preset: Preset, table: Any, name: str, number: int = 1) ->
             "both values and ranges are given" if has_values else "no values and no ranges",
             "values = { KEY = [...] }, or ranges = { KEY = [low, high] } with sample = {...}",
         )
-    max_points = reader.integer("max_points", DEFAULT_MAX_POINTS, minimum=1)
+    max_points = reader.integer("max_points", DEFAULT_MAX_POINTS, minimum=1, maximum=MAX_POINTS)
     values: list[tuple[KeyPath, tuple[Any, ...]]] = []
     ranges: list[tuple[KeyPath, float, float]] = []
     sample = None
