@@ -561,9 +561,10 @@ SchedulerOption = Annotated[
     str | None,
     typer.Option(
         "--scheduler",
-        envvar="PLANAR_TUI_SCHEDULER",
         metavar="ADDRESS",
-        help="Sweeps: submit the points to this existing Dask scheduler (tcp://host:8786).",
+        help="Sweeps: submit the points to this existing Dask scheduler (tcp://host:8786; "
+        "default: $PLANAR_TUI_SCHEDULER unless --workers is given). Connecting may take "
+        "$PLANAR_TUI_SCHEDULER_TIMEOUT_S seconds (default 10).",
     ),
 ]
 ResumeOption = Annotated[
@@ -593,7 +594,7 @@ def run(
         jobs = select_jobs([job for preset in loaded for job in preset.jobs], job_name)
         prepared = prepare_sweeps([] if job_name else loaded, out_dir, jobs, job_plot=plot,
                                   resume=resume)  # fmt: skip
-        check_sweep_budget(prepared, workers, scheduler)
+        scheduler = check_sweep_budget(prepared, workers, scheduler)
         if jobs:
             execute(jobs, out_dir, plot=plot)
         run_sweeps(prepared, out_dir, workers, scheduler, resume)
@@ -662,16 +663,23 @@ def sweep_command(
         if not prepared:
             raise PresetError(loaded.path, "sweep", "no [[sweep]] table in this preset",
                               "a [[sweep]] table")  # fmt: skip
-        check_sweep_budget(prepared, workers, scheduler)
+        scheduler = check_sweep_budget(prepared, workers, scheduler)
         run_sweeps(prepared, out_dir, workers, scheduler, resume)
 
 
-def check_sweep_budget(prepared: Sequence, workers: int | None, scheduler: str | None) -> None:
-    """Refuse sweeps over the limits before anything runs (:mod:`planar_tui.sweep.budget`)."""
+def check_sweep_budget(
+    prepared: Sequence, workers: int | None, scheduler: str | None
+) -> str | None:
+    """Refuse sweeps over the limits before anything runs (:mod:`planar_tui.sweep.budget`);
+    the scheduler to use (:func:`planar_tui.sweep.execute.scheduler_address`)."""
+    from planar_tui.sweep.execute import scheduler_address
+
+    scheduler = scheduler_address(scheduler, workers)
     if prepared:
         from planar_tui.sweep.budget import check_sweep_budget as check
 
         check(prepared, workers, scheduler)
+    return scheduler
 
 
 def prepare_sweeps(

@@ -106,6 +106,10 @@ def check_sweep_budget(
     """Refuse, before anything runs, sweeps whose workers or points exceed the limits
     (:class:`PresetError`, exit code 2, one line with the estimate)."""
     check_workers(workers)
+    if scheduler is not None:
+        from planar_tui.sweep.execute import scheduler_timeout_s
+
+        scheduler_timeout_s()  # a bad PLANAR_TUI_SCHEDULER_TIMEOUT_S refused now
     count = workers or usable_cores()
     local = scheduler is None and count > 1
     for sweep, points in prepared:

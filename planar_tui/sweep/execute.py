@@ -27,8 +27,14 @@ from planar_tui.errors import PresetError
 from planar_tui.progress import Progress
 from planar_tui.sweep.worker import PointOutcome, PointTask, run_point
 
-#: Environment variable naming an existing Dask scheduler (``tcp://host:8786``).
+#: Environment variable naming an existing Dask scheduler (``tcp://host:8786``), used
+#: when neither ``--scheduler`` nor ``--workers`` is given.
 SCHEDULER_ENV_VAR = "PLANAR_TUI_SCHEDULER"
+#: Environment variable setting how long connecting to a scheduler may take (seconds).
+SCHEDULER_TIMEOUT_ENV_VAR = "PLANAR_TUI_SCHEDULER_TIMEOUT_S"
+#: How long connecting to a scheduler may take unless the environment says otherwise: the
+#: TCP connection and Dask's handshake (a peer that accepts and never answers included).
+DEFAULT_SCHEDULER_TIMEOUT_S = 10.0
 #: How often the Dask runner checks for a cancel while it waits (seconds).
 POLL_S = 0.1
 
@@ -39,6 +45,55 @@ def default_workers() -> int:
         return max(1, len(os.sched_getaffinity(0)))
     except AttributeError:  # macOS, Windows
         return max(1, os.cpu_count() or 1)
+
+
+def scheduler_address(option: str | None, workers: int | None) -> str | None:
+    """The scheduler to use: ``--scheduler``, else :data:`SCHEDULER_ENV_VAR` unless
+    ``--workers`` was given (``--workers 1`` runs in this process whatever the
+    environment says)."""
+    if option is not None:
+        return option
+    if workers is not None:
+        return None
+    return os.environ.get(SCHEDULER_ENV_VAR) or None
+
+
+def scheduler_timeout_s() -> float:
+    """How long connecting to a scheduler may take: :data:`SCHEDULER_TIMEOUT_ENV_VAR` or
+    :data:`DEFAULT_SCHEDULER_TIMEOUT_S`; a value that is no number of seconds > 0 (at
+    most a day) is a :class:`PresetError`."""
+    import math
+
+    text = os.environ.get(SCHEDULER_TIMEOUT_ENV_VAR, "").strip()
+    if not text:
+        return DEFAULT_SCHEDULER_TIMEOUT_S
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not 0 < value <= 86_400:
+        raise PresetError("environment", SCHEDULER_TIMEOUT_ENV_VAR, f"is {text[:40]!r}",
+                          "a number of seconds > 0 and at most 86400")  # fmt: skip
+    return value
+
+
+def probe_scheduler(address: str, timeout_s: float) -> None:
+    """Connect to the scheduler at ``address`` and complete Dask's handshake within
+    ``timeout_s`` (``distributed.Client`` bounds the TCP connection, not the handshake: a
+    peer that accepts and never answers would hang it), or raise :class:`TimeoutError` /
+    :class:`OSError`."""
+    import asyncio
+
+    from distributed.comm import connect
+
+    async def handshake() -> None:
+        comm = await connect(address, timeout=timeout_s)
+        await comm.close()
+
+    async def bounded() -> None:
+        await asyncio.wait_for(handshake(), timeout_s)
+
+    asyncio.run(bounded())
 
 
 def run_in_process(
@@ -141,11 +196,15 @@ def dask_client(target: DaskTarget, announce: Callable[[str], None]) -> Iterator
     from distributed import Client
 
     if target.address is not None:
+        timeout_s = scheduler_timeout_s()
         try:
-            client = Client(target.address)  # waits distributed.comm.timeouts.connect
+            probe_scheduler(target.address, timeout_s)
+            client = Client(target.address, timeout=timeout_s)
         except (OSError, TimeoutError, ValueError) as error:
+            problem = str(error) or (f"no answer within {timeout_s:g} s "
+                                     f"({SCHEDULER_TIMEOUT_ENV_VAR})")  # fmt: skip
             raise PresetError(
-                "command line", "--scheduler", f"cannot reach {target.address}: {error}",
+                "command line", "--scheduler", f"cannot reach {target.address}: {problem}",
                 "the address of a running Dask scheduler (tcp://host:8786)",
             ) from None  # fmt: skip
         try:
