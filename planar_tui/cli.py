@@ -621,6 +621,11 @@ def plot_csv(
         target = out if out is not None else result.with_suffix(".png")
         from planar_tui.figures import UnknownTable, figure_for_table, read_table
         from planar_tui.figures.canvas import save
+        from planar_tui.figures.dispatch import is_same_file
+
+        if is_same_file(result, target):
+            raise PresetError("command line", "--out", f"is the input {result} (it would be "
+                              "overwritten by its figure)", "another figure file")  # fmt: skip
 
         try:
             table = read_table(result)
