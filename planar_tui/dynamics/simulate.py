@@ -6,6 +6,7 @@ result and the CSV columns of one job kind.
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass
 from typing import Any
@@ -91,13 +92,20 @@ class RunSettings:
 
     @staticmethod
     def check_step(values: dict, reader: TableReader) -> None:
-        """The step must not exceed the duration."""
+        """The step must not exceed the duration, nor be so short that the step count
+        ``duration_s / step_s`` overflows (a finite count is held to the time limit)."""
         duration_s, step_s = values["duration_s"], values["step_s"]
         if step_s > duration_s:
             raise reader.error(
                 "step_s",
                 f"is {step_s:g} s, longer than duration_s = {duration_s:g} s",
                 "step_s <= duration_s",
+            )
+        if not math.isfinite(duration_s / step_s):  # step_s = 5e-324
+            raise reader.error(
+                "step_s",
+                f"is {step_s:g} s: duration_s / step_s is {duration_s / step_s:.3g} steps",
+                "a step_s giving a finite number of steps",
             )
 
     @property

@@ -284,7 +284,10 @@ def solve_posture(job: Job):
     if request == "singular":
         return singular_posture(robot.n_links)
     try:
-        return isotropic_posture(robot.lengths_m, spec.isotropy_tolerance)
+        import numpy as np
+
+        with np.errstate(over="ignore", invalid="ignore"):  # a 1e30 m link: κ ~ 1e30, said below
+            return isotropic_posture(robot.lengths_m, spec.isotropy_tolerance)
     except NoIsotropicPosture as error:
         raise PresetError(
             job.preset_path,

@@ -143,9 +143,10 @@ def find_job(preset: Preset, text: Any, reader: TableReader) -> Job:
     kind, _, rest = text.partition("[")
     index = 1
     if rest:
-        if not rest.endswith("]") or not rest[:-1].isdigit():
+        digits = rest[:-1]
+        if not rest.endswith("]") or not (digits.isascii() and digits.isdigit()) or len(digits) > 9:
             raise reader.error("job", f"is {shown(text)}", expected)
-        index = int(rest[:-1])
+        index = int(digits)
     for job in preset.jobs:
         if job.kind == kind and job.index == index:
             return job
