@@ -23,7 +23,7 @@ import typer
 from rich.console import Console
 from typer.core import TyperCommand, TyperGroup
 
-from planar_tui import __version__
+from planar_tui import __version__, csvio
 from planar_tui.errors import Cancelled, ExitCode, PresetError, Terminated
 from planar_tui.resources import bundled_presets, preset_description
 
@@ -368,6 +368,11 @@ def run_kind(
         execute(jobs, out_dir, out=out, extra_out=extra_out, show=show, plot=plot)
 
 
+def _notice(text: str) -> None:
+    """A one-line note of the core (stale temporary files removed) on stderr."""
+    stderr.print(text, markup=False, highlight=False, soft_wrap=True)
+
+
 def version_callback(value: bool) -> None:
     if value:
         stdout.print(f"planar-tui {__version__}")
@@ -385,6 +390,7 @@ def root(
     ] = False,
 ) -> None:
     """Without a command: open the Textual app on a bundled preset (in a terminal)."""
+    csvio.notice = _notice
     if context.invoked_subcommand is None:
         if not (sys.stdin.isatty() and sys.stdout.isatty()):
             help_text = context.get_help()  # Typer's rich help prints itself, returns ""
