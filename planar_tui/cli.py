@@ -35,14 +35,31 @@ if TYPE_CHECKING:
 class _FlagsWithoutMetavar:
     """Help for flags (``--map/--no-map``, ``--version``, ``--help``) without a value
     placeholder: Typer's rich help otherwise prints ``<bool>`` after them, as if they took
-    a value. A flag's metavar is only ever shown in help."""
+    a value. A flag's metavar is only ever shown in help. Help texts are shown as
+    written: Typer reads them as Rich markup, which would swallow ``[[sweep]]``, so
+    brackets are escaped (:func:`rich.markup.escape`)."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self.help = _escaped(self.help)
+        self.short_help = _escaped(self.short_help)
 
     def get_params(self, ctx):
         params = super().get_params(ctx)
         for param in params:
             if getattr(param, "is_flag", False) and param.metavar is None:
                 param.metavar = ""
+            if getattr(param, "help", None) and not getattr(param, "_escaped", False):
+                param.help = _escaped(param.help)
+                param._escaped = True
         return params
+
+
+def _escaped(text: str | None) -> str | None:
+    """``text`` with Rich markup escaped (shown as written)."""
+    from rich.markup import escape
+
+    return None if text is None else escape(text)
 
 
 class Group(_FlagsWithoutMetavar, TyperGroup):
@@ -298,6 +315,7 @@ def execute(
     shows the traceback). ``show`` prints each kind's terminal view.
     """
     from rich.table import Table
+    from rich.text import Text
 
     from planar_tui import batch
     from planar_tui.registry import JOB_KINDS
@@ -333,7 +351,7 @@ def execute(
     summary.add_column("seconds", justify="right", no_wrap=True)
     summary.add_column("output and result", overflow="fold")
     for row in rows:
-        summary.add_row(row.label, f"{row.seconds:.3f}", f"{row.output}\n{row.summary}")
+        summary.add_row(Text(row.label), f"{row.seconds:.3f}", Text(f"{row.output}\n{row.summary}"))
     stdout.print(summary)
 
 
@@ -769,7 +787,7 @@ def sweep_progress_display(console: Console):
             return Text("-- pt/s" if speed is None else f"{speed:.3g} pt/s")
 
     return bar.Progress(
-        bar.TextColumn("{task.description}"), bar.BarColumn(bar_width=None),
+        bar.TextColumn("{task.description}", markup=False), bar.BarColumn(bar_width=None),
         bar.MofNCompleteColumn(), bar.TextColumn("{task.fields[failed]} failed"), RateColumn(table_column=Column(no_wrap=True)),
         bar.TextColumn("ETA"), bar.TimeRemainingColumn(), console=console, expand=True,
     )  # fmt: skip
@@ -871,7 +889,8 @@ def warmup() -> None:
     from planar_tui.registry import JOB_KINDS
     from planar_tui.warmup import warm_kernels
 
-    columns = (TextColumn("{task.description}"), BarColumn(bar_width=24), MofNCompleteColumn())
+    columns = (TextColumn("{task.description}", markup=False), BarColumn(bar_width=24),
+               MofNCompleteColumn())  # fmt: skip
     with reported_errors(), Progress(*columns, TimeElapsedColumn(), console=stderr) as bars:
         task = bars.add_task("kernels", total=len(JOB_KINDS))
 
