@@ -615,6 +615,10 @@ def run(
         check_figure_option(plot)
         check_workers(workers)
         loaded = load_presets(presets)
+        from planar_tui.sweep.spec import check_has_work
+
+        for preset in loaded:
+            check_has_work(preset)
         jobs = select_jobs([job for preset in loaded for job in preset.jobs], job_name)
         prepared = prepare_sweeps([] if job_name else loaded, out_dir, jobs, job_plot=plot,
                                   resume=resume)  # fmt: skip
@@ -905,10 +909,34 @@ def warmup() -> None:
 
 
 @app.command("presets", cls=Command)
-def list_presets() -> None:
-    """List the bundled presets, one line each."""
-    for path in bundled_presets():
-        typer.echo(f"{path.stem:<24} {preset_description(path)}")
+def list_presets(
+    name: Annotated[
+        str | None, typer.Argument(help="A bundled preset: print its text (or --copy it).")
+    ] = None,
+    copy: Annotated[
+        Path | None,
+        typer.Option(
+            "--copy",
+            metavar="PATH",
+            help="Write the preset NAME to this new file "
+            "to start from (an existing file is never overwritten).",
+        ),
+    ] = None,
+) -> None:
+    """List the bundled presets, one line each; with NAME, print that preset."""
+    from planar_tui.resources import bundled_preset, copy_bundled_preset
+
+    with reported_errors():
+        if name is None:
+            if copy is not None:
+                raise PresetError("command line", "--copy", "is given without NAME",
+                                  "planar-tui presets NAME --copy PATH")  # fmt: skip
+            for path in bundled_presets():
+                typer.echo(f"{path.stem:<24} {preset_description(path)}")
+        elif copy is None:
+            typer.echo(bundled_preset(name).read_text(encoding="utf-8"), nl=False)
+        else:
+            stdout.print(f"wrote {copy_bundled_preset(name, copy)}", markup=False)
 
 
 def main() -> None:

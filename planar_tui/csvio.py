@@ -199,3 +199,20 @@ def write_text_atomic(path: Path | str, text: str) -> Path:
 def write_csv_atomic(path: Path | str, table: CsvTable) -> Path:
     """Write ``table`` as CSV atomically (see :func:`write_atomic`)."""
     return write_atomic(path, table.write)
+
+
+def write_new_text(path: Path | str, text: str) -> Path:
+    """Write ``text`` to ``path``, which must not exist (:class:`FileExistsError`
+    otherwise, even when another process creates it meanwhile): a temporary file in the
+    same folder is hard-linked to ``path`` (``os.link`` never replaces), then removed,
+    so ``path`` is the whole text or absent."""
+    path = Path(path)
+    temp = _temporary_name(path)
+    try:
+        with open(temp, "x", encoding="utf-8", newline="") as stream:
+            stream.write(text)
+        os.chmod(temp, _new_file_mode())
+        os.link(temp, path)
+    finally:
+        temp.unlink(missing_ok=True)
+    return path

@@ -144,3 +144,16 @@ output = "big.csv"
     (number, parsed), *_ = seen
     assert number == 1
     assert parsed <= points_module.MAX_CHECKS + 1
+
+
+@pytest.mark.parametrize(
+    "text", ["", "# nothing\n", "[robot]\nlengths_m = [0.3]\nmasses_kg = [1.0]\n"]
+)
+def test_a_preset_with_nothing_to_run_is_one_line_exit_2(tmp_path, cli, text):
+    preset = tmp_path / "empty.toml"
+    preset.write_text(text)
+    result = cli("run", preset, "--out-dir", tmp_path / "out")
+    assert result.exit_code == ExitCode.BAD_INPUT
+    line = one_line(result)
+    assert line.startswith(f"error: {preset}: (file): has no job and no [[sweep]] table")
+    assert not (tmp_path / "out").exists()

@@ -318,6 +318,15 @@ def _two_numbers(reader: TableReader, key: str, entry: list) -> tuple[float, flo
     return low, high
 
 
+def check_has_work(preset: Preset) -> None:
+    """Refuse a preset with neither a job nor a sweep table (nothing to run:
+    :class:`PresetError`, exit code 2, rather than a silent success)."""
+    if not preset.jobs and preset.raw.get(TABLE) is None:
+        kinds = ", ".join(f"[{name}]" for name in JOB_KINDS)
+        raise PresetError(preset.path, "(file)", "has no job and no [[sweep]] table: nothing "
+                          "to run", f"a job table ({kinds}) or a [[sweep]] table")  # fmt: skip
+
+
 def parse_sweeps(preset: Preset) -> tuple[Sweep, ...]:
     """The preset's ``[[sweep]]`` tables (or one ``[sweep]`` table), checked."""
     value = preset.raw.get(TABLE)
