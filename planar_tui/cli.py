@@ -924,7 +924,8 @@ def list_presets(
     ] = None,
 ) -> None:
     """List the bundled presets, one line each; with NAME, print that preset."""
-    from planar_tui.resources import bundled_preset, copy_bundled_preset
+    from planar_tui.presets import copy_bundled_preset
+    from planar_tui.resources import bundled_preset
 
     with reported_errors():
         if name is None:

@@ -6,6 +6,7 @@ from __future__ import annotations
 import csv
 import time
 
+import pytest
 from textual.widgets import DataTable, Input
 
 from planar_tui.app.screens.sweep import SweepDialog, SweepScreen
@@ -240,3 +241,26 @@ async def test_a_cancelled_sweep_shows_and_exports_its_finished_points(tmp_path)
         with open(tmp_path / "partial.csv", newline="") as stream:
             written = list(csv.reader(stream))
         assert [row[header.index("status")] for row in written[1:]] == status
+
+
+@pytest.mark.parametrize(
+    "sweep",
+    [
+        'job = "torques[9]"\nvalues."robot.masses_kg[2]" = [1.0]',
+        'job = "torques"\nvalues."robot.masses_kg[2]" = [1.0, -2.0]',
+        'job = "torques"\nvalues."robot.masses_kg[2]" = [1.0, 2.0, 3.0]\nmax_points = 2',
+        'job = "torques"\nvalues."robot.masses_kg[2]" = [1.0]\nplot = "one.png"',
+        'job = "torques"\nvalues.nope = [1.0]',
+    ],
+)
+def test_the_app_refuses_the_sweep_tables_the_cli_refuses(tmp_path, cli, sweep):
+    """The validation line is not "ok" for a sweep the CLI refuses: the same message."""
+    from planar_tui.app.workbench import Workbench
+    from tests.sweep_presets import TORQUES, TORQUES_BASE, write
+
+    preset = write(tmp_path, "p.toml", TORQUES, f"[[sweep]]\n{sweep}\n", **TORQUES_BASE)
+    refused = cli("sweep", preset, "--out-dir", tmp_path / "out", "--workers", "1")
+    assert refused.exit_code == 2
+    preset_found, problems = Workbench.open(preset).check()
+    assert preset_found is None
+    assert [str(problem) for problem in problems] == refused.stderr.strip().splitlines()

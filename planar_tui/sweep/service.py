@@ -344,3 +344,19 @@ def resume_note(run: SweepRun) -> str:
     if run.recomputed:
         text += f", {run.recomputed} run again (point files missing)"
     return text
+
+
+def check_preset_sweeps(preset: Any) -> None:
+    """The CLI's checks of a preset's sweeps before it runs them, without files: every
+    ``[[sweep]]`` table read, its points counted and a sample of them made
+    (:func:`~planar_tui.sweep.points.make_points`), each ``plot`` drawable, and the
+    sweeps' workers, memory and time within the limits with the default workers
+    (:func:`~planar_tui.sweep.budget.check_sweep_budget`); :class:`PresetError` otherwise.
+    The app checks a document with it, so it says "ok" only for what the CLI runs."""
+    from planar_tui.sweep.budget import check_sweep_budget
+    from planar_tui.sweep.spec import parse_sweeps
+
+    prepared = [(sweep, make_points(sweep)) for sweep in parse_sweeps(preset)]
+    for sweep, points in prepared:
+        check_figure(sweep, points)
+    check_sweep_budget(prepared, None, None)
