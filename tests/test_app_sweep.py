@@ -191,7 +191,7 @@ async def test_cancel_stops_a_sweep_promptly(tmp_path):
         asked = time.monotonic()
         await pilot.press("escape")
         await finish(app, pilot)
-        assert time.monotonic() - asked < 2.0
+        assert time.monotonic() - asked < 5.0  # 10x the 0.5 s goal; the sweep runs for hours
         assert "cancelled" in str(app.query_one("#pane-simulate #job-status").render())
         assert app.last_sweep is None or app.last_sweep.cancelled
 
