@@ -154,8 +154,8 @@ def reported_errors() -> Iterator[None]:
     """Turn preset errors, interrupts and job failures into one line and an exit code."""
     try:
         yield
-    except PresetError as error:
-        raise fail(str(error), ExitCode.BAD_INPUT) from None
+    except PresetError as error:  # a job out of its budget while running: exit 1
+        raise fail(str(error), getattr(error, "exit_code", ExitCode.BAD_INPUT)) from None
     except Terminated:
         raise fail(
             "terminated: the running job's output was not written", ExitCode.TERMINATED

@@ -40,6 +40,14 @@ class PresetError(ValueError):
         return f"error: {self.message}"
 
 
+class BudgetExceeded(PresetError):
+    """A valid job that ran out of its budget while running (a workspace's boxes): located
+    like a preset error (file, key, what to change), but the input was accepted and the
+    job failed, so the CLI exits with 1 (:attr:`exit_code`), not 2."""
+
+    exit_code = 1
+
+
 class Cancelled(Exception):
     """Raised inside a runner when the user asked it to stop (Ctrl-C, the app's Cancel)."""
 

@@ -135,9 +135,17 @@ def test_bad_command_line_values_exit_2(cli, tmp_path, option, value):
 def test_box_budget_stops_with_a_clear_message_and_writes_nothing(cli, tmp_path):
     preset = write_preset(tmp_path, extra="box_budget = 1000\n")
     result = cli("workspace", preset, "--out-dir", tmp_path, "--boxes", tmp_path / "b.csv")
-    assert result.exit_code == 2
+    assert result.exit_code == 1  # the input was valid: the job failed (README: exit codes)
     assert "box_budget" in result.stderr and "exceeded 1,000 boxes" in result.stderr
+    assert "--precision" not in result.stderr
     assert not (tmp_path / "ws.csv").exists() and not (tmp_path / "b.csv").exists()
+    # the option that set the precision is named
+    result = cli("workspace", preset, "--precision", "0.05", "--out-dir", tmp_path)
+    assert result.exit_code == 1
+    (line,) = result.stderr.strip().splitlines()[-1:]
+    assert line.endswith("(expected a larger box_budget or a coarser precision_cm (set by "
+                         "--precision))"), line  # fmt: skip
+    assert not list(tmp_path.glob("ws*.csv"))
 
 
 def test_cancel_is_honoured_quickly_and_raises(tmp_path):

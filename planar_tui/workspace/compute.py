@@ -35,7 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from planar_tui.csvio import CsvTable
-from planar_tui.errors import PresetError
+from planar_tui.errors import BudgetExceeded
 from planar_tui.progress import Progress
 from planar_tui.workspace.robot import Robot3RRR
 
@@ -125,11 +125,14 @@ class BoxBudget:
     def spend(self, processed: int, fraction: float, lower_cm2: float, upper_cm2: float) -> None:
         self.processed += processed
         if self.processed > self.job.spec.box_budget:
-            raise PresetError(
+            by_option = (
+                " (set by --precision)" if "--precision" in getattr(self.job, "variant", "") else ""
+            )
+            raise BudgetExceeded(
                 self.job.preset_path,
                 f"{self.job.key}.box_budget",
                 f"the bisection exceeded {self.job.spec.box_budget:,} boxes; nothing was written",
-                "a larger box_budget or a coarser precision_cm",
+                f"a larger box_budget or a coarser precision_cm{by_option}",
             )
         self.progress.advance(
             max(0.0, fraction - self.progress.completed),

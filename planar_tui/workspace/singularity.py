@@ -22,7 +22,7 @@ import time
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from planar_tui.errors import PresetError
+from planar_tui.errors import BudgetExceeded, PresetError
 
 if TYPE_CHECKING:
     import numpy as np
@@ -281,7 +281,7 @@ def compute_singularities(robot, spec, extent, budget, job) -> SingularityOutcom
         processed_here += processed
         budget.processed += processed
         if budget.processed > spec.box_budget:
-            raise PresetError(
+            raise BudgetExceeded(
                 job.preset_path,
                 f"{job.key}.box_budget",
                 f"the bisection exceeded {spec.box_budget:,} boxes; nothing was written",
