@@ -33,8 +33,9 @@ from planar_tui.sweep.spec import Sweep
 
 #: Most local worker processes per usable core.
 WORKERS_PER_CORE = 4
-#: Memory of one idle local worker process with NumPy, Numba and the kernels loaded
-#: (its nanny included; about 250 MiB measured on the project's machine, rounded up).
+#: Memory planned for one local worker process with NumPy, Numba and the kernels loaded
+#: (a generous round figure: issue 19 saw 116 starting workers take 6.1 GiB, 54 MiB
+#: each, before any kernel was loaded).
 WORKER_FOOTPRINT_BYTES = 300 * 2**20
 #: Points whose estimates stand for the whole sweep.
 ESTIMATE_POINTS = 64
