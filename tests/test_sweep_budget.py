@@ -7,20 +7,13 @@ from __future__ import annotations
 import pytest
 
 from planar_tui.errors import ExitCode
-from tests.sweep_presets import TORQUES, TORQUES_BASE, write
+from tests.sweep_presets import TORQUES, TORQUES_BASE, one_line, write
 
 SWEEP = """[[sweep]]
 job = "torques"
 values."robot.masses_kg[2]" = [1.0, 2.0]
 output = "s.csv"
 """
-
-
-def one_line(result) -> str:
-    lines = result.stderr.strip().splitlines()
-    assert len(lines) == 1, result.stderr
-    assert "Traceback" not in result.output
-    return lines[0]
 
 
 @pytest.mark.parametrize("workers", ["100000000000000000000", "1000"])

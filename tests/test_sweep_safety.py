@@ -9,7 +9,7 @@ import json
 import pytest
 
 from planar_tui.errors import ExitCode
-from tests.sweep_presets import SENSITIVITY, TORQUES, TORQUES_BASE, write
+from tests.sweep_presets import SENSITIVITY, TORQUES, TORQUES_BASE, one_line, write
 
 POINTS = """[[sweep]]
 job = "torques"
@@ -17,13 +17,6 @@ values."robot.masses_kg[2]" = [1.0, 2.0]
 output = "s.csv"
 point_outputs = "pts"
 """
-
-
-def one_line(result) -> str:
-    lines = result.stderr.strip().splitlines()
-    assert len(lines) == 1, result.stderr
-    assert "Traceback" not in result.output
-    return lines[0]
 
 
 def test_a_users_point_file_in_the_folder_is_refused_by_name_and_kept(tmp_path, cli):
