@@ -12,24 +12,21 @@ indices of every output at the times ``at_s``, a Table-4-shaped table per time. 
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
 from planar_tui.dynamics.robot import SerialRobot
 from planar_tui.dynamics.simulate import RunSettings, rk4_step_seconds
 from planar_tui.errors import PresetError
-from planar_tui.jobkind import Job, JobKind, JobResult
+from planar_tui.jobkind import Command, Job, JobKind, JobResult, Option, Tab
 from planar_tui.limits import memory_problem, time_problem
 from planar_tui.motion.device import DEVICES
 from planar_tui.progress import Progress
 from planar_tui.schema import (
-    OptionReader,
     TableReader,
     integer,
     number,
     plot_setting,
-    read_option,
     relative_path,
     setting,
     shown,
@@ -91,9 +88,7 @@ class MotionSpec(RunSettings):
 
     Derived fields, not keys: ``indices_file`` is the indices CSV's name
     (``indices_output`` or the default made from ``output``); ``device_used`` is the device
-    :func:`prepare_motion` chose and ``device_note`` what the summary says about it;
-    ``overridden`` names the keys command-line options set (:func:`with_overrides`), so
-    that :func:`prepare_motion` blames the option, not the preset, for their problems.
+    :func:`prepare_motion` chose and ``device_note`` what the summary says about it.
     """
 
     every: int | None = setting(
@@ -165,7 +160,6 @@ class MotionSpec(RunSettings):
     indices_file: str = dataclasses.field(default="", compare=False)
     device_used: str | None = None
     device_note: str = ""
-    overridden: tuple[str, ...] = dataclasses.field(default=(), compare=False)
 
     @staticmethod
     def check(values: dict, reader: TableReader, robot: SerialRobot) -> dict:
@@ -284,10 +278,6 @@ def check_resources(error, spec: MotionSpec, robot: SerialRobot) -> None:
         )
 
 
-#: The command-line option of each key :func:`with_overrides` sets.
-OPTIONS = {"methods": "--method", "samples": "--samples", "seed": "--seed", "device": "--device"}
-
-
 def _checked_device(job: Job) -> tuple[str, str]:
     """The job's resources checked again (overrides change them) and its device chosen
     (:func:`~planar_tui.motion.device.resolve`): ``(device, note)``; ``cuda`` without a
@@ -299,11 +289,11 @@ def _checked_device(job: Job) -> tuple[str, str]:
     changed them."""
     from planar_tui.motion.device import resolve
 
-    overridden = job.spec.overridden
+    overridden = job.overridden  # key -> the option that set it
 
     def error(name, problem, expected):
         causes = ("samples", "methods") if name == "samples" else (name,)
-        option = next((OPTIONS[key] for key in causes if key in overridden), None)
+        option = next((overridden[key] for key in causes if key in overridden), None)
         if option is not None:
             return PresetError("command line", option, problem, expected)
         return PresetError(job.preset_path, f"{job.key}.{name}", problem, expected)
@@ -329,32 +319,6 @@ def prepare_motion(job: Job) -> Job:
     used, note = _checked_device(job)
     spec = dataclasses.replace(job.spec, device_used=used, device_note=note)
     return dataclasses.replace(job, spec=spec)
-
-
-def with_overrides(spec: MotionSpec, options: Mapping[str, Any]) -> MotionSpec:
-    """The spec with command-line overrides (``methods``, ``samples``, ``seed``,
-    ``device``; ``None`` keeps the preset's value), checked like the preset's keys."""
-
-    def error(name, problem, expected):
-        return PresetError("command line", f"--{name.replace('_', '-')}", problem, expected)
-
-    given = {
-        name: options[name]
-        for name in ("samples", "seed", "device")
-        if options.get(name) is not None
-    }
-    reader = OptionReader(given, {})
-    changes: dict[str, Any] = {name: read_option(MotionSpec, reader, name) for name in given}
-    methods = options.get("methods")
-    if methods:
-        for method in methods:
-            if method not in METHODS:
-                raise error("method", f"is {method!r}", "montecarlo, sobol or efast")
-        changes["methods"] = tuple(dict.fromkeys(methods))
-    overridden = tuple(key for key in OPTIONS if key in changes or key in spec.overridden)
-    updated = dataclasses.replace(spec, **changes, overridden=overridden)
-    check_samples(error, updated.methods, updated.samples)
-    return updated
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -481,8 +445,27 @@ JOB_KIND = JobKind(
     summary="Monte-Carlo band and Sobol'/eFAST indices of the motion under tolerances",
     render=render_motion,
     extra_outputs=extra_outputs,
-    overrides=with_overrides,
     prepare=prepare_motion,
     check=check_motion,
     point_figures=point_figures,
-)
+    command=Command(
+        "motion",
+        "Monte-Carlo band and Sobol'/eFAST indices of the motion of every "
+        "motion_uncertainty job under length and mass tolerances: band CSV, indices CSV (the "
+        "job's indices_output, or OUTPUT-indices.csv) and a Table-4-shaped table per time.\n\n"
+        "An option that changes a job's setting is appended to the stem of the files the preset "
+        "names; a name given with --out is kept.",
+        options=(
+            Option("--method", "methods",
+                   "montecarlo, sobol or efast (repeatable); overrides `methods`.",
+                   many=True, short="-m"),
+            Option("--samples", "samples", "N; overrides `samples`.", int),
+            Option("--seed", "seed", "Seed >= 1; overrides `seed`.", int),
+            Option("--device", "device", "cpu, cuda or auto; overrides `device`."),
+        ),
+    ),
+    tab=Tab("Motion", 5, "planar_tui.app.widgets.motion_pane:MotionPane"),
+    figure="planar_tui.figures.dispatch:from_main_table",
+    warmup="[motion_uncertainty]\nduration_s = 0.002\nstep_s = 0.001\nsamples = 128\n"
+    'methods = ["montecarlo", "sobol", "efast"]\n',
+)  # fmt: skip

@@ -14,17 +14,15 @@ from typing import Any
 
 from planar_tui.dynamics.robot import SerialRobot
 from planar_tui.errors import PresetError
-from planar_tui.jobkind import Job, JobKind, JobResult
+from planar_tui.jobkind import Command, Job, JobKind, JobResult, Option, Tab
 from planar_tui.progress import Progress
 from planar_tui.schema import (
-    OptionReader,
     TableReader,
     boolean,
     integer,
     number,
     per_link,
     plot_setting,
-    read_option,
     setting,
     shown,
     string,
@@ -308,29 +306,6 @@ def prepare_sensitivity(job: Job) -> Job:
     return dataclasses.replace(job, spec=spec)
 
 
-def with_overrides(spec: SensitivitySpec, options: Mapping[str, Any]) -> SensitivitySpec:
-    """The spec with command-line overrides (``methods``, ``samples``, ``seed``; ``None``
-    keeps the preset's value), checked like the preset's keys."""
-
-    def error(name, problem, expected):
-        return PresetError("command line", f"--{name.replace('_', '-')}", problem, expected)
-
-    given = {name: options[name] for name in ("samples", "seed") if options.get(name) is not None}
-    reader = OptionReader(given, {})
-    checked = {name: read_option(SensitivitySpec, reader, name) for name in given}
-    changes: dict[str, Any] = {}
-    methods = options.get("methods")
-    if methods:
-        for method in methods:
-            if method not in METHODS:
-                raise error("method", f"is {method!r}", "sobol or efast")
-        changes["methods"] = tuple(dict.fromkeys(methods))
-    changes |= checked
-    updated = dataclasses.replace(spec, **changes)
-    check_samples(error, updated.methods, updated.samples, updated.efast_samples)
-    return updated
-
-
 @dataclass(frozen=True, kw_only=True)
 class SensitivityResult(JobResult):
     """Indices of one job: one :class:`~planar_tui.sensitivity.results.Analysis` per method
@@ -462,7 +437,22 @@ JOB_KIND = JobKind(
     run=run_sensitivity,
     summary="Sobol'/eFAST sensitivity of the joint torques to lengths and masses",
     render=render_sensitivity,
-    overrides=with_overrides,
     prepare=prepare_sensitivity,
     point_figures=point_figures,
-)
+    command=Command(
+        "sensitivity",
+        "Sobol'/eFAST sensitivity of the joint torques of every sensitivity job; one CSV "
+        "each.\n\nAn option that changes a job's setting is appended to the stem of the file "
+        "the preset names (tiny-sensitivity--samples-512.csv); a name given with --out is kept.",
+        options=(
+            Option("--method", "methods", "sobol or efast (repeatable); overrides `methods`.",
+                   many=True, short="-m"),
+            Option("--samples", "samples", "Sobol' base N (a power of two); overrides `samples`.",
+                   int),
+            Option("--seed", "seed", "Seed >= 1; overrides `seed`.", int),
+        ),
+    ),
+    tab=Tab("Sensitivity", 1, "planar_tui.app.widgets.sensitivity_pane:SensitivityPane"),
+    figure="planar_tui.figures.sensitivity:from_result",
+    warmup="[sensitivity]\nsamples = 8\nefast_samples = 65\n",
+)  # fmt: skip
