@@ -73,6 +73,7 @@ class WorkbenchApp(FileActions, App):
             for number, key in enumerate(("f2", "f3", "f4", "f6", "f7", "f12"), start=1)
         ),
     ]
+
     def __init__(
         self, workbench: Workbench, output_dir: Path | str = ".", *, warm_kernels: bool = False
     ):
