@@ -7,6 +7,7 @@ its results through the same functions, so both name and write files identically
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import stat
 import time
@@ -17,10 +18,10 @@ from typing import Any
 
 from planar_tui.csvio import write_csv_atomic
 from planar_tui.errors import JobError, PresetError
-from planar_tui.jobkind import Job, JobResult, PreparedJob
+from planar_tui.jobkind import Job, JobResult, Option, PreparedJob
 from planar_tui.progress import Progress
 from planar_tui.registry import JOB_KINDS
-from planar_tui.schema import NAME_MAX_BYTES, file_name_problem
+from planar_tui.schema import NAME_MAX_BYTES, TableReader, declared_keys, file_name_problem
 
 
 @dataclass(frozen=True)
@@ -271,12 +272,6 @@ def check_planned(files: Sequence[PlannedFile], presets: Mapping[Path, str] | No
                 )  # fmt: skip
 
 
-def check_plans(plans: Sequence[OutputPlan]) -> None:
-    """Check every planned job output before any job runs (:func:`check_planned`, with
-    the jobs' presets)."""
-    check_planned(plan_files(plans), {plan.job.preset_path: plan.job.label for plan in plans})
-
-
 def job_names(job: Job) -> tuple[str, ...]:
     """The names ``--job`` selects a job by: its table key (``workspace[2]``), its label
     (``paper-b-table3:workspace[2]``) and its output file name (``table3-slope.csv``)."""
@@ -313,47 +308,70 @@ def _option_text(value: Any) -> str:
     return repr(value) if isinstance(value, float) else str(value)
 
 
-def override_variant(
-    before: Any, after: Any, options: Mapping[str, Any], labels: Mapping[str, str]
-) -> str:
+def override_variant(before: Any, after: Any, options: Sequence[Option]) -> str:
     """``--OPTION-VALUE`` for each option that changed a setting from ``before`` to
     ``after`` (``--form-mean-value--precision-0.5``), in the order of ``options``."""
-    return "".join(
-        f"--{labels.get(name, name)}-{_option_text(getattr(after, name))}"
-        for name in options
-        if getattr(before, name, None) != getattr(after, name, None)
-    )
+    attributes = {key.name: attribute for attribute, key in declared_keys(type(after))}
+    parts = []
+    for option in options:
+        attribute = attributes[option.key]
+        if getattr(before, attribute, None) != getattr(after, attribute, None):
+            parts.append(f"--{option.label}-{_option_text(getattr(after, attribute))}")
+    return "".join(parts)
 
 
-def apply_overrides(
-    jobs: Sequence[Job], options: Mapping[str, Any], labels: Mapping[str, str] | None = None
-) -> tuple[Job, ...]:
-    """The jobs with command-line options applied by their kinds (checked there).
+class _OverrideReader(TableReader):
+    """A job's table (its settings dumped, its ``output``) with the command-line options'
+    values in place of their keys, read again by the settings' own readers and checks: a
+    problem names the option (``command line: --samples``), the option of the key when one
+    set it, else the first option given (the preset alone was valid)."""
 
-    The settings an option sets are the job's ``overridden`` (name -> ``--option``), so
-    that a problem they cause later names the option. A job whose settings an option
-    changed gets the variant :func:`override_variant`
-    (option names from ``labels``, e.g. ``{"precision_cm": "precision"}``), so the files
-    the preset names say what was run: ``table3-natural--form-mean-value.csv``. An option
-    equal to the preset's value changes nothing, names included.
+    def __init__(self, job: Job, table: dict[str, Any], given: Mapping[str, Option]):
+        super().__init__(job.preset_path, table, job.key, tuple(table))
+        self.given = given
+
+    def error(self, name: str, problem: str, expected: str | None = None) -> PresetError:
+        option = self.given.get(name) or next(iter(self.given.values()))
+        return PresetError("command line", option.name, problem, expected)
+
+
+def _given(value: Any) -> bool:
+    return value is not None and value != [] and value != ()
+
+
+def override_job(job: Job, values: Mapping[str, Any]) -> Job:
+    """``job`` with the command-line options of its kind's command applied: ``values`` by
+    option name (``--samples``; ``None`` or an empty list keeps the preset's value).
+
+    The one option reader of every kind: each given value replaces its key in the job's
+    table, the kind's ``overrides`` hook adjusts the keys that follow it, and the table is
+    read again by the settings' own readers and cross-key checks, so an option is checked
+    exactly as its key is; a problem is a :class:`PresetError` ``command line: --OPTION``
+    (:class:`_OverrideReader`). The job records what changed: its ``variant``
+    (:func:`override_variant`) and ``overridden`` (key -> option).
     """
-    import dataclasses
+    kind = JOB_KINDS[job.kind]
+    options = kind.command.options if kind.command is not None else ()
+    given = {option.key: option for option in options if _given(values.get(option.name))}
+    if not given:
+        return job
+    table = {"output": job.output, **kind.dump(job.spec)}
+    table.update({key: values[option.name] for key, option in given.items()})
+    if kind.overrides is not None:
+        table = kind.overrides(table, {key: table[key] for key in given})
+    spec = kind.parse(_OverrideReader(job, table, given), job.robot)
+    variant = override_variant(job.spec, spec, options)
+    overridden = {**job.overridden, **{key: option.name for key, option in given.items()}}
+    return dataclasses.replace(job, spec=spec, variant=job.variant + variant, overridden=overridden)
 
-    updated = []
-    for job in jobs:
-        spec = JOB_KINDS[job.kind].with_overrides(job.spec, options)
-        variant = override_variant(job.spec, spec, options, labels or {})
-        overridden = dict(job.overridden) | {
-            name: "--" + (labels or {}).get(name, name).replace("_", "-")
-            for name, value in options.items()
-            if value is not None and value != () and value != [] and hasattr(spec, name)
-        }
-        updated.append(
-            dataclasses.replace(
-                job, spec=spec, variant=job.variant + variant, overridden=overridden
-            )
-        )
-    return tuple(updated)
+
+def apply_overrides(jobs: Sequence[Job], values: Mapping[str, Any]) -> tuple[Job, ...]:
+    """The jobs with command-line options applied (:func:`override_job`), each checked by
+    its kind. A job whose settings an option changed gets the variant
+    :func:`override_variant`, so the files the preset names say what was run:
+    ``table3-natural--form-mean-value.csv``. An option equal to the preset's value changes
+    nothing, names included."""
+    return tuple(override_job(job, values) for job in jobs)
 
 
 def prepare_jobs(jobs: Sequence[Job[object, object]]) -> tuple[PreparedJob[Any, Any, object], ...]:

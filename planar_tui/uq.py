@@ -4,7 +4,7 @@ One home for what both kinds read, check and override about their sampling: the 
 (:data:`METHODS`, one entry each: a new method is one :class:`Method` line), the reader
 of a ``methods`` key, the sample-count rules of each method's design, the seed's range,
 the tolerance keys and their check against the robot's nominal values, and the
-command-line overrides (``--method``, ``--samples``, ``--seed``).
+command-line options that override them (``--method``, ``--samples``, ``--seed``).
 
 Every input ``x_i`` is uniform on ``[nominal_i − δ, nominal_i + δ]`` (δ the key's
 tolerance); a design of N base samples over D inputs has :func:`design_rows` rows.
@@ -12,21 +12,13 @@ tolerance); a design of N base samples over D inputs has :func:`design_rows` row
 
 from __future__ import annotations
 
-import dataclasses
 from collections.abc import Callable, Collection, Iterable, Mapping
 from dataclasses import dataclass
-from typing import Any, Protocol, TypeVar, cast
+from typing import Any, Protocol
 
 from planar_tui.errors import PresetError
-from planar_tui.schema import (
-    OptionReader,
-    TableReader,
-    integer,
-    number,
-    read_option,
-    setting,
-    shown,
-)
+from planar_tui.jobkind import Option
+from planar_tui.schema import TableReader, integer, number, setting, shown
 
 #: Largest seed: eFAST's bootstrap draws with ``np.random.RandomState(seed)``, which takes
 #: 32-bit seeds (SALib's Sobol' sampling would take any).
@@ -35,8 +27,6 @@ SEED_MAX = 2**32 - 1
 EFAST_HARMONICS = 4
 #: eFAST needs N > 4 M² (SALib ``fast_sampler``).
 EFAST_MIN_SAMPLES = 4 * EFAST_HARMONICS**2 + 1
-#: The settings a command-line option may override, with the option's name.
-OPTIONS = {"methods": "--method", "samples": "--samples", "seed": "--seed"}
 
 
 def _power_of_two_from_8(samples: int) -> str | None:
@@ -185,48 +175,14 @@ def check_samples(error: ErrorFactory, methods: Collection[str], sizes: SampleSi
             raise error(key, f"is {samples}, {problem} ({method.title})", method.samples_expected)
 
 
-class Sampled(Protocol):
-    """A settings dataclass the UQ overrides apply to."""
-
-    @property
-    def methods(self) -> tuple[str, ...]: ...
-    @property
-    def samples(self) -> int: ...
-    @property
-    def seed(self) -> int: ...
-
-
-SpecT = TypeVar("SpecT", bound=Sampled)
-
-
-def with_overrides(
-    spec: SpecT,
-    options: Mapping[str, Any],
-    allowed: tuple[str, ...],
-    sizes: Callable[[SpecT], SampleSizes],
-    keys: Iterable[str] = (),
-) -> SpecT:
-    """``spec`` with the command-line options applied: ``methods`` (any of ``allowed``),
-    ``samples``, ``seed`` and the further ``keys`` (``None`` keeps the preset's value),
-    each read and checked as the preset's key is, then the sample counts ``sizes(spec)``
-    checked for the methods; a bad value is ``command line: --OPTION``."""
-
-    def error(name: str, problem: str, expected: str) -> PresetError:
-        option = OPTIONS.get(name, "--" + name.replace("_", "-"))
-        return PresetError("command line", option, problem, expected)
-
-    given = {
-        name: options[name] for name in ("samples", "seed", *keys) if options.get(name) is not None
-    }
-    reader = OptionReader(given, {})
-    changes = {name: read_option(type(spec), reader, name) for name in given}
-    methods = options.get("methods")
-    if methods:
-        for method in methods:
-            if method not in allowed:
-                expected = ", ".join(allowed[:-1]) + f" or {allowed[-1]}"
-                raise error("methods", f"is {method!r}", expected)
-        changes["methods"] = tuple(dict.fromkeys(methods))
-    updated: SpecT = dataclasses.replace(cast(Any, spec), **changes)
-    check_samples(error, updated.methods, sizes(updated))
-    return updated
+def sampling_options(methods: tuple[str, ...], samples_help: str) -> tuple[Option, ...]:
+    """The command-line options that override the sampling keys (``--method``,
+    ``--samples``, ``--seed``), read and checked as the keys are
+    (:func:`planar_tui.batch.override_job`)."""
+    names = ", ".join(methods[:-1]) + f" or {methods[-1]}"
+    return (
+        Option("--method", "methods", f"{names} (repeatable); overrides `methods`.",
+               many=True, short="-m"),
+        Option("--samples", "samples", f"{samples_help}; overrides `samples`.", int),
+        Option("--seed", "seed", "Seed >= 1; overrides `seed`.", int),
+    )  # fmt: skip

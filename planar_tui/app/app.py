@@ -1,4 +1,4 @@
-"""The Textual workbench: four tabs over one preset, jobs run by the batch service.
+"""The Textual workbench: a tab per job kind (and the robot's) over one preset, jobs run by the batch service.
 
 Jobs run in :class:`~planar_tui.app.job_runner.JobRunner` (a thread worker around
 :func:`planar_tui.batch.run_job`, as the CLI runs them); a UI timer shows the runner's
@@ -73,14 +73,6 @@ class WorkbenchApp(FileActions, App):
             for number, key in enumerate(("f2", "f3", "f4", "f6", "f7", "f12"), start=1)
         ),
     ]
-    TABS = (
-        ("Robot", "robot"),
-        ("Sensitivity", "sensitivity"),
-        ("Workspace", "workspace"),
-        ("Simulate", "simulate"),
-        ("Torques", "torques"),
-        ("Motion", "motion_uncertainty"),
-    )
 
     def __init__(
         self, workbench: Workbench, output_dir: Path | str = ".", *, warm_kernels: bool = False
@@ -102,25 +94,37 @@ class WorkbenchApp(FileActions, App):
 
     # -- layout ---------------------------------------------------------------------
     @staticmethod
-    def pane_classes() -> dict[str, type]:
-        """The dedicated pane of each tab; a job kind without one gets :class:`JobPane`."""
-        from planar_tui.app.widgets.motion_pane import MotionPane
-        from planar_tui.app.widgets.sensitivity_pane import SensitivityPane
-        from planar_tui.app.widgets.simulate_pane import SimulatePane
-        from planar_tui.app.widgets.workspace_pane import WorkspacePane
+    def tabs() -> tuple[tuple[str, str], ...]:
+        """(title, name) of every tab: Robot, then each job kind's declared
+        :class:`~planar_tui.jobkind.Tab` in its order (read from the registry now)."""
+        from planar_tui.registry import JOB_KINDS
 
-        return {
-            "robot": RobotPane,
-            "sensitivity": SensitivityPane,
-            "workspace": WorkspacePane,
-            "simulate": SimulatePane,
-            "motion_uncertainty": MotionPane,
-        }
+        kinds = sorted(
+            (kind.tab.order, kind.tab.title, name)
+            for name, kind in JOB_KINDS.items()
+            if kind.tab is not None
+        )
+        return (("Robot", "robot"), *((title, name) for _, title, name in kinds))
+
+    @staticmethod
+    def pane_classes() -> dict[str, type]:
+        """The dedicated pane of each tab (a job kind's ``Tab.pane``, ``module:Class``); a
+        job kind without one gets :class:`JobPane`."""
+        import importlib
+
+        from planar_tui.registry import JOB_KINDS
+
+        panes: dict[str, type] = {"robot": RobotPane}
+        for name, kind in JOB_KINDS.items():
+            if kind.tab is not None and kind.tab.pane is not None:
+                module, _, attribute = kind.tab.pane.partition(":")
+                panes[name] = getattr(importlib.import_module(module), attribute)
+        return panes
 
     def compose(self) -> ComposeResult:
         panes = self.pane_classes()
         with TabbedContent(id="tabs"):
-            for title, name in self.TABS:
+            for title, name in self.tabs():
                 with TabPane(title, id=f"tab-{name}"):
                     pane = panes.get(name)
                     if pane is None:
@@ -294,12 +298,11 @@ class WorkbenchApp(FileActions, App):
         """Run every job of the preset through the batch service into ``out_dir`` (files
         checked before the first job, each written when its job ends); ``False`` when the
         preset or a path is refused (a dialog says why)."""
-        from planar_tui import batch
+        from planar_tui.plan import plan_run
 
         try:
             jobs = self.workbench.validate().jobs
-            plans = batch.plan_outputs(jobs, Path(out_dir))
-            batch.check_plans(plans)
+            plan = plan_run(jobs, Path(out_dir), prepare=False)  # each prepared as it runs
         except PresetError as error:
             self.push_screen(MessageDialog("Not run", str(error)))
             return False
@@ -311,7 +314,7 @@ class WorkbenchApp(FileActions, App):
         self.batch_dir = Path(out_dir)
         host.controls().set_running(True)
         host.controls().status(f"starting {len(jobs)} jobs")
-        self.jobs.start_all(host, plans)
+        self.jobs.start_all(host, list(plan.jobs))
         self.refresh_bindings()
         return True
 
@@ -558,8 +561,9 @@ class WorkbenchApp(FileActions, App):
 
     def action_show_tab_number(self, number: int) -> None:
         """Switch to tab ``number`` (1-based: keys 1-6 outside fields, F2-F4, F6, F7, F12)."""
-        if 1 <= number <= len(self.TABS):
-            self.action_show_tab(self.TABS[number - 1][1])
+        tabs = self.tabs()
+        if 1 <= number <= len(tabs):
+            self.action_show_tab(tabs[number - 1][1])
             self.call_after_refresh(self.focus_tab_content)
 
     def focus_tab_content(self) -> None:
@@ -647,7 +651,7 @@ class WorkbenchApp(FileActions, App):
         yield SystemCommand(
             "Toggle form", "Hide/show the settings form (ctrl+f)", self.action_toggle_form
         )
-        for title, name in self.TABS:
+        for title, name in self.tabs():
             yield SystemCommand(
                 f"Show {title} tab",
                 f"Switch to the {title} tab",

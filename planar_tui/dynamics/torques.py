@@ -3,14 +3,16 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-
-import numpy as np
+from typing import TYPE_CHECKING
 
 from planar_tui.csvio import CsvTable
 from planar_tui.dynamics.robot import SerialRobot
-from planar_tui.jobkind import Job, JobKind, JobResult
+from planar_tui.jobkind import Command, Job, JobKind, JobResult, Tab
 from planar_tui.progress import Progress
 from planar_tui.schema import PER_LINK, TableReader, number_rows, plot_setting, setting
+
+if TYPE_CHECKING:
+    import numpy as np
 
 
 def _zero_rows(robot: SerialRobot, values: dict) -> tuple[tuple[float, ...], ...]:
@@ -66,6 +68,8 @@ def torques_header(n_links: int) -> tuple[str, ...]:
 
 def run_torques(job: Job, progress: Progress) -> TorquesResult:
     """Evaluate the inverse dynamics at every listed state (one batched kernel call)."""
+    import numpy as np
+
     from planar_tui.kernels.dynamics import inverse_dynamics_batch_states
 
     spec, robot = job.spec, job.robot
@@ -89,6 +93,8 @@ def run_torques(job: Job, progress: Progress) -> TorquesResult:
 
 def point_figures(job: Job, result: TorquesResult) -> dict[str, float]:
     """A sweep row's figures: per joint the largest ``|τ_i|`` over the states (N m)."""
+    import numpy as np
+
     peak = np.abs(result.tau_Nm).max(axis=0)
     return {f"tau{i}_abs_max_Nm": float(v) for i, v in enumerate(peak, start=1)}
 
@@ -100,4 +106,11 @@ JOB_KIND = JobKind(
     run=run_torques,
     summary="inverse dynamics at listed states",
     point_figures=point_figures,
+    command=Command(
+        "torques",
+        "Inverse dynamics at the listed states of every torques job; one CSV per job.",
+    ),
+    tab=Tab("Torques", 4),
+    figure="planar_tui.figures.torques:from_result",
+    warmup="[torques]\ntheta_deg = [[0, 10]]\n",
 )

@@ -11,7 +11,6 @@ indices of every output at the times ``at_s``, a Table-4-shaped table per time. 
 
 from __future__ import annotations
 
-from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -19,7 +18,16 @@ from planar_tui import uq
 from planar_tui.dynamics.robot import SerialRobot
 from planar_tui.dynamics.simulate import RunSettings, rk4_step_seconds
 from planar_tui.errors import PresetError
-from planar_tui.jobkind import Job, JobKind, JobResult, PreparedJob, option_or_key
+from planar_tui.jobkind import (
+    Command,
+    Job,
+    JobKind,
+    JobResult,
+    Option,
+    PreparedJob,
+    Tab,
+    option_or_key,
+)
 from planar_tui.limits import memory_problem, time_problem
 from planar_tui.motion.device import DEVICES
 from planar_tui.progress import Progress
@@ -274,13 +282,6 @@ def prepare_motion(job: MotionJob) -> MotionPrepared:
     return _checked_device(job)
 
 
-def with_overrides(spec: MotionSpec, options: Mapping[str, Any]) -> MotionSpec:
-    """The spec with command-line overrides (``methods``, ``samples``, ``seed``,
-    ``device``; ``None`` keeps the preset's value), checked like the preset's keys
-    (:func:`uq.with_overrides`)."""
-    return uq.with_overrides(spec, options, METHODS, MotionSpec.sample_keys, keys=("device",))
-
-
 @dataclass(frozen=True, kw_only=True)
 class MotionResult(JobResult):
     """The band and the indices of one job.
@@ -406,8 +407,23 @@ JOB_KIND = JobKind(
     summary="Monte-Carlo band and Sobol'/eFAST indices of the motion under tolerances",
     render=render_motion,
     extra_outputs=extra_outputs,
-    overrides=with_overrides,
     prepare=prepare_motion,
     check=check_motion,
     point_figures=point_figures,
-)
+    command=Command(
+        "motion",
+        "Monte-Carlo band and Sobol'/eFAST indices of the motion of every "
+        "motion_uncertainty job under length and mass tolerances: band CSV, indices CSV (the "
+        "job's indices_output, or OUTPUT-indices.csv) and a Table-4-shaped table per time.\n\n"
+        "An option that changes a job's setting is appended to the stem of the files the preset "
+        "names; a name given with --out is kept.",
+        options=(
+            *uq.sampling_options(METHODS, "N"),
+            Option("--device", "device", "cpu, cuda or auto; overrides `device`."),
+        ),
+    ),
+    tab=Tab("Motion", 5, "planar_tui.app.widgets.motion_pane:MotionPane"),
+    figure="planar_tui.figures.dispatch:from_main_table",
+    warmup="[motion_uncertainty]\nduration_s = 0.002\nstep_s = 0.001\nsamples = 128\n"
+    'methods = ["montecarlo", "sobol", "efast"]\n',
+)  # fmt: skip

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 from planar_tui import uq
 from planar_tui.dynamics.robot import SerialRobot
 from planar_tui.errors import PresetError
-from planar_tui.jobkind import Job, JobKind, JobResult, PreparedJob, option_or_key
+from planar_tui.jobkind import Command, Job, JobKind, JobResult, PreparedJob, Tab, option_or_key
 from planar_tui.progress import Progress
 from planar_tui.schema import (
     TableReader,
@@ -254,12 +254,6 @@ def prepare_sensitivity(job: Job[SensitivitySpec, SerialRobot]) -> SensitivityPr
     return SensitivityPrepared(solve_posture(job))
 
 
-def with_overrides(spec: SensitivitySpec, options: Mapping[str, Any]) -> SensitivitySpec:
-    """The spec with command-line overrides (``methods``, ``samples``, ``seed``; ``None``
-    keeps the preset's value), checked like the preset's keys (:func:`uq.with_overrides`)."""
-    return uq.with_overrides(spec, options, METHODS, SensitivitySpec.sample_keys)
-
-
 @dataclass(frozen=True, kw_only=True)
 class SensitivityResult(JobResult):
     """Indices of one job: one :class:`~planar_tui.sensitivity.results.Analysis` per method
@@ -396,7 +390,16 @@ JOB_KIND = JobKind(
     run=run_sensitivity,
     summary="Sobol'/eFAST sensitivity of the joint torques to lengths and masses",
     render=render_sensitivity,
-    overrides=with_overrides,
     prepare=prepare_sensitivity,
     point_figures=point_figures,
-)
+    command=Command(
+        "sensitivity",
+        "Sobol'/eFAST sensitivity of the joint torques of every sensitivity job; one CSV "
+        "each.\n\nAn option that changes a job's setting is appended to the stem of the file "
+        "the preset names (tiny-sensitivity--samples-512.csv); a name given with --out is kept.",
+        options=uq.sampling_options(METHODS, "Sobol' base N (a power of two)"),
+    ),
+    tab=Tab("Sensitivity", 1, "planar_tui.app.widgets.sensitivity_pane:SensitivityPane"),
+    figure="planar_tui.figures.sensitivity:from_result",
+    warmup="[sensitivity]\nsamples = 8\nefast_samples = 65\n",
+)  # fmt: skip

@@ -10,11 +10,19 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from planar_tui.errors import PresetError
-from planar_tui.jobkind import Job, JobKind, JobResult, PreparedJob
+from planar_tui.jobkind import (
+    Command,
+    Job,
+    JobKind,
+    JobResult,
+    Option,
+    OutputOption,
+    PreparedJob,
+    Tab,
+)
 from planar_tui.progress import Progress
 from planar_tui.schema import (
     TableReader,
@@ -273,33 +281,18 @@ class WorkspaceSpec:
         return math.radians(self.orientation_deg)
 
 
-def with_overrides(spec: WorkspaceSpec, options: Mapping[str, Any]) -> WorkspaceSpec:
-    """The spec with command-line overrides ``form`` and ``precision_cm`` (``None`` keeps
-    the preset's value), checked like the preset's keys."""
-    form, precision_cm = options.get("form"), options.get("precision_cm")
-    if form is not None:
-        if form not in FORMS:
-            raise PresetError(
-                "command line", "--form", f"is {form!r}", "one of " + ", ".join(FORMS)
-            )
-        if isinstance(spec.orientation_deg, tuple) and form != "arc-distance":
-            raise PresetError(
-                "command line",
-                "--form",
-                f"is {form!r} for a job with orientation_deg = [lo, hi]",
-                "arc-distance (the only form over a range of orientations)",
-            )
-        spec = replace(spec, form=form, expanded=spec.expanded and form == "natural")
-    if precision_cm is not None:
-        if not (math.isfinite(precision_cm) and precision_cm > 0):
-            raise PresetError("command line", "--precision", f"is {precision_cm:g}", "a number > 0")
-        refine = spec.refine_precision_cm
-        spec = replace(
-            spec,
-            precision_cm=precision_cm,
-            refine_precision_cm=None if refine is None else min(refine, precision_cm),
-        )
-    return spec
+def override_consequences(table: dict[str, Any], given: Mapping[str, Any]) -> dict[str, Any]:
+    """The keys that follow a command-line override (the kind's ``overrides`` hook, before
+    the table is read again, :func:`planar_tui.batch.override_job`): a form other than
+    ``natural`` turns ``expanded`` off; a precision caps the refinement precision."""
+    form, precision = given.get("form"), given.get("precision_cm")
+    if form is not None and form != "natural":
+        table["expanded"] = False
+    refine = table.get("refine_precision_cm")
+    numbers = (int, float)
+    if isinstance(precision, numbers) and isinstance(refine, numbers) and refine > precision:
+        table["refine_precision_cm"] = precision
+    return table
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -443,7 +436,41 @@ JOB_KIND = JobKind(
     "with its type II singularities and singularity-free circle",
     render=render_workspace,
     extra_outputs=_extra_outputs,
-    overrides=with_overrides,
+    overrides=override_consequences,
     point_figures=point_figures,
     prepare=prepare_workspace,
-)
+    command=Command(
+        "workspace",
+        "3-RRR workspace of every workspace job: summary CSV, boxes CSV (--boxes or the "
+        "preset's boxes_output) and a map titled with the job, form and precision.\n\n"
+        "--form and --precision apply to every selected job; each one that changes a job's "
+        "setting is appended to the stem of the files the preset names (table3-natural.csv "
+        "run with --form mean-value writes table3-natural--form-mean-value.csv); names given "
+        "with --out and --boxes are kept.",
+        options=(
+            Option("--form", "form",
+                   "natural, mean-value, slope, arc-distance or geometric; overrides `form`."),
+            Option("--precision", "precision_cm",
+                   "Precision epsilon in cm; overrides `precision_cm`.", float),
+        ),
+        outputs=(OutputOption("--boxes", "boxes",
+                              "CSV of the kept boxes (with several jobs: FILE-1.csv ...)."),),
+        view=("--map/--no-map", "Print the character-cell map."),
+    ),
+    tab=Tab("Workspace", 2, "planar_tui.app.widgets.workspace_pane:WorkspacePane"),
+    figure="planar_tui.figures.workspace:from_result",
+    warmup="".join(
+        "[[workspace]]\njoint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n"
+        "precision_cm = 8.0\nrefine_precision_cm = 4.0\ngeometric_reference = false\n"
+        f'strategy = "{strategy}"\n'
+        for strategy in ("legwise", "joint")
+    )
+    + (
+        "[[workspace]]\njoint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n"
+        'precision_cm = 8.0\nform = "arc-distance"\ngeometric_reference = false\n'
+        "singularities = true\nelbow = [1, -1, 1]\n"
+        "[[workspace]]\njoint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n"
+        'orientation_deg = [-1, 1]\norientation_mode = "total"\nprecision_cm = 8.0\n'
+        "geometric_reference = false\n"
+    ),
+)  # fmt: skip
