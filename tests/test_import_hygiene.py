@@ -13,6 +13,8 @@ PROBE = """
 import json, sys
 from typer.testing import CliRunner
 from planar_tui.cli import app
+
+pytestmark = pytest.mark.slow  # real processes (see pyproject.toml's markers)
 result = CliRunner().invoke(app, sys.argv[1:])
 heavy = ("numba", "SALib", "textual", "scipy", "mujoco", "numpy", "matplotlib", "dask",
          "distributed")
