@@ -44,7 +44,7 @@ from benchmarks.baselines import numpy_newton_euler  # noqa: E402
 from planar_tui.presets import load_preset  # noqa: E402
 from planar_tui.sensitivity import engine  # noqa: E402
 from planar_tui.sensitivity.design_cache import ENV_VAR  # noqa: E402
-from planar_tui.sensitivity.job import sample_sizes  # noqa: E402
+from planar_tui.sensitivity.job import sample_sizes, solve_posture  # noqa: E402
 
 PRESETS = [REPO / "presets" / "paper-a-table4.toml", REPO / "presets" / "paper-a-table5.toml"]
 
@@ -61,7 +61,7 @@ def jobs(samples=None):
 def state(job):
     n = job.robot.n_links
     return (
-        np.array(job.spec.posture.theta_rad),
+        np.array(solve_posture(job).theta_rad),
         np.full(n, job.spec.speeds_rad_s[0]),
         np.full(n, job.spec.alpha_rad_s2),
     )

@@ -17,8 +17,8 @@ from pathlib import Path
 from typing import Any
 
 from planar_tui.csvio import write_csv_atomic
-from planar_tui.errors import PresetError
-from planar_tui.jobkind import Job, JobResult, Option
+from planar_tui.errors import JobError, PresetError
+from planar_tui.jobkind import Job, JobResult, Option, PreparedJob
 from planar_tui.progress import Progress
 from planar_tui.registry import JOB_KINDS
 from planar_tui.schema import NAME_MAX_BYTES, TableReader, declared_keys, file_name_problem
@@ -51,8 +51,10 @@ class SummaryRow:
 class JobFailed(Exception):
     """A job raised an unexpected error (its cause is ``__cause__``)."""
 
-    def __init__(self, job: Job, error: BaseException):
-        super().__init__(f"{job.label} failed: {type(error).__name__}: {error}")
+    def __init__(self, job: Job[object, object] | PreparedJob[object, object, object],
+                 error: BaseException):  # fmt: skip
+        why = error.message if isinstance(error, JobError) else f"{type(error).__name__}: {error}"
+        super().__init__(f"{job.label} failed: {why}")
         self.job = job
 
 
@@ -104,7 +106,7 @@ def plan_outputs(
             main = with_variant(main, job.variant)
         extras = {
             name: with_variant(out_dir / relative, job.variant)
-            for name, relative in JOB_KINDS[job.kind].extra_outputs(job.spec).items()
+            for name, relative in JOB_KINDS[job.kind].extra_outputs(job).items()
         }
         for name, override in (extra_out or {}).items():
             if override is not None:
@@ -372,25 +374,30 @@ def apply_overrides(jobs: Sequence[Job], values: Mapping[str, Any]) -> tuple[Job
     return tuple(override_job(job, values) for job in jobs)
 
 
-def prepare_jobs(jobs: Sequence[Job]) -> tuple[Job, ...]:
-    """Every job ready to run, in order: each kind's ``prepare`` hook (e.g. the
-    sensitivity's isotropic posture solved, its resources checked after the overrides).
+def prepare_jobs(jobs: Sequence[Job[object, object]]) -> tuple[PreparedJob[Any, Any, object], ...]:
+    """Every job ready to run, in order: each kind's ``prepare`` hook, called once per job
+    (e.g. the sensitivity's isotropic posture solved, its resources checked after the
+    overrides), its result carried by a :class:`~planar_tui.jobkind.PreparedJob`.
 
     Parsing a preset stays cheap; this is the costly rest of validation, so call it for
     every job before the first one runs: it raises the first job's
     :class:`~planar_tui.errors.PresetError` (exit code 2) while nothing is written yet.
     """
-    return tuple(JOB_KINDS[job.kind].prepared(job) for job in jobs)
+    return tuple(JOB_KINDS[job.kind].prepare_job(job) for job in jobs)
 
 
-def run_job(job: Job, progress: Progress | None = None) -> JobResult:
-    """Run one job (prepared by its kind if :func:`prepare_jobs` did not already; kernels
+def run_job(
+    job: Job[object, object] | PreparedJob[object, object, object],
+    progress: Progress | None = None,
+) -> JobResult:
+    """Run one job (prepared by its kind, once, unless :func:`prepare_jobs` did; kernels
     compiled first when not cached: the stage :data:`planar_tui.warmup.STAGE`); writes
     nothing.
 
     Raises :class:`~planar_tui.errors.Cancelled` when ``progress`` says stop, the job's
-    own :class:`~planar_tui.errors.PresetError` (e.g. a box budget), and
-    :class:`JobFailed` for anything unexpected.
+    own :class:`~planar_tui.errors.PresetError` (found while preparing it), and
+    :class:`JobFailed` for a job that fails (its :class:`~planar_tui.errors.JobError`,
+    e.g. a box budget, or anything unexpected).
     """
     from planar_tui.errors import Cancelled
     from planar_tui.runtime import prepare_kernels
@@ -400,9 +407,9 @@ def run_job(job: Job, progress: Progress | None = None) -> JobResult:
     progress = progress or Progress()
     try:
         kind = JOB_KINDS[job.kind]
-        job = kind.prepared(job)  # a no-op for a job prepare_jobs prepared already
+        ready = job if isinstance(job, PreparedJob) else kind.prepare_job(job)
         warm_kernels([job.kind], progress)
-        return kind.run(job, progress)
+        return kind.run(ready, progress)
     except (PresetError, Cancelled, KeyboardInterrupt) as error:
         _release(error, progress)
         raise

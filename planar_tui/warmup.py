@@ -135,7 +135,7 @@ def _run_example(kind: str) -> None:
             path = Path(folder) / f"warmup-{kind}.toml"
             path.write_text(example(kind) or "", encoding="utf-8")
             for job in load_preset(path).jobs_of(kind):
-                JOB_KINDS[kind].run(JOB_KINDS[kind].prepared(job), Progress())
+                JOB_KINDS[kind].run(JOB_KINDS[kind].prepare_job(job), Progress())
         with contextlib.suppress(OSError):  # read-only cache: compiled in memory anyway
             marker(kind).touch()
 

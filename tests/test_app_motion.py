@@ -45,7 +45,7 @@ async def test_motion_run_plots_the_band_and_shows_the_tables(tmp_path, cli):
         await pilot.pause(0.2)
     saved = tmp_path / "tiny.toml"
     assert "[motion_uncertainty]" in saved.read_text()
-    done = cli("motion", saved, "--out", tmp_path / "cli.csv")
+    done = cli("motion", saved, "--out", tmp_path / "cli.csv", "--out-dir", tmp_path)
     assert done.exit_code == 0, done.stderr
     with open(tmp_path / "cli.csv", newline="") as stream:
         header, *records = list(csv.reader(stream))

@@ -9,8 +9,9 @@ import numpy as np
 import pytest
 
 from planar_tui.sensitivity import design_cache, engine
-from planar_tui.sensitivity.engine import salib_unit_design, unit_design
+from planar_tui.sensitivity.engine import unit_design
 from tests.conftest import REPO
+from tests.salib_reference import salib_unit_design
 
 CASES = [("sobol", 3, 64, 5), ("efast", 4, 100, 5)]
 ROBOT_2R = """[robot]

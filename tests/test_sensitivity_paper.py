@@ -8,7 +8,7 @@ from pathlib import Path
 
 from planar_tui.batch import run_job
 from planar_tui.presets import load_preset
-from planar_tui.sensitivity.paper import compare, read_paper_cells, report
+from tests.sensitivity_paper import compare, read_paper_cells, report
 
 ROOT = Path(__file__).resolve().parent.parent
 REFERENCE = ROOT / "tests" / "data" / "reference" / "paper_sensitivity_tables.csv"

@@ -11,9 +11,18 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from planar_tui.jobkind import Command, Job, JobKind, JobResult, Option, OutputOption, Tab
+from planar_tui.jobkind import (
+    Command,
+    Job,
+    JobKind,
+    JobResult,
+    Option,
+    OutputOption,
+    PreparedJob,
+    Tab,
+)
 from planar_tui.progress import Progress
 from planar_tui.schema import (
     TableReader,
@@ -25,6 +34,7 @@ from planar_tui.schema import (
     setting,
     string,
 )
+from planar_tui.workspace.forms import FORMS
 from planar_tui.workspace.orientation import (
     MODES,
     check_orientation,
@@ -34,13 +44,16 @@ from planar_tui.workspace.orientation import (
 )
 from planar_tui.workspace.robot import Robot3RRR
 from planar_tui.workspace.singularity import (
+    Circle,
     check_singularity,
-    prepare_workspace,
     read_centre,
     read_elbow,
+    resolve_circle,
 )
 
-FORMS = ("natural", "mean-value", "slope", "arc-distance", "geometric")
+if TYPE_CHECKING:
+    from planar_tui.workspace.compute import WorkspaceOutcome
+    from planar_tui.workspace.singularity import SingularityOutcome
 #: How the interval forms pave: per (x, y) box a 1-D θ search per leg, or the paper's
 #: bisection of (x, y, θ1, θ2, θ3) boxes.
 STRATEGIES = ("legwise", "joint")
@@ -232,8 +245,6 @@ class WorkspaceSpec:
         default_doc="`precision_cm`",
         doc="bisection precision of the singularity paving",
     )
-    #: ``(x, y, elbow)`` of the circle, resolved by ``prepare`` (a derived value).
-    circle: Any = None
     plot: str | None = plot_setting()
 
     @staticmethod
@@ -290,12 +301,33 @@ class WorkspaceResult(JobResult):
     (:class:`~planar_tui.workspace.compute.WorkspaceOutcome`); the kept boxes are also
     ``extra_tables["boxes"]``."""
 
-    outcome: Any
+    outcome: WorkspaceOutcome
     #: :class:`~planar_tui.workspace.singularity.SingularityOutcome` with ``singularities``.
-    singularity: Any = None
+    singularity: SingularityOutcome | None = None
 
 
-def run_workspace(job: Job, progress: Progress) -> WorkspaceResult:
+WorkspaceJob = Job[WorkspaceSpec, Robot3RRR]
+
+
+@dataclass(frozen=True)
+class WorkspacePrepared:
+    """What :func:`prepare_workspace` resolves: the singularity-free circle's centre and
+    working mode (``None`` without ``singularities``)."""
+
+    circle: Circle | None
+
+
+def prepare_workspace(job: WorkspaceJob) -> WorkspacePrepared:
+    """Resolve the circle of a job with ``singularities`` (:func:`resolve_circle`),
+    refusing an unreachable or singular centre (:class:`PresetError`, exit code 2)."""
+    if not job.spec.singularities:
+        return WorkspacePrepared(None)
+    return WorkspacePrepared(resolve_circle(job))
+
+
+def run_workspace(
+    ready: PreparedJob[WorkspaceSpec, Robot3RRR, WorkspacePrepared], progress: Progress
+) -> WorkspaceResult:
     """Compute one ``[workspace]`` job."""
     from planar_tui.csvio import CsvTable
     from planar_tui.workspace.compute import (
@@ -317,15 +349,15 @@ def run_workspace(job: Job, progress: Progress) -> WorkspaceResult:
         singularity_columns,
     )
 
+    job, circle = ready.job, ready.prepared.circle
     budget = BoxBudget(job, progress)
     singular = None
     if isinstance(job.spec.orientation_deg, tuple):
         outcome = compute_orientation_workspace(job.robot, job.spec, budget)
     else:
         outcome = compute_workspace(job.robot, job.spec, budget)
-        if job.spec.singularities:
-            job = JOB_KIND.prepared(job)
-            singular = compute_singularities(job.robot, job.spec, outcome.extent_cm, budget, job)
+        if circle is not None:
+            singular = compute_singularities(job, circle, outcome.extent_cm, budget)
     # the new columns go before the last one, the (not reproducible) wall time
     base = outcome.summary_row()
     row = [*base[:-1], *orientation_columns(job.spec), *singularity_columns(singular), base[-1]]
@@ -344,7 +376,7 @@ def run_workspace(job: Job, progress: Progress) -> WorkspaceResult:
     )
 
 
-def map_title(job: Job, outcome) -> str:
+def map_title(job: WorkspaceJob, outcome: WorkspaceOutcome) -> str:
     """What a map shows: ``paper-b-table3:workspace[4]: mean-value, ε = 0.1172 cm`` (and
     the refinement precision), as run, overrides included."""
     from planar_tui.workspace.orientation import describe
@@ -357,7 +389,7 @@ def map_title(job: Job, outcome) -> str:
     return title
 
 
-def render_workspace(job: Job, result: WorkspaceResult, console) -> None:
+def render_workspace(job: WorkspaceJob, result: WorkspaceResult, console: Any) -> None:
     """Print the titled map of a finished workspace job (CLI view), fitted to the console
     width; a job without boxes (the geometric form) prints its summary under the title."""
     from planar_tui.workspace.map import render_map
@@ -376,7 +408,7 @@ def render_workspace(job: Job, result: WorkspaceResult, console) -> None:
         console.print(line, markup=False, highlight=False, crop=True, soft_wrap=False)
 
 
-def point_figures(job: Job, result: WorkspaceResult) -> dict[str, Any]:
+def point_figures(job: WorkspaceJob, result: WorkspaceResult) -> dict[str, Any]:
     """A sweep row's figures: the summary CSV's columns but its ``seconds`` (the sweep row
     has its own timing)."""
     header, (row,) = result.table.header, result.table.rows
@@ -391,8 +423,8 @@ def overlays(singular) -> dict:
     return {"singular": singular.singular_boxes, "circle": (*centre, singular.radius_lo_cm)}
 
 
-def _extra_outputs(spec: WorkspaceSpec) -> dict[str, str]:
-    return {"boxes": spec.boxes_output} if spec.boxes_output else {}
+def _extra_outputs(job: WorkspaceJob) -> dict[str, str]:
+    return {"boxes": job.spec.boxes_output} if job.spec.boxes_output else {}
 
 
 JOB_KIND = JobKind(
