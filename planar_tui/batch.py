@@ -20,8 +20,9 @@ from planar_tui.csvio import write_csv_atomic
 from planar_tui.errors import JobError, PresetError
 from planar_tui.jobkind import Job, JobResult, Option, PreparedJob
 from planar_tui.progress import Progress
+from planar_tui.reader import NAME_MAX_BYTES, TableReader, file_name_problem
 from planar_tui.registry import JOB_KINDS
-from planar_tui.schema import NAME_MAX_BYTES, TableReader, declared_keys, file_name_problem
+from planar_tui.schema import declared_keys
 
 
 @dataclass(frozen=True)
