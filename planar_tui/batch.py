@@ -463,12 +463,14 @@ def _write_figure(plan: OutputPlan, result: JobResult) -> Path:
     in a sweep, say) is :class:`OutputFailed`, never a traceback."""
     from planar_tui.figures import save_result_figure
 
+    figure = plan.figure
+    assert figure is not None  # called for a plan with a figure only
     try:
-        return save_result_figure(plan.job, result, plan.figure)
+        return save_result_figure(plan.job, result, figure)
     except OSError:
         raise
     except Exception as error:
-        raise OutputFailed(plan.figure, f"cannot draw the figure: {error}") from None
+        raise OutputFailed(figure, f"cannot draw the figure: {error}") from None
 
 
 def run_plans(

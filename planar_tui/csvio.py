@@ -11,7 +11,7 @@ import secrets
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, TextIO
+from typing import Any, TextIO, cast
 
 #: First characters that make a spreadsheet read a text cell as a formula (OWASP, "CSV
 #: injection"): such a text cell is written with a leading ``'``.
@@ -52,7 +52,7 @@ class CsvTable:
         """The header, then every row, as lists of cells ready for ``csv.writer``."""
         yield list(self.header)
         if getattr(getattr(self.rows, "dtype", None), "kind", "") == "f":
-            yield from self.rows.tolist()  # Python floats, C-level conversion
+            yield from cast(Any, self.rows).tolist()  # Python floats, C-level conversion
             return
         for row in self.rows:
             yield [_cell(cell) for cell in row]

@@ -33,6 +33,7 @@ def entries(folder):
     return sorted(folder.glob("*.npy"))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("key", CASES)
 def test_cold_and_warm_designs_are_byte_identical_to_salib(key):
     folder = design_cache.cache_dir()  # the per-test folder of the autouse fixture
@@ -56,6 +57,7 @@ print(json.dumps({"code": result.exit_code, "loaded": [m for m in heavy if m in 
 """
 
 
+@pytest.mark.slow
 def test_warm_run_imports_neither_salib_nor_scipy_optimize(tmp_path):
     """Whole CLI runs in fresh processes: the cold one draws the designs with
     ``scipy.stats.qmc`` (so the probe can see it), the warm one reads both designs back
