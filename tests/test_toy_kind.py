@@ -145,6 +145,8 @@ def test_a_plot_for_the_toy_kind_is_refused_before_anything_runs(toy, tmp_path):
         "error: command line: --plot: toy:kinetic: the kinetic job kind draws no figure "
         "(expected no --plot for a kinetic job)\n"
     )
+    again = invoke("run", tmp_path / "toy.toml", "-d", tmp_path, "--plot", tmp_path / "k.png")
+    assert again.exit_code == 2 and again.stderr == result.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["toy.toml"]
 
 
