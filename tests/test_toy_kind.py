@@ -162,6 +162,7 @@ def test_the_toy_kind_runs_in_a_sweep(toy, tmp_path):
     assert got == pytest.approx([peak, 4 * peak], rel=1e-12)
 
 
+@pytest.mark.slow  # an end-to-end app test
 def test_the_toy_kind_has_an_app_tab(toy, tmp_path):
     asyncio.run(_app_tab(tmp_path))
 
