@@ -8,7 +8,7 @@ from __future__ import annotations
 import asyncio
 import csv
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import pytest
 from typer.testing import CliRunner
@@ -29,7 +29,6 @@ class KineticSpec:
         number_rows(columns=PER_LINK), type_doc="rows", doc="joint rates"
     )
     speed_scale: float = setting(number(positive=True), type_doc="number", doc="x", default=1.0)
-    derived: tuple = field(default=())
 
 
 @dataclass(frozen=True, kw_only=True)
