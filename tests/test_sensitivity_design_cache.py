@@ -100,6 +100,7 @@ def test_damaged_entries_are_drawn_again(damage):
     assert healed.name == entry.name and np.load(healed).tobytes() == good
 
 
+@pytest.mark.slow
 def test_unwritable_or_disabled_cache_still_gives_the_design(tmp_path, monkeypatch):
     key = CASES[1]
     expected = salib_unit_design(*key).tobytes()
