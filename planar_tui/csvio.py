@@ -7,7 +7,6 @@ import functools
 import io
 import math
 import os
-import secrets
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -99,6 +98,8 @@ def _new_file_mode() -> int:
 def _temporary_name(path: Path) -> Path:
     """A hidden ``.NAME.XXXXXXXX.tmp`` beside ``path``; NAME keeps at most 64 characters
     of the name, so the temporary name fits the file system whenever ``path``'s does."""
+    import secrets  # here: its hashlib and random cost `planar-tui --help` 4 ms
+
     return path.with_name(f".{path.name[:64]}.{secrets.token_hex(4)}.tmp")
 
 
