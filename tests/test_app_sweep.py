@@ -17,6 +17,8 @@ from planar_tui.csvio import CsvTable
 from planar_tui.presets import load_preset
 from tests.test_app import SIZE, async_test, finish, make_app
 
+pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
+
 
 def test_values_text():
     assert parse_values("-20, 0, 20") == [-20, 0, 20]

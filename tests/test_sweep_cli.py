@@ -22,6 +22,8 @@ from planar_tui.sweep.spec import parse_sweeps
 from tests.conftest import REPO
 from tests.sweep_presets import TORQUES, TORQUES_BASE, WORKSPACE, WORKSPACE_BASE, write
 
+pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
+
 CONSOLE_SCRIPT = "from planar_tui.entry import main; main()"
 
 
