@@ -122,7 +122,7 @@ def simulate_estimate(n_steps: float, every: int, n_links: int) -> tuple[float, 
     return rows * (2 * n_links + 4) * BYTES_PER_CELL, n_steps * rk4_step_seconds(n_links)
 
 
-def estimate(job: Job) -> tuple[float, float]:
+def estimate(job: Job[SimulateSpec, SerialRobot]) -> tuple[float, float]:
     """``(memory_bytes, seconds)`` of ``job`` (:func:`simulate_estimate`)."""
     return simulate_estimate(job.spec.duration_s / job.spec.step_s, job.spec.every,
                              job.robot.n_links)  # fmt: skip
@@ -288,7 +288,7 @@ def point_figures(job: Job[SimulateSpec, SerialRobot], result: SimulateResult) -
     return figures
 
 
-def figure_names(job: Job) -> tuple[str, ...]:
+def figure_names(job: Job[Any, Any]) -> tuple[str, ...]:
     """The columns :func:`point_figures` reports for ``job``, without running it."""
     n = job.robot.n_links
     return ("t_end_s", *(f"theta{i}_end_rad" for i in range(1, n + 1)),

@@ -105,7 +105,7 @@ def point_figures(job: Job[TorquesSpec, SerialRobot], result: TorquesResult) -> 
     return {f"tau{i}_abs_max_Nm": float(v) for i, v in enumerate(peak, start=1)}
 
 
-def figure_names(job: Job) -> tuple[str, ...]:
+def figure_names(job: Job[Any, Any]) -> tuple[str, ...]:
     """The columns :func:`point_figures` reports for ``job``, without running it."""
     return tuple(f"tau{i}_abs_max_Nm" for i in range(1, job.robot.n_links + 1))
 

@@ -386,7 +386,7 @@ def point_figures(
     return figures
 
 
-def figure_names(job: Job) -> tuple[str, ...]:
+def figure_names(job: Job[Any, Any]) -> tuple[str, ...]:
     """The columns :func:`point_figures` reports for ``job``, without running it."""
     groups = ("dominant", "dominant_percent", "lengths_percent", "masses_percent",
               "sobol_halfwidth_max")  # fmt: skip

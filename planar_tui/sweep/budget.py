@@ -28,7 +28,7 @@ from planar_tui.limits import (
     size_text,
 )
 from planar_tui.registry import JOB_KINDS
-from planar_tui.sweep.points import SweepPoints
+from planar_tui.sweep.points import Point
 from planar_tui.sweep.spec import Sweep
 
 #: Most local worker processes per usable core.
@@ -81,7 +81,7 @@ def estimate_indices(count: int) -> list[int]:
     return sorted({round(k * (count - 1) / max(1, spread - 1)) for k in range(spread)})
 
 
-def estimate_sweep(sweep: Sweep, points: Sequence) -> SweepEstimate | None:
+def estimate_sweep(sweep: Sweep, points: Sequence[Point]) -> SweepEstimate | None:
     """The sweep's needs from its sample points' estimates (mean seconds × count, largest
     memory), or ``None`` when its job kind gives none. A sample point that cannot be made
     is skipped (its run fails alone)."""
@@ -102,7 +102,7 @@ def estimate_sweep(sweep: Sweep, points: Sequence) -> SweepEstimate | None:
 
 
 def check_sweep_budget(
-    prepared: Sequence[tuple[Sweep, SweepPoints]], workers: int | None, scheduler: str | None
+    prepared: Sequence[tuple[Sweep, Sequence[Point]]], workers: int | None, scheduler: str | None
 ) -> None:
     """Refuse, before anything runs, sweeps whose workers or points exceed the limits
     (:class:`PresetError`, exit code 2, one line with the estimate)."""
