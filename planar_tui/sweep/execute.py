@@ -302,6 +302,7 @@ def run_on_dask(
                 on_outcome(_outcome(future, task))
                 submit_next()
     except BaseException:
+        completed.clear()  # stop tracking: nothing more is handed over
         client.cancel(list(futures), force=True)
         raise
 
