@@ -144,11 +144,16 @@ class _Reader:
         self.path = path
         self.lines = lines
 
-    def where(self, element: ET.Element) -> str:
+    @staticmethod
+    def named(element: ET.Element) -> str:
+        """``<tag name="...">`` (``<tag>`` without a name)."""
         name = element.get("name")
-        named = f'<{element.tag} name="{name}">' if name is not None else f"<{element.tag}>"
+        return f'<{element.tag} name="{name}">' if name is not None else f"<{element.tag}>"
+
+    def where(self, element: ET.Element) -> str:
+        """:meth:`named` after the element's line: ``line 12: <joint name="elbow">``."""
         line = self.lines.get(element)
-        return f"line {line}: {named}" if line else named
+        return f"line {line}: {self.named(element)}" if line else self.named(element)
 
     def error(self, element: ET.Element | None, problem: str, expected: str | None = None):
         where = "(file)" if element is None else self.where(element)
@@ -708,7 +713,7 @@ def read_mjcf(path: Path | str) -> ImportedRobot:
     def next_body(body: ET.Element) -> ET.Element | None:
         leading = [c for c in body.findall("body") if moving(c)]
         if len(leading) > 1:
-            raise reader.error(leading[1], f"is a second moving chain below {reader.where(body)}:"
+            raise reader.error(leading[1], f"is a second moving chain below {reader.named(body)}:"
                                " a branched tree", "a serial chain")  # fmt: skip
         return leading[0] if leading else None
 
@@ -721,7 +726,7 @@ def read_mjcf(path: Path | str) -> ImportedRobot:
             if not moving(child):
                 inertial = child.find("inertial")
                 if inertial is not None and reader.number(inertial, "mass", None) > 0:
-                    raise reader.error(child, f"has a mass welded to {reader.where(moving_body)}",
+                    raise reader.error(child, f"has a mass welded to {reader.named(moving_body)}",
                                        "massless fixed bodies only (merge the mass)")  # fmt: skip
                 check_welded(child, moving_body)
 
@@ -787,7 +792,7 @@ def read_mjcf(path: Path | str) -> ImportedRobot:
         while following is not None and not joints_of(following):
             inertial_w = following.find("inertial")
             if inertial_w is not None and reader.number(inertial_w, "mass", None) > 0:
-                raise reader.error(following, f"has a mass welded to {reader.where(body)}",
+                raise reader.error(following, f"has a mass welded to {reader.named(body)}",
                                    "massless fixed bodies only")  # fmt: skip
             relative = relative.then(frame_of(following))
             check_welded(following, body)
