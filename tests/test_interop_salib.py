@@ -31,7 +31,7 @@ def sensitivity_run(tmp_path_factory):
     (job,) = prepare_jobs([dataclasses.replace(job, spec=spec)])
     result = run_job(job)
     folder = tmp_path_factory.mktemp("export")
-    write_problem(folder / "runs", sensitivity_runs(job), {"job": job.label})
+    write_problem(folder / "runs", sensitivity_runs(job, result), {"job": job.label})
     return job, result, folder
 
 
@@ -125,8 +125,8 @@ def test_the_readme_example_runs_on_the_exported_runs(sensitivity_run, monkeypat
 
 
 def test_an_existing_file_is_refused_before_anything_is_written(sensitivity_run, tmp_path):
-    job, _, _ = sensitivity_run
-    runs = sensitivity_runs(job)
+    job, result, _ = sensitivity_run
+    runs = sensitivity_runs(job, result)
     (tmp_path / "runs" / "efast").mkdir(parents=True)
     (tmp_path / "runs" / "efast" / "Y.npy").write_text("mine")
     with pytest.raises(PresetError) as caught:

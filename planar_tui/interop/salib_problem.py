@@ -130,9 +130,9 @@ def motion_output_names(names: Sequence[str], times_s: Sequence[float]) -> tuple
     return tuple(f"{name}_at_{t_s:g}_s" for t_s in times_s for name in names)
 
 
-def sensitivity_runs(job: Any) -> list[ModelRuns]:
-    """The model runs of a prepared sensitivity job (its posture solved), per method: the
-    unit design (SALib's, cached: the one the job ran) and the joint torques at every
+def sensitivity_runs(job: Any, result: Any) -> list[ModelRuns]:
+    """The model runs of a sensitivity job that ran (``result``: its posture), per method:
+    the unit design (SALib's, cached: the one the job ran) and the joint torques at every
     speed, evaluated again by the job's own kernel (:func:`~planar_tui.sensitivity.engine.
     evaluate`: rows are independent, so the values are the job's, bit for bit); cheap next
     to the job's analysis."""
@@ -145,7 +145,7 @@ def sensitivity_runs(job: Any) -> list[ModelRuns]:
     )
     sizes = sample_sizes(spec, problem.num_vars)
     n = robot.n_links
-    theta, alpha = np.array(spec.posture.theta_rad), np.full(n, spec.alpha_rad_s2)
+    theta, alpha = np.array(result.posture.theta_rad), np.full(n, spec.alpha_rad_s2)
     names = sensitivity_output_names(n, spec.speeds_rad_s)
     runs = []
     for method in spec.methods:
@@ -154,4 +154,22 @@ def sensitivity_runs(job: Any) -> list[ModelRuns]:
                    for speed in spec.speeds_rad_s]  # fmt: skip
         outputs = np.concatenate(torques, axis=1)
         runs.append(ModelRuns(method, sizes[method], spec.seed, problem, unit, outputs, names))
+    return runs
+
+
+def motion_runs(job: Any, result: Any) -> list[ModelRuns]:
+    """The model runs of a motion job that ran, per design (its ``design`` and the outputs
+    of every robot at the times of ``at_s``, ``at_outputs``, kept by the runner)."""
+    from planar_tui.sensitivity.engine import build_problem
+
+    spec, robot = job.spec, job.robot
+    problem = build_problem(robot, spec.tolerance_length_mm * 1e-3, spec.tolerance_mass_g * 1e-3,
+                            spec.tolerance_inertia_kgm2)  # fmt: skip
+    steps = sorted(result.at_outputs)
+    names = motion_output_names(result.names, [step * spec.step_s for step in steps])
+    runs = []
+    for method, rows in result.design.rows.items():
+        outputs = np.concatenate([result.at_outputs[step][rows] for step in steps], axis=1)
+        unit = result.design.unit[rows]
+        runs.append(ModelRuns(method, spec.samples, spec.seed, problem, unit, outputs, names))
     return runs
