@@ -135,3 +135,38 @@ def test_an_existing_file_is_refused_before_anything_is_written(sensitivity_run,
     assert "\n" not in str(caught.value)
     assert not (tmp_path / "runs" / "sobol").exists()
     assert (tmp_path / "runs" / "efast" / "Y.npy").read_text() == "mine"
+
+
+def test_a_motion_jobs_runs_are_its_robots_and_their_outputs(tmp_path):
+    """The Monte-Carlo file's outputs at the last time average to the job's band mean (the
+    band is taken over those robots); SALib's Sobol' on the Sobol' file gives the job's
+    indices."""
+    from planar_tui.interop.salib_problem import motion_runs
+    from planar_tui.motion.engine import montecarlo_design
+    from planar_tui.presets import parse_preset
+
+    document = {
+        "robot": {"lengths_m": [0.4, 0.3], "masses_kg": [1.0, 0.8]},
+        "motion_uncertainty": {
+            "duration_s": 0.2, "step_s": 0.02, "torques_Nm": [2.0, 0.5], "samples": 64,
+            "methods": ["montecarlo", "sobol"], "at_s": [0.1, 0.2], "seed": 3,
+            "tolerance_length_mm": 5.0, "tolerance_mass_g": 50.0, "outputs": "tip",
+        },
+    }  # fmt: skip
+    (job,) = parse_preset("motion.toml", document).jobs
+    result = run_job(job)
+    write_problem(tmp_path / "runs", motion_runs(job, result), {"job": job.label})
+    runs = tmp_path / "runs"
+    problem = json.loads((runs / "montecarlo" / "problem.json").read_text())
+    assert problem["outputs"] == ["tip_x_m_at_0.1_s", "tip_y_m_at_0.1_s",
+                                  "tip_x_m_at_0.2_s", "tip_y_m_at_0.2_s"]  # fmt: skip
+    x, y = np.load(runs / "montecarlo" / "X.npy"), np.load(runs / "montecarlo" / "Y.npy")
+    lower, upper = np.array(problem["bounds"]).T
+    np.testing.assert_array_equal(x, montecarlo_design(4, 64, 3) * (upper - lower) + lower)
+    np.testing.assert_allclose(y[:, 2:].mean(axis=0), result.band[-1, 0], rtol=1e-13)
+    ys = np.load(runs / "sobol" / "Y.npy")
+    assert ys.shape == (64 * 6, 4)
+    (last,) = (a for a in result.analyses if a.speed_rad_s == pytest.approx(0.2))
+    for k in range(2):
+        theirs = sobol.analyze(problem, ys[:, 2 + k], calc_second_order=False, seed=3)
+        np.testing.assert_allclose(theirs["ST"], last.indices[2, k], rtol=1e-9, atol=1e-12)
