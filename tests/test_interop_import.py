@@ -244,3 +244,58 @@ def test_each_refusal_is_one_line_naming_the_element(tmp_path, case):
     assert "\n" not in message
     assert message.startswith(f"error: {path}: ")
     assert expected in message, message
+
+
+@pytest.mark.parametrize(
+    ("orientation", "sequence"),
+    [('euler="20 -35 50"', "xyz"), ('euler="20 -35 50"', "XYZ"), ('euler="-70 15 110"', "zyx"),
+     ('axisangle="1 2 3 40"', "xyz"), ('xyaxes="0.3 1 0.2 -1 0.1 0.4"', "xyz"),
+     ('zaxis="0.2 -0.5 1"', "xyz"), ('quat="0.3 -0.4 0.5 0.6"', "xyz")],
+)  # fmt: skip
+def test_an_arm_on_a_turned_mount_imports_with_gravitys_in_plane_part(
+    tmp_path, orientation, sequence
+):
+    """The exported arm under a mount body turned every way MJCF can say it (MuJoCo's
+    gravity along -z): the plane tilts, the preset keeps gravity's in-plane part and the
+    angle offsets; MuJoCo's inverse dynamics of the file agree with the preset's."""
+    robot = SerialRobot(lengths_m=(0.5, 0.3, 0.4), masses_kg=(1.0, 0.7, 0.4),
+                        inertias_kgm2=(0.03, 0.01, 0.02))  # fmt: skip
+    text = robot_mjcf(robot)
+    text = edited(text, 'angle="radian"', f'angle="degree" eulerseq="{sequence}"')
+    text = edited(text, '<option gravity="0.0 -9.81 0.0"/>', "")
+    text = edited(
+        text, "<worldbody>", f'<worldbody><body name="mount" pos="0.1 0.2 0.3" {orientation}>'
+    )
+    text = edited(text, "</worldbody>", "</body></worldbody>")
+    path = written(tmp_path, text, "xml")
+    imported = read_robot(path)
+    assert imported.robot.lengths_m == pytest.approx(robot.lengths_m, rel=1e-14)
+    assert imported.robot.masses_kg == robot.masses_kg
+    assert 0.0 < imported.robot.gravity_m_s2 < 9.81
+    mujoco_matches_preset(path, imported)
+
+
+def test_a_urdf_arm_on_a_turned_base_joint_matches_pinocchio(tmp_path):
+    """The exported URDF without planar-tui's gravity element (so ROS's -z is assumed, as
+    Pinocchio assumes) and its first joint turned by rpy: Pinocchio's rnea of the file at q
+    equals the preset's inverse dynamics at θ = q + Δ."""
+    import pinocchio
+
+    robot = SerialRobot(lengths_m=(0.5, 0.3), masses_kg=(1.0, 0.7), inertias_kgm2=(0.03, 0.01))
+    text = robot_urdf(robot)
+    text = edited(text, '  <planar_tui gravity_m_s2="9.81" direction="0 -1 0"/>\n', "")
+    text = edited(text, '<origin xyz="0.0 0.0 0.0" rpy="0 0 0"/>',
+                  '<origin xyz="0.1 0.0 0.2" rpy="0.4 -0.9 1.3"/>')  # fmt: skip
+    imported = read_robot(written(tmp_path, text, "urdf"))
+    assert "assumed: URDF has no gravity (ROS: z up)" in " ".join(imported.notes)
+    model = pinocchio.buildModelFromXML(text)
+    data = model.createData()
+    preset = imported.robot
+    rng = np.random.default_rng(5)
+    for _ in range(5):
+        q, omega, alpha = random_state(rng, 2)
+        cs = np.column_stack([np.cos(q), np.sin(q)]).ravel()
+        tau = np.array(pinocchio.rnea(model, data, cs, omega, alpha))
+        theta = q + np.radians(imported.offsets_deg)
+        ours = inverse_dynamics(*preset.arrays(), preset.gravity_m_s2, theta, omega, alpha)
+        assert np.abs(ours - tau).max() <= 1e-10 * np.abs(tau).max()
