@@ -104,3 +104,19 @@ def write_motion_netcdf(path: Path, result: Any, attributes: Mapping[str, Any]) 
     require_netcdf()
     dataset = motion_dataset(result, attributes)
     return write_new(path, lambda temp: dataset.to_netcdf(temp, engine="h5netcdf"), OPTION)
+
+
+def netcdf_path(band_csv: Path) -> Path:
+    """The NetCDF file of a motion job: its band CSV's name with ``.nc``."""
+    return Path(band_csv).with_suffix(".nc")
+
+
+def export_job(job: Any, result: Any, path: Path) -> Path:
+    """Write a finished motion job's Dataset to ``path``, with the preset, the job, the
+    version, the seed, N and the methods in its attributes."""
+    from planar_tui import __version__
+
+    attributes = {"preset": str(job.preset_path), "job": job.label,
+                  "planar_tui_version": __version__, "seed": job.spec.seed,
+                  "samples": job.spec.samples, "methods": list(job.spec.methods)}  # fmt: skip
+    return write_motion_netcdf(path, result, attributes)

@@ -173,3 +173,31 @@ def motion_runs(job: Any, result: Any) -> list[ModelRuns]:
         unit = result.design.unit[rows]
         runs.append(ModelRuns(method, spec.samples, spec.seed, problem, unit, outputs, names))
     return runs
+
+
+def design_methods(job: Any) -> tuple[str, ...]:
+    """The designs a sensitivity or motion job runs (a motion job's eFAST alone adds N
+    Monte-Carlo robots for its band: :func:`planar_tui.motion.engine.design_methods`)."""
+    if job.kind == "motion_uncertainty":
+        from planar_tui.motion.engine import design_methods as motion_designs
+
+        return motion_designs(job.spec.methods)
+    return tuple(job.spec.methods)
+
+
+def planned_files(job: Any, directory: Path) -> list[Path]:
+    """Every file :func:`export_job` will write for ``job`` (checked before it runs)."""
+    return [Path(directory) / method / name for method in design_methods(job) for name in FILES]
+
+
+def export_job(job: Any, result: Any, directory: Path) -> list[Path]:
+    """Write the runs of a finished sensitivity or motion job to ``directory``."""
+    from planar_tui import __version__
+
+    runs = (
+        motion_runs(job, result)
+        if job.kind == "motion_uncertainty"
+        else sensitivity_runs(job, result)
+    )
+    about = {"planar_tui_version": __version__, "preset": str(job.preset_path), "job": job.label}
+    return write_problem(directory, runs, about)
