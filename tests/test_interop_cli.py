@@ -104,3 +104,64 @@ def test_an_import_refusal_names_the_file_and_element(cli, tmp_path):
     assert line.startswith(f"error: {model}: line ")
     assert '<joint name="joint3">: is a prismatic joint' in line
     assert not (tmp_path / "arm.toml").exists()
+
+
+MOTION = """
+[robot]
+lengths_m = [0.4, 0.3]
+masses_kg = [1.0, 0.8]
+
+[motion_uncertainty]
+duration_s = 0.1
+step_s = 0.02
+torques_Nm = [2.0, 0.5]
+samples = 16
+methods = ["montecarlo", "sobol"]
+tolerance_length_mm = 5.0
+tolerance_mass_g = 50.0
+output = "arm-motion.csv"
+"""
+
+
+def test_sensitivity_export_problem_writes_every_design(cli, tmp_path):
+    preset = REPO / "tests" / "data" / "app" / "tiny.toml"
+    runs = tmp_path / "runs"
+    result = cli("sensitivity", preset, "--samples", "16", "--method", "sobol", "--method",
+                 "efast", "--out-dir", tmp_path, "--export-problem", runs)  # fmt: skip
+    assert result.exit_code == 0, result.output
+    for method in ("sobol", "efast"):
+        assert sorted(p.name for p in (runs / method).iterdir()) == [
+            "X.npy", "Y.npy", "problem.json", "run.json"]  # fmt: skip
+    # a second run would replace them: refused before the job runs, nothing written
+    again = tmp_path / "again"
+    line = one_error_line(cli("sensitivity", preset, "--samples", "16", "--out-dir", again,
+                              "--export-problem", runs))  # fmt: skip
+    assert "--export-problem: is a file that exists: nothing is overwritten" in line
+    assert not again.exists()
+
+
+def test_motion_netcdf_and_export_problem(cli, tmp_path):
+    import xarray as xr
+
+    preset = tmp_path / "arm.toml"
+    preset.write_text(MOTION)
+    result = cli("motion", preset, "--out-dir", tmp_path, "--format", "netcdf",
+                 "--export-problem", tmp_path / "runs")  # fmt: skip
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "arm-motion.csv").exists()  # CSV stays
+    with xr.open_dataset(tmp_path / "arm-motion.nc", engine="h5netcdf") as data:
+        assert data.attrs["job"] == "arm:motion_uncertainty"
+        assert data.attrs["seed"] == 42 and data.attrs["samples"] == 16
+        assert data["band"].shape == (6, 4, 5)
+    assert (tmp_path / "runs" / "montecarlo" / "Y.npy").exists()
+    assert (tmp_path / "runs" / "sobol" / "Y.npy").exists()
+    line = one_error_line(cli("motion", preset, "--out-dir", tmp_path, "--format", "netcdf"))
+    assert line.startswith(f"error: {tmp_path / 'arm-motion.nc'}: --format: is a file that exists")
+
+
+def test_a_format_other_than_csv_or_netcdf_is_one_line(cli, tmp_path):
+    preset = tmp_path / "arm.toml"
+    preset.write_text(MOTION)
+    line = one_error_line(cli("motion", preset, "--out-dir", tmp_path, "--format", "xlsx"))
+    assert line == "error: command line: --format: is 'xlsx' (expected csv or netcdf)"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["arm.toml"]
