@@ -41,7 +41,7 @@ def analysis(result, method):
 
 
 def test_the_files_hold_the_problem_the_robots_and_their_torques(sensitivity_run):
-    job, _, folder = sensitivity_run
+    job, result, folder = sensitivity_run
     runs = folder / "runs" / "sobol"
     problem = json.loads((runs / "problem.json").read_text())
     assert problem["names"] == ["l1", "l2", "m1", "m2"]
@@ -58,7 +58,7 @@ def test_the_files_hold_the_problem_the_robots_and_their_torques(sensitivity_run
     # each row's torques are the inverse dynamics of that robot at the job's state
     from planar_tui.kernels.dynamics import inverse_dynamics
 
-    theta = np.array(job.spec.posture.theta_rad)
+    theta = np.array(result.posture.theta_rad)
     for row in (0, 17, len(x) - 1):
         lengths, masses = x[row, :2], x[row, 2:]
         inertias = np.array(job.robot.inertias_kgm2)
