@@ -38,7 +38,7 @@ def test_export_then_import_gives_back_the_robot_exactly(tmp_path, suffix):
         SerialRobot(lengths_m=(1e-3, 1e3, 0.1 + 0.2), masses_kg=(1e-4, 5e2, 1 / 3),
                     inertias_kgm2=(1e-9, 1e5, math.pi), gravity_m_s2=3.71, name="3R"),
     ]  # fmt: skip
-    for n in (4, 17, 50):
+    for n in (4, 17, 50, 1200):  # 1200: deeper than Python's recursion limit
         robots.append(SerialRobot(
             lengths_m=tuple(rng.uniform(0.01, 5.0, n)), masses_kg=tuple(rng.uniform(0.01, 9, n)),
             inertias_kgm2=tuple(rng.uniform(1e-4, 3.0, n)), gravity_m_s2=float(rng.uniform(0, 20)),

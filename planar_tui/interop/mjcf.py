@@ -27,6 +27,13 @@ from planar_tui.interop.conventions import (
 
 #: Radius of a link's capsule geom (viewer only), as a fraction of the shortest link.
 GEOM_RADIUS_FRACTION = 0.04
+#: Nesting levels that are indented: deeper bodies keep this indentation, so that the file
+#: of a chain of thousands of links grows linearly with n.
+INDENT_LEVELS = 16
+
+
+def _indent(level: int) -> str:
+    return "  " * (2 + min(level, INDENT_LEVELS))
 
 
 def header_comment(robot: SerialRobot) -> str:
@@ -56,11 +63,11 @@ def robot_mjcf(robot: SerialRobot) -> str:
         f'  <option gravity="{vector(0.0, -robot.gravity_m_s2, 0.0)}"/>',
         "  <worldbody>",
     ]
-    indent = "    "
     for i, (length, mass, inertia) in enumerate(
         zip(lengths, robot.masses_kg, robot.inertias_kgm2, strict=True), start=1
     ):
         offset = 0.0 if i == 1 else lengths[i - 2]
+        indent = _indent(i - 1)
         lines += [
             f'{indent}<body name="link{i}" pos="{vector(offset, 0.0, 0.0)}">',
             f'{indent}  <joint name="joint{i}" type="hinge" axis="0 0 1" pos="0 0 0"/>',
@@ -69,11 +76,8 @@ def robot_mjcf(robot: SerialRobot) -> str:
             f'{indent}  <geom name="link{i}" type="capsule" fromto="0 0 0 {number(length)} 0 0"'
             f' size="{number(radius)}" contype="0" conaffinity="0"/>',
         ]
-        indent += "  "
-    lines.append(f'{indent}<site name="tip" pos="{vector(lengths[-1], 0.0, 0.0)}"/>')
-    for _ in lengths:
-        indent = indent[:-2]
-        lines.append(f"{indent}</body>")
+    lines.append(f'{_indent(len(lengths))}<site name="tip" pos="{vector(lengths[-1], 0.0, 0.0)}"/>')
+    lines += [f"{_indent(level)}</body>" for level in reversed(range(len(lengths)))]
     lines += ["  </worldbody>", "  <actuator>"]
     lines += [
         f'    <motor name="motor{i}" joint="joint{i}" gear="1"/>'

@@ -504,12 +504,20 @@ def read_urdf(path: Path | str) -> ImportedRobot:
         raise reader.error(root, f"has {len(roots)} root links", "one base link")
     gravity, source, notes = _urdf_gravity(reader, root)
 
+    parent_of = {j.find("child").get("link"): j.find("parent").get("link")
+                 for js in children.values() for j in js}  # fmt: skip
+    above_revolute: set[str] = set()  # links with a revolute joint somewhere below
+    for joint in root.findall("joint"):
+        if joint.get("type") in URDF_REVOLUTE:
+            link: str | None = joint.find("parent").get("link")
+            while link is not None and link not in above_revolute:
+                above_revolute.add(link)
+                link = parent_of.get(link)
+
     def moving(link_name: str) -> bool:
-        """Whether a revolute joint hangs below ``link_name``."""
-        return any(
-            joint.get("type") in URDF_REVOLUTE or moving(joint.find("child").get("link"))
-            for joint in children.get(link_name, [])
-        )
+        """Whether a revolute joint hangs below ``link_name`` (no recursion: a chain of
+        thousands of links reads as well as a short one)."""
+        return link_name in above_revolute
 
     def chain_joint(link_name: str) -> ET.Element | None:
         """The one joint below ``link_name`` leading to more revolute joints; the others
@@ -707,8 +715,13 @@ def read_mjcf(path: Path | str) -> ImportedRobot:
     def joints_of(body: ET.Element) -> list[ET.Element]:
         return [c for c in body if c.tag in ("joint", "freejoint")]
 
+    moving_bodies: set[ET.Element] = set()  # bodies with a joint in their subtree
+    for body in reversed(list(root.iter("body"))):  # children before their parents
+        if joints_of(body) or any(child in moving_bodies for child in body.findall("body")):
+            moving_bodies.add(body)
+
     def moving(body: ET.Element) -> bool:
-        return bool(joints_of(body)) or any(moving(c) for c in body.findall("body"))
+        return body in moving_bodies
 
     def next_body(body: ET.Element) -> ET.Element | None:
         leading = [c for c in body.findall("body") if moving(c)]
