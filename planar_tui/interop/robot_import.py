@@ -475,140 +475,153 @@ def _urdf_inertial(reader: _Reader, link: ET.Element) -> tuple[float, np.ndarray
     return mass, frame.p, frame.R @ tensor @ frame.R.T
 
 
+@dataclass(frozen=True)
+class _UrdfJoint:
+    """A URDF ``<joint>``: its element, type and the names of its parent and child links."""
+
+    element: ET.Element
+    type: str
+    parent: str
+    child: str
+
+    @property
+    def revolute(self) -> bool:
+        return self.type in URDF_REVOLUTE
+
+
+def _urdf_joints(
+    reader: _Reader, root: ET.Element, links: dict[str, ET.Element]
+) -> list[_UrdfJoint]:
+    """Every joint, checked: a known type, two links of the file, one parent per link."""
+    joints: list[_UrdfJoint] = []
+    children: set[str] = set()
+    for element in root.findall("joint"):
+        ends = [element.find(tag) for tag in ("parent", "child")]
+        names = [None if end is None else end.get("link") for end in ends]
+        kind = element.get("type", "")
+        if kind not in (*URDF_REVOLUTE, "fixed"):
+            raise reader.error(element, f"is a {kind or 'typeless'} joint",
+                               "revolute, continuous (or fixed) joints only")  # fmt: skip
+        for name in names:
+            if name is None or name not in links:
+                raise reader.error(element, f"names link {name!r}, which is not in the file",
+                                   "<parent link> and <child link> of the file's links")  # fmt: skip
+        parent, child = str(names[0]), str(names[1])
+        if child in children:
+            raise reader.error(element, f"link {child!r} has two parents", "a tree")
+        children.add(child)
+        joints.append(_UrdfJoint(element, kind, parent, child))
+    return joints
+
+
 def read_urdf(path: Path | str) -> ImportedRobot:
     """A URDF file as a ``[robot]`` (see the module's rules)."""
     root, reader = read_xml(path)
     if root.tag != "robot":
         raise reader.error(root, "is not a URDF <robot>", "a URDF file (root <robot>)")
-    links = {link.get("name"): link for link in root.findall("link")}
-    children: dict[str | None, list[ET.Element]] = {}
-    child_links = set()
-    for joint in root.findall("joint"):
-        parent, child = joint.find("parent"), joint.find("child")
-        if parent is None or child is None:
-            raise reader.error(joint, "has no parent or child", "<parent link> and <child link>")
-        kind = joint.get("type", "")
-        if kind not in (*URDF_REVOLUTE, "fixed"):
-            raise reader.error(joint, f"is a {kind or 'typeless'} joint",
-                               "revolute, continuous (or fixed) joints only")  # fmt: skip
-        for end in (parent, child):
-            if end.get("link") not in links:
-                raise reader.error(joint, f"names link {end.get('link')!r}, which is not in "
-                                   "the file", "a <link> of that name")  # fmt: skip
-        if child.get("link") in child_links:
-            raise reader.error(joint, f"link {child.get('link')!r} has two parents", "a tree")
-        child_links.add(child.get("link"))
-        children.setdefault(parent.get("link"), []).append(joint)
-    roots = [name for name in links if name not in child_links]
+    links = {str(link.get("name")): link for link in root.findall("link")}
+    joints = _urdf_joints(reader, root, links)
+    below: dict[str, list[_UrdfJoint]] = {}
+    for entry in joints:
+        below.setdefault(entry.parent, []).append(entry)
+    parent_of = {entry.child: entry.parent for entry in joints}
+    roots = [name for name in links if name not in parent_of]
     if len(roots) != 1:
         raise reader.error(root, f"has {len(roots)} root links", "one base link")
-    gravity, source, notes = _urdf_gravity(reader, root)
-
-    parent_of = {j.find("child").get("link"): j.find("parent").get("link")
-                 for js in children.values() for j in js}  # fmt: skip
+    gravity, source = _urdf_gravity(reader, root)
+    notes: list[str] = []
     above_revolute: set[str] = set()  # links with a revolute joint somewhere below
-    for joint in root.findall("joint"):
-        if joint.get("type") in URDF_REVOLUTE:
-            link: str | None = joint.find("parent").get("link")
-            while link is not None and link not in above_revolute:
-                above_revolute.add(link)
-                link = parent_of.get(link)
+    for entry in joints:
+        link: str | None = entry.parent if entry.revolute else None
+        while link is not None and link not in above_revolute:  # no recursion: any length
+            above_revolute.add(link)
+            link = parent_of.get(link)
 
-    def moving(link_name: str) -> bool:
-        """Whether a revolute joint hangs below ``link_name`` (no recursion: a chain of
-        thousands of links reads as well as a short one)."""
-        return link_name in above_revolute
+    def leads(joint: _UrdfJoint) -> bool:
+        return joint.revolute or joint.child in above_revolute
 
-    def chain_joint(link_name: str) -> ET.Element | None:
+    def chain_joint(link_name: str) -> _UrdfJoint | None:
         """The one joint below ``link_name`` leading to more revolute joints; the others
-        (massless frames: tips, tools) are checked and dropped."""
-        leading = [j for j in children.get(link_name, []) if j.get("type") in URDF_REVOLUTE
-                   or moving(j.find("child").get("link"))]  # fmt: skip
+        (massless frames: tips, tools) are checked by :func:`welded`."""
+        leading = [joint for joint in below.get(link_name, []) if leads(joint)]
         if len(leading) > 1:
-            raise reader.error(leading[1], f"is a second chain below link {link_name!r}: a "
-                               "branched tree", "a serial chain")  # fmt: skip
+            raise reader.error(leading[1].element, f"is a second chain below link "
+                               f"{link_name!r}: a branched tree", "a serial chain")  # fmt: skip
         return leading[0] if leading else None
 
     def welded(link_name: str, moving_link: str) -> None:
         """Refuse a mass fixed to a moving link (planar-tui does not merge bodies)."""
-        for joint in children.get(link_name, []):
-            child = joint.find("child").get("link")
-            if joint.get("type") == "fixed" and not moving(child):
-                if _urdf_inertial(reader, links[child])[0] > 0:
-                    raise reader.error(links[child], f"has a mass welded to link "
+        for joint in below.get(link_name, []):
+            if not leads(joint):
+                if _urdf_inertial(reader, links[joint.child])[0] > 0:
+                    raise reader.error(links[joint.child], f"has a mass welded to link "
                                        f"{moving_link!r}", "massless fixed links only "
                                        "(merge the mass into the link)")  # fmt: skip
-                welded(child, moving_link)
+                welded(joint.child, moving_link)
 
     # the base: fixed joints from the root to the first revolute joint (masses ignored)
     world = Frame()
-    current = roots[0]
-    joint = chain_joint(current)
-    while joint is not None and joint.get("type") == "fixed":
-        world = world.then(_urdf_origin(reader, joint))
-        current = joint.find("child").get("link")
-        joint = chain_joint(current)
+    joint = chain_joint(roots[0])
+    while joint is not None and not joint.revolute:
+        world = world.then(_urdf_origin(reader, joint.element))
+        joint = chain_joint(joint.child)
     chain: list[Link] = []
     while joint is not None:
-        frame = world.then(_urdf_origin(reader, joint))
-        name = joint.find("child").get("link")
-        axis_element = joint.find("axis")
-        try:
-            axis = (
-                _unit(reader.numbers(axis_element, "xyz", 3, None))
-                if axis_element is not None
-                else np.array([1.0, 0.0, 0.0])
-            )
-        except ValueError:
-            raise reader.error(axis_element, "axis is zero", "a direction") from None
-        if joint.get("type") == "revolute" and joint.find("limit") is not None:
-            notes.append(f"joint {joint.get('name')!r}: its limits are not kept")
-        for tag in ("dynamics", "mimic"):
-            if joint.find(tag) is not None:
-                notes.append(f"joint {joint.get('name')!r}: <{tag}> is not kept")
-        link = links[name]
-        mass, com, inertia = _urdf_inertial(reader, link)
-        if link.find("inertial") is None:
-            raise reader.error(link, "has no <inertial>", "the link's mass and inertia")
+        frame = world.then(_urdf_origin(reader, joint.element))
+        name = joint.child
+        axis_element = joint.element.find("axis")
+        axis = np.array([1.0, 0.0, 0.0])  # URDF's default
+        if axis_element is not None:
+            try:
+                axis = _unit(reader.numbers(axis_element, "xyz", 3, None))
+            except ValueError:
+                raise reader.error(axis_element, "axis is zero", "a direction") from None
+        label = joint.element.get("name")
+        if joint.type == "revolute" and joint.element.find("limit") is not None:
+            notes.append(f"joint {label!r}: its limits are not kept")
+        notes += [f"joint {label!r}: <{tag}> is not kept" for tag in ("dynamics", "mimic")
+                  if joint.element.find(tag) is not None]  # fmt: skip
+        link_element = links[name]
+        if link_element.find("inertial") is None:
+            raise reader.error(link_element, "has no <inertial>", "the link's mass and inertia")
+        mass, com, inertia = _urdf_inertial(reader, link_element)
         welded(name, name)
         # the next revolute joint, through massless fixed links
         relative = Frame()
-        current = name
-        following = chain_joint(current)
-        while following is not None and following.get("type") == "fixed":
-            relative = relative.then(_urdf_origin(reader, following))
-            current = following.find("child").get("link")
-            if _urdf_inertial(reader, links[current])[0] > 0:
-                raise reader.error(links[current], f"has a mass welded to link {name!r}",
-                                   "massless fixed links only")  # fmt: skip
-            welded(current, name)
-            following = chain_joint(current)
+        following = chain_joint(name)
+        while following is not None and not following.revolute:
+            relative = relative.then(_urdf_origin(reader, following.element))
+            if _urdf_inertial(reader, links[following.child])[0] > 0:
+                raise reader.error(links[following.child], f"has a mass welded to link "
+                                   f"{name!r}", "massless fixed links only")  # fmt: skip
+            welded(following.child, name)
+            following = chain_joint(following.child)
         next_point = None
         if following is not None:
-            next_point = relative.then(_urdf_origin(reader, following)).p
+            next_point = relative.then(_urdf_origin(reader, following.element)).p
         chain.append(Link(
-            joint=reader.where(joint), element=reader.where(link), joint_point=np.zeros(3),
-            axis=axis, mass_kg=mass, com=com, inertia=inertia, world=frame.R,
-            next_point=next_point,
+            joint=reader.where(joint.element), element=reader.where(link_element),
+            joint_point=np.zeros(3), axis=axis, mass_kg=mass, com=com, inertia=inertia,
+            world=frame.R, next_point=next_point,
         ))  # fmt: skip
         world = frame.then(relative)
         joint = following
     return planar_robot(Chain(root.get("name", ""), chain, gravity, source, notes), reader, "URDF")
 
 
-def _urdf_gravity(reader: _Reader, root: ET.Element) -> tuple[np.ndarray, str, list[str]]:
+def _urdf_gravity(reader: _Reader, root: ET.Element) -> tuple[np.ndarray, str]:
     """Gravity from planar-tui's ``<planar_tui>`` element, else ROS's (assumed)."""
     from planar_tui.interop.urdf import GRAVITY_ELEMENT
 
     element = root.find(GRAVITY_ELEMENT)
     if element is None:
-        return np.array(ROS_GRAVITY), "assumed: URDF has no gravity (ROS: z up)", []
+        return np.array(ROS_GRAVITY), "assumed: URDF has no gravity (ROS: z up)"
     g = reader.number(element, "gravity_m_s2", None)
     try:
         direction = _unit(reader.numbers(element, "direction", 3, (0.0, -1.0, 0.0)))
     except ValueError:
         raise reader.error(element, "direction is zero", "a direction") from None
-    return g * direction, f"the file's <{GRAVITY_ELEMENT}>", []
+    return g * direction, f"the file's <{GRAVITY_ELEMENT}>"
 
 
 # ---------------------------------------------------------------------------------------
@@ -716,9 +729,9 @@ def read_mjcf(path: Path | str) -> ImportedRobot:
         return [c for c in body if c.tag in ("joint", "freejoint")]
 
     moving_bodies: set[ET.Element] = set()  # bodies with a joint in their subtree
-    for body in reversed(list(root.iter("body"))):  # children before their parents
-        if joints_of(body) or any(child in moving_bodies for child in body.findall("body")):
-            moving_bodies.add(body)
+    for element in reversed(list(root.iter("body"))):  # children before their parents
+        if joints_of(element) or any(c in moving_bodies for c in element.findall("body")):
+            moving_bodies.add(element)
 
     def moving(body: ET.Element) -> bool:
         return body in moving_bodies
