@@ -89,8 +89,9 @@ def test_an_acrobot_style_model_imports_with_its_angle_offsets():
     assert (robot.lengths_m, robot.masses_kg, robot.gravity_m_s2) == ((1.0, 1.2), (1.3, 0.8), 9.81)
     np.testing.assert_allclose(robot.inertias_kgm2, (0.11, 0.1), rtol=1e-14)
     # links up at zero, the mount turned 30° towards +x: 90° + 30° from the plane's x axis
-    np.testing.assert_allclose(imported.offsets_deg, (120.0, 0.0), atol=1e-12)
-    assert "theta_i = q_i + [120, 0] deg" in " ".join(imported.notes)
+    # the elbow drawn at its reference angle 0.5 rad: θ2 = q2 - 0.5 rad
+    np.testing.assert_allclose(imported.offsets_deg, (120.0, -np.degrees(0.5)), atol=1e-12)
+    assert "theta_i = q_i + [120, -28.6479] deg" in " ".join(imported.notes)
     mujoco_matches_preset(path, imported)
 
 
@@ -176,6 +177,16 @@ REFUSALS = {
             '<equality><connect body1="link1" body2="link2" anchor="0 0 0"/></equality></mujoco>',
         ),
         "<equality>: closed loops or couplings are not a serial chain",
+    ),
+    "mjcf masses from geoms": (
+        "xml",
+        edited(MJCF_2R, 'inertiafromgeom="false"', 'inertiafromgeom="true"'),
+        '<compiler>: inertiafromgeom is "true": the masses are the geoms\', which are not read',
+    ),
+    "mjcf total mass": (
+        "xml",
+        edited(MJCF_2R, 'inertiafromgeom="false"', 'inertiafromgeom="false" settotalmass="3"'),
+        "settotalmass changes the masses MuJoCo uses",
     ),
     "mjcf include": (
         "xml",

@@ -29,7 +29,8 @@ the frame of link i (its joint's frame at zero joint angles):
   keeps gravity's in-plane part, with a note;
 * links that are not straight along x at zero joint angles get a note giving the angle
   offsets (planar-tui's :math:`\theta_i = q_i + \Delta_i`): the preset is the same arm,
-  its angles counted from the straight posture.
+  its angles counted from the straight posture (an MJCF joint's ``ref``, the coordinate
+  of the drawn posture, is taken off :math:`\Delta_i`).
 
 Refused, each with one line naming the file, the element (and its line) and why: a joint
 that is not revolute (prismatic, ball, free, planar, floating ...), axes not parallel, a
@@ -96,7 +97,9 @@ class Link:
     ``joint_point`` and ``axis`` are the joint's, ``com`` and ``inertia`` (about the
     centre of mass, in the frame's axes) the link's; ``world`` its rotation in the
     world; ``next_point`` joint i+1's point in this frame (``None`` for the last link);
-    ``joint`` and ``element`` name the joint and the link for messages."""
+    ``joint`` and ``element`` name the joint and the link for messages;
+    ``reference_rad`` the joint coordinate at which the link is where the file draws it
+    (MJCF ``ref``; 0 in URDF)."""
 
     joint: str
     element: str
@@ -107,6 +110,7 @@ class Link:
     inertia: np.ndarray
     world: np.ndarray
     next_point: np.ndarray | None = None
+    reference_rad: float = 0.0
 
 
 @dataclass
@@ -388,6 +392,9 @@ def planar_robot(chain: Chain, reader: _Reader, source_format: str) -> ImportedR
     gravity_m_s2, x_axis = _plane_gravity(chain, normal, directions[0], notes)
     offsets = [_signed_angle(x_axis, directions[0], normal)]
     offsets += [_signed_angle(a, b, normal) for a, b in itertools.pairwise(directions)]
+    offsets = [
+        offset - link.reference_rad for offset, link in zip(offsets, chain.links, strict=True)
+    ]
     offsets_deg = tuple(math.degrees(o) if abs(o) > 1e-12 else 0.0 for o in offsets)
     if any(offsets_deg):
         shown = ", ".join(f"{o:.6g}" for o in offsets_deg)
@@ -711,6 +718,13 @@ def read_mjcf(path: Path | str) -> ImportedRobot:
             if angle not in ("degree", "radian"):
                 raise reader.error(element, f"angle is {angle!r}", '"degree" or "radian"')
             compiler.degrees = angle == "degree"
+        if element.get("inertiafromgeom") == "true":
+            raise reader.error(element, "inertiafromgeom is \"true\": the masses are the "
+                               "geoms', which are not read", '"auto" or "false" with <inertial>')  # fmt: skip
+        for attribute in ("settotalmass", "boundmass", "boundinertia", "balanceinertia"):
+            if element.get(attribute) not in (None, "-1", "0", "false"):
+                raise reader.error(element, f"{attribute} changes the masses MuJoCo uses: "
+                                   "not read", f"a <compiler> without {attribute}")  # fmt: skip
         sequence = element.get("eulerseq")
         if sequence is not None:
             if len(sequence) != 3 or any(c not in "xyzXYZ" for c in sequence):
@@ -797,6 +811,9 @@ def read_mjcf(path: Path | str) -> ImportedRobot:
             value = resolved.get(attribute)
             if value is not None and (attribute == "range" or value.strip() not in ("0", "0.0")):
                 notes.append(f"{reader.where(joint)}: {attribute} {value} is not kept")
+        reference = reader.number(resolved, "ref", 0.0) * (
+            math.pi / 180.0 if compiler.degrees else 1.0
+        )
         inertial = body.find("inertial")
         if inertial is None:
             has_geoms = body.find("geom") is not None
@@ -834,6 +851,7 @@ def read_mjcf(path: Path | str) -> ImportedRobot:
             joint=reader.where(joint), element=reader.where(body), joint_point=joint_point,
             axis=axis, mass_kg=mass, com=reader.numbers(inertial, "pos", 3, None),
             inertia=rotation @ tensor @ rotation.T, world=frame.R, next_point=next_point,
+            reference_rad=reference,
         ))  # fmt: skip
         world = frame.then(relative)
         body = following
