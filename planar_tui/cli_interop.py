@@ -46,10 +46,13 @@ def export_command(
             raise PresetError("command line", "--format", problem, " or ".join(EXPORT_FORMATS))
         if out is None:
             raise PresetError("command line", "--out", "missing", "the file to write")
+        from planar_tui.batch import check_writable
         from planar_tui.interop.exchange import export_robot, preset_robot
 
         (loaded,) = load_presets([preset])
-        written = export_robot(preset_robot(loaded, robot), format_name, out)
+        robot_model = preset_robot(loaded, robot)
+        check_writable(out, "model file")
+        written = export_robot(robot_model, format_name, out)
     stdout.print(f"wrote {written}", markup=False, highlight=False, soft_wrap=True)
 
 
@@ -62,9 +65,12 @@ def import_command(
 ) -> None:
     """Read a serial arm of revolute joints from a URDF or MJCF file as a [robot] preset."""
     with reported_errors():
+        from planar_tui.batch import check_writable
         from planar_tui.interop.exchange import import_robot, write_preset
 
         imported, text = import_robot(source)
+        if out is not None:
+            check_writable(out, "preset file")
         written = None if out is None else write_preset(text, out)
     for note in imported.notes:
         stderr.print(f"note: {note}", markup=False, highlight=False, soft_wrap=True)

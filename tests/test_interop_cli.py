@@ -165,3 +165,15 @@ def test_a_format_other_than_csv_or_netcdf_is_one_line(cli, tmp_path):
     line = one_error_line(cli("motion", preset, "--out-dir", tmp_path, "--format", "xlsx"))
     assert line == "error: command line: --format: is 'xlsx' (expected csv or netcdf)"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["arm.toml"]
+
+
+def test_an_unwritable_output_is_one_line(cli, tmp_path):
+    """A path under a file (no folder can be made there, even for root)."""
+    blocker = tmp_path / "notes.txt"
+    blocker.write_text("mine")
+    model = blocker / "arm.xml"
+    line = one_error_line(cli("export", "paper-a-table1", "--format", "mjcf", "--out", model))
+    assert line.startswith(f"error: {model}: ")
+    assert "is not a writable folder" in line
+    assert blocker.read_text() == "mine"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["notes.txt"]

@@ -34,12 +34,14 @@ def refuse_existing(paths: Sequence[Path], option: str) -> None:
 
 def write_new(path: Path, write: Callable[[Path], None], option: str = "(file)") -> Path:
     """Create ``path`` by ``write(temporary_path)``; refuse if it exists (before and at
-    the end, atomically); on any error, Ctrl-C included, nothing is left behind."""
+    the end, atomically); on any error, Ctrl-C included, nothing is left behind. An
+    operating-system error (a folder that cannot be created or written, a full disk) is
+    a :class:`PresetError` naming the path and the option."""
     path = Path(path)
     refuse_existing([path], option)
-    path.parent.mkdir(parents=True, exist_ok=True)
     temp = path.with_name(f".{path.name[:64]}.{secrets.token_hex(4)}.tmp")
     try:
+        path.parent.mkdir(parents=True, exist_ok=True)
         write(temp)
         try:
             os.link(temp, path)
@@ -48,6 +50,9 @@ def write_new(path: Path, write: Callable[[Path], None], option: str = "(file)")
         except OSError:  # no hard links here (some network and FAT file systems)
             refuse_existing([path], option)
             os.replace(temp, path)
+    except OSError as error:
+        raise PresetError(path, option, f"cannot be written: {error.strerror or error}",
+                          "a path in a writable folder") from None  # fmt: skip
     finally:
         temp.unlink(missing_ok=True)
     return path
