@@ -59,5 +59,5 @@ def xml_comment(text: str) -> str:
 
 def robot_label(robot) -> str:
     """The model's name: the robot's ``name``, else its label ``nR`` (an importer reads
-    ``nR`` back as no name: :func:`planar_tui.interop.robot_import.preset_name`)."""
+    ``nR`` back as no name: :func:`planar_tui.interop.planar_chain.preset_name`)."""
     return robot.name or robot.label
