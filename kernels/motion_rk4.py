@@ -14,7 +14,7 @@ import numpy as np
 from numba import prange
 
 from ._jit import kernel
-from .dynamics import forward_dynamics_work
+from .aba_planar import auto_work
 from .rk4 import rk4_step
 
 #: Robots handled by one parallel task: work arrays are allocated once per task.
@@ -63,7 +63,7 @@ def rk4_batch(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n
     samples, _, n = params.shape
     n_tasks = (samples + ROBOTS_PER_TASK - 1) // ROBOTS_PER_TASK
     for task in prange(n_tasks):
-        work, matrix = forward_dynamics_work(n)
+        work, matrix = auto_work(n)
         d_theta = np.empty((4, n))
         d_omega = np.empty((4, n))
         theta = np.empty(n)
