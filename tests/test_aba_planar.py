@@ -102,3 +102,44 @@ def test_a_long_free_falling_chain_keeps_its_energy():
     assert kinetic[-1] > 1.0  # it fell
     assert np.abs(total - total[0]).max() <= 1e-8 * kinetic.max()
     assert energies(*robot, G, theta, omega)[0] == pytest.approx(kinetic[-1], rel=1e-15)
+
+
+LONG_CHAIN_ON_THE_CUDA_SIMULATOR = """
+import json, numpy as np
+from planar_tui.kernels import aba_planar, motion_cuda, motion_rk4
+n = 9
+rng = np.random.default_rng(8)
+unit = rng.random((3, 2 * n))
+lower = np.concatenate([np.full(n, 0.10), np.full(n, 0.30)])
+upper = lower + np.concatenate([np.full(n, 0.02), np.full(n, 0.05)])
+inertias = np.full(n, 1e-3); rod = np.ones(n, dtype=bool)
+theta = np.tile(np.linspace(0.1, -0.2, n), (3, 1)); omega = np.zeros((3, n))
+torque = np.linspace(0.5, 0.05, n)
+batch = motion_cuda.CudaBatch(unit, lower, upper, inertias, rod, theta, omega, 9.81, torque)
+batch.advance(1e-3, 6)
+params = motion_rk4.design_parameters(unit, lower, upper, inertias, rod)
+motion_rk4.rk4_batch(params, 9.81, torque, theta, omega, 1e-3, 6)
+print(json.dumps({"aba": bool(aba_planar.uses_aba(n)), "matrix": list(batch.matrix.shape),
+                  "error": float(np.abs(batch.angles() - theta).max()),
+                  "moved": float(np.abs(theta - np.linspace(0.1, -0.2, n)).max())}))
+"""
+
+
+def test_the_cuda_kernel_takes_the_o_n_path_for_long_chains_on_the_simulator():
+    """A 9-link chain on numba's CUDA simulator (a fresh process: the simulator must be on
+    before numba.cuda is imported) equals the CPU kernel and holds no n × n matrix."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    env = {**os.environ, "NUMBA_ENABLE_CUDASIM": "1"}
+    done = subprocess.run(
+        [sys.executable, "-c", LONG_CHAIN_ON_THE_CUDA_SIMULATOR],
+        env=env, capture_output=True, text=True, check=True,
+    )  # fmt: skip
+    report = json.loads(done.stdout.strip().splitlines()[-1])
+    assert report["aba"]
+    assert report["matrix"] == [3, 1, 1]
+    assert report["moved"] > 1e-4
+    assert report["error"] <= 1e-13
