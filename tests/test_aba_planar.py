@@ -63,7 +63,8 @@ def test_long_chains_agree_with_noc_and_mujoco_in_torque_space(n):
     # backward error of the recursion itself: it reproduces τ to round-off
     residual = inverse_dynamics(*robot, G, theta, omega, alpha) - tau
     assert np.abs(residual).max() <= 1e-14 * scale
-    kappa = np.linalg.cond(mass_matrix(*robot, theta))
+    # κ(M) by an SVD: ~1 s at n = 1000 on a busy machine, so only for the shorter chains
+    kappa = np.linalg.cond(mass_matrix(*robot, theta)) if n <= 100 else None
     for other in (
         forward_dynamics(*robot, G, theta, omega, tau),
         mujoco_forward(robot, theta, omega, tau),
@@ -72,7 +73,8 @@ def test_long_chains_agree_with_noc_and_mujoco_in_torque_space(n):
             *robot, G, theta, omega, np.zeros(n)
         )  # = M (α − α_other)
         assert np.abs(torque_gap).max() <= 1e-12 * scale
-        assert np.abs(alpha - other).max() <= 100 * kappa * EPS * np.abs(alpha).max()
+        if kappa is not None:
+            assert np.abs(alpha - other).max() <= 100 * kappa * EPS * np.abs(alpha).max()
 
 
 def test_one_link_pendulum_by_hand():
