@@ -1,4 +1,9 @@
-r"""Batched RK4 over S robots, each with its own link parameters (the motion uncertainty job).
+r"""Batched RK4 over S robots, each with its own link parameters, one robot at a time.
+
+The motion uncertainty job's parameters come from :func:`design_parameters`; its robots are
+integrated by the lane-batched :func:`kernels.motion_lanes.rk4_lanes` (SIMD lanes over
+robots). :func:`rk4_batch` here is the scalar reference the lane kernel is tested and
+benchmarked against, and the CUDA kernel's model (:mod:`kernels.motion_cuda`).
 
 Row s of a unit design :math:`u` (S, D) is the robot
 :math:`x_s = u_s\,(x_{ub} - x_{lb}) + x_{lb}` (link lengths, masses and, when D = 3n,
