@@ -49,7 +49,7 @@ def import_pinocchio():
 def pinocchio_chain(lengths_m, masses_kg, inertias_kgm2, gravity_m_s2):
     """``(model, data)`` of the planar chain in Pinocchio: revolute-z joints, joint i+1 at
     ``l_i`` along link i's x axis, link i's centre of mass at mid-link with
-    ``I_zz = I_i`` (``I_xx`` tiny, ``I_yy = I_i`` as in ``tests/mujoco_model.py``), gravity
+    ``I_zz = I_i`` (``I_xx`` tiny, ``I_yy = I_i`` as in ``benchmarks/mujoco_model.py``), gravity
     ``(0, -g, 0)``."""
     pin = import_pinocchio()
     model = pin.Model()

@@ -49,7 +49,7 @@ from planar_tui.kernels.motion_lanes import LANES, rk4_lanes
 from planar_tui.kernels.motion_rk4 import design_parameters, rk4_batch
 from planar_tui.kernels.rk4 import rk4_integrate
 
-from tests.mujoco_model import chain_model
+from benchmarks.mujoco_model import chain_model
 
 G = 9.81
 LENGTHS = np.array([0.25, 0.25, 0.20, 0.20, 0.15, 0.15])

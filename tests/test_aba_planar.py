@@ -1,6 +1,6 @@
 """The O(n) articulated-body forward dynamics (kernels/aba_planar.py) against independent
 methods: the NOC mass matrix + LDLᵀ (kernels/dynamics.py), MuJoCo's ``mj_forward`` (its own
-composite-rigid-body mass matrix and sparse factorisation, tests/mujoco_model.py), the
+composite-rigid-body mass matrix and sparse factorisation, benchmarks/mujoco_model.py), the
 recursive Newton-Euler inverse dynamics (backward error), the 1R pendulum by hand, and
 energy conservation of an RK4 free fall of a long chain (which takes this path).
 
@@ -18,7 +18,7 @@ from planar_tui.kernels.aba_planar import ABA_MIN_LINKS, aba_forward_dynamics
 from planar_tui.kernels.dynamics import energies, forward_dynamics, inverse_dynamics, mass_matrix
 from planar_tui.kernels.rk4 import rk4_integrate
 
-from tests.mujoco_model import chain_model
+from benchmarks.mujoco_model import chain_model
 from tests.test_dynamics_kernels import G, random_robot, random_state
 
 EPS = np.finfo(float).eps

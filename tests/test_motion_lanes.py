@@ -16,7 +16,7 @@ from planar_tui.kernels.lane_trig import SINCOS_MAX_ABS, sincos
 from planar_tui.kernels.motion_lanes import LANES, rk4_lanes
 from planar_tui.kernels.motion_rk4 import design_parameters, rk4_batch
 
-from tests.mujoco_model import chain_model
+from benchmarks.mujoco_model import chain_model
 from tests.test_motion_kernels import TABLE1, TORQUES
 
 
