@@ -1,0 +1,235 @@
+"""Polynomial chaos against Saltelli on paper A's Tables 4-5 problems (issue 22).
+
+For every job of presets/paper-a-table4.toml and paper-a-table5.toml (2R, 3R, 6R; D = 4,
+6, 12 inputs), in one process:
+
+1. the exact indices: the torques are polynomials of degree ≤ 2 in each input, so a
+   3-point Gauss-Legendre tensor grid (3^D model runs) gives every conditional variance
+   exactly (``exact_indices``, independent of any expansion);
+2. Saltelli's Sobol' design at N = 8192 (N (D + 2) runs, our jitted estimators = SALib's);
+3. our PCE (:mod:`planar_tui.sensitivity.pce`: NumPy Legendre basis, OMP, corrected LOO,
+   degree adaptivity, bootstrap) at its default ``pce_samples``;
+4. Chaospy 4 (``generate_expansion`` + ``fit_regression`` least squares, degree 2, and
+   ``Sens_m``/``Sens_t``) and OpenTURNS (``FunctionalChaosAlgorithm`` with LARS and the
+   corrected LOO, degree 3, ``FunctionalChaosSobolIndices``) on the same design;
+
+and prints, per method, the largest |ST − exact| and |ST − Saltelli| over the jobs, the
+model runs and the seconds (fit + indices; the library's import timed apart), and the
+ratios. Run: ``.venv/bin/python benchmarks/bench_pce.py [--no-libraries]``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+REPO = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(REPO))
+
+from planar_tui.runtime import prepare_kernels  # noqa: E402
+
+prepare_kernels()
+
+from planar_tui.presets import load_preset  # noqa: E402
+from planar_tui.sensitivity import engine, pce  # noqa: E402
+from planar_tui.sensitivity.job import prepare_sensitivity  # noqa: E402
+
+PRESETS = [REPO / "presets" / "paper-a-table4.toml", REPO / "presets" / "paper-a-table5.toml"]
+SALTELLI_N = 8192
+
+
+def jobs():
+    found = [job for path in PRESETS for job in load_preset(path).jobs_of("sensitivity")]
+    return [prepare_sensitivity(job) for job in found]
+
+
+def model(job):
+    """(problem, f(unit design) -> torques (S, n))."""
+    spec, robot = job.spec, job.robot
+    problem = engine.build_problem(robot, spec.tolerance_length_m, spec.tolerance_mass_kg)
+    n = robot.n_links
+    state = (
+        np.array(spec.posture.theta_rad),
+        np.full(n, spec.speeds_rad_s[0]),
+        np.full(n, spec.alpha_rad_s2),
+    )
+    return problem, lambda unit: engine.evaluate(problem, np.ascontiguousarray(unit), robot, *state)
+
+
+def exact_indices(f, num_vars: int):
+    """S1, ST (n, D) by 3-point Gauss-Legendre tensor quadrature (exact for outputs of
+    degree ≤ 2 in each input: their squares have degree ≤ 4 < 6)."""
+    x, w = np.polynomial.legendre.leggauss(3)
+    w = w / 2.0
+    grid = np.stack(np.meshgrid(*([(x + 1.0) / 2.0] * num_vars), indexing="ij"), axis=-1)
+    y = f(grid.reshape(-1, num_vars))
+    weights = np.ones(())
+    for _ in range(num_vars):
+        weights = np.multiply.outer(weights, w)
+    first = np.empty((y.shape[1], num_vars))
+    total = np.empty_like(first)
+    for t in range(y.shape[1]):
+        values = y[:, t].reshape((3,) * num_vars)
+        mean = float((weights * values).sum())
+        variance = float((weights * (values - mean) ** 2).sum())
+        for a in range(num_vars):
+            others = tuple(i for i in range(num_vars) if i != a)
+            given_a = (weights * values).sum(axis=others) / w
+            first[t, a] = float(w @ (given_a - mean) ** 2) / variance
+            given_others = np.expand_dims(np.moveaxis(values, a, -1) @ w, a)
+            total[t, a] = float((weights * (values - given_others) ** 2).sum()) / variance
+    return first, total
+
+
+def chaospy_indices(unit, y, degree=2):
+    import chaospy
+
+    num_vars = unit.shape[1]
+    dist = chaospy.J(*[chaospy.Uniform(0.0, 1.0) for _ in range(num_vars)])
+    expansion = chaospy.generate_expansion(degree, dist, normed=True)
+    fitted = chaospy.fit_regression(expansion, unit.T, y)
+    return np.asarray(chaospy.Sens_m(fitted, dist)).T, np.asarray(chaospy.Sens_t(fitted, dist)).T
+
+
+def openturns_indices(unit, y, degree=3):
+    import openturns as ot
+
+    num_vars = unit.shape[1]
+    dist = ot.JointDistribution([ot.Uniform(-1.0, 1.0)] * num_vars)
+    enumerate_function = ot.LinearEnumerateFunction(num_vars)
+    factory = ot.OrthogonalProductPolynomialFactory(
+        [ot.LegendreFactory()] * num_vars, enumerate_function
+    )
+    size = enumerate_function.getStrataCumulatedCardinal(degree)
+    selection = ot.LeastSquaresMetaModelSelectionFactory(ot.LARS(), ot.CorrectedLeaveOneOut())
+    algo = ot.FunctionalChaosAlgorithm(
+        ot.Sample(2.0 * unit - 1.0),
+        ot.Sample(y),
+        dist,
+        ot.FixedStrategy(factory, size),
+        ot.LeastSquaresStrategy(selection),
+    )
+    algo.run()
+    sobol = ot.FunctionalChaosSobolIndices(algo.getResult())
+    first = np.array(
+        [[sobol.getSobolIndex(i, t) for i in range(num_vars)] for t in range(y.shape[1])]
+    )
+    total = np.array(
+        [[sobol.getSobolTotalIndex(i, t) for i in range(num_vars)] for t in range(y.shape[1])]
+    )
+    return first, total
+
+
+def import_seconds(module: str) -> float:
+    """Seconds to import ``module`` in a fresh interpreter (minus a bare start)."""
+    times = []
+    for code in ("pass", f"import {module}"):
+        t0 = time.perf_counter()
+        subprocess.run([sys.executable, "-c", code], check=True)
+        times.append(time.perf_counter() - t0)
+    return times[1] - times[0]
+
+
+@dataclasses.dataclass
+class Tally:
+    runs: int = 0
+    seconds: float = 0.0
+    vs_exact: float = 0.0
+    vs_saltelli: float = 0.0
+
+    def add(self, runs, seconds, total, exact, saltelli):
+        self.runs = max(self.runs, runs)
+        self.seconds += seconds
+        self.vs_exact = max(self.vs_exact, float(np.abs(total - exact).max()))
+        if saltelli is not None:
+            self.vs_saltelli = max(self.vs_saltelli, float(np.abs(total - saltelli).max()))
+
+
+def whole_process(methods: str, out: Path) -> float:
+    """Seconds of ``planar-tui run paper-a-table4 paper-a-table5`` with every job's
+    ``methods`` replaced (presets copied with that one line changed)."""
+    for path in PRESETS:
+        text = path.read_text().replace('methods = ["sobol", "efast"]', f"methods = [{methods}]")
+        (out / path.name).write_text(text)
+    command = [str(Path(sys.executable).parent / "planar-tui"), "run"]
+    command += [str(out / p.name) for p in PRESETS] + ["-d", str(out)]
+    t0 = time.perf_counter()
+    subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
+    return time.perf_counter() - t0
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--no-libraries", action="store_true", help="skip Chaospy, OpenTURNS")
+    parser.add_argument("--whole-process", action="store_true", help="time planar-tui run too")
+    args = parser.parse_args()
+    tallies = {name: Tally() for name in ("saltelli", "pce", "chaospy", "openturns")}
+    print("| job | D | runs PCE | degree | terms | LOO | max |ST-exact| PCE | Saltelli |")
+    print("|---|---|---|---|---|---|---|---|")
+    for job in jobs():
+        problem, f = model(job)
+        d = problem.num_vars
+        _first_exact, total_exact = exact_indices(f, d)
+        t0 = time.perf_counter()
+        unit = engine.unit_design("sobol", d, SALTELLI_N, job.spec.seed)
+        saltelli = engine.analyse("sobol", f(unit), d, job.spec.seed)[2]
+        tallies["saltelli"].add(
+            SALTELLI_N * (d + 2), time.perf_counter() - t0, saltelli, total_exact, None
+        )
+        samples = pce.default_pce_samples(d)
+        t0 = time.perf_counter()
+        design = pce.pce_unit_design(d, samples, job.spec.seed)
+        y = f(design)
+        indices, fits = pce.pce_indices(design, y, job.spec.seed)
+        tallies["pce"].add(samples, time.perf_counter() - t0, indices[2], total_exact, saltelli)
+        loo = max(float(fit.loo_error.max()) for fit in fits)
+        terms = max(len(fit.indices) for fit in fits)
+        degree = max(fit.degree for fit in fits)
+        print(
+            f"| {job.label} | {d} | {samples} | {degree} | {terms} | {loo:.1e} "
+            f"| {np.abs(indices[2] - total_exact).max():.1e} "
+            f"| {np.abs(saltelli - total_exact).max():.1e} |"
+        )
+        if not args.no_libraries:
+            for name, fitter in (("chaospy", chaospy_indices), ("openturns", openturns_indices)):
+                t0 = time.perf_counter()
+                _, total = fitter(np.asarray(design), y)
+                tallies[name].add(samples, time.perf_counter() - t0, total, total_exact, saltelli)
+    print()
+    print("| method | runs (max) | seconds (10 jobs) | import s | max |ST − exact| "
+          "| max |ST − Saltelli 8192| |")  # fmt: skip
+    print("|---|---|---|---|---|---|")
+    imports = {"chaospy": "chaospy", "openturns": "openturns"}
+    base = tallies["saltelli"]
+    for name, tally in tallies.items():
+        if tally.runs == 0:
+            continue
+        imported = f"{import_seconds(imports[name]):.2f}" if name in imports else "-"
+        print(
+            f"| {name} | {tally.runs} ({base.runs / tally.runs:.0f}× fewer) "
+            f"| {tally.seconds:.2f} ({base.seconds / tally.seconds:.1f}×) | {imported} "
+            f"| {tally.vs_exact:.1e} | {tally.vs_saltelli:.1e} |"
+        )
+    if args.whole_process:
+        with tempfile.TemporaryDirectory() as folder:
+            out = Path(folder)
+            os.environ.setdefault("PLANAR_TUI_CACHE_DIR", str(out / "cache"))
+            whole_process('"sobol"', out)  # draw the designs once
+            whole_process('"pce"', out)
+            sobol = min(whole_process('"sobol"', out) for _ in range(3))
+            chaos = min(whole_process('"pce"', out) for _ in range(3))
+        print(f"\nwhole process, Tables 4+5: Sobol' {sobol:.2f} s, PCE {chaos:.2f} s, "
+              f"ratio {sobol / chaos:.1f}×")  # fmt: skip
+    print(f"load average: {Path('/proc/loadavg').read_text().split()[0]}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,411 @@
+r"""Sobol' indices from a sparse polynomial chaos expansion (PCE), fitted on a few hundred
+model runs.
+
+The inputs are independent and uniform on their tolerance boxes; on the unit hypercube
+:math:`u \in [0, 1]^D` the orthonormal basis is the product of shifted Legendre polynomials
+
+.. math:: \Psi_\alpha(u) = \prod_{d=1}^{D} \psi_{\alpha_d}(u_d),\qquad
+          \psi_k(u) = \sqrt{2k+1}\,P_k(2u - 1),\qquad E[\Psi_\alpha\Psi_\beta] = \delta_{\alpha\beta},
+
+over the multi-indices of total degree :math:`|\alpha| \le p`. A model output is
+approximated by :math:`Y \approx \sum_{\alpha \in A} c_\alpha \Psi_\alpha` with a sparse set A
+chosen by orthogonal matching pursuit (OMP, Pati et al. 1993; for several outputs at once
+the simultaneous OMP of Tropp et al. 2006, one shared set) on a scrambled Sobol' design,
+each OMP step refitted by least squares. The number of terms and the degree p are chosen
+by the **corrected leave-one-out error** (Blatman & Sudret 2011, Chapelle et al. 2002)
+
+.. math:: \varepsilon_{LOO} = \frac{T(k, N)}{N\,\widehat{\mathrm{Var}}\,Y}
+          \sum_{i=1}^{N} \Big(\frac{y_i - \hat y_i}{1 - h_i}\Big)^2,\qquad
+          T(k, N) = \frac{N}{N - k}\Big(1 + \frac{\mathrm{tr}\,C_{emp}^{-1}}{N}\Big),
+
+:math:`h_i` the diagonal of the hat matrix, :math:`C_{emp} = \Psi_A^T\Psi_A / N` (from the
+QR factors kept by the OMP: :math:`h_i = \sum_k Q_{ik}^2`, :math:`\mathrm{tr}\,C_{emp}^{-1} =
+N\,\|R^{-1}\|_F^2`). The indices follow from the coefficients (Sudret 2008):
+
+.. math:: V = \sum_{\alpha \ne 0} c_\alpha^2,\quad
+          S_i = \frac{1}{V}\sum_{\alpha \in A_i} c_\alpha^2,\quad
+          S_{T,i} = \frac{1}{V}\sum_{\alpha_i > 0} c_\alpha^2,\quad
+          S_{ij} = \frac{1}{V}\sum_{\alpha \in A_{ij}} c_\alpha^2,
+
+:math:`A_i` the multi-indices with :math:`\alpha_i` the only non-zero entry, :math:`A_{ij}`
+those whose non-zero entries are exactly i and j. Confidence half-widths: a bootstrap of
+the design rows (R resamples, the selected terms refitted on each), ``z σ`` as SALib
+reports its own.
+
+Pure NumPy (the basis by the three-term recurrence, the regression by Gram-Schmidt): no
+import beyond NumPy, and SciPy's ``qmc.Sobol`` only to draw a design the first time (then
+the persistent :mod:`.design_cache`). Why not Chaospy or OpenTURNS: ``docs/sensitivity.md``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from statistics import NormalDist
+
+import numpy as np
+
+#: Bootstrap resamples and confidence level (SALib's defaults, as for Sobol').
+NUM_RESAMPLES = 100
+CONF_LEVEL = 0.95
+#: Highest degree tried, and the largest candidate basis (terms) a degree may have.
+MAX_DEGREE = 8
+MAX_CANDIDATES = 3000
+#: OMP stops after this many steps without a better LOO error (and at N / 2 terms).
+PATIENCE_STEPS = 30
+#: A LOO error below this is an exact model: higher degrees are not tried.
+EXACT_LOO = 1e-12
+
+
+class PceError(ValueError):
+    """The expansion cannot stand behind its indices (LOO error too large, too few runs)."""
+
+
+def default_pce_samples(num_vars: int) -> int:
+    """Model runs of a PCE by default: ``max(128, 64 D)``, the quadratic basis (``(D+1)(D+2)/2``
+    terms) fitted with at least five runs per term up to D = 24 (768 runs for D = 12)."""
+    return max(128, 64 * num_vars)
+
+
+def total_degree_indices(num_vars: int, degree: int) -> np.ndarray:
+    """Multi-indices α ∈ ℕ^D with |α| ≤ degree, graded (degree 0, then 1, …; within a
+    degree, lexicographically decreasing), shape (C(D + p, p), D)."""
+    rows: list[tuple[int, ...]] = []
+
+    def fill(prefix: tuple[int, ...], left: int, slots: int) -> None:
+        if slots == 0:
+            if left == 0:
+                rows.append(prefix)
+            return
+        for first in range(left, -1, -1):
+            fill((*prefix, first), left - first, slots - 1)
+
+    for total in range(degree + 1):
+        fill((), total, num_vars)
+    return np.array(rows, dtype=np.int64).reshape(-1, num_vars)
+
+
+def legendre_table(unit: np.ndarray, degree: int) -> np.ndarray:
+    r"""Orthonormal shifted Legendre values :math:`\psi_k(u) = \sqrt{2k+1}P_k(2u-1)`,
+    shape (S, D, degree + 1), by Bonnet's recurrence
+    :math:`(k+1)P_{k+1}(x) = (2k+1)xP_k(x) - kP_{k-1}(x)`."""
+    x = 2.0 * np.asarray(unit, dtype=np.float64) - 1.0
+    table = np.empty((*x.shape, degree + 1))
+    table[..., 0] = 1.0
+    if degree >= 1:
+        table[..., 1] = x
+    for k in range(1, degree):
+        table[..., k + 1] = ((2 * k + 1) * x * table[..., k] - k * table[..., k - 1]) / (k + 1)
+    table *= np.sqrt(2.0 * np.arange(degree + 1) + 1.0)
+    return table
+
+
+def basis_matrix(unit: np.ndarray, indices: np.ndarray) -> np.ndarray:
+    """Ψ (S, P): every basis polynomial of ``indices`` (P, D) at every row of ``unit``."""
+    degree = int(indices.max(initial=0))
+    table = legendre_table(unit, degree)
+    psi = np.ones((table.shape[0], indices.shape[0]))
+    for d in range(indices.shape[1]):
+        column = indices[:, d]
+        if column.any():
+            psi *= table[:, d, column]
+    return psi
+
+
+@dataclass(frozen=True)
+class OmpPath:
+    """The best model on one OMP path: its terms (columns of Ψ, the constant first), their
+    least-squares coefficients (k, T) and corrected LOO errors (T,) per output."""
+
+    terms: np.ndarray
+    coefficients: np.ndarray
+    loo_error: np.ndarray
+
+
+def omp_path(psi: np.ndarray, y: np.ndarray, max_terms: int | None = None) -> OmpPath:
+    """Simultaneous OMP over the columns of ``psi`` (S, P; column 0 the constant) for the
+    outputs ``y`` (S, T), stopped at ``max_terms`` (default N / 2), the terms kept those of
+    the step with the least mean corrected LOO error over the outputs that vary.
+
+    Each step adds the column with the largest :math:`\\sum_t (\\psi_j^T r_t)^2 /
+    (\\|\\psi_j\\|^2 \\|y_t - \\bar y_t\\|^2)` (r_t the residual of output t) to an incremental
+    QR factorisation (classical Gram-Schmidt, re-orthogonalised once); residuals, hat
+    diagonal, :math:`R^{-1}` and correlations are updated in O(S P) per step."""
+    s_rows, p_cols = psi.shape
+    t_out = y.shape[1]
+    limit = min(p_cols, max(2, s_rows // 2)) if max_terms is None else min(max_terms, p_cols)
+    centred = y - y.mean(axis=0)
+    spread = np.einsum("st,st->t", centred, centred)
+    varies = spread > 0.0
+    weight = np.where(varies, 1.0 / np.where(varies, spread, 1.0), 0.0)
+    norms = np.sqrt(np.einsum("sp,sp->p", psi, psi))
+    usable = norms > 0.0
+    q = np.empty((s_rows, limit))
+    r_inv = np.zeros((limit, limit))
+    projections = np.empty((limit, t_out))  # Q^T y
+    residual = y.astype(np.float64, copy=True)
+    correlation = psi.T @ residual  # ψ_j^T r_t, kept up to date
+    hat = np.zeros(s_rows)
+    r_inv_norm2 = 0.0
+    chosen: list[int] = []
+    best = (math.inf, 0, np.full(t_out, math.inf))  # (mean LOO, terms, LOO per output)
+    stale = 0
+    column = 0  # the constant first
+    while len(chosen) < limit:
+        k = len(chosen)
+        v = psi[:, column].copy()
+        coefficients_r = np.zeros(k)
+        for _ in range(2):  # CGS2
+            if k:
+                projection = q[:, :k].T @ v
+                v -= q[:, :k] @ projection
+                coefficients_r += projection
+        rho = math.sqrt(float(v @ v))
+        usable[column] = False
+        if rho <= 1e-10 * norms[column]:  # dependent on the chosen terms: never again
+            column = _next_column(correlation, norms, usable, weight)
+            if column < 0:
+                break
+            continue
+        v /= rho
+        q[:, k] = v
+        # R⁻¹ of [[R, r], [0, ρ]] = [[R⁻¹, −R⁻¹ r / ρ], [0, 1/ρ]]
+        r_inv[:k, k] = -(r_inv[:k, :k] @ coefficients_r) / rho
+        r_inv[k, k] = 1.0 / rho
+        r_inv_norm2 += float(r_inv[: k + 1, k] @ r_inv[: k + 1, k])
+        projections[k] = v @ y
+        residual -= np.outer(v, projections[k])
+        correlation -= np.outer(psi.T @ v, projections[k])
+        hat += v * v
+        chosen.append(column)
+        terms = k + 1
+        if s_rows > terms:
+            loo = _corrected_loo(residual, hat, spread, s_rows, terms, r_inv_norm2)
+            score = float(loo[varies].mean()) if varies.any() else 0.0
+            if score < best[0]:
+                best, stale = (score, terms, loo), 0
+            else:
+                stale += 1
+        if stale >= PATIENCE_STEPS or best[0] <= EXACT_LOO:
+            break
+        column = _next_column(correlation, norms, usable, weight)
+        if column < 0:
+            break
+    terms = best[1]
+    if terms == 0:
+        raise PceError(f"{s_rows} runs cannot fit even the constant term")
+    coefficients = r_inv[:terms, :terms] @ projections[:terms]
+    return OmpPath(np.array(chosen[:terms]), coefficients, best[2])
+
+
+def _next_column(correlation, norms, usable, weight) -> int:
+    """The usable column most correlated with the residuals, or -1."""
+    if not usable.any():
+        return -1
+    score = (correlation**2) @ weight
+    score = np.where(usable, score / np.where(usable, norms, 1.0) ** 2, -1.0)
+    column = int(score.argmax())
+    return column if score[column] > 0.0 else -1
+
+
+def _corrected_loo(residual, hat, spread, s_rows: int, terms: int, r_inv_norm2: float):
+    """Corrected relative LOO error of every output (0 for one that does not vary)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        leave_out = residual / (1.0 - hat)[:, None]
+    sum_squares = np.einsum("st,st->t", leave_out, leave_out)
+    correction = s_rows / (s_rows - terms) * (1.0 + r_inv_norm2)
+    safe = np.where(spread > 0.0, spread, 1.0)
+    loo = np.where(spread > 0.0, correction * sum_squares / safe, 0.0)
+    return np.where(np.isfinite(loo), loo, math.inf)
+
+
+@dataclass(frozen=True)
+class PceFit:
+    """A fitted expansion of one output group: degree, multi-indices of its terms (k, D),
+    coefficients (k, T) on the orthonormal basis, corrected LOO error per output (T,),
+    and the design rows' basis values of its terms (S, k) kept for the bootstrap."""
+
+    degree: int
+    indices: np.ndarray
+    coefficients: np.ndarray
+    loo_error: np.ndarray
+    basis: np.ndarray
+
+    @property
+    def mean(self) -> np.ndarray:
+        """The expansion's mean of every output (the constant term's coefficient)."""
+        constant = ~self.indices.any(axis=1)
+        return self.coefficients[constant].sum(axis=0)
+
+    @property
+    def variance(self) -> np.ndarray:
+        """The expansion's variance of every output, Σ_{α≠0} c_α²."""
+        varying = self.indices.any(axis=1)
+        return (self.coefficients[varying] ** 2).sum(axis=0)
+
+
+def fit_pce(
+    unit: np.ndarray,
+    y: np.ndarray,
+    max_degree: int = MAX_DEGREE,
+    on_degree: Callable[[int], None] | None = None,
+) -> PceFit:
+    """The sparse expansion of the outputs ``y`` (S, T) on the unit design ``unit`` (S, D)
+    with the least mean corrected LOO error over degrees 1, 2, …: a degree is tried while
+    its candidate basis stays under ``MAX_CANDIDATES`` terms and the error keeps falling
+    (it stops after two degrees without improvement, or at an exact model);
+    ``on_degree(p)`` runs after each degree (it may raise to cancel)."""
+    unit = np.asarray(unit, dtype=np.float64)
+    y = np.asarray(y, dtype=np.float64).reshape(unit.shape[0], -1)
+    num_vars = unit.shape[1]
+    best: tuple[float, PceFit] | None = None
+    worse = 0
+    for degree in range(1, max_degree + 1):
+        indices = total_degree_indices(num_vars, degree)
+        if degree > 1 and len(indices) > MAX_CANDIDATES:
+            break
+        psi = basis_matrix(unit, indices)
+        path = omp_path(psi, y)
+        varies = np.ptp(y, axis=0) > 0.0
+        score = float(path.loo_error[varies].mean()) if varies.any() else 0.0
+        fit = PceFit(
+            degree, indices[path.terms], path.coefficients, path.loo_error, psi[:, path.terms]
+        )
+        if on_degree is not None:
+            on_degree(degree)
+        if best is None or score < best[0]:
+            best, worse = (score, fit), 0
+        else:
+            worse += 1
+        if worse >= 2 or best[0] <= EXACT_LOO:
+            break
+    assert best is not None
+    return best[1]
+
+
+def indices_from_coefficients(indices: np.ndarray, coefficients: np.ndarray):
+    """S1 and ST (..., T, D) from the multi-indices (k, D) and coefficients (..., k, T)
+    (zeros for an output without variance)."""
+    active = indices > 0
+    order = active.sum(axis=1)
+    energy = coefficients**2  # (..., k, T)
+    energy[..., order == 0, :] = 0.0
+    variance = energy.sum(axis=-2)[..., None]  # (..., T, 1)
+    total = np.swapaxes(energy, -1, -2) @ active  # (..., T, D)
+    first = np.swapaxes(energy, -1, -2) @ (active & (order == 1)[:, None])
+    safe = np.where(variance > 0.0, variance, 1.0)
+    return first / safe, total / safe
+
+
+def second_order_indices(indices: np.ndarray, coefficients: np.ndarray) -> np.ndarray:
+    """S_ij (T, D, D), symmetric, zero diagonal: the variance share of the terms whose
+    inputs are exactly {i, j}."""
+    active = indices > 0
+    pairs = active.sum(axis=1) == 2
+    energy = coefficients[pairs] ** 2
+    variance = (coefficients[active.any(axis=1)] ** 2).sum(axis=0)
+    result = np.zeros((coefficients.shape[1], indices.shape[1], indices.shape[1]))
+    for row, term in zip(energy, active[pairs], strict=True):
+        i, j = np.flatnonzero(term)
+        result[:, i, j] += row
+        result[:, j, i] += row
+    safe = np.where(variance > 0.0, variance, 1.0)
+    return result / safe[:, None, None]
+
+
+def bootstrap_halfwidths(
+    fit: PceFit,
+    y: np.ndarray,
+    seed: int,
+    num_resamples: int = NUM_RESAMPLES,
+    conf_level: float = CONF_LEVEL,
+):
+    """``z σ`` of S1 and ST (each (T, D)) over bootstrap resamples of the design rows (row
+    counts from ``default_rng(seed)``), the fit's terms refitted by weighted least squares
+    on each (normal equations, batched over resamples)."""
+    y = np.asarray(y, dtype=np.float64).reshape(fit.basis.shape[0], -1)
+    s_rows, k = fit.basis.shape
+    counts = _bootstrap_counts(s_rows, seed, num_resamples)
+    basis = fit.basis
+    gram = (counts @ (basis[:, :, None] * basis[:, None, :]).reshape(s_rows, k * k)).reshape(
+        num_resamples, k, k
+    )
+    right = (counts @ (basis[:, :, None] * y[:, None, :]).reshape(s_rows, -1)).reshape(
+        num_resamples, k, -1
+    )
+    coefficients = np.linalg.solve(gram, right)  # (B, k, T)
+    first, total = indices_from_coefficients(fit.indices, coefficients)
+    z = NormalDist().inv_cdf(0.5 + conf_level / 2.0)
+    return z * first.std(axis=0, ddof=1), z * total.std(axis=0, ddof=1)
+
+
+def _bootstrap_counts(s_rows: int, seed: int, num_resamples: int) -> np.ndarray:
+    """(R, S) multiplicities of the rows of R resamples with replacement."""
+    draws = np.random.default_rng(seed).integers(s_rows, size=(num_resamples, s_rows))
+    counts = np.zeros((num_resamples, s_rows))
+    np.add.at(counts, (np.arange(num_resamples)[:, None], draws), 1.0)
+    return counts
+
+
+def pce_indices(
+    unit: np.ndarray,
+    outputs: np.ndarray,
+    seed: int,
+    shared: bool = False,
+    num_resamples: int = NUM_RESAMPLES,
+    on_output: Callable[[float], None] | None = None,
+):
+    """(4, T, D) S1, S1 half-width, ST, ST half-width of every column of ``outputs`` (S, T),
+    and the fits: one per column, or one shared by all columns when ``shared`` (the
+    simultaneous OMP: a trajectory's outputs). ``on_output(fraction)`` runs after each fit."""
+    outputs = np.asarray(outputs, dtype=np.float64).reshape(unit.shape[0], -1)
+    groups = [slice(None)] if shared else [slice(t, t + 1) for t in range(outputs.shape[1])]
+    result = np.empty((4, outputs.shape[1], unit.shape[1]))
+    fits = []
+    for group in groups:
+        fit = fit_pce(unit, outputs[:, group])
+        result[0, group], result[2, group] = indices_from_coefficients(
+            fit.indices, fit.coefficients
+        )
+        if num_resamples > 1:
+            result[1, group], result[3, group] = bootstrap_halfwidths(
+                fit, outputs[:, group], seed, num_resamples
+            )
+        else:
+            result[[1, 3], group] = 0.0
+        fits.append(fit)
+        if on_output is not None:
+            on_output(1.0 / len(groups))
+    return result, fits
+
+
+def check_loo(fits, names, max_loo_error: float, samples: int, key_samples="pce_samples"):
+    """Raise :class:`PceError` naming the worst output when a LOO error exceeds
+    ``max_loo_error``; ``names`` labels the outputs in the fits' order."""
+    errors = np.concatenate([fit.loo_error for fit in fits])
+    worst = int(np.argmax(errors))
+    if errors[worst] > max_loo_error:
+        raise PceError(
+            f"PCE leave-one-out error {errors[worst]:.3g} of {names[worst]} exceeds "
+            f"pce_max_loo_error = {max_loo_error:g}: raise {key_samples} (now {samples}) "
+            f"or pce_max_loo_error"
+        )
+
+
+def pce_unit_design(num_vars: int, samples: int, seed: int) -> np.ndarray:
+    """The first ``samples`` points of a scrambled Sobol' sequence in D dimensions
+    (``scipy.stats.qmc.Sobol(D, scramble=True, seed=seed)``, drawn as the next power of
+    two so that SciPy's balance warning does not apply), read-only, kept on disk."""
+    from planar_tui.sensitivity.design_cache import cached_design, sampler_versions
+
+    def draw() -> np.ndarray:
+        from scipy.stats import qmc
+
+        engine = qmc.Sobol(d=num_vars, scramble=True, seed=seed)
+        return engine.random_base2(max(0, math.ceil(math.log2(samples))))[:samples]
+
+    key = f"v1_pce_D{num_vars}_N{samples}_seed{seed}_{sampler_versions()}"
+    design = cached_design(key, (samples, num_vars), draw)
+    design.setflags(write=False)
+    return design

@@ -1,0 +1,219 @@
+"""The polynomial chaos engine (:mod:`planar_tui.sensitivity.pce`) against closed forms.
+
+- a linear model: degree 1 is exact, S1 = ST = a_i² / Σ a² to 1e-12;
+- the bilinear gravity torques of a 4R in its singular posture with wide tolerances (the
+  interactions matter): S1, ST and the second-order indices of the exact ANOVA
+  (``tests/test_sensitivity_oracle.singular_indices``; the second-order terms
+  g² c_jk² Var l_j Var m_k / V derived below);
+- the 1-link zero-gravity motion θ(T) = τT²/(2(I + m l²/4)) (not a polynomial): S1, ST
+  against Gauss-Legendre quadrature (``tests/test_motion_job.exact_moments``) within 0.01
+  at the default ``pce_samples``;
+- the basis is orthonormal (quadrature), OMP recovers a sparse model's exact terms, the
+  bootstrap equals refits on explicitly repeated rows, a discontinuous model fails the
+  LOO check with its one line; aggregated indices against their definition (Gamboa et
+  al. 2014) by quadrature.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from planar_tui.dynamics.robot import SerialRobot
+from planar_tui.sensitivity import pce
+from planar_tui.sensitivity.aggregate import aggregated_indices
+from planar_tui.sensitivity.engine import build_problem, evaluate
+from tests.test_motion_job import CASES, DL, DM, L0, M0, exact_moments, theta_closed_form
+from tests.test_sensitivity_oracle import singular_indices
+
+SEED = 42
+
+
+def test_total_degree_indices_are_every_multi_index_once():
+    for d, p in ((1, 4), (3, 3), (12, 2)):
+        indices = pce.total_degree_indices(d, p)
+        assert len(indices) == math.comb(d + p, p)
+        assert len({tuple(row) for row in indices}) == len(indices)
+        assert indices.sum(axis=1).max() == p and indices.min() == 0
+        assert np.all(np.diff(indices.sum(axis=1)) >= 0)  # graded, the constant first
+
+
+def test_legendre_basis_is_orthonormal_under_the_uniform_law():
+    x, w = np.polynomial.legendre.leggauss(12)
+    u = (x + 1.0) / 2.0
+    table = pce.legendre_table(u[:, None], 6)[:, 0]  # (12 nodes, 7 degrees)
+    gram = table.T @ (table * (w / 2.0)[:, None])
+    assert np.abs(gram - np.eye(7)).max() <= 1e-13
+    assert table[:, 2] == pytest.approx(math.sqrt(5.0) * (3 * x**2 - 1) / 2, abs=1e-14)
+
+
+def test_linear_model_is_exact_at_degree_one():
+    d = 6
+    a = np.array([1.0, -2.0, 0.5, 0.0, 3.0, 0.25])
+    unit = pce.pce_unit_design(d, pce.default_pce_samples(d), SEED)
+    y = 4.0 + (2.0 * unit - 1.0) @ a
+    indices, (fit,) = pce.pce_indices(unit, y, SEED)
+    exact = a**2 / (a**2).sum()
+    assert fit.degree == 1
+    assert np.abs(indices[0, 0] - exact).max() <= 1e-12
+    assert np.abs(indices[2, 0] - exact).max() <= 1e-12
+    assert fit.loo_error[0] <= 1e-20
+    assert fit.mean[0] == pytest.approx(4.0, abs=1e-12)
+    assert fit.variance[0] == pytest.approx((a**2).sum() / 3.0, rel=1e-12)
+    assert indices[[1, 3]].max() <= 1e-10  # every resample fits it exactly too
+
+
+def test_omp_finds_the_terms_of_a_sparse_model():
+    unit = pce.pce_unit_design(4, 256, SEED)
+    indices = pce.total_degree_indices(4, 3)
+    psi = pce.basis_matrix(unit, indices)
+    wanted = {0: 1.5, 7: 3.0, 20: -0.7}  # the constant and two other terms
+    y = sum(c * psi[:, j] for j, c in wanted.items())
+    path = pce.omp_path(psi, y[:, None])
+    assert set(path.terms.tolist()) == set(wanted)
+    got = dict(zip(path.terms.tolist(), path.coefficients[:, 0], strict=True))
+    assert all(got[j] == pytest.approx(c, abs=1e-12) for j, c in wanted.items())
+
+
+def four_r_gravity(tol_length_m, tol_mass_kg):
+    lengths, masses = [0.3, 0.25, 0.2, 0.15], [1.2, 0.9, 0.6, 0.3]
+    robot = SerialRobot(tuple(lengths), tuple(masses), (0.05,) * 4)
+    problem = build_problem(robot, tol_length_m, tol_mass_kg)
+    zeros = np.zeros(4)
+
+    def torques(unit):
+        return evaluate(problem, np.ascontiguousarray(unit), robot, zeros, zeros, zeros)
+
+    return lengths, masses, torques
+
+
+def test_bilinear_4r_gravity_torques_match_the_exact_anova():
+    """Wide tolerances (±0.1 m, ±0.25 kg) so that ST − S1 reaches a few percent."""
+    lengths, masses, torques = four_r_gravity(0.1, 0.25)
+    d = 8
+    unit = pce.pce_unit_design(d, pce.default_pce_samples(d), SEED)
+    indices, fits = pce.pce_indices(unit, torques(unit), SEED)
+    first, total = singular_indices(lengths, masses, 0.1, 0.25)
+    assert np.abs(indices[0] - first).max() <= 1e-9
+    assert np.abs(indices[2] - total).max() <= 1e-9
+    assert (total - first).max() > 0.02  # the interactions are not negligible here
+    # second order: g² c_jk² Var l_j Var m_k / V for the pair (l_j, m_k), 0 otherwise
+    var_l, var_m = 0.1**2 / 3.0, 0.25**2 / 3.0
+    for i, fit in enumerate(fits):
+        second = pce.second_order_indices(fit.indices, fit.coefficients)[0]
+        c = np.zeros((4, 4))
+        for k in range(i, 4):
+            c[i:k, k] = 1.0
+            c[k, k] = 0.5
+        pair = (9.81 * c) ** 2 * var_l * var_m / fit.variance[0]
+        expected = np.zeros((d, d))
+        expected[:4, 4:] = pair
+        expected[4:, :4] = pair.T
+        assert np.abs(second - expected).max() <= 1e-9
+        assert indices[0, i].sum() + second.sum() / 2 == pytest.approx(1.0, abs=1e-9)
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_one_link_motion_matches_quadrature_at_the_default_samples(case):
+    inertia, tolerance_inertia = CASES[case]
+    d = 2 if tolerance_inertia is None else 3
+    unit = pce.pce_unit_design(d, pce.default_pce_samples(d), SEED)
+    x = 2.0 * unit - 1.0
+    args = [L0 + DL * x[:, 0], M0 + DM * x[:, 1]]
+    args.append(inertia if d == 2 else inertia + tolerance_inertia * x[:, 2])
+    indices, (fit,) = pce.pce_indices(unit, theta_closed_form(*args), SEED)
+    _, variance, _, first, total = exact_moments(inertia, tolerance_inertia)
+    assert np.abs(indices[0, 0] - np.array(first) / variance).max() <= 0.01
+    assert np.abs(indices[2, 0] - np.array(total) / variance).max() <= 0.01
+    assert fit.variance[0] == pytest.approx(variance, rel=0.01)
+    assert fit.loo_error[0] < 1e-3
+
+
+def test_bootstrap_equals_refits_on_repeated_rows():
+    unit = pce.pce_unit_design(3, 128, SEED)
+    y = np.exp(unit @ np.array([1.0, 0.5, 0.2]))[:, None]
+    fit = pce.fit_pce(unit, y)
+    resamples = 5
+    half_first, half_total = pce.bootstrap_halfwidths(fit, y, 7, resamples)
+    draws = np.random.default_rng(7).integers(len(unit), size=(resamples, len(unit)))
+    firsts, totals = [], []
+    for rows in draws:
+        coefficients = np.linalg.lstsq(fit.basis[rows], y[rows], rcond=None)[0]
+        first, total = pce.indices_from_coefficients(fit.indices, coefficients)
+        firsts.append(first)
+        totals.append(total)
+    z = 1.959963984540054
+    assert half_first == pytest.approx(z * np.std(firsts, axis=0, ddof=1), rel=1e-8)
+    assert half_total == pytest.approx(z * np.std(totals, axis=0, ddof=1), rel=1e-8)
+    assert half_total.min() > 0.0
+
+
+def test_a_discontinuous_model_fails_the_loo_check_with_one_line():
+    unit = pce.pce_unit_design(3, 64, SEED)
+    y = np.where(unit[:, 0] + unit[:, 1] > 1.0, 1.0, 0.0) + unit[:, 2]
+    _, fits = pce.pce_indices(unit, y, SEED, num_resamples=0)
+    assert fits[0].loo_error[0] > 0.01
+    with pytest.raises(pce.PceError) as raised:
+        pce.check_loo(fits, ["tau1"], 0.01, 64)
+    message = str(raised.value)
+    assert "\n" not in message
+    assert (
+        "leave-one-out error" in message and "of tau1 exceeds pce_max_loo_error = 0.01" in message
+    )
+    assert "raise pce_samples (now 64) or pce_max_loo_error" in message
+    pce.check_loo(fits, ["tau1"], 1.0, 64)  # a looser bound accepts it
+
+
+def test_an_output_without_variance_has_zero_indices():
+    unit = pce.pce_unit_design(2, 64, SEED)
+    y = np.stack([np.full(64, 3.0), unit[:, 0]], axis=1)
+    indices, fits = pce.pce_indices(unit, y, SEED, num_resamples=4)
+    assert np.all(indices[:, 0] == 0.0)
+    assert fits[0].loo_error[0] == 0.0
+    assert indices[2, 1] == pytest.approx([1.0, 0.0], abs=1e-12)
+
+
+def test_aggregated_indices_match_their_definition_by_quadrature():
+    """Y_t = sin(t) x1 + t x2² + t² x1 x3 + x3 at four times (x uniform on [-1, 1]):
+    S_agg,i = Σ_t Var E[Y_t | x_i] / Σ_t Var Y_t and the total analogue, by 3-D
+    Gauss-Legendre quadrature, against the PCE's per-time indices aggregated."""
+    times = np.array([0.2, 0.7, 1.3, 2.0])
+
+    def model(x):  # x (..., 3) in [-1, 1]
+        t = times.reshape((-1,) + (1,) * (x.ndim - 1))
+        return np.sin(t) * x[..., 0] + t * x[..., 1] ** 2 + t**2 * x[..., 0] * x[..., 2] + x[..., 2]
+
+    nodes, w = np.polynomial.legendre.leggauss(6)
+    w = w / 2.0
+    grid = np.stack(np.meshgrid(nodes, nodes, nodes, indexing="ij"), axis=-1)
+    values = model(grid)  # (T, 6, 6, 6)
+    weights = np.einsum("i,j,k->ijk", w, w, w)
+    mean = np.einsum("tijk,ijk->t", values, weights)
+    centred = values - mean[:, None, None, None]
+    variance = np.einsum("tijk,ijk->t", centred**2, weights)
+    first_num, total_num = np.zeros(3), np.zeros(3)
+    for a in range(3):
+        others = tuple(1 + i for i in range(3) if i != a)
+        given = (values * weights).sum(axis=others) / w  # E[Y_t | x_a] (T, 6)
+        first_num[a] = ((given - mean[:, None]) ** 2 @ w).sum()
+        inner = np.moveaxis(values, 1 + a, -1) @ w  # E[Y_t | x_~a]
+        total_num[a] = np.einsum(
+            "tijk,ijk->", (values - np.expand_dims(inner, 1 + a)) ** 2, weights
+        )
+    unit = pce.pce_unit_design(3, 128, SEED)
+    y = model(2.0 * unit - 1.0).T  # (S, T)
+    indices, (fit,) = pce.pce_indices(unit, y, SEED, shared=True, num_resamples=0)
+    assert fit.variance == pytest.approx(variance, rel=1e-10)
+    aggregated = aggregated_indices(indices[[0, 2]], fit.variance)
+    assert aggregated[0] == pytest.approx(first_num / variance.sum(), abs=1e-10)
+    assert aggregated[1] == pytest.approx(total_num / variance.sum(), abs=1e-10)
+    # the definition is not the plain mean of the per-time indices
+    assert np.abs(indices[2].mean(axis=0) - aggregated[1]).max() > 0.01
+
+
+def test_aggregated_indices_of_outputs_without_variance_are_zero():
+    assert np.all(aggregated_indices(np.ones((2, 3)), np.zeros(2)) == 0.0)
+    with pytest.raises(ValueError, match="non-negative"):
+        aggregated_indices(np.ones((2, 3)), np.array([1.0, -1.0]))
