@@ -25,6 +25,7 @@ from planar_tui.dynamics.robot import SerialRobot
 from planar_tui.sensitivity import pce
 from planar_tui.sensitivity.aggregate import aggregated_indices
 from planar_tui.sensitivity.engine import build_problem, evaluate
+from planar_tui.sensitivity.failed_runs import FailedRuns, check_failed_runs, failure_corner
 from tests.test_motion_job import CASES, DL, DM, L0, M0, exact_moments, theta_closed_form
 from tests.test_sensitivity_oracle import singular_indices
 
@@ -217,3 +218,28 @@ def test_aggregated_indices_of_outputs_without_variance_are_zero():
     assert np.all(aggregated_indices(np.ones((2, 3)), np.zeros(2)) == 0.0)
     with pytest.raises(ValueError, match="non-negative"):
         aggregated_indices(np.ones((2, 3)), np.array([1.0, -1.0]))
+
+
+def test_failed_runs_are_counted_located_and_refused_unless_allowed():
+    unit = pce.pce_unit_design(3, 128, SEED)
+    y = unit[:, :1] + unit[:, 1:2] ** 2
+    corner = (unit[:, 0] > 0.8) & (unit[:, 2] < 0.3)  # l1 high and I1 low fail
+    y[corner] = np.nan
+    names = ("l1", "m1", "I1")
+    count = int(corner.sum())
+    assert 0 < count < 20
+    with pytest.raises(FailedRuns) as raised:
+        check_failed_runs(y, unit, names, 0.0, can_drop=True)
+    message = str(raised.value)
+    assert message.startswith(f"{count} of 128 model runs failed (NaN or divergence), from ")
+    assert "from l1 high, I1 low: set allow_failed_runs ≥ " in message and "\n" not in message
+    needed = float(message.split("≥ ")[1].split()[0])
+    assert needed >= count / 128
+    with pytest.raises(FailedRuns, match="only the pce method can drop failed runs"):
+        check_failed_runs(y, unit, names, 1.0, can_drop=False)
+    keep, note = check_failed_runs(y, unit, names, needed, can_drop=True)
+    assert np.array_equal(keep, ~corner) and note.endswith("dropped from the PCE fit")
+    indices, (fit,) = pce.pce_indices(unit[keep], y[keep], SEED, num_resamples=0)
+    assert np.isfinite(indices).all() and fit.loo_error[0] < 1e-8
+    assert check_failed_runs(y[keep], unit[keep], names, 0.0, can_drop=False)[1] == ""
+    assert failure_corner(unit, np.ones(128, bool), names) == "spread over the inputs' ranges"
