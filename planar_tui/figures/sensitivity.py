@@ -26,7 +26,7 @@ from planar_tui.figures.table import column, has_columns, text_column
 INDEX_COLUMNS = ("parameter", "method", "S1", "S1_conf", "ST", "ST_conf", "percent")
 SENSITIVITY = ("torque", "speed_rad_s", *INDEX_COLUMNS)
 MOTION_INDICES = ("output", "t_s", *INDEX_COLUMNS)
-METHOD_LABELS = {"sobol": "Sobol'", "efast": "eFAST"}
+METHOD_LABELS = {"sobol": "Sobol'", "efast": "eFAST", "pce": "PCE"}
 #: Panels of bars per row.
 PANELS_PER_ROW = 3
 
@@ -99,6 +99,10 @@ def draw(table: CsvTable, title: str) -> Any:
     """Stacked share bars per output and the annotated matrix (see the module doc)."""
 
     ix = read_indices(table)
+    from planar_tui.figures import indices_time
+
+    if ix.swept_label == "t (s)" and len(set(ix.swept.tolist())) > indices_time.MAX_BAR_TIMES:
+        return indices_time.draw(table, title)
     groups = list(dict.fromkeys(ix.groups))
     params = list(dict.fromkeys(ix.parameters))
     methods = list(dict.fromkeys(ix.methods))
