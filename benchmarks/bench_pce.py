@@ -188,7 +188,7 @@ def main() -> None:
         t0 = time.perf_counter()
         design = pce.pce_unit_design(d, samples, job.spec.seed)
         y = f(design)
-        indices, fits = pce.pce_indices(design, y, job.spec.seed)
+        indices, fits = pce.pce_indices(design, y, job.spec.seed, shared=True)
         tallies["pce"].add(samples, time.perf_counter() - t0, indices[2], total_exact, saltelli)
         loo = max(float(fit.loo_error.max()) for fit in fits)
         terms = max(len(fit.indices) for fit in fits)
