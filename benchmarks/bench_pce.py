@@ -21,8 +21,8 @@ ratios. Run: ``.venv/bin/python benchmarks/bench_pce.py [--no-libraries]``.
 from __future__ import annotations
 
 import argparse
-import importlib.util
 import dataclasses
+import importlib.util
 import os
 import subprocess
 import sys
