@@ -66,16 +66,25 @@ def test_linear_model_is_exact_at_degree_one():
     assert indices[[1, 3]].max() <= 1e-10  # every resample fits it exactly too
 
 
-def test_omp_finds_the_terms_of_a_sparse_model():
+def test_omp_finds_the_terms_of_a_sparse_model_beside_an_output_it_cannot_fit():
     unit = pce.pce_unit_design(4, 256, SEED)
     indices = pce.total_degree_indices(4, 3)
     psi = pce.basis_matrix(unit, indices)
     wanted = {0: 1.5, 7: 3.0, 20: -0.7}  # the constant and two other terms
     y = sum(c * psi[:, j] for j, c in wanted.items())
-    path = pce.omp_path(psi, y[:, None])
-    assert set(path.terms.tolist()) == set(wanted)
-    got = dict(zip(path.terms.tolist(), path.coefficients[:, 0], strict=True))
-    assert all(got[j] == pytest.approx(c, abs=1e-12) for j, c in wanted.items())
+    step = np.where(unit[:, 0] + unit[:, 3] > 1.0, 1.0, 0.0)
+    alone = pce.omp_path(psi, y[:, None])
+    assert set(alone.terms.tolist()) == set(wanted)  # exactly its terms when alone
+    for outputs in (y[:, None], np.stack([step, y], axis=1)):
+        path = pce.omp_path(psi, outputs)
+        t = outputs.shape[1] - 1  # the sparse model's column
+        k = path.term_counts[t]
+        assert set(wanted) <= set(path.terms[:k].tolist())  # (the step's terms may come first)
+        got = dict(zip(path.terms[:k].tolist(), path.coefficients[:k, t], strict=True))
+        assert all(got[j] == pytest.approx(wanted.get(j, 0.0), abs=1e-12) for j in got)
+        assert np.all(path.coefficients[k:, t] == 0.0)
+        assert path.loo_error[t] <= 1e-20
+    assert path.loo_error[0] > 0.01  # the step stays badly fitted, alone
 
 
 def four_r_gravity(tol_length_m, tol_mass_kg):
@@ -134,21 +143,25 @@ def test_one_link_motion_matches_quadrature_at_the_default_samples(case):
 
 def test_bootstrap_equals_refits_on_repeated_rows():
     unit = pce.pce_unit_design(3, 128, SEED)
-    y = np.exp(unit @ np.array([1.0, 0.5, 0.2]))[:, None]
+    smooth = np.exp(unit @ np.array([1.0, 0.5, 0.2]))
+    y = np.stack([smooth, np.sin(3 * unit[:, 0]) * unit[:, 2], unit[:, 1]], axis=1)
     fit = pce.fit_pce(unit, y)
+    assert len(set(fit.term_counts.tolist())) == 3  # each output on its own terms
     resamples = 5
     half_first, half_total = pce.bootstrap_halfwidths(fit, y, 7, resamples)
     draws = np.random.default_rng(7).integers(len(unit), size=(resamples, len(unit)))
     firsts, totals = [], []
     for rows in draws:
-        coefficients = np.linalg.lstsq(fit.basis[rows], y[rows], rcond=None)[0]
+        coefficients = np.zeros_like(fit.coefficients)
+        for t, k in enumerate(fit.term_counts):
+            coefficients[:k, t] = np.linalg.lstsq(fit.basis[rows, :k], y[rows, t], rcond=None)[0]
         first, total = pce.indices_from_coefficients(fit.indices, coefficients)
         firsts.append(first)
         totals.append(total)
     z = 1.959963984540054
     assert half_first == pytest.approx(z * np.std(firsts, axis=0, ddof=1), rel=1e-8)
     assert half_total == pytest.approx(z * np.std(totals, axis=0, ddof=1), rel=1e-8)
-    assert half_total.min() > 0.0
+    assert half_total[:2].min() > 0.0 and half_total[2].max() <= 1e-12  # u2 alone: exact
 
 
 def test_a_discontinuous_model_fails_the_loo_check_with_one_line():
@@ -243,3 +256,44 @@ def test_failed_runs_are_counted_located_and_refused_unless_allowed():
     assert np.isfinite(indices).all() and fit.loo_error[0] < 1e-8
     assert check_failed_runs(y[keep], unit[keep], names, 0.0, can_drop=False)[1] == ""
     assert failure_corner(unit, np.ones(128, bool), names) == "spread over the inputs' ranges"
+
+
+def test_trajectory_indices_of_the_one_link_motion_match_quadrature_at_every_time():
+    """θ(t) = τt²/(2(I + m l²/4)) at 11 times: its indices are the same at every t > 0
+    (θ(t) ∝ t²), equal to the quadrature's, and so are their aggregates; t = 0 does not vary.
+    The second output, 2θ(t) (another unit scale), gives the same; ``overall`` is their mean."""
+    unit = pce.pce_unit_design(2, pce.default_pce_samples(2), SEED)
+    x = 2.0 * unit - 1.0
+    theta_end = theta_closed_form(L0 + DL * x[:, 0], M0 + DM * x[:, 1], CASES["l-m"][0])
+    times = np.linspace(0.0, 1.0, 11)
+    theta = theta_end[:, None] * times[None, :] ** 2
+    outputs = np.stack([theta, 2.0 * theta], axis=2)  # (S, K, M)
+    result = pce.trajectory_indices(unit, outputs, SEED, num_resamples=10)
+    _, variance, _, first, total = exact_moments(*CASES["l-m"])
+    exact = np.array([first, total]) / variance  # (2, D)
+    assert np.all(result.indices[:, 0] == 0.0) and np.all(result.variance[0] == 0.0)
+    for index, row in ((0, 0), (2, 1)):
+        assert np.abs(result.indices[index, 1:] - exact[row]).max() <= 0.01
+    assert np.abs(result.aggregated - exact[None]).max() <= 0.01
+    assert result.overall == pytest.approx(result.aggregated.mean(axis=0))
+    assert result.variance[1:, 1] == pytest.approx(4 * result.variance[1:, 0], rel=1e-9)
+    assert result.loo_error.max() < 1e-3
+
+
+def test_job_indices_check_failed_runs_and_the_loo_error():
+    unit = pce.pce_unit_design(2, 128, SEED)
+    y = np.stack([unit[:, 0] + 2 * unit[:, 1], unit[:, 0] * unit[:, 1]], axis=1)
+    indices, loo, note = pce.job_indices(unit, y, SEED, ("l1", "m1"), ("tau1", "tau2"), 0.01)
+    assert note == "" and loo.max() < 1e-20
+    assert indices[2, 0] == pytest.approx([0.2, 0.8], abs=1e-12)
+    y[:3] = np.inf
+    with pytest.raises(FailedRuns) as raised:
+        pce.job_indices(unit, y, SEED, ("l1", "m1"), ("tau1", "tau2"), 0.01)
+    assert raised.value.key == "allow_failed_runs"
+    _, _, note = pce.job_indices(unit, y, SEED, ("l1", "m1"), ("tau1", "tau2"), 0.01, 0.05)
+    assert note.startswith("3 of 128 model runs failed")
+    y[:, 0] = unit[:, 0] + 2 * unit[:, 1]
+    y[:, 1] = np.where(unit[:, 0] > 0.5, 1.0, 0.0)  # a step: no polynomial fits it
+    with pytest.raises(pce.PceError) as raised:
+        pce.job_indices(unit, y, SEED, ("l1", "m1"), ("tau1", "tau2"), 0.01)
+    assert raised.value.key == "pce_samples" and "of tau2 exceeds" in raised.value.problem

@@ -15,7 +15,12 @@ import numpy as np
 
 
 class FailedRuns(ValueError):
-    """Too many failed model runs (or any, for a method that cannot drop them)."""
+    """Too many failed model runs (or any, for a method that cannot drop them):
+    ``problem`` and ``expected``; ``str`` is the line ``problem: expected``."""
+
+    def __init__(self, problem: str, expected: str):
+        self.problem, self.expected, self.key = problem, expected, "allow_failed_runs"
+        super().__init__(f"{problem}: {expected}")
 
 
 def failed_rows(outputs: np.ndarray) -> np.ndarray:
@@ -50,8 +55,8 @@ def check_failed_runs(
     total = len(failed)
     where = f"{count} of {total} model runs failed (NaN or divergence), from {failure_corner(unit, failed, names)}"
     if not can_drop:
-        raise FailedRuns(f"{where}: only the pce method can drop failed runs")
+        raise FailedRuns(where, "only the pce method can drop failed runs")
     if count > allow_fraction * total:
         needed = math.ceil(count / total * 1e4) / 1e4
-        raise FailedRuns(f"{where}: set allow_failed_runs ≥ {needed:g} to drop them")
+        raise FailedRuns(where, f"set allow_failed_runs ≥ {needed:g} to drop them")
     return ~failed, f"{where}: dropped from the PCE fit"

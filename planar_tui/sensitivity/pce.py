@@ -60,7 +60,13 @@ ENOUGH_LOO = 1e-8
 
 
 class PceError(ValueError):
-    """The expansion cannot stand behind its indices (LOO error too large, too few runs)."""
+    """The expansion cannot stand behind its indices (LOO error too large, too few runs):
+    ``problem``, what to do (``expected``) and the preset ``key`` to change; ``str`` is the
+    line ``problem: expected``."""
+
+    def __init__(self, problem: str, expected: str = "", key: str = "pce_samples"):
+        self.problem, self.expected, self.key = problem, expected, key
+        super().__init__(f"{problem}: {expected}" if expected else problem)
 
 
 def default_pce_samples(num_vars: int) -> int:
@@ -116,23 +122,29 @@ def basis_matrix(unit: np.ndarray, indices: np.ndarray) -> np.ndarray:
 
 @dataclass(frozen=True)
 class OmpPath:
-    """The best model on one OMP path: its terms (columns of Ψ, the constant first), their
-    least-squares coefficients (k, T) and corrected LOO errors (T,) per output."""
+    """One OMP path and each output's best model on it: the path's terms (columns of Ψ,
+    the constant first, in the order chosen), the coefficients (k, T) of every output on
+    its own first ``term_counts[t]`` terms (zeros after), and its corrected LOO error (T,)."""
 
     terms: np.ndarray
     coefficients: np.ndarray
+    term_counts: np.ndarray
     loo_error: np.ndarray
 
 
 def omp_path(psi: np.ndarray, y: np.ndarray, max_terms: int | None = None) -> OmpPath:
     """Simultaneous OMP over the columns of ``psi`` (S, P; column 0 the constant) for the
-    outputs ``y`` (S, T), stopped at ``max_terms`` (default N / 2), the terms kept those of
-    the step with the least mean corrected LOO error over the outputs that vary.
+    outputs ``y`` (S, T), stopped at ``max_terms`` (default N / 2), after
+    ``PATIENCE_STEPS`` steps without a better LOO error for any output, or once every
+    output's is below ``ENOUGH_LOO``. Each output keeps the prefix of the path with its
+    least corrected LOO error (the QR is nested, so every prefix's least-squares fit is
+    at hand): an output that no polynomial fits does not spoil the others.
 
     Each step adds the column with the largest :math:`\\sum_t (\\psi_j^T r_t)^2 /
-    (\\|\\psi_j\\|^2 \\|y_t - \\bar y_t\\|^2)` (r_t the residual of output t) to an incremental
-    QR factorisation (classical Gram-Schmidt, re-orthogonalised once); residuals, hat
-    diagonal, :math:`R^{-1}` and correlations are updated in O(S P) per step."""
+    (\\|\\psi_j\\|^2 \\|y_t - \\bar y_t\\|^2)` over the outputs not yet fitted (r_t the
+    residual of output t) to an incremental QR factorisation (classical Gram-Schmidt,
+    re-orthogonalised once); residuals, hat diagonal, :math:`R^{-1}` and correlations are
+    updated in O(S P) per step."""
     s_rows, p_cols = psi.shape
     t_out = y.shape[1]
     limit = min(p_cols, max(2, s_rows // 2)) if max_terms is None else min(max_terms, p_cols)
@@ -150,7 +162,8 @@ def omp_path(psi: np.ndarray, y: np.ndarray, max_terms: int | None = None) -> Om
     hat = np.zeros(s_rows)
     r_inv_norm2 = 0.0
     chosen: list[int] = []
-    best = (math.inf, 0, np.full(t_out, math.inf))  # (mean LOO, terms, LOO per output)
+    best_loo = np.full(t_out, math.inf)
+    best_terms = np.zeros(t_out, dtype=np.int64)
     stale = 0
     column = 0  # the constant first
     while len(chosen) < limit:
@@ -180,31 +193,33 @@ def omp_path(psi: np.ndarray, y: np.ndarray, max_terms: int | None = None) -> Om
         correlation -= np.outer(psi.T @ v, projections[k])
         hat += v * v
         chosen.append(column)
-        terms = k + 1
-        if s_rows > terms:
-            loo = _corrected_loo(residual, hat, spread, s_rows, terms, r_inv_norm2)
-            score = float(loo[varies].mean()) if varies.any() else 0.0
-            if score < best[0]:
-                best, stale = (score, terms, loo), 0
-            else:
-                stale += 1
-        if stale >= PATIENCE_STEPS or best[0] <= ENOUGH_LOO:
+        if s_rows > k + 1:
+            loo = _corrected_loo(residual, hat, spread, s_rows, k + 1, r_inv_norm2)
+            better = loo < best_loo
+            best_loo = np.where(better, loo, best_loo)
+            best_terms = np.where(better, k + 1, best_terms)
+            stale = 0 if better[varies].any() else stale + 1
+            weight = np.where(best_loo <= ENOUGH_LOO, 0.0, weight)  # fitted: serve the rest
+        if stale >= PATIENCE_STEPS or not weight.any():
             break
         column = _next_column(correlation, norms, usable, weight)
         if column < 0:
             break
-    terms = best[1]
-    if terms == 0:
-        raise PceError(f"{s_rows} runs cannot fit even the constant term")
-    coefficients = r_inv[:terms, :terms] @ projections[:terms]
-    return OmpPath(np.array(chosen[:terms]), coefficients, best[2])
+    if not chosen or best_terms.min() == 0:
+        raise PceError(f"{s_rows} runs cannot fit even the constant term", "more runs")
+    terms = int(best_terms.max())
+    coefficients = np.zeros((terms, t_out))
+    for t in range(t_out):
+        k = best_terms[t]
+        coefficients[:k, t] = r_inv[:k, :k] @ projections[:k, t]
+    return OmpPath(np.array(chosen[:terms]), coefficients, best_terms, best_loo)
 
 
 def _next_column(correlation, norms, usable, weight) -> int:
     """The usable column most correlated with the residuals, or -1."""
     if not usable.any():
         return -1
-    score = (correlation**2) @ weight
+    score = (correlation**2) @ weight  # weight: 1 / spread of the outputs still to fit
     score = np.where(usable, score / np.where(usable, norms, 1.0) ** 2, -1.0)
     column = int(score.argmax())
     return column if score[column] > 0.0 else -1
@@ -224,12 +239,14 @@ def _corrected_loo(residual, hat, spread, s_rows: int, terms: int, r_inv_norm2: 
 @dataclass(frozen=True)
 class PceFit:
     """A fitted expansion of one output group: degree, multi-indices of its terms (k, D),
-    coefficients (k, T) on the orthonormal basis, corrected LOO error per output (T,),
-    and the design rows' basis values of its terms (S, k) kept for the bootstrap."""
+    coefficients (k, T) on the orthonormal basis (output t uses the first
+    ``term_counts[t]`` terms, zeros after), corrected LOO error per output (T,), and the
+    design rows' basis values of the terms (S, k) kept for the bootstrap."""
 
     degree: int
     indices: np.ndarray
     coefficients: np.ndarray
+    term_counts: np.ndarray
     loo_error: np.ndarray
     basis: np.ndarray
 
@@ -271,7 +288,12 @@ def fit_pce(
         varies = np.ptp(y, axis=0) > 0.0
         score = float(path.loo_error[varies].mean()) if varies.any() else 0.0
         fit = PceFit(
-            degree, indices[path.terms], path.coefficients, path.loo_error, psi[:, path.terms]
+            degree,
+            indices[path.terms],
+            path.coefficients,
+            path.term_counts,
+            path.loo_error,
+            psi[:, path.terms],
         )
         if on_degree is not None:
             on_degree(degree)
@@ -323,8 +345,8 @@ def bootstrap_halfwidths(
     conf_level: float = CONF_LEVEL,
 ):
     """``z σ`` of S1 and ST (each (T, D)) over bootstrap resamples of the design rows (row
-    counts from ``default_rng(seed)``), the fit's terms refitted by weighted least squares
-    on each (normal equations, batched over resamples)."""
+    counts from ``default_rng(seed)``), each output's terms refitted by weighted least
+    squares on each (normal equations, batched over resamples)."""
     y = np.asarray(y, dtype=np.float64).reshape(fit.basis.shape[0], -1)
     s_rows, k = fit.basis.shape
     counts = _bootstrap_counts(s_rows, seed, num_resamples)
@@ -335,7 +357,12 @@ def bootstrap_halfwidths(
     right = (counts @ (basis[:, :, None] * y[:, None, :]).reshape(s_rows, -1)).reshape(
         num_resamples, k, -1
     )
-    coefficients = np.linalg.solve(gram, right)  # (B, k, T)
+    coefficients = np.zeros((num_resamples, k, y.shape[1]))  # (B, k, T)
+    for terms in np.unique(fit.term_counts):  # each output refitted on its own terms
+        outputs = fit.term_counts == terms
+        coefficients[:, :terms, outputs] = np.linalg.solve(
+            gram[:, :terms, :terms], right[:, :terms][:, :, outputs]
+        )
     first, total = indices_from_coefficients(fit.indices, coefficients)
     z = NormalDist().inv_cdf(0.5 + conf_level / 2.0)
     return z * first.std(axis=0, ddof=1), z * total.std(axis=0, ddof=1)
@@ -389,8 +416,9 @@ def check_loo(fits, names, max_loo_error: float, samples: int, key_samples="pce_
     if errors[worst] > max_loo_error:
         raise PceError(
             f"PCE leave-one-out error {errors[worst]:.3g} of {names[worst]} exceeds "
-            f"pce_max_loo_error = {max_loo_error:g}: raise {key_samples} (now {samples}) "
-            f"or pce_max_loo_error"
+            f"pce_max_loo_error = {max_loo_error:g}",
+            f"raise {key_samples} (now {samples}) or pce_max_loo_error",
+            key_samples,
         )
 
 
@@ -410,3 +438,73 @@ def pce_unit_design(num_vars: int, samples: int, seed: int) -> np.ndarray:
     design = cached_design(key, (samples, num_vars), draw)
     design.setflags(write=False)
     return design
+
+
+@dataclass(frozen=True)
+class TrajectoryIndices:
+    """PCE indices of M outputs recorded at K times, from one set of runs.
+
+    ``indices`` (4, K, M, D): S1, its half-width, ST, its half-width at every time;
+    ``loo_error`` and ``variance`` (K, M); ``aggregated`` (M, 2, D): S1 and ST of each
+    output over its whole trajectory (:func:`~planar_tui.sensitivity.aggregate.aggregated_indices`);
+    ``overall`` (2, D): over all outputs, each output's trajectory first scaled to unit
+    total variance (so that radians and metres weigh alike)."""
+
+    indices: np.ndarray
+    loo_error: np.ndarray
+    variance: np.ndarray
+    aggregated: np.ndarray
+    overall: np.ndarray
+
+
+def trajectory_indices(
+    unit: np.ndarray,
+    outputs: np.ndarray,
+    seed: int,
+    num_resamples: int = NUM_RESAMPLES,
+    on_output: Callable[[float], None] | None = None,
+) -> TrajectoryIndices:
+    """Indices of ``outputs`` (S, K, M) at every time and aggregated: one expansion per
+    output with terms shared over its K times (:func:`pce_indices` with ``shared``)."""
+    from planar_tui.sensitivity.aggregate import aggregated_indices
+
+    _, k_times, m_outputs = outputs.shape
+    indices = np.empty((4, k_times, m_outputs, unit.shape[1]))
+    loo = np.empty((k_times, m_outputs))
+    variance = np.empty((k_times, m_outputs))
+    aggregated = np.empty((m_outputs, 2, unit.shape[1]))
+    for m in range(m_outputs):
+        result, (fit,) = pce_indices(unit, outputs[:, :, m], seed, True, num_resamples)
+        indices[:, :, m] = result
+        loo[:, m], variance[:, m] = fit.loo_error, fit.variance
+        aggregated[m] = aggregated_indices(result[[0, 2]], fit.variance)
+        if on_output is not None:
+            on_output(1.0 / m_outputs)
+    totals = variance.sum(axis=0)
+    varies = totals > 0.0
+    overall = aggregated[varies].mean(axis=0) if varies.any() else np.zeros(aggregated.shape[1:])
+    return TrajectoryIndices(indices, loo, variance, aggregated, overall)
+
+
+def job_indices(
+    unit: np.ndarray,
+    outputs: np.ndarray,
+    seed: int,
+    input_names,
+    output_names,
+    max_loo_error: float,
+    allow_failed_runs: float = 0.0,
+    num_resamples: int = NUM_RESAMPLES,
+) -> tuple[np.ndarray, np.ndarray, str]:
+    """A job's PCE analysis of ``outputs`` (S, T): failed runs checked (and dropped when
+    ``allow_failed_runs`` allows), one expansion with terms shared by the T outputs, its
+    LOO errors checked against ``max_loo_error``. Returns the (4, T, D) indices, the LOO
+    error of every output (T,) and a note (``""`` or the dropped runs' line); raises
+    :class:`PceError` or :class:`~planar_tui.sensitivity.failed_runs.FailedRuns`."""
+    from planar_tui.sensitivity.failed_runs import check_failed_runs
+
+    outputs = np.asarray(outputs, dtype=np.float64).reshape(len(unit), -1)
+    keep, note = check_failed_runs(outputs, unit, input_names, allow_failed_runs, True)
+    result, (fit,) = pce_indices(unit[keep], outputs[keep], seed, True, num_resamples)
+    check_loo([fit], list(output_names), max_loo_error, len(unit))
+    return result, fit.loo_error, note
