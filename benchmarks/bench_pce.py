@@ -156,6 +156,69 @@ class Tally:
             self.vs_saltelli = max(self.vs_saltelli, float(np.abs(total - saltelli).max()))
 
 
+def motion_outputs(job, unit, steps):
+    """Outputs (S, K, M) of the motion job's robots (rows of ``unit``) at ``steps``, by the
+    motion engine's public functions (the job's own model, CPU)."""
+    from planar_tui.motion import engine as motion
+
+    spec, robot = job.spec, job.robot
+    problem = engine.build_problem(
+        robot, spec.tolerance_length_mm * 1e-3, spec.tolerance_mass_g * 1e-3,
+        spec.tolerance_inertia_kgm2,
+    )  # fmt: skip
+    lengths, masses, inertias = robot.arrays()
+    rod = inertias == masses * lengths * lengths / 12.0
+    design = motion.Design(np.ascontiguousarray(unit), {"sobol": slice(0, len(unit))})
+    robots, params = motion.make_robots(
+        "cpu", problem, design, rod, robot, np.radians(np.array(spec.theta0_deg, dtype=float)),
+        np.radians(np.array(spec.omega0_deg_s, dtype=float)),
+        np.array(spec.torques_Nm, dtype=float),
+    )  # fmt: skip
+    recorded = {}
+
+    def on_stop(step, angles):
+        if step in steps:
+            recorded[step] = motion.take_outputs(params[:, 0, :], angles, spec.outputs)
+
+    motion.integrate(robots, spec.step_s, sorted({0, *steps}), on_stop)
+    return np.stack([recorded[k] for k in steps], axis=1), problem
+
+
+def motion_study(sobol_samples: int) -> None:
+    """paper-a-table1-motion: PCE at its default runs against Sobol' at N = sobol_samples,
+    ST at every ``at_s`` time; run counts and seconds (integration + analysis)."""
+    from planar_tui.motion.job import prepare_motion
+
+    (job,) = load_preset(REPO / "presets" / "paper-a-table1-motion.toml").jobs_of(
+        "motion_uncertainty"
+    )
+    job = prepare_motion(job)
+    steps = job.spec.at_steps()
+    d = 12
+    t0 = time.perf_counter()
+    unit = engine.unit_design("sobol", d, sobol_samples, job.spec.seed)
+    y, _ = motion_outputs(job, unit, steps)
+    flat = y.reshape(len(unit), -1)
+    saltelli = engine.analyse("sobol", flat, d, job.spec.seed)
+    sobol_s = time.perf_counter() - t0
+    samples = pce.default_pce_samples(d)
+    t0 = time.perf_counter()
+    design = pce.pce_unit_design(d, samples, job.spec.seed)
+    y, _ = motion_outputs(job, design, steps)
+    result = pce.trajectory_indices(np.asarray(design), y, job.spec.seed)
+    pce_s = time.perf_counter() - t0
+    chaos = result.indices[2].reshape(-1, d)  # (K M, D) in the order of flat's columns
+    error = np.abs(chaos - saltelli[2])
+    print(f"\nmotion, paper-a-table1-motion (D = 12, times {[k * job.spec.step_s for k in steps]})")
+    print("| method | robots | seconds | max |ST − Sobol'| | max Sobol' ST half-width | max LOO |")
+    print("|---|---:|---:|---:|---:|---:|")
+    print(f"| Sobol' N = {sobol_samples} | {sobol_samples * (d + 2)} | {sobol_s:.1f} | — "
+          f"| {saltelli[3].max():.3f} | — |")  # fmt: skip
+    print(f"| PCE | {samples} ({sobol_samples * (d + 2) / samples:.0f}× fewer) "
+          f"| {pce_s:.1f} ({sobol_s / pce_s:.1f}×) | {error.max():.4f} | — "
+          f"| {result.loo_error.max():.1e} |")  # fmt: skip
+
+
 def whole_process(methods: str, out: Path) -> float:
     """Seconds of ``planar-tui run paper-a-table4 paper-a-table5`` with every job's
     ``methods`` replaced (presets copied with that one line changed)."""
@@ -173,6 +236,8 @@ def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--no-libraries", action="store_true", help="skip Chaospy, OpenTURNS")
     parser.add_argument("--whole-process", action="store_true", help="time planar-tui run too")
+    parser.add_argument("--motion", type=int, default=0, metavar="N",
+                        help="also the Table 1 motion study against Sobol' at this N")  # fmt: skip
     args = parser.parse_args()
     tallies = {name: Tally() for name in ("saltelli", "pce", "chaospy", "openturns")}
     print("| job | D | runs PCE | degree | terms | LOO | max |ST-exact| PCE | Saltelli |")
@@ -226,6 +291,8 @@ def main() -> None:
             f"| {tally.seconds:.2f} ({base.seconds / tally.seconds:.1f}×) | {imported} "
             f"| {tally.vs_exact:.1e} | {tally.vs_saltelli:.1e} |"
         )
+    if args.motion:
+        motion_study(args.motion)
     if args.whole_process:
         with tempfile.TemporaryDirectory() as folder:
             out = Path(folder)

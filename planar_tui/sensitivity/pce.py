@@ -51,9 +51,11 @@ NUM_RESAMPLES = 100
 CONF_LEVEL = 0.95
 #: Highest degree tried, and the largest candidate basis (terms) a degree may have.
 MAX_DEGREE = 8
-MAX_CANDIDATES = 3000
-#: OMP stops after this many steps without a better LOO error (and at N / 2 terms).
+MAX_CANDIDATES = 1000
+#: OMP stops after this many steps in which the mean of the outputs' best LOO errors has
+#: not fallen by ``PROGRESS`` (relative) since the last progress (and at N / 2 terms).
 PATIENCE_STEPS = 30
+PROGRESS = 0.01
 #: A LOO error below this is good enough: no more terms or degrees are tried (an index's
 #: error is then about 2 (S ε)^½ ≤ 2e-4).
 ENOUGH_LOO = 1e-8
@@ -124,18 +126,22 @@ def basis_matrix(unit: np.ndarray, indices: np.ndarray) -> np.ndarray:
 class OmpPath:
     """One OMP path and each output's best model on it: the path's terms (columns of Ψ,
     the constant first, in the order chosen), the coefficients (k, T) of every output on
-    its own first ``term_counts[t]`` terms (zeros after), and its corrected LOO error (T,)."""
+    its own first ``term_counts[t]`` terms (zeros after), and its corrected LOO error (T,);
+    the QR factors of the terms' basis values, Q (S, k) and R⁻¹ (k, k)."""
 
     terms: np.ndarray
     coefficients: np.ndarray
     term_counts: np.ndarray
     loo_error: np.ndarray
+    q: np.ndarray
+    r_inv: np.ndarray
 
 
 def omp_path(psi: np.ndarray, y: np.ndarray, max_terms: int | None = None) -> OmpPath:
     """Simultaneous OMP over the columns of ``psi`` (S, P; column 0 the constant) for the
     outputs ``y`` (S, T), stopped at ``max_terms`` (default N / 2), after
-    ``PATIENCE_STEPS`` steps without a better LOO error for any output, or once every
+    ``PATIENCE_STEPS`` steps without progress (``PROGRESS``) of the mean of the outputs'
+    best LOO errors, or once every
     output's is below ``ENOUGH_LOO``. Each output keeps the prefix of the path with its
     least corrected LOO error (the QR is nested, so every prefix's least-squares fit is
     at hand): an output that no polynomial fits does not spoil the others.
@@ -164,7 +170,7 @@ def omp_path(psi: np.ndarray, y: np.ndarray, max_terms: int | None = None) -> Om
     chosen: list[int] = []
     best_loo = np.full(t_out, math.inf)
     best_terms = np.zeros(t_out, dtype=np.int64)
-    stale = 0
+    stale, reference = 0, math.inf
     column = 0  # the constant first
     while len(chosen) < limit:
         k = len(chosen)
@@ -198,7 +204,11 @@ def omp_path(psi: np.ndarray, y: np.ndarray, max_terms: int | None = None) -> Om
             better = loo < best_loo
             best_loo = np.where(better, loo, best_loo)
             best_terms = np.where(better, k + 1, best_terms)
-            stale = 0 if better[varies].any() else stale + 1
+            score = float(best_loo[varies].mean()) if varies.any() else 0.0
+            if score < (1.0 - PROGRESS) * reference:  # progress: patience starts again
+                reference, stale = score, 0
+            else:
+                stale += 1
             weight = np.where(best_loo <= ENOUGH_LOO, 0.0, weight)  # fitted: serve the rest
         if stale >= PATIENCE_STEPS or not weight.any():
             break
@@ -212,7 +222,10 @@ def omp_path(psi: np.ndarray, y: np.ndarray, max_terms: int | None = None) -> Om
     for t in range(t_out):
         k = best_terms[t]
         coefficients[:k, t] = r_inv[:k, :k] @ projections[:k, t]
-    return OmpPath(np.array(chosen[:terms]), coefficients, best_terms, best_loo)
+    return OmpPath(
+        np.array(chosen[:terms]), coefficients, best_terms, best_loo,
+        q[:, :terms].copy(), r_inv[:terms, :terms].copy(),
+    )  # fmt: skip
 
 
 def _next_column(correlation, norms, usable, weight) -> int:
@@ -241,7 +254,8 @@ class PceFit:
     """A fitted expansion of one output group: degree, multi-indices of its terms (k, D),
     coefficients (k, T) on the orthonormal basis (output t uses the first
     ``term_counts[t]`` terms, zeros after), corrected LOO error per output (T,), and the
-    design rows' basis values of the terms (S, k) kept for the bootstrap."""
+    design rows' basis values of the terms (S, k) and their QR factors Q (S, k), R⁻¹ (k, k),
+    kept for the bootstrap."""
 
     degree: int
     indices: np.ndarray
@@ -249,6 +263,8 @@ class PceFit:
     term_counts: np.ndarray
     loo_error: np.ndarray
     basis: np.ndarray
+    q: np.ndarray
+    r_inv: np.ndarray
 
     @property
     def mean(self) -> np.ndarray:
@@ -294,6 +310,8 @@ def fit_pce(
             path.term_counts,
             path.loo_error,
             psi[:, path.terms],
+            path.q,
+            path.r_inv,
         )
         if on_degree is not None:
             on_degree(degree)
@@ -344,36 +362,31 @@ def bootstrap_halfwidths(
     num_resamples: int = NUM_RESAMPLES,
     conf_level: float = CONF_LEVEL,
 ):
-    """``z σ`` of S1 and ST (each (T, D)) over bootstrap resamples of the design rows (row
-    counts from ``default_rng(seed)``), each output's terms refitted by weighted least
-    squares on each (normal equations, batched over resamples)."""
+    r"""``z σ`` of S1 and ST (each (T, D)) over a wild bootstrap of the regression (Wu
+    1986): resample b keeps the design and replaces output t by
+    :math:`\hat y_t + e_t \odot v_b` (:math:`e_t` its residuals, :math:`v_b` Rademacher
+    signs from ``default_rng(seed)``), refitted on its own terms by least squares. With
+    :math:`\Psi = QR` (the terms' basis values, factored by the OMP; the QR of a prefix of
+    columns is the prefix of the QR) the refit is :math:`c_b = c + R^{-1}Q^T(e \odot v_b)`,
+    two matrix products for all outputs and resamples instead of R T least-squares fits;
+    exact models get zero half-widths, as they should."""
     y = np.asarray(y, dtype=np.float64).reshape(fit.basis.shape[0], -1)
-    s_rows, k = fit.basis.shape
-    counts = _bootstrap_counts(s_rows, seed, num_resamples)
-    basis = fit.basis
-    gram = (counts @ (basis[:, :, None] * basis[:, None, :]).reshape(s_rows, k * k)).reshape(
-        num_resamples, k, k
-    )
-    right = (counts @ (basis[:, :, None] * y[:, None, :]).reshape(s_rows, -1)).reshape(
-        num_resamples, k, -1
-    )
-    coefficients = np.zeros((num_resamples, k, y.shape[1]))  # (B, k, T)
-    for terms in np.unique(fit.term_counts):  # each output refitted on its own terms
-        outputs = fit.term_counts == terms
-        coefficients[:, :terms, outputs] = np.linalg.solve(
-            gram[:, :terms, :terms], right[:, :terms][:, :, outputs]
-        )
+    s_rows = fit.basis.shape[0]
+    signs = np.random.default_rng(seed).integers(0, 2, size=(s_rows, num_resamples)) * 2.0 - 1.0
+    q = fit.q
+    residuals = y - fit.basis @ fit.coefficients  # (S, T)
+    t_out = y.shape[1]
+    # Q^T (e_t ⊙ v_b) for every output and resample in one product, rows past k_t zeroed;
+    # then R⁻¹ (upper triangular: on a zero-padded column it acts as its k_t × k_t block)
+    shift = q.T @ (residuals[:, :, None] * signs[:, None, :]).reshape(s_rows, -1)
+    shift = shift.reshape(-1, t_out, num_resamples)
+    k = len(fit.r_inv)
+    shift[np.arange(k)[:, None] >= fit.term_counts[None, :]] = 0.0
+    shift = (fit.r_inv @ shift.reshape(k, -1)).reshape(k, t_out, num_resamples)
+    coefficients = fit.coefficients[None] + np.moveaxis(shift, 2, 0)  # (B, k, T)
     first, total = indices_from_coefficients(fit.indices, coefficients)
     z = NormalDist().inv_cdf(0.5 + conf_level / 2.0)
     return z * first.std(axis=0, ddof=1), z * total.std(axis=0, ddof=1)
-
-
-def _bootstrap_counts(s_rows: int, seed: int, num_resamples: int) -> np.ndarray:
-    """(R, S) multiplicities of the rows of R resamples with replacement."""
-    draws = np.random.default_rng(seed).integers(s_rows, size=(num_resamples, s_rows))
-    counts = np.zeros((num_resamples, s_rows))
-    np.add.at(counts, (np.arange(num_resamples)[:, None], draws), 1.0)
-    return counts
 
 
 def pce_indices(
