@@ -29,7 +29,7 @@ import sys
 import numpy as np
 import mujoco
 sys.path.insert(0, {repo!r})
-from tests.mujoco_model import chain_model
+from benchmarks.mujoco_model import chain_model
 lengths = [0.25, 0.25, 0.20, 0.20, 0.15, 0.15]
 masses = [0.484, 0.484, 0.387, 0.387, 0.290, 0.290]
 inertias = [2.54e-3, 2.54e-3, 1.31e-3, 1.31e-3, 5.61e-4, 5.61e-4]

@@ -42,7 +42,7 @@ from planar_tui.kernels.dynamics import (
 from planar_tui.kernels.rk4 import rk4_integrate, rk4_record_count
 
 from benchmarks.baselines import numpy_newton_euler
-from tests.mujoco_model import chain_model, set_chain_parameters
+from benchmarks.mujoco_model import chain_model, set_chain_parameters
 
 G = 9.81
 LENGTHS = np.array([0.25, 0.25, 0.20, 0.20, 0.15, 0.15])

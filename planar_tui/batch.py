@@ -7,6 +7,7 @@ its results through the same functions, so both name and write files identically
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import stat
 import time
@@ -16,18 +17,24 @@ from pathlib import Path
 from typing import Any
 
 from planar_tui.csvio import write_csv_atomic
-from planar_tui.errors import PresetError
-from planar_tui.jobkind import Job, JobResult
+from planar_tui.errors import JobError, PresetError
+from planar_tui.jobkind import Job, JobResult, Option, PreparedJob
 from planar_tui.progress import Progress
+from planar_tui.reader import NAME_MAX_BYTES, TableReader, file_name_problem
 from planar_tui.registry import JOB_KINDS
-from planar_tui.schema import NAME_MAX_BYTES, file_name_problem
+from planar_tui.schema import declared_keys
+
+#: A job as parsed or as prepared (:func:`prepare_jobs`): both read alike (``kind``,
+#: ``label``, ``spec`` ...).
+AnyJob = Job[Any, Any] | PreparedJob[Any, Any, Any]
 
 
 @dataclass(frozen=True)
 class OutputPlan:
-    """Where one job's results go: its main CSV and its extra tables by name."""
+    """Where one job's results go: its main CSV and its extra tables by name (the job as
+    parsed, or prepared once the run plan prepared it)."""
 
-    job: Job
+    job: AnyJob
     main: Path
     extras: Mapping[str, Path] = field(default_factory=dict)
     figure: Path | None = None
@@ -50,8 +57,10 @@ class SummaryRow:
 class JobFailed(Exception):
     """A job raised an unexpected error (its cause is ``__cause__``)."""
 
-    def __init__(self, job: Job, error: BaseException):
-        super().__init__(f"{job.label} failed: {type(error).__name__}: {error}")
+    def __init__(self, job: Job[object, object] | PreparedJob[object, object, object],
+                 error: BaseException):  # fmt: skip
+        why = error.message if isinstance(error, JobError) else f"{type(error).__name__}: {error}"
+        super().__init__(f"{job.label} failed: {why}")
         self.job = job
 
 
@@ -66,7 +75,7 @@ class OutputFailed(Exception):
 class NonFiniteResult(Exception):
     """A finished job's result holds NaN or infinite values: it is not written."""
 
-    def __init__(self, job: Job, table: str, column: str):
+    def __init__(self, job: AnyJob, table: str, column: str):
         super().__init__(
             f"{job.label}: the result holds NaN or infinite values (first in the {table} "
             f"column {column}); nothing was written"
@@ -103,7 +112,7 @@ def plan_outputs(
             main = with_variant(main, job.variant)
         extras = {
             name: with_variant(out_dir / relative, job.variant)
-            for name, relative in JOB_KINDS[job.kind].extra_outputs(job.spec).items()
+            for name, relative in JOB_KINDS[job.kind].extra_outputs(job).items()
         }
         for name, override in (extra_out or {}).items():
             if override is not None:
@@ -269,12 +278,6 @@ def check_planned(files: Sequence[PlannedFile], presets: Mapping[Path, str] | No
                 )  # fmt: skip
 
 
-def check_plans(plans: Sequence[OutputPlan]) -> None:
-    """Check every planned job output before any job runs (:func:`check_planned`, with
-    the jobs' presets)."""
-    check_planned(plan_files(plans), {plan.job.preset_path: plan.job.label for plan in plans})
-
-
 def job_names(job: Job) -> tuple[str, ...]:
     """The names ``--job`` selects a job by: its table key (``workspace[2]``), its label
     (``paper-b-table3:workspace[2]``) and its output file name (``table3-slope.csv``)."""
@@ -311,57 +314,96 @@ def _option_text(value: Any) -> str:
     return repr(value) if isinstance(value, float) else str(value)
 
 
-def override_variant(
-    before: Any, after: Any, options: Mapping[str, Any], labels: Mapping[str, str]
-) -> str:
+def override_variant(before: Any, after: Any, options: Sequence[Option]) -> str:
     """``--OPTION-VALUE`` for each option that changed a setting from ``before`` to
     ``after`` (``--form-mean-value--precision-0.5``), in the order of ``options``."""
-    return "".join(
-        f"--{labels.get(name, name)}-{_option_text(getattr(after, name))}"
-        for name in options
-        if getattr(before, name, None) != getattr(after, name, None)
-    )
+    attributes = {key.name: attribute for attribute, key in declared_keys(type(after))}
+    parts = []
+    for option in options:
+        attribute = attributes[option.key]
+        if getattr(before, attribute, None) != getattr(after, attribute, None):
+            parts.append(f"--{option.label}-{_option_text(getattr(after, attribute))}")
+    return "".join(parts)
 
 
-def apply_overrides(
-    jobs: Sequence[Job], options: Mapping[str, Any], labels: Mapping[str, str] | None = None
-) -> tuple[Job, ...]:
-    """The jobs with command-line options applied by their kinds (checked there).
+class _OverrideReader(TableReader):
+    """A job's table (its settings dumped, its ``output``) with the command-line options'
+    values in place of their keys, read again by the settings' own readers and checks: a
+    problem names the option (``command line: --samples``), the option of the key when one
+    set it, else the first option given (the preset alone was valid)."""
 
-    A job whose settings an option changed gets the variant :func:`override_variant`
-    (option names from ``labels``, e.g. ``{"precision_cm": "precision"}``), so the files
-    the preset names say what was run: ``table3-natural--form-mean-value.csv``. An option
-    equal to the preset's value changes nothing, names included.
+    def __init__(self, job: Job, table: dict[str, Any], given: Mapping[str, Option]):
+        super().__init__(job.preset_path, table, job.key, tuple(table))
+        self.given = given
+
+    def error(self, name: str, problem: str, expected: str | None = None) -> PresetError:
+        option = self.given.get(name) or next(iter(self.given.values()))
+        return PresetError("command line", option.name, problem, expected)
+
+
+def _given(value: Any) -> bool:
+    return value is not None and value != [] and value != ()
+
+
+def override_job(job: Job, values: Mapping[str, Any]) -> Job:
+    """``job`` with the command-line options of its kind's command applied: ``values`` by
+    option name (``--samples``; ``None`` or an empty list keeps the preset's value).
+
+    The one option reader of every kind: each given value replaces its key in the job's
+    table, the kind's ``overrides`` hook adjusts the keys that follow it, and the table is
+    read again by the settings' own readers and cross-key checks, so an option is checked
+    exactly as its key is; a problem is a :class:`PresetError` ``command line: --OPTION``
+    (:class:`_OverrideReader`). The job records what changed: its ``variant``
+    (:func:`override_variant`) and ``overridden`` (key -> option).
     """
-    import dataclasses
+    kind = JOB_KINDS[job.kind]
+    options = kind.command.options if kind.command is not None else ()
+    given = {option.key: option for option in options if _given(values.get(option.name))}
+    if not given:
+        return job
+    table = {"output": job.output, **kind.dump(job.spec)}
+    table.update({key: values[option.name] for key, option in given.items()})
+    if kind.overrides is not None:
+        table = kind.overrides(table, {key: table[key] for key in given})
+    spec = kind.parse(_OverrideReader(job, table, given), job.robot)
+    variant = override_variant(job.spec, spec, options)
+    overridden = {**job.overridden, **{key: option.name for key, option in given.items()}}
+    return dataclasses.replace(job, spec=spec, variant=job.variant + variant, overridden=overridden)
 
-    updated = []
-    for job in jobs:
-        spec = JOB_KINDS[job.kind].with_overrides(job.spec, options)
-        variant = override_variant(job.spec, spec, options, labels or {})
-        updated.append(dataclasses.replace(job, spec=spec, variant=job.variant + variant))
-    return tuple(updated)
+
+def apply_overrides(jobs: Sequence[Job], values: Mapping[str, Any]) -> tuple[Job, ...]:
+    """The jobs with command-line options applied (:func:`override_job`), each checked by
+    its kind. A job whose settings an option changed gets the variant
+    :func:`override_variant`, so the files the preset names say what was run:
+    ``table3-natural--form-mean-value.csv``. An option equal to the preset's value changes
+    nothing, names included."""
+    return tuple(override_job(job, values) for job in jobs)
 
 
-def prepare_jobs(jobs: Sequence[Job]) -> tuple[Job, ...]:
-    """Every job ready to run, in order: each kind's ``prepare`` hook (e.g. the
-    sensitivity's isotropic posture solved, its resources checked after the overrides).
+def prepare_jobs(jobs: Sequence[Job[object, object]]) -> tuple[PreparedJob[Any, Any, object], ...]:
+    """Every job ready to run, in order: each kind's ``prepare`` hook, called once per job
+    (e.g. the sensitivity's isotropic posture solved, its resources checked after the
+    overrides), its result carried by a :class:`~planar_tui.jobkind.PreparedJob`.
 
     Parsing a preset stays cheap; this is the costly rest of validation, so call it for
     every job before the first one runs: it raises the first job's
     :class:`~planar_tui.errors.PresetError` (exit code 2) while nothing is written yet.
     """
-    return tuple(JOB_KINDS[job.kind].prepared(job) for job in jobs)
+    return tuple(JOB_KINDS[job.kind].prepare_job(job) for job in jobs)
 
 
-def run_job(job: Job, progress: Progress | None = None) -> JobResult:
-    """Run one job (prepared by its kind if :func:`prepare_jobs` did not already; kernels
+def run_job(
+    job: Job[object, object] | PreparedJob[object, object, object],
+    progress: Progress | None = None,
+) -> JobResult:
+    """Run one job (prepared by its kind, once, unless :func:`prepare_jobs` did; kernels
     compiled first when not cached: the stage :data:`planar_tui.warmup.STAGE`); writes
     nothing.
 
     Raises :class:`~planar_tui.errors.Cancelled` when ``progress`` says stop, the job's
-    own :class:`~planar_tui.errors.PresetError` (e.g. a box budget), and
-    :class:`JobFailed` for anything unexpected.
+    own :class:`~planar_tui.errors.PresetError` (found while preparing it), and
+    :class:`JobFailed` for a job that fails (its :class:`~planar_tui.errors.JobError`,
+    e.g. a box budget, or anything unexpected).
     """
     from planar_tui.errors import Cancelled
     from planar_tui.runtime import prepare_kernels
@@ -371,9 +413,9 @@ def run_job(job: Job, progress: Progress | None = None) -> JobResult:
     progress = progress or Progress()
     try:
         kind = JOB_KINDS[job.kind]
-        job = kind.prepared(job)  # a no-op for a job prepare_jobs prepared already
+        ready = job if isinstance(job, PreparedJob) else kind.prepare_job(job)
         warm_kernels([job.kind], progress)
-        return kind.run(job, progress)
+        return kind.run(ready, progress)
     except (PresetError, Cancelled, KeyboardInterrupt) as error:
         _release(error, progress)
         raise
@@ -395,7 +437,7 @@ def _release(error: BaseException, progress: Progress) -> None:
         traceback.clear_frames(error.__traceback__.tb_next)
 
 
-def check_finite(job: Job, result: JobResult) -> None:
+def check_finite(job: AnyJob, result: JobResult) -> None:
     """Refuse a result holding NaN or infinities (:class:`NonFiniteResult`): a diverged
     integration or an overflow is a failure, never a table."""
     for name, table in (("main", result.table), *result.extra_tables.items()):
@@ -426,18 +468,20 @@ def _write_figure(plan: OutputPlan, result: JobResult) -> Path:
     in a sweep, say) is :class:`OutputFailed`, never a traceback."""
     from planar_tui.figures import save_result_figure
 
+    figure = plan.figure
+    assert figure is not None  # called for a plan with a figure only
     try:
-        return save_result_figure(plan.job, result, plan.figure)
+        return save_result_figure(plan.job, result, figure)
     except OSError:
         raise
     except Exception as error:
-        raise OutputFailed(plan.figure, f"cannot draw the figure: {error}") from None
+        raise OutputFailed(figure, f"cannot draw the figure: {error}") from None
 
 
 def run_plans(
     plans: Sequence[OutputPlan],
-    progress_for: Callable[[Job], Any],
-    on_finished: Callable[[Job, JobResult], None] | None = None,
+    progress_for: Callable[[AnyJob], Any],
+    on_finished: Callable[[AnyJob, JobResult], None] | None = None,
 ) -> Iterator[SummaryRow]:
     """Run the planned jobs in order, writing each job's files as soon as it finishes.
 

@@ -16,8 +16,8 @@ class ExitCode(IntEnum):
     TERMINATED = 143
 
 
-class PresetError(ValueError):
-    """A preset that cannot be used, located by file and dotted key.
+class LocatedError(Exception):
+    """A problem located by file (or ``command line``) and dotted key (or option).
 
     ``str(error)`` is the one line the CLI prints:
     ``error: FILE: key: what is wrong (expected ...)``.
@@ -38,6 +38,17 @@ class PresetError(ValueError):
 
     def __str__(self) -> str:
         return f"error: {self.message}"
+
+
+class PresetError(LocatedError, ValueError):
+    """A preset (or a command-line option) that cannot be used: bad input, exit code 2,
+    refused before anything runs where possible."""
+
+
+class JobError(LocatedError):
+    """A job that started and cannot finish, for a reason its settings explain (a box
+    budget exceeded mid-run): a failed job (exit code 1), nothing of it written; the
+    message names what to change (``command line: --precision`` when an option set it)."""
 
 
 class Cancelled(Exception):

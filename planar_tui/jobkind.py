@@ -4,7 +4,10 @@ A job kind lives in one module of its domain package (``planar_tui/dynamics/simu
 ``planar_tui/sensitivity/job.py``, ``planar_tui/workspace/job.py`` ...), which holds its
 settings dataclass (the preset keys, declared once with :func:`planar_tui.schema.setting`),
 its runner, its result dataclass and its terminal view, and ends with one
-:class:`JobKind`; :mod:`planar_tui.registry` lists the kinds, one line each.
+:class:`JobKind` that declares the rest as data: its CLI command and options
+(:class:`Command`, :class:`Option`), its app tab (:class:`Tab`), its figure and its
+warm-up example. :mod:`planar_tui.registry` lists the kinds, one line each; the CLI's
+commands, the app's tabs, ``run``, sweeps, figures and warm-up are generated from it.
 """
 
 from __future__ import annotations
@@ -12,7 +15,7 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Generic, TypeVar
 
 from planar_tui.csvio import CsvTable
 from planar_tui.progress import Progress
@@ -26,6 +29,9 @@ class RobotKind:
 
     name: str
     model: type
+    #: A small robot table in TOML (``[robot]`` and its keys) for the job kinds' warm-up
+    #: examples (:data:`JobKind.warmup`).
+    example: str = ""
 
     @property
     def keys(self) -> tuple[str, ...]:
@@ -38,31 +44,103 @@ class RobotKind:
         return dump_settings(robot)
 
 
-@dataclass(frozen=True)
-class Job:
-    """One job of a preset, ready to run.
+#: A kind's settings dataclass, its robot model and what its ``prepare`` resolves.
+SpecT = TypeVar("SpecT", covariant=True)
+RobotT = TypeVar("RobotT", covariant=True)
+PreparedT = TypeVar("PreparedT", covariant=True)
 
-    ``kind`` names the registered job kind, ``spec`` is that kind's parsed settings,
-    ``robot`` the robot model it runs on, ``output`` the CSV file name relative to the
-    output folder, ``label`` a short name for progress bars and summaries (``preset:key``),
-    ``key`` the job's table in the preset (``simulate``, ``simulate[2]``); ``variant`` is
-    what command-line overrides changed (``--form-mean-value``), appended to the stem of
-    every output file the preset names (see :func:`planar_tui.batch.apply_overrides`).
+
+@dataclass(frozen=True)
+class Job(Generic[SpecT, RobotT]):
+    """One job of a preset, as parsed (and overridden on the command line).
+
+    ``kind`` names the registered job kind, ``spec`` is that kind's parsed settings (the
+    preset's keys, nothing derived), ``robot`` the robot model it runs on, ``output`` the
+    CSV file name relative to the output folder, ``label`` a short name for progress bars
+    and summaries (``preset:key``), ``key`` the job's table in the preset (``simulate``,
+    ``simulate[2]``); ``variant`` is what command-line overrides changed
+    (``--form-mean-value``), appended to the stem of every output file the preset names
+    (see :func:`planar_tui.batch.apply_overrides`); ``overridden`` maps the settings a
+    command-line option set to that option (``{"samples": "--samples"}``), so that a
+    problem they cause names the option (``command line: --samples``), not the preset.
     """
 
     kind: str
     index: int
     label: str
-    robot: Any
-    spec: Any
+    robot: RobotT
+    spec: SpecT
     output: str
     preset_path: Path
     variant: str = ""
+    overridden: Mapping[str, str] = field(default_factory=dict)
 
     @property
     def key(self) -> str:
         """The job's table in its preset: ``simulate`` or ``simulate[2]``."""
         return self.label.rsplit(":", 1)[-1]
+
+
+@dataclass(frozen=True)
+class PreparedJob(Generic[SpecT, RobotT, PreparedT]):
+    """A job ready to run: the :class:`Job` and what its kind's ``prepare`` resolved from
+    it, once (a sensitivity's solved posture, a motion job's device, a workspace's
+    singularity-free circle; ``None`` for a kind without ``prepare``). The job's fields
+    are read through (``spec``, ``robot``, ``label`` ...)."""
+
+    job: Job[SpecT, RobotT]
+    prepared: PreparedT
+
+    @property
+    def kind(self) -> str:
+        return self.job.kind
+
+    @property
+    def index(self) -> int:
+        return self.job.index
+
+    @property
+    def label(self) -> str:
+        return self.job.label
+
+    @property
+    def key(self) -> str:
+        return self.job.key
+
+    @property
+    def robot(self) -> RobotT:
+        return self.job.robot
+
+    @property
+    def spec(self) -> SpecT:
+        return self.job.spec
+
+    @property
+    def output(self) -> str:
+        return self.job.output
+
+    @property
+    def preset_path(self) -> Path:
+        return self.job.preset_path
+
+    @property
+    def variant(self) -> str:
+        return self.job.variant
+
+    @property
+    def overridden(self) -> Mapping[str, str]:
+        return self.job.overridden
+
+
+def option_or_key(job: Job[object, object], key: str, *causes: str) -> tuple[Path | str, str]:
+    """Where a problem of the job's setting ``key`` comes from, as :class:`PresetError`'s
+    first two arguments: ``("command line", "--samples")`` when a command-line option set
+    ``key`` (or one of ``causes``, the settings that change it), else the preset and its
+    key (``(path, "sensitivity[2].samples")``)."""
+    for name in (key, *causes):
+        if name in job.overridden:
+            return "command line", job.overridden[name]
+    return job.preset_path, f"{job.key}.{key}"
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -78,8 +156,71 @@ class JobResult:
     extra_tables: Mapping[str, CsvTable] = field(default_factory=dict)
 
 
-def _no_extra_outputs(spec: Any) -> dict[str, str]:
+def _no_extra_outputs(job: Job[object, object]) -> dict[str, str]:
     return {}
+
+
+@dataclass(frozen=True)
+class Option:
+    """A command-line option of a kind's command that overrides one preset key.
+
+    ``name`` is the option (``--precision``), ``key`` the settings key it sets
+    (``precision_cm``); the value is read with the key's own reader, so it is checked
+    exactly as the preset's value is (:func:`planar_tui.batch.apply_overrides`). ``type``
+    is what Typer converts the text to (``str``, ``int``, ``float``); ``many`` makes it
+    repeatable (a list); ``short`` is a one-letter alias (``-m``). In the names of the
+    files it changes the option appears without its dashes (``--precision-0.5``).
+    """
+
+    name: str
+    key: str
+    help: str
+    type: type = str
+    many: bool = False
+    short: str | None = None
+
+    @property
+    def label(self) -> str:
+        """How the option appears in the file names it changes (``precision``)."""
+        return self.name.lstrip("-")
+
+
+@dataclass(frozen=True)
+class OutputOption:
+    """A command-line option naming where one of the kind's extra tables goes
+    (``--boxes FILE`` for a workspace's ``boxes`` table)."""
+
+    name: str
+    table: str
+    help: str
+
+
+@dataclass(frozen=True)
+class Command:
+    """A job kind's CLI command (``planar-tui NAME PRESET``), generated by the CLI.
+
+    ``help`` is its help text (first sentence: its line in ``planar-tui --help``);
+    ``options`` its overriding options, ``outputs`` its extra-table options, ``view`` a
+    flag (``--map/--no-map``) with its help that turns the kind's terminal view off.
+    Every command also has ``--job``, ``--out``, ``--out-dir`` and ``--plot``.
+    """
+
+    name: str
+    help: str
+    options: tuple[Option, ...] = ()
+    outputs: tuple[OutputOption, ...] = ()
+    view: tuple[str, str] | None = None
+
+
+@dataclass(frozen=True)
+class Tab:
+    """A job kind's tab in the app: its title, its place (tabs sorted by ``order``; the
+    Robot tab is first) and its pane as an import path (``module:Class``), so that the core
+    never imports Textual; without one the app's generic job pane shows the kind."""
+
+    title: str
+    order: int = 100
+    pane: str | None = None
 
 
 @dataclass(frozen=True)
@@ -89,33 +230,48 @@ class JobKind:
     ``settings`` is the settings dataclass (its declared keys are the table's keys;
     ``output`` and the robot sub-table are added by the loader); ``run(job, progress)``
     computes a :class:`JobResult` and writes nothing; ``render(job, result, console)``
-    prints it on a rich console (optional); ``extra_outputs(spec)`` names the extra
+    prints it on a rich console (optional); ``extra_outputs(job)`` names the extra
     tables the preset asks to write, relative to the output folder (e.g.
-    ``{"boxes": "boxes.csv"}``); ``overrides(spec, options)`` applies and checks
-    command-line options (``None`` values keep the preset's); ``prepare(job)`` does the
+    ``{"boxes": "boxes.csv"}``); ``prepare(job)`` does the
     costly part of validation that parsing skips so that it stays cheap enough for every
-    keystroke (e.g. solving the sensitivity's isotropic posture): it returns the job
-    ready to run or raises :class:`~planar_tui.errors.PresetError`; the batch service
-    calls it for every job before the first one runs (:func:`planar_tui.batch.prepare_jobs`).
+    keystroke (e.g. solving the sensitivity's isotropic posture): it returns what it
+    resolved (the kind's typed prepared payload, carried by a :class:`PreparedJob` to
+    ``run``) or raises :class:`~planar_tui.errors.PresetError`; the batch service
+    prepares every job once, before the first one runs
+    (:func:`planar_tui.batch.prepare_jobs`).
     ``check(job)`` is the part of ``prepare`` that computes nothing (a device usable
     here, say): a sweep runs it on every point before the first one runs
     (:func:`planar_tui.sweep.points.make_points`), so a point that cannot run is refused
     up front rather than failing (:class:`~planar_tui.errors.PresetError`).
     ``point_figures(job, result)`` gives the kind's summary figures of one result as
     ordered columns (name with unit -> number or text): one sweep row per point.
+
+    Declared as data for the front ends: ``command`` (its CLI command, :class:`Command`),
+    ``tab`` (its app tab, :class:`Tab`), ``figure`` (the function drawing a finished job's
+    figure, as an import path ``module:function`` taking ``(job, result)``; ``None``: the
+    kind draws no figure, and a ``--plot`` or ``plot`` key for it is refused before
+    anything runs) and ``warmup`` (a tiny example job table in TOML, run with its robot
+    kind's ``example`` to compile the kind's kernels, :mod:`planar_tui.warmup`).
+    ``overrides(table, given)`` adjusts the keys that follow an overridden one in the TOML
+    table the command-line options are applied to (e.g. a workspace's refinement
+    precision capped by a new precision): see :func:`planar_tui.batch.apply_overrides`.
     """
 
     name: str
     robot_kind: str
     settings: type
-    run: Callable[[Job, Progress], JobResult]
+    run: Callable[[PreparedJob[Any, Any, Any], Progress], JobResult]
     summary: str
-    render: Callable[[Job, JobResult, Any], None] | None = None
-    extra_outputs: Callable[[Any], dict[str, str]] = _no_extra_outputs
-    overrides: Callable[[Any, Mapping[str, Any]], Any] | None = None
-    prepare: Callable[[Job], Job] | None = None
-    check: Callable[[Job], None] | None = None
-    point_figures: Callable[[Job, JobResult], dict[str, Any]] | None = None
+    render: Callable[[Job[Any, Any], Any, Any], None] | None = None
+    extra_outputs: Callable[[Job[Any, Any]], dict[str, str]] = _no_extra_outputs
+    overrides: Callable[[dict[str, Any], Mapping[str, Any]], dict[str, Any]] | None = None
+    prepare: Callable[[Job[Any, Any]], object] | None = None
+    check: Callable[[Job[Any, Any]], None] | None = None
+    point_figures: Callable[[Job[Any, Any], Any], dict[str, Any]] | None = None
+    command: Command | None = None
+    tab: Tab | None = None
+    figure: str | None = None
+    warmup: str | None = None
 
     @property
     def keys(self) -> tuple[str, ...]:
@@ -130,12 +286,7 @@ class JobKind:
         """The settings as a TOML table."""
         return dump_settings(spec)
 
-    def prepared(self, job: Job) -> Job:
-        """The job ready to run (see ``prepare``); :class:`PresetError` if it cannot run."""
-        return job if self.prepare is None else self.prepare(job)
-
-    def with_overrides(self, spec: Any, options: Mapping[str, Any]) -> Any:
-        """The settings with command-line options applied (and checked)."""
-        if self.overrides is None or all(value is None for value in options.values()):
-            return spec
-        return self.overrides(spec, options)
+    def prepare_job(self, job: Job[Any, Any]) -> PreparedJob[Any, Any, object]:
+        """The job ready to run (see ``prepare``, called once here); :class:`PresetError`
+        if it cannot run."""
+        return PreparedJob(job, None if self.prepare is None else self.prepare(job))

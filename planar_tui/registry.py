@@ -2,9 +2,14 @@
 
 A new job kind is one module in its domain package ending with a
 :class:`~planar_tui.jobkind.JobKind`, plus one line in :data:`JOB_KINDS`; the preset
-loader, the batch service, the CLI's ``run``, preset saving and the app pick it up.
-Nothing imported here loads numba, SALib or Textual (runners import them when they run).
+loader, the batch service, the run plan, sweeps, the CLI (its ``run`` and the kind's own
+command), preset saving, figures, warm-up and the app (the kind's tab) pick it up.
+Nothing imported here loads numpy, numba, SALib or Textual (runners import them when they
+run), so ``planar-tui --help`` can list the kinds' commands at once.
 """
+
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 from planar_tui.dynamics import robot as serial_robot
 from planar_tui.dynamics import simulate, torques
@@ -33,4 +38,21 @@ JOB_KINDS: dict[str, JobKind] = {
     )
 }
 
-__all__ = ["JOB_KINDS", "ROBOT_KINDS"]
+
+@contextmanager
+def registered(kind: JobKind) -> Iterator[JobKind]:
+    """Register ``kind`` while the block runs, then remove it (for tests: a kind defined in
+    a test file alone). Front ends read the registry when they are built (the CLI's
+    :func:`planar_tui.cli.build_app`, the app's tabs), so build them inside the block."""
+    if kind.name in JOB_KINDS:
+        raise ValueError(f"a job kind named {kind.name!r} is registered already")
+    if kind.robot_kind not in ROBOT_KINDS:
+        raise ValueError(f"{kind.name}: no robot kind {kind.robot_kind!r}")
+    JOB_KINDS[kind.name] = kind
+    try:
+        yield kind
+    finally:
+        del JOB_KINDS[kind.name]
+
+
+__all__ = ["JOB_KINDS", "ROBOT_KINDS", "registered"]

@@ -7,8 +7,9 @@ progress (completed = job kinds done, detail = the kernel being compiled), and o
 needed: a warm run (the kinds' markers present in the kernel cache folder) shows no such
 stage.
 
-How: each job kind is warmed by running a tiny example job of that kind (:data:`EXAMPLES`,
-TOML read by the real preset loader) through its real runner, so exactly the kernel
+How: each job kind is warmed by running a tiny example job of that kind (its
+:class:`~planar_tui.jobkind.JobKind`'s ``warmup`` TOML after its robot kind's ``example``,
+:func:`example`, read by the real preset loader) through its real runner, so exactly the kernel
 signatures the runners use are compiled and cached, with nothing declared twice. Compiling
 one function cannot be interrupted, so the example runs in a helper thread while the
 caller's :class:`~planar_tui.progress.Progress` is checked every
@@ -38,34 +39,18 @@ from planar_tui.progress import Progress
 
 STAGE = "compiling kernels (first run only)"
 
-_ROBOT = """[robot]
-lengths_m = [0.3, 0.2]
-masses_kg = [1.0, 0.8]
-"""
-#: Tiny jobs per kind whose runs call every kernel the kind's runner calls.
-EXAMPLES = {
-    "simulate": _ROBOT + "[simulate]\nduration_s = 0.002\nstep_s = 0.001\n",
-    "torques": _ROBOT + "[torques]\ntheta_deg = [[0, 10]]\n",
-    "sensitivity": _ROBOT + "[sensitivity]\nsamples = 8\nefast_samples = 65\n",
-    "motion_uncertainty": _ROBOT
-    + "[motion_uncertainty]\nduration_s = 0.002\nstep_s = 0.001\nsamples = 128\n"
-    + 'methods = ["montecarlo", "sobol", "efast"]\n',
-    "workspace": "[robot3rrr]\n"
-    + "".join(
-        "[[workspace]]\njoint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n"
-        "precision_cm = 8.0\nrefine_precision_cm = 4.0\ngeometric_reference = false\n"
-        f'strategy = "{strategy}"\n'
-        for strategy in ("legwise", "joint")
-    )
-    + (
-        "[[workspace]]\njoint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n"
-        'precision_cm = 8.0\nform = "arc-distance"\ngeometric_reference = false\n'
-        "singularities = true\nelbow = [1, -1, 1]\n"
-        "[[workspace]]\njoint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n"
-        'orientation_deg = [-1, 1]\norientation_mode = "total"\nprecision_cm = 8.0\n'
-        "geometric_reference = false\n"
-    ),
-}
+
+def example(kind: str) -> str | None:
+    """The TOML preset of ``kind``'s warm-up example: its robot kind's ``example`` table and
+    its own ``warmup`` job tables (declared in the kind's module); ``None`` for a kind
+    without one (nothing to compile)."""
+    from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
+
+    declared = JOB_KINDS.get(kind)
+    if declared is None or declared.warmup is None:
+        return None
+    return ROBOT_KINDS[declared.robot_kind].example + declared.warmup
+
 
 _lock = threading.Lock()
 
@@ -102,7 +87,11 @@ def marker(kind: str) -> Path:
 
 def missing(kinds: Iterable[str]) -> list[str]:
     """The kinds among ``kinds`` whose kernels are not known to be compiled (no marker)."""
-    return [kind for kind in dict.fromkeys(kinds) if kind in EXAMPLES and not marker(kind).exists()]
+    return [
+        kind
+        for kind in dict.fromkeys(kinds)
+        if example(kind) is not None and not marker(kind).exists()
+    ]
 
 
 class _CompileWatcher:
@@ -144,9 +133,9 @@ def _run_example(kind: str) -> None:
             return
         with tempfile.TemporaryDirectory(prefix="planar-tui-warmup-") as folder:
             path = Path(folder) / f"warmup-{kind}.toml"
-            path.write_text(EXAMPLES[kind], encoding="utf-8")
+            path.write_text(example(kind) or "", encoding="utf-8")
             for job in load_preset(path).jobs_of(kind):
-                JOB_KINDS[kind].run(JOB_KINDS[kind].prepared(job), Progress())
+                JOB_KINDS[kind].run(JOB_KINDS[kind].prepare_job(job), Progress())
         with contextlib.suppress(OSError):  # read-only cache: compiled in memory anyway
             marker(kind).touch()
 

@@ -3,6 +3,7 @@ Numba threads."""
 
 from __future__ import annotations
 
+import subprocess
 from pathlib import Path
 
 import pytest
@@ -33,6 +34,25 @@ def on_one_and_two_threads(run):
     finally:
         numba.set_num_threads(before)
     return results
+
+
+def untracked_files() -> set[str]:
+    """The repository's untracked, not ignored files (none when git cannot tell)."""
+    listed = subprocess.run(
+        ["git", "-C", str(REPO), "ls-files", "--others", "--exclude-standard", "-z"],
+        capture_output=True,
+        text=True,
+    )
+    return set(listed.stdout.split("\0")) - {""} if listed.returncode == 0 else set()
+
+
+@pytest.fixture(scope="session", autouse=True)
+def nothing_written_into_the_repository():
+    """No test leaves a file in the repository (outputs go to ``tmp_path``)."""
+    before = untracked_files()
+    yield
+    written = untracked_files() - before
+    assert not written, f"the tests wrote into the repository: {sorted(written)}"
 
 
 @pytest.fixture(autouse=True)

@@ -6,8 +6,11 @@ from __future__ import annotations
 import csv
 
 import numpy as np
+import pytest
 
 from tests.test_app import SIZE, async_test, make_app, run_tab
+
+pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
 
 
 @async_test
@@ -45,7 +48,7 @@ async def test_motion_run_plots_the_band_and_shows_the_tables(tmp_path, cli):
         await pilot.pause(0.2)
     saved = tmp_path / "tiny.toml"
     assert "[motion_uncertainty]" in saved.read_text()
-    done = cli("motion", saved, "--out", tmp_path / "cli.csv")
+    done = cli("motion", saved, "--out", tmp_path / "cli.csv", "--out-dir", tmp_path)
     assert done.exit_code == 0, done.stderr
     with open(tmp_path / "cli.csv", newline="") as stream:
         header, *records = list(csv.reader(stream))

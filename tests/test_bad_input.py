@@ -180,7 +180,7 @@ def test_what_cannot_run_is_refused_with_the_estimate(case, tmp_path, cli):
         (("--samples", "-8", "--method", "efast"), "command line: --samples: is -8"),
         (("--samples", "0", "--method", "efast"), "command line: --samples: is 0"),
         (("--seed", str(2**32)), "command line: --seed: is 4294967296, above the maximum"),
-        (("--samples", str(2**40)), "sensitivity.samples: 2 links, 1 speed(s), samples"),
+        (("--samples", str(2**40)), "command line: --samples: 2 links, 1 speed(s), samples"),
     ],
 )
 def test_every_sensitivity_option_is_checked_whatever_the_method(tmp_path, cli, options, problem):

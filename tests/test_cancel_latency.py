@@ -9,9 +9,10 @@ import pytest
 
 from benchmarks.bench_cancel import cancel_latency, compile_latency, in_process_cases, robot_job
 from planar_tui import batch
-from planar_tui.errors import Cancelled, PresetError
+from planar_tui.errors import Cancelled
 from planar_tui.progress import Progress
 from planar_tui.sensitivity import engine
+from tests.salib_reference import salib_unit_design
 
 BOUND_S = 1.0
 CASES = in_process_cases(samples=1 << 16, precision_cm=0.00390625)
@@ -26,6 +27,7 @@ def test_each_stage_stops_within_the_bound(case, monkeypatch):
     assert latency <= BOUND_S
 
 
+@pytest.mark.slow
 def test_compiling_kernels_stops_within_the_bound():
     """A fresh process with an empty kernel cache: the first run compiles in its own stage
     and a cancel 1 s into it returns at once (the compilation goes on in the background)."""
@@ -43,7 +45,7 @@ def test_chunked_sampling_is_byte_identical_to_salib(method, num_vars, samples, 
     monkeypatch.setattr(engine, "SOBOL_CHUNK_POINTS", 8)  # many chunks
     fractions = []
     drawn = engine.draw_unit_design(method, num_vars, samples, seed, fractions.append)
-    expected = engine.salib_unit_design(method, num_vars, samples, seed)
+    expected = salib_unit_design(method, num_vars, samples, seed)
     assert drawn.shape == expected.shape and drawn.tobytes() == expected.tobytes()
     assert len(fractions) > 1 and sum(fractions) == pytest.approx(1.0)
 
@@ -66,6 +68,7 @@ FINE = (
 )
 
 
+@pytest.mark.slow
 def test_cancelled_workspace_run_releases_its_memory():
     """The exception is kept (as the app does to show it): the run's arrays are not."""
     job = robot_job("workspace", FINE + "precision_cm = 0.001", robot="3rrr")
@@ -93,7 +96,7 @@ def test_cancelled_workspace_run_releases_its_memory():
 def test_box_estimate_warns_above_the_budget():
     job = robot_job("workspace", FINE + "precision_cm = 0.03125\nbox_budget = 1000", "3rrr")
     states = []
-    with pytest.raises(PresetError, match="box_budget"):
+    with pytest.raises(batch.JobFailed, match="box_budget"):
         batch.run_job(job, Progress(on_update=states.append))
     estimate = states[-1].figures["boxes_estimate"]
     assert 1000 < estimate < 200_000  # paper B Table 5 at ε = 1/32 processes 43 000-ish

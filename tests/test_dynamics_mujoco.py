@@ -1,4 +1,4 @@
-"""NOC dynamics and RK4 against MuJoCo, an independent engine (MJCF from tests/mujoco_model.py).
+"""NOC dynamics and RK4 against MuJoCo, an independent engine (MJCF from benchmarks/mujoco_model.py).
 
 MuJoCo computes inverse dynamics with its own recursive algorithms in spatial (6-D)
 coordinates; its RK4 (``integrator="RK4"``) is the classical tableau on (qpos, qvel), so with
@@ -16,7 +16,7 @@ from planar_tui.kernels.dynamics import (
 )
 from planar_tui.kernels.rk4 import rk4_integrate, rk4_record_count
 
-from tests.mujoco_model import chain_model, mujoco_inverse, set_chain_parameters
+from benchmarks.mujoco_model import chain_model, mujoco_inverse, set_chain_parameters
 from tests.test_dynamics_kernels import G, random_robot, random_state, table1_robot
 
 

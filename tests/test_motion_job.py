@@ -177,7 +177,8 @@ def test_one_robot_equals_the_simulate_jobs_csv():
     (sim,) = parse_preset("s.toml", {"robot": robot, "simulate": settings}).jobs
     simulated = run_job(sim).table
     rows = np.array([[float(v) for v in r] for r in list(simulated.records())[1:]])
-    motion = prepare_motion(job_of(robot, {**settings, "methods": ["montecarlo"], "samples": 2}))
+    motion = job_of(robot, {**settings, "methods": ["montecarlo"], "samples": 2})
+    assert prepare_motion(motion).device == "cpu"
     lengths, masses, inertias = motion.robot.arrays()
     params = np.stack([lengths, masses, inertias])[None].copy()
     theta0 = np.radians(np.array(settings["theta0_deg"]))[None].copy()

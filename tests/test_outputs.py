@@ -104,15 +104,15 @@ def test_out_names_the_file_system_cannot_hold_are_refused(tmp_path, cli, name, 
     assert list(tmp_path.iterdir()) == []
 
 
-def test_check_plans_refuses_a_nul_in_any_path(tmp_path):
+def test_the_run_plan_refuses_a_nul_in_any_path(tmp_path):
     # a command line cannot hold a NUL (Click refuses it too); the app's paths can
-    from planar_tui import batch
     from planar_tui.errors import PresetError
+    from planar_tui.plan import plan_run
     from planar_tui.presets import load_preset
 
     (job, *_) = load_preset(TABLE1).jobs
     with pytest.raises(PresetError, match="holds a NUL character"):
-        batch.check_plans(batch.plan_outputs([job], tmp_path, tmp_path / "a\0b.csv"))
+        plan_run([job], tmp_path, out=tmp_path / "a\0b.csv")
 
 
 def test_a_too_long_out_dir_is_refused(tmp_path, cli):

@@ -29,15 +29,15 @@ def test_parsing_a_250_link_isotropic_preset_takes_under_0_1_s():
     started = time.perf_counter()
     (job,) = parse_preset("big.toml", document).jobs
     assert time.perf_counter() - started < 0.1
-    assert job.spec.posture is None  # solved on run, not per keystroke
+    assert not hasattr(job, "prepared")  # solved on run, not per keystroke
 
 
 def test_prepare_solves_the_posture_and_keeps_the_job():
     (job,) = parse_preset("p.toml", isotropic_document(2, [0.303, 0.214])).jobs
     (ready,) = batch.prepare_jobs([job])
-    assert ready.spec.posture.label == "isotropic"
-    assert ready.spec.posture.condition_number == pytest.approx(1.0, abs=2e-3)
-    assert ready.spec.posture_request == "isotropic" and ready.output == job.output
+    assert ready.prepared.posture.label == "isotropic"
+    assert ready.prepared.posture.condition_number == pytest.approx(1.0, abs=2e-3)
+    assert ready.job is job  # the job itself unchanged: settings hold preset keys only
 
 
 def test_a_robot_without_isotropic_posture_fails_in_prepare_with_the_key():

@@ -7,6 +7,8 @@ import csv
 import re
 import tomllib
 
+import pytest
+
 from tests.conftest import REPO
 
 README = (REPO / "README.md").read_text(encoding="utf-8")
@@ -60,6 +62,7 @@ def header(path) -> list[str]:
         return next(csv.reader(stream))
 
 
+@pytest.mark.slow
 def test_csv_column_lists_match_the_files_the_commands_write(cli, tmp_path):
     text = TINY.read_text(encoding="utf-8")
     workspace_output = 'output = "tiny-workspace.csv"'
@@ -99,3 +102,27 @@ def test_the_python_version_is_the_one_the_package_requires():
     required = tomllib.loads((REPO / "pyproject.toml").read_text())["project"]["requires-python"]
     assert required == ">=3.11"
     assert "Needs Python 3.11 or newer" in section("Quick start")
+
+
+def test_the_new_job_kind_recipe_names_files_that_exist_and_the_kind_gets_a_command():
+    """The "new job kind" recipe of the Development section names exactly the files a kind
+    touches (its module, the registry, its tests): they exist; and a kind registered as
+    it says (the toy kind of ``tests/test_toy_kind.py``) is a command of ``--help``."""
+    from typer.testing import CliRunner
+
+    from planar_tui.cli import build_app
+    from planar_tui.registry import JOB_KINDS, registered
+    from tests.test_toy_kind import TOY
+
+    development = section("Development")
+    recipe = development[development.index("- **A new job kind**") :]
+    recipe = recipe[: recipe.index("\n- **", 1)]
+    named = set(re.findall(r"`((?:planar_tui|tests)/[\w/]+\.py)", recipe))
+    assert {"planar_tui/registry.py", "tests/test_toy_kind.py"} <= named
+    assert [path for path in sorted(named) if not (REPO / path).is_file()] == []
+    assert "touches exactly three files: its module, one registry line and its" in recipe
+    with registered(TOY):
+        help_text = CliRunner().invoke(build_app(), ["--help"]).stdout
+    commands = re.findall(r"│ (\w+) ", help_text)
+    assert "kinetic" in commands
+    assert {k.command.name for k in JOB_KINDS.values() if k.command} <= set(commands)

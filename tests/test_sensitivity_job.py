@@ -177,8 +177,8 @@ def test_bundled_presets_parse_with_the_paper_postures():
         jobs = prepare_jobs(load_preset(root / f"{name}.toml").jobs_of("sensitivity"))
         assert len(jobs) == count
         for job in jobs:
-            if job.spec.posture.label == "isotropic":
-                assert job.spec.posture.condition_number < 1.002
-                assert np.degrees(job.spec.posture.theta_rad[1]) == pytest.approx(
+            if job.prepared.posture.label == "isotropic":
+                assert job.prepared.posture.condition_number < 1.002
+                assert np.degrees(job.prepared.posture.theta_rad[1]) == pytest.approx(
                     135.0 if job.robot.n_links == 2 else 120.0, abs=0.05
                 )

@@ -133,11 +133,29 @@ def test_bad_command_line_values_exit_2(cli, tmp_path, option, value):
 
 
 def test_box_budget_stops_with_a_clear_message_and_writes_nothing(cli, tmp_path):
+    """A budget exceeded mid-run is a failed job (exit code 1, as the README says), not
+    bad input; it names the preset's box_budget and precision_cm."""
     preset = write_preset(tmp_path, extra="box_budget = 1000\n")
     result = cli("workspace", preset, "--out-dir", tmp_path, "--boxes", tmp_path / "b.csv")
-    assert result.exit_code == 2
-    assert "box_budget" in result.stderr and "exceeded 1,000 boxes" in result.stderr
+    assert result.exit_code == 1
+    assert result.stderr.splitlines()[-1] == (
+        f"error: ws:workspace failed: {preset}: workspace.box_budget: the bisection exceeded "
+        "1,000 boxes; nothing was written (expected a larger box_budget or a coarser "
+        "precision_cm)"
+    )
     assert not (tmp_path / "ws.csv").exists() and not (tmp_path / "b.csv").exists()
+
+
+def test_a_budget_exceeded_at_the_precision_an_option_set_names_the_option(cli, tmp_path):
+    preset = write_preset(tmp_path, precision=1.0, extra="box_budget = 1000\n")
+    result = cli("workspace", preset, "--precision", "0.0625", "--out-dir", tmp_path)
+    assert result.exit_code == 1
+    assert result.stderr.splitlines()[-1] == (
+        "error: ws:workspace failed: command line: --precision: the bisection exceeded "
+        "1,000 boxes; nothing was written (expected a coarser --precision or a larger "
+        "box_budget)"
+    )
+    assert list(tmp_path.glob("*.csv")) == []
 
 
 def test_cancel_is_honoured_quickly_and_raises(tmp_path):
@@ -269,6 +287,7 @@ def test_explicit_points_in_the_preset(cli, tmp_path):
     assert float(row["area_geometric_cm2"]) == pytest.approx(0.8794, abs=1e-4)
 
 
+@pytest.mark.slow
 def test_ctrl_c_exits_130_quickly_and_writes_nothing(tmp_path):
     import signal
     import subprocess

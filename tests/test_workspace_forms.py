@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from planar_tui.kernels import workspace3rrr as k5
+from planar_tui.kernels import workspace3rrr
 from planar_tui.kernels.workspace_arc import (
     BOUNDARY,
     INSIDE,
@@ -23,11 +23,18 @@ from planar_tui.kernels.workspace_union import union_area
 from planar_tui.workspace.robot import Robot3RRR
 
 PAPER = Robot3RRR()  # a = 120, b = 40, l1 = l2 = 30 cm (paper B, Table 2)
-FORMS = (k5.NATURAL, k5.MEAN_VALUE, k5.SLOPE, k5.NATURAL_EXPANDED)
+FORMS = (
+    workspace3rrr.NATURAL,
+    workspace3rrr.MEAN_VALUE,
+    workspace3rrr.SLOPE,
+    workspace3rrr.NATURAL_EXPANDED,
+)
 
 
 def params(phi_rad: float) -> np.ndarray:
-    return k5.parameter_vector(30.0, 30.0, PAPER.leg_offsets_cm(phi_rad), 120.0, 40.0, phi_rad)
+    return workspace3rrr.parameter_vector(
+        30.0, 30.0, PAPER.leg_offsets_cm(phi_rad), 120.0, 40.0, phi_rad
+    )
 
 
 def exact_f(leg: int, x: float, y: float, theta: float, phi: float) -> mpmath.mpf:
@@ -63,6 +70,7 @@ def box_and_point(draw):
     return leg, phi, box, point
 
 
+@pytest.mark.slow
 @settings(deadline=None, max_examples=300)
 @given(box_and_point())
 def test_every_form_encloses_the_exact_value_at_points_of_the_box(case):
@@ -70,7 +78,7 @@ def test_every_form_encloses_the_exact_value_at_points_of_the_box(case):
     p = params(phi)
     value = exact_f(leg, *point, phi)
     for form in FORMS:
-        lo, hi = k5.leg_enclosure(form, leg, *box, p)
+        lo, hi = workspace3rrr.leg_enclosure(form, leg, *box, p)
         assert lo <= value <= hi, (form, lo, float(value), hi)
 
 
@@ -79,7 +87,7 @@ def test_every_form_encloses_the_exact_value_at_points_of_the_box(case):
 def test_expanded_eqs_22_23_equal_the_compact_form_at_points(case):
     leg, phi, _, (x, y, t) = case
     p = params(phi)
-    lo, hi = k5.natural_expanded(leg, x, x, y, y, t, t, p)
+    lo, hi = workspace3rrr.natural_expanded(leg, x, x, y, y, t, t, p)
     value = float(exact_f(leg, x, y, t, phi))
     assert lo - 1e-9 * (1 + abs(value)) <= value <= hi + 1e-9 * (1 + abs(value))
     assert hi - lo < 1e-9 * (1e4 + abs(value))
@@ -106,26 +114,26 @@ def test_worked_example_eq_24():
     assert true_lo == pytest.approx(-306.0, abs=0.1) and true_hi == pytest.approx(225.5, abs=0.1)
     widths = {}
     for form in FORMS:
-        lo, hi = k5.leg_enclosure(form, 2, *EXAMPLE, p)
+        lo, hi = workspace3rrr.leg_enclosure(form, 2, *EXAMPLE, p)
         assert lo <= true_lo and true_hi <= hi
         widths[form] = hi - lo
     # the expanded eq. (23) gives [-836.3, 712.7] (the paper prints [-787.4, 663.8])
-    lo, hi = k5.leg_enclosure(k5.NATURAL_EXPANDED, 2, *EXAMPLE, p)
+    lo, hi = workspace3rrr.leg_enclosure(workspace3rrr.NATURAL_EXPANDED, 2, *EXAMPLE, p)
     assert lo == pytest.approx(-836.34, abs=0.01) and hi == pytest.approx(712.72, abs=0.01)
     # refinement narrows the paper's natural extension; slope is at most mean-value here
-    assert widths[k5.MEAN_VALUE] < widths[k5.NATURAL_EXPANDED]
-    assert widths[k5.SLOPE] <= widths[k5.MEAN_VALUE]
+    assert widths[workspace3rrr.MEAN_VALUE] < widths[workspace3rrr.NATURAL_EXPANDED]
+    assert widths[workspace3rrr.SLOPE] <= widths[workspace3rrr.MEAN_VALUE]
 
 
 def test_mean_value_and_slope_overestimation_is_second_order():
     """Excess width over the true range shrinks ~4x when the box halves (ratio of 2 would
     be first order, the natural extension's behaviour)."""
     p = params(0.0)
-    for form in (k5.MEAN_VALUE, k5.SLOPE):
+    for form in (workspace3rrr.MEAN_VALUE, workspace3rrr.SLOPE):
         excess = []
         for w in (0.8, 0.4, 0.2):
             box = (40.0, 40.0 + w, 20.0, 20.0 + w, 1.0, 1.0 + w / 10)
-            lo, hi = k5.leg_enclosure(form, 0, *box, p)
+            lo, hi = workspace3rrr.leg_enclosure(form, 0, *box, p)
             x, y, t = np.meshgrid(*(np.linspace(box[2 * i], box[2 * i + 1], 41) for i in range(3)))
             f = (x + p[2] - 30 * np.cos(t)) ** 2 + (y + p[3] - 30 * np.sin(t)) ** 2 - 900
             excess.append((hi - lo) - (f.max() - f.min()))

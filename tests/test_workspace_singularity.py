@@ -68,7 +68,7 @@ def legs(robot, phi_rad, x, y, elbow, limits_rad):
 
 def _inputs(job):
     robot = job.robot
-    return robot, job.spec.orientation_rad, job.spec.circle[2], job.spec.limits_rad
+    return robot, job.spec.orientation_rad, job.prepared.circle.elbow, job.spec.limits_rad
 
 
 def traced_curve(job, extent, n=300):
@@ -130,6 +130,7 @@ RANDOM_ROBOT = (
 )
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("elbow", "phi", "limits", "robot", "least_points"),
     [
@@ -245,16 +246,15 @@ def test_float_model_reproduces_the_kernels_det_at_points():
     of the two constructions on random reachable points)."""
     from planar_tui.kernels.singularity3rrr import box_status
 
-    from planar_tui.workspace.singularity import kernel_inputs
+    from planar_tui.workspace.singularity import Circle, kernel_inputs
 
     class Spec:
         orientation_rad = 0.3
         limits_rad = tuple((math.radians(a), math.radians(b)) for a, b in
                            ((-15, 75), (105, 195), (225, 315)))  # fmt: skip
-        circle = (0.0, 0.0, (1, 1, 1))
 
     robot = Robot3RRR()
-    g, r, elbow, limits = kernel_inputs(robot, Spec)
+    g, r, elbow, limits = kernel_inputs(robot, Spec, Circle(0.0, 0.0, (1, 1, 1)))
     rng = np.random.default_rng(5)
     checked = 0
     for x, y in rng.uniform(0, 120, size=(3000, 2)):

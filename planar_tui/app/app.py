@@ -1,4 +1,4 @@
-"""The Textual workbench: four tabs over one preset, jobs run by the batch service.
+"""The Textual workbench: a tab per job kind (and the robot's) over one preset, jobs run by the batch service.
 
 Jobs run in :class:`~planar_tui.app.job_runner.JobRunner` (a thread worker around
 :func:`planar_tui.batch.run_job`, as the CLI runs them); a UI timer shows the runner's
@@ -27,10 +27,10 @@ from planar_tui.app.job_runner import (
     BatchJobDone,
     JobFinished,
     JobRunner,
-    SweepFinished,
 )
 from planar_tui.app.messages import CancelRequested, DocumentEdited, RunRequested
 from planar_tui.app.screens.dialogs import HelpScreen, MessageDialog, PathDialog
+from planar_tui.app.sweep_actions import SweepActions
 from planar_tui.app.widgets.panes import JobPane, RobotPane
 from planar_tui.app.workbench import Workbench
 from planar_tui.errors import PresetError
@@ -41,9 +41,10 @@ __all__ = ["REFRESH_S", "JobFinished", "WorkbenchApp"]
 REFRESH_S = 0.1
 
 
-class WorkbenchApp(FileActions, App):
+class WorkbenchApp(SweepActions, FileActions, App):
     """planar-tui's terminal workbench (open, save, export, undo and quit in
-    :class:`~planar_tui.app.file_actions.FileActions`)."""
+    :class:`~planar_tui.app.file_actions.FileActions`, sweeps in
+    :class:`~planar_tui.app.sweep_actions.SweepActions`)."""
 
     CSS_PATH = Path(__file__).with_name("app.tcss")  # absolute: subclasses elsewhere find it
     TITLE = "planar-tui"
@@ -73,14 +74,6 @@ class WorkbenchApp(FileActions, App):
             for number, key in enumerate(("f2", "f3", "f4", "f6", "f7", "f12"), start=1)
         ),
     ]
-    TABS = (
-        ("Robot", "robot"),
-        ("Sensitivity", "sensitivity"),
-        ("Workspace", "workspace"),
-        ("Simulate", "simulate"),
-        ("Torques", "torques"),
-        ("Motion", "motion_uncertainty"),
-    )
 
     def __init__(
         self, workbench: Workbench, output_dir: Path | str = ".", *, warm_kernels: bool = False
@@ -102,25 +95,37 @@ class WorkbenchApp(FileActions, App):
 
     # -- layout ---------------------------------------------------------------------
     @staticmethod
-    def pane_classes() -> dict[str, type]:
-        """The dedicated pane of each tab; a job kind without one gets :class:`JobPane`."""
-        from planar_tui.app.widgets.motion_pane import MotionPane
-        from planar_tui.app.widgets.sensitivity_pane import SensitivityPane
-        from planar_tui.app.widgets.simulate_pane import SimulatePane
-        from planar_tui.app.widgets.workspace_pane import WorkspacePane
+    def tabs() -> tuple[tuple[str, str], ...]:
+        """(title, name) of every tab: Robot, then each job kind's declared
+        :class:`~planar_tui.jobkind.Tab` in its order (read from the registry now)."""
+        from planar_tui.registry import JOB_KINDS
 
-        return {
-            "robot": RobotPane,
-            "sensitivity": SensitivityPane,
-            "workspace": WorkspacePane,
-            "simulate": SimulatePane,
-            "motion_uncertainty": MotionPane,
-        }
+        kinds = sorted(
+            (kind.tab.order, kind.tab.title, name)
+            for name, kind in JOB_KINDS.items()
+            if kind.tab is not None
+        )
+        return (("Robot", "robot"), *((title, name) for _, title, name in kinds))
+
+    @staticmethod
+    def pane_classes() -> dict[str, type]:
+        """The dedicated pane of each tab (a job kind's ``Tab.pane``, ``module:Class``); a
+        job kind without one gets :class:`JobPane`."""
+        import importlib
+
+        from planar_tui.registry import JOB_KINDS
+
+        panes: dict[str, type] = {"robot": RobotPane}
+        for name, kind in JOB_KINDS.items():
+            if kind.tab is not None and kind.tab.pane is not None:
+                module, _, attribute = kind.tab.pane.partition(":")
+                panes[name] = getattr(importlib.import_module(module), attribute)
+        return panes
 
     def compose(self) -> ComposeResult:
         panes = self.pane_classes()
         with TabbedContent(id="tabs"):
-            for title, name in self.TABS:
+            for title, name in self.tabs():
                 with TabPane(title, id=f"tab-{name}"):
                     pane = panes.get(name)
                     if pane is None:
@@ -294,12 +299,11 @@ class WorkbenchApp(FileActions, App):
         """Run every job of the preset through the batch service into ``out_dir`` (files
         checked before the first job, each written when its job ends); ``False`` when the
         preset or a path is refused (a dialog says why)."""
-        from planar_tui import batch
+        from planar_tui.plan import plan_run
 
         try:
             jobs = self.workbench.validate().jobs
-            plans = batch.plan_outputs(jobs, Path(out_dir))
-            batch.check_plans(plans)
+            plan = plan_run(jobs, Path(out_dir), prepare=False)  # each prepared as it runs
         except PresetError as error:
             self.push_screen(MessageDialog("Not run", str(error)))
             return False
@@ -311,120 +315,9 @@ class WorkbenchApp(FileActions, App):
         self.batch_dir = Path(out_dir)
         host.controls().set_running(True)
         host.controls().status(f"starting {len(jobs)} jobs")
-        self.jobs.start_all(host, plans)
+        self.jobs.start_all(host, list(plan.jobs))
         self.refresh_bindings()
         return True
-
-    # -- sweeps ----------------------------------------------------------------------
-    def action_sweep(self) -> None:
-        """Run the current tab's job as a sweep: a dialog asks for the keys and values."""
-        from planar_tui.app.screens.sweep import SweepDialog
-        from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
-        from planar_tui.sweep.paths import allowed_paths
-        from planar_tui.sweep.spec import build_sweep
-
-        pane = self.current_pane()
-        if not isinstance(pane, JobPane) or not pane.available():
-            self.notify("A sweep varies a job: choose a job tab first.", severity="warning")
-            return
-        if self.job_running:
-            self.notify("A job is already running (escape cancels it).", severity="warning")
-            return
-        try:
-            job = pane.current_job()
-            preset = self.workbench.validate()
-        except PresetError as error:
-            from planar_tui.app.problems import reason
-
-            self.revalidate()
-            self.notify(reason(error), title="No sweep: fix the preset first", severity="error")
-            self.call_later(self.goto_problem, error)
-            return
-        kind = JOB_KINDS[job.kind]
-        paths = allowed_paths(kind.keys, kind.robot_kind, ROBOT_KINDS[kind.robot_kind].keys)
-
-        def build(values: dict, combine: str) -> Any:
-            return build_sweep(preset, job.key, values=values, combine=combine)
-
-        def chosen(answer: tuple[Any, int, Any] | None) -> None:
-            if answer is None:
-                return
-            sweep, workers, points = answer
-            pane.controls().set_running(True)
-            pane.controls().status(f"starting {sweep.point_count} points of {job.key}")
-            self.jobs.start_sweep(pane, sweep, workers, points)
-            self.refresh_bindings()
-
-        self.push_screen(SweepDialog(job.key, paths, build), chosen)
-
-    def on_sweep_finished(self, message: SweepFinished) -> None:
-        """A sweep ended: open its screen (a dialog for an error)."""
-        self.refresh_bindings()
-        if self.exit_if_quitting():
-            return
-        pane = message.pane
-        if pane.is_attached:
-            controls = pane.controls()
-            controls.set_running(False)
-            if message.cancelled:
-                kept = 0 if message.run is None else len(message.run.outcomes)
-                total = "?" if message.run is None else len(message.run.points)
-                controls.status(f"sweep cancelled after {message.seconds:.2f} s; {kept} of "
-                                f"{total} points finished (kept)")  # fmt: skip
-            elif message.error is not None:
-                controls.status(f"sweep not run: {message.error}")
-            else:
-                controls.finished()
-                run = message.run
-                failed = f", {run.failed} failed" if run.failed else ""
-                controls.status(
-                    f"sweep: {len(run.outcomes)} points{failed} in {message.seconds:.2f} s"
-                )
-        if message.cancelled:
-            self.notify("Sweep cancelled: its finished points are kept.")
-            if message.run is not None and message.run.outcomes:
-                self.last_sweep = message.run
-                self.action_show_sweep()
-        elif message.error is not None:
-            error = message.error
-            text = (
-                error.message
-                if isinstance(error, PresetError)
-                else f"{type(error).__name__}: {error}"
-            )
-            self.push_screen(MessageDialog("Sweep not run", text))
-        else:
-            self.last_sweep = message.run
-            self.action_show_sweep()
-
-    def action_show_sweep(self) -> None:
-        """Show the latest sweep's table and plot."""
-        from planar_tui.app.screens.sweep import SweepScreen
-
-        if self.last_sweep is None:
-            self.notify("No sweep has run yet (F8 on a job tab starts one).")
-            return
-        self.push_screen(SweepScreen(self.last_sweep, self.export_sweep))
-
-    def export_sweep(self, run: Any) -> None:
-        """Ask for a file and write the sweep CSV there (atomically)."""
-        from planar_tui.batch import check_writable
-        from planar_tui.csvio import write_csv_atomic
-
-        def chosen(answer: str | None) -> None:
-            if not answer:
-                return
-            path = Path(answer)
-            try:
-                check_writable(path)
-                write_csv_atomic(path, run.table)
-            except (PresetError, OSError) as error:
-                self.push_screen(MessageDialog("Not exported", str(error)))
-                return
-            self.notify(f"Wrote {path}")
-
-        default = self.output_dir / run.sweep.output
-        self.push_screen(PathDialog("Export the sweep CSV to", str(default)), chosen)
 
     def on_batch_job_done(self, message: BatchJobDone) -> None:
         """A job of "run all" ended (files written): show it on its tab when selected."""
@@ -558,8 +451,9 @@ class WorkbenchApp(FileActions, App):
 
     def action_show_tab_number(self, number: int) -> None:
         """Switch to tab ``number`` (1-based: keys 1-6 outside fields, F2-F4, F6, F7, F12)."""
-        if 1 <= number <= len(self.TABS):
-            self.action_show_tab(self.TABS[number - 1][1])
+        tabs = self.tabs()
+        if 1 <= number <= len(tabs):
+            self.action_show_tab(tabs[number - 1][1])
             self.call_after_refresh(self.focus_tab_content)
 
     def focus_tab_content(self) -> None:
@@ -647,7 +541,7 @@ class WorkbenchApp(FileActions, App):
         yield SystemCommand(
             "Toggle form", "Hide/show the settings form (ctrl+f)", self.action_toggle_form
         )
-        for title, name in self.TABS:
+        for title, name in self.tabs():
             yield SystemCommand(
                 f"Show {title} tab",
                 f"Switch to the {title} tab",

@@ -310,13 +310,12 @@ class FileActions:
 
     def confirm_export(self, pane: JobPane, out_dir: str | Path) -> None:
         """Export into ``out_dir``, asking first when files there would be overwritten."""
-        from planar_tui import batch
+        from planar_tui.plan import plan_run
 
         if pane.job is None:
             return
-        (plan,) = batch.plan_outputs([pane.job], Path(out_dir))
         try:
-            batch.check_plans([plan])
+            (plan,) = plan_run([pane.job], Path(out_dir), prepare=False).jobs
         except (PresetError, OSError, ValueError) as error:
             self.push_screen(MessageDialog("Not exported", str(error)))
             return
@@ -434,10 +433,11 @@ class FileActions:
 
         if pane.job is None or pane.result is None:
             return []
-        plans = batch.plan_outputs([pane.job], Path(out_dir))
+        from planar_tui.plan import plan_run
+
         try:
-            batch.check_plans(plans)
-            written = batch.write_result(plans[0], pane.result)
+            (plan,) = plan_run([pane.job], Path(out_dir), prepare=False).jobs
+            written = batch.write_result(plan, pane.result)
         except (PresetError, batch.OutputFailed, OSError, ValueError) as error:
             self.push_screen(MessageDialog("Not exported", str(error)))
             return []

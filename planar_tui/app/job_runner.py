@@ -158,13 +158,13 @@ class JobRunner:
         are the sweep's validated points (made and checked in the thread when ``None``).
         Nothing is written (the sweep screen exports the CSV). A cancelled sweep's
         finished points are kept: ``finished.run`` is the partial run (``cancelled``)."""
-        from planar_tui.sweep.points import make_points
+        from planar_tui.plan import plan_sweep
         from planar_tui.sweep.service import SweepRun, run_sweep
 
         finished = SweepFinished(pane, sweep)
 
         def compute(stopping: Callable[[], bool]) -> None:
-            checked = make_points(sweep) if points is None else points
+            checked = plan_sweep(sweep).points if points is None else points
             progress = Progress(on_update=self._store, should_stop=stopping)
             done: dict = {}
 

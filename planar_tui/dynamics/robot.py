@@ -85,4 +85,6 @@ class SerialRobot:
         )
 
 
-ROBOT_KIND = RobotKind("robot", SerialRobot)
+ROBOT_KIND = RobotKind(
+    "robot", SerialRobot, example="[robot]\nlengths_m = [0.3, 0.2]\nmasses_kg = [1.0, 0.8]\n"
+)

@@ -8,13 +8,11 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
-from typing import Any
-
-import numpy as np
+from typing import TYPE_CHECKING, Any
 
 from planar_tui.csvio import CsvTable
 from planar_tui.dynamics.robot import SerialRobot
-from planar_tui.jobkind import Job, JobKind, JobResult
+from planar_tui.jobkind import Command, Job, JobKind, JobResult, PreparedJob, Tab
 from planar_tui.limits import memory_problem, time_problem
 from planar_tui.progress import Progress
 from planar_tui.schema import (
@@ -27,6 +25,9 @@ from planar_tui.schema import (
     plot_setting,
     setting,
 )
+
+if TYPE_CHECKING:
+    import numpy as np
 
 #: Most RK4 steps per kernel call (about 30 ms for a 6R robot).
 STEPS_PER_CHUNK = 20_000
@@ -90,7 +91,7 @@ class RunSettings:
     torques_Nm: tuple[float, ...] = per_link_numbers("constant joint torques", "zeros (free fall)")
 
     @staticmethod
-    def check_step(values: dict, reader: TableReader) -> None:
+    def check_step(values: dict[str, Any], reader: TableReader) -> None:
         """The step must not exceed the duration."""
         duration_s, step_s = values["duration_s"], values["step_s"]
         if step_s > duration_s:
@@ -120,7 +121,7 @@ class SimulateSpec(RunSettings):
     plot: str | None = plot_setting()
 
     @staticmethod
-    def check(values: dict, reader: TableReader, robot: SerialRobot) -> dict:
+    def check(values: dict[str, Any], reader: TableReader, robot: SerialRobot) -> dict[str, Any]:
         """The step must not exceed the duration; the run must fit the time and memory
         limits (:mod:`planar_tui.limits`)."""
         RunSettings.check_step(values, reader)
@@ -161,13 +162,18 @@ def simulate_header(n_links: int) -> tuple[str, ...]:
     )
 
 
-def run_simulate(job: Job, progress: Progress) -> SimulateResult:
+def run_simulate(
+    job: PreparedJob[SimulateSpec, SerialRobot, None] | Job[SimulateSpec, SerialRobot],
+    progress: Progress,
+) -> SimulateResult:
     """Integrate the forward dynamics ``θ̈ = I⁻¹(τ + γ − C θ̇)`` with classical RK4.
 
     Records every ``spec.every``-th step including t = 0. The kernel runs in chunks of
     about :data:`CHUNK_SECONDS` (:func:`next_chunk_steps`), reporting progress and
     honouring a cancel between them; the result is bit-identical to one call.
     """
+    import numpy as np
+
     from planar_tui.kernels.rk4 import rk4_integrate, rk4_record_count
 
     spec, robot = job.spec, job.robot
@@ -229,6 +235,8 @@ def torque_work_J(theta_rad: Any, torques_Nm: Any) -> Any:
     .. math:: W(t) = \int_0^t \tau^T\dot\theta\,dt' = \sum_i \tau_i(\theta_i(t) - \theta_i(0))
 
     so the integrator's energy drift is :math:`E(t) - E(0) - W(t)` (:func:`energy_drift_J`)."""
+    import numpy as np
+
     theta_rad = np.asarray(theta_rad, dtype=float)
     return (theta_rad - theta_rad[0]) @ np.asarray(torques_Nm, dtype=float)
 
@@ -236,14 +244,18 @@ def torque_work_J(theta_rad: Any, torques_Nm: Any) -> Any:
 def energy_drift_J(energy_J: Any, theta_rad: Any, torques_Nm: Any) -> Any:
     """The energy balance :math:`E(t) - E(0) - W(t)` of every row (J): zero for an exact
     solution, whatever the constant torques (:func:`torque_work_J`)."""
+    import numpy as np
+
     energy_J = np.asarray(energy_J, dtype=float)
     return energy_J - energy_J[0] - torque_work_J(theta_rad, torques_Nm)
 
 
-def point_figures(job: Job, result: SimulateResult) -> dict[str, float]:
+def point_figures(job: Job[SimulateSpec, SerialRobot], result: SimulateResult) -> dict[str, float]:
     """A sweep row's figures: the final time and state (relative angles and rates, SI) and
     the largest energy drift ``max_t |E(t) − E(0) − W(t)|`` over the recorded rows (J; net
     of the torques' work, :func:`energy_drift_J`)."""
+    import numpy as np
+
     n = result.theta_rad.shape[1]
     energy_J = result.kinetic_J + result.potential_J
     figures = {"t_end_s": float(result.t_s[-1])}
@@ -264,4 +276,11 @@ JOB_KIND = JobKind(
     run=run_simulate,
     summary="RK4 forward dynamics under constant torques",
     point_figures=point_figures,
+    command=Command(
+        "simulate",
+        "Integrate the forward dynamics (RK4) of every simulate job; one CSV per job.",
+    ),
+    tab=Tab("Simulate", 3, "planar_tui.app.widgets.simulate_pane:SimulatePane"),
+    figure="planar_tui.figures.simulate:from_result",
+    warmup="[simulate]\nduration_s = 0.002\nstep_s = 0.001\n",
 )

@@ -3,24 +3,29 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-
-import numpy as np
+from typing import TYPE_CHECKING, Any
 
 from planar_tui.csvio import CsvTable
 from planar_tui.dynamics.robot import SerialRobot
-from planar_tui.jobkind import Job, JobKind, JobResult
+from planar_tui.jobkind import Command, Job, JobKind, JobResult, PreparedJob, Tab
 from planar_tui.progress import Progress
 from planar_tui.schema import PER_LINK, TableReader, number_rows, plot_setting, setting
 
+if TYPE_CHECKING:
+    import numpy as np
 
-def _zero_rows(robot: SerialRobot, values: dict) -> tuple[tuple[float, ...], ...]:
+
+def _zero_rows(robot: SerialRobot, values: dict[str, Any]) -> tuple[tuple[float, ...], ...]:
     """Default of a state array: zeros, as many rows as ``theta_deg``."""
     return ((0.0,) * robot.n_links,) * len(values["theta_deg"])
 
 
-def _rows(doc: str, required: bool = False):
-    default = {} if required else {"default": _zero_rows, "default_doc": "zeros"}
-    return setting(number_rows(columns=PER_LINK), type_doc="rows of n numbers", doc=doc, **default)
+def _rows(doc: str, required: bool = False) -> Any:
+    reader = number_rows(columns=PER_LINK)
+    if required:
+        return setting(reader, type_doc="rows of n numbers", doc=doc)
+    return setting(reader, type_doc="rows of n numbers", doc=doc, default=_zero_rows,
+                   default_doc="zeros")  # fmt: skip
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -35,7 +40,7 @@ class TorquesSpec:
     plot: str | None = plot_setting()
 
     @staticmethod
-    def check(values: dict, reader: TableReader, robot: SerialRobot) -> dict:
+    def check(values: dict[str, Any], reader: TableReader, robot: SerialRobot) -> dict[str, Any]:
         """Every array has as many rows as ``theta_deg``."""
         count = len(values["theta_deg"])
         for name in ("omega_deg_s", "alpha_deg_s2"):
@@ -64,8 +69,13 @@ def torques_header(n_links: int) -> tuple[str, ...]:
     )
 
 
-def run_torques(job: Job, progress: Progress) -> TorquesResult:
+def run_torques(
+    job: PreparedJob[TorquesSpec, SerialRobot, None] | Job[TorquesSpec, SerialRobot],
+    progress: Progress,
+) -> TorquesResult:
     """Evaluate the inverse dynamics at every listed state (one batched kernel call)."""
+    import numpy as np
+
     from planar_tui.kernels.dynamics import inverse_dynamics_batch_states
 
     spec, robot = job.spec, job.robot
@@ -87,8 +97,10 @@ def run_torques(job: Job, progress: Progress) -> TorquesResult:
     )
 
 
-def point_figures(job: Job, result: TorquesResult) -> dict[str, float]:
+def point_figures(job: Job[TorquesSpec, SerialRobot], result: TorquesResult) -> dict[str, float]:
     """A sweep row's figures: per joint the largest ``|τ_i|`` over the states (N m)."""
+    import numpy as np
+
     peak = np.abs(result.tau_Nm).max(axis=0)
     return {f"tau{i}_abs_max_Nm": float(v) for i, v in enumerate(peak, start=1)}
 
@@ -100,4 +112,11 @@ JOB_KIND = JobKind(
     run=run_torques,
     summary="inverse dynamics at listed states",
     point_figures=point_figures,
+    command=Command(
+        "torques",
+        "Inverse dynamics at the listed states of every torques job; one CSV per job.",
+    ),
+    tab=Tab("Torques", 4),
+    figure="planar_tui.figures.torques:from_result",
+    warmup="[torques]\ntheta_deg = [[0, 10]]\n",
 )

@@ -1,9 +1,11 @@
 """Which figure a result or a CSV gets, and writing it (atomically, format by suffix).
 
 A table's kind is recognised from its header (:data:`RECOGNISERS`, first match wins; extra
-columns are fine); a typed result of a kind with its own figure (:data:`FROM_RESULT`) is
-drawn from the result, which knows the robot; any other result is drawn from its main
-table, recognised like a CSV (the sweep and motion-uncertainty kinds).
+columns are fine: ``planar-tui plot``); a finished job is drawn by the function its job kind
+names (:attr:`planar_tui.jobkind.JobKind.figure`, ``module:function`` taking the job and
+its typed result, which knows the robot; :func:`from_main_table` draws its main table,
+recognised like a CSV: the motion-uncertainty kind). A kind that names none draws no
+figure (:func:`figure_problem`).
 """
 
 from __future__ import annotations
@@ -27,14 +29,6 @@ RECOGNISERS: tuple[tuple[str, str, str, str], ...] = (
     ("simulate", "simulate", "matches", "draw"),
     ("torques", "torques", "matches", "draw"),
 )
-#: Job kinds whose typed result draws more than its CSV holds: job kind -> module.
-FROM_RESULT = {
-    "simulate": "simulate",
-    "torques": "torques",
-    "sensitivity": "sensitivity",
-    "workspace": "workspace",
-}
-
 #: Kinds whose header-only CSV the project writes in normal use, drawn rather than refused:
 #: the boxes of a geometric-form workspace job (that form keeps no boxes) or of an empty
 #: workspace.
@@ -81,12 +75,32 @@ def figure_for_table(table: CsvTable, title: str = "") -> Any:
     return drawer(table, title)
 
 
+def figure_problem(kind: str) -> str | None:
+    """Why a job of ``kind`` cannot have a figure (its kind names no figure function), or
+    ``None``. Imports no matplotlib."""
+    from planar_tui.registry import JOB_KINDS
+
+    declared = JOB_KINDS.get(kind)
+    if declared is not None and declared.figure is not None:
+        return None
+    return f"the {kind} job kind draws no figure"
+
+
 def figure_for_result(job: Any, result: Any) -> Any:
-    """The figure of a finished job: from the typed result where its kind has one
-    (:data:`FROM_RESULT`), else from its main table."""
-    module = FROM_RESULT.get(job.kind)
-    if module is not None:
-        return _module(module).from_result(job, result)
+    """The figure of a finished job, drawn by the function its job kind names
+    (:attr:`~planar_tui.jobkind.JobKind.figure`); ``ValueError`` for a kind without one."""
+    from planar_tui.registry import JOB_KINDS
+
+    problem = figure_problem(job.kind)
+    if problem is not None:
+        raise ValueError(problem)
+    module, _, function = JOB_KINDS[job.kind].figure.partition(":")
+    return getattr(importlib.import_module(module), function)(job, result)
+
+
+def from_main_table(job: Any, result: Any) -> Any:
+    """A finished job's figure drawn from its main table (recognised like a CSV, titled
+    with the job): for a kind whose CSV holds everything its figure shows."""
     return figure_for_table(result.table, job.label)
 
 

@@ -11,60 +11,46 @@ indices of every output at the times ``at_s``, a Table-4-shaped table per time. 
 
 from __future__ import annotations
 
-import dataclasses
-from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
+from planar_tui import uq
 from planar_tui.dynamics.robot import SerialRobot
 from planar_tui.dynamics.simulate import RunSettings, rk4_step_seconds
 from planar_tui.errors import PresetError
-from planar_tui.jobkind import Job, JobKind, JobResult
+from planar_tui.jobkind import (
+    Command,
+    Job,
+    JobKind,
+    JobResult,
+    Option,
+    PreparedJob,
+    Tab,
+    option_or_key,
+)
 from planar_tui.limits import memory_problem, time_problem
 from planar_tui.motion.device import DEVICES
 from planar_tui.progress import Progress
 from planar_tui.schema import (
-    OptionReader,
     TableReader,
     integer,
     number,
     plot_setting,
-    read_option,
     relative_path,
     setting,
     shown,
     string,
 )
-from planar_tui.sensitivity.job import tolerance_setting
+
+if TYPE_CHECKING:
+    import numpy as np
+
+    from planar_tui.sensitivity.results import Analysis
 
 METHODS = ("montecarlo", "sobol", "efast")
 OUTPUTS = ("angles", "tip")
 #: Recorded band rows by default (``every`` = steps / this, at least 1).
 DEFAULT_RECORDS = 100
-#: Largest seed (SALib's eFAST bootstrap takes 32-bit seeds).
-SEED_MAX = 2**32 - 1
-#: eFAST needs N > 4 M² with M = 4.
-EFAST_MIN_SAMPLES = 65
-
-
-def _read_choices(allowed: tuple[str, ...]):
-    """A reader of one of ``allowed`` or a non-empty list of them (a single string is a
-    one-item list), duplicates dropped, in the given order."""
-    choices = ", ".join(f'"{a}"' for a in allowed)
-    expected = f"one of {choices} or a non-empty list of them"
-
-    def read(reader: TableReader, name, default, robot, values) -> tuple[str, ...]:
-        chosen = reader.raw(name, list(default))
-        if isinstance(chosen, str):
-            chosen = [chosen]
-        if not isinstance(chosen, list) or not chosen:
-            raise reader.error(name, f"is {shown(chosen)}", expected)
-        for item in chosen:
-            if item not in allowed:
-                raise reader.error(name, f"has {shown(item)}", expected)
-        return tuple(dict.fromkeys(chosen))
-
-    return read
 
 
 def _read_times(reader: TableReader, name, default, robot, values) -> tuple[float, ...] | None:
@@ -89,11 +75,8 @@ def _read_times(reader: TableReader, name, default, robot, values) -> tuple[floa
 class MotionSpec(RunSettings):
     """Settings of one motion uncertainty job (see ``docs/motion.md``).
 
-    Derived fields, not keys: ``indices_file`` is the indices CSV's name
-    (``indices_output`` or the default made from ``output``); ``device_used`` is the device
-    :func:`prepare_motion` chose and ``device_note`` what the summary says about it;
-    ``overridden`` names the keys command-line options set (:func:`with_overrides`), so
-    that :func:`prepare_motion` blames the option, not the preset, for their problems.
+    The device a job runs on is chosen by :func:`prepare_motion`
+    (:class:`MotionPrepared`); the indices CSV's name by :func:`indices_file`.
     """
 
     every: int | None = setting(
@@ -103,8 +86,8 @@ class MotionSpec(RunSettings):
         type_doc="integer ≥ 1",
         doc="record the band every k-th step (t = 0 and the end always)",
     )
-    tolerance_length_mm: float = tolerance_setting("mm", "half-width of every length's range")
-    tolerance_mass_g: float = tolerance_setting("g", "half-width of every mass's range")
+    tolerance_length_mm: float = uq.tolerance_setting("mm", "half-width of every length's range")
+    tolerance_mass_g: float = uq.tolerance_setting("g", "half-width of every mass's range")
     tolerance_inertia_kgm2: float | None = setting(
         number(positive=True),
         default=None,
@@ -114,10 +97,9 @@ class MotionSpec(RunSettings):
         "link whose inertia is `m l²/12` (the default) keeps `m l²/12` of its sampled "
         "mass and length, any other keeps its value",
     )
-    methods: tuple[str, ...] = setting(
-        _read_choices(METHODS),
+    methods: tuple[str, ...] = uq.methods_setting(
+        METHODS,
         default=("montecarlo", "sobol"),
-        type_doc='`"montecarlo"`, `"sobol"`, `"efast"` or a list of them',
         doc="Monte Carlo (band), Sobol' and eFAST (indices; SALib's designs); eFAST alone "
         "adds N Monte-Carlo robots for the band",
     )
@@ -128,12 +110,7 @@ class MotionSpec(RunSettings):
         doc="Monte Carlo: N robots; Sobol': base N (N·(D+2) robots, D inputs); eFAST: N per "
         "input (N·D robots, and N Monte-Carlo robots for the band without montecarlo or sobol)",
     )
-    seed: int = setting(
-        integer(minimum=1, maximum=SEED_MAX),
-        default=42,
-        type_doc="integer in [1, 2³² − 1]",
-        doc="seed of sampling and bootstrap",
-    )
+    seed: int = uq.seed_setting("seed of sampling and bootstrap")
     at_s: tuple[float, ...] | None = setting(
         _read_times,
         default=None,
@@ -142,7 +119,7 @@ class MotionSpec(RunSettings):
         doc="times of the indices (rounded to a step)",
     )
     outputs: tuple[str, ...] = setting(
-        _read_choices(OUTPUTS),
+        uq.read_choices(OUTPUTS),
         default=OUTPUTS,
         default_doc="both",
         type_doc='`"angles"`, `"tip"` or a list of them',
@@ -162,32 +139,21 @@ class MotionSpec(RunSettings):
         doc="CSV file of the indices (with `sobol` or `efast`)",
     )
     plot: str | None = plot_setting()
-    indices_file: str = dataclasses.field(default="", compare=False)
-    device_used: str | None = None
-    device_note: str = ""
-    overridden: tuple[str, ...] = dataclasses.field(default=(), compare=False)
 
     @staticmethod
-    def check(values: dict, reader: TableReader, robot: SerialRobot) -> dict:
+    def check(values: dict[str, Any], reader: TableReader, robot: SerialRobot) -> dict[str, Any]:
         """Step within the duration, tolerances below the nominal values, sample sizes
         the methods accept, and the run within the time and memory limits."""
         RunSettings.check_step(values, reader)
-        for name, nominal, unit in (
-            ("tolerance_length_mm", min(robot.lengths_m) * 1e3, "mm"),
-            ("tolerance_mass_g", min(robot.masses_kg) * 1e3, "g"),
-            ("tolerance_inertia_kgm2", min(robot.inertias_kgm2), "kg m²"),
-        ):
-            value = values[name]
-            if value is not None and value >= nominal:
-                raise reader.error(
-                    name,
-                    f"is {value:g} {unit}, not below the smallest nominal value {nominal:g} {unit}",
-                    f"0 < tolerance < {nominal:g}",
-                )
-        check_samples(reader.error, values["methods"], values["samples"])
-        check_resources(reader.error, MotionSpec(**values), robot)
-        values["indices_file"] = values["indices_output"] or default_indices_name(reader)
+        uq.check_tolerances(values, reader, robot)
+        spec = MotionSpec(**values)
+        uq.check_samples(reader.error, spec.methods, spec.sample_keys())
+        check_resources(reader.error, spec, robot)
         return values
+
+    def sample_keys(self) -> uq.SampleSizes:
+        """Every method's sample count is ``samples``."""
+        return dict.fromkeys(METHODS, ("samples", self.samples))
 
     @property
     def record_every(self) -> int:
@@ -205,31 +171,23 @@ class MotionSpec(RunSettings):
         return tuple(sorted(steps))
 
 
-def default_indices_name(reader: TableReader) -> str:
-    """``OUTPUT-indices.csv`` beside the job's ``output`` (its default name when absent)."""
-    output = reader.raw("output", None)
-    if not isinstance(output, str) or not output:
-        index = reader.prefix.rpartition("[")[2].rstrip("]") if "[" in reader.prefix else "1"
-        output = f"{reader.path.stem}-motion_uncertainty-{index}.csv"
-    stem = output[:-4] if output.lower().endswith(".csv") else output
+MotionJob = Job[MotionSpec, SerialRobot]
+
+
+def indices_file(job: MotionJob) -> str:
+    """The indices CSV's name: ``indices_output``, else ``OUTPUT-indices.csv`` beside the
+    job's ``output``."""
+    if job.spec.indices_output:
+        return job.spec.indices_output
+    stem = job.output[:-4] if job.output.lower().endswith(".csv") else job.output
     return f"{stem}-indices.csv"
 
 
-def extra_outputs(spec: MotionSpec) -> dict[str, str]:
+def extra_outputs(job: MotionJob) -> dict[str, str]:
     """The indices CSV when an index method runs."""
-    if any(method != "montecarlo" for method in spec.methods):
-        return {"indices": spec.indices_file}
+    if any(uq.METHODS[method].indices for method in job.spec.methods):
+        return {"indices": indices_file(job)}
     return {}
-
-
-def check_samples(error, methods, samples: int) -> None:
-    """Sobol' N must be a power of two >= 8; eFAST N must exceed 4 M² = 64."""
-    if "sobol" in methods and not (samples >= 8 and samples & (samples - 1) == 0):
-        raise error(
-            "samples", f"is {samples}, not a power of two >= 8 (Sobol')", "8, 16, ... 1024, ..."
-        )
-    if "efast" in methods and samples < EFAST_MIN_SAMPLES:
-        raise error("samples", f"is {samples} (eFAST)", "an integer > 4 M² = 64 (M = 4)")
 
 
 def num_inputs(spec: MotionSpec, robot: SerialRobot) -> int:
@@ -241,13 +199,9 @@ def robot_count(spec: MotionSpec, robot: SerialRobot) -> int:
     designs of :func:`~planar_tui.motion.engine.design_methods` (eFAST alone: N more
     Monte-Carlo robots for the band)."""
     from planar_tui.motion.engine import design_methods
-    from planar_tui.sensitivity.engine import design_rows
 
     d = num_inputs(spec, robot)
-    return sum(
-        spec.samples if m == "montecarlo" else design_rows(m, d, spec.samples)
-        for m in design_methods(spec.methods)
-    )
+    return sum(uq.design_rows(m, d, spec.samples) for m in design_methods(spec.methods))
 
 
 def extra_band_note(spec: MotionSpec) -> str:
@@ -263,7 +217,7 @@ def extra_band_note(spec: MotionSpec) -> str:
     )
 
 
-def check_resources(error, spec: MotionSpec, robot: SerialRobot) -> None:
+def check_resources(error: uq.ErrorFactory, spec: MotionSpec, robot: SerialRobot) -> None:
     """Refuse a job whose estimated time (robots × steps × one RK4 step) or memory (the
     robots' states and parameters, the outputs at ``at_s``, the band robots' outputs)
     exceeds :mod:`planar_tui.limits`."""
@@ -284,14 +238,19 @@ def check_resources(error, spec: MotionSpec, robot: SerialRobot) -> None:
         )
 
 
-#: The command-line option of each key :func:`with_overrides` sets.
-OPTIONS = {"methods": "--method", "samples": "--samples", "seed": "--seed", "device": "--device"}
+@dataclass(frozen=True)
+class MotionPrepared:
+    """What :func:`prepare_motion` resolves: the device the robots are integrated on
+    (``cpu`` or ``cuda``) and what the summary says about it (``device_note``)."""
+
+    device: str
+    device_note: str
 
 
-def _checked_device(job: Job) -> tuple[str, str]:
+def _checked_device(job: MotionJob) -> MotionPrepared:
     """The job's resources checked again (overrides change them) and its device chosen
-    (:func:`~planar_tui.motion.device.resolve`): ``(device, note)``; ``cuda`` without a
-    usable GPU is a :class:`PresetError` on ``device``.
+    (:func:`~planar_tui.motion.device.resolve`); ``cuda`` without a usable GPU is a
+    :class:`PresetError` on ``device``.
 
     A problem with a value a command-line option set names the option (``command line:
     --device``), not the preset's key: the device when ``--device`` set it, the resources
@@ -299,62 +258,28 @@ def _checked_device(job: Job) -> tuple[str, str]:
     changed them."""
     from planar_tui.motion.device import resolve
 
-    overridden = job.spec.overridden
-
-    def error(name, problem, expected):
-        causes = ("samples", "methods") if name == "samples" else (name,)
-        option = next((OPTIONS[key] for key in causes if key in overridden), None)
-        if option is not None:
-            return PresetError("command line", option, problem, expected)
-        return PresetError(job.preset_path, f"{job.key}.{name}", problem, expected)
+    def error(name: str, problem: str, expected: str) -> PresetError:
+        causes = ("methods",) if name == "samples" else ()
+        return PresetError(*option_or_key(job, name, *causes), problem, expected)
 
     check_resources(error, job.spec, job.robot)
     used, note = resolve(job.spec.device)
     if used is None:
         raise error("device", note, '"cpu" or "auto", or a machine with a usable CUDA GPU')
-    return used, note
+    return MotionPrepared(used, note)
 
 
-def check_motion(job: Job) -> None:
+def check_motion(job: MotionJob) -> None:
     """Refuse a job that cannot run here (resources, an unusable ``cuda`` device) without
     computing anything: the job kind's ``check``, run on every sweep point."""
     _checked_device(job)
 
 
-def prepare_motion(job: Job) -> Job:
-    """The job with its resources checked again (overrides change them) and its device
-    chosen: ``cuda`` without a usable GPU is a :class:`PresetError` on ``device``."""
-    if job.spec.device_used is not None:
-        return job
-    used, note = _checked_device(job)
-    spec = dataclasses.replace(job.spec, device_used=used, device_note=note)
-    return dataclasses.replace(job, spec=spec)
-
-
-def with_overrides(spec: MotionSpec, options: Mapping[str, Any]) -> MotionSpec:
-    """The spec with command-line overrides (``methods``, ``samples``, ``seed``,
-    ``device``; ``None`` keeps the preset's value), checked like the preset's keys."""
-
-    def error(name, problem, expected):
-        return PresetError("command line", f"--{name.replace('_', '-')}", problem, expected)
-
-    given = {
-        name: options[name]
-        for name in ("samples", "seed", "device")
-        if options.get(name) is not None
-    }
-    reader = OptionReader(given, {})
-    changes: dict[str, Any] = {name: read_option(MotionSpec, reader, name) for name in given}
-    methods = options.get("methods")
-    if methods:
-        for method in methods:
-            if method not in METHODS:
-                raise error("method", f"is {method!r}", "montecarlo, sobol or efast")
-        changes["methods"] = tuple(dict.fromkeys(methods))
-    overridden = tuple(key for key in OPTIONS if key in changes or key in spec.overridden)
-    updated = dataclasses.replace(spec, **changes, overridden=overridden)
-    check_samples(error, updated.methods, updated.samples)
-    return updated
+def prepare_motion(job: MotionJob) -> MotionPrepared:
+    """Check the job's resources again (overrides change them: a problem they cause names
+    the option) and choose its device: ``cuda`` without a usable GPU is a
+    :class:`PresetError` on ``device`` (or ``--device``)."""
+    return _checked_device(job)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -369,16 +294,18 @@ class MotionResult(JobResult):
     when ``auto`` fell back to the CPU)."""
 
     robot_label: str
-    t_s: Any
-    band: Any
+    t_s: np.ndarray
+    band: np.ndarray
     names: tuple[str, ...]
-    analyses: list
+    analyses: list[Analysis]
     notes: tuple[str, ...]
     device: str
     robots: int
 
 
-def run_motion(job: Job, progress: Progress) -> MotionResult:
+def run_motion(
+    job: PreparedJob[MotionSpec, SerialRobot, MotionPrepared], progress: Progress
+) -> MotionResult:
     """Sample, integrate every robot (three stages: sampling, integrating, analysis), then
     the band and the indices (see :mod:`planar_tui.motion.engine`)."""
     import numpy as np
@@ -386,8 +313,7 @@ def run_motion(job: Job, progress: Progress) -> MotionResult:
     from planar_tui.motion import engine
     from planar_tui.motion.results import analyse_times, band_table, indices_table
 
-    job = prepare_motion(job)
-    spec, robot = job.spec, job.robot
+    spec, robot, device = job.spec, job.robot, job.prepared
     from planar_tui.sensitivity.engine import build_problem
 
     inertia_tol = spec.tolerance_inertia_kgm2
@@ -398,7 +324,7 @@ def run_motion(job: Job, progress: Progress) -> MotionResult:
     progress.start(len(engine.design_methods(spec.methods)), "sampling")
     design = engine.build_design(spec.methods, problem.num_vars, spec.samples, spec.seed, progress)
     robots, params = engine.make_robots(
-        spec.device_used, problem, design, rod, robot,
+        device.device, problem, design, rod, robot,
         np.radians(np.array(spec.theta0_deg, dtype=np.float64)),
         np.radians(np.array(spec.omega0_deg_s, dtype=np.float64)),
         np.array(spec.torques_Nm, dtype=np.float64),
@@ -421,7 +347,7 @@ def run_motion(job: Job, progress: Progress) -> MotionResult:
             at_outputs[step] = engine.take_outputs(lengths_s, angles, spec.outputs)
 
     total = design.samples * spec.n_steps
-    progress.start(total, "integrating", f"{design.samples} robots on {spec.device_note}")
+    progress.start(total, "integrating", f"{design.samples} robots on {device.device_note}")
     engine.integrate(robots, spec.step_s, stops, on_stop, progress)
     index_methods = [m for m in spec.methods if m != "montecarlo"]
     progress.start(max(1, len(index_methods) * len(at_steps)), "analysis")
@@ -435,7 +361,7 @@ def run_motion(job: Job, progress: Progress) -> MotionResult:
     t_s = np.array(record_steps) * spec.step_s
     last = band[-1]
     summary = (
-        f"{robot.label}: {design.samples} robots × {spec.n_steps} steps on {spec.device_note}; "
+        f"{robot.label}: {design.samples} robots × {spec.n_steps} steps on {device.device_note}; "
         + ", ".join(
             f"{label} {m:.4g}±{s:.2g}" for label, m, s in zip(labels, last[0], last[1], strict=True)
         )
@@ -452,19 +378,19 @@ def run_motion(job: Job, progress: Progress) -> MotionResult:
         names=names,
         analyses=analyses,
         notes=notes,
-        device=spec.device_note,
+        device=device.device_note,
         robots=design.samples,
     )
 
 
-def render_motion(job: Job, result: MotionResult, console) -> None:
+def render_motion(job: MotionJob, result: MotionResult, console: Any) -> None:
     """The CLI view: the band at the end and a Table-4-shaped table per time."""
     from planar_tui.motion.results import render
 
     render(job, result, console)
 
 
-def point_figures(job: Job, result: MotionResult) -> dict[str, Any]:
+def point_figures(job: MotionJob, result: MotionResult) -> dict[str, Any]:
     """A sweep row's figures: per output its mean and standard deviation at the last
     recorded time, and the parameter of largest total index (first index method, last
     time) per output."""
@@ -481,8 +407,23 @@ JOB_KIND = JobKind(
     summary="Monte-Carlo band and Sobol'/eFAST indices of the motion under tolerances",
     render=render_motion,
     extra_outputs=extra_outputs,
-    overrides=with_overrides,
     prepare=prepare_motion,
     check=check_motion,
     point_figures=point_figures,
-)
+    command=Command(
+        "motion",
+        "Monte-Carlo band and Sobol'/eFAST indices of the motion of every "
+        "motion_uncertainty job under length and mass tolerances: band CSV, indices CSV (the "
+        "job's indices_output, or OUTPUT-indices.csv) and a Table-4-shaped table per time.\n\n"
+        "An option that changes a job's setting is appended to the stem of the files the preset "
+        "names; a name given with --out is kept.",
+        options=(
+            *uq.sampling_options(METHODS, "N"),
+            Option("--device", "device", "cpu, cuda or auto; overrides `device`."),
+        ),
+    ),
+    tab=Tab("Motion", 5, "planar_tui.app.widgets.motion_pane:MotionPane"),
+    figure="planar_tui.figures.dispatch:from_main_table",
+    warmup="[motion_uncertainty]\nduration_s = 0.002\nstep_s = 0.001\nsamples = 128\n"
+    'methods = ["montecarlo", "sobol", "efast"]\n',
+)  # fmt: skip

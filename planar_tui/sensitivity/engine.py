@@ -16,9 +16,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from planar_tui.progress import Progress
-
-#: eFAST interference factor M (paper A, Saltelli et al. 1999).
-M_HARMONICS = 4
+from planar_tui.uq import EFAST_HARMONICS as M_HARMONICS
+from planar_tui.uq import EFAST_MIN_SAMPLES, design_rows
 
 
 @dataclass(frozen=True)
@@ -54,29 +53,6 @@ def build_problem(robot, tolerance_length_m, tolerance_mass_kg, tolerance_inerti
     centre = np.concatenate(nominal)
     half = np.concatenate(spread)
     return Problem(tuple(names), centre - half, centre + half, n)
-
-
-def design_rows(method: str, num_vars: int, samples: int) -> int:
-    """Rows of a design: N (D + 2) for Sobol' (no second order), N D for eFAST."""
-    return samples * (num_vars + 2) if method == "sobol" else samples * num_vars
-
-
-def salib_unit_design(method: str, num_vars: int, samples: int, seed: int) -> np.ndarray:
-    """SALib's design on the unit hypercube, drawn by SALib itself in one call (the
-    reference :func:`draw_unit_design` is checked against, byte for byte).
-
-    ``sobol``: ``SALib.sample.sobol.sample(N, calc_second_order=False)``, N (D + 2) rows;
-    ``efast``: ``SALib.sample.fast_sampler.sample(N, M=4)``, N D rows.
-    """
-    unit = {"num_vars": num_vars, "names": [f"x{i}" for i in range(num_vars)]}
-    unit["bounds"] = [[0.0, 1.0]] * num_vars
-    if method == "sobol":
-        from SALib.sample import sobol
-
-        return sobol.sample(unit, samples, calc_second_order=False, seed=seed)
-    from SALib.sample import fast_sampler
-
-    return fast_sampler.sample(unit, samples, M=M_HARMONICS, seed=seed)
 
 
 #: Sobol' base points drawn per chunk (a few ms each; a cancel check after each).
@@ -134,7 +110,7 @@ def _efast_chunks(num_vars: int, samples: int, seed: int) -> Iterator[np.ndarray
 def draw_unit_design(
     method: str, num_vars: int, samples: int, seed: int, on_chunk: Callable[[float], None]
 ) -> np.ndarray:
-    """SALib's unit design (byte-identical to :func:`salib_unit_design`), drawn in chunks
+    """SALib's unit design (byte-identical to ``tests/salib_reference.salib_unit_design``), drawn in chunks
     of a few milliseconds; ``on_chunk(fraction)`` runs after each (it may raise
     :class:`~planar_tui.errors.Cancelled`)."""
     rows = design_rows(method, num_vars, samples)
@@ -274,4 +250,4 @@ def analyse(
 
 def default_efast_samples(sobol_samples: int, num_vars: int) -> int:
     """eFAST N per input matching the Sobol' cost N (D + 2) in model runs (> 4 M²)."""
-    return max(sobol_samples * (num_vars + 2) // num_vars, 4 * M_HARMONICS**2 + 1)
+    return max(sobol_samples * (num_vars + 2) // num_vars, EFAST_MIN_SAMPLES)

@@ -1,4 +1,5 @@
-r"""Sobol' and eFAST indices from model outputs, fast, and SALib as the reference.
+r"""Sobol' and eFAST indices from model outputs, fast (SALib, the reference they equal,
+runs in ``tests/salib_reference.py``).
 
 :func:`sobol_indices` runs the jitted Saltelli-2010 estimators of
 :mod:`kernels.sensitivity_estimators` with the bootstrap rows SALib would draw
@@ -25,7 +26,6 @@ from __future__ import annotations
 
 import math
 import os
-import warnings
 from collections.abc import Callable
 from functools import lru_cache
 from statistics import NormalDist
@@ -174,35 +174,3 @@ def efast_indices(
             result[1, t, i] = z * boot[0, t, i].std(ddof=1)
             result[3, t, i] = z * boot[1, t, i].std(ddof=1)
     return result
-
-
-def _salib_per_column(analyze, problem, outputs, **options) -> np.ndarray:
-    """Run a SALib ``analyze`` on each output column; stack S1, S1_conf, ST, ST_conf.
-
-    SALib's eFAST warning about its bootstrap confidence intervals (SALib #649) is
-    acknowledged here: those half-widths are labelled unreliable wherever shown."""
-    analyses = []
-    for column in np.asarray(outputs).T:
-        with warnings.catch_warnings():
-            warnings.filterwarnings("ignore", message="FAST confidence intervals")
-            analyses.append(analyze(problem, np.ascontiguousarray(column), **options))
-    keys = ("S1", "S1_conf", "ST", "ST_conf")
-    return np.array([[np.asarray(a[k], dtype=np.float64) for a in analyses] for k in keys])
-
-
-def salib_sobol_indices(problem, outputs, seed, num_resamples=NUM_RESAMPLES, conf_level=CONF_LEVEL):
-    """The reference: ``SALib.analyze.sobol.analyze`` on each output column."""
-    from SALib.analyze import sobol
-
-    options = {"num_resamples": num_resamples, "conf_level": conf_level, "seed": seed}
-    return _salib_per_column(sobol.analyze, problem, outputs, calc_second_order=False, **options)
-
-
-def salib_efast_indices(
-    problem, outputs, seed, m_harmonics=4, num_resamples=NUM_RESAMPLES, conf_level=CONF_LEVEL
-):
-    """The reference: ``SALib.analyze.fast.analyze`` on each output column."""
-    from SALib.analyze import fast
-
-    options = {"num_resamples": num_resamples, "conf_level": conf_level, "seed": seed}
-    return _salib_per_column(fast.analyze, problem, outputs, M=m_harmonics, **options)

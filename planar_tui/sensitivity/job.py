@@ -6,37 +6,34 @@ analysis), the typed result and the terminal view of one job kind.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
+from planar_tui import uq
 from planar_tui.dynamics.robot import SerialRobot
 from planar_tui.errors import PresetError
-from planar_tui.jobkind import Job, JobKind, JobResult
+from planar_tui.jobkind import Command, Job, JobKind, JobResult, PreparedJob, Tab, option_or_key
 from planar_tui.progress import Progress
 from planar_tui.schema import (
-    OptionReader,
     TableReader,
     boolean,
     integer,
     number,
     per_link,
     plot_setting,
-    read_option,
     setting,
     shown,
     string,
 )
 
+if TYPE_CHECKING:
+    from planar_tui.sensitivity.postures import Posture
+    from planar_tui.sensitivity.results import Analysis
+
 METHODS = ("sobol", "efast")
 PERCENT_OF = ("ST", "S1")
-#: eFAST needs N > 4 M² with M = 4 (SALib ``fast_sampler``).
-EFAST_MIN_SAMPLES = 65
-#: Largest seed: eFAST's bootstrap draws with ``np.random.RandomState(seed)``, which takes
-#: 32-bit seeds (SALib's Sobol' sampling would take any).
-SEED_MAX = 2**32 - 1
 #: Rough cost of one model run (an inverse dynamics, batched): 0.3 µs + 20 ns per link.
 MODEL_RUN_SECONDS = (3e-7, 2e-8)
 
@@ -52,17 +49,6 @@ def _dump_speeds(speeds: tuple[float, ...]) -> Any:
     return speeds[0] if len(speeds) == 1 else list(speeds)
 
 
-def _read_methods(reader: TableReader, name, default, robot, values) -> tuple[str, ...]:
-    """A non-empty list of estimator names, duplicates dropped."""
-    methods = reader.raw(name, list(default))
-    if not isinstance(methods, list) or not methods:
-        raise reader.error(name, f"is {shown(methods)}", 'a list of "sobol", "efast"')
-    for method in methods:
-        if method not in METHODS:
-            raise reader.error(name, f"has {shown(method)}", 'a list of "sobol", "efast"')
-    return tuple(dict.fromkeys(methods))
-
-
 def _read_posture_request(reader: TableReader, name, default, robot, values) -> Any:
     """``"singular"``, ``"isotropic"`` or n joint angles in degrees."""
     if isinstance(reader.raw(name, default), list):
@@ -73,24 +59,12 @@ def _read_posture_request(reader: TableReader, name, default, robot, values) -> 
 per_link(_read_posture_request, "list")  # when it lists angles
 
 
-def tolerance_setting(unit: str, doc: str):
-    """A tolerance key (``mm`` of every length, ``g`` of every mass): the half-width of
-    the uniform range about each nominal value."""
-    return setting(
-        number(positive=True),
-        default=1.0,
-        type_doc=f"0 < number < smallest {'length' if unit == 'mm' else 'mass'}",
-        doc=doc,
-    )
-
-
 @dataclass(frozen=True, kw_only=True)
 class SensitivitySpec:
     """Settings of one sensitivity job (see ``docs/sensitivity.md``).
 
-    ``posture_request`` is what the preset asked for (key ``posture``); ``posture`` the
-    solved :class:`~planar_tui.sensitivity.postures.Posture` (derived, not a key), ``None``
-    until :func:`prepare_sensitivity` solves it.
+    ``posture_request`` is what the preset asked for (key ``posture``);
+    :func:`prepare_sensitivity` solves it (:class:`SensitivityPrepared`).
     ``efast_samples`` None means "match the Sobol' cost".
     """
 
@@ -115,8 +89,8 @@ class SensitivitySpec:
     alpha_rad_s2: float = setting(
         number(), default=0.0, type_doc="number", doc="the joint acceleration of every joint"
     )
-    tolerance_length_mm: float = tolerance_setting("mm", "half-width of every length's range")
-    tolerance_mass_g: float = tolerance_setting("g", "half-width of every mass's range")
+    tolerance_length_mm: float = uq.tolerance_setting("mm", "half-width of every length's range")
+    tolerance_mass_g: float = uq.tolerance_setting("g", "half-width of every mass's range")
     vary_inertias: bool = setting(
         boolean(), default=False, type_doc="boolean", doc="add the inertias as inputs"
     )
@@ -127,11 +101,10 @@ class SensitivitySpec:
         type_doc="number > 0",
         doc="half-width of every inertia's range",
     )
-    methods: tuple[str, ...] = setting(
-        _read_methods,
+    methods: tuple[str, ...] = uq.methods_setting(
+        METHODS,
         default=METHODS,
         default_doc="both",
-        type_doc='list of `"sobol"`, `"efast"`',
         doc="estimators (SALib samples; the analysis is jitted and equal to SALib's)",
     )
     samples: int = setting(
@@ -147,12 +120,7 @@ class SensitivitySpec:
         type_doc="integer > 64",
         doc="eFAST N per input (M = 4)",
     )
-    seed: int = setting(
-        integer(minimum=1, maximum=SEED_MAX),
-        default=42,
-        type_doc="integer in [1, 2³² − 1]",
-        doc="seed of sampling and bootstrap (SALib treats 0 as no seed)",
-    )
+    seed: int = uq.seed_setting("seed of sampling and bootstrap (SALib treats 0 as no seed)")
     percent_of: str = setting(
         string(choices=PERCENT_OF),
         default="ST",
@@ -166,42 +134,29 @@ class SensitivitySpec:
         doc='largest accepted `κ − 1` for `"isotropic"`',
     )
     plot: str | None = plot_setting()
-    posture: Any = None
 
     @staticmethod
-    def check(values: dict, reader: TableReader, robot: SerialRobot) -> dict:
+    def check(values: dict[str, Any], reader: TableReader, robot: SerialRobot) -> dict[str, Any]:
         """Tolerances below the nominal values and sample sizes (cheap: the posture is
         solved by :func:`prepare_sensitivity`, before the job runs)."""
-        for name, nominal, unit in (
-            ("tolerance_length_mm", min(robot.lengths_m) * 1e3, "mm"),
-            ("tolerance_mass_g", min(robot.masses_kg) * 1e3, "g"),
-        ):
-            if values[name] >= nominal:
-                raise reader.error(
-                    name,
-                    f"is {values[name]:g} {unit}, not below the smallest nominal value "
-                    f"{nominal:g} {unit} (samples would be non-physical)",
-                    f"0 < tolerance < {nominal:g}",
-                )
         tolerance_inertia = values["tolerance_inertia_kgm2"]
-        if values["vary_inertias"]:
-            if tolerance_inertia is None:
-                raise reader.error("tolerance_inertia_kgm2", "missing key", "a positive number")
-            if tolerance_inertia >= min(robot.inertias_kgm2):
-                raise reader.error(
-                    "tolerance_inertia_kgm2",
-                    f"is {tolerance_inertia:g}, not below the smallest inertia",
-                    f"0 < tolerance < {min(robot.inertias_kgm2):g}",
-                )
-        elif tolerance_inertia is not None:
+        if values["vary_inertias"] and tolerance_inertia is None:
+            raise reader.error("tolerance_inertia_kgm2", "missing key", "a positive number")
+        if not values["vary_inertias"] and tolerance_inertia is not None:
             raise reader.error(
                 "tolerance_inertia_kgm2",
                 "is set but vary_inertias is false",
                 "vary_inertias = true",
             )
-        check_samples(reader.error, values["methods"], values["samples"], values["efast_samples"])
-        check_resources(reader.error, SensitivitySpec(**values), robot)
+        uq.check_tolerances(values, reader, robot)
+        spec = SensitivitySpec(**values)
+        uq.check_samples(reader.error, spec.methods, spec.sample_keys())
+        check_resources(reader.error, spec, robot)
         return values
+
+    def sample_keys(self) -> uq.SampleSizes:
+        """Each method's sample-count key and value (eFAST's ``None``: matching Sobol')."""
+        return {"sobol": ("samples", self.samples), "efast": ("efast_samples", self.efast_samples)}
 
     @property
     def tolerance_length_m(self) -> float:
@@ -219,30 +174,17 @@ class SensitivitySpec:
         return self.tolerance_inertia_kgm2 if self.vary_inertias else None
 
 
-def _is_power_of_two(value: int) -> bool:
-    return value >= 1 and value & (value - 1) == 0
-
-
-def check_samples(error, methods, samples: int, efast_samples: int | None) -> None:
-    """Sobol' N must be a power of two >= 8; eFAST N must exceed 4 M² = 64."""
-    if "sobol" in methods and not (_is_power_of_two(samples) and samples >= 8):
-        raise error("samples", f"is {samples}, not a power of two >= 8", "8, 16, ... 8192, ...")
-    if "efast" in methods and efast_samples is not None and efast_samples < EFAST_MIN_SAMPLES:
-        raise error("efast_samples", f"is {efast_samples}", "an integer > 4 M² = 64 (M = 4)")
-
-
 def resource_estimate(spec: SensitivitySpec, robot: SerialRobot) -> tuple[float, float]:
     """Rough peak memory (bytes) and computing time (s) of a job: the unit designs (drawn
     and cached), one output matrix per method and speed, the Sobol' bootstrap's
     resample indices and counts (N × 1000 each), and one model run per design row and
     speed."""
-    from planar_tui.sensitivity.engine import design_rows
     from planar_tui.sensitivity.estimators import NUM_RESAMPLES
 
     n = robot.n_links
     num_vars = (3 if spec.vary_inertias else 2) * n
     sizes = sample_sizes(spec, num_vars)
-    rows = {method: design_rows(method, num_vars, sizes[method]) for method in spec.methods}
+    rows = {method: uq.design_rows(method, num_vars, sizes[method]) for method in spec.methods}
     speeds = len(spec.speeds_rad_s)
     memory = sum(r * (2 * num_vars + speeds * n + 2 * n) * 8.0 for r in rows.values())
     if "sobol" in spec.methods:
@@ -251,7 +193,7 @@ def resource_estimate(spec: SensitivitySpec, robot: SerialRobot) -> tuple[float,
     return memory, sum(rows.values()) * speeds * per_run
 
 
-def check_resources(error, spec: SensitivitySpec, robot: SerialRobot) -> None:
+def check_resources(error: uq.ErrorFactory, spec: SensitivitySpec, robot: SerialRobot) -> None:
     """Refuse a job whose estimated memory or time exceeds :mod:`planar_tui.limits`."""
     from planar_tui.limits import memory_problem, time_problem
 
@@ -266,7 +208,7 @@ def check_resources(error, spec: SensitivitySpec, robot: SerialRobot) -> None:
         )
 
 
-def solve_posture(job: Job):
+def solve_posture(job: Job[SensitivitySpec, SerialRobot]) -> Posture:
     """The job's posture: singular, explicit, or the isotropic one solved now (seconds for
     a robot of hundreds of links); a robot without one is a :class:`PresetError` on the
     job's ``posture`` key."""
@@ -294,41 +236,22 @@ def solve_posture(job: Job):
         ) from None
 
 
-def prepare_sensitivity(job: Job) -> Job:
-    """The job with its resources checked again (command-line overrides change them) and
-    its posture solved (``spec.posture``), ready to run."""
-    if job.spec.posture is not None:
-        return job
+@dataclass(frozen=True)
+class SensitivityPrepared:
+    """What :func:`prepare_sensitivity` resolves: the job's solved posture."""
 
-    def error(name, problem, expected):
-        return PresetError(job.preset_path, f"{job.key}.{name}", problem, expected)
+    posture: Posture
+
+
+def prepare_sensitivity(job: Job[SensitivitySpec, SerialRobot]) -> SensitivityPrepared:
+    """Check the job's resources again (command-line overrides change them: a problem they
+    cause names the option) and solve its posture."""
+
+    def error(name: str, problem: str, expected: str) -> PresetError:
+        return PresetError(*option_or_key(job, name, "methods"), problem, expected)
 
     check_resources(error, job.spec, job.robot)
-    spec = dataclasses.replace(job.spec, posture=solve_posture(job))
-    return dataclasses.replace(job, spec=spec)
-
-
-def with_overrides(spec: SensitivitySpec, options: Mapping[str, Any]) -> SensitivitySpec:
-    """The spec with command-line overrides (``methods``, ``samples``, ``seed``; ``None``
-    keeps the preset's value), checked like the preset's keys."""
-
-    def error(name, problem, expected):
-        return PresetError("command line", f"--{name.replace('_', '-')}", problem, expected)
-
-    given = {name: options[name] for name in ("samples", "seed") if options.get(name) is not None}
-    reader = OptionReader(given, {})
-    checked = {name: read_option(SensitivitySpec, reader, name) for name in given}
-    changes: dict[str, Any] = {}
-    methods = options.get("methods")
-    if methods:
-        for method in methods:
-            if method not in METHODS:
-                raise error("method", f"is {method!r}", "sobol or efast")
-        changes["methods"] = tuple(dict.fromkeys(methods))
-    changes |= checked
-    updated = dataclasses.replace(spec, **changes)
-    check_samples(error, updated.methods, updated.samples, updated.efast_samples)
-    return updated
+    return SensitivityPrepared(solve_posture(job))
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -337,8 +260,8 @@ class SensitivityResult(JobResult):
     and speed, the robot's label, the solved posture and N per method."""
 
     robot_label: str
-    posture: Any
-    analyses: list
+    posture: Posture
+    analyses: list[Analysis]
     samples: Mapping[str, int]
 
 
@@ -350,7 +273,10 @@ def sample_sizes(spec: SensitivitySpec, num_vars: int) -> dict[str, int]:
     return {"sobol": spec.samples, "efast": efast}
 
 
-def run_sensitivity(job: Job, progress: Progress) -> SensitivityResult:
+SensitivityJob = PreparedJob[SensitivitySpec, SerialRobot, SensitivityPrepared]
+
+
+def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResult:
     """Indices of every torque for every method and speed of one job (one posture), the job
     prepared (:func:`prepare_sensitivity`, done by the batch service).
 
@@ -364,7 +290,7 @@ def run_sensitivity(job: Job, progress: Progress) -> SensitivityResult:
     from planar_tui.sensitivity.engine import analyse, build_problem, evaluate, unit_design
     from planar_tui.sensitivity.results import Analysis, csv_table, sensitivity_percent
 
-    spec, robot = job.spec, job.robot
+    spec, robot, posture = job.spec, job.robot, job.prepared.posture
     problem = build_problem(
         robot, spec.tolerance_length_m, spec.tolerance_mass_kg, spec.inertia_tolerance_kgm2
     )
@@ -376,7 +302,7 @@ def run_sensitivity(job: Job, progress: Progress) -> SensitivityResult:
     states = [(method, speed) for speed in spec.speeds_rad_s for method in spec.methods]
     n = robot.n_links
     alpha = np.full(n, spec.alpha_rad_s2)
-    theta = np.array(spec.posture.theta_rad)
+    theta = np.array(posture.theta_rad)
     progress.start(len(states), "evaluation")
     outputs = {}
     for method, speed in states:
@@ -393,14 +319,12 @@ def run_sensitivity(job: Job, progress: Progress) -> SensitivityResult:
             f"{method} {speed:g} rad/s",
         )  # fmt: skip
         percent = sensitivity_percent(indices, spec.percent_of)
-        analyses.append(
-            Analysis(method, spec.posture.label, speed, problem.names, indices, percent)
-        )
+        analyses.append(Analysis(method, posture.label, speed, problem.names, indices, percent))
     label = robot.label
-    kappa = spec.posture.condition_number
+    kappa = posture.condition_number
     sobol_conf = [float(a.indices[[1, 3]].max()) for a in analyses if a.method == "sobol"]
     summary = (
-        f"{label} {spec.posture.label}"
+        f"{label} {posture.label}"
         + (f" (κ = {kappa:.6g})" if math.isfinite(kappa) else "")
         + f", {len(spec.speeds_rad_s)} speed(s), "
         + ", ".join(f"{m} N={sizes[m]}" for m in spec.methods)
@@ -410,13 +334,15 @@ def run_sensitivity(job: Job, progress: Progress) -> SensitivityResult:
         table=csv_table(label, analyses),
         summary=summary,
         robot_label=label,
-        posture=spec.posture,
+        posture=posture,
         analyses=analyses,
         samples=sizes,
     )
 
 
-def render_sensitivity(job: Job, result: SensitivityResult, console) -> None:
+def render_sensitivity(
+    job: Job[SensitivitySpec, SerialRobot], result: SensitivityResult, console: Any
+) -> None:
     """The CLI view of one job: its index tables fitted to the terminal width (percent
     view), and the stacked bars (Figs 5/6) when speeds are swept."""
     from planar_tui.sensitivity.bars import sensitivity_bars
@@ -429,14 +355,16 @@ def render_sensitivity(job: Job, result: SensitivityResult, console) -> None:
         console.print(sensitivity_bars(analyses, analyses[0].method))
 
 
-def point_figures(job: Job, result: SensitivityResult) -> dict[str, Any]:
+def point_figures(
+    job: Job[SensitivitySpec, SerialRobot], result: SensitivityResult
+) -> dict[str, str | float]:
     """A sweep row's figures, per torque ``i`` (at each speed, suffixed ``_w2``, ``_w3`` …
     from the second on): the dominant parameter by the percent of the job's first method,
     its percent, the lengths' and the masses' shares (sums of their percents), and the
     largest Sobol' 95 % half-width of ``S1`` and ``ST`` over the parameters (empty without
     Sobol')."""
     method = job.spec.methods[0]
-    figures: dict[str, Any] = {}
+    figures: dict[str, str | float] = {}
     for k, speed in enumerate(job.spec.speeds_rad_s, start=1):
         at = {a.method: a for a in result.analyses if a.speed_rad_s == speed}
         chosen, sobol = at[method], at.get("sobol")
@@ -462,7 +390,16 @@ JOB_KIND = JobKind(
     run=run_sensitivity,
     summary="Sobol'/eFAST sensitivity of the joint torques to lengths and masses",
     render=render_sensitivity,
-    overrides=with_overrides,
     prepare=prepare_sensitivity,
     point_figures=point_figures,
-)
+    command=Command(
+        "sensitivity",
+        "Sobol'/eFAST sensitivity of the joint torques of every sensitivity job; one CSV "
+        "each.\n\nAn option that changes a job's setting is appended to the stem of the file "
+        "the preset names (tiny-sensitivity--samples-512.csv); a name given with --out is kept.",
+        options=uq.sampling_options(METHODS, "Sobol' base N (a power of two)"),
+    ),
+    tab=Tab("Sensitivity", 1, "planar_tui.app.widgets.sensitivity_pane:SensitivityPane"),
+    figure="planar_tui.figures.sensitivity:from_result",
+    warmup="[sensitivity]\nsamples = 8\nefast_samples = 65\n",
+)  # fmt: skip

@@ -68,7 +68,7 @@ def point_file_names(stem: str, job: Job) -> list[str]:
     ``stem.csv``, then ``stem-TABLE.csv`` for each of its kind's extra tables."""
     from planar_tui.registry import JOB_KINDS
 
-    extras = JOB_KINDS[job.kind].extra_outputs(job.spec)
+    extras = JOB_KINDS[job.kind].extra_outputs(job)
     return [f"{stem}.csv", *(f"{stem}-{name}.csv" for name in extras)]
 
 
@@ -94,7 +94,7 @@ def run_point(task: PointTask, progress: Progress | None = None) -> PointOutcome
         tables = {}
         if task.tables_stem is not None:
             texts = [_csv_text(result.table)]
-            texts += [_csv_text(result.extra_tables[name]) for name in kind.extra_outputs(job.spec)]
+            texts += [_csv_text(result.extra_tables[name]) for name in kind.extra_outputs(job)]
             tables = dict(zip(point_file_names(task.tables_stem, job), texts, strict=True))
         status, message = OK, ""
     except (Cancelled, KeyboardInterrupt):

@@ -31,13 +31,27 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 
 from planar_tui.csvio import CsvTable
-from planar_tui.errors import PresetError
-from planar_tui.progress import Progress
+from planar_tui.errors import JobError
+from planar_tui.jobkind import Job, option_or_key
+from planar_tui.progress import Progress, read_only
+from planar_tui.workspace.forms import INTERVAL_FORMS, kernel_form
 from planar_tui.workspace.robot import Robot3RRR
+
+if TYPE_CHECKING:
+    from planar_tui.workspace.geometry import GeometricArea
+
+
+class BudgetSpec(Protocol):
+    """What :class:`BoxBudget` reads of a workspace job's settings."""
+
+    @property
+    def box_budget(self) -> int: ...
+
 
 #: Boxes per kernel call: ~50 ms of work at ~1 µs per 5-D box.
 CHUNK_BOXES = 50_000
@@ -81,7 +95,7 @@ class WorkspaceOutcome:
     boxes_processed: int
     area_kept_cm2: float
     area_inside_cm2: float
-    geometric: object | None
+    geometric: GeometricArea | None
     seconds: float
     extent_cm: tuple[float, float, float, float]
     #: ``legwise`` or ``joint`` for the interval forms, ``""`` for arc-distance and geometric.
@@ -113,24 +127,39 @@ class BoxBudget:
     live area bracket as progress figures (``area_lower_cm2``, ``area_upper_cm2``,
     ``boxes_processed``).
 
-    ``job`` needs ``spec.box_budget``, ``preset_path`` and ``key`` (a
-    :class:`~planar_tui.jobkind.Job`), for the message when the budget is exceeded.
+    ``job`` (a workspace :class:`~planar_tui.jobkind.Job`) gives the budget and names what
+    to change when it is exceeded.
     """
 
-    def __init__(self, job, progress: Progress):
+    def __init__(self, job: Job[BudgetSpec, Robot3RRR], progress: Progress):
         self.job = job
         self.progress = progress
         self.processed = 0
 
-    def spend(self, processed: int, fraction: float, lower_cm2: float, upper_cm2: float) -> None:
+    def count(self, processed: int, precision_key: str = "precision_cm") -> None:
+        """Add ``processed`` boxes; past the job's ``box_budget`` the job fails
+        (:class:`~planar_tui.errors.JobError`, exit code 1, nothing written), naming
+        ``--precision`` when the command line set the precision that ``precision_key``
+        (or, unset, ``precision_cm``) gives, else the preset's ``box_budget``."""
         self.processed += processed
-        if self.processed > self.job.spec.box_budget:
-            raise PresetError(
-                self.job.preset_path,
-                f"{self.job.key}.box_budget",
-                f"the bisection exceeded {self.job.spec.box_budget:,} boxes; nothing was written",
-                "a larger box_budget or a coarser precision_cm",
-            )
+        budget = self.job.spec.box_budget
+        if self.processed <= budget:
+            return
+        problem = f"the bisection exceeded {budget:,} boxes; nothing was written"
+        causes = ("precision_cm",) if getattr(self.job.spec, precision_key) is None else ()
+        where, key = option_or_key(self.job, precision_key, *causes)
+        if where == "command line":
+            raise JobError(where, key, problem, f"a coarser {key} or a larger box_budget")
+        raise JobError(
+            self.job.preset_path,
+            f"{self.job.key}.box_budget",
+            problem,
+            f"a larger box_budget or a coarser {precision_key}",
+        )
+
+    def spend(self, processed: int, fraction: float, lower_cm2: float, upper_cm2: float) -> None:
+        """Count ``processed`` boxes (:meth:`count`) and report the paving's progress."""
+        self.count(processed)
         self.progress.advance(
             max(0.0, fraction - self.progress.completed),
             self.bracket_text(lower_cm2, upper_cm2),
@@ -155,7 +184,7 @@ class BoxBudget:
         )
 
 
-def _xy_area(boxes: np.ndarray) -> float:
+def xy_area(boxes: np.ndarray) -> float:
     """Sum of the (x, y) areas of rows ``x_lo, x_hi, y_lo, y_hi, ...`` (>= their union)."""
     return float(np.sum((boxes[:, 1] - boxes[:, 0]) * (boxes[:, 3] - boxes[:, 2])))
 
@@ -171,14 +200,7 @@ def unique_rows(boxes: np.ndarray) -> np.ndarray:
     return np.ascontiguousarray(ordered[first])
 
 
-def _read_only(view: np.ndarray) -> np.ndarray:
-    """A read-only view of ``view`` (the runner's own array is not copied)."""
-    view = view.view()
-    view.flags.writeable = False
-    return view
-
-
-def _grow(array: np.ndarray) -> np.ndarray:
+def grow(array: np.ndarray) -> np.ndarray:
     grown = np.zeros((2 * array.shape[0], *array.shape[1:]), dtype=array.dtype)
     grown[: array.shape[0]] = array
     return grown
@@ -212,16 +234,16 @@ def _interval_stage(form_code, p, spec, box, budget) -> np.ndarray:
         )  # fmt: skip
         pending = stack[:n_stack]
         volume = float(np.sum(np.prod(pending[:, 1:10:2] - pending[:, 0:10:2], axis=1)))
-        kept_area += _xy_area(kept[previous:n_kept])
-        upper = kept_area + _xy_area(pending)
-        budget.progress.show_partial(boxes_cm=_read_only(kept[:n_kept]), status=None)
+        kept_area += xy_area(kept[previous:n_kept])
+        upper = kept_area + xy_area(pending)
+        budget.progress.show_partial(boxes_cm=read_only(kept[:n_kept]), status=None)
         budget.spend(processed, 1.0 - volume / root_volume, 0.0, upper)
         if code == DONE:
             return kept[:n_kept]
         if code == KEPT_FULL:
-            kept = _grow(kept)
+            kept = grow(kept)
         elif code == STACK_FULL:
-            stack = _grow(stack)
+            stack = grow(stack)
 
 
 def _arc_stage(p, limits, precision, seeds, budget, inside_cm2=0.0):
@@ -252,7 +274,7 @@ def pave_in_levels(seeds, budget: BoxBudget, decide, inside_cm2: float = 0.0):
     from planar_tui.workspace.legwise import append_rows
 
     frontier = np.array(seeds, dtype=np.float64).reshape(-1, 4)
-    root_area = _xy_area(frontier)
+    root_area = xy_area(frontier)
     kept = np.zeros((4096, 4))
     status = np.zeros(4096, dtype=np.int64)
     n_kept = 0
@@ -278,17 +300,17 @@ def pave_in_levels(seeds, budget: BoxBudget, decide, inside_cm2: float = 0.0):
             new_rows = children[0::2][keep]
             kept, _ = append_rows(kept, n_kept, new_rows)
             status, n_kept = append_rows(status, n_kept, outcome[keep])
-            lower += _xy_area(new_rows[outcome[keep] == INSIDE])
-            upper += _xy_area(new_rows)
+            lower += xy_area(new_rows[outcome[keep] == INSIDE])
+            upper += xy_area(new_rows)
             split = outcome == SPLIT
             n_split = int(split.sum())
             following[n_following : n_following + 2 * n_split : 2] = children[0::2][split]
             following[n_following + 1 : n_following + 2 * n_split : 2] = children[1::2][split]
             n_following += 2 * n_split
             start = stop
-            pending = _xy_area(frontier[stop:]) + _xy_area(following[:n_following])
+            pending = xy_area(frontier[stop:]) + xy_area(following[:n_following])
             budget.progress.show_partial(
-                boxes_cm=_read_only(kept[:n_kept]), status=_read_only(status[:n_kept])
+                boxes_cm=read_only(kept[:n_kept]), status=read_only(status[:n_kept])
             )
             budget.spend(n, 1.0 - pending / max(root_area, 1e-300), lower, upper + pending)
         frontier = following[:n_following]
@@ -385,7 +407,6 @@ def kernel_parameters(robot: Robot3RRR, spec) -> np.ndarray:
 
 def compute_workspace(robot: Robot3RRR, spec, budget: BoxBudget) -> WorkspaceOutcome:
     """Run the stages of the module docstring for one robot and spec."""
-    from planar_tui.kernels import workspace3rrr as k5
     from planar_tui.kernels.workspace_arc import classify_boxes, limits_array
 
     started = time.perf_counter()
@@ -399,6 +420,7 @@ def compute_workspace(robot: Robot3RRR, spec, budget: BoxBudget) -> WorkspaceOut
 
         geometric = geometric_area(robot, spec.limits_rad, spec.orientation_rad)
     if spec.form == "geometric":
+        assert geometric is not None
         empty = np.zeros((0, 4))
         return WorkspaceOutcome(
             spec.form, spec.precision_cm, None, empty, np.zeros(0, np.int64), 0,
@@ -407,21 +429,19 @@ def compute_workspace(robot: Robot3RRR, spec, budget: BoxBudget) -> WorkspaceOut
         )  # fmt: skip
 
     report_estimate(robot, spec, budget.progress)
-    interval_form = spec.form in ("natural", "mean-value", "slope")
+    interval_form = spec.form in INTERVAL_FORMS
     legwise = interval_form and spec.strategy == "legwise"
     xy_boxes = 0
     budget.progress.start(1.0, f"{spec.form} {'leg-wise paving' if legwise else 'bisection'}")
     if spec.form == "arc-distance":
         boxes, status = _arc_stage(p, limits, spec.precision_cm, np.array([extent]), budget)
     else:
-        code = {"natural": k5.NATURAL, "mean-value": k5.MEAN_VALUE, "slope": k5.SLOPE}[spec.form]
-        if spec.expanded:
-            code = k5.NATURAL_EXPANDED
+        code = kernel_form(spec.form, spec.expanded)
         if legwise:
             from planar_tui.kernels.workspace_legwise import classify_boxes_parallel
             from planar_tui.workspace.legwise import legwise_stage
 
-            boxes, proved, xy_boxes = legwise_stage(code, p, spec, box, budget, _read_only)
+            boxes, proved, xy_boxes = legwise_stage(code, p, spec, box, budget)
             status = np.zeros(len(boxes), dtype=np.int64)
             classify_boxes_parallel(boxes, p, limits, status)
         else:
@@ -462,8 +482,8 @@ def finished_outcome(
         status = np.concatenate([status[inside], refined_status])
     boxes = np.ascontiguousarray(boxes)
     if disjoint:  # a paving (and its refinement): disjoint boxes, the union's area is the sum
-        area_kept_cm2 = _xy_area(boxes)
-        area_inside_cm2 = _xy_area(boxes[status == INSIDE])
+        area_kept_cm2 = xy_area(boxes)
+        area_inside_cm2 = xy_area(boxes[status == INSIDE])
     else:
         area_kept_cm2 = float(union_area(boxes))
         area_inside_cm2 = float(union_area(np.ascontiguousarray(boxes[status == INSIDE])))

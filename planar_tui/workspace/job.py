@@ -10,11 +10,19 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, replace
-from typing import Any
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
-from planar_tui.errors import PresetError
-from planar_tui.jobkind import Job, JobKind, JobResult
+from planar_tui.jobkind import (
+    Command,
+    Job,
+    JobKind,
+    JobResult,
+    Option,
+    OutputOption,
+    PreparedJob,
+    Tab,
+)
 from planar_tui.progress import Progress
 from planar_tui.schema import (
     TableReader,
@@ -26,6 +34,7 @@ from planar_tui.schema import (
     setting,
     string,
 )
+from planar_tui.workspace.forms import FORMS
 from planar_tui.workspace.orientation import (
     MODES,
     check_orientation,
@@ -35,13 +44,16 @@ from planar_tui.workspace.orientation import (
 )
 from planar_tui.workspace.robot import Robot3RRR
 from planar_tui.workspace.singularity import (
+    Circle,
     check_singularity,
-    prepare_workspace,
     read_centre,
     read_elbow,
+    resolve_circle,
 )
 
-FORMS = ("natural", "mean-value", "slope", "arc-distance", "geometric")
+if TYPE_CHECKING:
+    from planar_tui.workspace.compute import WorkspaceOutcome
+    from planar_tui.workspace.singularity import SingularityOutcome
 #: How the interval forms pave: per (x, y) box a 1-D θ search per leg, or the paper's
 #: bisection of (x, y, θ1, θ2, θ3) boxes.
 STRATEGIES = ("legwise", "joint")
@@ -233,12 +245,10 @@ class WorkspaceSpec:
         default_doc="`precision_cm`",
         doc="bisection precision of the singularity paving",
     )
-    #: ``(x, y, elbow)`` of the circle, resolved by ``prepare`` (a derived value).
-    circle: Any = None
     plot: str | None = plot_setting()
 
     @staticmethod
-    def check(values: dict, reader: TableReader, robot: Robot3RRR) -> dict:
+    def check(values: dict[str, Any], reader: TableReader, robot: Robot3RRR) -> dict[str, Any]:
         """The expanded form needs the natural form and the paper's layout; the refinement
         precision cannot exceed the precision."""
         check_orientation(values, reader)
@@ -271,31 +281,18 @@ class WorkspaceSpec:
         return math.radians(self.orientation_deg)
 
 
-def with_overrides(spec: WorkspaceSpec, options: Mapping[str, Any]) -> WorkspaceSpec:
-    """The spec with command-line overrides ``form`` and ``precision_cm`` (``None`` keeps
-    the preset's value), checked like the preset's keys."""
-    form, precision_cm = options.get("form"), options.get("precision_cm")
-    if form is not None:
-        if form not in FORMS:
-            raise PresetError("--form", "form", f"is {form!r}", "one of " + ", ".join(FORMS))
-        if isinstance(spec.orientation_deg, tuple) and form != "arc-distance":
-            raise PresetError(
-                "--form",
-                "form",
-                f"is {form!r} for a job with orientation_deg = [lo, hi]",
-                "arc-distance (the only form over a range of orientations)",
-            )
-        spec = replace(spec, form=form, expanded=spec.expanded and form == "natural")
-    if precision_cm is not None:
-        if not (math.isfinite(precision_cm) and precision_cm > 0):
-            raise PresetError("--precision", "precision", f"is {precision_cm:g}", "a number > 0")
-        refine = spec.refine_precision_cm
-        spec = replace(
-            spec,
-            precision_cm=precision_cm,
-            refine_precision_cm=None if refine is None else min(refine, precision_cm),
-        )
-    return spec
+def override_consequences(table: dict[str, Any], given: Mapping[str, Any]) -> dict[str, Any]:
+    """The keys that follow a command-line override (the kind's ``overrides`` hook, before
+    the table is read again, :func:`planar_tui.batch.override_job`): a form other than
+    ``natural`` turns ``expanded`` off; a precision caps the refinement precision."""
+    form, precision = given.get("form"), given.get("precision_cm")
+    if form is not None and form != "natural":
+        table["expanded"] = False
+    refine = table.get("refine_precision_cm")
+    numbers = (int, float)
+    if isinstance(precision, numbers) and isinstance(refine, numbers) and refine > precision:
+        table["refine_precision_cm"] = precision
+    return table
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -304,12 +301,33 @@ class WorkspaceResult(JobResult):
     (:class:`~planar_tui.workspace.compute.WorkspaceOutcome`); the kept boxes are also
     ``extra_tables["boxes"]``."""
 
-    outcome: Any
+    outcome: WorkspaceOutcome
     #: :class:`~planar_tui.workspace.singularity.SingularityOutcome` with ``singularities``.
-    singularity: Any = None
+    singularity: SingularityOutcome | None = None
 
 
-def run_workspace(job: Job, progress: Progress) -> WorkspaceResult:
+WorkspaceJob = Job[WorkspaceSpec, Robot3RRR]
+
+
+@dataclass(frozen=True)
+class WorkspacePrepared:
+    """What :func:`prepare_workspace` resolves: the singularity-free circle's centre and
+    working mode (``None`` without ``singularities``)."""
+
+    circle: Circle | None
+
+
+def prepare_workspace(job: WorkspaceJob) -> WorkspacePrepared:
+    """Resolve the circle of a job with ``singularities`` (:func:`resolve_circle`),
+    refusing an unreachable or singular centre (:class:`PresetError`, exit code 2)."""
+    if not job.spec.singularities:
+        return WorkspacePrepared(None)
+    return WorkspacePrepared(resolve_circle(job))
+
+
+def run_workspace(
+    ready: PreparedJob[WorkspaceSpec, Robot3RRR, WorkspacePrepared], progress: Progress
+) -> WorkspaceResult:
     """Compute one ``[workspace]`` job."""
     from planar_tui.csvio import CsvTable
     from planar_tui.workspace.compute import (
@@ -331,15 +349,15 @@ def run_workspace(job: Job, progress: Progress) -> WorkspaceResult:
         singularity_columns,
     )
 
+    job, circle = ready.job, ready.prepared.circle
     budget = BoxBudget(job, progress)
     singular = None
     if isinstance(job.spec.orientation_deg, tuple):
         outcome = compute_orientation_workspace(job.robot, job.spec, budget)
     else:
         outcome = compute_workspace(job.robot, job.spec, budget)
-        if job.spec.singularities:
-            job = JOB_KIND.prepared(job)
-            singular = compute_singularities(job.robot, job.spec, outcome.extent_cm, budget, job)
+        if circle is not None:
+            singular = compute_singularities(job, circle, outcome.extent_cm, budget)
     # the new columns go before the last one, the (not reproducible) wall time
     base = outcome.summary_row()
     row = [*base[:-1], *orientation_columns(job.spec), *singularity_columns(singular), base[-1]]
@@ -358,7 +376,7 @@ def run_workspace(job: Job, progress: Progress) -> WorkspaceResult:
     )
 
 
-def map_title(job: Job, outcome) -> str:
+def map_title(job: WorkspaceJob, outcome: WorkspaceOutcome) -> str:
     """What a map shows: ``paper-b-table3:workspace[4]: mean-value, ε = 0.1172 cm`` (and
     the refinement precision), as run, overrides included."""
     from planar_tui.workspace.orientation import describe
@@ -371,7 +389,7 @@ def map_title(job: Job, outcome) -> str:
     return title
 
 
-def render_workspace(job: Job, result: WorkspaceResult, console) -> None:
+def render_workspace(job: WorkspaceJob, result: WorkspaceResult, console: Any) -> None:
     """Print the titled map of a finished workspace job (CLI view), fitted to the console
     width; a job without boxes (the geometric form) prints its summary under the title."""
     from planar_tui.workspace.map import render_map
@@ -390,14 +408,14 @@ def render_workspace(job: Job, result: WorkspaceResult, console) -> None:
         console.print(line, markup=False, highlight=False, crop=True, soft_wrap=False)
 
 
-def point_figures(job: Job, result: WorkspaceResult) -> dict[str, Any]:
+def point_figures(job: WorkspaceJob, result: WorkspaceResult) -> dict[str, Any]:
     """A sweep row's figures: the summary CSV's columns but its ``seconds`` (the sweep row
     has its own timing)."""
     header, (row,) = result.table.header, result.table.rows
     return {name: value for name, value in zip(header, row, strict=True) if name != "seconds"}
 
 
-def overlays(singular) -> dict:
+def overlays(singular: SingularityOutcome | None) -> dict[str, Any]:
     """``render_map`` keywords drawing the singular boxes and the circle (none without)."""
     if singular is None:
         return {}
@@ -405,8 +423,8 @@ def overlays(singular) -> dict:
     return {"singular": singular.singular_boxes, "circle": (*centre, singular.radius_lo_cm)}
 
 
-def _extra_outputs(spec: WorkspaceSpec) -> dict[str, str]:
-    return {"boxes": spec.boxes_output} if spec.boxes_output else {}
+def _extra_outputs(job: WorkspaceJob) -> dict[str, str]:
+    return {"boxes": job.spec.boxes_output} if job.spec.boxes_output else {}
 
 
 JOB_KIND = JobKind(
@@ -418,7 +436,41 @@ JOB_KIND = JobKind(
     "with its type II singularities and singularity-free circle",
     render=render_workspace,
     extra_outputs=_extra_outputs,
-    overrides=with_overrides,
+    overrides=override_consequences,
     point_figures=point_figures,
     prepare=prepare_workspace,
-)
+    command=Command(
+        "workspace",
+        "3-RRR workspace of every workspace job: summary CSV, boxes CSV (--boxes or the "
+        "preset's boxes_output) and a map titled with the job, form and precision.\n\n"
+        "--form and --precision apply to every selected job; each one that changes a job's "
+        "setting is appended to the stem of the files the preset names (table3-natural.csv "
+        "run with --form mean-value writes table3-natural--form-mean-value.csv); names given "
+        "with --out and --boxes are kept.",
+        options=(
+            Option("--form", "form",
+                   "natural, mean-value, slope, arc-distance or geometric; overrides `form`."),
+            Option("--precision", "precision_cm",
+                   "Precision epsilon in cm; overrides `precision_cm`.", float),
+        ),
+        outputs=(OutputOption("--boxes", "boxes",
+                              "CSV of the kept boxes (with several jobs: FILE-1.csv ...)."),),
+        view=("--map/--no-map", "Print the character-cell map."),
+    ),
+    tab=Tab("Workspace", 2, "planar_tui.app.widgets.workspace_pane:WorkspacePane"),
+    figure="planar_tui.figures.workspace:from_result",
+    warmup="".join(
+        "[[workspace]]\njoint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n"
+        "precision_cm = 8.0\nrefine_precision_cm = 4.0\ngeometric_reference = false\n"
+        f'strategy = "{strategy}"\n'
+        for strategy in ("legwise", "joint")
+    )
+    + (
+        "[[workspace]]\njoint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n"
+        'precision_cm = 8.0\nform = "arc-distance"\ngeometric_reference = false\n'
+        "singularities = true\nelbow = [1, -1, 1]\n"
+        "[[workspace]]\njoint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n"
+        'orientation_deg = [-1, 1]\norientation_mode = "total"\nprecision_cm = 8.0\n'
+        "geometric_reference = false\n"
+    ),
+)  # fmt: skip

@@ -37,15 +37,14 @@ def _area(rows: np.ndarray) -> float:
     return float(np.sum((rows[:, 1] - rows[:, 0]) * (rows[:, 3] - rows[:, 2])))
 
 
-def legwise_stage(form_code, p, spec, box, budget, read_only):
+def legwise_stage(form_code, p, spec, box, budget):
     """Pave the (x, y) search ``box`` leg-wise down to ``spec.precision_cm``.
 
     Returns ``(boxes, status, xy_boxes)``: kept rows ``x_lo, x_hi, y_lo, y_hi``, their
     status (2 = inside, proved by the form; 1 = boundary) and the number of (x, y) boxes
     decided. The boxes processed counted against ``box_budget`` (``budget``) are the
     ``(x, y, θ_i)`` boxes on which a leg's interval form was evaluated, the unit of work
-    comparable with the joint strategy's 5-D boxes. ``read_only`` makes the progress's
-    partial views.
+    comparable with the joint strategy's 5-D boxes.
     """
     from planar_tui.kernels.workspace_legwise import (
         BOUNDARY,
@@ -55,6 +54,7 @@ def legwise_stage(form_code, p, spec, box, budget, read_only):
         pave_level,
         root_row,
     )
+    from planar_tui.progress import read_only
 
     frontier = root_row(box, spec.limits_rad)[None, :]
     root_area = _area(frontier)

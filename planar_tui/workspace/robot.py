@@ -99,4 +99,4 @@ class Robot3RRR:
         )
 
 
-ROBOT_KIND = RobotKind("robot3rrr", Robot3RRR)
+ROBOT_KIND = RobotKind("robot3rrr", Robot3RRR, example="[robot3rrr]\n")

@@ -16,16 +16,19 @@ singularity, is refused before any job runs: one line, exit code 2 (``prepare``)
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import time
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from planar_tui.errors import PresetError
 
 if TYPE_CHECKING:
     import numpy as np
+
+    from planar_tui.jobkind import Job
+    from planar_tui.workspace.compute import BoxBudget
+    from planar_tui.workspace.robot import Robot3RRR
 
 #: Wall time aimed at per kernel chunk.
 CHUNK_S = 0.05
@@ -89,7 +92,7 @@ def leg_angles(robot, orientation_rad, point):
     """Per leg, the active angles :math:`\\theta = \\alpha + s \\beta` for ``s = +1, -1``
     at the platform position ``point``, or ``None`` where the leg cannot close."""
     l1, l2 = robot.proximal_cm, robot.distal_cm
-    result = []
+    result: list[dict[int, float] | None] = []
     for dx, dy in robot.leg_offsets_cm(orientation_rad):
         vx, vy = point[0] + dx, point[1] + dy
         rho = math.hypot(vx, vy)
@@ -134,12 +137,19 @@ def _centroid(robot, spec):
     return (float(point.x), float(point.y))
 
 
-def prepare_workspace(job):
-    """Resolve the circle's centre and working mode (``spec.circle``: ``(x, y, elbow)``)
-    and refuse an unreachable or singular centre (:class:`PresetError`, exit code 2)."""
+@dataclass(frozen=True)
+class Circle:
+    """The singularity-free circle's centre (cm) and the working mode it holds for."""
+
+    x_cm: float
+    y_cm: float
+    elbow: tuple[int, int, int]
+
+
+def resolve_circle(job: Job[Any, Robot3RRR]) -> Circle:
+    """The circle's centre and working mode of a job with ``singularities``; an
+    unreachable or singular centre is a :class:`PresetError` (exit code 2)."""
     spec = job.spec
-    if not spec.singularities or spec.circle is not None:
-        return job
     key = f"{job.key}.circle_centre_cm"
 
     def refuse(problem, expected="a centre inside the workspace, off its singularities"):
@@ -180,8 +190,7 @@ def prepare_workspace(job):
     )
     if abs(det_at(robot, spec.orientation_rad, centre, elbow)) <= SINGULAR_RELATIVE * scale:
         raise refuse(f"{where} is on a type II singularity (det A = 0)")
-    circle = (float(centre[0]), float(centre[1]), tuple(elbow))
-    return dataclasses.replace(job, spec=dataclasses.replace(spec, circle=circle))
+    return Circle(float(centre[0]), float(centre[1]), (elbow[0], elbow[1], elbow[2]))
 
 
 # -- the interval paving ------------------------------------------------------------------
@@ -221,7 +230,7 @@ class SingularityOutcome:
         )
 
 
-def kernel_inputs(robot, spec):
+def kernel_inputs(robot, spec, circle: Circle):
     """``(g, r, elbow, limits)`` of :mod:`planar_tui.kernels.singularity3rrr`."""
     import numpy as np
 
@@ -230,24 +239,27 @@ def kernel_inputs(robot, spec):
 
     c, s = math.cos(spec.orientation_rad), math.sin(spec.orientation_rad)
     r = np.array([[c * qx - s * qy, s * qx + c * qy] for qx, qy in robot.platform_points_cm()])
-    elbow = np.array(spec.circle[2], dtype=np.float64)
+    elbow = np.array(circle.elbow, dtype=np.float64)
     return geometry_vector(robot), r, elbow, limits_array(spec.limits_rad)
 
 
-def compute_singularities(robot, spec, extent, budget, job) -> SingularityOutcome:
+def compute_singularities(
+    job: Job[Any, Robot3RRR], circle: Circle, extent, budget: BoxBudget
+) -> SingularityOutcome:
     """Pave ``extent`` (``x_lo, x_hi, y_lo, y_hi``, holding the workspace) down to
-    ``singularity_precision_cm`` (default ``precision_cm``); ``spec.circle`` resolved by
-    :func:`prepare_workspace`."""
+    ``singularity_precision_cm`` (default ``precision_cm``) about ``circle`` (resolved
+    by :func:`resolve_circle` when the job was prepared)."""
     import numpy as np
 
     from planar_tui.kernels.singularity3rrr import box_status, singular_bisect_chunk
     from planar_tui.kernels.workspace3rrr import CHUNK_LIMIT, DONE, KEPT_FULL, STACK_FULL
-    from planar_tui.workspace.compute import _grow, _xy_area
+    from planar_tui.workspace.compute import grow, xy_area
 
     started = time.perf_counter()
     progress = budget.progress
-    g, r, elbow, limits = kernel_inputs(robot, spec)
-    cx, cy = spec.circle[0], spec.circle[1]
+    robot, spec = job.robot, job.spec
+    g, r, elbow, limits = kernel_inputs(robot, spec, circle)
+    cx, cy = circle.x_cm, circle.y_cm
     in_w, _, d_lo, d_hi = box_status(cx, cx, cy, cy, g, r, elbow, limits)
     if not in_w or d_lo <= 0.0 <= d_hi:
         raise PresetError(
@@ -264,7 +276,7 @@ def compute_singularities(robot, spec, extent, budget, job) -> SingularityOutcom
     bounds = np.array([edge, edge])
     stack = np.zeros((256, 4))
     stack[0] = extent
-    root_area = _xy_area(stack[:1])
+    root_area = xy_area(stack[:1])
     kept = np.zeros((4096, 4))
     status = np.zeros(4096, dtype=np.int64)
     n_stack, n_kept, processed_here, work = 1, 0, 0, 1024  # box tests per call
@@ -279,15 +291,8 @@ def compute_singularities(robot, spec, extent, budget, job) -> SingularityOutcom
             elapsed = time.perf_counter() - tic
             work = int(min(max(work * CHUNK_S / max(elapsed, 1e-6), 256), 4 * work))
         processed_here += processed
-        budget.processed += processed
-        if budget.processed > spec.box_budget:
-            raise PresetError(
-                job.preset_path,
-                f"{job.key}.box_budget",
-                f"the bisection exceeded {spec.box_budget:,} boxes; nothing was written",
-                "a larger box_budget or a coarser singularity_precision_cm",
-            )
-        fraction = 1.0 - _xy_area(stack[:n_stack]) / root_area
+        budget.count(processed, "singularity_precision_cm")
+        fraction = 1.0 - xy_area(stack[:n_stack]) / root_area
         progress.advance(
             max(0.0, fraction - progress.completed),
             f"{processed_here:,} boxes, circle radius in [{bounds[0]:.5g}, {bounds[1]:.5g}] cm",
@@ -297,14 +302,14 @@ def compute_singularities(robot, spec, extent, budget, job) -> SingularityOutcom
         if code == DONE:
             break
         if code == KEPT_FULL:
-            kept, status = _grow(kept), _grow(status)
+            kept, status = grow(kept), grow(status)
         elif code == STACK_FULL:
-            stack = _grow(stack)
+            stack = grow(stack)
     return SingularityOutcome(
         boxes=kept[:n_kept].copy(),
         status=status[:n_kept].copy(),
         centre_cm=(cx, cy),
-        elbow=spec.circle[2],
+        elbow=circle.elbow,
         radius_lo_cm=float(bounds[0]),
         radius_hi_cm=float(bounds[1]),
         precision_cm=precision,

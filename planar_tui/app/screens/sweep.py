@@ -123,7 +123,7 @@ class SweepDialog(ModalScreen[tuple[Any, int, Any] | None]):
 
     def submit(self) -> None:
         """Build the sweep and check its points; dismiss with it, or show the problem."""
-        from planar_tui.sweep.points import make_points
+        from planar_tui.plan import plan_sweep
 
         try:
             values = self.chosen_values()
@@ -133,7 +133,8 @@ class SweepDialog(ModalScreen[tuple[Any, int, Any] | None]):
                 raise ValuesError(f"workers {workers_text!r} (expected a whole number ≥ 1)")
             combine = str(self.query_one("#sweep-combine", Select).value)
             sweep = self.build(values, combine)
-            points = make_points(sweep) if sweep.point_count <= DIALOG_CHECK_POINTS else None
+            small = sweep.point_count <= DIALOG_CHECK_POINTS
+            points = plan_sweep(sweep).points if small else None
         except ValuesError as error:
             self.problem(str(error))
             return

@@ -1,0 +1,132 @@
+"""The ``planar-tui`` command line (Typer).
+
+Batch jobs run from TOML presets and write CSV. Exit codes: 0 ok, 1 a job failed,
+2 bad input (preset or option), 130 interrupted (Ctrl-C), 143 terminated (SIGTERM).
+Progress bars go to stderr; tables and summaries to stdout. Heavy modules (numpy, numba,
+SALib, Textual) are imported only when a job or the app runs, so ``planar-tui --help`` is
+instant.
+
+The commands are made by :func:`build_app` when the CLI runs, from the registry: each
+job kind's own command (:mod:`planar_tui.cli.kinds`, from its declared
+:class:`~planar_tui.jobkind.Command`) and the commands that are not one kind's
+(:data:`planar_tui.cli.commands.COMMANDS`: ``tui``, ``run``, ``plot``, ``sweep``,
+``warmup``, ``presets``; a new one is a function there and a line in that tuple). A
+command only turns its options into a :class:`~planar_tui.plan.RunPlan`
+(:func:`planar_tui.plan.plan_run`) and prints (:mod:`planar_tui.cli.running`,
+:mod:`planar_tui.cli.output`).
+"""
+
+from __future__ import annotations
+
+import gc
+import os
+import signal
+import sys
+from typing import Annotated, Any
+
+import typer
+
+from planar_tui import __version__
+from planar_tui.cli import output
+from planar_tui.cli.commands import COMMANDS, open_app
+from planar_tui.cli.kinds import kind_command
+from planar_tui.cli.output import Command, Group, fail, job_progress_display, progress_bar, stdout
+from planar_tui.errors import ExitCode
+
+__all__ = ["app", "build_app", "job_progress_display", "main", "progress_bar"]
+
+HELP = (
+    "Terminal workbench for planar robots: NOC dynamics, Sobol/eFAST sensitivity, "
+    "3-RRR workspace by interval analysis. Without a command, opens the Textual app "
+    "(in a terminal; without one, prints this help and exits with code 2)."
+)
+
+
+def version_callback(value: bool) -> None:
+    if value:
+        stdout.print(f"planar-tui {__version__}")
+        raise typer.Exit()
+
+
+def root(
+    context: typer.Context,
+    version: Annotated[
+        bool,
+        typer.Option(
+            "--version", callback=version_callback, is_eager=True, help="Print the version."
+        ),
+    ] = False,
+) -> None:
+    """Without a command: open the Textual app on a bundled preset (in a terminal)."""
+    if context.invoked_subcommand is None:
+        if not (sys.stdin.isatty() and sys.stdout.isatty()):
+            help_text = context.get_help()  # Typer's rich help prints itself, returns ""
+            if help_text:
+                typer.echo(help_text)
+            raise fail(
+                "error: no command given, and the app needs a terminal (stdin and stdout "
+                "are not both one): name a command, e.g. planar-tui run PRESET"
+            )
+        open_app(None)
+
+
+def build_app() -> typer.Typer:
+    """The ``planar-tui`` Typer app, its job commands made from the registry now (a kind
+    registered before this call has its command, :func:`planar_tui.registry.registered`)."""
+    from planar_tui.registry import JOB_KINDS
+
+    app = typer.Typer(name="planar-tui", cls=Group, help=HELP, add_completion=False,
+                      no_args_is_help=False, pretty_exceptions_enable=False)  # fmt: skip
+    app.callback(invoke_without_command=True)(root)
+    (first, function), *others = COMMANDS  # tui, then the kinds' commands, then the rest
+    app.command(first, cls=Command)(function)
+    for kind in JOB_KINDS.values():
+        if kind.command is not None:
+            command = kind_command(kind)
+            app.command(kind.command.name, cls=Command, help=kind.command.help)(command)
+    for name, function in others:
+        app.command(name, cls=Command)(function)
+    return app
+
+
+def __getattr__(name: str) -> Any:
+    """``planar_tui.cli.app``: the app built now (:func:`build_app`)."""
+    if name == "app":
+        return build_app()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def main() -> None:
+    """Run the CLI (called by :func:`planar_tui.entry.main`, the console script): Ctrl-C
+    raises ``KeyboardInterrupt`` again (and is remembered, :data:`_INTERRUPTED`) and
+    SIGTERM has its default action, except while jobs run (:func:`sigterm_as_interrupt`)."""
+    from planar_tui.runtime import configure_process
+
+    try:
+        sys.unraisablehook = output._unraisable
+        signal.signal(signal.SIGINT, output._interrupt)
+        signal.signal(signal.SIGTERM, signal.SIG_DFL)
+        configure_process()
+        build_app()(prog_name="planar-tui")
+    except KeyboardInterrupt:
+        # Ctrl-C before Typer's own handling starts: while it builds the Click command
+        # from the commands' signatures (~50 ms after the imports).
+        if not output._REPORTED:
+            os.write(2, b"interrupted: nothing was written\n")
+        sys.exit(ExitCode.INTERRUPTED)
+    except SystemExit as exit_:
+        # Typer turns a Ctrl-C outside the commands' own handling (while a command's
+        # modules load, say) into a silent exit 130: say it in one line too.
+        if exit_.code == ExitCode.INTERRUPTED and not output._REPORTED:
+            os.write(2, b"interrupted: nothing was written\n")
+        raise
+    finally:
+        # Exit without the interpreter's last full garbage collection over every object of
+        # numba, rich and typer: ~0.3 s of a jitted command's wall time (measured with
+        # `planar-tui run paper-a-table4 paper-a-table5`). Reference counting still frees.
+        gc.freeze()
+
+
+if __name__ == "__main__":
+    main()
+    sys.exit(0)

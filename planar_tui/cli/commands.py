@@ -1,0 +1,208 @@
+"""The commands of ``planar-tui`` that are not one job kind's: ``tui``, ``run``, ``plot``,
+``sweep``, ``warmup`` and ``presets`` (:data:`COMMANDS`). A new one (``export``, say) is a
+function here and a line in :data:`COMMANDS`; :func:`planar_tui.cli.build_app` adds them
+after the job kinds' own commands. A command turns its options into a
+:class:`~planar_tui.plan.RunPlan` (:func:`planar_tui.plan.plan_run`) and prints
+(:mod:`planar_tui.cli.running`)."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from planar_tui.cli.kinds import JobOption, OutDirOption, PlotOption, PresetArg
+from planar_tui.cli.output import (
+    _INTERRUPTED,
+    check_figure_option,
+    check_workers,
+    fail,
+    load_presets,
+    reported_errors,
+    stderr,
+    stdout,
+)
+from planar_tui.errors import PresetError
+from planar_tui.resources import bundled_presets, preset_description
+
+
+def open_app(preset_argument: str | None) -> None:
+    """Open the Textual workbench (imported only now)."""
+    with reported_errors():
+        from planar_tui.app import run_app
+
+        run_app(preset_argument)
+
+
+def tui(
+    preset: Annotated[
+        str | None,
+        typer.Argument(help="Preset file or bundled preset name (default: paper-a-table1)."),
+    ] = None,
+) -> None:
+    """Open the Textual workbench on a preset (what `planar-tui` alone does)."""
+    open_app(preset)
+
+
+WorkersOption = Annotated[
+    int | None,
+    typer.Option(
+        "--workers",
+        "-w",
+        help="Sweeps: points run on a local Dask cluster of N worker processes "
+        "(default: the machine's cores); 1 runs them in this process.",
+    ),
+]
+SchedulerOption = Annotated[
+    str | None,
+    typer.Option(
+        "--scheduler",
+        envvar="PLANAR_TUI_SCHEDULER",
+        metavar="ADDRESS",
+        help="Sweeps: submit the points to this existing Dask scheduler (tcp://host:8786).",
+    ),
+]
+ResumeOption = Annotated[
+    bool,
+    typer.Option("--resume", help="Sweeps: finish an interrupted sweep from its checkpoint."),
+]
+
+
+def run(
+    presets: Annotated[list[str], typer.Argument(help="Preset files or bundled preset names.")],
+    job_name: JobOption = None,
+    out_dir: OutDirOption = Path("."),
+    plot: PlotOption = None,
+    workers: WorkersOption = None,
+    scheduler: SchedulerOption = None,
+    resume: ResumeOption = False,
+) -> None:
+    """Run every job of every preset (or those --job names), files named as the presets
+    say, then the presets' sweeps (not with --job)."""
+    from planar_tui.cli.running import print_notes, run_jobs, run_sweeps
+
+    with reported_errors():
+        from planar_tui.batch import select_jobs
+        from planar_tui.plan import plan_run
+
+        check_figure_option(plot)
+        check_workers(workers)
+        loaded = load_presets(presets)
+        jobs = select_jobs([job for preset in loaded for job in preset.jobs], job_name)
+        plan = plan_run(jobs, out_dir, plot=plot, sweeps_of=[] if job_name else loaded,
+                        resume=resume)  # fmt: skip
+        print_notes(plan)
+        if plan.jobs:
+            run_jobs(plan)
+        run_sweeps(plan, workers, scheduler)
+
+
+def plot_csv(
+    result: Annotated[Path, typer.Argument(help="A CSV file planar-tui wrote (any kind).")],
+    out: Annotated[
+        Path | None,
+        typer.Option(
+            "--out", "-o", help="Figure file (.svg, .png or .pdf; default: RESULT.png beside it)."
+        ),
+    ] = None,
+) -> None:
+    """Draw the figure of a result CSV (its kind recognised from its header), e.g. a
+    cluster run's result, later, on a laptop."""
+    with reported_errors():
+        from planar_tui.batch import check_writable
+
+        check_figure_option(out, "--out")
+        if result.is_dir():
+            raise PresetError(result, "(file)", "is a folder", "a result CSV file")
+        target = out if out is not None else result.with_suffix(".png")
+        from planar_tui.figures import UnknownTable, figure_for_table, read_table
+        from planar_tui.figures.canvas import save
+
+        try:
+            table = read_table(result)
+        except FileNotFoundError:
+            raise PresetError(result, "(file)", "no such file", "a result CSV") from None
+        except (OSError, UnicodeDecodeError, ValueError) as error:
+            raise PresetError(
+                result, "(file)", f"cannot be read: {error}", "a result CSV"
+            ) from None
+        check_writable(target, "figure file")
+        try:
+            figure = figure_for_table(table, result.name)
+        except UnknownTable as error:
+            raise PresetError(result, "(header)", *error.args) from None
+        except ValueError as error:  # no rows, or a recognised table the figure cannot show
+            raise PresetError(result, "(content)", f"cannot be drawn: {error}") from None
+        try:
+            written = save(figure, target)
+        except OSError as error:
+            raise fail(f"error: {target}: cannot write: {error.strerror or error}") from None
+    stdout.print(f"wrote {written}", markup=False)
+
+
+def sweep_command(
+    preset: PresetArg,
+    workers: WorkersOption = None,
+    scheduler: SchedulerOption = None,
+    resume: ResumeOption = False,
+    out_dir: OutDirOption = Path("."),
+    plot: PlotOption = None,
+) -> None:
+    """Run the preset's sweeps ([[sweep]] tables): one CSV each, one row per point."""
+    from planar_tui.cli.running import print_notes, run_sweeps
+
+    with reported_errors():
+        from planar_tui.plan import plan_run
+
+        check_figure_option(plot)
+        check_workers(workers)
+        (loaded,) = load_presets([preset])
+        plan = plan_run([], out_dir, sweeps_of=[loaded], sweep_plot=plot, resume=resume)
+        if not plan.sweeps:
+            raise PresetError(loaded.path, "sweep", "no [[sweep]] table in this preset",
+                              "a [[sweep]] table")  # fmt: skip
+        print_notes(plan)
+        run_sweeps(plan, workers, scheduler)
+
+
+def warmup() -> None:
+    """Compile every job kind's kernels into the cache (for batch machines: later runs
+    start without the first-run compilation)."""
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+    from planar_tui import progress as core
+    from planar_tui.registry import JOB_KINDS
+    from planar_tui.warmup import warm_kernels
+
+    columns = (TextColumn("{task.description}"), BarColumn(bar_width=24), MofNCompleteColumn())
+    with reported_errors(), Progress(*columns, TimeElapsedColumn(), console=stderr) as bars:
+        task = bars.add_task("kernels", total=len(JOB_KINDS))
+
+        def update(state) -> None:
+            bars.update(task, completed=state.completed, description=state.detail[:40])
+
+        done = warm_kernels(
+            JOB_KINDS, core.Progress(on_update=update, should_stop=_INTERRUPTED.is_set)
+        )
+        bars.update(task, completed=len(JOB_KINDS), description="kernels ready")
+    stdout.print(f"compiled: {', '.join(done) or 'nothing (all cached)'}", markup=False)
+
+
+def list_presets() -> None:
+    """List the bundled presets, one line each."""
+    for path in bundled_presets():
+        typer.echo(f"{path.stem:<24} {preset_description(path)}")
+
+
+#: The commands that are not one job kind's, in the order of ``planar-tui --help`` (``tui``
+#: first, then the job kinds' own commands, then the others): (name, function).
+COMMANDS: tuple[tuple[str, Callable[..., None]], ...] = (
+    ("tui", tui),
+    ("run", run),
+    ("plot", plot_csv),
+    ("sweep", sweep_command),
+    ("warmup", warmup),
+    ("presets", list_presets),
+)

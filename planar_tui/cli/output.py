@@ -1,0 +1,244 @@
+"""What the ``planar-tui`` commands share: the consoles, the one-line outcome and exit
+code of an error or an interrupt, the checks of the run options, and the progress
+displays (one bar per job, one per sweep)."""
+
+from __future__ import annotations
+
+import signal
+import sys
+import threading
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import typer
+from rich.console import Console
+from typer.core import TyperCommand, TyperGroup
+
+from planar_tui.errors import Cancelled, ExitCode, PresetError, Terminated
+
+if TYPE_CHECKING:
+    from planar_tui.jobkind import Job
+    from planar_tui.presets import Preset
+
+
+class _FlagsWithoutMetavar:
+    """Help for flags (``--map/--no-map``, ``--version``, ``--help``) without a value
+    placeholder: Typer's rich help otherwise prints ``<bool>`` after them, as if they took
+    a value. A flag's metavar is only ever shown in help."""
+
+    def get_params(self, ctx):
+        params = super().get_params(ctx)
+        for param in params:
+            if getattr(param, "is_flag", False) and param.metavar is None:
+                param.metavar = ""
+        return params
+
+
+class Group(_FlagsWithoutMetavar, TyperGroup):
+    """The ``planar-tui`` command group."""
+
+
+class Command(_FlagsWithoutMetavar, TyperCommand):
+    """A ``planar-tui`` command."""
+
+
+stdout = Console(highlight=False)
+stderr = Console(stderr=True, highlight=False)
+
+#: Whether this process has printed its one-line outcome (see :func:`main`).
+_REPORTED = False
+#: Set by every Ctrl-C (:func:`_interrupt`). The ``KeyboardInterrupt`` it raises can land
+#: where Python can only report it and go on (a weakref callback of the import system:
+#: "Exception ignored in ..."), so the runners' progress checks ask this too
+#: (``should_stop``) and such a report is silenced (:func:`_unraisable`).
+_INTERRUPTED = threading.Event()
+
+
+def _interrupt(signum, frame) -> None:
+    _INTERRUPTED.set()
+    raise KeyboardInterrupt
+
+
+def _unraisable(unraisable) -> None:
+    """``sys.unraisablehook``: a Ctrl-C that could not be raised where it landed stops
+    the run at its next progress check instead of printing a traceback and being lost."""
+    if isinstance(unraisable.exc_value, KeyboardInterrupt):
+        _INTERRUPTED.set()
+        return
+    sys.__unraisablehook__(unraisable)
+
+
+def fail(message: str, code: ExitCode = ExitCode.BAD_INPUT) -> typer.Exit:
+    """Print ``message`` on stderr and return the exit to raise."""
+    global _REPORTED
+    stderr.print(message, markup=False, highlight=False, soft_wrap=True)
+    _REPORTED = True
+    return typer.Exit(int(code))
+
+
+@contextmanager
+def reported_errors() -> Iterator[None]:
+    """Turn preset errors, interrupts and job failures into one line and an exit code."""
+    try:
+        yield
+    except PresetError as error:
+        raise fail(str(error), ExitCode.BAD_INPUT) from None
+    except Terminated:
+        raise fail(
+            "terminated: the running job's output was not written", ExitCode.TERMINATED
+        ) from None
+    except (KeyboardInterrupt, Cancelled):
+        raise fail(
+            "interrupted: the running job's output was not written", ExitCode.INTERRUPTED
+        ) from None
+
+
+def check_figure_option(path: Path | None, option: str = "--plot") -> None:
+    """Refuse a figure path whose suffix names no format (:class:`PresetError`, exit 2)."""
+    from planar_tui.schema import FIGURE_SUFFIXES, figure_suffix_problem
+
+    problem = None if path is None else figure_suffix_problem(str(path))
+    if problem is not None:
+        raise PresetError(
+            "command line", option, f"is {str(path)!r}: {problem}",
+            "a file ending " + ", ".join(FIGURE_SUFFIXES),
+        )  # fmt: skip
+
+
+def check_workers(workers: int | None) -> None:
+    """Refuse ``--workers`` below 1 (:class:`PresetError`, exit 2), in one line as the job
+    options' ranges are (checked here, not by Typer, whose usage box takes many lines)."""
+    if workers is not None and workers < 1:
+        raise PresetError("command line", "--workers", f"is {workers}, below 1",
+                          "an integer >= 1 (1 runs the points in this process)")  # fmt: skip
+
+
+def load_presets(arguments: Sequence[str]) -> list[Preset]:
+    """Resolve and validate every preset before anything runs."""
+    from planar_tui.presets import load_preset
+    from planar_tui.resources import resolve_preset
+
+    return [load_preset(resolve_preset(argument)) for argument in arguments]
+
+
+def clock_text(seconds: float) -> str:
+    """``H:MM:SS`` of a duration (rounded to whole seconds)."""
+    whole = round(max(seconds, 0.0))
+    return f"{whole // 3600}:{whole % 3600 // 60:02d}:{whole % 60:02d}"
+
+
+def progress_figures(
+    completed: float, total: float, remaining_s: float | None, done_s: float | None = None
+) -> str:
+    """The figures beside a job's bar: percent, ``done/total`` when the runner counts whole
+    units (steps, states, evaluations; a workspace counts a fraction and shows its boxes in
+    the detail line), and ``ETA H:MM:SS`` (``-:--:--`` until known), or ``in H:MM:SS``
+    once the job is done (``done_s`` seconds after it started)."""
+    parts = [f"{100.0 * completed / total if total else 100.0:3.0f}%"]
+    if total > 1 and float(total).is_integer():
+        parts.append(f"{completed:,.0f}/{total:,.0f}")
+    if done_s is not None:
+        parts.append(f"in {clock_text(done_s)}")
+    else:
+        parts.append("ETA " + ("-:--:--" if remaining_s is None else clock_text(remaining_s)))
+    return "  ".join(parts)
+
+
+def job_progress_display(console: Console):
+    """A rich progress display for one job, complete at 80 columns: the job and stage on
+    their own line, then the bar with percent, count and ETA, then the runner's detail
+    (folded, never cut). Its task takes ``detail`` and ``done_s`` fields."""
+    from rich.progress import BarColumn, Progress, ProgressColumn
+    from rich.table import Column
+    from rich.text import Text
+
+    class FiguresColumn(ProgressColumn):
+        def render(self, task) -> Text:
+            figures = progress_figures(
+                task.completed, task.total or 0.0, task.time_remaining, task.fields["done_s"]
+            )
+            return Text(figures, no_wrap=True)
+
+    class JobProgress(Progress):
+        def get_renderables(self):
+            for task in self.tasks:
+                yield Text(task.description, overflow="fold")
+                yield self.make_tasks_table([task])
+                if task.fields.get("detail"):
+                    yield Text(f"  {task.fields['detail']}", overflow="fold")
+
+    bar = BarColumn(bar_width=None, table_column=Column(ratio=1))
+    figures = FiguresColumn(table_column=Column(no_wrap=True))
+    return JobProgress(bar, figures, console=console, transient=False, expand=True)
+
+
+def _raise_terminated(signum, frame) -> None:
+    raise Terminated("SIGTERM")
+
+
+@contextmanager
+def sigterm_as_interrupt() -> Iterator[None]:
+    """While jobs run, SIGTERM raises :class:`~planar_tui.errors.Terminated` (a
+    ``KeyboardInterrupt``) so it cleans up like Ctrl-C: no temporary file is left."""
+    previous = signal.signal(signal.SIGTERM, _raise_terminated)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+@contextmanager
+def progress_bar(bars, job: Job):
+    """One progress task for ``job`` (stage, figures and detail), as a
+    :class:`~planar_tui.progress.Progress` for the runner. A new stage restarts the bar and
+    its speed estimate; the last line says ``done`` with the total time and the runner's
+    last detail (a workspace's final area bracket)."""
+    import time
+
+    from planar_tui.progress import Progress
+
+    started = time.monotonic()
+    task = bars.add_task(job.label, total=1.0, detail="", done_s=None)
+    warned = set()
+    stage = None
+
+    def update(state) -> None:
+        nonlocal stage
+        if state.warning and state.warning not in warned:
+            warned.add(state.warning)
+            bars.console.print(f"warning: {job.label}: {state.warning}", markup=False)
+        if state.stage != stage:
+            stage = state.stage
+            bars.reset(task, total=state.total, completed=state.completed)
+        bars.update(
+            task,
+            completed=state.completed,
+            total=state.total,
+            description=f"{job.label} {state.stage}".strip(),
+            detail=state.detail,
+        )
+
+    yield Progress(on_update=update, should_stop=_INTERRUPTED.is_set)
+    (current,) = (t for t in bars.tasks if t.id == task)
+    done_s = time.monotonic() - started
+    bars.update(task, completed=current.total, description=f"{job.label} done", done_s=done_s)
+
+
+def sweep_progress_display(console: Console):
+    """A rich display with one bar per sweep: points done/total, failures, rate, ETA."""
+    from rich import progress as bar
+    from rich.table import Column
+    from rich.text import Text
+
+    class RateColumn(bar.ProgressColumn):
+        def render(self, task) -> Text:
+            speed = task.finished_speed or task.speed
+            return Text("-- pt/s" if speed is None else f"{speed:.3g} pt/s")
+
+    return bar.Progress(
+        bar.TextColumn("{task.description}"), bar.BarColumn(bar_width=None),
+        bar.MofNCompleteColumn(), bar.TextColumn("{task.fields[failed]} failed"), RateColumn(table_column=Column(no_wrap=True)),
+        bar.TextColumn("ETA"), bar.TimeRemainingColumn(), console=console, expand=True,
+    )  # fmt: skip

@@ -1,0 +1,176 @@
+"""One run plan for both front ends: which jobs and sweeps run, every file they write
+(checked once, together, before anything runs) and what happens to sweeps' checkpoints.
+
+:func:`plan_run` builds it from the jobs (parsed, selected and overridden) and the presets
+whose sweeps run; the CLI turns its options into one call and prints, the app plans its
+"run all" and its sweeps here too. Everything that can be refused is refused here, so a
+run that starts writes nothing it was not allowed to: a figure its kind cannot draw, an
+output path that cannot be written or that two writers share, a sweep's unreadable point,
+a sweep figure without a varied key, a checkpoint of an interrupted run without
+``--resume``. New kinds of work (an optimisation, say) add their planned entries and files
+to :class:`RunPlan` and are checked with the rest.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from planar_tui.batch import (
+    OutputPlan,
+    PlannedFile,
+    check_planned,
+    numbered_path,
+    plan_files,
+    plan_outputs,
+    prepare_jobs,
+)
+from planar_tui.errors import PresetError
+
+if TYPE_CHECKING:
+    from planar_tui.jobkind import Job
+    from planar_tui.presets import Preset
+    from planar_tui.sweep.points import Point
+    from planar_tui.sweep.spec import Sweep
+
+
+@dataclass(frozen=True)
+class SweepPlan:
+    """One sweep with its validated points (:func:`planar_tui.sweep.points.make_points`)."""
+
+    sweep: Sweep
+    points: list[Point]
+
+
+@dataclass(frozen=True)
+class RunPlan:
+    """What a run does, in order: ``jobs`` (each with its files, prepared unless the plan
+    was made with ``prepare=False``), then ``sweeps``; ``out_dir`` is where the presets'
+    names point (``None``: nothing is written, the app's sweeps); ``resume`` continues the
+    sweeps from their checkpoints; ``notes`` are what the front end says before it runs
+    (a checkpoint of an earlier version of a sweep that is replaced)."""
+
+    jobs: tuple[OutputPlan, ...] = ()
+    sweeps: tuple[SweepPlan, ...] = ()
+    out_dir: Path | None = None
+    resume: bool = False
+    notes: tuple[str, ...] = ()
+
+    def files(self) -> list[PlannedFile]:
+        """Every file the run writes (jobs' CSVs, extra tables and figures; sweeps' CSVs,
+        checkpoints, figures and point-file folders)."""
+        from planar_tui.sweep.service import planned_files
+
+        files = plan_files(self.jobs)
+        if self.out_dir is not None:
+            files += [f for entry in self.sweeps for f in planned_files(entry.sweep, self.out_dir)]
+        return files
+
+
+def check_figures(jobs: Sequence[Job[Any, Any]], plot: Path | None) -> None:
+    """Refuse a figure for a job whose kind draws none (:class:`PresetError`, one line),
+    asked by ``--plot`` (``plot``) or by the job's ``plot`` key."""
+    from planar_tui.figures.dispatch import figure_problem
+
+    for job in jobs:
+        problem = figure_problem(job.kind)
+        if problem is None:
+            continue
+        if plot is not None:
+            raise PresetError("command line", "--plot", f"{job.label}: {problem}",
+                              f"no --plot for a {job.kind} job")  # fmt: skip
+        if getattr(job.spec, "plot", None):
+            raise PresetError(job.preset_path, f"{job.key}.plot", problem, "no plot key")
+
+
+def plan_sweeps(
+    presets: Sequence[Preset], plot: Path | None = None
+) -> tuple[list[Sweep], list[SweepPlan]]:
+    """The presets' sweeps with their points, every point validated; ``plot`` (the
+    command line's) replaces their ``plot`` keys, numbered ``FILE-1.png`` ... for several,
+    taken from the current folder as the jobs' ``--plot`` is (not from the output folder
+    as the preset's key is)."""
+    from planar_tui.sweep.points import make_points
+    from planar_tui.sweep.spec import parse_sweeps
+
+    sweeps = [sweep for preset in presets for sweep in parse_sweeps(preset)]
+    if plot is not None:
+        sweeps = [
+            dataclasses.replace(
+                sweep, plot=str(numbered_path(plot, number, len(sweeps)).absolute())
+            )
+            for number, sweep in enumerate(sweeps, start=1)
+        ]
+    return sweeps, [SweepPlan(sweep, make_points(sweep)) for sweep in sweeps]
+
+
+def plan_sweep(sweep: Sweep) -> SweepPlan:
+    """One sweep built elsewhere (the app's sweep dialog), its points validated."""
+    from planar_tui.sweep.points import make_points
+
+    return SweepPlan(sweep, make_points(sweep))
+
+
+def checkpoint_notes(sweeps: Sequence[SweepPlan], out_dir: Path, resume: bool) -> list[str]:
+    """Decide each sweep's checkpoint: none, or one to resume (with ``resume``) is fine;
+    one of the same sweep without ``resume`` is refused (:class:`PresetError`); one of an
+    earlier version of the sweep is replaced, and said in the note returned."""
+    from planar_tui.sweep.checkpoint import checkpoint_path, existing_fingerprint
+    from planar_tui.sweep.service import output_path
+
+    notes = []
+    for entry in sweeps:
+        sweep = entry.sweep
+        checkpoint = checkpoint_path(output_path(sweep, out_dir))
+        found = existing_fingerprint(checkpoint)
+        if found is None or (resume and found == sweep.fingerprint()):
+            continue
+        if found == sweep.fingerprint():
+            raise PresetError(
+                checkpoint, "(checkpoint)",
+                f"holds finished points of {sweep.label}, an interrupted run",
+                "--resume to finish it, or delete the file to start over",
+            )  # fmt: skip
+        notes.append(f"note: {checkpoint} belongs to an earlier version of {sweep.label} (the "
+                     "preset changed): it is replaced")  # fmt: skip
+    return notes
+
+
+def plan_run(
+    jobs: Sequence[Job[Any, Any]],
+    out_dir: Path,
+    *,
+    out: Path | None = None,
+    extra_out: Mapping[str, Path | None] | None = None,
+    plot: Path | None = None,
+    sweeps_of: Sequence[Preset] = (),
+    sweep_plot: Path | None = None,
+    resume: bool = False,
+    prepare: bool = True,
+) -> RunPlan:
+    """The run of ``jobs`` (their files named by :func:`planar_tui.batch.plan_outputs`
+    from ``out``, ``extra_out`` and ``plot``) and of the sweeps of ``sweeps_of`` (their
+    figures under ``sweep_plot``), all refused before anything runs if anything is wrong
+    (:class:`PresetError`): figures (:func:`check_figures`), every planned file once
+    (:func:`planar_tui.batch.check_planned`, the presets protected), the sweeps' figures
+    and checkpoints (:func:`checkpoint_notes`), then (``prepare``) every job prepared by
+    its kind (:func:`planar_tui.batch.prepare_jobs`)."""
+    from planar_tui.sweep.service import check_figure
+
+    check_figures(jobs, plot)
+    outputs = plan_outputs(jobs, out_dir, out, extra_out, plot)
+    sweeps, sweep_plans = plan_sweeps(sweeps_of, sweep_plot) if sweeps_of else ([], [])
+    plan = RunPlan(tuple(outputs), tuple(sweep_plans), out_dir, resume)
+    presets: dict[Path, str] = {job.preset_path: job.label for job in jobs}
+    presets.update({sweep.preset_path: sweep.label for sweep in sweeps})
+    check_planned(plan.files(), presets)
+    for entry in sweep_plans:
+        check_figure(entry.sweep, entry.points)
+    notes = checkpoint_notes(sweep_plans, out_dir, resume)
+    if prepare and outputs:
+        prepared = prepare_jobs(jobs)
+        outputs = [dataclasses.replace(o, job=j) for o, j in zip(outputs, prepared, strict=True)]
+    return dataclasses.replace(plan, jobs=tuple(outputs), notes=tuple(notes))
