@@ -39,6 +39,11 @@ def _above_4m2(samples: int) -> str | None:
     return None if samples >= EFAST_MIN_SAMPLES else "not above 4 M² = 64"
 
 
+def _at_least_16(samples: int) -> str | None:
+    """PCE: N ≥ 16 model runs (its LOO error then says whether they were enough)."""
+    return None if samples >= 16 else "below 16"
+
+
 @dataclass(frozen=True)
 class Method:
     """One sampling method: ``rows(D, N)`` its design's rows (robots or model runs) for D
@@ -65,11 +70,12 @@ METHODS: dict[str, Method] = {
     "efast": Method(
         "efast", "eFAST", lambda d, n: n * d, _above_4m2, "an integer > 4 M² = 64 (M = 4)"
     ),
+    "pce": Method("pce", "PCE", lambda d, n: n, _at_least_16, "an integer >= 16"),
 }
 
 
 def design_rows(method: str, num_vars: int, samples: int) -> int:
-    """Rows of a design: N (Monte Carlo), N (D + 2) (Sobol', no second order), N D
+    """Rows of a design: N (Monte Carlo, PCE), N (D + 2) (Sobol', no second order), N D
     (eFAST)."""
     return METHODS[method].rows(num_vars, samples)
 

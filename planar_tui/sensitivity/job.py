@@ -32,7 +32,9 @@ if TYPE_CHECKING:
     from planar_tui.sensitivity.postures import Posture
     from planar_tui.sensitivity.results import Analysis
 
-METHODS = ("sobol", "efast")
+METHODS = ("sobol", "efast", "pce")
+#: The methods a job runs unless its preset says otherwise (paper A's two).
+DEFAULT_METHODS = ("sobol", "efast")
 PERCENT_OF = ("ST", "S1")
 #: Rough cost of one model run (an inverse dynamics, batched): 0.3 µs + 20 ns per link.
 MODEL_RUN_SECONDS = (3e-7, 2e-8)
@@ -103,9 +105,10 @@ class SensitivitySpec:
     )
     methods: tuple[str, ...] = uq.methods_setting(
         METHODS,
-        default=METHODS,
-        default_doc="both",
-        doc="estimators (SALib samples; the analysis is jitted and equal to SALib's)",
+        default=DEFAULT_METHODS,
+        default_doc='`["sobol", "efast"]`',
+        doc="estimators (Sobol', eFAST: SALib samples, jitted analysis equal to SALib's; "
+        "pce: polynomial chaos, indices from its coefficients)",
     )
     samples: int = setting(
         integer(minimum=1),
@@ -119,6 +122,26 @@ class SensitivitySpec:
         default_doc="same cost as Sobol'",
         type_doc="integer > 64",
         doc="eFAST N per input (M = 4)",
+    )
+    pce_samples: int | None = setting(
+        integer(minimum=1),
+        default=None,
+        default_doc="`max(128, 64 D)`",
+        type_doc="integer ≥ 16",
+        doc="PCE model runs (768 for D = 12 inputs)",
+    )
+    pce_max_loo_error: float = setting(
+        number(positive=True),
+        default=0.01,
+        type_doc="number > 0",
+        doc="largest accepted PCE leave-one-out error (relative); above it the job fails",
+    )
+    allow_failed_runs: float = setting(
+        number(minimum=0.0, maximum=1.0),
+        default=0.0,
+        type_doc="0 ≤ number ≤ 1",
+        doc="fraction of model runs that may fail (non-finite torques) and be dropped from "
+        "a PCE fit; any failure fails Sobol' and eFAST",
     )
     seed: int = uq.seed_setting("seed of sampling and bootstrap (SALib treats 0 as no seed)")
     percent_of: str = setting(
@@ -156,7 +179,11 @@ class SensitivitySpec:
 
     def sample_keys(self) -> uq.SampleSizes:
         """Each method's sample-count key and value (eFAST's ``None``: matching Sobol')."""
-        return {"sobol": ("samples", self.samples), "efast": ("efast_samples", self.efast_samples)}
+        return {
+            "sobol": ("samples", self.samples),
+            "efast": ("efast_samples", self.efast_samples),
+            "pce": ("pce_samples", self.pce_samples),
+        }
 
     @property
     def tolerance_length_m(self) -> float:
@@ -266,11 +293,17 @@ class SensitivityResult(JobResult):
 
 
 def sample_sizes(spec: SensitivitySpec, num_vars: int) -> dict[str, int]:
-    """N per method: the Sobol' base N, and eFAST's (given, or matching the Sobol' cost)."""
+    """N per method: the Sobol' base N, eFAST's (given, or matching the Sobol' cost), the
+    PCE's model runs (given, or :func:`~planar_tui.sensitivity.pce.default_pce_samples`)."""
     from planar_tui.sensitivity.engine import default_efast_samples
+    from planar_tui.sensitivity.pce import default_pce_samples
 
     efast = spec.efast_samples or default_efast_samples(spec.samples, num_vars)
-    return {"sobol": spec.samples, "efast": efast}
+    return {
+        "sobol": spec.samples,
+        "efast": efast,
+        "pce": spec.pce_samples or default_pce_samples(num_vars),
+    }
 
 
 SensitivityJob = PreparedJob[SensitivitySpec, SerialRobot, SensitivityPrepared]
@@ -287,7 +320,8 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
     """
     import numpy as np
 
-    from planar_tui.sensitivity.engine import analyse, build_problem, evaluate, unit_design
+    from planar_tui.sensitivity.engine import build_problem, evaluate, unit_design
+    from planar_tui.sensitivity.pce import pce_unit_design
     from planar_tui.sensitivity.results import Analysis, csv_table, sensitivity_percent
 
     spec, robot, posture = job.spec, job.robot, job.prepared.posture
@@ -298,7 +332,13 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
     progress.start(len(spec.methods), "sampling")
     designs = {}
     for method in spec.methods:
-        designs[method] = unit_design(method, problem.num_vars, sizes[method], spec.seed, progress)
+        if method == "pce":
+            designs[method] = pce_unit_design(problem.num_vars, sizes[method], spec.seed)
+            progress.advance(1.0, method)
+        else:
+            designs[method] = unit_design(
+                method, problem.num_vars, sizes[method], spec.seed, progress
+            )
     states = [(method, speed) for speed in spec.speeds_rad_s for method in spec.methods]
     n = robot.n_links
     alpha = np.full(n, spec.alpha_rad_s2)
@@ -313,22 +353,30 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
         )  # fmt: skip
     progress.start(len(states), "analysis")
     analyses = []
+    notes = []
     for method, speed in states:
-        indices = analyse(
-            method, outputs.pop((method, speed)), problem.num_vars, spec.seed, progress,
+        indices, loo, note = analyse_outputs(
+            job, problem, method, designs[method], outputs.pop((method, speed)), progress,
             f"{method} {speed:g} rad/s",
         )  # fmt: skip
+        notes += [f"{method} {speed:g} rad/s: {note}"] if note else []
         percent = sensitivity_percent(indices, spec.percent_of)
-        analyses.append(Analysis(method, posture.label, speed, problem.names, indices, percent))
+        analyses.append(
+            Analysis(method, posture.label, speed, problem.names, indices, percent,
+                     runs=len(designs[method]), loo_error=loo)
+        )  # fmt: skip
     label = robot.label
     kappa = posture.condition_number
     sobol_conf = [float(a.indices[[1, 3]].max()) for a in analyses if a.method == "sobol"]
+    loo = [float(a.loo_error.max()) for a in analyses if a.loo_error is not None]
     summary = (
         f"{label} {posture.label}"
         + (f" (κ = {kappa:.6g})" if math.isfinite(kappa) else "")
         + f", {len(spec.speeds_rad_s)} speed(s), "
         + ", ".join(f"{m} N={sizes[m]}" for m in spec.methods)
         + (f", max Sobol' CI ±{max(sobol_conf):.4f}" if sobol_conf else "")
+        + (f", max PCE LOO error {max(loo):.2g}" if loo else "")
+        + "".join(f"; {note}" for note in notes)
     )
     return SensitivityResult(
         table=csv_table(label, analyses),
@@ -338,6 +386,42 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
         analyses=analyses,
         samples=sizes,
     )
+
+
+def analyse_outputs(
+    job: SensitivityJob,
+    problem: Any,
+    method: str,
+    unit: Any,
+    outputs: Any,
+    progress: Progress,
+    detail: str,
+) -> tuple[Any, Any, str]:
+    """(4, n, D) indices of the torques ``outputs`` of the design ``unit``, the PCE's LOO
+    error per torque (``None`` for Sobol', eFAST) and a note on dropped runs (``""``).
+    Failed runs (non-finite torques) and a PCE whose LOO error exceeds
+    ``pce_max_loo_error`` are a :class:`PresetError` naming the key to change."""
+    from planar_tui.sensitivity.engine import analyse
+    from planar_tui.sensitivity.failed_runs import FailedRuns, check_failed_runs
+    from planar_tui.sensitivity.pce import PceError, job_indices
+
+    spec = job.spec
+    torques = [f"tau{i + 1}" for i in range(outputs.shape[1])]
+    try:
+        if method != "pce":
+            check_failed_runs(outputs, unit, problem.names, 0.0, can_drop=False)
+            indices = analyse(method, outputs, problem.num_vars, spec.seed, progress, detail)
+            return indices, None, ""
+        indices, loo, note = progress.wait_for(
+            job_indices, unit, outputs, spec.seed, problem.names, torques,
+            spec.pce_max_loo_error, spec.allow_failed_runs,
+        )  # fmt: skip
+        progress.advance(1.0, detail)
+        return indices, loo, note
+    except (PceError, FailedRuns) as error:
+        raise PresetError(
+            job.preset_path, f"{job.key}.{error.key}", error.problem, error.expected
+        ) from None
 
 
 def render_sensitivity(
@@ -388,7 +472,7 @@ JOB_KIND = JobKind(
     robot_kind="robot",
     settings=SensitivitySpec,
     run=run_sensitivity,
-    summary="Sobol'/eFAST sensitivity of the joint torques to lengths and masses",
+    summary="Sobol'/eFAST/PCE sensitivity of the joint torques to lengths and masses",
     render=render_sensitivity,
     prepare=prepare_sensitivity,
     point_figures=point_figures,

@@ -32,7 +32,8 @@ class Analysis:
 
     ``outputs`` names the n outputs in tables (default ``τ1 … τn``, the torques) and
     ``context`` replaces "posture · speed" in a table's title (e.g. ``t = 1 s`` for the
-    motion job, whose analyses share a time instead of a posture and speed)."""
+    motion job, whose analyses share a time instead of a posture and speed); ``runs`` the
+    model runs the method made, ``loo_error`` a PCE's leave-one-out error per output."""
 
     method: str
     posture: str
@@ -42,6 +43,8 @@ class Analysis:
     percent: np.ndarray  # (n, D)
     outputs: tuple[str, ...] = ()
     context: str = ""
+    runs: int = 0
+    loo_error: np.ndarray | None = None  # (n,) for a PCE
 
     def output_labels(self) -> tuple[str, ...]:
         """The n outputs' row labels: ``outputs``, or the torques ``τ1 … τn``."""
@@ -73,14 +76,38 @@ def index_rows(group: Sequence[Analysis]) -> Iterator[tuple[int, tuple]]:
                 yield k, (name, a.method, s1, s1_conf, st, st_conf, float(a.percent[k, j]))
 
 
+def run_cells(analyses: Sequence[Analysis]) -> Callable[[str, int], tuple]:
+    """The cells after the index columns of (method, output k): ``runs``, and ``loo_error``
+    when a PCE is among ``analyses`` (empty for the other methods)."""
+    by_method = {a.method: a for a in analyses}
+    with_loo = any(a.loo_error is not None for a in analyses)
+
+    def cells(method: str, k: int) -> tuple:
+        analysis = by_method[method]
+        if not with_loo:
+            return (analysis.runs,)
+        loo = analysis.loo_error
+        return analysis.runs, "" if loo is None else float(loo[k])
+
+    return cells
+
+
+def run_columns(analyses: Sequence[Analysis]) -> tuple[str, ...]:
+    """``("runs",)``, plus ``"loo_error"`` when a PCE is among ``analyses``."""
+    with_loo = any(a.loo_error is not None for a in analyses)
+    return ("runs", "loo_error") if with_loo else ("runs",)
+
+
 def csv_table(robot_label: str, analyses: list[Analysis]) -> CsvTable:
-    """One row per posture × speed × torque × parameter × method, in run order."""
-    rows = [
-        (robot_label, posture, float(speed), torque + 1, *cells)
-        for (posture, speed), group in grouped(analyses, _posture_speed).items()
-        for torque, cells in index_rows(group)
-    ]
-    return CsvTable(CSV_HEADER, rows)
+    """One row per posture × speed × torque × parameter × method, in run order; the
+    :func:`run_columns` last."""
+    rows = []
+    for (posture, speed), group in grouped(analyses, _posture_speed).items():
+        extra = run_cells(group)
+        for torque, cells in index_rows(group):
+            rows.append((robot_label, posture, float(speed), torque + 1, *cells,
+                         *extra(cells[1], torque)))  # fmt: skip
+    return CsvTable(CSV_HEADER + run_columns(analyses), rows)
 
 
 def _posture_speed(analysis: Analysis) -> tuple[str, float]:

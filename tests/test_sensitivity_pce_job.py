@@ -1,0 +1,120 @@
+"""The ``"pce"`` method of the [sensitivity] job end to end.
+
+Against the closed form (``tests/test_sensitivity_oracle.singular_indices``: the bilinear
+gravity torques of a 4R at rest in its singular posture, wide tolerances so that the
+interactions matter) at the default ``pce_samples``; the CSV's ``runs`` and ``loo_error``
+columns; a LOO error above ``pce_max_loo_error`` and failed model runs fail the job with one
+line naming the key to change; ``allow_failed_runs`` drops them and says so.
+"""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from planar_tui.batch import run_job
+from planar_tui.errors import PresetError
+from planar_tui.presets import load_preset
+from planar_tui.sensitivity import engine
+from tests.test_sensitivity_oracle import singular_indices
+
+LENGTHS, MASSES = [0.3, 0.25, 0.2, 0.15], [1.2, 0.9, 0.6, 0.3]
+ROBOT_4R = f"""
+[robot]
+name = "4R"
+lengths_m = {LENGTHS}
+masses_kg = {MASSES}
+inertias_kgm2 = [0.05, 0.05, 0.05, 0.05]
+"""
+WIDE = "tolerance_length_mm = 100\ntolerance_mass_g = 250\nspeed_rad_s = 0\n"
+
+
+def write_preset(tmp_path: Path, body: str) -> Path:
+    path = tmp_path / "job.toml"
+    path.write_text(ROBOT_4R + "\n[sensitivity]\n" + body, encoding="utf-8")
+    return path
+
+
+def rows_of(path: Path) -> list[dict]:
+    with path.open(encoding="utf-8") as stream:
+        return list(csv.DictReader(stream))
+
+
+def test_pce_matches_the_bilinear_closed_form_at_the_default_runs(tmp_path, cli):
+    preset = write_preset(tmp_path, WIDE + 'methods = ["pce", "sobol"]\nsamples = 64\n'
+                          'output = "p.csv"\n')  # fmt: skip
+    result = cli("run", preset, "--out-dir", tmp_path)
+    assert result.exit_code == 0, result.output
+    rows = rows_of(tmp_path / "p.csv")
+    assert list(rows[0])[-2:] == ["runs", "loo_error"]
+    first, total = singular_indices(LENGTHS, MASSES, 0.1, 0.25)
+    names = [f"l{i}" for i in range(1, 5)] + [f"m{i}" for i in range(1, 5)]
+    pce = [r for r in rows if r["method"] == "pce"]
+    assert len(pce) == 4 * 8 and {r["runs"] for r in pce} == {"512"}  # max(128, 64 D), D = 8
+    for r in pce:
+        i, j = int(r["torque"]) - 1, names.index(r["parameter"])
+        assert abs(float(r["S1"]) - first[i, j]) <= 0.01
+        assert abs(float(r["ST"]) - total[i, j]) <= 0.01
+        assert float(r["loo_error"]) < 1e-8
+    assert (total - first).max() > 0.02  # interactions matter: ST ≠ S1 is checked
+    sobol = [r for r in rows if r["method"] == "sobol"]
+    assert {r["runs"] for r in sobol} == {str(64 * 10)} and {r["loo_error"] for r in sobol} == {""}
+    assert "max PCE LOO error" in result.output
+
+
+def test_without_pce_the_csv_gains_only_the_runs_column(tmp_path, cli):
+    preset = write_preset(tmp_path, 'samples = 16\nefast_samples = 65\noutput = "s.csv"\n')
+    assert cli("run", preset, "--out-dir", tmp_path).exit_code == 0
+    header = list(rows_of(tmp_path / "s.csv")[0])
+    assert header[-2:] == ["percent", "runs"]
+
+
+def test_a_loo_error_above_the_bound_fails_with_one_line(tmp_path, cli):
+    preset = write_preset(
+        tmp_path, 'methods = ["pce"]\nposture = [10, 20, 30, 40]\npce_samples = 24\n'
+        "pce_max_loo_error = 1e-12\nspeed_rad_s = 2\n",
+    )  # fmt: skip
+    result = cli("run", preset, "--out-dir", tmp_path)
+    assert result.exit_code == 2
+    assert result.stderr.count("error:") == 1  # one line, after the progress display
+    line = result.stderr.strip().splitlines()[-1]
+    assert line.startswith(f"error: {preset}: sensitivity.pce_samples: PCE leave-one-out error ")
+    assert "exceeds pce_max_loo_error = 1e-12 (expected raise pce_samples (now 24) or " in line
+    assert not list(tmp_path.glob("*.csv"))
+
+
+def test_failed_runs_fail_the_job_unless_allowed(tmp_path, monkeypatch):
+    """Model runs with l1 in the top tenth of its range give NaN torques."""
+    evaluate = engine.evaluate
+
+    def failing(problem, unit, *args, **kwargs):
+        torques = evaluate(problem, unit, *args, **kwargs)
+        torques[unit[:, 0] > 0.9] = np.nan
+        return torques
+
+    monkeypatch.setattr(engine, "evaluate", failing)
+    body = WIDE + 'methods = ["pce"]\n'
+    (job,) = load_preset(write_preset(tmp_path, body)).jobs_of("sensitivity")
+    with pytest.raises(PresetError) as raised:
+        run_job(job)
+    message = str(raised.value)
+    assert message.startswith(f"error: {tmp_path / 'job.toml'}: sensitivity.allow_failed_runs: ")
+    assert "of 512 model runs failed (NaN or divergence), from l1 high" in message
+    assert "(expected set allow_failed_runs ≥ 0.0997 to drop them)" in message  # 51 / 512
+    (job,) = load_preset(write_preset(tmp_path, body + "allow_failed_runs = 0.12\n")).jobs_of(
+        "sensitivity"
+    )
+    result = run_job(job)
+    assert "model runs failed (NaN or divergence), from l1 high: dropped" in result.summary
+    _, total = singular_indices(LENGTHS, MASSES, 0.1, 0.25)
+    (analysis,) = result.analyses
+    assert np.abs(analysis.indices[2] - total).max() <= 0.01
+    for method in ("sobol", "efast"):
+        sobol_body = body.replace('["pce"]', f'["{method}"]') + "samples = 16\nefast_samples = 65\n"
+        path = write_preset(tmp_path, sobol_body + "allow_failed_runs = 0.5\n")
+        (job,) = load_preset(path).jobs_of("sensitivity")
+        with pytest.raises(PresetError, match="only the pce method can drop failed runs"):
+            run_job(job)
