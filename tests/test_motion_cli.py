@@ -54,7 +54,7 @@ def test_motion_command_writes_band_and_indices(cli, tmp_path):
     assert [float(row[0]) for row in band[1:]] == [0.0, 0.005, 0.01]
     indices = read_csv(tmp_path / "tiny-indices.csv")
     assert indices[0] == ["output", "t_s", "parameter", "method", "S1", "S1_conf", "ST",
-                          "ST_conf", "percent"]  # fmt: skip
+                          "ST_conf", "percent", "runs"]  # fmt: skip
     # 2 times × 4 outputs × 4 parameters × 1 method
     assert len(indices) - 1 == 2 * 4 * 4
     assert "% of ST per output · t = 0.01 s" in result.stdout
@@ -120,7 +120,7 @@ def test_bad_times_and_choices_name_the_allowed_values(cli, tmp_path):
     assert result.exit_code == 2
     assert result.stderr == (
         f"error: {preset}: motion_uncertainty.methods: has 'bootstrap' (expected one of "
-        '"montecarlo", "sobol", "efast" or a non-empty list of them)\n'
+        '"montecarlo", "sobol", "efast", "pce" or a non-empty list of them)\n'
     )
     assert not list(tmp_path.glob("*.csv"))
 

@@ -34,7 +34,7 @@ PERCENTILES = (5.0, 50.0, 95.0)
 
 
 #: The methods whose rows are independent uniform robots (:meth:`Design.band_rows`).
-BAND_METHODS = ("montecarlo", "sobol")
+BAND_METHODS = ("montecarlo", "sobol", "pce")
 
 
 @dataclass(frozen=True)
@@ -62,6 +62,8 @@ class Design:
         Monte-Carlo or Sobol' rows is a ``ValueError``."""
         if "montecarlo" in self.rows:
             return np.arange(self.samples)[self.rows["montecarlo"]]
+        if "pce" in self.rows:  # a scrambled Sobol' sequence in D dimensions: uniform robots
+            return np.arange(self.samples)[self.rows["pce"]]
         if "sobol" in self.rows:
             rows = np.arange(self.samples)[self.rows["sobol"]]
             step = self.unit.shape[1] + 2
@@ -85,16 +87,25 @@ def montecarlo_design(num_vars: int, samples: int, seed: int) -> np.ndarray:
 
 
 def build_design(
-    methods: Sequence[str], num_vars: int, samples: int, seed: int, progress: Progress | None
+    methods: Sequence[str],
+    num_vars: int,
+    samples: int,
+    seed: int,
+    progress: Progress | None,
+    pce_samples: int = 0,
 ) -> Design:
     """The designs of :func:`design_methods` of ``methods`` stacked, in that order (sampling
-    stage of ``progress``, one unit per design)."""
+    stage of ``progress``, one unit per design); the PCE's has ``pce_samples`` rows."""
     from planar_tui.sensitivity.engine import unit_design
+    from planar_tui.sensitivity.pce import pce_unit_design
 
     parts, rows, start = [], {}, 0
     for method in design_methods(methods):
-        if method == "montecarlo":
-            part = montecarlo_design(num_vars, samples, seed)
+        if method in ("montecarlo", "pce"):
+            if method == "pce":
+                part = pce_unit_design(num_vars, pce_samples, seed)
+            else:
+                part = montecarlo_design(num_vars, samples, seed)
             if progress is not None:
                 progress.advance(1.0, method)
         else:

@@ -47,7 +47,7 @@ if TYPE_CHECKING:
 
     from planar_tui.sensitivity.results import Analysis
 
-METHODS = ("montecarlo", "sobol", "efast")
+METHODS = ("montecarlo", "sobol", "efast", "pce")
 OUTPUTS = ("angles", "tip")
 #: Recorded band rows by default (``every`` = steps / this, at least 1).
 DEFAULT_RECORDS = 100
@@ -100,8 +100,9 @@ class MotionSpec(RunSettings):
     methods: tuple[str, ...] = uq.methods_setting(
         METHODS,
         default=("montecarlo", "sobol"),
-        doc="Monte Carlo (band), Sobol' and eFAST (indices; SALib's designs); eFAST alone "
-        "adds N Monte-Carlo robots for the band",
+        doc="Monte Carlo (band), Sobol' and eFAST (indices at `at_s`; SALib's designs), pce "
+        "(polynomial chaos: indices at every recorded time and over the trajectory); eFAST "
+        "alone adds N Monte-Carlo robots for the band",
     )
     samples: int = setting(
         integer(minimum=2),
@@ -109,6 +110,26 @@ class MotionSpec(RunSettings):
         type_doc="integer ≥ 2 (Sobol': power of two ≥ 8; eFAST: > 64)",
         doc="Monte Carlo: N robots; Sobol': base N (N·(D+2) robots, D inputs); eFAST: N per "
         "input (N·D robots, and N Monte-Carlo robots for the band without montecarlo or sobol)",
+    )
+    pce_samples: int | None = setting(
+        integer(minimum=1),
+        default=None,
+        default_doc="`max(128, 64 D)`",
+        type_doc="integer ≥ 16",
+        doc="PCE robots (768 for D = 12 inputs)",
+    )
+    pce_max_loo_error: float = setting(
+        number(positive=True),
+        default=0.01,
+        type_doc="number > 0",
+        doc="largest accepted PCE leave-one-out error of any output at any recorded time",
+    )
+    allow_failed_runs: float = setting(
+        number(minimum=0.0, maximum=1.0),
+        default=0.0,
+        type_doc="0 ≤ number ≤ 1",
+        doc="fraction of PCE robots that may fail (a non-finite output: a diverged "
+        "simulation) and be dropped from the fit; any failure fails Sobol' and eFAST",
     )
     seed: int = uq.seed_setting("seed of sampling and bootstrap")
     at_s: tuple[float, ...] | None = setting(
@@ -152,8 +173,15 @@ class MotionSpec(RunSettings):
         return values
 
     def sample_keys(self) -> uq.SampleSizes:
-        """Every method's sample count is ``samples``."""
-        return dict.fromkeys(METHODS, ("samples", self.samples))
+        """Every method's sample count is ``samples``, the PCE's ``pce_samples``."""
+        return {**dict.fromkeys(METHODS, ("samples", self.samples)),
+                "pce": ("pce_samples", self.pce_samples)}  # fmt: skip
+
+    def pce_robots(self, num_vars: int) -> int:
+        """The PCE's robots: ``pce_samples``, else ``max(128, 64 D)``."""
+        from planar_tui.sensitivity.pce import default_pce_samples
+
+        return self.pce_samples or default_pce_samples(num_vars)
 
     @property
     def record_every(self) -> int:
@@ -184,10 +212,80 @@ def indices_file(job: MotionJob) -> str:
 
 
 def extra_outputs(job: MotionJob) -> dict[str, str]:
-    """The indices CSV when an index method runs."""
+    """The indices CSV when an index method runs; with ``pce`` the aggregated indices'
+    CSV beside it (``-indices`` → ``-aggregated``)."""
+    files = {}
     if any(uq.METHODS[method].indices for method in job.spec.methods):
-        return {"indices": indices_file(job)}
-    return {}
+        files["indices"] = indices_file(job)
+    if "pce" in job.spec.methods:
+        stem = (
+            files["indices"][:-4] if files["indices"].lower().endswith(".csv") else files["indices"]
+        )
+        stem = stem[: -len("-indices")] if stem.endswith("-indices") else stem
+        files["aggregated"] = f"{stem}-aggregated.csv"
+    return files
+
+
+def check_failed(job: MotionJob, at_outputs, design, method: str, problem) -> None:
+    """Sobol' and eFAST cannot drop robots: any non-finite output of ``method``'s robots
+    at an ``at_s`` time fails the job (a :class:`PresetError` naming the corner)."""
+    import numpy as np
+
+    from planar_tui.sensitivity.failed_runs import FailedRuns, check_failed_runs
+
+    rows = design.rows[method]
+    outputs = np.stack([at_outputs[step][rows] for step in sorted(at_outputs)], axis=1)
+    try:
+        check_failed_runs(outputs, design.unit[rows], problem.names, 0.0, can_drop=False)
+    except FailedRuns as error:
+        raise PresetError(job.preset_path, f"{job.key}.methods", error.problem,
+                          error.expected) from None  # fmt: skip
+
+
+def analyse_trajectory(job, unit, trajectory, problem, labels, progress):
+    """``(analyses, aggregated table, notes)`` of the PCE robots' outputs at every stop
+    (``trajectory``: {step: (S, M)}): failed robots checked (dropped when
+    ``allow_failed_runs`` allows), one expansion per output over its times
+    (:func:`~planar_tui.sensitivity.pce.trajectory_indices`), its LOO error checked; an
+    :class:`~planar_tui.sensitivity.results.Analysis` per time and the aggregated indices
+    (Gamboa et al. 2014) of each output and of all of them."""
+    import numpy as np
+
+    from planar_tui.csvio import CsvTable
+    from planar_tui.sensitivity.failed_runs import FailedRuns, check_failed_runs
+    from planar_tui.sensitivity.pce import PceError, check_loo, trajectory_indices
+    from planar_tui.sensitivity.results import Analysis, sensitivity_percent
+
+    spec = job.spec
+    steps = sorted(trajectory)
+    outputs = np.stack([trajectory[step] for step in steps], axis=1)  # (S, K, M)
+    times = [step * spec.step_s for step in steps]
+    try:
+        keep, note = check_failed_runs(outputs, unit, problem.names, spec.allow_failed_runs,
+                                       can_drop=True)  # fmt: skip
+        result = progress.wait_for(trajectory_indices, unit[keep], outputs[keep], spec.seed)
+        names = [f"{label} at t = {t:g} s" for t in times for label in labels]
+        check_loo([result], names, spec.pce_max_loo_error, len(unit))
+    except (PceError, FailedRuns) as error:
+        raise PresetError(job.preset_path, f"{job.key}.{error.key}", error.problem,
+                          error.expected) from None  # fmt: skip
+    progress.advance(1.0, "pce")
+    analyses = []
+    for k, t_s in enumerate(times):
+        indices = result.indices[:, k]
+        analyses.append(Analysis("pce", "", t_s, problem.names, indices,
+                                 sensitivity_percent(indices, "ST"), tuple(labels),
+                                 f"t = {t_s:g} s", runs=len(unit),
+                                 loo_error=result.loo_error[k]))  # fmt: skip
+    rows = []
+    summary = [*zip(labels, result.aggregated, strict=True), ("all outputs", result.overall)]
+    for label, (first, total) in summary:
+        percent = sensitivity_percent(np.stack([first, first, total, total])[:, None], "ST")[0]
+        for j, name in enumerate(problem.names):
+            rows.append((label, name, "pce", float(first[j]), float(total[j]), float(percent[j]),
+                         len(unit)))  # fmt: skip
+    table = CsvTable(("output", "parameter", "method", "S1", "ST", "percent", "runs"), rows)
+    return analyses, table, ((note,) if note else ())
 
 
 def num_inputs(spec: MotionSpec, robot: SerialRobot) -> int:
@@ -201,7 +299,10 @@ def robot_count(spec: MotionSpec, robot: SerialRobot) -> int:
     from planar_tui.motion.engine import design_methods
 
     d = num_inputs(spec, robot)
-    return sum(uq.design_rows(m, d, spec.samples) for m in design_methods(spec.methods))
+    return sum(
+        spec.pce_robots(d) if m == "pce" else uq.design_rows(m, d, spec.samples)
+        for m in design_methods(spec.methods)
+    )
 
 
 def extra_band_note(spec: MotionSpec) -> str:
@@ -322,7 +423,8 @@ def run_motion(
     lengths, masses, inertias = robot.arrays()
     rod = inertias == masses * lengths * lengths / 12.0
     progress.start(len(engine.design_methods(spec.methods)), "sampling")
-    design = engine.build_design(spec.methods, problem.num_vars, spec.samples, spec.seed, progress)
+    design = engine.build_design(spec.methods, problem.num_vars, spec.samples, spec.seed, progress,
+                                 spec.pce_robots(problem.num_vars))  # fmt: skip
     robots, params = engine.make_robots(
         device.device, problem, design, rod, robot,
         np.radians(np.array(spec.theta0_deg, dtype=np.float64)),
@@ -338,6 +440,8 @@ def run_motion(
     names = engine.output_names(robot.n_links, spec.outputs)
     band = np.empty((len(record_steps), 5, len(names)))
     at_outputs = {}
+    pce_rows = design.rows.get("pce")
+    trajectory = {}  # the PCE robots' outputs at every stop
 
     def on_stop(step: int, angles) -> None:
         if step in records:
@@ -345,16 +449,31 @@ def run_motion(
             band[records[step]] = engine.band_statistics(values)
         if step in at_steps:
             at_outputs[step] = engine.take_outputs(lengths_s, angles, spec.outputs)
+        if pce_rows is not None:
+            trajectory[step] = engine.take_outputs(lengths_s[pce_rows], angles[pce_rows],
+                                                   spec.outputs)  # fmt: skip
 
     total = design.samples * spec.n_steps
     progress.start(total, "integrating", f"{design.samples} robots on {device.device_note}")
     engine.integrate(robots, spec.step_s, stops, on_stop, progress)
-    index_methods = [m for m in spec.methods if m != "montecarlo"]
-    progress.start(max(1, len(index_methods) * len(at_steps)), "analysis")
+    index_methods = [m for m in spec.methods if m not in ("montecarlo", "pce")]
+    progress.start(max(1, len(index_methods) * len(at_steps) + (pce_rows is not None)),
+                   "analysis")  # fmt: skip
     labels = engine.output_labels(names)
+    for method in index_methods:
+        check_failed(job, at_outputs, design, method, problem)
     analyses, notes = analyse_times(
         design, at_outputs, spec, problem, labels, index_methods, progress
     )
+    time_analyses, aggregated = [], None
+    if pce_rows is not None:
+        time_analyses, aggregated, pce_notes = analyse_trajectory(
+            job, design.unit[pce_rows], trajectory, problem, labels, progress
+        )
+        at_times = {step * spec.step_s for step in at_steps}
+        analyses += [a for a in time_analyses if a.speed_rad_s in at_times]
+        analyses.sort(key=lambda a: a.speed_rad_s)  # stable: method order within a time
+        notes = (*notes, *pce_notes)
     band_note = extra_band_note(spec)
     if band_note:
         notes = (band_note, *notes)
@@ -368,9 +487,17 @@ def run_motion(
         + f" at t = {t_s[-1]:g} s"
         + (f"; band from {spec.samples} extra Monte-Carlo robots" if band_note else "")
     )
+    extra_tables = {}
+    if analyses:
+        shown = {id(a) for a in analyses}
+        every = sorted([*analyses, *(a for a in time_analyses if id(a) not in shown)],
+                       key=lambda a: a.speed_rad_s)  # fmt: skip
+        extra_tables["indices"] = indices_table(every, names)
+    if aggregated is not None:
+        extra_tables["aggregated"] = aggregated
     return MotionResult(
         table=band_table(t_s, band, names),
-        extra_tables={"indices": indices_table(analyses, names)} if analyses else {},
+        extra_tables=extra_tables,
         summary=summary,
         robot_label=robot.label,
         t_s=t_s,
@@ -404,7 +531,7 @@ JOB_KIND = JobKind(
     robot_kind="robot",
     settings=MotionSpec,
     run=run_motion,
-    summary="Monte-Carlo band and Sobol'/eFAST indices of the motion under tolerances",
+    summary="Monte-Carlo band and Sobol'/eFAST/PCE indices of the motion under tolerances",
     render=render_motion,
     extra_outputs=extra_outputs,
     prepare=prepare_motion,

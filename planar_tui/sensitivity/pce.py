@@ -423,8 +423,9 @@ def pce_indices(
 
 def check_loo(fits, names, max_loo_error: float, samples: int, key_samples="pce_samples"):
     """Raise :class:`PceError` naming the worst output when a LOO error exceeds
-    ``max_loo_error``; ``names`` labels the outputs in the fits' order."""
-    errors = np.concatenate([fit.loo_error for fit in fits])
+    ``max_loo_error``; ``names`` labels the outputs in the fits' order (a fit's
+    ``loo_error`` flattened in C order: a trajectory's (K, M) time by time)."""
+    errors = np.concatenate([np.ravel(fit.loo_error) for fit in fits])
     worst = int(np.argmax(errors))
     if errors[worst] > max_loo_error:
         raise PceError(
