@@ -226,7 +226,13 @@ def extra_outputs(job: MotionJob) -> dict[str, str]:
     return files
 
 
-def check_failed(job: MotionJob, at_outputs, design, method: str, problem) -> None:
+def check_failed(
+    job: PreparedJob[MotionSpec, SerialRobot, MotionPrepared],
+    at_outputs,
+    design,
+    method: str,
+    problem,
+) -> None:
     """Sobol' and eFAST cannot drop robots: any non-finite output of ``method``'s robots
     at an ``at_s`` time fails the job (a :class:`PresetError` naming the corner)."""
     import numpy as np
