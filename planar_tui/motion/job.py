@@ -111,24 +111,12 @@ class MotionSpec(RunSettings):
         doc="Monte Carlo: N robots; Sobol': base N (N·(D+2) robots, D inputs); eFAST: N per "
         "input (N·D robots, and N Monte-Carlo robots for the band without montecarlo or sobol)",
     )
-    pce_samples: int | None = setting(
-        integer(minimum=1),
-        default=None,
-        default_doc="`max(128, 64 D)`",
-        type_doc="integer ≥ 16",
-        doc="PCE robots (768 for D = 12 inputs)",
+    pce_samples: int | None = uq.pce_samples_setting("robots")
+    pce_max_loo_error: float = uq.pce_max_loo_setting(
+        "largest accepted PCE leave-one-out error of any output at any recorded time",
     )
-    pce_max_loo_error: float = setting(
-        number(positive=True),
-        default=0.01,
-        type_doc="number > 0",
-        doc="largest accepted PCE leave-one-out error of any output at any recorded time",
-    )
-    allow_failed_runs: float = setting(
-        number(minimum=0.0, maximum=1.0),
-        default=0.0,
-        type_doc="0 ≤ number ≤ 1",
-        doc="fraction of PCE robots that may fail (a non-finite output: a diverged "
+    allow_failed_runs: float = uq.allow_failed_runs_setting(
+        "fraction of PCE robots that may fail (a non-finite output: a diverged "
         "simulation) and be dropped from the fit; any failure fails Sobol' and eFAST",
     )
     seed: int = uq.seed_setting("seed of sampling and bootstrap")

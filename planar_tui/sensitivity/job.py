@@ -123,24 +123,12 @@ class SensitivitySpec:
         type_doc="integer > 64",
         doc="eFAST N per input (M = 4)",
     )
-    pce_samples: int | None = setting(
-        integer(minimum=1),
-        default=None,
-        default_doc="`max(128, 64 D)`",
-        type_doc="integer ≥ 16",
-        doc="PCE model runs (768 for D = 12 inputs)",
+    pce_samples: int | None = uq.pce_samples_setting("model runs")
+    pce_max_loo_error: float = uq.pce_max_loo_setting(
+        "largest accepted PCE leave-one-out error (relative); above it the job fails",
     )
-    pce_max_loo_error: float = setting(
-        number(positive=True),
-        default=0.01,
-        type_doc="number > 0",
-        doc="largest accepted PCE leave-one-out error (relative); above it the job fails",
-    )
-    allow_failed_runs: float = setting(
-        number(minimum=0.0, maximum=1.0),
-        default=0.0,
-        type_doc="0 ≤ number ≤ 1",
-        doc="fraction of model runs that may fail (non-finite torques) and be dropped from "
+    allow_failed_runs: float = uq.allow_failed_runs_setting(
+        "fraction of model runs that may fail (non-finite torques) and be dropped from "
         "a PCE fit; any failure fails Sobol' and eFAST",
     )
     seed: int = uq.seed_setting("seed of sampling and bootstrap (SALib treats 0 as no seed)")
