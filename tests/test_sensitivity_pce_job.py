@@ -118,3 +118,30 @@ def test_failed_runs_fail_the_job_unless_allowed(tmp_path, monkeypatch):
         (job,) = load_preset(path).jobs_of("sensitivity")
         with pytest.raises(PresetError, match="only the pce method can drop failed runs"):
             run_job(job)
+
+
+def test_a_path_gives_peak_rms_and_every_step_against_the_closed_form_at_rest(tmp_path, cli):
+    """A path from the singular posture: at t = 0 the 4R is at rest there, so the first
+    row of every torque in the path CSV is the bilinear closed form; the peak and RMS
+    indices of PCE and Sobol' agree."""
+    body = WIDE + 'methods = ["pce", "sobol"]\nsamples = 256\noutput = "p.csv"\n'
+    body += "path = { to_deg = [60, -30, 45, 20], duration_s = 0.8, steps = 10 }\n"
+    result = cli("run", write_preset(tmp_path, body), "--out-dir", tmp_path)
+    assert result.exit_code == 0, result.output
+    path_rows = rows_of(tmp_path / "p-path.csv")
+    assert len(path_rows) == 11 * 4 * 8 * 2  # steps + 1, torques, inputs, methods
+    first, total = singular_indices(LENGTHS, MASSES, 0.1, 0.25)
+    names = [f"l{i}" for i in range(1, 5)] + [f"m{i}" for i in range(1, 5)]
+    for r in path_rows:
+        if float(r["t_s"]) == 0.0 and r["method"] == "pce":
+            i, j = int(r["output"][3]) - 1, names.index(r["parameter"])
+            assert abs(float(r["ST"]) - total[i, j]) <= 0.01
+            assert abs(float(r["S1"]) - first[i, j]) <= 0.01
+    main = rows_of(tmp_path / "p.csv")
+    assert {r["torque"] for r in main} == {str(k) for k in range(1, 9)}  # 4 peaks, 4 RMS
+    pce = {(r["torque"], r["parameter"]): float(r["ST"]) for r in main if r["method"] == "pce"}
+    sobol = [r for r in main if r["method"] == "sobol"]
+    for r in sobol:
+        error = abs(pce[r["torque"], r["parameter"]] - float(r["ST"]))
+        assert error <= 3 * float(r["ST_conf"]) + 0.01
+    assert "peak|τ1|" in result.output and "RMS τ4" in result.output

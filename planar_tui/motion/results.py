@@ -15,17 +15,10 @@ from typing import Any
 import numpy as np
 
 from planar_tui.csvio import CsvTable
-from planar_tui.sensitivity.results import (
-    INDEX_COLUMNS,
-    grouped,
-    index_rows,
-    run_cells,
-    run_columns,
-)
+from planar_tui.sensitivity.results import time_indices_table
 
 #: The band's statistics, in CSV column order.
 BAND_STATISTICS = ("mean", "std", "p5", "p50", "p95")
-INDICES_HEADER = ("output", "t_s", *INDEX_COLUMNS)
 
 
 def band_header(names: Sequence[str]) -> tuple[str, ...]:
@@ -42,12 +35,7 @@ def band_table(t_s: np.ndarray, band: np.ndarray, names: Sequence[str]) -> CsvTa
 def indices_table(analyses: Sequence, names: Sequence[str]) -> CsvTable:
     """The indices CSV: one row per time × output × parameter × method (the time is the
     analyses' ``speed_rad_s`` slot, see :func:`analyse_times`)."""
-    rows = []
-    for t_s, group in grouped(analyses, lambda a: a.speed_rad_s).items():
-        extra = run_cells(group)
-        for k, cells in index_rows(group):
-            rows.append((names[k], float(t_s), *cells, *extra(cells[1], k)))
-    return CsvTable(INDICES_HEADER + run_columns(analyses), rows)
+    return time_indices_table(analyses, names)
 
 
 def analyse_times(design, at_outputs, spec, problem, labels, methods, progress):

@@ -61,6 +61,42 @@ def _read_posture_request(reader: TableReader, name, default, robot, values) -> 
 per_link(_read_posture_request, "list")  # when it lists angles
 
 
+@dataclass(frozen=True)
+class PathSpec:
+    """A quintic rest-to-rest joint path from the posture to ``to_deg`` in ``duration_s``,
+    sampled at ``steps + 1`` times (:func:`~planar_tui.sensitivity.path.quintic_path`)."""
+
+    to_deg: tuple[float, ...]
+    duration_s: float
+    steps: int
+
+
+#: Most path steps (each is one batched inverse dynamics of every design row).
+MAX_PATH_STEPS = 1000
+
+
+def _read_path(reader: TableReader, name, default, robot, values) -> PathSpec | None:
+    """``{ to_deg = [n angles], duration_s = T, steps = K }`` or absent."""
+    table = reader.raw(name, None)
+    if table is None:
+        return None
+    expected = "{ to_deg = [n angles in degrees], duration_s = T > 0, steps = K >= 1 }"
+    if not isinstance(table, dict):
+        raise reader.error(name, f"is {shown(table)}", expected)
+    inner = TableReader(reader.path, table, reader.key(name), ("to_deg", "duration_s", "steps"))
+    return PathSpec(
+        inner.numbers("to_deg", length=robot.n_links),
+        inner.number("duration_s", positive=True),
+        inner.integer("steps", minimum=1, maximum=MAX_PATH_STEPS),
+    )
+
+
+def _dump_path(path: PathSpec | None) -> Any:
+    if path is None:
+        return None
+    return {"to_deg": list(path.to_deg), "duration_s": path.duration_s, "steps": path.steps}
+
+
 @dataclass(frozen=True, kw_only=True)
 class SensitivitySpec:
     """Settings of one sensitivity job (see ``docs/sensitivity.md``).
@@ -90,6 +126,18 @@ class SensitivitySpec:
     )
     alpha_rad_s2: float = setting(
         number(), default=0.0, type_doc="number", doc="the joint acceleration of every joint"
+    )
+    path: PathSpec | None = setting(
+        _read_path,
+        default=None,
+        default_doc="(none)",
+        dump=_dump_path,
+        type_doc="`{ to_deg = [...], duration_s = T, steps = K }`",
+        doc="torques along a quintic rest-to-rest path from the posture to `to_deg` instead "
+        "of one state (speed and acceleration then come from the path): indices of the peak "
+        "absolute torque and the RMS torque of each joint (the table) and of each torque at "
+        "every step "
+        f"(`-path.csv`); at most {MAX_PATH_STEPS} steps",
     )
     tolerance_length_mm: float = uq.tolerance_setting("mm", "half-width of every length's range")
     tolerance_mass_g: float = uq.tolerance_setting("g", "half-width of every mass's range")
@@ -327,13 +375,18 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
             designs[method] = unit_design(
                 method, problem.num_vars, sizes[method], spec.seed, progress
             )
-    states = [(method, speed) for speed in spec.speeds_rad_s for method in spec.methods]
+    speeds = (0.0,) if spec.path is not None else spec.speeds_rad_s
+    states = [(method, speed) for speed in speeds for method in spec.methods]
     n = robot.n_links
     alpha = np.full(n, spec.alpha_rad_s2)
     theta = np.array(posture.theta_rad)
     progress.start(len(states), "evaluation")
     outputs = {}
     for method, speed in states:
+        if spec.path is not None:
+            outputs[method, speed] = path_outputs(problem, designs[method], robot, theta,
+                                                  spec.path, progress)  # fmt: skip
+            continue
         omega = np.full(n, speed)
         outputs[method, speed] = evaluate(
             problem, designs[method], robot, theta, omega, alpha, progress,
@@ -342,16 +395,25 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
     progress.start(len(states), "analysis")
     analyses = []
     notes = []
+    along: list[Analysis] = []
     for method, speed in states:
         indices, loo, note = analyse_outputs(
             job, problem, method, designs[method], outputs.pop((method, speed)), progress,
             f"{method} {speed:g} rad/s",
         )  # fmt: skip
         notes += [f"{method} {speed:g} rad/s: {note}"] if note else []
+        runs = len(designs[method])
+        if spec.path is not None:
+            along.append(Analysis(method, posture.label, 0.0, problem.names, indices,
+                                  sensitivity_percent(indices, "ST"), runs=runs,
+                                  loo_error=loo))  # fmt: skip
+            indices, loo = indices[:, : 2 * n], None if loo is None else loo[: 2 * n]
         percent = sensitivity_percent(indices, spec.percent_of)
+        labels = path_labels(n) if spec.path is not None else ()
+        context = "" if spec.path is None else path_context(posture.label, spec.path)
         analyses.append(
             Analysis(method, posture.label, speed, problem.names, indices, percent,
-                     runs=len(designs[method]), loo_error=loo)
+                     labels, context, runs=runs, loo_error=loo)
         )  # fmt: skip
     label = robot.label
     kappa = posture.condition_number
@@ -360,7 +422,11 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
     summary = (
         f"{label} {posture.label}"
         + (f" (κ = {kappa:.6g})" if math.isfinite(kappa) else "")
-        + f", {len(spec.speeds_rad_s)} speed(s), "
+        + (
+            f", {len(spec.speeds_rad_s)} speed(s), "
+            if spec.path is None
+            else f", {path_context(posture.label, spec.path)}, "
+        )
         + ", ".join(f"{m} N={sizes[m]}" for m in spec.methods)
         + (f", max Sobol' CI ±{max(sobol_conf):.4f}" if sobol_conf else "")
         + (f", max PCE LOO error {max(loo):.2g}" if loo else "")
@@ -368,12 +434,68 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
     )
     return SensitivityResult(
         table=csv_table(label, analyses),
+        extra_tables={} if spec.path is None else path_tables(along, spec.path, n),
         summary=summary,
         robot_label=label,
         posture=posture,
         analyses=analyses,
         samples=sizes,
     )
+
+
+def path_outputs(problem, unit, robot, theta_rad, path: PathSpec, progress: Progress):
+    """Model outputs (S, 2n + (K+1) n) along the path: peak |τ_j|, RMS τ_j, then every
+    torque at every step (step-major)."""
+    import numpy as np
+
+    from planar_tui.sensitivity.path import path_torques, peak_and_rms, quintic_path
+
+    states = quintic_path(theta_rad, np.radians(path.to_deg), path.duration_s, path.steps)
+    torques = path_torques(problem, unit, robot, states, progress)
+    peak, rms = peak_and_rms(torques, states.t_s)
+    return np.concatenate([peak, rms, torques.reshape(len(unit), -1)], axis=1)
+
+
+def path_outputs_files(job: Job[SensitivitySpec, SerialRobot]) -> dict[str, str]:
+    """With a ``path``: its per-step indices beside the job's CSV (``-path.csv``)."""
+    if job.spec.path is None:
+        return {}
+    stem = job.output[:-4] if job.output.lower().endswith(".csv") else job.output
+    return {"path": f"{stem}-path.csv"}
+
+
+def path_labels(n: int) -> tuple[str, ...]:
+    """Row labels of the peak and RMS outputs: ``peak|τ1|`` … ``RMS τn``."""
+    return (*(f"peak|τ{j}|" for j in range(1, n + 1)), *(f"RMS τ{j}" for j in range(1, n + 1)))
+
+
+def path_context(posture: str, path: PathSpec) -> str:
+    """A path table's title: where from, where to, in how long."""
+    to = ", ".join(f"{a:g}" for a in path.to_deg)
+    return f"path {posture} → [{to}] deg in {path.duration_s:g} s"
+
+
+def path_tables(along: list[Analysis], path: PathSpec, n: int) -> dict[str, Any]:
+    """The ``path`` table: the indices of every torque at every step of the path, shaped
+    like the motion indices CSV (``output, t_s, parameter, method, …``)."""
+    import numpy as np
+
+    from planar_tui.sensitivity.results import Analysis, sensitivity_percent, time_indices_table
+
+    steps = path.steps + 1
+    t_s = np.linspace(0.0, path.duration_s, steps)
+    names = tuple(f"tau{j}_Nm" for j in range(1, n + 1))
+    per_time = []
+    for a in along:
+        trajectory = a.indices[:, 2 * n :].reshape(4, steps, n, -1)
+        loo = None if a.loo_error is None else a.loo_error[2 * n :].reshape(steps, n)
+        for k in range(steps):
+            indices = trajectory[:, k]
+            per_time.append(Analysis(a.method, a.posture, float(t_s[k]), a.names, indices,
+                                     sensitivity_percent(indices, "ST"), names, runs=a.runs,
+                                     loo_error=None if loo is None else loo[k]))  # fmt: skip
+    per_time.sort(key=lambda a: a.speed_rad_s)
+    return {"path": time_indices_table(per_time, names)}
 
 
 def analyse_outputs(
@@ -463,6 +585,7 @@ JOB_KIND = JobKind(
     summary="Sobol'/eFAST/PCE sensitivity of the joint torques to lengths and masses",
     render=render_sensitivity,
     prepare=prepare_sensitivity,
+    extra_outputs=path_outputs_files,
     point_figures=point_figures,
     command=Command(
         "sensitivity",

@@ -112,3 +112,18 @@ def csv_table(robot_label: str, analyses: list[Analysis]) -> CsvTable:
 
 def _posture_speed(analysis: Analysis) -> tuple[str, float]:
     return analysis.posture, analysis.speed_rad_s
+
+
+#: The header of a table of indices against time (the motion job's, a path's).
+TIME_INDICES_HEADER = ("output", "t_s", *INDEX_COLUMNS)
+
+
+def time_indices_table(analyses: Sequence[Analysis], names: Sequence[str]) -> CsvTable:
+    """One row per time × output × parameter × method, the time in the analyses'
+    ``speed_rad_s`` slot; the :func:`run_columns` last."""
+    rows = []
+    for t_s, group in grouped(analyses, lambda a: a.speed_rad_s).items():
+        extra = run_cells(group)
+        for k, cells in index_rows(group):
+            rows.append((names[k], float(t_s), *cells, *extra(cells[1], k)))
+    return CsvTable(TIME_INDICES_HEADER + run_columns(analyses), rows)
