@@ -18,6 +18,7 @@ import pytest
 from planar_tui.batch import run_job
 from planar_tui.errors import PresetError
 from planar_tui.presets import load_preset
+from planar_tui.registry import JOB_KINDS
 from planar_tui.sensitivity import engine
 from tests.test_sensitivity_oracle import singular_indices
 
@@ -145,3 +146,6 @@ def test_a_path_gives_peak_rms_and_every_step_against_the_closed_form_at_rest(tm
         error = abs(pce[r["torque"], r["parameter"]] - float(r["ST"]))
         assert error <= 3 * float(r["ST_conf"]) + 0.01
     assert "peak|τ1|" in result.output and "RMS τ4" in result.output
+    (job,) = load_preset(tmp_path / "job.toml").jobs_of("sensitivity")
+    figures = JOB_KINDS["sensitivity"].point_figures(job, run_job(job))
+    assert {"tau1_peak_dominant", "tau4_rms_dominant"} <= set(figures)

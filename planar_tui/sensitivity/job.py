@@ -556,24 +556,27 @@ def point_figures(
     from the second on): the dominant parameter by the percent of the job's first method,
     its percent, the lengths' and the masses' shares (sums of their percents), and the
     largest Sobol' 95 % half-width of ``S1`` and ``ST`` over the parameters (empty without
-    Sobol')."""
+    Sobol'). With a ``path`` the outputs are ``tau{j}_peak`` and ``tau{j}_rms`` instead."""
     method = job.spec.methods[0]
     figures: dict[str, str | float] = {}
-    for k, speed in enumerate(job.spec.speeds_rad_s, start=1):
+    path = job.spec.path is not None
+    n = job.robot.n_links
+    for k, speed in enumerate((0.0,) if path else job.spec.speeds_rad_s, start=1):
         at = {a.method: a for a in result.analyses if a.speed_rad_s == speed}
         chosen, sobol = at[method], at.get("sobol")
         suffix = "" if k == 1 else f"_w{k}"
         names = chosen.names
         for i, percent in enumerate(chosen.percent, start=1):
             top = int(percent.argmax())
-            figures[f"tau{i}_dominant{suffix}"] = names[top]
-            figures[f"tau{i}_dominant_percent{suffix}"] = float(percent[top])
+            out = f"tau{(i - 1) % n + 1}_{'peak' if i <= n else 'rms'}" if path else f"tau{i}"
+            figures[f"{out}_dominant{suffix}"] = names[top]
+            figures[f"{out}_dominant_percent{suffix}"] = float(percent[top])
             for group, prefix in (("lengths", "l"), ("masses", "m")):
                 share = sum(float(p) for p, name in zip(percent, names, strict=True)
                             if name.startswith(prefix))  # fmt: skip
-                figures[f"tau{i}_{group}_percent{suffix}"] = share
+                figures[f"{out}_{group}_percent{suffix}"] = share
             halfwidth = "" if sobol is None else float(sobol.indices[[1, 3], i - 1].max())
-            figures[f"tau{i}_sobol_halfwidth_max{suffix}"] = halfwidth
+            figures[f"{out}_sobol_halfwidth_max{suffix}"] = halfwidth
     return figures
 
 
