@@ -138,6 +138,11 @@ def test_a_path_gives_peak_rms_and_every_step_against_the_closed_form_at_rest(tm
             i, j = int(r["output"][3]) - 1, names.index(r["parameter"])
             assert abs(float(r["ST"]) - total[i, j]) <= 0.01
             assert abs(float(r["S1"]) - first[i, j]) <= 0.01
+    aggregated = rows_of(tmp_path / "p-path-aggregated.csv")
+    assert {r["output"] for r in aggregated} == {"tau1_Nm", "tau2_Nm", "tau3_Nm", "tau4_Nm",
+                                                "all torques"}  # fmt: skip
+    for r in aggregated:  # every step's indices lie in [0, 1], so does their weighted mean
+        assert 0.0 <= float(r["S1"]) <= float(r["ST"]) + 1e-9 <= 1.0 + 1e-9
     main = rows_of(tmp_path / "p.csv")
     assert {r["torque"] for r in main} == {str(k) for k in range(1, 9)}  # 4 peaks, 4 RMS
     pce = {(r["torque"], r["parameter"]): float(r["ST"]) for r in main if r["method"] == "pce"}

@@ -396,9 +396,13 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
     analyses = []
     notes = []
     along: list[Analysis] = []
+    variances = {}  # a path's torque variances over the PCE's runs (uniform robots)
     for method, speed in states:
+        values = outputs.pop((method, speed))
+        if spec.path is not None and method == "pce":
+            variances[method] = values[:, 2 * n :].var(axis=0)
         indices, loo, note = analyse_outputs(
-            job, problem, method, designs[method], outputs.pop((method, speed)), progress,
+            job, problem, method, designs[method], values, progress,
             f"{method} {speed:g} rad/s",
         )  # fmt: skip
         notes += [f"{method} {speed:g} rad/s: {note}"] if note else []
@@ -434,7 +438,7 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
     )
     return SensitivityResult(
         table=csv_table(label, analyses),
-        extra_tables={} if spec.path is None else path_tables(along, spec.path, n),
+        extra_tables={} if spec.path is None else path_tables(along, spec.path, n, variances),
         summary=summary,
         robot_label=label,
         posture=posture,
@@ -457,11 +461,15 @@ def path_outputs(problem, unit, robot, theta_rad, path: PathSpec, progress: Prog
 
 
 def path_outputs_files(job: Job[SensitivitySpec, SerialRobot]) -> dict[str, str]:
-    """With a ``path``: its per-step indices beside the job's CSV (``-path.csv``)."""
+    """With a ``path``: its per-step indices beside the job's CSV (``-path.csv``) and, with
+    ``pce``, the aggregated indices (``-path-aggregated.csv``)."""
     if job.spec.path is None:
         return {}
     stem = job.output[:-4] if job.output.lower().endswith(".csv") else job.output
-    return {"path": f"{stem}-path.csv"}
+    files = {"path": f"{stem}-path.csv"}
+    if "pce" in job.spec.methods:
+        files["path_aggregated"] = f"{stem}-path-aggregated.csv"
+    return files
 
 
 def path_labels(n: int) -> tuple[str, ...]:
@@ -475,17 +483,25 @@ def path_context(posture: str, path: PathSpec) -> str:
     return f"path {posture} → [{to}] deg in {path.duration_s:g} s"
 
 
-def path_tables(along: list[Analysis], path: PathSpec, n: int) -> dict[str, Any]:
+def path_tables(
+    along: list[Analysis], path: PathSpec, n: int, variances: Mapping[str, Any]
+) -> dict[str, Any]:
     """The ``path`` table: the indices of every torque at every step of the path, shaped
-    like the motion indices CSV (``output, t_s, parameter, method, …``)."""
+    like the motion indices CSV (``output, t_s, parameter, method, …``); with ``pce``, the
+    ``path_aggregated`` table: each joint's torque over the path and all torques together
+    (Gamboa et al. 2014), weighted by the torques' variances over the PCE's runs
+    (``variances``: method -> ((K+1) n,), step-major)."""
     import numpy as np
 
+    from planar_tui.csvio import CsvTable
+    from planar_tui.sensitivity.aggregate import aggregated_indices
     from planar_tui.sensitivity.results import Analysis, sensitivity_percent, time_indices_table
 
     steps = path.steps + 1
     t_s = np.linspace(0.0, path.duration_s, steps)
     names = tuple(f"tau{j}_Nm" for j in range(1, n + 1))
     per_time = []
+    rows = []
     for a in along:
         trajectory = a.indices[:, 2 * n :].reshape(4, steps, n, -1)
         loo = None if a.loo_error is None else a.loo_error[2 * n :].reshape(steps, n)
@@ -494,8 +510,23 @@ def path_tables(along: list[Analysis], path: PathSpec, n: int) -> dict[str, Any]
             per_time.append(Analysis(a.method, a.posture, float(t_s[k]), a.names, indices,
                                      sensitivity_percent(indices, "ST"), names, runs=a.runs,
                                      loo_error=None if loo is None else loo[k]))  # fmt: skip
+        if a.method not in variances:
+            continue
+        weights = variances[a.method].reshape(steps, n)
+        groups = [(name, trajectory[[0, 2], :, j], weights[:, j]) for j, name in enumerate(names)]
+        groups.append(("all torques", trajectory[[0, 2]].reshape(2, steps * n, -1),
+                       weights.reshape(-1)))  # fmt: skip
+        for label, indices, weight in groups:
+            first, total = aggregated_indices(indices, weight)
+            share = sensitivity_percent(np.stack([first, first, total, total])[:, None], "ST")[0]
+            rows += [(label, name, a.method, float(first[j]), float(total[j]), float(share[j]),
+                      a.runs) for j, name in enumerate(a.names)]  # fmt: skip
     per_time.sort(key=lambda a: a.speed_rad_s)
-    return {"path": time_indices_table(per_time, names)}
+    tables = {"path": time_indices_table(per_time, names)}
+    if rows:
+        header = ("output", "parameter", "method", "S1", "ST", "percent", "runs")
+        tables["path_aggregated"] = CsvTable(header, rows)
+    return tables
 
 
 def analyse_outputs(
