@@ -225,10 +225,10 @@ def whole_process(methods: str, out: Path) -> float:
     for path in PRESETS:
         text = path.read_text().replace('methods = ["sobol", "efast"]', f"methods = [{methods}]")
         (out / path.name).write_text(text)
-    command = [str(Path(sys.executable).parent / "planar-tui"), "run"]
+    command = [sys.executable, "-m", "planar_tui", "run"]  # this checkout's code
     command += [str(out / p.name) for p in PRESETS] + ["-d", str(out)]
     t0 = time.perf_counter()
-    subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
+    subprocess.run(command, check=True, stdout=subprocess.DEVNULL, cwd=REPO)
     return time.perf_counter() - t0
 
 
