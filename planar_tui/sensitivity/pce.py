@@ -28,9 +28,10 @@ N\,\|R^{-1}\|_F^2`). The indices follow from the coefficients (Sudret 2008):
           S_{ij} = \frac{1}{V}\sum_{\alpha \in A_{ij}} c_\alpha^2,
 
 :math:`A_i` the multi-indices with :math:`\alpha_i` the only non-zero entry, :math:`A_{ij}`
-those whose non-zero entries are exactly i and j. Confidence half-widths: a bootstrap of
-the design rows (R resamples, the selected terms refitted on each), ``z σ`` as SALib
-reports its own.
+those whose non-zero entries are exactly i and j. Confidence half-widths: ``z σ`` (as
+SALib reports its own) over a wild bootstrap of the regression (:func:`bootstrap_halfwidths`).
+Several outputs share one OMP path and each keeps the prefix of it with its own least LOO
+error (:func:`omp_path`).
 
 Pure NumPy (the basis by the three-term recurrence, the regression by Gram-Schmidt): no
 import beyond NumPy, and SciPy's ``qmc.Sobol`` only to draw a design the first time (then
