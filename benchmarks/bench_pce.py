@@ -39,9 +39,9 @@ from planar_tui.runtime import prepare_kernels  # noqa: E402
 
 prepare_kernels()
 
+from planar_tui.batch import prepare_jobs  # noqa: E402
 from planar_tui.presets import load_preset  # noqa: E402
 from planar_tui.sensitivity import engine, pce  # noqa: E402
-from planar_tui.sensitivity.job import prepare_sensitivity  # noqa: E402
 
 PRESETS = [REPO / "presets" / "paper-a-table4.toml", REPO / "presets" / "paper-a-table5.toml"]
 SALTELLI_N = 8192
@@ -51,16 +51,16 @@ CHAOSPY_MAX_D = 6
 
 def jobs():
     found = [job for path in PRESETS for job in load_preset(path).jobs_of("sensitivity")]
-    return [prepare_sensitivity(job) for job in found]
+    return list(prepare_jobs(found))
 
 
 def model(job):
     """(problem, f(unit design) -> torques (S, n))."""
-    spec, robot = job.spec, job.robot
+    spec, robot, posture = job.spec, job.robot, job.prepared.posture
     problem = engine.build_problem(robot, spec.tolerance_length_m, spec.tolerance_mass_kg)
     n = robot.n_links
     state = (
-        np.array(spec.posture.theta_rad),
+        np.array(posture.theta_rad),
         np.full(n, spec.speeds_rad_s[0]),
         np.full(n, spec.alpha_rad_s2),
     )
@@ -187,12 +187,9 @@ def motion_outputs(job, unit, steps):
 def motion_study(sobol_samples: int) -> None:
     """paper-a-table1-motion: PCE at its default runs against Sobol' at N = sobol_samples,
     ST at every ``at_s`` time; run counts and seconds (integration + analysis)."""
-    from planar_tui.motion.job import prepare_motion
-
-    (job,) = load_preset(REPO / "presets" / "paper-a-table1-motion.toml").jobs_of(
-        "motion_uncertainty"
+    (job,) = prepare_jobs(
+        load_preset(REPO / "presets" / "paper-a-table1-motion.toml").jobs_of("motion_uncertainty")
     )
-    job = prepare_motion(job)
     steps = job.spec.at_steps()
     d = 12
     t0 = time.perf_counter()
