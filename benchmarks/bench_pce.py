@@ -225,7 +225,9 @@ def whole_process(methods: str, out: Path) -> float:
     command = [sys.executable, "-m", "planar_tui", "run"]  # this checkout's code
     command += [str(out / p.name) for p in PRESETS] + ["-d", str(out)]
     t0 = time.perf_counter()
-    subprocess.run(command, check=True, stdout=subprocess.DEVNULL, cwd=REPO)
+    subprocess.run(
+        command, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, cwd=REPO
+    )
     return time.perf_counter() - t0
 
 
