@@ -1,4 +1,4 @@
-"""The figure of indices against time (:mod:`planar_tui.figures.indices_time`)."""
+"""The figure of indices against time (:func:`planar_tui.figures.sensitivity.draw_over_time`)."""
 
 from __future__ import annotations
 
