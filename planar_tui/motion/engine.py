@@ -48,6 +48,14 @@ class Design:
     def samples(self) -> int:
         return self.unit.shape[0]
 
+    def independent_rows(self, method: str) -> np.ndarray:
+        """Rows (global indices) of ``method``'s independent uniform robots
+        (:func:`~planar_tui.sensitivity.engine.independent_rows`: Sobol' A and B rows)."""
+        from planar_tui.sensitivity.engine import independent_rows
+
+        rows = np.arange(self.samples)[self.rows[method]]
+        return rows[independent_rows(method, len(rows), self.unit.shape[1])]
+
     def band_rows(self) -> np.ndarray:
         """Rows of independent uniform robots for the band: the Monte-Carlo rows, else the
         Sobol' design's A and B rows (2N).
@@ -65,10 +73,7 @@ class Design:
         if "pce" in self.rows:  # a scrambled Sobol' sequence in D dimensions: uniform robots
             return np.arange(self.samples)[self.rows["pce"]]
         if "sobol" in self.rows:
-            rows = np.arange(self.samples)[self.rows["sobol"]]
-            step = self.unit.shape[1] + 2
-            blocks = rows.reshape(-1, step)
-            return np.sort(np.concatenate([blocks[:, 0], blocks[:, -1]]))
+            return self.independent_rows("sobol")
         raise ValueError(f"no independent uniform rows for the band among {tuple(self.rows)}")
 
 
@@ -81,11 +86,6 @@ def design_methods(methods: Sequence[str]) -> tuple[str, ...]:
     return (*methods, "montecarlo")
 
 
-def montecarlo_design(num_vars: int, samples: int, seed: int) -> np.ndarray:
-    """N independent uniform points of the unit cube, ``default_rng(seed).random((N, D))``."""
-    return np.random.default_rng(seed).random((samples, num_vars))
-
-
 def build_design(
     methods: Sequence[str],
     num_vars: int,
@@ -96,7 +96,7 @@ def build_design(
 ) -> Design:
     """The designs of :func:`design_methods` of ``methods`` stacked, in that order (sampling
     stage of ``progress``, one unit per design); the PCE's has ``pce_samples`` rows."""
-    from planar_tui.sensitivity.engine import unit_design
+    from planar_tui.sensitivity.engine import montecarlo_design, unit_design
     from planar_tui.sensitivity.pce import pce_unit_design
 
     parts, rows, start = [], {}, 0

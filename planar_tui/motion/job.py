@@ -200,12 +200,11 @@ def indices_file(job: MotionJob) -> str:
 
 
 def extra_outputs(job: MotionJob) -> dict[str, str]:
-    """The indices CSV when an index method runs; with ``pce`` the aggregated indices'
-    CSV beside it (``-indices`` → ``-aggregated``)."""
+    """The indices CSV when an index method runs, and the aggregated indices' CSV beside
+    it (``-indices`` → ``-aggregated``)."""
     files = {}
     if any(uq.METHODS[method].indices for method in job.spec.methods):
         files["indices"] = indices_file(job)
-    if "pce" in job.spec.methods:
         stem = (
             files["indices"][:-4] if files["indices"].lower().endswith(".csv") else files["indices"]
         )
@@ -245,7 +244,6 @@ def analyse_trajectory(job, unit, trajectory, problem, labels, progress):
     (Gamboa et al. 2014) of each output and of all of them."""
     import numpy as np
 
-    from planar_tui.csvio import CsvTable
     from planar_tui.sensitivity.failed_runs import FailedRuns, check_failed_runs
     from planar_tui.sensitivity.pce import PceError, check_loo, trajectory_indices
     from planar_tui.sensitivity.results import Analysis, sensitivity_percent
@@ -271,15 +269,51 @@ def analyse_trajectory(job, unit, trajectory, problem, labels, progress):
                                  sensitivity_percent(indices, "ST"), tuple(labels),
                                  f"t = {t_s:g} s", runs=len(unit),
                                  loo_error=result.loo_error[k]))  # fmt: skip
-    rows = []
-    summary = [*zip(labels, result.aggregated, strict=True), ("all outputs", result.overall)]
-    for label, (first, total) in summary:
-        percent = sensitivity_percent(np.stack([first, first, total, total])[:, None], "ST")[0]
-        for j, name in enumerate(problem.names):
-            rows.append((label, name, "pce", float(first[j]), float(total[j]), float(percent[j]),
-                         len(unit)))  # fmt: skip
-    table = CsvTable(("output", "parameter", "method", "S1", "ST", "percent", "runs"), rows)
-    return analyses, table, ((note,) if note else ())
+    rows = aggregate_rows(labels, problem.names, "pce", result.aggregated, result.overall,
+                          len(unit))  # fmt: skip
+    return analyses, rows, ((note,) if note else ())
+
+
+def aggregate_rows(labels, names, method: str, aggregated, overall, runs: int) -> list:
+    """The aggregated-indices rows of one method: each output's trajectory (``aggregated``
+    (M, 2, D)), then ``all outputs`` (``overall`` (2, D))."""
+    from planar_tui.sensitivity.results import aggregated_rows
+
+    summary = [*zip(labels, aggregated, strict=True), ("all outputs", overall)]
+    return [row for label, (first, total) in summary
+            for row in aggregated_rows(label, names, method, first, total, runs)]  # fmt: skip
+
+
+def index_trajectories(design, every, variances, at_analyses, spec, problem, labels):
+    """``(analyses, rows)`` of the Sobol' and eFAST robots at every stop: ``every``
+    {method: {step: (4, M, D) point indices}} (:func:`~planar_tui.sensitivity.engine.point_indices`),
+    replaced at the ``at_s`` steps by ``at_analyses`` (with their confidence intervals);
+    ``variances`` {method: {step: (M,)}} the outputs' variances over independent uniform
+    robots, the weights of each method's aggregated rows (:func:`aggregate_rows`)."""
+    import numpy as np
+
+    from planar_tui.sensitivity.aggregate import trajectory_aggregates
+    from planar_tui.sensitivity.results import Analysis, sensitivity_percent
+
+    at = {(a.method, a.speed_rad_s): a for a in at_analyses}
+    analyses, rows = [], []
+    for method, by_step in every.items():
+        runs = len(design.unit[design.rows[method]])
+        steps = sorted(by_step)
+        for step in steps:
+            t_s = step * spec.step_s
+            analysis = at.get((method, t_s))
+            if analysis is None:
+                indices = by_step[step]
+                analysis = Analysis(method, "", t_s, problem.names, indices,
+                                    sensitivity_percent(indices, "ST"), tuple(labels),
+                                    f"t = {t_s:g} s", runs=runs)  # fmt: skip
+            analyses.append(analysis)
+        indices = np.stack([a.indices[[0, 2]] for a in analyses[-len(steps) :]], axis=1)
+        weights = np.stack([variances[method][step] for step in steps])
+        aggregated, overall = trajectory_aggregates(indices, weights)
+        rows += aggregate_rows(labels, problem.names, method, aggregated, overall, runs)
+    return analyses, rows
 
 
 def num_inputs(spec: MotionSpec, robot: SerialRobot) -> int:
@@ -405,8 +439,11 @@ def run_motion(
     the band and the indices (see :mod:`planar_tui.motion.engine`)."""
     import numpy as np
 
+    from planar_tui.csvio import CsvTable
     from planar_tui.motion import engine
     from planar_tui.motion.results import analyse_times, band_table, indices_table
+    from planar_tui.sensitivity.engine import point_indices
+    from planar_tui.sensitivity.results import AGGREGATED_HEADER
 
     spec, robot, device = job.spec, job.robot, job.prepared
     from planar_tui.sensitivity.engine import build_problem
@@ -436,6 +473,14 @@ def run_motion(
     at_outputs = {}
     pce_rows = design.rows.get("pce")
     trajectory = {}  # the PCE robots' outputs at every stop
+    index_methods = [m for m in spec.methods if m not in ("montecarlo", "pce")]
+    # Sobol'/eFAST at every stop: point indices, and the variances (aggregation weights)
+    # over independent robots: Sobol's A and B rows, the band's robots for eFAST
+    every = {m: {} for m in index_methods}
+    variances = {m: {} for m in index_methods}
+    weight_rows = {m: design.independent_rows(m) if m == "sobol" else band_rows
+                   for m in index_methods}  # fmt: skip
+    failed = {}  # all robots' outputs at a stop where a Sobol'/eFAST robot failed
 
     def on_stop(step: int, angles) -> None:
         if step in records:
@@ -446,27 +491,40 @@ def run_motion(
         if pce_rows is not None:
             trajectory[step] = engine.take_outputs(lengths_s[pce_rows], angles[pce_rows],
                                                    spec.outputs)  # fmt: skip
+        for method in index_methods:
+            rows = design.rows[method]
+            values = engine.take_outputs(lengths_s[rows], angles[rows], spec.outputs)
+            if not np.isfinite(values).all():
+                failed[step] = engine.take_outputs(lengths_s, angles, spec.outputs)
+            every[method][step] = point_indices(method, values, problem.num_vars)
+            weights = weight_rows[method]
+            variances[method][step] = engine.take_outputs(
+                lengths_s[weights], angles[weights], spec.outputs
+            ).var(axis=0)
 
     total = design.samples * spec.n_steps
     progress.start(total, "integrating", f"{design.samples} robots on {device.device_note}")
     engine.integrate(robots, spec.step_s, stops, on_stop, progress)
-    index_methods = [m for m in spec.methods if m not in ("montecarlo", "pce")]
     progress.start(max(1, len(index_methods) * len(at_steps) + (pce_rows is not None)),
                    "analysis")  # fmt: skip
     labels = engine.output_labels(names)
     for method in index_methods:
-        check_failed(job, at_outputs, design, method, problem)
+        check_failed(job, {**failed, **at_outputs}, design, method, problem)
     analyses, notes = analyse_times(
         design, at_outputs, spec, problem, labels, index_methods, progress
     )
-    time_analyses, aggregated = [], None
+    time_analyses, aggregated = index_trajectories(
+        design, every, variances, analyses, spec, problem, labels
+    )
     if pce_rows is not None:
-        time_analyses, aggregated, pce_notes = analyse_trajectory(
+        pce_analyses, pce_aggregated, pce_notes = analyse_trajectory(
             job, design.unit[pce_rows], trajectory, problem, labels, progress
         )
         at_times = {step * spec.step_s for step in at_steps}
-        analyses += [a for a in time_analyses if a.speed_rad_s in at_times]
+        analyses += [a for a in pce_analyses if a.speed_rad_s in at_times]
         analyses.sort(key=lambda a: a.speed_rad_s)  # stable: method order within a time
+        time_analyses += pce_analyses
+        aggregated += pce_aggregated
         notes = (*notes, *pce_notes)
     band_note = extra_band_note(spec)
     if band_note:
@@ -483,12 +541,10 @@ def run_motion(
     )
     extra_tables = {}
     if analyses:
-        shown = {id(a) for a in analyses}
-        every = sorted([*analyses, *(a for a in time_analyses if id(a) not in shown)],
-                       key=lambda a: a.speed_rad_s)  # fmt: skip
-        extra_tables["indices"] = indices_table(every, names)
-    if aggregated is not None:
-        extra_tables["aggregated"] = aggregated
+        order = {m: i for i, m in enumerate([*index_methods, "pce"])}  # within a time
+        by_time = sorted(time_analyses, key=lambda a: (a.speed_rad_s, order[a.method]))
+        extra_tables["indices"] = indices_table(by_time, names)
+        extra_tables["aggregated"] = CsvTable(AGGREGATED_HEADER, aggregated)
     return MotionResult(
         table=band_table(t_s, band, names),
         extra_tables=extra_tables,

@@ -27,3 +27,21 @@ def aggregated_indices(indices: np.ndarray, variances: np.ndarray) -> np.ndarray
     if total == 0.0:
         return np.zeros(np.shape(indices)[:-2] + np.shape(indices)[-1:])
     return np.einsum("...td,t->...d", np.asarray(indices, dtype=np.float64), weights / total)
+
+
+def trajectory_aggregates(indices: np.ndarray, variances: np.ndarray):
+    """``(aggregated (M, 2, D), overall (2, D))`` of M outputs recorded at K times:
+    ``indices`` (2, K, M, D) their S1 and ST at every time, ``variances`` (K, M) their
+    variances there (over independent uniform runs). ``aggregated[m]`` weighs output m's
+    times by its variances (:func:`aggregated_indices`); ``overall`` weighs every output's
+    trajectory after scaling it to unit total variance (so that radians and metres weigh
+    alike): the mean of the ``aggregated`` of the outputs that vary (zeros if none does)."""
+    indices = np.asarray(indices, dtype=np.float64)
+    variances = np.asarray(variances, dtype=np.float64)
+    m_outputs = indices.shape[2]
+    aggregated = np.stack(
+        [aggregated_indices(indices[:, :, m], variances[:, m]) for m in range(m_outputs)]
+    )
+    varies = variances.sum(axis=0) > 0.0
+    overall = aggregated[varies].mean(axis=0) if varies.any() else np.zeros(aggregated.shape[1:])
+    return aggregated, overall

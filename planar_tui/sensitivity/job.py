@@ -356,7 +356,12 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
     """
     import numpy as np
 
-    from planar_tui.sensitivity.engine import build_problem, evaluate, unit_design
+    from planar_tui.sensitivity.engine import (
+        build_problem,
+        evaluate,
+        montecarlo_design,
+        unit_design,
+    )
     from planar_tui.sensitivity.pce import pce_unit_design
     from planar_tui.sensitivity.results import Analysis, csv_table, sensitivity_percent
 
@@ -380,8 +385,16 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
     n = robot.n_links
     alpha = np.full(n, spec.alpha_rad_s2)
     theta = np.array(posture.theta_rad)
-    progress.start(len(states), "evaluation")
+    # eFAST's search curves are not independent robots: a path's torque variances (the
+    # aggregation's weights) come from N Monte-Carlo rows of their own
+    variance_rows = {}
+    if spec.path is not None and "efast" in spec.methods:
+        variance_rows["efast"] = montecarlo_design(problem.num_vars, sizes["efast"], spec.seed)
+    progress.start(len(states) + len(variance_rows), "evaluation")
     outputs = {}
+    for method, unit in variance_rows.items():
+        outputs[method, "variance"] = path_outputs(problem, unit, robot, theta, spec.path,
+                                                   progress)  # fmt: skip
     for method, speed in states:
         if spec.path is not None:
             outputs[method, speed] = path_outputs(problem, designs[method], robot, theta,
@@ -396,11 +409,11 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
     analyses = []
     notes = []
     along: list[Analysis] = []
-    variances = {}  # a path's torque variances over the PCE's runs (uniform robots)
+    variances = {}  # a path's torque variances over independent uniform runs, and their count
     for method, speed in states:
         values = outputs.pop((method, speed))
-        if spec.path is not None and method == "pce":
-            variances[method] = values[:, 2 * n :].var(axis=0)
+        if spec.path is not None:
+            variances[method] = path_variances(method, values, outputs, designs[method], n)
         indices, loo, note = analyse_outputs(
             job, problem, method, designs[method], values, progress,
             f"{method} {speed:g} rad/s",
@@ -460,16 +473,28 @@ def path_outputs(problem, unit, robot, theta_rad, path: PathSpec, progress: Prog
     return np.concatenate([peak, rms, torques.reshape(len(unit), -1)], axis=1)
 
 
+def path_variances(method: str, values, outputs, unit, n: int):
+    """``(variances ((K+1) n,), runs)``: the path torques' variances over ``method``'s
+    independent uniform runs (Sobol': the A and B rows; PCE: every run) and the model runs
+    the method made; eFAST's over its N Monte-Carlo rows (``outputs[method, "variance"]``,
+    popped), which count among its runs."""
+    from planar_tui.sensitivity.engine import independent_rows
+
+    runs = len(unit)
+    extra = outputs.pop((method, "variance"), None)
+    if extra is not None:
+        return extra[:, 2 * n :].var(axis=0), runs + len(extra)
+    rows = independent_rows(method, len(values), unit.shape[1])
+    return values[rows, 2 * n :].var(axis=0), runs
+
+
 def path_outputs_files(job: Job[SensitivitySpec, SerialRobot]) -> dict[str, str]:
-    """With a ``path``: its per-step indices beside the job's CSV (``-path.csv``) and, with
-    ``pce``, the aggregated indices (``-path-aggregated.csv``)."""
+    """With a ``path``: its per-step indices beside the job's CSV (``-path.csv``) and the
+    aggregated indices (``-path-aggregated.csv``)."""
     if job.spec.path is None:
         return {}
     stem = job.output[:-4] if job.output.lower().endswith(".csv") else job.output
-    files = {"path": f"{stem}-path.csv"}
-    if "pce" in job.spec.methods:
-        files["path_aggregated"] = f"{stem}-path-aggregated.csv"
-    return files
+    return {"path": f"{stem}-path.csv", "path_aggregated": f"{stem}-path-aggregated.csv"}
 
 
 def path_labels(n: int) -> tuple[str, ...]:
@@ -487,15 +512,21 @@ def path_tables(
     along: list[Analysis], path: PathSpec, n: int, variances: Mapping[str, Any]
 ) -> dict[str, Any]:
     """The ``path`` table: the indices of every torque at every step of the path, shaped
-    like the motion indices CSV (``output, t_s, parameter, method, …``); with ``pce``, the
+    like the motion indices CSV (``output, t_s, parameter, method, …``); the
     ``path_aggregated`` table: each joint's torque over the path and all torques together
-    (Gamboa et al. 2014), weighted by the torques' variances over the PCE's runs
-    (``variances``: method -> ((K+1) n,), step-major)."""
+    (Gamboa et al. 2014), weighted by the torques' variances over independent uniform runs
+    (``variances``: method -> (((K+1) n,) step-major, runs): :func:`path_variances`)."""
     import numpy as np
 
     from planar_tui.csvio import CsvTable
     from planar_tui.sensitivity.aggregate import aggregated_indices
-    from planar_tui.sensitivity.results import Analysis, sensitivity_percent, time_indices_table
+    from planar_tui.sensitivity.results import (
+        AGGREGATED_HEADER,
+        Analysis,
+        aggregated_rows,
+        sensitivity_percent,
+        time_indices_table,
+    )
 
     steps = path.steps + 1
     t_s = np.linspace(0.0, path.duration_s, steps)
@@ -510,23 +541,19 @@ def path_tables(
             per_time.append(Analysis(a.method, a.posture, float(t_s[k]), a.names, indices,
                                      sensitivity_percent(indices, "ST"), names, runs=a.runs,
                                      loo_error=None if loo is None else loo[k]))  # fmt: skip
-        if a.method not in variances:
-            continue
-        weights = variances[a.method].reshape(steps, n)
+        variance, runs = variances[a.method]
+        weights = variance.reshape(steps, n)
         groups = [(name, trajectory[[0, 2], :, j], weights[:, j]) for j, name in enumerate(names)]
         groups.append(("all torques", trajectory[[0, 2]].reshape(2, steps * n, -1),
                        weights.reshape(-1)))  # fmt: skip
         for label, indices, weight in groups:
             first, total = aggregated_indices(indices, weight)
-            share = sensitivity_percent(np.stack([first, first, total, total])[:, None], "ST")[0]
-            rows += [(label, name, a.method, float(first[j]), float(total[j]), float(share[j]),
-                      a.runs) for j, name in enumerate(a.names)]  # fmt: skip
+            rows += aggregated_rows(label, a.names, a.method, first, total, runs)
     per_time.sort(key=lambda a: a.speed_rad_s)
-    tables = {"path": time_indices_table(per_time, names)}
-    if rows:
-        header = ("output", "parameter", "method", "S1", "ST", "percent", "runs")
-        tables["path_aggregated"] = CsvTable(header, rows)
-    return tables
+    return {
+        "path": time_indices_table(per_time, names),
+        "path_aggregated": CsvTable(AGGREGATED_HEADER, rows),
+    }
 
 
 def analyse_outputs(

@@ -481,23 +481,19 @@ def trajectory_indices(
 ) -> TrajectoryIndices:
     """Indices of ``outputs`` (S, K, M) at every time and aggregated: one expansion per
     output with terms shared over its K times (:func:`pce_indices` with ``shared``)."""
-    from planar_tui.sensitivity.aggregate import aggregated_indices
+    from planar_tui.sensitivity.aggregate import trajectory_aggregates
 
     _, k_times, m_outputs = outputs.shape
     indices = np.empty((4, k_times, m_outputs, unit.shape[1]))
     loo = np.empty((k_times, m_outputs))
     variance = np.empty((k_times, m_outputs))
-    aggregated = np.empty((m_outputs, 2, unit.shape[1]))
     for m in range(m_outputs):
         result, (fit,) = pce_indices(unit, outputs[:, :, m], seed, True, num_resamples)
         indices[:, :, m] = result
         loo[:, m], variance[:, m] = fit.loo_error, fit.variance
-        aggregated[m] = aggregated_indices(result[[0, 2]], fit.variance)
         if on_output is not None:
             on_output(1.0 / m_outputs)
-    totals = variance.sum(axis=0)
-    varies = totals > 0.0
-    overall = aggregated[varies].mean(axis=0) if varies.any() else np.zeros(aggregated.shape[1:])
+    aggregated, overall = trajectory_aggregates(indices[[0, 2]], variance)
     return TrajectoryIndices(indices, loo, variance, aggregated, overall)
 
 

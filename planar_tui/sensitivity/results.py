@@ -13,6 +13,7 @@ either are clipped to 0 first).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -68,12 +69,18 @@ def grouped(analyses: Sequence[Analysis], key: Callable[[Analysis], Any]) -> dic
 
 def index_rows(group: Sequence[Analysis]) -> Iterator[tuple[int, tuple]]:
     """The :data:`INDEX_COLUMNS` cells of a group of analyses sharing their inputs (one
-    per method): per output ``k``, parameter and method, ``(k, cells)``."""
+    per method): per output ``k``, parameter and method, ``(k, cells)``. A NaN half-width
+    (not computed: point estimates only) is an empty cell."""
     for k in range(group[0].indices.shape[1]):
         for j, name in enumerate(group[0].names):
             for a in group:
                 s1, s1_conf, st, st_conf = (float(v) for v in a.indices[:, k, j])
-                yield k, (name, a.method, s1, s1_conf, st, st_conf, float(a.percent[k, j]))
+                yield k, (name, a.method, s1, _conf_cell(s1_conf), st, _conf_cell(st_conf),
+                          float(a.percent[k, j]))  # fmt: skip
+
+
+def _conf_cell(half_width: float) -> float | str:
+    return "" if math.isnan(half_width) else half_width
 
 
 def run_cells(analyses: Sequence[Analysis]) -> Callable[[str, int], tuple]:
@@ -127,3 +134,16 @@ def time_indices_table(analyses: Sequence[Analysis], names: Sequence[str]) -> Cs
         for k, cells in index_rows(group):
             rows.append((names[k], float(t_s), *cells, *extra(cells[1], k)))
     return CsvTable(TIME_INDICES_HEADER + run_columns(analyses), rows)
+
+
+#: The header of an aggregated-indices table (the motion job's, a path's).
+AGGREGATED_HEADER = ("output", "parameter", "method", "S1", "ST", "percent", "runs")
+
+
+def aggregated_rows(label: str, names: Sequence[str], method: str, first, total, runs: int):
+    """The :data:`AGGREGATED_HEADER` rows of one aggregate (``first``, ``total``: (D,)
+    aggregated S1 and ST of output ``label``), one per input; ``percent`` of ST as in
+    :func:`sensitivity_percent`."""
+    share = sensitivity_percent(np.stack([first, first, total, total])[:, None], "ST")[0]
+    return [(label, name, method, float(first[j]), float(total[j]), float(share[j]), runs)
+            for j, name in enumerate(names)]  # fmt: skip
