@@ -191,16 +191,21 @@ def test_an_output_without_variance_has_zero_indices():
     assert indices[2, 1] == pytest.approx([1.0, 0.0], abs=1e-12)
 
 
-def test_aggregated_indices_match_their_definition_by_quadrature():
-    """Y_t = sin(t) x1 + t x2² + t² x1 x3 + x3 at four times (x uniform on [-1, 1]):
-    S_agg,i = Σ_t Var E[Y_t | x_i] / Σ_t Var Y_t and the total analogue, by 3-D
-    Gauss-Legendre quadrature, against the PCE's per-time indices aggregated."""
-    times = np.array([0.2, 0.7, 1.3, 2.0])
+AGGREGATE_TIMES = np.array([0.2, 0.7, 1.3, 2.0])
 
-    def model(x):  # x (..., 3) in [-1, 1]
-        t = times.reshape((-1,) + (1,) * (x.ndim - 1))
-        return np.sin(t) * x[..., 0] + t * x[..., 1] ** 2 + t**2 * x[..., 0] * x[..., 2] + x[..., 2]
 
+def aggregate_model(x):
+    """Y_t = sin(t) x1 + t x2² + t² x1 x3 + x3 at :data:`AGGREGATE_TIMES`, x (..., 3) in
+    [-1, 1]: (T, ...)."""
+    t = AGGREGATE_TIMES.reshape((-1,) + (1,) * (x.ndim - 1))
+    return np.sin(t) * x[..., 0] + t * x[..., 1] ** 2 + t**2 * x[..., 0] * x[..., 2] + x[..., 2]
+
+
+def aggregate_by_quadrature():
+    """``(first, total, variance)`` of :func:`aggregate_model` under x uniform on [-1, 1]:
+    Σ_t Var E[Y_t | x_i], Σ_t E Var[Y_t | x_~i] (3,) and Var Y_t (T,), by 3-D
+    Gauss-Legendre quadrature (exact: degree ≤ 4 per input)."""
+    model = aggregate_model
     nodes, w = np.polynomial.legendre.leggauss(6)
     w = w / 2.0
     grid = np.stack(np.meshgrid(nodes, nodes, nodes, indexing="ij"), axis=-1)
@@ -218,8 +223,15 @@ def test_aggregated_indices_match_their_definition_by_quadrature():
         total_num[a] = np.einsum(
             "tijk,ijk->", (values - np.expand_dims(inner, 1 + a)) ** 2, weights
         )
+    return first_num, total_num, variance
+
+
+def test_aggregated_indices_match_their_definition_by_quadrature():
+    """S_agg,i = Σ_t Var E[Y_t | x_i] / Σ_t Var Y_t and the total analogue of
+    :func:`aggregate_model`, by quadrature, against the PCE's per-time indices aggregated."""
+    first_num, total_num, variance = aggregate_by_quadrature()
     unit = pce.pce_unit_design(3, 128, SEED)
-    y = model(2.0 * unit - 1.0).T  # (S, T)
+    y = aggregate_model(2.0 * unit - 1.0).T  # (S, T)
     indices, (fit,) = pce.pce_indices(unit, y, SEED, shared=True, num_resamples=0)
     assert fit.variance == pytest.approx(variance, rel=1e-10)
     aggregated = aggregated_indices(indices[[0, 2]], fit.variance)
