@@ -483,24 +483,19 @@ def run_motion(
     failed = {}  # all robots' outputs at a stop where a Sobol'/eFAST robot failed
 
     def on_stop(step: int, angles) -> None:
+        values = engine.take_outputs(lengths_s, angles, spec.outputs)  # every robot's, (S, M)
         if step in records:
-            values = engine.take_outputs(lengths_s[band_rows], angles[band_rows], spec.outputs)
-            band[records[step]] = engine.band_statistics(values)
+            band[records[step]] = engine.band_statistics(values[band_rows])
         if step in at_steps:
-            at_outputs[step] = engine.take_outputs(lengths_s, angles, spec.outputs)
+            at_outputs[step] = values
         if pce_rows is not None:
-            trajectory[step] = engine.take_outputs(lengths_s[pce_rows], angles[pce_rows],
-                                                   spec.outputs)  # fmt: skip
+            trajectory[step] = values[pce_rows]
         for method in index_methods:
-            rows = design.rows[method]
-            values = engine.take_outputs(lengths_s[rows], angles[rows], spec.outputs)
-            if not np.isfinite(values).all():
-                failed[step] = engine.take_outputs(lengths_s, angles, spec.outputs)
-            every[method][step] = point_indices(method, values, problem.num_vars)
-            weights = weight_rows[method]
-            variances[method][step] = engine.take_outputs(
-                lengths_s[weights], angles[weights], spec.outputs
-            ).var(axis=0)
+            if not np.isfinite(values[design.rows[method]]).all():
+                failed[step] = values
+            every[method][step] = point_indices(method, values[design.rows[method]],
+                                                problem.num_vars)  # fmt: skip
+            variances[method][step] = values[weight_rows[method]].var(axis=0)
 
     total = design.samples * spec.n_steps
     progress.start(total, "integrating", f"{design.samples} robots on {device.device_note}")

@@ -272,7 +272,7 @@ def point_indices(method: str, outputs: np.ndarray, num_vars: int) -> np.ndarray
 
     For indices at many times (the motion job's every recorded time), where a bootstrap
     at each would cost more than the model runs."""
-    from planar_tui.kernels.sensitivity_estimators import sobol_point_and_terms
+    from planar_tui.kernels.sensitivity_estimators import sobol_point
     from planar_tui.sensitivity.estimators import efast_point_indices
 
     outputs = np.asarray(outputs, dtype=np.float64)
@@ -282,7 +282,7 @@ def point_indices(method: str, outputs: np.ndarray, num_vars: int) -> np.ndarray
     if varying.any():
         chosen = np.ascontiguousarray(outputs[:, varying])
         if method == "sobol":
-            point = sobol_point_and_terms(chosen, num_vars)[0]
+            point = sobol_point(chosen, num_vars)
         else:
             point = efast_point_indices(chosen, num_vars, M_HARMONICS)
         result[0, varying], result[2, varying] = point
