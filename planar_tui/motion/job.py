@@ -4,9 +4,10 @@ Every link length and mass (optionally inertia) is uniform on ``nominal ± toler
 in ``[sensitivity]``); every sampled robot is integrated by RK4 under the constant torques
 (as in ``[simulate]``). Results: the band (mean, standard deviation, 5/50/95 % percentiles of
 every output at every recorded step, over independent uniform robots: the Monte-Carlo or
-Sobol' A/B robots, or N extra Monte-Carlo robots when eFAST runs alone), Sobol'/eFAST
-indices of every output at the times ``at_s``, a Table-4-shaped table per time. Details:
-``docs/motion.md``.
+Sobol' A/B robots, or N extra Monte-Carlo robots when eFAST runs alone), Sobol'/eFAST/PCE
+indices of every output at every recorded time (Sobol'/eFAST's confidence intervals at the
+times ``at_s`` only) and aggregated over each trajectory, a Table-4-shaped table per time
+of ``at_s``. Details: ``docs/motion.md``.
 """
 
 from __future__ import annotations
@@ -100,9 +101,10 @@ class MotionSpec(RunSettings):
     methods: tuple[str, ...] = uq.methods_setting(
         METHODS,
         default=("montecarlo", "sobol"),
-        doc="Monte Carlo (band), Sobol' and eFAST (indices at `at_s`; SALib's designs), pce "
-        "(polynomial chaos: indices at every recorded time and over the trajectory); eFAST "
-        "alone adds N Monte-Carlo robots for the band",
+        doc="Monte Carlo (band), Sobol' and eFAST (SALib's designs: indices at every recorded "
+        "time, confidence intervals at `at_s`), pce (polynomial chaos: indices and intervals "
+        "at every recorded time); every index method also over the trajectory; eFAST alone "
+        "adds N Monte-Carlo robots for the band",
     )
     samples: int = setting(
         integer(minimum=2),
@@ -125,7 +127,8 @@ class MotionSpec(RunSettings):
         default=None,
         default_doc="`duration_s`",
         type_doc="number or list of numbers in (0, `duration_s`]",
-        doc="times of the indices (rounded to a step)",
+        doc="times of the terminal tables and of Sobol'/eFAST's confidence intervals "
+        "(rounded to a step)",
     )
     outputs: tuple[str, ...] = setting(
         uq.read_choices(OUTPUTS),
@@ -274,7 +277,9 @@ def analyse_trajectory(job, unit, trajectory, problem, labels, progress):
     return analyses, rows, ((note,) if note else ())
 
 
-def aggregate_rows(labels, names, method: str, aggregated, overall, runs: int) -> list:
+def aggregate_rows(
+    labels, names, method: str, aggregated, overall, runs: int
+) -> list[tuple[Any, ...]]:
     """The aggregated-indices rows of one method: each output's trajectory (``aggregated``
     (M, 2, D)), then ``all outputs`` (``overall`` (2, D))."""
     from planar_tui.sensitivity.results import aggregated_rows
@@ -476,8 +481,8 @@ def run_motion(
     index_methods = [m for m in spec.methods if m not in ("montecarlo", "pce")]
     # Sobol'/eFAST at every stop: point indices, and the variances (aggregation weights)
     # over independent robots: Sobol's A and B rows, the band's robots for eFAST
-    every = {m: {} for m in index_methods}
-    variances = {m: {} for m in index_methods}
+    every: dict[str, dict[int, np.ndarray]] = {m: {} for m in index_methods}
+    variances: dict[str, dict[int, np.ndarray]] = {m: {} for m in index_methods}
     weight_rows = {m: design.independent_rows(m) if m == "sobol" else band_rows
                    for m in index_methods}  # fmt: skip
     failed = {}  # all robots' outputs at a stop where a Sobol'/eFAST robot failed
@@ -584,9 +589,10 @@ JOB_KIND = JobKind(
     point_figures=point_figures,
     command=Command(
         "motion",
-        "Monte-Carlo band and Sobol'/eFAST indices of the motion of every "
-        "motion_uncertainty job under length and mass tolerances: band CSV, indices CSV (the "
-        "job's indices_output, or OUTPUT-indices.csv) and a Table-4-shaped table per time.\n\n"
+        "Monte-Carlo band and Sobol'/eFAST/PCE indices of the motion of every "
+        "motion_uncertainty job under length and mass tolerances: band CSV, indices CSV at "
+        "every recorded time (the job's indices_output, or OUTPUT-indices.csv), aggregated "
+        "indices CSV (OUTPUT-aggregated.csv) and a Table-4-shaped table per time of at_s.\n\n"
         "An option that changes a job's setting is appended to the stem of the files the preset "
         "names; a name given with --out is kept.",
         options=(

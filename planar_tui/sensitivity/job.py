@@ -387,14 +387,14 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
     theta = np.array(posture.theta_rad)
     # eFAST's search curves are not independent robots: a path's torque variances (the
     # aggregation's weights) come from N Monte-Carlo rows of their own
-    variance_rows = {}
+    variance_outputs = {}
     if spec.path is not None and "efast" in spec.methods:
-        variance_rows["efast"] = montecarlo_design(problem.num_vars, sizes["efast"], spec.seed)
-    progress.start(len(states) + len(variance_rows), "evaluation")
+        progress.start(len(states) + 1, "evaluation")
+        unit = montecarlo_design(problem.num_vars, sizes["efast"], spec.seed)
+        variance_outputs["efast"] = path_outputs(problem, unit, robot, theta, spec.path, progress)
+    else:
+        progress.start(len(states), "evaluation")
     outputs = {}
-    for method, unit in variance_rows.items():
-        outputs[method, "variance"] = path_outputs(problem, unit, robot, theta, spec.path,
-                                                   progress)  # fmt: skip
     for method, speed in states:
         if spec.path is not None:
             outputs[method, speed] = path_outputs(problem, designs[method], robot, theta,
@@ -413,7 +413,8 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
     for method, speed in states:
         values = outputs.pop((method, speed))
         if spec.path is not None:
-            variances[method] = path_variances(method, values, outputs, designs[method], n)
+            extra = variance_outputs.get(method)
+            variances[method] = path_variances(method, values, extra, designs[method], n)
         indices, loo, note = analyse_outputs(
             job, problem, method, designs[method], values, progress,
             f"{method} {speed:g} rad/s",
@@ -473,15 +474,14 @@ def path_outputs(problem, unit, robot, theta_rad, path: PathSpec, progress: Prog
     return np.concatenate([peak, rms, torques.reshape(len(unit), -1)], axis=1)
 
 
-def path_variances(method: str, values, outputs, unit, n: int):
+def path_variances(method: str, values, extra, unit, n: int):
     """``(variances ((K+1) n,), runs)``: the path torques' variances over ``method``'s
     independent uniform runs (Sobol': the A and B rows; PCE: every run) and the model runs
-    the method made; eFAST's over its N Monte-Carlo rows (``outputs[method, "variance"]``,
-    popped), which count among its runs."""
+    the method made; eFAST's over the outputs ``extra`` of its N Monte-Carlo rows, which
+    count among its runs."""
     from planar_tui.sensitivity.engine import independent_rows
 
     runs = len(unit)
-    extra = outputs.pop((method, "variance"), None)
     if extra is not None:
         return extra[:, 2 * n :].var(axis=0), runs + len(extra)
     rows = independent_rows(method, len(values), unit.shape[1])
