@@ -247,6 +247,7 @@ def analyse_trajectory(job, unit, trajectory, problem, labels, progress):
     (Gamboa et al. 2014) of each output and of all of them."""
     import numpy as np
 
+    from planar_tui.motion.results import aggregate_rows
     from planar_tui.sensitivity.failed_runs import FailedRuns, check_failed_runs
     from planar_tui.sensitivity.pce import PceError, check_loo, trajectory_indices
     from planar_tui.sensitivity.results import Analysis, sensitivity_percent
@@ -275,50 +276,6 @@ def analyse_trajectory(job, unit, trajectory, problem, labels, progress):
     rows = aggregate_rows(labels, problem.names, "pce", result.aggregated, result.overall,
                           len(unit))  # fmt: skip
     return analyses, rows, ((note,) if note else ())
-
-
-def aggregate_rows(
-    labels, names, method: str, aggregated, overall, runs: int
-) -> list[tuple[Any, ...]]:
-    """The aggregated-indices rows of one method: each output's trajectory (``aggregated``
-    (M, 2, D)), then ``all outputs`` (``overall`` (2, D))."""
-    from planar_tui.sensitivity.results import aggregated_rows
-
-    summary = [*zip(labels, aggregated, strict=True), ("all outputs", overall)]
-    return [row for label, (first, total) in summary
-            for row in aggregated_rows(label, names, method, first, total, runs)]  # fmt: skip
-
-
-def index_trajectories(design, every, variances, at_analyses, spec, problem, labels):
-    """``(analyses, rows)`` of the Sobol' and eFAST robots at every stop: ``every``
-    {method: {step: (4, M, D) point indices}} (:func:`~planar_tui.sensitivity.engine.point_indices`),
-    replaced at the ``at_s`` steps by ``at_analyses`` (with their confidence intervals);
-    ``variances`` {method: {step: (M,)}} the outputs' variances over independent uniform
-    robots, the weights of each method's aggregated rows (:func:`aggregate_rows`)."""
-    import numpy as np
-
-    from planar_tui.sensitivity.aggregate import trajectory_aggregates
-    from planar_tui.sensitivity.results import Analysis, sensitivity_percent
-
-    at = {(a.method, a.speed_rad_s): a for a in at_analyses}
-    analyses, rows = [], []
-    for method, by_step in every.items():
-        runs = len(design.unit[design.rows[method]])
-        steps = sorted(by_step)
-        for step in steps:
-            t_s = step * spec.step_s
-            analysis = at.get((method, t_s))
-            if analysis is None:
-                indices = by_step[step]
-                analysis = Analysis(method, "", t_s, problem.names, indices,
-                                    sensitivity_percent(indices, "ST"), tuple(labels),
-                                    f"t = {t_s:g} s", runs=runs)  # fmt: skip
-            analyses.append(analysis)
-        indices = np.stack([a.indices[[0, 2]] for a in analyses[-len(steps) :]], axis=1)
-        weights = np.stack([variances[method][step] for step in steps])
-        aggregated, overall = trajectory_aggregates(indices, weights)
-        rows += aggregate_rows(labels, problem.names, method, aggregated, overall, runs)
-    return analyses, rows
 
 
 def num_inputs(spec: MotionSpec, robot: SerialRobot) -> int:
@@ -450,7 +407,12 @@ def run_motion(
 
     from planar_tui.csvio import CsvTable
     from planar_tui.motion import engine
-    from planar_tui.motion.results import analyse_times, band_table, indices_table
+    from planar_tui.motion.results import (
+        analyse_times,
+        band_table,
+        index_trajectories,
+        indices_table,
+    )
     from planar_tui.sensitivity.engine import point_indices
     from planar_tui.sensitivity.results import AGGREGATED_HEADER
 

@@ -362,6 +362,13 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
         montecarlo_design,
         unit_design,
     )
+    from planar_tui.sensitivity.path import (
+        path_context,
+        path_labels,
+        path_outputs,
+        path_tables,
+        path_variances,
+    )
     from planar_tui.sensitivity.pce import pce_unit_design
     from planar_tui.sensitivity.results import Analysis, csv_table, sensitivity_percent
 
@@ -461,33 +468,6 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
     )
 
 
-def path_outputs(problem, unit, robot, theta_rad, path: PathSpec, progress: Progress):
-    """Model outputs (S, 2n + (K+1) n) along the path: peak |τ_j|, RMS τ_j, then every
-    torque at every step (step-major)."""
-    import numpy as np
-
-    from planar_tui.sensitivity.path import path_torques, peak_and_rms, quintic_path
-
-    states = quintic_path(theta_rad, np.radians(path.to_deg), path.duration_s, path.steps)
-    torques = path_torques(problem, unit, robot, states, progress)
-    peak, rms = peak_and_rms(torques, states.t_s)
-    return np.concatenate([peak, rms, torques.reshape(len(unit), -1)], axis=1)
-
-
-def path_variances(method: str, values, extra, unit, n: int):
-    """``(variances ((K+1) n,), runs)``: the path torques' variances over ``method``'s
-    independent uniform runs (Sobol': the A and B rows; PCE: every run) and the model runs
-    the method made; eFAST's over the outputs ``extra`` of its N Monte-Carlo rows, which
-    count among its runs."""
-    from planar_tui.sensitivity.engine import independent_rows
-
-    runs = len(unit)
-    if extra is not None:
-        return extra[:, 2 * n :].var(axis=0), runs + len(extra)
-    rows = independent_rows(method, len(values), unit.shape[1])
-    return values[rows, 2 * n :].var(axis=0), runs
-
-
 def path_outputs_files(job: Job[SensitivitySpec, SerialRobot]) -> dict[str, str]:
     """With a ``path``: its per-step indices beside the job's CSV (``-path.csv``) and the
     aggregated indices (``-path-aggregated.csv``)."""
@@ -495,65 +475,6 @@ def path_outputs_files(job: Job[SensitivitySpec, SerialRobot]) -> dict[str, str]
         return {}
     stem = job.output[:-4] if job.output.lower().endswith(".csv") else job.output
     return {"path": f"{stem}-path.csv", "path_aggregated": f"{stem}-path-aggregated.csv"}
-
-
-def path_labels(n: int) -> tuple[str, ...]:
-    """Row labels of the peak and RMS outputs: ``peak|τ1|`` … ``RMS τn``."""
-    return (*(f"peak|τ{j}|" for j in range(1, n + 1)), *(f"RMS τ{j}" for j in range(1, n + 1)))
-
-
-def path_context(posture: str, path: PathSpec) -> str:
-    """A path table's title: where from, where to, in how long."""
-    to = ", ".join(f"{a:g}" for a in path.to_deg)
-    return f"path {posture} → [{to}] deg in {path.duration_s:g} s"
-
-
-def path_tables(
-    along: list[Analysis], path: PathSpec, n: int, variances: Mapping[str, Any]
-) -> dict[str, Any]:
-    """The ``path`` table: the indices of every torque at every step of the path, shaped
-    like the motion indices CSV (``output, t_s, parameter, method, …``); the
-    ``path_aggregated`` table: each joint's torque over the path and all torques together
-    (Gamboa et al. 2014), weighted by the torques' variances over independent uniform runs
-    (``variances``: method -> (((K+1) n,) step-major, runs): :func:`path_variances`)."""
-    import numpy as np
-
-    from planar_tui.csvio import CsvTable
-    from planar_tui.sensitivity.aggregate import aggregated_indices
-    from planar_tui.sensitivity.results import (
-        AGGREGATED_HEADER,
-        Analysis,
-        aggregated_rows,
-        sensitivity_percent,
-        time_indices_table,
-    )
-
-    steps = path.steps + 1
-    t_s = np.linspace(0.0, path.duration_s, steps)
-    names = tuple(f"tau{j}_Nm" for j in range(1, n + 1))
-    per_time = []
-    rows = []
-    for a in along:
-        trajectory = a.indices[:, 2 * n :].reshape(4, steps, n, -1)
-        loo = None if a.loo_error is None else a.loo_error[2 * n :].reshape(steps, n)
-        for k in range(steps):
-            indices = trajectory[:, k]
-            per_time.append(Analysis(a.method, a.posture, float(t_s[k]), a.names, indices,
-                                     sensitivity_percent(indices, "ST"), names, runs=a.runs,
-                                     loo_error=None if loo is None else loo[k]))  # fmt: skip
-        variance, runs = variances[a.method]
-        weights = variance.reshape(steps, n)
-        groups = [(name, trajectory[[0, 2], :, j], weights[:, j]) for j, name in enumerate(names)]
-        groups.append(("all torques", trajectory[[0, 2]].reshape(2, steps * n, -1),
-                       weights.reshape(-1)))  # fmt: skip
-        for label, indices, weight in groups:
-            first, total = aggregated_indices(indices, weight)
-            rows += aggregated_rows(label, a.names, a.method, first, total, runs)
-    per_time.sort(key=lambda a: a.speed_rad_s)
-    return {
-        "path": time_indices_table(per_time, names),
-        "path_aggregated": CsvTable(AGGREGATED_HEADER, rows),
-    }
 
 
 def analyse_outputs(

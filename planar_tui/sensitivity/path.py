@@ -11,16 +11,24 @@ with :math:`s' = 30\tau^2(1-\tau)^2`, :math:`s'' = 60\tau(1-\tau)(1-2\tau)`, sam
 :math:`t_k = kT/K`, k = 0 … K. At every state, each robot's torques are the batched inverse
 dynamics of :func:`~planar_tui.sensitivity.engine.evaluate`. The path's summary outputs,
 per joint j: the peak :math:`\max_k |\tau_j(t_k)|` and the RMS
-:math:`\sqrt{\frac1T\int_0^T \tau_j^2\,dt}` (trapezoidal rule on the samples).
+:math:`\sqrt{\frac1T\int_0^T \tau_j^2\,dt}` (trapezoidal rule on the samples). The job's
+path outputs, their variances over independent uniform runs (the aggregation's weights)
+and its ``path`` and ``path_aggregated`` tables live here too (:func:`path_tables`).
 """
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from planar_tui.progress import Progress
+
+if TYPE_CHECKING:
+    from planar_tui.sensitivity.job import PathSpec
+    from planar_tui.sensitivity.results import Analysis
 
 
 @dataclass(frozen=True)
@@ -77,3 +85,85 @@ def _trapezoid_weights(t_s: np.ndarray) -> np.ndarray:
     weights[:-1] += gaps / 2.0
     weights[1:] += gaps / 2.0
     return weights
+
+
+def path_outputs(problem, unit, robot, theta_rad, path: PathSpec, progress: Progress):
+    """Model outputs (S, 2n + (K+1) n) along the path: peak |τ_j|, RMS τ_j, then every
+    torque at every step (step-major)."""
+    states = quintic_path(theta_rad, np.radians(path.to_deg), path.duration_s, path.steps)
+    torques = path_torques(problem, unit, robot, states, progress)
+    peak, rms = peak_and_rms(torques, states.t_s)
+    return np.concatenate([peak, rms, torques.reshape(len(unit), -1)], axis=1)
+
+
+def path_variances(method: str, values, extra, unit, n: int):
+    """``(variances ((K+1) n,), runs)``: the path torques' variances over ``method``'s
+    independent uniform runs (Sobol': the A and B rows; PCE: every run) and the model runs
+    the method made; eFAST's over the outputs ``extra`` of its N Monte-Carlo rows, which
+    count among its runs."""
+    from planar_tui.sensitivity.engine import independent_rows
+
+    runs = len(unit)
+    if extra is not None:
+        return extra[:, 2 * n :].var(axis=0), runs + len(extra)
+    rows = independent_rows(method, len(values), unit.shape[1])
+    return values[rows, 2 * n :].var(axis=0), runs
+
+
+def path_labels(n: int) -> tuple[str, ...]:
+    """Row labels of the peak and RMS outputs: ``peak|τ1|`` … ``RMS τn``."""
+    return (*(f"peak|τ{j}|" for j in range(1, n + 1)), *(f"RMS τ{j}" for j in range(1, n + 1)))
+
+
+def path_context(posture: str, path: PathSpec) -> str:
+    """A path table's title: where from, where to, in how long."""
+    to = ", ".join(f"{a:g}" for a in path.to_deg)
+    return f"path {posture} → [{to}] deg in {path.duration_s:g} s"
+
+
+def path_tables(
+    along: list[Analysis], path: PathSpec, n: int, variances: Mapping[str, Any]
+) -> dict[str, Any]:
+    """The ``path`` table: the indices of every torque at every step of the path, shaped
+    like the motion indices CSV (``output, t_s, parameter, method, …``); the
+    ``path_aggregated`` table: each joint's torque over the path and all torques together
+    (Gamboa et al. 2014), weighted by the torques' variances over independent uniform runs
+    (``variances``: method -> (((K+1) n,) step-major, runs): :func:`path_variances`)."""
+    import numpy as np
+
+    from planar_tui.csvio import CsvTable
+    from planar_tui.sensitivity.aggregate import aggregated_indices
+    from planar_tui.sensitivity.results import (
+        AGGREGATED_HEADER,
+        Analysis,
+        aggregated_rows,
+        sensitivity_percent,
+        time_indices_table,
+    )
+
+    steps = path.steps + 1
+    t_s = np.linspace(0.0, path.duration_s, steps)
+    names = tuple(f"tau{j}_Nm" for j in range(1, n + 1))
+    per_time = []
+    rows = []
+    for a in along:
+        trajectory = a.indices[:, 2 * n :].reshape(4, steps, n, -1)
+        loo = None if a.loo_error is None else a.loo_error[2 * n :].reshape(steps, n)
+        for k in range(steps):
+            indices = trajectory[:, k]
+            per_time.append(Analysis(a.method, a.posture, float(t_s[k]), a.names, indices,
+                                     sensitivity_percent(indices, "ST"), names, runs=a.runs,
+                                     loo_error=None if loo is None else loo[k]))  # fmt: skip
+        variance, runs = variances[a.method]
+        weights = variance.reshape(steps, n)
+        groups = [(name, trajectory[[0, 2], :, j], weights[:, j]) for j, name in enumerate(names)]
+        groups.append(("all torques", trajectory[[0, 2]].reshape(2, steps * n, -1),
+                       weights.reshape(-1)))  # fmt: skip
+        for label, indices, weight in groups:
+            first, total = aggregated_indices(indices, weight)
+            rows += aggregated_rows(label, a.names, a.method, first, total, runs)
+    per_time.sort(key=lambda a: a.speed_rad_s)
+    return {
+        "path": time_indices_table(per_time, names),
+        "path_aggregated": CsvTable(AGGREGATED_HEADER, rows),
+    }
