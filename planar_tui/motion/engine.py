@@ -28,6 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from planar_tui.progress import Progress
+from planar_tui.sensitivity.engine import montecarlo_design as montecarlo_design  # re-export
 
 #: Robots per CPU kernel call at most (a call then stays well under a second per step).
 CPU_BLOCK_ROBOTS = 4096
@@ -98,7 +99,7 @@ def build_design(
 ) -> Design:
     """The designs of :func:`design_methods` of ``methods`` stacked, in that order (sampling
     stage of ``progress``, one unit per design); the PCE's has ``pce_samples`` rows."""
-    from planar_tui.sensitivity.engine import montecarlo_design, unit_design
+    from planar_tui.sensitivity.engine import unit_design
     from planar_tui.sensitivity.pce import pce_unit_design
 
     parts, rows, start = [], {}, 0
