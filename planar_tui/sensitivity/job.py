@@ -27,6 +27,7 @@ from planar_tui.schema import (
     shown,
     string,
 )
+from planar_tui.sensitivity.path import PathSpec
 
 if TYPE_CHECKING:
     from planar_tui.sensitivity.postures import Posture
@@ -59,16 +60,6 @@ def _read_posture_request(reader: TableReader, name, default, robot, values) -> 
 
 
 per_link(_read_posture_request, "list")  # when it lists angles
-
-
-@dataclass(frozen=True)
-class PathSpec:
-    """A quintic rest-to-rest joint path from the posture to ``to_deg`` in ``duration_s``,
-    sampled at ``steps + 1`` times (:func:`~planar_tui.sensitivity.path.quintic_path`)."""
-
-    to_deg: tuple[float, ...]
-    duration_s: float
-    steps: int
 
 
 #: Most path steps (each is one batched inverse dynamics of every design row).

@@ -22,13 +22,22 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-import numpy as np
-
 from planar_tui.progress import Progress
 
 if TYPE_CHECKING:
-    from planar_tui.sensitivity.job import PathSpec
+    import numpy as np
+
     from planar_tui.sensitivity.results import Analysis
+
+
+@dataclass(frozen=True)
+class PathSpec:
+    """A quintic rest-to-rest joint path from the posture to ``to_deg`` in ``duration_s``,
+    sampled at ``steps + 1`` times (:func:`~planar_tui.sensitivity.path.quintic_path`)."""
+
+    to_deg: tuple[float, ...]
+    duration_s: float
+    steps: int
 
 
 @dataclass(frozen=True)
@@ -44,6 +53,8 @@ class JointPath:
 def quintic_path(theta0_rad, theta1_rad, duration_s: float, steps: int) -> JointPath:
     """The rest-to-rest quintic path from ``theta0_rad`` to ``theta1_rad`` (each (n,)) in
     ``duration_s``, sampled at ``steps + 1`` equally spaced times (both ends included)."""
+    import numpy as np
+
     start = np.asarray(theta0_rad, dtype=np.float64)
     delta = np.asarray(theta1_rad, dtype=np.float64) - start
     t = np.linspace(0.0, duration_s, steps + 1)
@@ -57,6 +68,8 @@ def quintic_path(theta0_rad, theta1_rad, duration_s: float, steps: int) -> Joint
 def path_torques(problem, unit, robot, path: JointPath, progress: Progress | None = None):
     """Torques (S, K + 1, n) of every design row (``unit`` scaled to ``problem``) at every
     state of ``path``; ``progress`` (if any) advances by 1 / (K + 1) per state."""
+    import numpy as np
+
     from planar_tui.sensitivity.engine import evaluate
 
     states = len(path.t_s)
@@ -72,6 +85,8 @@ def path_torques(problem, unit, robot, path: JointPath, progress: Progress | Non
 
 def peak_and_rms(torques: np.ndarray, t_s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Peak |τ| and RMS τ (each (S, n)) of torques (S, K + 1, n) sampled at ``t_s``."""
+    import numpy as np
+
     peak = np.abs(torques).max(axis=1)
     weights = _trapezoid_weights(t_s)
     rms = np.sqrt(np.einsum("skn,k->sn", torques**2, weights) / (t_s[-1] - t_s[0]))
@@ -80,6 +95,8 @@ def peak_and_rms(torques: np.ndarray, t_s: np.ndarray) -> tuple[np.ndarray, np.n
 
 def _trapezoid_weights(t_s: np.ndarray) -> np.ndarray:
     """Weights w with Σ w_k f(t_k) the trapezoidal rule on the samples ``t_s``."""
+    import numpy as np
+
     gaps = np.diff(t_s)
     weights = np.zeros(len(t_s))
     weights[:-1] += gaps / 2.0
@@ -90,6 +107,8 @@ def _trapezoid_weights(t_s: np.ndarray) -> np.ndarray:
 def path_outputs(problem, unit, robot, theta_rad, path: PathSpec, progress: Progress):
     """Model outputs (S, 2n + (K+1) n) along the path: peak |τ_j|, RMS τ_j, then every
     torque at every step (step-major)."""
+    import numpy as np
+
     states = quintic_path(theta_rad, np.radians(path.to_deg), path.duration_s, path.steps)
     torques = path_torques(problem, unit, robot, states, progress)
     peak, rms = peak_and_rms(torques, states.t_s)
