@@ -94,23 +94,27 @@ def point_job(sweep: Sweep, values: tuple[Any, ...]) -> Job:
     return parse_job(sweep.preset_path, document, job.kind, job.index)
 
 
-def make_points(sweep: Sweep) -> list[Point]:
-    """Every point, validated before anything runs (parsed like a preset job, then the job
-    kind's ``check``: e.g. a motion point's device usable here): the first invalid point
-    is a :class:`PresetError` naming the sweep, the point's values and the key."""
+def make_point(sweep: Sweep, number: int, values: tuple[Any, ...]) -> Point:
+    """Point ``number`` with ``values``, parsed like a preset job, then the job kind's
+    ``check`` (e.g. a motion point's device usable here); an invalid point is a
+    :class:`PresetError` naming the sweep, the point's values and the key."""
     check = JOB_KINDS[sweep.job.kind].check
-    points = []
-    for number, values in enumerate(design(sweep), start=1):
-        try:
-            job = point_job(sweep, values)
-            if check is not None:
-                check(job)
-        except PresetError as error:
-            raise PresetError(
-                sweep.preset_path,
-                f"{sweep.name}: point {number} ({values_text(sweep, values)}): {error.key}",
-                error.problem,
-                error.expected,
-            ) from None
-        points.append(Point(number, values, job))
-    return points
+    try:
+        job = point_job(sweep, values)
+        if check is not None:
+            check(job)
+    except PresetError as error:
+        raise PresetError(
+            sweep.preset_path,
+            f"{sweep.name}: point {number} ({values_text(sweep, values)}): {error.key}",
+            error.problem,
+            error.expected,
+        ) from None
+    return Point(number, values, job)
+
+
+def make_points(sweep: Sweep) -> list[Point]:
+    """Every point, validated before anything runs (:func:`make_point`): the first invalid
+    point is a :class:`PresetError` naming the sweep, the point's values and the key."""
+    return [make_point(sweep, number, values)
+            for number, values in enumerate(design(sweep), start=1)]  # fmt: skip

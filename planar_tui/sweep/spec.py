@@ -150,6 +150,47 @@ def find_job(preset: Preset, text: Any, reader: TableReader) -> Job:
     raise reader.error("job", f"is {shown(text)}, no such job", expected + suggest(text, valid))
 
 
+def job_context(preset: Preset, reader: TableReader) -> tuple[Job, dict, dict]:
+    """The job a table's ``job`` key names, the raw TOML tables its points start from
+    (``""``: the job's own; the robot kind's name: its robot's) and their parsed values
+    as TOML (see :class:`Sweep`): what a sweep, or an optimisation, varies."""
+    job = find_job(preset, reader.raw("job", expected="a job of the preset, e.g. workspace[2]"),
+                   reader)  # fmt: skip
+    kind = JOB_KINDS[job.kind]
+    robot_kind = kind.robot_kind
+    own, robot = _job_tables(preset, job)
+    tables = {"": own, robot_kind: robot}
+    defaults = {"": kind.dump(job.spec), robot_kind: ROBOT_KINDS[robot_kind].dump(job.robot)}
+    return job, tables, defaults
+
+
+def read_key_path(
+    reader: TableReader,
+    job: Job,
+    tables: Mapping[str, Mapping[str, Any]],
+    defaults: Mapping[str, Mapping[str, Any]],
+    key: str,
+    text: str,
+) -> KeyPath:
+    """The key path ``text`` of ``job`` (written under the table's ``key``), checked: a
+    key of the job or of its robot, an index within the list it names."""
+    kind = JOB_KINDS[job.kind]
+    robot_kind = kind.robot_kind
+
+    def error(problem: str, expected: str) -> PresetError:
+        return reader.error(key, problem, expected)
+
+    parsed = parse_key_path(text, kind.keys, robot_kind, ROBOT_KINDS[robot_kind].keys, error)
+    if parsed.indices:
+        base = current_value(KeyPath(text, parsed.table, parsed.key), tables)
+        if base is None:
+            base = current_value(KeyPath(text, parsed.table, parsed.key), defaults)
+        problem = index_problem(parsed, base)
+        if problem is not None:
+            raise error(problem, "an index within the list, counted from 1")
+    return parsed
+
+
 def _values_count(reader: TableReader, name: str, entry: Any) -> int:
     """How many values a ``values`` entry has (checked, nothing built): a non-empty list's
     length, or ``{from, to, count}``'s ``count``."""
@@ -206,27 +247,10 @@ def parse_sweep_table(preset: Preset, table: Any, name: str, number: int = 1) ->
         raise PresetError(path, name, f"is {type_name(table)}", "a table [[sweep]]")
     table = plain_toml(table)
     reader = TableReader(path, table, name, SWEEP_KEYS)
-    job = find_job(preset, reader.raw("job", expected="a job of the preset, e.g. workspace[2]"),
-                   reader)  # fmt: skip
-    kind = JOB_KINDS[job.kind]
-    robot_kind = kind.robot_kind
-    own, robot = _job_tables(preset, job)
-    tables = {"": own, robot_kind: robot}
-    defaults = {"": kind.dump(job.spec), robot_kind: ROBOT_KINDS[robot_kind].dump(job.robot)}
+    job, tables, defaults = job_context(preset, reader)
 
     def key_path(group: str, text: str) -> KeyPath:
-        def error(problem: str, expected: str) -> PresetError:
-            return reader.error(f"{group}.{_quoted(text)}", problem, expected)
-
-        parsed = parse_key_path(text, kind.keys, robot_kind, ROBOT_KINDS[robot_kind].keys, error)
-        if parsed.indices:
-            base = current_value(KeyPath(text, parsed.table, parsed.key), tables)
-            if base is None:
-                base = current_value(KeyPath(text, parsed.table, parsed.key), defaults)
-            problem = index_problem(parsed, base)
-            if problem is not None:
-                raise error(problem, "an index within the list, counted from 1")
-        return parsed
+        return read_key_path(reader, job, tables, defaults, f"{group}.{_quoted(text)}", text)
 
     has_values, has_ranges = reader.has("values"), reader.has("ranges")
     if has_values == has_ranges:
