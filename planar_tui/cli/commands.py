@@ -1,5 +1,5 @@
 """The commands of ``planar-tui`` that are not one job kind's: ``tui``, ``run``, ``plot``,
-``sweep``, ``warmup`` and ``presets`` (:data:`COMMANDS`). A new one (``export``, say) is a
+``sweep``, ``optimise``, ``warmup`` and ``presets`` (:data:`COMMANDS`). A new one (``export``, say) is a
 function here and a line in :data:`COMMANDS`; :func:`planar_tui.cli.build_app` adds them
 after the job kinds' own commands. A command turns its options into a
 :class:`~planar_tui.plan.RunPlan` (:func:`planar_tui.plan.plan_run`) and prints
@@ -80,8 +80,8 @@ def run(
     resume: ResumeOption = False,
 ) -> None:
     """Run every job of every preset (or those --job names), files named as the presets
-    say, then the presets' sweeps (not with --job)."""
-    from planar_tui.cli.running import print_notes, run_jobs, run_sweeps
+    say, then the presets' sweeps and optimisations (not with --job)."""
+    from planar_tui.cli.running import print_notes, run_jobs, run_optimisations, run_sweeps
 
     with reported_errors():
         from planar_tui.batch import select_jobs
@@ -91,12 +91,14 @@ def run(
         check_workers(workers)
         loaded = load_presets(presets)
         jobs = select_jobs([job for preset in loaded for job in preset.jobs], job_name)
-        plan = plan_run(jobs, out_dir, plot=plot, sweeps_of=[] if job_name else loaded,
+        studies = [] if job_name else loaded
+        plan = plan_run(jobs, out_dir, plot=plot, sweeps_of=studies, optimise_of=studies,
                         resume=resume)  # fmt: skip
         print_notes(plan)
         if plan.jobs:
             run_jobs(plan)
         run_sweeps(plan, workers, scheduler)
+        run_optimisations(plan, workers, scheduler)
 
 
 def plot_csv(
@@ -167,6 +169,32 @@ def sweep_command(
         run_sweeps(plan, workers, scheduler)
 
 
+def optimise_command(
+    preset: PresetArg,
+    workers: WorkersOption = None,
+    scheduler: SchedulerOption = None,
+    resume: ResumeOption = False,
+    out_dir: OutDirOption = Path("."),
+    plot: PlotOption = None,
+) -> None:
+    """Run the preset's optimisations ([[optimise]] tables): a CSV of every evaluation, the
+    optimum or Pareto set re-run at the job's own settings."""
+    from planar_tui.cli.running import print_notes, run_optimisations
+
+    with reported_errors():
+        from planar_tui.plan import plan_run
+
+        check_figure_option(plot)
+        check_workers(workers)
+        (loaded,) = load_presets([preset])
+        plan = plan_run([], out_dir, optimise_of=[loaded], optimise_plot=plot, resume=resume)
+        if not plan.optimisations:
+            raise PresetError(loaded.path, "optimise", "no [[optimise]] table in this preset",
+                              "an [[optimise]] table")  # fmt: skip
+        print_notes(plan)
+        run_optimisations(plan, workers, scheduler)
+
+
 def warmup() -> None:
     """Compile every job kind's kernels into the cache (for batch machines: later runs
     start without the first-run compilation)."""
@@ -203,6 +231,7 @@ COMMANDS: tuple[tuple[str, Callable[..., None]], ...] = (
     ("run", run),
     ("plot", plot_csv),
     ("sweep", sweep_command),
+    ("optimise", optimise_command),
     ("warmup", warmup),
     ("presets", list_presets),
 )
