@@ -266,7 +266,7 @@ def _read_variable(reader: TableReader, key: str, path: KeyPath, entry: Any) -> 
     else:
         low, high = spec.number("from"), spec.number("to")
     if low >= high:
-        raise spec.error("to", f"is {shown(high)}, not above from = {shown(low)}",
+        raise spec.error("to", f"is {shown(entry['to'])}, not above from = {shown(entry['from'])}",
                          "to > from")  # fmt: skip
     return Variable(path, float(low), float(high), whole)
 
