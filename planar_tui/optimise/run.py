@@ -134,7 +134,7 @@ def best_of(opt: Optimisation, evaluations: Sequence[Evaluation]) -> list[Evalua
     candidates = {}
     for e in evaluations:
         if feasible(opt, e.outcome):
-            candidates.setdefault(e.values, e)
+            candidates.setdefault(repr(e.values), e)  # choices may be lists
     scored = [(objectives_of(opt, e.outcome), e) for e in candidates.values()]
     if len(opt.objectives) == 1:
         return [min(scored, key=lambda s: (s[0], s[1].number))[1]] if scored else []

@@ -15,7 +15,7 @@ import hashlib
 import json
 import math
 import re
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -49,7 +49,10 @@ ALGORITHMS = ("auto", "ga", "de", "nsga2")
 MAX_BUDGET = 100_000
 OPERATORS = (">=", "<=", ">", "<")
 _CONSTRAINT = re.compile(r"^\s*([A-Za-z_][A-Za-z0-9_]*)\s*(>=|<=|>|<)\s*(\S+)\s*$")
-_VARIABLE_DOC = "{ from = A, to = B }, { from = A, to = B, integer = true } or { choices = [...] }"
+_VARIABLE_DOC = (
+    "{ from = A, to = B }, { from = A, to = B, integer = true } or { choices = [...] }; "
+    "optionally fixed_sum = { KEY = TOTAL }"
+)
 
 
 def _raw(expected: str):
@@ -71,7 +74,8 @@ class OptimiseTable:
     variables: dict = setting(
         _raw("a table of key paths"), type_doc=f"table of key path → `{_VARIABLE_DOC}`",
         doc="what varies: a number in [from, to], an integer in [from, to], or one of the "
-        "choices (a form, an elbow mode); key paths as in `[[sweep]]`",
+        "choices (a form, an elbow mode); key paths as in `[[sweep]]`; `fixed_sum = { KEY = "
+        "TOTAL }` sets another key path to `TOTAL − value` (e.g. a fixed leg length)",
     )  # fmt: skip
     maximise: Any = setting(
         _raw("a column name or a list of them"), default=None, default_doc="(or `minimise`)",
@@ -130,13 +134,15 @@ class Variable:
     """One varied key path: a number in ``[low, high]``, an integer in it, or one of
     ``choices``. The optimiser sees every variable as a real ``x``: a number is ``x``
     itself, an integer ``round(x)`` with ``x ∈ [low − ½, high + ½]`` and a choice the
-    ``round(x)``-th with ``x ∈ [−½, n − ½]``, clipped at the ends."""
+    ``round(x)``-th with ``x ∈ [−½, n − ½]``, clipped at the ends. ``fixed_sum``: key paths
+    that take ``total − value`` (a number or integer variable's)."""
 
     path: KeyPath
     low: float = 0.0
     high: float = 0.0
     integer: bool = False
     choices: tuple[Any, ...] | None = None
+    fixed_sum: tuple[tuple[KeyPath, float], ...] = ()
 
     @property
     def bounds(self) -> tuple[float, float]:
@@ -225,14 +231,19 @@ class Optimisation:
     def sweep(self, coarse: bool) -> Sweep:
         """The sweep whose points are the evaluations (the variables, then with ``coarse``
         the coarse settings): :func:`planar_tui.sweep.points.point_job` makes their jobs."""
-        paths = [v.path for v in self.variables] + [p for p, _ in self.coarse if coarse]
+        paths = [v.path for v in self.variables] + [p for v in self.variables
+                                                    for p, _ in v.fixed_sum]  # fmt: skip
+        paths += [p for p, _ in self.coarse if coarse]
         return Sweep(preset_path=self.preset_path, name=self.name, job=self.job,
                      document=self.document, tables=self.tables, defaults=self.defaults,
                      values=tuple((path, (None,)) for path in paths))  # fmt: skip
 
     def point_values(self, values: tuple[Any, ...], coarse: bool) -> tuple[Any, ...]:
-        """A design's values for :meth:`sweep`'s points."""
-        return (*values, *(value for _, value in self.coarse)) if coarse else tuple(values)
+        """A design's values for :meth:`sweep`'s points: the variables', the fixed sums'
+        (``total − value``), then with ``coarse`` the coarse settings."""
+        sums = [total - value for v, value in zip(self.variables, values, strict=True)
+                for _, total in v.fixed_sum]  # fmt: skip
+        return (*values, *sums, *(value for _, value in self.coarse if coarse))
 
     def fingerprint(self) -> str:
         """A SHA-256 of what an evaluation depends on (job and robot tables, the table but
@@ -248,13 +259,15 @@ def _quoted(path: str) -> str:
     return f'"{path}"' if any(c in path for c in ".[]") else path
 
 
-def _read_variable(reader: TableReader, key: str, path: KeyPath, entry: Any) -> Variable:
+def _read_variable(reader: TableReader, key: str, path: KeyPath, entry: Any,
+                   key_path: Callable[[str, str], KeyPath]) -> Variable:  # fmt: skip
     if not isinstance(entry, dict):
         raise reader.error(key, f"is {type_name(entry)}", _VARIABLE_DOC)
-    spec = TableReader(reader.path, entry, reader.key(key), ("from", "to", "integer", "choices"))
+    spec = TableReader(reader.path, entry, reader.key(key),
+                       ("from", "to", "integer", "choices", "fixed_sum"))  # fmt: skip
     if spec.has("choices"):
-        if spec.has("from") or spec.has("to") or spec.has("integer"):
-            raise spec.error("choices", "is given with from/to/integer", _VARIABLE_DOC)
+        if spec.has("from") or spec.has("to") or spec.has("integer") or spec.has("fixed_sum"):
+            raise spec.error("choices", "is given with from/to/integer/fixed_sum", _VARIABLE_DOC)
         choices = spec.raw("choices")
         if not isinstance(choices, list) or not choices:
             what = "empty" if choices == [] else type_name(choices)
@@ -268,7 +281,15 @@ def _read_variable(reader: TableReader, key: str, path: KeyPath, entry: Any) -> 
     if low >= high:
         raise spec.error("to", f"is {shown(entry['to'])}, not above from = {shown(entry['from'])}",
                          "to > from")  # fmt: skip
-    return Variable(path, float(low), float(high), whole)
+    sums = spec.raw("fixed_sum", None)
+    if sums is None:
+        return Variable(path, float(low), float(high), whole)
+    if not isinstance(sums, dict) or not sums:
+        raise spec.error("fixed_sum", f"is {'empty' if sums == {} else type_name(sums)}",
+                         "{ KEY = TOTAL }: the key path takes TOTAL − the variable")  # fmt: skip
+    fixed = TableReader(spec.path, sums, spec.key("fixed_sum"), tuple(sums))
+    fixed_sum = tuple((key_path(f"{key}.fixed_sum", text), fixed.number(text)) for text in sums)
+    return Variable(path, float(low), float(high), whole, fixed_sum=fixed_sum)
 
 
 def _columns(reader: TableReader, name: str, value: Any) -> list[str]:
@@ -327,7 +348,8 @@ def parse_optimise_table(preset: Preset, table: Any, name: str, number: int = 1)
 
     for text, entry in keys.variables.items():
         parsed = key_path("variables", text)
-        variables.append(_read_variable(reader, f"variables.{_quoted(text)}", parsed, entry))
+        variables.append(_read_variable(reader, f"variables.{_quoted(text)}", parsed, entry,
+                                        key_path))  # fmt: skip
     coarse = []
     if keys.coarse is not None:
         if not isinstance(keys.coarse, dict):
