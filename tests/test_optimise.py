@@ -394,3 +394,36 @@ def test_a_preset_without_optimise_tables_is_refused(tmp_path, cli):
 def test_the_readme_holds_the_reference_generated_from_the_declarations():
     readme = (REPO / "README.md").read_text(encoding="utf-8")
     assert reference_table() in readme, reference_table()
+
+
+def test_the_sensitivity_jobs_torque_variance_is_the_closed_form(tmp_path):
+    """Study (c)'s objective: at rest, ``τ2 = g m2 (l2/2) cos(θ1 + θ2)`` with ``m2``, ``l2``
+    independent and uniform (half-widths δm, δl), so ``Var τ2 = (g cos(θ1 + θ2) / 2)² ·
+    [(m2² + δm²/3)(l2² + δl²/3) − m2² l2²]``."""
+    from planar_tui.batch import prepare_jobs, run_job
+    from planar_tui.presets import load_preset
+    from planar_tui.registry import JOB_KINDS
+
+    preset = write(
+        tmp_path,
+        ARM.split("[torques]")[0]
+        + """
+[sensitivity]
+posture = [30, 20]
+speed_rad_s = 0
+tolerance_length_mm = 50
+tolerance_mass_g = 100
+methods = ["sobol"]
+samples = 4096
+output = "s.csv"
+""",
+    )
+    (job,) = prepare_jobs(load_preset(preset).jobs)
+    figures = JOB_KINDS["sensitivity"].point_figures(job, run_job(job))
+    dl, dm = 0.05, 0.1
+    product = (M2**2 + dm**2 / 3) * (L2**2 + dl**2 / 3) - (M2 * L2) ** 2
+    expected = (G * math.cos(math.radians(50)) / 2) ** 2 * product
+    assert figures["tau2_variance_Nm2"] == pytest.approx(expected, rel=0.05)
+    assert figures["tau_variance_max_Nm2"] == max(
+        figures["tau1_variance_Nm2"], figures["tau2_variance_Nm2"]
+    )

@@ -75,7 +75,8 @@ class OptimiseTable:
         _raw("a table of key paths"), type_doc=f"table of key path → `{_VARIABLE_DOC}`",
         doc="what varies: a number in [from, to], an integer in [from, to], or one of the "
         "choices (a form, an elbow mode); key paths as in `[[sweep]]`; `fixed_sum = { KEY = "
-        "TOTAL }` sets another key path to `TOTAL − value` (e.g. a fixed leg length)",
+        "TOTAL }` sets another key path to `TOTAL −` the sum of the variables naming it "
+        "(a fixed leg length or reach)",
     )  # fmt: skip
     maximise: Any = setting(
         _raw("a column name or a list of them"), default=None, default_doc="(or `minimise`)",
@@ -135,7 +136,7 @@ class Variable:
     ``choices``. The optimiser sees every variable as a real ``x``: a number is ``x``
     itself, an integer ``round(x)`` with ``x ∈ [low − ½, high + ½]`` and a choice the
     ``round(x)``-th with ``x ∈ [−½, n − ½]``, clipped at the ends. ``fixed_sum``: key paths
-    that take ``total − value`` (a number or integer variable's)."""
+    that take ``total −`` the sum of the (number or integer) variables naming them."""
 
     path: KeyPath
     low: float = 0.0
@@ -231,8 +232,7 @@ class Optimisation:
     def sweep(self, coarse: bool) -> Sweep:
         """The sweep whose points are the evaluations (the variables, then with ``coarse``
         the coarse settings): :func:`planar_tui.sweep.points.point_job` makes their jobs."""
-        paths = [v.path for v in self.variables] + [p for v in self.variables
-                                                    for p, _ in v.fixed_sum]  # fmt: skip
+        paths = [v.path for v in self.variables] + [p for p, _, _ in self.sums]
         paths += [p for p, _ in self.coarse if coarse]
         return Sweep(preset_path=self.preset_path, name=self.name, job=self.job,
                      document=self.document, tables=self.tables, defaults=self.defaults,
@@ -240,10 +240,21 @@ class Optimisation:
 
     def point_values(self, values: tuple[Any, ...], coarse: bool) -> tuple[Any, ...]:
         """A design's values for :meth:`sweep`'s points: the variables', the fixed sums'
-        (``total − value``), then with ``coarse`` the coarse settings."""
-        sums = [total - value for v, value in zip(self.variables, values, strict=True)
-                for _, total in v.fixed_sum]  # fmt: skip
+        (``total − Σ values``), then with ``coarse`` the coarse settings."""
+        sums = [total - sum(values[k] for k in which) for _, total, which in self.sums]
         return (*values, *sums, *(value for _, value in self.coarse if coarse))
+
+    @property
+    def sums(self) -> tuple[tuple[KeyPath, float, tuple[int, ...]], ...]:
+        """Each fixed sum: its key path, its total and the variables (0-based) it
+        subtracts."""
+        found: dict[tuple, tuple[KeyPath, float, list[int]]] = {}
+        for k, variable in enumerate(self.variables):
+            for path, total in variable.fixed_sum:
+                found.setdefault((path.table, path.key, path.indices), (path, total, []))[2].append(
+                    k
+                )
+        return tuple((path, total, tuple(which)) for path, total, which in found.values())
 
     def fingerprint(self) -> str:
         """A SHA-256 of what an evaluation depends on (job and robot tables, the table but
@@ -289,6 +300,8 @@ def _read_variable(reader: TableReader, key: str, path: KeyPath, entry: Any,
                          "{ KEY = TOTAL }: the key path takes TOTAL − the variable")  # fmt: skip
     fixed = TableReader(spec.path, sums, spec.key("fixed_sum"), tuple(sums))
     fixed_sum = tuple((key_path(f"{key}.fixed_sum", text), fixed.number(text)) for text in sums)
+    if len({(p.table, p.key, p.indices) for p, _ in fixed_sum}) < len(fixed_sum):
+        raise spec.error("fixed_sum", "names one key path twice", "each key path once")
     return Variable(path, float(low), float(high), whole, fixed_sum=fixed_sum)
 
 
@@ -346,10 +359,26 @@ def parse_optimise_table(preset: Preset, table: Any, name: str, number: int = 1)
         seen[place] = text
         return parsed
 
+    def sum_path(group: str, text: str) -> KeyPath:
+        return read_key_path(reader, job, tables, defaults, f"{group}.{_quoted(text)}", text)
+
     for text, entry in keys.variables.items():
         parsed = key_path("variables", text)
         variables.append(_read_variable(reader, f"variables.{_quoted(text)}", parsed, entry,
-                                        key_path))  # fmt: skip
+                                        sum_path))  # fmt: skip
+    totals: dict[tuple, float] = {}
+    for variable in variables:
+        for target, total in variable.fixed_sum:
+            place = (target.table, target.key, target.indices)
+            key = f"variables.{_quoted(variable.path.text)}.fixed_sum.{_quoted(target.text)}"
+            if place in seen:
+                raise reader.error(key, f"names the same value as {seen[place]}",
+                                   "a key path no variable or coarse setting names")  # fmt: skip
+            if totals.setdefault(place, total) != total:
+                raise reader.error(key, f"is {shown(total)}, another total than "
+                                   f"{shown(totals[place])}", "one total per key path")  # fmt: skip
+    for variable in variables:  # a coarse setting may not name a fixed sum either
+        seen.update({(p.table, p.key, p.indices): p.text for p, _ in variable.fixed_sum})
     coarse = []
     if keys.coarse is not None:
         if not isinstance(keys.coarse, dict):

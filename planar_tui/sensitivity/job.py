@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from planar_tui import uq
@@ -257,12 +257,15 @@ def prepare_sensitivity(job: Job[SensitivitySpec, SerialRobot]) -> SensitivityPr
 @dataclass(frozen=True, kw_only=True)
 class SensitivityResult(JobResult):
     """Indices of one job: one :class:`~planar_tui.sensitivity.results.Analysis` per method
-    and speed, the robot's label, the solved posture and N per method."""
+    and speed, the robot's label, the solved posture and N per method; ``variances_Nm2``:
+    per speed, each torque's variance over the first method's design (every row of it is a
+    draw of the uniform inputs: ``Var τ_i ≈ Σ (τ_i − τ̄_i)² / (S − 1)``)."""
 
     robot_label: str
     posture: Posture
     analyses: list[Analysis]
     samples: Mapping[str, int]
+    variances_Nm2: Mapping[float, tuple[float, ...]] = field(default_factory=dict)
 
 
 def sample_sizes(spec: SensitivitySpec, num_vars: int) -> dict[str, int]:
@@ -311,6 +314,8 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
             problem, designs[method], robot, theta, omega, alpha, progress,
             f"{method} {speed:g} rad/s",
         )  # fmt: skip
+    variances = {speed: tuple(float(v) for v in outputs[spec.methods[0], speed].var(axis=0, ddof=1))
+                 for speed in spec.speeds_rad_s}  # fmt: skip
     progress.start(len(states), "analysis")
     analyses = []
     for method, speed in states:
@@ -337,6 +342,7 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
         posture=posture,
         analyses=analyses,
         samples=sizes,
+        variances_Nm2=variances,
     )
 
 
@@ -360,9 +366,9 @@ def point_figures(
 ) -> dict[str, str | float]:
     """A sweep row's figures, per torque ``i`` (at each speed, suffixed ``_w2``, ``_w3`` …
     from the second on): the dominant parameter by the percent of the job's first method,
-    its percent, the lengths' and the masses' shares (sums of their percents), and the
+    its percent, the lengths' and the masses' shares (sums of their percents), the
     largest Sobol' 95 % half-width of ``S1`` and ``ST`` over the parameters (empty without
-    Sobol')."""
+    Sobol') and its variance (N² m²); then the largest variance over the torques."""
     method = job.spec.methods[0]
     figures: dict[str, str | float] = {}
     for k, speed in enumerate(job.spec.speeds_rad_s, start=1):
@@ -380,6 +386,8 @@ def point_figures(
                 figures[f"tau{i}_{group}_percent{suffix}"] = share
             halfwidth = "" if sobol is None else float(sobol.indices[[1, 3], i - 1].max())
             figures[f"tau{i}_sobol_halfwidth_max{suffix}"] = halfwidth
+            figures[f"tau{i}_variance_Nm2{suffix}"] = result.variances_Nm2[speed][i - 1]
+        figures[f"tau_variance_max_Nm2{suffix}"] = max(result.variances_Nm2[speed])
     return figures
 
 
