@@ -47,7 +47,8 @@ class Evaluation:
 class OptimiseRun:
     """The evaluations so far (``resumed`` of them from the checkpoint), the certified
     re-runs of the optimum or Pareto set (evaluation, outcome at the job's own settings)
-    and where the files went."""
+    and where the files went. A ``cancelled`` run (stopped part-way) keeps every finished
+    evaluation, those of its last generation included."""
 
     optimisation: Optimisation
     evaluations: list[Evaluation] = field(default_factory=list)
@@ -59,6 +60,7 @@ class OptimiseRun:
     figure: Path | None = None
     figure_error: str | None = None
     checkpoint: Path | None = None
+    cancelled: bool = False
 
     @property
     def failed(self) -> int:
@@ -256,7 +258,8 @@ def run_optimisation(
     checkpoint as it arrives (``resume`` continues it) and the CSVs and figure are written
     at the end. ``progress`` counts evaluations; its cancel or Ctrl-C propagates
     (:class:`~planar_tui.errors.Cancelled`, ``KeyboardInterrupt``) with the checkpoint
-    kept. ``on_generation`` sees the run after each generation (the app's screen)."""
+    kept. ``on_generation`` sees the run after each generation (the app's screen); a
+    cancelled run is handed to it once more, ``cancelled``, before the cancel propagates."""
     import numpy as np
 
     from planar_tui.batch import OutputFailed
@@ -288,9 +291,9 @@ def run_optimisation(
         outcomes[outcome.number] = outcome
         progress.advance(1, _detail(run, len(outcomes)), failed=run.failed)
 
-    def evaluate(numbered: list[tuple[int, tuple[Any, ...]]], coarse: bool
-                 ) -> dict[int, PointOutcome]:  # fmt: skip
-        outcomes = {n: finished[n] for n, _ in numbered if n in finished}
+    def evaluate(numbered: list[tuple[int, tuple[Any, ...]]], coarse: bool,
+                 outcomes: dict[int, PointOutcome]) -> dict[int, PointOutcome]:  # fmt: skip
+        outcomes.update({n: finished[n] for n, _ in numbered if n in finished})
         run.resumed += len(outcomes)
         if outcomes:
             progress.advance(len(outcomes), _detail(run, len(outcomes)), failed=run.failed)
@@ -323,7 +326,16 @@ def run_optimisation(
                 designs = [(start + i + 1, tuple(v.decode(x) for v, x in
                             zip(opt.variables, row, strict=True)))
                            for i, row in enumerate(population.get("X"))]  # fmt: skip
-                outcomes = evaluate(designs, coarse=True)
+                outcomes: dict[int, PointOutcome] = {}
+                try:
+                    evaluate(designs, True, outcomes)
+                except BaseException:  # a cancel: the generation's finished ones are kept
+                    run.cancelled = True
+                    run.evaluations += [Evaluation(n, run.generations, values, outcomes[n])
+                                        for n, values in designs if n in outcomes]  # fmt: skip
+                    if on_generation is not None:
+                        on_generation(run)
+                    raise
                 generation = [Evaluation(n, run.generations, values, outcomes[n])
                               for n, values in designs]  # fmt: skip
                 run.evaluations += generation
@@ -335,7 +347,7 @@ def run_optimisation(
             best = run.best()
             progress.start(len(best), f"{opt.label} (certified)", "re-running the optimum")
             numbered = [(opt.budget + k, e.values) for k, e in enumerate(best, start=1)]
-            outcomes = evaluate(numbered, coarse=False)
+            outcomes = evaluate(numbered, False, {})
             run.certified = [(e, outcomes[opt.budget + k]) for k, e in enumerate(best, start=1)]
         if out_dir is not None and output is not None:
             for path, table in ((output, run.table), (out_dir / opt.pareto_output,
