@@ -20,16 +20,24 @@ class OptimiseActions:
 
     last_optimisation: Any = None
 
+    def idle_job_pane(self, what: str) -> JobPane | None:
+        """The current tab's job pane when no job runs (``what`` varies its job: a sweep,
+        an optimisation); ``None`` with a notice why not."""
+        pane = self.current_pane()
+        if not isinstance(pane, JobPane) or not pane.available():
+            self.notify(f"{what} varies a job: choose a job tab first.", severity="warning")
+            return None
+        if self.job_running:
+            self.notify("A job is already running (escape cancels it).", severity="warning")
+            return None
+        return pane
+
     def action_optimise(self) -> None:
         """Run the preset's optimisation of the current tab's job."""
         from planar_tui.optimise.spec import parse_optimisations
 
-        pane = self.current_pane()
-        if not isinstance(pane, JobPane) or not pane.available():
-            self.notify("An optimisation varies a job: choose its tab first.", severity="warning")
-            return
-        if self.job_running:
-            self.notify("A job is already running (escape cancels it).", severity="warning")
+        pane = self.idle_job_pane("An optimisation")
+        if pane is None:
             return
         try:
             job = pane.current_job()

@@ -9,7 +9,6 @@ from typing import Any
 
 from planar_tui.app.job_runner import SweepFinished
 from planar_tui.app.screens.dialogs import MessageDialog, PathDialog
-from planar_tui.app.widgets.panes import JobPane
 from planar_tui.errors import PresetError
 
 
@@ -27,12 +26,8 @@ class SweepActions:
         from planar_tui.sweep.paths import allowed_paths
         from planar_tui.sweep.spec import build_sweep
 
-        pane = self.current_pane()
-        if not isinstance(pane, JobPane) or not pane.available():
-            self.notify("A sweep varies a job: choose a job tab first.", severity="warning")
-            return
-        if self.job_running:
-            self.notify("A job is already running (escape cancels it).", severity="warning")
+        pane = self.idle_job_pane("A sweep")  # OptimiseActions'
+        if pane is None:
             return
         try:
             job = pane.current_job()

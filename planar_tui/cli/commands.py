@@ -153,20 +153,7 @@ def sweep_command(
     plot: PlotOption = None,
 ) -> None:
     """Run the preset's sweeps ([[sweep]] tables): one CSV each, one row per point."""
-    from planar_tui.cli.running import print_notes, run_sweeps
-
-    with reported_errors():
-        from planar_tui.plan import plan_run
-
-        check_figure_option(plot)
-        check_workers(workers)
-        (loaded,) = load_presets([preset])
-        plan = plan_run([], out_dir, sweeps_of=[loaded], sweep_plot=plot, resume=resume)
-        if not plan.sweeps:
-            raise PresetError(loaded.path, "sweep", "no [[sweep]] table in this preset",
-                              "a [[sweep]] table")  # fmt: skip
-        print_notes(plan)
-        run_sweeps(plan, workers, scheduler)
+    run_studies("sweep", preset, workers, scheduler, resume, out_dir, plot)
 
 
 def optimise_command(
@@ -179,7 +166,16 @@ def optimise_command(
 ) -> None:
     """Run the preset's optimisations ([[optimise]] tables): a CSV of every evaluation, the
     optimum or Pareto set re-run at the job's own settings."""
-    from planar_tui.cli.running import print_notes, run_optimisations
+    run_studies("optimise", preset, workers, scheduler, resume, out_dir, plot)
+
+
+def run_studies(
+    table: str, preset: str, workers: int | None, scheduler: str | None, resume: bool,
+    out_dir: Path, plot: Path | None,
+) -> None:  # fmt: skip
+    """The ``sweep`` and ``optimise`` commands: the preset's ``[[table]]`` tables planned
+    (refused, exit 2, when there is none) and run."""
+    from planar_tui.cli.running import print_notes, run_optimisations, run_sweeps
 
     with reported_errors():
         from planar_tui.plan import plan_run
@@ -187,12 +183,17 @@ def optimise_command(
         check_figure_option(plot)
         check_workers(workers)
         (loaded,) = load_presets([preset])
-        plan = plan_run([], out_dir, optimise_of=[loaded], optimise_plot=plot, resume=resume)
-        if not plan.optimisations:
-            raise PresetError(loaded.path, "optimise", "no [[optimise]] table in this preset",
-                              "an [[optimise]] table")  # fmt: skip
+        sweeps = table == "sweep"
+        plan = plan_run([], out_dir, sweeps_of=[loaded] if sweeps else [],
+                        sweep_plot=plot if sweeps else None,
+                        optimise_of=[] if sweeps else [loaded],
+                        optimise_plot=None if sweeps else plot, resume=resume)  # fmt: skip
+        if not (plan.sweeps if sweeps else plan.optimisations):
+            article = "a" if sweeps else "an"
+            raise PresetError(loaded.path, table, f"no [[{table}]] table in this preset",
+                              f"{article} [[{table}]] table")  # fmt: skip
         print_notes(plan)
-        run_optimisations(plan, workers, scheduler)
+        (run_sweeps if sweeps else run_optimisations)(plan, workers, scheduler)
 
 
 def warmup() -> None:

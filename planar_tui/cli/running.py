@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import os
 from contextlib import ExitStack, contextmanager
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from planar_tui.cli.output import (
     _INTERRUPTED,
@@ -76,6 +76,22 @@ def _said(text: str) -> None:
     stderr.print(text, markup=False, highlight=False, soft_wrap=True)
 
 
+def study_client(stack: ExitStack, wanted: bool, workers: int | None, scheduler: str | None
+                 ) -> Any:  # fmt: skip
+    """The Dask client a run's sweeps (or optimisations) share, entered on ``stack``:
+    ``None`` when there are none (``wanted`` false) or they run in this process (one
+    worker, no scheduler); else a local cluster of ``workers`` processes (default: the
+    cores) or the scheduler at ``scheduler``."""
+    from planar_tui.sweep.execute import default_workers
+
+    count = workers or default_workers()
+    if not wanted or (scheduler is None and count <= 1):
+        return None
+    from planar_tui.sweep.execute import DaskTarget, dask_client
+
+    return stack.enter_context(dask_client(DaskTarget(count, scheduler), _said))
+
+
 def run_sweeps(plan: RunPlan, workers: int | None, scheduler: str | None) -> None:
     """Run the plan's sweeps, one progress bar each; a summary line per sweep on stdout.
     Exit code 1 when a point failed (its row says why) or a sweep's file could not be
@@ -85,20 +101,14 @@ def run_sweeps(plan: RunPlan, workers: int | None, scheduler: str | None) -> Non
     sweeps from theirs and computes only what is left."""
     from planar_tui.batch import OutputFailed
     from planar_tui.progress import Progress
-    from planar_tui.sweep.execute import default_workers
     from planar_tui.sweep.service import resume_note, run_sweep
 
-    count = workers or default_workers()
     failed = 0
     unwritten = 0
     done = []
     try:
         with sigterm_as_interrupt(), ExitStack() as stack:
-            client = None
-            if plan.sweeps and (scheduler is not None or count > 1):
-                from planar_tui.sweep.execute import DaskTarget, dask_client
-
-                client = stack.enter_context(dask_client(DaskTarget(count, scheduler), _said))
+            client = study_client(stack, bool(plan.sweeps), workers, scheduler)
             for entry in plan.sweeps:
                 sweep, points = entry.sweep, entry.points
                 with sweep_progress_display(stderr) as bars:
@@ -162,17 +172,11 @@ def run_optimisations(plan: RunPlan, workers: int | None, scheduler: str | None)
     from planar_tui.batch import OutputFailed
     from planar_tui.optimise.run import run_optimisation
     from planar_tui.progress import Progress
-    from planar_tui.sweep.execute import default_workers
 
-    count = workers or default_workers()
     unwritten = 0
     try:
         with sigterm_as_interrupt(), ExitStack() as stack:
-            client = None
-            if plan.optimisations and (scheduler is not None or count > 1):
-                from planar_tui.sweep.execute import DaskTarget, dask_client
-
-                client = stack.enter_context(dask_client(DaskTarget(count, scheduler), _said))
+            client = study_client(stack, bool(plan.optimisations), workers, scheduler)
             for opt in plan.optimisations:
                 with sweep_progress_display(stderr) as bars:
                     task = bars.add_task(opt.label, total=opt.budget, failed=0)

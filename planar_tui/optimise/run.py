@@ -349,26 +349,35 @@ def run_optimisation(
             numbered = [(opt.budget + k, e.values) for k, e in enumerate(best, start=1)]
             outcomes = evaluate(numbered, False, {})
             run.certified = [(e, outcomes[opt.budget + k]) for k, e in enumerate(best, start=1)]
-        if out_dir is not None and output is not None:
-            for path, table in ((output, run.table), (out_dir / opt.pareto_output,
-                                                     run.optimum_table)):  # fmt: skip
-                try:
-                    write_csv_atomic(path, table)
-                except OSError as error:
-                    raise OutputFailed(path, error.strerror or str(error)) from None
-            run.output, run.pareto = output, out_dir / opt.pareto_output
     finally:
         if writer is not None:
             writer.close()
+    if out_dir is not None:
+        _write_outputs(run, out_dir, keep_checkpoint)
+    return run
+
+
+def _write_outputs(run: OptimiseRun, out_dir: Path, keep_checkpoint: bool) -> None:
+    """The evaluations' and the optimum's CSVs (:class:`~planar_tui.batch.OutputFailed`
+    if one cannot be written: the checkpoint stays), then the checkpoint goes (unless
+    ``keep_checkpoint``) and the figure is drawn (its failure: ``run.figure_error``)."""
+    from planar_tui.batch import OutputFailed
+
+    opt = run.optimisation
+    run.output, run.pareto = output_path(opt, out_dir), out_dir / opt.pareto_output
+    for path, table in ((run.output, run.table), (run.pareto, run.optimum_table)):
+        try:
+            write_csv_atomic(path, table)
+        except OSError as error:
+            raise OutputFailed(path, error.strerror or str(error)) from None
     if run.checkpoint is not None and not keep_checkpoint:
         run.checkpoint.unlink(missing_ok=True)
         run.checkpoint = None
-    if out_dir is not None and opt.plot is not None:
+    if opt.plot is not None:
         try:
             run.figure = write_figure(run, out_dir / opt.plot)
         except OutputFailed as error:
             run.figure_error = str(error)
-    return run
 
 
 def _f(opt: Optimisation, outcome: PointOutcome) -> tuple[float, ...]:

@@ -11,8 +11,6 @@ with the sweep's one-line errors.
 
 from __future__ import annotations
 
-import hashlib
-import json
 import math
 import re
 from collections.abc import Callable, Mapping
@@ -20,7 +18,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from planar_tui import __version__
 from planar_tui.errors import PresetError
 from planar_tui.jobkind import Job
 from planar_tui.presets import Preset
@@ -40,7 +37,13 @@ from planar_tui.schema import (
     type_name,
 )
 from planar_tui.sweep.paths import KeyPath
-from planar_tui.sweep.spec import Sweep, job_context, plain_toml, read_key_path
+from planar_tui.sweep.spec import (
+    Sweep,
+    job_context,
+    plain_toml,
+    read_key_path,
+    study_fingerprint,
+)
 
 #: The preset's top-level table of optimisations.
 TABLE = "optimise"
@@ -259,11 +262,7 @@ class Optimisation:
     def fingerprint(self) -> str:
         """A SHA-256 of what an evaluation depends on (job and robot tables, the table but
         its ``plot``, planar-tui's version): a checkpoint of another is never resumed."""
-        text = json.dumps({"version": __version__, "kind": self.job.kind, "key": self.job.key,
-                           "tables": self.tables,
-                           "optimise": {k: v for k, v in self.source.items() if k != "plot"}},
-                          sort_keys=True, default=repr)  # fmt: skip
-        return hashlib.sha256(text.encode()).hexdigest()
+        return study_fingerprint(self.job, self.tables, TABLE, self.source)
 
 
 def _quoted(path: str) -> str:

@@ -96,13 +96,20 @@ class Sweep:
         """A SHA-256 of everything a point's result depends on: the job's and robot's
         tables, the sweep table and planar-tui's version. A checkpoint with another
         fingerprint belongs to another sweep and is never resumed."""
-        text = json.dumps(
-            {"version": __version__, "kind": self.job.kind, "key": self.job.key,
-             "tables": self.tables,
-             "sweep": {k: v for k, v in self.source.items() if k != "plot"}},
-            sort_keys=True, default=repr,
-        )  # fmt: skip
-        return hashlib.sha256(text.encode()).hexdigest()
+        return study_fingerprint(self.job, self.tables, TABLE, self.source)
+
+
+def study_fingerprint(job: Job, tables: Mapping[str, Any], table: str,
+                      source: Mapping[str, Any]) -> str:  # fmt: skip
+    """A SHA-256 of what the points of a study (a ``table``, e.g. ``sweep``, written as
+    ``source``) over ``job`` depend on: the job's and robot's raw ``tables``, the study's
+    table but its ``plot`` and planar-tui's version."""
+    text = json.dumps(
+        {"version": __version__, "kind": job.kind, "key": job.key, "tables": tables,
+         table: {k: v for k, v in source.items() if k != "plot"}},
+        sort_keys=True, default=repr,
+    )  # fmt: skip
+    return hashlib.sha256(text.encode()).hexdigest()
 
 
 def plain_toml(value: Any) -> Any:
