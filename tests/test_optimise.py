@@ -379,6 +379,7 @@ def test_a_column_the_job_does_not_report_is_refused(tmp_path, cli):
         "optimise[1]: names the column 'tau9_Nm', not one of the job's (expected one of "
         "tau1_abs_max_Nm, tau2_abs_max_Nm)" in result.stderr
     )
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["p.toml"]  # no checkpoint left
 
 
 def test_a_preset_without_optimise_tables_is_refused(tmp_path, cli):

@@ -349,6 +349,11 @@ def run_optimisation(
             numbered = [(opt.budget + k, e.values) for k, e in enumerate(best, start=1)]
             outcomes = evaluate(numbered, False, {})
             run.certified = [(e, outcomes[opt.budget + k]) for k, e in enumerate(best, start=1)]
+    except PresetError:  # the table names a column the job lacks: nothing to resume
+        if writer is not None:
+            writer.close()
+            writer.path.unlink(missing_ok=True)
+        raise
     finally:
         if writer is not None:
             writer.close()
