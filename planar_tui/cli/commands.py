@@ -164,7 +164,7 @@ def optimise_command(
     out_dir: OutDirOption = Path("."),
     plot: PlotOption = None,
 ) -> None:
-    """Run the preset's optimisations ([[optimise]] tables): a CSV of every evaluation, the
+    """Run the preset's optimisations (its optimise tables): a CSV of every evaluation, the
     optimum or Pareto set re-run at the job's own settings."""
     run_studies("optimise", preset, workers, scheduler, resume, out_dir, plot)
 
