@@ -41,27 +41,29 @@ from planar_tui.runtime import prepare_kernels  # noqa: E402
 prepare_kernels()  # before any kernel is imported
 
 from benchmarks.baselines import numpy_newton_euler  # noqa: E402
+from planar_tui.batch import prepare_jobs  # noqa: E402
 from planar_tui.presets import load_preset  # noqa: E402
 from planar_tui.sensitivity import engine  # noqa: E402
 from planar_tui.sensitivity.design_cache import ENV_VAR  # noqa: E402
-from planar_tui.sensitivity.job import sample_sizes, solve_posture  # noqa: E402
+from planar_tui.sensitivity.job import sample_sizes  # noqa: E402
 
 PRESETS = [REPO / "presets" / "paper-a-table4.toml", REPO / "presets" / "paper-a-table5.toml"]
 
 
 def jobs(samples=None):
+    """The Tables 4-5 jobs, prepared (their postures solved once, outside every timing)."""
     found = [job for path in PRESETS for job in load_preset(path).jobs_of("sensitivity")]
-    if samples is None:
-        return found
-    return [
-        dataclasses.replace(j, spec=dataclasses.replace(j.spec, samples=samples)) for j in found
-    ]
+    if samples is not None:
+        found = [
+            dataclasses.replace(j, spec=dataclasses.replace(j.spec, samples=samples)) for j in found
+        ]
+    return prepare_jobs(found)
 
 
 def state(job):
     n = job.robot.n_links
     return (
-        np.array(solve_posture(job).theta_rad),
+        np.array(job.prepared.posture.theta_rad),
         np.full(n, job.spec.speeds_rad_s[0]),
         np.full(n, job.spec.alpha_rad_s2),
     )

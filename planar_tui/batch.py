@@ -24,12 +24,17 @@ from planar_tui.reader import NAME_MAX_BYTES, TableReader, file_name_problem
 from planar_tui.registry import JOB_KINDS
 from planar_tui.schema import declared_keys
 
+#: A job as parsed or as prepared (:func:`prepare_jobs`): both read alike (``kind``,
+#: ``label``, ``spec`` ...).
+AnyJob = Job[Any, Any] | PreparedJob[Any, Any, Any]
+
 
 @dataclass(frozen=True)
 class OutputPlan:
-    """Where one job's results go: its main CSV and its extra tables by name."""
+    """Where one job's results go: its main CSV and its extra tables by name (the job as
+    parsed, or prepared once the run plan prepared it)."""
 
-    job: Job
+    job: AnyJob
     main: Path
     extras: Mapping[str, Path] = field(default_factory=dict)
     figure: Path | None = None
@@ -70,7 +75,7 @@ class OutputFailed(Exception):
 class NonFiniteResult(Exception):
     """A finished job's result holds NaN or infinite values: it is not written."""
 
-    def __init__(self, job: Job, table: str, column: str):
+    def __init__(self, job: AnyJob, table: str, column: str):
         super().__init__(
             f"{job.label}: the result holds NaN or infinite values (first in the {table} "
             f"column {column}); nothing was written"
@@ -432,7 +437,7 @@ def _release(error: BaseException, progress: Progress) -> None:
         traceback.clear_frames(error.__traceback__.tb_next)
 
 
-def check_finite(job: Job, result: JobResult) -> None:
+def check_finite(job: AnyJob, result: JobResult) -> None:
     """Refuse a result holding NaN or infinities (:class:`NonFiniteResult`): a diverged
     integration or an overflow is a failure, never a table."""
     for name, table in (("main", result.table), *result.extra_tables.items()):
@@ -463,18 +468,20 @@ def _write_figure(plan: OutputPlan, result: JobResult) -> Path:
     in a sweep, say) is :class:`OutputFailed`, never a traceback."""
     from planar_tui.figures import save_result_figure
 
+    figure = plan.figure
+    assert figure is not None  # called for a plan with a figure only
     try:
-        return save_result_figure(plan.job, result, plan.figure)
+        return save_result_figure(plan.job, result, figure)
     except OSError:
         raise
     except Exception as error:
-        raise OutputFailed(plan.figure, f"cannot draw the figure: {error}") from None
+        raise OutputFailed(figure, f"cannot draw the figure: {error}") from None
 
 
 def run_plans(
     plans: Sequence[OutputPlan],
-    progress_for: Callable[[Job], Any],
-    on_finished: Callable[[Job, JobResult], None] | None = None,
+    progress_for: Callable[[AnyJob], Any],
+    on_finished: Callable[[AnyJob, JobResult], None] | None = None,
 ) -> Iterator[SummaryRow]:
     """Run the planned jobs in order, writing each job's files as soon as it finishes.
 

@@ -7,11 +7,10 @@ import functools
 import io
 import math
 import os
-import secrets
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, TextIO
+from typing import Any, TextIO, cast
 
 #: First characters that make a spreadsheet read a text cell as a formula (OWASP, "CSV
 #: injection"): such a text cell is written with a leading ``'``.
@@ -52,7 +51,7 @@ class CsvTable:
         """The header, then every row, as lists of cells ready for ``csv.writer``."""
         yield list(self.header)
         if getattr(getattr(self.rows, "dtype", None), "kind", "") == "f":
-            yield from self.rows.tolist()  # Python floats, C-level conversion
+            yield from cast(Any, self.rows).tolist()  # Python floats, C-level conversion
             return
         for row in self.rows:
             yield [_cell(cell) for cell in row]
@@ -99,6 +98,8 @@ def _new_file_mode() -> int:
 def _temporary_name(path: Path) -> Path:
     """A hidden ``.NAME.XXXXXXXX.tmp`` beside ``path``; NAME keeps at most 64 characters
     of the name, so the temporary name fits the file system whenever ``path``'s does."""
+    import secrets  # here: its hashlib and random cost `planar-tui --help` 4 ms
+
     return path.with_name(f".{path.name[:64]}.{secrets.token_hex(4)}.tmp")
 
 

@@ -262,7 +262,7 @@ class JobKind:
     settings: type
     run: Callable[[PreparedJob[Any, Any, Any], Progress], JobResult]
     summary: str
-    render: Callable[[Job[Any, Any], JobResult, Any], None] | None = None
+    render: Callable[[Job[Any, Any], Any, Any], None] | None = None
     extra_outputs: Callable[[Job[Any, Any]], dict[str, str]] = _no_extra_outputs
     overrides: Callable[[dict[str, Any], Mapping[str, Any]], dict[str, Any]] | None = None
     prepare: Callable[[Job[Any, Any]], object] | None = None

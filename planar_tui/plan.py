@@ -17,7 +17,7 @@ import dataclasses
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from planar_tui.batch import (
     OutputPlan,
@@ -74,7 +74,7 @@ class RunPlan:
         return files
 
 
-def check_figures(jobs: Sequence[Job], plot: Path | None) -> None:
+def check_figures(jobs: Sequence[Job[Any, Any]], plot: Path | None) -> None:
     """Refuse a figure for a job whose kind draws none (:class:`PresetError`, one line),
     asked by ``--plot`` (``plot``) or by the job's ``plot`` key."""
     from planar_tui.figures.dispatch import figure_problem
@@ -161,7 +161,7 @@ def plan_optimisations(presets: Sequence[Preset], plot: Path | None = None
 
 
 def plan_run(
-    jobs: Sequence[Job],
+    jobs: Sequence[Job[Any, Any]],
     out_dir: Path,
     *,
     out: Path | None = None,
@@ -200,6 +200,6 @@ def plan_run(
         note = checkpoint_note(o.label, o.fingerprint(), out_dir / o.output, resume)
         notes += [note] if note is not None else []
     if prepare and outputs:
-        prepared = prepare_jobs([output.job for output in outputs])
+        prepared = prepare_jobs(jobs)
         outputs = [dataclasses.replace(o, job=j) for o, j in zip(outputs, prepared, strict=True)]
     return dataclasses.replace(plan, jobs=tuple(outputs), notes=tuple(notes))

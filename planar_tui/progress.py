@@ -16,14 +16,31 @@ import threading
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, TypeVar, Union
 
 from planar_tui.errors import Cancelled
+
+if TYPE_CHECKING:
+    import numpy as np
 
 #: Longest stretch of work between two cancel checks that a runner may do (seconds).
 CHECK_INTERVAL_S = 0.2
 #: How often :meth:`Progress.wait_for` checks for a cancel while a call runs (seconds).
 POLL_S = 0.05
+
+
+ArrayT = TypeVar("ArrayT", bound="np.ndarray")
+ResultT = TypeVar("ResultT")
+#: A live partial result: a read-only array view, or ``None`` (not available yet).
+Partial = Union["np.ndarray", None]
+
+
+def read_only(view: ArrayT) -> ArrayT:
+    """A read-only view of the array ``view`` for :attr:`ProgressState.partial` (the
+    runner's own array is not copied)."""
+    shown = view.view()
+    shown.flags.writeable = False
+    return shown
 
 
 @dataclass(frozen=True)
@@ -49,7 +66,7 @@ class ProgressState:
     detail: str
     figures: Mapping[str, float] = field(default_factory=dict)
     warning: str = ""
-    partial: Mapping[str, Any] = field(default_factory=dict)
+    partial: Mapping[str, Partial] = field(default_factory=dict)
     stage_started_s: float = 0.0
     cancel_requested: bool = False
     cancelled: bool = False
@@ -96,7 +113,7 @@ class Progress:
         self.warning = ""
         self.stage_started_s = time.monotonic()
         self.figures: dict[str, float] = {}
-        self.partial: dict[str, Any] = {}
+        self.partial: dict[str, Partial] = {}
 
     @property
     def cancel_requested(self) -> bool:
@@ -135,31 +152,32 @@ class Progress:
         """Set the job-wide warning (kept across stages), reported with the next update."""
         self.warning = text
 
-    def show_partial(self, **views: Any) -> None:
+    def show_partial(self, **views: Partial) -> None:
         """Publish live partial results (read-only views, see :class:`ProgressState`);
         reported with the next update."""
         self.partial.update(views)
 
     def wait_for(
         self,
-        function: Callable[..., Any],
-        *args: Any,
+        function: Callable[..., ResultT],
+        *args: object,
         on_poll: Callable[[], None] | None = None,
-    ) -> Any:
+    ) -> ResultT:
         """``function(*args)`` run in a helper thread while this thread checks for a cancel
         every :data:`POLL_S`: for one call that cannot be split (compiling a kernel, a slow
         import). On a cancel, :class:`Cancelled` is raised at once and the call finishes in
         the background (its result is dropped; it must be harmless, e.g. filling a cache).
         ``on_poll()`` (e.g. a detail update) runs in this thread at every check.
         Returns the call's result or raises its exception."""
-        outcome: dict[str, Any] = {}
+        values: list[ResultT] = []
+        errors: list[BaseException] = []
         done = threading.Event()
 
         def call() -> None:
             try:
-                outcome["value"] = function(*args)
+                values.append(function(*args))
             except BaseException as error:  # handed to the waiting thread
-                outcome["error"] = error
+                errors.append(error)
             finally:
                 done.set()
 
@@ -168,9 +186,9 @@ class Progress:
             if on_poll is not None:
                 on_poll()
             self.check()
-        if "error" in outcome:
-            raise outcome.pop("error")
-        return outcome["value"]
+        if errors:
+            raise errors.pop()
+        return values[0]
 
     def check(self) -> None:
         """Raise :class:`Cancelled` if the front end asked the run to stop; the last

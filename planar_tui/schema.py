@@ -314,7 +314,7 @@ def per_link_keys(settings_class: type) -> dict[str, str]:
     """The keys of a settings dataclass holding one value per link (``"list"``) or rows of
     them (``"rows"``), by key name, from their readers (:func:`per_link`)."""
     return {
-        key.name: key.read.per_link
+        key.name: getattr(key.read, "per_link")  # noqa: B009 (set by per_link, untyped)
         for _, key in declared_keys(settings_class)
         if getattr(key.read, "per_link", None)
     }

@@ -17,6 +17,8 @@ from planar_tui.app.app import WorkbenchApp
 from planar_tui.app.screens.dialogs import ConfirmDialog, HelpScreen, MessageDialog, PathDialog
 from planar_tui.app.workbench import Workbench
 
+pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
+
 DATA = Path(__file__).parent / "data" / "app"
 SIZE = (80, 24)
 

@@ -21,6 +21,8 @@ from rich.console import Console
 from planar_tui.sensitivity.results import Analysis
 from planar_tui.sensitivity.tables import VIEWS, build_grid, fit_tables, heat_style
 
+pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
+
 DATA = Path(__file__).parent / "data" / "app"
 #: Results area at 80×24: beside the 30-cell form, and with the form hidden (ctrl+f).
 WIDTH_WITH_FORM, WIDTH_WITHOUT_FORM = 48, 78

@@ -6,8 +6,11 @@ from __future__ import annotations
 import csv
 
 import numpy as np
+import pytest
 
 from tests.test_app import SIZE, async_test, make_app, run_tab
+
+pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
 
 
 @async_test

@@ -16,6 +16,8 @@ from planar_tui.sensitivity.job import SensitivityResult
 from planar_tui.sensitivity.results import csv_table
 from tests.test_app_layout import load_6r
 
+pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
+
 REPO = Path(__file__).resolve().parent.parent
 PRESET = Path("tests") / "data" / "app" / "tiny.toml"  # relative: no machine path on screen
 PRESET_6R = Path("presets") / "paper-a-table1.toml"  # its default sensitivity job: 6R

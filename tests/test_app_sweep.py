@@ -6,6 +6,7 @@ from __future__ import annotations
 import csv
 import time
 
+import pytest
 from textual.widgets import DataTable, Input
 
 from planar_tui.app.screens.sweep import SweepDialog, SweepScreen
@@ -15,6 +16,8 @@ from planar_tui.batch import run_job
 from planar_tui.csvio import CsvTable
 from planar_tui.presets import load_preset
 from tests.test_app import SIZE, async_test, finish, make_app
+
+pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
 
 
 def test_values_text():

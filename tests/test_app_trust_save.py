@@ -11,6 +11,7 @@ from __future__ import annotations
 import tomllib
 from pathlib import Path
 
+import pytest
 from textual.geometry import Region
 from textual.widgets import Button
 
@@ -26,6 +27,8 @@ from planar_tui.app.workbench import Workbench
 from planar_tui.presets import load_preset, parse_preset
 from planar_tui.resources import bundled_presets_folder
 from tests.test_app import DATA, SIZE, async_test, make_app, run_tab, validation
+
+pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
 
 #: A preset with comments in every kind of place (header, after a table header, after a
 #: value, between keys, before a table, at the end) and keys in no particular order.

@@ -25,6 +25,8 @@ from planar_tui.app.workbench import Workbench
 from planar_tui.progress import ProgressState
 from tests.test_app import SIZE, async_test, finish, make_app, run_tab, validation
 
+pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
+
 PRESETS = Path(__file__).resolve().parent.parent / "presets"
 
 

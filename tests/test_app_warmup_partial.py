@@ -8,12 +8,15 @@ from __future__ import annotations
 import time
 
 import numpy as np
+import pytest
 
 from planar_tui import warmup
 from planar_tui.app.app import WorkbenchApp
 from planar_tui.app.workbench import Workbench
 from planar_tui.progress import ProgressState
 from tests.test_app import DATA, SIZE, async_test, make_app, run_tab
+
+pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
 
 
 @async_test

@@ -2,7 +2,11 @@
 
 from __future__ import annotations
 
+import pytest
+
 from tests.test_app import SIZE, async_test, make_app, run_tab
+
+pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
 
 
 async def _type(app, pilot, key: str, text: str) -> None:

@@ -27,6 +27,7 @@ def test_each_stage_stops_within_the_bound(case, monkeypatch):
     assert latency <= BOUND_S
 
 
+@pytest.mark.slow
 def test_compiling_kernels_stops_within_the_bound():
     """A fresh process with an empty kernel cache: the first run compiles in its own stage
     and a cancel 1 s into it returns at once (the compilation goes on in the background)."""
@@ -67,6 +68,7 @@ FINE = (
 )
 
 
+@pytest.mark.slow
 def test_cancelled_workspace_run_releases_its_memory():
     """The exception is kept (as the app does to show it): the run's arrays are not."""
     job = robot_job("workspace", FINE + "precision_cm = 0.001", robot="3rrr")

@@ -112,6 +112,7 @@ def test_interrupt_mid_run_exits_130_and_writes_nothing(tmp_path, cli, monkeypat
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.slow
 def test_sigint_to_a_real_process_leaves_no_partial_csv(tmp_path):
     long_run = tmp_path / "long.toml"
     text = TABLE1.read_text().replace("duration_s = 1.0", "duration_s = 600.0", 1)

@@ -153,6 +153,7 @@ def test_inverse_dynamics_2r_closed_form():
         np.testing.assert_allclose(tau, expected, rtol=1e-12, atol=1e-12)
 
 
+@pytest.mark.slow
 def test_forward_inverts_inverse():
     rng = np.random.default_rng(10)
     for n in (1, 2, 3, 6, 10):

@@ -56,6 +56,7 @@ def png_size(path: Path) -> tuple[int, int]:
     return struct.unpack(">II", data[16:24])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kind", ["simulate", "torques", "sensitivity", "workspace"])
 def test_each_kind_saves_as_svg_and_png_of_the_figure_size(results, drawn, kind, tmp_path):
     fig = drawn[kind]
@@ -235,6 +236,7 @@ def csv_files(results, tmp_path_factory):
     return folder, files
 
 
+@pytest.mark.slow
 def test_plot_command_draws_every_csv_kind(cli, csv_files, tmp_path):
     folder, files = csv_files
     assert len(set(files.values())) == 8 and len(files) == 9
@@ -282,6 +284,7 @@ def test_a_figure_suffix_that_names_no_format_is_exit_2(cli, tmp_path, command):
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.slow
 def test_plot_option_with_several_jobs_writes_numbered_figures(cli, tmp_path):
     result = cli("simulate", "paper-a-table1", "--out-dir", tmp_path, "--plot", tmp_path / "s.png")
     assert result.exit_code == 0, result.output
@@ -553,6 +556,7 @@ def _saved_as_svg_and_png(fig, folder: Path) -> None:
     assert png_size(png) == (round(width * DPI), round(height * DPI))
 
 
+@pytest.mark.slow
 def test_bundled_orientation_sweep_figure_to_svg_and_png(tmp_path):
     from planar_tui.sweep.service import run_sweep
     from planar_tui.sweep.spec import parse_sweeps
@@ -579,6 +583,7 @@ def test_bundled_orientation_sweep_figure_to_svg_and_png(tmp_path):
     _saved_as_svg_and_png(fig, tmp_path)
 
 
+@pytest.mark.slow
 def test_bundled_motion_uncertainty_figures_to_svg_and_png(tmp_path):
     path = _shrunk(tmp_path, "paper-a-table1-motion", {
         "duration_s = 1.0": "duration_s = 0.02",

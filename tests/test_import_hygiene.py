@@ -7,12 +7,17 @@ import os
 import subprocess
 import sys
 
+import pytest
+
 from tests.conftest import REPO
+
+pytestmark = pytest.mark.slow  # real processes (see pyproject.toml's markers)
 
 PROBE = """
 import json, sys
 from typer.testing import CliRunner
 from planar_tui.cli import app
+
 result = CliRunner().invoke(app, sys.argv[1:])
 heavy = ("numba", "SALib", "textual", "scipy", "mujoco", "numpy", "matplotlib", "dask",
          "distributed")

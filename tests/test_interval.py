@@ -57,12 +57,14 @@ def test_scalar_operations_and_square_enclose(x, c):
     assert contains(iv.isqr(*x), mpi(x) ** 2)
 
 
+@pytest.mark.slow
 @settings(deadline=None, max_examples=300)
 @given(intervals(st.floats(min_value=0.0, max_value=1e6)))
 def test_sqrt_encloses(x):
     assert contains(iv.isqrt(*x), mpmath.iv.sqrt(mpi(x)))
 
 
+@pytest.mark.slow
 @settings(deadline=None, max_examples=500)
 @given(intervals(angles))
 def test_sin_cos_enclose_including_interior_extrema(x):
@@ -182,6 +184,7 @@ any_finite = st.one_of(
 )
 
 
+@pytest.mark.slow
 @settings(deadline=None, max_examples=400)
 @given(intervals(any_finite), intervals(any_finite), any_finite)
 def test_operations_over_every_float_enclose_and_stay_real(x, y, c):

@@ -8,10 +8,13 @@ import shutil
 import subprocess
 import sys
 
+import pytest
 from numba import config
 
 from planar_tui.runtime import kernel_cache_folder, kernel_source_digest, kernels_folder
 from tests.conftest import REPO
+
+pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
 
 
 def test_the_digest_changes_with_any_kernel_module(tmp_path):

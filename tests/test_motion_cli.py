@@ -11,6 +11,7 @@ import subprocess
 import sys
 
 import numpy as np
+import pytest
 
 PRESET = """# tiny motion uncertainty
 [robot]
@@ -160,6 +161,7 @@ def run_cli(preset, out_dir, *options, **env):
     return subprocess.run(command, env=environment, capture_output=True, text=True)
 
 
+@pytest.mark.slow
 def test_cuda_without_a_usable_gpu_is_one_line_and_auto_falls_back(tmp_path):
     no_gpu = {"CUDA_VISIBLE_DEVICES": ""}
     done = run_cli(write_preset(tmp_path, "cuda"), tmp_path, **no_gpu)
@@ -180,6 +182,7 @@ def test_cuda_without_a_usable_gpu_is_one_line_and_auto_falls_back(tmp_path):
     assert not out_dir.exists()
 
 
+@pytest.mark.slow
 def test_cuda_device_on_the_simulator_gives_the_cpu_band(tmp_path):
     cpu_dir, gpu_dir = tmp_path / "cpu", tmp_path / "gpu"
     assert run_cli(write_preset(tmp_path, "cpu"), cpu_dir).returncode == 0

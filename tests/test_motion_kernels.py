@@ -124,6 +124,7 @@ print(json.dumps({"params": bool(np.array_equal(params, batch.parameters())),
 """
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("num_vars", [4, 6], ids=["lengths-masses", "with-inertias"])
 def test_cuda_kernel_on_the_simulator_equals_the_cpu_kernel(num_vars):
     """numba's CUDA simulator must be on before numba.cuda is imported: a fresh process."""

@@ -12,7 +12,9 @@ import zipfile
 
 import pytest
 
-from tests.installed_layout import MAPPED, REPO
+from tests.installed_layout import REPO, mapped_folders
+
+pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
 
 
 @pytest.fixture(scope="module")
@@ -40,7 +42,7 @@ def test_only_the_project_namespace_is_installed(wheel_names):
 
 def test_every_source_module_and_data_file_is_in_the_wheel(wheel_names):
     expected = set()
-    for package, folder in MAPPED.items():
+    for package, folder in mapped_folders().items():
         for path in (REPO / folder).rglob("*"):
             if path.suffix in (".py", ".toml", ".tcss") and "__pycache__" not in path.parts:
                 expected.add(f"{package}/{path.relative_to(REPO / folder).as_posix()}")

@@ -9,12 +9,15 @@ from __future__ import annotations
 import tempfile
 from pathlib import Path
 
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from planar_tui.errors import PresetError
 from planar_tui.presets import load_preset
 from tests.conftest import PRESETS
+
+pytestmark = pytest.mark.slow  # hypothesis-driven fuzz (see pyproject.toml's markers)
 
 SOURCES = [path.read_text(encoding="utf-8") for path in sorted(PRESETS.glob("*.toml"))]
 #: Characters that matter to TOML and to the loader's readers.

@@ -7,6 +7,8 @@ import csv
 import re
 import tomllib
 
+import pytest
+
 from tests.conftest import REPO
 
 README = (REPO / "README.md").read_text(encoding="utf-8")
@@ -60,6 +62,7 @@ def header(path) -> list[str]:
         return next(csv.reader(stream))
 
 
+@pytest.mark.slow
 def test_csv_column_lists_match_the_files_the_commands_write(cli, tmp_path):
     text = TINY.read_text(encoding="utf-8")
     workspace_output = 'output = "tiny-workspace.csv"'

@@ -33,6 +33,7 @@ def entries(folder):
     return sorted(folder.glob("*.npy"))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("key", CASES)
 def test_cold_and_warm_designs_are_byte_identical_to_salib(key):
     folder = design_cache.cache_dir()  # the per-test folder of the autouse fixture
@@ -56,6 +57,7 @@ print(json.dumps({"code": result.exit_code, "loaded": [m for m in heavy if m in 
 """
 
 
+@pytest.mark.slow
 def test_warm_run_imports_neither_salib_nor_scipy_optimize(tmp_path):
     """Whole CLI runs in fresh processes: the cold one draws the designs with
     ``scipy.stats.qmc`` (so the probe can see it), the warm one reads both designs back
@@ -98,6 +100,7 @@ def test_damaged_entries_are_drawn_again(damage):
     assert healed.name == entry.name and np.load(healed).tobytes() == good
 
 
+@pytest.mark.slow
 def test_unwritable_or_disabled_cache_still_gives_the_design(tmp_path, monkeypatch):
     key = CASES[1]
     expected = salib_unit_design(*key).tobytes()

@@ -29,6 +29,7 @@ def test_scaled_design_is_salib_sampling_the_real_problem():
     assert np.array_equal(ours, fast_sampler.sample(problem.salib(), 100, M=4, seed=3))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("inertia_tolerance", [None, 1e-3])
 def test_design_torques_equal_the_batch_kernel_on_the_scaled_design(inertia_tolerance):
     """Scaling inside the kernel is bit-identical to scaling first (SALib's arithmetic)."""

@@ -6,9 +6,13 @@ paper: where the paper is inconsistent the test says so and checks the inconsist
 
 from pathlib import Path
 
+import pytest
+
 from planar_tui.batch import run_job
 from planar_tui.presets import load_preset
 from tests.sensitivity_paper import compare, read_paper_cells, report
+
+pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
 
 ROOT = Path(__file__).resolve().parent.parent
 REFERENCE = ROOT / "tests" / "data" / "reference" / "paper_sensitivity_tables.csv"

@@ -88,6 +88,7 @@ def test_2r_closed_form_matches_scipy_bounded_search(lengths):
     assert kappa <= fit.fun + 1e-12  # the closed form is the exact minimum
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "lengths", [[0.303, 0.303, 0.175], [0.303, 0.151, 0.2], [0.5, 0.1, 0.1], [0.4, 0.3, 0.3]]
 )

@@ -13,8 +13,12 @@ import time
 import tomllib
 from pathlib import Path
 
+import pytest
+
 from planar_tui.errors import ExitCode
 from tests.conftest import PRESETS, REPO
+
+pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
 
 #: What the ``planar-tui`` console script runs (pyproject's [project.scripts]).
 CONSOLE_SCRIPT = "from planar_tui.entry import main; main()"

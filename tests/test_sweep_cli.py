@@ -13,12 +13,16 @@ import subprocess
 import sys
 import time
 
+import pytest
+
 from planar_tui.errors import ExitCode
 from planar_tui.presets import load_preset
 from planar_tui.sweep.service import run_sweep
 from planar_tui.sweep.spec import parse_sweeps
 from tests.conftest import REPO
 from tests.sweep_presets import TORQUES, TORQUES_BASE, WORKSPACE, WORKSPACE_BASE, write
+
+pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
 
 CONSOLE_SCRIPT = "from planar_tui.entry import main; main()"
 

@@ -16,6 +16,8 @@ from planar_tui.sweep.service import run_sweep
 from planar_tui.sweep.spec import parse_sweeps
 from tests.sweep_presets import SENSITIVITY, WORKSPACE, WORKSPACE_BASE, write
 
+pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
+
 
 @pytest.fixture(scope="module")
 def cluster():

@@ -8,6 +8,8 @@ import csv
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
+import pytest
+
 from tests.sweep_presets import TORQUES, TORQUES_BASE, write
 from tests.test_app import async_test
 
@@ -79,6 +81,7 @@ plot = "postures.svg"
     assert not (tmp_path / "out").exists()
 
 
+@pytest.mark.slow
 @async_test
 async def test_app_figure_key_on_the_sweep_screen_writes_the_sweep_figure(tmp_path):
     """ctrl+l on a finished sweep (a text key: the workspace form) writes the sweep's

@@ -234,6 +234,7 @@ def test_the_readme_documents_every_sweep_key():
     assert documented == list(SWEEP_KEYS)
 
 
+@pytest.mark.slow
 def test_the_app_edits_and_saves_a_preset_with_sweeps(tmp_path):
     """A [[sweep]] table neither stops the app's validation nor is lost when it saves."""
     import asyncio

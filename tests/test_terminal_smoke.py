@@ -19,6 +19,8 @@ import pytest
 
 from tests.pty_terminal import PtyTerminal
 
+pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
+
 REPO = Path(__file__).resolve().parent.parent
 PRESET = "tests/data/app/workspace-small.toml"
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 import asyncio
 import csv
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import pytest
 from typer.testing import CliRunner
@@ -29,7 +29,6 @@ class KineticSpec:
         number_rows(columns=PER_LINK), type_doc="rows", doc="joint rates"
     )
     speed_scale: float = setting(number(positive=True), type_doc="number", doc="x", default=1.0)
-    derived: tuple = field(default=())
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -145,6 +144,8 @@ def test_a_plot_for_the_toy_kind_is_refused_before_anything_runs(toy, tmp_path):
         "error: command line: --plot: toy:kinetic: the kinetic job kind draws no figure "
         "(expected no --plot for a kinetic job)\n"
     )
+    again = invoke("run", tmp_path / "toy.toml", "-d", tmp_path, "--plot", tmp_path / "k.png")
+    assert again.exit_code == 2 and again.stderr == result.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["toy.toml"]
 
 
@@ -160,6 +161,7 @@ def test_the_toy_kind_runs_in_a_sweep(toy, tmp_path):
     assert got == pytest.approx([peak, 4 * peak], rel=1e-12)
 
 
+@pytest.mark.slow  # an end-to-end app test
 def test_the_toy_kind_has_an_app_tab(toy, tmp_path):
     asyncio.run(_app_tab(tmp_path))
 

@@ -287,6 +287,7 @@ def test_explicit_points_in_the_preset(cli, tmp_path):
     assert float(row["area_geometric_cm2"]) == pytest.approx(0.8794, abs=1e-4)
 
 
+@pytest.mark.slow
 def test_ctrl_c_exits_130_quickly_and_writes_nothing(tmp_path):
     import signal
     import subprocess

@@ -70,6 +70,7 @@ def box_and_point(draw):
     return leg, phi, box, point
 
 
+@pytest.mark.slow
 @settings(deadline=None, max_examples=300)
 @given(box_and_point())
 def test_every_form_encloses_the_exact_value_at_points_of_the_box(case):

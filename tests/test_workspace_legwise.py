@@ -158,6 +158,7 @@ def geometries(draw):
     return robot, tuple(limits), phi, form
 
 
+@pytest.mark.slow
 @settings(deadline=None, max_examples=12, suppress_health_check=[HealthCheck.too_slow])
 @given(geometries())
 def test_random_geometries_both_strategies_bracket_the_exact_area(geometry):

@@ -150,6 +150,7 @@ def test_bad_orientation_settings_are_one_line_errors(cli, tmp_path, extra, mess
     assert not (tmp_path / "ws.csv").exists()
 
 
+@pytest.mark.slow
 def test_cli_writes_the_orientation_columns_and_the_reference(cli, tmp_path):
     extra = 'orientation_deg = [-5, 5]\norientation_mode = "maximal"\n'
     result = cli("workspace", write(tmp_path, extra, "true"), "--out-dir", tmp_path)
@@ -192,6 +193,7 @@ def test_cancel_stops_the_new_stages_within_a_fraction_of_a_second(body, stage):
     assert latency <= 0.5
 
 
+@pytest.mark.slow
 def test_a_total_workspace_that_vanishes_inside_the_range_has_an_empty_reference():
     """The reviewer's preset (r12 geos.toml): the running intersection over φ becomes empty
     part-way (GEOS used to fail on it: "Unable to determine overlay result geometry

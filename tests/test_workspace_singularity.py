@@ -130,6 +130,7 @@ RANDOM_ROBOT = (
 )
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("elbow", "phi", "limits", "robot", "least_points"),
     [

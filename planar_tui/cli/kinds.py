@@ -101,7 +101,7 @@ def kind_command(kind: JobKind) -> Callable[..., None]:
                                     annotation=PresetArg)]  # fmt: skip
     for parameter, option in overrides.items():
         names = (option.name, option.short) if option.short else (option.name,)
-        value = list[option.type] if option.many else option.type  # type: ignore[name-defined]
+        value = list[option.type] if option.many else option.type
         info = typer.Option(*names, help=option.help)
         parameters.append(_parameter(parameter, Annotated[value | None, info], None))
     parameters.append(_parameter("job_name", JobOption, None))

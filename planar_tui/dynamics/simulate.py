@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Any
 
 from planar_tui.csvio import CsvTable
 from planar_tui.dynamics.robot import SerialRobot
-from planar_tui.jobkind import Command, Job, JobKind, JobResult, Tab
+from planar_tui.jobkind import Command, Job, JobKind, JobResult, PreparedJob, Tab
 from planar_tui.limits import memory_problem, time_problem
 from planar_tui.progress import Progress
 from planar_tui.schema import (
@@ -91,7 +91,7 @@ class RunSettings:
     torques_Nm: tuple[float, ...] = per_link_numbers("constant joint torques", "zeros (free fall)")
 
     @staticmethod
-    def check_step(values: dict, reader: TableReader) -> None:
+    def check_step(values: dict[str, Any], reader: TableReader) -> None:
         """The step must not exceed the duration."""
         duration_s, step_s = values["duration_s"], values["step_s"]
         if step_s > duration_s:
@@ -121,7 +121,7 @@ class SimulateSpec(RunSettings):
     plot: str | None = plot_setting()
 
     @staticmethod
-    def check(values: dict, reader: TableReader, robot: SerialRobot) -> dict:
+    def check(values: dict[str, Any], reader: TableReader, robot: SerialRobot) -> dict[str, Any]:
         """The step must not exceed the duration; the run must fit the time and memory
         limits (:mod:`planar_tui.limits`)."""
         RunSettings.check_step(values, reader)
@@ -162,7 +162,10 @@ def simulate_header(n_links: int) -> tuple[str, ...]:
     )
 
 
-def run_simulate(job: Job, progress: Progress) -> SimulateResult:
+def run_simulate(
+    job: PreparedJob[SimulateSpec, SerialRobot, None] | Job[SimulateSpec, SerialRobot],
+    progress: Progress,
+) -> SimulateResult:
     """Integrate the forward dynamics ``θ̈ = I⁻¹(τ + γ − C θ̇)`` with classical RK4.
 
     Records every ``spec.every``-th step including t = 0. The kernel runs in chunks of
@@ -247,7 +250,7 @@ def energy_drift_J(energy_J: Any, theta_rad: Any, torques_Nm: Any) -> Any:
     return energy_J - energy_J[0] - torque_work_J(theta_rad, torques_Nm)
 
 
-def point_figures(job: Job, result: SimulateResult) -> dict[str, float]:
+def point_figures(job: Job[SimulateSpec, SerialRobot], result: SimulateResult) -> dict[str, float]:
     """A sweep row's figures: the final time and state (relative angles and rates, SI) and
     the largest energy drift ``max_t |E(t) − E(0) − W(t)|`` over the recorded rows (J; net
     of the torques' work, :func:`energy_drift_J`)."""

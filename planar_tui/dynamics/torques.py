@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from planar_tui.csvio import CsvTable
 from planar_tui.dynamics.robot import SerialRobot
-from planar_tui.jobkind import Command, Job, JobKind, JobResult, Tab
+from planar_tui.jobkind import Command, Job, JobKind, JobResult, PreparedJob, Tab
 from planar_tui.progress import Progress
 from planar_tui.schema import PER_LINK, TableReader, number_rows, plot_setting, setting
 
@@ -15,14 +15,17 @@ if TYPE_CHECKING:
     import numpy as np
 
 
-def _zero_rows(robot: SerialRobot, values: dict) -> tuple[tuple[float, ...], ...]:
+def _zero_rows(robot: SerialRobot, values: dict[str, Any]) -> tuple[tuple[float, ...], ...]:
     """Default of a state array: zeros, as many rows as ``theta_deg``."""
     return ((0.0,) * robot.n_links,) * len(values["theta_deg"])
 
 
-def _rows(doc: str, required: bool = False):
-    default = {} if required else {"default": _zero_rows, "default_doc": "zeros"}
-    return setting(number_rows(columns=PER_LINK), type_doc="rows of n numbers", doc=doc, **default)
+def _rows(doc: str, required: bool = False) -> Any:
+    reader = number_rows(columns=PER_LINK)
+    if required:
+        return setting(reader, type_doc="rows of n numbers", doc=doc)
+    return setting(reader, type_doc="rows of n numbers", doc=doc, default=_zero_rows,
+                   default_doc="zeros")  # fmt: skip
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -37,7 +40,7 @@ class TorquesSpec:
     plot: str | None = plot_setting()
 
     @staticmethod
-    def check(values: dict, reader: TableReader, robot: SerialRobot) -> dict:
+    def check(values: dict[str, Any], reader: TableReader, robot: SerialRobot) -> dict[str, Any]:
         """Every array has as many rows as ``theta_deg``."""
         count = len(values["theta_deg"])
         for name in ("omega_deg_s", "alpha_deg_s2"):
@@ -66,7 +69,10 @@ def torques_header(n_links: int) -> tuple[str, ...]:
     )
 
 
-def run_torques(job: Job, progress: Progress) -> TorquesResult:
+def run_torques(
+    job: PreparedJob[TorquesSpec, SerialRobot, None] | Job[TorquesSpec, SerialRobot],
+    progress: Progress,
+) -> TorquesResult:
     """Evaluate the inverse dynamics at every listed state (one batched kernel call)."""
     import numpy as np
 
@@ -91,7 +97,7 @@ def run_torques(job: Job, progress: Progress) -> TorquesResult:
     )
 
 
-def point_figures(job: Job, result: TorquesResult) -> dict[str, float]:
+def point_figures(job: Job[TorquesSpec, SerialRobot], result: TorquesResult) -> dict[str, float]:
     """A sweep row's figures: per joint the largest ``|τ_i|`` over the states (N m)."""
     import numpy as np
 

@@ -141,7 +141,7 @@ class MotionSpec(RunSettings):
     plot: str | None = plot_setting()
 
     @staticmethod
-    def check(values: dict, reader: TableReader, robot: SerialRobot) -> dict:
+    def check(values: dict[str, Any], reader: TableReader, robot: SerialRobot) -> dict[str, Any]:
         """Step within the duration, tolerances below the nominal values, sample sizes
         the methods accept, and the run within the time and memory limits."""
         RunSettings.check_step(values, reader)

@@ -58,7 +58,7 @@ def design_key(method: str, num_vars: int, samples: int, seed: int, m_harmonics:
 
 
 def _crc(array: np.ndarray) -> str:
-    return f"{zlib.crc32(memoryview(array).cast('B')):08x}"
+    return f"{zlib.crc32(array.data.cast('B')):08x}"
 
 
 def _read(folder: Path, key: str, shape: tuple[int, int]) -> np.ndarray | None:

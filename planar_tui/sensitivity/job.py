@@ -136,7 +136,7 @@ class SensitivitySpec:
     plot: str | None = plot_setting()
 
     @staticmethod
-    def check(values: dict, reader: TableReader, robot: SerialRobot) -> dict:
+    def check(values: dict[str, Any], reader: TableReader, robot: SerialRobot) -> dict[str, Any]:
         """Tolerances below the nominal values and sample sizes (cheap: the posture is
         solved by :func:`prepare_sensitivity`, before the job runs)."""
         tolerance_inertia = values["tolerance_inertia_kgm2"]

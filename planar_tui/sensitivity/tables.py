@@ -132,7 +132,8 @@ def build_grid(chosen: Sequence, view: View, transposed: bool, short: bool) -> G
     def cell(k: int, torque: int, parameter: int) -> Text:
         value = float(values[k][torque, parameter])
         style = heat_style(value / view.heat_scale) if view.heat_scale else ""
-        if dominant[k] is not None and dominant[k][torque] == parameter:
+        top = dominant[k]
+        if top is not None and top[torque] == parameter:
             style = f"bold {style}".strip()
         return Text(f"{value:.{view.decimals}f}", style=style)
 

@@ -31,19 +31,27 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 
 from planar_tui.csvio import CsvTable
 from planar_tui.errors import JobError
 from planar_tui.jobkind import Job, option_or_key
-from planar_tui.progress import Progress
+from planar_tui.progress import Progress, read_only
 from planar_tui.workspace.forms import INTERVAL_FORMS, kernel_form
 from planar_tui.workspace.robot import Robot3RRR
 
 if TYPE_CHECKING:
-    from planar_tui.workspace.job import WorkspaceSpec
+    from planar_tui.workspace.geometry import GeometricArea
+
+
+class BudgetSpec(Protocol):
+    """What :class:`BoxBudget` reads of a workspace job's settings."""
+
+    @property
+    def box_budget(self) -> int: ...
+
 
 #: Boxes per kernel call: ~50 ms of work at ~1 µs per 5-D box.
 CHUNK_BOXES = 50_000
@@ -87,7 +95,7 @@ class WorkspaceOutcome:
     boxes_processed: int
     area_kept_cm2: float
     area_inside_cm2: float
-    geometric: object | None
+    geometric: GeometricArea | None
     seconds: float
     extent_cm: tuple[float, float, float, float]
     #: ``legwise`` or ``joint`` for the interval forms, ``""`` for arc-distance and geometric.
@@ -123,7 +131,7 @@ class BoxBudget:
     to change when it is exceeded.
     """
 
-    def __init__(self, job: Job[WorkspaceSpec, Robot3RRR], progress: Progress):
+    def __init__(self, job: Job[BudgetSpec, Robot3RRR], progress: Progress):
         self.job = job
         self.progress = progress
         self.processed = 0
@@ -190,13 +198,6 @@ def unique_rows(boxes: np.ndarray) -> np.ndarray:
     first = np.ones(len(ordered), dtype=bool)
     first[1:] = np.any(ordered[1:] != ordered[:-1], axis=1)
     return np.ascontiguousarray(ordered[first])
-
-
-def read_only(view: np.ndarray) -> np.ndarray:
-    """A read-only view of ``view`` (the runner's own array is not copied)."""
-    view = view.view()
-    view.flags.writeable = False
-    return view
 
 
 def grow(array: np.ndarray) -> np.ndarray:
@@ -419,6 +420,7 @@ def compute_workspace(robot: Robot3RRR, spec, budget: BoxBudget) -> WorkspaceOut
 
         geometric = geometric_area(robot, spec.limits_rad, spec.orientation_rad)
     if spec.form == "geometric":
+        assert geometric is not None
         empty = np.zeros((0, 4))
         return WorkspaceOutcome(
             spec.form, spec.precision_cm, None, empty, np.zeros(0, np.int64), 0,

@@ -248,7 +248,7 @@ class WorkspaceSpec:
     plot: str | None = plot_setting()
 
     @staticmethod
-    def check(values: dict, reader: TableReader, robot: Robot3RRR) -> dict:
+    def check(values: dict[str, Any], reader: TableReader, robot: Robot3RRR) -> dict[str, Any]:
         """The expanded form needs the natural form and the paper's layout; the refinement
         precision cannot exceed the precision."""
         check_orientation(values, reader)
@@ -415,7 +415,7 @@ def point_figures(job: WorkspaceJob, result: WorkspaceResult) -> dict[str, Any]:
     return {name: value for name, value in zip(header, row, strict=True) if name != "seconds"}
 
 
-def overlays(singular) -> dict:
+def overlays(singular: SingularityOutcome | None) -> dict[str, Any]:
     """``render_map`` keywords drawing the singular boxes and the circle (none without)."""
     if singular is None:
         return {}

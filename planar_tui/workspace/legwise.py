@@ -54,7 +54,7 @@ def legwise_stage(form_code, p, spec, box, budget):
         pave_level,
         root_row,
     )
-    from planar_tui.workspace.compute import read_only
+    from planar_tui.progress import read_only
 
     frontier = root_row(box, spec.limits_rad)[None, :]
     root_area = _area(frontier)

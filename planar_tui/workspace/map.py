@@ -200,7 +200,7 @@ def render_map(
 def _wrapped(items, indent: int, width: int) -> list[str]:
     """``items`` two spaces apart on lines of at most ``width`` columns, indented by
     ``indent`` (less where a line would not fit)."""
-    texts = []
+    texts: list[str] = []
     for item in items:
         if texts and indent + len(texts[-1]) + 2 + len(item) <= width:
             texts[-1] += "  " + item

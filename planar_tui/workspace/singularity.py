@@ -19,7 +19,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from planar_tui.errors import PresetError
 
@@ -28,7 +28,6 @@ if TYPE_CHECKING:
 
     from planar_tui.jobkind import Job
     from planar_tui.workspace.compute import BoxBudget
-    from planar_tui.workspace.job import WorkspaceSpec
     from planar_tui.workspace.robot import Robot3RRR
 
 #: Wall time aimed at per kernel chunk.
@@ -93,7 +92,7 @@ def leg_angles(robot, orientation_rad, point):
     """Per leg, the active angles :math:`\\theta = \\alpha + s \\beta` for ``s = +1, -1``
     at the platform position ``point``, or ``None`` where the leg cannot close."""
     l1, l2 = robot.proximal_cm, robot.distal_cm
-    result = []
+    result: list[dict[int, float] | None] = []
     for dx, dy in robot.leg_offsets_cm(orientation_rad):
         vx, vy = point[0] + dx, point[1] + dy
         rho = math.hypot(vx, vy)
@@ -147,7 +146,7 @@ class Circle:
     elbow: tuple[int, int, int]
 
 
-def resolve_circle(job: Job[WorkspaceSpec, Robot3RRR]) -> Circle:
+def resolve_circle(job: Job[Any, Robot3RRR]) -> Circle:
     """The circle's centre and working mode of a job with ``singularities``; an
     unreachable or singular centre is a :class:`PresetError` (exit code 2)."""
     spec = job.spec
@@ -245,7 +244,7 @@ def kernel_inputs(robot, spec, circle: Circle):
 
 
 def compute_singularities(
-    job: Job[WorkspaceSpec, Robot3RRR], circle: Circle, extent, budget: BoxBudget
+    job: Job[Any, Robot3RRR], circle: Circle, extent, budget: BoxBudget
 ) -> SingularityOutcome:
     """Pave ``extent`` (``x_lo, x_hi, y_lo, y_hi``, holding the workspace) down to
     ``singularity_precision_cm`` (default ``precision_cm``) about ``circle`` (resolved
