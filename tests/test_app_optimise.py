@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import csv
 
+import pytest
 from textual.widgets import DataTable
 
 from planar_tui.app.app import WorkbenchApp
@@ -34,6 +35,7 @@ def app_on(tmp_path, budget: int) -> WorkbenchApp:
     return WorkbenchApp(Workbench.open(path), output_dir=tmp_path)
 
 
+@pytest.mark.slow
 @async_test
 async def test_the_optimise_screen_follows_the_run_and_exports_the_cli_result(tmp_path):
     app = app_on(tmp_path, 24)
@@ -66,6 +68,7 @@ async def test_the_optimise_screen_follows_the_run_and_exports_the_cli_result(tm
     assert (tmp_path / "opt-optimum.csv").exists()
 
 
+@pytest.mark.slow
 @async_test
 async def test_cancel_keeps_the_finished_evaluations(tmp_path):
     app = app_on(tmp_path, 4000)

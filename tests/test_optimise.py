@@ -241,6 +241,7 @@ output = "opt.csv"
 )
 
 
+@pytest.mark.slow
 def test_one_worker_and_a_two_process_cluster_give_the_same_csvs(tmp_path, cli):
     preset = write(tmp_path, PARALLEL.replace("{budget}", "60"))
     for workers in ("1", "2"):
@@ -253,6 +254,7 @@ def test_one_worker_and_a_two_process_cluster_give_the_same_csvs(tmp_path, cli):
         assert one == two
 
 
+@pytest.mark.slow
 def test_ctrl_c_then_resume_gives_the_uninterrupted_csv(tmp_path, cli):
     preset = write(tmp_path, PARALLEL.replace("{budget}", "400"))
     out = tmp_path / "out"
