@@ -133,7 +133,7 @@ def objectives_of(opt: Optimisation, outcome: PointOutcome) -> tuple[float, ...]
 def best_of(opt: Optimisation, evaluations: Sequence[Evaluation]) -> list[Evaluation]:
     """See :meth:`OptimiseRun.best`. ``a`` dominates ``b`` when ``F(a) ≤ F(b)`` in every
     objective and ``<`` in one."""
-    candidates = {}
+    candidates: dict[str, Evaluation] = {}
     for e in evaluations:
         if feasible(opt, e.outcome):
             candidates.setdefault(repr(e.values), e)  # choices may be lists

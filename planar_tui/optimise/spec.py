@@ -284,10 +284,8 @@ def _read_variable(reader: TableReader, key: str, path: KeyPath, entry: Any,
             raise spec.error("choices", f"is {what}", "a non-empty array of values")
         return Variable(path, choices=tuple(choices))
     whole = spec.boolean("integer", False)
-    if whole:
-        low, high = spec.integer("from"), spec.integer("to")
-    else:
-        low, high = spec.number("from"), spec.number("to")
+    read = spec.integer if whole else spec.number
+    low, high = float(read("from")), float(read("to"))
     if low >= high:
         raise spec.error("to", f"is {shown(entry['to'])}, not above from = {shown(entry['from'])}",
                          "to > from")  # fmt: skip
