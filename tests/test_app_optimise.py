@@ -35,14 +35,19 @@ def app_on(tmp_path, budget: int) -> WorkbenchApp:
     return WorkbenchApp(Workbench.open(path), output_dir=tmp_path)
 
 
+async def start(app: WorkbenchApp, pilot) -> None:
+    """Run the optimisation of the workspace tab (the palette's Run optimisation)."""
+    app.action_show_tab("workspace")
+    await pilot.pause()
+    app.action_optimise()
+
+
 @pytest.mark.slow
 @async_test
 async def test_the_optimise_screen_follows_the_run_and_exports_the_cli_result(tmp_path):
     app = app_on(tmp_path, 24)
     async with app.run_test(size=SIZE) as pilot:
-        app.action_show_tab("workspace")
-        await pilot.pause()
-        app.action_optimise()
+        await start(app, pilot)
         await finish(app, pilot)
         assert isinstance(app.screen, OptimiseScreen)
         run = app.screen.run
@@ -73,9 +78,7 @@ async def test_the_optimise_screen_follows_the_run_and_exports_the_cli_result(tm
 async def test_cancel_keeps_the_finished_evaluations(tmp_path):
     app = app_on(tmp_path, 4000)
     async with app.run_test(size=SIZE) as pilot:
-        app.action_show_tab("workspace")
-        await pilot.pause()
-        app.action_optimise()
+        await start(app, pilot)
         while not isinstance(app.screen, OptimiseScreen):
             await pilot.pause(0.05)
         await pilot.press("x")

@@ -5,6 +5,7 @@ opens with its first generation and follows it; its CSVs can be exported."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -109,24 +110,35 @@ class OptimiseActions:
 
     def export_optimisation(self, run: Any) -> None:
         """Ask for a file: the evaluations' CSV there, the optimum's beside it
-        (``NAME-optimum.csv``), both atomically."""
+        (``NAME-optimum.csv``)."""
+
+        def tables(path: Path) -> list[tuple[Path, Any]]:
+            return [(path, run.table),
+                    (path.with_name(f"{path.stem}-optimum.csv"), run.optimum_table)]  # fmt: skip
+
+        self.export_tables("Export the evaluations CSV to",
+                           self.output_dir / run.optimisation.output, tables)  # fmt: skip
+
+    def export_tables(self, title: str, default: Path,
+                      tables: Callable[[Path], list[tuple[Path, Any]]]) -> None:  # fmt: skip
+        """Ask for a file (``title``, ``default``) and write ``tables(path)``, each
+        ``(file, CsvTable)``, atomically, every file checked first (a sweep's CSV, an
+        optimisation's two)."""
         from planar_tui.batch import check_writable
         from planar_tui.csvio import write_csv_atomic
 
         def chosen(answer: str | None) -> None:
             if not answer:
                 return
-            path = Path(answer)
-            optimum = path.with_name(f"{path.stem}-optimum.csv")
+            written = tables(Path(answer))
             try:
-                for target in (path, optimum):
-                    check_writable(target)
-                write_csv_atomic(path, run.table)
-                write_csv_atomic(optimum, run.optimum_table)
+                for path, _ in written:
+                    check_writable(path)
+                for path, table in written:
+                    write_csv_atomic(path, table)
             except (PresetError, OSError) as error:
                 self.push_screen(MessageDialog("Not exported", str(error)))
                 return
-            self.notify(f"Wrote {path} and {optimum.name}")
+            self.notify("Wrote " + " and ".join(str(path) for path, _ in written))
 
-        default = self.output_dir / run.optimisation.output
-        self.push_screen(PathDialog("Export the evaluations CSV to", str(default)), chosen)
+        self.push_screen(PathDialog(title, str(default)), chosen)

@@ -4,11 +4,10 @@ outcome opens the sweep screen, whose CSV can be exported."""
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Any
 
 from planar_tui.app.job_runner import SweepFinished
-from planar_tui.app.screens.dialogs import MessageDialog, PathDialog
+from planar_tui.app.screens.dialogs import MessageDialog
 from planar_tui.errors import PresetError
 
 
@@ -107,20 +106,5 @@ class SweepActions:
 
     def export_sweep(self, run: Any) -> None:
         """Ask for a file and write the sweep CSV there (atomically)."""
-        from planar_tui.batch import check_writable
-        from planar_tui.csvio import write_csv_atomic
-
-        def chosen(answer: str | None) -> None:
-            if not answer:
-                return
-            path = Path(answer)
-            try:
-                check_writable(path)
-                write_csv_atomic(path, run.table)
-            except (PresetError, OSError) as error:
-                self.push_screen(MessageDialog("Not exported", str(error)))
-                return
-            self.notify(f"Wrote {path}")
-
-        default = self.output_dir / run.sweep.output
-        self.push_screen(PathDialog("Export the sweep CSV to", str(default)), chosen)
+        self.export_tables("Export the sweep CSV to", self.output_dir / run.sweep.output,
+                           lambda path: [(path, run.table)])  # OptimiseActions'  # fmt: skip
