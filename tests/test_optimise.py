@@ -242,13 +242,40 @@ output = "opt.csv"
 
 
 @pytest.mark.slow
-def test_one_worker_and_a_two_process_cluster_give_the_same_csvs(tmp_path, cli):
+def test_one_worker_and_a_two_process_cluster_with_a_worker_killed_give_the_same_csvs(
+    tmp_path, cli
+):
+    """The CLI on 1 worker, then the same run on a 2-process local cluster (the CLI's
+    ``--workers 2`` path: :func:`run_optimisation` with its client) one of whose worker
+    processes is killed (SIGKILL) while the second generation runs: its nanny starts it
+    again, Dask runs its evaluations again, the CSVs are the same."""
+    import threading
+
+    from distributed import Client
+
+    from planar_tui.optimise.run import run_optimisation
+    from planar_tui.optimise.spec import parse_optimisations
+    from planar_tui.presets import load_preset
+    from planar_tui.sweep.execute import local_cluster
+
     preset = write(tmp_path, PARALLEL.replace("{budget}", "60"))
-    for workers in ("1", "2"):
-        started = time.monotonic()
-        result = cli("optimise", preset, "--out-dir", tmp_path / workers, "--workers", workers)
-        assert result.exit_code == 0, result.output
-        assert time.monotonic() - started < 300
+    result = cli("optimise", preset, "--out-dir", tmp_path / "1", "--workers", "1")
+    assert result.exit_code == 0, result.output
+    (optimisation,) = parse_optimisations(load_preset(preset))
+    started = time.monotonic()
+    killed = []
+    with local_cluster(2) as cluster, Client(cluster) as client:
+        pids = sorted(client.run(os.getpid).values())
+
+        def kill_during_the_next_generation(run) -> None:
+            if run.generations == 1:
+                threading.Timer(0.02, lambda: killed.append(os.kill(pids[0], 9))).start()
+
+        run = run_optimisation(optimisation, client=client, out_dir=tmp_path / "2",
+                               on_generation=kill_during_the_next_generation)  # fmt: skip
+        assert killed and pids[0] not in client.run(os.getpid).values()
+    assert time.monotonic() - started < 300
+    assert len(run.evaluations) == 60
     for name in ("opt.csv", "opt-optimum.csv"):
         one, two = ((tmp_path / w / name).read_text() for w in ("1", "2"))
         assert one == two
