@@ -371,6 +371,25 @@ GOOD = 'variables."theta_deg[1][1]" = { from = 0, to = 90 }\nmaximise = "tau1_ab
         ),
         (GOOD + "coarse = { speed = 1 }\n", "optimise[1].coarse.speed: unknown key path"),
         (
+            GOOD + 'coarse = { "theta_deg[1][1]" = 1 }\n',
+            'optimise[1].coarse."theta_deg[1][1]": names the same value as theta_deg[1][1]',
+        ),
+        (
+            GOOD.replace("to = 90 }", 'to = 90, fixed_sum = { "theta_deg[1][1]" = 90 } }'),
+            'optimise[1].variables."theta_deg[1][1]".fixed_sum."theta_deg[1][1]": names the same',
+        ),
+        (
+            GOOD.replace("to = 90 }", 'to = 90, fixed_sum = { "theta_deg[1][2]" = 90 } }')
+            + 'variables."robot.lengths_m[1]" = { from = 0.1, to = 0.4, fixed_sum = '
+            '{ "theta_deg[1][2]" = 80 } }\n',
+            'optimise[1].variables."robot.lengths_m[1]".fixed_sum."theta_deg[1][2]": is 80.0, '
+            "another total than 90.0",
+        ),
+        (
+            GOOD.replace("to = 90 }", "to = 90, fixed_sum = {} }"),
+            'optimise[1].variables."theta_deg[1][1]".fixed_sum: is empty',
+        ),
+        (
             GOOD + 'coarse = { "robot.lengths_m[1]" = -1 }\n',
             "optimise[1]: point 1 (theta_deg[1][1] = 0.0, robot.lengths_m[1] = -1): robot.lengths_m",
         ),
