@@ -11,9 +11,20 @@ Rows (JIT warmed first, best of several repeats, baselines run in the same proce
   own RK4 ``mj_step`` in a Python loop (10^4 steps), with the time per forward-dynamics
   call (simulation / 4·10^4, and ``forward_dynamics_into`` alone in a jitted loop);
 * one inverse / forward dynamics evaluation for n = 2..64 with the fitted exponent of
-  time ~ n^p (called from Python, and from a jitted loop, which removes the dispatch cost).
+  time ~ n^p (called from Python, and from a jitted loop, which removes the dispatch cost);
+* ``--part forward`` (also part of ``all``, the default): forward dynamics per call at
+  n = 6, 20, 100, 1000 (random robots and states) by the NOC mass matrix + ``LDLᵀ`` and by the
+  O(n) articulated-body algorithm (``kernels/aba_planar.py``), in a jitted loop and called
+  from Python, against Pinocchio's ``aba`` called from Python (the ``bench`` extra), with
+  the largest difference; the crossover table n = 2..16 (NOC vs ABA in a jitted loop); and
+  one RK4 step (``rk4_integrate``) against MuJoCo's RK4 step (``mujoco.rollout`` of one
+  robot: MuJoCo's own C loop, no Python per step).
+
+Goals (issue 21): faster than Pinocchio's ``aba`` at n = 20, 100, 1000; one RK4 step faster
+than MuJoCo's at every n.
 """
 
+import argparse
 import datetime
 import os
 import platform
@@ -32,7 +43,9 @@ from planar_tui.runtime import prepare_kernels
 prepare_kernels()  # before any kernel is imported
 
 from planar_tui.kernels._jit import kernel
+from planar_tui.kernels.aba_planar import ABA_WORK_ROWS, aba_forward_dynamics, aba_rows
 from planar_tui.kernels.dynamics import (
+    _forward_dynamics_rows,
     forward_dynamics,
     forward_dynamics_into,
     forward_dynamics_work,
@@ -41,7 +54,7 @@ from planar_tui.kernels.dynamics import (
 )
 from planar_tui.kernels.rk4 import rk4_integrate, rk4_record_count
 
-from benchmarks.baselines import numpy_newton_euler
+from benchmarks.baselines import import_pinocchio, numpy_newton_euler, pinocchio_chain
 from benchmarks.mujoco_model import chain_model, set_chain_parameters
 
 G = 9.81
@@ -172,8 +185,139 @@ def exponent(sizes, times):
     return np.polyfit(np.log(sizes[keep]), np.log(times[keep]), 1)[0]
 
 
+@kernel
+def _repeat_forward_algorithm(count, aba, lengths, masses, inertias, theta, omega, tau):
+    """``count`` forward dynamics in compiled code by one algorithm: the articulated-body
+    recursion (``aba``) or the NOC mass matrix + LDLᵀ."""
+    n = lengths.shape[0]
+    work = np.zeros((ABA_WORK_ROWS, n))
+    matrix = np.zeros((n, n))
+    alpha = np.empty((1, n))
+    total = 0.0
+    for _ in range(count):
+        theta[0] += 1e-12
+        if aba:
+            aba_rows(lengths, masses, inertias, 9.81, theta, omega, tau, work, alpha, 0)
+        else:
+            _forward_dynamics_rows(lengths, masses, inertias, 9.81, theta, omega, tau, work,
+                                   matrix, alpha, 0, True)  # fmt: skip
+        total += alpha[0, 0]
+    return total
+
+
+#: Pinocchio's Data of an n-joint chain takes about n³ · 65 bytes (measured: 1.7 GB at 300).
+PINOCCHIO_MAX_LINKS = 300
+
+
+def random_chain(rng, n):
+    lengths, masses = rng.uniform(0.1, 0.3, n), rng.uniform(0.2, 1.0, n)
+    inertias = masses * lengths**2 / 12
+    theta, omega, tau = rng.uniform(-0.3, 0.3, n), rng.normal(0, 1, n), rng.normal(0, 1, n)
+    return lengths, masses, inertias, theta, omega, tau
+
+
+def forward_part(rng):
+    """Forward dynamics per call vs Pinocchio's ``aba``, the crossover, one RK4 step vs MuJoCo."""
+    import mujoco
+    from mujoco import rollout
+
+    pin = import_pinocchio()
+    rows = []
+    for n in (6, 20, 100, 300, 1000):
+        lengths, masses, inertias, theta, omega, tau = random_chain(rng, n)
+        calls = max(3, int(2e6 / n)) if n < 1000 else 2000
+        noc_calls = max(3, int(2e6 / n**2.2))
+        args = (lengths, masses, inertias, theta.copy(), omega, tau)
+        for aba in (True, False):
+            _repeat_forward_algorithm(1, aba, *args)
+        aba_jit = best_time(partial(_repeat_forward_algorithm, calls, True, *args), 5) / calls
+        noc_jit = best_time(partial(_repeat_forward_algorithm, noc_calls, False, *args), 3)
+        noc_jit /= noc_calls
+        py_calls = max(3, calls // 10)
+
+        def our_calls(c=py_calls, a=args):
+            for _ in range(c):
+                aba_forward_dynamics(*a[:3], G, *a[3:])
+
+        ours_py = best_time(our_calls) / py_calls
+        times = (f"ABA jit {aba_jit * 1e9:.0f} | NOC jit {noc_jit * 1e9:.0f} | ABA from Python "
+                 f"{ours_py * 1e9:.0f}")  # fmt: skip
+        if n > PINOCCHIO_MAX_LINKS:
+            rows.append((f"n = {n}: forward dynamics per call (Pinocchio: see note)",
+                         times + " ns", ""))  # fmt: skip
+            continue
+        model, data = pinocchio_chain(lengths, masses, inertias, G)
+
+        def pinocchio_calls(c=py_calls, m=model, d=data, state=(theta, omega, tau)):
+            for _ in range(c):
+                pin.aba(m, d, *state)
+
+        pin_py = best_time(pinocchio_calls) / py_calls
+        reference = pin.aba(model, data, theta, omega, tau).copy()
+        ours = aba_forward_dynamics(lengths, masses, inertias, G, theta, omega, tau)
+        gap = np.abs(reference - ours).max() / np.abs(reference).max()
+        del model, data
+        print(f"  forward dynamics n = {n} done", file=sys.stderr, flush=True)
+        rows.append((f"n = {n}: forward dynamics per call (max |Δθ̈| / max |θ̈| vs Pinocchio {gap:.0e})",
+                     times + f" | Pinocchio aba from Python {pin_py * 1e9:.0f} ns",
+                     f"Pin/ours {pin_py / ours_py:.2f} (Python), {pin_py / aba_jit:.2f} (jit)"))  # fmt: skip
+    rows.append((f"note: Pinocchio {pin.__version__}'s Data grows as n³ (1.7 GB at n = 300, about "
+                 f"60 GB at n = 1000): not run above n = {PINOCCHIO_MAX_LINKS}", "", ""))  # fmt: skip
+    crossover = []
+    for n in range(2, 17):
+        args = (*random_chain(rng, n)[:3], rng.uniform(-0.3, 0.3, n), rng.normal(0, 1, n),
+                rng.normal(0, 1, n))  # fmt: skip
+        times = []
+        for aba in (False, True):
+            _repeat_forward_algorithm(1, aba, *args)
+            times.append(best_time(partial(_repeat_forward_algorithm, 20_000, aba, *args), 7))
+        crossover.append(f"{n}: {times[0] / times[1]:.2f}")
+    rows.append(("crossover: NOC time / ABA time (jit loop), n: ratio", ", ".join(crossover), ""))
+    for n in (6, 20, 100, 1000):
+        lengths, masses, inertias, theta, omega, tau = random_chain(rng, n)
+        steps = max(20, int(2e5 / n))
+        records = [np.zeros(2), np.zeros((2, n)), np.zeros((2, n)), np.zeros(2), np.zeros(2)]
+
+        def ours(steps=steps, args=(lengths, masses, inertias, G, tau), q=theta, records=records):
+            rk4_integrate(*args, q.copy(), np.zeros(len(q)), 1e-4, steps, 10**9, 1, *records)
+
+        ours()
+        ours_step = best_time(ours, 3) / steps
+        model, data = chain_model(lengths, masses, inertias, G, timestep_s=1e-4)
+        data.qpos[:] = theta
+        spec = mujoco.mjtState.mjSTATE_FULLPHYSICS
+        state = np.zeros(mujoco.mj_stateSize(model, spec))
+        mujoco.mj_getState(model, data, state, spec)
+        control = tau[None, None, :]
+        mj_steps = max(3, int(2e4 / n**1.5))  # MuJoCo's dense chain factorisation is O(n³)
+        run = partial(rollout.rollout, model, data, state[None], control,
+                      control_spec=mujoco.mjtState.mjSTATE_QFRC_APPLIED, nstep=mj_steps)  # fmt: skip
+        run()
+        mj_step_time = best_time(run, 3) / mj_steps
+        print(f"  RK4 step n = {n} done", file=sys.stderr, flush=True)
+        rows.append((f"n = {n}: one RK4 step, rk4_integrate | MuJoCo rollout (RK4)",
+                     f"{ours_step * 1e6:.2f} | {mj_step_time * 1e6:.2f} µs",
+                     f"MuJoCo/ours {mj_step_time / ours_step:.2f}"))  # fmt: skip
+    return rows
+
+
 def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--part", choices=("all", "forward", "inverse"), default="all")
+    part = parser.parse_args().part
     rng = np.random.default_rng(20160601)
+    header = (
+        f"bench_dynamics  {datetime.date.today().isoformat()}  {platform.machine()} "
+        f"{_cpu_name()}, {os.cpu_count()} cores, numba {numba.__version__}, numpy {np.__version__}, "
+        f"mujoco {_mujoco_version()}; load {' '.join(Path('/proc/loadavg').read_text().split()[:3])}"
+    )
+    if part in ("all", "forward"):
+        _print(header + " (forward dynamics, RK4 step)", forward_part(rng))
+    if part in ("all", "inverse"):
+        inverse_part(rng, header)
+
+
+def inverse_part(rng, header):
     theta, omega, alpha = rng.uniform(-1, 1, (3, 6))
     count = 1_000_000
     params = samples(count, rng)
@@ -299,11 +443,6 @@ def main():
         )
     )
 
-    header = (
-        f"bench_dynamics  {datetime.date.today().isoformat()}  {platform.machine()} "
-        f"{_cpu_name()}, {os.cpu_count()} cores, numba {numba.__version__}, numpy {np.__version__}, "
-        f"mujoco {_mujoco_version()}"
-    )
     _print(header, rows)
 
 

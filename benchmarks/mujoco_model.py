@@ -1,4 +1,4 @@
-"""MJCF builder: the n-link planar serial revolute robot as a MuJoCo model.
+"""The n-link planar serial revolute robot as a MuJoCo model (built with ``MjSpec``).
 
 Used by the tests (an independent reference engine) and by ``benchmarks/bench_dynamics.py``.
 The plane of motion is MuJoCo's x-y plane, gravity points along -y, every joint is a hinge
@@ -17,40 +17,34 @@ import numpy as np
 AXIAL_INERTIA_KGM2 = 1e-10
 
 
-def chain_mjcf(lengths_m, masses_kg, inertias_kgm2, gravity_m_s2=9.81, timestep_s=1e-4):
-    """MJCF text of the planar chain (RK4 integrator, contacts disabled)."""
+def chain_model(lengths_m, masses_kg, inertias_kgm2, gravity_m_s2=9.81, timestep_s=1e-4):
+    """Compiled ``(mujoco.MjModel, mujoco.MjData)`` of the chain (RK4 integrator, contacts
+    disabled), built with ``mujoco.MjSpec`` (an MJCF text nests one ``<body>`` per link and
+    MuJoCo's XML parser refuses chains much deeper than 100 links)."""
+    import mujoco
+
+    spec = mujoco.MjSpec()
+    spec.compiler.degree = False
+    spec.compiler.inertiafromgeom = mujoco.mjtInertiaFromGeom.mjINERTIAFROMGEOM_FALSE
+    spec.option.gravity = [0.0, -float(gravity_m_s2), 0.0]
+    spec.option.integrator = mujoco.mjtIntegrator.mjINT_RK4
+    spec.option.timestep = float(timestep_s)
+    spec.option.disableflags |= mujoco.mjtDisableBit.mjDSBL_CONTACT
+    parent = spec.worldbody
     lengths_m = np.asarray(lengths_m, dtype=float)
-    bodies_open = []
     for i, (length, mass, inertia) in enumerate(
         zip(lengths_m, masses_kg, inertias_kgm2, strict=True)
     ):
-        offset = 0.0 if i == 0 else lengths_m[i - 1]
-        bodies_open.append(
-            f'<body name="link{i + 1}" pos="{offset:.17g} 0 0">'
-            f'<joint name="joint{i + 1}" type="hinge" axis="0 0 1" pos="0 0 0"'
-            ' damping="0" armature="0" frictionloss="0"/>'
-            f'<inertial pos="{0.5 * length:.17g} 0 0" mass="{mass:.17g}"'
-            f' diaginertia="{AXIAL_INERTIA_KGM2:.17g} {inertia:.17g} {inertia:.17g}"/>'
+        body = parent.add_body(
+            pos=[0.0 if i == 0 else lengths_m[i - 1], 0.0, 0.0],
+            mass=float(mass),
+            ipos=[0.5 * length, 0.0, 0.0],
+            inertia=[AXIAL_INERTIA_KGM2, float(inertia), float(inertia)],
+            explicitinertial=True,
         )
-    chain = "".join(bodies_open) + "</body>" * len(bodies_open)
-    return (
-        '<mujoco model="planar-chain">'
-        '<compiler angle="radian" inertiafromgeom="false"/>'
-        f'<option gravity="0 {-gravity_m_s2:.17g} 0" integrator="RK4" timestep="{timestep_s:.17g}">'
-        '<flag contact="disable"/>'
-        "</option>"
-        f"<worldbody>{chain}</worldbody>"
-        "</mujoco>"
-    )
-
-
-def chain_model(lengths_m, masses_kg, inertias_kgm2, gravity_m_s2=9.81, timestep_s=1e-4):
-    """Compiled ``(mujoco.MjModel, mujoco.MjData)`` of :func:`chain_mjcf`."""
-    import mujoco
-
-    model = mujoco.MjModel.from_xml_string(
-        chain_mjcf(lengths_m, masses_kg, inertias_kgm2, gravity_m_s2, timestep_s)
-    )
+        body.add_joint(type=mujoco.mjtJoint.mjJNT_HINGE, axis=[0.0, 0.0, 1.0])
+        parent = body
+    model = spec.compile()
     return model, mujoco.MjData(model)
 
 

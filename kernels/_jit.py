@@ -8,14 +8,23 @@ the OpenMP wait policy and numba's BLAS probe are set up once, explicitly, by
 from numba import njit
 
 
-def kernel(function=None, *, parallel: bool = False):
+def kernel(function=None, *, parallel: bool = False, inline: bool = False):
     """Compile ``function`` with ``njit(cache=True, nogil=True, error_model="numpy")``.
 
-    ``parallel=True`` enables ``numba.prange`` loops. Usable bare (``@kernel``) or
-    with arguments (``@kernel(parallel=True)``).
+    ``parallel=True`` enables ``numba.prange`` loops. ``inline=True`` inlines the function's
+    body into its callers at numba's level (``inline="always"``): LLVM never inlines one
+    numba function into another, so a call inside a loop (e.g. the vector ``sincos`` of
+    :mod:`kernels.lane_trig`) otherwise stays a call and keeps the loop scalar. Usable bare
+    (``@kernel``) or with arguments (``@kernel(parallel=True)``).
     """
 
     def wrap(f):
-        return njit(cache=True, nogil=True, error_model="numpy", parallel=parallel)(f)
+        return njit(
+            cache=True,
+            nogil=True,
+            error_model="numpy",
+            parallel=parallel,
+            inline="always" if inline else "never",
+        )(f)
 
     return wrap if function is None else wrap(function)

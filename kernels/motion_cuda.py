@@ -1,7 +1,10 @@
 r"""The batched RK4 of :mod:`kernels.motion_rk4` as a CUDA kernel: one thread per robot.
 
 The device functions are the very Python functions of :func:`kernels.motion_rk4.scale_row`,
-:func:`kernels.rk4.rk4_step` and :func:`kernels.dynamics._forward_dynamics_rows`, compiled
+:func:`kernels.rk4.rk4_step` and :func:`kernels.aba_planar.forward_dynamics_rows_auto` (the
+NOC :func:`kernels.dynamics._forward_dynamics_rows` for short chains, the O(n)
+:func:`kernels.aba_planar.aba_rows` from :data:`~kernels.aba_planar.ABA_MIN_LINKS` links on: a
+long chain needs no (n, n) matrix per robot), compiled
 for the GPU (their globals rebound to the device versions), so the GPU runs the same
 algorithm: thread s scales design row s into its parameters (on the GPU: only the unit
 design crosses the bus, not the (S, 3, n) parameters), then takes ``n_steps`` RK4 steps.
@@ -14,7 +17,7 @@ import types
 
 from numba import cuda
 
-from . import dynamics, motion_rk4, rk4
+from . import aba_planar, dynamics, motion_rk4, rk4
 
 
 def _device(dispatcher, **rebind):
@@ -30,7 +33,13 @@ def _device(dispatcher, **rebind):
 
 
 _forward_dynamics_rows = _device(dynamics._forward_dynamics_rows)
-_rk4_step = _device(rk4.rk4_step, _forward_dynamics_rows=_forward_dynamics_rows)
+_aba_rows = _device(aba_planar.aba_rows)
+_forward_dynamics_rows_auto = _device(
+    aba_planar.forward_dynamics_rows_auto,
+    aba_rows=_aba_rows,
+    _forward_dynamics_rows=_forward_dynamics_rows,
+)
+_rk4_step = _device(rk4.rk4_step, forward_dynamics_rows_auto=_forward_dynamics_rows_auto)
 _scale_row = _device(motion_rk4.scale_row)
 
 
@@ -47,11 +56,11 @@ def _advance(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n_
     s = cuda.grid(1)
     if s < params.shape[0]:
         p = params[s]
-        work = scratch[s, 0:6]
-        d_theta = scratch[s, 6:10]
-        d_omega = scratch[s, 10:14]
-        theta = scratch[s, 14]
-        omega = scratch[s, 15]
+        work = scratch[s, 0:9]  # kernels.aba_planar.ABA_WORK_ROWS (the NOC path uses 6)
+        d_theta = scratch[s, 9:13]
+        d_omega = scratch[s, 13:17]
+        theta = scratch[s, 17]
+        omega = scratch[s, 18]
         for _ in range(n_steps):
             _rk4_step(
                 p[0], p[1], p[2], gravity_m_s2, torque_Nm, theta_rad[s], omega_rad_s[s],
@@ -83,8 +92,9 @@ class CudaBatch:
         self.torque = cuda.to_device(np.ascontiguousarray(torque_Nm, dtype=np.float64))
         self.theta = cuda.to_device(np.ascontiguousarray(theta_rad, dtype=np.float64))
         self.omega = cuda.to_device(np.ascontiguousarray(omega_rad_s, dtype=np.float64))
-        self.scratch = cuda.device_array((samples, 16, n))
-        self.matrix = cuda.device_array((samples, n, n))
+        self.scratch = cuda.device_array((samples, 19, n))
+        size = 1 if n >= aba_planar.ABA_MIN_LINKS else n  # the O(n) path needs no matrix
+        self.matrix = cuda.device_array((samples, size, size))
         if samples:
             _make_parameters[self.blocks, THREADS](
                 cuda.to_device(np.ascontiguousarray(unit, dtype=np.float64)),

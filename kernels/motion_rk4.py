@@ -1,4 +1,9 @@
-r"""Batched RK4 over S robots, each with its own link parameters (the motion uncertainty job).
+r"""Batched RK4 over S robots, each with its own link parameters, one robot at a time.
+
+The motion uncertainty job's parameters come from :func:`design_parameters`; its robots are
+integrated by the lane-batched :func:`kernels.motion_lanes.rk4_lanes` (SIMD lanes over
+robots). :func:`rk4_batch` here is the scalar reference the lane kernel is tested and
+benchmarked against, and the CUDA kernel's model (:mod:`kernels.motion_cuda`).
 
 Row s of a unit design :math:`u` (S, D) is the robot
 :math:`x_s = u_s\,(x_{ub} - x_{lb}) + x_{lb}` (link lengths, masses and, when D = 3n,
@@ -14,7 +19,7 @@ import numpy as np
 from numba import prange
 
 from ._jit import kernel
-from .dynamics import forward_dynamics_work
+from .aba_planar import auto_work
 from .rk4 import rk4_step
 
 #: Robots handled by one parallel task: work arrays are allocated once per task.
@@ -63,7 +68,7 @@ def rk4_batch(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n
     samples, _, n = params.shape
     n_tasks = (samples + ROBOTS_PER_TASK - 1) // ROBOTS_PER_TASK
     for task in prange(n_tasks):
-        work, matrix = forward_dynamics_work(n)
+        work, matrix = auto_work(n)
         d_theta = np.empty((4, n))
         d_omega = np.empty((4, n))
         theta = np.empty(n)

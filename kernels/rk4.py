@@ -1,7 +1,9 @@
 r"""Fixed-step classical Runge-Kutta (RK4) integration of the NOC forward dynamics.
 
 State :math:`x = (\theta, \dot\theta)`, :math:`\dot x = f(x) = (\dot\theta, \ddot\theta(\theta,\dot\theta,\tau))`
-with :math:`\ddot\theta` from :func:`kernels.dynamics.forward_dynamics` (paper A eq. 2) and a
+with :math:`\ddot\theta` from the forward dynamics of paper A eq. 2 (NOC mass matrix +
+``LDLᵀ`` for short chains, the O(n) articulated-body algorithm of :mod:`kernels.aba_planar`
+for long ones) and a
 constant torque vector (zero for free fall). Paper A, section 2-1, integrates with RK4 over
 1 s; its step size is garbled, the project uses 1e-4 s (see ``docs/dynamics.md``).
 """
@@ -9,7 +11,8 @@ constant torque vector (zero for free fall). Paper A, section 2-1, integrates wi
 import numpy as np
 
 from ._jit import kernel
-from .dynamics import _forward_dynamics_rows, energies, forward_dynamics_work
+from .aba_planar import auto_work, forward_dynamics_rows_auto
+from .dynamics import energies
 
 
 @kernel
@@ -43,8 +46,10 @@ def rk4_step(
     .. math:: k_1 = f(x_k),\; k_2 = f(x_k + \tfrac h2 k_1),\; k_3 = f(x_k + \tfrac h2 k_2),\;
               k_4 = f(x_k + h k_3),\quad x_{k+1} = x_k + \tfrac h6(k_1 + 2k_2 + 2k_3 + k_4)
 
-    with :math:`f(\theta,\omega) = (\omega, \ddot\theta(\theta,\omega,\tau))`. ``work`` and
-    ``matrix`` come from :func:`kernels.dynamics.forward_dynamics_work`; ``d_theta``,
+    with :math:`f(\theta,\omega) = (\omega, \ddot\theta(\theta,\omega,\tau))`. :math:`\ddot\theta` comes
+    from :func:`kernels.aba_planar.forward_dynamics_rows_auto` (NOC below
+    :data:`~kernels.aba_planar.ABA_MIN_LINKS` links, articulated-body algorithm from there
+    on); ``work`` and ``matrix`` come from :func:`kernels.aba_planar.auto_work`; ``d_theta``,
     ``d_omega`` (4, n) hold the stage derivatives and ``theta``, ``omega`` (n,) the stage
     point. The one step of :func:`rk4_integrate` and of the batched motion kernels
     (:mod:`kernels.motion_rk4`), so they agree to the last bit.
@@ -58,7 +63,7 @@ def rk4_step(
     for stage in range(4):
         for i in range(n):
             d_theta[stage, i] = omega[i]
-        _forward_dynamics_rows(
+        forward_dynamics_rows_auto(
             lengths_m,
             masses_kg,
             inertias_kgm2,
@@ -70,7 +75,6 @@ def rk4_step(
             matrix,
             d_omega,
             stage,
-            True,
         )
         if stage < 3:
             factor = step_s if stage == 2 else half
@@ -133,7 +137,7 @@ def rk4_integrate(
     rows_written : int
     """
     n = lengths_m.shape[0]
-    work, matrix = forward_dynamics_work(n)
+    work, matrix = auto_work(n)
     d_theta = np.empty((4, n))  # stage derivatives k1..k4 of θ
     d_omega = np.empty((4, n))  # ... and of θ̇
     theta = np.empty(n)  # θ at the stage point

@@ -58,7 +58,13 @@ class CsvTable:
 
     def first_non_finite_column(self) -> str | None:
         """The first column holding a NaN or an infinity, or ``None`` (one vectorised test
-        for a float array; a pass over the cells otherwise)."""
+        for a float array or rows that test themselves, ``rows.non_finite_column()``, as
+        :class:`~planar_tui.workspace.compute.BoxRows` does; a pass over the cells
+        otherwise)."""
+        own_test = getattr(self.rows, "non_finite_column", None)
+        if own_test is not None:
+            index = own_test()
+            return None if index is None else self.header[index]
         if getattr(getattr(self.rows, "dtype", None), "kind", "") == "f":
             import numpy as np
 

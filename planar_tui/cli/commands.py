@@ -13,6 +13,7 @@ from typing import Annotated
 
 import typer
 
+from planar_tui.cli import interop
 from planar_tui.cli.kinds import JobOption, OutDirOption, PlotOption, PresetArg
 from planar_tui.cli.output import (
     _INTERRUPTED,
@@ -235,4 +236,5 @@ COMMANDS: tuple[tuple[str, Callable[..., None]], ...] = (
     ("optimise", optimise_command),
     ("warmup", warmup),
     ("presets", list_presets),
+    *interop.COMMANDS,
 )

@@ -11,6 +11,7 @@ from typing import Annotated, Any
 
 import typer
 
+from planar_tui.cli.interop import KIND_OPTIONS, job_exports
 from planar_tui.cli.output import check_figure_option, load_presets, reported_errors
 from planar_tui.errors import PresetError
 from planar_tui.jobkind import JobKind
@@ -59,10 +60,12 @@ def run_kind(
     extra_out: Mapping[str, Path | None] | None = None,
     show: bool = True,
     plot: Path | None = None,
+    exports: Mapping[str, Any] | None = None,
 ) -> None:
     """Run the jobs of one kind in a preset: all of them, or those ``names`` selects
     (``--job``); ``options`` are the command-line overrides by option name, applied and
-    checked by :func:`planar_tui.batch.apply_overrides`."""
+    checked by :func:`planar_tui.batch.apply_overrides`; ``exports`` the kind's
+    interoperability options (:data:`planar_tui.cli.interop.KIND_OPTIONS`)."""
     from planar_tui.cli.running import run_jobs
 
     with reported_errors():
@@ -80,7 +83,7 @@ def run_kind(
         if options:
             jobs = apply_overrides(jobs, options)
         plan = plan_run(jobs, out_dir, out=out, extra_out=extra_out, plot=plot)
-        run_jobs(plan, show=show)
+        run_jobs(plan, show=show, after=job_exports(plan, exports or {}))
 
 
 def _parameter(name: str, annotation: Any, default: Any) -> inspect.Parameter:
@@ -114,13 +117,15 @@ def kind_command(kind: JobKind) -> Callable[..., None]:
         parameters.append(_parameter("show", Annotated[bool, typer.Option(flag, help=text)], True))
     parameters.append(_parameter("out_dir", OutDirOption, Path(".")))
     parameters.append(_parameter("plot", PlotOption, None))
+    exports = KIND_OPTIONS.get(kind.name, ())
+    parameters += [_parameter(name, annotation, None) for name, annotation in exports]
 
     def command(preset: str, **given: Any) -> None:
         options = {option.name: given[parameter] for parameter, option in overrides.items()}
         extra_out = {output.table: given[parameter] for parameter, output in outputs.items()}
         run_kind(kind.name, preset, given["out"], given["out_dir"], options,
                  names=given["job_name"], extra_out=extra_out, show=given.get("show", True),
-                 plot=given["plot"])  # fmt: skip
+                 plot=given["plot"], exports={name: given[name] for name, _ in exports})  # fmt: skip
 
     command.__name__ = declared.name
     command.__doc__ = declared.help

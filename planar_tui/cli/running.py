@@ -5,6 +5,7 @@ line each. What runs and where it writes was decided by the plan, before anythin
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from contextlib import ExitStack, contextmanager
 from typing import TYPE_CHECKING, Any
 
@@ -31,12 +32,16 @@ def print_notes(plan: RunPlan) -> None:
         stderr.print(note, markup=False, highlight=False, soft_wrap=True)
 
 
-def run_jobs(plan: RunPlan, *, show: bool = True) -> None:
+def run_jobs(
+    plan: RunPlan, *, show: bool = True, after: Callable[[Job, Any], None] | None = None
+) -> None:
     """Run the plan's jobs through the batch service, one progress bar each, then print a
     summary; each job's files are written as soon as it finishes. A job that raises an
     unexpected error, or an output that cannot be written, ends the run with one
     ``error:`` line and exit code 1 (``PLANAR_TUI_DEBUG=1`` shows the traceback). ``show``
-    prints each kind's terminal view."""
+    prints each kind's terminal view; ``after(job, result)`` writes what the command's
+    other options ask once a job's files are written (:func:`planar_tui.cli.interop.
+    job_exports`)."""
     from rich.table import Table
 
     from planar_tui import batch
@@ -48,6 +53,8 @@ def run_jobs(plan: RunPlan, *, show: bool = True) -> None:
             yield progress
 
     def render(job: Job, result) -> None:
+        if after is not None:
+            after(job, result)
         view = JOB_KINDS[job.kind].render
         if show and view is not None:
             view(job, result, stdout)

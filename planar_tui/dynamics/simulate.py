@@ -32,7 +32,7 @@ if TYPE_CHECKING:
 #: Most RK4 steps per kernel call (about 30 ms for a 6R robot).
 STEPS_PER_CHUNK = 20_000
 #: Wall time a kernel call aims at: Ctrl-C and Cancel are checked between calls, and a
-#: step's cost grows with the links (about 4 µs at n = 6, 85 ms at n = 400, 1 s at
+#: step's cost grows with the links (about 4 µs at n = 6, 0.16 ms at n = 400, 0.4 ms at
 #: n = 1000), so chunks are sized from the measured time per step, not a step count.
 CHUNK_SECONDS = 0.05
 #: How much a chunk may grow over the previous one (the first chunk is one step).
@@ -44,10 +44,12 @@ BYTES_PER_CELL = 48
 
 
 def rk4_step_seconds(n_links: int) -> float:
-    """Rough time of one RK4 step (four forward dynamics, dense ``LDLᵀ``) on this
-    project's machine: 0.5 µs per link plus 1 ns per link cubed (measured: 4 µs at n = 6,
-    85 ms at n = 400, 1 s at n = 1000)."""
-    return 5e-7 * n_links + 1e-9 * n_links**3
+    """Rough time of one RK4 step (four forward dynamics) on this project's machine:
+    0.5 µs per link, plus 1 ns per link cubed for the NOC mass matrix + ``LDLᵀ`` of chains
+    shorter than ``kernels.aba_planar.ABA_MIN_LINKS`` (7; longer ones take the O(n)
+    articulated-body recursion). Measured: 4 µs at n = 6, 0.16 ms at n = 400, 0.4 ms at
+    n = 1000."""
+    return 5e-7 * n_links + (1e-9 * n_links**3 if n_links < 7 else 0.0)
 
 
 def next_chunk_steps(steps: int, seconds: float, left: int, most: int | None = None) -> int:

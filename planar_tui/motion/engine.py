@@ -8,8 +8,10 @@ A and B rows; eFAST's search-curve rows are not such robots (with few samples pe
 every complementary input runs at the same low frequency, so the inputs are correlated:
 0.50 between every pair at D = 4, N = 128), so a job whose only method is ``efast`` also
 integrates N Monte-Carlo robots for its band (:func:`design_methods`). Every row of every
-design is one robot; all of them are integrated together (:mod:`kernels.motion_rk4` or
-:mod:`kernels.motion_cuda`), in calls of about
+design is one robot; all of them are integrated together (on the CPU by the lane-batched
+RK4 of :mod:`kernels.motion_lanes`, 64 robots per SIMD block, equal to the scalar
+:func:`kernels.rk4.rk4_integrate` to round-off; or by :mod:`kernels.motion_cuda`), in calls
+of about
 :data:`~planar_tui.dynamics.simulate.CHUNK_SECONDS` for progress and cancel (sized by the
 simulate job's :func:`~planar_tui.dynamics.simulate.next_chunk_steps`), stopping at every
 recorded step to take the outputs: the relative joint angles
@@ -152,8 +154,9 @@ def band_statistics(values: np.ndarray) -> np.ndarray:
 
 
 class CpuRobots:
-    """The robots on the CPU: parameters (S, 3, n) and states, :func:`kernels.motion_rk4.rk4_batch`
-    in blocks of at most :data:`CPU_BLOCK_ROBOTS` robots."""
+    """The robots on the CPU: parameters (S, 3, n) and states, the lane-batched
+    :func:`kernels.motion_lanes.rk4_lanes` in calls of at most :data:`CPU_BLOCK_ROBOTS`
+    robots."""
 
     device = "cpu"
 
@@ -170,10 +173,10 @@ class CpuRobots:
         ]
 
     def advance(self, block: tuple[int, int], step_s: float, n_steps: int) -> None:
-        from planar_tui.kernels.motion_rk4 import rk4_batch
+        from planar_tui.kernels.motion_lanes import rk4_lanes
 
         a, b = block
-        rk4_batch(self.params[a:b], self.gravity_m_s2, self.torque, self.theta[a:b],
+        rk4_lanes(self.params[a:b], self.gravity_m_s2, self.torque, self.theta[a:b],
                   self.omega[a:b], step_s, n_steps)  # fmt: skip
 
     def angles(self) -> np.ndarray:

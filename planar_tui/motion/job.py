@@ -291,7 +291,9 @@ class MotionResult(JobResult):
     :class:`~planar_tui.sensitivity.results.Analysis` per time and index method;
     ``notes``: where the band's extra Monte-Carlo robots come from (eFAST alone), outputs
     without variance (indices 0); ``device`` what ran (and why,
-    when ``auto`` fell back to the CPU)."""
+    when ``auto`` fell back to the CPU); ``design`` (:class:`~planar_tui.motion.engine.
+    Design`) and ``at_outputs`` ({step: (S, n_out)}, every robot's outputs at the times of
+    ``at_s``): the model runs, for the SALib hand-off (``--export-problem``)."""
 
     robot_label: str
     t_s: np.ndarray
@@ -301,6 +303,8 @@ class MotionResult(JobResult):
     notes: tuple[str, ...]
     device: str
     robots: int
+    design: Any = None
+    at_outputs: Any = None
 
 
 def run_motion(
@@ -380,6 +384,8 @@ def run_motion(
         notes=notes,
         device=device.device_note,
         robots=design.samples,
+        design=design,
+        at_outputs=at_outputs,
     )
 
 

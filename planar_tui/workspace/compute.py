@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Protocol
 
@@ -504,13 +505,45 @@ def finished_outcome(
     )
 
 
+class BoxRows(Sequence):
+    """The rows ``x_lo_cm, x_hi_cm, y_lo_cm, y_hi_cm, status`` of (B, 4) boxes and their
+    status codes, made only when read (a run that writes no boxes CSV never builds its
+    millions of Python rows), with a vectorised finiteness test for
+    :meth:`~planar_tui.csvio.CsvTable.first_non_finite_column`."""
+
+    def __init__(self, boxes: np.ndarray, status: np.ndarray):
+        self._boxes = boxes
+        self._status = status
+
+    def __len__(self) -> int:
+        return len(self._boxes)
+
+    def _rows(self, boxes: np.ndarray, status: np.ndarray) -> list[list]:
+        return [
+            [*box, STATUS_NAMES[code]]
+            for box, code in zip(boxes.tolist(), status.tolist(), strict=True)
+        ]
+
+    def __getitem__(self, index):
+        if isinstance(index, slice):
+            return self._rows(self._boxes[index], self._status[index])
+        one = slice(index, index + 1 or None)  # index -1: [-1:None]
+        return self._rows(self._boxes[one], self._status[one])[0]
+
+    def __iter__(self):
+        for start in range(0, len(self), 65536):
+            yield from self[start : start + 65536]
+
+    def non_finite_column(self) -> int | None:
+        """Index of the first column holding a NaN or an infinity, or ``None``."""
+        finite = np.isfinite(self._boxes)
+        return None if finite.all() else int(np.flatnonzero(~finite.all(axis=0))[0])
+
+
 def boxes_table(outcome: WorkspaceOutcome) -> CsvTable:
-    """The kept boxes as CSV rows ``x_lo_cm, x_hi_cm, y_lo_cm, y_hi_cm, status``."""
-    rows = [
-        [float(b[0]), float(b[1]), float(b[2]), float(b[3]), STATUS_NAMES[int(s)]]
-        for b, s in zip(outcome.boxes, outcome.status, strict=True)
-    ]
-    return CsvTable(BOXES_HEADER, rows)
+    """The kept boxes as CSV rows ``x_lo_cm, x_hi_cm, y_lo_cm, y_hi_cm, status``
+    (:class:`BoxRows`: made when read)."""
+    return CsvTable(BOXES_HEADER, BoxRows(outcome.boxes, outcome.status))
 
 
 def summary_line(outcome: WorkspaceOutcome) -> str:

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -133,7 +134,17 @@ def geometric_area(
     robot, limits_rad, orientation_rad, *, relative_tolerance=2e-5, max_segments=1 << 18
 ) -> GeometricArea:
     """Bracket the exact workspace area, doubling the segments per turn until
-    ``outer - inner <= relative_tolerance * outer`` (or ``max_segments`` is reached)."""
+    ``outer - inner <= relative_tolerance * outer`` (or ``max_segments`` is reached).
+
+    Computed once per geometry in a process (robot, joint limits, orientation, tolerance):
+    the jobs of a preset that share them (paper B's Table 3 has seven) share the result,
+    an immutable :class:`GeometricArea`."""
+    limits = tuple((float(lo), float(hi)) for lo, hi in limits_rad)
+    return _geometric_area(robot, limits, float(orientation_rad), relative_tolerance, max_segments)
+
+
+@lru_cache(maxsize=64)
+def _geometric_area(robot, limits_rad, orientation_rad, relative_tolerance, max_segments):
     segments = 4096
     while True:
         inner = workspace_polygon(robot, limits_rad, orientation_rad, segments, False).area

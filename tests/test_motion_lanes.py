@@ -1,0 +1,149 @@
+"""The lane-batched RK4 (kernels/motion_lanes.py) and its vector sin/cos (kernels/lane_trig.py).
+
+Oracles: the scalar kernels (``rk4_batch``, one robot at a time, NOC or articulated-body
+forward dynamics with the C library's sin/cos), MuJoCo's RK4, energy conservation, and for
+``sincos`` the C library's ``sin``/``cos`` (and mpmath at a few hard angles).
+"""
+
+from __future__ import annotations
+
+import mpmath
+import numpy as np
+import pytest
+from planar_tui.kernels.aba_planar import ABA_MIN_LINKS
+from planar_tui.kernels.dynamics import energies
+from planar_tui.kernels.lane_trig import SINCOS_MAX_ABS, sincos
+from planar_tui.kernels.motion_lanes import LANES, rk4_lanes
+from planar_tui.kernels.motion_rk4 import design_parameters, rk4_batch
+
+from benchmarks.mujoco_model import chain_model
+from tests.test_motion_kernels import TABLE1, TORQUES
+
+
+def table1_params(robots: int, seed: int = 1) -> np.ndarray:
+    """Table 1 robots: every length ± 1 mm, every mass ± 10 g (paper-a-table1-motion)."""
+    lengths, masses, inertias = TABLE1
+    unit = np.random.default_rng(seed).random((robots, 12))
+    centre = np.concatenate([lengths, masses])
+    half = np.concatenate([np.full(6, 1e-3), np.full(6, 1e-2)])
+    return design_parameters(unit, centre - half, centre + half, inertias, np.zeros(6, bool))
+
+
+def ulp_steps(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """How many doubles apart a and b are (ordered integer view of the bits)."""
+    ia, ib = a.view(np.int64), b.view(np.int64)
+    ia = np.where(ia < 0, np.int64(-(2**63)) - ia, ia)
+    ib = np.where(ib < 0, np.int64(-(2**63)) - ib, ib)
+    return np.abs(ia - ib)
+
+
+def test_sincos_is_within_one_ulp_of_the_c_library():
+    rng = np.random.default_rng(21)
+    angles = np.concatenate([
+        rng.uniform(-10.0, 10.0, 300_000),
+        rng.uniform(-1e5, 1e5, 300_000),
+        rng.uniform(-SINCOS_MAX_ABS, SINCOS_MAX_ABS, 300_000),
+        np.arange(-3000, 3000) * (np.pi / 2),  # next to multiples of pi/2 (cancellation)
+        np.nextafter(np.arange(-3000, 3000) * (np.pi / 2), np.inf),
+        [0.0, -0.0, 1e-300, 5e-324, 1e-8, np.pi / 4, -np.pi / 4],
+    ])  # fmt: skip
+    pairs = np.array([sincos(x) for x in angles[::97]])  # the compiled kernel, from Python
+    assert ulp_steps(pairs[:, 0], np.sin(angles[::97])).max() <= 1
+    from numba import njit
+
+    @njit
+    def many(x, s, c):
+        for i in range(x.shape[0]):
+            s[i], c[i] = sincos(x[i])
+
+    s, c = np.empty_like(angles), np.empty_like(angles)
+    many(angles, s, c)
+    assert ulp_steps(s, np.sin(angles)).max() <= 1
+    assert ulp_steps(c, np.cos(angles)).max() <= 1
+    assert (ulp_steps(s, np.sin(angles)) > 0).mean() < 0.05  # mostly the same double
+
+
+def test_sincos_against_mpmath_at_hard_angles():
+    """Angles whose reduction cancels most bits (next to multiples of pi/2, and a known hard
+    case for a two-part pi/2): the error against the exact value is below 1 ulp."""
+    mpmath.mp.prec = 200
+    for x in (np.pi / 2, np.pi, 3 * np.pi / 2, 1e5 * np.pi, 54349.67809094611, 1647000.0):
+        s, c = sincos(x)
+        exact_s, exact_c = mpmath.sin(mpmath.mpf(x)), mpmath.cos(mpmath.mpf(x))
+        assert abs(mpmath.mpf(s) - exact_s) <= np.spacing(abs(float(exact_s)))
+        assert abs(mpmath.mpf(c) - exact_c) <= np.spacing(abs(float(exact_c)))
+
+
+def test_lanes_equal_the_scalar_kernel_after_one_second_on_table1_robots():
+    """Paper A Table 1 torques, 1 s at 1e-4 s, LANES + 6 robots (a full block and a partial
+    one): every angle and rate within 1e-12 relative of the scalar kernel's."""
+    params = table1_params(LANES + 6)
+    shape = (len(params), 6)
+    theta, omega = np.zeros(shape), np.zeros(shape)
+    rk4_lanes(params, 9.81, TORQUES, theta, omega, 1e-4, 10_000)
+    ref_theta, ref_omega = np.zeros(shape), np.zeros(shape)
+    rk4_batch(params, 9.81, TORQUES, ref_theta, ref_omega, 1e-4, 10_000)
+    assert np.abs(theta).max() > 0.3  # the arms moved
+    assert np.abs(theta - ref_theta).max() <= 1e-12 * np.abs(ref_theta).max()
+    assert np.abs(omega - ref_omega).max() <= 1e-12 * np.abs(ref_omega).max()
+
+
+def test_chunked_in_time_gives_the_same_bits_and_one_robot_matches_mujoco():
+    params = table1_params(3)
+    theta, omega = np.zeros((3, 6)), np.zeros((3, 6))
+    rk4_lanes(params, 9.81, TORQUES, theta, omega, 1e-4, 2000)
+    chunked_theta, chunked_omega = np.zeros((3, 6)), np.zeros((3, 6))
+    for steps in (1, 999, 1000):
+        rk4_lanes(params, 9.81, TORQUES, chunked_theta, chunked_omega, 1e-4, steps)
+    assert np.array_equal(theta, chunked_theta)
+    assert np.array_equal(omega, chunked_omega)
+    import mujoco
+
+    model, data = chain_model(*params[1], 9.81, timestep_s=1e-4)
+    data.qfrc_applied[:] = TORQUES
+    for _ in range(2000):
+        mujoco.mj_step(model, data)
+    assert np.abs(theta[1] - data.qpos).max() <= 1e-9
+
+
+def test_long_chains_take_the_articulated_body_path_and_equal_the_scalar_kernel():
+    n = 12
+    assert n >= ABA_MIN_LINKS
+    rng = np.random.default_rng(4)
+    robots = 5
+    lengths = rng.uniform(0.1, 0.3, (robots, n))
+    masses = rng.uniform(0.2, 1.0, (robots, n))
+    params = np.stack([lengths, masses, masses * lengths**2 / 12], axis=1)
+    theta0 = rng.uniform(-0.5, 0.5, (robots, n))
+    torque = rng.normal(0.0, 0.5, n)
+    theta, omega = theta0.copy(), np.zeros((robots, n))
+    rk4_lanes(params, 9.81, torque, theta, omega, 1e-4, 1000)
+    ref_theta, ref_omega = theta0.copy(), np.zeros((robots, n))
+    rk4_batch(params, 9.81, torque, ref_theta, ref_omega, 1e-4, 1000)
+    assert np.abs(theta - ref_theta).max() <= 1e-12 * np.abs(ref_theta).max()
+    assert np.abs(omega - ref_omega).max() <= 1e-12 * np.abs(ref_omega).max()
+
+
+def test_free_fall_keeps_every_robots_energy_on_the_lane_path():
+    params = table1_params(LANES + 1, seed=7)
+    theta, omega = np.zeros((len(params), 6)), np.zeros((len(params), 6))
+    rk4_lanes(params, 9.81, np.zeros(6), theta, omega, 1e-4, 2000)  # 0.2 s
+    for s in range(len(params)):
+        kinetic, potential = energies(*params[s], 9.81, theta[s], omega[s])
+        assert kinetic > 0.1
+        assert abs(kinetic + potential) <= 1e-9 * kinetic  # started at rest, V = 0
+
+
+@pytest.mark.parametrize("angle", [2.0e6, -5.0e7])
+def test_an_angle_beyond_sincos_range_takes_the_c_library(angle):
+    """A robot whose first joint starts past ``SINCOS_MAX_ABS`` (the others in range):
+    its lane takes np.sin/np.cos and still equals the scalar kernel."""
+    params = table1_params(4)
+    theta0 = np.zeros((4, 6))
+    theta0[2, 0] = angle
+    theta, omega = theta0.copy(), np.zeros((4, 6))
+    rk4_lanes(params, 9.81, TORQUES, theta, omega, 1e-4, 100)
+    ref_theta, ref_omega = theta0.copy(), np.zeros((4, 6))
+    rk4_batch(params, 9.81, TORQUES, ref_theta, ref_omega, 1e-4, 100)
+    assert np.abs(omega - ref_omega).max() <= 1e-12 * np.abs(ref_omega).max()
+    assert np.abs(theta[:, 1:] - ref_theta[:, 1:]).max() <= 1e-12
