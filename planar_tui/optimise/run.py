@@ -285,7 +285,7 @@ def run_optimisation(
     def keep(outcome: PointOutcome, outcomes: dict[int, PointOutcome]) -> None:
         if writer is not None:
             try:
-                writer.add(outcome)
+                writer.add(outcome, sync=False)  # synced once a generation
             except OSError as error:
                 raise OutputFailed(writer.path, error.strerror or str(error)) from None
         outcomes[outcome.number] = outcome
@@ -339,6 +339,8 @@ def run_optimisation(
                 generation = [Evaluation(n, run.generations, values, outcomes[n])
                               for n, values in designs]  # fmt: skip
                 run.evaluations += generation
+                if writer is not None:
+                    _sync(writer)
                 population.set("F", np.array([_f(opt, e.outcome) for e in generation]),
                                "G", np.array([_g(opt, e.outcome) for e in generation]))  # fmt: skip
                 algorithm.tell(infills=population)
@@ -348,6 +350,8 @@ def run_optimisation(
             progress.start(len(best), f"{opt.label} (certified)", "re-running the optimum")
             numbered = [(opt.budget + k, e.values) for k, e in enumerate(best, start=1)]
             outcomes = evaluate(numbered, False, {})
+            if writer is not None:
+                _sync(writer)
             run.certified = [(e, outcomes[opt.budget + k]) for k, e in enumerate(best, start=1)]
     except PresetError:  # the table names a column the job lacks: nothing to resume
         if writer is not None:
@@ -383,6 +387,17 @@ def _write_outputs(run: OptimiseRun, out_dir: Path, keep_checkpoint: bool) -> No
             run.figure = write_figure(run, out_dir / opt.plot)
         except OutputFailed as error:
             run.figure_error = str(error)
+
+
+def _sync(writer: Any) -> None:
+    """A generation's evaluations to disk (one ``fsync``: a machine crash loses at most
+    the generation running; Ctrl-C or a killed process loses none, each is flushed)."""
+    from planar_tui.batch import OutputFailed
+
+    try:
+        writer.sync()
+    except OSError as error:
+        raise OutputFailed(writer.path, error.strerror or str(error)) from None
 
 
 def _f(opt: Optimisation, outcome: PointOutcome) -> tuple[float, ...]:
