@@ -29,6 +29,10 @@ backward sweep that applies :math:`T^T` as suffix sums over the lower-triangular
 T: this is the recursive Newton-Euler algorithm, O(n) per evaluation, and equal to the NOC
 expression term by term (tested against the dense product in ``tests/``).
 
+The NOC terms as separate arrays (T, :math:`\dot T`, I, :math:`C\dot\theta`, :math:`\gamma`)
+are in :mod:`kernels.noc_matrices`; this module holds the inverse and forward dynamics, the
+energies and the building blocks both use.
+
 All functions take float64 arrays and are compiled with :func:`kernels._jit.kernel`, so they
 can be called both from Python and from other kernels.
 """
@@ -153,7 +157,8 @@ def _forward_dynamics_rows(
     Parameters, state and torques are (n,) arrays; ``work`` (6, n) and ``matrix`` (n, n)
     come from :func:`forward_dynamics_work`. With ``solve=False`` it stops after step 2:
     the lower triangle of ``matrix`` holds :math:`I(\theta)` and ``alpha_rad_s2[orow]``
-    holds :math:`\tau - (C\dot\theta - \gamma)` (used by :func:`mass_matrix`).
+    holds :math:`\tau - (C\dot\theta - \gamma)` (used by
+    :func:`kernels.noc_matrices.mass_matrix`).
 
     One function body on purpose: the three steps as separate kernels cost ≈ 90 ns more per
     6R call (numba does not inline them and increments/decrements the reference count of
@@ -285,6 +290,21 @@ def _row(vector):
 
 
 @kernel
+def _newton_euler_single(
+    lengths_m, masses_kg, inertias_kgm2, gravity_m_s2, theta_rad, omega_rad_s, alpha_rad_s2
+):
+    """:func:`_newton_euler` of one robot in one state, all arguments (n,): (n,) torques."""
+    n = lengths_m.shape[0]
+    kin = np.empty((_KIN_ROWS, n))
+    _link_kinematics(_row(theta_rad), _row(omega_rad_s), _row(alpha_rad_s2), 0, kin)
+    tau = np.empty((1, n))
+    _newton_euler(
+        _row(lengths_m), _row(masses_kg), _row(inertias_kgm2), 0, gravity_m_s2, kin, tau, 0
+    )
+    return tau[0]
+
+
+@kernel
 def forward_dynamics_into(
     lengths_m,
     masses_kg,
@@ -354,134 +374,6 @@ def energies(lengths_m, masses_kg, inertias_kgm2, gravity_m_s2, theta_rad, omega
 # ---------------------------------------------------------------------------------------
 # Public API
 # ---------------------------------------------------------------------------------------
-
-
-@kernel
-def twist_shaping_matrix(lengths_m, theta_rad):
-    r"""Twist-shaping matrix T (3n × n), paper A eq. (4): :math:`t = T\dot\theta`.
-
-    Block (i, j) (rows 3i..3i+2, column j) is
-
-    .. math:: T_{ij} = \begin{bmatrix}1\\ E\left(\sum_{k=j}^{i-1} a_k + \tfrac12 a_i\right)\end{bmatrix}
-              = \begin{bmatrix}1\\ E(c_i - p_j)\end{bmatrix}\ (i\ge j),\qquad T_{ij} = 0\ (i<j).
-
-    The twist of link i is ordered :math:`[\Omega_i, \dot c_{i,x}, \dot c_{i,y}]`. Dense; meant
-    for tests and documentation, the dynamics kernels never form it.
-    """
-    n = lengths_m.shape[0]
-    out = np.zeros((3 * n, n))
-    px = np.zeros(n + 1)
-    py = np.zeros(n + 1)
-    phi = 0.0
-    for i in range(n):
-        phi += theta_rad[i]
-        px[i + 1] = px[i] + lengths_m[i] * np.cos(phi)
-        py[i + 1] = py[i] + lengths_m[i] * np.sin(phi)
-    for i in range(n):
-        cx = 0.5 * (px[i] + px[i + 1])
-        cy = 0.5 * (py[i] + py[i + 1])
-        for j in range(i + 1):
-            out[3 * i, j] = 1.0
-            out[3 * i + 1, j] = -(cy - py[j])
-            out[3 * i + 2, j] = cx - px[j]
-    return out
-
-
-@kernel
-def twist_shaping_matrix_rate(lengths_m, theta_rad, omega_rad_s):
-    r"""Time derivative :math:`\dot T` (3n × n), paper A eq. (5).
-
-    .. math:: \dot T_{ij} = \begin{bmatrix}0\\ -\left(\sum_{k=j}^{i-1}\Omega_k a_k
-              + \tfrac12\Omega_i a_i\right)\end{bmatrix}\ (i\ge j),\qquad 0\ (i<j),
-
-    with :math:`\Omega_k = \sum_{p\le k}\dot\theta_p` (since :math:`\dot a_k = \Omega_k E a_k` and
-    :math:`E^2 = -1`).
-    """
-    n = lengths_m.shape[0]
-    out = np.zeros((3 * n, n))
-    # q[i] = Σ_{k<i} Ω_k a_k (prefix sums), so Σ_{k=j}^{i-1} Ω_k a_k = q[i] − q[j].
-    qx = np.zeros(n + 1)
-    qy = np.zeros(n + 1)
-    phi = 0.0
-    rate = 0.0
-    for i in range(n):
-        phi += theta_rad[i]
-        rate += omega_rad_s[i]
-        qx[i + 1] = qx[i] + rate * lengths_m[i] * np.cos(phi)
-        qy[i + 1] = qy[i] + rate * lengths_m[i] * np.sin(phi)
-    for i in range(n):
-        hx = 0.5 * (qx[i + 1] - qx[i])
-        hy = 0.5 * (qy[i + 1] - qy[i])
-        for j in range(i + 1):
-            out[3 * i + 1, j] = -(qx[i] - qx[j] + hx)
-            out[3 * i + 2, j] = -(qy[i] - qy[j] + hy)
-    return out
-
-
-@kernel
-def mass_matrix(lengths_m, masses_kg, inertias_kgm2, theta_rad):
-    r"""Generalised inertia matrix :math:`I(\theta) = T^T M T` (n × n), paper A eq. (3).
-
-    Evaluated without forming T or M: for :math:`j\le k`,
-
-    .. math:: I_{jk} = \sum_{i\ge k}\left[I_i + m_i (c_i - p_j)\cdot(c_i - p_k)\right]
-              = D_k + (p_k - p_j)\cdot h_k,
-
-    with :math:`D_k`, :math:`h_k` the inertia and first moment about joint k of the composite
-    body of links k..n (suffix sums from the tip, O(n²) total; see ``_forward_dynamics_rows``).
-    """
-    n = lengths_m.shape[0]
-    work, out = forward_dynamics_work(n)
-    zeros = np.zeros(n)
-    _forward_dynamics_rows(
-        lengths_m, masses_kg, inertias_kgm2, 0.0, theta_rad, zeros, zeros, work, out,
-        _row(zeros), 0, False,
-    )  # fmt: skip
-    for k in range(n):
-        for j in range(k):
-            out[j, k] = out[k, j]
-    return out
-
-
-@kernel
-def _newton_euler_single(
-    lengths_m, masses_kg, inertias_kgm2, gravity_m_s2, theta_rad, omega_rad_s, alpha_rad_s2
-):
-    n = lengths_m.shape[0]
-    kin = np.empty((_KIN_ROWS, n))
-    _link_kinematics(_row(theta_rad), _row(omega_rad_s), _row(alpha_rad_s2), 0, kin)
-    tau = np.empty((1, n))
-    _newton_euler(
-        _row(lengths_m), _row(masses_kg), _row(inertias_kgm2), 0, gravity_m_s2, kin, tau, 0
-    )
-    return tau[0]
-
-
-@kernel
-def velocity_product(lengths_m, masses_kg, inertias_kgm2, theta_rad, omega_rad_s):
-    r"""Velocity-product vector :math:`C(\theta,\dot\theta)\dot\theta = T^T M\dot T\dot\theta`, eq. (3).
-
-    The planar :math:`T^T W M T\dot\theta` term of eq. (3) is zero. Evaluated as inverse
-    dynamics with :math:`\ddot\theta = 0` and :math:`g = 0`; :math:`\dot T\dot\theta` has the
-    linear parts :math:`-\sum_{k<i}\Omega_k^2 a_k - \tfrac12\Omega_i^2 a_i` (eq. 5).
-    """
-    zeros = np.zeros(lengths_m.shape[0])
-    return _newton_euler_single(
-        lengths_m, masses_kg, inertias_kgm2, 0.0, theta_rad, omega_rad_s, zeros
-    )
-
-
-@kernel
-def gravity_vector(lengths_m, masses_kg, gravity_m_s2, theta_rad):
-    r"""Generalised gravity force :math:`\gamma = T^T w_G`, paper A eqs. (3), (8).
-
-    .. math:: \gamma_j = \sum_{i\ge j} (c_i - p_j)\times(0, -m_i g) = -g\sum_{i\ge j} m_i (c_i - p_j)_x
-
-    (link inertias do not enter; zeros are used.)
-    """
-    zeros = np.zeros(lengths_m.shape[0])
-    tau = _newton_euler_single(lengths_m, masses_kg, zeros, gravity_m_s2, theta_rad, zeros, zeros)
-    return -tau
 
 
 @kernel
@@ -599,7 +491,7 @@ def forward_dynamics(
     r"""Joint accelerations :math:`\ddot\theta = I^{-1}(\tau + \gamma - C\dot\theta)`, eq. (2).
 
     :math:`C\dot\theta - \gamma` comes from the Newton-Euler sweeps at :math:`\ddot\theta = 0`,
-    I from the composite-body sums of :func:`mass_matrix`, and the SPD system is solved by a
+    I from the composite-body sums of :func:`kernels.noc_matrices.mass_matrix`, and the SPD system is solved by a
     hand-written square-root-free Cholesky (LDLᵀ). For loops use :func:`forward_dynamics_into` with
     work arrays from :func:`forward_dynamics_work` (no allocation).
 

@@ -15,7 +15,8 @@ import mujoco
 import numpy as np
 import pytest
 from planar_tui.kernels.aba_planar import ABA_MIN_LINKS, aba_forward_dynamics
-from planar_tui.kernels.dynamics import energies, forward_dynamics, inverse_dynamics, mass_matrix
+from planar_tui.kernels.dynamics import energies, forward_dynamics, inverse_dynamics
+from planar_tui.kernels.noc_matrices import mass_matrix
 from planar_tui.kernels.rk4 import rk4_integrate
 
 from benchmarks.mujoco_model import chain_model

@@ -14,10 +14,12 @@ from hypothesis import strategies as st
 from planar_tui.kernels.dynamics import (
     energies,
     forward_dynamics,
-    gravity_vector,
     inverse_dynamics,
     inverse_dynamics_batch,
     inverse_dynamics_batch_states,
+)
+from planar_tui.kernels.noc_matrices import (
+    gravity_vector,
     mass_matrix,
     twist_shaping_matrix,
     twist_shaping_matrix_rate,

@@ -8,12 +8,8 @@ no damping, armature or contacts both trajectories agree to round-off.
 import mujoco
 import numpy as np
 import pytest
-from planar_tui.kernels.dynamics import (
-    gravity_vector,
-    inverse_dynamics,
-    mass_matrix,
-    velocity_product,
-)
+from planar_tui.kernels.dynamics import inverse_dynamics
+from planar_tui.kernels.noc_matrices import gravity_vector, mass_matrix, velocity_product
 from planar_tui.kernels.rk4 import rk4_integrate, rk4_record_count
 
 from benchmarks.mujoco_model import chain_model, mujoco_inverse, set_chain_parameters

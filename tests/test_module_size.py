@@ -8,12 +8,6 @@ from tests.conftest import REPO
 
 #: The rule's bound, in lines.
 MAX_LINES = 600
-#: Modules known to be over the bound, each with its line count when it was recorded: the
-#: test holds them to it (no growth) and fails once one is back under the bound, so that
-#: its entry is removed. Each entry is a debt, not a licence.
-KNOWN_OVER = {
-    "kernels/dynamics.py": 624,  # on main too; to be split by its owner
-}
 
 
 def module_lines() -> dict[str, int]:
@@ -32,18 +26,5 @@ def test_the_package_and_the_kernels_have_modules_to_count():
 
 
 def test_no_module_is_over_600_lines():
-    over = {
-        path: count
-        for path, count in module_lines().items()
-        if count > MAX_LINES and path not in KNOWN_OVER
-    }
+    over = {path: count for path, count in module_lines().items() if count > MAX_LINES}
     assert not over, f"modules over {MAX_LINES} lines (split them by responsibility): {over}"
-
-
-def test_known_exceptions_do_not_grow_and_are_dropped_once_fixed():
-    lines = module_lines()
-    for path, recorded in KNOWN_OVER.items():
-        assert lines[path] <= recorded, f"{path} grew to {lines[path]} lines (recorded {recorded})"
-        assert lines[path] > MAX_LINES, (
-            f"{path} is {lines[path]} lines now: drop it from KNOWN_OVER"
-        )

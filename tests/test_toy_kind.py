@@ -38,7 +38,7 @@ class KineticResult(JobResult):
 
 def run_kinetic(job: Job, progress: Progress) -> KineticResult:
     import numpy as np
-    from planar_tui.kernels.dynamics import mass_matrix
+    from planar_tui.kernels.noc_matrices import mass_matrix
 
     lengths, masses, inertias = job.robot.arrays()
     energies = []
