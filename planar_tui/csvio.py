@@ -7,6 +7,9 @@ import functools
 import io
 import math
 import os
+import re
+import stat
+import time
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -109,17 +112,66 @@ def _temporary_name(path: Path) -> Path:
     return path.with_name(f".{path.name[:64]}.{secrets.token_hex(4)}.tmp")
 
 
+#: When this process started writing (the import of this module): a temporary file of an
+#: output older than this was left by an earlier run (killed by SIGKILL, a power cut).
+RUN_STARTED_S = time.time()
+
+
+def _quiet(text: str) -> None:
+    """Report nothing (the default :data:`notice`)."""
+
+
+#: Where a removal of stale temporary files is reported (one line); the CLI prints it.
+notice: Callable[[str], None] = _quiet
+
+
+def _temporary_pattern(path: Path) -> re.Pattern[str]:
+    """The names :func:`_temporary_name` gives temporary files of ``path``."""
+    return re.compile(re.escape(f".{path.name[:64]}.") + r"[0-9a-f]{8}\.tmp")
+
+
+def remove_stale_temporaries(path: Path) -> list[Path]:
+    """Delete the temporary files of ``path`` that an earlier run left (the same folder,
+    :func:`_temporary_name`'s pattern, regular files last changed before this run
+    started), say so in one line (:data:`notice`) and return them. Nothing else is
+    touched: another name, a link, a folder, or a file of a run still writing."""
+    pattern = _temporary_pattern(path)
+    removed = []
+    try:
+        entries = list(os.scandir(path.parent))
+    except OSError:
+        return []
+    for entry in entries:
+        if not pattern.fullmatch(entry.name):
+            continue
+        try:
+            info = entry.stat(follow_symlinks=False)
+            if stat.S_ISREG(info.st_mode) and info.st_mtime < RUN_STARTED_S:
+                os.unlink(entry.path)
+                removed.append((Path(entry.path), info.st_size))
+        except OSError:
+            continue
+    if removed:
+        size = sum(n for _, n in removed)
+        names = ", ".join(p.name for p, _ in removed[:3]) + (" ..." if len(removed) > 3 else "")
+        notice(f"note: removed {len(removed)} temporary file(s) of {path} left by an earlier, "
+               f"interrupted run ({names}; {size / 2**20:.3g} MiB)")  # fmt: skip
+    return [p for p, _ in removed]
+
+
 def write_atomic(path: Path | str, write: Callable[[Any], None], *, binary: bool = False) -> Path:
     """Write a text file (a binary one with ``binary``: a figure) by ``write(stream)`` so
     that ``path`` is either the whole new file or untouched.
 
     The text goes to a temporary file in the destination folder, which is then renamed
     over ``path`` (``os.replace`` is atomic on POSIX); on any error, including
-    ``KeyboardInterrupt``, the temporary file is removed. The file gets the permissions a
-    plain ``open()`` would give it (an existing file keeps its own).
+    ``KeyboardInterrupt``, the temporary file is removed; those an earlier run could not
+    remove (SIGKILL) go first (:func:`remove_stale_temporaries`). The file gets the
+    permissions a plain ``open()`` would give it (an existing file keeps its own).
     """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
+    remove_stale_temporaries(path)
     temp: Path | None = None
     try:
         while temp is None:
@@ -154,3 +206,20 @@ def write_text_atomic(path: Path | str, text: str) -> Path:
 def write_csv_atomic(path: Path | str, table: CsvTable) -> Path:
     """Write ``table`` as CSV atomically (see :func:`write_atomic`)."""
     return write_atomic(path, table.write)
+
+
+def write_new_text(path: Path | str, text: str) -> Path:
+    """Write ``text`` to ``path``, which must not exist (:class:`FileExistsError`
+    otherwise, even when another process creates it meanwhile): a temporary file in the
+    same folder is hard-linked to ``path`` (``os.link`` never replaces), then removed,
+    so ``path`` is the whole text or absent."""
+    path = Path(path)
+    temp = _temporary_name(path)
+    try:
+        with open(temp, "x", encoding="utf-8", newline="") as stream:
+            stream.write(text)
+        os.chmod(temp, _new_file_mode())
+        os.link(temp, path)
+    finally:
+        temp.unlink(missing_ok=True)
+    return path

@@ -244,7 +244,12 @@ class JobKind:
     (:func:`planar_tui.sweep.points.make_points`), so a point that cannot run is refused
     up front rather than failing (:class:`~planar_tui.errors.PresetError`).
     ``point_figures(job, result)`` gives the kind's summary figures of one result as
-    ordered columns (name with unit -> number or text): one sweep row per point.
+    ordered columns (name with unit -> number or text): one sweep row per point;
+    ``figure_names(job)``, where a kind declares it, names those columns without running
+    the job (a resumed sweep checks its checkpoint's records against them);
+    ``estimate(job)``, where a kind declares it, is the job's rough ``(memory_bytes,
+    seconds)`` (the ones its checks hold against :mod:`planar_tui.limits`): a sweep sums
+    its points' to refuse what cannot finish.
 
     Declared as data for the front ends: ``command`` (its CLI command, :class:`Command`),
     ``tab`` (its app tab, :class:`Tab`), ``figure`` (the function drawing a finished job's
@@ -272,6 +277,8 @@ class JobKind:
     tab: Tab | None = None
     figure: str | None = None
     warmup: str | None = None
+    figure_names: Callable[[Job[Any, Any]], tuple[str, ...]] | None = None
+    estimate: Callable[[Job[Any, Any]], tuple[float, float]] | None = None
 
     @property
     def keys(self) -> tuple[str, ...]:

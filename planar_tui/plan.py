@@ -43,7 +43,7 @@ class SweepPlan:
     """One sweep with its validated points (:func:`planar_tui.sweep.points.make_points`)."""
 
     sweep: Sweep
-    points: list[Point]
+    points: Sequence[Point]
 
 
 @dataclass(frozen=True)
@@ -173,16 +173,22 @@ def plan_run(
     prepare: bool = True,
     optimise_of: Sequence[Preset] = (),
     optimise_plot: Path | None = None,
+    workers: int | None = None,
+    scheduler: str | None = None,
 ) -> RunPlan:
     """The run of ``jobs`` (their files named by :func:`planar_tui.batch.plan_outputs`
     from ``out``, ``extra_out`` and ``plot``) and of the sweeps of ``sweeps_of`` (their
     figures under ``sweep_plot``), all refused before anything runs if anything is wrong
     (:class:`PresetError`): figures (:func:`check_figures`), every planned file once
     (:func:`planar_tui.batch.check_planned`, the presets protected), the sweeps' figures
-    and checkpoints (:func:`checkpoint_notes`), the optimisations of ``optimise_of`` (their
-    figures under ``optimise_plot``) and their checkpoints, then (``prepare``) every job prepared by
-    its kind (:func:`planar_tui.batch.prepare_jobs`)."""
-    from planar_tui.sweep.service import check_figure
+    and checkpoints (:func:`checkpoint_notes`), their point folders
+    (:func:`planar_tui.sweep.service.check_point_outputs`), their workers, memory and time
+    on ``workers`` (the machine's cores when ``None``) or a ``scheduler``
+    (:func:`planar_tui.sweep.budget.check_sweep_budget`), the optimisations of
+    ``optimise_of`` (their figures under ``optimise_plot``) and their checkpoints, then
+    (``prepare``) every job prepared by its kind (:func:`planar_tui.batch.prepare_jobs`)."""
+    from planar_tui.sweep.budget import check_sweep_budget
+    from planar_tui.sweep.service import check_figure, check_point_outputs
 
     check_figures(jobs, plot)
     outputs = plan_outputs(jobs, out_dir, out, extra_out, plot)
@@ -195,6 +201,9 @@ def plan_run(
     check_planned(plan.files(), presets)
     for entry in sweep_plans:
         check_figure(entry.sweep, entry.points)
+        check_point_outputs(entry.sweep, out_dir)
+    if sweep_plans:
+        check_sweep_budget([(e.sweep, e.points) for e in sweep_plans], workers, scheduler)
     notes = checkpoint_notes(sweep_plans, out_dir, resume)
     for o in optimisations:
         note = checkpoint_note(o.label, o.fingerprint(), out_dir / o.output, resume)

@@ -194,3 +194,20 @@ def reference_tables() -> dict[str, str]:
         output = f"| `output` | relative path | `PRESET-{name}-K.csv` | CSV file name |"
         tables[name] = markdown_table(kind.settings, [output])
     return tables
+
+
+def copy_bundled_preset(name: str, target: Path) -> Path:
+    """Write bundled preset ``name`` to ``target`` to start from; an existing ``target``
+    is never overwritten (:class:`PresetError`)."""
+    from planar_tui.csvio import write_new_text
+    from planar_tui.resources import bundled_preset
+
+    text = bundled_preset(name).read_text(encoding="utf-8")
+    try:
+        return write_new_text(target, text)
+    except FileExistsError:
+        raise PresetError("command line", "--copy", f"{target} exists (it is never "
+                          "overwritten)", "a new file name") from None  # fmt: skip
+    except OSError as error:
+        raise PresetError("command line", "--copy", f"{target} cannot be written: "
+                          f"{error.strerror or error}", "a writable new file path") from None  # fmt: skip

@@ -47,3 +47,15 @@ def resolve_preset(argument: str | Path) -> Path:
         return bundled
     names = ", ".join(p.stem for p in bundled_presets())
     raise PresetError(path, "(file)", "no such file", f"a preset path or a bundled preset: {names}")
+
+
+def bundled_preset(name: str) -> Path:
+    """The bundled preset ``name`` (with or without ``.toml``); an unknown name is a
+    :class:`PresetError` listing them."""
+    stem = name[:-5] if name.endswith(".toml") else name
+    for path in bundled_presets():
+        if path.stem == stem:
+            return path
+    names = ", ".join(p.stem for p in bundled_presets())
+    raise PresetError("command line", "NAME", f"is {name!r}, no bundled preset",
+                      f"one of {names}")  # fmt: skip

@@ -58,3 +58,11 @@ def write(folder: Path, name: str, template: str, sweep: str = "", **values) -> 
     path = folder / name
     path.write_text(template.format(**values) + "\n" + sweep, encoding="utf-8")
     return path
+
+
+def one_line(result) -> str:
+    """The one line a refused CLI run printed on stderr (no traceback anywhere)."""
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1, result.stderr
+    assert "Traceback" not in result.output
+    return lines[0]

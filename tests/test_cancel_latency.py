@@ -1,5 +1,5 @@
 """Cancel latency per stage (issue 14): every stage of every runner honours a cancel
-within a generous 1 s (goal 0.2 s, measured by ``benchmarks/bench_cancel.py``), and what a
+within 2 s (10× the goal of 0.2 s, measured by ``benchmarks/bench_cancel.py``), and what a
 cancelled or failed run leaves behind."""
 
 import gc
@@ -14,7 +14,7 @@ from planar_tui.progress import Progress
 from planar_tui.sensitivity import engine
 from tests.salib_reference import salib_unit_design
 
-BOUND_S = 1.0
+BOUND_S = 2.0  # 10x the goal; the latency itself is measured by benchmarks/bench_cancel.py
 CASES = in_process_cases(samples=1 << 16, precision_cm=0.00390625)
 
 

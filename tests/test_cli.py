@@ -192,3 +192,25 @@ def test_a_failing_job_is_one_line_exit_1_and_no_file(tmp_path, cli, monkeypatch
     )
     assert "Traceback" not in result.stderr
     assert list(tmp_path.iterdir()) == []
+
+
+def test_presets_name_prints_a_bundled_preset_and_copy_writes_it_never_over_a_file(cli, tmp_path):
+    from tests.conftest import PRESETS
+
+    text = (PRESETS / "paper-a-table1.toml").read_text(encoding="utf-8")
+    result = cli("presets", "paper-a-table1")
+    assert result.exit_code == 0 and result.stdout == text
+    target = tmp_path / "mine.toml"
+    result = cli("presets", "paper-a-table1.toml", "--copy", target)
+    assert result.exit_code == 0, result.output
+    assert target.read_text(encoding="utf-8") == text
+    target.write_text("# my edits\n")
+    result = cli("presets", "paper-a-table4", "--copy", target)
+    assert result.exit_code == 2
+    assert result.stderr.strip() == (f"error: command line: --copy: {target} exists (it is "
+                                     "never overwritten) (expected a new file name)")  # fmt: skip
+    assert target.read_text() == "# my edits\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["mine.toml"]
+    unknown = cli("presets", "nope")
+    assert unknown.exit_code == 2 and unknown.stderr.count("\n") == 1
+    assert "NAME: is 'nope', no bundled preset (expected one of paper-a-fig5-6" in unknown.stderr

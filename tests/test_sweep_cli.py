@@ -103,20 +103,17 @@ def test_sweep_without_sweeps_and_an_unreachable_scheduler(tmp_path, cli, monkey
                                     "preset (expected a [[sweep]] table)"  # fmt: skip
     preset = write(tmp_path, "p.toml", TORQUES, '[[sweep]]\njob = "torques"\n'
                    'values."robot.masses_kg[2]" = [1.0]\n', **TORQUES_BASE)  # fmt: skip
-    import dask
-    import distributed  # noqa: F401 (its defaults loaded first: set() restores what it found)
-
-    with dask.config.set({"distributed.comm.timeouts.connect": "1s"}):
-        result = cli("sweep", preset, "--out-dir", tmp_path / "out", "--scheduler",
-                     "tcp://127.0.0.1:9")  # fmt: skip
-        assert result.exit_code == 2
-        last = result.stderr.strip().splitlines()[-1]
-        assert last.startswith("error: command line: --scheduler: cannot reach tcp://127.0.0.1:9")
-        monkeypatch.setenv("PLANAR_TUI_SCHEDULER", "tcp://127.0.0.1:7")  # the same, by name
-        result = cli("sweep", preset, "--out-dir", tmp_path / "out")
-        assert result.exit_code == 2
-        last = result.stderr.strip().splitlines()[-1]
-        assert last.startswith("error: command line: --scheduler: cannot reach tcp://127.0.0.1:7")
+    monkeypatch.setenv("PLANAR_TUI_SCHEDULER_TIMEOUT_S", "1")
+    result = cli("sweep", preset, "--out-dir", tmp_path / "out", "--scheduler",
+                 "tcp://127.0.0.1:9")  # fmt: skip
+    assert result.exit_code == 2
+    last = result.stderr.strip().splitlines()[-1]
+    assert last.startswith("error: command line: --scheduler: cannot reach tcp://127.0.0.1:9")
+    monkeypatch.setenv("PLANAR_TUI_SCHEDULER", "tcp://127.0.0.1:7")  # the same, by name
+    result = cli("sweep", preset, "--out-dir", tmp_path / "out")
+    assert result.exit_code == 2
+    last = result.stderr.strip().splitlines()[-1]
+    assert last.startswith("error: command line: --scheduler: cannot reach tcp://127.0.0.1:7")
     assert not (tmp_path / "out" / "p-sweep-1.csv").exists()
 
 
@@ -168,3 +165,62 @@ output = "second.csv"
     for row in read_rows(out / "first.csv"):  # not run again: the first run's timings
         assert float(row["seconds"]) == round(kept[int(row["point"])], 6)
     assert not first.exists() and not second.exists()
+
+
+def test_a_scheduler_that_never_answers_is_one_line_within_the_timeout(tmp_path, cli,
+                                                                       monkeypatch):  # fmt: skip
+    """A plain socket server on the loopback that accepts and never answers: refused
+    after PLANAR_TUI_SCHEDULER_TIMEOUT_S (1 s here; bounded at 60 s, not hung)."""
+    import socket
+    import threading
+
+    preset = write(tmp_path, "p.toml", TORQUES, '[[sweep]]\njob = "torques"\n'
+                   'values."robot.masses_kg[2]" = [1.0]\n', **TORQUES_BASE)  # fmt: skip
+    server = socket.create_server(("127.0.0.1", 0))
+    accepted = []
+
+    def accept() -> None:
+        while True:
+            try:
+                accepted.append(server.accept()[0])
+            except OSError:
+                return
+
+    threading.Thread(target=accept, daemon=True).start()
+    address = f"tcp://127.0.0.1:{server.getsockname()[1]}"
+    monkeypatch.setenv("PLANAR_TUI_SCHEDULER_TIMEOUT_S", "1")
+    started = time.monotonic()
+    try:
+        result = cli("sweep", preset, "--out-dir", tmp_path / "out", "--scheduler", address)
+    finally:
+        server.close()
+        for connection in accepted:
+            connection.close()
+    assert time.monotonic() - started < 60
+    assert accepted, "the client never connected"
+    assert result.exit_code == ExitCode.BAD_INPUT
+    (line,) = result.stderr.strip().splitlines()
+    assert line.startswith(f"error: command line: --scheduler: cannot reach {address}: ")
+    assert "PLANAR_TUI_SCHEDULER_TIMEOUT_S" in line
+    assert not (tmp_path / "out" / "p-sweep-1.csv").exists()
+
+
+@pytest.mark.parametrize("value", ["0", "soon", "nan", "1e400"])
+def test_a_bad_scheduler_timeout_is_one_line(tmp_path, cli, monkeypatch, value):
+    preset = write(tmp_path, "p.toml", TORQUES, '[[sweep]]\njob = "torques"\n'
+                   'values."robot.masses_kg[2]" = [1.0]\n', **TORQUES_BASE)  # fmt: skip
+    monkeypatch.setenv("PLANAR_TUI_SCHEDULER_TIMEOUT_S", value)
+    result = cli("sweep", preset, "--out-dir", tmp_path / "out", "--scheduler", "tcp://127.0.0.1:9")
+    assert result.exit_code == ExitCode.BAD_INPUT
+    (line,) = result.stderr.strip().splitlines()
+    assert line.startswith("error: environment: PLANAR_TUI_SCHEDULER_TIMEOUT_S: is ")
+
+
+def test_the_scheduler_variable_does_not_override_workers_1(tmp_path, cli, monkeypatch):
+    preset = write(tmp_path, "p.toml", TORQUES, '[[sweep]]\njob = "torques"\n'
+                   'values."robot.masses_kg[2]" = [1.0]\n', **TORQUES_BASE)  # fmt: skip
+    monkeypatch.setenv("PLANAR_TUI_SCHEDULER", "tcp://127.0.0.1:9")  # nothing listens
+    result = cli("sweep", preset, "--out-dir", tmp_path / "out", "--workers", "1")
+    assert result.exit_code == 0, result.output
+    assert "dask" not in result.stderr
+    assert (tmp_path / "out" / "p-sweep-1.csv").exists()

@@ -173,7 +173,7 @@ def test_cancel_is_honoured_quickly_and_raises(tmp_path):
 
     with pytest.raises(Cancelled):
         run_job(job, Progress(on_update=updates.append, should_stop=stop))
-    assert time.perf_counter() - started < 2.0
+    assert time.perf_counter() - started < 10.0  # two updates and a cancel: not the paving
     assert any("boxes" in u.detail for u in updates)
 
 
@@ -307,7 +307,7 @@ def test_ctrl_c_exits_130_quickly_and_writes_nothing(tmp_path):
     process.send_signal(signal.SIGINT)
     sent = time.perf_counter()
     _, stderr = process.communicate(timeout=30)
-    assert time.perf_counter() - sent < 2.0
+    assert time.perf_counter() - sent < 5.0  # 10x the 0.5 s goal (exit included)
     assert process.returncode == 130, stderr.decode()
     assert not (tmp_path / "ws.csv").exists() and not (tmp_path / "b.csv").exists()
     assert not list(tmp_path.glob(".*.tmp"))

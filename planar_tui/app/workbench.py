@@ -265,13 +265,22 @@ class Workbench:
     def check(self) -> tuple[Preset | None, list[PresetError]]:
         """The validated preset and no problem, or ``None`` and every problem of the
         document, one per robot table and job at most, in document order (each job checked
-        on its own, see :meth:`job`). A valid document is parsed once."""
+        on its own, see :meth:`job`); a document whose jobs are valid has its sweeps checked
+        as the CLI checks them (:func:`~planar_tui.sweep.service.check_preset_sweeps`). A
+        valid document is parsed once."""
         from planar_tui.registry import JOB_KINDS
+        from planar_tui.sweep.service import check_preset_sweeps
 
         try:
-            return self.validate(), []
+            preset = self.validate()
         except PresetError as error:
             found = [error]  # may be what no job covers: an unknown table, an unused robot
+        else:
+            try:  # the sweeps, checked as the CLI does before running them
+                guarded(self.path, lambda: check_preset_sweeps(preset), self.document)
+            except PresetError as error:
+                return None, [error]
+            return preset, []
         for kind in self.document:
             for index in range(len(self.tables(kind)) if kind in JOB_KINDS else 0):
                 try:

@@ -26,11 +26,19 @@ from typing import Annotated, Any
 
 import typer
 
-from planar_tui import __version__
+from planar_tui import __version__, csvio
 from planar_tui.cli import output
 from planar_tui.cli.commands import COMMANDS, open_app
 from planar_tui.cli.kinds import kind_command
-from planar_tui.cli.output import Command, Group, fail, job_progress_display, progress_bar, stdout
+from planar_tui.cli.output import (
+    Command,
+    Group,
+    fail,
+    job_progress_display,
+    progress_bar,
+    stderr,
+    stdout,
+)
 from planar_tui.errors import ExitCode
 
 __all__ = ["app", "build_app", "job_progress_display", "main", "progress_bar"]
@@ -40,6 +48,11 @@ HELP = (
     "3-RRR workspace by interval analysis. Without a command, opens the Textual app "
     "(in a terminal; without one, prints this help and exits with code 2)."
 )
+
+
+def _notice(text: str) -> None:
+    """A one-line note of the core (stale temporary files removed) on stderr."""
+    stderr.print(text, markup=False, highlight=False, soft_wrap=True)
 
 
 def version_callback(value: bool) -> None:
@@ -58,6 +71,7 @@ def root(
     ] = False,
 ) -> None:
     """Without a command: open the Textual app on a bundled preset (in a terminal)."""
+    csvio.notice = _notice
     if context.invoked_subcommand is None:
         if not (sys.stdin.isatty() and sys.stdout.isatty()):
             help_text = context.get_help()  # Typer's rich help prints itself, returns ""

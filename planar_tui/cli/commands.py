@@ -60,9 +60,10 @@ SchedulerOption = Annotated[
     str | None,
     typer.Option(
         "--scheduler",
-        envvar="PLANAR_TUI_SCHEDULER",
         metavar="ADDRESS",
-        help="Sweeps: submit the points to this existing Dask scheduler (tcp://host:8786).",
+        help="Sweeps: submit the points to this existing Dask scheduler (tcp://host:8786; "
+        "default: $PLANAR_TUI_SCHEDULER unless --workers is given). Connecting may take "
+        "$PLANAR_TUI_SCHEDULER_TIMEOUT_S seconds (default 10).",
     ),
 ]
 ResumeOption = Annotated[
@@ -87,14 +88,19 @@ def run(
     with reported_errors():
         from planar_tui.batch import select_jobs
         from planar_tui.plan import plan_run
+        from planar_tui.sweep.execute import scheduler_address
+        from planar_tui.sweep.spec import check_has_work
 
         check_figure_option(plot)
         check_workers(workers)
+        scheduler = scheduler_address(scheduler, workers)
         loaded = load_presets(presets)
+        for preset in loaded:
+            check_has_work(preset)
         jobs = select_jobs([job for preset in loaded for job in preset.jobs], job_name)
         studies = [] if job_name else loaded
         plan = plan_run(jobs, out_dir, plot=plot, sweeps_of=studies, optimise_of=studies,
-                        resume=resume)  # fmt: skip
+                        resume=resume, workers=workers, scheduler=scheduler)  # fmt: skip
         print_notes(plan)
         if plan.jobs:
             run_jobs(plan)
@@ -122,6 +128,11 @@ def plot_csv(
         target = out if out is not None else result.with_suffix(".png")
         from planar_tui.figures import UnknownTable, figure_for_table, read_table
         from planar_tui.figures.canvas import save
+        from planar_tui.figures.dispatch import is_same_file
+
+        if is_same_file(result, target):
+            raise PresetError("command line", "--out", f"is the input {result} (it would be "
+                              "overwritten by its figure)", "another figure file")  # fmt: skip
 
         try:
             table = read_table(result)
@@ -180,15 +191,18 @@ def run_studies(
 
     with reported_errors():
         from planar_tui.plan import plan_run
+        from planar_tui.sweep.execute import scheduler_address
 
         check_figure_option(plot)
         check_workers(workers)
+        scheduler = scheduler_address(scheduler, workers)
         (loaded,) = load_presets([preset])
         sweeps = table == "sweep"
         plan = plan_run([], out_dir, sweeps_of=[loaded] if sweeps else [],
                         sweep_plot=plot if sweeps else None,
                         optimise_of=[] if sweeps else [loaded],
-                        optimise_plot=None if sweeps else plot, resume=resume)  # fmt: skip
+                        optimise_plot=None if sweeps else plot, resume=resume,
+                        workers=workers, scheduler=scheduler)  # fmt: skip
         if not (plan.sweeps if sweeps else plan.optimisations):
             article = "a" if sweeps else "an"
             raise PresetError(loaded.path, table, f"no [[{table}]] table in this preset",
@@ -206,7 +220,8 @@ def warmup() -> None:
     from planar_tui.registry import JOB_KINDS
     from planar_tui.warmup import warm_kernels
 
-    columns = (TextColumn("{task.description}"), BarColumn(bar_width=24), MofNCompleteColumn())
+    columns = (TextColumn("{task.description}", markup=False), BarColumn(bar_width=24),
+               MofNCompleteColumn())  # fmt: skip
     with reported_errors(), Progress(*columns, TimeElapsedColumn(), console=stderr) as bars:
         task = bars.add_task("kernels", total=len(JOB_KINDS))
 
@@ -220,10 +235,35 @@ def warmup() -> None:
     stdout.print(f"compiled: {', '.join(done) or 'nothing (all cached)'}", markup=False)
 
 
-def list_presets() -> None:
-    """List the bundled presets, one line each."""
-    for path in bundled_presets():
-        typer.echo(f"{path.stem:<24} {preset_description(path)}")
+def list_presets(
+    name: Annotated[
+        str | None, typer.Argument(help="A bundled preset: print its text (or --copy it).")
+    ] = None,
+    copy: Annotated[
+        Path | None,
+        typer.Option(
+            "--copy",
+            metavar="PATH",
+            help="Write the preset NAME to this new file "
+            "to start from (an existing file is never overwritten).",
+        ),
+    ] = None,
+) -> None:
+    """List the bundled presets, one line each; with NAME, print that preset."""
+    from planar_tui.presets import copy_bundled_preset
+    from planar_tui.resources import bundled_preset
+
+    with reported_errors():
+        if name is None:
+            if copy is not None:
+                raise PresetError("command line", "--copy", "is given without NAME",
+                                  "planar-tui presets NAME --copy PATH")  # fmt: skip
+            for path in bundled_presets():
+                typer.echo(f"{path.stem:<24} {preset_description(path)}")
+        elif copy is None:
+            typer.echo(bundled_preset(name).read_text(encoding="utf-8"), nl=False)
+        else:
+            stdout.print(f"wrote {copy_bundled_preset(name, copy)}", markup=False)
 
 
 #: The commands that are not one job kind's, in the order of ``planar-tui --help`` (``tui``

@@ -105,7 +105,7 @@ FormatOption = Annotated[
         "--format",
         metavar="FORMAT",
         help="csv (the default) or netcdf: also the band and the indices as one NetCDF "
-        "file, the band CSV's name with .nc (pip install 'planar-tui\\[netcdf]').",
+        "file, the band CSV's name with .nc (pip install 'planar-tui[netcdf]').",
     ),
 ]
 #: The options each job command gets (by kind), as (parameter, annotation).

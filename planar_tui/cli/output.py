@@ -26,14 +26,31 @@ if TYPE_CHECKING:
 class _FlagsWithoutMetavar:
     """Help for flags (``--map/--no-map``, ``--version``, ``--help``) without a value
     placeholder: Typer's rich help otherwise prints ``<bool>`` after them, as if they took
-    a value. A flag's metavar is only ever shown in help."""
+    a value. A flag's metavar is only ever shown in help. Help texts are shown as
+    written: Typer reads them as Rich markup, which would swallow ``[[sweep]]``, so
+    brackets are escaped (:func:`rich.markup.escape`)."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self.help = _escaped(self.help)
+        self.short_help = _escaped(self.short_help)
 
     def get_params(self, ctx):
         params = super().get_params(ctx)
         for param in params:
             if getattr(param, "is_flag", False) and param.metavar is None:
                 param.metavar = ""
+            if getattr(param, "help", None) and not getattr(param, "_escaped", False):
+                param.help = _escaped(param.help)
+                param._escaped = True
         return params
+
+
+def _escaped(text: str | None) -> str | None:
+    """``text`` with Rich markup escaped (shown as written)."""
+    from rich.markup import escape
+
+    return None if text is None else escape(text)
 
 
 class Group(_FlagsWithoutMetavar, TyperGroup):
@@ -108,11 +125,11 @@ def check_figure_option(path: Path | None, option: str = "--plot") -> None:
 
 
 def check_workers(workers: int | None) -> None:
-    """Refuse ``--workers`` below 1 (:class:`PresetError`, exit 2), in one line as the job
-    options' ranges are (checked here, not by Typer, whose usage box takes many lines)."""
-    if workers is not None and workers < 1:
-        raise PresetError("command line", "--workers", f"is {workers}, below 1",
-                          "an integer >= 1 (1 runs the points in this process)")  # fmt: skip
+    """Refuse ``--workers`` out of range (:class:`PresetError`, exit 2), in one line as the
+    job options' ranges are (checked here, not by Typer, whose usage box takes many lines)."""
+    from planar_tui.sweep.budget import check_workers as check
+
+    check(workers)
 
 
 def load_presets(arguments: Sequence[str]) -> list[Preset]:
@@ -238,7 +255,7 @@ def sweep_progress_display(console: Console):
             return Text("-- pt/s" if speed is None else f"{speed:.3g} pt/s")
 
     return bar.Progress(
-        bar.TextColumn("{task.description}"), bar.BarColumn(bar_width=None),
+        bar.TextColumn("{task.description}", markup=False), bar.BarColumn(bar_width=None),
         bar.MofNCompleteColumn(), bar.TextColumn("{task.fields[failed]} failed"), RateColumn(table_column=Column(no_wrap=True)),
         bar.TextColumn("ETA"), bar.TimeRemainingColumn(), console=console, expand=True,
     )  # fmt: skip

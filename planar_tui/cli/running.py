@@ -43,6 +43,7 @@ def run_jobs(
     other options ask once a job's files are written (:func:`planar_tui.cli.interop.
     job_exports`)."""
     from rich.table import Table
+    from rich.text import Text
 
     from planar_tui import batch
     from planar_tui.registry import JOB_KINDS
@@ -75,7 +76,7 @@ def run_jobs(
     summary.add_column("seconds", justify="right", no_wrap=True)
     summary.add_column("output and result", overflow="fold")
     for row in rows:
-        summary.add_row(row.label, f"{row.seconds:.3f}", f"{row.output}\n{row.summary}")
+        summary.add_row(Text(row.label), f"{row.seconds:.3f}", Text(f"{row.output}\n{row.summary}"))
     stdout.print(summary)
 
 
@@ -131,6 +132,7 @@ def run_sweeps(plan: RunPlan, workers: int | None, scheduler: str | None) -> Non
                             sweep, Progress(on_update=update, should_stop=_INTERRUPTED.is_set),
                             points=points, out_dir=plan.out_dir,
                             resume=plan.resume, client=client, keep_checkpoint=True,
+                            announce=_said,
                         )  # fmt: skip
                     except OutputFailed as error:
                         unwritten += 1

@@ -6,6 +6,7 @@ result and the CSV columns of one job kind.
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -94,7 +95,8 @@ class RunSettings:
 
     @staticmethod
     def check_step(values: dict[str, Any], reader: TableReader) -> None:
-        """The step must not exceed the duration."""
+        """The step must not exceed the duration, nor be so short that the step count
+        ``duration_s / step_s`` overflows (a finite count is held to the time limit)."""
         duration_s, step_s = values["duration_s"], values["step_s"]
         if step_s > duration_s:
             raise reader.error(
@@ -102,11 +104,30 @@ class RunSettings:
                 f"is {step_s:g} s, longer than duration_s = {duration_s:g} s",
                 "step_s <= duration_s",
             )
+        if not math.isfinite(duration_s / step_s):  # step_s = 5e-324
+            raise reader.error(
+                "step_s",
+                f"is {step_s:g} s: duration_s / step_s is {duration_s / step_s:.3g} steps",
+                "a step_s giving a finite number of steps",
+            )
 
     @property
     def n_steps(self) -> int:
         """Number of RK4 steps: ``round(duration_s / step_s)``."""
         return max(1, round(self.duration_s / self.step_s))
+
+
+def simulate_estimate(n_steps: float, every: int, n_links: int) -> tuple[float, float]:
+    """``(memory_bytes, seconds)`` of a run: ``n_steps / every + 1`` rows of ``2n + 4``
+    cells, ``n_steps`` RK4 steps (:func:`rk4_step_seconds`)."""
+    rows = n_steps / every + 1
+    return rows * (2 * n_links + 4) * BYTES_PER_CELL, n_steps * rk4_step_seconds(n_links)
+
+
+def estimate(job: Job[SimulateSpec, SerialRobot]) -> tuple[float, float]:
+    """``(memory_bytes, seconds)`` of ``job`` (:func:`simulate_estimate`)."""
+    return simulate_estimate(job.spec.duration_s / job.spec.step_s, job.spec.every,
+                             job.robot.n_links)  # fmt: skip
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -128,10 +149,8 @@ class SimulateSpec(RunSettings):
         limits (:mod:`planar_tui.limits`)."""
         RunSettings.check_step(values, reader)
         n_steps = values["duration_s"] / values["step_s"]
-        problem = time_problem(n_steps * rk4_step_seconds(robot.n_links))
-        if problem is None:
-            rows = n_steps / values["every"] + 1
-            problem = memory_problem(rows * (2 * robot.n_links + 4) * BYTES_PER_CELL)
+        memory, seconds = simulate_estimate(n_steps, values["every"], robot.n_links)
+        problem = time_problem(seconds) or memory_problem(memory)
         if problem is not None:
             raise reader.error(
                 "duration_s",
@@ -271,6 +290,13 @@ def point_figures(job: Job[SimulateSpec, SerialRobot], result: SimulateResult) -
     return figures
 
 
+def figure_names(job: Job[Any, Any]) -> tuple[str, ...]:
+    """The columns :func:`point_figures` reports for ``job``, without running it."""
+    n = job.robot.n_links
+    return ("t_end_s", *(f"theta{i}_end_rad" for i in range(1, n + 1)),
+            *(f"omega{i}_end_rad_s" for i in range(1, n + 1)), "energy_drift_max_J")  # fmt: skip
+
+
 JOB_KIND = JobKind(
     name="simulate",
     robot_kind="robot",
@@ -285,4 +311,6 @@ JOB_KIND = JobKind(
     tab=Tab("Simulate", 3, "planar_tui.app.widgets.simulate_pane:SimulatePane"),
     figure="planar_tui.figures.simulate:from_result",
     warmup="[simulate]\nduration_s = 0.002\nstep_s = 0.001\n",
+    figure_names=figure_names,
+    estimate=estimate,
 )

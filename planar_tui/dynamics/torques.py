@@ -105,6 +105,11 @@ def point_figures(job: Job[TorquesSpec, SerialRobot], result: TorquesResult) -> 
     return {f"tau{i}_abs_max_Nm": float(v) for i, v in enumerate(peak, start=1)}
 
 
+def figure_names(job: Job[Any, Any]) -> tuple[str, ...]:
+    """The columns :func:`point_figures` reports for ``job``, without running it."""
+    return tuple(f"tau{i}_abs_max_Nm" for i in range(1, job.robot.n_links + 1))
+
+
 JOB_KIND = JobKind(
     name="torques",
     robot_kind="robot",
@@ -119,4 +124,5 @@ JOB_KIND = JobKind(
     tab=Tab("Torques", 4),
     figure="planar_tui.figures.torques:from_result",
     warmup="[torques]\ntheta_deg = [[0, 10]]\n",
+    figure_names=figure_names,
 )

@@ -126,6 +126,17 @@ def save_table_figure(table: CsvTable, path: Path | str, title: str = "", *,
     return _saved(figure_for_table(table, title), path, dpi)
 
 
+def is_same_file(first: Path | str, second: Path | str) -> bool:
+    """Whether two paths name one file (an existing one by identity, links included;
+    otherwise by absolute, normalised path)."""
+    import os
+
+    try:
+        return os.path.samefile(first, second)
+    except OSError:
+        return os.path.abspath(first) == os.path.abspath(second)
+
+
 def read_table(path: Path | str) -> CsvTable:
     """A result CSV read back (see :func:`planar_tui.figures.table.read_csv`)."""
     from planar_tui.figures.table import read_csv

@@ -3,36 +3,93 @@
 from __future__ import annotations
 
 import csv
+import os
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
 from planar_tui.csvio import FORMULA_STARTS, CsvTable
 
+#: Largest result CSV ``planar-tui plot`` reads (bytes): its cells take about ten times
+#: that in memory.
+MAX_CSV_BYTES = 64 * 2**20
+#: Largest cell (bytes; the :mod:`csv` module's own limit, 128 KiB).
+MAX_FIELD_BYTES = 128 * 2**10
+#: Largest magnitude of a number drawn (a figure's axis ranges overflow near 1e308).
+MAX_ABS_VALUE = 1e100
+
 
 def _cell(text: str) -> Any:
     """A CSV cell as written by :class:`CsvTable`: a number when it reads as one, ``None``
-    when empty, else the text (without the ``'`` put before a formula-like start)."""
+    when empty, else the text (without the ``'`` put before a formula-like start); a
+    number that is not finite or beyond :data:`MAX_ABS_VALUE` is a ``ValueError``."""
     if text == "":
         return None
     try:
-        return float(text)
+        value = float(text)
     except ValueError:
         if text.startswith("'") and text[1:2] and text[1:].startswith(FORMULA_STARTS):
             return text[1:]
         return text
+    if not abs(value) <= MAX_ABS_VALUE:
+        raise _BadNumber(text)
+    return value
+
+
+class _BadNumber(ValueError):
+    """A cell whose number cannot be drawn."""
+
+
+def open_regular(path: Path | str, limit_bytes: int | None = None):
+    """A text stream on ``path`` if it is a regular file of at most ``limit_bytes`` (:data:`MAX_CSV_BYTES`)
+    (opened without blocking, so a FIFO with no writer is refused, not waited on), else a
+    ``ValueError`` saying why; ``OSError`` when it cannot be opened."""
+    import stat
+
+    limit_bytes = MAX_CSV_BYTES if limit_bytes is None else limit_bytes
+    handle = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
+    try:
+        mode, size = (info := os.fstat(handle)).st_mode, info.st_size
+        if not stat.S_ISREG(mode):
+            raise ValueError("is not a regular file (a device, FIFO or socket)")
+        if size > limit_bytes:
+            raise ValueError(f"is {size / 2**20:.3g} MiB, more than the {limit_bytes // 2**20} "
+                             "MiB a result CSV may have")  # fmt: skip
+        os.set_blocking(handle, True)
+        return os.fdopen(handle, encoding="utf-8", newline="")
+    except BaseException:
+        os.close(handle)
+        raise
 
 
 def read_csv(path: Path | str) -> CsvTable:
     """The table in a CSV file (header, then rows of numbers, text and ``None``; blank
     lines skipped); ``OSError`` or ``UnicodeDecodeError`` when it cannot be read,
-    ``ValueError`` when it holds no header."""
-    with open(path, encoding="utf-8", newline="") as stream:
-        records = list(csv.reader(stream))
+    ``ValueError`` when it holds no header, is no regular file, is larger than
+    :data:`MAX_CSV_BYTES`, has a cell over :data:`MAX_FIELD_BYTES` or a number that is not
+    finite or beyond :data:`MAX_ABS_VALUE` (the message names the line and column)."""
+    with open_regular(path) as stream:
+        reader = csv.reader(stream)
+        try:
+            records = list(reader)
+        except csv.Error as error:
+            raise ValueError(f"line {reader.line_num}: {error}") from None
     if not records or not records[0]:
         raise ValueError("the file is empty (no header line)")
     header = tuple(records[0])
-    rows = [[_cell(text) for text in record] for record in records[1:] if record]
+    rows = []
+    for number, record in enumerate(records[1:], start=2):
+        if not record:
+            continue
+        try:
+            rows.append([_cell(text) for text in record])
+        except _BadNumber as error:
+            index = next(i for i, text in enumerate(record) if text == error.args[0])
+            name = header[index] if index < len(header) else f"{index + 1}"
+            raise ValueError(
+                f"line {number}, column {name}: {error.args[0][:40]} is not a finite number "
+                f"within ±{MAX_ABS_VALUE:g}"
+            ) from None
     return CsvTable(header, rows)
 
 

@@ -217,10 +217,9 @@ def extra_band_note(spec: MotionSpec) -> str:
     )
 
 
-def check_resources(error: uq.ErrorFactory, spec: MotionSpec, robot: SerialRobot) -> None:
-    """Refuse a job whose estimated time (robots × steps × one RK4 step) or memory (the
-    robots' states and parameters, the outputs at ``at_s``, the band robots' outputs)
-    exceeds :mod:`planar_tui.limits`."""
+def resource_estimate(spec: MotionSpec, robot: SerialRobot) -> tuple[float, float]:
+    """``(memory_bytes, seconds)``: the robots' states and parameters, the outputs at
+    ``at_s`` and the band robots' outputs; robots × steps × one RK4 step."""
     robots = robot_count(spec, robot)
     n = robot.n_links
     seconds = robots * spec.n_steps * rk4_step_seconds(n)
@@ -229,11 +228,20 @@ def check_resources(error: uq.ErrorFactory, spec: MotionSpec, robot: SerialRobot
     records = spec.n_steps // spec.record_every + 2
     memory = robots * (num_inputs(spec, robot) + 8 * n + n * n + at * n_out) * 8.0
     memory += records * 5 * n_out * 8.0
+    return memory, seconds
+
+
+def check_resources(error: uq.ErrorFactory, spec: MotionSpec, robot: SerialRobot) -> None:
+    """Refuse a job whose estimated time (robots × steps × one RK4 step) or memory (the
+    robots' states and parameters, the outputs at ``at_s``, the band robots' outputs)
+    exceeds :mod:`planar_tui.limits`."""
+    memory, seconds = resource_estimate(spec, robot)
     problem = time_problem(seconds) or memory_problem(memory)
     if problem is not None:
         raise error(
             "samples",
-            f"{robots} robots of {n} links × {spec.n_steps} steps: {problem}",
+            f"{robot_count(spec, robot)} robots of {robot.n_links} links × {spec.n_steps} "
+            f"steps: {problem}",
             "fewer samples, a shorter duration_s or a longer step_s",
         )
 
@@ -432,4 +440,5 @@ JOB_KIND = JobKind(
     figure="planar_tui.figures.dispatch:from_main_table",
     warmup="[motion_uncertainty]\nduration_s = 0.002\nstep_s = 0.001\nsamples = 128\n"
     'methods = ["montecarlo", "sobol", "efast"]\n',
+    estimate=lambda job: resource_estimate(job.spec, job.robot),
 )  # fmt: skip

@@ -416,6 +416,7 @@ def parse_optimise_table(preset: Preset, table: Any, name: str, number: int = 1)
         population=keys.population, budget=keys.budget, seed=keys.seed, output=output,
         pareto_output=pareto_output, plot=keys.plot, source=table,
     )  # fmt: skip
+    check_columns(optimisation)
     _check_corners(optimisation)
     return optimisation
 

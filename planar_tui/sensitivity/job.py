@@ -226,7 +226,10 @@ def solve_posture(job: Job[SensitivitySpec, SerialRobot]) -> Posture:
     if request == "singular":
         return singular_posture(robot.n_links)
     try:
-        return isotropic_posture(robot.lengths_m, spec.isotropy_tolerance)
+        import numpy as np
+
+        with np.errstate(over="ignore", invalid="ignore"):  # a 1e30 m link: κ ~ 1e30, said below
+            return isotropic_posture(robot.lengths_m, spec.isotropy_tolerance)
     except NoIsotropicPosture as error:
         raise PresetError(
             job.preset_path,
@@ -391,6 +394,19 @@ def point_figures(
     return figures
 
 
+def figure_names(job: Job[Any, Any]) -> tuple[str, ...]:
+    """The columns :func:`point_figures` reports for ``job``, without running it."""
+    groups = ("dominant", "dominant_percent", "lengths_percent", "masses_percent",
+              "sobol_halfwidth_max", "variance_Nm2")  # fmt: skip
+    names: list[str] = []
+    for k in range(1, len(job.spec.speeds_rad_s) + 1):
+        suffix = "" if k == 1 else f"_w{k}"
+        names += [f"tau{i}_{group}{suffix}" for i in range(1, job.robot.n_links + 1)
+                  for group in groups]  # fmt: skip
+        names.append(f"tau_variance_max_Nm2{suffix}")
+    return tuple(names)
+
+
 JOB_KIND = JobKind(
     name="sensitivity",
     robot_kind="robot",
@@ -410,4 +426,6 @@ JOB_KIND = JobKind(
     tab=Tab("Sensitivity", 1, "planar_tui.app.widgets.sensitivity_pane:SensitivityPane"),
     figure="planar_tui.figures.sensitivity:from_result",
     warmup="[sensitivity]\nsamples = 8\nefast_samples = 65\n",
+    figure_names=figure_names,
+    estimate=lambda job: resource_estimate(job.spec, job.robot),
 )  # fmt: skip

@@ -6,7 +6,9 @@ the sweep's fingerprint (:meth:`~planar_tui.sweep.spec.Sweep.fingerprint`) and p
 count, then one JSON line per finished point, appended and flushed to disk (``fsync``)
 before the next is taken. JSON writes floats in their shortest round-trip form, so a
 resumed point's figures are the very numbers computed. A line cut short by a crash is
-ignored (that point runs again); a checkpoint with another fingerprint (the preset
+ignored (that point runs again); any other record that is not a finished point of this
+sweep (:func:`record_problem`) is dropped with one warning line naming the file and line,
+and its point runs again; a checkpoint with another fingerprint (the preset
 changed) is replaced, never resumed. The CLI removes the checkpoints of a run's sweeps
 once every sweep of the run is done and its CSV written, so ``--resume`` after an
 interrupt in a later sweep rebuilds the finished ones from their checkpoints; a run
@@ -17,12 +19,15 @@ without ``--resume`` refuses to start over a checkpoint of the same sweep
 from __future__ import annotations
 
 import json
+import math
 import os
+from collections.abc import Callable, Collection
 from dataclasses import asdict
 from pathlib import Path
+from typing import Any
 
 from planar_tui.csvio import write_text_atomic
-from planar_tui.sweep.worker import PointOutcome
+from planar_tui.sweep.worker import FAILED, OK, PointOutcome
 
 SUFFIX = ".checkpoint.jsonl"
 
@@ -44,34 +49,121 @@ def existing_fingerprint(path: Path) -> str | None:
         return ""
     try:
         header = json.loads(first)
-    except json.JSONDecodeError:
+    except (json.JSONDecodeError, RecursionError):
         return ""
     fingerprint = header.get("fingerprint") if isinstance(header, dict) else None
     return fingerprint if isinstance(fingerprint, str) else ""
 
 
-def read_finished(path: Path, fingerprint: str, total: int) -> dict[int, PointOutcome]:
+#: Most warning lines about dropped records one checkpoint gives (then a count).
+MAX_WARNINGS = 5
+#: The statuses a finished point may have.
+STATUSES = (OK, FAILED)
+#: Longest text a record's message or text figure may hold.
+MAX_TEXT = 10_000
+
+
+def _finite(value: Any) -> bool:
+    return (isinstance(value, int | float) and not isinstance(value, bool)
+            and math.isfinite(value))  # fmt: skip
+
+
+def record_problem(
+    record: Any, total: int, seen: set[int], columns: Callable[[int], Collection[str] | None]
+) -> str | None:
+    """Why a checkpoint record cannot be a finished point of this sweep, or ``None``: it
+    must be an object with exactly :class:`PointOutcome`'s fields, a ``number`` an
+    integer in 1..``total`` not seen before, a ``status`` of :data:`STATUSES`, a one-line
+    ``message``, finite ``seconds`` >= 0, no ``tables``, and ``figures`` a mapping of the
+    kind's own columns (``columns(number)``, where the kind names them; ``None`` where
+    not) to finite numbers or one-line text (none for a failed point)."""
+    if not isinstance(record, dict):
+        return "not a JSON object"
+    fields = {"number", "status", "message", "figures", "seconds", "tables"}
+    if set(record) != fields:
+        odd = sorted(set(record) ^ fields)
+        return f"fields {', '.join(odd)} missing or unknown"
+    number = record["number"]
+    if not isinstance(number, int) or isinstance(number, bool) or not 1 <= number <= total:
+        return f"number {shown_value(number)} is not an integer in 1..{total}"
+    if number in seen:
+        return f"point {number} is recorded twice"
+    if record["status"] not in STATUSES:
+        return f"status {shown_value(record['status'])} is not one of {', '.join(STATUSES)}"
+    message = record["message"]
+    if not isinstance(message, str) or "\n" in message or len(message) > MAX_TEXT:
+        return "message is not one line of text"
+    if not _finite(record["seconds"]) or record["seconds"] < 0:
+        return f"seconds {shown_value(record['seconds'])} is not a finite number >= 0"
+    if record["tables"] != {}:
+        return "tables is not empty"
+    figures = record["figures"]
+    if not isinstance(figures, dict):
+        return f"figures {shown_value(figures)} is not a mapping"
+    if record["status"] == FAILED and figures:
+        return "a failed point has figures"
+    known = columns(number) if record["status"] == OK else ()
+    for name, value in figures.items():
+        if known is not None and name not in known:
+            return f"figure {shown_value(name)} is not a column of this job"
+        if not (_finite(value) or (isinstance(value, str) and "\n" not in value
+                                   and len(value) <= MAX_TEXT)):  # fmt: skip
+            return f"figure {name} = {shown_value(value)} is not a finite number or text"
+    if known is not None and record["status"] == OK and set(known) - set(figures):
+        return f"figure {sorted(set(known) - set(figures))[0]} is missing"
+    return None
+
+
+def shown_value(value: Any) -> str:
+    """A record's value for a message: its JSON text, cut to 40 characters."""
+    text = json.dumps(value)
+    return text if len(text) <= 40 else text[:37] + "..."
+
+
+def read_finished(
+    path: Path,
+    fingerprint: str,
+    total: int,
+    columns: Callable[[int], Collection[str] | None] = lambda number: None,
+    warn: Callable[[str], None] = lambda text: None,
+) -> dict[int, PointOutcome]:
     """The finished points of a checkpoint of this sweep (by number); empty when there is
-    none, or it belongs to another sweep."""
+    none, or it belongs to another sweep. A record that fails :func:`record_problem` is
+    dropped with one ``warn`` line naming the file and line (that point runs again); a
+    line cut short by a crash (the last one) is dropped silently."""
     try:
         lines = path.read_text(encoding="utf-8").splitlines()
-    except (FileNotFoundError, UnicodeDecodeError):
+    except (OSError, UnicodeDecodeError):
         return {}
     try:
         header = json.loads(lines[0]) if lines else {}
-    except json.JSONDecodeError:
+    except (json.JSONDecodeError, RecursionError):
+        header = None
+    if not isinstance(header, dict):
+        warn(f"{path}:1: not a checkpoint header: every point runs")
         return {}
     if header.get("fingerprint") != fingerprint or header.get("points") != total:
         return {}
-    finished = {}
-    for line in lines[1:]:
+    finished: dict[int, PointOutcome] = {}
+    dropped = 0
+    for number, line in enumerate(lines[1:], start=2):
         try:
             record = json.loads(line)
-            outcome = PointOutcome(**record)
-        except (json.JSONDecodeError, TypeError):
-            continue  # a line cut short: the point runs again
-        if 1 <= outcome.number <= total:
-            finished[outcome.number] = outcome
+        except (json.JSONDecodeError, RecursionError):
+            if number == len(lines):
+                continue  # the last line, cut short by a crash: the point runs again
+            record, problem = None, "not JSON"
+        else:
+            problem = record_problem(record, total, set(finished), columns)
+        if problem is not None:
+            dropped += 1
+            if dropped <= MAX_WARNINGS:
+                warn(f"{path}:{number}: record dropped ({problem}): its point runs again")
+            continue
+        outcome = PointOutcome(**record)
+        finished[outcome.number] = outcome
+    if dropped > MAX_WARNINGS:
+        warn(f"{path}: {dropped - MAX_WARNINGS} more records dropped: their points run again")
     return finished
 
 

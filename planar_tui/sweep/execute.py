@@ -15,10 +15,10 @@ Outcomes are handed over as they arrive (``on_outcome``); the caller's
 from __future__ import annotations
 
 import os
-import queue
 import signal
 import threading
-from collections.abc import Callable, Iterator, Sequence
+import time
+from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any
@@ -27,8 +27,14 @@ from planar_tui.errors import PresetError
 from planar_tui.progress import Progress
 from planar_tui.sweep.worker import PointOutcome, PointTask, run_point
 
-#: Environment variable naming an existing Dask scheduler (``tcp://host:8786``).
+#: Environment variable naming an existing Dask scheduler (``tcp://host:8786``), used
+#: when neither ``--scheduler`` nor ``--workers`` is given.
 SCHEDULER_ENV_VAR = "PLANAR_TUI_SCHEDULER"
+#: Environment variable setting how long connecting to a scheduler may take (seconds).
+SCHEDULER_TIMEOUT_ENV_VAR = "PLANAR_TUI_SCHEDULER_TIMEOUT_S"
+#: How long connecting to a scheduler may take unless the environment says otherwise: the
+#: TCP connection and Dask's handshake (a peer that accepts and never answers included).
+DEFAULT_SCHEDULER_TIMEOUT_S = 10.0
 #: How often the Dask runner checks for a cancel while it waits (seconds).
 POLL_S = 0.1
 
@@ -41,15 +47,67 @@ def default_workers() -> int:
         return max(1, os.cpu_count() or 1)
 
 
+def scheduler_address(option: str | None, workers: int | None) -> str | None:
+    """The scheduler to use: ``--scheduler``, else :data:`SCHEDULER_ENV_VAR` unless
+    ``--workers`` was given (``--workers 1`` runs in this process whatever the
+    environment says)."""
+    if option is not None:
+        return option
+    if workers is not None:
+        return None
+    return os.environ.get(SCHEDULER_ENV_VAR) or None
+
+
+def scheduler_timeout_s() -> float:
+    """How long connecting to a scheduler may take: :data:`SCHEDULER_TIMEOUT_ENV_VAR` or
+    :data:`DEFAULT_SCHEDULER_TIMEOUT_S`; a value that is no number of seconds > 0 (at
+    most a day) is a :class:`PresetError`."""
+    import math
+
+    text = os.environ.get(SCHEDULER_TIMEOUT_ENV_VAR, "").strip()
+    if not text:
+        return DEFAULT_SCHEDULER_TIMEOUT_S
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not 0 < value <= 86_400:
+        raise PresetError("environment", SCHEDULER_TIMEOUT_ENV_VAR, f"is {text[:40]!r}",
+                          "a number of seconds > 0 and at most 86400")  # fmt: skip
+    return value
+
+
+def probe_scheduler(address: str, timeout_s: float) -> None:
+    """Connect to the scheduler at ``address`` and complete Dask's handshake within
+    ``timeout_s`` (``distributed.Client`` bounds the TCP connection, not the handshake: a
+    peer that accepts and never answers would hang it), or raise :class:`TimeoutError` /
+    :class:`OSError`."""
+    import asyncio
+
+    from distributed.comm import connect
+
+    async def handshake() -> None:
+        comm = await connect(address, timeout=timeout_s)
+        await comm.close()
+
+    async def bounded() -> None:
+        await asyncio.wait_for(handshake(), timeout_s)
+
+    asyncio.run(bounded())
+
+
 def run_in_process(
-    tasks: Sequence[PointTask], progress: Progress, on_outcome: Callable[[PointOutcome], None]
+    tasks: Iterable[PointTask | PointOutcome],
+    progress: Progress,
+    on_outcome: Callable[[PointOutcome], None],
 ) -> None:
-    """Run the tasks one after the other in this process; a cancel of ``progress`` stops
-    the running point within its runner's check interval."""
+    """Run the tasks one after the other in this process (an outcome among them, a point
+    that could not be made, is handed over as it is); a cancel of ``progress`` stops the
+    running point within its runner's check interval."""
     child = Progress(should_stop=lambda: progress.cancel_requested)
     for task in tasks:
         progress.check()
-        on_outcome(run_point(task, child))
+        on_outcome(task if isinstance(task, PointOutcome) else run_point(task, child))
 
 
 @dataclass(frozen=True)
@@ -138,11 +196,15 @@ def dask_client(target: DaskTarget, announce: Callable[[str], None]) -> Iterator
     from distributed import Client
 
     if target.address is not None:
+        timeout_s = scheduler_timeout_s()
         try:
-            client = Client(target.address)  # waits distributed.comm.timeouts.connect
+            probe_scheduler(target.address, timeout_s)
+            client = Client(target.address, timeout=timeout_s)
         except (OSError, TimeoutError, ValueError) as error:
+            problem = str(error) or (f"no answer within {timeout_s:g} s "
+                                     f"({SCHEDULER_TIMEOUT_ENV_VAR})")  # fmt: skip
             raise PresetError(
-                "command line", "--scheduler", f"cannot reach {target.address}: {error}",
+                "command line", "--scheduler", f"cannot reach {target.address}: {problem}",
                 "the address of a running Dask scheduler (tcp://host:8786)",
             ) from None  # fmt: skip
         try:
@@ -190,58 +252,66 @@ def _ignore_interrupts_plugin() -> Any:
     return IgnoreInterrupts()
 
 
+#: Most tasks a sweep has submitted to Dask and not yet collected: more are submitted as
+#: these finish, so a sweep of 100 000 points starts at once and the scheduler holds a
+#: window of them, not all.
+DASK_WINDOW = 1_000
+
+
 def run_on_dask(
     client: Any,
-    tasks: Sequence[PointTask],
+    tasks: Iterable[PointTask | PointOutcome],
     progress: Progress,
     on_outcome: Callable[[PointOutcome], None],
     key_prefix: str,
 ) -> None:
-    """Submit every task to ``client`` and hand over outcomes as they complete. A cancel
+    """Submit the tasks to ``client`` (at most :data:`DASK_WINDOW` outstanding; an outcome
+    among them is handed over as it is) and hand over outcomes as they complete. A cancel
     (``progress``) or Ctrl-C cancels the outstanding tasks, then propagates."""
     from distributed import as_completed
 
-    futures = [
-        client.submit(run_point, task, key=f"{key_prefix}-{task.number}", pure=False)
-        for task in tasks
-    ]
-    arrived: queue.Queue = queue.Queue()
-    finished = threading.Event()
+    pending = iter(tasks)
+    futures: dict[Any, PointTask] = {}
+    completed = as_completed()
 
-    def collect() -> None:
-        try:
-            for future in as_completed(futures):
-                arrived.put(future)
-                if finished.is_set():
-                    return
-        except Exception:  # the client closed under it (a cancel): nothing more to hand over
-            pass
+    def submit_next() -> bool:
+        """Submit the next task (handing over outcomes met on the way); False when none
+        is left."""
+        for task in pending:
+            if isinstance(task, PointOutcome):
+                on_outcome(task)
+                continue
+            future = client.submit(run_point, task, key=f"{key_prefix}-{task.number}",
+                                   pure=False)  # fmt: skip
+            futures[future] = task
+            completed.add(future)
+            return True
+        return False
 
-    threading.Thread(target=collect, name="planar-tui-sweep-collect", daemon=True).start()
     try:
-        for _ in range(len(futures)):
-            while True:
-                progress.check()
-                try:
-                    future = arrived.get(timeout=POLL_S)
-                    break
-                except queue.Empty:
-                    continue
-            on_outcome(_outcome(future, tasks))
+        while len(futures) < DASK_WINDOW and submit_next():
+            progress.check()
+        while futures:
+            progress.check()
+            batch = completed.next_batch(block=False)
+            if not batch:
+                time.sleep(POLL_S / 5)
+                continue
+            for future in batch:
+                task = futures.pop(future)
+                on_outcome(_outcome(future, task))
+                submit_next()
     except BaseException:
-        finished.set()
-        client.cancel(futures, force=True)
+        completed.clear()  # stop tracking: nothing more is handed over
+        client.cancel(list(futures), force=True)
         raise
-    finished.set()
 
 
-def _outcome(future: Any, tasks: Sequence[PointTask]) -> PointOutcome:
+def _outcome(future: Any, task: PointTask) -> PointOutcome:
     """A completed future's outcome; a task Dask gave up on (its workers kept dying) is a
     failed point."""
     try:
         return future.result()
     except Exception as error:
-        number = int(str(future.key).rsplit("-", 1)[1])
-        task = next(t for t in tasks if t.number == number)
         message = f"{task.job.label} failed on Dask: {type(error).__name__}: {error}"
-        return PointOutcome(number, "failed", " ".join(message.split()), {}, 0.0)
+        return PointOutcome(task.number, "failed", " ".join(message.split()), {}, 0.0)

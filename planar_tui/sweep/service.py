@@ -10,15 +10,17 @@ through it) and ``on_outcome`` for rows as they finish; the CLI adds ``out_dir``
 from __future__ import annotations
 
 import secrets
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from planar_tui.csvio import CsvTable, write_atomic, write_csv_atomic
+from planar_tui.errors import PresetError
 from planar_tui.progress import Progress
 from planar_tui.sweep.checkpoint import CheckpointWriter, checkpoint_path, read_finished
-from planar_tui.sweep.points import Point, make_points
+from planar_tui.sweep.pointfiles import PointFileRecord, check_point_folder, manifest_path
+from planar_tui.sweep.points import Point, SweepPoints, make_points
 from planar_tui.sweep.spec import Sweep
 from planar_tui.sweep.table import sweep_table
 from planar_tui.sweep.worker import (
@@ -32,6 +34,7 @@ from planar_tui.sweep.worker import (
 
 if TYPE_CHECKING:
     from planar_tui.batch import PlannedFile
+    from planar_tui.jobkind import Job
 
 
 @dataclass
@@ -44,7 +47,7 @@ class SweepRun:
     checkpoint run again because a point file of theirs was missing."""
 
     sweep: Sweep
-    points: list[Point]
+    points: Sequence[Point]
     outcomes: dict[int, PointOutcome] = field(default_factory=dict)
     resumed: int = 0
     recomputed: int = 0
@@ -63,13 +66,21 @@ class SweepRun:
     def table(self) -> CsvTable:
         """The sweep CSV of the points finished so far (all of them once it ran); a
         cancelled run's also lists the points not run, status ``cancelled``."""
-        values = {point.number: point.values for point in self.points}
         outcomes = dict(self.outcomes)
         if self.cancelled:
-            for point in self.points:
-                outcomes.setdefault(point.number, PointOutcome(
-                    point.number, CANCELLED, "not run: the sweep was cancelled", {}, 0.0))  # fmt: skip
+            for number in range(1, len(self.points) + 1):
+                outcomes.setdefault(number, PointOutcome(
+                    number, CANCELLED, "not run: the sweep was cancelled", {}, 0.0))  # fmt: skip
+        values = {number: point_values(self.points, number) for number in outcomes}
         return sweep_table([path.text for path in self.sweep.paths], values, outcomes)
+
+
+def point_values(points: Sequence[Point], number: int) -> tuple[Any, ...]:
+    """The values of point ``number`` (1-based), without making its job when ``points``
+    are :class:`~planar_tui.sweep.points.SweepPoints`."""
+    if isinstance(points, SweepPoints):
+        return points.values(number - 1)
+    return points[number - 1].values
 
 
 def write_figure(run: SweepRun, path: Path) -> Path:
@@ -107,7 +118,18 @@ def planned_files(sweep: Sweep, out_dir: Path) -> list[PlannedFile]:
         folder = out_dir / sweep.point_outputs
         files.append(PlannedFile(folder, f"{sweep.label} (point_outputs)", "point file",
                                  folder=True, probe=folder / "point-1.csv"))  # fmt: skip
+        files.append(PlannedFile(manifest_path(output), f"{sweep.label} (point-file record)",
+                                 "record file"))  # fmt: skip
     return files
+
+
+def check_point_outputs(sweep: Sweep, out_dir: Path) -> None:
+    """Refuse, before anything runs, a point folder that is a symbolic link or holds
+    point files this sweep did not write (:func:`pointfiles.check_point_folder`)."""
+    if sweep.point_outputs is not None:
+        output = output_path(sweep, out_dir)
+        check_point_folder(sweep.preset_path, f"{sweep.name}.point_outputs",
+                           out_dir / sweep.point_outputs, out_dir, manifest_path(output))  # fmt: skip
 
 
 def figure_problem(sweep: Sweep, points: Sequence[Point]) -> str | None:
@@ -118,7 +140,7 @@ def figure_problem(sweep: Sweep, points: Sequence[Point]) -> str | None:
 
     paths = [path.text for path in sweep.paths]
     keys = CsvTable(("point", *paths, "status"),
-                    [[p.number, *p.values, "ok"] for p in points])  # fmt: skip
+                    [[n, *point_values(points, n), "ok"] for n in range(1, len(points) + 1)])  # fmt: skip
     try:
         varied, _ = split_columns(keys)
     except (TypeError, ValueError):  # a key whose values are no numbers
@@ -157,23 +179,25 @@ def run_sweep(
 ) -> SweepRun:
     """Run every point of ``sweep`` and return them (see :class:`SweepRun`).
 
-    ``points`` are :func:`make_points`'s (made and validated here when not given: a
-    :class:`~planar_tui.errors.PresetError` before anything runs). ``workers == 1`` without
-    a ``scheduler`` runs in this process (no Dask import); otherwise a local Dask cluster
-    of ``workers`` processes, or the scheduler at ``scheduler``; or the Dask ``client``
-    given (e.g. one local cluster for several sweeps, :func:`execute.dask_client`). With ``out_dir`` the CSV,
-    the checkpoint and the point CSVs are written there; ``resume`` continues from the
-    checkpoint of the same sweep. ``progress`` counts points (figure ``failed``); its
-    cancel, or Ctrl-C, stops the run with :class:`~planar_tui.errors.Cancelled` /
-    ``KeyboardInterrupt``: the checkpoint stays, no CSV is written. ``on_outcome`` sees
-    every point as it finishes (resumed ones first, in order). The checkpoint is deleted
-    once the CSV is written, unless ``keep_checkpoint`` (the CLI deletes a run's
-    checkpoints once all its sweeps are done: ``run.checkpoint``). A CSV or point file that
-    cannot be written is :class:`~planar_tui.batch.OutputFailed` (the checkpoint stays);
-    a figure that cannot be written is ``run.figure_error`` (the CSV is written).
+        ``points`` are :func:`make_points`'s (made and validated here when not given: a
+        :class:`~planar_tui.errors.PresetError` before anything runs). ``workers == 1`` without
+        a ``scheduler`` runs in this process (no Dask import); otherwise a local Dask cluster
+        of ``workers`` processes, or the scheduler at ``scheduler``; or the Dask ``client``
+        given (e.g. one local cluster for several sweeps, :func:`execute.dask_client`). With ``out_dir`` the CSV,
+        the checkpoint and the point CSVs are written there; ``resume`` continues from the
+        checkpoint of the same sweep. ``progress`` counts points (figure ``failed``); its
+        cancel, or Ctrl-C, stops the run with :class:`~planar_tui.errors.Cancelled` /
+        ``KeyboardInterrupt``: the checkpoint stays, no CSV is written. A checkpoint record that
+    is not a finished point of this sweep is dropped with one ``announce`` line (warning),
+    and its point runs again. ``on_outcome`` sees
+        every point as it finishes (resumed ones first, in order). The checkpoint is deleted
+        once the CSV is written, unless ``keep_checkpoint`` (the CLI deletes a run's
+        checkpoints once all its sweeps are done: ``run.checkpoint``). A CSV or point file that
+        cannot be written is :class:`~planar_tui.batch.OutputFailed` (the checkpoint stays);
+        a figure that cannot be written is ``run.figure_error`` (the CSV is written).
     """
     from planar_tui.batch import OutputFailed
-    from planar_tui.registry import JOB_KINDS  # noqa: F401 (the kinds' modules, loaded once)
+    from planar_tui.registry import JOB_KINDS
     from planar_tui.sweep import execute
     from planar_tui.warmup import warm_kernels
 
@@ -190,20 +214,44 @@ def run_sweep(
     def stem(number: int) -> str | None:
         return None if sweep.point_outputs is None else f"point-{number:0{width}d}"
 
+    def job_of(number: int) -> Job | None:
+        try:
+            return points[number - 1].job
+        except PresetError:  # not valid now (a device gone): its record is not resumed
+            return None
+
     writer = None
+    record = None
     if output is not None:
         checkpoint = checkpoint_path(output)
-        finished = read_finished(checkpoint, sweep.fingerprint(), total) if resume else {}
+        finished = {}
+        if resume:
+            names = JOB_KINDS[sweep.job.kind].figure_names
+
+            def columns(number: int) -> tuple[str, ...] | None:
+                job = job_of(number)
+                return () if job is None else None if names is None else names(job)
+
+            finished = read_finished(checkpoint, sweep.fingerprint(), total, columns,
+                                     lambda text: announce(f"warning: {text}"))  # fmt: skip
         if folder is not None:
-            jobs = {point.number: point.job for point in points}
-            missing = [number for number, outcome in finished.items() if outcome.status == OK
-                       and not all((folder / name).is_file()
-                                   for name in point_file_names(stem(number), jobs[number]))]  # fmt: skip
+
+            def files_missing(number: int) -> bool:
+                job = job_of(number)
+                return job is None or not all(
+                    (folder / name).is_file() for name in point_file_names(stem(number), job)
+                )
+
+            missing = [number for number, outcome in finished.items()
+                       if outcome.status == OK and files_missing(number)]  # fmt: skip
             for number in missing:
                 del finished[number]
             run.recomputed = len(missing)
-            if not finished:  # afresh: the folder is the sweep's, its earlier points go
-                remove_point_files(folder)
+            check_point_folder(sweep.preset_path, f"{sweep.name}.point_outputs", folder,
+                               out_dir, manifest_path(output))  # fmt: skip
+            record = PointFileRecord(manifest_path(output), folder)
+            if not finished:  # afresh: the files this sweep wrote before go, and only those
+                record.start_afresh()
         try:
             writer = CheckpointWriter(checkpoint, sweep.fingerprint(), total, finished)
         except OSError as error:
@@ -212,8 +260,21 @@ def run_sweep(
         run.outcomes.update(finished)
         run.resumed = len(finished)
 
-    tasks = [PointTask(p.number, p.job, stem(p.number)) for p in points
-             if p.number not in run.outcomes]  # fmt: skip
+    resumed = set(run.outcomes)
+
+    def tasks() -> Iterator[PointTask | PointOutcome]:
+        """The points left, each made as it is reached; one found invalid only now (not
+        among those checked up front) is a failed point."""
+        for number in range(1, total + 1):
+            if number in resumed:
+                continue
+            try:
+                point = points[number - 1]
+            except PresetError as error:
+                yield PointOutcome(number, FAILED, error.message, {}, 0.0)
+                continue
+            yield PointTask(number, point.job, stem(number))
+
     try:
         warm_kernels([sweep.job.kind], progress)
         progress.start(total, sweep.label, _detail(run))
@@ -226,6 +287,8 @@ def run_sweep(
             if folder is not None:
                 for name, text in outcome.tables.items():
                     try:
+                        if record is not None:
+                            record.add(name)
                         write_atomic(folder / name, lambda stream, text=text: stream.write(text))
                     except OSError as error:
                         raise OutputFailed(folder / name, error.strerror or str(error)) from None
@@ -241,13 +304,13 @@ def run_sweep(
 
         prefix = f"planar-tui-{sweep.fingerprint()[:8]}-{secrets.token_hex(4)}"
         if client is not None:
-            execute.run_on_dask(client, tasks, progress, finished_point, prefix)
+            execute.run_on_dask(client, tasks(), progress, finished_point, prefix)
         elif workers <= 1 and scheduler is None:
-            execute.run_in_process(tasks, progress, finished_point)
-        elif tasks:
+            execute.run_in_process(tasks(), progress, finished_point)
+        elif total > len(resumed):
             target = execute.DaskTarget(workers, scheduler)
             with execute.dask_client(target, announce) as client:
-                execute.run_on_dask(client, tasks, progress, finished_point, prefix)
+                execute.run_on_dask(client, tasks(), progress, finished_point, prefix)
         if output is not None:
             try:
                 write_csv_atomic(output, run.table)
@@ -268,21 +331,6 @@ def run_sweep(
     return run
 
 
-def remove_point_files(folder: Path) -> None:
-    """Delete the ``point-*.csv`` files of an earlier run from a sweep's point-file
-    folder (which the sweep owns whole), before a run starting afresh writes its own; a
-    file that cannot be deleted is :class:`~planar_tui.batch.OutputFailed`."""
-    from planar_tui.batch import OutputFailed
-
-    for path in sorted(folder.glob("point-*.csv")):
-        try:
-            if path.is_file():
-                path.unlink()
-        except OSError as error:
-            raise OutputFailed(path, f"cannot delete the earlier point file: "
-                               f"{error.strerror or error}") from None  # fmt: skip
-
-
 def _detail(run: SweepRun) -> str:
     done = len(run.outcomes)
     text = f"{done}/{len(run.points)} points, {run.failed} failed"
@@ -296,3 +344,19 @@ def resume_note(run: SweepRun) -> str:
     if run.recomputed:
         text += f", {run.recomputed} run again (point files missing)"
     return text
+
+
+def check_preset_sweeps(preset: Any) -> None:
+    """The CLI's checks of a preset's sweeps before it runs them, without files: every
+    ``[[sweep]]`` table read, its points counted and a sample of them made
+    (:func:`~planar_tui.sweep.points.make_points`), each ``plot`` drawable, and the
+    sweeps' workers, memory and time within the limits with the default workers
+    (:func:`~planar_tui.sweep.budget.check_sweep_budget`); :class:`PresetError` otherwise.
+    The app checks a document with it, so it says "ok" only for what the CLI runs."""
+    from planar_tui.sweep.budget import check_sweep_budget
+    from planar_tui.sweep.spec import parse_sweeps
+
+    prepared = [(sweep, make_points(sweep)) for sweep in parse_sweeps(preset)]
+    for sweep, points in prepared:
+        check_figure(sweep, points)
+    check_sweep_budget(prepared, None, None)

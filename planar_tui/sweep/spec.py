@@ -28,6 +28,8 @@ from planar_tui.sweep.paths import KeyPath, current_value, index_problem, parse_
 
 #: Most points a sweep may have unless its ``max_points`` says more.
 DEFAULT_MAX_POINTS = 100_000
+#: The largest ``max_points`` (a sweep's values and CSV rows are held in memory).
+MAX_POINTS = 1_000_000
 COMBINE = ("grid", "zip")
 SAMPLE_METHODS = ("sobol", "lhs", "uniform")
 SWEEP_KEYS = ("job", "values", "combine", "ranges", "sample", "output", "point_outputs", "plot",
@@ -148,9 +150,10 @@ def find_job(preset: Preset, text: Any, reader: TableReader) -> Job:
     kind, _, rest = text.partition("[")
     index = 1
     if rest:
-        if not rest.endswith("]") or not rest[:-1].isdigit():
+        digits = rest[:-1]
+        if not rest.endswith("]") or not (digits.isascii() and digits.isdigit()) or len(digits) > 9:
             raise reader.error("job", f"is {shown(text)}", expected)
-        index = int(rest[:-1])
+        index = int(digits)
     for job in preset.jobs:
         if job.kind == kind and job.index == index:
             return job
@@ -266,7 +269,7 @@ def parse_sweep_table(preset: Preset, table: Any, name: str, number: int = 1) ->
             "both values and ranges are given" if has_values else "no values and no ranges",
             "values = { KEY = [...] }, or ranges = { KEY = [low, high] } with sample = {...}",
         )
-    max_points = reader.integer("max_points", DEFAULT_MAX_POINTS, minimum=1)
+    max_points = reader.integer("max_points", DEFAULT_MAX_POINTS, minimum=1, maximum=MAX_POINTS)
     values: list[tuple[KeyPath, tuple[Any, ...]]] = []
     ranges: list[tuple[KeyPath, float, float]] = []
     sample = None
@@ -344,6 +347,15 @@ def _two_numbers(reader: TableReader, key: str, entry: list) -> tuple[float, flo
         for i, item in enumerate(entry, start=1)
     )  # fmt: skip
     return low, high
+
+
+def check_has_work(preset: Preset) -> None:
+    """Refuse a preset with neither a job nor a sweep table (nothing to run:
+    :class:`PresetError`, exit code 2, rather than a silent success)."""
+    if not preset.jobs and preset.raw.get(TABLE) is None:
+        kinds = ", ".join(f"[{name}]" for name in JOB_KINDS)
+        raise PresetError(preset.path, "(file)", "has no job and no [[sweep]] table: nothing "
+                          "to run", f"a job table ({kinds}) or a [[sweep]] table")  # fmt: skip
 
 
 def parse_sweeps(preset: Preset) -> tuple[Sweep, ...]:

@@ -70,8 +70,10 @@ class JobControls(Horizontal):
 
     def set_running(self, running: bool) -> None:
         """Enable Cancel while a job runs, Run otherwise (and forget a cancel asked)."""
-        self.query_one("#run", Button).disabled = running
-        self.query_one("#cancel", Button).disabled = not running
+        for button in self.query("#run").results(Button):
+            button.disabled = running
+        for button in self.query("#cancel").results(Button):
+            button.disabled = not running
         self.cancelling = False
 
     def show_cancelling(self) -> None:
@@ -81,15 +83,18 @@ class JobControls(Horizontal):
 
     def show_progress(self, state: ProgressState) -> None:
         """Show a runner's progress snapshot: bar, percent, done/total, ETA, stage."""
-        self.query_one(ProgressBar).update(total=state.total, progress=state.completed)
+        for bar in self.query(ProgressBar):
+            bar.update(total=state.total, progress=state.completed)
         text = progress_text(state, state.eta_s())
         self.status(f"cancelling… {text}" if self.cancelling else text)
 
     def finished(self) -> None:
         """Fill the bar (the last stage may end without a final update)."""
-        bar = self.query_one(ProgressBar)
-        bar.update(progress=bar.total or 1.0)
+        for bar in self.query(ProgressBar):
+            bar.update(progress=bar.total or 1.0)
 
     def status(self, text: str) -> None:
-        """Replace the status text."""
-        self.query_one("#job-status", Label).update(text)
+        """Replace the status text (nothing once the controls are gone: a job's last
+        message may arrive as the app closes)."""
+        for label in self.query("#job-status").results(Label):
+            label.update(text)

@@ -1,0 +1,124 @@
+"""A sweep's point files (``point_outputs``) and the record of which of them it wrote.
+
+The record (the *manifest*) is ``OUTPUT.point-files.txt`` beside the sweep's CSV and
+checkpoint: one file name per line, appended and flushed to disk before the point file
+itself is written, so that it names every file this sweep may have left in the folder.
+It stays after the run (unlike the checkpoint): a later run of the same sweep starting
+afresh deletes exactly the files it names, and nothing else.
+
+Before anything runs (:func:`check_point_folder`) a sweep refuses a point folder that is
+a symbolic link (or lies under one inside the output folder: its files would be written,
+and deleted, elsewhere), and a folder holding ``point-*.csv`` files its record does not
+name (a user's own, another sweep's): one line naming one of them.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from pathlib import Path
+
+from planar_tui.errors import PresetError
+
+#: The record's suffix, after the sweep CSV's name.
+SUFFIX = ".point-files.txt"
+#: The names point files have (``point-007.csv``, ``point-007-boxes.csv``).
+POINT_FILE = re.compile(r"^point-[0-9]+(?:-[A-Za-z0-9_.-]+)?\.csv$")
+
+
+def manifest_path(output: Path) -> Path:
+    """Where the record of the sweep writing ``output`` lives."""
+    return output.with_name(output.name + SUFFIX)
+
+
+def recorded_files(manifest: Path) -> set[str]:
+    """The point-file names the record holds (a line that is no point-file name, as a
+    crash may cut one short, is ignored); empty when there is no record."""
+    try:
+        text = manifest.read_text(encoding="utf-8", errors="replace")
+    except (FileNotFoundError, IsADirectoryError, NotADirectoryError):
+        return set()
+    return {line for line in text.splitlines() if POINT_FILE.match(line)}
+
+
+def symlink_in(folder: Path, out_dir: Path) -> Path | None:
+    """The first symbolic link among ``folder`` and its parents below ``out_dir``, or
+    ``None`` (``out_dir`` itself is the user's choice, link or not)."""
+    try:
+        relative = folder.relative_to(out_dir)
+    except ValueError:  # an absolute point_outputs elsewhere: check all of it
+        relative, out_dir = Path(*folder.parts[1:]), Path(folder.anchor)
+    current = out_dir
+    for part in relative.parts:
+        current = current / part
+        if current.is_symlink():
+            return current
+    return None
+
+
+def foreign_files(folder: Path, manifest: Path) -> list[Path]:
+    """The ``point-*.csv`` entries of ``folder`` that the record does not name, sorted."""
+    if not folder.is_dir():
+        return []
+    mine = recorded_files(manifest)
+    return sorted(path for path in folder.glob("point-*.csv") if path.name not in mine)
+
+
+def check_point_folder(
+    preset_path: Path | str, key: str, folder: Path, out_dir: Path, manifest: Path
+) -> None:
+    """Refuse (:class:`PresetError`, exit code 2) a point folder that is, or lies under, a
+    symbolic link, or that holds ``point-*.csv`` files this sweep did not write."""
+    link = symlink_in(folder, out_dir)
+    if link is not None:
+        raise PresetError(
+            preset_path, key, f"{link} is a symbolic link (point files would be written and "
+            "deleted where it points)", "a real folder inside the output folder",
+        )  # fmt: skip
+    foreign = foreign_files(folder, manifest)
+    if foreign:
+        more = f" and {len(foreign) - 1} more" if len(foreign) > 1 else ""
+        raise PresetError(
+            preset_path, key, f"{folder} holds {foreign[0].name}{more}, which this sweep did "
+            f"not write (not in {manifest.name})",
+            "a folder of its own for the sweep's point files (move those files away)",
+        )  # fmt: skip
+
+
+class PointFileRecord:
+    """The record of one run of a sweep: :meth:`start_afresh` deletes what earlier runs
+    wrote; :meth:`add` records a name before its file is written."""
+
+    def __init__(self, manifest: Path, folder: Path):
+        self.manifest = manifest
+        self.folder = folder
+        self._known = recorded_files(manifest)
+
+    def start_afresh(self) -> None:
+        """Delete the point files the record names (regular files in the folder only;
+        a link put there in their place is left alone), then empty the record. A file
+        that cannot be deleted is :class:`~planar_tui.batch.OutputFailed`."""
+        from planar_tui.batch import OutputFailed
+
+        for name in sorted(self._known):
+            path = self.folder / name
+            try:
+                if path.is_file() and not path.is_symlink():
+                    path.unlink()
+            except OSError as error:
+                raise OutputFailed(path, f"cannot delete the earlier point file: "
+                                   f"{error.strerror or error}") from None  # fmt: skip
+        self._known = set()
+        if self.manifest.exists():
+            self.manifest.write_text("", encoding="utf-8")
+
+    def add(self, name: str) -> None:
+        """Record ``name`` (flushed to disk) unless it is recorded already."""
+        if name in self._known:
+            return
+        self.manifest.parent.mkdir(parents=True, exist_ok=True)
+        with open(self.manifest, "a", encoding="utf-8") as stream:
+            stream.write(name + "\n")
+            stream.flush()
+            os.fsync(stream.fileno())
+        self._known.add(name)
