@@ -149,6 +149,27 @@ def sobol_point_and_terms(outputs, num_vars):
     return point, terms
 
 
+@kernel
+def sobol_point(outputs, num_vars):
+    """S1 and ST (2, n_out, D) of every output column: the point estimates of
+    :func:`sobol_point_and_terms` without its bootstrap terms, serial (for many small
+    calls, one per recorded time, where starting threads costs more than the sums)."""
+    rows_total, n_out = outputs.shape
+    step = num_vars + 2
+    n_base = rows_total // step
+    standard = np.empty(rows_total)
+    first = np.empty(num_vars)
+    total = np.empty(num_vars)
+    point = np.zeros((2, n_out, num_vars))
+    for t in range(n_out):
+        _standardise_into(outputs, t, standard)
+        variance = _sample_sums(standard, step, first, total)
+        for j in range(num_vars):
+            point[0, t, j] = _ratio(first[j], n_base, variance, False)
+            point[1, t, j] = _ratio(total[j], n_base, variance, True)
+    return point
+
+
 @kernel(parallel=True)
 def bootstrap_sums(terms, counts):
     r"""``sums[t, b] = counts[b] @ terms[t]``: :math:`\sum_k c_{bk} g_k` for the resamples

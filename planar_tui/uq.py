@@ -39,6 +39,11 @@ def _above_4m2(samples: int) -> str | None:
     return None if samples >= EFAST_MIN_SAMPLES else "not above 4 M² = 64"
 
 
+def _at_least_16(samples: int) -> str | None:
+    """PCE: N ≥ 16 model runs (its LOO error then says whether they were enough)."""
+    return None if samples >= 16 else "below 16"
+
+
 @dataclass(frozen=True)
 class Method:
     """One sampling method: ``rows(D, N)`` its design's rows (robots or model runs) for D
@@ -65,11 +70,12 @@ METHODS: dict[str, Method] = {
     "efast": Method(
         "efast", "eFAST", lambda d, n: n * d, _above_4m2, "an integer > 4 M² = 64 (M = 4)"
     ),
+    "pce": Method("pce", "PCE", lambda d, n: n, _at_least_16, "an integer >= 16"),
 }
 
 
 def design_rows(method: str, num_vars: int, samples: int) -> int:
-    """Rows of a design: N (Monte Carlo), N (D + 2) (Sobol', no second order), N D
+    """Rows of a design: N (Monte Carlo, PCE), N (D + 2) (Sobol', no second order), N D
     (eFAST)."""
     return METHODS[method].rows(num_vars, samples)
 
@@ -186,3 +192,26 @@ def sampling_options(methods: tuple[str, ...], samples_help: str) -> tuple[Optio
         Option("--samples", "samples", f"{samples_help}; overrides `samples`.", int),
         Option("--seed", "seed", "Seed >= 1; overrides `seed`.", int),
     )  # fmt: skip
+
+
+def pce_samples_setting(what: str) -> Any:
+    """The ``pce_samples`` key: the PCE's model runs (or robots), ``None`` for
+    :func:`~planar_tui.sensitivity.pce.default_pce_samples` of the job's D inputs."""
+    return setting(
+        integer(minimum=1),
+        default=None,
+        default_doc="`max(128, 64 D)`",
+        type_doc="integer ≥ 16",
+        doc=f"PCE {what} (768 for D = 12 inputs)",
+    )
+
+
+def pce_max_loo_setting(doc: str) -> Any:
+    """The ``pce_max_loo_error`` key: the largest accepted PCE leave-one-out error."""
+    return setting(number(positive=True), default=0.01, type_doc="number > 0", doc=doc)
+
+
+def allow_failed_runs_setting(doc: str) -> Any:
+    """The ``allow_failed_runs`` key: the fraction of runs a PCE may drop."""
+    return setting(number(minimum=0.0, maximum=1.0), default=0.0, type_doc="0 ≤ number ≤ 1",
+                   doc=doc)  # fmt: skip

@@ -54,9 +54,12 @@ def test_motion_command_writes_band_and_indices(cli, tmp_path):
     assert [float(row[0]) for row in band[1:]] == [0.0, 0.005, 0.01]
     indices = read_csv(tmp_path / "tiny-indices.csv")
     assert indices[0] == ["output", "t_s", "parameter", "method", "S1", "S1_conf", "ST",
-                          "ST_conf", "percent"]  # fmt: skip
-    # 2 times × 4 outputs × 4 parameters × 1 method
-    assert len(indices) - 1 == 2 * 4 * 4
+                          "ST_conf", "percent", "runs"]  # fmt: skip
+    # 3 recorded times (at_s among them) × 4 outputs × 4 parameters × 1 method
+    assert len(indices) - 1 == 3 * 4 * 4
+    assert {row[1] for row in indices[1:] if row[5] != ""} == {"0.005", "0.01"}  # at_s: CIs
+    aggregated = read_csv(tmp_path / "tiny-aggregated.csv")
+    assert len(aggregated) - 1 == 5 * 4  # 4 outputs and all of them × 4 parameters
     assert "% of ST per output · t = 0.01 s" in result.stdout
     assert "112 robots integrated on cpu\n" in result.stdout  # 16 + 16 (4 + 2)
 
@@ -95,7 +98,7 @@ def test_a_single_output_and_method_are_one_item_lists(cli, tmp_path):
                                 for stat in ("mean", "std", "p5", "p50", "p95"))]  # fmt: skip
     indices = read_csv(tmp_path / "tiny-indices.csv")
     assert {(row[0], row[1], row[3]) for row in indices[1:]} == {
-        ("tip_x_m", "0.01", "sobol"), ("tip_y_m", "0.01", "sobol")
+        (output, t, "sobol") for output in ("tip_x_m", "tip_y_m") for t in ("0.0", "0.005", "0.01")
     }  # fmt: skip
     assert "96 robots integrated on cpu\n" in result.stdout  # 16 × (4 + 2)
 
@@ -120,7 +123,7 @@ def test_bad_times_and_choices_name_the_allowed_values(cli, tmp_path):
     assert result.exit_code == 2
     assert result.stderr == (
         f"error: {preset}: motion_uncertainty.methods: has 'bootstrap' (expected one of "
-        '"montecarlo", "sobol", "efast" or a non-empty list of them)\n'
+        '"montecarlo", "sobol", "efast", "pce" or a non-empty list of them)\n'
     )
     assert not list(tmp_path.glob("*.csv"))
 

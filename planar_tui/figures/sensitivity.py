@@ -1,4 +1,4 @@
-"""Figure of Sobol'/eFAST indices: paper A's Figs 5-6 and its Table-4 matrix.
+"""Figure of Sobol'/eFAST/PCE indices: paper A's Figs 5-6 and its Table-4 matrix.
 
 Top: per output (a torque τi; for the motion-uncertainty indices, a joint angle or the
 tip) stacked 100 % bars of the parameters' shares (the ``percent`` column), the methods
@@ -7,6 +7,10 @@ error bars of the half-widths scaled like the shares, :math:`100\\,c_j / \\sum_k
 (``ST_conf`` or ``S1_conf``, whichever index the percentages were made from; drawn where
 a half-width exists). Bottom: the Table-4 matrix (outputs × methods by parameters) at one
 swept value as an annotated heat map.
+
+Motion indices of more than ``MAX_BAR_TIMES`` times (a PCE's, at every recorded time) are
+drawn instead as stacked shares against time, a panel per output and method
+(:func:`draw_over_time`).
 
 Reads the sensitivity CSV (``robot, posture, speed_rad_s, torque, parameter, method, S1,
 S1_conf, ST, ST_conf, percent``) and the motion-uncertainty indices CSV (``output, t_s,
@@ -26,9 +30,11 @@ from planar_tui.figures.table import column, has_columns, text_column
 INDEX_COLUMNS = ("parameter", "method", "S1", "S1_conf", "ST", "ST_conf", "percent")
 SENSITIVITY = ("torque", "speed_rad_s", *INDEX_COLUMNS)
 MOTION_INDICES = ("output", "t_s", *INDEX_COLUMNS)
-METHOD_LABELS = {"sobol": "Sobol'", "efast": "eFAST"}
+METHOD_LABELS = {"sobol": "Sobol'", "efast": "eFAST", "pce": "PCE"}
 #: Panels of bars per row.
 PANELS_PER_ROW = 3
+#: Times up to which the motion indices are drawn as bars (above: stacked shares).
+MAX_BAR_TIMES = 8
 
 
 def matches(header: tuple[str, ...]) -> bool:
@@ -99,6 +105,8 @@ def draw(table: CsvTable, title: str) -> Any:
     """Stacked share bars per output and the annotated matrix (see the module doc)."""
 
     ix = read_indices(table)
+    if ix.swept_label == "t (s)" and len(set(ix.swept.tolist())) > MAX_BAR_TIMES:
+        return draw_over_time(ix, title)
     groups = list(dict.fromkeys(ix.groups))
     params = list(dict.fromkeys(ix.parameters))
     methods = list(dict.fromkeys(ix.methods))
@@ -191,3 +199,37 @@ def _matrix(ax, ix: Indices, groups, params, methods, swept) -> None:
 def from_result(job: Any, result: Any) -> Any:
     """The figure of a finished sensitivity job (its CSV holds everything drawn)."""
     return draw(result.table, job.label)
+
+
+def draw_over_time(ix: Indices, title: str) -> Any:
+    """Stacked shares against time, a panel per (output, method): the motion indices of
+    more than :data:`MAX_BAR_TIMES` times (the form SALib's maintainers suggest for
+    time-varying outputs, SALib issue 525); a share is the height of its band."""
+    import numpy as np
+
+    params = list(dict.fromkeys(ix.parameters))
+    panels = list(dict.fromkeys(zip(ix.groups, ix.methods, strict=True)))
+    cols = min(len(panels), PANELS_PER_ROW)
+    rows = math.ceil(len(panels) / cols)
+    fig = new_figure(3.6 * cols + 1.6, 2.8 * rows + 0.6)
+    for k, (group, method) in enumerate(panels):
+        ax = fig.add_subplot(rows, cols, k + 1, gid="stacked")
+        chosen = [
+            r for r in range(len(ix.groups)) if (ix.groups[r], ix.methods[r]) == (group, method)
+        ]
+        times = sorted({float(ix.swept[r]) for r in chosen})
+        shares = np.zeros((len(params), len(times)))
+        for r in chosen:
+            shares[params.index(ix.parameters[r]), times.index(float(ix.swept[r]))] = ix.percent[r]
+        ax.stackplot(times, shares, colors=[colour(p, len(params)) for p in range(len(params))],
+                     linewidth=0.3, edgecolor="white")  # fmt: skip
+        ax.set(ylim=(0, 100), xlim=(times[0], times[-1]), xlabel=ix.swept_label,
+               title=f"{group} ({METHOD_LABELS.get(method, method)})")  # fmt: skip
+        if k % cols == 0:
+            ax.set_ylabel("share of the index (%)")
+    from matplotlib.patches import Patch
+
+    handles = [Patch(color=colour(p, len(params)), label=name) for p, name in enumerate(params)]
+    fig.legend(handles=handles, loc="outside right upper", fontsize="small")
+    fig.suptitle(title)
+    return fig

@@ -7,7 +7,7 @@ Layout (what ``xarray.open_dataset(FILE, engine="h5netcdf")`` gives back):
   output over the independent uniform robots, at every recorded time (the band CSV);
 * ``S1``, ``S1_conf``, ``ST``, ``ST_conf``, ``percent`` (method × index_time × output ×
   input): the Sobol'/eFAST indices of every output at the times of ``at_s`` (the indices
-  CSV; ``*_conf`` are 95 % half-widths, NaN for eFAST's first order where planar-tui
+  CSV's rows at those times; the CSV also holds the other recorded times; ``*_conf`` are 95 % half-widths, NaN for eFAST's first order where planar-tui
   writes none); absent when the job ran Monte Carlo only;
 * coordinates ``time`` and ``index_time`` (s), ``output`` (``theta1_rad`` … ``tip_y_m``),
   ``statistic``, ``method``, ``input`` (``l1`` … ``mn``, ``I1`` …); units in each

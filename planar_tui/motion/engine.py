@@ -28,6 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from planar_tui.progress import Progress
+from planar_tui.sensitivity.engine import montecarlo_design as montecarlo_design  # re-export
 
 #: Robots per CPU kernel call at most (a call then stays well under a second per step).
 CPU_BLOCK_ROBOTS = 4096
@@ -36,7 +37,7 @@ PERCENTILES = (5.0, 50.0, 95.0)
 
 
 #: The methods whose rows are independent uniform robots (:meth:`Design.band_rows`).
-BAND_METHODS = ("montecarlo", "sobol")
+BAND_METHODS = ("montecarlo", "sobol", "pce")
 
 
 @dataclass(frozen=True)
@@ -49,6 +50,14 @@ class Design:
     @property
     def samples(self) -> int:
         return self.unit.shape[0]
+
+    def independent_rows(self, method: str) -> np.ndarray:
+        """Rows (global indices) of ``method``'s independent uniform robots
+        (:func:`~planar_tui.sensitivity.engine.independent_rows`: Sobol' A and B rows)."""
+        from planar_tui.sensitivity.engine import independent_rows
+
+        rows = np.arange(self.samples)[self.rows[method]]
+        return rows[independent_rows(method, len(rows), self.unit.shape[1])]
 
     def band_rows(self) -> np.ndarray:
         """Rows of independent uniform robots for the band: the Monte-Carlo rows, else the
@@ -64,11 +73,10 @@ class Design:
         Monte-Carlo or Sobol' rows is a ``ValueError``."""
         if "montecarlo" in self.rows:
             return np.arange(self.samples)[self.rows["montecarlo"]]
+        if "pce" in self.rows:  # a scrambled Sobol' sequence in D dimensions: uniform robots
+            return np.arange(self.samples)[self.rows["pce"]]
         if "sobol" in self.rows:
-            rows = np.arange(self.samples)[self.rows["sobol"]]
-            step = self.unit.shape[1] + 2
-            blocks = rows.reshape(-1, step)
-            return np.sort(np.concatenate([blocks[:, 0], blocks[:, -1]]))
+            return self.independent_rows("sobol")
         raise ValueError(f"no independent uniform rows for the band among {tuple(self.rows)}")
 
 
@@ -81,22 +89,26 @@ def design_methods(methods: Sequence[str]) -> tuple[str, ...]:
     return (*methods, "montecarlo")
 
 
-def montecarlo_design(num_vars: int, samples: int, seed: int) -> np.ndarray:
-    """N independent uniform points of the unit cube, ``default_rng(seed).random((N, D))``."""
-    return np.random.default_rng(seed).random((samples, num_vars))
-
-
 def build_design(
-    methods: Sequence[str], num_vars: int, samples: int, seed: int, progress: Progress | None
+    methods: Sequence[str],
+    num_vars: int,
+    samples: int,
+    seed: int,
+    progress: Progress | None,
+    pce_samples: int = 0,
 ) -> Design:
     """The designs of :func:`design_methods` of ``methods`` stacked, in that order (sampling
-    stage of ``progress``, one unit per design)."""
+    stage of ``progress``, one unit per design); the PCE's has ``pce_samples`` rows."""
     from planar_tui.sensitivity.engine import unit_design
+    from planar_tui.sensitivity.pce import pce_unit_design
 
     parts, rows, start = [], {}, 0
     for method in design_methods(methods):
-        if method == "montecarlo":
-            part = montecarlo_design(num_vars, samples, seed)
+        if method in ("montecarlo", "pce"):
+            if method == "pce":
+                part = pce_unit_design(num_vars, pce_samples, seed)
+            else:
+                part = montecarlo_design(num_vars, samples, seed)
             if progress is not None:
                 progress.advance(1.0, method)
         else:

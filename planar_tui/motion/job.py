@@ -4,9 +4,10 @@ Every link length and mass (optionally inertia) is uniform on ``nominal ± toler
 in ``[sensitivity]``); every sampled robot is integrated by RK4 under the constant torques
 (as in ``[simulate]``). Results: the band (mean, standard deviation, 5/50/95 % percentiles of
 every output at every recorded step, over independent uniform robots: the Monte-Carlo or
-Sobol' A/B robots, or N extra Monte-Carlo robots when eFAST runs alone), Sobol'/eFAST
-indices of every output at the times ``at_s``, a Table-4-shaped table per time. Details:
-``docs/motion.md``.
+Sobol' A/B robots, or N extra Monte-Carlo robots when eFAST runs alone), Sobol'/eFAST/PCE
+indices of every output at every recorded time (Sobol'/eFAST's confidence intervals at the
+times ``at_s`` only) and aggregated over each trajectory, a Table-4-shaped table per time
+of ``at_s``. Details: ``docs/motion.md``.
 """
 
 from __future__ import annotations
@@ -47,7 +48,7 @@ if TYPE_CHECKING:
 
     from planar_tui.sensitivity.results import Analysis
 
-METHODS = ("montecarlo", "sobol", "efast")
+METHODS = ("montecarlo", "sobol", "efast", "pce")
 OUTPUTS = ("angles", "tip")
 #: Recorded band rows by default (``every`` = steps / this, at least 1).
 DEFAULT_RECORDS = 100
@@ -100,7 +101,9 @@ class MotionSpec(RunSettings):
     methods: tuple[str, ...] = uq.methods_setting(
         METHODS,
         default=("montecarlo", "sobol"),
-        doc="Monte Carlo (band), Sobol' and eFAST (indices; SALib's designs); eFAST alone "
+        doc="Monte Carlo (band), Sobol' and eFAST (SALib's designs: indices at every recorded "
+        "time, confidence intervals at `at_s`), pce (polynomial chaos: indices and intervals "
+        "at every recorded time); every index method also over the trajectory; eFAST alone "
         "adds N Monte-Carlo robots for the band",
     )
     samples: int = setting(
@@ -110,13 +113,22 @@ class MotionSpec(RunSettings):
         doc="Monte Carlo: N robots; Sobol': base N (N·(D+2) robots, D inputs); eFAST: N per "
         "input (N·D robots, and N Monte-Carlo robots for the band without montecarlo or sobol)",
     )
+    pce_samples: int | None = uq.pce_samples_setting("robots")
+    pce_max_loo_error: float = uq.pce_max_loo_setting(
+        "largest accepted PCE leave-one-out error of any output at any recorded time",
+    )
+    allow_failed_runs: float = uq.allow_failed_runs_setting(
+        "fraction of PCE robots that may fail (a non-finite output: a diverged "
+        "simulation) and be dropped from the fit; any failure fails Sobol' and eFAST",
+    )
     seed: int = uq.seed_setting("seed of sampling and bootstrap")
     at_s: tuple[float, ...] | None = setting(
         _read_times,
         default=None,
         default_doc="`duration_s`",
         type_doc="number or list of numbers in (0, `duration_s`]",
-        doc="times of the indices (rounded to a step)",
+        doc="times of the terminal tables and of Sobol'/eFAST's confidence intervals "
+        "(rounded to a step)",
     )
     outputs: tuple[str, ...] = setting(
         uq.read_choices(OUTPUTS),
@@ -152,8 +164,15 @@ class MotionSpec(RunSettings):
         return values
 
     def sample_keys(self) -> uq.SampleSizes:
-        """Every method's sample count is ``samples``."""
-        return dict.fromkeys(METHODS, ("samples", self.samples))
+        """Every method's sample count is ``samples``, the PCE's ``pce_samples``."""
+        return {**dict.fromkeys(METHODS, ("samples", self.samples)),
+                "pce": ("pce_samples", self.pce_samples)}  # fmt: skip
+
+    def pce_robots(self, num_vars: int) -> int:
+        """The PCE's robots: ``pce_samples``, else ``max(128, 64 D)``."""
+        from planar_tui.sensitivity.pce import default_pce_samples
+
+        return self.pce_samples or default_pce_samples(num_vars)
 
     @property
     def record_every(self) -> int:
@@ -184,10 +203,79 @@ def indices_file(job: MotionJob) -> str:
 
 
 def extra_outputs(job: MotionJob) -> dict[str, str]:
-    """The indices CSV when an index method runs."""
+    """The indices CSV when an index method runs, and the aggregated indices' CSV beside
+    it (``-indices`` → ``-aggregated``)."""
+    files = {}
     if any(uq.METHODS[method].indices for method in job.spec.methods):
-        return {"indices": indices_file(job)}
-    return {}
+        files["indices"] = indices_file(job)
+        stem = (
+            files["indices"][:-4] if files["indices"].lower().endswith(".csv") else files["indices"]
+        )
+        stem = stem[: -len("-indices")] if stem.endswith("-indices") else stem
+        files["aggregated"] = f"{stem}-aggregated.csv"
+    return files
+
+
+def check_failed(
+    job: PreparedJob[MotionSpec, SerialRobot, MotionPrepared],
+    at_outputs,
+    design,
+    method: str,
+    problem,
+) -> None:
+    """Sobol' and eFAST cannot drop robots: any non-finite output of ``method``'s robots
+    at an ``at_s`` time fails the job (a :class:`PresetError` naming the corner)."""
+    import numpy as np
+
+    from planar_tui.sensitivity.failed_runs import FailedRuns, check_failed_runs
+
+    rows = design.rows[method]
+    outputs = np.stack([at_outputs[step][rows] for step in sorted(at_outputs)], axis=1)
+    try:
+        check_failed_runs(outputs, design.unit[rows], problem.names, 0.0, can_drop=False)
+    except FailedRuns as error:
+        raise PresetError(job.preset_path, f"{job.key}.methods", error.problem,
+                          error.expected) from None  # fmt: skip
+
+
+def analyse_trajectory(job, unit, trajectory, problem, labels, progress):
+    """``(analyses, aggregated table, notes)`` of the PCE robots' outputs at every stop
+    (``trajectory``: {step: (S, M)}): failed robots checked (dropped when
+    ``allow_failed_runs`` allows), one expansion per output over its times
+    (:func:`~planar_tui.sensitivity.pce.trajectory_indices`), its LOO error checked; an
+    :class:`~planar_tui.sensitivity.results.Analysis` per time and the aggregated indices
+    (Gamboa et al. 2014) of each output and of all of them."""
+    import numpy as np
+
+    from planar_tui.motion.results import aggregate_rows
+    from planar_tui.sensitivity.failed_runs import FailedRuns, check_failed_runs
+    from planar_tui.sensitivity.pce import PceError, check_loo, trajectory_indices
+    from planar_tui.sensitivity.results import Analysis, sensitivity_percent
+
+    spec = job.spec
+    steps = sorted(trajectory)
+    outputs = np.stack([trajectory[step] for step in steps], axis=1)  # (S, K, M)
+    times = [step * spec.step_s for step in steps]
+    try:
+        keep, note = check_failed_runs(outputs, unit, problem.names, spec.allow_failed_runs,
+                                       can_drop=True)  # fmt: skip
+        result = progress.wait_for(trajectory_indices, unit[keep], outputs[keep], spec.seed)
+        names = [f"{label} at t = {t:g} s" for t in times for label in labels]
+        check_loo([result], names, spec.pce_max_loo_error, len(unit))
+    except (PceError, FailedRuns) as error:
+        raise PresetError(job.preset_path, f"{job.key}.{error.key}", error.problem,
+                          error.expected) from None  # fmt: skip
+    progress.advance(1.0, "pce")
+    analyses = []
+    for k, t_s in enumerate(times):
+        indices = result.indices[:, k]
+        analyses.append(Analysis("pce", "", t_s, problem.names, indices,
+                                 sensitivity_percent(indices, "ST"), tuple(labels),
+                                 f"t = {t_s:g} s", runs=len(unit),
+                                 loo_error=result.loo_error[k]))  # fmt: skip
+    rows = aggregate_rows(labels, problem.names, "pce", result.aggregated, result.overall,
+                          len(unit))  # fmt: skip
+    return analyses, rows, ((note,) if note else ())
 
 
 def num_inputs(spec: MotionSpec, robot: SerialRobot) -> int:
@@ -201,7 +289,10 @@ def robot_count(spec: MotionSpec, robot: SerialRobot) -> int:
     from planar_tui.motion.engine import design_methods
 
     d = num_inputs(spec, robot)
-    return sum(uq.design_rows(m, d, spec.samples) for m in design_methods(spec.methods))
+    return sum(
+        spec.pce_robots(d) if m == "pce" else uq.design_rows(m, d, spec.samples)
+        for m in design_methods(spec.methods)
+    )
 
 
 def extra_band_note(spec: MotionSpec) -> str:
@@ -322,8 +413,16 @@ def run_motion(
     the band and the indices (see :mod:`planar_tui.motion.engine`)."""
     import numpy as np
 
+    from planar_tui.csvio import CsvTable
     from planar_tui.motion import engine
-    from planar_tui.motion.results import analyse_times, band_table, indices_table
+    from planar_tui.motion.results import (
+        analyse_times,
+        band_table,
+        index_trajectories,
+        indices_table,
+    )
+    from planar_tui.sensitivity.engine import point_indices
+    from planar_tui.sensitivity.results import AGGREGATED_HEADER
 
     spec, robot, device = job.spec, job.robot, job.prepared
     from planar_tui.sensitivity.engine import build_problem
@@ -334,7 +433,8 @@ def run_motion(
     lengths, masses, inertias = robot.arrays()
     rod = inertias == masses * lengths * lengths / 12.0
     progress.start(len(engine.design_methods(spec.methods)), "sampling")
-    design = engine.build_design(spec.methods, problem.num_vars, spec.samples, spec.seed, progress)
+    design = engine.build_design(spec.methods, problem.num_vars, spec.samples, spec.seed, progress,
+                                 spec.pce_robots(problem.num_vars))  # fmt: skip
     robots, params = engine.make_robots(
         device.device, problem, design, rod, robot,
         np.radians(np.array(spec.theta0_deg, dtype=np.float64)),
@@ -350,23 +450,56 @@ def run_motion(
     names = engine.output_names(robot.n_links, spec.outputs)
     band = np.empty((len(record_steps), 5, len(names)))
     at_outputs = {}
+    pce_rows = design.rows.get("pce")
+    trajectory = {}  # the PCE robots' outputs at every stop
+    index_methods = [m for m in spec.methods if m not in ("montecarlo", "pce")]
+    # Sobol'/eFAST at every stop: point indices, and the variances (aggregation weights)
+    # over independent robots: Sobol's A and B rows, the band's robots for eFAST
+    every: dict[str, dict[int, np.ndarray]] = {m: {} for m in index_methods}
+    variances: dict[str, dict[int, np.ndarray]] = {m: {} for m in index_methods}
+    weight_rows = {m: design.independent_rows(m) if m == "sobol" else band_rows
+                   for m in index_methods}  # fmt: skip
+    failed = {}  # all robots' outputs at a stop where a Sobol'/eFAST robot failed
 
     def on_stop(step: int, angles) -> None:
+        values = engine.take_outputs(lengths_s, angles, spec.outputs)  # every robot's, (S, M)
         if step in records:
-            values = engine.take_outputs(lengths_s[band_rows], angles[band_rows], spec.outputs)
-            band[records[step]] = engine.band_statistics(values)
+            band[records[step]] = engine.band_statistics(values[band_rows])
         if step in at_steps:
-            at_outputs[step] = engine.take_outputs(lengths_s, angles, spec.outputs)
+            at_outputs[step] = values
+        if pce_rows is not None:
+            trajectory[step] = values[pce_rows]
+        for method in index_methods:
+            if not np.isfinite(values[design.rows[method]]).all():
+                failed[step] = values
+            every[method][step] = point_indices(method, values[design.rows[method]],
+                                                problem.num_vars)  # fmt: skip
+            variances[method][step] = values[weight_rows[method]].var(axis=0)
 
     total = design.samples * spec.n_steps
     progress.start(total, "integrating", f"{design.samples} robots on {device.device_note}")
     engine.integrate(robots, spec.step_s, stops, on_stop, progress)
-    index_methods = [m for m in spec.methods if m != "montecarlo"]
-    progress.start(max(1, len(index_methods) * len(at_steps)), "analysis")
+    progress.start(max(1, len(index_methods) * len(at_steps) + (pce_rows is not None)),
+                   "analysis")  # fmt: skip
     labels = engine.output_labels(names)
+    for method in index_methods:
+        check_failed(job, {**failed, **at_outputs}, design, method, problem)
     analyses, notes = analyse_times(
         design, at_outputs, spec, problem, labels, index_methods, progress
     )
+    time_analyses, aggregated = index_trajectories(
+        design, every, variances, analyses, spec, problem, labels
+    )
+    if pce_rows is not None:
+        pce_analyses, pce_aggregated, pce_notes = analyse_trajectory(
+            job, design.unit[pce_rows], trajectory, problem, labels, progress
+        )
+        at_times = {step * spec.step_s for step in at_steps}
+        analyses += [a for a in pce_analyses if a.speed_rad_s in at_times]
+        analyses.sort(key=lambda a: a.speed_rad_s)  # stable: method order within a time
+        time_analyses += pce_analyses
+        aggregated += pce_aggregated
+        notes = (*notes, *pce_notes)
     band_note = extra_band_note(spec)
     if band_note:
         notes = (band_note, *notes)
@@ -380,9 +513,15 @@ def run_motion(
         + f" at t = {t_s[-1]:g} s"
         + (f"; band from {spec.samples} extra Monte-Carlo robots" if band_note else "")
     )
+    extra_tables = {}
+    if analyses:
+        order = {m: i for i, m in enumerate([*index_methods, "pce"])}  # within a time
+        by_time = sorted(time_analyses, key=lambda a: (a.speed_rad_s, order[a.method]))
+        extra_tables["indices"] = indices_table(by_time, names)
+        extra_tables["aggregated"] = CsvTable(AGGREGATED_HEADER, aggregated)
     return MotionResult(
         table=band_table(t_s, band, names),
-        extra_tables={"indices": indices_table(analyses, names)} if analyses else {},
+        extra_tables=extra_tables,
         summary=summary,
         robot_label=robot.label,
         t_s=t_s,
@@ -418,7 +557,7 @@ JOB_KIND = JobKind(
     robot_kind="robot",
     settings=MotionSpec,
     run=run_motion,
-    summary="Monte-Carlo band and Sobol'/eFAST indices of the motion under tolerances",
+    summary="Monte-Carlo band and Sobol'/eFAST/PCE indices of the motion under tolerances",
     render=render_motion,
     extra_outputs=extra_outputs,
     prepare=prepare_motion,
@@ -426,9 +565,10 @@ JOB_KIND = JobKind(
     point_figures=point_figures,
     command=Command(
         "motion",
-        "Monte-Carlo band and Sobol'/eFAST indices of the motion of every "
-        "motion_uncertainty job under length and mass tolerances: band CSV, indices CSV (the "
-        "job's indices_output, or OUTPUT-indices.csv) and a Table-4-shaped table per time.\n\n"
+        "Monte-Carlo band and Sobol'/eFAST/PCE indices of the motion of every "
+        "motion_uncertainty job under length and mass tolerances: band CSV, indices CSV at "
+        "every recorded time (the job's indices_output, or OUTPUT-indices.csv), aggregated "
+        "indices CSV (OUTPUT-aggregated.csv) and a Table-4-shaped table per time of at_s.\n\n"
         "An option that changes a job's setting is appended to the stem of the files the preset "
         "names; a name given with --out is kept.",
         options=(

@@ -2,9 +2,11 @@
 
 Indices come from the sensitivity package's estimators
 (:func:`planar_tui.sensitivity.engine.analyse`: Sobol' with SALib's bootstrap, eFAST) on
-the outputs of each method's robots at each time of ``at_s``. An output that does not vary
-over those robots (a joint that cannot move, a time-0 angle) has no index: it is given 0
-for every input and a note, never a NaN or a warning.
+the outputs of each method's robots at each time of ``at_s``, and their point estimates
+(:func:`~planar_tui.sensitivity.engine.point_indices`) at every other recorded time, with
+the aggregated indices over each trajectory (:func:`index_trajectories`). An output that
+does not vary over those robots (a joint that cannot move, a time-0 angle) has no index:
+it is given 0 for every input (and, at ``at_s``, a note), never a NaN or a warning.
 """
 
 from __future__ import annotations
@@ -15,11 +17,10 @@ from typing import Any
 import numpy as np
 
 from planar_tui.csvio import CsvTable
-from planar_tui.sensitivity.results import INDEX_COLUMNS, grouped, index_rows
+from planar_tui.sensitivity.results import time_indices_table
 
 #: The band's statistics, in CSV column order.
 BAND_STATISTICS = ("mean", "std", "p5", "p50", "p95")
-INDICES_HEADER = ("output", "t_s", *INDEX_COLUMNS)
 
 
 def band_header(names: Sequence[str]) -> tuple[str, ...]:
@@ -36,12 +37,7 @@ def band_table(t_s: np.ndarray, band: np.ndarray, names: Sequence[str]) -> CsvTa
 def indices_table(analyses: Sequence, names: Sequence[str]) -> CsvTable:
     """The indices CSV: one row per time × output × parameter × method (the time is the
     analyses' ``speed_rad_s`` slot, see :func:`analyse_times`)."""
-    rows = [
-        (names[k], float(t_s), *cells)
-        for t_s, group in grouped(analyses, lambda a: a.speed_rad_s).items()
-        for k, cells in index_rows(group)
-    ]
-    return CsvTable(INDICES_HEADER, rows)
+    return time_indices_table(analyses, names)
 
 
 def analyse_times(design, at_outputs, spec, problem, labels, methods, progress):
@@ -81,9 +77,52 @@ def analyse_times(design, at_outputs, spec, problem, labels, methods, progress):
                     percent,
                     tuple(labels),
                     f"t = {t_s:g} s",
+                    runs=outputs.shape[0],
                 )
             )
     return analyses, tuple(notes)
+
+
+def aggregate_rows(
+    labels, names, method: str, aggregated, overall, runs: int
+) -> list[tuple[Any, ...]]:
+    """The aggregated-indices rows of one method: each output's trajectory (``aggregated``
+    (M, 2, D)), then ``all outputs`` (``overall`` (2, D))."""
+    from planar_tui.sensitivity.results import aggregated_rows
+
+    summary = [*zip(labels, aggregated, strict=True), ("all outputs", overall)]
+    return [row for label, (first, total) in summary
+            for row in aggregated_rows(label, names, method, first, total, runs)]  # fmt: skip
+
+
+def index_trajectories(design, every, variances, at_analyses, spec, problem, labels):
+    """``(analyses, rows)`` of the Sobol' and eFAST robots at every stop: ``every``
+    {method: {step: (4, M, D) point indices}} (:func:`~planar_tui.sensitivity.engine.point_indices`),
+    replaced at the ``at_s`` steps by ``at_analyses`` (with their confidence intervals);
+    ``variances`` {method: {step: (M,)}} the outputs' variances over independent uniform
+    robots, the weights of each method's aggregated rows (:func:`aggregate_rows`)."""
+    from planar_tui.sensitivity.aggregate import trajectory_aggregates
+    from planar_tui.sensitivity.results import Analysis, sensitivity_percent
+
+    at = {(a.method, a.speed_rad_s): a for a in at_analyses}
+    analyses, rows = [], []
+    for method, by_step in every.items():
+        runs = len(design.unit[design.rows[method]])
+        steps = sorted(by_step)
+        for step in steps:
+            t_s = step * spec.step_s
+            analysis = at.get((method, t_s))
+            if analysis is None:
+                indices = by_step[step]
+                analysis = Analysis(method, "", t_s, problem.names, indices,
+                                    sensitivity_percent(indices, "ST"), tuple(labels),
+                                    f"t = {t_s:g} s", runs=runs)  # fmt: skip
+            analyses.append(analysis)
+        indices = np.stack([a.indices[[0, 2]] for a in analyses[-len(steps) :]], axis=1)
+        weights = np.stack([variances[method][step] for step in steps])
+        aggregated, overall = trajectory_aggregates(indices, weights)
+        rows += aggregate_rows(labels, problem.names, method, aggregated, overall, runs)
+    return analyses, rows
 
 
 def band_grid(result, row: int = -1):

@@ -177,6 +177,24 @@ def scaled_design(problem: Problem, method: str, samples: int, seed: int) -> np.
     return unit * (problem.upper - problem.lower) + problem.lower
 
 
+def montecarlo_design(num_vars: int, samples: int, seed: int) -> np.ndarray:
+    """N independent uniform points of the unit cube, ``default_rng(seed).random((N, D))``."""
+    return np.random.default_rng(seed).random((samples, num_vars))
+
+
+def independent_rows(method: str, rows: int, num_vars: int) -> np.ndarray:
+    """Indices of the rows of ``method``'s design (``rows`` of them) that are independent
+    uniform points of the cube: a Saltelli design's A and B rows (the first and last of
+    every block of D + 2), every row of a Monte-Carlo or PCE design. eFAST's search
+    curves have none (they correlate the inputs): a ``ValueError``."""
+    if method == "sobol":
+        blocks = np.arange(rows).reshape(-1, num_vars + 2)
+        return np.sort(np.concatenate([blocks[:, 0], blocks[:, -1]]))
+    if method in ("montecarlo", "pce"):
+        return np.arange(rows)
+    raise ValueError(f"{method}'s rows are not independent uniform points")
+
+
 #: Link-rows (design rows × links) per kernel call of :func:`evaluate`: ~10-30 ms.
 EVALUATION_CHUNK_LINK_ROWS = 1 << 20
 
@@ -246,6 +264,29 @@ def analyse(
             progress.wait_for(sobol_bootstrap_counts, n_base, seed)
         return sobol_indices(outputs, num_vars, seed, on_chunk=on_chunk)
     return efast_indices(outputs, num_vars, seed, M_HARMONICS, on_chunk=on_chunk)
+
+
+def point_indices(method: str, outputs: np.ndarray, num_vars: int) -> np.ndarray:
+    """(4, n, D): the S1 and ST of :func:`analyse` (the same numbers) without its bootstrap,
+    their half-widths NaN (not computed); 0 for an output that does not vary over the rows.
+
+    For indices at many times (the motion job's every recorded time), where a bootstrap
+    at each would cost more than the model runs."""
+    from planar_tui.kernels.sensitivity_estimators import sobol_point
+    from planar_tui.sensitivity.estimators import efast_point_indices
+
+    outputs = np.asarray(outputs, dtype=np.float64)
+    result = np.zeros((4, outputs.shape[1], num_vars))
+    result[[1, 3]] = np.nan
+    varying = np.ptp(outputs, axis=0) > 0
+    if varying.any():
+        chosen = np.ascontiguousarray(outputs[:, varying])
+        if method == "sobol":
+            point = sobol_point(chosen, num_vars)
+        else:
+            point = efast_point_indices(chosen, num_vars, M_HARMONICS)
+        result[0, varying], result[2, varying] = point
+    return result
 
 
 def default_efast_samples(sobol_samples: int, num_vars: int) -> int:

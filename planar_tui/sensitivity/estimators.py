@@ -108,6 +108,17 @@ def _fourier_orders(curves, m_harmonics: int):
     return first / variance, 1.0 - rest / variance
 
 
+def efast_point_indices(outputs, num_vars: int, m_harmonics: int = 4) -> np.ndarray:
+    """(2, n_out, D) eFAST S1 and ST of every column of ``outputs`` (``fast_sampler``
+    design: D blocks of N rows), without the bootstrap: the same orders
+    :func:`efast_indices` reports (one FFT per curve, all curves at once)."""
+    outputs = np.asarray(outputs, dtype=np.float64)
+    n_curve = outputs.shape[0] // num_vars
+    curves = np.ascontiguousarray(outputs.reshape(num_vars, n_curve, -1).transpose(0, 2, 1))
+    first, total = _fourier_orders(curves, m_harmonics)  # (D, n_out) each
+    return np.stack([first.T, total.T])
+
+
 def _worker_count() -> int:
     """CPUs this process may run on."""
     try:

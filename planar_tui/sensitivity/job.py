@@ -32,7 +32,9 @@ if TYPE_CHECKING:
     from planar_tui.sensitivity.postures import Posture
     from planar_tui.sensitivity.results import Analysis
 
-METHODS = ("sobol", "efast")
+METHODS = ("sobol", "efast", "pce")
+#: The methods a job runs unless its preset says otherwise (paper A's two).
+DEFAULT_METHODS = ("sobol", "efast")
 PERCENT_OF = ("ST", "S1")
 #: Rough cost of one model run (an inverse dynamics, batched): 0.3 µs + 20 ns per link.
 MODEL_RUN_SECONDS = (3e-7, 2e-8)
@@ -57,6 +59,42 @@ def _read_posture_request(reader: TableReader, name, default, robot, values) -> 
 
 
 per_link(_read_posture_request, "list")  # when it lists angles
+
+
+@dataclass(frozen=True)
+class PathSpec:
+    """A quintic rest-to-rest joint path from the posture to ``to_deg`` in ``duration_s``,
+    sampled at ``steps + 1`` times (:func:`~planar_tui.sensitivity.path.quintic_path`)."""
+
+    to_deg: tuple[float, ...]
+    duration_s: float
+    steps: int
+
+
+#: Most path steps (each is one batched inverse dynamics of every design row).
+MAX_PATH_STEPS = 1000
+
+
+def _read_path(reader: TableReader, name, default, robot, values) -> PathSpec | None:
+    """``{ to_deg = [n angles], duration_s = T, steps = K }`` or absent."""
+    table = reader.raw(name, None)
+    if table is None:
+        return None
+    expected = "{ to_deg = [n angles in degrees], duration_s = T > 0, steps = K >= 1 }"
+    if not isinstance(table, dict):
+        raise reader.error(name, f"is {shown(table)}", expected)
+    inner = TableReader(reader.path, table, reader.key(name), ("to_deg", "duration_s", "steps"))
+    return PathSpec(
+        inner.numbers("to_deg", length=robot.n_links),
+        inner.number("duration_s", positive=True),
+        inner.integer("steps", minimum=1, maximum=MAX_PATH_STEPS),
+    )
+
+
+def _dump_path(path: PathSpec | None) -> Any:
+    if path is None:
+        return None
+    return {"to_deg": list(path.to_deg), "duration_s": path.duration_s, "steps": path.steps}
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -89,6 +127,18 @@ class SensitivitySpec:
     alpha_rad_s2: float = setting(
         number(), default=0.0, type_doc="number", doc="the joint acceleration of every joint"
     )
+    path: PathSpec | None = setting(
+        _read_path,
+        default=None,
+        default_doc="(none)",
+        dump=_dump_path,
+        type_doc="`{ to_deg = [...], duration_s = T, steps = K }`",
+        doc="torques along a quintic rest-to-rest path from the posture to `to_deg` instead "
+        "of one state (speed and acceleration then come from the path): indices of the peak "
+        "absolute torque and the RMS torque of each joint (the table) and of each torque at "
+        "every step "
+        f"(`-path.csv`); at most {MAX_PATH_STEPS} steps",
+    )
     tolerance_length_mm: float = uq.tolerance_setting("mm", "half-width of every length's range")
     tolerance_mass_g: float = uq.tolerance_setting("g", "half-width of every mass's range")
     vary_inertias: bool = setting(
@@ -103,9 +153,10 @@ class SensitivitySpec:
     )
     methods: tuple[str, ...] = uq.methods_setting(
         METHODS,
-        default=METHODS,
-        default_doc="both",
-        doc="estimators (SALib samples; the analysis is jitted and equal to SALib's)",
+        default=DEFAULT_METHODS,
+        default_doc='`["sobol", "efast"]`',
+        doc="estimators (Sobol', eFAST: SALib samples, jitted analysis equal to SALib's; "
+        "pce: polynomial chaos, indices from its coefficients)",
     )
     samples: int = setting(
         integer(minimum=1),
@@ -119,6 +170,14 @@ class SensitivitySpec:
         default_doc="same cost as Sobol'",
         type_doc="integer > 64",
         doc="eFAST N per input (M = 4)",
+    )
+    pce_samples: int | None = uq.pce_samples_setting("model runs")
+    pce_max_loo_error: float = uq.pce_max_loo_setting(
+        "largest accepted PCE leave-one-out error (relative); above it the job fails",
+    )
+    allow_failed_runs: float = uq.allow_failed_runs_setting(
+        "fraction of model runs that may fail (non-finite torques) and be dropped from "
+        "a PCE fit; any failure fails Sobol' and eFAST",
     )
     seed: int = uq.seed_setting("seed of sampling and bootstrap (SALib treats 0 as no seed)")
     percent_of: str = setting(
@@ -156,7 +215,11 @@ class SensitivitySpec:
 
     def sample_keys(self) -> uq.SampleSizes:
         """Each method's sample-count key and value (eFAST's ``None``: matching Sobol')."""
-        return {"sobol": ("samples", self.samples), "efast": ("efast_samples", self.efast_samples)}
+        return {
+            "sobol": ("samples", self.samples),
+            "efast": ("efast_samples", self.efast_samples),
+            "pce": ("pce_samples", self.pce_samples),
+        }
 
     @property
     def tolerance_length_m(self) -> float:
@@ -272,11 +335,17 @@ class SensitivityResult(JobResult):
 
 
 def sample_sizes(spec: SensitivitySpec, num_vars: int) -> dict[str, int]:
-    """N per method: the Sobol' base N, and eFAST's (given, or matching the Sobol' cost)."""
+    """N per method: the Sobol' base N, eFAST's (given, or matching the Sobol' cost), the
+    PCE's model runs (given, or :func:`~planar_tui.sensitivity.pce.default_pce_samples`)."""
     from planar_tui.sensitivity.engine import default_efast_samples
+    from planar_tui.sensitivity.pce import default_pce_samples
 
     efast = spec.efast_samples or default_efast_samples(spec.samples, num_vars)
-    return {"sobol": spec.samples, "efast": efast}
+    return {
+        "sobol": spec.samples,
+        "efast": efast,
+        "pce": spec.pce_samples or default_pce_samples(num_vars),
+    }
 
 
 SensitivityJob = PreparedJob[SensitivitySpec, SerialRobot, SensitivityPrepared]
@@ -293,7 +362,20 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
     """
     import numpy as np
 
-    from planar_tui.sensitivity.engine import analyse, build_problem, evaluate, unit_design
+    from planar_tui.sensitivity.engine import (
+        build_problem,
+        evaluate,
+        montecarlo_design,
+        unit_design,
+    )
+    from planar_tui.sensitivity.path import (
+        path_context,
+        path_labels,
+        path_outputs,
+        path_tables,
+        path_variances,
+    )
+    from planar_tui.sensitivity.pce import pce_unit_design
     from planar_tui.sensitivity.results import Analysis, csv_table, sensitivity_percent
 
     spec, robot, posture = job.spec, job.robot, job.prepared.posture
@@ -304,49 +386,141 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
     progress.start(len(spec.methods), "sampling")
     designs = {}
     for method in spec.methods:
-        designs[method] = unit_design(method, problem.num_vars, sizes[method], spec.seed, progress)
-    states = [(method, speed) for speed in spec.speeds_rad_s for method in spec.methods]
+        if method == "pce":
+            designs[method] = pce_unit_design(problem.num_vars, sizes[method], spec.seed)
+            progress.advance(1.0, method)
+        else:
+            designs[method] = unit_design(
+                method, problem.num_vars, sizes[method], spec.seed, progress
+            )
+    speeds = (0.0,) if spec.path is not None else spec.speeds_rad_s
+    states = [(method, speed) for speed in speeds for method in spec.methods]
     n = robot.n_links
     alpha = np.full(n, spec.alpha_rad_s2)
     theta = np.array(posture.theta_rad)
-    progress.start(len(states), "evaluation")
+    # eFAST's search curves are not independent robots: a path's torque variances (the
+    # aggregation's weights) come from N Monte-Carlo rows of their own
+    variance_outputs = {}
+    if spec.path is not None and "efast" in spec.methods:
+        progress.start(len(states) + 1, "evaluation")
+        unit = montecarlo_design(problem.num_vars, sizes["efast"], spec.seed)
+        variance_outputs["efast"] = path_outputs(problem, unit, robot, theta, spec.path, progress)
+    else:
+        progress.start(len(states), "evaluation")
     outputs = {}
     for method, speed in states:
+        if spec.path is not None:
+            outputs[method, speed] = path_outputs(problem, designs[method], robot, theta,
+                                                  spec.path, progress)  # fmt: skip
+            continue
         omega = np.full(n, speed)
         outputs[method, speed] = evaluate(
             problem, designs[method], robot, theta, omega, alpha, progress,
             f"{method} {speed:g} rad/s",
         )  # fmt: skip
-    variances = {speed: tuple(float(v) for v in outputs[spec.methods[0], speed].var(axis=0, ddof=1))
-                 for speed in spec.speeds_rad_s}  # fmt: skip
+    speed_variances = {} if spec.path is not None else {
+        speed: tuple(float(v) for v in outputs[spec.methods[0], speed].var(axis=0, ddof=1))
+        for speed in spec.speeds_rad_s}  # fmt: skip
     progress.start(len(states), "analysis")
     analyses = []
+    notes = []
+    along: list[Analysis] = []
+    variances = {}  # a path's torque variances over independent uniform runs, and their count
     for method, speed in states:
-        indices = analyse(
-            method, outputs.pop((method, speed)), problem.num_vars, spec.seed, progress,
+        values = outputs.pop((method, speed))
+        if spec.path is not None:
+            extra = variance_outputs.get(method)
+            variances[method] = path_variances(method, values, extra, designs[method], n)
+        indices, loo, note = analyse_outputs(
+            job, problem, method, designs[method], values, progress,
             f"{method} {speed:g} rad/s",
         )  # fmt: skip
+        notes += [f"{method} {speed:g} rad/s: {note}"] if note else []
+        runs = len(designs[method])
+        if spec.path is not None:
+            along.append(Analysis(method, posture.label, 0.0, problem.names, indices,
+                                  sensitivity_percent(indices, "ST"), runs=runs,
+                                  loo_error=loo))  # fmt: skip
+            indices, loo = indices[:, : 2 * n], None if loo is None else loo[: 2 * n]
         percent = sensitivity_percent(indices, spec.percent_of)
-        analyses.append(Analysis(method, posture.label, speed, problem.names, indices, percent))
+        labels = path_labels(n) if spec.path is not None else ()
+        context = "" if spec.path is None else path_context(posture.label, spec.path)
+        analyses.append(
+            Analysis(method, posture.label, speed, problem.names, indices, percent,
+                     labels, context, runs=runs, loo_error=loo)
+        )  # fmt: skip
     label = robot.label
     kappa = posture.condition_number
     sobol_conf = [float(a.indices[[1, 3]].max()) for a in analyses if a.method == "sobol"]
+    loo = [float(a.loo_error.max()) for a in analyses if a.loo_error is not None]
     summary = (
         f"{label} {posture.label}"
         + (f" (κ = {kappa:.6g})" if math.isfinite(kappa) else "")
-        + f", {len(spec.speeds_rad_s)} speed(s), "
+        + (
+            f", {len(spec.speeds_rad_s)} speed(s), "
+            if spec.path is None
+            else f", {path_context(posture.label, spec.path)}, "
+        )
         + ", ".join(f"{m} N={sizes[m]}" for m in spec.methods)
         + (f", max Sobol' CI ±{max(sobol_conf):.4f}" if sobol_conf else "")
+        + (f", max PCE LOO error {max(loo):.2g}" if loo else "")
+        + "".join(f"; {note}" for note in notes)
     )
     return SensitivityResult(
         table=csv_table(label, analyses),
+        extra_tables={} if spec.path is None else path_tables(along, spec.path, n, variances),
         summary=summary,
         robot_label=label,
         posture=posture,
         analyses=analyses,
         samples=sizes,
-        variances_Nm2=variances,
+        variances_Nm2=speed_variances,
     )
+
+
+def path_outputs_files(job: Job[SensitivitySpec, SerialRobot]) -> dict[str, str]:
+    """With a ``path``: its per-step indices beside the job's CSV (``-path.csv``) and the
+    aggregated indices (``-path-aggregated.csv``)."""
+    if job.spec.path is None:
+        return {}
+    stem = job.output[:-4] if job.output.lower().endswith(".csv") else job.output
+    return {"path": f"{stem}-path.csv", "path_aggregated": f"{stem}-path-aggregated.csv"}
+
+
+def analyse_outputs(
+    job: SensitivityJob,
+    problem: Any,
+    method: str,
+    unit: Any,
+    outputs: Any,
+    progress: Progress,
+    detail: str,
+) -> tuple[Any, Any, str]:
+    """(4, n, D) indices of the torques ``outputs`` of the design ``unit``, the PCE's LOO
+    error per torque (``None`` for Sobol', eFAST) and a note on dropped runs (``""``).
+    Failed runs (non-finite torques) and a PCE whose LOO error exceeds
+    ``pce_max_loo_error`` are a :class:`PresetError` naming the key to change."""
+    from planar_tui.sensitivity.engine import analyse
+    from planar_tui.sensitivity.failed_runs import FailedRuns, check_failed_runs
+    from planar_tui.sensitivity.pce import PceError, job_indices
+
+    spec = job.spec
+    torques = [f"tau{i + 1}" for i in range(outputs.shape[1])]
+    try:
+        if method != "pce":
+            check_failed_runs(outputs, unit, problem.names, 0.0, can_drop=False)
+            indices = analyse(method, outputs, problem.num_vars, spec.seed, progress, detail)
+            return indices, None, ""
+        indices, loo, note = progress.wait_for(
+            job_indices, unit, outputs, spec.seed, problem.names, torques,
+            spec.pce_max_loo_error, spec.allow_failed_runs,
+        )  # fmt: skip
+        progress.advance(1.0, detail)
+        return indices, loo, note
+    except (PceError, FailedRuns) as error:
+        raise PresetError(
+            job.preset_path, f"{job.key}.{error.key}", error.problem, error.expected
+        ) from None
 
 
 def render_sensitivity(
@@ -371,26 +545,33 @@ def point_figures(
     from the second on): the dominant parameter by the percent of the job's first method,
     its percent, the lengths' and the masses' shares (sums of their percents), the
     largest Sobol' 95 % half-width of ``S1`` and ``ST`` over the parameters (empty without
-    Sobol') and its variance (N² m²); then the largest variance over the torques."""
+    Sobol') and its variance (N² m², without a ``path``); then the largest variance over
+    the torques. With a ``path`` the outputs are ``tau{j}_peak`` and ``tau{j}_rms``
+    instead."""
     method = job.spec.methods[0]
     figures: dict[str, str | float] = {}
-    for k, speed in enumerate(job.spec.speeds_rad_s, start=1):
+    path = job.spec.path is not None
+    n = job.robot.n_links
+    for k, speed in enumerate((0.0,) if path else job.spec.speeds_rad_s, start=1):
         at = {a.method: a for a in result.analyses if a.speed_rad_s == speed}
         chosen, sobol = at[method], at.get("sobol")
         suffix = "" if k == 1 else f"_w{k}"
         names = chosen.names
         for i, percent in enumerate(chosen.percent, start=1):
             top = int(percent.argmax())
-            figures[f"tau{i}_dominant{suffix}"] = names[top]
-            figures[f"tau{i}_dominant_percent{suffix}"] = float(percent[top])
+            out = f"tau{(i - 1) % n + 1}_{'peak' if i <= n else 'rms'}" if path else f"tau{i}"
+            figures[f"{out}_dominant{suffix}"] = names[top]
+            figures[f"{out}_dominant_percent{suffix}"] = float(percent[top])
             for group, prefix in (("lengths", "l"), ("masses", "m")):
                 share = sum(float(p) for p, name in zip(percent, names, strict=True)
                             if name.startswith(prefix))  # fmt: skip
-                figures[f"tau{i}_{group}_percent{suffix}"] = share
+                figures[f"{out}_{group}_percent{suffix}"] = share
             halfwidth = "" if sobol is None else float(sobol.indices[[1, 3], i - 1].max())
-            figures[f"tau{i}_sobol_halfwidth_max{suffix}"] = halfwidth
-            figures[f"tau{i}_variance_Nm2{suffix}"] = result.variances_Nm2[speed][i - 1]
-        figures[f"tau_variance_max_Nm2{suffix}"] = max(result.variances_Nm2[speed])
+            figures[f"{out}_sobol_halfwidth_max{suffix}"] = halfwidth
+            if not path:
+                figures[f"{out}_variance_Nm2{suffix}"] = result.variances_Nm2[speed][i - 1]
+        if not path:
+            figures[f"tau_variance_max_Nm2{suffix}"] = max(result.variances_Nm2[speed])
     return figures
 
 
@@ -412,9 +593,10 @@ JOB_KIND = JobKind(
     robot_kind="robot",
     settings=SensitivitySpec,
     run=run_sensitivity,
-    summary="Sobol'/eFAST sensitivity of the joint torques to lengths and masses",
+    summary="Sobol'/eFAST/PCE sensitivity of the joint torques to lengths and masses",
     render=render_sensitivity,
     prepare=prepare_sensitivity,
+    extra_outputs=path_outputs_files,
     point_figures=point_figures,
     command=Command(
         "sensitivity",

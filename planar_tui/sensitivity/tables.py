@@ -55,7 +55,7 @@ VIEWS = (
 )
 
 #: Long and one-letter row labels of each method.
-METHOD_LABELS = {"sobol": ("Sobol'", "S"), "efast": ("eFAST", "E")}
+METHOD_LABELS = {"sobol": ("Sobol'", "S"), "efast": ("eFAST", "E"), "pce": ("PCE", "P")}
 
 #: Columns are separated by one blank cell.
 GAP = 1
@@ -215,8 +215,18 @@ def fit_tables(analyses: Sequence, view: View, width: int, percent_of: str = "ST
     notes = []
     if view.heat_scale:
         notes.append(f"bold: largest of each {row}")
-    if short and len(next(iter(groups.values()))) > 1:
-        notes.append("S = Sobol', E = eFAST")
+    shown = {a.method for a in next(iter(groups.values()))}
+    if short and len(shown) > 1:
+        notes.append(", ".join(f"{METHOD_LABELS[m][1]} = {METHOD_LABELS[m][0]}"
+                               for m in METHOD_LABELS if m in shown))  # fmt: skip
+    runs = {a.method: a.runs for a in next(iter(groups.values())) if a.runs}
+    if runs:
+        notes.append("runs: " + ", ".join(f"{METHOD_LABELS.get(m, (m,))[0]} {r}"
+                                          for m, r in runs.items()))  # fmt: skip
+    loo = [a.loo_error.max() for group in groups.values() for a in group
+           if a.loo_error is not None]  # fmt: skip
+    if loo:
+        notes.append(f"PCE leave-one-out error ≤ {max(loo):.2g}")
     if notes:
         parts.append(Text("; ".join(notes), style="dim"))
     return FittedTables(Group(*parts), natural, transposed, short)
