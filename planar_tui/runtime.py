@@ -26,6 +26,9 @@ import os
 import stat
 import sys
 import tempfile
+import threading
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 APP_NAME = "planar-tui"
@@ -47,9 +50,32 @@ def user_cache_folder() -> Path:
     return Path(platformdirs.user_cache_dir(APP_NAME, appauthor=False))
 
 
+#: How many :func:`design_cache_suspended` blocks are running (in any thread).
+_design_cache_suspensions = 0
+_suspensions_lock = threading.Lock()
+
+
+@contextmanager
+def design_cache_suspended() -> Iterator[None]:
+    """No design-cache folder while the block runs, in every thread: the warm-up's example
+    jobs compile kernels and leave nothing in the user's design cache (a job that runs
+    meanwhile draws its designs afresh, the same numbers)."""
+    global _design_cache_suspensions
+    with _suspensions_lock:
+        _design_cache_suspensions += 1
+    try:
+        yield
+    finally:
+        with _suspensions_lock:
+            _design_cache_suspensions -= 1
+
+
 def design_cache_folder() -> Path | None:
     """Folder of the SALib design cache: ``$PLANAR_TUI_CACHE_DIR`` if set (an empty value
-    disables the persistent cache: ``None``), else :func:`user_cache_folder`."""
+    disables the persistent cache: ``None``), else :func:`user_cache_folder`; ``None``
+    while a :func:`design_cache_suspended` block runs."""
+    if _design_cache_suspensions:
+        return None
     configured = os.environ.get(DESIGN_CACHE_ENV_VAR)
     if configured is not None:
         return Path(configured).expanduser() if configured.strip() else None

@@ -36,6 +36,7 @@ from collections.abc import Iterable
 from pathlib import Path
 
 from planar_tui.progress import Progress
+from planar_tui.runtime import design_cache_suspended
 
 STAGE = "compiling kernels (first run only)"
 
@@ -131,7 +132,10 @@ def _run_example(kind: str) -> None:
     with _lock:  # one example at a time: concurrent warm-ups wait, then find the marker
         if marker(kind).exists():
             return
-        with tempfile.TemporaryDirectory(prefix="planar-tui-warmup-") as folder:
+        with (
+            tempfile.TemporaryDirectory(prefix="planar-tui-warmup-") as folder,
+            design_cache_suspended(),
+        ):
             path = Path(folder) / f"warmup-{kind}.toml"
             path.write_text(example(kind) or "", encoding="utf-8")
             for job in load_preset(path).jobs_of(kind):

@@ -23,3 +23,19 @@ def test_the_marker_changes_with_the_sources_place_and_stamps(tmp_path, monkeypa
     os.utime(source, ns=(stat.st_atime_ns, stat.st_mtime_ns + 10**9))  # a checkout
     assert warmup.marker("workspace") not in (here, elsewhere)
     assert warmup.marker("workspace") == warmup.marker("workspace")
+
+
+def test_the_warm_up_example_leaves_nothing_in_the_design_cache(tmp_path, monkeypatch):
+    """The example sensitivity job draws Sobol'/eFAST designs; while it runs (any thread)
+    the design cache is off, so a first run leaves only the user's own jobs' designs."""
+    from planar_tui.sensitivity import design_cache
+
+    folder = design_cache.cache_dir()  # the per-test folder of conftest's autouse fixture
+    assert folder is not None
+    with runtime.design_cache_suspended():
+        assert design_cache.cache_dir() is None
+    assert design_cache.cache_dir() == folder
+    monkeypatch.setattr(warmup, "marker", lambda kind: tmp_path / f"{kind}.marker")
+    warmup._run_example("sensitivity")
+    assert (tmp_path / "sensitivity.marker").exists()  # the example did run
+    assert not folder.exists() or not any(folder.glob("*.npy"))
