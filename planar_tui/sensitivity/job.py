@@ -27,6 +27,7 @@ from planar_tui.schema import (
     shown,
     string,
 )
+from planar_tui.sensitivity.figure_names import figure_names
 
 if TYPE_CHECKING:
     from planar_tui.sensitivity.postures import Posture
@@ -324,8 +325,7 @@ def prepare_sensitivity(job: Job[SensitivitySpec, SerialRobot]) -> SensitivityPr
 class SensitivityResult(JobResult):
     """Indices of one job: one :class:`~planar_tui.sensitivity.results.Analysis` per method
     and speed, the robot's label, the solved posture and N per method; ``variances_Nm2``:
-    per speed, each torque's variance over the first method's design (every row of it is a
-    draw of the uniform inputs: ``Var τ_i ≈ Σ (τ_i − τ̄_i)² / (S − 1)``)."""
+    per speed, each torque's variance over the first method's design (rows: uniform draws)."""
 
     robot_label: str
     posture: Posture
@@ -573,19 +573,6 @@ def point_figures(
         if not path:
             figures[f"tau_variance_max_Nm2{suffix}"] = max(result.variances_Nm2[speed])
     return figures
-
-
-def figure_names(job: Job[Any, Any]) -> tuple[str, ...]:
-    """The columns :func:`point_figures` reports for ``job``, without running it."""
-    groups = ("dominant", "dominant_percent", "lengths_percent", "masses_percent",
-              "sobol_halfwidth_max", "variance_Nm2")  # fmt: skip
-    names: list[str] = []
-    for k in range(1, len(job.spec.speeds_rad_s) + 1):
-        suffix = "" if k == 1 else f"_w{k}"
-        names += [f"tau{i}_{group}{suffix}" for i in range(1, job.robot.n_links + 1)
-                  for group in groups]  # fmt: skip
-        names.append(f"tau_variance_max_Nm2{suffix}")
-    return tuple(names)
 
 
 JOB_KIND = JobKind(
