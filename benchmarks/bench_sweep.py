@@ -14,7 +14,12 @@ Prints three tables, each against a baseline measured in this process:
   share of the wall time the workers spent inside points (100 %: the scheduler never
   left a worker waiting);
 * 1/2/4/8/16 workers, as many of them as this machine has cores (goal ≥ 12× on 16); the
-  rest are reported as not measured.
+  rest are reported as not measured;
+* the optimiser loop's overhead (issue 23): 400 evaluations of the same trivial job by a
+  GA (generations of 20 submitted at once) on the same warm 2-process cluster, with and
+  without its checkpoint (one ``fsync`` per evaluation), ``wall · workers / evaluations −
+  compute`` against the sweep's per-task overhead above (goal: ≤ 20 ms an evaluation).
+  ``--optimise-only`` prints the per-task and optimiser tables alone.
 
 Every sweep's CSV is checked equal to the in-process one in every column but ``seconds``.
 """
@@ -43,6 +48,15 @@ theta_deg = [[10, 20]]
 [[sweep]]
 job = "torques"
 values."theta_deg[1][1]" = {{ from = 0, to = 90, count = {count} }}
+
+[[optimise]]
+job = "torques"
+variables."theta_deg[1][1]" = {{ from = 0, to = 90 }}
+variables."theta_deg[1][2]" = {{ from = 0, to = 90 }}
+maximise = "tau1_abs_max_Nm"
+budget = {count}
+population = 20
+output = "opt.csv"
 """
 
 WORKSPACE = """# workspace points
@@ -75,6 +89,37 @@ def sweep_from(folder: Path, text: str):
     return sweep
 
 
+def optimisation_from(folder: Path, text: str):
+    from planar_tui.optimise.spec import parse_optimisations
+    from planar_tui.presets import load_preset
+
+    path = folder / f"bench-opt-{abs(hash(text))}.toml"
+    path.write_text(text)
+    (optimisation,) = parse_optimisations(load_preset(path))
+    return optimisation
+
+
+def optimiser_overhead(folder: Path, text: str, client, sweep_overhead_ms: float) -> None:
+    """The optimiser loop's table (see the module's docstring)."""
+    from planar_tui.optimise.run import run_optimisation
+
+    optimisation = optimisation_from(folder, text)
+    run_optimisation(optimisation, client=client)  # pymoo imported, the workers warm
+    print(f"\noptimiser loop, {optimisation.budget} trivial evaluations in generations of "
+          f"{optimisation.population} (goal <= 20 ms an evaluation)")  # fmt: skip
+    print("| runner | wall s | compute ms/eval | overhead ms/eval | vs sweep per-task |")
+    print("|---|---:|---:|---:|---:|")
+    print(f"| sweep, 2 worker processes (baseline, above) | | | {sweep_overhead_ms:.3f} | 1.00x |")
+    for label, out_dir in (("2 worker processes", None), ("2 worker processes, checkpoint",
+                                                          folder / "out")):  # fmt: skip
+        wall_s, run = timed(lambda out_dir=out_dir: run_optimisation(
+            optimisation, client=client, out_dir=out_dir))  # fmt: skip
+        compute = statistics.mean(e.outcome.seconds for e in run.evaluations)
+        overhead = 1e3 * (wall_s * 2 / len(run.evaluations) - compute)
+        print(f"| {label} | {wall_s:.3f} | {1e3 * compute:.3f} | {overhead:.3f} | "
+              f"{overhead / sweep_overhead_ms:.2f}x |")  # fmt: skip
+
+
 def timed(function):
     start = time.perf_counter()
     result = function()
@@ -103,6 +148,8 @@ def main() -> None:
     parser.add_argument("--points", type=int, default=64)
     parser.add_argument("--precision", type=float, default=0.1)
     parser.add_argument("--trivial", type=int, default=400)
+    parser.add_argument("--optimise-only", action="store_true",
+                        help="the per-task and optimiser-loop tables only")  # fmt: skip
     args = parser.parse_args()
 
     from distributed import Client
@@ -138,6 +185,10 @@ def main() -> None:
             overhead = 1e3 * (spread_s * 2 / args.trivial - spread_compute)
             print(f"| 2 worker processes | {spread_s:.3f} | {1e3 * spread_compute:.3f} | "
                   f"{overhead:.3f} |")  # fmt: skip
+            optimiser_overhead(folder, TRIVIAL.format(count=args.trivial), client, overhead)
+            if args.optimise_only:
+                print(f"\nload after the runs: {load()}")
+                return
 
             cpu_before = time.process_time()
             one_s, one = timed(lambda: run_sweep(work, workers=1))

@@ -32,6 +32,7 @@ from planar_tui.errors import PresetError
 
 if TYPE_CHECKING:
     from planar_tui.jobkind import Job
+    from planar_tui.optimise.spec import Optimisation
     from planar_tui.presets import Preset
     from planar_tui.sweep.points import Point
     from planar_tui.sweep.spec import Sweep
@@ -48,13 +49,14 @@ class SweepPlan:
 @dataclass(frozen=True)
 class RunPlan:
     """What a run does, in order: ``jobs`` (each with its files, prepared unless the plan
-    was made with ``prepare=False``), then ``sweeps``; ``out_dir`` is where the presets'
+    was made with ``prepare=False``), then ``sweeps``, then ``optimisations``; ``out_dir`` is where the presets'
     names point (``None``: nothing is written, the app's sweeps); ``resume`` continues the
     sweeps from their checkpoints; ``notes`` are what the front end says before it runs
     (a checkpoint of an earlier version of a sweep that is replaced)."""
 
     jobs: tuple[OutputPlan, ...] = ()
     sweeps: tuple[SweepPlan, ...] = ()
+    optimisations: tuple[Optimisation, ...] = ()
     out_dir: Path | None = None
     resume: bool = False
     notes: tuple[str, ...] = ()
@@ -62,11 +64,13 @@ class RunPlan:
     def files(self) -> list[PlannedFile]:
         """Every file the run writes (jobs' CSVs, extra tables and figures; sweeps' CSVs,
         checkpoints, figures and point-file folders)."""
+        from planar_tui.optimise.run import planned_files as optimise_files
         from planar_tui.sweep.service import planned_files
 
         files = plan_files(self.jobs)
         if self.out_dir is not None:
             files += [f for entry in self.sweeps for f in planned_files(entry.sweep, self.out_dir)]
+            files += [f for o in self.optimisations for f in optimise_files(o, self.out_dir)]
         return files
 
 
@@ -118,25 +122,42 @@ def checkpoint_notes(sweeps: Sequence[SweepPlan], out_dir: Path, resume: bool) -
     """Decide each sweep's checkpoint: none, or one to resume (with ``resume``) is fine;
     one of the same sweep without ``resume`` is refused (:class:`PresetError`); one of an
     earlier version of the sweep is replaced, and said in the note returned."""
-    from planar_tui.sweep.checkpoint import checkpoint_path, existing_fingerprint
     from planar_tui.sweep.service import output_path
 
-    notes = []
-    for entry in sweeps:
-        sweep = entry.sweep
-        checkpoint = checkpoint_path(output_path(sweep, out_dir))
-        found = existing_fingerprint(checkpoint)
-        if found is None or (resume and found == sweep.fingerprint()):
-            continue
-        if found == sweep.fingerprint():
-            raise PresetError(
-                checkpoint, "(checkpoint)",
-                f"holds finished points of {sweep.label}, an interrupted run",
-                "--resume to finish it, or delete the file to start over",
-            )  # fmt: skip
-        notes.append(f"note: {checkpoint} belongs to an earlier version of {sweep.label} (the "
-                     "preset changed): it is replaced")  # fmt: skip
-    return notes
+    return [note for entry in sweeps if (note := checkpoint_note(
+        entry.sweep.label, entry.sweep.fingerprint(), output_path(entry.sweep, out_dir),
+        resume)) is not None]  # fmt: skip
+
+
+def checkpoint_note(label: str, fingerprint: str, output: Path, resume: bool) -> str | None:
+    """One study's checkpoint (a sweep's or an optimisation's, ``label``, writing
+    ``output``) decided as :func:`checkpoint_notes` says: ``None``, a note, or refused."""
+    from planar_tui.sweep.checkpoint import checkpoint_path, existing_fingerprint
+
+    checkpoint = checkpoint_path(output)
+    found = existing_fingerprint(checkpoint)
+    if found is None or (resume and found == fingerprint):
+        return None
+    if found == fingerprint:
+        raise PresetError(
+            checkpoint, "(checkpoint)", f"holds finished points of {label}, an interrupted run",
+            "--resume to finish it, or delete the file to start over",
+        )  # fmt: skip
+    return (f"note: {checkpoint} belongs to an earlier version of {label} (the preset "
+            "changed): it is replaced")  # fmt: skip
+
+
+def plan_optimisations(presets: Sequence[Preset], plot: Path | None = None
+                       ) -> list[Optimisation]:  # fmt: skip
+    """The presets' optimisations, checked; ``plot`` replaces their ``plot`` keys as
+    :func:`plan_sweeps`' does."""
+    from planar_tui.optimise.spec import parse_optimisations
+
+    found = [o for preset in presets for o in parse_optimisations(preset)]
+    if plot is None:
+        return found
+    return [dataclasses.replace(o, plot=str(numbered_path(plot, k, len(found)).absolute()))
+            for k, o in enumerate(found, start=1)]  # fmt: skip
 
 
 def plan_run(
@@ -150,6 +171,8 @@ def plan_run(
     sweep_plot: Path | None = None,
     resume: bool = False,
     prepare: bool = True,
+    optimise_of: Sequence[Preset] = (),
+    optimise_plot: Path | None = None,
     workers: int | None = None,
     scheduler: str | None = None,
 ) -> RunPlan:
@@ -161,17 +184,20 @@ def plan_run(
     and checkpoints (:func:`checkpoint_notes`), their point folders
     (:func:`planar_tui.sweep.service.check_point_outputs`), their workers, memory and time
     on ``workers`` (the machine's cores when ``None``) or a ``scheduler``
-    (:func:`planar_tui.sweep.budget.check_sweep_budget`), then (``prepare``) every job
-    prepared by its kind (:func:`planar_tui.batch.prepare_jobs`)."""
+    (:func:`planar_tui.sweep.budget.check_sweep_budget`), the optimisations of
+    ``optimise_of`` (their figures under ``optimise_plot``) and their checkpoints, then
+    (``prepare``) every job prepared by its kind (:func:`planar_tui.batch.prepare_jobs`)."""
     from planar_tui.sweep.budget import check_sweep_budget
     from planar_tui.sweep.service import check_figure, check_point_outputs
 
     check_figures(jobs, plot)
     outputs = plan_outputs(jobs, out_dir, out, extra_out, plot)
     sweeps, sweep_plans = plan_sweeps(sweeps_of, sweep_plot) if sweeps_of else ([], [])
-    plan = RunPlan(tuple(outputs), tuple(sweep_plans), out_dir, resume)
+    optimisations = plan_optimisations(optimise_of, optimise_plot)
+    plan = RunPlan(tuple(outputs), tuple(sweep_plans), tuple(optimisations), out_dir, resume)
     presets: dict[Path, str] = {job.preset_path: job.label for job in jobs}
     presets.update({sweep.preset_path: sweep.label for sweep in sweeps})
+    presets.update({o.preset_path: o.label for o in optimisations})
     check_planned(plan.files(), presets)
     for entry in sweep_plans:
         check_figure(entry.sweep, entry.points)
@@ -179,6 +205,9 @@ def plan_run(
     if sweep_plans:
         check_sweep_budget([(e.sweep, e.points) for e in sweep_plans], workers, scheduler)
     notes = checkpoint_notes(sweep_plans, out_dir, resume)
+    for o in optimisations:
+        note = checkpoint_note(o.label, o.fingerprint(), out_dir / o.output, resume)
+        notes += [note] if note is not None else []
     if prepare and outputs:
         prepared = prepare_jobs(jobs)
         outputs = [dataclasses.replace(o, job=j) for o, j in zip(outputs, prepared, strict=True)]

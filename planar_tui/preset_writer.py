@@ -14,6 +14,7 @@ from typing import Any
 
 import tomli_w
 
+from planar_tui.presets import STUDY_TABLES
 from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
 
 
@@ -73,8 +74,9 @@ def preset_document(preset: Any) -> dict[str, Any]:
     for name, tables in jobs_by_kind.items():
         as_array = len(tables) > 1 or isinstance(raw.get(name), list)
         document[name] = tables if as_array else tables[0]
-    if "sweep" in raw:  # read by planar_tui.sweep; kept as written
-        document["sweep"] = raw["sweep"]
+    for name in STUDY_TABLES:  # read by planar_tui.sweep and .optimise; kept as written
+        if name in raw:
+            document[name] = raw[name]
     return document
 
 

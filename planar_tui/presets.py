@@ -23,6 +23,9 @@ from planar_tui.schema import TableReader, markdown_table, suggest, type_name
 #: The top-level table of sweeps (``[[sweep]]``): accepted here as tables, read and
 #: checked by :mod:`planar_tui.sweep.spec` (a layer above).
 SWEEP_TABLE = "sweep"
+#: The top-level tables of studies over a preset's jobs, accepted here as tables and read
+#: by the layers above: sweeps, and optimisations (:mod:`planar_tui.optimise.spec`).
+STUDY_TABLES = (SWEEP_TABLE, "optimise")
 
 
 @dataclass(frozen=True)
@@ -81,7 +84,7 @@ def parse_toml(path: Path | str, text: str) -> dict[str, Any]:
 def parse_preset(path: Path | str, document: Mapping[str, Any]) -> Preset:
     """Validate a parsed TOML document against the registered robot and job kinds."""
     path = Path(path)
-    top_level = list(ROBOT_KINDS) + list(JOB_KINDS) + [SWEEP_TABLE]
+    top_level = list(ROBOT_KINDS) + list(JOB_KINDS) + list(STUDY_TABLES)
     for name, value in document.items():
         if name not in top_level:
             raise PresetError(
@@ -92,7 +95,7 @@ def parse_preset(path: Path | str, document: Mapping[str, Any]) -> Preset:
             )
         if name in ROBOT_KINDS and not isinstance(value, dict):
             raise PresetError(path, name, f"is {type_name(value)}", f"a table [{name}]")
-        if name in (*JOB_KINDS, SWEEP_TABLE) and not (
+        if name in (*JOB_KINDS, *STUDY_TABLES) and not (
             isinstance(value, dict)
             or (isinstance(value, list) and all(isinstance(v, dict) for v in value))
         ):

@@ -29,6 +29,7 @@ from planar_tui.app.job_runner import (
     JobRunner,
 )
 from planar_tui.app.messages import CancelRequested, DocumentEdited, RunRequested
+from planar_tui.app.optimise_actions import OptimiseActions
 from planar_tui.app.screens.dialogs import HelpScreen, MessageDialog, PathDialog
 from planar_tui.app.sweep_actions import SweepActions
 from planar_tui.app.widgets.panes import JobPane, RobotPane
@@ -41,10 +42,11 @@ __all__ = ["REFRESH_S", "JobFinished", "WorkbenchApp"]
 REFRESH_S = 0.1
 
 
-class WorkbenchApp(SweepActions, FileActions, App):
+class WorkbenchApp(SweepActions, OptimiseActions, FileActions, App):
     """planar-tui's terminal workbench (open, save, export, undo and quit in
     :class:`~planar_tui.app.file_actions.FileActions`, sweeps in
-    :class:`~planar_tui.app.sweep_actions.SweepActions`)."""
+    :class:`~planar_tui.app.sweep_actions.SweepActions`, optimisations in
+    :class:`~planar_tui.app.optimise_actions.OptimiseActions`)."""
 
     CSS_PATH = Path(__file__).with_name("app.tcss")  # absolute: subclasses elsewhere find it
     TITLE = "planar-tui"
@@ -519,6 +521,16 @@ class WorkbenchApp(SweepActions, FileActions, App):
         )
         yield SystemCommand(
             "Show sweep result", "The latest sweep's table and plot", self.action_show_sweep
+        )
+        yield SystemCommand(
+            "Run optimisation",
+            "The preset's [[optimise]] table of the current tab's job, generation by generation",
+            self.action_optimise,
+        )
+        yield SystemCommand(
+            "Show optimisation",
+            "The latest optimisation's evaluations and plot",
+            self.action_show_optimisation,
         )
         yield SystemCommand(
             "Go to error", "Jump to the first problem's field (ctrl+g)", self.action_goto_problem

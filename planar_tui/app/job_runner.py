@@ -81,6 +81,25 @@ class SweepFinished(RunEnded):
         self.run: Any = None
 
 
+class OptimiseFinished(RunEnded):
+    """An optimisation ended: ``run`` (a :class:`~planar_tui.optimise.run.OptimiseRun`),
+    ``cancelled`` (its finished evaluations kept) or not; ``error`` when it could not run."""
+
+    def __init__(self, pane: Any, optimisation: Any):
+        super().__init__(pane)
+        self.optimisation = optimisation
+        self.run: Any = None
+
+
+class GenerationDone(Message):
+    """A generation of the running optimisation is back: ``run`` holds every evaluation so
+    far (the optimise screen redraws)."""
+
+    def __init__(self, run: Any):
+        super().__init__()
+        self.run = run
+
+
 class JobRunner:
     """Runs the app's jobs, one at a time, and reports each outcome to ``app``.
 
@@ -179,6 +198,26 @@ class JobRunner:
                 raise
 
         self._launch(sweep.label, finished, compute)
+
+    def start_optimise(self, pane: Any, optimisation: Any, workers: int = 1) -> None:
+        """Run ``optimisation`` (:func:`planar_tui.optimise.run.run_optimisation`, in this
+        process or on a local cluster of ``workers`` processes), posting
+        :class:`GenerationDone` after each generation and :class:`OptimiseFinished` at the
+        end. Nothing is written (the optimise screen exports the CSVs)."""
+        from planar_tui.optimise.run import run_optimisation
+
+        finished = OptimiseFinished(pane, optimisation)
+
+        def generation(run: Any) -> None:
+            finished.run = run
+            self._app.post_message(GenerationDone(run))
+
+        def compute(stopping: Callable[[], bool]) -> None:
+            progress = Progress(on_update=self._store, should_stop=stopping)
+            finished.run = run_optimisation(optimisation, progress, workers=workers,
+                                            on_generation=generation)  # fmt: skip
+
+        self._launch(optimisation.label, finished, compute)
 
     def _launch(
         self, name: str, finished: RunEnded, compute: Callable[[Callable[[], bool]], None]

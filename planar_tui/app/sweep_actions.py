@@ -4,12 +4,10 @@ outcome opens the sweep screen, whose CSV can be exported."""
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Any
 
 from planar_tui.app.job_runner import SweepFinished
-from planar_tui.app.screens.dialogs import MessageDialog, PathDialog
-from planar_tui.app.widgets.panes import JobPane
+from planar_tui.app.screens.dialogs import MessageDialog
 from planar_tui.errors import PresetError
 
 
@@ -27,12 +25,8 @@ class SweepActions:
         from planar_tui.sweep.paths import allowed_paths
         from planar_tui.sweep.spec import build_sweep
 
-        pane = self.current_pane()
-        if not isinstance(pane, JobPane) or not pane.available():
-            self.notify("A sweep varies a job: choose a job tab first.", severity="warning")
-            return
-        if self.job_running:
-            self.notify("A job is already running (escape cancels it).", severity="warning")
+        pane = self.idle_job_pane("A sweep")  # OptimiseActions'
+        if pane is None:
             return
         try:
             job = pane.current_job()
@@ -112,20 +106,5 @@ class SweepActions:
 
     def export_sweep(self, run: Any) -> None:
         """Ask for a file and write the sweep CSV there (atomically)."""
-        from planar_tui.batch import check_writable
-        from planar_tui.csvio import write_csv_atomic
-
-        def chosen(answer: str | None) -> None:
-            if not answer:
-                return
-            path = Path(answer)
-            try:
-                check_writable(path)
-                write_csv_atomic(path, run.table)
-            except (PresetError, OSError) as error:
-                self.push_screen(MessageDialog("Not exported", str(error)))
-                return
-            self.notify(f"Wrote {path}")
-
-        default = self.output_dir / run.sweep.output
-        self.push_screen(PathDialog("Export the sweep CSV to", str(default)), chosen)
+        self.export_tables("Export the sweep CSV to", self.output_dir / run.sweep.output,
+                           lambda path: [(path, run.table)])  # OptimiseActions'  # fmt: skip

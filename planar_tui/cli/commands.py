@@ -1,5 +1,5 @@
 """The commands of ``planar-tui`` that are not one job kind's: ``tui``, ``run``, ``plot``,
-``sweep``, ``warmup`` and ``presets`` (:data:`COMMANDS`). A new one (``export``, say) is a
+``sweep``, ``optimise``, ``warmup`` and ``presets`` (:data:`COMMANDS`). A new one (``export``, say) is a
 function here and a line in :data:`COMMANDS`; :func:`planar_tui.cli.build_app` adds them
 after the job kinds' own commands. A command turns its options into a
 :class:`~planar_tui.plan.RunPlan` (:func:`planar_tui.plan.plan_run`) and prints
@@ -82,8 +82,8 @@ def run(
     resume: ResumeOption = False,
 ) -> None:
     """Run every job of every preset (or those --job names), files named as the presets
-    say, then the presets' sweeps (not with --job)."""
-    from planar_tui.cli.running import print_notes, run_jobs, run_sweeps
+    say, then the presets' sweeps and optimisations (not with --job)."""
+    from planar_tui.cli.running import print_notes, run_jobs, run_optimisations, run_sweeps
 
     with reported_errors():
         from planar_tui.batch import select_jobs
@@ -98,12 +98,14 @@ def run(
         for preset in loaded:
             check_has_work(preset)
         jobs = select_jobs([job for preset in loaded for job in preset.jobs], job_name)
-        plan = plan_run(jobs, out_dir, plot=plot, sweeps_of=[] if job_name else loaded,
+        studies = [] if job_name else loaded
+        plan = plan_run(jobs, out_dir, plot=plot, sweeps_of=studies, optimise_of=studies,
                         resume=resume, workers=workers, scheduler=scheduler)  # fmt: skip
         print_notes(plan)
         if plan.jobs:
             run_jobs(plan)
         run_sweeps(plan, workers, scheduler)
+        run_optimisations(plan, workers, scheduler)
 
 
 def plot_csv(
@@ -163,7 +165,29 @@ def sweep_command(
     plot: PlotOption = None,
 ) -> None:
     """Run the preset's sweeps ([[sweep]] tables): one CSV each, one row per point."""
-    from planar_tui.cli.running import print_notes, run_sweeps
+    run_studies("sweep", preset, workers, scheduler, resume, out_dir, plot)
+
+
+def optimise_command(
+    preset: PresetArg,
+    workers: WorkersOption = None,
+    scheduler: SchedulerOption = None,
+    resume: ResumeOption = False,
+    out_dir: OutDirOption = Path("."),
+    plot: PlotOption = None,
+) -> None:
+    """Run the preset's optimisations (its optimise tables): a CSV of every evaluation, the
+    optimum or Pareto set re-run at the job's own settings."""
+    run_studies("optimise", preset, workers, scheduler, resume, out_dir, plot)
+
+
+def run_studies(
+    table: str, preset: str, workers: int | None, scheduler: str | None, resume: bool,
+    out_dir: Path, plot: Path | None,
+) -> None:  # fmt: skip
+    """The ``sweep`` and ``optimise`` commands: the preset's ``[[table]]`` tables planned
+    (refused, exit 2, when there is none) and run."""
+    from planar_tui.cli.running import print_notes, run_optimisations, run_sweeps
 
     with reported_errors():
         from planar_tui.plan import plan_run
@@ -173,13 +197,18 @@ def sweep_command(
         check_workers(workers)
         scheduler = scheduler_address(scheduler, workers)
         (loaded,) = load_presets([preset])
-        plan = plan_run([], out_dir, sweeps_of=[loaded], sweep_plot=plot, resume=resume,
+        sweeps = table == "sweep"
+        plan = plan_run([], out_dir, sweeps_of=[loaded] if sweeps else [],
+                        sweep_plot=plot if sweeps else None,
+                        optimise_of=[] if sweeps else [loaded],
+                        optimise_plot=None if sweeps else plot, resume=resume,
                         workers=workers, scheduler=scheduler)  # fmt: skip
-        if not plan.sweeps:
-            raise PresetError(loaded.path, "sweep", "no [[sweep]] table in this preset",
-                              "a [[sweep]] table")  # fmt: skip
+        if not (plan.sweeps if sweeps else plan.optimisations):
+            article = "a" if sweeps else "an"
+            raise PresetError(loaded.path, table, f"no [[{table}]] table in this preset",
+                              f"{article} [[{table}]] table")  # fmt: skip
         print_notes(plan)
-        run_sweeps(plan, workers, scheduler)
+        (run_sweeps if sweeps else run_optimisations)(plan, workers, scheduler)
 
 
 def warmup() -> None:
@@ -244,6 +273,7 @@ COMMANDS: tuple[tuple[str, Callable[..., None]], ...] = (
     ("run", run),
     ("plot", plot_csv),
     ("sweep", sweep_command),
+    ("optimise", optimise_command),
     ("warmup", warmup),
     ("presets", list_presets),
     *interop.COMMANDS,

@@ -84,6 +84,22 @@ def _said(text: str) -> None:
     stderr.print(text, markup=False, highlight=False, soft_wrap=True)
 
 
+def study_client(stack: ExitStack, wanted: bool, workers: int | None, scheduler: str | None
+                 ) -> Any:  # fmt: skip
+    """The Dask client a run's sweeps (or optimisations) share, entered on ``stack``:
+    ``None`` when there are none (``wanted`` false) or they run in this process (one
+    worker, no scheduler); else a local cluster of ``workers`` processes (default: the
+    cores) or the scheduler at ``scheduler``."""
+    from planar_tui.sweep.execute import default_workers
+
+    count = workers or default_workers()
+    if not wanted or (scheduler is None and count <= 1):
+        return None
+    from planar_tui.sweep.execute import DaskTarget, dask_client
+
+    return stack.enter_context(dask_client(DaskTarget(count, scheduler), _said))
+
+
 def run_sweeps(plan: RunPlan, workers: int | None, scheduler: str | None) -> None:
     """Run the plan's sweeps, one progress bar each; a summary line per sweep on stdout.
     Exit code 1 when a point failed (its row says why) or a sweep's file could not be
@@ -93,20 +109,14 @@ def run_sweeps(plan: RunPlan, workers: int | None, scheduler: str | None) -> Non
     sweeps from theirs and computes only what is left."""
     from planar_tui.batch import OutputFailed
     from planar_tui.progress import Progress
-    from planar_tui.sweep.execute import default_workers
     from planar_tui.sweep.service import resume_note, run_sweep
 
-    count = workers or default_workers()
     failed = 0
     unwritten = 0
     done = []
     try:
         with sigterm_as_interrupt(), ExitStack() as stack:
-            client = None
-            if plan.sweeps and (scheduler is not None or count > 1):
-                from planar_tui.sweep.execute import DaskTarget, dask_client
-
-                client = stack.enter_context(dask_client(DaskTarget(count, scheduler), _said))
+            client = study_client(stack, bool(plan.sweeps), workers, scheduler)
             for entry in plan.sweeps:
                 sweep, points = entry.sweep, entry.points
                 with sweep_progress_display(stderr) as bars:
@@ -161,3 +171,61 @@ def run_sweeps(plan: RunPlan, workers: int | None, scheduler: str | None) -> Non
         if unwritten:
             parts.append(f"{unwritten} sweep file(s) not written (see above)")
         raise fail("error: " + "; ".join(parts), ExitCode.RUN_FAILED)
+
+
+def run_optimisations(plan: RunPlan, workers: int | None, scheduler: str | None) -> None:
+    """Run the plan's optimisations, one progress bar each (evaluations, failures), a
+    summary line each on stdout: its evaluations, failures, the optimum or Pareto set
+    re-run at the job's settings and its files. A failed evaluation is counted, not fatal;
+    Ctrl-C exits 130 with every finished evaluation in the checkpoint (``--resume``)."""
+    from planar_tui.batch import OutputFailed
+    from planar_tui.optimise.run import run_optimisation
+    from planar_tui.progress import Progress
+
+    unwritten = 0
+    try:
+        with sigterm_as_interrupt(), ExitStack() as stack:
+            client = study_client(stack, bool(plan.optimisations), workers, scheduler)
+            for opt in plan.optimisations:
+                with sweep_progress_display(stderr) as bars:
+                    task = bars.add_task(opt.label, total=opt.budget, failed=0)
+
+                    def update(state, bars=bars, task=task) -> None:
+                        bars.update(task, completed=state.completed, total=state.total,
+                                    description=state.stage,
+                                    failed=int(state.figures.get("failed", 0)))  # fmt: skip
+
+                    try:
+                        result = run_optimisation(
+                            opt, Progress(on_update=update, should_stop=_INTERRUPTED.is_set),
+                            client=client, out_dir=plan.out_dir, resume=plan.resume,
+                        )  # fmt: skip
+                    except OutputFailed as error:
+                        unwritten += 1
+                        _said(f"error: {opt.label}: {error} (finished evaluations are in its "
+                              "checkpoint)")  # fmt: skip
+                        continue
+                best = result.certified
+                found = "no feasible design" if not best else (
+                    f"optimum: evaluation {best[0][0].number}" if len(opt.objectives) == 1
+                    else f"Pareto set of {len(best)}")  # fmt: skip
+                figure = "" if result.figure is None else f", figure {result.figure}"
+                resumed = f", {result.resumed} from the checkpoint" if result.resumed else ""
+                stdout.print(
+                    f"{opt.label}: {len(result.evaluations)} evaluations in "
+                    f"{result.generations} generations, {result.failed} failed{resumed}; "
+                    f"{found} -> {result.output}, {result.pareto}{figure}",
+                    markup=False, highlight=False, soft_wrap=True,
+                )  # fmt: skip
+                if result.figure_error is not None:
+                    unwritten += 1
+                    _said(f"error: {opt.label}: {result.figure_error}")
+    except Terminated:
+        raise fail("terminated: finished evaluations are in the optimisation's checkpoint "
+                   "(--resume finishes it)", ExitCode.TERMINATED) from None  # fmt: skip
+    except (KeyboardInterrupt, Cancelled):
+        raise fail("interrupted: finished evaluations are in the optimisation's checkpoint "
+                   "(--resume finishes it)", ExitCode.INTERRUPTED) from None  # fmt: skip
+    if unwritten:
+        raise fail(f"error: {unwritten} optimisation file(s) not written (see above)",
+                   ExitCode.RUN_FAILED)  # fmt: skip

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from planar_tui import uq
@@ -27,6 +27,7 @@ from planar_tui.schema import (
     shown,
     string,
 )
+from planar_tui.sensitivity.figure_names import figure_names
 from planar_tui.sensitivity.path import PathSpec
 
 if TYPE_CHECKING:
@@ -314,12 +315,14 @@ def prepare_sensitivity(job: Job[SensitivitySpec, SerialRobot]) -> SensitivityPr
 @dataclass(frozen=True, kw_only=True)
 class SensitivityResult(JobResult):
     """Indices of one job: one :class:`~planar_tui.sensitivity.results.Analysis` per method
-    and speed, the robot's label, the solved posture and N per method."""
+    and speed, the robot's label, the solved posture and N per method; ``variances_Nm2``:
+    per speed, each torque's variance over the first method's design (rows: uniform draws)."""
 
     robot_label: str
     posture: Posture
     analyses: list[Analysis]
     samples: Mapping[str, int]
+    variances_Nm2: Mapping[float, tuple[float, ...]] = field(default_factory=dict)
 
 
 def sample_sizes(spec: SensitivitySpec, num_vars: int) -> dict[str, int]:
@@ -406,6 +409,9 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
             problem, designs[method], robot, theta, omega, alpha, progress,
             f"{method} {speed:g} rad/s",
         )  # fmt: skip
+    speed_variances = {} if spec.path is not None else {
+        speed: tuple(float(v) for v in outputs[spec.methods[0], speed].var(axis=0, ddof=1))
+        for speed in spec.speeds_rad_s}  # fmt: skip
     progress.start(len(states), "analysis")
     analyses = []
     notes = []
@@ -459,6 +465,7 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
         posture=posture,
         analyses=analyses,
         samples=sizes,
+        variances_Nm2=speed_variances,
     )
 
 
@@ -527,9 +534,11 @@ def point_figures(
 ) -> dict[str, str | float]:
     """A sweep row's figures, per torque ``i`` (at each speed, suffixed ``_w2``, ``_w3`` …
     from the second on): the dominant parameter by the percent of the job's first method,
-    its percent, the lengths' and the masses' shares (sums of their percents), and the
+    its percent, the lengths' and the masses' shares (sums of their percents), the
     largest Sobol' 95 % half-width of ``S1`` and ``ST`` over the parameters (empty without
-    Sobol'). With a ``path`` the outputs are ``tau{j}_peak`` and ``tau{j}_rms`` instead."""
+    Sobol') and its variance (N² m², without a ``path``); then the largest variance over
+    the torques. With a ``path`` the outputs are ``tau{j}_peak`` and ``tau{j}_rms``
+    instead."""
     method = job.spec.methods[0]
     figures: dict[str, str | float] = {}
     path = job.spec.path is not None
@@ -550,19 +559,11 @@ def point_figures(
                 figures[f"{out}_{group}_percent{suffix}"] = share
             halfwidth = "" if sobol is None else float(sobol.indices[[1, 3], i - 1].max())
             figures[f"{out}_sobol_halfwidth_max{suffix}"] = halfwidth
+            if not path:
+                figures[f"{out}_variance_Nm2{suffix}"] = result.variances_Nm2[speed][i - 1]
+        if not path:
+            figures[f"tau_variance_max_Nm2{suffix}"] = max(result.variances_Nm2[speed])
     return figures
-
-
-def figure_names(job: Job[Any, Any]) -> tuple[str, ...]:
-    """The columns :func:`point_figures` reports for ``job``, without running it."""
-    groups = ("dominant", "dominant_percent", "lengths_percent", "masses_percent",
-              "sobol_halfwidth_max")  # fmt: skip
-    return tuple(
-        f"tau{i}_{group}{'' if k == 1 else f'_w{k}'}"
-        for k in range(1, len(job.spec.speeds_rad_s) + 1)
-        for i in range(1, job.robot.n_links + 1)
-        for group in groups
-    )
 
 
 JOB_KIND = JobKind(

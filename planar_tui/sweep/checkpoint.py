@@ -181,10 +181,17 @@ class CheckpointWriter:
             write_text_atomic(path, "\n".join(records))
         self._stream = open(path, "a", encoding="utf-8")  # noqa: SIM115 (closed by close())
 
-    def add(self, outcome: PointOutcome) -> None:
-        """Save one finished point (its tables are not kept: they are written already)."""
+    def add(self, outcome: PointOutcome, sync: bool = True) -> None:
+        """Save one finished point (its tables are not kept: they are written already):
+        flushed to the system, and to disk unless ``sync`` is false (a caller that
+        syncs a batch at once, :meth:`sync`: an optimisation's generation)."""
         self._stream.write(_record(outcome) + "\n")
         self._stream.flush()
+        if sync:
+            self.sync()
+
+    def sync(self) -> None:
+        """Write what was added to disk (``fsync``)."""
         os.fsync(self._stream.fileno())
 
     def close(self) -> None:

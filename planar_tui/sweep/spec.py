@@ -98,13 +98,20 @@ class Sweep:
         """A SHA-256 of everything a point's result depends on: the job's and robot's
         tables, the sweep table and planar-tui's version. A checkpoint with another
         fingerprint belongs to another sweep and is never resumed."""
-        text = json.dumps(
-            {"version": __version__, "kind": self.job.kind, "key": self.job.key,
-             "tables": self.tables,
-             "sweep": {k: v for k, v in self.source.items() if k != "plot"}},
-            sort_keys=True, default=repr,
-        )  # fmt: skip
-        return hashlib.sha256(text.encode()).hexdigest()
+        return study_fingerprint(self.job, self.tables, TABLE, self.source)
+
+
+def study_fingerprint(job: Job, tables: Mapping[str, Any], table: str,
+                      source: Mapping[str, Any]) -> str:  # fmt: skip
+    """A SHA-256 of what the points of a study (a ``table``, e.g. ``sweep``, written as
+    ``source``) over ``job`` depend on: the job's and robot's raw ``tables``, the study's
+    table but its ``plot`` and planar-tui's version."""
+    text = json.dumps(
+        {"version": __version__, "kind": job.kind, "key": job.key, "tables": tables,
+         table: {k: v for k, v in source.items() if k != "plot"}},
+        sort_keys=True, default=repr,
+    )  # fmt: skip
+    return hashlib.sha256(text.encode()).hexdigest()
 
 
 def plain_toml(value: Any) -> Any:
@@ -151,6 +158,47 @@ def find_job(preset: Preset, text: Any, reader: TableReader) -> Job:
         if job.kind == kind and job.index == index:
             return job
     raise reader.error("job", f"is {shown(text)}, no such job", expected + suggest(text, valid))
+
+
+def job_context(preset: Preset, reader: TableReader) -> tuple[Job, dict, dict]:
+    """The job a table's ``job`` key names, the raw TOML tables its points start from
+    (``""``: the job's own; the robot kind's name: its robot's) and their parsed values
+    as TOML (see :class:`Sweep`): what a sweep, or an optimisation, varies."""
+    job = find_job(preset, reader.raw("job", expected="a job of the preset, e.g. workspace[2]"),
+                   reader)  # fmt: skip
+    kind = JOB_KINDS[job.kind]
+    robot_kind = kind.robot_kind
+    own, robot = _job_tables(preset, job)
+    tables = {"": own, robot_kind: robot}
+    defaults = {"": kind.dump(job.spec), robot_kind: ROBOT_KINDS[robot_kind].dump(job.robot)}
+    return job, tables, defaults
+
+
+def read_key_path(
+    reader: TableReader,
+    job: Job,
+    tables: Mapping[str, Mapping[str, Any]],
+    defaults: Mapping[str, Mapping[str, Any]],
+    key: str,
+    text: str,
+) -> KeyPath:
+    """The key path ``text`` of ``job`` (written under the table's ``key``), checked: a
+    key of the job or of its robot, an index within the list it names."""
+    kind = JOB_KINDS[job.kind]
+    robot_kind = kind.robot_kind
+
+    def error(problem: str, expected: str) -> PresetError:
+        return reader.error(key, problem, expected)
+
+    parsed = parse_key_path(text, kind.keys, robot_kind, ROBOT_KINDS[robot_kind].keys, error)
+    if parsed.indices:
+        base = current_value(KeyPath(text, parsed.table, parsed.key), tables)
+        if base is None:
+            base = current_value(KeyPath(text, parsed.table, parsed.key), defaults)
+        problem = index_problem(parsed, base)
+        if problem is not None:
+            raise error(problem, "an index within the list, counted from 1")
+    return parsed
 
 
 def _values_count(reader: TableReader, name: str, entry: Any) -> int:
@@ -209,27 +257,10 @@ def parse_sweep_table(preset: Preset, table: Any, name: str, number: int = 1) ->
         raise PresetError(path, name, f"is {type_name(table)}", "a table [[sweep]]")
     table = plain_toml(table)
     reader = TableReader(path, table, name, SWEEP_KEYS)
-    job = find_job(preset, reader.raw("job", expected="a job of the preset, e.g. workspace[2]"),
-                   reader)  # fmt: skip
-    kind = JOB_KINDS[job.kind]
-    robot_kind = kind.robot_kind
-    own, robot = _job_tables(preset, job)
-    tables = {"": own, robot_kind: robot}
-    defaults = {"": kind.dump(job.spec), robot_kind: ROBOT_KINDS[robot_kind].dump(job.robot)}
+    job, tables, defaults = job_context(preset, reader)
 
     def key_path(group: str, text: str) -> KeyPath:
-        def error(problem: str, expected: str) -> PresetError:
-            return reader.error(f"{group}.{_quoted(text)}", problem, expected)
-
-        parsed = parse_key_path(text, kind.keys, robot_kind, ROBOT_KINDS[robot_kind].keys, error)
-        if parsed.indices:
-            base = current_value(KeyPath(text, parsed.table, parsed.key), tables)
-            if base is None:
-                base = current_value(KeyPath(text, parsed.table, parsed.key), defaults)
-            problem = index_problem(parsed, base)
-            if problem is not None:
-                raise error(problem, "an index within the list, counted from 1")
-        return parsed
+        return read_key_path(reader, job, tables, defaults, f"{group}.{_quoted(text)}", text)
 
     has_values, has_ranges = reader.has("values"), reader.has("ranges")
     if has_values == has_ranges:

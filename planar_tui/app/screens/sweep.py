@@ -182,22 +182,27 @@ class SweepScreen(Screen[None]):
         self.run = run
         self.export = export
         self.table = run.table
-        self.paths = [path.text for path in run.sweep.paths]
+        self.paths = self.axes(run)
         self.figures = numeric_figures(self.table, self.paths)
         #: The varied keys whose values are numbers: the axes here (a text or list-valued
         #: key is one series per value; the figure file, ctrl+l, puts it on an axis).
         self.plottable_paths = [path for path in self.paths if is_numeric(self.table, path)]
 
-    def compose(self) -> ComposeResult:
+    def axes(self, run: Any) -> list[str]:
+        """The columns a figure is plotted against (the varied keys)."""
+        return [path.text for path in run.sweep.paths]
+
+    def title_text(self) -> str:
+        """The screen's first line: what ran and the keys to press."""
         run = self.run
         failed = f", {run.failed} failed" if run.failed else ""
         done = f"{len(run.outcomes)} points"
         if run.cancelled:
             done = f"cancelled: {len(run.outcomes)} of {len(run.points)} points run"
-        yield Static(
-            f"{run.sweep.label}: {done}{failed}  (escape closes; ctrl+e: CSV, ctrl+l: figure)",
-            id="sweep-title", markup=False,
-        )  # fmt: skip
+        return f"{run.sweep.label}: {done}{failed}  (escape closes; ctrl+e: CSV, ctrl+l: figure)"
+
+    def compose(self) -> ComposeResult:
+        yield Static(self.title_text(), id="sweep-title", markup=False)
         yield DataTable(id="sweep-table", zebra_stripes=True)
         with Horizontal(classes="sweep-pickers"):
             # no value given when there is no option (a sweep over text keys only)
@@ -215,12 +220,17 @@ class SweepScreen(Screen[None]):
         yield Static("", id="sweep-heat", markup=False)
 
     def on_mount(self) -> None:
+        self.query_one(DataTable).add_columns(*self.table.header)
+        self.fill_table()
+        self.draw()
+
+    def fill_table(self) -> None:
+        """Show the rows of :attr:`table` (at most :data:`MAX_TABLE_ROWS`)."""
         table = self.query_one(DataTable)
-        table.add_columns(*self.table.header)
+        table.clear()
         for row in list(self.table.rows)[:MAX_TABLE_ROWS]:
             table.add_row(*(f"{cell:.6g}" if isinstance(cell, float) else str(cell)
                             for cell in row))  # fmt: skip
-        self.draw()
 
     def on_select_changed(self, event: Select.Changed) -> None:
         event.stop()
