@@ -101,6 +101,7 @@ def test_local_workers_share_the_cores_among_their_kernels(cluster):
     from planar_tui.sweep.execute import default_workers
 
     _, client = cluster
+    client.wait_for_workers(2, timeout=60)  # a worker killed by a test before is replaced
     threads = client.run(_kernel_threads)
     assert sorted(threads.values()) == [max(1, default_workers() // 2)] * 2
 

@@ -272,7 +272,11 @@ def run_on_dask(
 
     pending = iter(tasks)
     futures: dict[Any, PointTask] = {}
-    completed = as_completed()
+    # on ``client``'s event loop: without ``loop`` it tracks the futures on the default
+    # client's (another client current in this thread, say), and a result lost with a
+    # killed worker then fails as "bound to a different event loop" instead of being
+    # computed again
+    completed = as_completed(loop=client.loop)
 
     def submit_next() -> bool:
         """Submit the next task (handing over outcomes met on the way); False when none
