@@ -38,8 +38,17 @@ import numba
 import numpy as np
 
 from ._jit import kernel
+from .interval import down, up
 from .workspace3rrr import leg_enclosure, split_xy_widest
-from .workspace_arc import LANES, classify_box
+from .workspace_arc import LANES
+from .workspace_tolerance import (
+    MODE,
+    NOMINAL,
+    TOL_COLUMNS,
+    box_growth,
+    distal_spread,
+    tolerant_classify_box,
+)
 
 ROW_COLUMNS = 13
 #: Leg state beside the signs -1, 0, +1.
@@ -54,16 +63,24 @@ BOUNDARY = 1
 INSIDE = 2
 SPLIT = 3
 
+#: The ``tol`` of a nominal paving (:mod:`kernels.workspace_tolerance`).
+NO_TOLERANCE = np.zeros(TOL_COLUMNS)
+
 #: Deepest θ bisection of one leg search (pieces of 2**-MAX_DEPTH of the hull).
 MAX_DEPTH = 40
 
 
 @kernel
-def leg_search(form, leg, xlo, xhi, ylo, yhi, tlo, thi, sign, min_width, p):
+def leg_search(form, leg, xlo, xhi, ylo, yhi, tlo, thi, sign, min_width, p, grow, spread):
     """Decide leg ``leg`` over the (x, y) box from its hull ``[tlo, thi]`` and inherited sign.
 
     Returns ``(outcome, new_tlo, new_thi, new_sign, evaluations)`` with ``outcome`` one of
     ``OUT``, ``UNDECIDED`` (then the new hull and sign) or ``PROVED`` (module docstring).
+
+    With tolerances (:mod:`kernels.workspace_tolerance`) every piece's enclosure covers
+    every robot within them: the box grown by ``grow`` per side and the distal spread
+    ``spread = (lo, hi)`` added, so a proved leg closes for every robot and a refuted one
+    for none (0 and (0, 0): the nominal robot).
     """
     width = thi - tlo
     hull_lo = math.inf
@@ -75,7 +92,12 @@ def leg_search(form, leg, xlo, xhi, ylo, yhi, tlo, thi, sign, min_width, p):
         step = width * 2.0**-depth
         lo = tlo + index * step
         hi = thi if index + 1 == 1 << depth else tlo + (index + 1) * step
-        flo, fhi = leg_enclosure(form, leg, xlo, xhi, ylo, yhi, lo, hi, p)
+        flo, fhi = leg_enclosure(
+            form, leg, xlo - grow, xhi + grow, ylo - grow, yhi + grow, lo, hi, p
+        )
+        if spread[1] != 0.0:
+            flo = down(flo + spread[0])
+            fhi = up(fhi + spread[1])
         evaluations += 1
         piece_sign = 1.0 if flo > 0.0 else (-1.0 if fhi < 0.0 else 0.0)
         if piece_sign != 0.0:
@@ -103,11 +125,17 @@ def leg_search(form, leg, xlo, xhi, ylo, yhi, tlo, thi, sign, min_width, p):
 
 
 @kernel
-def decide_box(form, p, precision, angle_scale, rows, r, children, c):
+def decide_box(form, p, precision, angle_scale, rows, r, children, c, limits, tol):
     """Decide row ``r`` of ``rows``: write its updated row to ``children[c]`` (kept or
     first child) and, when split, the second half to ``children[c + 1]``.
 
     Returns ``(outcome, evaluations)``: ``OUT``, ``BOUNDARY``, ``INSIDE`` or ``SPLIT``.
+
+    With non-zero tolerances (``tol``'s mode not ``NOMINAL``) the legs are searched for
+    every robot (:func:`leg_search`); a box they leave undecided is then labelled by
+    :func:`kernels.workspace_tolerance.tolerant_classify_box` (with ``limits``), whose
+    single-robot certificates decide the mode's other side (``all``: outside, ``some``:
+    inside) before the box is kept or split.
     """
     for j in range(ROW_COLUMNS):
         children[c, j] = rows[r, j]
@@ -120,14 +148,17 @@ def decide_box(form, p, precision, angle_scale, rows, r, children, c):
     min_width = max(wx, wy) / angle_scale
     evaluations = 0
     inside = True
+    grow = box_growth(tol)
+    spread = distal_spread(p[1], tol)
     for leg in range(3):
         col = 4 + 3 * leg
         state = rows[r, col + 2]
         if state == LEG_PROVED:
             continue
         outcome, tlo, thi, sign, n = leg_search(
-            form, leg, xlo, xhi, ylo, yhi, rows[r, col], rows[r, col + 1], state, min_width, p
-        )
+            form, leg, xlo, xhi, ylo, yhi, rows[r, col], rows[r, col + 1], state, min_width, p,
+            grow, spread,
+        )  # fmt: skip
         evaluations += n
         if outcome == OUT:
             return OUT, evaluations
@@ -140,6 +171,10 @@ def decide_box(form, p, precision, angle_scale, rows, r, children, c):
             children[c, col + 2] = sign
     if inside:
         return INSIDE, evaluations
+    if tol[MODE] != NOMINAL and (grow > 0.0 or spread[1] != 0.0):
+        label = tolerant_classify_box(xlo, xhi, ylo, yhi, p, limits, tol)
+        if label in (OUT, INSIDE):
+            return label, evaluations
     if wx <= precision and wy <= precision:
         return BOUNDARY, evaluations
     split_xy_widest(children, c, c + 1, ROW_COLUMNS)
@@ -147,33 +182,40 @@ def decide_box(form, p, precision, angle_scale, rows, r, children, c):
 
 
 @kernel(parallel=True)
-def pave_level(form, p, precision, angle_scale, rows, start, stop, children, outcome, evaluations):
+def pave_level(
+    form, p, precision, angle_scale, rows, start, stop, children, outcome, evaluations, limits,
+    tol,
+):  # fmt: skip
     """Decide rows ``start .. stop - 1`` of a frontier in parallel.
 
     Row ``start + i`` writes ``children[2 i]`` (the kept box or the first half) and
     ``children[2 i + 1]`` (the second half), ``outcome[i]`` and ``evaluations[i]`` (interval
-    evaluations). Boxes go to ``LANES`` interleaved lanes run by ``prange``.
+    evaluations). Boxes go to ``LANES`` interleaved lanes run by ``prange``. ``limits``
+    and ``tol``: :func:`decide_box`'s (``NO_TOLERANCE``: the nominal robot).
     """
     n = stop - start
     lanes = min(LANES, n)
     for lane in numba.prange(lanes):
         for i in range(lane, n, lanes):
             code, count = decide_box(
-                form, p, precision, angle_scale, rows, start + i, children, 2 * i
+                form, p, precision, angle_scale, rows, start + i, children, 2 * i, limits, tol
             )
             outcome[i] = code
             evaluations[i] = count
 
 
 @kernel(parallel=True)
-def classify_boxes_parallel(boxes, p, limits, out):
-    """:func:`kernels.workspace_arc.classify_box` (the exact leg-wise test) for every row
-    ``x_lo, x_hi, y_lo, y_hi`` of ``boxes``, rows spread over the threads."""
+def classify_boxes_parallel(boxes, p, limits, out, tol):
+    """:func:`kernels.workspace_arc.classify_box` (the exact leg-wise test; with
+    tolerances in ``tol``, :func:`kernels.workspace_tolerance.tolerant_classify_box`) for
+    every row ``x_lo, x_hi, y_lo, y_hi`` of ``boxes``, rows spread over the threads."""
     n = boxes.shape[0]
     lanes = min(LANES, n)
     for lane in numba.prange(lanes):
         for r in range(lane, n, lanes):
-            out[r] = classify_box(boxes[r, 0], boxes[r, 1], boxes[r, 2], boxes[r, 3], p, limits)
+            out[r] = tolerant_classify_box(
+                boxes[r, 0], boxes[r, 1], boxes[r, 2], boxes[r, 3], p, limits, tol
+            )
 
 
 def root_row(box, limits_rad):

@@ -236,9 +236,62 @@ def from_result(job: Any, result: Any) -> Any:
     outcome = result.outcome
     if outcome is None:
         return from_summary_table(result.table, job.label)
+    if getattr(result, "companions", None):
+        return draw_tolerance(job, result)
     boxes = np.asarray(outcome.boxes)[:, :4] if len(outcome.boxes) else np.zeros((0, 4))
     inside = np.asarray(outcome.status) == INSIDE
     if isinstance(job.spec.orientation_deg, tuple):  # a range of φ: no single exact boundary
         return draw(boxes, inside, map_title(job, outcome), summary=result.summary)
     return draw(boxes, inside, map_title(job, outcome), job.robot, job.spec, result.summary,
                 getattr(result, "singularity", None))  # fmt: skip
+
+
+#: Tolerance figure layers, drawn bottom up: which outcome, which boxes, colour, label.
+TOLERANCE_LAYERS = (
+    ("some", "kept", "#c6dbef", 'some robot ("some", kept)'),
+    ("nominal", "kept", "#6baed6", "nominal robot (kept)"),
+    ("all", "kept", "#fd8d3c", 'every robot ("all", boundary)'),
+    ("all", "inside", "#08306b", 'every robot ("all", proved)'),
+)
+
+
+def draw_tolerance(job: Any, result: Any) -> Any:
+    """A tolerance-certified job: the "some", nominal and robust ("all") workspaces
+    overlaid, each bracket in the legend, and the nominal exact boundary."""
+    import textwrap
+
+    import numpy as np
+    from matplotlib.collections import PolyCollection
+
+    from planar_tui.workspace.compute import INSIDE
+    from planar_tui.workspace.geometry import workspace_polygon
+    from planar_tui.workspace.job import map_title
+
+    outcomes = {job.spec.tolerance_mode: result.outcome, **result.companions}
+    fig = new_figure(9.0, 5.5)
+    ax = fig.add_subplot()
+    for name, which, colour, label in TOLERANCE_LAYERS:
+        o = outcomes[name]
+        b = o.boxes[o.status == INSIDE] if which == "inside" else o.boxes
+        verts = np.stack([b[:, [0, 2]], b[:, [1, 2]], b[:, [1, 3]], b[:, [0, 3]]], axis=1)
+        area = o.area_inside_cm2 if which == "inside" else o.area_kept_cm2
+        ax.add_collection(PolyCollection(
+            verts, facecolors=colour, edgecolors="none", gid=f"{name}-{which}",
+            label=f"{label}: {area:.5g} cm2", rasterized=len(b) > RASTER_ABOVE,
+        ))  # fmt: skip
+    polygon = workspace_polygon(job.robot, job.spec.limits_rad, job.spec.orientation_rad,
+                                BOUNDARY_SEGMENTS, False)  # fmt: skip
+    for k, ring in enumerate(_polygon_rings(polygon)):
+        ax.plot(ring[:, 0], ring[:, 1], color="k", lw=0.8, gid="exact",
+                label="nominal exact boundary" if k == 0 else None)  # fmt: skip
+    every = np.concatenate([o.boxes for o in outcomes.values()])
+    if len(every):
+        ax.set_xlim(every[:, 0].min(), every[:, 1].max())
+        ax.set_ylim(every[:, 2].min(), every[:, 3].max())
+    ax.set(xlabel="x (cm)", ylabel="y (cm)", aspect="equal",
+           title=textwrap.fill(result.summary, 72))  # fmt: skip
+    ax.title.set_fontsize("small")
+    ax.grid(alpha=0.3)
+    ax.legend(loc="upper right", fontsize="small")
+    fig.suptitle(map_title(job, result.outcome))
+    return fig

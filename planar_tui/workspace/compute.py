@@ -42,6 +42,7 @@ from planar_tui.jobkind import Job, option_or_key
 from planar_tui.progress import Progress, read_only
 from planar_tui.workspace.forms import INTERVAL_FORMS, kernel_form
 from planar_tui.workspace.robot import Robot3RRR
+from planar_tui.workspace.tolerance import tolerant_vector
 
 if TYPE_CHECKING:
     from planar_tui.workspace.geometry import GeometricArea
@@ -247,13 +248,20 @@ def _interval_stage(form_code, p, spec, box, budget) -> np.ndarray:
             stack = grow(stack)
 
 
-def _arc_stage(p, limits, precision, seeds, budget, inside_cm2=0.0):
+def _arc_stage(p, limits, precision, seeds, budget, inside_cm2=0.0, tol=None):
     """2-D paving with the exact leg-wise test from the (x, y) boxes ``seeds`` (disjoint);
-    ``inside_cm2`` is the area already proved inside, for the progress bracket."""
+    ``inside_cm2`` is the area already proved inside, for the progress bracket; ``tol``:
+    the tolerance-certified test (:mod:`planar_tui.workspace.tolerance`)."""
     from planar_tui.kernels.workspace_arc import arc_level
+    from planar_tui.kernels.workspace_tolerance import tolerant_arc_level
 
     def decide(rows, start, stop, children, outcome):
-        arc_level(p, limits, precision, LEAF_GRID, rows, start, stop, children, outcome)
+        if tol is None:
+            arc_level(p, limits, precision, LEAF_GRID, rows, start, stop, children, outcome)
+        else:
+            tolerant_arc_level(
+                p, limits, tol, precision, LEAF_GRID, rows, start, stop, children, outcome
+            )
 
     return pave_in_levels(seeds, budget, decide, inside_cm2)
 
@@ -430,21 +438,27 @@ def compute_workspace(robot: Robot3RRR, spec, budget: BoxBudget) -> WorkspaceOut
         )  # fmt: skip
 
     report_estimate(robot, spec, budget.progress)
+    tol = tolerant_vector(spec)  # None: the nominal robot
     interval_form = spec.form in INTERVAL_FORMS
     legwise = interval_form and spec.strategy == "legwise"
     xy_boxes = 0
     budget.progress.start(1.0, f"{spec.form} {'leg-wise paving' if legwise else 'bisection'}")
     if spec.form == "arc-distance":
-        boxes, status = _arc_stage(p, limits, spec.precision_cm, np.array([extent]), budget)
+        boxes, status = _arc_stage(
+            p, limits, spec.precision_cm, np.array([extent]), budget, tol=tol
+        )
     else:
         code = kernel_form(spec.form, spec.expanded)
         if legwise:
-            from planar_tui.kernels.workspace_legwise import classify_boxes_parallel
+            from planar_tui.kernels.workspace_legwise import (
+                NO_TOLERANCE,
+                classify_boxes_parallel,
+            )
             from planar_tui.workspace.legwise import legwise_stage
 
-            boxes, proved, xy_boxes = legwise_stage(code, p, spec, box, budget)
+            boxes, proved, xy_boxes = legwise_stage(code, p, spec, box, budget, tol)
             status = np.zeros(len(boxes), dtype=np.int64)
-            classify_boxes_parallel(boxes, p, limits, status)
+            classify_boxes_parallel(boxes, p, limits, status, NO_TOLERANCE if tol is None else tol)
         else:
             boxes = unique_rows(_interval_stage(code, p, spec, box, budget))
             proved = np.zeros(len(boxes), dtype=np.int64)
@@ -453,7 +467,7 @@ def compute_workspace(robot: Robot3RRR, spec, budget: BoxBudget) -> WorkspaceOut
         status = np.where((status == INSIDE) | (proved == INSIDE), INSIDE, BOUNDARY)
 
     def refine(seeds, inside_cm2):
-        return _arc_stage(p, limits, spec.refine_precision_cm, seeds, budget, inside_cm2)
+        return _arc_stage(p, limits, spec.refine_precision_cm, seeds, budget, inside_cm2, tol)
 
     return finished_outcome(
         spec, boxes, status, refine, budget, geometric, started, extent,

@@ -50,6 +50,13 @@ from planar_tui.workspace.singularity import (
     read_elbow,
     resolve_circle,
 )
+from planar_tui.workspace.tolerance import (
+    TOLERANCE_KEYS_3RRR,
+    check_tolerance,
+    tolerance_fields,
+    tolerance_of,
+)
+from planar_tui.workspace.tolerance import describe as describe_tolerance
 
 if TYPE_CHECKING:
     from planar_tui.workspace.compute import WorkspaceOutcome
@@ -245,6 +252,10 @@ class WorkspaceSpec:
         default_doc="`precision_cm`",
         doc="bisection precision of the singularity paving",
     )
+    tolerance_cm: float | None
+    tolerances_cm: tuple[tuple[str, float], ...] | None
+    tolerance_mode: str | None
+    tolerance_cm, tolerances_cm, tolerance_mode = tolerance_fields(TOLERANCE_KEYS_3RRR)
     plot: str | None = plot_setting()
 
     @staticmethod
@@ -253,6 +264,7 @@ class WorkspaceSpec:
         precision cannot exceed the precision."""
         check_orientation(values, reader)
         check_singularity(values, reader)
+        check_tolerance(values, reader, TOLERANCE_KEYS_3RRR)
         form = values["form"]
         if values["expanded"] and form != "natural":
             raise reader.error("expanded", f"is true with form = {form!r}", 'form = "natural"')
@@ -304,6 +316,8 @@ class WorkspaceResult(JobResult):
     outcome: WorkspaceOutcome
     #: :class:`~planar_tui.workspace.singularity.SingularityOutcome` with ``singularities``.
     singularity: SingularityOutcome | None = None
+    #: With a tolerance: the nominal and the other mode's outcomes (map and figure).
+    companions: dict[str, WorkspaceOutcome] | None = None
 
 
 WorkspaceJob = Job[WorkspaceSpec, Robot3RRR]
@@ -348,10 +362,17 @@ def run_workspace(
         compute_singularities,
         singularity_columns,
     )
+    from planar_tui.workspace.tolerance import (
+        TOLERANCE_HEADER,
+        companions_text,
+        tolerance_columns,
+        tolerance_companions,
+    )
 
     job, circle = ready.job, ready.prepared.circle
     budget = BoxBudget(job, progress)
     singular = None
+    tolerance = tolerance_of(job.spec)
     if isinstance(job.spec.orientation_deg, tuple):
         outcome = compute_orientation_workspace(job.robot, job.spec, budget)
     else:
@@ -360,19 +381,28 @@ def run_workspace(
             singular = compute_singularities(job, circle, outcome.extent_cm, budget)
     # the new columns go before the last one, the (not reproducible) wall time
     base = outcome.summary_row()
-    row = [*base[:-1], *orientation_columns(job.spec), *singularity_columns(singular), base[-1]]
-    header = (*SUMMARY_HEADER[:-1], *ORIENTATION_HEADER, *HEADER, SUMMARY_HEADER[-1])
+    row = [*base[:-1], *orientation_columns(job.spec), *singularity_columns(singular)]
+    header = (*SUMMARY_HEADER[:-1], *ORIENTATION_HEADER, *HEADER)
     summary = summary_line(outcome)
     if isinstance(job.spec.orientation_deg, tuple):
         summary = summary_text(job.spec, outcome)
     if singular is not None:
         summary += f"; {singular.describe()}"
+    companions = None
+    if tolerance is not None:
+        row += tolerance_columns(job.spec)
+        header += TOLERANCE_HEADER
+        companions = tolerance_companions(job.robot, job.spec, lambda: BoxBudget(job, progress))
+        summary += f"; {describe_tolerance(tolerance)}; {companions_text(companions)}"
+    row.append(base[-1])
+    header += (SUMMARY_HEADER[-1],)
     return WorkspaceResult(
         table=CsvTable(header, [row]),
         summary=summary,
         extra_tables={"boxes": boxes_table(outcome)},
         outcome=outcome,
         singularity=singular,
+        companions=companions,
     )
 
 
@@ -386,6 +416,9 @@ def map_title(job: WorkspaceJob, outcome: WorkspaceOutcome) -> str:
         title += f", {describe(job.spec)}"
     if outcome.refine_precision_cm is not None:
         title += f", boundary refined to {outcome.refine_precision_cm:.4g} cm"
+    tolerance = tolerance_of(job.spec)
+    if tolerance is not None:
+        title += f", {describe_tolerance(tolerance)}"
     return title
 
 
@@ -404,7 +437,13 @@ def render_workspace(job: WorkspaceJob, result: WorkspaceResult, console: Any) -
     singular = result.singularity
     if singular is not None:
         console.print(singular.describe(), markup=False, highlight=False)
-    for line in render_map(outcome.boxes, outcome.status, width=width, **overlays(singular)):
+    boxes, status, layers = outcome.boxes, outcome.status, ()
+    if result.companions is not None:
+        from planar_tui.workspace.tolerance import map_layers
+
+        boxes, status, layers = map_layers(outcome, result.companions, job.spec.tolerance_mode)
+    lines = render_map(boxes, status, width=width, layers=layers, **overlays(singular))
+    for line in lines:
         console.print(line, markup=False, highlight=False, crop=True, soft_wrap=False)
 
 

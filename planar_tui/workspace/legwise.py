@@ -37,18 +37,21 @@ def _area(rows: np.ndarray) -> float:
     return float(np.sum((rows[:, 1] - rows[:, 0]) * (rows[:, 3] - rows[:, 2])))
 
 
-def legwise_stage(form_code, p, spec, box, budget):
+def legwise_stage(form_code, p, spec, box, budget, tol=None):
     """Pave the (x, y) search ``box`` leg-wise down to ``spec.precision_cm``.
 
     Returns ``(boxes, status, xy_boxes)``: kept rows ``x_lo, x_hi, y_lo, y_hi``, their
     status (2 = inside, proved by the form; 1 = boundary) and the number of (x, y) boxes
     decided. The boxes processed counted against ``box_budget`` (``budget``) are the
     ``(x, y, θ_i)`` boxes on which a leg's interval form was evaluated, the unit of work
-    comparable with the joint strategy's 5-D boxes.
+    comparable with the joint strategy's 5-D boxes. ``tol``: the kernels' tolerance vector
+    (:mod:`planar_tui.workspace.tolerance`; ``None``: the nominal robot).
     """
+    from planar_tui.kernels.workspace_arc import limits_array
     from planar_tui.kernels.workspace_legwise import (
         BOUNDARY,
         INSIDE,
+        NO_TOLERANCE,
         ROW_COLUMNS,
         SPLIT,
         pave_level,
@@ -56,6 +59,8 @@ def legwise_stage(form_code, p, spec, box, budget):
     )
     from planar_tui.progress import read_only
 
+    limits = limits_array(spec.limits_rad)
+    tol = NO_TOLERANCE if tol is None else tol
     frontier = root_row(box, spec.limits_rad)[None, :]
     root_area = _area(frontier)
     kept = np.zeros((4096, 4))
@@ -77,7 +82,7 @@ def legwise_stage(form_code, p, spec, box, budget):
             started = time.perf_counter()
             pave_level(
                 form_code, p, spec.precision_cm, spec.angle_scale, frontier, start, stop,
-                children, outcome, counts,
+                children, outcome, counts, limits, tol,
             )  # fmt: skip
             elapsed = time.perf_counter() - started
             if elapsed > SLICE_TARGET_S and slice_boxes > 256:

@@ -7,6 +7,7 @@ the Textual app shows it in a ``Static``.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -117,6 +118,7 @@ def render_map(
     height: int | None = None,
     singular: np.ndarray | None = None,
     circle: tuple[float, float, float] | None = None,
+    layers: Sequence[tuple[np.ndarray, str, str]] = (),
 ) -> list[str]:
     """The workspace as lines of text, at most ``width`` columns.
 
@@ -134,6 +136,10 @@ def render_map(
         Optional overlays: boxes that may hold a type II singularity (``×`` on every cell
         they touch) and a circle ``(x, y, r)`` in cm (``o`` on the cells it crosses, ``+``
         at its centre), with their legend below, wrapped to ``width``.
+    layers
+        More workspaces ``(boxes, glyph, legend)`` (a tolerance-certified job's nominal and
+        "some" workspaces): a blank cell that a layer's boxes touch shows its glyph (the
+        first such layer's), with the legends below; the extent covers them too.
 
     A cell fully covered by inside boxes shows ``█``, any other covered cell ``▒``, an
     empty cell a blank; the y axis is labelled on the left, the x axis below, in cm.
@@ -141,7 +147,8 @@ def render_map(
     boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 4)
     status = np.asarray(status).reshape(-1)
     if extent is None:
-        extent = fit_extent(boxes, (0.0, 1.0, 0.0, 1.0))
+        everything = np.concatenate([boxes, *(np.reshape(b, (-1, 4)) for b, _, _ in layers)])
+        extent = fit_extent(everything, (0.0, 1.0, 0.0, 1.0))
     xlo, xhi, ylo, yhi = extent
     columns = max(10, width - _LABEL_WIDTH - 1)
     if height is None:
@@ -151,6 +158,12 @@ def render_map(
         rows = max(3, height - 3)
     cover = _coverage(boxes, status, extent, columns, rows)
     marks = _marks(extent, columns, rows, singular, circle)
+    for layer_boxes, glyph, _ in layers:  # the first layer's glyph wins
+        b = np.asarray(layer_boxes, dtype=np.float64).reshape(-1, 4)
+        touched = _coverage(b, np.ones(len(b)), extent, columns, rows)[1] > 1e-12
+        empty = cover[0] + cover[1] <= 1e-12
+        for j, i in zip(*np.nonzero(touched & empty), strict=True):
+            marks[j][i] = marks[j][i] or glyph
     lines = []
     ystep = _axis_step(ylo, yhi, rows // 4, rows)
     ch = (yhi - ylo) / rows
@@ -194,6 +207,8 @@ def render_map(
     lines.append(f"{'x (cm) →, y (cm) ↑':>{_LABEL_WIDTH + 18}}  {LEGEND}")
     if singular is not None or circle is not None:
         lines += _wrapped(SINGULAR_LEGEND_ITEMS, _LABEL_WIDTH + 20, width)
+    if layers:
+        lines += _wrapped([f"{g} {text}" for _, g, text in layers], _LABEL_WIDTH + 20, width)
     return [line[:width] for line in lines]
 
 
