@@ -382,7 +382,7 @@ def run_workspace(
     # the new columns go before the last one, the (not reproducible) wall time
     base = outcome.summary_row()
     row = [*base[:-1], *orientation_columns(job.spec), *singularity_columns(singular)]
-    header = (*SUMMARY_HEADER[:-1], *ORIENTATION_HEADER, *HEADER)
+    header: tuple[str, ...] = (*SUMMARY_HEADER[:-1], *ORIENTATION_HEADER, *HEADER)
     summary = summary_line(outcome)
     if isinstance(job.spec.orientation_deg, tuple):
         summary = summary_text(job.spec, outcome)
@@ -437,11 +437,14 @@ def render_workspace(job: WorkspaceJob, result: WorkspaceResult, console: Any) -
     singular = result.singularity
     if singular is not None:
         console.print(singular.describe(), markup=False, highlight=False)
-    boxes, status, layers = outcome.boxes, outcome.status, ()
+    boxes, status = outcome.boxes, outcome.status
+    layers: list[Any] = []
     if result.companions is not None:
         from planar_tui.workspace.tolerance import map_layers
 
-        boxes, status, layers = map_layers(outcome, result.companions, job.spec.tolerance_mode)
+        boxes, status, layers = map_layers(
+            outcome, result.companions, job.spec.tolerance_mode or "all"
+        )
     lines = render_map(boxes, status, width=width, layers=layers, **overlays(singular))
     for line in lines:
         console.print(line, markup=False, highlight=False, crop=True, soft_wrap=False)

@@ -273,7 +273,7 @@ def companions_text(companions: dict[str, Any]) -> str:
 MAP_LAYERS = (("nominal", "▓", "nominal robot only"), ("some", "░", "some robot only"))
 
 
-def map_layers(outcome: Any, companions: dict[str, Any], mode: str) -> tuple[Any, Any, list]:
+def map_layers(outcome: Any, companions: dict[str, Any], mode: str) -> tuple[Any, Any, list[Any]]:
     """The robust workspace's boxes and status, and the ``render_map`` layers (boxes,
     glyph, legend) of the nominal and "some" workspaces' kept boxes."""
     outcomes = {mode: outcome, **companions}
