@@ -494,6 +494,11 @@ JOB_KIND = JobKind(
                    "natural, mean-value, slope, arc-distance or geometric; overrides `form`."),
             Option("--precision", "precision_cm",
                    "Precision epsilon in cm; overrides `precision_cm`.", float),
+            Option("--tolerance", "tolerance_cm",
+                   "Manufacturing tolerance +- in cm on every length and joint coordinate; "
+                   "overrides `tolerance_cm`.", float),
+            Option("--tolerance-mode", "tolerance_mode",
+                   "all (the robust workspace) or some; overrides `tolerance_mode`."),
         ),
         outputs=(OutputOption("--boxes", "boxes",
                               "CSV of the kept boxes (with several jobs: FILE-1.csv ...)."),),

@@ -127,7 +127,8 @@ def tolerance_fields(keys: Sequence[str]) -> tuple[Any, Any, Any]:
             default=None,
             type_doc=f"table of numbers ≥ 0 keyed by {listed}",
             default_doc="(none)",
-            doc="per-quantity tolerances ± (cm), overriding `tolerance_cm` (the rest: 0)",
+            doc="per-quantity tolerances ± (cm), overriding `tolerance_cm` for those named "
+            "(the others: `tolerance_cm`, or 0 without it)",
         ),
         setting(
             string(choices=TOLERANCE_MODES),
