@@ -42,8 +42,10 @@ from .interval import down, up
 from .workspace3rrr import leg_enclosure, split_xy_widest
 from .workspace_arc import LANES
 from .workspace_tolerance import (
+    ALL,
     MODE,
     NOMINAL,
+    SOME,
     TOL_COLUMNS,
     box_growth,
     distal_spread,
@@ -131,11 +133,12 @@ def decide_box(form, p, precision, angle_scale, rows, r, children, c, limits, to
 
     Returns ``(outcome, evaluations)``: ``OUT``, ``BOUNDARY``, ``INSIDE`` or ``SPLIT``.
 
-    With non-zero tolerances (``tol``'s mode not ``NOMINAL``) the legs are searched for
-    every robot (:func:`leg_search`); a box they leave undecided is then labelled by
-    :func:`kernels.workspace_tolerance.tolerant_classify_box` (with ``limits``), whose
-    single-robot certificates decide the mode's other side (``all``: outside, ``some``:
-    inside) before the box is kept or split.
+    With non-zero tolerances (``tol``'s mode not ``NOMINAL``) the box is first labelled by
+    :func:`kernels.workspace_tolerance.tolerant_classify_box` (with ``limits``): its
+    single-robot certificate decides the side the forms cannot (``all``: outside,
+    ``some``: inside) at once; then the legs are searched for every robot
+    (:func:`leg_search`), and a box they leave undecided takes the label's universal
+    certificate (``all``: inside, ``some``: outside) before it is kept or split.
     """
     for j in range(ROW_COLUMNS):
         children[c, j] = rows[r, j]
@@ -145,11 +148,18 @@ def decide_box(form, p, precision, angle_scale, rows, r, children, c, limits, to
     yhi = rows[r, 3]
     wx = xhi - xlo
     wy = yhi - ylo
-    min_width = max(wx, wy) / angle_scale
     evaluations = 0
     inside = True
     grow = box_growth(tol)
     spread = distal_spread(p[1], tol)
+    # θ pieces down to the width of the box the forms see (grown by the tolerances)
+    min_width = (max(wx, wy) + 2.0 * grow) / angle_scale
+    label = BOUNDARY
+    if tol[MODE] != NOMINAL and (grow > 0.0 or spread[1] != 0.0):
+        label = tolerant_classify_box(xlo, xhi, ylo, yhi, p, limits, tol)
+        # the single-robot certificate first: the side the forms cannot decide
+        if (label == OUT and tol[MODE] == ALL) or (label == INSIDE and tol[MODE] == SOME):
+            return label, evaluations
     for leg in range(3):
         col = 4 + 3 * leg
         state = rows[r, col + 2]
@@ -171,10 +181,8 @@ def decide_box(form, p, precision, angle_scale, rows, r, children, c, limits, to
             children[c, col + 2] = sign
     if inside:
         return INSIDE, evaluations
-    if tol[MODE] != NOMINAL and (grow > 0.0 or spread[1] != 0.0):
-        label = tolerant_classify_box(xlo, xhi, ylo, yhi, p, limits, tol)
-        if label in (OUT, INSIDE):
-            return label, evaluations
+    if label in (OUT, INSIDE):  # the exact test's certificate over every robot
+        return label, evaluations
     if wx <= precision and wy <= precision:
         return BOUNDARY, evaluations
     split_xy_widest(children, c, c + 1, ROW_COLUMNS)
