@@ -151,7 +151,7 @@ def test_robust_inside_boxes_lie_in_every_sampled_robots_workspace(form, keys, p
 @pytest.mark.parametrize(("form", "keys", "phi"), CASES)
 def test_some_kept_boxes_hold_every_sampled_robots_workspace(form, keys, phi):
     """``some``: a grid point any sampled robot reaches lies in a kept box; an inside
-    box's points are reached by the nominal robot dilated in constraint value (below)."""
+    box's points lie in the nominal workspace dilated in constraint value by the bound."""
     spec = spec_for(form, phi=phi, tolerance_mode="some", **keys)
     some = run(spec)
     rng = np.random.default_rng(2)
@@ -164,6 +164,19 @@ def test_some_kept_boxes_hold_every_sampled_robots_workspace(form, keys, phi):
     nominal = run(spec_for(form, phi=phi))
     assert some.area_inside_cm2 > nominal.area_inside_cm2
     assert some.area_kept_cm2 > nominal.area_kept_cm2
+    # inside "some" boxes lie in the nominal workspace dilated in constraint value by B:
+    # distances to a finely sampled arc (spacing h: D_min <= sampled min <= D_min + h/2)
+    bound = erosion_bound_cm(tolerance_of(spec))
+    inside = some.boxes[some.status == INSIDE]
+    points = points_in(inside[rng.choice(len(inside), 100)], rng, 1)
+    for (dx, dy), lim in zip(ROBOT.leg_offsets_cm(math.radians(phi)), LIMITS, strict=True):
+        theta = np.linspace(*np.radians(lim), 4001)
+        h = ROBOT.proximal_cm * (theta[1] - theta[0])
+        arc = ROBOT.proximal_cm * np.column_stack([np.cos(theta), np.sin(theta)])
+        rel = points + np.array([dx, dy])
+        dist = np.hypot(*(rel[:, None, :] - arc[None, :, :]).transpose(2, 0, 1))
+        assert (dist.min(axis=1) <= ROBOT.distal_cm + bound + h).all()
+        assert (dist.max(axis=1) >= ROBOT.distal_cm - bound).all()
 
 
 def eroded_polygon(bound_cm, phi):
