@@ -366,7 +366,6 @@ def run_workspace(
         TOLERANCE_HEADER,
         companions_text,
         tolerance_columns,
-        tolerance_companions,
     )
 
     job, circle = ready.job, ready.prepared.circle
@@ -404,6 +403,26 @@ def run_workspace(
         singularity=singular,
         companions=companions,
     )
+
+
+def tolerance_companions(robot: Any, spec: Any, budget_for: Any) -> dict[str, Any]:
+    """The other two workspaces a tolerance-certified job is drawn with (map, figure):
+    ``{"nominal": ..., <the other mode>: ...}`` (:class:`WorkspaceOutcome`), each paved
+    at the job's precision with ``budget_for()`` (a fresh
+    :class:`~planar_tui.workspace.compute.BoxBudget`)."""
+    from dataclasses import replace
+
+    from planar_tui.workspace.compute import compute_workspace
+
+    other = "some" if spec.tolerance_mode == "all" else "all"
+    specs = {
+        "nominal": replace(
+            spec, tolerance_cm=None, tolerances_cm=None, tolerance_mode=None,
+            geometric_reference=False,
+        ),
+        other: replace(spec, tolerance_mode=other, geometric_reference=False),
+    }  # fmt: skip
+    return {name: compute_workspace(robot, s, budget_for()) for name, s in specs.items()}
 
 
 def map_title(job: WorkspaceJob, outcome: WorkspaceOutcome) -> str:
