@@ -105,19 +105,33 @@ def classify_box(xlo, xhi, ylo, yhi, p, limits):
 
 
 @kernel
-def refuted(xlo, xhi, ylo, yhi, p, limits, n):
-    """True if each cell of an ``n`` x ``n`` grid over the box is ``OUTSIDE`` (so is the box)."""
+def grid_cell(xlo, xhi, ylo, yhi, n, i, j):
+    """Cell ``(i, j)`` ``(x0, x1, y0, y1)`` of an ``n`` x ``n`` grid over the box (the last
+    row and column end exactly on the box's edges)."""
     hx = (xhi - xlo) / n
     hy = (yhi - ylo) / n
+    x1 = xhi if i == n - 1 else xlo + (i + 1) * hx
+    y1 = yhi if j == n - 1 else ylo + (j + 1) * hy
+    return xlo + i * hx, x1, ylo + j * hy, y1
+
+
+@kernel
+def refuted(xlo, xhi, ylo, yhi, p, limits, n):
+    """True if each cell of an ``n`` x ``n`` grid over the box is ``OUTSIDE`` (so is the box)."""
     for i in range(n):
-        x0 = xlo + i * hx
-        x1 = xhi if i == n - 1 else xlo + (i + 1) * hx
         for j in range(n):
-            y0 = ylo + j * hy
-            y1 = yhi if j == n - 1 else ylo + (j + 1) * hy
+            x0, x1, y0, y1 = grid_cell(xlo, xhi, ylo, yhi, n, i, j)
             if classify_box(x0, x1, y0, y1, p, limits) != OUTSIDE:
                 return False
     return True
+
+
+@kernel
+def refutable_leaf(rows, r, label, precision, leaf_grid):
+    """Row ``r`` is a ``BOUNDARY`` leaf (both widths :math:`\\le \\varepsilon`) that a
+    ``leaf_grid`` x ``leaf_grid`` grid may prove outside (0: no such check)."""
+    leaf = rows[r, 1] - rows[r, 0] <= precision and rows[r, 3] - rows[r, 2] <= precision
+    return leaf and label == BOUNDARY and leaf_grid > 0
 
 
 @kernel
@@ -172,9 +186,9 @@ def arc_level(p, limits, precision, leaf_grid, rows, start, stop, children, outc
             ylo = rows[r, 2]
             yhi = rows[r, 3]
             label = classify_box(xlo, xhi, ylo, yhi, p, limits)
-            leaf = xhi - xlo <= precision and yhi - ylo <= precision
-            refutable = leaf and label == BOUNDARY and leaf_grid > 0
-            if refutable and refuted(xlo, xhi, ylo, yhi, p, limits, leaf_grid):
+            if refutable_leaf(rows, r, label, precision, leaf_grid) and refuted(
+                xlo, xhi, ylo, yhi, p, limits, leaf_grid
+            ):
                 label = OUTSIDE
             outcome[i] = settle_xy_box(label, rows, r, children, 2 * i, precision)
 

@@ -70,6 +70,8 @@ from .workspace_arc import (
     _on_arc,
     arc_distance_range,
     classify_box,
+    grid_cell,
+    refutable_leaf,
     settle_xy_box,
 )
 
@@ -280,18 +282,12 @@ def tolerant_classify_box(xlo, xhi, ylo, yhi, p, limits, tol):
 
 @kernel
 def tolerant_refuted(xlo, xhi, ylo, yhi, p, limits, tol, n):
-    """True if each cell of an ``n`` x ``n`` grid over the box is ``OUTSIDE`` for
-    :func:`tolerant_classify_box` (so is the box: each cell's certificate covers it)."""
-    hx = (xhi - xlo) / n
-    hy = (yhi - ylo) / n
-    for i in range(n):
-        x0 = xlo + i * hx
-        x1 = xhi if i == n - 1 else xlo + (i + 1) * hx
-        for j in range(n):
-            y0 = ylo + j * hy
-            y1 = yhi if j == n - 1 else ylo + (j + 1) * hy
-            if tolerant_classify_box(x0, x1, y0, y1, p, limits, tol) != OUTSIDE:
-                return False
+    """True if :func:`tolerant_classify_box` proves every cell of an ``n`` x ``n`` grid over
+    the box ``OUTSIDE`` (then the box is: each cell's certificate covers it)."""
+    for cell in range(n * n):
+        x0, x1, y0, y1 = grid_cell(xlo, xhi, ylo, yhi, n, cell // n, cell % n)
+        if tolerant_classify_box(x0, x1, y0, y1, p, limits, tol) != OUTSIDE:
+            return False
     return True
 
 
@@ -305,13 +301,8 @@ def tolerant_arc_level(p, limits, tol, precision, leaf_grid, rows, start, stop, 
     for lane in numba.prange(lanes):
         for i in range(lane, n, lanes):
             r = start + i
-            xlo = rows[r, 0]
-            xhi = rows[r, 1]
-            ylo = rows[r, 2]
-            yhi = rows[r, 3]
-            label = tolerant_classify_box(xlo, xhi, ylo, yhi, p, limits, tol)
-            leaf = xhi - xlo <= precision and yhi - ylo <= precision
-            refutable = leaf and label == BOUNDARY and leaf_grid > 0
-            if refutable and tolerant_refuted(xlo, xhi, ylo, yhi, p, limits, tol, leaf_grid):
-                label = OUTSIDE
+            box = (rows[r, 0], rows[r, 1], rows[r, 2], rows[r, 3])
+            label = tolerant_classify_box(*box, p, limits, tol)
+            if refutable_leaf(rows, r, label, precision, leaf_grid):
+                label = OUTSIDE if tolerant_refuted(*box, p, limits, tol, leaf_grid) else label
             outcome[i] = settle_xy_box(label, rows, r, children, 2 * i, precision)

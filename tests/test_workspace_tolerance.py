@@ -299,11 +299,11 @@ def test_paving_is_the_same_on_one_and_two_threads():
 
 PRESET = """
 [robot3rrr]
+name = "paper B, Table 2"
 base_side_cm = 120
 platform_side_cm = 40
 proximal_cm = 30
 distal_cm = 30
-
 [workspace]
 joint_limits_deg = [[20, 70], [110, 160], [245, 295]]
 precision_cm = 0.25
