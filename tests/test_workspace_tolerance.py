@@ -373,6 +373,8 @@ def test_without_tolerance_keys_the_summary_is_unchanged(cli, tmp_path):
         ("tolerances_cm = { distal_cm = true }\n", "tolerances_cm.distal_cm"),
         ("tolerances_cm = 0.1\n", "tolerances_cm"),
         ("tolerance_cm = 0.1\nsingularities = true\n", "singularities"),
+        ("tolerance_cm = 30\n", "tolerance_cm"),
+        ("tolerances_cm = { proximal_cm = 31 }\n", "tolerances_cm"),
         ('tolerance_cm = 0.1\nform = "geometric"\n', "form"),
         ('tolerance_cm = 0.1\nform = "mean-value"\nstrategy = "joint"\n', "strategy"),
         ("tolerance_cm = 0.1\norientation_deg = [-1, 1]\n"

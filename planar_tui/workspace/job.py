@@ -264,7 +264,8 @@ class WorkspaceSpec:
         precision cannot exceed the precision."""
         check_orientation(values, reader)
         check_singularity(values, reader)
-        check_tolerance(values, reader, TOLERANCE_KEYS_3RRR)
+        lengths = {"proximal_cm": robot.proximal_cm, "distal_cm": robot.distal_cm}
+        check_tolerance(values, reader, TOLERANCE_KEYS_3RRR, lengths)
         form = values["form"]
         if values["expanded"] and form != "natural":
             raise reader.error("expanded", f"is true with form = {form!r}", 'form = "natural"')

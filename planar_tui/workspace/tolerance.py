@@ -140,10 +140,13 @@ def tolerance_fields(keys: Sequence[str]) -> tuple[Any, Any, Any]:
     )
 
 
-def check_tolerance(values: dict[str, Any], reader: Any, keys: Sequence[str]) -> None:
+def check_tolerance(
+    values: dict[str, Any], reader: Any, keys: Sequence[str], lengths: Mapping[str, float]
+) -> None:
     """Cross-key checks: a mode needs a tolerance; a tolerance sets the mode to ``all`` by
-    default and takes one orientation, the legwise interval forms or ``arc-distance``,
-    and no singularities."""
+    default, is below each of the robot's ``lengths`` it applies to (by key: every robot
+    keeps positive lengths) and takes one orientation, the legwise interval forms or
+    ``arc-distance``, and no singularities."""
     given = values["tolerance_cm"] is not None or values["tolerances_cm"] is not None
     if not given:
         if values["tolerance_mode"] is not None:
@@ -153,6 +156,14 @@ def check_tolerance(values: dict[str, Any], reader: Any, keys: Sequence[str]) ->
         return
     if values["tolerance_mode"] is None:
         values["tolerance_mode"] = "all"
+    widths = dict.fromkeys(keys, values["tolerance_cm"] or 0.0)
+    widths.update(dict(values["tolerances_cm"] or ()))
+    for key, length in lengths.items():
+        if widths[key] >= length:
+            where = "tolerance_cm" if values["tolerance_cm"] == widths[key] else "tolerances_cm"
+            raise reader.error(
+                where, f"is ±{widths[key]:g} cm on {key} = {length:g} cm", f"< {length:g} cm"
+            )
     problems = (
         ("orientation_deg", isinstance(values["orientation_deg"], tuple), "one orientation"),
         ("form", values["form"] == "geometric", "an interval form or arc-distance"),
