@@ -73,16 +73,17 @@ MAX_DEPTH = 40
 
 
 @kernel
-def leg_search(form, leg, xlo, xhi, ylo, yhi, tlo, thi, sign, min_width, p, grow, spread):
+def leg_search(form, leg, xlo, xhi, ylo, yhi, tlo, thi, sign, min_width, p, spread):
     """Decide leg ``leg`` over the (x, y) box from its hull ``[tlo, thi]`` and inherited sign.
 
     Returns ``(outcome, new_tlo, new_thi, new_sign, evaluations)`` with ``outcome`` one of
     ``OUT``, ``UNDECIDED`` (then the new hull and sign) or ``PROVED`` (module docstring).
 
     With tolerances (:mod:`kernels.workspace_tolerance`) every piece's enclosure covers
-    every robot within them: the box grown by ``grow`` per side and the distal spread
-    ``spread = (lo, hi)`` added, so a proved leg closes for every robot and a refuted one
-    for none (0 and (0, 0): the nominal robot).
+    every robot within them: the caller passes the box grown by
+    :func:`~kernels.workspace_tolerance.box_growth` per side, and the distal spread
+    ``spread = (lo, hi)`` is added, so a proved leg closes for every robot and a refuted
+    one for none (``(0, 0)``: the nominal robot).
     """
     width = thi - tlo
     hull_lo = math.inf
@@ -94,9 +95,7 @@ def leg_search(form, leg, xlo, xhi, ylo, yhi, tlo, thi, sign, min_width, p, grow
         step = width * 2.0**-depth
         lo = tlo + index * step
         hi = thi if index + 1 == 1 << depth else tlo + (index + 1) * step
-        flo, fhi = leg_enclosure(
-            form, leg, xlo - grow, xhi + grow, ylo - grow, yhi + grow, lo, hi, p
-        )
+        flo, fhi = leg_enclosure(form, leg, xlo, xhi, ylo, yhi, lo, hi, p)
         if spread[1] != 0.0:
             flo = down(flo + spread[0])
             fhi = up(fhi + spread[1])
@@ -154,6 +153,9 @@ def decide_box(form, p, precision, angle_scale, rows, r, children, c, limits, to
     spread = distal_spread(p[1], tol)
     # θ pieces down to the width of the box the forms see (grown by the tolerances)
     min_width = (max(wx, wy) + 2.0 * grow) / angle_scale
+    gxlo, gxhi, gylo, gyhi = xlo, xhi, ylo, yhi
+    if grow > 0.0:  # rounded outwards: the grown box holds every robot's leg point
+        gxlo, gxhi, gylo, gyhi = down(xlo - grow), up(xhi + grow), down(ylo - grow), up(yhi + grow)
     label = BOUNDARY
     if tol[MODE] != NOMINAL and (grow > 0.0 or spread[1] != 0.0):
         label = tolerant_classify_box(xlo, xhi, ylo, yhi, p, limits, tol)
@@ -166,8 +168,8 @@ def decide_box(form, p, precision, angle_scale, rows, r, children, c, limits, to
         if state == LEG_PROVED:
             continue
         outcome, tlo, thi, sign, n = leg_search(
-            form, leg, xlo, xhi, ylo, yhi, rows[r, col], rows[r, col + 1], state, min_width, p,
-            grow, spread,
+            form, leg, gxlo, gxhi, gylo, gyhi, rows[r, col], rows[r, col + 1], state,
+            min_width, p, spread,
         )  # fmt: skip
         evaluations += n
         if outcome == OUT:
