@@ -47,6 +47,11 @@ the float robot lies inside the tolerances): to first order it moves :math:`D` b
 :math:`t_A \\|n\\|_1 + t_q \\|R^T n\\|_1 + t_1 |e \\cdot n|`. The choice is a heuristic; the
 certificate is exact for whichever robot it picks, so it is sound whatever it picks.
 
+Two shortcuts come first, each a special case of the above: a leg the Lipschitz bound
+proves (``all``-inside, looser than the first-order one) skips the first-order bound; the
+nominal robot with its distal at a vertex (``all``-outside) or as it is (``some``-inside)
+is tried before the vertex robot.
+
 At zero tolerance :math:`\\sigma = 0`, :math:`\\pi^*` is the nominal robot and every test is
 :func:`kernels.workspace_arc.classify_box`'s: the same boxes.
 
@@ -218,6 +223,8 @@ def vertex_range(px, py, l1, tlo, thi, angle, direction, tol):
 def _leg_refuted_by_vertex(px, py, l1, l2, tlo, thi, dmin, dmax, rho, sigma, tol):
     """``ALL`` mode: one vertex robot misses every point of the box (module docstring)."""
     t2 = VERTEX_SHRINK * tol[T_DISTAL]
+    if dmin - rho > l2 - t2 or dmax + rho < l2 + t2:
+        return True  # the nominal robot with its distal at a vertex already misses the box
     near, far = extreme_angles(px, py, l1, tlo, thi)
     if dmin - rho + sigma > l2 - t2:  # a robot may push D_min past its shortest distal
         vmin, _ = vertex_range(px, py, l1, tlo, thi, near, 1.0, tol)
@@ -235,6 +242,8 @@ def _leg_proved_by_vertex(px, py, l1, l2, tlo, thi, dmin, dmax, rho, tol):
     """``SOME`` mode: one vertex robot reaches every point of the box, relaxing the tighter
     of :math:`d_{\\min} \\le l_2` (longest distal) and :math:`l_2 \\le d_{\\max}` (shortest)."""
     t2 = VERTEX_SHRINK * tol[T_DISTAL]
+    if dmin + rho <= l2 <= dmax - rho:
+        return True  # the nominal robot reaches the whole box
     near, far = extreme_angles(px, py, l1, tlo, thi)
     if l2 - dmin <= dmax - l2:
         vmin, vmax = vertex_range(px, py, l1, tlo, thi, near, -1.0, tol)
@@ -267,6 +276,8 @@ def tolerant_classify_box(xlo, xhi, ylo, yhi, p, limits, tol):
         thi = limits[leg, 1]
         dmin, dmax = arc_distance_range(px, py, l1, tlo, thi)
         if mode == ALL:
+            if dmin + rho + sigma <= l2 - t2 and dmax - rho - sigma >= l2 + t2:
+                continue  # the Lipschitz bound (looser than robust_range's) proves the leg
             dmin_hi, dmax_lo = robust_range(px, py, l1, tlo, thi, dmin, dmax, sigma, tol)
             if dmin_hi + rho > l2 - t2 or dmax_lo - rho < l2 + t2:
                 inside = False

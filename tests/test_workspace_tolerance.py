@@ -418,3 +418,25 @@ def test_the_figure_overlays_nominal_robust_and_some(tmp_path):
     gids = {c.get_gid() for c in fig.axes[0].collections}
     assert {"some-kept", "nominal-kept", "all-kept", "all-inside"} <= gids
     fig.savefig(tmp_path / "t.png")
+
+
+def test_the_bundled_study_reads_its_tolerances_and_loses_area_at_one_millimetre():
+    """``paper-b-tolerance``: Table 3's design at ±0.1 mm and ±1 mm, robust mode; at a
+    coarse ε (no refinement) the ±1 mm robust kept area is already below the exact
+    nominal area, and the ±0.1 mm one's bracket is above the ±1 mm one's."""
+    from planar_tui.presets import load_preset
+    from planar_tui.workspace.geometry import geometric_area
+    from tests.conftest import PRESETS
+
+    jobs = load_preset(PRESETS / "paper-b-tolerance.toml").jobs
+    tolerances = [tolerance_of(job.spec) for job in jobs]
+    assert [(t.mode, t.of("distal_cm"), t.of("base_joints_cm")) for t in tolerances] == [
+        ("all", 0.01, 0.01),
+        ("all", 0.1, 0.1),
+    ]
+    fine, coarse = (
+        run(replace(job.spec, precision_cm=0.234375, refine_precision_cm=None)) for job in jobs
+    )
+    exact = geometric_area(jobs[0].robot, jobs[0].spec.limits_rad, 0.0).area_cm2
+    assert coarse.area_kept_cm2 < exact
+    assert coarse.area_kept_cm2 < fine.area_inside_cm2
