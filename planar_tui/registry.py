@@ -18,12 +18,14 @@ from planar_tui.motion import job as motion_uncertainty
 from planar_tui.sensitivity import job as sensitivity
 from planar_tui.workspace import job as workspace
 from planar_tui.workspace import robot as robot3rrr
+from planar_tui.workspace import rpr, rpr_job
 
 ROBOT_KINDS: dict[str, RobotKind] = {
     kind.name: kind
     for kind in (
         serial_robot.ROBOT_KIND,
         robot3rrr.ROBOT_KIND,
+        rpr.ROBOT_KIND,
     )
 }
 
@@ -35,6 +37,7 @@ JOB_KINDS: dict[str, JobKind] = {
         sensitivity.JOB_KIND,
         workspace.JOB_KIND,
         motion_uncertainty.JOB_KIND,
+        rpr_job.JOB_KIND,
     )
 }
 

@@ -1,0 +1,252 @@
+"""What the fixed-orientation workspaces of the 3-RPR and the 3-PRR share: their common
+settings, the 2-D paving with an exact per-leg test, the runner and the result.
+
+A mechanism supplies a :class:`Mechanism`: its kernel parameters, the box holding its reach,
+its exact polygons (inner and outer, :func:`~planar_tui.workspace.geometry.polygon_bracket`)
+and its level kernel (one per mechanism in ``kernels/``, with the signature of
+:func:`~planar_tui.kernels.workspace3rpr.rpr_level`). The paving is the 3-RRR's
+(:func:`~planar_tui.workspace.compute.pave_in_levels`, then
+:func:`~planar_tui.workspace.compute.finished_outcome`): boxes proved inside are never split,
+boundary boxes are kept at ``precision_cm`` and, with ``refine_precision_cm``, paved again
+at that precision; the certified bracket is ``|inside| <= exact <= |kept|``. The result is
+the 3-RRR's :class:`~planar_tui.workspace.job.WorkspaceResult` (same summary and boxes CSVs),
+so the map, the figure and the app's workspace pane show every kind.
+"""
+
+from __future__ import annotations
+
+import importlib
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+from planar_tui.jobkind import Job, PreparedJob
+from planar_tui.progress import Progress
+from planar_tui.schema import (
+    TableReader,
+    boolean,
+    integer,
+    number,
+    plot_setting,
+    relative_path,
+    setting,
+    string,
+)
+from planar_tui.workspace.job import (
+    DEFAULT_BOX_BUDGET,
+    WorkspaceResult,
+    _checked_box_budget,
+    render_workspace,
+)
+
+
+def read_search_box(reader: TableReader, name, default, robot, values):
+    """``[[x_min, x_max], [y_min, y_max]]`` in cm, each non-empty (whether it holds the
+    reach is checked by :meth:`PlanarSpec.check`, once every key is read)."""
+    if not reader.has(name):
+        return None
+    rows = reader.number_rows(name, columns=2, row_doc="[min, max] in cm")
+    if len(rows) != 2 or any(not lo < hi for lo, hi in rows):
+        raise reader.error(
+            name, f"is {[list(r) for r in rows]}", "[[x_min, x_max], [y_min, y_max]]"
+        )
+    return rows
+
+
+@dataclass(frozen=True, kw_only=True)
+class PlanarSpec:
+    """The settings every fixed-orientation parallel workspace job has (angles in degrees,
+    lengths in cm); a kind adds its own keys (``leg_limits_cm``) in a subclass."""
+
+    orientation_deg: float = setting(
+        number(), default=0.0, type_doc="number", doc="platform orientation φ"
+    )
+    precision_cm: float = setting(
+        number(positive=True), type_doc="number > 0", doc="bisection precision ε"
+    )
+    form: str = setting(
+        string(choices=("natural", "geometric")),
+        default="natural",
+        type_doc="`natural`, `geometric`",
+        doc="exact per-leg test of each box (see docs/workspace.md), or the exact area only",
+    )
+    refine_precision_cm: float | None = setting(
+        number(positive=True),
+        default=None,
+        type_doc="number > 0, ≤ `precision_cm`",
+        doc="boundary-only refinement to this precision",
+    )
+    search_box_cm: tuple[tuple[float, float], tuple[float, float]] | None = setting(
+        read_search_box,
+        default=None,
+        default_doc="a square about the reach",
+        type_doc="`[[x_min, x_max], [y_min, y_max]]`",
+        doc="initial (x, y) box; must contain the legs' reach",
+    )
+    box_budget: int = setting(
+        integer(minimum=1),
+        default=DEFAULT_BOX_BUDGET,
+        type_doc="integer ≥ 1, × 112 bytes ≤ the memory limit",
+        doc="most (x, y) boxes one job may decide (then it fails, writing nothing)",
+    )
+    geometric_reference: bool = setting(
+        boolean(),
+        default=True,
+        type_doc="boolean",
+        doc="also compute the exact (shapely) area and its error bound",
+    )
+    boxes_output: str | None = setting(
+        relative_path(),
+        default=None,
+        type_doc="relative path",
+        doc="CSV of the kept boxes (`--boxes` on the command line)",
+    )
+    plot: str | None = plot_setting()
+
+    #: The kind's :class:`Mechanism` (set by each subclass; not a preset key).
+    mechanism: ClassVar[Any] = None
+
+    @property
+    def orientation_rad(self) -> float:
+        return math.radians(self.orientation_deg)
+
+    @classmethod
+    def check(cls, values: dict[str, Any], reader: TableReader, robot: Any) -> dict[str, Any]:
+        """The refinement precision cannot exceed the precision; an explicit search box
+        must hold the legs' reach; the box budget must fit the memory limit."""
+        refine = values["refine_precision_cm"]
+        if refine is not None and refine > values["precision_cm"]:
+            raise reader.error(
+                "refine_precision_cm", f"is {refine:g} > precision_cm", "<= precision_cm"
+            )
+        box = values["search_box_cm"]
+        if box is not None:
+            spec = cls(**values)
+            rxlo, rxhi, rylo, ryhi = spec.mechanism.reach_box(robot, spec)
+            (xlo, xhi), (ylo, yhi) = box
+            holds = xlo <= rxlo and rxhi <= xhi and ylo <= rylo and ryhi <= yhi
+            if rxlo <= rxhi and rylo <= ryhi and not holds:
+                raise reader.error(
+                    "search_box_cm",
+                    "cannot contain the legs' reach "
+                    f"x in [{rxlo:.4g}, {rxhi:.4g}], y in [{rylo:.4g}, {ryhi:.4g}] cm",
+                    "a box containing it",
+                )
+        values["box_budget"] = _checked_box_budget(values["box_budget"], reader)
+        return values
+
+
+@dataclass(frozen=True)
+class Mechanism:
+    """What the shared paving needs of one mechanism (functions of the robot and spec):
+    ``parameters`` the kernel's parameter array, ``reach_box`` a box ``(x_lo, x_hi, y_lo,
+    y_hi)`` holding the workspace (empty when ``lo > hi``), ``polygon(robot, spec,
+    segments_per_turn, outward)`` the inner or outer polygon of the exact workspace, and
+    ``level`` the level kernel as ``module:function`` of ``planar_tui.kernels``."""
+
+    parameters: Callable[[Any, Any], Any]
+    reach_box: Callable[[Any, Any], tuple[float, float, float, float]]
+    polygon: Callable[[Any, Any, int, bool], Any]
+    level: str
+
+    def level_kernel(self) -> Callable[..., None]:
+        module, _, name = self.level.partition(":")
+        kernel: Callable[..., None] = getattr(importlib.import_module(module), name)
+        return kernel
+
+    def geometric_area(self, robot: Any, spec: Any) -> Any:
+        """The exact area's bracket (:class:`~planar_tui.workspace.geometry.GeometricArea`)."""
+        from planar_tui.workspace.geometry import polygon_bracket
+
+        def polygon(segments: int, outward: bool) -> Any:
+            return self.polygon(robot, spec, segments, outward)
+
+        return polygon_bracket(polygon, 2e-5, 1 << 18)
+
+
+def compute_planar(robot: Any, spec: PlanarSpec, budget: Any) -> Any:
+    """The paving of the module docstring for one robot and spec
+    (:class:`~planar_tui.workspace.compute.WorkspaceOutcome`)."""
+    import numpy as np
+
+    from planar_tui.workspace.compute import (
+        WorkspaceOutcome,
+        finished_outcome,
+        pave_in_levels,
+        square_about,
+    )
+
+    started = time.perf_counter()
+    mechanism: Mechanism = spec.mechanism
+    box = spec.search_box_cm or square_about(mechanism.reach_box(robot, spec), spec.precision_cm)
+    extent = (box[0][0], box[0][1], box[1][0], box[1][1])
+    geometric = None
+    if spec.geometric_reference or spec.form == "geometric":
+        geometric = mechanism.geometric_area(robot, spec)
+    if spec.form == "geometric":
+        assert geometric is not None
+        nothing = np.zeros((0, 4))
+        return WorkspaceOutcome(
+            form="geometric", precision_cm=spec.precision_cm, refine_precision_cm=None,
+            boxes=nothing, status=np.zeros(0, np.int64), boxes_processed=0,
+            area_kept_cm2=geometric.outer_cm2, area_inside_cm2=geometric.inner_cm2,
+            geometric=geometric, seconds=time.perf_counter() - started, extent_cm=extent,
+        )  # fmt: skip
+    p = mechanism.parameters(robot, spec)
+    level = mechanism.level_kernel()
+
+    def decider(precision: float) -> Callable[..., None]:
+        def decide(rows, start, stop, children, outcome):
+            level(p, precision, rows, start, stop, children, outcome)
+
+        return decide
+
+    budget.progress.start(1.0, f"{spec.form} paving")
+    boxes, status = pave_in_levels(np.array([extent]), budget, decider(spec.precision_cm))
+
+    def refine(seeds, inside_cm2):
+        assert spec.refine_precision_cm is not None
+        return pave_in_levels(seeds, budget, decider(spec.refine_precision_cm), inside_cm2)
+
+    return finished_outcome(
+        spec, boxes, status, refine, budget, geometric, started, extent, form=spec.form,
+        disjoint=True,
+    )  # fmt: skip
+
+
+def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> WorkspaceResult:
+    """Run one fixed-orientation workspace job of a parallel kind: the summary CSV (the
+    3-RRR's columns), the boxes and the one-line summary."""
+    from planar_tui.csvio import CsvTable
+    from planar_tui.workspace.compute import (
+        SUMMARY_HEADER,
+        BoxBudget,
+        boxes_table,
+        summary_line,
+    )
+
+    job = ready.job
+    outcome = compute_planar(job.robot, job.spec, BoxBudget(job, progress))
+    return WorkspaceResult(
+        table=CsvTable(SUMMARY_HEADER, [outcome.summary_row()]),
+        summary=summary_line(outcome),
+        extra_tables={"boxes": boxes_table(outcome)},
+        outcome=outcome,
+    )
+
+
+def extra_outputs(job: Job[PlanarSpec, Any]) -> dict[str, str]:
+    """The boxes CSV the preset names (``boxes_output``), if any."""
+    return {"boxes": job.spec.boxes_output} if job.spec.boxes_output else {}
+
+
+__all__ = [
+    "Mechanism",
+    "PlanarSpec",
+    "compute_planar",
+    "extra_outputs",
+    "render_workspace",
+    "run_planar",
+]
