@@ -17,8 +17,8 @@ from planar_tui.jobkind import JobKind, RobotKind
 from planar_tui.motion import job as motion_uncertainty
 from planar_tui.sensitivity import job as sensitivity
 from planar_tui.workspace import job as workspace
+from planar_tui.workspace import prr, prr_job, rpr, rpr_job
 from planar_tui.workspace import robot as robot3rrr
-from planar_tui.workspace import rpr, rpr_job
 
 ROBOT_KINDS: dict[str, RobotKind] = {
     kind.name: kind
@@ -26,6 +26,7 @@ ROBOT_KINDS: dict[str, RobotKind] = {
         serial_robot.ROBOT_KIND,
         robot3rrr.ROBOT_KIND,
         rpr.ROBOT_KIND,
+        prr.ROBOT_KIND,
     )
 }
 
@@ -38,6 +39,7 @@ JOB_KINDS: dict[str, JobKind] = {
         workspace.JOB_KIND,
         motion_uncertainty.JOB_KIND,
         rpr_job.JOB_KIND,
+        prr_job.JOB_KIND,
     )
 }
 

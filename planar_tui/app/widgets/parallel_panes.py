@@ -10,3 +10,9 @@ class Workspace3RPRPane(WorkspacePane):
     """The ``workspace3rpr`` kind's tab."""
 
     kind = "workspace3rpr"
+
+
+class Workspace3PRRPane(WorkspacePane):
+    """The ``workspace3prr`` kind's tab."""
+
+    kind = "workspace3prr"
