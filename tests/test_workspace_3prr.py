@@ -16,7 +16,7 @@ from planar_tui.kernels.workspace3prr import prr_point_feasible
 
 from planar_tui.presets import load_preset
 from tests.conftest import PRESETS, on_one_and_two_threads
-from tests.test_workspace_3rpr import pave
+from tests.test_workspace_3rpr import pave, refused, within_two_percent
 
 JOB = """
 [robot3prr]
@@ -135,12 +135,7 @@ def test_three_identical_legs_have_the_closed_form_area(tmp_path, length, stroke
 
 def test_the_bundled_design_brackets_its_exact_area_within_two_percent():
     job = load_preset(PRESETS / "workspace-3prr.toml").jobs[0]
-    outcome = pave(job)
-    g = outcome.geometric
-    assert outcome.area_inside_cm2 <= g.inner_cm2 and g.outer_cm2 <= outcome.area_kept_cm2
-    assert outcome.area_kept_cm2 - outcome.area_inside_cm2 <= 0.02 * g.area_cm2
-    lower, upper = grid_bracket(job)
-    assert lower <= g.outer_cm2 and g.inner_cm2 <= upper
+    within_two_percent(pave(job), grid_bracket(job))
 
 
 def points():
@@ -200,13 +195,7 @@ def preset_text(robot: str = "", job: str = "") -> str:
     ],
 )
 def test_bad_input_is_one_line_exit_2_and_nothing_written(cli, tmp_path, robot, job, fragment):
-    preset = tmp_path / "bad.toml"
-    preset.write_text(preset_text(robot, job), encoding="utf-8")
-    result = cli("workspace3prr", preset, "--out-dir", tmp_path / "out")
-    assert result.exit_code == 2, result.output
-    lines = result.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: ") and fragment in lines[0], lines
-    assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())
+    refused(cli, tmp_path, "workspace3prr", preset_text(robot, job), fragment)
 
 
 def test_the_command_writes_the_summary_csv_and_prints_the_map(cli, tmp_path):

@@ -100,11 +100,16 @@ def test_two_disjoint_annuli_have_no_workspace(tmp_path):
 @pytest.mark.parametrize("index", [0, 1])
 def test_the_bundled_design_brackets_its_exact_area_within_two_percent(index):
     job = load_preset(PRESETS / "workspace-3rpr.toml").jobs[index]
-    outcome = pave(job)
+    within_two_percent(pave(job), grid_bracket(job, 300))
+
+
+def within_two_percent(outcome, grid):
+    """The certified bracket holds the polygon bracket and is at most 2 % of the area wide;
+    the grid's bracket ``(lower, upper)`` meets the polygon's."""
     g = outcome.geometric
     assert outcome.area_inside_cm2 <= g.inner_cm2 and g.outer_cm2 <= outcome.area_kept_cm2
     assert outcome.area_kept_cm2 - outcome.area_inside_cm2 <= 0.02 * g.area_cm2
-    lower, upper = grid_bracket(job, 300)
+    lower, upper = grid
     assert lower <= g.outer_cm2 and g.inner_cm2 <= upper
 
 
@@ -183,9 +188,15 @@ def preset_text(robot: str = "", job: str = "") -> str:
     ],
 )
 def test_bad_input_is_one_line_exit_2_and_nothing_written(cli, tmp_path, robot, job, fragment):
+    refused(cli, tmp_path, "workspace3rpr", preset_text(robot, job), fragment)
+
+
+def refused(cli, tmp_path, command, text, fragment):
+    """The command refuses the preset ``text``: exit 2, one ``error:`` line holding
+    ``fragment``, nothing written."""
     preset = tmp_path / "bad.toml"
-    preset.write_text(preset_text(robot, job), encoding="utf-8")
-    result = cli("workspace3rpr", preset, "--out-dir", tmp_path / "out")
+    preset.write_text(text, encoding="utf-8")
+    result = cli(command, preset, "--out-dir", tmp_path / "out")
     assert result.exit_code == 2, result.output
     lines = result.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("error: ") and fragment in lines[0], lines

@@ -22,21 +22,12 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
-from planar_tui.jobkind import Job, PreparedJob
+from planar_tui.jobkind import Command, Job, JobKind, Option, OutputOption, PreparedJob, Tab
 from planar_tui.progress import Progress
-from planar_tui.schema import (
-    TableReader,
-    boolean,
-    integer,
-    number,
-    plot_setting,
-    relative_path,
-    setting,
-    string,
-)
+from planar_tui.schema import TableReader, number, plot_setting, setting, string
 from planar_tui.workspace.job import (
-    DEFAULT_BOX_BUDGET,
     WorkspaceResult,
+    WorkspaceSpec,
     _checked_box_budget,
     render_workspace,
 )
@@ -55,6 +46,13 @@ def read_search_box(reader: TableReader, name, default, robot, values):
     return rows
 
 
+def same_key(attribute: str, **changes: Any) -> Any:
+    """A setting declared as the 3-RRR's ``[workspace]`` key ``attribute``
+    (:class:`~planar_tui.workspace.job.WorkspaceSpec`), with ``changes`` (its ``doc``...)."""
+    key = {**WorkspaceSpec.__dataclass_fields__[attribute].metadata["key"], **changes}
+    return setting(key.pop("read"), **key)
+
+
 @dataclass(frozen=True, kw_only=True)
 class PlanarSpec:
     """The settings every fixed-orientation parallel workspace job has (angles in degrees,
@@ -63,46 +61,25 @@ class PlanarSpec:
     orientation_deg: float = setting(
         number(), default=0.0, type_doc="number", doc="platform orientation φ"
     )
-    precision_cm: float = setting(
-        number(positive=True), type_doc="number > 0", doc="bisection precision ε"
-    )
+    precision_cm: float = same_key("precision_cm")
     form: str = setting(
         string(choices=("natural", "geometric")),
         default="natural",
         type_doc="`natural`, `geometric`",
         doc="exact per-leg test of each box (see docs/workspace.md), or the exact area only",
     )
-    refine_precision_cm: float | None = setting(
-        number(positive=True),
-        default=None,
-        type_doc="number > 0, ≤ `precision_cm`",
-        doc="boundary-only refinement to this precision",
+    refine_precision_cm: float | None = same_key(
+        "refine_precision_cm", doc="boundary-only refinement to this precision"
     )
-    search_box_cm: tuple[tuple[float, float], tuple[float, float]] | None = setting(
-        read_search_box,
-        default=None,
-        default_doc="a square about the reach",
-        type_doc="`[[x_min, x_max], [y_min, y_max]]`",
-        doc="initial (x, y) box; must contain the legs' reach",
+    search_box_cm: tuple[tuple[float, float], tuple[float, float]] | None = same_key(
+        "search_box_cm", read=read_search_box
     )
-    box_budget: int = setting(
-        integer(minimum=1),
-        default=DEFAULT_BOX_BUDGET,
-        type_doc="integer ≥ 1, × 112 bytes ≤ the memory limit",
+    box_budget: int = same_key(
+        "box_budget",
         doc="most (x, y) boxes one job may decide (then it fails, writing nothing)",
     )
-    geometric_reference: bool = setting(
-        boolean(),
-        default=True,
-        type_doc="boolean",
-        doc="also compute the exact (shapely) area and its error bound",
-    )
-    boxes_output: str | None = setting(
-        relative_path(),
-        default=None,
-        type_doc="relative path",
-        doc="CSV of the kept boxes (`--boxes` on the command line)",
-    )
+    geometric_reference: bool = same_key("geometric_reference")
+    boxes_output: str | None = same_key("boxes_output")
     plot: str | None = plot_setting()
 
     #: The kind's :class:`Mechanism` (set by each subclass; not a preset key).
@@ -242,11 +219,44 @@ def extra_outputs(job: Job[PlanarSpec, Any]) -> dict[str, str]:
     return {"boxes": job.spec.boxes_output} if job.spec.boxes_output else {}
 
 
+def planar_job_kind(
+    name: str, mechanism_name: str, settings: type, summary: str, tab: Tab, warmup: str
+) -> JobKind:
+    """The :class:`JobKind` of a fixed-orientation parallel kind ``name`` (its robot table
+    ``robot`` + the name's suffix): the shared runner, terminal map, figure, command
+    (``--precision``, ``--boxes``, ``--map/--no-map``)."""
+    return JobKind(
+        name=name,
+        robot_kind="robot" + name.removeprefix("workspace"),
+        settings=settings,
+        run=run_planar,
+        summary=summary,
+        render=render_workspace,
+        extra_outputs=extra_outputs,
+        command=Command(
+            name,
+            f"{mechanism_name} workspace of every {name} job: summary CSV, boxes CSV (--boxes "
+            "or the preset's boxes_output) and a map titled with the job and precision.",
+            options=(
+                Option("--precision", "precision_cm",
+                       "Precision epsilon in cm; overrides `precision_cm`.", float),
+            ),
+            outputs=(OutputOption("--boxes", "boxes",
+                                  "CSV of the kept boxes (with several jobs: FILE-1.csv ...)."),),
+            view=("--map/--no-map", "Print the character-cell map."),
+        ),
+        tab=tab,
+        figure="planar_tui.figures.workspace:from_planar_result",
+        warmup=warmup,
+    )  # fmt: skip
+
+
 __all__ = [
     "Mechanism",
     "PlanarSpec",
     "compute_planar",
     "extra_outputs",
+    "planar_job_kind",
     "render_workspace",
     "run_planar",
 ]

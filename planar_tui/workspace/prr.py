@@ -29,8 +29,7 @@ from dataclasses import dataclass
 
 from planar_tui.jobkind import RobotKind
 from planar_tui.schema import numbers, setting, string
-from planar_tui.workspace.robot import _three_points
-from planar_tui.workspace.rpr import PAPER_B_BASE_CM, PAPER_B_PLATFORM_CM
+from planar_tui.workspace.rpr import PAPER_B_BASE_CM, paper_b_points, platform_points
 
 
 def _three_strokes(reader, name, default, context, values):
@@ -52,12 +51,10 @@ class Robot3PRR:
     defaults: an illustrative design at paper B's scale, see the module docstring)."""
 
     name: str = setting(string(), default="", type_doc="string", doc="a label")
-    slider_points_cm: tuple[tuple[float, float], ...] = setting(
-        _three_points,
-        default=PAPER_B_BASE_CM,
-        default_doc="paper B's base triangle (side 120)",
-        type_doc="3 points `[x, y]`",
-        doc="a point `B_i` of each slider's line (the stroke's origin)",
+    slider_points_cm: tuple[tuple[float, float], ...] = paper_b_points(
+        PAPER_B_BASE_CM,
+        "paper B's base triangle (side 120)",
+        "a point `B_i` of each slider's line (the stroke's origin)",
     )
     slider_angles_deg: tuple[float, ...] = setting(
         numbers(length=3),
@@ -77,13 +74,7 @@ class Robot3PRR:
         type_doc="3 numbers > 0",
         doc="distal link lengths `l_i`",
     )
-    platform_points_cm: tuple[tuple[float, float], ...] = setting(
-        _three_points,
-        default=PAPER_B_PLATFORM_CM,
-        default_doc="paper B's platform triangle (40 × 40)",
-        type_doc="3 points `[x, y]`",
-        doc="platform joints `q1, q2, q3` in the platform frame",
-    )
+    platform_points_cm: tuple[tuple[float, float], ...] = platform_points()
 
     def shifted_ends_cm(self, orientation_rad: float) -> tuple[tuple[float, ...], ...]:
         """Per leg the stroke's ends shifted by :math:`-R(\\varphi) q_i`:

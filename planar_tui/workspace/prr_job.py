@@ -8,16 +8,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
-from planar_tui.jobkind import Command, JobKind, Option, OutputOption, Tab
+from planar_tui.jobkind import Tab
 from planar_tui.schema import setting, string
 from planar_tui.workspace import prr
-from planar_tui.workspace.planar import (
-    Mechanism,
-    PlanarSpec,
-    extra_outputs,
-    render_workspace,
-    run_planar,
-)
+from planar_tui.workspace.planar import Mechanism, PlanarSpec, planar_job_kind
 
 MECHANISM = Mechanism(
     parameters=prr.leg_parameters,
@@ -42,29 +36,13 @@ class Spec3PRR(PlanarSpec):
     mechanism: ClassVar[Any] = MECHANISM
 
 
-JOB_KIND = JobKind(
-    name="workspace3prr",
-    robot_kind="robot3prr",
-    settings=Spec3PRR,
-    run=run_planar,
-    summary="3-PRR constant-orientation workspace: stadiums minus lenses intersected, "
+JOB_KIND = planar_job_kind(
+    "workspace3prr",
+    "3-PRR",
+    Spec3PRR,
+    "3-PRR constant-orientation workspace: stadiums minus lenses intersected, "
     "certified by a per-leg distance test",
-    render=render_workspace,
-    extra_outputs=extra_outputs,
-    command=Command(
-        "workspace3prr",
-        "3-PRR workspace of every workspace3prr job: summary CSV, boxes CSV (--boxes or the "
-        "preset's boxes_output) and a map titled with the job and precision.",
-        options=(
-            Option("--precision", "precision_cm",
-                   "Precision epsilon in cm; overrides `precision_cm`.", float),
-        ),
-        outputs=(OutputOption("--boxes", "boxes",
-                              "CSV of the kept boxes (with several jobs: FILE-1.csv ...)."),),
-        view=("--map/--no-map", "Print the character-cell map."),
-    ),
-    tab=Tab("3-PRR", 4, "planar_tui.app.widgets.parallel_panes:Workspace3PRRPane"),
-    figure="planar_tui.figures.workspace:from_planar_result",
-    warmup="[[workspace3prr]]\nprecision_cm = 8.0\nrefine_precision_cm = 4.0\n"
+    Tab("3-PRR", 4, "planar_tui.app.widgets.parallel_panes:Workspace3PRRPane"),
+    "[[workspace3prr]]\nprecision_cm = 8.0\nrefine_precision_cm = 4.0\n"
     "geometric_reference = false\n",
-)  # fmt: skip
+)

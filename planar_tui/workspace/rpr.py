@@ -36,26 +36,33 @@ PAPER_B_BASE_CM = ((0.0, 0.0), (120.0, 0.0), (60.0, 60.0 * math.sqrt(3.0)))
 PAPER_B_PLATFORM_CM = ((0.0, 0.0), (40.0, 0.0), (20.0, 40.0))
 
 
+def paper_b_points(default, default_doc: str, doc: str):
+    """A robot key of three ``[x, y]`` points (cm) defaulting to paper B's ``default``."""
+    return setting(
+        _three_points, default=default, default_doc=default_doc, type_doc="3 points `[x, y]`",
+        doc=doc,
+    )  # fmt: skip
+
+
+def platform_points():
+    """The ``platform_points_cm`` key of the 3-RPR and the 3-PRR (paper B's platform)."""
+    return paper_b_points(
+        PAPER_B_PLATFORM_CM,
+        "paper B's platform triangle (40 × 40)",
+        "platform joints `q1, q2, q3` in the platform frame",
+    )
+
+
 @dataclass(frozen=True, kw_only=True)
 class Robot3RPR:
     """Geometry of a 3-RPR, the ``[robot3rpr]`` table (lengths in cm; defaults: an
     illustrative design at paper B's scale, see the module docstring)."""
 
     name: str = setting(string(), default="", type_doc="string", doc="a label")
-    base_joints_cm: tuple[tuple[float, float], ...] = setting(
-        _three_points,
-        default=PAPER_B_BASE_CM,
-        default_doc="paper B's base triangle (side 120)",
-        type_doc="3 points `[x, y]`",
-        doc="base joints `A1, A2, A3`",
+    base_joints_cm: tuple[tuple[float, float], ...] = paper_b_points(
+        PAPER_B_BASE_CM, "paper B's base triangle (side 120)", "base joints `A1, A2, A3`"
     )
-    platform_points_cm: tuple[tuple[float, float], ...] = setting(
-        _three_points,
-        default=PAPER_B_PLATFORM_CM,
-        default_doc="paper B's platform triangle (40 × 40)",
-        type_doc="3 points `[x, y]`",
-        doc="platform joints `q1, q2, q3` in the platform frame",
-    )
+    platform_points_cm: tuple[tuple[float, float], ...] = platform_points()
 
     def centres_cm(self, orientation_rad: float) -> tuple[tuple[float, float], ...]:
         """The annuli's centres :math:`c_i = A_i - R(\\varphi) q_i`."""

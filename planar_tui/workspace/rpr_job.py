@@ -8,16 +8,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
-from planar_tui.jobkind import Command, JobKind, Option, OutputOption, Tab
+from planar_tui.jobkind import Tab
 from planar_tui.schema import TableReader, setting
 from planar_tui.workspace import rpr
-from planar_tui.workspace.planar import (
-    Mechanism,
-    PlanarSpec,
-    extra_outputs,
-    render_workspace,
-    run_planar,
-)
+from planar_tui.workspace.planar import Mechanism, PlanarSpec, planar_job_kind
 
 MECHANISM = Mechanism(
     parameters=rpr.leg_parameters,
@@ -51,29 +45,13 @@ class Spec3RPR(PlanarSpec):
     mechanism: ClassVar[Any] = MECHANISM
 
 
-JOB_KIND = JobKind(
-    name="workspace3rpr",
-    robot_kind="robot3rpr",
-    settings=Spec3RPR,
-    run=run_planar,
-    summary="3-RPR constant-orientation workspace: the intersection of three annuli, "
+JOB_KIND = planar_job_kind(
+    "workspace3rpr",
+    "3-RPR",
+    Spec3RPR,
+    "3-RPR constant-orientation workspace: the intersection of three annuli, "
     "certified by an exact per-leg interval test",
-    render=render_workspace,
-    extra_outputs=extra_outputs,
-    command=Command(
-        "workspace3rpr",
-        "3-RPR workspace of every workspace3rpr job: summary CSV, boxes CSV (--boxes or the "
-        "preset's boxes_output) and a map titled with the job and precision.",
-        options=(
-            Option("--precision", "precision_cm",
-                   "Precision epsilon in cm; overrides `precision_cm`.", float),
-        ),
-        outputs=(OutputOption("--boxes", "boxes",
-                              "CSV of the kept boxes (with several jobs: FILE-1.csv ...)."),),
-        view=("--map/--no-map", "Print the character-cell map."),
-    ),
-    tab=Tab("3-RPR", 3, "planar_tui.app.widgets.parallel_panes:Workspace3RPRPane"),
-    figure="planar_tui.figures.workspace:from_planar_result",
-    warmup="[[workspace3rpr]]\nleg_limits_cm = [[40, 90], [40, 90], [40, 90]]\n"
+    Tab("3-RPR", 3, "planar_tui.app.widgets.parallel_panes:Workspace3RPRPane"),
+    "[[workspace3rpr]]\nleg_limits_cm = [[40, 90], [40, 90], [40, 90]]\n"
     "precision_cm = 8.0\nrefine_precision_cm = 4.0\ngeometric_reference = false\n",
-)  # fmt: skip
+)
