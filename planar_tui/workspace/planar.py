@@ -29,6 +29,7 @@ from planar_tui.workspace.job import (
     WorkspaceResult,
     WorkspaceSpec,
     _checked_box_budget,
+    point_figures,
     render_workspace,
 )
 
@@ -127,6 +128,9 @@ class Mechanism:
     reach_box: Callable[[Any, Any], tuple[float, float, float, float]]
     polygon: Callable[[Any, Any, int, bool], Any]
     level: str
+    #: The module certifying its singularities (``resolve_centre(job)``,
+    #: ``compute_<kind>_singularities``...), if the kind has them.
+    singularities: str | None = None
 
     def level_kernel(self) -> Callable[..., None]:
         module, _, name = self.level.partition(":")
@@ -205,13 +209,35 @@ def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> 
     )
 
     job = ready.job
-    outcome = compute_planar(job.robot, job.spec, BoxBudget(job, progress))
+    budget = BoxBudget(job, progress)
+    outcome = compute_planar(job.robot, job.spec, budget)
+    header: tuple[str, ...] = SUMMARY_HEADER
+    row, summary = outcome.summary_row(), summary_line(outcome)
+    singular = None
+    module = job.spec.mechanism.singularities
+    if module is not None:  # the circle's columns before the last one, the wall time
+        from planar_tui.workspace.singularity import HEADER
+
+        if ready.prepared is not None:
+            compute = importlib.import_module(module).compute_singularities
+            singular = compute(job, ready.prepared, outcome.extent_cm, budget)
+            summary += f"; {singular.describe()}"
+        cells = [""] * len(HEADER) if singular is None else singular.columns()
+        header, row = (*header[:-1], *HEADER, header[-1]), [*row[:-1], *cells, row[-1]]
     return WorkspaceResult(
-        table=CsvTable(SUMMARY_HEADER, [outcome.summary_row()]),
-        summary=summary_line(outcome),
+        table=CsvTable(header, [row]),
+        summary=summary,
         extra_tables={"boxes": boxes_table(outcome)},
         outcome=outcome,
+        singularity=singular,
     )
+
+
+def prepare_planar(job: Job[PlanarSpec, Any]) -> object:
+    """The kind's ``prepare``: the singularity-free circle's centre, checked (``None``
+    without singularities)."""
+    module = job.spec.mechanism.singularities
+    return None if module is None else importlib.import_module(module).resolve_centre(job)
 
 
 def extra_outputs(job: Job[PlanarSpec, Any]) -> dict[str, str]:
@@ -230,6 +256,8 @@ def planar_job_kind(
         robot_kind="robot" + name.removeprefix("workspace"),
         settings=settings,
         run=run_planar,
+        prepare=prepare_planar,
+        point_figures=point_figures,
         summary=summary,
         render=render_workspace,
         extra_outputs=extra_outputs,

@@ -11,13 +11,14 @@ from typing import Any, ClassVar
 from planar_tui.jobkind import Tab
 from planar_tui.schema import TableReader, setting
 from planar_tui.workspace import rpr
-from planar_tui.workspace.planar import Mechanism, PlanarSpec, planar_job_kind
+from planar_tui.workspace.planar import Mechanism, PlanarSpec, planar_job_kind, same_key
 
 MECHANISM = Mechanism(
     parameters=rpr.leg_parameters,
     reach_box=rpr.reach_box,
     polygon=rpr.workspace_polygon,
     level="planar_tui.kernels.workspace3rpr:rpr_level",
+    singularities="planar_tui.workspace.rpr_singularity",
 )
 
 
@@ -42,7 +43,30 @@ class Spec3RPR(PlanarSpec):
         doc="actuated leg lengths ρ1, ρ2, ρ3 (prismatic strokes)",
     )
 
+    singularities: bool = same_key(
+        "singularities",
+        doc="also map the type II singularities and certify the singularity-free circle",
+    )
+    circle_centre_cm: tuple[float, float] | None = same_key("circle_centre_cm")
+    singularity_precision_cm: float | None = same_key("singularity_precision_cm")
+
     mechanism: ClassVar[Any] = MECHANISM
+
+    @classmethod
+    def check(cls, values: dict[str, Any], reader: TableReader, robot: Any) -> dict[str, Any]:
+        """The shared checks; the circle's keys go with ``singularities = true``, which
+        needs a form with boxes."""
+        if not values["singularities"]:
+            for name in ("circle_centre_cm", "singularity_precision_cm"):
+                if values[name] is not None:
+                    raise reader.error(
+                        name, "is set without singularities = true", "singularities = true"
+                    )
+        elif values["form"] == "geometric":
+            raise reader.error(
+                "singularities", 'is true with form = "geometric"', 'form = "natural"'
+            )
+        return super().check(values, reader, robot)
 
 
 JOB_KIND = planar_job_kind(
@@ -53,5 +77,6 @@ JOB_KIND = planar_job_kind(
     "certified by an exact per-leg interval test",
     Tab("3-RPR", 3, "planar_tui.app.widgets.parallel_panes:Workspace3RPRPane"),
     "[[workspace3rpr]]\nleg_limits_cm = [[40, 90], [40, 90], [40, 90]]\n"
-    "precision_cm = 8.0\nrefine_precision_cm = 4.0\ngeometric_reference = false\n",
+    "precision_cm = 8.0\nrefine_precision_cm = 4.0\ngeometric_reference = false\n"
+    "orientation_deg = 30\nsingularities = true\n",
 )
