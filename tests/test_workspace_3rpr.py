@@ -161,10 +161,10 @@ def test_refinement_narrows_the_bracket_and_keeps_the_inside_boxes(tmp_path):
 
 
 def preset_text(robot: str = "", job: str = "") -> str:
-    """A small 3-RPR preset; ``job`` (``key = value``) replaces or adds one job key."""
+    """A small 3-RPR preset; each line ``key = value`` of ``job`` replaces or adds a job key."""
     keys = {"leg_limits_cm": "[[20, 80], [20, 80], [20, 80]]", "precision_cm": "1"}
-    if job:
-        key, value = job.split(" = ", 1)
+    for line in job.splitlines():
+        key, value = line.split(" = ", 1)
         keys[key] = value
     lines = "".join(f"{key} = {value}\n" for key, value in keys.items())
     return f'[robot3rpr]\n{robot}\n[[workspace3rpr]]\n{lines}output = "o.csv"\n'
