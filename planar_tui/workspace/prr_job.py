@@ -42,7 +42,7 @@ JOB_KIND = planar_job_kind(
     Spec3PRR,
     "3-PRR constant-orientation workspace: stadiums minus lenses intersected, "
     "certified by a per-leg distance test",
-    Tab("3-PRR", 4, "planar_tui.app.widgets.parallel_panes:Workspace3PRRPane"),
+    Tab("3-PRR", 7, "planar_tui.app.widgets.parallel_panes:Workspace3PRRPane"),
     "[[workspace3prr]]\nprecision_cm = 8.0\nrefine_precision_cm = 4.0\n"
     "geometric_reference = false\n",
 )

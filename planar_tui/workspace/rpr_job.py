@@ -75,7 +75,7 @@ JOB_KIND = planar_job_kind(
     Spec3RPR,
     "3-RPR constant-orientation workspace: the intersection of three annuli, "
     "certified by an exact per-leg interval test",
-    Tab("3-RPR", 3, "planar_tui.app.widgets.parallel_panes:Workspace3RPRPane"),
+    Tab("3-RPR", 6, "planar_tui.app.widgets.parallel_panes:Workspace3RPRPane"),
     "[[workspace3rpr]]\nleg_limits_cm = [[40, 90], [40, 90], [40, 90]]\n"
     "precision_cm = 8.0\nrefine_precision_cm = 4.0\ngeometric_reference = false\n"
     "orientation_deg = 30\nsingularities = true\n",
