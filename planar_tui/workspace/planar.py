@@ -116,6 +116,19 @@ class PlanarSpec:
         return values
 
 
+def check_circle_keys(values: dict[str, Any], reader: TableReader, names: tuple[str, ...]) -> None:
+    """The circle's keys ``names`` go with ``singularities = true``, which needs a form
+    with boxes."""
+    if not values["singularities"]:
+        for name in names:
+            if values[name] is not None:
+                raise reader.error(
+                    name, "is set without singularities = true", "singularities = true"
+                )
+    elif values["form"] == "geometric":
+        raise reader.error("singularities", 'is true with form = "geometric"', "a form with boxes")
+
+
 @dataclass(frozen=True)
 class Mechanism:
     """What the shared paving needs of one mechanism (functions of the robot and spec):

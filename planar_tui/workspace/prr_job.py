@@ -9,15 +9,22 @@ from dataclasses import dataclass
 from typing import Any, ClassVar
 
 from planar_tui.jobkind import Tab
-from planar_tui.schema import setting, string
+from planar_tui.schema import TableReader, setting, string
 from planar_tui.workspace import prr
-from planar_tui.workspace.planar import Mechanism, PlanarSpec, planar_job_kind
+from planar_tui.workspace.planar import (
+    Mechanism,
+    PlanarSpec,
+    check_circle_keys,
+    planar_job_kind,
+    same_key,
+)
 
 MECHANISM = Mechanism(
     parameters=prr.leg_parameters,
     reach_box=prr.reach_box,
     polygon=prr.workspace_polygon,
     level="planar_tui.kernels.workspace3prr:prr_level",
+    singularities="planar_tui.workspace.prr_singularity",
 )
 
 
@@ -33,7 +40,28 @@ class Spec3PRR(PlanarSpec):
         doc="the per-leg distance test of each box (see docs/workspace.md), or the exact area only",
     )
 
+    singularities: bool = same_key(
+        "singularities",
+        doc="also map the type II singularities and certify the singularity-free circle",
+    )
+    slider_modes: tuple[int, int, int] | None = same_key(
+        "elbow",
+        name="slider_modes",
+        default_doc="(the mode the strokes allow at the centre)",
+        doc="working mode per leg: the slider ahead (`1`) or behind (`-1`) the foot of the "
+        "perpendicular from the platform joint to its line",
+    )
+    circle_centre_cm: tuple[float, float] | None = same_key("circle_centre_cm")
+    singularity_precision_cm: float | None = same_key("singularity_precision_cm")
+
     mechanism: ClassVar[Any] = MECHANISM
+
+    @classmethod
+    def check(cls, values: dict[str, Any], reader: TableReader, robot: Any) -> dict[str, Any]:
+        """The shared checks and the circle's (:func:`check_circle_keys`)."""
+        names = ("slider_modes", "circle_centre_cm", "singularity_precision_cm")
+        check_circle_keys(values, reader, names)
+        return super().check(values, reader, robot)
 
 
 JOB_KIND = planar_job_kind(
@@ -44,5 +72,5 @@ JOB_KIND = planar_job_kind(
     "certified by a per-leg distance test",
     Tab("3-PRR", 7, "planar_tui.app.widgets.parallel_panes:Workspace3PRRPane"),
     "[[workspace3prr]]\nprecision_cm = 8.0\nrefine_precision_cm = 4.0\n"
-    "geometric_reference = false\n",
+    "geometric_reference = false\nsingularities = true\n",
 )

@@ -11,7 +11,13 @@ from typing import Any, ClassVar
 from planar_tui.jobkind import Tab
 from planar_tui.schema import TableReader, setting
 from planar_tui.workspace import rpr
-from planar_tui.workspace.planar import Mechanism, PlanarSpec, planar_job_kind, same_key
+from planar_tui.workspace.planar import (
+    Mechanism,
+    PlanarSpec,
+    check_circle_keys,
+    planar_job_kind,
+    same_key,
+)
 
 MECHANISM = Mechanism(
     parameters=rpr.leg_parameters,
@@ -54,18 +60,8 @@ class Spec3RPR(PlanarSpec):
 
     @classmethod
     def check(cls, values: dict[str, Any], reader: TableReader, robot: Any) -> dict[str, Any]:
-        """The shared checks; the circle's keys go with ``singularities = true``, which
-        needs a form with boxes."""
-        if not values["singularities"]:
-            for name in ("circle_centre_cm", "singularity_precision_cm"):
-                if values[name] is not None:
-                    raise reader.error(
-                        name, "is set without singularities = true", "singularities = true"
-                    )
-        elif values["form"] == "geometric":
-            raise reader.error(
-                "singularities", 'is true with form = "geometric"', 'form = "natural"'
-            )
+        """The shared checks and the circle's (:func:`check_circle_keys`)."""
+        check_circle_keys(values, reader, ("circle_centre_cm", "singularity_precision_cm"))
         return super().check(values, reader, robot)
 
 

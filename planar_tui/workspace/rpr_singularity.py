@@ -48,19 +48,22 @@ class RprSingularity:
     radius_hi_cm: float
     boxes_processed: int
     seconds: float
+    #: The working modes the circle holds for (``"1 -1 1"``; empty for the 3-RPR).
+    elbow: str = ""
 
     @property
     def singular_boxes(self) -> Any:
         return self.boxes
 
     def columns(self) -> list:
-        """The 3-RRR's circle columns (``elbow`` empty)."""
-        return [*self.centre_cm, self.radius_lo_cm, self.radius_hi_cm, ""]
+        """The 3-RRR's circle columns (``elbow``: the working modes, if any)."""
+        return [*self.centre_cm, self.radius_lo_cm, self.radius_hi_cm, self.elbow]
 
     def describe(self) -> str:
+        modes = f", modes [{self.elbow}]" if self.elbow else ""
         return (
             f"singularity-free: r ∈ [{self.radius_lo_cm:.5g}, {self.radius_hi_cm:.5g}] cm "
-            f"about ({self.centre_cm[0]:.4g}, {self.centre_cm[1]:.4g})"
+            f"about ({self.centre_cm[0]:.4g}, {self.centre_cm[1]:.4g}){modes}"
         )
 
 
@@ -94,6 +97,22 @@ def det_sign(robot: Robot3RPR, spec, point) -> int:
     return 1 if out[0, 0] > 0.0 else -1 if out[0, 1] < 0.0 else 0
 
 
+def given_or_centroid(job: Any, polygon_of: Any) -> tuple[float, float]:
+    """The job's ``circle_centre_cm``, or the centroid of its exact workspace
+    (``polygon_of(robot, spec, segments, outward)``; a point inside when the centroid is
+    not); an empty workspace is a :class:`PresetError`."""
+    if job.spec.circle_centre_cm is not None:
+        return job.spec.circle_centre_cm
+    polygon = polygon_of(job.robot, job.spec, 256, False)
+    if polygon.is_empty:
+        raise PresetError(job.preset_path, f"{job.key}.circle_centre_cm",
+                          "has no default: the workspace is empty", "a non-empty workspace")  # fmt: skip
+    point = polygon.centroid
+    if not polygon.contains(point):
+        point = polygon.representative_point()
+    return (float(point.x), float(point.y))
+
+
 def resolve_centre(job: Any) -> tuple[float, float] | None:
     """The circle's centre of a job with ``singularities`` (``None`` without): the given
     one or the exact workspace's centroid; one off the workspace or on a singularity is a
@@ -103,16 +122,7 @@ def resolve_centre(job: Any) -> tuple[float, float] | None:
         return None
     key = f"{job.key}.circle_centre_cm"
     expected = "a centre inside the workspace, off its singularities"
-    centre = spec.circle_centre_cm
-    if centre is None:
-        polygon = workspace_polygon(robot, spec, 256, False)
-        if polygon.is_empty:
-            raise PresetError(job.preset_path, key, "has no default: the workspace is empty",
-                              "a non-empty workspace")  # fmt: skip
-        point = polygon.centroid
-        if not polygon.contains(point):
-            point = polygon.representative_point()
-        centre = (float(point.x), float(point.y))
+    centre = given_or_centroid(job, workspace_polygon)
     where = f"({centre[0]:.6g}, {centre[1]:.6g}) cm"
     if workspace_margin_cm(robot, spec, centre) <= MARGIN_CM:
         raise PresetError(job.preset_path, key, f"{where} is not inside the workspace", expected)
