@@ -14,6 +14,7 @@ from planar_tui.presets import load_preset
 from planar_tui.progress import Progress
 from tests.test_workspace_3prr import preset_text
 from tests.test_workspace_3rpr import refused
+from tests.test_workspace_3rpr_singularity import assert_in_boxes, trace_roots
 
 B = np.array([[0.0, 0.0], [120.0, 0.0], [60.0, 60.0 * math.sqrt(3.0)]])
 U = np.array([[math.cos(math.radians(a)), math.sin(math.radians(a))] for a in (0, 120, 240)])
@@ -58,30 +59,10 @@ def test_every_root_of_a_float_trace_of_det_lies_in_a_kept_box(tmp_path):
     result = run(tmp_path)
     s = result.singularity
     modes = tuple(int(m) for m in s.elbow.split())
-    boxes = s.boxes
-    roots = []
-    for y in np.linspace(-15.0, 45.0, 25):
-        xs = np.linspace(-5.03, 90.01, 1201)
-        values = [det(x, y, modes) for x in xs]
-        for k in range(len(xs) - 1):
-            a, b = values[k], values[k + 1]
-            if a is None or b is None or a * b >= 0.0:
-                continue
-            lo, hi = xs[k], xs[k + 1]
-            for _ in range(60):
-                mid = 0.5 * (lo + hi)
-                d_mid = det(mid, y, modes)
-                if d_mid is None:
-                    break
-                lo, hi = (mid, hi) if d_mid * a > 0.0 else (lo, mid)
-            else:
-                roots.append((lo, y))
+    roots = trace_roots(lambda x, y: det(x, y, modes), np.linspace(-15.0, 45.0, 25),
+                        np.linspace(-5.03, 90.01, 1201))  # fmt: skip
     assert roots, "the trace found no singular pose: the test would prove nothing"
-    tol = 1e-6
-    for x, y in roots:
-        hit = ((boxes[:, 0] - tol <= x) & (x <= boxes[:, 1] + tol)
-               & (boxes[:, 2] - tol <= y) & (y <= boxes[:, 3] + tol))  # fmt: skip
-        assert hit.any(), (x, y)
+    assert_in_boxes(roots, s.boxes)
 
 
 def test_the_circle_holds_no_bad_sample_and_its_bracket_is_narrow(tmp_path):

@@ -62,22 +62,39 @@ def test_the_symmetric_design_has_the_closed_form_circle(tmp_path):
 def test_every_root_of_a_float_trace_of_det_lies_in_a_kept_box(tmp_path, phi):
     result = run(tmp_path, phi)
     boxes = result.singularity.boxes
-    roots = []
-    for y in np.linspace(-25.0, 55.0, 17):  # horizontal lines: sign changes of det, bisected
-        xs = np.linspace(-10.03, 90.01, 801)  # off the axis x = 40
-        values = [det(x, y, phi) for x in xs]
-        for k in range(len(xs) - 1):
-            if values[k] * values[k + 1] < 0.0:
-                a, b = xs[k], xs[k + 1]
-                for _ in range(60):
-                    m = 0.5 * (a + b)
-                    a, b = (m, b) if det(m, y, phi) * det(a, y, phi) > 0.0 else (a, m)
-                if inside(a, y, phi):
-                    roots.append((a, y))
+    roots = trace_roots(lambda x, y: det(x, y, phi), np.linspace(-25.0, 55.0, 17),
+                        np.linspace(-10.03, 90.01, 801))  # off the axis x = 40  # fmt: skip
+    roots = [(x, y) for x, y in roots if inside(x, y, phi)]
     if phi == 0.0:
         assert len(roots) >= 4  # the symmetry axis crosses the workspace
-    tol = 1e-6
-    for x, y in roots:
+    assert_in_boxes(roots, boxes)
+
+
+def trace_roots(det_of, ys, xs):
+    """Roots of ``det_of(x, y)`` along each line ``y``: sign changes between neighbouring
+    ``xs``, bisected in floats (``None``, a point off the workspace, stops a bracket)."""
+    roots = []
+    for y in ys:
+        values = [det_of(x, y) for x in xs]
+        for k in range(len(xs) - 1):
+            a, b = values[k], values[k + 1]
+            if a is None or b is None or a * b >= 0.0:
+                continue
+            lo, hi = xs[k], xs[k + 1]
+            for _ in range(60):
+                mid = 0.5 * (lo + hi)
+                value = det_of(mid, y)
+                if value is None:
+                    break
+                lo, hi = (mid, hi) if value * a > 0.0 else (lo, mid)
+            else:
+                roots.append((lo, y))
+    return roots
+
+
+def assert_in_boxes(points, boxes, tol=1e-6):
+    """Every point lies in one of the rows ``x_lo, x_hi, y_lo, y_hi`` (within ``tol``)."""
+    for x, y in points:
         hit = ((boxes[:, 0] - tol <= x) & (x <= boxes[:, 1] + tol)
                & (boxes[:, 2] - tol <= y) & (y <= boxes[:, 3] + tol))  # fmt: skip
         assert hit.any(), (x, y)

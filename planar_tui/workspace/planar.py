@@ -82,9 +82,17 @@ class PlanarSpec:
     geometric_reference: bool = same_key("geometric_reference")
     boxes_output: str | None = same_key("boxes_output")
     plot: str | None = plot_setting()
+    singularities: bool = same_key(
+        "singularities",
+        doc="also map the type II singularities and certify the singularity-free circle",
+    )
+    circle_centre_cm: tuple[float, float] | None = same_key("circle_centre_cm")
+    singularity_precision_cm: float | None = same_key("singularity_precision_cm")
 
     #: The kind's :class:`Mechanism` (set by each subclass; not a preset key).
     mechanism: ClassVar[Any] = None
+    #: The keys that go with ``singularities = true`` (:func:`check_circle_keys`).
+    circle_keys: ClassVar[tuple[str, ...]] = ("circle_centre_cm", "singularity_precision_cm")
 
     @property
     def orientation_rad(self) -> float:
@@ -93,7 +101,9 @@ class PlanarSpec:
     @classmethod
     def check(cls, values: dict[str, Any], reader: TableReader, robot: Any) -> dict[str, Any]:
         """The refinement precision cannot exceed the precision; an explicit search box
-        must hold the legs' reach; the box budget must fit the memory limit."""
+        must hold the legs' reach; the box budget must fit the memory limit; the circle's
+        keys go with ``singularities`` (:func:`check_circle_keys`)."""
+        check_circle_keys(values, reader, cls.circle_keys)
         refine = values["refine_precision_cm"]
         if refine is not None and refine > values["precision_cm"]:
             raise reader.error(

@@ -9,15 +9,9 @@ from dataclasses import dataclass
 from typing import Any, ClassVar
 
 from planar_tui.jobkind import Tab
-from planar_tui.schema import TableReader, setting, string
+from planar_tui.schema import setting, string
 from planar_tui.workspace import prr
-from planar_tui.workspace.planar import (
-    Mechanism,
-    PlanarSpec,
-    check_circle_keys,
-    planar_job_kind,
-    same_key,
-)
+from planar_tui.workspace.planar import Mechanism, PlanarSpec, planar_job_kind, same_key
 
 MECHANISM = Mechanism(
     parameters=prr.leg_parameters,
@@ -40,10 +34,6 @@ class Spec3PRR(PlanarSpec):
         doc="the per-leg distance test of each box (see docs/workspace.md), or the exact area only",
     )
 
-    singularities: bool = same_key(
-        "singularities",
-        doc="also map the type II singularities and certify the singularity-free circle",
-    )
     slider_modes: tuple[int, int, int] | None = same_key(
         "elbow",
         name="slider_modes",
@@ -51,17 +41,12 @@ class Spec3PRR(PlanarSpec):
         doc="working mode per leg: the slider ahead (`1`) or behind (`-1`) the foot of the "
         "perpendicular from the platform joint to its line",
     )
-    circle_centre_cm: tuple[float, float] | None = same_key("circle_centre_cm")
-    singularity_precision_cm: float | None = same_key("singularity_precision_cm")
-
     mechanism: ClassVar[Any] = MECHANISM
-
-    @classmethod
-    def check(cls, values: dict[str, Any], reader: TableReader, robot: Any) -> dict[str, Any]:
-        """The shared checks and the circle's (:func:`check_circle_keys`)."""
-        names = ("slider_modes", "circle_centre_cm", "singularity_precision_cm")
-        check_circle_keys(values, reader, names)
-        return super().check(values, reader, robot)
+    circle_keys: ClassVar[tuple[str, ...]] = (
+        "slider_modes",
+        "circle_centre_cm",
+        "singularity_precision_cm",
+    )
 
 
 JOB_KIND = planar_job_kind(

@@ -19,7 +19,12 @@ from typing import Any
 
 from planar_tui.errors import PresetError
 from planar_tui.workspace.prr import Robot3PRR, workspace_polygon
-from planar_tui.workspace.rpr_singularity import MARGIN_CM, RprSingularity, given_or_centroid
+from planar_tui.workspace.rpr_singularity import (
+    MARGIN_CM,
+    RprSingularity,
+    box_distances,
+    given_or_centroid,
+)
 from planar_tui.workspace.singularity import SINGULAR_RELATIVE
 
 
@@ -137,9 +142,7 @@ def compute_singularities(job: Any, circle, extent, budget: Any) -> RprSingulari
     xlo, xhi, ylo, yhi = extent
     lo = hi = max(0.0, min(cx - xlo, xhi - cx, cy - ylo, yhi - cy))
     if len(boxes):
-        dx = np.maximum(np.maximum(boxes[:, 0] - cx, 0.0), cx - boxes[:, 1])
-        dy = np.maximum(np.maximum(boxes[:, 2] - cy, 0.0), cy - boxes[:, 3])
-        distance = np.hypot(dx, dy)
+        distance = box_distances(boxes, (cx, cy))
         lo = min(lo, float(distance.min()))
         bad = labels == INSIDE
         if bad.any():

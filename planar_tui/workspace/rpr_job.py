@@ -11,13 +11,7 @@ from typing import Any, ClassVar
 from planar_tui.jobkind import Tab
 from planar_tui.schema import TableReader, setting
 from planar_tui.workspace import rpr
-from planar_tui.workspace.planar import (
-    Mechanism,
-    PlanarSpec,
-    check_circle_keys,
-    planar_job_kind,
-    same_key,
-)
+from planar_tui.workspace.planar import Mechanism, PlanarSpec, planar_job_kind
 
 MECHANISM = Mechanism(
     parameters=rpr.leg_parameters,
@@ -49,20 +43,7 @@ class Spec3RPR(PlanarSpec):
         doc="actuated leg lengths ρ1, ρ2, ρ3 (prismatic strokes)",
     )
 
-    singularities: bool = same_key(
-        "singularities",
-        doc="also map the type II singularities and certify the singularity-free circle",
-    )
-    circle_centre_cm: tuple[float, float] | None = same_key("circle_centre_cm")
-    singularity_precision_cm: float | None = same_key("singularity_precision_cm")
-
     mechanism: ClassVar[Any] = MECHANISM
-
-    @classmethod
-    def check(cls, values: dict[str, Any], reader: TableReader, robot: Any) -> dict[str, Any]:
-        """The shared checks and the circle's (:func:`check_circle_keys`)."""
-        check_circle_keys(values, reader, ("circle_centre_cm", "singularity_precision_cm"))
-        return super().check(values, reader, robot)
 
 
 JOB_KIND = planar_job_kind(

@@ -148,6 +148,15 @@ def float_det(robot: Robot3RPR, spec, point) -> float:
     return float(np.linalg.det(np.array(rows)))
 
 
+def box_distances(boxes, centre):
+    """The distance from ``centre`` to each row ``x_lo, x_hi, y_lo, y_hi`` (0 inside)."""
+    import numpy as np
+
+    dx = np.maximum(np.maximum(boxes[:, 0] - centre[0], 0.0), centre[0] - boxes[:, 1])
+    dy = np.maximum(np.maximum(boxes[:, 2] - centre[1], 0.0), centre[1] - boxes[:, 3])
+    return np.hypot(dx, dy)
+
+
 def compute_singularities(job: Any, centre, extent, budget: Any) -> RprSingularity:
     """Pave ``extent`` down to ``singularity_precision_cm`` (default ``precision_cm``) and
     bracket the circle about ``centre`` (module docstring)."""
@@ -179,9 +188,7 @@ def compute_singularities(job: Any, centre, extent, budget: Any) -> RprSingulari
             "a centre inside the workspace, off its singularities",
         )
     if len(boxes):
-        dx = np.maximum(np.maximum(boxes[:, 0] - cx, 0.0), cx - boxes[:, 1])
-        dy = np.maximum(np.maximum(boxes[:, 2] - cy, 0.0), cy - boxes[:, 3])
-        lo = min(lo, float(np.min(np.hypot(dx, dy))))
+        lo = min(lo, float(np.min(box_distances(boxes, centre))))
         qx, qy = 0.5 * (boxes[:, 0] + boxes[:, 1]), 0.5 * (boxes[:, 2] + boxes[:, 3])
         det = np.zeros((len(boxes), 2))
         points_det_range(qx, qy, p, offsets, det)
