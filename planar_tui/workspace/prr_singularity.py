@@ -21,7 +21,7 @@ from planar_tui.errors import PresetError
 from planar_tui.workspace.prr import Robot3PRR, workspace_polygon
 from planar_tui.workspace.rpr_singularity import (
     MARGIN_CM,
-    RprSingularity,
+    FreeCircle,
     box_distances,
     given_or_centroid,
 )
@@ -109,7 +109,7 @@ def resolve_circle(job: Any) -> tuple[tuple[float, float], tuple[int, int, int]]
     return centre, (modes[0], modes[1], modes[2])
 
 
-def compute_singularities(job: Any, circle, extent, budget: Any) -> RprSingularity:
+def compute_singularities(job: Any, circle, extent, budget: Any) -> FreeCircle:
     """Pave ``extent`` down to ``singularity_precision_cm`` (default ``precision_cm``) in the
     circle's modes and bracket the circle (module docstring)."""
     import numpy as np
@@ -159,7 +159,7 @@ def compute_singularities(job: Any, circle, extent, budget: Any) -> RprSingulari
     whole = np.zeros((len(boxes), 4))
     boxes_status(np.ascontiguousarray(boxes), g, sigma, offsets, whole)
     singular = (whole[:, 1] == 0.0) & (whole[:, 2] <= 0.0) & (whole[:, 3] >= 0.0)
-    return RprSingularity(
+    return FreeCircle(
         boxes=boxes[singular],
         centre_cm=(cx, cy),
         radius_lo_cm=max(0.0, lo - MARGIN_CM),

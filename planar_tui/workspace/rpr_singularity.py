@@ -38,7 +38,7 @@ MARGIN_CM = 1e-9
 
 
 @dataclass
-class RprSingularity:
+class FreeCircle:
     """The kept leaves (rows ``x_lo, x_hi, y_lo, y_hi``: may hold a singular pose), the
     circle's centre and certified radius bracket."""
 
@@ -157,7 +157,7 @@ def box_distances(boxes, centre):
     return np.hypot(dx, dy)
 
 
-def compute_singularities(job: Any, centre, extent, budget: Any) -> RprSingularity:
+def compute_singularities(job: Any, centre, extent, budget: Any) -> FreeCircle:
     """Pave ``extent`` down to ``singularity_precision_cm`` (default ``precision_cm``) and
     bracket the circle about ``centre`` (module docstring)."""
     import numpy as np
@@ -195,7 +195,7 @@ def compute_singularities(job: Any, centre, extent, budget: Any) -> RprSingulari
         flips = det[:, 1] < 0.0 if sign > 0 else det[:, 0] > 0.0
         if flips.any():
             hi = min(hi, float(np.min(np.hypot(qx[flips] - cx, qy[flips] - cy))))
-    return RprSingularity(
+    return FreeCircle(
         boxes=boxes,
         centre_cm=(cx, cy),
         radius_lo_cm=max(0.0, lo - MARGIN_CM),
