@@ -237,3 +237,29 @@ def test_the_exact_polygon_is_the_figures_boundary(tmp_path):
     figure = from_planar_result(job, result)
     assert any(line.get_gid() == "exact" for line in figure.axes[0].lines)
     assert dataclasses.is_dataclass(job.spec)
+
+
+@pytest.mark.slow
+def test_the_app_tab_runs_the_job_and_shows_its_map(tmp_path):
+    import asyncio
+
+    from planar_tui.app.app import WorkbenchApp
+    from planar_tui.app.workbench import Workbench
+    from tests.test_app import run_tab
+
+    preset = tmp_path / "rpr.toml"
+    preset.write_text(preset_text(job="orientation_deg = 30\nsingularities = true"),
+                      encoding="utf-8")  # fmt: skip
+    app = WorkbenchApp(Workbench.open(preset), output_dir=tmp_path)
+
+    async def drive():
+        async with app.run_test(size=(100, 40)) as pilot:
+            await run_tab(app, pilot, "workspace3rpr")
+            screen = app.export_text()
+            result = app.query_one("#pane-workspace3rpr").result
+            assert result.summary[:24] in screen and "█" in screen and "▒" in screen
+            assert "singularity-free" in result.summary
+            g = result.outcome.geometric
+            assert result.outcome.area_inside_cm2 <= g.area_cm2 <= result.outcome.area_kept_cm2
+
+    asyncio.run(drive())
