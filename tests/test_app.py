@@ -266,7 +266,10 @@ async def test_save_load_and_the_cli_gives_the_same_csv(tmp_path, cli):
         await pilot.pause()
     result = cli("simulate", saved, "--out", tmp_path / "cli.csv")
     assert result.exit_code == 0, result.stderr
-    assert [p.name for p in (tmp_path / "app").iterdir()] == ["tiny-simulate.csv"]  # job.output
+    assert sorted(p.name for p in (tmp_path / "app").iterdir()) == [
+        "tiny-simulate.csv",
+        "tiny-simulate.csv.json",
+    ]  # job.output, its provenance
     app_csv = (tmp_path / "app" / "tiny-simulate.csv").read_bytes()
     assert app_csv == (tmp_path / "cli.csv").read_bytes()
     assert app_csv.count(b"\n") == 1 + 21
@@ -363,7 +366,12 @@ async def test_workspace_form_wraps_and_the_run_shows_map_area_and_boxes(tmp_pat
     result = cli("workspace", tmp_path / "tiny.toml", *outputs, "--no-map")
     assert result.exit_code == 0, result.stderr
     exported = tmp_path / "app"
-    assert sorted(p.name for p in exported.iterdir()) == ["tiny-workspace.csv", "ws-boxes.csv"]
+    assert sorted(p.name for p in exported.iterdir()) == [
+        "tiny-workspace.csv",
+        "tiny-workspace.csv.json",
+        "ws-boxes.csv",
+        "ws-boxes.csv.json",
+    ]
     assert (exported / "ws-boxes.csv").read_bytes() == (tmp_path / "cli-boxes.csv").read_bytes()
     app_rows = (exported / "tiny-workspace.csv").read_text().splitlines()
     cli_rows = (tmp_path / "cli.csv").read_text().splitlines()

@@ -319,7 +319,10 @@ class FileActions:
         except (PresetError, OSError, ValueError) as error:
             self.push_screen(MessageDialog("Not exported", str(error)))
             return
-        existing = existing_files(plan.paths())
+        from planar_tui.provenance import sidecar_path
+
+        tables = (plan.main, *plan.extras.values())
+        existing = existing_files([*plan.paths(), *map(sidecar_path, tables)])
         if not existing:
             self.export_csv(pane, out_dir)
             return
