@@ -170,25 +170,37 @@ class FileActions:
                 self.call_later(self.open_preset, answer)
 
         def ask_path() -> None:
-            dialog = PathDialog("Open preset (path or bundled name)", str(self.workbench.path))
-            self.push_screen(dialog, opened)
+            from planar_tui.app.screens.picker import preset_picker
+
+            self.push_screen(preset_picker(self.workbench.path), opened)
 
         self.unless_unsaved("opening another preset", ask_path)
 
     async def open_preset(self, argument: str) -> bool:
-        """Load a preset into every tab; a bad one is reported and the current one kept."""
+        """Load a preset into every tab. One whose values are wrong opens with its
+        problems marked (the validation line, ``ctrl+g``); one that cannot be read or is
+        no TOML is reported and the current one kept. A preset file opened goes first in
+        the picker's recent list (:mod:`planar_tui.app.recent`)."""
+        from planar_tui.app import recent
         from planar_tui.app.workbench import Workbench
 
         try:
-            bench = Workbench.open(argument)
+            bench = Workbench.open(argument, check=False)
         except PresetError as error:
             self.push_screen(MessageDialog("Cannot open preset", str(error)))
             return False
         self.workbench = bench
         await self.recompose()
-        self.revalidate()
+        valid = self.revalidate()
         self.show_document_state()
-        self.notify(f"Opened {bench.path}")
+        if not is_bundled(bench.path):
+            recent.remember("presets", bench.path)
+        if valid:
+            self.notify(f"Opened {bench.path}")
+        else:
+            count = len(self.problems)
+            self.notify(f"Opened {bench.path} with {count} problem{'s' if count > 1 else ''}: "
+                        "marked on the tabs (ctrl+g: go to the first)", severity="warning")  # fmt: skip
         return True
 
     # -- save -------------------------------------------------------------------------
@@ -275,6 +287,9 @@ class FileActions:
             self.push_screen(MessageDialog("Not saved", str(error)))
             return None
         self.workbench.mark_saved(path, text)
+        from planar_tui.app import recent
+
+        recent.remember("presets", path)
         self.revalidate()
         self.show_document_state()
         self.notify(f"Saved {path}")

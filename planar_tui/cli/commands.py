@@ -25,16 +25,18 @@ from planar_tui.cli.output import (
     stderr,
     stdout,
 )
+from planar_tui.cli.serve import serve
 from planar_tui.errors import PresetError
 from planar_tui.resources import bundled_presets, preset_description
 
 
-def open_app(preset_argument: str | None) -> None:
-    """Open the Textual workbench (imported only now)."""
+def open_app(preset_argument: str | None, opened: tuple[str, ...] = ()) -> None:
+    """Open the Textual workbench (imported only now), with result CSVs ``opened`` into
+    its run history."""
     with reported_errors():
         from planar_tui.app import run_app
 
-        run_app(preset_argument)
+        run_app(preset_argument, opened)
 
 
 def tui(
@@ -42,9 +44,18 @@ def tui(
         str | None,
         typer.Argument(help="Preset file or bundled preset name (default: paper-a-table1)."),
     ] = None,
+    open_results: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--open",
+            metavar="RESULT.csv",
+            help="A result CSV to open into the run history (repeatable); its sidecar "
+            "RESULT.csv.json gives its settings.",
+        ),
+    ] = None,
 ) -> None:
     """Open the Textual workbench on a preset (what `planar-tui` alone does)."""
-    open_app(preset)
+    open_app(preset, tuple(open_results or ()))
 
 
 WorkersOption = Annotated[
@@ -276,5 +287,6 @@ COMMANDS: tuple[tuple[str, Callable[..., None]], ...] = (
     ("optimise", optimise_command),
     ("warmup", warmup),
     ("presets", list_presets),
+    ("serve", serve),
     *interop.COMMANDS,
 )
