@@ -87,7 +87,7 @@ def matched_rows(a: CsvTable, b: CsvTable, keys: Sequence[str], values: Sequence
     out = []
     for k in order[:MAX_ROWS]:
         ra, rb = rows_a.get(k), rows_b.get(k)
-        cells = [str(part) for part in k]
+        cells = [shown(number(part)) if number(part) is not None else str(part) for part in k]
         for v in values:
             x = number(ra[ca[v]]) if ra is not None and v in ca else None
             y = number(rb[cb[v]]) if rb is not None and v in cb else None
