@@ -111,11 +111,13 @@ async def test_the_compare_screen_shows_two_sensitivity_runs_side_by_side(
     app.open_results(two_sensitivity_csvs)
     async with app.run_test(size=(120, 40)) as pilot:
         await until(pilot, lambda: isinstance(app.screen, HistoryScreen))
+        await until(pilot, lambda: "Run history" in app.export_text())
         text = app.export_text()
         assert "Run history: 2 runs" in text
         assert "sensitivity" in text and "tiny:sensitivity" in text
         await pilot.press("c")  # the highlighted (latest) run against the other
         await until(pilot, lambda: isinstance(app.screen, CompareScreen))
+        await until(pilot, lambda: "(A) vs" in app.export_text())
         text = app.export_text()
         assert "#1 (A) vs #2 (B): sensitivity" in text
         assert "setting seed: A 1, B 2" in text
@@ -180,6 +182,7 @@ async def test_tui_open_shows_the_result_in_the_history_with_its_settings(tmp_pa
     app.open_results([out / "tiny-simulate.csv"])  # what `planar-tui tui --open` does
     async with app.run_test(size=(80, 24)) as pilot:
         await until(pilot, lambda: isinstance(app.screen, HistoryScreen))
+        await until(pilot, lambda: "Run history" in app.export_text())
         text = app.export_text()
         assert "Run history: 1 run" in text
         assert "simulate" in text and "tiny:simulate" in text
@@ -285,7 +288,7 @@ async def test_the_picker_lists_bundled_and_recent_presets_and_opens_a_broken_on
         assert labels[0] == "Recent" and labels[1].strip() == str(broken)
         assert "Bundled presets" in labels
         assert any(label.strip().startswith("paper-a-table1 — ") for label in labels)
-        await pilot.press("down", "down", "enter")  # the list, its first entry: broken.toml
+        await pilot.press("down", "enter")  # into the list, on its first entry: broken.toml
         await until(pilot, lambda: app.workbench.path == broken)
         await until(pilot, lambda: bool(app.problems))
         assert app.problems[0].key == "simulate.step_s"

@@ -79,23 +79,29 @@ class Run:
 
     def describe(self) -> str:
         """Several lines: the run, where it came from, its provenance and settings."""
-        lines = [f"#{self.number} {self.kind}: {self.label}", f"source: {self.source}"]
+        lines = [f"#{self.number} {self.kind}: {self.label}"]
         p = self.provenance
         if p is None:
             lines.append(self.note or NO_SIDECAR)
         else:
-            lines += [
-                f"preset: {p.preset_path} (sha256 {p.preset_sha256 or 'unknown'})",
-                f"command: {p.command or '-'}   version: {p.version or '-'}",
-                f"started: {p.started_utc or '-'}   duration: "
-                + ("-" if p.duration_s is None else f"{p.duration_s:.3f} s"),
-                "settings: " + ", ".join(f"{k} = {_toml(v)}" for k, v in p.settings.items()),
-            ]
+            lines.append(
+                "settings: " + ", ".join(f"{k} = {_toml(v)}" for k, v in p.settings.items())
+            )
             if self.note:
                 lines.append(self.note)
         if self.summary:
             lines.append(f"result: {self.summary}")
-        lines.append(f"table: {len(self.table.rows)} rows × {len(self.table.header)} columns")
+        lines.append(f"table: {len(self.table.rows)} rows × {len(self.table.header)} columns"
+                     f" · source: {self.source}")  # fmt: skip
+        if p is not None:
+            lines += [
+                f"started: {p.started_utc or '-'}   duration: "
+                + ("-" if p.duration_s is None else f"{p.duration_s:.3f} s"),
+                f"preset: {p.preset_path} (sha256 {p.preset_sha256 or 'unknown'})",
+                f"command: {p.command or '-'}   version: {p.version or '-'}",
+            ]
+            if p.robot:
+                lines.append("robot: " + ", ".join(f"{k} = {_toml(v)}" for k, v in p.robot.items()))
         return "\n".join(lines)
 
 

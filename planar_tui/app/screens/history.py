@@ -37,7 +37,7 @@ class HistoryScreen(Screen[None]):
     DEFAULT_CSS = """
     HistoryScreen #history-title { height: 1; text-style: bold; }
     HistoryScreen #history-table { height: 1fr; min-height: 5; }
-    HistoryScreen #history-detail { height: auto; max-height: 12; border-top: solid $primary; }
+    HistoryScreen #history-detail { height: auto; max-height: 14; border-top: solid $primary; }
     """
 
     def __init__(self, history: RunHistory):
@@ -74,8 +74,7 @@ class HistoryScreen(Screen[None]):
         count = len(self.history)
         self.query_one("#history-title", Static).update(
             f"Run history: {count} run{'s' if count != 1 else ''}"
-            + ("" if count else " (F5 runs a job; o opens a result CSV)")
-            + "   space: mark A/B   c: compare   o: open CSV   escape: close"
+            + (", newest last" if count else " yet (F5 runs a job; o opens a result CSV)")
         )
         self.show_detail()
 
