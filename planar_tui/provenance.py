@@ -27,10 +27,7 @@ import sys
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
-
-if TYPE_CHECKING:
-    from planar_tui.batch import PlannedFile
+from typing import Any
 
 #: What a sidecar's name adds to its CSV's (``table3.csv`` -> ``table3.csv.json``).
 SUFFIX = ".json"
@@ -206,9 +203,10 @@ def read_sidecar(csv_path: Path | str) -> Provenance | None:
         raise ValueError(f"{path}: {error}") from None
 
 
-def planned_sidecar(planned: PlannedFile) -> list[PlannedFile]:
-    """The sidecar of a planned CSV, planned too (checked as its CSV is); none when the
-    CSV gets none (:func:`has_sidecar`)."""
+def planned_sidecar(planned: Any) -> list[Any]:
+    """The sidecar of a planned CSV (a :class:`planar_tui.batch.PlannedFile`, not imported:
+    the batch layer is above this one), planned too (checked as its CSV is); none when
+    the CSV gets none (:func:`has_sidecar`)."""
     if not has_sidecar(planned.path):
         return []
     return [dataclasses.replace(

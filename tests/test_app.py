@@ -318,16 +318,26 @@ async def test_help_palette_and_quit(tmp_path):
 
 
 @async_test
-async def test_opening_a_bad_preset_keeps_the_current_one(tmp_path):
+async def test_a_bad_preset_opens_with_its_problems_marked_one_the_tabs_cannot_show_is_refused(
+    tmp_path,
+):
     app = make_app(tmp_path)
     bad = tmp_path / "bad.toml"
     bad.write_text("[robot]\nlengths_m = [1.0]\nmasses_kg = [1.0, 2.0]\n")
+    shapeless = tmp_path / "shapeless.toml"
+    shapeless.write_text("robot = 3\n")
     async with app.run_test(size=SIZE) as pilot:
-        assert not await app.open_preset(str(bad))
+        assert not await app.open_preset(str(shapeless))  # [robot] is no table
         await pilot.pause()
         assert isinstance(app.screen, MessageDialog)
-        assert "robot.masses_kg: has 2 values" in app.export_text()
+        assert "robot: is an integer" in app.export_text()
         assert app.workbench.path.name == "tiny.toml"
+        app.pop_screen()
+        assert await app.open_preset(str(bad))  # wrong values: opened, marked
+        await pilot.pause()
+        assert app.workbench.path == bad and not isinstance(app.screen, MessageDialog)
+        assert validation(app).startswith("error: robot.masses_kg: has 2 values")
+        assert app.query_one("#pane-robot").query(".-bad")  # the field is marked
 
 
 @async_test

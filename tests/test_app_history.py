@@ -37,6 +37,15 @@ async def until(pilot, predicate, timeout_s: float = 120.0) -> None:
         await pilot.pause(0.05)
 
 
+async def history_text(app, pilot) -> str:
+    """The screen once the history screen (opened at start by the results given) shows."""
+    from planar_tui.app.screens.history import HistoryScreen
+
+    await until(pilot, lambda: isinstance(app.screen, HistoryScreen))
+    await until(pilot, lambda: "Run history" in app.export_text())
+    return app.export_text()
+
+
 def tiny(tmp_path: Path) -> Path:
     path = tmp_path / "tiny.toml"
     shutil.copy(DATA / "tiny.toml", path)
@@ -110,9 +119,7 @@ async def test_the_compare_screen_shows_two_sensitivity_runs_side_by_side(
     app = make_app(tmp_path)
     app.open_results(two_sensitivity_csvs)
     async with app.run_test(size=(120, 40)) as pilot:
-        await until(pilot, lambda: isinstance(app.screen, HistoryScreen))
-        await until(pilot, lambda: "Run history" in app.export_text())
-        text = app.export_text()
+        text = await history_text(app, pilot)
         assert "Run history: 2 runs" in text
         assert "sensitivity" in text and "tiny:sensitivity" in text
         await pilot.press("c")  # the highlighted (latest) run against the other
@@ -181,9 +188,7 @@ async def test_tui_open_shows_the_result_in_the_history_with_its_settings(tmp_pa
     app = make_app(tmp_path)
     app.open_results([out / "tiny-simulate.csv"])  # what `planar-tui tui --open` does
     async with app.run_test(size=(80, 24)) as pilot:
-        await until(pilot, lambda: isinstance(app.screen, HistoryScreen))
-        await until(pilot, lambda: "Run history" in app.export_text())
-        text = app.export_text()
+        text = await history_text(app, pilot)
         assert "Run history: 1 run" in text
         assert "simulate" in text and "tiny:simulate" in text
         assert "duration_s = 0.2" in text  # the highlighted run's settings, below

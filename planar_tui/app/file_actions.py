@@ -38,6 +38,25 @@ if TYPE_CHECKING:
 __all__ = ["FileActions"]
 
 
+def tables_are_tables(document: dict[str, Any]) -> bool:
+    """Whether every robot and job table of a preset document is a table (or an array of
+    tables), and so is a job's own robot table: what the tabs need to show a preset whose
+    values are wrong (a value of the wrong type inside a table is marked on its field)."""
+    from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
+
+    def table_ok(value: Any) -> bool:
+        return isinstance(value, dict) and all(
+            isinstance(value[name], dict) for name in ROBOT_KINDS if name in value
+        )
+
+    for name in (*ROBOT_KINDS, *JOB_KINDS):
+        value = document.get(name)
+        tables = value if isinstance(value, list) else [value]
+        if value is not None and not all(table_ok(table) for table in tables):
+            return False
+    return True
+
+
 class FileActions:
     """Mixed into :class:`~planar_tui.app.app.WorkbenchApp` (which provides
     ``workbench``, ``output_dir``, ``jobs``, ``revalidate`` and Textual's ``App``)."""
@@ -186,6 +205,8 @@ class FileActions:
 
         try:
             bench = Workbench.open(argument, check=False)
+            if not tables_are_tables(bench.document):
+                bench.validate()  # a table that is no table: the tabs cannot show it
         except PresetError as error:
             self.push_screen(MessageDialog("Cannot open preset", str(error)))
             return False

@@ -25,7 +25,7 @@ from planar_tui.cli.output import (
     stderr,
     stdout,
 )
-from planar_tui.cli.serve import serve
+from planar_tui.cli.serve import AppPresetArg, OpenOption, serve
 from planar_tui.errors import PresetError
 from planar_tui.resources import bundled_presets, preset_description
 
@@ -39,21 +39,7 @@ def open_app(preset_argument: str | None, opened: tuple[str, ...] = ()) -> None:
         run_app(preset_argument, opened)
 
 
-def tui(
-    preset: Annotated[
-        str | None,
-        typer.Argument(help="Preset file or bundled preset name (default: paper-a-table1)."),
-    ] = None,
-    open_results: Annotated[
-        list[str] | None,
-        typer.Option(
-            "--open",
-            metavar="RESULT.csv",
-            help="A result CSV to open into the run history (repeatable); its sidecar "
-            "RESULT.csv.json gives its settings.",
-        ),
-    ] = None,
-) -> None:
+def tui(preset: AppPresetArg = None, open_results: OpenOption = None) -> None:
     """Open the Textual workbench on a preset (what `planar-tui` alone does)."""
     open_app(preset, tuple(open_results or ()))
 

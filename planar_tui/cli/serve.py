@@ -35,20 +35,30 @@ def server_command(preset: str | None, opened: list[str]) -> str:
     return shlex.join(words)
 
 
+#: The preset argument of ``tui`` and ``serve``.
+AppPresetArg = Annotated[
+    str | None,
+    typer.Argument(help="Preset file or bundled preset name (default: paper-a-table1)."),
+]
+#: The ``--open`` option of ``tui`` and ``serve``.
+OpenOption = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--open", metavar="RESULT.csv",
+        help="A result CSV to open into the run history (repeatable); its sidecar "
+        "RESULT.csv.json gives its settings.",
+    ),
+]  # fmt: skip
+
+
 def serve(
-    preset: Annotated[
-        str | None,
-        typer.Argument(help="Preset file or bundled preset name (default: paper-a-table1)."),
-    ] = None,
+    preset: AppPresetArg = None,
     host: Annotated[
         str,
         typer.Option("--host", help="Address to bind (default 127.0.0.1: this machine only)."),
     ] = "127.0.0.1",
     port: Annotated[int, typer.Option("--port", help="TCP port (1-65535).")] = 8000,
-    open_results: Annotated[
-        list[str] | None,
-        typer.Option("--open", help="A result CSV to open into the run history (repeatable)."),
-    ] = None,
+    open_results: OpenOption = None,
 ) -> None:
     """Serve the workbench in a web browser (textual-serve), on http://HOST:PORT; from a
     laptop: ssh -L 8000:localhost:8000 HOST, then open http://localhost:8000."""
