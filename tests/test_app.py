@@ -463,7 +463,9 @@ async def test_export_names_and_writes_files_as_planar_tui_run(tmp_path, cli):
     assert result.exit_code == 0, result.stderr
     names = sorted(p.name for p in (tmp_path / "app").iterdir())
     assert names == sorted(p.name for p in (tmp_path / "cli").iterdir())
-    assert names == ["small-boxes.csv", "small-workspace.csv"]
+    assert names == [
+        "small-boxes.csv", "small-boxes.csv.json", "small-workspace.csv", "small-workspace.csv.json"
+    ]  # fmt: skip
     boxes = (tmp_path / "app" / "small-boxes.csv").read_bytes()
     assert boxes == (tmp_path / "cli" / "small-boxes.csv").read_bytes()
     assert boxes.count(b"\n") > 100

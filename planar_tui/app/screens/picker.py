@@ -76,8 +76,8 @@ class FilePicker(ModalScreen[str | None]):
         Binding("down", "to_list", "List", show=False),
     ]
     DEFAULT_CSS = """
-    FilePicker > Vertical { width: 90%; max-width: 100; height: auto; max-height: 90%; }
-    FilePicker OptionList { height: auto; max-height: 16; }
+    FilePicker > Vertical { width: 90%; max-width: 100; height: 90%; }
+    FilePicker OptionList { height: 1fr; }
     """
 
     def __init__(self, title: str, value: str, sections: list[tuple[str, list[tuple[str, str]]]],
