@@ -96,6 +96,24 @@ def matched_rows(a: CsvTable, b: CsvTable, keys: Sequence[str], values: Sequence
     return header, out
 
 
+def varying(keys: Sequence[str], a: CsvTable, b: CsvTable) -> tuple[list[str], str]:
+    """The ``keys`` whose value differs between rows of A and B (the table's columns), and
+    the others as text (``posture singular, method sobol``) for a note; one key is kept
+    when none varies."""
+    ca, cb = _columns(a), _columns(b)
+    kept, same = [], []
+    for key in keys:
+        values = {row[ca[key]] for row in a.rows} | {row[cb[key]] for row in b.rows}
+        if len(values) > 1:
+            kept.append(key)
+        elif values:
+            value = next(iter(values))
+            same.append(f"{key} {shown(number(value)) if number(value) is not None else value}")
+    if not kept and keys:
+        kept, same = [keys[-1]], same[:-1]
+    return kept, ", ".join(same)
+
+
 def figures_side_by_side(a: CsvTable, b: CsvTable) -> tuple[tuple[str, ...], list[tuple[str, ...]]]:
     """One-row tables (a workspace summary) turned: one row per column, A, B, B − A."""
     ra, rb = a.rows[0], b.rows[0]
@@ -206,6 +224,8 @@ def compare_runs(a: Run, b: Run) -> Comparison:
     overlay = ""
     if a.kind == "sensitivity" and set(SENSITIVITY_VALUES) <= set(a.table.header):
         keys = [k for k in SENSITIVITY_KEYS if k in a.table.header and k in b.table.header]
+        keys, same = varying(keys, a.table, b.table)
+        notes += [f"every row: {same}"] if same else []
         header, rows = matched_rows(a.table, b.table, keys, SENSITIVITY_VALUES)
     elif len(a.table.rows) == 1 and len(b.table.rows) == 1:
         header, rows = figures_side_by_side(a.table, b.table)
