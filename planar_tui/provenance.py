@@ -164,16 +164,17 @@ def study_provenance(kind: str, study: Any, timing: tuple[float, float] | None =
                      ) -> Provenance:  # fmt: skip
     """The provenance of a sweep's or an optimisation's table (``kind`` ``"sweep"`` or
     ``"optimise"``): its table as written in the preset, and its base job's kind and
-    settings (under ``job_kind`` and ``job_settings``)."""
+    settings (under ``job_kind`` and ``job_settings``); the seed, N, form and ε are the
+    base job's (an optimiser's own ``seed`` stays in ``settings``)."""
     base = job_provenance(study.job)
     settings = {
         **dict(study.source),
         "job_kind": study.job.kind,
         "job_settings": dict(base.settings),
     }
+    made = _made(kind, study.label, study.preset_path, settings, base.robot, timing)
     return dataclasses.replace(
-        _made(kind, study.label, study.preset_path, settings, base.robot, timing),
-        **_headline(base.settings),
+        made, seed=base.seed, samples=base.samples, form=base.form, precision_cm=base.precision_cm
     )
 
 
