@@ -1,0 +1,325 @@
+"""The ``[[workspace5r]]`` job: the certified workspace of a five-bar (``[robot5r]``,
+:mod:`planar_tui.workspace.fivebar`), its type I and II singularities and the largest
+singularity-free circle (:mod:`planar_tui.workspace.fivebar_singularity`).
+
+The paving is the 3-RRR's (:func:`planar_tui.workspace.compute.pave_in_levels`) with the
+five-bar's exact leg-wise test (:mod:`planar_tui.kernels.workspace5r`): boxes proved inside
+are never split, boundary boxes are halved down to ``precision_cm`` (and again down to
+``refine_precision_cm``); ``area_inside <= exact <= area_kept``.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from planar_tui.jobkind import Command, Job, JobKind, JobResult, Option, OutputOption, Tab
+from planar_tui.progress import Progress
+from planar_tui.schema import (
+    TableReader,
+    boolean,
+    integer,
+    number,
+    plot_setting,
+    relative_path,
+    setting,
+    string,
+)
+from planar_tui.workspace.fivebar import Robot5R
+from planar_tui.workspace.job import DEFAULT_BOX_BUDGET, _checked_box_budget
+from planar_tui.workspace.singularity import read_centre
+
+if TYPE_CHECKING:
+    from planar_tui.workspace.compute import BoxBudget, WorkspaceOutcome
+    from planar_tui.workspace.fivebar_singularity import FiveBarSingularities
+
+#: The forms: the exact leg-wise paving, or the exact area only.
+FORMS = ("arc-distance", "geometric")
+
+
+def _search_box(reader: TableReader, name, default, robot: Robot5R, values):
+    """An (x, y) box in cm that contains both legs' reach."""
+    if not reader.has(name):
+        return None
+    rows = reader.number_rows(name, columns=2, row_doc="[min, max] in cm")
+    rxlo, rxhi, rylo, ryhi = robot.reach_box_cm()
+    expected = f"[[x_min, x_max], [y_min, y_max]] containing x in [{rxlo:.4g}, {rxhi:.4g}], "
+    expected += f"y in [{rylo:.4g}, {ryhi:.4g}] cm"
+    if len(rows) != 2 or any(not lo < hi for lo, hi in rows):
+        raise reader.error(name, f"is {[list(r) for r in rows]}", expected)
+    (xlo, xhi), (ylo, yhi) = rows
+    if rxlo <= rxhi and not (xlo <= rxlo and rxhi <= xhi and ylo <= rylo and ryhi <= yhi):
+        raise reader.error(name, "cannot contain the robot's reach", expected)
+    return rows
+
+
+@dataclass(frozen=True, kw_only=True)
+class FiveBarSpec:
+    """Settings of one five-bar workspace computation (lengths in cm)."""
+
+    precision_cm: float = setting(
+        number(positive=True), type_doc="number > 0", doc="paving precision ε"
+    )
+    form: str = setting(
+        string(choices=FORMS),
+        default="arc-distance",
+        type_doc=", ".join(f"`{f}`" for f in FORMS),
+        doc="the exact leg-wise paving, or the exact (shapely) area only",
+    )
+    refine_precision_cm: float | None = setting(
+        number(positive=True),
+        default=None,
+        type_doc="number > 0, ≤ `precision_cm`",
+        doc="boundary-only refinement",
+    )
+    search_box_cm: tuple[tuple[float, float], tuple[float, float]] | None = setting(
+        _search_box,
+        default=None,
+        default_doc="a square about the reach",
+        type_doc="`[[x_min, x_max], [y_min, y_max]]`",
+        doc="initial (x, y) box; must contain the legs' reach",
+    )
+    box_budget: int = setting(
+        integer(minimum=1),
+        default=DEFAULT_BOX_BUDGET,
+        type_doc="integer ≥ 1, × 112 bytes ≤ the memory limit",
+        doc="most (x, y) boxes one job may decide (then it fails, writing nothing)",
+    )
+    geometric_reference: bool = setting(
+        boolean(), default=True, type_doc="boolean", doc="also compute the exact area"
+    )
+    boxes_output: str | None = setting(
+        relative_path(),
+        default=None,
+        type_doc="relative path",
+        doc="CSV of the kept boxes (`--boxes` on the command line)",
+    )
+    singularities: bool = setting(
+        boolean(),
+        default=False,
+        type_doc="boolean",
+        doc="also pave the type I (serial) and type II (parallel) singularities",
+    )
+    singularity_precision_cm: float | None = setting(
+        number(positive=True),
+        default=None,
+        type_doc="number > 0",
+        default_doc="`precision_cm`",
+        doc="precision of the singularity paving",
+    )
+    singularity_free_circle: tuple[float, float] | None = setting(
+        read_centre,
+        default=None,
+        type_doc="`[x, y]`",
+        default_doc="(no circle)",
+        doc="centre of the largest singularity-free circle to certify (needs "
+        "`singularities = true` and a working mode)",
+    )
+    plot: str | None = plot_setting()
+
+    @staticmethod
+    def check(values: dict[str, Any], reader: TableReader, robot: Robot5R) -> dict[str, Any]:
+        """The refinement is at most the precision; the circle goes with ``singularities``
+        and a working mode."""
+        refine = values["refine_precision_cm"]
+        if refine is not None and refine > values["precision_cm"]:
+            raise reader.error(
+                "refine_precision_cm", f"is {refine:g} > precision_cm", "<= precision_cm"
+            )
+        if not values["singularities"]:
+            for name in ("singularity_free_circle", "singularity_precision_cm"):
+                if values[name] is not None:
+                    raise reader.error(
+                        name, "is set without singularities = true", "singularities = true"
+                    )
+        elif values["singularity_free_circle"] is not None and robot.working_mode == "any":
+            raise reader.error(
+                "singularity_free_circle",
+                "needs a working mode (the robot's working_mode is any)",
+                'working_mode = "++", "+-", "-+" or "--" in [robot5r]',
+            )
+        elif values["singularity_free_circle"] is not None:
+            from planar_tui.workspace.fivebar_singularity import centre_problem
+
+            problem = centre_problem(robot, values["singularity_free_circle"])
+            if problem is not None:
+                raise reader.error(
+                    "singularity_free_circle",
+                    problem,
+                    "a centre inside the workspace, off its singularities",
+                )
+        values["box_budget"] = _checked_box_budget(values["box_budget"], reader)
+        return values
+
+
+FiveBarJob = Job[FiveBarSpec, Robot5R]
+
+
+@dataclass(frozen=True, kw_only=True)
+class FiveBarResult(JobResult):
+    """The workspace's boxes and certified bracket, and the singularities (or ``None``)."""
+
+    outcome: WorkspaceOutcome
+    singularity: FiveBarSingularities | None = None
+
+
+def compute_fivebar(robot: Robot5R, spec: FiveBarSpec, budget: BoxBudget) -> WorkspaceOutcome:
+    """Pave the search box with the five-bar's exact test (module docstring)."""
+    import numpy as np
+
+    from planar_tui.kernels.workspace5r import level
+    from planar_tui.workspace.compute import (
+        WorkspaceOutcome,
+        default_search_box,
+        finished_outcome,
+        pave_in_levels,
+    )
+    from planar_tui.workspace.fivebar import geometric_area
+
+    started = time.perf_counter()
+    box = spec.search_box_cm or default_search_box(robot, 0.0, spec.precision_cm)
+    extent = (box[0][0], box[0][1], box[1][0], box[1][1])
+    legs, limits = robot.leg_arrays()
+    geometric = None
+    if spec.geometric_reference or spec.form == "geometric":
+        geometric = geometric_area(robot)
+    if spec.form == "geometric":
+        assert geometric is not None
+        return WorkspaceOutcome(
+            spec.form, spec.precision_cm, None, np.zeros((0, 4)), np.zeros(0, np.int64), 0,
+            geometric.outer_cm2, geometric.inner_cm2, geometric,
+            time.perf_counter() - started, extent,
+        )  # fmt: skip
+
+    def pave(seeds, precision, inside_cm2=0.0):
+        def decide(rows, start, stop, children, outcome):
+            level(legs, limits, precision, rows, start, stop, children, outcome)
+
+        return pave_in_levels(seeds, budget, decide, inside_cm2)
+
+    budget.progress.start(1.0, "five-bar paving")
+    boxes, status = pave(np.array([extent]), spec.precision_cm)
+    return finished_outcome(
+        spec, boxes, status, lambda seeds, inside: pave(seeds, spec.refine_precision_cm, inside),
+        budget, geometric, started, extent, form=spec.form, disjoint=True,
+    )  # fmt: skip
+
+
+#: The summary's columns.
+SUMMARY_HEADER = (
+    "form",
+    "working_mode",
+    "precision_cm",
+    "refine_precision_cm",
+    "boxes_processed",
+    "boxes_kept",
+    "boxes_inside",
+    "area_kept_cm2",
+    "area_inside_cm2",
+    "area_geometric_cm2",
+    "area_geometric_error_cm2",
+)
+
+
+def run_fivebar(job: FiveBarJob, progress: Progress) -> FiveBarResult:
+    """Compute one ``[[workspace5r]]`` job."""
+    from planar_tui.csvio import CsvTable
+    from planar_tui.workspace.compute import BoxBudget, boxes_table, summary_line
+    from planar_tui.workspace.fivebar_singularity import (
+        HEADER,
+        compute_singularities,
+        singularity_columns,
+    )
+
+    budget = BoxBudget(job, progress)
+    outcome = compute_fivebar(job.robot, job.spec, budget)
+    singular = None
+    if job.spec.singularities:
+        singular = compute_singularities(job, outcome.extent_cm, budget)
+    base = outcome.summary_row()
+    row = [base[0], job.robot.working_mode, *base[2:11], *singularity_columns(singular), base[11]]
+    summary = summary_line(outcome)
+    if singular is not None:
+        summary += f"; {singular.describe()}"
+    return FiveBarResult(
+        table=CsvTable((*SUMMARY_HEADER, *HEADER, "seconds"), [row]),
+        summary=summary,
+        extra_tables={"boxes": boxes_table(outcome)},
+        outcome=outcome,
+        singularity=singular,
+    )
+
+
+def map_title(job: FiveBarJob, outcome: WorkspaceOutcome) -> str:
+    """``preset:workspace5r[1]: five-bar, mode +-, ε = 0.05 cm``."""
+    title = (
+        f"{job.label}: five-bar, mode {job.robot.working_mode}, ε = {outcome.precision_cm:.4g} cm"
+    )
+    if outcome.refine_precision_cm is not None:
+        title += f", boundary refined to {outcome.refine_precision_cm:.4g} cm"
+    return title
+
+
+def render_fivebar(job: FiveBarJob, result: FiveBarResult, console: Any) -> None:
+    """Print the titled map of a finished job (CLI view), as the 3-RRR's."""
+    from planar_tui.workspace.job import overlays
+    from planar_tui.workspace.map import render_map
+
+    outcome = result.outcome
+    console.print(map_title(job, outcome), markup=False, highlight=False)
+    if len(outcome.boxes) == 0:
+        console.print(result.summary, markup=False)
+        return
+    if result.singularity is not None:
+        console.print(result.singularity.describe(), markup=False, highlight=False)
+    width = min(console.width or 80, 120)
+    lines = render_map(outcome.boxes, outcome.status, width=width, **overlays(result.singularity))
+    for line in lines:
+        console.print(line, markup=False, highlight=False, crop=True, soft_wrap=False)
+
+
+def point_figures(job: FiveBarJob, result: FiveBarResult) -> dict[str, Any]:
+    """A sweep row's figures: the summary's columns but ``seconds`` and text."""
+    header, (row,) = result.table.header, result.table.rows
+    return {
+        name: value
+        for name, value in zip(header, row, strict=True)
+        if name != "seconds" and isinstance(value, (int, float))
+    }
+
+
+def _extra_outputs(job: FiveBarJob) -> dict[str, str]:
+    return {"boxes": job.spec.boxes_output} if job.spec.boxes_output else {}
+
+
+JOB_KIND = JobKind(
+    name="workspace5r",
+    robot_kind="robot5r",
+    settings=FiveBarSpec,
+    run=run_fivebar,
+    summary="five-bar (2-DOF) workspace by certified paving, with its type I and II "
+    "singularities and singularity-free circle",
+    render=render_fivebar,
+    extra_outputs=_extra_outputs,
+    point_figures=point_figures,
+    command=Command(
+        "workspace5r",
+        "Five-bar workspace of every workspace5r job: summary CSV, boxes CSV (--boxes or the "
+        "preset's boxes_output) and a map.",
+        options=(
+            Option("--precision", "precision_cm",
+                   "Precision epsilon in cm; overrides `precision_cm`.", float),
+        ),
+        outputs=(OutputOption("--boxes", "boxes",
+                              "CSV of the kept boxes (with several jobs: FILE-1.csv ...)."),),
+        view=("--map/--no-map", "Print the character-cell map."),
+    ),
+    tab=Tab("Five-bar", 3, "planar_tui.app.widgets.workspace_pane:FiveBarPane"),
+    figure="planar_tui.figures.fivebar:from_result",
+    warmup=(
+        "[[workspace5r]]\nprecision_cm = 8.0\n"
+        "geometric_reference = false\nrefine_precision_cm = 4.0\nsingularities = true\n"
+        "singularity_free_circle = [0, 60]\n"
+    ),
+)  # fmt: skip
