@@ -16,20 +16,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from planar_tui.presets import load_preset
+from planar_tui.progress import Progress
 from tests.conftest import PRESETS, on_one_and_two_threads
 
 PRESET = PRESETS / "fivebar-illustrative.toml"
-
-
-class _Progress:
-    """What the runners call on a progress object (nothing shown)."""
-
-    total = 1.0
-    completed = 0.0
-    figures: dict = {}
-
-    def __getattr__(self, name):
-        return lambda *args, **kwargs: None
 
 
 def jobs():
@@ -40,7 +30,7 @@ def run(job, **changes):
     from planar_tui.workspace.fivebar_job import run_fivebar
 
     spec = dataclasses.replace(job.spec, **changes)
-    return run_fivebar(dataclasses.replace(job, spec=spec), _Progress())
+    return run_fivebar(dataclasses.replace(job, spec=spec), Progress())
 
 
 # -- independent float model (closed-form inverse kinematics, numpy) ------------------
