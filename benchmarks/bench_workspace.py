@@ -373,7 +373,7 @@ if __name__ == "__main__":
     import argparse
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--part", choices=("all", "paper", "legwise", "parallel", "cli"),
+    parser.add_argument("--part", choices=("all", "paper", "legwise", "parallel", "cli", "fivebar"),
                         default="all")  # fmt: skip
     parser.add_argument(
         "--quick",
@@ -389,3 +389,7 @@ if __name__ == "__main__":
         parallel_paving()
     if args.part in ("all", "cli"):
         whole_process()
+    if args.part in ("all", "fivebar"):  # issue 25's five-bar goal
+        from benchmarks.bench_workspace5r import main as fivebar
+
+        fivebar()
