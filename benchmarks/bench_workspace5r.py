@@ -7,13 +7,13 @@ In process (kernels compiled and loaded first): the bundled illustrative five-ba
 bracket's width in % of it (goal ≤ 2 %), beside the baseline run in the same process: the
 3-RRR's arc-distance paving of paper B's Table 3 at the same ε (the ratio is five-bar /
 3-RRR). Then whole processes through the CLI (median of 3 fresh processes, Numba cache
-warm; goal ≤ 1 s on 2 cores) beside the floor of any Numba process on this machine.
+warm; goal ≤ 1 s on 2 cores); the floor of any Numba process on this machine is part
+``cli`` of ``bench_workspace.py``.
 """
 
 from __future__ import annotations
 
 import dataclasses
-import statistics
 import subprocess
 import sys
 import tempfile
@@ -97,26 +97,12 @@ def in_process() -> None:
         )
 
 
-def wall(command, runs=3):
-    times = []
-    for _ in range(runs):
-        started = time.perf_counter()
-        subprocess.run(command, check=True, capture_output=True, cwd=REPO)
-        times.append(time.perf_counter() - started)
-    return statistics.median(times)
-
-
 def whole_process() -> None:
+    from benchmarks.bench_workspace import wall  # the floor: its part "cli"
+
     print("\n## Five-bar, whole process through the CLI (median of 3, Numba cache warm)\n")
     print("| run | seconds | goal |")
     print("|---|---|---|")
-    floor = (
-        "import numba, numpy as np\n"
-        "from planar_tui.kernels.workspace_union import union_area\n"
-        "union_area(np.array([[0.0, 1.0, 0.0, 1.0]]))\n"
-    )
-    subprocess.run([sys.executable, "-c", floor], check=True, cwd=REPO)
-    print(f"| floor: python + import numba + one cached kernel | {wall([sys.executable, '-c', floor]):.2f} | – |")  # fmt: skip
     text = PRESET.read_text(encoding="utf-8").split("\n[[workspace5r]]")
     robot, jobs = text[0], text[1:]
     with tempfile.TemporaryDirectory() as folder:

@@ -117,47 +117,28 @@ def classify_box(xlo, xhi, ylo, yhi, legs, limits):
 
 @kernel
 def point_in(x, y, legs, limits):
-    """Exact test at one point: both legs close within their limits (and modes)."""
-    for leg in range(2):
-        px = x - legs[leg, 0]
-        py = y - legs[leg, 1]
-        l1 = legs[leg, 2]
-        l2 = legs[leg, 3]
-        tlo = limits[leg, 0]
-        thi = limits[leg, 1]
-        if legs[leg, 4] == 0.0:
-            dmin, dmax = arc_distance_range(px, py, l1, tlo, thi)
-            if dmin > l2 or dmax < l2:
-                return False
-        elif not mode_point_in(px, py, l1, l2, tlo, thi, legs[leg, 4]):
-            return False
-    return True
+    """Exact test at one point (a box of half-diagonal 0): both legs close within their
+    limits (and modes); the boundary belongs to the workspace (a closed set)."""
+    first = leg_label(x, y, 0.0, legs, limits, 0)
+    return first != OUTSIDE and leg_label(x, y, 0.0, legs, limits, 1) != OUTSIDE
+
+
+@kernel
+def decide_row(legs, limits, precision, rows, row, children, c):
+    """:func:`classify_box` of ``rows[row]`` then
+    :func:`kernels.workspace_arc.settle_xy_box` into ``children[c]`` (and ``c + 1``)."""
+    label = classify_box(rows[row, 0], rows[row, 1], rows[row, 2], rows[row, 3], legs, limits)
+    return settle_xy_box(label, rows, row, children, c, precision)
 
 
 @kernel(parallel=True)
 def level(legs, limits, precision, rows, start, stop, children, outcome):
-    """Decide rows ``start .. stop - 1`` of a frontier of (x, y) boxes in parallel with
-    :func:`classify_box` then :func:`kernels.workspace_arc.settle_xy_box` (row
-    ``start + i`` writes ``children[2 i]``, ``children[2 i + 1]``, ``outcome[i]``); each
-    box's outcome depends on that box only, whatever the number of threads."""
+    """Decide rows ``start .. stop - 1`` of a frontier of (x, y) boxes in parallel by
+    :func:`decide_row` (row ``start + i`` writes ``children[2 i]``, ``children[2 i + 1]``,
+    ``outcome[i]``); each box's outcome depends on that box only, whatever the number of
+    threads."""
     n = stop - start
     lanes = min(LANES, n)
     for lane in numba.prange(lanes):
         for i in range(lane, n, lanes):
-            r = start + i
-            label = classify_box(rows[r, 0], rows[r, 1], rows[r, 2], rows[r, 3], legs, limits)
-            outcome[i] = settle_xy_box(label, rows, r, children, 2 * i, precision)
-
-
-@kernel
-def classify_boxes(boxes, legs, limits, out):
-    """:func:`classify_box` for every row ``x_lo, x_hi, y_lo, y_hi`` of ``boxes``."""
-    for r in range(boxes.shape[0]):
-        out[r] = classify_box(boxes[r, 0], boxes[r, 1], boxes[r, 2], boxes[r, 3], legs, limits)
-
-
-@kernel
-def points_in(xs, ys, legs, limits, out):
-    """:func:`point_in` for every point."""
-    for r in range(xs.shape[0]):
-        out[r] = point_in(xs[r], ys[r], legs, limits)
+            outcome[i] = decide_row(legs, limits, precision, rows, start + i, children, 2 * i)

@@ -15,6 +15,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from planar_tui.jobkind import PreparedJob
 from planar_tui.presets import load_preset
 from planar_tui.progress import Progress
 from tests.conftest import PRESETS, on_one_and_two_threads
@@ -30,7 +31,7 @@ def run(job, **changes):
     from planar_tui.workspace.fivebar_job import run_fivebar
 
     spec = dataclasses.replace(job.spec, **changes)
-    return run_fivebar(dataclasses.replace(job, spec=spec), Progress())
+    return run_fivebar(PreparedJob(dataclasses.replace(job, spec=spec), None), Progress())
 
 
 # -- independent float model (closed-form inverse kinematics, numpy) ------------------
@@ -300,15 +301,10 @@ BAD = {
 
 @pytest.mark.parametrize("case", sorted(BAD))
 def test_bad_input_is_one_line_exit_2(case, cli, tmp_path):
+    from tests.test_bad_input import refused_line
+
     text, key = BAD[case]
-    preset = tmp_path / "bad.toml"
-    preset.write_text(text, encoding="utf-8")
-    result = cli("run", preset, "--out-dir", tmp_path / "out")
-    assert result.exit_code == 2, result.output
-    lines = result.stderr.strip().splitlines()
-    assert len(lines) == 1, result.stderr
-    assert lines[0].startswith(f"error: {preset}: {key}: "), lines[0]
-    assert not (tmp_path / "out").exists()
+    refused_line(cli, tmp_path, text, key, "")
 
 
 def test_the_command_writes_the_summary_and_boxes_csv(cli, tmp_path):
@@ -343,3 +339,18 @@ def test_the_figure_draws_boxes_the_exact_boundary_a_pose_and_the_circle():
     gids = {artist.get_gid() for ax in fig.axes for artist in [*ax.lines, *ax.collections,
                                                                 *ax.patches]}  # fmt: skip
     assert {"exact", "leg", "inside", "singular", "circle"} <= gids
+
+
+@pytest.mark.parametrize("mode", ["any", "++", "+-", "-+", "--"])
+def test_the_kernels_point_test_agrees_with_the_closed_form_inverse_kinematics(mode):
+    from planar_tui.kernels.workspace5r import point_in
+
+    robot = dataclasses.replace(jobs()[0].robot, working_mode=mode)
+    legs, limits = robot.leg_arrays()
+    rng = np.random.default_rng(25)
+    xlo, xhi, ylo, yhi = robot.reach_box_cm()
+    x, y = rng.uniform(xlo, xhi, 3000), rng.uniform(ylo, yhi, 3000)
+    expected = in_workspace(robot, x, y)
+    got = np.array([point_in(a, b, legs, limits) for a, b in zip(x, y, strict=True)])
+    assert 0 < expected.sum() < len(x)
+    assert np.array_equal(got, expected)

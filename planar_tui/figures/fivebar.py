@@ -40,7 +40,7 @@ def from_result(job: Any, result: Any) -> Any:
 
     from planar_tui.workspace.compute import INSIDE
     from planar_tui.workspace.fivebar import workspace_polygon
-    from planar_tui.workspace.fivebar_job import map_title
+    from planar_tui.workspace.job import map_title
 
     outcome = result.outcome
     boxes = np.asarray(outcome.boxes)[:, :4] if len(outcome.boxes) else np.zeros((0, 4))

@@ -229,21 +229,15 @@ def geometric_area(robot: Robot5R, relative_tolerance: float = 2e-5, max_segment
 
 # -- float model ---------------------------------------------------------------------------
 def leg_angles(robot: Robot5R, point) -> list[dict[int, float] | None]:
-    """Per leg, :math:`\\theta = \\alpha + \\sigma\\beta` for ``σ = ±1`` at ``point``, or
-    ``None`` where the leg cannot close."""
-    result: list[dict[int, float] | None] = []
-    for (ax, ay), l1, l2 in zip(
-        robot.base_joints_cm(), robot.proximal_cm, robot.distal_cm, strict=True
-    ):
-        vx, vy = point[0] - ax, point[1] - ay
-        rho = math.hypot(vx, vy)
-        cosine = (rho * rho + l1 * l1 - l2 * l2) / (2.0 * l1 * rho) if rho > 0 else 2.0
-        if abs(cosine) > 1.0:
-            result.append(None)
-            continue
-        alpha, beta = math.atan2(vy, vx), math.acos(cosine)
-        result.append({1: alpha + beta, -1: alpha - beta})
-    return result
+    """Per leg, :func:`~planar_tui.workspace.singularity.branch_angles` at ``point``."""
+    from planar_tui.workspace.singularity import branch_angles
+
+    return [
+        branch_angles(point[0] - ax, point[1] - ay, l1, l2)
+        for (ax, ay), l1, l2 in zip(
+            robot.base_joints_cm(), robot.proximal_cm, robot.distal_cm, strict=True
+        )
+    ]
 
 
 def det_at(robot: Robot5R, point, elbows) -> float:

@@ -14,20 +14,37 @@ import time
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from planar_tui.jobkind import Command, Job, JobKind, JobResult, Option, OutputOption, Tab
+from planar_tui.jobkind import (
+    Command,
+    Job,
+    JobKind,
+    JobResult,
+    Option,
+    OutputOption,
+    PreparedJob,
+    Tab,
+)
 from planar_tui.progress import Progress
 from planar_tui.schema import (
     TableReader,
     boolean,
-    integer,
     number,
     plot_setting,
-    relative_path,
     setting,
     string,
 )
 from planar_tui.workspace.fivebar import Robot5R
-from planar_tui.workspace.job import DEFAULT_BOX_BUDGET, _checked_box_budget
+from planar_tui.workspace.job import (
+    _checked_box_budget,
+    _extra_outputs,
+    boxes_setting,
+    budget_setting,
+    point_figures,
+    reference_setting,
+    refine_setting,
+    render_workspace,
+    singularity_precision_setting,
+)
 from planar_tui.workspace.singularity import read_centre
 
 if TYPE_CHECKING:
@@ -67,12 +84,7 @@ class FiveBarSpec:
         type_doc=", ".join(f"`{f}`" for f in FORMS),
         doc="the exact leg-wise paving, or the exact (shapely) area only",
     )
-    refine_precision_cm: float | None = setting(
-        number(positive=True),
-        default=None,
-        type_doc="number > 0, ≤ `precision_cm`",
-        doc="boundary-only refinement",
-    )
+    refine_precision_cm: float | None = refine_setting()
     search_box_cm: tuple[tuple[float, float], tuple[float, float]] | None = setting(
         _search_box,
         default=None,
@@ -80,34 +92,19 @@ class FiveBarSpec:
         type_doc="`[[x_min, x_max], [y_min, y_max]]`",
         doc="initial (x, y) box; must contain the legs' reach",
     )
-    box_budget: int = setting(
-        integer(minimum=1),
-        default=DEFAULT_BOX_BUDGET,
-        type_doc="integer ≥ 1, × 112 bytes ≤ the memory limit",
-        doc="most (x, y) boxes one job may decide (then it fails, writing nothing)",
+    box_budget: int = budget_setting(
+        "most (x, y) boxes one job may decide (then it fails, writing nothing); the default "
+        "is lowered to fit the memory limit"
     )
-    geometric_reference: bool = setting(
-        boolean(), default=True, type_doc="boolean", doc="also compute the exact area"
-    )
-    boxes_output: str | None = setting(
-        relative_path(),
-        default=None,
-        type_doc="relative path",
-        doc="CSV of the kept boxes (`--boxes` on the command line)",
-    )
+    geometric_reference: bool = reference_setting()
+    boxes_output: str | None = boxes_setting()
     singularities: bool = setting(
         boolean(),
         default=False,
         type_doc="boolean",
         doc="also pave the type I (serial) and type II (parallel) singularities",
     )
-    singularity_precision_cm: float | None = setting(
-        number(positive=True),
-        default=None,
-        type_doc="number > 0",
-        default_doc="`precision_cm`",
-        doc="precision of the singularity paving",
-    )
+    singularity_precision_cm: float | None = singularity_precision_setting()
     singularity_free_circle: tuple[float, float] | None = setting(
         read_centre,
         default=None,
@@ -206,32 +203,24 @@ def compute_fivebar(robot: Robot5R, spec: FiveBarSpec, budget: BoxBudget) -> Wor
     )  # fmt: skip
 
 
-#: The summary's columns.
-SUMMARY_HEADER = (
-    "form",
-    "working_mode",
-    "precision_cm",
-    "refine_precision_cm",
-    "boxes_processed",
-    "boxes_kept",
-    "boxes_inside",
-    "area_kept_cm2",
-    "area_inside_cm2",
-    "area_geometric_cm2",
-    "area_geometric_error_cm2",
-)
-
-
-def run_fivebar(job: FiveBarJob, progress: Progress) -> FiveBarResult:
+def run_fivebar(
+    ready: PreparedJob[FiveBarSpec, Robot5R, object], progress: Progress
+) -> FiveBarResult:
     """Compute one ``[[workspace5r]]`` job."""
     from planar_tui.csvio import CsvTable
-    from planar_tui.workspace.compute import BoxBudget, boxes_table, summary_line
+    from planar_tui.workspace.compute import (
+        SUMMARY_HEADER,
+        BoxBudget,
+        boxes_table,
+        summary_line,
+    )
     from planar_tui.workspace.fivebar_singularity import (
         HEADER,
         compute_singularities,
         singularity_columns,
     )
 
+    job = ready.job
     budget = BoxBudget(job, progress)
     outcome = compute_fivebar(job.robot, job.spec, budget)
     singular = None
@@ -239,58 +228,19 @@ def run_fivebar(job: FiveBarJob, progress: Progress) -> FiveBarResult:
         singular = compute_singularities(job, outcome.extent_cm, budget)
     base = outcome.summary_row()
     row = [base[0], job.robot.working_mode, *base[2:11], *singularity_columns(singular), base[11]]
-    summary = summary_line(outcome)
+    summary = f"{summary_line(outcome)}, working mode {job.robot.working_mode}"
     if singular is not None:
         summary += f"; {singular.describe()}"
     return FiveBarResult(
-        table=CsvTable((*SUMMARY_HEADER, *HEADER, "seconds"), [row]),
+        # the 3-RRR's columns, the working mode in place of the strategy
+        table=CsvTable(
+            (SUMMARY_HEADER[0], "working_mode", *SUMMARY_HEADER[2:-1], *HEADER, "seconds"), [row]
+        ),
         summary=summary,
         extra_tables={"boxes": boxes_table(outcome)},
         outcome=outcome,
         singularity=singular,
     )
-
-
-def map_title(job: FiveBarJob, outcome: WorkspaceOutcome) -> str:
-    """``preset:workspace5r[1]: five-bar, mode +-, ε = 0.05 cm``."""
-    title = (
-        f"{job.label}: five-bar, mode {job.robot.working_mode}, ε = {outcome.precision_cm:.4g} cm"
-    )
-    if outcome.refine_precision_cm is not None:
-        title += f", boundary refined to {outcome.refine_precision_cm:.4g} cm"
-    return title
-
-
-def render_fivebar(job: FiveBarJob, result: FiveBarResult, console: Any) -> None:
-    """Print the titled map of a finished job (CLI view), as the 3-RRR's."""
-    from planar_tui.workspace.job import overlays
-    from planar_tui.workspace.map import render_map
-
-    outcome = result.outcome
-    console.print(map_title(job, outcome), markup=False, highlight=False)
-    if len(outcome.boxes) == 0:
-        console.print(result.summary, markup=False)
-        return
-    if result.singularity is not None:
-        console.print(result.singularity.describe(), markup=False, highlight=False)
-    width = min(console.width or 80, 120)
-    lines = render_map(outcome.boxes, outcome.status, width=width, **overlays(result.singularity))
-    for line in lines:
-        console.print(line, markup=False, highlight=False, crop=True, soft_wrap=False)
-
-
-def point_figures(job: FiveBarJob, result: FiveBarResult) -> dict[str, Any]:
-    """A sweep row's figures: the summary's columns but ``seconds`` and text."""
-    header, (row,) = result.table.header, result.table.rows
-    return {
-        name: value
-        for name, value in zip(header, row, strict=True)
-        if name != "seconds" and isinstance(value, (int, float))
-    }
-
-
-def _extra_outputs(job: FiveBarJob) -> dict[str, str]:
-    return {"boxes": job.spec.boxes_output} if job.spec.boxes_output else {}
 
 
 JOB_KIND = JobKind(
@@ -300,7 +250,7 @@ JOB_KIND = JobKind(
     run=run_fivebar,
     summary="five-bar (2-DOF) workspace by certified paving, with its type I and II "
     "singularities and singularity-free circle",
-    render=render_fivebar,
+    render=render_workspace,
     extra_outputs=_extra_outputs,
     point_figures=point_figures,
     command=Command(

@@ -137,15 +137,9 @@ def compute_singularities(job: Job[Any, Robot5R], extent, budget: BoxBudget):
     lo = hi = math.nan
     if centre is not None:
         lo, hi = certify_circle(job, centre, extent, precision, budget)
+    seconds = time.perf_counter() - started
     return FiveBarSingularities(
-        boxes=boxes,
-        kinds=kinds,
-        centre_cm=centre,
-        radius_lo_cm=lo,
-        radius_hi_cm=hi,
-        precision_cm=precision,
-        boxes_processed=budget.processed - processed,
-        seconds=time.perf_counter() - started,
+        boxes, kinds, centre, lo, hi, precision, budget.processed - processed, seconds
     )
 
 

@@ -88,21 +88,25 @@ def _on_arc(angle: float, lo: float, hi: float) -> bool:
     return (angle - lo) % (2.0 * math.pi) <= hi - lo
 
 
+def branch_angles(vx: float, vy: float, l1: float, l2: float) -> dict[int, float] | None:
+    """The active angles :math:`\\theta = \\alpha + s \\beta` for ``s = +1, -1`` of a leg
+    whose platform point is at ``(vx, vy)`` from its base joint, or ``None`` where it
+    cannot close."""
+    rho = math.hypot(vx, vy)
+    cosine = (rho * rho + l1 * l1 - l2 * l2) / (2.0 * l1 * rho) if rho > 0 else 2.0
+    if abs(cosine) > 1.0:
+        return None
+    alpha, beta = math.atan2(vy, vx), math.acos(cosine)
+    return {1: alpha + beta, -1: alpha - beta}
+
+
 def leg_angles(robot, orientation_rad, point):
-    """Per leg, the active angles :math:`\\theta = \\alpha + s \\beta` for ``s = +1, -1``
-    at the platform position ``point``, or ``None`` where the leg cannot close."""
+    """Per leg, :func:`branch_angles` at the platform position ``point``."""
     l1, l2 = robot.proximal_cm, robot.distal_cm
-    result: list[dict[int, float] | None] = []
-    for dx, dy in robot.leg_offsets_cm(orientation_rad):
-        vx, vy = point[0] + dx, point[1] + dy
-        rho = math.hypot(vx, vy)
-        cosine = (rho * rho + l1 * l1 - l2 * l2) / (2.0 * l1 * rho) if rho > 0 else 2.0
-        if abs(cosine) > 1.0:
-            result.append(None)
-            continue
-        alpha, beta = math.atan2(vy, vx), math.acos(cosine)
-        result.append({1: alpha + beta, -1: alpha - beta})
-    return result
+    return [
+        branch_angles(point[0] + dx, point[1] + dy, l1, l2)
+        for dx, dy in robot.leg_offsets_cm(orientation_rad)
+    ]
 
 
 def det_at(robot, orientation_rad, point, elbow) -> float:
