@@ -1,8 +1,10 @@
 """Exact leg-wise test of the five-bar's workspace (one leg = a 3-RRR leg with
 :math:`q_i = 0`) and its level-wise 2-D paving (:mod:`planar_tui.workspace.fivebar`).
 
-``legs`` has one row per leg ``ax, ay, l1, l2, sigma`` (cm; ``sigma`` the elbow sign of
-the working mode, 0 for any branch), ``limits`` the (2, 2) joint limits in radians.
+``legs`` has one row per leg ``ax, ay, l1, l2, sigma, bx_lo, by_lo, bx_hi, by_hi`` (cm;
+``sigma`` the elbow sign of the working mode, 0 for any branch; ``b_lo``, ``b_hi`` the
+elbow at the joint limits relative to ``A``), ``limits`` the (2, 2) joint limits in
+radians.
 
 **Any branch** (``sigma = 0``): leg ``i`` reaches ``P`` iff :math:`d_{\\min} \\le l_2 \\le
 d_{\\max}`, the distances from :math:`P - A_i` to the proximal arc
@@ -62,23 +64,35 @@ def mode_point_in(px, py, l1, l2, tlo, thi, sigma):
 
 
 @kernel
-def mode_boundary_distance(px, py, l1, l2, tlo, thi, sigma):
-    """Distance from ``p`` to the four arcs holding the boundary of :math:`R_\\sigma`."""
-    outer = arc_distance_range(px, py, l1 + l2, tlo, thi)[0]
+def near_arc(qx, qy, radius, start, stop, rho):
+    """True if ``q`` (relative to the arc's centre) is within ``rho`` of the arc of
+    ``radius`` over the angles ``[start, stop]``; the distance to the whole circle, a
+    lower bound, settles most calls without trigonometry."""
+    if abs(math.hypot(qx, qy) - radius) > rho:
+        return False
+    return arc_distance_range(qx, qy, radius, start, stop)[0] <= rho
+
+
+@kernel
+def near_mode_boundary(px, py, rho, legs, leg, tlo, thi):
+    """True if ``p`` (relative to the base joint) is within ``rho`` of one of the four
+    arcs holding the boundary of :math:`R_\\sigma` (module docstring); ``legs[leg, 5:9]``
+    are the elbows :math:`B(\\underline\\theta) - A`, :math:`B(\\overline\\theta) - A`."""
+    l1 = legs[leg, 2]
+    l2 = legs[leg, 3]
+    if near_arc(px, py, l1 + l2, tlo, thi, rho):
+        return True
     shift = 0.0 if l1 >= l2 else math.pi
-    inner = arc_distance_range(px, py, abs(l1 - l2), tlo + shift, thi + shift)[0]
+    if near_arc(px, py, abs(l1 - l2), tlo + shift, thi + shift, rho):
+        return True
     if thi - tlo >= 2.0 * math.pi:
-        return min(outer, inner)
-    fold = -sigma * math.pi
+        return False
+    fold = -legs[leg, 4] * math.pi
     a0 = min(tlo, tlo + fold)
-    lo_end = arc_distance_range(
-        px - l1 * math.cos(tlo), py - l1 * math.sin(tlo), l2, a0, a0 + math.pi
-    )[0]
+    if near_arc(px - legs[leg, 5], py - legs[leg, 6], l2, a0, a0 + math.pi, rho):
+        return True
     a1 = min(thi, thi + fold)
-    hi_end = arc_distance_range(
-        px - l1 * math.cos(thi), py - l1 * math.sin(thi), l2, a1, a1 + math.pi
-    )[0]
-    return min(min(outer, inner), min(lo_end, hi_end))
+    return near_arc(px - legs[leg, 7], py - legs[leg, 8], l2, a1, a1 + math.pi, rho)
 
 
 @kernel
@@ -97,7 +111,7 @@ def leg_label(cx, cy, rho, legs, limits, leg):
         return OUTSIDE
     if sigma == 0.0:
         return INSIDE if (dmin + rho <= l2 and dmax - rho >= l2) else BOUNDARY
-    if mode_boundary_distance(px, py, l1, l2, tlo, thi, sigma) <= rho:
+    if near_mode_boundary(px, py, rho, legs, leg, tlo, thi):
         return BOUNDARY
     return INSIDE if mode_point_in(px, py, l1, l2, tlo, thi, sigma) else OUTSIDE
 

@@ -133,22 +133,18 @@ class Robot5R:
 
     def leg_arrays(self):
         """``(legs, limits)`` for :mod:`planar_tui.kernels.workspace5r`: rows ``ax, ay, l1,
-        l2, sigma`` and the (2, 2) joint limits in radians."""
+        l2, sigma`` and the elbows at both joint limits relative to ``A``, and the (2, 2)
+        joint limits in radians."""
         import numpy as np
 
-        legs = np.array(
-            [
-                [ax, ay, l1, l2, s]
-                for (ax, ay), l1, l2, s in zip(
-                    self.base_joints_cm(),
-                    self.proximal_cm,
-                    self.distal_cm,
-                    self.elbows,
-                    strict=True,
-                )
-            ],
-            dtype=np.float64,
-        )
+        rows = []
+        for (ax, ay), l1, l2, s, (lo, hi) in zip(
+            self.base_joints_cm(), self.proximal_cm, self.distal_cm, self.elbows,
+            self.limits_rad, strict=True,
+        ):  # fmt: skip
+            ends = [l1 * math.cos(lo), l1 * math.sin(lo), l1 * math.cos(hi), l1 * math.sin(hi)]
+            rows.append([ax, ay, l1, l2, s, *ends])
+        legs = np.array(rows, dtype=np.float64)
         return legs, np.ascontiguousarray(np.array(self.limits_rad, dtype=np.float64))
 
 
