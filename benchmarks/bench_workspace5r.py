@@ -111,7 +111,7 @@ def whole_process() -> None:
             body = [line for line in body if not line.startswith("singular")]
             path = Path(folder) / "fivebar.toml"
             path.write_text(
-                robot + "\n[[workspace5r]]" + "\n".join(body) + "\ngeometric_reference = false\n",
+                robot + "\n[[workspace5r]]\ngeometric_reference = false" + "\n".join(body),
                 encoding="utf-8",
             )
             command = [sys.executable, "-m", "planar_tui", "workspace5r", str(path), "--no-map",
