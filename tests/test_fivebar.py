@@ -323,12 +323,31 @@ def test_the_command_writes_the_summary_and_boxes_csv(cli, tmp_path):
         assert next(csv.reader(stream)) == ["x_lo_cm", "x_hi_cm", "y_lo_cm", "y_hi_cm", "status"]
 
 
-def test_the_app_has_the_five_bar_tab():
+@pytest.mark.slow
+def test_the_app_shows_the_five_bar_tab_and_its_map(tmp_path):
+    import asyncio
+
     from planar_tui.app.app import WorkbenchApp
     from planar_tui.app.widgets.workspace_pane import FiveBarPane
+    from tests.test_app import run_tab
 
     assert ("Five-bar", "workspace5r") in WorkbenchApp.tabs()
     assert WorkbenchApp.pane_classes()["workspace5r"] is FiveBarPane
+    preset = tmp_path / "fivebar.toml"
+    preset.write_text(PRESET.read_text().replace("precision_cm = 0.05", "precision_cm = 2.0"))
+    from planar_tui.app.workbench import Workbench
+
+    app = WorkbenchApp(Workbench.open(preset), output_dir=tmp_path)
+
+    async def drive():
+        async with app.run_test(size=(100, 40)) as pilot:
+            await run_tab(app, pilot, "workspace5r")
+            pane = app.query_one("#pane-workspace5r", FiveBarPane)
+            assert pane.result is not None
+            assert "working mode any" in pane.result.summary
+            assert "█" in str(app.query_one("#pane-workspace5r #workspace-map").render())
+
+    asyncio.run(drive())
 
 
 def test_the_figure_draws_boxes_the_exact_boundary_a_pose_and_the_circle():
