@@ -35,17 +35,17 @@ from planar_tui.schema import (
 )
 from planar_tui.workspace.fivebar import Robot5R
 from planar_tui.workspace.job import (
-    _checked_box_budget,
     _extra_outputs,
     boxes_setting,
     budget_setting,
+    check_paving,
     point_figures,
     reference_setting,
     refine_setting,
     render_workspace,
     singularity_precision_setting,
 )
-from planar_tui.workspace.singularity import read_centre
+from planar_tui.workspace.singularity import read_centre, refuse_without_singularities
 
 if TYPE_CHECKING:
     from planar_tui.workspace.compute import BoxBudget, WorkspaceOutcome
@@ -119,17 +119,10 @@ class FiveBarSpec:
     def check(values: dict[str, Any], reader: TableReader, robot: Robot5R) -> dict[str, Any]:
         """The refinement is at most the precision; the circle goes with ``singularities``
         and a working mode."""
-        refine = values["refine_precision_cm"]
-        if refine is not None and refine > values["precision_cm"]:
-            raise reader.error(
-                "refine_precision_cm", f"is {refine:g} > precision_cm", "<= precision_cm"
-            )
         if not values["singularities"]:
-            for name in ("singularity_free_circle", "singularity_precision_cm"):
-                if values[name] is not None:
-                    raise reader.error(
-                        name, "is set without singularities = true", "singularities = true"
-                    )
+            refuse_without_singularities(
+                values, reader, ("singularity_free_circle", "singularity_precision_cm")
+            )
         elif values["singularity_free_circle"] is not None and robot.working_mode == "any":
             raise reader.error(
                 "singularity_free_circle",
@@ -146,8 +139,7 @@ class FiveBarSpec:
                     problem,
                     "a centre inside the workspace, off its singularities",
                 )
-        values["box_budget"] = _checked_box_budget(values["box_budget"], reader)
-        return values
+        return check_paving(values, reader)
 
 
 FiveBarJob = Job[FiveBarSpec, Robot5R]

@@ -135,6 +135,18 @@ def _checked_box_budget(budget: int, reader: TableReader) -> int:
     )
 
 
+def check_paving(values: dict[str, Any], reader: TableReader) -> dict[str, Any]:
+    """The rules of the workspace kinds' paving keys: the refinement precision cannot
+    exceed the precision; the box budget within the memory limit."""
+    refine = values["refine_precision_cm"]
+    if refine is not None and refine > values["precision_cm"]:
+        raise reader.error(
+            "refine_precision_cm", f"is {refine:g} > precision_cm", "<= precision_cm"
+        )
+    values["box_budget"] = _checked_box_budget(values["box_budget"], reader)
+    return values
+
+
 def refine_setting() -> Any:
     """``refine_precision_cm`` of the workspace kinds."""
     return setting(
@@ -288,13 +300,7 @@ class WorkspaceSpec:
             raise reader.error(
                 "expanded", "needs the paper's layout", "no base_joints_cm / platform_points_cm"
             )
-        refine = values["refine_precision_cm"]
-        if refine is not None and refine > values["precision_cm"]:
-            raise reader.error(
-                "refine_precision_cm", f"is {refine:g} > precision_cm", "<= precision_cm"
-            )
-        values["box_budget"] = _checked_box_budget(values["box_budget"], reader)
-        return values
+        return check_paving(values, reader)
 
     @property
     def limits_rad(self) -> tuple[tuple[float, float], ...]:

@@ -67,15 +67,21 @@ def read_centre(reader, name, default, robot, values):
     return (point[0], point[1])
 
 
+def refuse_without_singularities(values: dict, reader, names) -> None:
+    """The first of the keys ``names`` that is set, without ``singularities = true``, is
+    a :class:`PresetError` (exit code 2)."""
+    for name in names:
+        if values[name] is not None:
+            raise reader.error(name, "is set without singularities = true", "singularities = true")
+
+
 def check_singularity(values: dict, reader) -> None:
     """``elbow``, ``circle_centre_cm`` and ``singularity_precision_cm`` go with
     ``singularities = true``, which needs a single orientation and a form with boxes."""
     if not values["singularities"]:
-        for name in ("elbow", "circle_centre_cm", "singularity_precision_cm"):
-            if values[name] is not None:
-                raise reader.error(
-                    name, "is set without singularities = true", "singularities = true"
-                )
+        refuse_without_singularities(
+            values, reader, ("elbow", "circle_centre_cm", "singularity_precision_cm")
+        )
         return
     if isinstance(values["orientation_deg"], tuple):
         raise reader.error(
