@@ -19,8 +19,6 @@ from planar_tui.jobkind import (
     Job,
     JobKind,
     JobResult,
-    Option,
-    OutputOption,
     PreparedJob,
     Tab,
 )
@@ -35,6 +33,9 @@ from planar_tui.schema import (
 )
 from planar_tui.workspace.fivebar import Robot5R
 from planar_tui.workspace.job import (
+    BOXES_OPTION,
+    MAP_VIEW,
+    PRECISION_OPTION,
     _extra_outputs,
     boxes_setting,
     budget_setting,
@@ -43,6 +44,7 @@ from planar_tui.workspace.job import (
     reference_setting,
     refine_setting,
     render_workspace,
+    search_box_setting,
     singularity_precision_setting,
 )
 from planar_tui.workspace.singularity import read_centre, refuse_without_singularities
@@ -85,12 +87,8 @@ class FiveBarSpec:
         doc="the exact leg-wise paving, or the exact (shapely) area only",
     )
     refine_precision_cm: float | None = refine_setting()
-    search_box_cm: tuple[tuple[float, float], tuple[float, float]] | None = setting(
-        _search_box,
-        default=None,
-        default_doc="a square about the reach",
-        type_doc="`[[x_min, x_max], [y_min, y_max]]`",
-        doc="initial (x, y) box; must contain the legs' reach",
+    search_box_cm: tuple[tuple[float, float], tuple[float, float]] | None = search_box_setting(
+        _search_box
     )
     box_budget: int = budget_setting(
         "most (x, y) boxes one job may decide (then it fails, writing nothing); the default "
@@ -249,13 +247,9 @@ JOB_KIND = JobKind(
         "workspace5r",
         "Five-bar workspace of every workspace5r job: summary CSV, boxes CSV (--boxes or the "
         "preset's boxes_output) and a map.",
-        options=(
-            Option("--precision", "precision_cm",
-                   "Precision epsilon in cm; overrides `precision_cm`.", float),
-        ),
-        outputs=(OutputOption("--boxes", "boxes",
-                              "CSV of the kept boxes (with several jobs: FILE-1.csv ...)."),),
-        view=("--map/--no-map", "Print the character-cell map."),
+        options=(PRECISION_OPTION,),
+        outputs=(BOXES_OPTION,),
+        view=MAP_VIEW,
     ),
     tab=Tab("Five-bar", 3, "planar_tui.app.widgets.workspace_pane:FiveBarPane"),
     figure="planar_tui.figures.fivebar:from_result",

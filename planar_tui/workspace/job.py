@@ -147,6 +147,17 @@ def check_paving(values: dict[str, Any], reader: TableReader) -> dict[str, Any]:
     return values
 
 
+def search_box_setting(read: Any) -> Any:
+    """``search_box_cm`` of the workspace kinds, read (and checked) by ``read``."""
+    return setting(
+        read,
+        default=None,
+        default_doc="a square about the reach",
+        type_doc="`[[x_min, x_max], [y_min, y_max]]`",
+        doc="initial (x, y) box; must contain the legs' reach",
+    )
+
+
 def refine_setting() -> Any:
     """``refine_precision_cm`` of the workspace kinds."""
     return setting(
@@ -236,12 +247,8 @@ class WorkspaceSpec:
         doc="natural, mean-value, slope: pave (x, y) deciding each leg by its own θ search "
         "(`legwise`), or bisect (x, y, θ1, θ2, θ3) boxes as paper B (`joint`)",
     )
-    search_box_cm: tuple[tuple[float, float], tuple[float, float]] | None = setting(
-        _search_box,
-        default=None,
-        default_doc="a square about the reach",
-        type_doc="`[[x_min, x_max], [y_min, y_max]]`",
-        doc="initial (x, y) box; must contain the legs' reach",
+    search_box_cm: tuple[tuple[float, float], tuple[float, float]] | None = search_box_setting(
+        _search_box
     )
     angle_scale: float = setting(
         number(positive=True),
@@ -463,6 +470,15 @@ def _extra_outputs(job: WorkspaceJob) -> dict[str, str]:
     return {"boxes": job.spec.boxes_output} if job.spec.boxes_output else {}
 
 
+#: The workspace kinds' command-line option, boxes output and map view.
+PRECISION_OPTION = Option(
+    "--precision", "precision_cm", "Precision epsilon in cm; overrides `precision_cm`.", float
+)
+BOXES_OPTION = OutputOption(
+    "--boxes", "boxes", "CSV of the kept boxes (with several jobs: FILE-1.csv ...)."
+)
+MAP_VIEW = ("--map/--no-map", "Print the character-cell map.")
+
 JOB_KIND = JobKind(
     name="workspace",
     robot_kind="robot3rrr",
@@ -486,12 +502,10 @@ JOB_KIND = JobKind(
         options=(
             Option("--form", "form",
                    "natural, mean-value, slope, arc-distance or geometric; overrides `form`."),
-            Option("--precision", "precision_cm",
-                   "Precision epsilon in cm; overrides `precision_cm`.", float),
+            PRECISION_OPTION,
         ),
-        outputs=(OutputOption("--boxes", "boxes",
-                              "CSV of the kept boxes (with several jobs: FILE-1.csv ...)."),),
-        view=("--map/--no-map", "Print the character-cell map."),
+        outputs=(BOXES_OPTION,),
+        view=MAP_VIEW,
     ),
     tab=Tab("Workspace", 2, "planar_tui.app.widgets.workspace_pane:WorkspacePane"),
     figure="planar_tui.figures.workspace:from_result",
