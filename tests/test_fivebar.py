@@ -288,6 +288,9 @@ BAD = {
     "singularities": (ROBOT + JOB + "singularities = 1\n", "workspace5r[1].singularities"),
     "singularity_precision_cm": (ROBOT + JOB + "singularity_precision_cm = 0.5\n",
                                  "workspace5r[1].singularity_precision_cm"),
+    "geometric_reference": (ROBOT + JOB + 'geometric_reference = "yes"\n',
+                            "workspace5r[1].geometric_reference"),
+    "boxes_output": (ROBOT + JOB + 'boxes_output = "/tmp/abs.csv"\n', "workspace5r[1].boxes_output"),
     "circle without singularities": (ROBOT + JOB + "singularity_free_circle = [0, 60]\n",
                                      "workspace5r[1].singularity_free_circle"),
     "circle in any mode": ("[robot5r]\n" + JOB + "singularities = true\n"
