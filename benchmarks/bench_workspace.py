@@ -477,7 +477,7 @@ if __name__ == "__main__":
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--part", choices=("all", "paper", "legwise", "parallel", "cli", "kinds",
-                                            "tolerance"), default="all")  # fmt: skip
+                                            "fivebar", "tolerance"), default="all")  # fmt: skip
     parser.add_argument(
         "--quick",
         action="store_true",
@@ -494,5 +494,9 @@ if __name__ == "__main__":
         whole_process()
     if args.part in ("all", "kinds"):
         other_kinds()
+    if args.part in ("all", "fivebar"):  # issue 25's five-bar goal
+        from benchmarks.bench_workspace5r import main as fivebar
+
+        fivebar()
     if args.part in ("all", "tolerance"):
         tolerance_goal()
