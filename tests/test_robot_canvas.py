@@ -6,6 +6,7 @@ from closed-form joint positions, not from the drawing code."""
 
 from __future__ import annotations
 
+import itertools
 import math
 import tomllib
 from pathlib import Path
@@ -23,7 +24,16 @@ from planar_tui.app.widgets.robot_drawing import (
 
 REPO = Path(__file__).resolve().parent.parent
 #: Unicode's braille dot number of the dot at (x, y) within a cell.
-DOT_NUMBER = {(0, 0): 1, (0, 1): 2, (0, 2): 3, (1, 0): 4, (1, 1): 5, (1, 2): 6, (0, 3): 7, (1, 3): 8}
+DOT_NUMBER = {
+    (0, 0): 1,
+    (0, 1): 2,
+    (0, 2): 3,
+    (1, 0): 4,
+    (1, 1): 5,
+    (1, 2): 6,
+    (0, 3): 7,
+    (1, 3): 8,
+}
 
 
 def braille(dots_in_cell: set[tuple[int, int]]) -> str:
@@ -62,12 +72,13 @@ def test_dots_outside_the_canvas_are_ignored():
 
 
 @pytest.mark.parametrize(
-    ("start", "end"), [((0, 0), (7, 3)), ((7, 3), (0, 0)), ((2, 9), (5, 0)), ((0, 0), (0, 5)), ((3, 3), (3, 3))]
+    ("start", "end"),
+    [((0, 0), (7, 3)), ((7, 3), (0, 0)), ((2, 9), (5, 0)), ((0, 0), (0, 5)), ((3, 3), (3, 3))],
 )
 def test_bresenham_is_connected_and_within_half_a_dot_of_the_segment(start, end):
     points = bresenham(*start, *end)
     assert points[0] == start and points[-1] == end
-    for (xa, ya), (xb, yb) in zip(points, points[1:], strict=False):
+    for (xa, ya), (xb, yb) in itertools.pairwise(points):
         assert max(abs(xb - xa), abs(yb - ya)) == 1  # 8-connected, no repeats
     assert len(points) == max(abs(end[0] - start[0]), abs(end[1] - start[1])) + 1
     (x0, y0), (x1, y1) = start, end
@@ -134,7 +145,7 @@ def test_table1_arm_at_a_known_posture_cell_by_cell():
         return math.floor(width / 2 + x * scale), math.floor(height / 2 - y * scale)
 
     dots = set()
-    for (xa, ya), (xb, yb) in zip(points, points[1:], strict=False):
+    for (xa, ya), (xb, yb) in itertools.pairwise(points):
         (c0, r0), (c1, r1) = dot(xa, ya), dot(xb, yb)
         assert c0 == c1 or r0 == r1
         for c in range(min(c0, c1), max(c0, c1) + 1):
@@ -154,9 +165,10 @@ def test_table1_arm_at_a_known_posture_cell_by_cell():
     bar_cells = round(1.0 * scale / 2)
     assert bar_cells == 6
     assert got[-1].startswith("├────┤ 1 m")
-    assert draw_serial_robot(lengths, theta_deg, columns, rows).splitlines()[0] == "".join(
-        expected[0]
-    ).rstrip()
+    assert (
+        draw_serial_robot(lengths, theta_deg, columns, rows).splitlines()[0]
+        == "".join(expected[0]).rstrip()
+    )
 
 
 def test_rrr_legs_close_in_the_working_mode_of_the_limits():
@@ -169,7 +181,9 @@ def test_rrr_legs_close_in_the_working_mode_of_the_limits():
     point = (40.0, 20.0)
     legs = leg_modes(robot, 0.0, point, limits)
     base = robot.base_joints_cm()
-    for (theta, mode), (ax, ay), (qx, qy) in zip(legs, base, robot.platform_points_cm(), strict=True):
+    for (theta, mode), (ax, ay), (qx, qy) in zip(
+        legs, base, robot.platform_points_cm(), strict=True
+    ):
         assert mode in (1, -1)
         bx, by = ax + 30 * math.cos(theta), ay + 30 * math.sin(theta)
         assert math.hypot(point[0] + qx - bx, point[1] + qy - by) == pytest.approx(30.0)

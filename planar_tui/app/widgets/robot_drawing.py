@@ -11,6 +11,7 @@ sized to its pane.
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -20,7 +21,12 @@ from textual.widget import Widget
 from planar_tui.app.widgets.canvas import Canvas, Viewport, nice_length
 
 BASE_GLYPH, JOINT_GLYPH, TIP_GLYPH, PLATFORM_GLYPH = "#", "o", "+", "*"
-LINK_STYLE, JOINT_STYLE, BASE_STYLE, TIP_STYLE = "bold cyan", "bold yellow", "bold red", "bold green"
+LINK_STYLE, JOINT_STYLE, BASE_STYLE, TIP_STYLE = (
+    "bold cyan",
+    "bold yellow",
+    "bold red",
+    "bold green",
+)
 DISTAL_STYLE, PLATFORM_STYLE, TRIANGLE_STYLE = "green", "bold magenta", "blue"
 #: The legend of a drawing's glyphs (the help screen and docs/app.md say the same).
 GLYPH_LEGEND = f"{BASE_GLYPH} base  {JOINT_GLYPH} joint  {TIP_GLYPH} tip  ⠿ links"
@@ -87,7 +93,7 @@ def render_scene(scene: Scene, columns: int, rows: int) -> Canvas:
     view = Viewport.fit(scene.extent, canvas.width_dots, 4 * drawn_rows)
     for points, style in scene.links:
         dots = [view.to_dot(x, y) for x, y in points]
-        for (x0, y0), (x1, y1) in zip(dots, dots[1:], strict=False):
+        for (x0, y0), (x1, y1) in itertools.pairwise(dots):
             canvas.line(x0, y0, x1, y1, style)
     for (x, y), glyph, style in scene.joints:
         x_dot, y_dot = view.to_dot(x, y)
