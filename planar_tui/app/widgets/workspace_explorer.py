@@ -12,6 +12,7 @@ again at a finer precision (in a worker; ``r`` again or any zoom cancels it).
 
 from __future__ import annotations
 
+import itertools
 import math
 from typing import Any, ClassVar
 
@@ -250,7 +251,7 @@ class MapExplorer(Widget):
         if self.show_exact and self.exact_rings is not None:
             x_lo, _, _, y_hi = self.extent()
             for ring in self.exact_rings():
-                for (xa, ya), (xb, yb) in zip(ring, ring[1:], strict=False):
+                for (xa, ya), (xb, yb) in itertools.pairwise(ring):
                     steps = max(1, int(math.hypot(xb - xa, yb - ya) / (0.5 * self.cell_cm)))
                     for k in range(steps + 1):
                         x, y = xa + (xb - xa) * k / steps, ya + (yb - ya) * k / steps
@@ -264,7 +265,7 @@ class MapExplorer(Widget):
             return Text(self.text)
         lines = self.map_lines()
         column, row = self.cursor_cell()
-        columns, rows = self.plot_size()
+        columns, _ = self.plot_size()
         text = Text(no_wrap=True, overflow="crop")
         for index, line in enumerate(lines):
             if index:

@@ -13,6 +13,7 @@ from typing import Any
 import numpy as np
 from textual.app import ComposeResult
 from textual.containers import Horizontal
+from textual.message import Message
 from textual.widgets import Static
 
 from planar_tui.app.widgets.panes import JobPane
@@ -77,6 +78,14 @@ def pave(job, should_stop) -> Any:
 
     progress = Progress(should_stop=should_stop)
     return compute_workspace(job.robot, job.spec, BoxBudget(job, progress))
+
+
+class Paved(Message):
+    """A re-paving or a preview finished in its worker (``outcome`` ``None``: ``error``)."""
+
+    def __init__(self, purpose: str, job: Any, outcome: Any, error: str = "") -> None:
+        super().__init__()
+        self.purpose, self.job, self.outcome, self.error = purpose, job, outcome, error
 
 
 class WorkspacePane(JobPane):
@@ -246,11 +255,12 @@ class WorkspacePane(JobPane):
             f"re-paving the view at ε = {precision:.3g} cm … (r cancels)"
         )
         self.run_worker(
-            lambda: self._pave_in_worker(fine, self._repaved), group="repave", thread=True,
+            lambda: self._pave_in_worker(fine, "repave"), group="repave", thread=True,
             exclusive=True, exit_on_error=False,
         )  # fmt: skip
 
-    def _pave_in_worker(self, job, done) -> None:
+    def _pave_in_worker(self, job, purpose: str) -> None:
+        """Pave in this worker thread, then post the outcome (or the error) back."""
         from textual.worker import get_current_worker
 
         worker = get_current_worker()
@@ -258,12 +268,18 @@ class WorkspacePane(JobPane):
             outcome = pave(job, lambda: worker.is_cancelled)
         except Exception as error:  # a cancel, or the budget exceeded: said, never raised
             if not worker.is_cancelled:
-                self.app.call_from_thread(
-                    self.query_one("#workspace-readout", Static).update, f"not paved: {error}"
-                )
+                self.post_message(Paved(purpose, job, None, f"not paved: {error}"))
             return
         if not worker.is_cancelled:
-            self.app.call_from_thread(done, job, outcome)
+            self.post_message(Paved(purpose, job, outcome))
+
+    def on_paved(self, message: Paved) -> None:
+        if message.outcome is None:
+            self.query_one("#workspace-readout", Static).update(message.error)
+        elif message.purpose == "repave":
+            self._repaved(message.job, message.outcome)
+        else:
+            self._previewed(message.job, message.outcome)
 
     def _repaved(self, job, outcome) -> None:
         """Show the fine boxes in the view and the job's boxes outside it."""
@@ -322,7 +338,7 @@ class WorkspacePane(JobPane):
         precision = max(x_hi - x_lo, y_hi - y_lo) / PREVIEW_CELLS
         coarse = fine_job(job, precision_cm=precision, form="arc-distance", search_box_cm=None)
         self.run_worker(
-            lambda: self._pave_in_worker(coarse, self._previewed), group="preview",
+            lambda: self._pave_in_worker(coarse, "preview"), group="preview",
             thread=True, exclusive=True, exit_on_error=False,
         )  # fmt: skip
 
