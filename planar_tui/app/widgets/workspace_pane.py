@@ -202,7 +202,8 @@ class WorkspacePane(JobPane):
         explorer = message.explorer
         width = max(20, self.query_one(".results").content_region.width)
         self.query_one("#workspace-legend", Static).update(explorer.legend(width))
-        self.query_one("#workspace-readout", Static).update(self.readout())
+        hint = "" if explorer.has_focus else "  (Tab to the map: arrows, + -, r)"
+        self.query_one("#workspace-readout", Static).update(self.readout() + hint)
         job = self._shown_job or self._valid_job()
         drawing = self.query_one("#workspace-robot", SceneView)
         if job is None or isinstance(job.spec.orientation_deg, tuple):
@@ -234,6 +235,14 @@ class WorkspacePane(JobPane):
         angles = ", ".join(f"{math.degrees(theta) % 360:.1f}°" for theta, _ in legs)  # type: ignore[misc]
         modes = " ".join(f"{mode:+d}" for _, mode in legs)  # type: ignore[misc]
         return f"{text}  θ = {angles} (modes {modes})"
+
+    def on_descendant_focus(self, event) -> None:
+        explorer = self.explorer()
+        if len(explorer.boxes):
+            self.on_map_explorer_moved(MapExplorer.Moved(explorer))
+
+    def on_descendant_blur(self, event) -> None:
+        self.on_descendant_focus(event)
 
     # -- re-paving the view ------------------------------------------------------------
     def on_map_explorer_repave_requested(self, message: MapExplorer.RepaveRequested) -> None:
