@@ -84,7 +84,7 @@ class MapExplorer(Widget):
           for key, dx, dy in (("left", -1, 0), ("right", 1, 0), ("up", 0, 1), ("down", 0, -1))),
         *(Binding(f"shift+{key}", f"pan({dx}, {dy})", show=False)
           for key, dx, dy in (("left", -1, 0), ("right", 1, 0), ("up", 0, 1), ("down", 0, -1))),
-        Binding("plus,equals_sign", "zoom(0.5)", "Zoom +", key_display="+"),
+        Binding("plus,equals_sign", "zoom(0.5)", "Zoom in", key_display="+", show=False),
         Binding("minus", "zoom(2)", "Zoom -", key_display="-", show=False),
         Binding("0", "fit", "Fit", show=False),
         Binding("b", "toggle('exact')", "Exact", show=False),
