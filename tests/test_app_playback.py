@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import csv
 import math
+from pathlib import Path
 
 import pytest
 
@@ -107,3 +108,38 @@ async def test_the_frame_at_half_a_second_is_the_csv_state(tmp_path):
         assert pane.hidden == frozenset()
         await pilot.press("w")
         assert pane.wrap and "(wrapped)" in pane.query_one("#playback-readout").render().plain
+
+
+@async_test
+async def test_the_sensitivity_tab_draws_the_solved_isotropic_posture(tmp_path):
+    from planar_tui.sensitivity.job import SensitivityResult
+    from planar_tui.sensitivity.postures import isotropic_posture
+    from planar_tui.sensitivity.results import csv_table
+    from tests.test_app_layout import load_6r
+
+    app = WorkbenchApp(Workbench.open(Path(__file__).parent / "data" / "app" / "tiny.toml"))
+    async with app.run_test(size=(80, 24)) as pilot:
+        app.action_show_tab("sensitivity")
+        await pilot.pause()
+        pane = app.query_one("#pane-sensitivity")
+        arm = pane.query_one("#sensitivity-arm")
+        assert not arm.display  # no posture before a run
+        posture = isotropic_posture([0.303, 0.214])
+        analyses = load_6r()
+        result = SensitivityResult(
+            table=csv_table("2R", analyses), summary="recorded", robot_label="2R",
+            posture=posture, analyses=analyses, samples={"sobol": 1024},
+        )  # fmt: skip
+        pane.show_result(pane.current_job(), result)
+        await pilot.pause()
+        assert arm.display
+        t1, t2 = posture.theta_rad
+        elbow = (0.303 * math.cos(t1), 0.303 * math.sin(t1))
+        tip = (elbow[0] + 0.214 * math.cos(t1 + t2), elbow[1] + 0.214 * math.sin(t1 + t2))
+        points = [point for point, _, _ in arm.scene.joints]
+        assert points == [
+            (0.0, 0.0),
+            pytest.approx(elbow, abs=1e-12),
+            pytest.approx(tip, abs=1e-12),
+        ]
+        assert "├" in str(arm.render()) and " m" in str(arm.render())  # the scale bar
