@@ -283,7 +283,7 @@ class MapExplorer(Widget):
         items = list(LEGEND_ITEMS)
         if self.show_exact:
             items.append(EXACT_ITEM)
-        if self.show_mode:
+        if self.show_mode and self.in_mode is not None:
             items.append(MODE_ITEM)
         if self.overlays:
             from planar_tui.workspace.map import SINGULAR_LEGEND_ITEMS

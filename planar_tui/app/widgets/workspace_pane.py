@@ -197,6 +197,7 @@ class WorkspacePane(JobPane):
                 )
 
             explorer.in_mode = in_mode
+            explorer.show_mode = True  # shown with the circle; `m` hides it
 
     def on_map_explorer_moved(self, message: MapExplorer.Moved) -> None:
         explorer = message.explorer
