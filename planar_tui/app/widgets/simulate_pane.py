@@ -160,7 +160,7 @@ class SimulatePane(JobPane):
                 )  # fmt: skip
         plt.vline(cursor, CURSOR_COLOUR)
         wrapped = ", wrapped" if self.wrap else ""
-        plt.title(f"joint angles θi (deg{wrapped}; marker i) vs t (s)")
+        plt.title(f"θi (deg{wrapped}) vs t (s)")
         angles.refresh()
         energy = self.query_one("#energy-plot", PlotextPlot)
         plt = energy.plt
@@ -172,7 +172,7 @@ class SimulatePane(JobPane):
         plt.plot(t_s, kinetic.tolist(), marker="k", label="kinetic")
         plt.plot(t_s, potential.tolist(), marker="p", label="potential")
         plt.vline(cursor, CURSOR_COLOUR)
-        plt.title("energy (J) vs t (s); markers E, k, p")
+        plt.title("E, k, p (J) vs t (s)")
         energy.refresh()
         self.query_one("#playback-readout", Static).update(self.readout())
 
