@@ -49,8 +49,7 @@ async def test_motion_run_plots_the_band_and_shows_the_tables(tmp_path, cli):
         await pilot.pause(0.2)
         assert arms.row == 0 and "t = 0 s" in str(pane.query_one("#band-readout").render())
         await pilot.press("right")
-        row = arms.row
-        median = [float(v) for v in result.band[row, 3, :2]]  # θ1, θ2 medians (rad)
+        median = [float(v) for v in result.band[arms.row, 3, :2]]  # θ1, θ2 medians (rad)
         tip = (
             0.303 * np.cos(median[0]) + 0.214 * np.cos(median[0] + median[1]),
             0.303 * np.sin(median[0]) + 0.214 * np.sin(median[0] + median[1]),
