@@ -141,7 +141,9 @@ class WorkspacePane(JobPane):
     def draw_map(self, boxes, status, note: str = "", refit: bool = True, **overlays) -> None:
         """Draw boxes on the explorable map (``overlays``: the singular boxes and the
         circle, see ``render_map``)."""
-        self.explorer().show_boxes(np.array(boxes), np.array(status), note, refit, **overlays)
+        explorer = self.explorer()
+        explorer.show_boxes(np.array(boxes), np.array(status), note, refit, **overlays)
+        self.on_map_explorer_moved(MapExplorer.Moved(explorer))  # the legend in this frame
 
     def render_result(self, job: Job, result: JobResult) -> None:
         self.query_one("#result-text", Static).update(result.summary)
