@@ -22,6 +22,7 @@ from textual.screen import Screen
 from textual.widgets import Footer, Static, TabbedContent, TabPane
 
 from planar_tui.app.file_actions import FileActions
+from planar_tui.app.history_actions import HistoryActions
 from planar_tui.app.job_runner import (
     BatchFinished,
     BatchJobDone,
@@ -42,7 +43,7 @@ __all__ = ["REFRESH_S", "JobFinished", "WorkbenchApp"]
 REFRESH_S = 0.1
 
 
-class WorkbenchApp(SweepActions, OptimiseActions, FileActions, App):
+class WorkbenchApp(SweepActions, OptimiseActions, FileActions, HistoryActions, App):
     """planar-tui's terminal workbench (open, save, export, undo and quit in
     :class:`~planar_tui.app.file_actions.FileActions`, sweeps in
     :class:`~planar_tui.app.sweep_actions.SweepActions`, optimisations in
@@ -67,6 +68,7 @@ class WorkbenchApp(SweepActions, OptimiseActions, FileActions, App):
         Binding("ctrl+l", "figure", "Figure", priority=True, show=False),
         Binding("f9", "run_all", "Run all", key_display="F9"),
         Binding("f8", "sweep", "Sweep", key_display="F8"),
+        Binding("f10", "history", "History", key_display="F10"),
         *(
             Binding(str(number), f"show_tab_number({number})", f"Tab {number}", show=False)
             for number in range(1, 7)
@@ -534,6 +536,9 @@ class WorkbenchApp(SweepActions, OptimiseActions, FileActions, App):
         )
         yield SystemCommand(
             "Go to error", "Jump to the first problem's field (ctrl+g)", self.action_goto_problem
+        )
+        yield SystemCommand(
+            "Run history", "Every run, compare two, open a CSV (F10)", self.action_history
         )
         yield SystemCommand("Open preset", "Open a TOML preset (ctrl+o)", self.action_open)
         yield SystemCommand("Save preset", "Save the preset as TOML (ctrl+s)", self.action_save)

@@ -137,7 +137,8 @@ Each job is checked alone: a bad field gets a red border and reason.
   F8          run the tab's job as a sweep over keys and values
   escape      cancel the job ("cancelling…" until it has stopped)
   ctrl+g      go to the first error (switches tab, job and robot)
-  ctrl+o      open a preset (a path or a bundled name)
+  ctrl+o      open a preset (recent, bundled, or a path; → completes)
+  F10         run history: every run, compare two, open a result CSV
   ctrl+s      save (comments kept; a bundled preset asks for a path)
   ctrl+z      undo the latest edit
   ctrl+e      export the result's CSV files to a folder (as the CLI)
