@@ -41,6 +41,20 @@ async def test_motion_run_plots_the_band_and_shows_the_tables(tmp_path, cli):
         last = dict(zip(result.table.header, list(result.table.records())[-1], strict=True))
         assert float(last["tip_x_m_mean"]) == float(f"{result.band[-1, 0, 2]:.17g}")
         results.scroll_home(animate=False)
+        # the band's arms at the scrubbed time: the last row, then the first after home
+        arms = pane.query_one("#band-arms")
+        assert arms.row == len(result.t_s) - 1
+        arms.focus()
+        await pilot.press("home")
+        await pilot.pause(0.2)
+        assert arms.row == 0 and "t = 0 s" in str(pane.query_one("#band-readout").render())
+        await pilot.press("right")
+        median = [float(v) for v in result.band[arms.row, 3, :2]]  # θ1, θ2 medians (rad)
+        tip = (
+            0.303 * np.cos(median[0]) + 0.214 * np.cos(median[0] + median[1]),
+            0.303 * np.sin(median[0]) + 0.214 * np.sin(median[0] + median[1]),
+        )
+        assert arms.scene.joints[-1][0] == pytest.approx(tip, abs=1e-12)
         await pilot.press("ctrl+t")
         await pilot.pause(0.2)
         assert "θ2 (rad) vs t (s)" in app.export_text()

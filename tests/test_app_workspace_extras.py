@@ -44,3 +44,9 @@ async def test_orientation_range_and_singularities_from_the_form(tmp_path):
         assert result.singularity is not None
         screen = app.export_text()
         assert "o" in screen and "+" in screen and "singularity-free" in screen
+        # the circle's working mode (shown with it): its centre is reachable in it
+        explorer = app.query_one("#workspace-map")
+        assert explorer.show_mode and explorer.in_mode(result.singularity.centre_cm)
+        assert "░ not in the circle's working mode" in str(
+            app.query_one("#workspace-legend").render()
+        )

@@ -91,10 +91,22 @@ def test_torques_rows_match_listed_states_in_si_units(tmp_path, cli):
 
 
 def test_run_is_deterministic_byte_for_byte(tmp_path, cli):
+    """Every CSV is the same bytes run after run; a provenance sidecar differs only in
+    what records the run itself (its command line, start time and duration)."""
+    import json
+
     for name in ("a", "b"):
         assert cli("run", TABLE1, "--out-dir", tmp_path / name).exit_code == 0
-    for path in (tmp_path / "a").iterdir():
-        assert path.read_bytes() == (tmp_path / "b" / path.name).read_bytes()
+    paths = sorted((tmp_path / "a").iterdir())
+    assert any(p.name.endswith(".csv.json") for p in paths)
+    for path in paths:
+        other = tmp_path / "b" / path.name
+        if not path.name.endswith(".json"):
+            assert path.read_bytes() == other.read_bytes()
+            continue
+        first, second = json.loads(path.read_text()), json.loads(other.read_text())
+        differ = {key for key in first.keys() | second.keys() if first.get(key) != second.get(key)}
+        assert differ <= {"command", "started_utc", "duration_s"}, differ
 
 
 def test_interrupt_mid_run_exits_130_and_writes_nothing(tmp_path, cli, monkeypatch):

@@ -331,7 +331,7 @@ def test_the_app_shows_the_five_bar_tab_and_its_map(tmp_path):
     import asyncio
 
     from planar_tui.app.app import WorkbenchApp
-    from planar_tui.app.widgets.workspace_pane import FiveBarPane
+    from planar_tui.app.widgets.parallel_panes import FiveBarPane
     from tests.test_app import run_tab
 
     assert ("Five-bar", "workspace5r") in WorkbenchApp.tabs()

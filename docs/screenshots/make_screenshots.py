@@ -6,7 +6,13 @@ with its form hidden, ``ctrl+f``, so the band plot has the width), and
 ``sensitivity-6r`` shows the bundled ``paper-a-table1`` preset's default 6R sensitivity job
 with the form hidden (``ctrl+f``), the widest table the app shows at 80 columns;
 ``sweep`` is the result screen of an ``F8`` sweep of tiny's simulation (a heat map of the
-second joint's final angle over its link mass and the duration).
+second joint's final angle over its link mass and the duration). On
+``tests/data/app/explore.toml``: ``playback`` is the Simulate tab after its run, form
+hidden, the arm focused and scrubbed to t = 0.5 s; ``explore`` the Workspace tab after its
+run, form hidden, the map focused, the cursor moved and the exact boundary shown (``b``).
+
+``python docs/screenshots/make_screenshots.py NAME ...`` regenerates only those captures
+(and skips the runs no named capture needs).
 """
 
 from __future__ import annotations
@@ -23,6 +29,12 @@ from planar_tui.app.workbench import Workbench  # noqa: E402
 
 OUT = Path(__file__).resolve().parent
 SIZE = (80, 24)
+#: The captures asked for on the command line (none: all of them).
+SELECTED = set(sys.argv[1:])
+
+
+def wanted(*names: str) -> bool:
+    return not SELECTED or bool(SELECTED & set(names))
 
 
 async def wait_for_job(app: WorkbenchApp, pilot) -> None:
@@ -33,6 +45,8 @@ async def wait_for_job(app: WorkbenchApp, pilot) -> None:
 
 
 def save(app: WorkbenchApp, name: str) -> None:
+    if not wanted(name):
+        return
     app.save_screenshot(str(OUT / f"{name}.svg"))
     (OUT / f"{name}.txt").write_text(app.export_text(), encoding="utf-8")
 
@@ -48,18 +62,21 @@ async def main() -> None:
             await pilot.press("f5")
             await wait_for_job(app, pilot)
             save(app, tab)
-        app.action_show_tab("motion_uncertainty")  # the default job; form hidden: the band plot
-        await pilot.pause()
-        await pilot.press("f5")
-        await wait_for_job(app, pilot)
-        await pilot.press("ctrl+f")
-        await pilot.pause(0.3)
-        save(app, "motion")
-        await pilot.press("ctrl+f")
+        if wanted("motion"):
+            app.action_show_tab("motion_uncertainty")  # the default job; form hidden
+            await pilot.pause()
+            await pilot.press("f5")
+            await wait_for_job(app, pilot)
+            await pilot.press("ctrl+f")
+            await pilot.pause(0.3)
+            save(app, "motion")
+            await pilot.press("ctrl+f")
         await pilot.press("f1")
         await pilot.pause()
         save(app, "help")
         await pilot.press("escape")
+        if not wanted("sweep"):
+            return await views()
         app.action_show_tab("simulate")
         await pilot.pause()
         await pilot.press("f8")
@@ -77,13 +94,40 @@ async def main() -> None:
         sweep.query_one("#sweep-figure").value = "theta2_end_rad"
         await pilot.pause(0.3)
         save(app, "sweep")
-    app = WorkbenchApp(Workbench.open(Path("presets/paper-a-table1.toml")), output_dir="/tmp")
+    if wanted("sensitivity-6r"):
+        app = WorkbenchApp(Workbench.open(Path("presets/paper-a-table1.toml")), output_dir="/tmp")
+        async with app.run_test(size=SIZE) as pilot:
+            app.action_show_tab("sensitivity")
+            await pilot.pause()
+            await pilot.press("ctrl+f", "f5")
+            await wait_for_job(app, pilot)
+            save(app, "sensitivity-6r")
+    await views()
+
+
+async def views() -> None:
+    """The playback and the map explorer (``playback``, ``explore``)."""
+    if not wanted("playback", "explore"):
+        return
+    app = WorkbenchApp(Workbench.open(Path("tests/data/app/explore.toml")), output_dir="/tmp")
     async with app.run_test(size=SIZE) as pilot:
-        app.action_show_tab("sensitivity")
+        app.action_show_tab("simulate")
         await pilot.pause()
-        await pilot.press("ctrl+f", "f5")
+        await pilot.press("f5")
         await wait_for_job(app, pilot)
-        save(app, "sensitivity-6r")
+        await pilot.press("ctrl+f")
+        app.query_one("#simulate-arm").focus()
+        await pilot.press(*["right"] * 50)
+        await pilot.pause(0.3)
+        save(app, "playback")
+        app.action_show_tab("workspace")
+        await pilot.pause()
+        await pilot.press("f5")
+        await wait_for_job(app, pilot)
+        app.query_one("#workspace-map").focus()
+        await pilot.press("right", "right", "up", "up", "b")
+        await pilot.pause(0.3)
+        save(app, "explore")
 
 
 def sync_readme() -> None:

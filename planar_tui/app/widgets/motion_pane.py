@@ -2,18 +2,23 @@
 textual-plotext) and the band table and Table-4-shaped index tables of the CLI
 (:mod:`~planar_tui.sensitivity.tables`): beside the plot when the results area has at least
 :data:`BESIDE_COLUMNS` columns, else below it; ``ctrl+t`` steps the plot through the
-outputs (θ1 … θn, tip x, tip y)."""
+outputs (θ1 … θn, tip x, tip y). Beside the plot, the band's arms at the scrubbed time
+(:mod:`.playback`'s keys when the drawing has the focus): the arm at every joint's median
+(its joints drawn) and at every joint's 5 % and 95 % percentiles (links only), with a cursor
+line on the plot at the same time."""
 
 from __future__ import annotations
 
 from rich.console import Group
 from rich.text import Text
 from textual.app import ComposeResult
-from textual.containers import Container, ScrollableContainer
+from textual.containers import Container, Horizontal, ScrollableContainer
 from textual.widgets import Static
 from textual_plotext import PlotextPlot
 
 from planar_tui.app.widgets.panes import JobPane
+from planar_tui.app.widgets.playback import PlaybackView
+from planar_tui.app.widgets.robot_drawing import serial_scene
 from planar_tui.app.widgets.simulate_pane import thin
 from planar_tui.jobkind import JobResult
 from planar_tui.presets import Job
@@ -28,6 +33,26 @@ def band_series(result, output: int) -> dict[str, list[float]]:
         "mean": band[:, 0].tolist(),
         "p5": band[:, 2].tolist(),
         "p95": band[:, 4].tolist(),
+    }
+
+
+#: Styles of the band's 5 % and 95 % arms (links only).
+P5_STYLE, P95_STYLE = "blue", "magenta"
+
+
+def band_arms_deg(result, row: int) -> dict[str, list[float]] | None:
+    """Relative joint angles (deg) of the band's arms at recorded ``row``: every joint at
+    its 5th (``p5``), 50th (``p50``) and 95th (``p95``) percentile; ``None`` without the
+    angle outputs."""
+    import math
+
+    columns = [k for k, name in enumerate(result.names) if name.startswith("theta")]
+    if not columns:
+        return None
+    band = result.band[row]
+    return {
+        stat: [math.degrees(float(band[index, k])) for k in columns]
+        for stat, index in (("p5", 2), ("p50", 3), ("p95", 4))
     }
 
 
@@ -49,6 +74,10 @@ class MotionPane(JobPane):
     #motion-body { height: auto; layout: vertical; }
     #motion-body.beside { layout: horizontal; }
     #motion-body.beside #motion-tables { margin-left: 1; }
+    #motion-top { height: auto; }
+    #band-arms { width: 1fr; min-width: 14; height: 100%; }
+    #band-plot { width: 2fr; }
+    #band-readout { height: auto; }
     """
 
     #: The output the plot shows (``ctrl+t`` steps through them).
@@ -57,32 +86,34 @@ class MotionPane(JobPane):
     def compose_results(self) -> ComposeResult:
         with ScrollableContainer(id="motion-results"):
             yield Static("Run the study (F5) to plot the band.", id="result-text", markup=False)
+            yield Static("", id="band-readout", markup=False)
             with Container(id="motion-body"):
-                yield PlotextPlot(id="band-plot")
+                with Horizontal(id="motion-top"):
+                    yield PlotextPlot(id="band-plot")
+                    yield PlaybackView("(the band's arms: run the study)", id="band-arms")
                 yield Static("", id="motion-tables")
 
     def on_mount(self) -> None:
         if self.available():  # the app's stylesheet gives every plot 1fr: this one scrolls
-            self.query_one("#band-plot", PlotextPlot).styles.height = PLOT_LINES
+            self.query_one("#motion-top").styles.height = PLOT_LINES
 
     def render_result(self, job: Job, result: JobResult) -> None:
-        from planar_tui.motion.engine import output_labels
         from planar_tui.motion.results import band_grid
         from planar_tui.sensitivity.tables import VIEWS, fit_tables
 
-        labels = output_labels(result.names)
-        self.output %= len(labels)
-        series = band_series(result, self.output)
-        plot = self.query_one("#band-plot", PlotextPlot)
-        plt = plot.plt
-        plt.clear_data()
-        plt.clear_figure()
-        plt.plot(series["t_s"], series["p95"], marker="+", label="95 %")
-        plt.plot(series["t_s"], series["mean"], marker="o", label="mean")
-        plt.plot(series["t_s"], series["p5"], marker="-", label="5 %")
-        unit = "rad" if result.names[self.output].endswith("_rad") else "m"
-        plt.title(f"{labels[self.output]} ({unit}) vs t (s): o mean, + - 5-95 %")
-        plot.refresh()
+        lengths = list(job.robot.lengths_m)
+        view = self.query_one("#band-arms", PlaybackView)
+        same_run = view.frame_scene is not None and len(view.times) == len(result.t_s)
+
+        def frame(row: int):
+            arms = band_arms_deg(result, row)
+            if arms is None:
+                return None
+            ghosts = [(arms["p5"], P5_STYLE), (arms["p95"], P95_STYLE)]
+            return serial_scene(lengths, arms["p50"], ghosts, caption=f"t={result.t_s[row]:.3g} s")
+
+        view.load(result.t_s, frame, view.row if same_run else len(result.t_s) - 1)
+        self.draw_plot()
         self.query_one("#result-text", Static).update(result.summary)
         grid, band_width = band_grid(result)
 
@@ -112,6 +143,39 @@ class MotionPane(JobPane):
         tables = self.query_one("#motion-tables", Static)
         tables.styles.width = natural  # never shrunk: a wide table scrolls sideways
         tables.update(Group(*parts))
+
+    def on_playback_view_moved(self, message: PlaybackView.Moved) -> None:
+        self.draw_plot()
+
+    def draw_plot(self) -> None:
+        """The band plot of the output shown, with the cursor at the scrubbed time."""
+        from planar_tui.motion.engine import output_labels
+
+        result = self.result
+        if result is None or not self.is_attached:
+            return
+        labels = output_labels(result.names)
+        self.output %= len(labels)
+        series = band_series(result, self.output)
+        plot = self.query_one("#band-plot", PlotextPlot)
+        plt = plot.plt
+        plt.clear_data()
+        plt.clear_figure()
+        plt.plot(series["t_s"], series["p95"], marker="+", label="95 %")
+        plt.plot(series["t_s"], series["mean"], marker="o", label="mean")
+        plt.plot(series["t_s"], series["p5"], marker="-", label="5 %")
+        view = self.query_one("#band-arms", PlaybackView)
+        plt.vline(view.t_s, "red")
+        unit = "rad" if result.names[self.output].endswith("_rad") else "m"
+        plt.title(f"{labels[self.output]} ({unit}) vs t (s): o mean, + - 5-95 %")
+        plot.refresh()
+        if len(view.times):
+            band = result.band[view.row, :, self.output]
+            self.query_one("#band-readout", Static).update(
+                f"{view.status()}  {labels[self.output]}: 5 % {band[2]:.5g}  "
+                f"median {band[3]:.5g}  95 % {band[4]:.5g} {unit}  "
+                f"(arms: median with joints, 5 % {P5_STYLE}, 95 % {P95_STYLE})"
+            )
 
     def action_toggle_view(self) -> None:
         """Plot the next output's band."""

@@ -1,6 +1,7 @@
 """The Sensitivity tab: indices shaped like paper A's Table 4 (fitted to the width, see
 :mod:`~planar_tui.sensitivity.tables`), a percent / S1 / ST / confidence toggle,
-and the Fig 5/6 stacked bars (the CLI's renderer)."""
+the Fig 5/6 stacked bars (the CLI's renderer), and the arm drawn in the analysed posture
+(the solved one, e.g. isotropic)."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ from textual.containers import ScrollableContainer
 from textual.widgets import Static
 
 from planar_tui.app.widgets.panes import JobPane
+from planar_tui.app.widgets.robot_drawing import SceneView, serial_scene
 from planar_tui.jobkind import JobResult
 from planar_tui.presets import Job
 from planar_tui.sensitivity.tables import VIEWS, fit_tables
@@ -38,6 +40,8 @@ class SensitivityPane(JobPane):
     DEFAULT_CSS = """
     #sensitivity-results { height: 1fr; scrollbar-gutter: stable; scrollbar-size: 1 1; }
     #sensitivity-results Static { width: 100%; }
+    #sensitivity-arm { height: 10; display: none; }
+    #sensitivity-arm.-shown { display: block; }
     """
 
     view = 0
@@ -46,6 +50,7 @@ class SensitivityPane(JobPane):
         with ScrollableContainer(id="sensitivity-results"):
             yield Static("Run the analysis (F5) to see the indices.", id="result-text")
             yield Static("", id="sensitivity-posture", markup=False)
+            yield SceneView(id="sensitivity-arm")
             yield Static("", id="sensitivity-table")
             yield Static("", id="sensitivity-bars")
 
@@ -60,6 +65,13 @@ class SensitivityPane(JobPane):
         width = self.available_width()
         self.query_one("#result-text", Static).update(Text(result.summary))
         self.query_one("#sensitivity-posture", Static).update(posture_line(result.posture))
+        arm = self.query_one("#sensitivity-arm", SceneView)
+        arm.set_class(result.posture is not None, "-shown")
+        if result.posture is not None:
+            import math
+
+            theta_deg = [math.degrees(t) for t in result.posture.theta_rad]
+            arm.show(serial_scene(list(job.robot.lengths_m), theta_deg, caption="posture"))
         fitted = fit_tables(analyses, VIEWS[self.view], width, job.spec.percent_of)
         table = self.query_one("#sensitivity-table", Static)
         # never shrunk: a table wider than the pane scrolls sideways

@@ -1,15 +1,24 @@
-"""The Workspace tab: the 3-RRR workspace map (the CLI's renderer), the live area bracket
-and box count while the bisection runs, and the summary."""
+"""The Workspace tab: the 3-RRR workspace map, explorable (:mod:`.workspace_explorer`),
+the 3-RRR drawn at the map's cursor, the cell's status and the legs' joint angles read out;
+the live area bracket and box count while the bisection runs; a coarse map redrawn
+shortly after each valid edit of the robot or the job (before the job is run again)."""
 
 from __future__ import annotations
 
+import dataclasses
+import math
 import time
+from typing import Any
 
 import numpy as np
 from textual.app import ComposeResult
+from textual.containers import Horizontal
+from textual.message import Message
 from textual.widgets import Static
 
 from planar_tui.app.widgets.panes import JobPane
+from planar_tui.app.widgets.robot_drawing import SceneView, leg_modes, rrr_scene
+from planar_tui.app.widgets.workspace_explorer import MapExplorer, cell_status
 from planar_tui.jobkind import JobResult
 from planar_tui.presets import Job
 from planar_tui.progress import ProgressState
@@ -18,6 +27,12 @@ from planar_tui.progress import ProgressState
 MAP_FOOTER_LINES = 3
 #: Seconds between two redraws of the map of the boxes kept so far while a job runs.
 PARTIAL_MAP_EVERY_S = 0.5
+#: Seconds after the last edit before the coarse preview map is computed.
+PREVIEW_DEBOUNCE_S = 0.25
+#: The preview's precision: the reach box's larger side over this.
+PREVIEW_CELLS = 32
+#: The re-paving's precision: at most half the job's, and the view's width over this.
+REPAVE_CELLS = 96
 
 
 def fitted_map(boxes, status, width: int, height: int, **overlays) -> list[str]:
@@ -47,26 +62,67 @@ def fitted_map(boxes, status, width: int, height: int, **overlays) -> list[str]:
     return plot + lines[len(plot) :]
 
 
-def map_legend() -> str:
-    """The map's legend (76 cells: one line when the form is hidden)."""
-    from planar_tui.workspace.map import BOUNDARY_GLYPH, INSIDE_GLYPH
+def fine_job(job, **changes) -> Any:
+    """``job`` with its spec changed (no refinement, no reference area, no singularities)."""
+    spec = dataclasses.replace(
+        job.spec, refine_precision_cm=None, geometric_reference=False, singularities=False,
+        **changes,
+    )  # fmt: skip
+    return dataclasses.replace(job, spec=spec)
 
-    return (
-        f"x, y in cm  {INSIDE_GLYPH} inside (proved)  "
-        f"{BOUNDARY_GLYPH} boundary (kept, not proved)  blank outside"
-    )
+
+def pave(job, should_stop) -> Any:
+    """Pave ``job``'s workspace (:func:`planar_tui.workspace.compute.compute_workspace`)."""
+    from planar_tui.progress import Progress
+    from planar_tui.workspace.compute import BoxBudget, compute_workspace
+
+    progress = Progress(should_stop=should_stop)
+    return compute_workspace(job.robot, job.spec, BoxBudget(job, progress))
+
+
+class Paved(Message):
+    """A re-paving or a preview finished in its worker (``outcome`` ``None``: ``error``)."""
+
+    def __init__(self, purpose: str, job: Any, outcome: Any, error: str = "") -> None:
+        super().__init__()
+        self.purpose, self.job, self.outcome, self.error = purpose, job, outcome, error
 
 
 class WorkspacePane(JobPane):
-    """Form, precision, orientation, joint limits; the character-cell map and summary."""
+    """Form, precision, orientation, joint limits; the explorable map, the 3-RRR at its
+    cursor, the read-out and summary."""
 
     kind = "workspace"
+    #: Whether the map draws the 3-RRR at its cursor, reads its legs' angles, overlays
+    #: its exact boundary, re-paves the view and previews edits (the 3-RRR's pane; the
+    #: other parallel robots' panes reuse the map alone).
+    explores_3rrr = True
     _partial_drawn_s = 0.0
+
+    DEFAULT_CSS = """
+    #workspace-view { height: 1fr; }
+    #workspace-robot { width: 1fr; min-width: 12; }
+    #workspace-map { width: 2fr; }
+    #workspace-readout, #workspace-legend { height: auto; }
+    """
+
+    def __init__(self, *args: Any, **kwargs: Any):
+        super().__init__(*args, **kwargs)
+        #: The inputs of the last preview (``None`` before the first edit).
+        self._preview_key: Any = None
+        self._preview_timer: Any = None
+        self._shown_job: Any = None
 
     def compose_results(self) -> ComposeResult:
         yield Static("Run the bisection (F5) to map the workspace.", id="result-text", markup=False)
-        yield Static("", id="workspace-map", markup=False)
+        with Horizontal(id="workspace-view"):
+            yield MapExplorer(id="workspace-map")
+            yield SceneView(id="workspace-robot")
+        yield Static("", id="workspace-readout", markup=False)
         yield Static("", id="workspace-legend", markup=False)
+
+    def explorer(self) -> MapExplorer:
+        return self.query_one("#workspace-map", MapExplorer)
 
     def show_progress(self, state: ProgressState) -> None:
         """The running bisection: its stage and bracket, a warning when the estimated box
@@ -86,38 +142,246 @@ class WorkspacePane(JobPane):
                 status = np.ones(len(boxes), dtype=np.int64)
             self.draw_map(boxes, status, "(so far)")
 
-    def draw_map(self, boxes, status, note: str = "", **overlays) -> None:
-        """Draw boxes on the map area, fitted to the results area (``overlays``: the
-        singular boxes and the circle, see ``render_map``)."""
-        from planar_tui.workspace.map import SINGULAR_LEGEND
-
-        area = self.query_one("#workspace-map", Static)
-        results = self.query_one(".results")
-        width = max(20, results.content_region.width - 1)
-        legend_text = map_legend() + (f"  {note}" if note else "")
-        if overlays:
-            legend_text += f"  {SINGULAR_LEGEND}"
-        legend_lines = -(-len(legend_text) // width)
-        summary_lines = self.query_one("#result-text").size.height
-        height = max(8, results.content_region.height - summary_lines - legend_lines)
-        area.update("\n".join(fitted_map(boxes, status, width, height, **overlays)))
-        self.query_one("#workspace-legend", Static).update(legend_text)
+    def draw_map(self, boxes, status, note: str = "", refit: bool = True, **overlays) -> None:
+        """Draw boxes on the explorable map (``overlays``: the singular boxes and the
+        circle, see ``render_map``)."""
+        explorer = self.explorer()
+        explorer.show_boxes(np.array(boxes), np.array(status), note, refit, **overlays)
+        self.on_map_explorer_moved(MapExplorer.Moved(explorer))  # the legend in this frame
 
     def render_result(self, job: Job, result: JobResult) -> None:
         self.query_one("#result-text", Static).update(result.summary)
         outcome = result.outcome
-        area = self.query_one("#workspace-map", Static)
-        legend = self.query_one("#workspace-legend", Static)
+        explorer = self.explorer()
         if outcome is None or len(outcome.boxes) == 0:
-            area.update("(no box kept: the workspace is empty at this precision)")
-            legend.update("")
+            explorer.show_text("(no box kept: the workspace is empty at this precision)")
+            self.query_one("#workspace-legend", Static).update("")
             return
         from planar_tui.workspace.job import overlays
 
-        self.draw_map(outcome.boxes, outcome.status, **overlays(result.singularity))
+        refit = self._shown_job is not job
+        self._shown_job = job
+        self.set_geometry(job, result)
+        self.draw_map(outcome.boxes, outcome.status, "", refit, **overlays(result.singularity))
 
+    # -- the geometry at the cursor -------------------------------------------------------
+    def constant_orientation_3rrr(self, job: Any) -> bool:
+        """Whether ``job`` is a 3-RRR job at one orientation (what the cursor's drawing,
+        read-out, boundary, re-paving and preview need)."""
+        return (
+            self.explores_3rrr
+            and job is not None
+            and not isinstance(job.spec.orientation_deg, tuple)
+        )
 
-class FiveBarPane(WorkspacePane):
-    """The five-bar's tab: the workspace pane on ``[[workspace5r]]`` jobs."""
+    def set_geometry(self, job: Job, result: JobResult | None) -> None:
+        """Give the map the exact boundary and the circle's working-mode test of ``job``."""
+        explorer = self.explorer()
+        explorer.exact_rings = explorer.in_mode = None
+        if not self.constant_orientation_3rrr(job):
+            return
+        robot, spec = job.robot, job.spec
 
-    kind = "workspace5r"
+        def rings() -> list[list[tuple[float, float]]]:
+            from planar_tui.workspace.geometry import workspace_polygon
+
+            polygon = workspace_polygon(robot, spec.limits_rad, spec.orientation_rad, 256, False)
+            parts = getattr(polygon, "geoms", [polygon])
+            found = []
+            for part in parts:
+                for ring in (part.exterior, *part.interiors):
+                    found.append(list(ring.coords))
+            return found
+
+        cache: dict[str, Any] = {}
+
+        def cached_rings():
+            if "rings" not in cache:
+                cache["rings"] = rings()
+            return cache["rings"]
+
+        explorer.exact_rings = cached_rings
+        singular = None if result is None else getattr(result, "singularity", None)
+        if singular is not None:
+            elbow = singular.elbow
+
+            def in_mode(point) -> bool:
+                legs = leg_modes(robot, spec.orientation_rad, point, spec.limits_rad, elbow)
+                return all(
+                    leg is not None and leg[1] == s for leg, s in zip(legs, elbow, strict=True)
+                )
+
+            explorer.in_mode = in_mode
+            explorer.show_mode = True  # shown with the circle; `m` hides it
+
+    def on_map_explorer_moved(self, message: MapExplorer.Moved) -> None:
+        explorer = message.explorer
+        width = max(20, self.query_one(".results").content_region.width)
+        self.query_one("#workspace-legend", Static).update(explorer.legend(width))
+        hint = "" if explorer.has_focus else "  (Tab to the map: arrows, + -, r)"
+        self.query_one("#workspace-readout", Static).update(self.readout() + hint)
+        job = self._shown_job or self._valid_job()
+        drawing = self.query_one("#workspace-robot", SceneView)
+        if not self.constant_orientation_3rrr(job):
+            drawing.show(None)
+            return
+        legs = leg_modes(job.robot, job.spec.orientation_rad, explorer.cursor_cm,
+                         job.spec.limits_rad, self._elbow())  # fmt: skip
+        drawing.show(rrr_scene(job.robot, explorer.cursor_cm, job.spec.orientation_rad, legs))
+
+    def _elbow(self):
+        singular = None if self.result is None else getattr(self.result, "singularity", None)
+        return None if singular is None else singular.elbow
+
+    def readout(self) -> str:
+        """``(x, y) = (60.00, 35.00) cm inside  θ = 45.1°, 130.2°, 270.3° (modes +1 -1 +1)``."""
+        explorer = self.explorer()
+        x, y = explorer.cursor_cm
+        singular = explorer.overlays.get("singular")
+        status = cell_status((x, y), explorer.boxes, explorer.status, singular)
+        text = f"(x, y) = ({x:.2f}, {y:.2f}) cm  {status}"
+        job = self._shown_job or self._valid_job()
+        if status == "outside" or not self.constant_orientation_3rrr(job):
+            return text
+        legs = leg_modes(job.robot, job.spec.orientation_rad, (x, y), job.spec.limits_rad,
+                         self._elbow())  # fmt: skip
+        if any(leg is None for leg in legs):
+            closed = ", ".join(str(i + 1) for i, leg in enumerate(legs) if leg is None)
+            return f"{text}  leg {closed} cannot close within its limits here"
+        angles = ", ".join(f"{math.degrees(theta) % 360:.1f}°" for theta, _ in legs)  # type: ignore[misc]
+        modes = " ".join(f"{mode:+d}" for _, mode in legs)  # type: ignore[misc]
+        return f"{text}  θ = {angles} (modes {modes})"
+
+    def on_descendant_focus(self, event) -> None:
+        explorer = self.explorer()
+        if len(explorer.boxes):
+            self.on_map_explorer_moved(MapExplorer.Moved(explorer))
+
+    def on_descendant_blur(self, event) -> None:
+        self.on_descendant_focus(event)
+
+    # -- re-paving the view ------------------------------------------------------------
+    def on_map_explorer_repave_requested(self, message: MapExplorer.RepaveRequested) -> None:
+        """Pave the visible region again at a finer precision in a worker (``r`` again
+        cancels it)."""
+        if not self.explores_3rrr:
+            self.query_one("#workspace-readout", Static).update(
+                "re-paving the view: on the 3-RRR's map (F5 runs this job at its precision)"
+            )
+            return
+        running = [w for w in self.workers if w.group == "repave" and w.is_running]
+        if running:
+            for worker in running:
+                worker.cancel()
+            self.query_one("#workspace-readout", Static).update("re-paving cancelled")
+            return
+        job = self.job
+        if job is None or self.result is None or isinstance(job.spec.orientation_deg, tuple):
+            return
+        x_lo, x_hi, y_lo, y_hi = message.extent
+        precision = min(job.spec.precision_cm / 2, (x_hi - x_lo) / REPAVE_CELLS)
+        fine = fine_job(job, search_box_cm=((x_lo, x_hi), (y_lo, y_hi)), precision_cm=precision)
+        self.query_one("#workspace-readout", Static).update(
+            f"re-paving the view at ε = {precision:.3g} cm … (r cancels)"
+        )
+        self.run_worker(
+            lambda: self._pave_in_worker(fine, "repave"), group="repave", thread=True,
+            exclusive=True, exit_on_error=False,
+        )  # fmt: skip
+
+    def _pave_in_worker(self, job, purpose: str) -> None:
+        """Pave in this worker thread, then post the outcome (or the error) back."""
+        from textual.worker import get_current_worker
+
+        worker = get_current_worker()
+        try:
+            outcome = pave(job, lambda: worker.is_cancelled)
+        except Exception as error:  # a cancel, or the budget exceeded: said, never raised
+            if not worker.is_cancelled:
+                self.post_message(Paved(purpose, job, None, f"not paved: {error}"))
+            return
+        if not worker.is_cancelled:
+            self.post_message(Paved(purpose, job, outcome))
+
+    def on_paved(self, message: Paved) -> None:
+        if message.outcome is None:
+            self.query_one("#workspace-readout", Static).update(message.error)
+        elif message.purpose == "repave":
+            self._repaved(message.job, message.outcome)
+        else:
+            self._previewed(message.job, message.outcome)
+
+    def _repaved(self, job, outcome) -> None:
+        """Show the fine boxes in the view and the job's boxes outside it."""
+        if self.result is None:
+            return
+        (x_lo, x_hi), (y_lo, y_hi) = job.spec.search_box_cm
+        coarse = self.result.outcome
+        outside = ~(
+            (coarse.boxes[:, 1] > x_lo) & (coarse.boxes[:, 0] < x_hi)
+            & (coarse.boxes[:, 3] > y_lo) & (coarse.boxes[:, 2] < y_hi)
+        )  # fmt: skip
+        boxes = np.vstack([coarse.boxes[outside, :4], outcome.boxes[:, :4]])
+        status = np.concatenate([coarse.status[outside], outcome.status])
+        explorer = self.explorer()
+        note = f"view re-paved at ε = {job.spec.precision_cm:.3g} cm"
+        explorer.show_boxes(boxes, status, note, refit=False, **explorer.overlays)
+
+    # -- live preview while editing ----------------------------------------------------
+    def _valid_job(self) -> Any:
+        try:
+            return self.bench.job(self.kind, self.index)
+        except Exception:  # the validation line and the marked field say why
+            return None
+
+    def update_stale(self) -> None:
+        super().update_stale()
+        self.schedule_preview()
+
+    def schedule_preview(self) -> None:
+        """After a valid edit of the robot or the job (not at start), compute a coarse
+        map :data:`PREVIEW_DEBOUNCE_S` after the last edit (the next edit cancels it)."""
+        if not self.available() or not self.is_attached:
+            return
+        job = self._valid_job()
+        if not self.constant_orientation_3rrr(job):
+            return
+        key = (job.robot, job.spec.joint_limits_deg, job.spec.orientation_deg)
+        first = self._preview_key is None
+        if key == self._preview_key:
+            return
+        self._preview_key = key
+        if first or (self.result is not None and self.stale_reason is None):
+            return
+        if self._preview_timer is not None:
+            self._preview_timer.stop()
+        for worker in self.workers:
+            if worker.group == "preview":
+                worker.cancel()
+        self._preview_timer = self.set_timer(PREVIEW_DEBOUNCE_S, lambda: self.start_preview(job))
+
+    def start_preview(self, job) -> None:
+        x_lo, x_hi, y_lo, y_hi = job.robot.reach_box_cm(job.spec.orientation_rad)
+        if x_lo >= x_hi or y_lo >= y_hi:
+            self.explorer().show_text("(preview: the legs' reach discs do not meet)")
+            return
+        precision = max(x_hi - x_lo, y_hi - y_lo) / PREVIEW_CELLS
+        coarse = fine_job(job, precision_cm=precision, form="arc-distance", search_box_cm=None)
+        self.run_worker(
+            lambda: self._pave_in_worker(coarse, "preview"), group="preview",
+            thread=True, exclusive=True, exit_on_error=False,
+        )  # fmt: skip
+
+    def _previewed(self, job, outcome) -> None:
+        """Show the preview unless a current result came meanwhile."""
+        if self.result is not None and self.stale_reason is None:
+            return
+        self._shown_job = job
+        self.set_geometry(job, None)
+        note = f"preview ε = {job.spec.precision_cm:.3g} cm (F5 runs the job)"
+        if len(outcome.boxes):
+            self.draw_map(outcome.boxes, outcome.status, note)
+        else:
+            self.explorer().show_text(
+                f"(preview: empty workspace at ε = {job.spec.precision_cm:.3g} cm)"
+            )

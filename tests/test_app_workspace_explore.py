@@ -1,0 +1,145 @@
+"""Pilot tests of the explorable workspace map: the read-out at a known inside and a known
+outside point (the leg angles checked by forward kinematics here), the cursor, zoom, pan,
+the overlays, re-paving the view and the live preview after an edit."""
+
+from __future__ import annotations
+
+import math
+import re
+
+import numpy as np
+import pytest
+
+from planar_tui.app.widgets.workspace_explorer import cell_status, wrapped_legend
+from tests.test_app import SIZE, async_test, make_app, run_tab, until
+
+pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
+
+#: tiny.toml's 3-RRR (paper B Table 2) and joint limits (deg).
+A = ((0.0, 0.0), (120.0, 0.0), (60.0, 60.0 * math.sqrt(3.0)))
+Q = ((0.0, 0.0), (40.0, 0.0), (20.0, 40.0))
+L1 = L2 = 30.0
+LIMITS_DEG = ((20, 70), (110, 160), (245, 295))
+
+
+def test_cell_status_prefers_singular_then_inside():
+    boxes = np.array([[0.0, 1.0, 0.0, 1.0], [1.0, 2.0, 0.0, 1.0]])
+    status = np.array([2, 1])
+    assert cell_status((0.5, 0.5), boxes, status) == "inside"
+    assert cell_status((1.5, 0.5), boxes, status) == "boundary"
+    assert cell_status((1.0, 0.5), boxes, status) == "inside"  # on the shared edge
+    assert cell_status((3.0, 0.5), boxes, status) == "outside"
+    assert cell_status((1.5, 0.5), boxes, status, np.array([[1.2, 1.8, 0.2, 0.8]])) == "singular"
+
+
+def test_the_legend_fits_80_columns():
+    from planar_tui.app.widgets.workspace_explorer import EXACT_ITEM, LEGEND_ITEMS, MODE_ITEM
+    from planar_tui.workspace.map import SINGULAR_LEGEND_ITEMS
+
+    items = [*LEGEND_ITEMS, EXACT_ITEM, MODE_ITEM, *SINGULAR_LEGEND_ITEMS]
+    assert all(len(line) <= 80 for line in wrapped_legend(items, 80).splitlines())
+    assert all(len(line) <= 46 for line in wrapped_legend(items, 46).splitlines())
+
+
+def margin(x: float, y: float) -> float:
+    """The smallest distance (deg) of a leg's best active angle to its limits at the
+    platform position (x, y) (< 0: some leg cannot close within its limits)."""
+    if True:
+        worst = math.inf
+        for (ax, ay), (qx, qy), (lo, hi) in zip(A, Q, LIMITS_DEG, strict=True):
+            cx, cy = x + qx - ax, y + qy - ay  # C_i - A_i
+            rho = math.hypot(cx, cy)
+            if rho == 0:
+                return -math.inf
+            cosine = (rho * rho + L1 * L1 - L2 * L2) / (2 * L1 * rho)
+            if abs(cosine) >= 1:
+                return -math.inf
+            alpha, beta = math.atan2(cy, cx), math.acos(cosine)
+            best = -math.inf
+            for theta in (alpha + beta, alpha - beta):
+                angle = math.degrees(theta) % 360
+                best = max(best, min(angle - lo, hi - angle))
+            worst = min(worst, best)
+        return worst
+
+
+def angles_in(readout: str) -> list[float]:
+    match = re.search(r"θ = ([-\d.]+)°, ([-\d.]+)°, ([-\d.]+)°", readout)
+    assert match, readout
+    return [float(v) for v in match.groups()]
+
+
+@async_test
+async def test_read_out_at_an_inside_and_an_outside_point(tmp_path):
+    app = make_app(tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        await run_tab(app, pilot, "workspace")
+        pane = app.query_one("#pane-workspace")
+        explorer = pane.query_one("#workspace-map")
+        explorer.focus()
+        outcome = pane.result.outcome
+        row = outcome.boxes[np.flatnonzero(outcome.status == 2)[0]]
+        point = (0.5 * (row[0] + row[1]), 0.5 * (row[2] + row[3]))  # a proved box's centre
+        assert margin(*point) > 0  # inside the workspace, by the legs' closure here
+        explorer.cursor_cm = point
+        explorer.changed()
+        await pilot.pause()
+        readout = str(pane.query_one("#workspace-readout").render())
+        assert f"(x, y) = ({point[0]:.2f}, {point[1]:.2f}) cm  inside" in readout
+        for theta_deg, (ax, ay), (qx, qy), (lo, hi) in zip(
+            angles_in(readout), A, Q, LIMITS_DEG, strict=True
+        ):
+            assert lo <= theta_deg <= hi
+            bx = ax + L1 * math.cos(math.radians(theta_deg))
+            by = ay + L1 * math.sin(math.radians(theta_deg))
+            # the distal link closes (the angle is read to 0.05°: 30 cm · 0.05° ≈ 0.03 cm)
+            assert math.hypot(point[0] + qx - bx, point[1] + qy - by) == pytest.approx(L2, abs=0.05)
+        drawing = pane.query_one("#workspace-robot").scene
+        assert sum(glyph == "o" for _, glyph, _ in drawing.joints) == 3  # three legs closed
+        explorer.cursor_cm = (0.0, 100.0)
+        explorer.changed()
+        await pilot.pause()
+        readout = str(pane.query_one("#workspace-readout").render())
+        assert readout == "(x, y) = (0.00, 100.00) cm  outside"
+        # keys: a cell to the right, zoom in about the cursor, pan, fit
+        explorer.cursor_cm = point
+        explorer.changed()
+        cell = explorer.cell_cm
+        await pilot.press("right")
+        assert explorer.cursor_cm[0] > point[0] and explorer.cursor_cm[0] - point[0] <= 1.5 * cell
+        await pilot.press("plus")
+        assert explorer.cell_cm == pytest.approx(cell / 2)
+        before = explorer.centre_cm
+        await pilot.press("shift+left")
+        assert explorer.centre_cm[0] < before[0]
+        await pilot.press("b", "0")
+        await pilot.pause()
+        assert explorer.cell_cm == pytest.approx(cell)
+        assert "· exact boundary" in str(pane.query_one("#workspace-legend").render())
+        assert "·" in str(explorer.render())
+        # re-pave the view, finer
+        boxes_before = len(explorer.boxes)
+        await pilot.press("plus", "r")
+        await until(pilot, lambda: "re-paved" in explorer.note, timeout_s=300)
+        assert len(explorer.boxes) > boxes_before or explorer.note
+        assert "@" in str(explorer.render())
+
+
+@async_test
+async def test_an_edit_of_the_joint_limits_redraws_a_coarse_map(tmp_path):
+    app = make_app(tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        app.action_show_tab("workspace")
+        await pilot.pause()
+        pane = app.query_one("#pane-workspace")
+        field = app.query_one("#pane-workspace #field-joint_limits_deg")
+        field.focus()
+        field.value = "[[10, 80], [100, 170], [235, 305]]"
+        await until(pilot, lambda: "preview" in pane.query_one("#workspace-map").note, 300)
+        await until(pilot, lambda: "preview ε" in str(pane.query_one("#workspace-legend").render()))
+        assert "█" in str(pane.query_one("#workspace-map").render())
+        # the preview's boxes are those of the edited limits: wider limits, a larger map
+        # than the job's (106.75 cm² at the preset's limits, paper B Table 3)
+        boxes = pane.query_one("#workspace-map").boxes
+        kept_cm2 = float(np.sum((boxes[:, 1] - boxes[:, 0]) * (boxes[:, 3] - boxes[:, 2])))
+        assert kept_cm2 > 106.75
