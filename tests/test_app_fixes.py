@@ -185,7 +185,7 @@ async def test_run_all_end_leaves_no_live_view_and_shows_its_folder(tmp_path, mo
         await pilot.pause()
         screen = app.export_text()
         assert "(so far)" not in screen and "running job" not in screen
-        assert f"→ {folder}: 7 jobs done in 12.3 s" in screen  # the folder first, whole
+        assert f"→ {folder}: 7 jobs in 12.3 s" in screen  # the folder first, whole
 
 
 # -- 5, 6. the footer --------------------------------------------------------------------

@@ -510,11 +510,12 @@ async def test_typing_600_brackets_or_a_310_digit_integer_shows_the_error_line(t
         await pilot.pause()
         assert app.is_running and not app.job_running
         assert "310 digits" in validation(app)
-        await pilot.press("ctrl+s")  # saving it: refused with the reason
+        await pilot.press("ctrl+s")  # saving it: only as a draft, after a question
         await pilot.pause()
-        assert isinstance(app.screen, MessageDialog)
-        assert "Not saved: the preset is invalid" in app.export_text()
-        app.pop_screen()
+        assert isinstance(app.screen, ConfirmDialog)
+        assert "The preset is invalid. Save it as a draft" in app.export_text()
+        await pilot.press("n")
+        await pilot.pause()
         assert app.is_running and field.value == "1" * 310
 
 

@@ -379,13 +379,14 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, App)
             controls.set_running(False)
             where = f"→ {self.batch_dir}"  # the folder first: the line's end may be cut
             if message.cancelled:
-                text = f"{where}: run all cancelled, {done}/{message.total} jobs done"
+                text = f"{where}: cancelled, {done}/{message.total} jobs done"
             elif message.error is not None:
-                text = f"{where}: run all failed after {done}/{message.total} jobs"
+                text = f"{where}: failed after {done}/{message.total} jobs"
             else:
                 controls.finished()
-                text = f"{where}: {done} jobs done in {message.seconds:.1f} s"
+                text = f"{where}: {done} jobs in {message.seconds:.1f} s"
             controls.status(text)
+            self.notify(f"Run all {text.removeprefix(where + ': ')}; files in {self.batch_dir}")
         if message.error is not None:
             error = message.error
             shown = (

@@ -379,8 +379,8 @@ class JobPane(Vertical):
 
     def mark_problems(self, problems: list[tuple[Any, str]]) -> list[Any]:
         """Show this tab's own problems, ``(location, message)`` pairs: the bad field
-        marked, and the job's first problem on the line above the controls; returns the
-        marked fields."""
+        marked, and the job's first problem that no field of the form shows on the line
+        above the controls; returns the marked fields."""
         if not self.available():
             return []
         form = self.form
@@ -390,14 +390,18 @@ class JobPane(Vertical):
             for location, message in problems
             if (location.table, location.index) == (self.kind, self.index)
         ]
-        line = self.problem_line
-        line.update(f"error: {mine[0][1]}" if mine else "")
-        line.set_class(bool(mine), "-shown")
-        marked = []
+        marked, unmarked = [], []
         for location, message in mine:
             field = None if location.robot else form.mark(location.field, message)
             if field is not None:
                 marked.append(field)
+            else:
+                unmarked.append(message)
+        # a problem marked on its field is said there (and on the validation line): said
+        # a third time here, it took the rows of the results (an energy plot 2 rows high)
+        line = self.problem_line
+        line.update(f"error: {unmarked[0]}" if unmarked else "")
+        line.set_class(bool(unmarked), "-shown")
         return marked
 
     # -- stale results ----------------------------------------------------------------
