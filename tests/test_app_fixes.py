@@ -202,19 +202,20 @@ async def test_footer_fits_80_columns_and_labels_ctrl_t_per_tab(tmp_path):
         await pilot.press("f5")
         await until(pilot, lambda: app.job_running)
         app.action_show_tab("sensitivity")
-        await pilot.pause(0.2)
+        await until(pilot, lambda: "esc Cancel" in footer(app) and "^t" in footer(app))
         line = footer(app)
         for label in ("q Quit", "F1 Help", "esc Cancel", "^s Save", "^t S1/ST/%", "^g Error"):
             assert f"{label} " in line or f"{label}▏" in line, (label, line)
         assert line.rstrip().endswith("^p palette")
         await pilot.press("escape")
         await finish(app, pilot)
+        await until(pilot, lambda: "F1 Help" in footer(app))
         assert "esc Cancel" not in footer(app)  # the job has ended
         await pilot.press("f12")
-        await pilot.pause()
-        assert "^t Output" in footer(app) and "S1/ST" not in footer(app)
+        await until(pilot, lambda: "^t Output" in footer(app))
+        assert "S1/ST" not in footer(app)
         await pilot.press("f2")
-        await pilot.pause()
+        await until(pilot, lambda: "F1 Help" in footer(app) and "F5 Run" not in footer(app))
         assert "^t" not in footer(app)
 
 
@@ -223,6 +224,7 @@ async def test_cancel_leaves_the_footer_once_a_job_ends(tmp_path):
     app = make_app(tmp_path)
     async with app.run_test(size=SIZE) as pilot:
         await run_tab(app, pilot, "simulate")
+        await until(pilot, lambda: "F1 Help" in footer(app))
         assert "esc Cancel" not in footer(app)
 
 
@@ -376,9 +378,15 @@ async def test_settings_persist_between_sessions(tmp_path, isolated_settings):
 
 @async_test
 async def test_a_corrupt_settings_file_is_a_warning_not_a_crash(tmp_path, isolated_settings):
-    (isolated_settings / "settings.json").write_text("{", encoding="utf-8")
+    path = isolated_settings / "settings.json"
+    path.write_text("{", encoding="utf-8")
     app = WorkbenchApp(Workbench.open(DATA / "tiny.toml"), output_dir=tmp_path)
     async with app.run_test(size=SIZE) as pilot:
         await pilot.pause()
-        assert app.is_running
-        assert any("not JSON" in n.message for n in app._notifications)
+        assert app.is_running and app.settings.theme is None  # the defaults
+        assert "not JSON" in app.settings_warning and "\n" not in app.settings_warning
+        assert any(n.message == app.settings_warning for n in app._notifications)
+        await pilot.press("f6", "ctrl+f")  # a setting changed: kept for the session only
+        await pilot.pause()
+        assert app.settings.form_hidden
+    assert path.read_text(encoding="utf-8") == "{"  # the user's file, left to mend

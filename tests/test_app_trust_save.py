@@ -397,7 +397,7 @@ async def test_every_dialog_shows_its_choices_at_80x24(tmp_path, monkeypatch):
         await pilot.press("ctrl+o")  # a path dialog (no buttons: enter / escape)
         await check(0, "Open preset", "Enter: OK   Escape: cancel")
         await pilot.press("f1")
-        await check(0, "Help (escape closes)", "ctrl+z      undo")
+        await check(0, "Help (escape closes", "ctrl+z        undo")
         app.query_one("#robot-form #field-gravity_m_s2").value = "9.8"
         await pilot.pause()
         app.set_focus(None)

@@ -170,7 +170,7 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, App)
     def on_mount(self) -> None:
         self.apply_settings()
         if self.settings_warning:
-            self.notify(self.settings_warning, title="Settings", severity="warning")
+            self.notify(self.settings_warning, title="Settings", severity="warning", timeout=20)
         self.show_document_state()
         if self.warm_kernels_at_start:
             self.run_worker(
@@ -427,7 +427,7 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, App)
         if len(self.screen_stack) > 1:
             return  # a dialog is up: redrawing the screen behind it would only slow it down
         state, pane = self.jobs.latest, self.jobs.pane
-        if pane is not None and state is not None and self.job_running:
+        if pane is not None and state is not None and self.job_running and pane.is_attached:
             pane.show_progress(state)
 
     def action_cancel(self) -> None:

@@ -7,8 +7,8 @@ file, :func:`settings_path`: ``settings.json`` in ``platformdirs.user_config_dir
 environment variable :data:`CONFIG_DIR_VARIABLE` names (the tests' own folder).
 
 A missing file gives the defaults; a file that cannot be read or holds something else
-than the keys below gives the defaults and a one-line warning (never a crash, and the
-file is left as it is until a setting changes). The file is written atomically (a
+than the keys below gives the defaults and a one-line warning (never a crash); the app
+then leaves the file as it is (changed settings last for the session). The file is written atomically (a
 temporary file in the same folder, then a rename:
 :func:`planar_tui.csvio.write_text_atomic`), so a crash mid-write never leaves
 half a file.

@@ -150,11 +150,15 @@ class ViewActions:
 
     # -- settings -------------------------------------------------------------------------
     def remember(self, **changes: Any) -> None:
-        """Keep changed settings in the settings file (a failure to write is a warning)."""
+        """Keep changed settings in the settings file (a failure to write is a warning);
+        a settings file that could not be used at start is left as it is (the user's to
+        mend), the changes kept for this session only."""
         new = updated(self.settings, **changes)
         if new == self.settings:
             return
         self.settings = new
+        if self.settings_warning:
+            return
         try:
             save_settings(new)
         except OSError as error:
