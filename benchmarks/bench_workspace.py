@@ -15,6 +15,10 @@ the load average before and after (the machine is shared).
 Part 2, whole processes through the CLI (median of 3 fresh processes, Numba cache warm):
 the issue's targets, beside the floor of any Numba process on this machine (Python +
 ``import numba`` + loading one cached kernel), measured in the same run.
+
+Part 3 (``--part kinds``), issue 25: the 3-RPR's and the 3-PRR's bundled designs at
+ε = 0.05 cm, whole process beside the same floor, and in process the bracket against the
+exact area (width in %).
 """
 
 from __future__ import annotations
@@ -327,20 +331,72 @@ def wall(command, runs=3):
     return statistics.median(times)
 
 
+FLOOR = (
+    "import numba, numpy as np\n"
+    "from planar_tui.kernels.workspace_union import union_area\n"
+    "union_area(np.array([[0.0, 1.0, 0.0, 1.0]]))\n"
+)
+
+
+def print_floor() -> None:
+    """The floor of any Numba process here, as a row of a whole-process table."""
+    subprocess.run([sys.executable, "-c", FLOOR], check=True, cwd=REPO)
+    print(
+        f"| floor: python + import numba + one cached kernel | "
+        f"{wall([sys.executable, '-c', FLOOR]):.2f} | – |"
+    )
+
+
+#: Issue 25's kinds: (kind, bundled preset); the first job of each, ε = 0.05 cm.
+OTHER_KINDS = (("workspace3rpr", "workspace-3rpr"), ("workspace3prr", "workspace-3prr"))
+
+
+def other_kinds() -> None:
+    """Issue 25's goals for the 3-RPR and the 3-PRR: the bundled designs (about 100 cm) at
+    ε = 0.05 cm, whole process ≤ 1 s (no exact reference, no boxes CSV, as the 3-RRR's
+    rows), the bracket holding the exact area and at most 2 % of it wide (in process)."""
+    import dataclasses
+
+    from planar_tui.presets import load_preset
+    from planar_tui.resources import resolve_preset
+    from planar_tui.workspace.planar import compute_planar
+
+    print("\n## 3-RPR and 3-PRR (issue 25): bundled designs at ε = 0.05 cm\n")
+    print("| run | seconds | target |")
+    print("|---|---|---|")
+    print_floor()
+    with tempfile.TemporaryDirectory() as folder:
+        for kind, preset in OTHER_KINDS:
+            text = resolve_preset(preset).read_text(encoding="utf-8")
+            text = text.replace('boxes_output = "', 'geometric_reference = false\n# "')
+            path = Path(folder) / f"{preset}.toml"
+            path.write_text(text, encoding="utf-8")
+            command = [sys.executable, "-m", "planar_tui", kind, str(path), "--job",
+                       f"{kind}[1]", "--no-map", "--out-dir", folder]  # fmt: skip
+            subprocess.run(command, check=True, capture_output=True, cwd=REPO)  # warm cache
+            print(f"| {kind} whole process | {wall(command):.2f} | 1 |")
+    print("\n| kind | paving s (in process) | boxes | bracket cm² | exact cm² | width % |")
+    print("|---|---|---|---|---|---|")
+    for kind, preset in OTHER_KINDS:
+        job = load_preset(resolve_preset(preset)).jobs[0]
+        quiet = dataclasses.replace(job.spec, geometric_reference=False)
+        compute_planar(job.robot, quiet, BoxBudget(job, Progress()))  # load the kernels
+        started = time.perf_counter()
+        o = compute_planar(job.robot, quiet, BoxBudget(job, Progress()))
+        seconds = time.perf_counter() - started
+        g = compute_planar(job.robot, job.spec, BoxBudget(job, Progress())).geometric
+        held = o.area_inside_cm2 <= g.inner_cm2 and g.outer_cm2 <= o.area_kept_cm2
+        width = 100.0 * (o.area_kept_cm2 - o.area_inside_cm2) / g.area_cm2
+        print(f"| {kind} | {seconds:.3f} | {o.boxes_processed:,} | [{o.area_inside_cm2:.1f}, "
+              f"{o.area_kept_cm2:.1f}]{'' if held else ' MISSES'} | {g.area_cm2:.2f} | "
+              f"{width:.2f} |")  # fmt: skip
+
+
 def whole_process() -> None:
     print("\n## Whole process through the CLI (median of 3, Numba cache warm)\n")
     print("| run | seconds | target |")
     print("|---|---|---|")
-    floor = (
-        "import numba, numpy as np\n"
-        "from planar_tui.kernels.workspace_union import union_area\n"
-        "union_area(np.array([[0.0, 1.0, 0.0, 1.0]]))\n"
-    )
-    subprocess.run([sys.executable, "-c", floor], check=True, cwd=REPO)
-    print(
-        f"| floor: python + import numba + one cached kernel | "
-        f"{wall([sys.executable, '-c', floor]):.2f} | – |"
-    )
+    print_floor()
     print(f"| planar-tui --help | {wall([sys.executable, '-m', 'planar_tui', '--help']):.2f} | – |")
     runs = [
         ("Table 3 mean-value eps=0.1172", 3, "mean-value", None, JOINT, "0.5"),
@@ -373,7 +429,7 @@ if __name__ == "__main__":
     import argparse
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--part", choices=("all", "paper", "legwise", "parallel", "cli"),
+    parser.add_argument("--part", choices=("all", "paper", "legwise", "parallel", "cli", "kinds"),
                         default="all")  # fmt: skip
     parser.add_argument(
         "--quick",
@@ -389,3 +445,5 @@ if __name__ == "__main__":
         parallel_paving()
     if args.part in ("all", "cli"):
         whole_process()
+    if args.part in ("all", "kinds"):
+        other_kinds()

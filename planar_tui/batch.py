@@ -20,6 +20,7 @@ from planar_tui.csvio import write_csv_atomic
 from planar_tui.errors import JobError, PresetError
 from planar_tui.jobkind import Job, JobResult, Option, PreparedJob
 from planar_tui.progress import Progress
+from planar_tui.provenance import job_provenance, planned_sidecar, write_sidecar
 from planar_tui.reader import NAME_MAX_BYTES, TableReader, file_name_problem
 from planar_tui.registry import JOB_KINDS
 from planar_tui.schema import declared_keys
@@ -221,13 +222,16 @@ class PlannedFile:
 
 
 def plan_files(plans: Sequence[OutputPlan]) -> list[PlannedFile]:
-    """The files of planned jobs (:func:`plan_outputs`): CSVs, extra tables, figures."""
+    """The files of planned jobs (:func:`plan_outputs`): CSVs and extra tables, each with
+    its provenance sidecar (:mod:`planar_tui.provenance`), and figures."""
     files = []
     for plan in plans:
         figure = (("plot", plan.figure),) if plan.figure else ()
         for name, path in (("output", plan.main), *plan.extras.items(), *figure):
             what = "figure file" if name == "plot" else "CSV file"
             files.append(PlannedFile(path, f"{plan.job.label} ({name})", what))
+            if name != "plot":
+                files += planned_sidecar(files[-1])
     return files
 
 
@@ -446,16 +450,22 @@ def check_finite(job: AnyJob, result: JobResult) -> None:
             raise NonFiniteResult(job, "output" if name == "main" else name, column)
 
 
-def write_result(plan: OutputPlan, result: JobResult) -> list[Path]:
+def write_result(
+    plan: OutputPlan, result: JobResult, timing: tuple[float, float] | None = None
+) -> list[Path]:
     """Write a finished job's tables atomically, none if any holds NaN or infinities
-    (:class:`NonFiniteResult`), then its figure if planned (matplotlib is imported only
+    (:class:`NonFiniteResult`), each followed by its provenance sidecar
+    (:func:`planar_tui.provenance.write_sidecar`; ``timing`` is the run's ``(start epoch
+    s, duration s)`` when known), then its figure if planned (matplotlib is imported only
     then, :mod:`planar_tui.figures`); :class:`OutputFailed` on an OS error."""
     check_finite(plan.job, result)
+    record = job_provenance(plan.job, timing)
     written = []
     try:
-        written.append(write_csv_atomic(plan.main, result.table))
-        for name, path in plan.extras.items():
-            written.append(write_csv_atomic(path, result.extra_tables[name]))
+        for path, table in ((plan.main, result.table),
+                            *((p, result.extra_tables[n]) for n, p in plan.extras.items())):  # fmt: skip
+            written.append(write_csv_atomic(path, table))
+            write_sidecar(path, record)
         if plan.figure is not None:
             written.append(_write_figure(plan, result))
     except OSError as error:
@@ -490,11 +500,11 @@ def run_plans(
     the files are written (e.g. to print the job's view). Yields one summary row per job.
     """
     for plan in plans:
-        started = time.perf_counter()
+        started, started_epoch_s = time.perf_counter(), time.time()
         with progress_for(plan.job) as progress:
             result = run_job(plan.job, progress)
         seconds = time.perf_counter() - started
-        write_result(plan, result)
+        write_result(plan, result, (started_epoch_s, seconds))
         if on_finished is not None:
             on_finished(plan.job, result)
         yield SummaryRow(plan.job.label, seconds, plan.main, result.summary)

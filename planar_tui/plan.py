@@ -204,6 +204,10 @@ def plan_run(
         check_point_outputs(entry.sweep, out_dir)
     if sweep_plans:
         check_sweep_budget([(e.sweep, e.points) for e in sweep_plans], workers, scheduler)
+    if optimisations:
+        from planar_tui.optimise.budget import check_optimise_budget
+
+        check_optimise_budget(optimisations, workers, scheduler)
     notes = checkpoint_notes(sweep_plans, out_dir, resume)
     for o in optimisations:
         note = checkpoint_note(o.label, o.fingerprint(), out_dir / o.output, resume)

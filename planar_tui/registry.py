@@ -17,6 +17,7 @@ from planar_tui.jobkind import JobKind, RobotKind
 from planar_tui.motion import job as motion_uncertainty
 from planar_tui.sensitivity import job as sensitivity
 from planar_tui.workspace import job as workspace
+from planar_tui.workspace import prr, prr_job, rpr, rpr_job
 from planar_tui.workspace import robot as robot3rrr
 
 ROBOT_KINDS: dict[str, RobotKind] = {
@@ -24,6 +25,8 @@ ROBOT_KINDS: dict[str, RobotKind] = {
     for kind in (
         serial_robot.ROBOT_KIND,
         robot3rrr.ROBOT_KIND,
+        rpr.ROBOT_KIND,
+        prr.ROBOT_KIND,
     )
 }
 
@@ -35,6 +38,8 @@ JOB_KINDS: dict[str, JobKind] = {
         sensitivity.JOB_KIND,
         workspace.JOB_KIND,
         motion_uncertainty.JOB_KIND,
+        rpr_job.JOB_KIND,
+        prr_job.JOB_KIND,
     )
 }
 

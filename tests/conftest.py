@@ -85,3 +85,12 @@ def cli():
         return runner.invoke(app, [str(a) for a in args], catch_exceptions=False)
 
     return invoke
+
+
+@pytest.fixture(autouse=True)
+def isolated_state_dir(tmp_path_factory, monkeypatch):
+    """Every test gets its own app state folder (``PLANAR_TUI_STATE_DIR``: the recent
+    files' ``recent.json``), so no test reads or writes the user's."""
+    folder = tmp_path_factory.mktemp("state")
+    monkeypatch.setenv("PLANAR_TUI_STATE_DIR", str(folder))
+    return folder

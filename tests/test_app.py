@@ -266,7 +266,10 @@ async def test_save_load_and_the_cli_gives_the_same_csv(tmp_path, cli):
         await pilot.pause()
     result = cli("simulate", saved, "--out", tmp_path / "cli.csv")
     assert result.exit_code == 0, result.stderr
-    assert [p.name for p in (tmp_path / "app").iterdir()] == ["tiny-simulate.csv"]  # job.output
+    assert sorted(p.name for p in (tmp_path / "app").iterdir()) == [
+        "tiny-simulate.csv",
+        "tiny-simulate.csv.json",
+    ]  # job.output, its provenance
     app_csv = (tmp_path / "app" / "tiny-simulate.csv").read_bytes()
     assert app_csv == (tmp_path / "cli.csv").read_bytes()
     assert app_csv.count(b"\n") == 1 + 21
@@ -315,16 +318,26 @@ async def test_help_palette_and_quit(tmp_path):
 
 
 @async_test
-async def test_opening_a_bad_preset_keeps_the_current_one(tmp_path):
+async def test_a_bad_preset_opens_with_its_problems_marked_one_the_tabs_cannot_show_is_refused(
+    tmp_path,
+):
     app = make_app(tmp_path)
     bad = tmp_path / "bad.toml"
     bad.write_text("[robot]\nlengths_m = [1.0]\nmasses_kg = [1.0, 2.0]\n")
+    shapeless = tmp_path / "shapeless.toml"
+    shapeless.write_text("robot = 3\n")
     async with app.run_test(size=SIZE) as pilot:
-        assert not await app.open_preset(str(bad))
+        assert not await app.open_preset(str(shapeless))  # [robot] is no table
         await pilot.pause()
         assert isinstance(app.screen, MessageDialog)
-        assert "robot.masses_kg: has 2 values" in app.export_text()
+        assert "robot: is an integer" in app.export_text()
         assert app.workbench.path.name == "tiny.toml"
+        app.pop_screen()
+        assert await app.open_preset(str(bad))  # wrong values: opened, marked
+        await pilot.pause()
+        assert app.workbench.path == bad and not isinstance(app.screen, MessageDialog)
+        assert validation(app).startswith("error: robot.masses_kg: has 2 values")
+        assert app.query_one("#pane-robot").query(".-bad")  # the field is marked
 
 
 @async_test
@@ -363,7 +376,12 @@ async def test_workspace_form_wraps_and_the_run_shows_map_area_and_boxes(tmp_pat
     result = cli("workspace", tmp_path / "tiny.toml", *outputs, "--no-map")
     assert result.exit_code == 0, result.stderr
     exported = tmp_path / "app"
-    assert sorted(p.name for p in exported.iterdir()) == ["tiny-workspace.csv", "ws-boxes.csv"]
+    assert sorted(p.name for p in exported.iterdir()) == [
+        "tiny-workspace.csv",
+        "tiny-workspace.csv.json",
+        "ws-boxes.csv",
+        "ws-boxes.csv.json",
+    ]
     assert (exported / "ws-boxes.csv").read_bytes() == (tmp_path / "cli-boxes.csv").read_bytes()
     app_rows = (exported / "tiny-workspace.csv").read_text().splitlines()
     cli_rows = (tmp_path / "cli.csv").read_text().splitlines()
@@ -445,7 +463,9 @@ async def test_export_names_and_writes_files_as_planar_tui_run(tmp_path, cli):
     assert result.exit_code == 0, result.stderr
     names = sorted(p.name for p in (tmp_path / "app").iterdir())
     assert names == sorted(p.name for p in (tmp_path / "cli").iterdir())
-    assert names == ["small-boxes.csv", "small-workspace.csv"]
+    assert names == [
+        "small-boxes.csv", "small-boxes.csv.json", "small-workspace.csv", "small-workspace.csv.json"
+    ]  # fmt: skip
     boxes = (tmp_path / "app" / "small-boxes.csv").read_bytes()
     assert boxes == (tmp_path / "cli" / "small-boxes.csv").read_bytes()
     assert boxes.count(b"\n") > 100

@@ -130,6 +130,11 @@ async def test_line_plot_for_one_key_and_export(tmp_path):
     rows = list(csv.reader((tmp_path / "orientation.csv").read_text().splitlines()))
     assert rows[0][:2] == ["point", "orientation_deg"]
     assert [row[1] for row in rows[1:]] == ["-10", "0", "10"]
+    from planar_tui.provenance import read_sidecar
+
+    record = read_sidecar(tmp_path / "orientation.csv")  # its provenance beside it
+    assert record.kind == "sweep" and record.settings["job_kind"] == "workspace"
+    assert record.form == "arc-distance" and record.precision_cm is not None
 
 
 @async_test

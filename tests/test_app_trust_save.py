@@ -394,8 +394,8 @@ async def test_every_dialog_shows_its_choices_at_80x24(tmp_path, monkeypatch):
         monkeypatch.undo()
         app.push_screen(MessageDialog("Not saved", "error: x.toml: key: problem (expected y)"))
         await check(1, "Close (Enter)", "Not saved")
-        await pilot.press("ctrl+o")  # a path dialog (no buttons: enter / escape)
-        await check(0, "Open preset", "Enter: OK   Escape: cancel")
+        await pilot.press("ctrl+o")  # the picker (no buttons: enter / escape)
+        await check(0, "Open preset", "Enter: open", "Escape: cancel")
         await pilot.press("f1")
         await check(0, "Help (escape closes", "ctrl+z        undo")
         app.query_one("#robot-form #field-gravity_m_s2").value = "9.8"

@@ -349,9 +349,16 @@ async def test_torques_tab_and_run_all_write_what_planar_tui_run_writes(tmp_path
     assert result.exit_code == 0, result.stderr
     names = sorted(p.name for p in (tmp_path / "app").iterdir())
     assert names == sorted(p.name for p in (tmp_path / "cli").iterdir())
-    assert names == ["a-sim.csv", "b-sim.csv", "c-torques.csv"]
-    for name in names:
+    csvs = ["a-sim.csv", "b-sim.csv", "c-torques.csv"]
+    assert names == sorted([*csvs, *(f"{name}.json" for name in csvs)])  # with provenance
+    from planar_tui.provenance import read_sidecar
+
+    for name in csvs:
         assert (tmp_path / "app" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
+        app_record, cli_record = (read_sidecar(tmp_path / side / name) for side in ("app", "cli"))
+        assert (app_record.kind, app_record.label, app_record.settings) == (
+            cli_record.kind, cli_record.label, cli_record.settings)  # fmt: skip
+        assert app_record.preset_sha256 == cli_record.preset_sha256 is not None
 
 
 # -- 8. the solved posture beside the sensitivity table -----------------------------------

@@ -58,7 +58,12 @@ def test_simulate_writes_both_runs_with_exact_header(tmp_path, cli):
 def test_simulate_out_option_numbers_several_jobs(tmp_path, cli):
     result = cli("simulate", "paper-a-table1", "--out", tmp_path / "sim.csv")
     assert result.exit_code == 0, result.output
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["sim-1.csv", "sim-2.csv"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        "sim-1.csv",
+        "sim-1.csv.json",
+        "sim-2.csv",
+        "sim-2.csv.json",
+    ]
 
 
 def test_torques_rows_match_listed_states_in_si_units(tmp_path, cli):

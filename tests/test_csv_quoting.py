@@ -62,10 +62,13 @@ def test_every_csv_the_cli_writes_reads_back_with_one_field_count(tmp_path, cli,
     out = tmp_path / "out"
     result = cli("run", preset_with_names(tmp_path, name), "--out-dir", out)
     assert result.exit_code == 0, result.output
-    written = sorted(p.name for p in out.iterdir())
+    written = sorted(p.name for p in out.iterdir() if p.suffix == ".csv")
+    assert sorted(p.name for p in out.iterdir()) == sorted(
+        [*written, *(f"{n}.json" for n in written)]
+    )
     assert written == ["tiny-sensitivity.csv", "tiny-simulate.csv", "tiny-torques.csv",
                        "tiny-workspace.csv", "w2-boxes.csv", "w2.csv"]  # fmt: skip
-    for path in out.iterdir():
+    for path in out.glob("*.csv"):
         rows = read_back(path)
         widths = {len(row) for row in rows}
         assert len(widths) == 1, (path.name, widths)

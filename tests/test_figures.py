@@ -294,7 +294,11 @@ def test_plot_option_with_several_jobs_writes_numbered_figures(cli, tmp_path):
         "run", "paper-a-table1", "--job", "torques", "--out-dir", one, "--plot", one / "t.svg"
     )
     assert result.exit_code == 0, result.output
-    assert sorted(p.name for p in one.iterdir()) == ["t.svg", "table1-6r-torques.csv"]
+    assert sorted(p.name for p in one.iterdir()) == [
+        "t.svg",
+        "table1-6r-torques.csv",
+        "table1-6r-torques.csv.json",
+    ]
 
 
 def test_plot_key_of_a_job_table_writes_its_figure_and_is_checked(cli, tmp_path):

@@ -24,7 +24,10 @@ pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
 CONSOLE_SCRIPT = "from planar_tui.entry import main; main()"
 
 
-def start(*args: str) -> subprocess.Popen:
+def start(*args: str, own_group: bool = False) -> subprocess.Popen:
+    """The console script with ``args``; ``own_group``: in a process group of its own,
+    as a terminal's foreground job is (``os.killpg`` then signals every process of the
+    run, as Ctrl-C in a terminal does)."""
     env = dict(os.environ, PYTHONPATH=str(REPO))
     return subprocess.Popen(
         [sys.executable, "-c", CONSOLE_SCRIPT, *args],
@@ -32,6 +35,7 @@ def start(*args: str) -> subprocess.Popen:
         stderr=subprocess.PIPE,
         env=env,
         text=True,
+        process_group=0 if own_group else None,
     )
 
 

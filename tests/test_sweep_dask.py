@@ -171,14 +171,17 @@ def _running(pid: int) -> bool:
     return "\nState:\tZ" not in status and "\nState:\tX" not in status
 
 
-@pytest.mark.parametrize("delay_s", [0.0, 0.3])
+@pytest.mark.parametrize(("delay_s", "whole_group"),
+                         [(0.0, False), (0.3, False), (0.0, True), (0.5, True)])  # fmt: skip
 def test_ctrl_c_while_the_local_cluster_starts_prints_one_line_and_leaves_no_process(
-    tmp_path, delay_s
+    tmp_path, delay_s, whole_group
 ):
     """SIGINT from the moment the first worker process of ``--workers 2`` appears (the
     cluster is starting, ~0.5 s before it is up): exit 130, the one ``interrupted:`` line
     (Dask's exit hook once failed on the half-started cluster: 28 more lines), and every
-    process the run started has exited."""
+    process the run started has exited. ``whole_group``: to every process of the run, as
+    a terminal's Ctrl-C is (the starting workers once printed their KeyboardInterrupt
+    tracebacks from Dask's comm)."""
     from planar_tui.errors import ExitCode
     from tests.test_signals import start
 
@@ -187,7 +190,8 @@ job = "workspace"
 values.orientation_deg = { from = -20, to = 20, count = 20 }
 output = "a.csv"
 """, **{**WORKSPACE_BASE, "precision_cm": 0.05})  # fmt: skip
-    process = start("sweep", str(preset), "--workers", "2", "--out-dir", str(tmp_path / "out"))
+    process = start("sweep", str(preset), "--workers", "2", "--out-dir", str(tmp_path / "out"),
+                    own_group=whole_group)  # fmt: skip
     deadline = time.monotonic() + 60
     while not (started := _descendants(process.pid)):
         assert process.poll() is None, process.communicate()
@@ -197,7 +201,10 @@ output = "a.csv"
     while time.monotonic() < until:
         started |= _descendants(process.pid)
         time.sleep(0.005)
-    process.send_signal(signal.SIGINT)
+    if whole_group:
+        os.killpg(process.pid, signal.SIGINT)
+    else:
+        process.send_signal(signal.SIGINT)
     _, err = process.communicate(timeout=60)
     assert process.returncode == ExitCode.INTERRUPTED == 130, err
     lines = [line for line in err.splitlines() if not line.startswith(("dask:", "p:sweep[1]"))]

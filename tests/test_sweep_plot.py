@@ -140,4 +140,9 @@ output = "two.csv"
     assert "Traceback" not in result.output
     assert "one.svg: cannot write: No space left on device" in result.stderr
     assert (out / "one.csv").exists() and (out / "two.csv").exists()
-    assert sorted(p.name for p in out.iterdir()) == ["one.csv", "two.csv"]  # no checkpoint
+    assert sorted(p.name for p in out.iterdir()) == [  # no checkpoint
+        "one.csv",
+        "one.csv.json",
+        "two.csv",
+        "two.csv.json",
+    ]

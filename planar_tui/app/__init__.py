@@ -17,12 +17,14 @@ def last_preset() -> str | None:
     return path if path is not None and Path(path).is_file() else None
 
 
-def run_app(preset_argument: str | None = None) -> None:
+def run_app(preset_argument: str | None = None, opened: tuple[str, ...] = ()) -> None:
     """Open the workbench on a preset path or bundled name (default: the preset last
     opened or saved, see :func:`last_preset`, else a bundled preset).
 
     A bad preset raises the CLI's :class:`~planar_tui.errors.PresetError` before the
-    terminal is taken over, so the CLI prints its one-line error and exits with 2.
+    terminal is taken over, so the CLI prints its one-line error and exits with 2; so does
+    a result CSV of ``opened`` (``planar-tui tui --open``) that cannot be read. Those open
+    into the run history, which the app shows first.
 
     The process is set up first, as every front end sets it up
     (:func:`planar_tui.runtime.configure_process`); the app compiles the kernels not yet
@@ -39,6 +41,7 @@ def run_app(preset_argument: str | None = None) -> None:
     from planar_tui.app.workbench import Workbench
 
     app = WorkbenchApp(Workbench.open(preset_argument or last_preset()), warm_kernels=True)
+    app.open_results(list(opened))
     app.run()
     code = app.return_code or 0
     sys.stdout.flush()

@@ -22,6 +22,7 @@ from textual.screen import Screen
 from textual.widgets import Footer, Static, TabbedContent, TabPane
 
 from planar_tui.app.file_actions import FileActions
+from planar_tui.app.history_actions import HistoryActions
 from planar_tui.app.job_runner import (
     BatchFinished,
     BatchJobDone,
@@ -49,7 +50,7 @@ REFRESH_S = 0.1
 VIEW_LABELS = {"sensitivity": "S1/ST/%", "motion_uncertainty": "Output"}
 
 
-class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, App):
+class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, HistoryActions, App):
     """planar-tui's terminal workbench (open, save, export, undo and quit in
     :class:`~planar_tui.app.file_actions.FileActions`; tabs, help, maximising, undo in
     place and the settings in :class:`~planar_tui.app.view_actions.ViewActions`; sweeps in
@@ -73,6 +74,7 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, App)
         Binding("ctrl+f", "toggle_form", "Form", priority=True),
         Binding("ctrl+n", "pane_action('add_link')", "Add link", priority=True, show=False),
         Binding("ctrl+r", "pane_action('remove_link')", "Del link", priority=True, show=False),
+        Binding("f10", "history", "History", key_display="F10", show=False),
         *(
             Binding("ctrl+t", f"pane_view('{kind}')", label, priority=True)
             for kind, label in VIEW_LABELS.items()

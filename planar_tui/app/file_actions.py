@@ -38,6 +38,25 @@ if TYPE_CHECKING:
 __all__ = ["FileActions"]
 
 
+def tables_are_tables(document: dict[str, Any]) -> bool:
+    """Whether every robot and job table of a preset document is a table (or an array of
+    tables), and so is a job's own robot table: what the tabs need to show a preset whose
+    values are wrong (a value of the wrong type inside a table is marked on its field)."""
+    from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
+
+    def table_ok(value: Any) -> bool:
+        return isinstance(value, dict) and all(
+            isinstance(value[name], dict) for name in ROBOT_KINDS if name in value
+        )
+
+    for name in (*ROBOT_KINDS, *JOB_KINDS):
+        value = document.get(name)
+        tables = value if isinstance(value, list) else [value]
+        if value is not None and not all(table_ok(table) for table in tables):
+            return False
+    return True
+
+
 class FileActions:
     """Mixed into :class:`~planar_tui.app.app.WorkbenchApp` (which provides
     ``workbench``, ``output_dir``, ``jobs``, ``revalidate`` and Textual's ``App``)."""
@@ -170,25 +189,39 @@ class FileActions:
                 self.call_later(self.open_preset, answer)
 
         def ask_path() -> None:
-            dialog = PathDialog("Open preset (path or bundled name)", str(self.workbench.path))
-            self.push_screen(dialog, opened)
+            from planar_tui.app.screens.picker import preset_picker
+
+            self.push_screen(preset_picker(self.workbench.path), opened)
 
         self.unless_unsaved("opening another preset", ask_path)
 
     async def open_preset(self, argument: str) -> bool:
-        """Load a preset into every tab; a bad one is reported and the current one kept."""
+        """Load a preset into every tab. One whose values are wrong opens with its
+        problems marked (the validation line, ``ctrl+g``); one that cannot be read or is
+        no TOML is reported and the current one kept. A preset file opened goes first in
+        the picker's recent list (:mod:`planar_tui.app.recent`)."""
+        from planar_tui.app import recent
         from planar_tui.app.workbench import Workbench
 
         try:
-            bench = Workbench.open(argument)
+            bench = Workbench.open(argument, check=False)
+            if not tables_are_tables(bench.document):
+                bench.validate()  # a table that is no table: the tabs cannot show it
         except PresetError as error:
             self.push_screen(MessageDialog("Cannot open preset", str(error)))
             return False
         self.workbench = bench
         await self.recompose()
-        self.revalidate()
+        valid = self.revalidate()
         self.show_document_state()
-        self.notify(f"Opened {bench.path}")
+        if not is_bundled(bench.path):
+            recent.remember("presets", bench.path)
+        if valid:
+            self.notify(f"Opened {bench.path}")
+        else:
+            count = len(self.problems)
+            self.notify(f"Opened {bench.path} with {count} problem{'s' if count > 1 else ''}: "
+                        "marked on the tabs (ctrl+g: go to the first)", severity="warning")  # fmt: skip
         return True
 
     # -- save -------------------------------------------------------------------------
@@ -312,6 +345,9 @@ class FileActions:
             self.push_screen(MessageDialog("Not saved", str(error)))
             return None
         self.workbench.mark_saved(path, text)
+        from planar_tui.app import recent
+
+        recent.remember("presets", path)
         self.revalidate()
         self.show_document_state()
         self.notify(f"Saved {path}")
@@ -356,7 +392,10 @@ class FileActions:
         except (PresetError, OSError, ValueError) as error:
             self.push_screen(MessageDialog("Not exported", str(error)))
             return
-        existing = existing_files(plan.paths())
+        from planar_tui.provenance import sidecar_path
+
+        tables = (plan.main, *plan.extras.values())
+        existing = existing_files([*plan.paths(), *map(sidecar_path, tables)])
         if not existing:
             self.export_csv(pane, out_dir)
             return

@@ -116,16 +116,21 @@ class OptimiseActions:
             return [(path, run.table),
                     (path.with_name(f"{path.stem}-optimum.csv"), run.optimum_table)]  # fmt: skip
 
+        from planar_tui.provenance import study_provenance
+
         self.export_tables("Export the evaluations CSV to",
-                           self.output_dir / run.optimisation.output, tables)  # fmt: skip
+                           self.output_dir / run.optimisation.output, tables,
+                           study_provenance("optimise", run.optimisation))  # fmt: skip
 
     def export_tables(self, title: str, default: Path,
-                      tables: Callable[[Path], list[tuple[Path, Any]]]) -> None:  # fmt: skip
+                      tables: Callable[[Path], list[tuple[Path, Any]]], record: Any) -> None:  # fmt: skip
         """Ask for a file (``title``, ``default``) and write ``tables(path)``, each
-        ``(file, CsvTable)``, atomically, every file checked first (a sweep's CSV, an
+        ``(file, CsvTable)``, atomically, each with its provenance sidecar (``record``,
+        :mod:`planar_tui.provenance`), every file checked first (a sweep's CSV, an
         optimisation's two)."""
         from planar_tui.batch import check_writable
         from planar_tui.csvio import write_csv_atomic
+        from planar_tui.provenance import has_sidecar, sidecar_path, write_sidecar
 
         def chosen(answer: str | None) -> None:
             if not answer:
@@ -134,8 +139,11 @@ class OptimiseActions:
             try:
                 for path, _ in written:
                     check_writable(path)
+                    if has_sidecar(path):
+                        check_writable(sidecar_path(path), "provenance file")
                 for path, table in written:
                     write_csv_atomic(path, table)
+                    write_sidecar(path, record)
             except (PresetError, OSError) as error:
                 self.push_screen(MessageDialog("Not exported", str(error)))
                 return

@@ -39,6 +39,9 @@ def workbench_commands(app: Any) -> Iterator[SystemCommand]:
     yield SystemCommand(
         "Go to error", "Jump to the first problem's field (ctrl+g)", app.action_goto_problem
     )
+    yield SystemCommand(
+        "Run history", "Every run, compare two, open a CSV (F10)", app.action_history
+    )
     yield SystemCommand("Open preset", "Open a TOML preset (ctrl+o)", app.action_open)
     yield SystemCommand("Save preset", "Save the preset as TOML (ctrl+s)", app.action_save)
     yield SystemCommand("Save as", "Save the preset under another path", app.action_save_as)

@@ -106,5 +106,8 @@ class SweepActions:
 
     def export_sweep(self, run: Any) -> None:
         """Ask for a file and write the sweep CSV there (atomically)."""
+        from planar_tui.provenance import study_provenance
+
         self.export_tables("Export the sweep CSV to", self.output_dir / run.sweep.output,
-                           lambda path: [(path, run.table)])  # OptimiseActions'  # fmt: skip
+                           lambda path: [(path, run.table)],  # OptimiseActions'
+                           study_provenance("sweep", run.sweep))  # fmt: skip

@@ -123,15 +123,18 @@ class Workbench:
         self.notes: list[str] = []
 
     @classmethod
-    def open(cls, argument: str | Path | None) -> Workbench:
-        """Open a preset path or bundled name (default :data:`DEFAULT_PRESET`), validated;
-        every failure is a :class:`PresetError` (even what the TOML parser did not expect:
-        nesting too deep, integers too long)."""
+    def open(cls, argument: str | Path | None, *, check: bool = True) -> Workbench:
+        """Open a preset path or bundled name (default :data:`DEFAULT_PRESET`), validated
+        unless ``check`` is false (the app's open dialog: a preset whose values are wrong
+        opens with its problems marked; one that is no TOML cannot); every failure is a
+        :class:`PresetError` (even what the TOML parser did not expect: nesting too deep,
+        integers too long)."""
         path = resolve_preset(argument or DEFAULT_PRESET)
         document = guarded(path, lambda: read_toml(path))
         text = path.read_text(encoding="utf-8")
         bench = cls(path, document, preset_description(path), text)
-        bench.validate()
+        if check:
+            bench.validate()
         return bench
 
     # -- edits, undo, saved state -----------------------------------------------------

@@ -25,26 +25,23 @@ from planar_tui.cli.output import (
     stderr,
     stdout,
 )
+from planar_tui.cli.serve import AppPresetArg, OpenOption, serve
 from planar_tui.errors import PresetError
 from planar_tui.resources import bundled_presets, preset_description
 
 
-def open_app(preset_argument: str | None) -> None:
-    """Open the Textual workbench (imported only now)."""
+def open_app(preset_argument: str | None, opened: tuple[str, ...] = ()) -> None:
+    """Open the Textual workbench (imported only now), with result CSVs ``opened`` into
+    its run history."""
     with reported_errors():
         from planar_tui.app import run_app
 
-        run_app(preset_argument)
+        run_app(preset_argument, opened)
 
 
-def tui(
-    preset: Annotated[
-        str | None,
-        typer.Argument(help="Preset file or bundled preset name (default: paper-a-table1)."),
-    ] = None,
-) -> None:
+def tui(preset: AppPresetArg = None, open_results: OpenOption = None) -> None:
     """Open the Textual workbench on a preset (what `planar-tui` alone does)."""
-    open_app(preset)
+    open_app(preset, tuple(open_results or ()))
 
 
 WorkersOption = Annotated[
@@ -276,5 +273,6 @@ COMMANDS: tuple[tuple[str, Callable[..., None]], ...] = (
     ("optimise", optimise_command),
     ("warmup", warmup),
     ("presets", list_presets),
+    ("serve", serve),
     *interop.COMMANDS,
 )

@@ -54,7 +54,14 @@ def _escaped(text: str | None) -> str | None:
 
 
 class Group(_FlagsWithoutMetavar, TyperGroup):
-    """The ``planar-tui`` command group."""
+    """The ``planar-tui`` command group; it records the arguments it parses for the
+    provenance sidecars (:data:`planar_tui.provenance.invoked`)."""
+
+    def parse_args(self, ctx, args):
+        from planar_tui import provenance
+
+        provenance.invoked = ["planar-tui", *args]
+        return super().parse_args(ctx, args)
 
 
 class Command(_FlagsWithoutMetavar, TyperCommand):

@@ -141,9 +141,10 @@ def draw_singularity(ax: Any, singularity: Any) -> None:
 
 
 def draw(boxes: Any, inside: Any, title: str, robot: Any = None, spec: Any = None,
-         summary: str = "", singularity: Any = None) -> Any:  # fmt: skip
+         summary: str = "", singularity: Any = None, exact: Any = None) -> Any:  # fmt: skip
     """Boxes (rows ``x_lo, x_hi, y_lo, y_hi``; ``inside`` a boolean per box), with the
-    exact boundary and the robot when ``robot`` and ``spec`` are given, and the type II
+    exact boundary and the robot when ``robot`` and ``spec`` are given (a 3-RRR), the
+    boundary of the polygon ``exact`` alone (another mechanism), and the type II
     singularities and singularity-free circle when ``singularity`` is given
     (:class:`~planar_tui.workspace.singularity.SingularityOutcome`)."""
     with_robot = robot is not None and spec is not None
@@ -176,6 +177,10 @@ def draw(boxes: Any, inside: Any, title: str, robot: Any = None, spec: Any = Non
         overview.set(xlabel="x (cm)", ylabel="y (cm)", aspect="equal",
                      title="the robot at a pose inside")  # fmt: skip
         overview.grid(alpha=0.3)
+    elif exact is not None:
+        for k, ring in enumerate(_polygon_rings(exact)):
+            ax.plot(ring[:, 0], ring[:, 1], color="k", lw=1.0, gid="exact",
+                    label="exact boundary" if k == 0 else None)  # fmt: skip
     import textwrap
 
     ax.set(xlabel="x (cm)", ylabel="y (cm)", aspect="equal",
@@ -242,3 +247,18 @@ def from_result(job: Any, result: Any) -> Any:
         return draw(boxes, inside, map_title(job, outcome), summary=result.summary)
     return draw(boxes, inside, map_title(job, outcome), job.robot, job.spec, result.summary,
                 getattr(result, "singularity", None))  # fmt: skip
+
+
+def from_planar_result(job: Any, result: Any) -> Any:
+    """The figure of a finished 3-RPR or 3-PRR job (:mod:`planar_tui.workspace.planar`):
+    boxes and the exact boundary (the inner polygon of the kind's exact reference)."""
+    import numpy as np
+
+    from planar_tui.workspace.compute import INSIDE
+    from planar_tui.workspace.job import map_title
+
+    outcome = result.outcome
+    boxes = np.asarray(outcome.boxes)[:, :4] if len(outcome.boxes) else np.zeros((0, 4))
+    exact = job.spec.mechanism.polygon(job.robot, job.spec, BOUNDARY_SEGMENTS, False)
+    return draw(boxes, np.asarray(outcome.status) == INSIDE, map_title(job, outcome),
+                summary=result.summary, exact=exact)  # fmt: skip

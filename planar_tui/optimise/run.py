@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 import secrets
+import time
 from collections.abc import Callable, Sequence
 from contextlib import ExitStack
 from dataclasses import dataclass, field
@@ -26,6 +27,7 @@ from planar_tui.csvio import CsvTable, write_csv_atomic
 from planar_tui.errors import PresetError
 from planar_tui.optimise.spec import Optimisation
 from planar_tui.progress import Progress
+from planar_tui.provenance import planned_sidecar, study_provenance, write_sidecar
 from planar_tui.sweep.worker import FAILED, OK, PointOutcome, PointTask
 
 if TYPE_CHECKING:
@@ -61,6 +63,8 @@ class OptimiseRun:
     figure_error: str | None = None
     checkpoint: Path | None = None
     cancelled: bool = False
+    #: When the run started (epoch s), for the CSVs' provenance sidecars.
+    started_s: float = field(default_factory=time.time)
 
     @property
     def failed(self) -> int:
@@ -201,6 +205,7 @@ def planned_files(opt: Optimisation, out_dir: Path) -> list[PlannedFile]:
     files = [PlannedFile(output, f"{opt.label} (output)"),
              PlannedFile(out_dir / opt.pareto_output, f"{opt.label} (pareto_output)"),
              PlannedFile(checkpoint_path(output), f"{opt.label} (checkpoint)")]  # fmt: skip
+    files += planned_sidecar(files[0]) + planned_sidecar(files[1])
     if opt.plot is not None:
         files.append(PlannedFile(out_dir / opt.plot, f"{opt.label} (plot)", "figure file"))
     return files
@@ -374,9 +379,11 @@ def _write_outputs(run: OptimiseRun, out_dir: Path, keep_checkpoint: bool) -> No
 
     opt = run.optimisation
     run.output, run.pareto = output_path(opt, out_dir), out_dir / opt.pareto_output
+    record = study_provenance("optimise", opt, (run.started_s, time.time() - run.started_s))
     for path, table in ((run.output, run.table), (run.pareto, run.optimum_table)):
         try:
             write_csv_atomic(path, table)
+            write_sidecar(path, record)
         except OSError as error:
             raise OutputFailed(path, error.strerror or str(error)) from None
     if run.checkpoint is not None and not keep_checkpoint:

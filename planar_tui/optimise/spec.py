@@ -427,12 +427,18 @@ def _check_corners(optimisation: Optimisation) -> None:
     preset jobs (with the coarse settings, and without: the certified re-run)."""
     from planar_tui.sweep.points import make_point
 
-    corners = [tuple(v.decode(v.bounds[k]) for v in optimisation.variables) for k in (0, 1)]
-    corners.append(tuple(v.decode(sum(v.bounds) / 2) for v in optimisation.variables))
     for coarse in (True, False):
         sweep = optimisation.sweep(coarse)
-        for number, values in enumerate(corners, start=1):
+        for number, values in enumerate(corner_designs(optimisation), start=1):
             make_point(sweep, number, optimisation.point_values(values, coarse))
+
+
+def corner_designs(optimisation: Optimisation) -> list[tuple[Any, ...]]:
+    """The designs at the variables' lower ends, upper ends and middles."""
+    variables = optimisation.variables
+    corners = [tuple(v.decode(v.bounds[k]) for v in variables) for k in (0, 1)]
+    corners.append(tuple(v.decode(sum(v.bounds) / 2) for v in variables))
+    return corners
 
 
 def parse_optimisations(preset: Preset) -> tuple[Optimisation, ...]:

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from pathlib import Path
 
 from planar_tui.errors import PresetError
 from planar_tui.limits import (
@@ -111,27 +112,44 @@ def check_sweep_budget(
         from planar_tui.sweep.execute import scheduler_timeout_s
 
         scheduler_timeout_s()  # a bad PLANAR_TUI_SCHEDULER_TIMEOUT_S refused now
+    for sweep, points in prepared:
+        check_needs(sweep.preset_path, sweep.name, sweep.label, f"{len(points):,} points",
+                    estimate_sweep(sweep, points), workers, scheduler)  # fmt: skip
+
+
+def check_needs(
+    preset_path: Path | str,
+    name: str,
+    label: str,
+    counted: str,
+    found: SweepEstimate | None,
+    workers: int | None,
+    scheduler: str | None,
+) -> None:
+    """Refuse a study (a sweep, an optimisation) whose local workers' memory (workers ×
+    (:data:`WORKER_FOOTPRINT_BYTES` + the largest evaluation's memory)) exceeds the memory
+    limit, or whose computing ``found.seconds`` shared among the workers exceeds
+    :data:`~planar_tui.limits.MAX_JOB_SECONDS` (:class:`PresetError`, one line naming
+    ``counted``, e.g. ``"1,000 points"``, and the estimate)."""
     count = workers or usable_cores()
     local = scheduler is None and count > 1
-    for sweep, points in prepared:
-        found = estimate_sweep(sweep, points)
-        point_memory = 0.0 if found is None else found.memory_bytes
-        if local:
-            needed = count * (WORKER_FOOTPRINT_BYTES + point_memory)
-            if needed > memory_limit_bytes():
-                raise PresetError(
-                    "command line", "--workers",
-                    f"{count} local workers for {sweep.label} need about {size_text(needed)} "
-                    f"of memory (limit {size_text(memory_limit_bytes())})",
-                    "fewer workers",
-                )  # fmt: skip
-        if found is None:
-            continue
-        wall = found.seconds / count
-        if wall > MAX_JOB_SECONDS:
+    point_memory = 0.0 if found is None else found.memory_bytes
+    if local:
+        needed = count * (WORKER_FOOTPRINT_BYTES + point_memory)
+        if needed > memory_limit_bytes():
             raise PresetError(
-                sweep.preset_path, sweep.name,
-                f"{len(points):,} points need about {duration_text(found.seconds)} of "
-                f"computing, about {duration_text(wall)} on {count} worker(s) (limit 1 day)",
-                "fewer points, shorter points or more workers",
+                "command line", "--workers",
+                f"{count} local workers for {label} need about {size_text(needed)} "
+                f"of memory (limit {size_text(memory_limit_bytes())})",
+                "fewer workers",
             )  # fmt: skip
+    if found is None:
+        return
+    wall = found.seconds / count
+    if wall > MAX_JOB_SECONDS:
+        raise PresetError(
+            preset_path, name,
+            f"{counted} need about {duration_text(found.seconds)} of "
+            f"computing, about {duration_text(wall)} on {count} worker(s) (limit 1 day)",
+            "fewer points, shorter points or more workers",
+        )  # fmt: skip

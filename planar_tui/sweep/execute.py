@@ -21,6 +21,7 @@ import time
 from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 from planar_tui.errors import PresetError
@@ -185,6 +186,38 @@ def deferred_signals(*signums: int) -> Iterator[None]:
 
 
 @contextmanager
+def workers_ignoring_interrupts() -> Iterator[None]:
+    """Worker processes started in the block ignore SIGINT from their first instruction:
+    multiprocessing's spawn runs them through a two-line launcher (``trap '' INT``, then
+    ``exec`` of this Python) for the block's length. An ignored SIGINT stays ignored
+    across ``exec`` and Python leaves a SIGINT it finds ignored alone, so a starting
+    worker never turns the terminal's Ctrl-C, sent to the whole process group, into a
+    traceback (Dask's own comm printed them); this process keeps its handlers, and the
+    client stops the cluster. POSIX only (elsewhere the block runs as is)."""
+    if os.name != "posix" or not Path("/bin/sh").exists():
+        yield
+        return
+    import multiprocessing
+    import shlex
+    import shutil
+    import sys
+    import tempfile
+    from multiprocessing import spawn
+
+    folder = Path(tempfile.mkdtemp(prefix="planar-tui-launcher-"))
+    launcher = folder / "python"
+    launcher.write_text(f"#!/bin/sh\ntrap '' INT\nexec {shlex.quote(sys.executable)} \"$@\"\n")
+    launcher.chmod(0o700)
+    previous = spawn.get_executable()
+    multiprocessing.set_executable(str(launcher))
+    try:
+        yield
+    finally:
+        multiprocessing.set_executable(previous)
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+@contextmanager
 def dask_client(target: DaskTarget, announce: Callable[[str], None]) -> Iterator[Any]:
     """A ``distributed.Client`` on the target; a local cluster is started here (worker
     processes, one thread each, dashboard on a free port, announced) and shut down on
@@ -215,7 +248,7 @@ def dask_client(target: DaskTarget, announce: Callable[[str], None]) -> Iterator
         return
     cluster = None
     try:
-        with deferred_signals(signal.SIGINT, signal.SIGTERM):
+        with deferred_signals(signal.SIGINT, signal.SIGTERM), workers_ignoring_interrupts():
             cluster = local_cluster(target.workers, silence_logs=logging.ERROR)
         client = Client(cluster)
         try:

@@ -10,6 +10,7 @@ through it) and ``on_outcome`` for rows as they finish; the CLI adds ``out_dir``
 from __future__ import annotations
 
 import secrets
+import time
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -18,6 +19,7 @@ from typing import TYPE_CHECKING, Any
 from planar_tui.csvio import CsvTable, write_atomic, write_csv_atomic
 from planar_tui.errors import PresetError
 from planar_tui.progress import Progress
+from planar_tui.provenance import planned_sidecar, study_provenance, write_sidecar
 from planar_tui.sweep.checkpoint import CheckpointWriter, checkpoint_path, read_finished
 from planar_tui.sweep.pointfiles import PointFileRecord, check_point_folder, manifest_path
 from planar_tui.sweep.points import Point, SweepPoints, make_points
@@ -112,6 +114,7 @@ def planned_files(sweep: Sweep, out_dir: Path) -> list[PlannedFile]:
     output = output_path(sweep, out_dir)
     files = [PlannedFile(output, f"{sweep.label} (output)"),
              PlannedFile(checkpoint_path(output), f"{sweep.label} (checkpoint)")]  # fmt: skip
+    files += planned_sidecar(files[0])
     if sweep.plot is not None:
         files.append(PlannedFile(out_dir / sweep.plot, f"{sweep.label} (plot)", "figure file"))
     if sweep.point_outputs is not None:
@@ -201,6 +204,7 @@ def run_sweep(
     from planar_tui.sweep import execute
     from planar_tui.warmup import warm_kernels
 
+    started_s = time.time()
     progress = progress or Progress()
     points = make_points(sweep) if points is None else points
     total = len(points)
@@ -314,6 +318,8 @@ def run_sweep(
         if output is not None:
             try:
                 write_csv_atomic(output, run.table)
+                timing = (started_s, time.time() - started_s)
+                write_sidecar(output, study_provenance("sweep", sweep, timing))
             except OSError as error:
                 raise OutputFailed(output, error.strerror or str(error)) from None
             run.output = output

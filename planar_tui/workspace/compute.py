@@ -132,7 +132,7 @@ class BoxBudget:
     to change when it is exceeded.
     """
 
-    def __init__(self, job: Job[BudgetSpec, Robot3RRR], progress: Progress):
+    def __init__(self, job: Job[BudgetSpec, object], progress: Progress):
         self.job = job
         self.progress = progress
         self.processed = 0
@@ -323,7 +323,15 @@ def default_search_box(
 ) -> tuple[tuple[float, float], tuple[float, float]]:
     """A square about the reach box whose side is ``precision_cm * 2**n`` (smallest n), so
     that the bisection's leaves are exactly ``precision_cm`` wide."""
-    xlo, xhi, ylo, yhi = robot.reach_box_cm(orientation_rad)
+    return square_about(robot.reach_box_cm(orientation_rad), precision_cm)
+
+
+def square_about(
+    reach: tuple[float, float, float, float], precision_cm: float
+) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The square of :func:`default_search_box` about the box ``reach``
+    (``x_lo, x_hi, y_lo, y_hi``; empty when ``lo > hi``), for any mechanism."""
+    xlo, xhi, ylo, yhi = reach
     if xlo > xhi or ylo > yhi:  # the legs' reach discs do not meet: any small box will do
         xlo = xhi = ylo = yhi = 0.0
     side = precision_cm
@@ -476,9 +484,8 @@ def finished_outcome(
     if spec.refine_precision_cm is not None:
         budget.progress.start(1.0, "boundary refinement")
         inside = status == INSIDE
-        refined, refined_status = refine(
-            np.ascontiguousarray(boxes[~inside]), float(union_area(boxes[inside]))
-        )
+        proved = xy_area(boxes[inside]) if disjoint else float(union_area(boxes[inside]))
+        refined, refined_status = refine(np.ascontiguousarray(boxes[~inside]), proved)
         boxes = np.concatenate([boxes[inside], refined])
         status = np.concatenate([status[inside], refined_status])
     boxes = np.ascontiguousarray(boxes)

@@ -70,6 +70,11 @@ def _disc(centre, radius, segments_per_turn, outward):
     return Polygon(pts + np.asarray(centre))
 
 
+#: A disc's inscribed (``outward=False``) or circumscribed polygon, for the other mechanisms'
+#: references (:mod:`planar_tui.workspace.rpr`, :mod:`planar_tui.workspace.prr`).
+disc = _disc
+
+
 def _sector(r_in, r_out, start, stop, segments_per_turn, outward):
     """Annular sector ``r_in <= r <= r_out``, angle in ``[start, stop]`` (about the origin)."""
     from shapely import Polygon
@@ -145,10 +150,21 @@ def geometric_area(
 
 @lru_cache(maxsize=64)
 def _geometric_area(robot, limits_rad, orientation_rad, relative_tolerance, max_segments):
+    def polygon(segments, outward):
+        return workspace_polygon(robot, limits_rad, orientation_rad, segments, outward)
+
+    return polygon_bracket(polygon, relative_tolerance, max_segments)
+
+
+def polygon_bracket(polygon, relative_tolerance, max_segments) -> GeometricArea:
+    """Bracket an area from ``polygon(segments_per_turn, outward)``, the inner
+    (``outward=False``) and outer polygon of a region bounded by circle arcs: the segments
+    per turn are doubled from 4096 until ``outer - inner <= relative_tolerance * outer``
+    (or ``max_segments`` is reached). Shared by every mechanism's exact reference."""
     segments = 4096
     while True:
-        inner = workspace_polygon(robot, limits_rad, orientation_rad, segments, False).area
-        outer = workspace_polygon(robot, limits_rad, orientation_rad, segments, True).area
+        inner = polygon(segments, False).area
+        outer = polygon(segments, True).area
         if outer - inner <= relative_tolerance * max(outer, 1e-300) or segments >= max_segments:
             return GeometricArea(float(min(inner, outer)), float(outer), segments)
         segments *= 2

@@ -145,7 +145,8 @@ HELP_DETAILS = {
     "help": "this help (? outside fields)",
     "run": "run the job of the current tab (also the Run button)",
     "cancel": "cancel the running job (in the footer only while one runs)",
-    "open": "open a preset (a path or a bundled name)",
+    "open": "open a preset (recent, bundled, or a path; → completes)",
+    "history": "run history: every run, compare two, open a result CSV",
     "save": "save (comments kept; a bundled preset asks for a path; an invalid one "
     "is saved as a draft if you confirm)",
     "undo": "undo the latest edit, in place (same tab and field; results kept)",

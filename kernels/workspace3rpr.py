@@ -1,0 +1,92 @@
+"""Exact leg test of a 3-RPR at a fixed orientation and its level-wise 2-D paving.
+
+Leg ``i`` (base joint :math:`A_i`, platform point :math:`q_i` in the platform frame, actuated
+prismatic length in :math:`[\\rho_i, \\overline\\rho_i]`) closes at the platform position
+:math:`p = (x, y)` and orientation :math:`\\varphi` iff
+
+.. math:: \\rho_i^2 \\le f_i(x, y) = (x - c_{x,i})^2 + (y - c_{y,i})^2 \\le \\overline\\rho_i^2,
+          \\qquad c_i = A_i - R(\\varphi) q_i,
+
+an annulus about :math:`c_i`. Over a box :math:`X \\times Y` the natural interval extension
+:math:`(X - c_x)^2 + (Y - c_y)^2` (with :func:`~kernels.interval.isqr`, not ``X * X``) is
+the *exact* range of :math:`f_i` up to outward rounding: the two squares depend on
+different variables, and each square's enclosure is its exact range. So a box is
+
+* ``OUTSIDE`` if some leg's range misses :math:`[\\rho_i^2, \\overline\\rho_i^2]`,
+* ``INSIDE`` if every leg's range lies within it,
+* ``BOUNDARY`` otherwise: then every leg has a point of the box where it closes and one
+  where it does not (the range is an interval straddling a bound).
+
+The squared limits are enclosed as intervals too (``down``/``up`` of the float product), so
+the labels are certified. The centred (mean-value, slope) forms could only be wider than an
+exact range, so the 3-RPR has the natural form alone.
+
+The paving is the arc-distance form's (:func:`kernels.workspace_arc.settle_xy_box`): each
+box of a frontier slice is decided in parallel, boxes go to ``LANES`` interleaved lanes, and
+each outcome depends on its box alone, so the result does not depend on the thread count.
+
+The parameter array ``p`` is (3, 4): per leg ``c_x, c_y, rho_lo, rho_hi`` (cm).
+"""
+
+import numba
+
+from ._jit import kernel
+from .interval import down, iadd, iadd_scalar, isqr, up
+from .workspace_arc import BOUNDARY, INSIDE, LANES, OUTSIDE, settle_xy_box
+
+
+@kernel
+def squared_distance_range(xlo, xhi, ylo, yhi, cx, cy):
+    """Enclosure of :math:`(x - c_x)^2 + (y - c_y)^2` over the box (its exact range,
+    rounded outward)."""
+    ulo, uhi = iadd_scalar(xlo, xhi, -cx)
+    vlo, vhi = iadd_scalar(ylo, yhi, -cy)
+    u2lo, u2hi = isqr(ulo, uhi)
+    v2lo, v2hi = isqr(vlo, vhi)
+    return iadd(u2lo, u2hi, v2lo, v2hi)
+
+
+@kernel
+def classify_rpr_box(xlo, xhi, ylo, yhi, p):
+    """``OUTSIDE``, ``BOUNDARY`` or ``INSIDE`` for the (x, y) box (module docstring)."""
+    inside = True
+    for leg in range(3):
+        slo, shi = squared_distance_range(xlo, xhi, ylo, yhi, p[leg, 0], p[leg, 1])
+        lo2 = p[leg, 2] * p[leg, 2]
+        hi2 = p[leg, 3] * p[leg, 3]
+        if shi < down(lo2) or slo > up(hi2):
+            return OUTSIDE
+        if slo < up(lo2) or shi > down(hi2):
+            inside = False
+    return INSIDE if inside else BOUNDARY
+
+
+@kernel
+def rpr_point_feasible(x, y, p):
+    """Every leg closes at the platform position ``(x, y)`` (float test, for references)."""
+    for leg in range(3):
+        f = (x - p[leg, 0]) ** 2 + (y - p[leg, 1]) ** 2
+        if f < p[leg, 2] * p[leg, 2] or f > p[leg, 3] * p[leg, 3]:
+            return False
+    return True
+
+
+@kernel
+def classify_rpr_boxes(boxes, p, out):
+    """:func:`classify_rpr_box` for every row ``x_lo, x_hi, y_lo, y_hi`` of ``boxes``."""
+    for r in range(boxes.shape[0]):
+        out[r] = classify_rpr_box(boxes[r, 0], boxes[r, 1], boxes[r, 2], boxes[r, 3], p)
+
+
+@kernel(parallel=True)
+def rpr_level(p, precision, rows, start, stop, children, outcome):
+    """Decide rows ``start .. stop - 1`` of a frontier of (x, y) boxes in parallel: label
+    (:func:`classify_rpr_box`), then :func:`~kernels.workspace_arc.settle_xy_box`; row
+    ``start + i`` writes ``children[2 i]``, ``children[2 i + 1]`` and ``outcome[i]``."""
+    n = stop - start
+    lanes = min(LANES, n)
+    for lane in numba.prange(lanes):
+        for i in range(lane, n, lanes):
+            r = start + i
+            label = classify_rpr_box(rows[r, 0], rows[r, 1], rows[r, 2], rows[r, 3], p)
+            outcome[i] = settle_xy_box(label, rows, r, children, 2 * i, precision)

@@ -1,0 +1,82 @@
+"""``planar-tui serve``: the same Textual workbench in a web browser, through
+``textual-serve`` (the ``serve`` extra: ``pip install "planar-tui[serve]"``).
+
+Each browser tab that opens the page starts its own ``planar-tui tui`` process on the
+preset; the server binds to ``127.0.0.1`` by default, so only this machine reaches it. From
+a laptop, tunnel the port over SSH (``ssh -L 8000:localhost:8000 HOST``) and open
+``http://localhost:8000``.
+"""
+
+from __future__ import annotations
+
+import shlex
+import sys
+from typing import Annotated
+
+import typer
+
+from planar_tui.cli.output import fail, reported_errors, stderr
+from planar_tui.errors import ExitCode, PresetError
+
+
+def server_command(preset: str | None, opened: list[str]) -> str:
+    """The shell command the server runs per browser session: this Python, ``-m
+    planar_tui tui``, the preset (an absolute path, so the server's folder does not
+    matter) and the ``--open`` results."""
+    from pathlib import Path
+
+    from planar_tui.resources import resolve_preset
+
+    words = [sys.executable, "-m", "planar_tui", "tui"]
+    if preset is not None:
+        words.append(str(resolve_preset(preset).absolute()))
+    for path in opened:
+        words += ["--open", str(Path(path).absolute())]
+    return shlex.join(words)
+
+
+#: The preset argument of ``tui`` and ``serve``.
+AppPresetArg = Annotated[
+    str | None,
+    typer.Argument(help="Preset file or bundled preset name (default: paper-a-table1)."),
+]
+#: The ``--open`` option of ``tui`` and ``serve``.
+OpenOption = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--open", metavar="RESULT.csv",
+        help="A result CSV to open into the run history (repeatable); its sidecar "
+        "RESULT.csv.json gives its settings.",
+    ),
+]  # fmt: skip
+
+
+def serve(
+    preset: AppPresetArg = None,
+    host: Annotated[
+        str,
+        typer.Option("--host", help="Address to bind (default 127.0.0.1: this machine only)."),
+    ] = "127.0.0.1",
+    port: Annotated[int, typer.Option("--port", help="TCP port (1-65535).")] = 8000,
+    open_results: OpenOption = None,
+) -> None:
+    """Serve the workbench in a web browser (textual-serve), on http://HOST:PORT; from a
+    laptop: ssh -L 8000:localhost:8000 HOST, then open http://localhost:8000."""
+    with reported_errors():
+        if not 1 <= port <= 65535:
+            raise PresetError("command line", "--port", f"is {port}", "a port from 1 to 65535")
+        command = server_command(preset, list(open_results or ()))
+    try:
+        from textual_serve.server import Server
+    except ImportError:
+        raise fail(
+            'error: planar-tui serve needs textual-serve: pip install "planar-tui[serve]"',
+            ExitCode.BAD_INPUT,
+        ) from None
+    server = Server(command, host=host, port=port, title="planar-tui")
+    stderr.print(f"planar-tui: serving on http://{host}:{port} (Ctrl-C stops)", markup=False)
+    try:
+        server.serve()
+    except OSError as error:
+        raise fail(f"error: cannot serve on {host}:{port}: {error.strerror or error}") from None
+    raise typer.Exit(0)

@@ -1,0 +1,313 @@
+"""What the fixed-orientation workspaces of the 3-RPR and the 3-PRR share: their common
+settings, the 2-D paving with an exact per-leg test, the runner and the result.
+
+A mechanism supplies a :class:`Mechanism`: its kernel parameters, the box holding its reach,
+its exact polygons (inner and outer, :func:`~planar_tui.workspace.geometry.polygon_bracket`)
+and its level kernel (one per mechanism in ``kernels/``, with the signature of
+:func:`~planar_tui.kernels.workspace3rpr.rpr_level`). The paving is the 3-RRR's
+(:func:`~planar_tui.workspace.compute.pave_in_levels`, then
+:func:`~planar_tui.workspace.compute.finished_outcome`): boxes proved inside are never split,
+boundary boxes are kept at ``precision_cm`` and, with ``refine_precision_cm``, paved again
+at that precision; the certified bracket is ``|inside| <= exact <= |kept|``. The result is
+the 3-RRR's :class:`~planar_tui.workspace.job.WorkspaceResult` (same summary and boxes CSVs),
+so the map, the figure and the app's workspace pane show every kind.
+"""
+
+from __future__ import annotations
+
+import importlib
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+from planar_tui.jobkind import Command, Job, JobKind, Option, OutputOption, PreparedJob, Tab
+from planar_tui.progress import Progress
+from planar_tui.schema import TableReader, number, plot_setting, setting, string
+from planar_tui.workspace.job import (
+    WorkspaceResult,
+    WorkspaceSpec,
+    _checked_box_budget,
+    point_figures,
+    render_workspace,
+)
+
+
+def read_search_box(reader: TableReader, name, default, robot, values):
+    """``[[x_min, x_max], [y_min, y_max]]`` in cm, each non-empty (whether it holds the
+    reach is checked by :meth:`PlanarSpec.check`, once every key is read)."""
+    if not reader.has(name):
+        return None
+    rows = reader.number_rows(name, columns=2, row_doc="[min, max] in cm")
+    if len(rows) != 2 or any(not lo < hi for lo, hi in rows):
+        raise reader.error(
+            name, f"is {[list(r) for r in rows]}", "[[x_min, x_max], [y_min, y_max]]"
+        )
+    return rows
+
+
+def same_key(attribute: str, **changes: Any) -> Any:
+    """A setting declared as the 3-RRR's ``[workspace]`` key ``attribute``
+    (:class:`~planar_tui.workspace.job.WorkspaceSpec`), with ``changes`` (its ``doc``...)."""
+    key = {**WorkspaceSpec.__dataclass_fields__[attribute].metadata["key"], **changes}
+    return setting(key.pop("read"), **key)
+
+
+@dataclass(frozen=True, kw_only=True)
+class PlanarSpec:
+    """The settings every fixed-orientation parallel workspace job has (angles in degrees,
+    lengths in cm); a kind adds its own keys (``leg_limits_cm``) in a subclass."""
+
+    orientation_deg: float = setting(
+        number(), default=0.0, type_doc="number", doc="platform orientation φ"
+    )
+    precision_cm: float = same_key("precision_cm")
+    form: str = setting(
+        string(choices=("natural", "geometric")),
+        default="natural",
+        type_doc="`natural`, `geometric`",
+        doc="exact per-leg test of each box (see docs/workspace.md), or the exact area only",
+    )
+    refine_precision_cm: float | None = same_key(
+        "refine_precision_cm", doc="boundary-only refinement to this precision"
+    )
+    search_box_cm: tuple[tuple[float, float], tuple[float, float]] | None = same_key(
+        "search_box_cm", read=read_search_box
+    )
+    box_budget: int = same_key(
+        "box_budget",
+        doc="most (x, y) boxes one job may decide (then it fails, writing nothing)",
+    )
+    geometric_reference: bool = same_key("geometric_reference")
+    boxes_output: str | None = same_key("boxes_output")
+    plot: str | None = plot_setting()
+    singularities: bool = same_key(
+        "singularities",
+        doc="also map the type II singularities and certify the singularity-free circle",
+    )
+    circle_centre_cm: tuple[float, float] | None = same_key("circle_centre_cm")
+    singularity_precision_cm: float | None = same_key("singularity_precision_cm")
+
+    #: The kind's :class:`Mechanism` (set by each subclass; not a preset key).
+    mechanism: ClassVar[Any] = None
+    #: The keys that go with ``singularities = true`` (:func:`check_circle_keys`).
+    circle_keys: ClassVar[tuple[str, ...]] = ("circle_centre_cm", "singularity_precision_cm")
+
+    @property
+    def orientation_rad(self) -> float:
+        return math.radians(self.orientation_deg)
+
+    @classmethod
+    def check(cls, values: dict[str, Any], reader: TableReader, robot: Any) -> dict[str, Any]:
+        """The refinement precision cannot exceed the precision; an explicit search box
+        must hold the legs' reach; the box budget must fit the memory limit; the circle's
+        keys go with ``singularities`` (:func:`check_circle_keys`)."""
+        check_circle_keys(values, reader, cls.circle_keys)
+        refine = values["refine_precision_cm"]
+        if refine is not None and refine > values["precision_cm"]:
+            raise reader.error(
+                "refine_precision_cm", f"is {refine:g} > precision_cm", "<= precision_cm"
+            )
+        box = values["search_box_cm"]
+        if box is not None:
+            spec = cls(**values)
+            rxlo, rxhi, rylo, ryhi = spec.mechanism.reach_box(robot, spec)
+            (xlo, xhi), (ylo, yhi) = box
+            holds = xlo <= rxlo and rxhi <= xhi and ylo <= rylo and ryhi <= yhi
+            if rxlo <= rxhi and rylo <= ryhi and not holds:
+                raise reader.error(
+                    "search_box_cm",
+                    "cannot contain the legs' reach "
+                    f"x in [{rxlo:.4g}, {rxhi:.4g}], y in [{rylo:.4g}, {ryhi:.4g}] cm",
+                    "a box containing it",
+                )
+        values["box_budget"] = _checked_box_budget(values["box_budget"], reader)
+        return values
+
+
+def check_circle_keys(values: dict[str, Any], reader: TableReader, names: tuple[str, ...]) -> None:
+    """The circle's keys ``names`` go with ``singularities = true``, which needs a form
+    with boxes."""
+    if not values["singularities"]:
+        for name in names:
+            if values[name] is not None:
+                raise reader.error(
+                    name, "is set without singularities = true", "singularities = true"
+                )
+    elif values["form"] == "geometric":
+        raise reader.error("singularities", 'is true with form = "geometric"', "a form with boxes")
+
+
+@dataclass(frozen=True)
+class Mechanism:
+    """What the shared paving needs of one mechanism (functions of the robot and spec):
+    ``parameters`` the kernel's parameter array, ``reach_box`` a box ``(x_lo, x_hi, y_lo,
+    y_hi)`` holding the workspace (empty when ``lo > hi``), ``polygon(robot, spec,
+    segments_per_turn, outward)`` the inner or outer polygon of the exact workspace, and
+    ``level`` the level kernel as ``module:function`` of ``planar_tui.kernels``."""
+
+    parameters: Callable[[Any, Any], Any]
+    reach_box: Callable[[Any, Any], tuple[float, float, float, float]]
+    polygon: Callable[[Any, Any, int, bool], Any]
+    level: str
+    #: The module certifying its singularities (``resolve_centre(job)``,
+    #: ``compute_<kind>_singularities``...), if the kind has them.
+    singularities: str | None = None
+
+    def level_kernel(self) -> Callable[..., None]:
+        module, _, name = self.level.partition(":")
+        kernel: Callable[..., None] = getattr(importlib.import_module(module), name)
+        return kernel
+
+    def geometric_area(self, robot: Any, spec: Any) -> Any:
+        """The exact area's bracket (:class:`~planar_tui.workspace.geometry.GeometricArea`)."""
+        from planar_tui.workspace.geometry import polygon_bracket
+
+        def polygon(segments: int, outward: bool) -> Any:
+            return self.polygon(robot, spec, segments, outward)
+
+        return polygon_bracket(polygon, 2e-5, 1 << 18)
+
+
+def compute_planar(robot: Any, spec: PlanarSpec, budget: Any) -> Any:
+    """The paving of the module docstring for one robot and spec
+    (:class:`~planar_tui.workspace.compute.WorkspaceOutcome`)."""
+    import numpy as np
+
+    from planar_tui.workspace.compute import (
+        WorkspaceOutcome,
+        finished_outcome,
+        pave_in_levels,
+        square_about,
+    )
+
+    started = time.perf_counter()
+    mechanism: Mechanism = spec.mechanism
+    box = spec.search_box_cm or square_about(mechanism.reach_box(robot, spec), spec.precision_cm)
+    extent = (box[0][0], box[0][1], box[1][0], box[1][1])
+    geometric = None
+    if spec.geometric_reference or spec.form == "geometric":
+        geometric = mechanism.geometric_area(robot, spec)
+    if spec.form == "geometric":
+        assert geometric is not None
+        nothing = np.zeros((0, 4))
+        return WorkspaceOutcome(
+            form="geometric", precision_cm=spec.precision_cm, refine_precision_cm=None,
+            boxes=nothing, status=np.zeros(0, np.int64), boxes_processed=0,
+            area_kept_cm2=geometric.outer_cm2, area_inside_cm2=geometric.inner_cm2,
+            geometric=geometric, seconds=time.perf_counter() - started, extent_cm=extent,
+        )  # fmt: skip
+    p = mechanism.parameters(robot, spec)
+    level = mechanism.level_kernel()
+
+    def decider(precision: float) -> Callable[..., None]:
+        def decide(rows, start, stop, children, outcome):
+            level(p, precision, rows, start, stop, children, outcome)
+
+        return decide
+
+    budget.progress.start(1.0, f"{spec.form} paving")
+    boxes, status = pave_in_levels(np.array([extent]), budget, decider(spec.precision_cm))
+
+    def refine(seeds, inside_cm2):
+        assert spec.refine_precision_cm is not None
+        return pave_in_levels(seeds, budget, decider(spec.refine_precision_cm), inside_cm2)
+
+    return finished_outcome(
+        spec, boxes, status, refine, budget, geometric, started, extent, form=spec.form,
+        disjoint=True,
+    )  # fmt: skip
+
+
+def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> WorkspaceResult:
+    """Run one fixed-orientation workspace job of a parallel kind: the summary CSV (the
+    3-RRR's columns), the boxes and the one-line summary."""
+    from planar_tui.csvio import CsvTable
+    from planar_tui.workspace.compute import (
+        SUMMARY_HEADER,
+        BoxBudget,
+        boxes_table,
+        summary_line,
+    )
+
+    job = ready.job
+    budget = BoxBudget(job, progress)
+    outcome = compute_planar(job.robot, job.spec, budget)
+    header: tuple[str, ...] = SUMMARY_HEADER
+    row, summary = outcome.summary_row(), summary_line(outcome)
+    singular = None
+    module = job.spec.mechanism.singularities
+    if module is not None:  # the circle's columns before the last one, the wall time
+        from planar_tui.workspace.singularity import HEADER
+
+        if ready.prepared is not None:
+            compute = importlib.import_module(module).compute_singularities
+            singular = compute(job, ready.prepared, outcome.extent_cm, budget)
+            summary += f"; {singular.describe()}"
+        cells = [""] * len(HEADER) if singular is None else singular.columns()
+        header, row = (*header[:-1], *HEADER, header[-1]), [*row[:-1], *cells, row[-1]]
+    return WorkspaceResult(
+        table=CsvTable(header, [row]),
+        summary=summary,
+        extra_tables={"boxes": boxes_table(outcome)},
+        outcome=outcome,
+        singularity=singular,
+    )
+
+
+def prepare_planar(job: Job[PlanarSpec, Any]) -> object:
+    """The kind's ``prepare``: the singularity-free circle's centre, checked (``None``
+    without singularities)."""
+    module = job.spec.mechanism.singularities
+    return None if module is None else importlib.import_module(module).resolve_centre(job)
+
+
+def extra_outputs(job: Job[PlanarSpec, Any]) -> dict[str, str]:
+    """The boxes CSV the preset names (``boxes_output``), if any."""
+    return {"boxes": job.spec.boxes_output} if job.spec.boxes_output else {}
+
+
+def planar_job_kind(
+    name: str, mechanism_name: str, settings: type, summary: str, tab: Tab, warmup: str
+) -> JobKind:
+    """The :class:`JobKind` of a fixed-orientation parallel kind ``name`` (its robot table
+    ``robot`` + the name's suffix): the shared runner, terminal map, figure, command
+    (``--precision``, ``--boxes``, ``--map/--no-map``)."""
+    return JobKind(
+        name=name,
+        robot_kind="robot" + name.removeprefix("workspace"),
+        settings=settings,
+        run=run_planar,
+        prepare=prepare_planar,
+        point_figures=point_figures,
+        summary=summary,
+        render=render_workspace,
+        extra_outputs=extra_outputs,
+        command=Command(
+            name,
+            f"{mechanism_name} workspace of every {name} job: summary CSV, boxes CSV (--boxes "
+            "or the preset's boxes_output) and a map titled with the job and precision.",
+            options=(
+                Option("--precision", "precision_cm",
+                       "Precision epsilon in cm; overrides `precision_cm`.", float),
+            ),
+            outputs=(OutputOption("--boxes", "boxes",
+                                  "CSV of the kept boxes (with several jobs: FILE-1.csv ...)."),),
+            view=("--map/--no-map", "Print the character-cell map."),
+        ),
+        tab=tab,
+        figure="planar_tui.figures.workspace:from_planar_result",
+        warmup=warmup,
+    )  # fmt: skip
+
+
+__all__ = [
+    "Mechanism",
+    "PlanarSpec",
+    "compute_planar",
+    "extra_outputs",
+    "planar_job_kind",
+    "render_workspace",
+    "run_planar",
+]

@@ -1,0 +1,61 @@
+"""The ``[[workspace3prr]]`` job: the constant-orientation workspace of a 3-PRR
+(:mod:`planar_tui.workspace.prr`), paved with the exact per-leg distance test
+(:mod:`planar_tui.kernels.workspace3prr`) by the shared runner
+(:mod:`planar_tui.workspace.planar`)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+from planar_tui.jobkind import Tab
+from planar_tui.schema import setting, string
+from planar_tui.workspace import prr
+from planar_tui.workspace.planar import Mechanism, PlanarSpec, planar_job_kind, same_key
+
+MECHANISM = Mechanism(
+    parameters=prr.leg_parameters,
+    reach_box=prr.reach_box,
+    polygon=prr.workspace_polygon,
+    level="planar_tui.kernels.workspace3prr:prr_level",
+    singularities="planar_tui.workspace.prr_singularity",
+)
+
+
+@dataclass(frozen=True, kw_only=True)
+class Spec3PRR(PlanarSpec):
+    """Settings of one 3-PRR workspace job (lengths in cm, the orientation in degrees); the
+    strokes and links are the robot's (``[robot3prr]``)."""
+
+    form: str = setting(
+        string(choices=("distance", "geometric")),
+        default="distance",
+        type_doc="`distance`, `geometric`",
+        doc="the per-leg distance test of each box (see docs/workspace.md), or the exact area only",
+    )
+
+    slider_modes: tuple[int, int, int] | None = same_key(
+        "elbow",
+        name="slider_modes",
+        default_doc="(the mode the strokes allow at the centre)",
+        doc="working mode per leg: the slider ahead (`1`) or behind (`-1`) the foot of the "
+        "perpendicular from the platform joint to its line",
+    )
+    mechanism: ClassVar[Any] = MECHANISM
+    circle_keys: ClassVar[tuple[str, ...]] = (
+        "slider_modes",
+        "circle_centre_cm",
+        "singularity_precision_cm",
+    )
+
+
+JOB_KIND = planar_job_kind(
+    "workspace3prr",
+    "3-PRR",
+    Spec3PRR,
+    "3-PRR constant-orientation workspace: stadiums minus lenses intersected, "
+    "certified by a per-leg distance test",
+    Tab("3-PRR", 7, "planar_tui.app.widgets.parallel_panes:Workspace3PRRPane"),
+    "[[workspace3prr]]\nprecision_cm = 8.0\nrefine_precision_cm = 4.0\n"
+    "geometric_reference = false\nsingularities = true\n",
+)

@@ -1,0 +1,124 @@
+"""The 3-RPR planar parallel robot: model, leg constraint and exact workspace reference.
+
+Three legs join base joints :math:`A_i` (revolute) to platform points :math:`q_i` (revolute,
+given in the platform frame) through an actuated prismatic joint of length
+:math:`\\rho_i \\in [\\underline\\rho_i, \\overline\\rho_i]` (``leg_limits_cm`` of the job).
+At the platform position :math:`p = (x, y)` and orientation :math:`\\varphi` the platform
+point is :math:`C_i = p + R(\\varphi) q_i`, and leg ``i`` closes iff
+
+.. math:: \\underline\\rho_i \\le |p + R(\\varphi) q_i - A_i| \\le \\overline\\rho_i,
+
+i.e. :math:`p` lies in the annulus of radii :math:`\\underline\\rho_i, \\overline\\rho_i`
+about :math:`c_i = A_i - R(\\varphi) q_i`. The constant-orientation workspace is the
+intersection of the three annuli; its exact area is bracketed by polygons
+(:func:`workspace_polygon`: each outer circle inscribed and each hole circumscribed for the
+inner polygon, the reverse for the outer one; intersections and differences are monotone,
+so :math:`|W_{in}| \\le |W| \\le |W_{out}|`), doubled until narrow
+(:func:`~planar_tui.workspace.geometry.polygon_bracket`).
+
+The bundled design (the defaults) is illustrative, at the scale of paper B's 3-RRR: its base
+triangle of side 120 cm and its platform triangle of base and height 40 cm (no published
+3-RPR's dimensions could be sourced for this project).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from planar_tui.jobkind import RobotKind
+from planar_tui.schema import setting, string
+from planar_tui.workspace.robot import _three_points
+
+#: Paper B's base (an equilateral triangle of side 120 cm) and platform (base and height
+#: 40 cm): the illustrative 3-RPR's geometry.
+PAPER_B_BASE_CM = ((0.0, 0.0), (120.0, 0.0), (60.0, 60.0 * math.sqrt(3.0)))
+PAPER_B_PLATFORM_CM = ((0.0, 0.0), (40.0, 0.0), (20.0, 40.0))
+
+
+def paper_b_points(default, default_doc: str, doc: str):
+    """A robot key of three ``[x, y]`` points (cm) defaulting to paper B's ``default``."""
+    return setting(
+        _three_points, default=default, default_doc=default_doc, type_doc="3 points `[x, y]`",
+        doc=doc,
+    )  # fmt: skip
+
+
+def platform_points():
+    """The ``platform_points_cm`` key of the 3-RPR and the 3-PRR (paper B's platform)."""
+    return paper_b_points(
+        PAPER_B_PLATFORM_CM,
+        "paper B's platform triangle (40 × 40)",
+        "platform joints `q1, q2, q3` in the platform frame",
+    )
+
+
+@dataclass(frozen=True, kw_only=True)
+class Robot3RPR:
+    """Geometry of a 3-RPR, the ``[robot3rpr]`` table (lengths in cm; defaults: an
+    illustrative design at paper B's scale, see the module docstring)."""
+
+    name: str = setting(string(), default="", type_doc="string", doc="a label")
+    base_joints_cm: tuple[tuple[float, float], ...] = paper_b_points(
+        PAPER_B_BASE_CM, "paper B's base triangle (side 120)", "base joints `A1, A2, A3`"
+    )
+    platform_points_cm: tuple[tuple[float, float], ...] = platform_points()
+
+    def centres_cm(self, orientation_rad: float) -> tuple[tuple[float, float], ...]:
+        """The annuli's centres :math:`c_i = A_i - R(\\varphi) q_i`."""
+        c, s = math.cos(orientation_rad), math.sin(orientation_rad)
+        return tuple(
+            (ax - (c * qx - s * qy), ay - (s * qx + c * qy))
+            for (ax, ay), (qx, qy) in zip(self.base_joints_cm, self.platform_points_cm, strict=True)
+        )
+
+
+def leg_parameters(robot: Robot3RPR, spec) -> object:
+    """The kernel's (3, 4) array: per leg ``c_x, c_y, rho_lo, rho_hi`` (cm)."""
+    import numpy as np
+
+    centres = robot.centres_cm(spec.orientation_rad)
+    rows = [
+        (cx, cy, lo, hi) for (cx, cy), (lo, hi) in zip(centres, spec.leg_limits_cm, strict=True)
+    ]
+    return np.ascontiguousarray(rows, dtype=np.float64)
+
+
+def reach_box(robot: Robot3RPR, spec) -> tuple[float, float, float, float]:
+    """Bounding box of the intersection of the discs :math:`|p - c_i| \\le \\overline\\rho_i`
+    (empty when ``lo > hi``)."""
+    centres = robot.centres_cm(spec.orientation_rad)
+    his = [hi for _, hi in spec.leg_limits_cm]
+    return (
+        max(cx - r for (cx, _), r in zip(centres, his, strict=True)),
+        min(cx + r for (cx, _), r in zip(centres, his, strict=True)),
+        max(cy - r for (_, cy), r in zip(centres, his, strict=True)),
+        min(cy + r for (_, cy), r in zip(centres, his, strict=True)),
+    )
+
+
+def annulus(centre, lo, hi, segments_per_turn, outward):
+    """Polygon of :math:`lo \\le |p - c| \\le hi`: inner (``outward=False``: outer circle
+    inscribed, hole circumscribed) or outer (the reverse)."""
+    from planar_tui.workspace.geometry import disc
+
+    outer = disc(centre, hi, segments_per_turn, outward)
+    if lo <= 0.0:
+        return outer
+    return outer.difference(disc(centre, lo, segments_per_turn, not outward))
+
+
+def workspace_polygon(robot: Robot3RPR, spec, segments_per_turn: int, outward: bool):
+    """Inner (``outward=False``) or outer polygon of the workspace: three annuli intersected."""
+    from shapely import intersection_all
+
+    centres = robot.centres_cm(spec.orientation_rad)
+    return intersection_all(
+        [
+            annulus(c, lo, hi, segments_per_turn, outward)
+            for c, (lo, hi) in zip(centres, spec.leg_limits_cm, strict=True)
+        ]
+    )
+
+
+ROBOT_KIND = RobotKind("robot3rpr", Robot3RPR, example="[robot3rpr]\n")

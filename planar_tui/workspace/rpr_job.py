@@ -1,0 +1,59 @@
+"""The ``[[workspace3rpr]]`` job: the constant-orientation workspace of a 3-RPR
+(:mod:`planar_tui.workspace.rpr`), paved with the exact per-leg annulus test
+(:mod:`planar_tui.kernels.workspace3rpr`) by the shared runner
+(:mod:`planar_tui.workspace.planar`)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+from planar_tui.jobkind import Tab
+from planar_tui.schema import TableReader, setting
+from planar_tui.workspace import rpr
+from planar_tui.workspace.planar import Mechanism, PlanarSpec, planar_job_kind
+
+MECHANISM = Mechanism(
+    parameters=rpr.leg_parameters,
+    reach_box=rpr.reach_box,
+    polygon=rpr.workspace_polygon,
+    level="planar_tui.kernels.workspace3rpr:rpr_level",
+    singularities="planar_tui.workspace.rpr_singularity",
+)
+
+
+def _leg_limits(reader: TableReader, name, default, robot, values):
+    """Three ``[lo, hi]`` rows in cm with ``0 <= lo < hi``."""
+    rows = reader.number_rows(name, columns=2, row_doc="[lo, hi] in cm")
+    if len(rows) != 3:
+        raise reader.error(name, f"has {len(rows)} rows", "3 rows [lo, hi], one per leg")
+    for leg, (lo, hi) in enumerate(rows, start=1):
+        if not 0.0 <= lo < hi:
+            raise reader.error(name, f"leg {leg} range [{lo:g}, {hi:g}]", "0 <= lo < hi")
+    return rows
+
+
+@dataclass(frozen=True, kw_only=True)
+class Spec3RPR(PlanarSpec):
+    """Settings of one 3-RPR workspace job (lengths in cm, the orientation in degrees)."""
+
+    leg_limits_cm: tuple[tuple[float, float], ...] = setting(
+        _leg_limits,
+        type_doc="3 rows `[lo, hi]`, 0 ≤ lo < hi",
+        doc="actuated leg lengths ρ1, ρ2, ρ3 (prismatic strokes)",
+    )
+
+    mechanism: ClassVar[Any] = MECHANISM
+
+
+JOB_KIND = planar_job_kind(
+    "workspace3rpr",
+    "3-RPR",
+    Spec3RPR,
+    "3-RPR constant-orientation workspace: the intersection of three annuli, "
+    "certified by an exact per-leg interval test",
+    Tab("3-RPR", 6, "planar_tui.app.widgets.parallel_panes:Workspace3RPRPane"),
+    "[[workspace3rpr]]\nleg_limits_cm = [[40, 90], [40, 90], [40, 90]]\n"
+    "precision_cm = 8.0\nrefine_precision_cm = 4.0\ngeometric_reference = false\n"
+    "orientation_deg = 30\nsingularities = true\n",
+)
