@@ -8,6 +8,14 @@ Every row is a fresh process, timed from spawn to exit (median of several runs):
 * a 20 s simulation of the Table 1 6R robot (RK4, step 1e-4 s, every 10th step written)
   through ``planar-tui simulate``, against a Python process that steps MuJoCo's own RK4 over
   the same model for the same 200 000 steps and writes the same rows with ``numpy.savetxt``.
+
+``--ab DIR`` (issue 21) instead times this checkout against the checkout DIR (e.g. main's),
+each with its own ``.venv/bin/python``, in interleaved fresh processes (median of
+``--runs``, default 5), with byte-code caching on (``PYTHONDONTWRITEBYTECODE`` removed: a
+user's install writes ``.pyc``, here under a temporary ``PYTHONPYCACHEPREFIX``): ``python -c pass`` and ``python -S -c pass`` (the
+interpreter alone, without and with ``site``: the difference is what the ``.pth`` files,
+e.g. pin's ``cmeel.pth``, cost), ``planar-tui --help`` and a warm
+``planar-tui run paper-b-table3``; with the 1-min load before and after.
 """
 
 from __future__ import annotations
@@ -56,7 +64,51 @@ def wall_seconds(command: list[str], env: dict | None = None, runs: int = 3) -> 
     return statistics.median(times)
 
 
+def load() -> str:
+    return Path("/proc/loadavg").read_text().split()[0]
+
+
+def ab(other: Path, runs: int) -> None:
+    """``--ab DIR``: this checkout against DIR's, interleaved (module docstring)."""
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+    checkouts = {"this": REPO, "other": other.resolve()}
+    with tempfile.TemporaryDirectory() as folder:
+        env["PYTHONPYCACHEPREFIX"] = str(Path(folder) / "pycache")  # nothing written in DIR
+        cases = {
+            "python -S -c pass": ["-S", "-c", "pass"],
+            "python -c pass": ["-c", "pass"],
+            "planar-tui --help": ["-m", "planar_tui", "--help"],
+            "run paper-b-table3 (warm)": [
+                "-m",
+                "planar_tui",
+                "run",
+                "paper-b-table3",
+                "--out-dir",
+                folder,
+            ],
+        }
+        print(f"load before {load()}; this = {REPO}, other = {checkouts['other']}")
+        for name, arguments in cases.items():
+            times: dict[str, list[float]] = {key: [] for key in checkouts}
+            for root in checkouts.values():  # warm the caches first
+                subprocess.run([str(root / ".venv/bin/python"), *arguments], check=True,
+                               capture_output=True, env=env, cwd=root)  # fmt: skip
+            for _ in range(runs):
+                for key, root in checkouts.items():
+                    start = time.perf_counter()
+                    subprocess.run([str(root / ".venv/bin/python"), *arguments], check=True,
+                                   capture_output=True, env=env, cwd=root)  # fmt: skip
+                    times[key].append(time.perf_counter() - start)
+            this, theirs = (statistics.median(times[key]) for key in checkouts)
+            print(f"{name:<28} this {this:7.3f} s  other {theirs:7.3f} s  "
+                  f"other/this {theirs / this:5.2f}  (load {load()})")  # fmt: skip
+
+
 def main() -> None:
+    if "--ab" in sys.argv:
+        runs = int(sys.argv[sys.argv.index("--runs") + 1]) if "--runs" in sys.argv else 5
+        ab(Path(sys.argv[sys.argv.index("--ab") + 1]), runs)
+        return
     env = dict(os.environ)
     cli = [PYTHON, "-m", "planar_tui"]
     rows: list[tuple[str, float, str]] = []

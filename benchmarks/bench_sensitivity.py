@@ -15,6 +15,12 @@ evaluation / analysis:
    design cache (Numba cache warm), and the SALib + NumPy pipeline as its own process
    (imports included); medians, with the load average (the machine is shared).
 
+With ``--model``: only the model evaluation of issue 21, one thread, CPU time of the thread
+(robust on the shared machine): the lane-batched ``design_torques`` (128 robots per SIMD
+block, scaling on the fly) against the scalar ``inverse_dynamics_batch`` on the pre-scaled
+columns (one robot at a time), ns per robot, 6R design of 200 000 rows, best of 5; both give
+the same doubles (checked here).
+
 Every cache used lives in a temporary folder (``PLANAR_TUI_CACHE_DIR``), never the user's.
 Run: ``/work/venv/bin/python benchmarks/bench_sensitivity.py [--runs 7]``.
 """
@@ -226,7 +232,40 @@ def whole_process(cache_root: Path, runs: int):
     print(f"whole-process ratio (medians): {base / ours_warm:.1f}×; load average after: {load()}")
 
 
+def model_evaluation(rows: int = 200_000, n: int = 6) -> None:
+    """``--model``: lane-batched against scalar torques per robot (module docstring)."""
+    import numba
+    from planar_tui.kernels.dynamics import inverse_dynamics_batch
+    from planar_tui.kernels.sensitivity_model import design_torques
+
+    numba.set_num_threads(1)
+    rng = np.random.default_rng(21)
+    unit = rng.random((rows, 2 * n))
+    lower = rng.uniform(0.1, 1.0, 2 * n)
+    upper = lower + 0.01
+    inertias = rng.uniform(1e-3, 1e-2, n)
+    shared = (9.81, rng.normal(size=n), rng.normal(size=n), rng.normal(size=n))
+    scaled = unit * (upper - lower) + lower
+    columns = (np.ascontiguousarray(scaled[:, :n]), np.ascontiguousarray(scaled[:, n:]),
+               np.tile(inertias, (rows, 1)))  # fmt: skip
+    best = {"lanes": np.inf, "scalar": np.inf}
+    for _ in range(5):
+        started = time.thread_time()
+        lanes = design_torques(unit, lower, upper, inertias, *shared)
+        best["lanes"] = min(best["lanes"], time.thread_time() - started)
+        started = time.thread_time()
+        scalar = inverse_dynamics_batch(*columns, *shared)
+        best["scalar"] = min(best["scalar"], time.thread_time() - started)
+    assert np.array_equal(lanes, scalar)
+    lane_ns, scalar_ns = (best[k] / rows * 1e9 for k in ("lanes", "scalar"))
+    print(f"6R torques per robot, 1 thread, load {load()}: lanes {lane_ns:.1f} ns, scalar "
+          f"{scalar_ns:.1f} ns, ratio {scalar_ns / lane_ns:.2f} (identical doubles)")  # fmt: skip
+
+
 def main():
+    if "--model" in sys.argv:
+        model_evaluation()
+        return
     if "--baseline-only" in sys.argv:
         salib_numpy(jobs())
         return

@@ -429,8 +429,8 @@ if __name__ == "__main__":
     import argparse
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--part", choices=("all", "paper", "legwise", "parallel", "cli", "kinds"),
-                        default="all")  # fmt: skip
+    parser.add_argument("--part", choices=("all", "paper", "legwise", "parallel", "cli", "kinds",
+                                           "fivebar"), default="all")  # fmt: skip
     parser.add_argument(
         "--quick",
         action="store_true",
@@ -447,3 +447,7 @@ if __name__ == "__main__":
         whole_process()
     if args.part in ("all", "kinds"):
         other_kinds()
+    if args.part in ("all", "fivebar"):  # issue 25's five-bar goal
+        from benchmarks.bench_workspace5r import main as fivebar
+
+        fivebar()

@@ -33,9 +33,11 @@ from ._jit import kernel
 from .aba_planar import ABA_MIN_LINKS
 from .lane_trig import SINCOS_MAX_ABS, sincos
 
-#: Robots per block (SIMD lanes of the innermost loops). Measured on the project's machine
-#: (Zen 4): 64 vectorises and is fastest; see ``benchmarks/bench_motion.py --lanes``.
-LANES = 64
+#: Robots per block (SIMD lanes of the innermost loops). Measured (CPU time, 1 thread,
+#: Table 1 robots) on the project's machine, a Zen 3 (AVX2) KVM guest in this session: 128
+#: lanes 3-5 % faster than 64, 32 and 16 markedly slower (fixed cost per lane loop: the
+#: runtime alias checks and the loop set-up are paid per loop, not per lane), 256 no better.
+LANES = 128
 
 # How the loops over lanes are kept vectorisable (each point was found with LLVM's
 # vectoriser remarks, ``--pass-remarks-missed=loop-vectorize``):
@@ -308,37 +310,39 @@ def _forward_dynamics_lanes(params, gravity_m_s2, tau_Nm, theta, omega, work, ma
 
 
 @kernel
-def rk4_step_lanes(params, gravity_m_s2, tau_Nm, q, w, step_s, work, matrix, dq, dw, qs, ws,
+def rk4_step_lanes(params, gravity_m_s2, tau_Nm, q, w, step_s, work, matrix, dq, dw, qs,
                    acc, trig):  # fmt: skip
     r""":func:`kernels.rk4.rk4_step` for every lane, in place on ``q``, ``w`` (n, L):
 
     .. math:: k_1 = f(x_k),\; k_2 = f(x_k + \tfrac h2 k_1),\; k_3 = f(x_k + \tfrac h2 k_2),\;
               k_4 = f(x_k + h k_3),\quad x_{k+1} = x_k + \tfrac h6(k_1 + 2k_2 + 2k_3 + k_4)
 
-    ``dq``, ``dw`` (4, n, L) stage derivatives, ``qs``, ``ws`` (n, L) the stage point."""
+    with the scalar step's values and operation order; the copies are folded away: the
+    first stage reads ``q``, ``w`` themselves, and the rate at stage s is its angle
+    derivative, so ``dq[s]`` (s = 1, 2, 3; ``dq[0]`` is ``w``) is the stage point's rate.
+    ``dq``, ``dw`` (4, n, L) stage derivatives, ``qs`` (n, L) the stage point's angles."""
     n = q.shape[0]
     half = 0.5 * step_s
     sixth = step_s / 6.0
-    for i in range(n):
-        for lane in range(LANES):
-            qs[i, lane] = q[i, lane]
-            ws[i, lane] = w[i, lane]
-    for stage in range(4):
+    _forward_dynamics_lanes(params, gravity_m_s2, tau_Nm, q, w, work, matrix, dw, 0, acc,
+                            trig)  # fmt: skip
+    for stage in range(1, 4):
+        factor = step_s if stage == 3 else half
         for i in range(n):
-            for lane in range(LANES):
-                dq[stage, i, lane] = ws[i, lane]
-        _forward_dynamics_lanes(params, gravity_m_s2, tau_Nm, qs, ws, work, matrix, dw, stage,
-                                acc, trig)  # fmt: skip
-        if stage < 3:
-            factor = step_s if stage == 2 else half
-            for i in range(n):
+            if stage == 1:
                 for lane in range(LANES):
-                    qs[i, lane] = q[i, lane] + factor * dq[stage, i, lane]
-                    ws[i, lane] = w[i, lane] + factor * dw[stage, i, lane]
+                    qs[i, lane] = q[i, lane] + factor * w[i, lane]
+                    dq[stage, i, lane] = w[i, lane] + factor * dw[stage - 1, i, lane]
+            else:
+                for lane in range(LANES):
+                    qs[i, lane] = q[i, lane] + factor * dq[stage - 1, i, lane]
+                    dq[stage, i, lane] = w[i, lane] + factor * dw[stage - 1, i, lane]
+        _forward_dynamics_lanes(params, gravity_m_s2, tau_Nm, qs, dq[stage], work, matrix, dw,
+                                stage, acc, trig)  # fmt: skip
     for i in range(n):
         for lane in range(LANES):
             q[i, lane] += sixth * (
-                dq[0, i, lane] + 2.0 * dq[1, i, lane] + 2.0 * dq[2, i, lane] + dq[3, i, lane]
+                w[i, lane] + 2.0 * dq[1, i, lane] + 2.0 * dq[2, i, lane] + dq[3, i, lane]
             )
             w[i, lane] += sixth * (
                 dw[0, i, lane] + 2.0 * dw[1, i, lane] + 2.0 * dw[2, i, lane] + dw[3, i, lane]
@@ -372,12 +376,11 @@ def rk4_lanes(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n
         dq = np.empty((4, n, LANES))
         dw = np.empty((4, n, LANES))
         qs = np.empty((n, LANES))
-        ws = np.empty((n, LANES))
         acc = np.empty(_ACC_ROWS * LANES)
         trig = np.empty(3 * LANES)
         for _ in range(n_steps):
             rk4_step_lanes(p, gravity_m_s2, torque_Nm, q, w, step_s, work, matrix, dq, dw, qs,
-                           ws, acc, trig)  # fmt: skip
+                           acc, trig)  # fmt: skip
         for lane in range(count):
             for i in range(n):
                 theta_rad[first + lane, i] = q[i, lane]

@@ -16,6 +16,8 @@ from planar_tui.dynamics import simulate, torques
 from planar_tui.jobkind import JobKind, RobotKind
 from planar_tui.motion import job as motion_uncertainty
 from planar_tui.sensitivity import job as sensitivity
+from planar_tui.workspace import fivebar as robot5r
+from planar_tui.workspace import fivebar_job as workspace5r
 from planar_tui.workspace import job as workspace
 from planar_tui.workspace import prr, prr_job, rpr, rpr_job
 from planar_tui.workspace import robot as robot3rrr
@@ -27,6 +29,7 @@ ROBOT_KINDS: dict[str, RobotKind] = {
         robot3rrr.ROBOT_KIND,
         rpr.ROBOT_KIND,
         prr.ROBOT_KIND,
+        robot5r.ROBOT_KIND,
     )
 }
 
@@ -37,6 +40,7 @@ JOB_KINDS: dict[str, JobKind] = {
         torques.JOB_KIND,
         sensitivity.JOB_KIND,
         workspace.JOB_KIND,
+        workspace5r.JOB_KIND,
         motion_uncertainty.JOB_KIND,
         rpr_job.JOB_KIND,
         prr_job.JOB_KIND,

@@ -9,9 +9,9 @@ every complementary input runs at the same low frequency, so the inputs are corr
 0.50 between every pair at D = 4, N = 128), so a job whose only method is ``efast`` also
 integrates N Monte-Carlo robots for its band (:func:`design_methods`). Every row of every
 design is one robot; all of them are integrated together (on the CPU by the lane-batched
-RK4 of :mod:`kernels.motion_lanes`, 64 robots per SIMD block, equal to the scalar
-:func:`kernels.rk4.rk4_integrate` to round-off; or by :mod:`kernels.motion_cuda`), in calls
-of about
+RK4 of :mod:`kernels.motion_lanes`, :data:`~kernels.motion_lanes.LANES` robots per SIMD
+block, equal to the scalar :func:`kernels.rk4.rk4_integrate` to round-off; or by
+:mod:`kernels.motion_cuda`), in calls of about
 :data:`~planar_tui.dynamics.simulate.CHUNK_SECONDS` for progress and cancel (sized by the
 simulate job's :func:`~planar_tui.dynamics.simulate.next_chunk_steps`), stopping at every
 recorded step to take the outputs: the relative joint angles

@@ -54,6 +54,12 @@ class BudgetSpec(Protocol):
     def box_budget(self) -> int: ...
 
 
+class Reach(Protocol):
+    """A robot whose reach bounds its workspace (:func:`default_search_box`)."""
+
+    def reach_box_cm(self, orientation_rad: float) -> tuple[float, float, float, float]: ...
+
+
 #: Boxes per kernel call: ~50 ms of work at ~1 µs per 5-D box.
 CHUNK_BOXES = 50_000
 #: Leaf check of the arc-distance form: an n x n sub-grid may prove a leaf outside.
@@ -319,7 +325,7 @@ def pave_in_levels(seeds, budget: BoxBudget, decide, inside_cm2: float = 0.0):
 
 
 def default_search_box(
-    robot: Robot3RRR, orientation_rad: float, precision_cm: float
+    robot: Reach, orientation_rad: float, precision_cm: float
 ) -> tuple[tuple[float, float], tuple[float, float]]:
     """A square about the reach box whose side is ``precision_cm * 2**n`` (smallest n), so
     that the bisection's leaves are exactly ``precision_cm`` wide."""

@@ -53,6 +53,7 @@ from planar_tui.workspace.singularity import (
 
 if TYPE_CHECKING:
     from planar_tui.workspace.compute import WorkspaceOutcome
+    from planar_tui.workspace.fivebar_singularity import FiveBarSingularities
     from planar_tui.workspace.singularity import SingularityOutcome
 #: How the interval forms pave: per (x, y) box a 1-D θ search per leg, or the paper's
 #: bisection of (x, y, θ1, θ2, θ3) boxes.
@@ -134,6 +135,80 @@ def _checked_box_budget(budget: int, reader: TableReader) -> int:
     )
 
 
+def check_paving(values: dict[str, Any], reader: TableReader) -> dict[str, Any]:
+    """The rules of the workspace kinds' paving keys: the refinement precision cannot
+    exceed the precision; the box budget within the memory limit."""
+    refine = values["refine_precision_cm"]
+    if refine is not None and refine > values["precision_cm"]:
+        raise reader.error(
+            "refine_precision_cm", f"is {refine:g} > precision_cm", "<= precision_cm"
+        )
+    values["box_budget"] = _checked_box_budget(values["box_budget"], reader)
+    return values
+
+
+def search_box_setting(read: Any) -> Any:
+    """``search_box_cm`` of the workspace kinds, read (and checked) by ``read``."""
+    return setting(
+        read,
+        default=None,
+        default_doc="a square about the reach",
+        type_doc="`[[x_min, x_max], [y_min, y_max]]`",
+        doc="initial (x, y) box; must contain the legs' reach",
+    )
+
+
+def refine_setting() -> Any:
+    """``refine_precision_cm`` of the workspace kinds."""
+    return setting(
+        number(positive=True),
+        default=None,
+        type_doc="number > 0, ≤ `precision_cm`",
+        doc="boundary-only refinement with the exact leg-wise test",
+    )
+
+
+def budget_setting(doc: str) -> Any:
+    """``box_budget`` of the workspace kinds (:func:`_checked_box_budget` in ``check``)."""
+    return setting(
+        integer(minimum=1),
+        default=DEFAULT_BOX_BUDGET,
+        type_doc="integer ≥ 1, × 112 bytes ≤ the memory limit",
+        doc=doc,
+    )
+
+
+def reference_setting() -> Any:
+    """``geometric_reference`` of the workspace kinds."""
+    return setting(
+        boolean(),
+        default=True,
+        type_doc="boolean",
+        doc="also compute the exact (shapely) area and its error bound",
+    )
+
+
+def boxes_setting() -> Any:
+    """``boxes_output`` of the workspace kinds."""
+    return setting(
+        relative_path(),
+        default=None,
+        type_doc="relative path",
+        doc="CSV of the kept boxes (`--boxes` on the command line)",
+    )
+
+
+def singularity_precision_setting() -> Any:
+    """``singularity_precision_cm`` of the workspace kinds."""
+    return setting(
+        number(positive=True),
+        default=None,
+        type_doc="number > 0",
+        default_doc="`precision_cm`",
+        doc="bisection precision of the singularity paving",
+    )
+
+
 @dataclass(frozen=True, kw_only=True)
 class WorkspaceSpec:
     """Settings of one workspace computation (angles in degrees, lengths in cm)."""
@@ -172,12 +247,8 @@ class WorkspaceSpec:
         doc="natural, mean-value, slope: pave (x, y) deciding each leg by its own θ search "
         "(`legwise`), or bisect (x, y, θ1, θ2, θ3) boxes as paper B (`joint`)",
     )
-    search_box_cm: tuple[tuple[float, float], tuple[float, float]] | None = setting(
-        _search_box,
-        default=None,
-        default_doc="a square about the reach",
-        type_doc="`[[x_min, x_max], [y_min, y_max]]`",
-        doc="initial (x, y) box; must contain the legs' reach",
+    search_box_cm: tuple[tuple[float, float], tuple[float, float]] | None = search_box_setting(
+        _search_box
     )
     angle_scale: float = setting(
         number(positive=True),
@@ -192,32 +263,14 @@ class WorkspaceSpec:
         type_doc="boolean",
         doc="natural form only: the paper's expanded eqs. 22-23 (paper layout)",
     )
-    refine_precision_cm: float | None = setting(
-        number(positive=True),
-        default=None,
-        type_doc="number > 0, ≤ `precision_cm`",
-        doc="boundary-only refinement with the exact leg-wise test",
-    )
-    box_budget: int = setting(
-        integer(minimum=1),
-        default=DEFAULT_BOX_BUDGET,
-        type_doc="integer ≥ 1, × 112 bytes ≤ the memory limit",
-        doc="most boxes one job may process (legwise: (x, y, θ_i) boxes a leg's form is "
+    refine_precision_cm: float | None = refine_setting()
+    box_budget: int = budget_setting(
+        "most boxes one job may process (legwise: (x, y, θ_i) boxes a leg's form is "
         "evaluated on; then it fails, writing nothing); the default is lowered to fit the "
-        "memory limit",
+        "memory limit"
     )
-    geometric_reference: bool = setting(
-        boolean(),
-        default=True,
-        type_doc="boolean",
-        doc="also compute the exact (shapely) area and its error bound",
-    )
-    boxes_output: str | None = setting(
-        relative_path(),
-        default=None,
-        type_doc="relative path",
-        doc="CSV of the kept boxes (`--boxes` on the command line)",
-    )
+    geometric_reference: bool = reference_setting()
+    boxes_output: str | None = boxes_setting()
     singularities: bool = setting(
         boolean(),
         default=False,
@@ -238,13 +291,7 @@ class WorkspaceSpec:
         default_doc="(the workspace's centroid)",
         doc="centre of the singularity-free circle (must be reachable)",
     )
-    singularity_precision_cm: float | None = setting(
-        number(positive=True),
-        default=None,
-        type_doc="number > 0",
-        default_doc="`precision_cm`",
-        doc="bisection precision of the singularity paving",
-    )
+    singularity_precision_cm: float | None = singularity_precision_setting()
     plot: str | None = plot_setting()
 
     @staticmethod
@@ -260,13 +307,7 @@ class WorkspaceSpec:
             raise reader.error(
                 "expanded", "needs the paper's layout", "no base_joints_cm / platform_points_cm"
             )
-        refine = values["refine_precision_cm"]
-        if refine is not None and refine > values["precision_cm"]:
-            raise reader.error(
-                "refine_precision_cm", f"is {refine:g} > precision_cm", "<= precision_cm"
-            )
-        values["box_budget"] = _checked_box_budget(values["box_budget"], reader)
-        return values
+        return check_paving(values, reader)
 
     @property
     def limits_rad(self) -> tuple[tuple[float, float], ...]:
@@ -382,7 +423,7 @@ def map_title(job: WorkspaceJob, outcome: WorkspaceOutcome) -> str:
     from planar_tui.workspace.orientation import describe
 
     title = f"{job.label}: {outcome.form}, ε = {outcome.precision_cm:.4g} cm"
-    if isinstance(job.spec.orientation_deg, tuple):
+    if isinstance(getattr(job.spec, "orientation_deg", None), tuple):  # a five-bar has none
         title += f", {describe(job.spec)}"
     if outcome.refine_precision_cm is not None:
         title += f", boundary refined to {outcome.refine_precision_cm:.4g} cm"
@@ -415,17 +456,28 @@ def point_figures(job: WorkspaceJob, result: WorkspaceResult) -> dict[str, Any]:
     return {name: value for name, value in zip(header, row, strict=True) if name != "seconds"}
 
 
-def overlays(singular: SingularityOutcome | None) -> dict[str, Any]:
+def overlays(singular: SingularityOutcome | FiveBarSingularities | None) -> dict[str, Any]:
     """``render_map`` keywords drawing the singular boxes and the circle (none without)."""
     if singular is None:
         return {}
-    centre = singular.centre_cm
-    return {"singular": singular.singular_boxes, "circle": (*centre, singular.radius_lo_cm)}
+    drawn: dict[str, Any] = {"singular": singular.singular_boxes}
+    if singular.centre_cm is not None:  # a five-bar's singularities may come without one
+        drawn["circle"] = (*singular.centre_cm, singular.radius_lo_cm)
+    return drawn
 
 
 def _extra_outputs(job: WorkspaceJob) -> dict[str, str]:
     return {"boxes": job.spec.boxes_output} if job.spec.boxes_output else {}
 
+
+#: The workspace kinds' command-line option, boxes output and map view.
+PRECISION_OPTION = Option(
+    "--precision", "precision_cm", "Precision epsilon in cm; overrides `precision_cm`.", float
+)
+BOXES_OPTION = OutputOption(
+    "--boxes", "boxes", "CSV of the kept boxes (with several jobs: FILE-1.csv ...)."
+)
+MAP_VIEW = ("--map/--no-map", "Print the character-cell map.")
 
 JOB_KIND = JobKind(
     name="workspace",
@@ -450,12 +502,10 @@ JOB_KIND = JobKind(
         options=(
             Option("--form", "form",
                    "natural, mean-value, slope, arc-distance or geometric; overrides `form`."),
-            Option("--precision", "precision_cm",
-                   "Precision epsilon in cm; overrides `precision_cm`.", float),
+            PRECISION_OPTION,
         ),
-        outputs=(OutputOption("--boxes", "boxes",
-                              "CSV of the kept boxes (with several jobs: FILE-1.csv ...)."),),
-        view=("--map/--no-map", "Print the character-cell map."),
+        outputs=(BOXES_OPTION,),
+        view=MAP_VIEW,
     ),
     tab=Tab("Workspace", 2, "planar_tui.app.widgets.workspace_pane:WorkspacePane"),
     figure="planar_tui.figures.workspace:from_result",

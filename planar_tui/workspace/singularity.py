@@ -67,15 +67,21 @@ def read_centre(reader, name, default, robot, values):
     return (point[0], point[1])
 
 
+def refuse_without_singularities(values: dict, reader, names) -> None:
+    """The first of the keys ``names`` that is set, without ``singularities = true``, is
+    a :class:`PresetError` (exit code 2)."""
+    for name in names:
+        if values[name] is not None:
+            raise reader.error(name, "is set without singularities = true", "singularities = true")
+
+
 def check_singularity(values: dict, reader) -> None:
     """``elbow``, ``circle_centre_cm`` and ``singularity_precision_cm`` go with
     ``singularities = true``, which needs a single orientation and a form with boxes."""
     if not values["singularities"]:
-        for name in ("elbow", "circle_centre_cm", "singularity_precision_cm"):
-            if values[name] is not None:
-                raise reader.error(
-                    name, "is set without singularities = true", "singularities = true"
-                )
+        refuse_without_singularities(
+            values, reader, ("elbow", "circle_centre_cm", "singularity_precision_cm")
+        )
         return
     if isinstance(values["orientation_deg"], tuple):
         raise reader.error(
@@ -88,21 +94,25 @@ def _on_arc(angle: float, lo: float, hi: float) -> bool:
     return (angle - lo) % (2.0 * math.pi) <= hi - lo
 
 
+def branch_angles(vx: float, vy: float, l1: float, l2: float) -> dict[int, float] | None:
+    """The active angles :math:`\\theta = \\alpha + s \\beta` for ``s = +1, -1`` of a leg
+    whose platform point is at ``(vx, vy)`` from its base joint, or ``None`` where it
+    cannot close."""
+    rho = math.hypot(vx, vy)
+    cosine = (rho * rho + l1 * l1 - l2 * l2) / (2.0 * l1 * rho) if rho > 0 else 2.0
+    if abs(cosine) > 1.0:
+        return None
+    alpha, beta = math.atan2(vy, vx), math.acos(cosine)
+    return {1: alpha + beta, -1: alpha - beta}
+
+
 def leg_angles(robot, orientation_rad, point):
-    """Per leg, the active angles :math:`\\theta = \\alpha + s \\beta` for ``s = +1, -1``
-    at the platform position ``point``, or ``None`` where the leg cannot close."""
+    """Per leg, :func:`branch_angles` at the platform position ``point``."""
     l1, l2 = robot.proximal_cm, robot.distal_cm
-    result: list[dict[int, float] | None] = []
-    for dx, dy in robot.leg_offsets_cm(orientation_rad):
-        vx, vy = point[0] + dx, point[1] + dy
-        rho = math.hypot(vx, vy)
-        cosine = (rho * rho + l1 * l1 - l2 * l2) / (2.0 * l1 * rho) if rho > 0 else 2.0
-        if abs(cosine) > 1.0:
-            result.append(None)
-            continue
-        alpha, beta = math.atan2(vy, vx), math.acos(cosine)
-        result.append({1: alpha + beta, -1: alpha - beta})
-    return result
+    return [
+        branch_angles(point[0] + dx, point[1] + dy, l1, l2)
+        for dx, dy in robot.leg_offsets_cm(orientation_rad)
+    ]
 
 
 def det_at(robot, orientation_rad, point, elbow) -> float:

@@ -115,3 +115,9 @@ class WorkspacePane(JobPane):
         from planar_tui.workspace.job import overlays
 
         self.draw_map(outcome.boxes, outcome.status, **overlays(result.singularity))
+
+
+class FiveBarPane(WorkspacePane):
+    """The five-bar's tab: the workspace pane on ``[[workspace5r]]`` jobs."""
+
+    kind = "workspace5r"

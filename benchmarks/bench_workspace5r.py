@@ -1,0 +1,129 @@
+"""Benchmark of the five-bar's workspace (issue 25): ``python benchmarks/bench_workspace5r.py``
+(also part ``fivebar`` of ``benchmarks/bench_workspace.py``).
+
+In process (kernels compiled and loaded first): the bundled illustrative five-bar (about
+100 cm reach) at ε = 0.05 cm, in any working mode and in mode ``+-``: seconds (best of 3),
+(x, y) boxes decided, the certified bracket [inside, kept], the exact area and the
+bracket's width in % of it (goal ≤ 2 %), beside the baseline run in the same process: the
+3-RRR's arc-distance paving of paper B's Table 3 at the same ε (the ratio is five-bar /
+3-RRR). Then whole processes through the CLI (median of 3 fresh processes, Numba cache
+warm; goal ≤ 1 s on 2 cores); the floor of any Numba process on this machine is part
+``cli`` of ``bench_workspace.py``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(REPO))
+
+from planar_tui.runtime import prepare_kernels  # noqa: E402
+
+prepare_kernels()  # before any kernel is imported
+
+PRESET = REPO / "presets" / "fivebar-illustrative.toml"
+EPS = 0.05
+
+
+def best_of(run, runs=3):
+    times = []
+    for _ in range(runs):
+        started = time.perf_counter()
+        result = run()
+        times.append(time.perf_counter() - started)
+    return min(times), result
+
+
+def baseline_seconds() -> float:
+    """The 3-RRR's arc-distance paving of paper B's Table 3 at ε = EPS (best of 3)."""
+    from planar_tui.progress import Progress
+    from planar_tui.workspace.compute import BoxBudget, compute_workspace
+    from planar_tui.workspace.job import WorkspaceSpec
+    from planar_tui.workspace.robot import Robot3RRR
+
+    spec = WorkspaceSpec(
+        joint_limits_deg=((20, 70), (110, 160), (245, 295)), precision_cm=EPS,
+        form="arc-distance", search_box_cm=((0, 120), (0, 120)), geometric_reference=False,
+    )  # fmt: skip
+
+    class Job:
+        preset_path, label, key = "bench", "bench:workspace", "workspace"
+
+    Job.spec = spec  # type: ignore[attr-defined]
+
+    def run():
+        return compute_workspace(Robot3RRR(), spec, BoxBudget(Job(), Progress()))  # type: ignore[arg-type]
+
+    run()
+    return best_of(run)[0]
+
+
+def in_process() -> None:
+    from planar_tui.presets import load_preset
+    from planar_tui.progress import Progress
+    from planar_tui.workspace.compute import BoxBudget
+    from planar_tui.workspace.fivebar import geometric_area
+    from planar_tui.workspace.fivebar_job import compute_fivebar
+
+    base = baseline_seconds()
+    print(f"\n## Five-bar workspace at ε = {EPS} cm, in process (best of 3)\n")
+    print(f"Baseline: 3-RRR arc-distance, paper B Table 3 at ε = {EPS} cm: {base:.3f} s\n")
+    print("| mode | seconds | ratio to baseline | boxes | bracket (cm²) | exact (cm²) | width % |")
+    print("|---|---|---|---|---|---|---|")
+    for job in load_preset(PRESET).jobs:
+        spec = dataclasses.replace(
+            job.spec, precision_cm=EPS, geometric_reference=False, singularities=False,
+            singularity_free_circle=None, singularity_precision_cm=None,
+        )  # fmt: skip
+        job = dataclasses.replace(job, spec=spec)
+
+        def run(job=job):
+            return compute_fivebar(job.robot, job.spec, BoxBudget(job, Progress()))
+
+        run()
+        seconds, outcome = best_of(run)
+        exact = geometric_area(job.robot).area_cm2
+        width = 100.0 * (outcome.area_kept_cm2 - outcome.area_inside_cm2) / exact
+        print(
+            f"| {job.robot.working_mode} | {seconds:.3f} | {seconds / base:.2f} | "
+            f"{outcome.boxes_processed:,} | [{outcome.area_inside_cm2:.1f}, "
+            f"{outcome.area_kept_cm2:.1f}] | {exact:.2f} | {width:.3f} |"
+        )
+
+
+def whole_process() -> None:
+    from benchmarks.bench_workspace import wall  # the floor: its part "cli"
+
+    print("\n## Five-bar, whole process through the CLI (median of 3, Numba cache warm)\n")
+    print("| run | seconds | goal |")
+    print("|---|---|---|")
+    text = PRESET.read_text(encoding="utf-8").split("\n[[workspace5r]]")
+    robot, jobs = text[0], text[1:]
+    with tempfile.TemporaryDirectory() as folder:
+        for label, job in zip(("any mode", "mode +-"), jobs, strict=True):
+            body = job.split("\n")
+            body = [line for line in body if not line.startswith("singular")]
+            path = Path(folder) / "fivebar.toml"
+            path.write_text(
+                robot + "\n[[workspace5r]]\ngeometric_reference = false" + "\n".join(body),
+                encoding="utf-8",
+            )
+            command = [sys.executable, "-m", "planar_tui", "workspace5r", str(path), "--no-map",
+                       "--out-dir", folder]  # fmt: skip
+            subprocess.run(command, check=True, capture_output=True, cwd=REPO)  # warm cache
+            print(f"| five-bar {label}, ε = {EPS} cm | {wall(command):.2f} | 1 |")
+
+
+def main() -> None:
+    in_process()
+    whole_process()
+
+
+if __name__ == "__main__":
+    main()

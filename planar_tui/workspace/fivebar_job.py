@@ -1,0 +1,261 @@
+"""The ``[[workspace5r]]`` job: the certified workspace of a five-bar (``[robot5r]``,
+:mod:`planar_tui.workspace.fivebar`), its type I and II singularities and the largest
+singularity-free circle (:mod:`planar_tui.workspace.fivebar_singularity`).
+
+The paving is the 3-RRR's (:func:`planar_tui.workspace.compute.pave_in_levels`) with the
+five-bar's exact leg-wise test (:mod:`planar_tui.kernels.workspace5r`): boxes proved inside
+are never split, boundary boxes are halved down to ``precision_cm`` (and again down to
+``refine_precision_cm``); ``area_inside <= exact <= area_kept``.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from planar_tui.jobkind import (
+    Command,
+    Job,
+    JobKind,
+    JobResult,
+    PreparedJob,
+    Tab,
+)
+from planar_tui.progress import Progress
+from planar_tui.schema import (
+    TableReader,
+    boolean,
+    number,
+    plot_setting,
+    setting,
+    string,
+)
+from planar_tui.workspace.fivebar import Robot5R
+from planar_tui.workspace.job import (
+    BOXES_OPTION,
+    MAP_VIEW,
+    PRECISION_OPTION,
+    _extra_outputs,
+    boxes_setting,
+    budget_setting,
+    check_paving,
+    point_figures,
+    reference_setting,
+    refine_setting,
+    render_workspace,
+    search_box_setting,
+    singularity_precision_setting,
+)
+from planar_tui.workspace.singularity import read_centre, refuse_without_singularities
+
+if TYPE_CHECKING:
+    from planar_tui.workspace.compute import BoxBudget, WorkspaceOutcome
+    from planar_tui.workspace.fivebar_singularity import FiveBarSingularities
+
+#: The forms: the exact leg-wise paving, or the exact area only.
+FORMS = ("arc-distance", "geometric")
+
+
+def _search_box(reader: TableReader, name, default, robot: Robot5R, values):
+    """An (x, y) box in cm that contains both legs' reach."""
+    if not reader.has(name):
+        return None
+    rows = reader.number_rows(name, columns=2, row_doc="[min, max] in cm")
+    rxlo, rxhi, rylo, ryhi = robot.reach_box_cm()
+    expected = f"[[x_min, x_max], [y_min, y_max]] containing x in [{rxlo:.4g}, {rxhi:.4g}], "
+    expected += f"y in [{rylo:.4g}, {ryhi:.4g}] cm"
+    if len(rows) != 2 or any(not lo < hi for lo, hi in rows):
+        raise reader.error(name, f"is {[list(r) for r in rows]}", expected)
+    (xlo, xhi), (ylo, yhi) = rows
+    if rxlo <= rxhi and not (xlo <= rxlo and rxhi <= xhi and ylo <= rylo and ryhi <= yhi):
+        raise reader.error(name, "cannot contain the robot's reach", expected)
+    return rows
+
+
+@dataclass(frozen=True, kw_only=True)
+class FiveBarSpec:
+    """Settings of one five-bar workspace computation (lengths in cm)."""
+
+    precision_cm: float = setting(
+        number(positive=True), type_doc="number > 0", doc="paving precision ε"
+    )
+    form: str = setting(
+        string(choices=FORMS),
+        default="arc-distance",
+        type_doc=", ".join(f"`{f}`" for f in FORMS),
+        doc="the exact leg-wise paving, or the exact (shapely) area only",
+    )
+    refine_precision_cm: float | None = refine_setting()
+    search_box_cm: tuple[tuple[float, float], tuple[float, float]] | None = search_box_setting(
+        _search_box
+    )
+    box_budget: int = budget_setting(
+        "most (x, y) boxes one job may decide (then it fails, writing nothing); the default "
+        "is lowered to fit the memory limit"
+    )
+    geometric_reference: bool = reference_setting()
+    boxes_output: str | None = boxes_setting()
+    singularities: bool = setting(
+        boolean(),
+        default=False,
+        type_doc="boolean",
+        doc="also pave the type I (serial) and type II (parallel) singularities",
+    )
+    singularity_precision_cm: float | None = singularity_precision_setting()
+    singularity_free_circle: tuple[float, float] | None = setting(
+        read_centre,
+        default=None,
+        type_doc="`[x, y]`",
+        default_doc="(no circle)",
+        doc="centre of the largest singularity-free circle to certify (needs "
+        "`singularities = true` and a working mode)",
+    )
+    plot: str | None = plot_setting()
+
+    @staticmethod
+    def check(values: dict[str, Any], reader: TableReader, robot: Robot5R) -> dict[str, Any]:
+        """The refinement is at most the precision; the circle goes with ``singularities``
+        and a working mode."""
+        if not values["singularities"]:
+            refuse_without_singularities(
+                values, reader, ("singularity_free_circle", "singularity_precision_cm")
+            )
+        elif values["singularity_free_circle"] is not None and robot.working_mode == "any":
+            raise reader.error(
+                "singularity_free_circle",
+                "needs a working mode (the robot's working_mode is any)",
+                'working_mode = "++", "+-", "-+" or "--" in [robot5r]',
+            )
+        elif values["singularity_free_circle"] is not None:
+            from planar_tui.workspace.fivebar_singularity import centre_problem
+
+            problem = centre_problem(robot, values["singularity_free_circle"])
+            if problem is not None:
+                raise reader.error(
+                    "singularity_free_circle",
+                    problem,
+                    "a centre inside the workspace, off its singularities",
+                )
+        return check_paving(values, reader)
+
+
+FiveBarJob = Job[FiveBarSpec, Robot5R]
+
+
+@dataclass(frozen=True, kw_only=True)
+class FiveBarResult(JobResult):
+    """The workspace's boxes and certified bracket, and the singularities (or ``None``)."""
+
+    outcome: WorkspaceOutcome
+    singularity: FiveBarSingularities | None = None
+
+
+def compute_fivebar(robot: Robot5R, spec: FiveBarSpec, budget: BoxBudget) -> WorkspaceOutcome:
+    """Pave the search box with the five-bar's exact test (module docstring)."""
+    import numpy as np
+
+    from planar_tui.kernels.workspace5r import level
+    from planar_tui.workspace.compute import (
+        WorkspaceOutcome,
+        default_search_box,
+        finished_outcome,
+        pave_in_levels,
+    )
+    from planar_tui.workspace.fivebar import geometric_area
+
+    started = time.perf_counter()
+    box = spec.search_box_cm or default_search_box(robot, 0.0, spec.precision_cm)
+    extent = (box[0][0], box[0][1], box[1][0], box[1][1])
+    legs, limits = robot.leg_arrays()
+    geometric = None
+    if spec.geometric_reference or spec.form == "geometric":
+        geometric = geometric_area(robot)
+    if spec.form == "geometric":
+        assert geometric is not None
+        return WorkspaceOutcome(
+            spec.form, spec.precision_cm, None, np.zeros((0, 4)), np.zeros(0, np.int64), 0,
+            geometric.outer_cm2, geometric.inner_cm2, geometric,
+            time.perf_counter() - started, extent,
+        )  # fmt: skip
+
+    def pave(seeds, precision, inside_cm2=0.0):
+        def decide(rows, start, stop, children, outcome):
+            level(legs, limits, precision, rows, start, stop, children, outcome)
+
+        return pave_in_levels(seeds, budget, decide, inside_cm2)
+
+    budget.progress.start(1.0, "five-bar paving")
+    boxes, status = pave(np.array([extent]), spec.precision_cm)
+    return finished_outcome(
+        spec, boxes, status, lambda seeds, inside: pave(seeds, spec.refine_precision_cm, inside),
+        budget, geometric, started, extent, form=spec.form, disjoint=True,
+    )  # fmt: skip
+
+
+def run_fivebar(
+    ready: PreparedJob[FiveBarSpec, Robot5R, object], progress: Progress
+) -> FiveBarResult:
+    """Compute one ``[[workspace5r]]`` job."""
+    from planar_tui.csvio import CsvTable
+    from planar_tui.workspace.compute import (
+        SUMMARY_HEADER,
+        BoxBudget,
+        boxes_table,
+        summary_line,
+    )
+    from planar_tui.workspace.fivebar_singularity import (
+        HEADER,
+        compute_singularities,
+        singularity_columns,
+    )
+
+    job = ready.job
+    budget = BoxBudget(job, progress)
+    outcome = compute_fivebar(job.robot, job.spec, budget)
+    singular = None
+    if job.spec.singularities:
+        singular = compute_singularities(job, outcome.extent_cm, budget)
+    base = outcome.summary_row()
+    row = [base[0], job.robot.working_mode, *base[2:11], *singularity_columns(singular), base[11]]
+    summary = f"{summary_line(outcome)}, working mode {job.robot.working_mode}"
+    if singular is not None:
+        summary += f"; {singular.describe()}"
+    return FiveBarResult(
+        # the 3-RRR's columns, the working mode in place of the strategy
+        table=CsvTable(
+            (SUMMARY_HEADER[0], "working_mode", *SUMMARY_HEADER[2:-1], *HEADER, "seconds"), [row]
+        ),
+        summary=summary,
+        extra_tables={"boxes": boxes_table(outcome)},
+        outcome=outcome,
+        singularity=singular,
+    )
+
+
+JOB_KIND = JobKind(
+    name="workspace5r",
+    robot_kind="robot5r",
+    settings=FiveBarSpec,
+    run=run_fivebar,
+    summary="five-bar (2-DOF) workspace by certified paving, with its type I and II "
+    "singularities and singularity-free circle",
+    render=render_workspace,
+    extra_outputs=_extra_outputs,
+    point_figures=point_figures,
+    command=Command(
+        "workspace5r",
+        "Five-bar workspace of every workspace5r job: summary CSV, boxes CSV (--boxes or the "
+        "preset's boxes_output) and a map.",
+        options=(PRECISION_OPTION,),
+        outputs=(BOXES_OPTION,),
+        view=MAP_VIEW,
+    ),
+    tab=Tab("Five-bar", 8, "planar_tui.app.widgets.workspace_pane:FiveBarPane"),
+    figure="planar_tui.figures.fivebar:from_result",
+    warmup=(
+        "[[workspace5r]]\nprecision_cm = 8.0\n"
+        "geometric_reference = false\nrefine_precision_cm = 4.0\nsingularities = true\n"
+        "singularity_free_circle = [0, 60]\n"
+    ),
+)  # fmt: skip
