@@ -65,6 +65,15 @@ def isolated_design_cache(tmp_path_factory, monkeypatch):
     return folder
 
 
+@pytest.fixture(autouse=True)
+def isolated_settings(tmp_path_factory, monkeypatch):
+    """Every test gets its own empty settings folder (``PLANAR_TUI_CONFIG_DIR``), so no
+    app started by a test reads or writes the user's settings."""
+    folder = tmp_path_factory.mktemp("settings")
+    monkeypatch.setenv("PLANAR_TUI_CONFIG_DIR", str(folder))
+    return folder
+
+
 @pytest.fixture
 def cli():
     """Invoke ``planar-tui`` in-process; returns click's Result (exit_code, stdout, stderr)."""

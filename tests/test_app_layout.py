@@ -168,15 +168,16 @@ def test_workspace_map_is_aspect_true_and_fits(width, height):
 
 def test_help_lists_every_binding():
     from planar_tui.app.app import WorkbenchApp
-    from planar_tui.app.screens.dialogs import HELP_TEXT
+    from planar_tui.app.screens.dialogs import help_text
 
+    text = help_text(WorkbenchApp.binding_sources())  # generated from the bindings
     names = {"question_mark": "?", "f1": "F1", "f5": "F5"}
-    keys = {"ctrl+p", "ctrl+q", "enter", "y", "n"}  # palette, Textual's quit, dialogs
+    keys = {"ctrl+p", "ctrl+q", "enter", "y", "n", "tab", "shift+tab"}  # Textual's, dialogs
     for binding in WorkbenchApp.BINDINGS:
         keys.update(binding.key.split(","))
     for key in keys:
         shown = names.get(key, key.upper() if re.fullmatch(r"f\d+", key) else key)
-        assert re.search(rf"(^|[\s,(]){re.escape(shown)}[\s,)]", HELP_TEXT), key
+        assert re.search(rf"(^|[\s,(]){re.escape(shown)}[\s,)]", text), key
 
 
 def test_the_app_uses_public_textual_hooks_and_panes_post_messages():

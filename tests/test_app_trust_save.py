@@ -397,7 +397,7 @@ async def test_every_dialog_shows_its_choices_at_80x24(tmp_path, monkeypatch):
         await pilot.press("ctrl+o")  # the picker (no buttons: enter / escape)
         await check(0, "Open preset", "Enter: open", "Escape: cancel")
         await pilot.press("f1")
-        await check(0, "Help (escape closes)", "ctrl+z      undo")
+        await check(0, "Help (escape closes", "ctrl+z        undo")
         app.query_one("#robot-form #field-gravity_m_s2").value = "9.8"
         await pilot.pause()
         app.set_focus(None)
@@ -510,11 +510,12 @@ async def test_typing_600_brackets_or_a_310_digit_integer_shows_the_error_line(t
         await pilot.pause()
         assert app.is_running and not app.job_running
         assert "310 digits" in validation(app)
-        await pilot.press("ctrl+s")  # saving it: refused with the reason
+        await pilot.press("ctrl+s")  # saving it: only as a draft, after a question
         await pilot.pause()
-        assert isinstance(app.screen, MessageDialog)
-        assert "Not saved: the preset is invalid" in app.export_text()
-        app.pop_screen()
+        assert isinstance(app.screen, ConfirmDialog)
+        assert "The preset is invalid. Save it as a draft" in app.export_text()
+        await pilot.press("n")
+        await pilot.pause()
         assert app.is_running and field.value == "1" * 310
 
 

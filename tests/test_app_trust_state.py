@@ -344,7 +344,7 @@ async def test_torques_tab_and_run_all_write_what_planar_tui_run_writes(tmp_path
         await pilot.press("enter")  # the default folder: the app's output folder
         await pilot.pause()
         await finish(app, pilot)
-        assert "run all: 3 jobs done" in app.export_text()
+        assert any("Run all 3 jobs in" in n.message for n in app._notifications)
     result = cli("run", preset, "--out-dir", tmp_path / "cli")
     assert result.exit_code == 0, result.stderr
     names = sorted(p.name for p in (tmp_path / "app").iterdir())

@@ -6,8 +6,20 @@ import os
 import sys
 
 
+def last_preset() -> str | None:
+    """The preset last opened or saved in the app (:mod:`planar_tui.app.settings`) when
+    it is still a file; ``None`` (the bundled default) otherwise."""
+    from pathlib import Path
+
+    from planar_tui.app.settings import load_settings
+
+    path = load_settings()[0].last_preset
+    return path if path is not None and Path(path).is_file() else None
+
+
 def run_app(preset_argument: str | None = None, opened: tuple[str, ...] = ()) -> None:
-    """Open the workbench on a preset path or bundled name (default: a bundled preset).
+    """Open the workbench on a preset path or bundled name (default: the preset last
+    opened or saved, see :func:`last_preset`, else a bundled preset).
 
     A bad preset raises the CLI's :class:`~planar_tui.errors.PresetError` before the
     terminal is taken over, so the CLI prints its one-line error and exits with 2; so does
@@ -28,7 +40,7 @@ def run_app(preset_argument: str | None = None, opened: tuple[str, ...] = ()) ->
     from planar_tui.app.app import WorkbenchApp
     from planar_tui.app.workbench import Workbench
 
-    app = WorkbenchApp(Workbench.open(preset_argument), warm_kernels=True)
+    app = WorkbenchApp(Workbench.open(preset_argument or last_preset()), warm_kernels=True)
     app.open_results(list(opened))
     app.run()
     code = app.return_code or 0

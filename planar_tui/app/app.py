@@ -31,8 +31,10 @@ from planar_tui.app.job_runner import (
 )
 from planar_tui.app.messages import CancelRequested, DocumentEdited, RunRequested
 from planar_tui.app.optimise_actions import OptimiseActions
-from planar_tui.app.screens.dialogs import HelpScreen, MessageDialog, PathDialog
+from planar_tui.app.screens.dialogs import MessageDialog, PathDialog
+from planar_tui.app.settings import load_settings
 from planar_tui.app.sweep_actions import SweepActions
+from planar_tui.app.view_actions import ViewActions
 from planar_tui.app.widgets.panes import JobPane, RobotPane
 from planar_tui.app.workbench import Workbench
 from planar_tui.errors import PresetError
@@ -43,52 +45,75 @@ __all__ = ["REFRESH_S", "JobFinished", "WorkbenchApp"]
 REFRESH_S = 0.1
 
 
-class WorkbenchApp(SweepActions, OptimiseActions, FileActions, HistoryActions, App):
+#: The label of ``ctrl+t`` on each tab that has a view to step through (its pane's
+#: ``action_toggle_view``).
+VIEW_LABELS = {"sensitivity": "S1/ST/%", "motion_uncertainty": "Output"}
+
+
+class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, HistoryActions, App):
     """planar-tui's terminal workbench (open, save, export, undo and quit in
-    :class:`~planar_tui.app.file_actions.FileActions`, sweeps in
+    :class:`~planar_tui.app.file_actions.FileActions`; tabs, help, maximising, undo in
+    place and the settings in :class:`~planar_tui.app.view_actions.ViewActions`; sweeps in
     :class:`~planar_tui.app.sweep_actions.SweepActions`, optimisations in
     :class:`~planar_tui.app.optimise_actions.OptimiseActions`)."""
 
     CSS_PATH = Path(__file__).with_name("app.tcss")  # absolute: subclasses elsewhere find it
     TITLE = "planar-tui"
+    #: The footer shows the keys that fit 80 columns in every state (a job running and a
+    #: problem shown, the ^p palette at the right): q F1 F5 esc ^s ^f ^t ^g; every key is
+    #: in the help (F1) and the palette (ctrl+p).
     BINDINGS: ClassVar = [
         Binding("q", "quit", "Quit"),
         Binding("f1,question_mark", "help", "Help", key_display="F1"),
         Binding("f5", "run", "Run", key_display="F5"),
         Binding("escape", "cancel", "Cancel"),
-        Binding("ctrl+o", "open", "Open", priority=True),
+        Binding("ctrl+o", "open", "Open", priority=True, show=False),
         Binding("ctrl+s", "save", "Save", priority=True),
         Binding("ctrl+z", "undo", "Undo", priority=True, show=False),
-        Binding("ctrl+e", "export", "Export", priority=True),
+        Binding("ctrl+e", "export", "Export", priority=True, show=False),
         Binding("ctrl+f", "toggle_form", "Form", priority=True),
-        Binding("ctrl+n", "pane_action('add_link')", "Add link", priority=True),
-        Binding("ctrl+r", "pane_action('remove_link')", "Del link", priority=True),
-        Binding("ctrl+t", "pane_action('toggle_view')", "S1/ST/%", priority=True),
-        Binding("ctrl+g", "goto_problem", "Go to error", priority=True),
-        Binding("ctrl+l", "figure", "Figure", priority=True, show=False),
-        Binding("f9", "run_all", "Run all", key_display="F9"),
-        Binding("f8", "sweep", "Sweep", key_display="F8"),
-        Binding("f10", "history", "History", key_display="F10"),
+        Binding("ctrl+n", "pane_action('add_link')", "Add link", priority=True, show=False),
+        Binding("ctrl+r", "pane_action('remove_link')", "Del link", priority=True, show=False),
+        Binding("f10", "history", "History", key_display="F10", show=False),
         *(
-            Binding(str(number), f"show_tab_number({number})", f"Tab {number}", show=False)
+            Binding("ctrl+t", f"pane_view('{kind}')", label, priority=True)
+            for kind, label in VIEW_LABELS.items()
+        ),
+        Binding("ctrl+g", "goto_problem", "Error", priority=True),
+        Binding("ctrl+l", "figure", "Figure", priority=True, show=False),
+        Binding("ctrl+b", "maximise", "Maximise", priority=True, show=False),
+        Binding("f9", "run_all", "Run all", key_display="F9", show=False),
+        Binding("f8", "sweep", "Sweep", key_display="F8", show=False),
+        *(
+            Binding(str(number), f"digit_tab({number})", f"Tab {number}", show=False)
             for number in range(1, 7)
         ),
         *(
             Binding(key, f"show_tab_number({number})", f"Tab {number}", show=False, priority=True)
             for number, key in enumerate(("f2", "f3", "f4", "f6", "f7", "f12"), start=1)
         ),
+        Binding("ctrl+pagedown", "step_tab(1)", "Next tab", show=False, priority=True),
+        Binding("ctrl+pageup", "step_tab(-1)", "Previous tab", show=False, priority=True),
     ]
 
     def __init__(
-        self, workbench: Workbench, output_dir: Path | str = ".", *, warm_kernels: bool = False
+        self,
+        workbench: Workbench,
+        output_dir: Path | str | None = None,
+        *,
+        warm_kernels: bool = False,
     ):
         super().__init__()
         self.workbench = workbench
         #: Compile the kernels not yet cached in a background thread at start (what
         #: ``planar-tui`` does; tests leave it off to keep their timings their own).
         self.warm_kernels_at_start = warm_kernels
-        #: The folder ``ctrl+e`` offers (``planar-tui run --out-dir``'s default is ``.``).
-        self.output_dir = Path(output_dir)
+        #: The settings that persist (:mod:`planar_tui.app.settings`) and the warning of a
+        #: settings file that could not be used (shown once the app runs).
+        self.settings, self.settings_warning = load_settings()
+        #: The folder ``ctrl+e``, ``ctrl+l`` and F9 use: the one given, else the one last
+        #: exported or run into (the settings), else ``.`` (as ``planar-tui run``).
+        self.output_dir = Path(output_dir or self.settings.output_dir or ".")
         self.jobs = JobRunner(self)
         #: The document's problems as last checked (first one: the validation line).
         self.problems: list[PresetError] = []
@@ -128,18 +153,26 @@ class WorkbenchApp(SweepActions, OptimiseActions, FileActions, HistoryActions, A
 
     def compose(self) -> ComposeResult:
         panes = self.pane_classes()
+        #: The tabs' panes by name (kept: queried on every edit's check otherwise).
+        self.tab_panes: dict[str, Any] = {}
         with TabbedContent(id="tabs"):
             for title, name in self.tabs():
                 with TabPane(title, id=f"tab-{name}"):
                     pane = panes.get(name)
                     if pane is None:
-                        yield JobPane(self.workbench, kind=name, id=f"pane-{name}")
+                        pane_widget = JobPane(self.workbench, kind=name, id=f"pane-{name}")
                     else:
-                        yield pane(self.workbench, id=f"pane-{name}")
-        yield Static("", id="validation", markup=False)
+                        pane_widget = pane(self.workbench, id=f"pane-{name}")
+                    self.tab_panes[name] = pane_widget
+                    yield pane_widget
+        self.validation_line = Static("", id="validation", markup=False)
+        yield self.validation_line
         yield Footer(compact=True)
 
     def on_mount(self) -> None:
+        self.apply_settings()
+        if self.settings_warning:
+            self.notify(self.settings_warning, title="Settings", severity="warning", timeout=20)
         self.show_document_state()
         if self.warm_kernels_at_start:
             self.run_worker(
@@ -158,7 +191,11 @@ class WorkbenchApp(SweepActions, OptimiseActions, FileActions, HistoryActions, A
     def current_pane(self) -> Any:
         tabs = self.query_one(TabbedContent)
         name = (tabs.active or "tab-robot").removeprefix("tab-")
-        return self.query_one(f"#pane-{name}")
+        return self.tab_panes[name]
+
+    def job_panes(self) -> list[JobPane]:
+        """The job tabs' panes."""
+        return [pane for pane in self.tab_panes.values() if isinstance(pane, JobPane)]
 
     async def on_document_edited(self, message: DocumentEdited) -> None:
         """A tab edited the preset: check it again (and mark it modified)."""
@@ -171,13 +208,12 @@ class WorkbenchApp(SweepActions, OptimiseActions, FileActions, HistoryActions, A
         tab, and dim the results whose inputs changed."""
         from planar_tui.app.problems import status_line
 
-        bars = self.query("#validation")
-        if not bars:  # closing, or between two compositions
+        bar = getattr(self, "validation_line", None)
+        if bar is None or not bar.is_attached:  # closing, or between two compositions
             return False
-        bar = bars.first(Static)
         preset, self.problems = self.workbench.check()
         self.mark_problems()
-        for pane in self.query(JobPane):
+        for pane in self.job_panes():
             pane.update_stale()
         if self.problems:
             bar.update(status_line(self.problems, self.workbench.display_name()))
@@ -197,7 +233,7 @@ class WorkbenchApp(SweepActions, OptimiseActions, FileActions, HistoryActions, A
             for error in self.problems
             if (where := locate(error, self.workbench.robot_kinds())) is not None
         ]
-        for pane in self.query("RobotPane, JobPane"):
+        for pane in self.tab_panes.values():
             pane.mark_problems(located)
 
     async def action_goto_problem(self) -> None:
@@ -317,6 +353,7 @@ class WorkbenchApp(SweepActions, OptimiseActions, FileActions, HistoryActions, A
             self.action_show_tab(jobs[0].kind)
         self.batch_inputs = {pane.id: pane.inputs() for pane in self.query(JobPane)}
         self.batch_dir = Path(out_dir)
+        self.remember_output_dir(out_dir)
         host.controls().set_running(True)
         host.controls().status(f"starting {len(jobs)} jobs")
         self.jobs.start_all(host, list(plan.jobs))
@@ -329,23 +366,29 @@ class WorkbenchApp(SweepActions, OptimiseActions, FileActions, HistoryActions, A
         for pane in self.query(f"#pane-{job.kind}").results(JobPane):
             if pane.index == job.index - 1 and pane.is_attached:
                 pane.show_result(job, message.result, self.batch_inputs.get(pane.id))
+        host = self.jobs.pane
+        if host is not None and host.job is not job:
+            host.end_live_view()  # not this job's live view: the next job's comes
 
     def on_batch_finished(self, message: BatchFinished) -> None:
         """ "Run all" ended: say how, on the controls it used."""
         self.refresh_bindings()
         done = len(message.rows)
+        for pane in self.job_panes():
+            pane.end_live_view()  # no tab keeps a running job's text or partial map
         if message.pane.is_attached:
             controls = message.pane.controls()
             controls.set_running(False)
-            where = f"files in {self.batch_dir}"
+            where = f"→ {self.batch_dir}"  # the folder first: the line's end may be cut
             if message.cancelled:
-                text = f"run all cancelled: {done} of {message.total} jobs done ({where})"
+                text = f"{where}: cancelled, {done}/{message.total} jobs done"
             elif message.error is not None:
-                text = f"run all failed after {done} of {message.total} jobs ({where})"
+                text = f"{where}: failed after {done}/{message.total} jobs"
             else:
                 controls.finished()
-                text = f"run all: {done} jobs done in {message.seconds:.2f} s ({where})"
+                text = f"{where}: {done} jobs in {message.seconds:.1f} s"
             controls.status(text)
+            self.notify(f"Run all {text.removeprefix(where + ': ')}; files in {self.batch_dir}")
         if message.error is not None:
             error = message.error
             shown = (
@@ -386,7 +429,7 @@ class WorkbenchApp(SweepActions, OptimiseActions, FileActions, HistoryActions, A
         if len(self.screen_stack) > 1:
             return  # a dialog is up: redrawing the screen behind it would only slow it down
         state, pane = self.jobs.latest, self.jobs.pane
-        if pane is not None and state is not None and self.job_running:
+        if pane is not None and state is not None and self.job_running and pane.is_attached:
             pane.show_progress(state)
 
     def action_cancel(self) -> None:
@@ -434,6 +477,20 @@ class WorkbenchApp(SweepActions, OptimiseActions, FileActions, HistoryActions, A
             self.exit()
         return self.quitting
 
+    def export_csv(self, pane: Any, out_dir: str | Path) -> list[Path]:
+        """Export (:class:`FileActions`), then offer that folder next time: the figure of
+        ``ctrl+l`` goes beside the CSV just exported."""
+        written = super().export_csv(pane, out_dir)
+        if written:
+            self.remember_output_dir(out_dir)
+        return written
+
+    def show_document_state(self) -> None:
+        """The title (:class:`FileActions`), and the preset as the last one opened."""
+        super().show_document_state()
+        if self.workbench.original_text is not None:
+            self.remember(last_preset=str(self.workbench.path.resolve()))
+
     # -- the screen as text -----------------------------------------------------------
     def export_text(self) -> str:
         """The screen as plain text (for tests, docs and text screenshots), read back from
@@ -443,30 +500,7 @@ class WorkbenchApp(SweepActions, OptimiseActions, FileActions, HistoryActions, A
         width, height = self.size
         return svg_screen_text(self.export_screenshot(), width, height)
 
-    # -- quitting, help, command palette --------------------------------------------
-    def action_help(self) -> None:
-        """Show the key bindings."""
-        if not isinstance(self.screen, HelpScreen):
-            self.push_screen(HelpScreen())
-
-    def action_show_tab(self, name: str) -> None:
-        """Switch to a tab by name."""
-        self.query_one(TabbedContent).active = f"tab-{name}"
-
-    def action_show_tab_number(self, number: int) -> None:
-        """Switch to tab ``number`` (1-based: keys 1-6 outside fields, F2-F4, F6, F7, F12)."""
-        tabs = self.tabs()
-        if 1 <= number <= len(tabs):
-            self.action_show_tab(tabs[number - 1][1])
-            self.call_after_refresh(self.focus_tab_content)
-
-    def focus_tab_content(self) -> None:
-        """Put the focus on the tab bar (off a field of the hidden tab), where the number
-        keys go on working."""
-        from textual.widgets import Tabs
-
-        self.query_one(TabbedContent).query_one(Tabs).focus()
-
+    # -- command palette ------------------------------------------------------------
     def action_pane(self, action: str) -> None:
         """Switch to a tab and run its own action (for the command palette)."""
         pane_name, method = action.split(".")
@@ -474,26 +508,33 @@ class WorkbenchApp(SweepActions, OptimiseActions, FileActions, HistoryActions, A
         self.call_later(self.action_pane_action, method)
 
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
-        """Show a tab's own bindings only on that tab."""
-        if action == "pane_action" and self.is_mounted:
+        """Show a tab's own bindings only on that tab (``ctrl+t`` labelled per tab), Cancel
+        only while a job runs, the digits only on the tab bar."""
+        if action in ("pane_action", "pane_view", "toggle_form", "run", "sweep"):
             try:
-                pane = self.current_pane()
-            except Exception:
-                return False
-            return hasattr(pane, f"action_{parameters[0]}")
+                pane = self.current_pane() if self.is_mounted else None
+            except Exception:  # between two compositions
+                pane = None
+            if action == "pane_action":
+                return hasattr(pane, f"action_{parameters[0]}")
+            if action == "pane_view":
+                shown = pane is not None and pane.id == f"pane-{parameters[0]}"
+                return shown and hasattr(pane, "action_toggle_view")
+            return isinstance(pane, JobPane)
+        if action == "digit_tab":
+            return self.digit_switches_tabs()
         if action == "cancel":
             return self.job_running
         if action == "goto_problem":
             return bool(self.problems)
-        if action in ("toggle_form", "run", "sweep") and self.is_mounted:
-            try:
-                return isinstance(self.current_pane(), JobPane)
-            except Exception:
-                return False
         return True
 
     def on_tabbed_content_tab_activated(self) -> None:
         self.refresh_bindings()
+
+    async def action_pane_view(self, kind: str) -> None:
+        """``ctrl+t``: step the current tab's view (labelled per tab, :data:`VIEW_LABELS`)."""
+        await self.action_pane_action("toggle_view")
 
     async def action_pane_action(self, method: str) -> None:
         """Run the current tab's own action (add/remove link, sensitivity view)."""
@@ -501,79 +542,9 @@ class WorkbenchApp(SweepActions, OptimiseActions, FileActions, HistoryActions, A
         if hasattr(pane, f"action_{method}"):
             await self.run_action(method, pane)
 
-    def action_toggle_form(self) -> None:
-        """Hide or show the settings form of a job tab (more room for results)."""
-        self.query_one("#tabs").toggle_class("hide-form")
-        for pane in self.query(JobPane):
-            self.call_after_refresh(pane.rerender)
-
     def get_system_commands(self, screen: Screen) -> Iterable[SystemCommand]:
+        """Textual's commands, then every action of the workbench by name (ctrl+p)."""
+        from planar_tui.app.palette import workbench_commands
+
         yield from super().get_system_commands(screen)
-        yield SystemCommand("Run job", "Run the job of the current tab (F5)", self.action_run)
-        yield SystemCommand("Cancel job", "Stop the running job (escape)", self.action_cancel)
-        yield SystemCommand(
-            "Run all jobs",
-            "Every job of the preset in order, files into a folder, as planar-tui run (F9)",
-            self.action_run_all,
-        )
-        yield SystemCommand(
-            "Run as sweep",
-            "Vary keys of the current tab's job over values, one row per point (F8)",
-            self.action_sweep,
-        )
-        yield SystemCommand(
-            "Show sweep result", "The latest sweep's table and plot", self.action_show_sweep
-        )
-        yield SystemCommand(
-            "Run optimisation",
-            "The preset's [[optimise]] table of the current tab's job, generation by generation",
-            self.action_optimise,
-        )
-        yield SystemCommand(
-            "Show optimisation",
-            "The latest optimisation's evaluations and plot",
-            self.action_show_optimisation,
-        )
-        yield SystemCommand(
-            "Go to error", "Jump to the first problem's field (ctrl+g)", self.action_goto_problem
-        )
-        yield SystemCommand(
-            "Run history", "Every run, compare two, open a CSV (F10)", self.action_history
-        )
-        yield SystemCommand("Open preset", "Open a TOML preset (ctrl+o)", self.action_open)
-        yield SystemCommand("Save preset", "Save the preset as TOML (ctrl+s)", self.action_save)
-        yield SystemCommand("Save as", "Save the preset under another path", self.action_save_as)
-        yield SystemCommand("Undo", "Undo the latest edit (ctrl+z)", self.action_undo)
-        yield SystemCommand(
-            "Export CSV",
-            "Write the result's CSV files into a folder, as planar-tui run (ctrl+e)",
-            self.action_export,
-        )
-        yield SystemCommand(
-            "Write figure",
-            "Draw the result as a figure beside the CSV Export writes (ctrl+l)",
-            self.action_figure,
-        )
-        yield SystemCommand("Help", "Key bindings (F1)", self.action_help)
-        yield SystemCommand(
-            "Toggle form", "Hide/show the settings form (ctrl+f)", self.action_toggle_form
-        )
-        for title, name in self.tabs():
-            yield SystemCommand(
-                f"Show {title} tab",
-                f"Switch to the {title} tab",
-                lambda n=name: self.action_show_tab(n),
-            )
-        yield SystemCommand(
-            "Add link", "Robot tab: add a link (ctrl+n)", lambda: self.action_pane("robot.add_link")
-        )
-        yield SystemCommand(
-            "Remove link",
-            "Robot tab: remove the last link (ctrl+r)",
-            lambda: self.action_pane("robot.remove_link"),
-        )
-        yield SystemCommand(
-            "Sensitivity view",
-            "Sensitivity tab: S1 / ST / percent / confidence (ctrl+t)",
-            lambda: self.action_pane("sensitivity.toggle_view"),
-        )
+        yield from workbench_commands(self)

@@ -10,7 +10,7 @@ unsaved edits; nothing is lost or overwritten without a question.
   that would overwrite files (they are listed).
 - Saving keeps the file's comments, key order and formatting
   (:func:`planar_tui.app.saving.merge_document`).
-- ``ctrl+z`` undoes the latest edit (the workbench's history), the tabs reload.
+- ``ctrl+z`` undoes the latest edit (the workbench's history) in the fields on screen.
 - Every failure to read, write or check becomes a dialog: the edits are kept.
 """
 
@@ -120,7 +120,7 @@ class FileActions:
         if not self.workbench.undo():
             self.notify("Nothing to undo.")
             return
-        await self.reload_panes()
+        await self.restore_panes()  # in place: the tab, the field and the results stay
         self.revalidate()
         self.show_document_state()
         self.notify(f"Undone ({len(self.workbench.history)} more step(s) to undo).")
@@ -240,10 +240,47 @@ class FileActions:
     def save_then(self, then: Callable[[], Any] | None, *, ask: bool = False) -> None:
         """Validate, then write to the preset's own file, or (``ask``, a bundled preset, a
         document without a file) to a path asked for; ``then()`` after a successful
-        write. An invalid preset is not written (a dialog says why)."""
-        text = self.preset_text()
-        if text is None:
+        write. An invalid preset is saved only as a draft, when the question about it is
+        answered yes (:meth:`ask_draft`)."""
+        try:
+            text = self.workbench.to_toml()
+        except PresetError as error:
+            self.ask_draft(error, lambda draft: self.save_text_then(draft, then, ask=ask))
             return
+        except Exception as error:  # the TOML library failing must not lose the edits
+            self.push_screen(MessageDialog("Not saved", f"{type(error).__name__}: {error}"))
+            return
+        self.save_text_then(text, then, ask=ask)
+
+    def ask_draft(self, error: PresetError, save: Callable[[str], Any]) -> None:
+        """The preset is invalid: ask whether to save it as a draft anyway (the reason
+        shown), then ``save(text)`` with the unvalidated text
+        (:func:`~planar_tui.app.saving.draft_text`)."""
+        from planar_tui.app.saving import draft_text
+
+        def answered(yes: bool | None) -> None:
+            if not yes:
+                return
+            bench = self.workbench
+            try:
+                text = draft_text(bench.document, bench.original_text, bench.description)
+            except Exception as failure:  # the TOML library failing must not lose the edits
+                self.push_screen(MessageDialog("Not saved", f"{type(failure).__name__}: {failure}"))
+                return
+            save(text)
+            self.notify("Saved as a draft: the preset is invalid.", severity="warning")
+
+        dialog = ConfirmDialog(
+            "The preset is invalid. Save it as a draft anyway?",
+            str(error),
+            yes="Save draft (y)",
+            no="Cancel (n)",
+        )
+        self.push_screen(dialog, answered)
+
+    def save_text_then(self, text: str, then: Callable[[], Any] | None, *, ask: bool) -> None:
+        """Write ``text`` to the preset's own file, or (``ask``, a bundled preset, a
+        document without a file) to a path asked for; ``then()`` after the write."""
         own = self.workbench.path
         if not ask and self.workbench.original_text is not None and not is_bundled(own):
             self.write_then(own, text, then)

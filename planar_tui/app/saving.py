@@ -97,6 +97,19 @@ def merge_document(original_text: str, document: Mapping[str, Any]) -> str:
     return tomlkit.dumps(toml)
 
 
+def draft_text(document: Mapping[str, Any], original_text: str | None, description: str) -> str:
+    """The document as TOML text without validating it (an invalid preset saved as a
+    draft, after a question): applied into the file's text when there is one
+    (:func:`merge_document`), else printed as it stands
+    (:func:`planar_tui.preset_writer.dump_document`). ``planar-tui run`` of it gives the
+    same one-line error the app showed."""
+    if original_text is not None:
+        return merge_document(original_text, document)
+    from planar_tui.preset_writer import dump_document
+
+    return dump_document(document, description)
+
+
 def existing_files(paths: Iterable[Path]) -> list[Path]:
     """The paths that already exist (what writing would overwrite)."""
     return [path for path in paths if os.path.lexists(path)]

@@ -3,6 +3,7 @@ cancel, a message, help. Every dialog fits 80×24 with its buttons whole."""
 
 from __future__ import annotations
 
+import textwrap
 from typing import ClassVar
 
 from textual.app import ComposeResult
@@ -128,41 +129,115 @@ class MessageDialog(ModalScreen[None]):
         self.dismiss(None)
 
 
-HELP_TEXT = """\
-Every action is in the palette (ctrl+p). Tabs: 1 2 3 4 5 6 outside
-fields, F2 F3 F4 F6 F7 F12 anywhere. Fields take TOML; enter: next field.
-Each job is checked alone: a bad field gets a red border and reason.
-  F5          run the job of the current tab (also the Run button)
-  F9          run all jobs in order into a folder, as planar-tui run
-  F8          run the tab's job as a sweep over keys and values
-  escape      cancel the job ("cancelling…" until it has stopped)
-  ctrl+g      go to the first error (switches tab, job and robot)
-  ctrl+o      open a preset (recent, bundled, or a path; → completes)
-  F10         run history: every run, compare two, open a result CSV
-  ctrl+s      save (comments kept; a bundled preset asks for a path)
-  ctrl+z      undo the latest edit
-  ctrl+e      export the result's CSV files to a folder (as the CLI)
-  ctrl+l      write the result's figure (PNG, or the plot key) beside
-              the CSV that export writes into the output folder
-  ctrl+f      hide / show the settings form (room for the results)
-  q, ctrl+q   quit (asks about unsaved edits or a running job)
-  F1, ?       this help (? outside fields)
-  ctrl+n      Robot tab: add a link (a copy of the last one)
-  ctrl+r      Robot tab: remove the last link
-  ctrl+t      Sensitivity tab: percent / S1 / ST / ± half-width
-Dialogs: enter OK, escape cancel or close, keys y, n, s, d answer.
-"""
+#: The help text's width (the help dialog's inside at 80 columns).
+HELP_WIDTH = 70
+
+#: The help screen's first lines.
+HELP_INTRO = """\
+Every action is also in the palette (ctrl+p). Fields take TOML values
+(0.25, [0.25, 0.2], singular); each job is checked alone, a bad field
+gets a red border and its reason under it (▲). Arrows and page keys
+scroll the focused area; Tab and shift+Tab move the focus."""
+
+#: A longer line for some actions (the others show their binding's description).
+HELP_DETAILS = {
+    "quit": "quit (asks about unsaved edits or a running job; q outside fields)",
+    "help": "this help (? outside fields)",
+    "run": "run the job of the current tab (also the Run button)",
+    "cancel": "cancel the running job (in the footer only while one runs)",
+    "open": "open a preset (recent, bundled, or a path; → completes)",
+    "history": "run history: every run, compare two, open a result CSV",
+    "save": "save (comments kept; a bundled preset asks for a path; an invalid one "
+    "is saved as a draft if you confirm)",
+    "undo": "undo the latest edit, in place (same tab and field; results kept)",
+    "export": "export the result's CSV files to a folder (as planar-tui run)",
+    "toggle_form": "hide / show the settings form (room for the results; remembered)",
+    "pane_action('add_link')": "Robot tab: add a link (a copy of the last one)",
+    "pane_action('remove_link')": "Robot tab: remove the last link",
+    "pane_view('sensitivity')": "Sensitivity tab: percent / S1 / ST / ± half-width",
+    "pane_view('motion_uncertainty')": "Motion tab: the next output (θ1…θn, tip x, tip y)",
+    "goto_problem": "go to the first error (switches tab, job and robot)",
+    "figure": "write the result's figure (PNG, or its plot key) beside the CSV export wrote last",
+    "maximise": "maximise the focused plot or table, else the results; again or escape restores",
+    "run_all": "run all jobs in order into a folder, as planar-tui run",
+    "sweep": "run the tab's job as a sweep over keys and values",
+    "digit_tab": "show tab 1…6, only with the focus on the tab bar",
+    "show_tab_number": "show tab 1…6, anywhere (also in fields)",
+    "step_tab(1)": "next tab",
+    "step_tab(-1)": "previous tab",
+    "next_field": "the next field (a value is one line)",
+    "command_palette": "the command palette: every action by name",
+    "app.focus_next": "move the focus on (fields, buttons, results)",
+    "app.focus_previous": "move the focus back",
+}
+
+#: The help screen's last lines: units and glyphs (each filled to the width).
+HELP_GLYPHS = (
+    "Units are in the keys' names: _m, _cm, _mm lengths; _kg, _g masses; _kgm2 kg m²; "
+    "_deg degrees; _rad_s rad/s; _deg_s °/s; _s seconds; _Nm newton metres.",
+    "Status: 45% 9.0k/20k eta 3s = percent, done/total (k thousand, M million), the "
+    "time left in the stage.",
+    "stale: over dimmed results: they came from other inputs (F5 runs it again). "
+    "▲ under a field: why it is invalid. A thick bar at the left: the focus.",
+    "Sensitivity: red ≥ 50 %, yellow ≥ 20 %, green ≥ 5 %; bold: each row's largest.",
+    "Plots: curves marked by joint number 1…n; energies E total, k kinetic, p potential; "
+    "Motion: the mean line and the 5-95 % band.",
+    "Workspace map: {map}.",
+    "Sweep heat map: ' ·░▒▓█' smallest to largest, × a failed point.",
+    "Dialogs: enter OK, escape cancel or close; keys y, n, s, d answer.",
+)
+
+
+def key_label(key: str) -> str:
+    """A key as the help shows it: ``F5``, ``?``, ``ctrl+t``."""
+    if key.startswith("f") and key[1:].isdigit():
+        return key.upper()
+    return {"question_mark": "?"}.get(key, key)
+
+
+def help_text(sources: list[tuple[str, list[Binding]]]) -> str:
+    """The help screen's text, generated from the bindings: ``(where, bindings)`` pairs
+    (the app's first, ``where`` empty; then each tab's and a field's), one line per
+    action with all its keys; then units and glyphs."""
+    from planar_tui.app.widgets.workspace_pane import map_legend
+
+    lines = [HELP_INTRO]
+    for where, bindings in sources:
+        rows: dict[str, list[str]] = {}
+        described: dict[str, str] = {}
+        for binding in bindings:
+            action = binding.action
+            base = action.split("(", 1)[0]
+            group = base if base in ("digit_tab", "show_tab_number") else action
+            rows.setdefault(group, []).extend(key_label(k) for k in binding.key.split(","))
+            described.setdefault(group, HELP_DETAILS.get(group, binding.description))
+        if where:
+            lines.append(f"{where}:")
+        for group, keys in rows.items():
+            shown = " ".join(dict.fromkeys(keys))
+            head = f"  {shown:<14}" if len(shown) < 15 else f"  {shown}\n{'':<16}"
+            text = textwrap.fill(described[group], HELP_WIDTH - 16)
+            lines.append(head + text.replace("\n", "\n" + " " * 16))
+    for line in HELP_GLYPHS:
+        text = line.format(map=map_legend())
+        lines.append(textwrap.fill(text, HELP_WIDTH, subsequent_indent="  "))
+    return "\n".join(lines)
 
 
 class HelpScreen(ModalScreen[None]):
-    """The key bindings and how fields are read."""
+    """Every key (generated from the app's and the tabs' bindings, :func:`help_text`),
+    units and glyphs; it scrolls (arrows, page keys)."""
 
     BINDINGS: ClassVar = [Binding("escape,q,f1,question_mark", "close", "Close")]
 
+    def __init__(self, sources: list[tuple[str, list[Binding]]]):
+        super().__init__()
+        self.text = help_text(sources)
+
     def compose(self) -> ComposeResult:
         with VerticalScroll(classes="dialog help", id="help-scroll"):
-            yield Label("Help (escape closes)", classes="dialog-title")
-            yield Static(HELP_TEXT, markup=False, id="help-text")
+            yield Label("Help (escape closes; arrows scroll)", classes="dialog-title")
+            yield Static(self.text, markup=False, id="help-text")
 
     def on_mount(self) -> None:
         self.query_one("#help-scroll").focus()

@@ -89,8 +89,9 @@ class SweepDialog(ModalScreen[tuple[Any, int, Any] | None]):
                 classes="dialog-hint", markup=False,
             )  # fmt: skip
             with Horizontal(classes="dialog-buttons"):
-                yield Button("Run sweep (Enter)", id="sweep-run", variant="success")
-                yield Button("Cancel (esc)", id="sweep-cancel")
+                # one row each: with an error shown the help still fits 80×24
+                yield Button("Run sweep (Enter)", id="sweep-run", variant="success", compact=True)
+                yield Button("Cancel (esc)", id="sweep-cancel", compact=True)
 
     def on_mount(self) -> None:
         self.query_one("#sweep-key-1", Input).focus()

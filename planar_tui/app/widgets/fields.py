@@ -8,9 +8,10 @@ reaches the preset parser as a string and gets the CLI's own message.
 from __future__ import annotations
 
 import tomllib
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from typing import Any, ClassVar
 
+from textual import events
 from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Grid, Vertical
@@ -32,16 +33,51 @@ def parse_field(text: str) -> Any:
         return text
 
 
-class Field(TextArea):
+class KeysInOrder:
+    """Keys typed into a field apply in the order typed, even in a burst the app reads
+    faster than the field handles it.
+
+    Textual queues a printable key on the widget focused when the app reads it, but runs
+    a key's binding (``end``, ``ctrl+u``) on the widget focused when the key is handled:
+    ``200 Tab End ctrl+u 1e-5`` typed quickly gave ``duration_s = 2001e-5`` and emptied
+    ``step_s``. Here a field handles every key itself, in its queue's order: Tab and
+    shift+Tab move the focus at once, its own bindings run on it, and a key that reaches
+    it after the focus has moved on is passed to the widget focused now.
+    """
+
+    async def on_key(self, event: events.Key) -> None:
+        screen = self.screen
+        focused = screen.focused
+        if focused is not self:
+            if focused is not None:  # typed after a key that moved the focus: follow it
+                event.stop()
+                event.prevent_default()
+                again = events.Key(event.key, event.character)
+                again._set_forwarded()  # no public hook: else the app takes it as new input
+                focused.post_message(again)
+            return
+        if event.key in ("tab", "shift+tab"):
+            event.stop()
+            event.prevent_default()
+            screen.focus_next() if event.key == "tab" else screen.focus_previous()
+            return
+        active = screen.active_bindings.get(event.key)
+        if active is not None and active.node is self and not active.binding.priority:
+            event.stop()  # the field's own binding (the app ran the priority ones already)
+            event.prevent_default()
+            await self.run_action(active.binding.action)
+
+
+class Field(KeysInOrder, TextArea):
     """A one-value text field that wraps long values (``[[20, 70], [110, 160], …]``) onto
     more lines instead of hiding their end; Enter moves to the next field.
 
-    Enter is a priority binding: Textual checks it before the key reaches the text area,
-    so no line break is ever inserted (a value is one line).
+    Enter is one of the field's own bindings, handled before the text area inserts a key
+    (:class:`KeysInOrder`), so no line break is ever inserted (a value is one line).
     """
 
     BINDINGS: ClassVar = [
-        Binding("enter", "next_field", "Next field", show=False, priority=True),
+        Binding("enter", "next_field", "Next field", show=False),
     ]
 
     DEFAULT_CSS = """
@@ -94,50 +130,79 @@ class TableForm(Widget):
         def control(self) -> TableForm:
             return self.form
 
-    def __init__(self, keys: Sequence[str], table: dict[str, Any], **kwargs: Any):
+    def __init__(
+        self,
+        keys: Sequence[str],
+        table: dict[str, Any],
+        required: Collection[str] = (),
+        **kwargs: Any,
+    ):
         super().__init__(**kwargs)
         self.keys = tuple(keys)
+        #: The keys without a default: their empty field says ``(required)``.
+        self.required = frozenset(required)
         self.extra = {k: v for k, v in table.items() if k not in self.keys}
         self.initial = table
 
     def compose(self) -> ComposeResult:
+        #: The fields and their error notes by key (kept: a query on every keystroke's
+        #: check cost more than the check itself).
+        self.fields: dict[str, Field] = {}
+        self.notes: dict[str, Static] = {}
         for key in self.keys:
             value = self.initial.get(key)
             with Vertical():
                 yield Label(key)
-                yield Field(
+                self.fields[key] = Field(
                     "" if value is None else format_value(value),
-                    placeholder="(default)",
+                    placeholder="(required)" if key in self.required else "(default)",
                     name=key,
                     id=f"field-{key}",
                 )
-                yield Static("", id=f"error-{key}", classes="field-error", markup=False)
+                yield self.fields[key]
+                self.notes[key] = Static("", id=f"error-{key}", classes="field-error", markup=False)
+                yield self.notes[key]
+
+    def load(self, table: dict[str, Any]) -> None:
+        """Show ``table`` in the fields already there (an undo: no rebuild, the focus and
+        the fields' cursors stay; no :class:`Changed` is posted for it)."""
+        self.extra = {k: v for k, v in table.items() if k not in self.keys}
+        self.initial = table
+        for key, field in self.fields.items():
+            value = table.get(key)
+            text = "" if value is None else format_value(value)
+            if field.text != text:
+                field.text = text
+                field.move_cursor(field.document.end)
+        self._last = self.table()
 
     def mark(self, key: str, message: str) -> Field | None:
         """Mark the field of ``key`` as invalid (red border, ``message`` under it); returns
         the field, ``None`` when the form has no such key."""
         if key not in self.keys:
             return None
-        field = self.query_one(f"#field-{key}", Field)
+        field = self.fields[key]
         field.add_class("-bad")
-        note = self.query_one(f"#error-{key}", Static)
+        note = self.notes[key]
         note.update(f"▲ {message}")
         note.add_class("-shown")
         return field
 
     def clear_marks(self) -> None:
         """Remove every invalid mark."""
-        for field in self.query(Field).filter(".-bad"):
-            field.remove_class("-bad")
-        for note in self.query(".field-error.-shown"):
-            note.remove_class("-shown")
+        for field in self.fields.values():
+            if field.has_class("-bad"):  # (an unchanged class costs nothing to restyle)
+                field.remove_class("-bad")
+        for note in self.notes.values():
+            if note.has_class("-shown"):
+                note.remove_class("-shown")
 
     def table(self) -> dict[str, Any]:
         """The table as typed (empty fields left out)."""
         table = dict(self.extra)
-        for field in self.query(Field):
+        for key, field in getattr(self, "fields", {}).items():
             if field.value.strip():
-                table[field.name] = parse_field(field.value)
+                table[key] = parse_field(field.value)
         return table
 
     def on_mount(self) -> None:
@@ -149,6 +214,19 @@ class TableForm(Widget):
         if table != getattr(self, "_last", table):  # not the inputs' initial values
             self._last = table
             self.post_message(self.Changed(self, table))
+
+
+class LinkCell(KeysInOrder, Input):
+    """A cell of the link table (keys in the order typed, :class:`KeysInOrder`)."""
+
+
+def required_keys(settings_class: type) -> frozenset[str]:
+    """The keys of a settings dataclass that have no default (a job's must-give keys)."""
+    from planar_tui.schema import REQUIRED, declared_keys
+
+    return frozenset(
+        key.name for _, key in declared_keys(settings_class) if key.default is REQUIRED
+    )
 
 
 class LinkEditor(Widget):
@@ -201,6 +279,9 @@ class LinkEditor(Widget):
         return [[format_value(c[i]) if i < len(c) else "" for c in columns] for i in range(n)]
 
     def compose(self) -> ComposeResult:
+        #: The cells, row by row, and the error line (kept: each edit's check marks them).
+        self.cells: list[LinkCell] = []
+        self.error_line = Static("", id="links-error", markup=False)
         with Grid():
             yield Label("link")
             for _, title in self.COLUMNS:
@@ -208,8 +289,11 @@ class LinkEditor(Widget):
             for i, row in enumerate(self.rows):
                 yield Label(f"{i + 1}")
                 for (key, title), text in zip(self.COLUMNS, row, strict=True):
-                    yield Input(text, name=key, id=f"link-{i + 1}-{key}", tooltip=title)
-        yield Static("", id="links-error", markup=False)
+                    self.cells.append(
+                        LinkCell(text, name=key, id=f"link-{i + 1}-{key}", tooltip=title)
+                    )
+                    yield self.cells[-1]
+        yield self.error_line
 
     def mark(self, key: str, item: int | None, message: str) -> Input | None:
         """Mark the cell of link ``item`` (1-based) in column ``key``, or the whole column
@@ -217,27 +301,28 @@ class LinkEditor(Widget):
         marked cell (``None`` when ``key`` is not a column)."""
         cells = [
             cell
-            for cell in self.query(Input)
+            for cell in self.cells
             if cell.name == key and (item is None or cell.id == f"link-{item}-{key}")
         ]
         for cell in cells:
             cell.add_class("-bad")
         if not cells:
             return None
-        note = self.query_one("#links-error", Static)
+        note = self.error_line
         note.update(f"▲ {message}")
         note.add_class("-shown")
         return cells[0]
 
     def clear_marks(self) -> None:
         """Remove every invalid mark."""
-        for cell in self.query(Input).filter(".-bad"):
-            cell.remove_class("-bad")
-        self.query_one("#links-error").remove_class("-shown")
+        for cell in self.cells:
+            if cell.has_class("-bad"):
+                cell.remove_class("-bad")
+        self.error_line.remove_class("-shown")
 
     def current_rows(self) -> list[list[str]]:
         """The text of every cell, row by row."""
-        cells = list(self.query(Input))
+        cells = getattr(self, "cells", [])
         width = len(self.COLUMNS)
         return [[c.value for c in cells[i : i + width]] for i in range(0, len(cells), width)]
 
@@ -258,6 +343,19 @@ class LinkEditor(Widget):
         await self.recompose()
         self._last = self.values()
         self.post_message(self.Changed(self, self._last))
+
+    async def load(self, robot_table: dict[str, Any]) -> None:
+        """Show ``robot_table``'s links (an undo): the cells updated in place, the grid
+        rebuilt only when the link count differs; no :class:`Changed` is posted for it."""
+        rows = self._rows_of(robot_table)
+        if len(rows) != len(self.current_rows()):
+            self.rows = rows
+            await self.recompose()
+        else:
+            for cell, text in zip(self.cells, (text for row in rows for text in row), strict=True):
+                if cell.value != text:
+                    cell.value = text
+        self._last = self.values()
 
     async def add_link(self) -> None:
         """Append a link copying the last one."""

@@ -17,7 +17,7 @@ from textual.containers import Horizontal, ScrollableContainer, Vertical, Vertic
 from textual.widgets import Button, Label, Select, Static
 
 from planar_tui.app.messages import CancelRequested, DocumentEdited, RunRequested
-from planar_tui.app.widgets.fields import LinkEditor, TableForm
+from planar_tui.app.widgets.fields import LinkEditor, TableForm, required_keys
 from planar_tui.app.widgets.job_controls import JobControls
 from planar_tui.app.widgets.robot_drawing import draw_serial_robot
 from planar_tui.progress import ProgressState
@@ -66,6 +66,10 @@ class RobotPane(VerticalScroll):
         from planar_tui.registry import ROBOT_KINDS
 
         targets = self.bench.robot_targets()
+        self.shown_targets = targets
+        #: The forms and link editor shown (kept: each edit's check marks them).
+        self.forms: list[TableForm] = []
+        self.editors: list[LinkEditor] = []
         if len(targets) > 1:
             current = next(
                 i for i, (_, kind, index) in enumerate(targets)
@@ -84,9 +88,14 @@ class RobotPane(VerticalScroll):
             where = f"{targets_label(targets, self.target)} robot" if own else "[robot]"
             with Horizontal(classes="robot-top"):
                 with Vertical(classes="robot-links"):
-                    yield Label(f"Serial robot {where}", classes="section")
-                    yield TableForm(("name", "gravity_m_s2"), robot, id="robot-form")
-                    yield LinkEditor(robot, id="links")
+                    yield Label(f"Serial robot {where}", classes="section", markup=False)
+                    required = required_keys(ROBOT_KINDS["robot"].model)
+                    self.forms.append(
+                        TableForm(("name", "gravity_m_s2"), robot, required, id="robot-form")
+                    )
+                    self.editors.append(LinkEditor(robot, id="links"))
+                    yield self.forms[-1]
+                    yield self.editors[-1]
                     with Horizontal(classes="link-buttons"):
                         yield Button("Add link ^n", id="add-link", compact=True)
                         yield Button("Remove link ^r", id="remove-link", compact=True)
@@ -95,8 +104,38 @@ class RobotPane(VerticalScroll):
             if name == "robot" or (own and name != self.robot_kind()):
                 continue
             table = self.bench.job_robot(*self.target) if own else self.bench.table(name)
-            yield Label(f"{name} [{name}] (joint limits: Workspace tab)", classes="section")
-            yield TableForm(kind.keys, table, id=f"form-{name}")
+            yield Label(
+                f"{name} [{name}] (joint limits: Workspace tab)", classes="section", markup=False
+            )
+            self.forms.append(
+                TableForm(kind.keys, table, required_keys(kind.model), id=f"form-{name}")
+            )
+            yield self.forms[-1]
+
+    async def load_document(self) -> None:
+        """Show the document's robots in the fields already there (after an undo: the
+        focus, the tab and the picker stay); rebuilt only when the picker's choices
+        changed."""
+        targets = self.bench.robot_targets()
+        chosen = [(kind, index) for _, kind, index in targets if index is not None]
+        target = self.target
+        if self.target is not None and self.target not in chosen:
+            self.target = None
+        if targets != getattr(self, "shown_targets", targets) or self.target != target:
+            await self.recompose()
+            return
+        for form in self.forms:
+            kind = (form.id or "").removeprefix("form-")
+            if form.id == "robot-form":
+                form.load(self.serial_table())
+            elif self.target is None:
+                form.load(self.bench.table(kind))
+            else:
+                form.load(self.bench.job_robot(*self.target))
+        for editor in self.editors:
+            await editor.load(self.serial_table())
+        for drawing in self.query("#robot-drawing").results(Static):
+            drawing.update(self.drawing())
 
     def serial_table(self) -> dict[str, Any]:
         """The serial robot table edited: the preset's ``[robot]`` or the job's own."""
@@ -118,9 +157,9 @@ class RobotPane(VerticalScroll):
     def mark_problems(self, problems: list[tuple[Any, str]]) -> list[Any]:
         """Mark the fields of the robot on screen named by ``(location, message)`` pairs;
         returns the marked widgets."""
-        for form in self.query(TableForm):
+        for form in self.forms:
             form.clear_marks()
-        for editor in self.query(LinkEditor):
+        for editor in self.editors:
             editor.clear_marks()
         marked = []
         for location, message in problems:
@@ -141,7 +180,7 @@ class RobotPane(VerticalScroll):
             kind = location.robot
         if kind == "robot":
             if location.field in LinkEditor.column_keys():
-                return self.query_one(LinkEditor).mark(location.field, location.item, message)
+                return self.editors[0].mark(location.field, location.item, message)
             return self.query_one("#robot-form", TableForm).mark(location.field, message)
         forms = self.query(f"#form-{kind}")
         return forms.first(TableForm).mark(location.field, message) if forms else None
@@ -161,7 +200,7 @@ class RobotPane(VerticalScroll):
     def robot_table(self) -> dict[str, Any]:
         """The serial robot table as edited."""
         table = self.query_one("#robot-form", TableForm).table()
-        table |= self.query_one(LinkEditor).values()
+        table |= self.editors[0].values()
         if "inertias_kgm2" not in table:
             table.pop("inertias_kgm2", None)
         return table
@@ -196,12 +235,12 @@ class RobotPane(VerticalScroll):
 
     async def action_add_link(self) -> None:
         """Append a link (a copy of the last one)."""
-        for editor in self.query(LinkEditor):
+        for editor in self.editors:
             await editor.add_link()
 
     async def action_remove_link(self) -> None:
         """Remove the last link."""
-        for editor in self.query(LinkEditor):
+        for editor in self.editors:
             await editor.remove_link()
 
 
@@ -211,6 +250,13 @@ def targets_label(targets: list[tuple[str, str, int | None]], target: Any) -> st
         if index is not None and (kind, index) == target:
             return label.rsplit(" ", 1)[0]
     return ""
+
+
+class Results(Vertical):
+    """A job tab's results area (the summary, tables and plots); ``ctrl+b`` maximises it
+    when the focus is not on a plot or table of its own (see the app's ``maximise``)."""
+
+    ALLOW_MAXIMIZE = True
 
 
 class JobPane(Vertical):
@@ -256,6 +302,12 @@ class JobPane(Vertical):
 
         return (*JOB_KINDS[self.kind].keys, "output")
 
+    def required(self) -> frozenset[str]:
+        """The job table's keys without a default (their empty field says so)."""
+        from planar_tui.registry import JOB_KINDS
+
+        return required_keys(JOB_KINDS[self.kind].settings)
+
     def robot_kind(self) -> str:
         from planar_tui.registry import JOB_KINDS
 
@@ -268,6 +320,7 @@ class JobPane(Vertical):
             )
             return
         labels = self.bench.job_labels(self.kind)
+        self.shown_labels = labels
         if len(labels) > 1:
             yield Select(
                 [(label, i) for i, label in enumerate(labels)],
@@ -279,15 +332,20 @@ class JobPane(Vertical):
         table = self.bench.table(self.kind, self.index)
         form = VerticalScroll(classes="form")
         form.can_focus = False  # its fields take the focus and scroll into view
+        # kept: each edit's check updates them (a query each time cost more than the check)
+        self.form = TableForm(self.form_keys(), table, self.required(), id="job-form")
+        self.results_area = Results(classes="results")
+        self.stale_note = Static("", id="stale-note", markup=False)
+        self.problem_line = Static("", id="pane-problem", markup=False)
         with Horizontal(classes="pane-body"):
             with form:
                 if isinstance(table.get(self.robot_kind()), dict):
                     yield Label("own robot: Robot tab", classes="own-robot")
-                yield TableForm(self.form_keys(), table, id="job-form")
-            with Vertical(classes="results"):
-                yield Static("", id="stale-note", markup=False)
+                yield self.form
+            with self.results_area:
+                yield self.stale_note
                 yield from self.compose_results()
-        yield Static("", id="pane-problem", markup=False)
+        yield self.problem_line
         yield JobControls()
 
     def compose_results(self) -> ComposeResult:
@@ -300,33 +358,50 @@ class JobPane(Vertical):
     def store_form(self) -> None:
         """Put the form's table into the document (the job's own robot, edited on the
         Robot tab, is kept as the document has it)."""
-        table = self.query_one("#job-form", TableForm).table()
+        table = self.form.table()
         current = self.bench.table(self.kind, self.index)
         if self.robot_kind() in current:
             table[self.robot_kind()] = current[self.robot_kind()]
         self.bench.set_table(self.kind, self.index, table)
 
+    async def load_document(self) -> None:
+        """Show the document's table in the fields already there (after an undo: the
+        focus, the tab, the result and the status stay; the result is then marked stale
+        if it no longer matches); rebuilt only when the jobs of the kind changed."""
+        if not self.available():
+            return
+        if self.bench.job_labels(self.kind) != getattr(self, "shown_labels", None):
+            self.index = min(self.index, max(len(self.bench.tables(self.kind)) - 1, 0))
+            await self.recompose()
+            self.call_after_refresh(self.rerender)
+            return
+        self.form.load(self.bench.table(self.kind, self.index))
+
     def mark_problems(self, problems: list[tuple[Any, str]]) -> list[Any]:
         """Show this tab's own problems, ``(location, message)`` pairs: the bad field
-        marked, and the job's first problem on the line above the controls; returns the
-        marked fields."""
+        marked, and the job's first problem that no field of the form shows on the line
+        above the controls; returns the marked fields."""
         if not self.available():
             return []
-        form = self.query_one("#job-form", TableForm)
+        form = self.form
         form.clear_marks()
         mine = [
             (location, message)
             for location, message in problems
             if (location.table, location.index) == (self.kind, self.index)
         ]
-        line = self.query_one("#pane-problem", Static)
-        line.update(f"error: {mine[0][1]}" if mine else "")
-        line.set_class(bool(mine), "-shown")
-        marked = []
+        marked, unmarked = [], []
         for location, message in mine:
             field = None if location.robot else form.mark(location.field, message)
             if field is not None:
                 marked.append(field)
+            else:
+                unmarked.append(message)
+        # a problem marked on its field is said there (and on the validation line): said
+        # a third time here, it took the rows of the results (an energy plot 2 rows high)
+        line = self.problem_line
+        line.update(f"error: {unmarked[0]}" if unmarked else "")
+        line.set_class(bool(unmarked), "-shown")
         return marked
 
     # -- stale results ----------------------------------------------------------------
@@ -347,9 +422,8 @@ class JobPane(Vertical):
         elif reason is None and self.inputs() != self.ran_inputs:
             reason = "inputs changed since this run"
         self.stale_reason = reason
-        note = self.query_one("#stale-note", Static)
-        note.update(f"stale: {reason}; F5 runs it again" if reason else "")
-        self.query_one(".results").set_class(reason is not None, "stale")
+        self.stale_note.update(f"stale: {reason}; F5 runs it again" if reason else "")
+        self.results_area.set_class(reason is not None, "stale")
 
     def on_table_form_changed(self, event: TableForm.Changed) -> None:
         self.store_form()
@@ -402,6 +476,19 @@ class JobPane(Vertical):
             self.rerender()
         else:
             self.query_one("#result-text", Static).update(text)
+
+    def end_live_view(self) -> None:
+        """Take a running job's live view off (a run-all job's text and partial map): the
+        kept result drawn again, else the results area emptied to its first line."""
+        if not self.is_attached or not self.available():
+            return
+        if self.result is not None:
+            self.rerender()
+            return
+        for text in self.results_area.query(Static):
+            if text.id not in ("stale-note", "result-text"):
+                text.update("")
+        self.query_one("#result-text", Static).update("Run the job (F5) to see its results.")
 
     def rerender(self) -> None:
         """Draw the kept result again (the results area changed size)."""
