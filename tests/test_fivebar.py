@@ -334,7 +334,7 @@ def test_the_app_shows_the_five_bar_tab_and_its_map(tmp_path):
     from planar_tui.app.widgets.parallel_panes import FiveBarPane
     from tests.test_app import run_tab
 
-    assert ("Five-bar", "workspace5r") in WorkbenchApp.tabs()
+    assert ("5-bar", "workspace5r") in WorkbenchApp.tabs()
     assert WorkbenchApp.pane_classes()["workspace5r"] is FiveBarPane
     preset = tmp_path / "fivebar.toml"
     preset.write_text(PRESET.read_text().replace("precision_cm = 0.05", "precision_cm = 2.0"))

@@ -251,7 +251,7 @@ JOB_KIND = JobKind(
         outputs=(BOXES_OPTION,),
         view=MAP_VIEW,
     ),
-    tab=Tab("Five-bar", 8, "planar_tui.app.widgets.parallel_panes:FiveBarPane"),
+    tab=Tab("5-bar", 8, "planar_tui.app.widgets.parallel_panes:FiveBarPane"),
     figure="planar_tui.figures.fivebar:from_result",
     warmup=(
         "[[workspace5r]]\nprecision_cm = 8.0\n"
