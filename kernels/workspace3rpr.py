@@ -25,7 +25,14 @@ The paving is the arc-distance form's (:func:`kernels.workspace_arc.settle_xy_bo
 box of a frontier slice is decided in parallel, boxes go to ``LANES`` interleaved lanes, and
 each outcome depends on its box alone, so the result does not depend on the thread count.
 
-The parameter array ``p`` is (3, 4): per leg ``c_x, c_y, rho_lo, rho_hi`` (cm).
+The parameter array ``p`` is (3, 8): per leg ``c_x, c_y, rho_lo, rho_hi`` (cm), then the
+distance thresholds the labels use, ``out_lo, out_hi, in_lo, in_hi`` (cm, each ``>= 0``): a
+box is ``OUTSIDE`` if some leg's distance range :math:`[d_{lo}, d_{hi}]` has
+:math:`d_{hi} < out_{lo}` or :math:`d_{lo} > out_{hi}`, ``INSIDE`` if every leg's lies in
+:math:`[in_{lo}, in_{hi}]`. For the nominal robot all four are ``rho_lo, rho_hi`` (the test
+above); a tolerance-certified job moves them
+(:func:`planar_tui.workspace.rpr_tolerance.leg_thresholds`); the comparisons are on the
+squared distances, the squared thresholds rounded outward.
 """
 
 import numba
@@ -52,11 +59,9 @@ def classify_rpr_box(xlo, xhi, ylo, yhi, p):
     inside = True
     for leg in range(3):
         slo, shi = squared_distance_range(xlo, xhi, ylo, yhi, p[leg, 0], p[leg, 1])
-        lo2 = p[leg, 2] * p[leg, 2]
-        hi2 = p[leg, 3] * p[leg, 3]
-        if shi < down(lo2) or slo > up(hi2):
+        if shi < down(p[leg, 4] * p[leg, 4]) or slo > up(p[leg, 5] * p[leg, 5]):
             return OUTSIDE
-        if slo < up(lo2) or shi > down(hi2):
+        if slo < up(p[leg, 6] * p[leg, 6]) or shi > down(p[leg, 7] * p[leg, 7]):
             inside = False
     return INSIDE if inside else BOUNDARY
 

@@ -91,6 +91,9 @@ class PlanarSpec:
 
     #: The kind's :class:`Mechanism` (set by each subclass; not a preset key).
     mechanism: ClassVar[Any] = None
+    #: The robot's toleranced quantities, for a kind with tolerance keys
+    #: (:mod:`planar_tui.workspace.tolerance`; ``()``: none).
+    tolerance_keys: ClassVar[tuple[str, ...]] = ()
     #: The keys that go with ``singularities = true`` (:func:`check_circle_keys`).
     circle_keys: ClassVar[tuple[str, ...]] = ("circle_centre_cm", "singularity_precision_cm")
 
@@ -236,6 +239,11 @@ def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> 
     outcome = compute_planar(job.robot, job.spec, budget)
     header: tuple[str, ...] = SUMMARY_HEADER
     row, summary = outcome.summary_row(), summary_line(outcome)
+    if job.spec.tolerance_keys:
+        from planar_tui.workspace.tolerance import describe, tolerance_of
+
+        tolerance = tolerance_of(job.spec, job.spec.tolerance_keys)
+        summary += "" if tolerance is None else f"; {describe(tolerance)}"
     singular = None
     module = job.spec.mechanism.singularities
     if module is not None:  # the circle's columns before the last one, the wall time

@@ -74,12 +74,18 @@ class Robot3RPR:
 
 
 def leg_parameters(robot: Robot3RPR, spec) -> object:
-    """The kernel's (3, 4) array: per leg ``c_x, c_y, rho_lo, rho_hi`` (cm)."""
+    """The kernel's (3, 8) array: per leg ``c_x, c_y, rho_lo, rho_hi`` (cm) and the labels'
+    thresholds (:func:`~planar_tui.workspace.rpr_tolerance.spec_thresholds`: ``rho_lo,
+    rho_hi`` twice for the nominal robot)."""
     import numpy as np
 
+    from planar_tui.workspace.rpr_tolerance import spec_thresholds
+
     centres = robot.centres_cm(spec.orientation_rad)
+    limits, thresholds = spec.leg_limits_cm, spec_thresholds(spec)
     rows = [
-        (cx, cy, lo, hi) for (cx, cy), (lo, hi) in zip(centres, spec.leg_limits_cm, strict=True)
+        (cx, cy, lo, hi, *t)
+        for (cx, cy), (lo, hi), t in zip(centres, limits, thresholds, strict=True)
     ]
     return np.ascontiguousarray(rows, dtype=np.float64)
 

@@ -12,6 +12,8 @@ from planar_tui.jobkind import Tab
 from planar_tui.schema import TableReader, setting
 from planar_tui.workspace import rpr
 from planar_tui.workspace.planar import Mechanism, PlanarSpec, planar_job_kind
+from planar_tui.workspace.rpr_tolerance import TOLERANCE_KEYS_3RPR
+from planar_tui.workspace.tolerance import check_tolerance, tolerance_fields
 
 MECHANISM = Mechanism(
     parameters=rpr.leg_parameters,
@@ -42,8 +44,26 @@ class Spec3RPR(PlanarSpec):
         type_doc="3 rows `[lo, hi]`, 0 ≤ lo < hi",
         doc="actuated leg lengths ρ1, ρ2, ρ3 (prismatic strokes)",
     )
+    tolerance_cm: float | None
+    tolerances_cm: tuple[tuple[str, float], ...] | None
+    tolerance_mode: str | None
+    tolerance_cm, tolerances_cm, tolerance_mode = tolerance_fields(TOLERANCE_KEYS_3RPR)
 
     mechanism: ClassVar[Any] = MECHANISM
+    tolerance_keys: ClassVar[tuple[str, ...]] = TOLERANCE_KEYS_3RPR
+
+    @classmethod
+    def check(cls, values: dict[str, Any], reader: TableReader, robot: Any) -> dict[str, Any]:
+        """A tolerance (:mod:`planar_tui.workspace.rpr_tolerance`; the leg limits are exact)
+        takes a box form, no singularities and no geometric reference (the nominal robot's
+        exact area is not the tolerance-certified one's: off by default, refused if asked
+        for); then the shared checks."""
+        check_tolerance(values, reader, TOLERANCE_KEYS_3RPR, {})
+        if values["tolerance_mode"] is not None and values["geometric_reference"]:
+            if reader.has("geometric_reference"):
+                raise reader.error("geometric_reference", "is true with a tolerance", "false")
+            values["geometric_reference"] = False  # its default is the nominal robot's area
+        return super().check(values, reader, robot)
 
 
 JOB_KIND = planar_job_kind(

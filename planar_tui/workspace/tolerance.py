@@ -167,8 +167,8 @@ def check_tolerance(
     problems = (
         ("orientation_deg", isinstance(values["orientation_deg"], tuple), "one orientation"),
         ("form", values["form"] == "geometric", "an interval form or arc-distance"),
-        ("strategy", values["strategy"] == "joint", '"legwise" (or form = "arc-distance")'),
-        ("expanded", values["expanded"], "false"),
+        ("strategy", values.get("strategy") == "joint", '"legwise" (or form = "arc-distance")'),
+        ("expanded", values.get("expanded"), "false"),
         ("singularities", values["singularities"], "false"),
     )
     for key, bad, expected in problems:
