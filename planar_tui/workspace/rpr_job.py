@@ -47,7 +47,10 @@ class Spec3RPR(PlanarSpec):
     tolerance_cm: float | None
     tolerances_cm: tuple[tuple[str, float], ...] | None
     tolerance_mode: str | None
-    tolerance_cm, tolerances_cm, tolerance_mode = tolerance_fields(TOLERANCE_KEYS_3RPR)
+    tolerance_cm, tolerances_cm, tolerance_mode = tolerance_fields(
+        TOLERANCE_KEYS_3RPR,
+        "manufacturing tolerance ± on every joint coordinate (cm; the leg limits are exact)",
+    )
 
     mechanism: ClassVar[Any] = MECHANISM
     tolerance_keys: ClassVar[tuple[str, ...]] = TOLERANCE_KEYS_3RPR

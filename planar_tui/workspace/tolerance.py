@@ -108,9 +108,12 @@ def _read_tolerance_cm(reader, name, default, robot, values):
     return reader.number(name, minimum=0.0)
 
 
-def tolerance_fields(keys: Sequence[str]) -> tuple[Any, Any, Any]:
-    """The settings ``tolerance_cm``, ``tolerances_cm`` and ``tolerance_mode`` of a
-    workspace spec whose robot's toleranced quantities are ``keys``."""
+def tolerance_fields(
+    keys: Sequence[str],
+    uniform_doc: str = "manufacturing tolerance ± on every length and joint coordinate (cm)",
+) -> tuple[Any, Any, Any]:
+    """The settings ``tolerance_cm`` (documented by ``uniform_doc``), ``tolerances_cm`` and
+    ``tolerance_mode`` of a workspace spec whose robot's toleranced quantities are ``keys``."""
     from planar_tui.schema import string
 
     listed = ", ".join(f"`{k}`" for k in keys)
@@ -120,7 +123,7 @@ def tolerance_fields(keys: Sequence[str]) -> tuple[Any, Any, Any]:
             default=None,
             type_doc="number ≥ 0",
             default_doc="(none: the nominal robot)",
-            doc="manufacturing tolerance ± on every length and joint coordinate (cm)",
+            doc=uniform_doc,
         ),
         setting(
             _read_tolerances(keys),
