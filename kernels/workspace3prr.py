@@ -31,7 +31,12 @@ A box is ``OUTSIDE`` if some leg has :math:`\\min d_{seg} > l` or :math:`\\max d
 a boundary leaf whose ``leaf_grid`` × ``leaf_grid`` cells are all outside is dropped. The
 paving is the arc-distance form's: outcomes per box, thread-count independent.
 
-``p`` is (3, 5): per leg ``E'0x, E'0y, E'1x, E'1y, l`` (cm).
+``p`` is (3, 9): per leg ``E'0x, E'0y, E'1x, E'1y, l`` (cm), then the thresholds the labels
+compare with in place of :math:`l`: ``out_seg`` (``OUTSIDE`` if :math:`\\min d_{seg} >`
+it), ``out_end`` (if :math:`\\max d_{end} <` it), ``in_seg`` (``INSIDE`` needs
+:math:`\\max d_{seg} \\le` it), ``in_end`` (and :math:`\\min d_{end} \\ge` it). All four are
+:math:`l` for the nominal robot; a tolerance-certified job moves them
+(:func:`planar_tui.workspace.prr_tolerance.leg_thresholds`).
 """
 
 import math
@@ -75,7 +80,7 @@ def classify_prr_box(xlo, xhi, ylo, yhi, p):
     rho = 0.5 * math.hypot(xhi - xlo, yhi - ylo)
     inside = True
     for leg in range(3):
-        ax, ay, bx, by, length = p[leg, 0], p[leg, 1], p[leg, 2], p[leg, 3], p[leg, 4]
+        ax, ay, bx, by = p[leg, 0], p[leg, 1], p[leg, 2], p[leg, 3]
         seg_min = segment_distance(cx, cy, ax, ay, bx, by) - rho
         seg_max = 0.0
         end_max = 0.0
@@ -86,9 +91,9 @@ def classify_prr_box(xlo, xhi, ylo, yhi, p):
         end_min = max(
             _box_distance(xlo, xhi, ylo, yhi, ax, ay), _box_distance(xlo, xhi, ylo, yhi, bx, by)
         )
-        if seg_min - TOLERANCE_CM > length or end_max + TOLERANCE_CM < length:
+        if seg_min - TOLERANCE_CM > p[leg, 5] or end_max + TOLERANCE_CM < p[leg, 6]:
             return OUTSIDE
-        if seg_max + TOLERANCE_CM > length or end_min - TOLERANCE_CM < length:
+        if seg_max + TOLERANCE_CM > p[leg, 7] or end_min - TOLERANCE_CM < p[leg, 8]:
             inside = False
     return INSIDE if inside else BOUNDARY
 

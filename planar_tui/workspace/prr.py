@@ -95,11 +95,18 @@ class Robot3PRR:
 
 
 def leg_parameters(robot: Robot3PRR, spec) -> object:
-    """The kernel's (3, 5) array: per leg ``E'0x, E'0y, E'1x, E'1y, l`` (cm)."""
+    """The kernel's (3, 9) array: per leg ``E'0x, E'0y, E'1x, E'1y, l`` (cm) and the
+    labels' thresholds (:func:`~planar_tui.workspace.prr_tolerance.spec_thresholds`:
+    ``l`` four times for the nominal robot)."""
     import numpy as np
 
+    from planar_tui.workspace.prr_tolerance import spec_thresholds
+
     ends = robot.shifted_ends_cm(spec.orientation_rad)
-    rows = [(*e, length) for e, length in zip(ends, robot.distal_cm, strict=True)]
+    thresholds = spec_thresholds(robot, spec)
+    rows = [
+        (*e, length, *t) for e, length, t in zip(ends, robot.distal_cm, thresholds, strict=True)
+    ]
     return np.ascontiguousarray(rows, dtype=np.float64)
 
 

@@ -9,9 +9,11 @@ from dataclasses import dataclass
 from typing import Any, ClassVar
 
 from planar_tui.jobkind import Tab
-from planar_tui.schema import setting, string
+from planar_tui.schema import TableReader, setting, string
 from planar_tui.workspace import prr
 from planar_tui.workspace.planar import Mechanism, PlanarSpec, planar_job_kind, same_key
+from planar_tui.workspace.prr_tolerance import TOLERANCE_KEYS_3PRR
+from planar_tui.workspace.tolerance import check_tolerance, tolerance_fields
 
 MECHANISM = Mechanism(
     parameters=prr.leg_parameters,
@@ -41,12 +43,33 @@ class Spec3PRR(PlanarSpec):
         doc="working mode per leg: the slider ahead (`1`) or behind (`-1`) the foot of the "
         "perpendicular from the platform joint to its line",
     )
+    tolerance_cm: float | None
+    tolerances_cm: tuple[tuple[str, float], ...] | None
+    tolerance_mode: str | None
+    tolerance_cm, tolerances_cm, tolerance_mode = tolerance_fields(
+        TOLERANCE_KEYS_3PRR,
+        "manufacturing tolerance ± on every slider line point, platform joint coordinate and "
+        "distal length (cm; the line directions and strokes are exact)",
+    )
     mechanism: ClassVar[Any] = MECHANISM
+    tolerance_keys: ClassVar[tuple[str, ...]] = TOLERANCE_KEYS_3PRR
     circle_keys: ClassVar[tuple[str, ...]] = (
         "slider_modes",
         "circle_centre_cm",
         "singularity_precision_cm",
     )
+
+    @classmethod
+    def check(cls, values: dict[str, Any], reader: TableReader, robot: Any) -> dict[str, Any]:
+        """A tolerance (:mod:`planar_tui.workspace.prr_tolerance`) is below the shortest
+        distal, takes the distance form, no singularities and no geometric reference (as
+        the 3-RPR's); then the shared checks."""
+        check_tolerance(values, reader, TOLERANCE_KEYS_3PRR, {"distal_cm": min(robot.distal_cm)})
+        if values["tolerance_mode"] is not None and values["geometric_reference"]:
+            if reader.has("geometric_reference"):
+                raise reader.error("geometric_reference", "is true with a tolerance", "false")
+            values["geometric_reference"] = False  # its default is the nominal robot's area
+        return super().check(values, reader, robot)
 
 
 JOB_KIND = planar_job_kind(

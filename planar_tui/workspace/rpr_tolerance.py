@@ -56,7 +56,7 @@ from typing import Any
 TOLERANCE_KEYS_3RPR = ("base_joints_cm", "platform_points_cm")
 
 
-def _plus(value: float, amount: float, direction: float) -> float:
+def plus(value: float, amount: float, direction: float) -> float:
     """``value + amount`` nudged one ulp towards ``direction`` (exact when ``amount`` is 0)."""
     if amount == 0.0:
         return value
@@ -85,14 +85,14 @@ def leg_thresholds(
         return lo, hi, lo, hi
     sigma, gamma = shift_bounds_cm(t_base_cm, t_platform_cm)
     if mode == "all":
-        out_lo = _plus(lo, gamma, -inf) if lo > 0.0 else 0.0
-        in_lo = _plus(lo, sigma, inf) if lo > 0.0 else 0.0  # d >= 0 holds for every robot
-        return out_lo, _plus(hi, -gamma, inf), in_lo, _plus(hi, -sigma, -inf)
+        out_lo = plus(lo, gamma, -inf) if lo > 0.0 else 0.0
+        in_lo = plus(lo, sigma, inf) if lo > 0.0 else 0.0  # d >= 0 holds for every robot
+        return out_lo, plus(hi, -gamma, inf), in_lo, plus(hi, -sigma, -inf)
     return (
-        _plus(lo, -sigma, -inf),
-        _plus(hi, sigma, inf),
-        _plus(lo, -gamma, inf),
-        _plus(hi, gamma, -inf),
+        plus(lo, -sigma, -inf),
+        plus(hi, sigma, inf),
+        plus(lo, -gamma, inf),
+        plus(hi, gamma, -inf),
     )
 
 
