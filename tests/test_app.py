@@ -422,7 +422,10 @@ async def test_enter_in_a_field_moves_to_the_next_field_without_a_newline(tmp_pa
 
 
 @async_test
-async def test_a_kind_without_its_own_pane_gets_the_generic_view(tmp_path):
+async def test_the_torques_tab_keeps_the_generic_view_of_summary_and_csv_rows(tmp_path):
+    """The Torques pane adds the arm's drawing (tests/test_app_torques.py) to the generic
+    view (:class:`JobPane`'s summary and CSV rows), checked here; a kind with no pane of
+    its own getting :class:`JobPane` itself: tests/test_toy_kind.py."""
     from planar_tui.app.widgets.panes import JobPane
     from planar_tui.csvio import CsvTable
     from planar_tui.jobkind import JobResult
@@ -431,7 +434,7 @@ async def test_a_kind_without_its_own_pane_gets_the_generic_view(tmp_path):
     app = WorkbenchApp(Workbench.open(preset), output_dir=tmp_path)  # its Torques tab
     async with app.run_test(size=SIZE) as pilot:
         pane = app.query_one("#pane-torques")
-        assert type(pane) is JobPane and pane.kind == "torques"
+        assert isinstance(pane, JobPane) and pane.kind == "torques"
         await run_tab(app, pilot, "torques")
         assert pane.result is not None
         screen = app.export_text()
@@ -443,7 +446,9 @@ async def test_a_kind_without_its_own_pane_gets_the_generic_view(tmp_path):
         pane.show_result(pane.job, many)
         await pilot.pause()
         lines = [line.split("▕")[-1].strip() for line in app.export_text().splitlines()]
-        assert "a_m,b_m" in lines and "10,10" in lines and "11,11" not in lines
+        assert "a_m,b_m" in lines and "0,0" in lines  # on screen, the rest scrolls
+        shown = str(pane.query_one("#result-rows").render()).splitlines()
+        assert shown[0] == "a_m,b_m" and shown[-1] == "10,10" and len(shown) == 12
 
 
 @async_test

@@ -18,11 +18,19 @@ run, form hidden, the map focused, the cursor moved and the exact boundary shown
 from __future__ import annotations
 
 import asyncio
+import os
 import sys
+import tempfile
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO))
+
+from planar_tui.app.settings import CONFIG_DIR_VARIABLE  # noqa: E402
+
+# a fresh settings folder: the user's saved settings (form hidden, theme) neither change
+# the captures nor are overwritten by them
+os.environ[CONFIG_DIR_VARIABLE] = tempfile.mkdtemp(prefix="planar-tui-captures-")
 
 from planar_tui.app.app import WorkbenchApp  # noqa: E402
 from planar_tui.app.workbench import Workbench  # noqa: E402

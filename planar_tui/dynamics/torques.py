@@ -121,7 +121,7 @@ JOB_KIND = JobKind(
         "torques",
         "Inverse dynamics at the listed states of every torques job; one CSV per job.",
     ),
-    tab=Tab("Torques", 4),
+    tab=Tab("Torques", 4, "planar_tui.app.widgets.torques_pane:TorquesPane"),
     figure="planar_tui.figures.torques:from_result",
     warmup="[torques]\ntheta_deg = [[0, 10]]\n",
     figure_names=figure_names,

@@ -199,8 +199,10 @@ def help_text(sources: list[tuple[str, list[Binding]]]) -> str:
     """The help screen's text, generated from the bindings: ``(where, bindings)`` pairs
     (the app's first, ``where`` empty; then each tab's and a field's), one line per
     action with all its keys; then units and glyphs."""
-    from planar_tui.app.widgets.workspace_pane import map_legend
+    from planar_tui.app.widgets.workspace_explorer import EXACT_ITEM, LEGEND_ITEMS, MODE_ITEM
+    from planar_tui.workspace.map import SINGULAR_LEGEND_ITEMS
 
+    map_legend = ", ".join((*LEGEND_ITEMS, EXACT_ITEM, MODE_ITEM, *SINGULAR_LEGEND_ITEMS))
     lines = [HELP_INTRO]
     for where, bindings in sources:
         rows: dict[str, list[str]] = {}
@@ -219,7 +221,7 @@ def help_text(sources: list[tuple[str, list[Binding]]]) -> str:
             text = textwrap.fill(described[group], HELP_WIDTH - 16)
             lines.append(head + text.replace("\n", "\n" + " " * 16))
     for line in HELP_GLYPHS:
-        text = line.format(map=map_legend())
+        text = line.format(map=map_legend)
         lines.append(textwrap.fill(text, HELP_WIDTH, subsequent_indent="  "))
     return "\n".join(lines)
 

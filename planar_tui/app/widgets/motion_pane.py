@@ -56,6 +56,44 @@ def band_arms_deg(result, row: int) -> dict[str, list[float]] | None:
     }
 
 
+def wrapped_band_grids(result, width: int, row: int = -1) -> tuple[list, int]:
+    """The band table at recorded ``row`` turned (statistics as rows, outputs as columns,
+    5 significant digits) and wrapped into tables of as many output columns as fit
+    ``width`` cells (at least one), so every output stays visible in a narrow pane;
+    returns the tables and their widest width."""
+    from rich import box
+    from rich.table import Table
+
+    from planar_tui.motion.engine import output_labels
+    from planar_tui.motion.results import BAND_STATISTICS
+
+    labels = output_labels(result.names)
+    cells = [[f"{v:.5g}" for v in result.band[row, :, k]] for k in range(len(labels))]
+    widths = [
+        max(len(label), *map(len, column)) for label, column in zip(labels, cells, strict=True)
+    ]
+    first = max(map(len, BAND_STATISTICS))
+    groups: list[list[int]] = [[]]
+    used = first
+    for k, cell_width in enumerate(widths):
+        if groups[-1] and used + 2 + cell_width > width:
+            groups.append([])
+            used = first
+        groups[-1].append(k)
+        used += 2 + cell_width
+    tables, widest = [], 0
+    for group in groups:
+        table = Table(box=box.SIMPLE_HEAD, show_edge=False, pad_edge=False, padding=(0, 1, 0, 0))
+        table.add_column("", width=first, no_wrap=True)
+        for k in group:
+            table.add_column(labels[k], justify="right", width=widths[k], no_wrap=True)
+        for s, statistic in enumerate(BAND_STATISTICS):
+            table.add_row(statistic, *(cells[k][s] for k in group))
+        tables.append(table)
+        widest = max(widest, first + sum(2 + widths[k] for k in group))
+    return tables, widest
+
+
 #: Lines of the band plot (the results area scrolls below it).
 PLOT_LINES = 16
 #: Columns of the results area from which the tables stand beside the plot (then fitted
@@ -119,11 +157,15 @@ class MotionPane(JobPane):
 
         def fitted(width: int) -> tuple[list, int]:
             """The band and index tables fitted to ``width`` and their widest line."""
-            parts = [
-                Text(f"band at t = {result.t_s[-1]:g} s (ctrl+t: next output)", style="bold"),
-                grid,
+            parts: list = [
+                Text(f"band at t = {result.t_s[-1]:g} s (ctrl+t: next output)", style="bold")
             ]
-            natural = band_width
+            if band_width <= width:
+                parts.append(grid)
+                natural = band_width
+            else:  # too narrow: turned and wrapped, every output still shown
+                grids, natural = wrapped_band_grids(result, width)
+                parts += grids
             if result.analyses:
                 indices = fit_tables(result.analyses, VIEWS[0], width, "ST")
                 parts.append(indices.renderable)
