@@ -93,7 +93,7 @@ async def test_undo_is_quick_and_keeps_the_result_and_the_status(tmp_path):
         assert field.text == "0.2" and app.focused is field
         assert pane.result is not None and pane.stale_reason is None  # inputs as run
         screen = app.export_text()
-        assert "done in" in screen and "energy (J)" in screen  # nothing blanked or reset
+        assert "done in" in screen and "E, k, p (J)" in screen  # nothing blanked or reset
         await pilot.press("end", "5", "ctrl+z")  # another edit undone: still in place
         await pilot.pause()
         assert field.text == "0.2" and active_tab(app) == "simulate"
@@ -316,7 +316,7 @@ async def test_f1_shows_the_help_and_ctrl_b_maximises_the_results(tmp_path):
         maximised = app.screen.maximized
         assert maximised is not None and maximised is app.query_one("#pane-simulate .results")
         text = app.export_text()
-        assert "duration_s" not in text and "energy (J)" in text  # the form is off screen
+        assert "duration_s" not in text and "E, k, p (J)" in text  # the form is off screen
         await pilot.press("ctrl+b")
         await pilot.pause()
         assert app.screen.maximized is None and "duration_s" in app.export_text()

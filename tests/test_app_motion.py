@@ -76,21 +76,23 @@ async def test_motion_run_plots_the_band_and_shows_the_tables(tmp_path, cli):
 
 
 def test_the_docs_name_the_tab_keys_the_app_binds():
-    """README's tab keys and docs/motion.md's Motion-tab key are the app's bindings (F8 is
-    the sweep, not a tab)."""
+    """README's tab keys and docs/motion.md's Motion-tab key are the app's bindings: the
+    function keys anywhere, the digits on the tab bar only (F8 is the sweep, not a tab)."""
     from planar_tui.app.app import WorkbenchApp
     from tests.conftest import REPO
 
-    tab_keys = {}  # tab number -> its keys
+    function_keys, digits = {}, {}  # tab number -> its key
     for binding in WorkbenchApp.BINDINGS:
         if binding.action.startswith("show_tab_number("):
-            tab_keys.setdefault(int(binding.action[16:-1]), []).append(binding.key)
-    function_keys = [keys[1].upper() for _, keys in sorted(tab_keys.items())]
+            function_keys[int(binding.action[16:-1])] = binding.key.upper()
+        elif binding.action.startswith("digit_tab("):
+            digits[int(binding.action[10:-1])] = binding.key
+    listed = " ".join(f"`{function_keys[k]}`" for k in sorted(function_keys))
     readme = " ".join((REPO / "README.md").read_text(encoding="utf-8").split())
-    listed = " ".join(f"`{key}`" for key in function_keys)
-    assert f"keys `1`…`6` outside fields, {listed} anywhere" in readme
+    assert f"keys {listed} anywhere for the first six" in readme
+    assert f"`{digits[1]}`…`{digits[6]}` on the tab bar, never in a form" in readme
     motion = " ".join((REPO / "docs" / "motion.md").read_text(encoding="utf-8").split())
-    assert f"(Motion tab, key `{tab_keys[6][0]}` / `{function_keys[5]}`)" in motion
+    assert f"(Motion tab, key `{digits[6]}` / `{function_keys[6]}`)" in motion
 
 
 @async_test
