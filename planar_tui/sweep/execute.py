@@ -249,7 +249,9 @@ def dask_client(target: DaskTarget, announce: Callable[[str], None]) -> Iterator
     cluster = None
     try:
         with deferred_signals(signal.SIGINT, signal.SIGTERM), workers_ignoring_interrupts():
-            cluster = local_cluster(target.workers, silence_logs=logging.ERROR)
+            # CRITICAL: a worker whose heartbeat meets the closing scheduler at Ctrl-C logs
+            # an ERROR with a traceback; failures reach the client through the futures
+            cluster = local_cluster(target.workers, silence_logs=logging.CRITICAL)
         client = Client(cluster)
         try:
             client.register_plugin(_ignore_interrupts_plugin(), name="planar-tui-ignore-sigint")
