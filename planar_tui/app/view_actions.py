@@ -119,8 +119,8 @@ class ViewActions:
 
     @classmethod
     def binding_sources(cls) -> list[tuple[str, list[Any]]]:
-        """``(where, bindings)``: the app's, then each tab's own, then a field's (for
-        the help screen)."""
+        """``(where, bindings)``: the app's, then each tab's own, a field's, the run
+        history's and the comparison's (for the help screen)."""
         from textual.app import App
         from textual.binding import Binding
         from textual.screen import Screen
@@ -139,6 +139,10 @@ class ViewActions:
             if own:
                 sources.append((f"{titles.get(name, name)} tab", own))
         sources.append(("in a field", list(Field.BINDINGS)))
+        from planar_tui.app.screens.history import CompareScreen, HistoryScreen
+
+        sources.append(("Run history (F10)", list(HistoryScreen.BINDINGS)))
+        sources.append(("Comparison (c in the history)", list(CompareScreen.BINDINGS)))
         return sources
 
     # -- undo in place --------------------------------------------------------------------
