@@ -46,6 +46,17 @@ async def history_text(app, pilot) -> str:
     return app.export_text()
 
 
+async def compare_latest(app, pilot):
+    """``F10`` then ``c``: the comparison of the latest run with the one before it."""
+    from planar_tui.app.screens.history import CompareScreen, HistoryScreen
+
+    await pilot.press("f10")
+    await until(pilot, lambda: isinstance(app.screen, HistoryScreen))
+    await pilot.press("c")
+    await until(pilot, lambda: isinstance(app.screen, CompareScreen))
+    return app.screen.comparison
+
+
 def tiny(tmp_path: Path) -> Path:
     path = tmp_path / "tiny.toml"
     shutil.copy(DATA / "tiny.toml", path)
@@ -315,8 +326,6 @@ def test_tui_open_refuses_a_file_that_is_no_result_in_one_line(tmp_path, cli):
 @pytest.mark.slow
 @async_test
 async def test_runs_of_the_session_are_kept_and_two_simulations_overlaid(tmp_path):
-    from planar_tui.app.screens.history import CompareScreen, HistoryScreen
-
     app = make_app(tmp_path)
     async with app.run_test(size=(80, 24)) as pilot:
         app.action_show_tab("simulate")
@@ -327,11 +336,7 @@ async def test_runs_of_the_session_are_kept_and_two_simulations_overlaid(tmp_pat
             await pilot.pause(0.1)
         assert [run.kind for run in app.run_history] == ["simulate", "simulate"]
         assert app.run_history.runs[0].provenance.duration_s > 0
-        await pilot.press("f10")
-        await until(pilot, lambda: isinstance(app.screen, HistoryScreen))
-        await pilot.press("c")
-        await until(pilot, lambda: isinstance(app.screen, CompareScreen))
-        comparison = app.screen.comparison
+        comparison = await compare_latest(app, pilot)
         assert comparison.series and comparison.series[0][0] == "A θ1"
         assert "same settings" in comparison.notes
         by_column = {row[0]: row for row in comparison.rows}

@@ -9,6 +9,8 @@
 - Simulate: per column, the final values and the largest difference over the common
   times (B interpolated linearly onto A's times); the joint angles of both overlaid
   (:attr:`Comparison.series`).
+- Sweep and optimisation: rows matched by point (evaluation) number, every numeric
+  column of A, B and B − A.
 - Any other table: rows matched by their text columns (else by position), every numeric
   column of A, B and B − A.
 """
@@ -26,6 +28,9 @@ from planar_tui.csvio import CsvTable
 #: Sensitivity rows are matched by these columns and compared on these.
 SENSITIVITY_KEYS = ("posture", "speed_rad_s", "torque", "parameter", "method")
 SENSITIVITY_VALUES = ("S1", "ST")
+
+#: The column a sweep's (an optimisation's) rows are matched by.
+STUDY_KEYS = {"sweep": "point", "optimise": "evaluation"}
 
 #: Significant digits of a sensitivity index (A and B; B − A has 3): a Monte Carlo index
 #: has fewer meaningful ones, and the eight columns then fit 80 columns.
@@ -237,6 +242,10 @@ def compare_runs(a: Run, b: Run) -> Comparison:
         header, rows = figures_side_by_side(a.table, b.table)
     elif a.kind == "simulate" and "t_s" in a.table.header and "t_s" in b.table.header:
         header, rows, series = simulation_figures(a.table, b.table)
+    elif STUDY_KEYS.get(a.kind) in a.table.header and STUDY_KEYS[a.kind] in b.table.header:
+        key, text = STUDY_KEYS[a.kind], set(_text_columns(a.table))
+        values = [v for v in a.table.header if v not in text | {key} and v in b.table.header]
+        header, rows = matched_rows(a.table, b.table, [key], values)
     else:
         keys = [k for k in _text_columns(a.table) if k in b.table.header]
         values = [v for v in a.table.header if v not in keys and v in b.table.header]
