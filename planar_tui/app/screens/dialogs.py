@@ -152,6 +152,10 @@ HELP_DETAILS = {
     "latest other run of its kind",
     "open_result": "open a result CSV into the history",
     "close": "close (back to where it was opened)",
+    "state(-1)": "draw the arm at the previous state (theta_deg row)",
+    "state(1)": "draw the arm at the next state",
+    "state_at(0)": "the first state",
+    "state_at(-1)": "the last state",
     "save": "save (comments kept; a bundled preset asks for a path; an invalid one "
     "is saved as a draft if you confirm)",
     "undo": "undo the latest edit, in place (same tab and field; results kept)",
