@@ -8,6 +8,8 @@ import math
 import tomllib
 from pathlib import Path
 
+import pytest
+
 from planar_tui.app.app import WorkbenchApp
 from planar_tui.app.workbench import Workbench
 from tests.test_app import async_test, run_tab
@@ -67,6 +69,7 @@ async def test_the_torques_tab_draws_the_arm_at_the_first_state(tmp_path):
         assert "state 1" in app.export_text()
 
 
+@pytest.mark.slow
 @async_test
 async def test_the_drawing_shows_the_state_chosen_with_the_arrow_keys(tmp_path):
     """With the drawing focused, → / ← / end / home choose the state drawn: the tip is in
