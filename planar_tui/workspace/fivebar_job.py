@@ -31,6 +31,7 @@ from planar_tui.schema import (
     setting,
     string,
 )
+from planar_tui.workspace.estimate import check_needs, estimate
 from planar_tui.workspace.fivebar import Robot5R
 from planar_tui.workspace.job import (
     BOXES_OPTION,
@@ -116,7 +117,8 @@ class FiveBarSpec:
     @staticmethod
     def check(values: dict[str, Any], reader: TableReader, robot: Robot5R) -> dict[str, Any]:
         """The refinement is at most the precision; the circle goes with ``singularities``
-        and a working mode."""
+        and a working mode; the estimated memory and time fit the limits
+        (:func:`~planar_tui.workspace.estimate.check_needs`)."""
         if not values["singularities"]:
             refuse_without_singularities(
                 values, reader, ("singularity_free_circle", "singularity_precision_cm")
@@ -137,7 +139,9 @@ class FiveBarSpec:
                     problem,
                     "a centre inside the workspace, off its singularities",
                 )
-        return check_paving(values, reader)
+        values = check_paving(values, reader)
+        check_needs("workspace5r", FiveBarSpec(**values), reader, robot)
+        return values
 
 
 FiveBarJob = Job[FiveBarSpec, Robot5R]
@@ -243,6 +247,7 @@ JOB_KIND = JobKind(
     render=render_workspace,
     extra_outputs=_extra_outputs,
     point_figures=point_figures,
+    estimate=estimate,
     command=Command(
         "workspace5r",
         "Five-bar workspace of every workspace5r job: summary CSV, boxes CSV (--boxes or the "
