@@ -31,6 +31,7 @@ from planar_tui.schema import (
     setting,
     string,
 )
+from planar_tui.workspace.columns import fivebar_figure_names
 from planar_tui.workspace.estimate import check_needs, estimate
 from planar_tui.workspace.fivebar import Robot5R
 from planar_tui.workspace.job import (
@@ -117,8 +118,7 @@ class FiveBarSpec:
     @staticmethod
     def check(values: dict[str, Any], reader: TableReader, robot: Robot5R) -> dict[str, Any]:
         """The refinement is at most the precision; the circle goes with ``singularities``
-        and a working mode; the estimated memory and time fit the limits
-        (:func:`~planar_tui.workspace.estimate.check_needs`)."""
+        and a working mode."""
         if not values["singularities"]:
             refuse_without_singularities(
                 values, reader, ("singularity_free_circle", "singularity_precision_cm")
@@ -140,7 +140,7 @@ class FiveBarSpec:
                     "a centre inside the workspace, off its singularities",
                 )
         values = check_paving(values, reader)
-        check_needs("workspace5r", FiveBarSpec(**values), reader, robot)
+        check_needs("workspace5r", FiveBarSpec(**values), reader, robot)  # memory and time
         return values
 
 
@@ -248,6 +248,7 @@ JOB_KIND = JobKind(
     extra_outputs=_extra_outputs,
     point_figures=point_figures,
     estimate=estimate,
+    figure_names=fivebar_figure_names,
     command=Command(
         "workspace5r",
         "Five-bar workspace of every workspace5r job: summary CSV, boxes CSV (--boxes or the "

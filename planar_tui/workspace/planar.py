@@ -25,6 +25,7 @@ from typing import Any, ClassVar
 from planar_tui.jobkind import Command, Job, JobKind, Option, OutputOption, PreparedJob, Tab
 from planar_tui.progress import Progress
 from planar_tui.schema import TableReader, number, plot_setting, setting, string
+from planar_tui.workspace.columns import planar_figure_names
 from planar_tui.workspace.estimate import check_needs, estimate
 from planar_tui.workspace.job import (
     WorkspaceResult,
@@ -286,7 +287,8 @@ def planar_job_kind(
     """The :class:`JobKind` of a fixed-orientation parallel kind ``name`` (its robot table
     ``robot`` + the name's suffix): the shared runner, terminal map, figure, command
     (``--precision``, ``--boxes``, ``--map/--no-map``), its estimate
-    (:mod:`planar_tui.workspace.estimate`)."""
+    (:mod:`planar_tui.workspace.estimate`) and sweep columns
+    (:mod:`planar_tui.workspace.columns`)."""
     declared = getattr(settings, "kind", None)
     assert declared == name, f"{settings.__name__}.kind is {declared!r}, not {name!r}"
     return JobKind(
@@ -315,6 +317,7 @@ def planar_job_kind(
         figure="planar_tui.figures.workspace:from_planar_result",
         warmup=warmup,
         estimate=estimate,
+        figure_names=planar_figure_names,
     )  # fmt: skip
 
 
