@@ -236,3 +236,29 @@ def test_the_five_bar_command_prints_its_map(tmp_path, cli):
     assert result.exit_code == 0, result.output
     assert "workspace5r[2]: arc-distance, ε = 2 cm" in result.stdout
     assert "singularity-free" in result.stdout
+
+
+@pytest.mark.parametrize("kind", sorted(JOBS))
+def test_a_run_reports_its_estimate_and_warns_over_the_box_budget(tmp_path, kind):
+    """The estimate is the progress figure ``boxes_estimate``; over ``box_budget`` the job
+    is warned of, then stops at the budget (nothing written)."""
+    from planar_tui.errors import JobError
+
+    text = (
+        JOBS[kind]
+        .format(precision=0.5)
+        .replace('output = "w.csv"', 'box_budget = 500\noutput = "w.csv"')
+    )
+    path = tmp_path / "p.toml"
+    path.write_text(text, encoding="utf-8")
+    (job,) = load_preset(path).jobs
+    declared, progress = JOB_KINDS[kind], Progress()
+    with pytest.raises(JobError, match="exceeded 500 boxes"):
+        declared.run(declared.prepare_job(job), progress)
+    expected = estimate_boxes(kind, job.robot, job.spec)
+    assert progress.figures["boxes_estimate"] == expected > 500
+    assert progress.warning.startswith(f"about {expected:,} boxes expected, more than box_budget")
+    within = dataclasses.replace(job, spec=dataclasses.replace(job.spec, box_budget=10**7))
+    progress = Progress()
+    declared.run(declared.prepare_job(within), progress)
+    assert progress.figures["boxes_estimate"] == expected and not progress.warning

@@ -403,8 +403,13 @@ def estimate_boxes(robot: Robot3RRR, spec) -> int:
 
 def report_estimate(robot: Robot3RRR, spec, progress: Progress) -> int:
     """Put :func:`estimate_boxes` in ``progress.figures["boxes_estimate"]`` and warn
-    (``progress.warning``) when it exceeds the job's ``box_budget``."""
-    estimate = estimate_boxes(robot, spec)
+    (``progress.warning``) when it exceeds the job's ``box_budget`` (:func:`report_boxes`)."""
+    return report_boxes(estimate_boxes(robot, spec), spec, progress)
+
+
+def report_boxes(estimate: int, spec, progress: Progress) -> int:
+    """Put a workspace job's box ``estimate`` in ``progress.figures["boxes_estimate"]`` and
+    warn (``progress.warning``) when it exceeds the job's ``box_budget``."""
     progress.figures["boxes_estimate"] = float(estimate)
     if estimate > spec.box_budget:
         progress.warn(

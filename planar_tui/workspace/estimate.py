@@ -117,6 +117,15 @@ def needs(kind: str, robot: Any, spec: Any) -> tuple[int, float, float]:
     return boxes, float(boxes) * BYTES_PER_BOX, JOB_SECONDS + boxes * SECONDS_PER_BOX
 
 
+def report(job: Any, progress: Any) -> int:
+    """Put the job's box estimate in the progress figures (``boxes_estimate``), with a
+    warning when it exceeds ``box_budget``, as the 3-RRR's
+    (:func:`~planar_tui.workspace.compute.report_boxes`)."""
+    from planar_tui.workspace.compute import report_boxes
+
+    return report_boxes(estimate_boxes(job.kind, job.robot, job.spec), job.spec, progress)
+
+
 def estimate(job: Any) -> tuple[float, float]:
     """The kinds' ``estimate`` hook: ``(memory_bytes, seconds)`` of ``job``."""
     _, memory, seconds = needs(job.kind, job.robot, job.spec)
