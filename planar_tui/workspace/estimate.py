@@ -117,7 +117,7 @@ def needs(kind: str, robot: Any, spec: Any) -> tuple[int, float, float]:
     return boxes, float(boxes) * BYTES_PER_BOX, JOB_SECONDS + boxes * SECONDS_PER_BOX
 
 
-def report(job: Any, progress: Any) -> int:
+def report_box_estimate(job: Any, progress: Any) -> int:
     """Put the job's box estimate in the progress figures (``boxes_estimate``), with a
     warning when it exceeds ``box_budget``, as the 3-RRR's
     (:func:`~planar_tui.workspace.compute.report_boxes`)."""

@@ -32,7 +32,7 @@ from planar_tui.schema import (
     string,
 )
 from planar_tui.workspace.columns import fivebar_figure_names
-from planar_tui.workspace.estimate import check_needs, estimate, report
+from planar_tui.workspace.estimate import check_needs, estimate, report_box_estimate
 from planar_tui.workspace.fivebar import Robot5R
 from planar_tui.workspace.job import (
     BOXES_OPTION,
@@ -216,7 +216,7 @@ def run_fivebar(
 
     job = ready.job
     budget = BoxBudget(job, progress)
-    report(job, progress)  # the estimated boxes, warned of over the box budget
+    report_box_estimate(job, progress)  # warned of over the box budget
     outcome = compute_fivebar(job.robot, job.spec, budget)
     singular = None
     if job.spec.singularities:

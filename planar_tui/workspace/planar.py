@@ -26,7 +26,7 @@ from planar_tui.jobkind import Command, Job, JobKind, Option, OutputOption, Prep
 from planar_tui.progress import Progress
 from planar_tui.schema import TableReader, number, plot_setting, setting, string
 from planar_tui.workspace.columns import planar_figure_names
-from planar_tui.workspace.estimate import check_needs, estimate, report
+from planar_tui.workspace.estimate import check_needs, estimate, report_box_estimate
 from planar_tui.workspace.job import (
     WorkspaceResult,
     WorkspaceSpec,
@@ -241,7 +241,7 @@ def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> 
 
     job = ready.job
     budget = BoxBudget(job, progress)
-    report(job, progress)  # the estimated boxes, warned of over the box budget
+    report_box_estimate(job, progress)  # warned of over the box budget
     outcome = compute_planar(job.robot, job.spec, budget)
     header: tuple[str, ...] = SUMMARY_HEADER
     row, summary = outcome.summary_row(), summary_line(outcome)
