@@ -20,7 +20,8 @@ from planar_tui.cli import app
 
 result = CliRunner().invoke(app, sys.argv[1:])
 heavy = ("numba", "SALib", "textual", "scipy", "mujoco", "numpy", "matplotlib", "dask",
-         "distributed")
+         "distributed", "shapely", "pydantic", "rich.markdown", "markdown_it", "pygments",
+         "rich.traceback", "rich.pretty", "attr")
 print(json.dumps({"code": result.exit_code, "loaded": [m for m in heavy if m in sys.modules]}))
 """
 
@@ -38,13 +39,45 @@ def modules_loaded_by(*args: str) -> dict:
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
-def test_help_loads_no_heavy_module():
-    probe = modules_loaded_by("--help")
+@pytest.mark.parametrize("command", [(), ("run",), ("workspace",), ("sweep",)])
+def test_help_loads_no_heavy_module(command):
+    """Nor typer's Markdown and traceback renderers (with markdown_it, pygments, attrs),
+    nor pydantic (typer's value coercion): help needs none of them."""
+    probe = modules_loaded_by(*command, "--help")
     assert probe == {"code": 0, "loaded": []}
 
 
+def test_help_renders_without_markdown_yet_the_real_modules_import_after_it():
+    """The help formatter's stand-ins for ``rich.markdown`` and ``rich.traceback``
+    (:func:`planar_tui.cli.output._import_help_formatter`) leave nothing behind: a later
+    import gets the real module, and typer's own names for them make the real objects."""
+    code = (
+        "import sys\n"
+        "from typer.testing import CliRunner\n"
+        "from planar_tui.cli import app\n"
+        "result = CliRunner().invoke(app, ['--help'])\n"
+        "assert result.exit_code == 0 and 'Usage: planar-tui' in result.stdout\n"
+        "before = 'rich.markdown' in sys.modules or 'rich.traceback' in sys.modules\n"
+        "import rich.markdown, rich.traceback, typer.rich_utils as utils\n"
+        "made = utils.Markdown('*x*')\n"
+        "try:\n"
+        "    raise ValueError('x')\n"
+        "except ValueError as error:\n"
+        "    traced = utils.Traceback.from_exception(type(error), error, error.__traceback__)\n"
+        "print(before, type(made) is rich.markdown.Markdown,\n"
+        "      type(traced) is rich.traceback.Traceback,\n"
+        "      rich.markdown.__file__.endswith('markdown.py'))\n"
+    )
+    env = dict(os.environ, PYTHONPATH=str(REPO))
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True
+    )
+    assert out.stdout.split() == ["False", "True", "True", "True"]
+
+
 def test_presets_list_loads_no_heavy_module():
-    assert modules_loaded_by("presets")["loaded"] == []
+    loaded = modules_loaded_by("presets")["loaded"]
+    assert loaded == ["pydantic"]  # typer coerces a command's option values with pydantic
 
 
 def test_batch_run_never_imports_textual(tmp_path):
