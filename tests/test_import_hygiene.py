@@ -39,6 +39,15 @@ def modules_loaded_by(*args: str) -> dict:
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
+def words_printed_by(code: str) -> list[str]:
+    """The words a fresh ``python -c code`` (this checkout importable) prints."""
+    env = dict(os.environ, PYTHONPATH=str(REPO))
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True
+    )
+    return out.stdout.split()
+
+
 @pytest.mark.parametrize("command", [(), ("run",), ("workspace",), ("sweep",)])
 def test_help_loads_no_heavy_module(command):
     """Nor typer's Markdown and traceback renderers (with markdown_it, pygments, attrs),
@@ -68,11 +77,7 @@ def test_help_renders_without_markdown_yet_the_real_modules_import_after_it():
         "      type(traced) is rich.traceback.Traceback,\n"
         "      rich.markdown.__file__.endswith('markdown.py'))\n"
     )
-    env = dict(os.environ, PYTHONPATH=str(REPO))
-    out = subprocess.run(
-        [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True
-    )
-    assert out.stdout.split() == ["False", "True", "True", "True"]
+    assert words_printed_by(code) == ["False", "True", "True", "True"]
 
 
 def test_presets_list_loads_no_heavy_module():
@@ -112,11 +117,7 @@ def test_loading_a_cached_kernel_skips_numbas_scipy_blas_probe_but_blas_still_wo
         "dot = njit(lambda a, b: np.dot(a, b))\n"
         "print(before, dot(np.eye(2) * 2.0, np.ones(2)).tolist())\n"
     )
-    env = dict(os.environ, PYTHONPATH=str(REPO))
-    out = subprocess.run(
-        [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True
-    )
-    assert out.stdout.split() == ["False", "[2.0,", "2.0]"]
+    assert words_printed_by(code) == ["False", "[2.0,", "2.0]"]
 
 
 def test_importing_the_package_and_its_kernels_changes_nothing_in_the_process():
