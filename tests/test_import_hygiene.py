@@ -81,8 +81,9 @@ def test_help_renders_without_markdown_yet_the_real_modules_import_after_it():
 
 
 def test_presets_list_loads_no_heavy_module():
-    loaded = modules_loaded_by("presets")["loaded"]
-    assert loaded == ["pydantic"]  # typer coerces a command's option values with pydantic
+    """Nor pydantic: typer's coercion of the option values (``presets --copy``'s ``None``)
+    without it (:class:`planar_tui.cli.output._CommonValues`)."""
+    assert modules_loaded_by("presets")["loaded"] == []
 
 
 def test_batch_run_never_imports_textual(tmp_path):
@@ -97,7 +98,7 @@ def test_a_warm_batch_run_never_imports_matplotlib(tmp_path):
     first run) imports no matplotlib; with `--plot` it does (the probe sees it)."""
     probe = modules_loaded_by("run", "paper-b-table3", "--out-dir", str(tmp_path))
     assert probe["code"] == 0 and "numba" in probe["loaded"]
-    assert "matplotlib" not in probe["loaded"]
+    assert "matplotlib" not in probe["loaded"] and "pydantic" not in probe["loaded"]
     plotted = modules_loaded_by(
         "torques", "paper-a-table1", "--out-dir", str(tmp_path), "--plot", str(tmp_path / "t.svg")
     )

@@ -11,11 +11,14 @@ import threading
 import types
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
+from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import typer
 from rich.console import Console
+from typer._coercion import RuntimeParam, build_runtime_param
+from typer._param_types import coerce_cli_path
 from typer.core import TyperCommand, TyperGroup
 
 from planar_tui.errors import Cancelled, ExitCode, PresetError, Terminated
@@ -46,26 +49,49 @@ class _FlagsWithoutMetavar:
         for param in params:
             if getattr(param, "is_flag", False) and param.metavar is None:
                 param.metavar = ""
-            _pass_flag_values_through(param)
+            _coerce_common_values(param)
             if getattr(param, "help", None) and not getattr(param, "_escaped", False):
                 param.help = _escaped(param.help)
                 param._escaped = True
         return params
 
 
-def _pass_flag_values_through(param) -> None:
-    """A flag's value (``True``, ``False`` or ``None`` when absent, e.g. a group's
-    ``--help`` in ``planar-tui run --help``) kept as it is, as Typer keeps a ``bool``,
-    without the pydantic adapter Typer builds to coerce ``None`` (importing pydantic:
-    about 0.1 s of ``planar-tui run --help``)."""
+def _coerce_common_values(param) -> None:
+    """Give a Typer parameter :class:`_CommonValues` as its value coercion (unless it has
+    one already): Typer builds a pydantic adapter per parameter on its first value, even
+    ``None``, and importing pydantic alone is about 0.1 s CPU of every command."""
     descriptor = getattr(param, "type_descriptor", None)
-    if (getattr(param, "is_flag", False) and getattr(param, "_runtime_param", 0) is None
-            and descriptor is not None and descriptor.annotation is bool):  # fmt: skip
-        from typer._coercion import PassThroughRuntimeParam
-
-        param._runtime_param = PassThroughRuntimeParam(
-            parameter_info=descriptor.parameter_info, annotation=bool
+    if descriptor is not None and getattr(param, "_runtime_param", 0) is None:
+        param._runtime_param = _CommonValues(
+            parameter_info=descriptor.parameter_info,
+            annotation=descriptor.annotation,
+            descriptor=descriptor,
         )
+
+
+@dataclass(frozen=True)
+class _CommonValues(RuntimeParam):
+    """Typer's value coercion with the common cases done without pydantic, giving what
+    Typer's pydantic adapter gives (``tests/test_cli_presentation.py`` compares them): a
+    ``str`` for a ``str``, the list of a ``list[str]``'s strings, and a ``Path`` made of a
+    ``str`` then checked by Typer's own :func:`typer._param_types.coerce_cli_path`; an
+    absent value (``None``) is answered by the base class without coercion. Everything
+    else (numbers, choices, bad values and their messages) goes to the adapter Typer
+    builds (:func:`typer._coercion.build_runtime_param`)."""
+
+    descriptor: Any = None
+
+    def _coerce_value(self, value, param, ctx):
+        annotation, info = self.annotation, self.parameter_info
+        if info.parser is None:
+            if annotation is str and type(value) is str:
+                return value
+            if (annotation == list[str] and isinstance(value, list | tuple)
+                    and all(type(item) is str for item in value)):  # fmt: skip
+                return list(value)
+            if annotation is Path and info.path_type is None and type(value) is str:
+                return coerce_cli_path(Path(value), info, path_type=Path, param=param, ctx=ctx)
+        return build_runtime_param(self.descriptor)._coerce_value(value, param=param, ctx=ctx)
 
 
 def _escaped(text: str | None) -> str | None:
