@@ -164,3 +164,17 @@ def test_a_sweep_on_one_worker_imports_no_dask(tmp_path):
     assert "numba" in probe["loaded"]
     assert "dask" not in probe["loaded"] and "distributed" not in probe["loaded"]
     assert (tmp_path / "sweep-sweep-1.csv").exists()
+
+
+@pytest.mark.parametrize(("command", "collecting"), [("--help", "False"), ("presets", "True")])
+def test_no_garbage_collection_while_the_cli_loads_but_while_a_command_runs(command, collecting):
+    """``planar_tui.entry.main`` turns the cyclic collector off while the CLI loads; every
+    command turns it back on (``--help`` ends before any command: still off)."""
+    code = (
+        "import atexit, gc, sys\n"
+        "atexit.register(lambda: print('collecting', gc.isenabled()))\n"
+        f"sys.argv = ['planar-tui', {command!r}]\n"
+        "from planar_tui.entry import main\n"
+        "main()\n"
+    )
+    assert words_printed_by(code)[-2:] == ["collecting", collecting]
