@@ -178,3 +178,19 @@ def test_no_garbage_collection_while_the_cli_loads_but_while_a_command_runs(comm
         "main()\n"
     )
     assert words_printed_by(code)[-2:] == ["collecting", collecting]
+
+
+@pytest.mark.parametrize("collecting", [True, False])
+def test_preparing_the_kernels_leaves_garbage_collection_as_it_was(collecting):
+    """numba is imported without cyclic collection (:func:`planar_tui.runtime.
+    no_cyclic_collection`), which is then as before: on stays on, off stays off."""
+    code = (
+        "import gc, sys\n"
+        f"gc.enable() if {collecting} else gc.disable()\n"
+        "from planar_tui.runtime import no_cyclic_collection, prepare_kernels\n"
+        "with no_cyclic_collection():\n"
+        "    inside = gc.isenabled()\n"
+        "prepare_kernels()\n"
+        "print(inside, 'numba' in sys.modules, gc.isenabled())\n"
+    )
+    assert words_printed_by(code) == ["False", "True", str(collecting)]
