@@ -4,16 +4,21 @@ displays (one bar per job, one per sweep)."""
 
 from __future__ import annotations
 
+import importlib
 import signal
 import sys
 import threading
+import types
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
+from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import typer
 from rich.console import Console
+from typer._coercion import RuntimeParam, build_runtime_param
+from typer._param_types import coerce_cli_path
 from typer.core import TyperCommand, TyperGroup
 
 from planar_tui.errors import Cancelled, ExitCode, PresetError, Terminated
@@ -35,15 +40,58 @@ class _FlagsWithoutMetavar:
         self.help = _escaped(self.help)
         self.short_help = _escaped(self.short_help)
 
+    def format_help(self, ctx, formatter):
+        _import_help_formatter()
+        return super().format_help(ctx, formatter)
+
     def get_params(self, ctx):
         params = super().get_params(ctx)
         for param in params:
             if getattr(param, "is_flag", False) and param.metavar is None:
                 param.metavar = ""
+            _coerce_common_values(param)
             if getattr(param, "help", None) and not getattr(param, "_escaped", False):
                 param.help = _escaped(param.help)
                 param._escaped = True
         return params
+
+
+def _coerce_common_values(param) -> None:
+    """Give a Typer parameter :class:`_CommonValues` as its value coercion (unless it has
+    one already): Typer builds a pydantic adapter per parameter on its first value, even
+    ``None``, and importing pydantic alone is about 0.1 s CPU of every command."""
+    descriptor = getattr(param, "type_descriptor", None)
+    if descriptor is not None and getattr(param, "_runtime_param", 0) is None:
+        param._runtime_param = _CommonValues(
+            parameter_info=descriptor.parameter_info,
+            annotation=descriptor.annotation,
+            descriptor=descriptor,
+        )
+
+
+@dataclass(frozen=True)
+class _CommonValues(RuntimeParam):
+    """Typer's value coercion with the common cases done without pydantic, giving what
+    Typer's pydantic adapter gives (``tests/test_cli_presentation.py`` compares them): a
+    ``str`` for a ``str``, the list of a ``list[str]``'s strings, and a ``Path`` made of a
+    ``str`` then checked by Typer's own :func:`typer._param_types.coerce_cli_path`; an
+    absent value (``None``) is answered by the base class without coercion. Everything
+    else (numbers, choices, bad values and their messages) goes to the adapter Typer
+    builds (:func:`typer._coercion.build_runtime_param`)."""
+
+    descriptor: Any = None
+
+    def _coerce_value(self, value, param, ctx):
+        annotation, info = self.annotation, self.parameter_info
+        if info.parser is None:
+            if annotation is str and type(value) is str:
+                return value
+            if (annotation == list[str] and isinstance(value, list | tuple)
+                    and all(type(item) is str for item in value)):  # fmt: skip
+                return list(value)
+            if annotation is Path and info.path_type is None and type(value) is str:
+                return coerce_cli_path(Path(value), info, path_type=Path, param=param, ctx=ctx)
+        return build_runtime_param(self.descriptor)._coerce_value(value, param=param, ctx=ctx)
 
 
 def _escaped(text: str | None) -> str | None:
@@ -51,6 +99,51 @@ def _escaped(text: str | None) -> str | None:
     from rich.markup import escape
 
     return None if text is None else escape(text)
+
+
+class _Deferred(type):
+    """The class of a stand-in for a class of another module (:func:`_import_help_formatter`):
+    calling it or reading an attribute of it imports that module and forwards there."""
+
+    _origin: tuple[str, str]
+
+    def _real(cls):
+        module, name = cls._origin
+        return getattr(importlib.import_module(module), name)
+
+    def __call__(cls, *args, **kwargs):
+        return cls._real()(*args, **kwargs)
+
+    def __getattr__(cls, name):
+        return getattr(cls._real(), name)
+
+
+#: What Typer's help formatter imports but ``planar-tui`` uses only in other cases:
+#: Markdown help (``rich.markdown``: markdown_it, pygments), pretty tracebacks
+#: (``rich.traceback``: rich.pretty, attrs; off here, ``pretty_exceptions_enable=False``).
+_DEFERRED = (("rich.markdown", "Markdown"), ("rich.traceback", "Traceback"))
+
+
+def _import_help_formatter() -> None:
+    """Import Typer's rich help formatter (``typer.rich_utils``, the same help as ever)
+    without the modules of :data:`_DEFERRED`: about 85 ms of a 0.3 s ``planar-tui --help``.
+    While it imports, a stand-in module holds each of those classes (a :class:`_Deferred`
+    that imports the real class when used); then the stand-ins leave ``sys.modules``, so
+    any later import gets the real module."""
+    if "typer.rich_utils" in sys.modules:
+        return
+    stand_ins = {}
+    for module, name in _DEFERRED:
+        if module not in sys.modules:
+            stand_ins[module] = types.ModuleType(module)
+            setattr(stand_ins[module], name, _Deferred(name, (), {"_origin": (module, name)}))
+    sys.modules.update(stand_ins)
+    try:
+        import typer.rich_utils  # noqa: F401
+    finally:
+        for module, stand_in in stand_ins.items():
+            if sys.modules.get(module) is stand_in:
+                del sys.modules[module]
 
 
 class Group(_FlagsWithoutMetavar, TyperGroup):
