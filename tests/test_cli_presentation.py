@@ -186,10 +186,10 @@ def _coercions(annotation, **info):
     from typer._coercion import build_runtime_param, resolve_type_descriptor
     from typer.models import OptionInfo
 
-    from planar_tui.cli.output import _CommonValues
+    from planar_tui.cli.coercion import CommonValues
 
     descriptor = resolve_type_descriptor(annotation, OptionInfo(**info))
-    ours = _CommonValues(parameter_info=descriptor.parameter_info, annotation=annotation,
+    ours = CommonValues(parameter_info=descriptor.parameter_info, annotation=annotation,
                          descriptor=descriptor)  # fmt: skip
     return ours, build_runtime_param(descriptor)
 
@@ -206,10 +206,18 @@ def _outcome(coercion, value):
 
 def test_option_values_are_coerced_as_typers_pydantic_adapters_coerce_them(tmp_path):
     """The common values coerced without pydantic (:class:`planar_tui.cli.output.
-    _CommonValues`) come out as Typer's own adapters make them, type included; the rest
+    CommonValues`) come out as Typer's own adapters make them, type included; the rest
     (numbers, bad values, paths that must exist) goes to those adapters, messages and all."""
     from pathlib import Path
 
+    import typer
+
+    from planar_tui.cli import output
+    from planar_tui.cli.coercion import CHECKED_TYPER
+
+    if not typer.__version__.startswith(CHECKED_TYPER):  # another Typer: Typer's own coercion
+        assert output.install_common_values is None
+        return
     (tmp_path / "file.csv").write_text("x\n")
     texts = ["", "-", ".", "a b", "é/ü", "~/x", "x/../y", str(tmp_path), "[[sweep]]", " 3 "]
     cases = [
@@ -226,3 +234,24 @@ def test_option_values_are_coerced_as_typers_pydantic_adapters_coerce_them(tmp_p
             assert _outcome(ours, value) == _outcome(typers, value), (annotation, info, value)
     refused = _outcome(_coercions(int)[0], "x")
     assert refused[0] == "refused" and refused[1]  # the comparison can see a refusal
+
+
+def test_a_typer_release_not_checked_keeps_typers_own_coercion_and_the_cli_works(tmp_path):
+    """Under a Typer release whose private coercion API was not checked, the CLI does not
+    touch it (:mod:`planar_tui.cli.coercion` refuses to import) and still runs: a preset
+    copied with ``presets NAME --copy PATH`` (text and path options) is written."""
+    import subprocess
+    import sys
+
+    out = tmp_path / "copy.toml"
+    code = (
+        "import sys, typer; typer.__version__ = '99.0.0'\n"
+        "from planar_tui.cli import output\n"
+        "assert output.install_common_values is None, 'the private coercion was installed'\n"
+        "from planar_tui.entry import main\n"
+        f"sys.argv = ['planar-tui', 'presets', 'paper-a-table4', '--copy', {str(out)!r}]\n"
+        "main()\n"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert "[sensitivity]" in out.read_text()

@@ -82,7 +82,7 @@ def test_help_renders_without_markdown_yet_the_real_modules_import_after_it():
 
 def test_presets_list_loads_no_heavy_module():
     """Nor pydantic: typer's coercion of the option values (``presets --copy``'s ``None``)
-    without it (:class:`planar_tui.cli.output._CommonValues`)."""
+    without it (:class:`planar_tui.cli.coercion.CommonValues`)."""
     assert modules_loaded_by("presets")["loaded"] == []
 
 

@@ -11,15 +11,17 @@ import threading
 import types
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
-from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import typer
 from rich.console import Console
-from typer._coercion import RuntimeParam, build_runtime_param
-from typer._param_types import coerce_cli_path
 from typer.core import TyperCommand, TyperGroup
+
+try:  # Typer's private coercion API, used only with the Typer releases it was checked with
+    from planar_tui.cli.coercion import install_common_values
+except ImportError:
+    install_common_values = None
 
 from planar_tui.errors import Cancelled, ExitCode, PresetError, Terminated
 
@@ -57,41 +59,10 @@ class _FlagsWithoutMetavar:
 
 
 def _coerce_common_values(param) -> None:
-    """Give a Typer parameter :class:`_CommonValues` as its value coercion (unless it has
-    one already): Typer builds a pydantic adapter per parameter on its first value, even
-    ``None``, and importing pydantic alone is about 0.1 s CPU of every command."""
-    descriptor = getattr(param, "type_descriptor", None)
-    if descriptor is not None and getattr(param, "_runtime_param", 0) is None:
-        param._runtime_param = _CommonValues(
-            parameter_info=descriptor.parameter_info,
-            annotation=descriptor.annotation,
-            descriptor=descriptor,
-        )
-
-
-@dataclass(frozen=True)
-class _CommonValues(RuntimeParam):
-    """Typer's value coercion with the common cases done without pydantic, giving what
-    Typer's pydantic adapter gives (``tests/test_cli_presentation.py`` compares them): a
-    ``str`` for a ``str``, the list of a ``list[str]``'s strings, and a ``Path`` made of a
-    ``str`` then checked by Typer's own :func:`typer._param_types.coerce_cli_path`; an
-    absent value (``None``) is answered by the base class without coercion. Everything
-    else (numbers, choices, bad values and their messages) goes to the adapter Typer
-    builds (:func:`typer._coercion.build_runtime_param`)."""
-
-    descriptor: Any = None
-
-    def _coerce_value(self, value, param, ctx):
-        annotation, info = self.annotation, self.parameter_info
-        if info.parser is None:
-            if annotation is str and type(value) is str:
-                return value
-            if (annotation == list[str] and isinstance(value, list | tuple)
-                    and all(type(item) is str for item in value)):  # fmt: skip
-                return list(value)
-            if annotation is Path and info.path_type is None and type(value) is str:
-                return coerce_cli_path(Path(value), info, path_type=Path, param=param, ctx=ctx)
-        return build_runtime_param(self.descriptor)._coerce_value(value, param=param, ctx=ctx)
+    """Give a Typer parameter the pydantic-free coercion of :mod:`planar_tui.cli.coercion`
+    where this Typer is one it was checked with; with any other Typer, Typer's own."""
+    if install_common_values is not None:
+        install_common_values(param)
 
 
 def _escaped(text: str | None) -> str | None:
