@@ -110,11 +110,14 @@ def _import_help_formatter() -> None:
             setattr(stand_ins[module], name, _Deferred(name, (), {"_origin": (module, name)}))
     sys.modules.update(stand_ins)
     try:
-        import typer.rich_utils  # noqa: F401
+        import typer.rich_utils
+    except ImportError:  # a Typer that wants more of those modules: load them for real
+        sys.modules.pop("typer.rich_utils", None)
     finally:
         for module, stand_in in stand_ins.items():
             if sys.modules.get(module) is stand_in:
                 del sys.modules[module]
+    import typer.rich_utils  # noqa: F401
 
 
 class Group(_FlagsWithoutMetavar, TyperGroup):
