@@ -96,16 +96,19 @@ def near_mode_boundary(px, py, rho, legs, leg, tlo, thi):
 
 
 @kernel
+def leg_at(cx, cy, legs, limits, leg):
+    """``(px, py, l1, l2, tlo, thi)``: the point relative to leg ``leg``'s base joint, its
+    link lengths and joint limits."""
+    px = cx - legs[leg, 0]
+    return px, cy - legs[leg, 1], legs[leg, 2], legs[leg, 3], limits[leg, 0], limits[leg, 1]
+
+
+@kernel
 def leg_label(cx, cy, rho, legs, limits, leg):
     """``OUTSIDE``, ``BOUNDARY`` or ``INSIDE`` for one leg over the box about ``(cx, cy)``
     of half-diagonal ``rho`` (module docstring)."""
-    px = cx - legs[leg, 0]
-    py = cy - legs[leg, 1]
-    l1 = legs[leg, 2]
-    l2 = legs[leg, 3]
+    px, py, l1, l2, tlo, thi = leg_at(cx, cy, legs, limits, leg)
     sigma = legs[leg, 4]
-    tlo = limits[leg, 0]
-    thi = limits[leg, 1]
     dmin, dmax = arc_distance_range(px, py, l1, tlo, thi)
     if dmin - rho > l2 or dmax + rho < l2:
         return OUTSIDE

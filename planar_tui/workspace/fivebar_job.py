@@ -32,6 +32,7 @@ from planar_tui.schema import (
     string,
 )
 from planar_tui.workspace.fivebar import Robot5R
+from planar_tui.workspace.fivebar_tolerance import TOLERANCE_FIELDS_5R, TOLERANCE_KEYS_5R
 from planar_tui.workspace.job import (
     BOXES_OPTION,
     MAP_VIEW,
@@ -48,6 +49,7 @@ from planar_tui.workspace.job import (
     singularity_precision_setting,
 )
 from planar_tui.workspace.singularity import read_centre, refuse_without_singularities
+from planar_tui.workspace.tolerance import check_tolerance, refuse_reference
 
 if TYPE_CHECKING:
     from planar_tui.workspace.compute import BoxBudget, WorkspaceOutcome
@@ -111,12 +113,20 @@ class FiveBarSpec:
         doc="centre of the largest singularity-free circle to certify (needs "
         "`singularities = true` and a working mode)",
     )
+    tolerance_cm: float | None = TOLERANCE_FIELDS_5R[0]
+    tolerances_cm: tuple[tuple[str, float], ...] | None = TOLERANCE_FIELDS_5R[1]
+    tolerance_mode: str | None = TOLERANCE_FIELDS_5R[2]
     plot: str | None = plot_setting()
 
     @staticmethod
     def check(values: dict[str, Any], reader: TableReader, robot: Robot5R) -> dict[str, Any]:
         """The refinement is at most the precision; the circle goes with ``singularities``
-        and a working mode."""
+        and a working mode; a tolerance (:mod:`planar_tui.workspace.fivebar_tolerance`) is
+        below the shortest link and takes the paving form, no singularities and no
+        geometric reference."""
+        lengths = {"proximal_cm": min(robot.proximal_cm), "distal_cm": min(robot.distal_cm)}
+        check_tolerance(values, reader, TOLERANCE_KEYS_5R, lengths)
+        refuse_reference(values, reader)
         if not values["singularities"]:
             refuse_without_singularities(
                 values, reader, ("singularity_free_circle", "singularity_precision_cm")
@@ -158,16 +168,18 @@ def compute_fivebar(robot: Robot5R, spec: FiveBarSpec, budget: BoxBudget) -> Wor
     from planar_tui.kernels.workspace5r import level
     from planar_tui.workspace.compute import (
         WorkspaceOutcome,
-        default_search_box,
         finished_outcome,
         pave_in_levels,
+        square_about,
     )
     from planar_tui.workspace.fivebar import geometric_area
+    from planar_tui.workspace.fivebar_tolerance import reach_box_cm, tolerant_level_kernel
 
     started = time.perf_counter()
-    box = spec.search_box_cm or default_search_box(robot, 0.0, spec.precision_cm)
+    box = spec.search_box_cm or square_about(reach_box_cm(robot, spec), spec.precision_cm)
     extent = (box[0][0], box[0][1], box[1][0], box[1][1])
     legs, limits = robot.leg_arrays()
+    level = tolerant_level_kernel(spec, level)
     geometric = None
     if spec.geometric_reference or spec.form == "geometric":
         geometric = geometric_area(robot)

@@ -168,7 +168,7 @@ def check_tolerance(
                 where, f"is ±{widths[key]:g} cm on {key} = {length:g} cm", f"< {length:g} cm"
             )
     problems = (
-        ("orientation_deg", isinstance(values["orientation_deg"], tuple), "one orientation"),
+        ("orientation_deg", isinstance(values.get("orientation_deg"), tuple), "one orientation"),
         ("form", values["form"] == "geometric", "an interval form or arc-distance"),
         ("strategy", values.get("strategy") == "joint", '"legwise" (or form = "arc-distance")'),
         ("expanded", values.get("expanded"), "false"),
@@ -177,6 +177,15 @@ def check_tolerance(
     for key, bad, expected in problems:
         if bad and not (key == "strategy" and values["form"] == "arc-distance"):
             raise reader.error(key, f"is {values[key]!r} with a tolerance", expected)
+
+
+def refuse_reference(values: dict[str, Any], reader: Any) -> None:
+    """With a tolerance, ``geometric_reference`` is off (its default, the nominal robot's
+    exact area, is not the tolerance-certified one's) and refused if asked for."""
+    if values["tolerance_mode"] is not None and values["geometric_reference"]:
+        if reader.has("geometric_reference"):
+            raise reader.error("geometric_reference", "is true with a tolerance", "false")
+        values["geometric_reference"] = False
 
 
 def tolerance_of(spec: Any, keys: Sequence[str] = TOLERANCE_KEYS_3RRR) -> Tolerance | None:
