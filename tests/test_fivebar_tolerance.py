@@ -251,3 +251,26 @@ def test_bad_tolerance_input_is_one_line_exit_2(cli, tmp_path, extra, fragment):
     from tests.test_workspace_3rpr import refused
 
     refused(cli, tmp_path, "workspace5r", PRESET.format(extra=extra), fragment)
+
+
+def test_the_bundled_study_reads_its_tolerances_and_loses_area_at_one_millimetre():
+    """``fivebar-tolerance``: the "+-" five-bar at ±0.1 mm and ±1 mm, robust mode; at a
+    coarse ε (no refinement) the ±1 mm robust kept area is already below the exact nominal
+    area (polygon geometry), and below the ±0.1 mm one's."""
+    from planar_tui.workspace.compute import BoxBudget
+    from planar_tui.workspace.fivebar import geometric_area
+    from planar_tui.workspace.fivebar_job import compute_fivebar
+    from planar_tui.workspace.tolerance import tolerance_of
+
+    jobs = load_preset(PRESETS / "fivebar-tolerance.toml").jobs
+    read = [(t.mode, *map(t.of, ("base_joints_cm", "proximal_cm", "distal_cm")))
+            for t in map(tolerance_of, [job.spec for job in jobs])]  # fmt: skip
+    assert read == [("all", 0.01, 0.01, 0.01), ("all", 0.1, 0.1, 0.1)]
+    fine, coarse = (
+        compute_fivebar(job.robot, spec, BoxBudget(job, Progress()))
+        for job in jobs
+        for spec in [dataclasses.replace(job.spec, precision_cm=0.2, refine_precision_cm=None)]
+    )
+    exact = geometric_area(jobs[0].robot)
+    assert coarse.area_kept_cm2 < exact.inner_cm2
+    assert coarse.area_kept_cm2 < fine.area_kept_cm2

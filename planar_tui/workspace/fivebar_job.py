@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 from planar_tui.jobkind import (
     Command,
@@ -49,7 +49,7 @@ from planar_tui.workspace.job import (
     singularity_precision_setting,
 )
 from planar_tui.workspace.singularity import read_centre, refuse_without_singularities
-from planar_tui.workspace.tolerance import check_tolerance, refuse_reference
+from planar_tui.workspace.tolerance import check_tolerance, refuse_reference, tolerance_report
 
 if TYPE_CHECKING:
     from planar_tui.workspace.compute import BoxBudget, WorkspaceOutcome
@@ -118,6 +118,9 @@ class FiveBarSpec:
     tolerance_mode: str | None = TOLERANCE_FIELDS_5R[2]
     plot: str | None = plot_setting()
 
+    #: The robot's toleranced quantities (:mod:`planar_tui.workspace.fivebar_tolerance`).
+    tolerance_keys: ClassVar[tuple[str, ...]] = TOLERANCE_KEYS_5R
+
     @staticmethod
     def check(values: dict[str, Any], reader: TableReader, robot: Robot5R) -> dict[str, Any]:
         """The refinement is at most the precision; the circle goes with ``singularities``
@@ -159,6 +162,8 @@ class FiveBarResult(JobResult):
 
     outcome: WorkspaceOutcome
     singularity: FiveBarSingularities | None = None
+    #: With a tolerance: the nominal and the other mode's outcomes (map and figure).
+    companions: dict[str, WorkspaceOutcome] | None = None
 
 
 def compute_fivebar(robot: Robot5R, spec: FiveBarSpec, budget: BoxBudget) -> WorkspaceOutcome:
@@ -229,19 +234,22 @@ def run_fivebar(
     if job.spec.singularities:
         singular = compute_singularities(job, outcome.extent_cm, budget)
     base = outcome.summary_row()
-    row = [base[0], job.robot.working_mode, *base[2:11], *singularity_columns(singular), base[11]]
+    row = [base[0], job.robot.working_mode, *base[2:11], *singularity_columns(singular)]
     summary = f"{summary_line(outcome)}, working mode {job.robot.working_mode}"
     if singular is not None:
         summary += f"; {singular.describe()}"
+    # the 3-RRR's columns, the working mode in place of the strategy
+    header: tuple[str, ...] = (SUMMARY_HEADER[0], "working_mode", *SUMMARY_HEADER[2:-1], *HEADER)
+    report = tolerance_report(job, lambda: BoxBudget(job, progress), compute_fivebar)
+    if report is not None:
+        header, row, summary = header + report.header, row + report.cells, summary + report.text
     return FiveBarResult(
-        # the 3-RRR's columns, the working mode in place of the strategy
-        table=CsvTable(
-            (SUMMARY_HEADER[0], "working_mode", *SUMMARY_HEADER[2:-1], *HEADER, "seconds"), [row]
-        ),
+        table=CsvTable((*header, "seconds"), [[*row, base[11]]]),
         summary=summary,
         extra_tables={"boxes": boxes_table(outcome)},
         outcome=outcome,
         singularity=singular,
+        companions=None if report is None else report.companions,
     )
 
 

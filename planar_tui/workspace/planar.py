@@ -239,11 +239,6 @@ def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> 
     outcome = compute_planar(job.robot, job.spec, budget)
     header: tuple[str, ...] = SUMMARY_HEADER
     row, summary = outcome.summary_row(), summary_line(outcome)
-    if job.spec.tolerance_keys:
-        from planar_tui.workspace.tolerance import describe, tolerance_of
-
-        tolerance = tolerance_of(job.spec, job.spec.tolerance_keys)
-        summary += "" if tolerance is None else f"; {describe(tolerance)}"
     singular = None
     module = job.spec.mechanism.singularities
     if module is not None:  # the circle's columns before the last one, the wall time
@@ -255,12 +250,22 @@ def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> 
             summary += f"; {singular.describe()}"
         cells = [""] * len(HEADER) if singular is None else singular.columns()
         header, row = (*header[:-1], *HEADER, header[-1]), [*row[:-1], *cells, row[-1]]
+    from planar_tui.workspace.tolerance import tolerance_report
+
+    report = tolerance_report(job, lambda: BoxBudget(job, progress), compute_planar)
+    if report is not None:  # its columns before the wall time too
+        header, row = (
+            (*header[:-1], *report.header, header[-1]),
+            [*row[:-1], *report.cells, row[-1]],
+        )
+        summary += report.text
     return WorkspaceResult(
         table=CsvTable(header, [row]),
         summary=summary,
         extra_tables={"boxes": boxes_table(outcome)},
         outcome=outcome,
         singularity=singular,
+        companions=None if report is None else report.companions,
     )
 
 

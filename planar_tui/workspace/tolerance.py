@@ -66,6 +66,7 @@ TOLERANCE_MODES = ("all", "some")
 TOLERANCE_KEYS_3RRR = ("base_joints_cm", "platform_points_cm", "proximal_cm", "distal_cm")
 #: Summary CSV columns of a tolerance-certified job (appended before ``seconds``).
 TOLERANCE_HEADER = ("tolerance_mode", *(f"tolerance_{key}" for key in TOLERANCE_KEYS_3RRR))
+#: (a kind's own: :func:`tolerance_header`)
 
 
 @dataclass(frozen=True)
@@ -188,8 +189,16 @@ def refuse_reference(values: dict[str, Any], reader: Any) -> None:
         values["geometric_reference"] = False
 
 
-def tolerance_of(spec: Any, keys: Sequence[str] = TOLERANCE_KEYS_3RRR) -> Tolerance | None:
-    """The spec's :class:`Tolerance` (``None`` without one)."""
+def spec_keys(spec: Any) -> tuple[str, ...]:
+    """The toleranced quantities of a spec's kind: its ``tolerance_keys`` (the 3-RPR, 3-PRR
+    and five-bar specs), else the 3-RRR's."""
+    return tuple(getattr(spec, "tolerance_keys", ())) or TOLERANCE_KEYS_3RRR
+
+
+def tolerance_of(spec: Any, keys: Sequence[str] | None = None) -> Tolerance | None:
+    """The spec's :class:`Tolerance` (``None`` without one) over ``keys`` (default: the
+    spec's kind's, :func:`spec_keys`)."""
+    keys = spec_keys(spec) if keys is None else keys
     uniform = getattr(spec, "tolerance_cm", None)
     table = getattr(spec, "tolerances_cm", None)
     if uniform is None and table is None:
@@ -248,12 +257,65 @@ def tolerant_vector(spec: Any) -> np.ndarray | None:
     return None if tolerance is None else kernel_tolerance(tolerance, spec.orientation_rad)
 
 
+def tolerance_header(keys: Sequence[str]) -> tuple[str, ...]:
+    """Summary CSV columns of a tolerance-certified job whose kind tolerances ``keys``:
+    ``tolerance_mode`` and ``tolerance_<key>`` per key (:data:`TOLERANCE_HEADER`, the
+    3-RRR's)."""
+    return ("tolerance_mode", *(f"tolerance_{key}" for key in keys))
+
+
 def tolerance_columns(spec: Any) -> list[Any]:
-    """The :data:`TOLERANCE_HEADER` values of a spec (``[]`` without a tolerance)."""
+    """The :func:`tolerance_header` values of a spec (``[]`` without a tolerance)."""
     tolerance = tolerance_of(spec)
     if tolerance is None:
         return []
-    return [tolerance.mode, *(tolerance.of(key) for key in TOLERANCE_KEYS_3RRR)]
+    return [tolerance.mode, *(tolerance.of(key) for key in spec_keys(spec))]
+
+
+def tolerance_companions(robot: Any, spec: Any, budget_for: Any, compute: Any) -> dict[str, Any]:
+    """The other two workspaces a tolerance-certified job is drawn with (map, figure):
+    ``{"nominal": ..., <the other mode>: ...}``, each paved at the job's precision by
+    ``compute(robot, spec, budget)`` (the kind's paving: the 3-RRR's
+    :func:`~planar_tui.workspace.compute.compute_workspace`...) with ``budget_for()`` (a
+    fresh :class:`~planar_tui.workspace.compute.BoxBudget`)."""
+    from dataclasses import replace
+
+    other = "some" if spec.tolerance_mode == "all" else "all"
+    specs = {
+        "nominal": replace(
+            spec, tolerance_cm=None, tolerances_cm=None, tolerance_mode=None,
+            geometric_reference=False,
+        ),
+        other: replace(spec, tolerance_mode=other, geometric_reference=False),
+    }  # fmt: skip
+    return {name: compute(robot, s, budget_for()) for name, s in specs.items()}
+
+
+@dataclass(frozen=True)
+class ToleranceReport:
+    """What a tolerance-certified job adds to its result: the summary CSV's ``header`` and
+    ``cells`` (before ``seconds``), the ``companions`` (:func:`tolerance_companions`) and
+    the summary's ``text`` (``; tolerance all ±0.1 cm; nominal [..] cm2, some [..] cm2``)."""
+
+    header: tuple[str, ...]
+    cells: list[Any]
+    companions: dict[str, Any]
+    text: str
+
+
+def tolerance_report(job: Any, budget_for: Any, compute: Any) -> ToleranceReport | None:
+    """The :class:`ToleranceReport` of a job (``None`` without a tolerance), its companions
+    paved by ``compute`` with ``budget_for()`` (:func:`tolerance_companions`)."""
+    tolerance = tolerance_of(job.spec)
+    if tolerance is None:
+        return None
+    companions = tolerance_companions(job.robot, job.spec, budget_for, compute)
+    return ToleranceReport(
+        tolerance_header(spec_keys(job.spec)),
+        tolerance_columns(job.spec),
+        companions,
+        f"; {describe(tolerance)}; {companions_text(companions)}",
+    )
 
 
 def describe(tolerance: Tolerance) -> str:
