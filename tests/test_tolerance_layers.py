@@ -102,3 +102,30 @@ def test_the_brackets_nest_and_the_figure_overlays_them(tmp_path, kind):
     assert f"{robust.area_inside_cm2:.5g} cm2" in labels["all-inside"]
     assert any(line.get_gid() == "exact" for line in ax.lines)
     fig.savefig(tmp_path / "f.png")
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_a_some_job_paves_a_search_box_beyond_the_nominal_reach(tmp_path, kind):
+    """Every robot within ±t reaches at most √2 Σ t farther than the nominal one (the 3-RPR's
+    σ, the 3-PRR's σ + t_l, the five-bar's √2 t_A + t_1 + t_2 are below it): the default
+    search box of a "some" job holds the nominal reach box grown by that margin, also at a
+    precision whose power-of-two square fits the nominal reach box exactly (no slack).
+    Checked to fail, in all three kinds, with `reach_margin_cm` returning 0."""
+    import dataclasses
+    import math
+
+    from planar_tui.registry import JOB_KINDS
+
+    job = load_preset(preset(tmp_path, kind, "some")).jobs[0]
+    reach = (
+        job.robot.reach_box_cm()
+        if kind == "workspace5r"
+        else job.spec.mechanism.reach_box(job.robot, job.spec)
+    )
+    tight = max(reach[1] - reach[0], reach[3] - reach[2]) / 32
+    job = dataclasses.replace(job, spec=dataclasses.replace(job.spec, precision_cm=tight))
+    result = JOB_KINDS[kind].run(PreparedJob(job, None), Progress())
+    margin = math.sqrt(2.0) * 0.5 * len(PRESETS[kind][1])
+    xlo, xhi, ylo, yhi = result.outcome.extent_cm
+    assert xlo <= reach[0] - margin and reach[1] + margin <= xhi
+    assert ylo <= reach[2] - margin and reach[3] + margin <= yhi

@@ -54,8 +54,9 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from planar_tui.workspace.tolerance import (
-    erosion_bound_cm,
+    grown,
     kernel_tolerance,
+    reach_margin_cm,
     tolerance_fields,
     tolerance_of,
 )
@@ -80,20 +81,11 @@ def tolerant_vector5r(spec: Any) -> np.ndarray | None:
     return None if tolerance is None else kernel_tolerance(tolerance, 0.0)
 
 
-def bound_cm(spec: Any) -> float:
-    """:math:`B = \\sqrt2\\,t_A + t_1 + t_2` of a spec (0 without a tolerance): the
-    :func:`~planar_tui.workspace.tolerance.erosion_bound_cm` with :math:`t_q = 0`."""
-    tolerance = tolerance_of(spec, TOLERANCE_KEYS_5R)
-    return 0.0 if tolerance is None else erosion_bound_cm(tolerance)
-
-
 def reach_box_cm(robot: Any, spec: Any) -> tuple[float, float, float, float]:
-    """The robot's reach box grown by :func:`bound_cm` (every robot within the tolerances
-    reaches at most :math:`\\sqrt2\\,t_A + t_1 + t_2` farther), so the search box holds the
-    "some" workspace too."""
-    grow = bound_cm(spec)
-    xlo, xhi, ylo, yhi = robot.reach_box_cm()
-    return (xlo - grow, xhi + grow, ylo - grow, yhi + grow)
+    r"""The robot's reach box grown by :func:`~planar_tui.workspace.tolerance.reach_margin_cm`
+    (a "some" workspace reaches up to :math:`\sqrt2\,t_A + t_1 + t_2` farther), so the
+    search box holds it."""
+    return grown(robot.reach_box_cm(), reach_margin_cm(spec))
 
 
 def tolerant_level_kernel(spec: Any, nominal: Any) -> Any:

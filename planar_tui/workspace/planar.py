@@ -184,10 +184,12 @@ def compute_planar(robot: Any, spec: PlanarSpec, budget: Any) -> Any:
         pave_in_levels,
         square_about,
     )
+    from planar_tui.workspace.tolerance import grown, reach_margin_cm
 
     started = time.perf_counter()
     mechanism: Mechanism = spec.mechanism
-    box = spec.search_box_cm or square_about(mechanism.reach_box(robot, spec), spec.precision_cm)
+    reach = grown(mechanism.reach_box(robot, spec), reach_margin_cm(spec))  # "some": farther
+    box = spec.search_box_cm or square_about(reach, spec.precision_cm)
     extent = (box[0][0], box[0][1], box[1][0], box[1][1])
     geometric = None
     if spec.geometric_reference or spec.form == "geometric":

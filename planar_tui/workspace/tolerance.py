@@ -234,6 +234,27 @@ def erosion_bound_cm(tolerance: Tolerance) -> float:
     )
 
 
+def reach_margin_cm(spec: Any) -> float:
+    r"""How far beyond the nominal robot's reach a spec's workspace may extend: for
+    ``"some"``, :math:`\sqrt2 \sum_k t_k` over the kind's quantities (a toleranced point
+    moves by at most :math:`\sqrt2\,t`, a length by :math:`t`, and a leg's reach by at most
+    their sum: the 3-RPR's :math:`\sigma`, the 3-PRR's :math:`\sigma + t_l`, the five-bar's
+    :math:`\sqrt2\,t_A + t_1 + t_2` are below it); 0 for the nominal robot and the robust
+    workspace (inside the nominal one)."""
+    tolerance = tolerance_of(spec)
+    if tolerance is None or tolerance.mode != "some":
+        return 0.0
+    return math.sqrt(2.0) * sum(width for _, width in tolerance.half_widths_cm)
+
+
+def grown(
+    box: tuple[float, float, float, float], margin: float
+) -> tuple[float, float, float, float]:
+    """The box ``(x_lo, x_hi, y_lo, y_hi)`` grown by ``margin`` on every side."""
+    xlo, xhi, ylo, yhi = box
+    return (xlo - margin, xhi + margin, ylo - margin, yhi + margin)
+
+
 def kernel_tolerance(tolerance: Tolerance | None, orientation_rad: float) -> np.ndarray:
     """The kernels' ``tol`` vector (:mod:`planar_tui.kernels.workspace_tolerance`)."""
     from planar_tui.kernels.workspace_tolerance import ALL, NOMINAL, SOME, tolerance_vector
