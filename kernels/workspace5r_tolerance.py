@@ -31,7 +31,9 @@ Per leg, over the box of centre :math:`c` and half-diagonal :math:`\\rho` (plus
   :math:`\\rho + h` from the arcs, :math:`h = \\sigma + t_2` (:func:`boundary_shift`): then
   no robot's boundary meets the box (each of a robot's arcs lies within :math:`h` of the
   nominal one, point by point), so every robot labels every point as the nominal robot
-  labels :math:`c`; else ``BOUNDARY``.
+  labels :math:`c`. Otherwise, on a leaf box (both widths at most ε), the 16 vertex robots
+  are tried for the existential claim with the same exact test on each robot
+  (:func:`vertex_mode_label`); else ``BOUNDARY``.
 
 At zero tolerance every test is :func:`kernels.workspace5r.leg_label`'s: the same boxes.
 """
@@ -49,6 +51,7 @@ from .workspace5r import (
     classify_box,
     leg_at,
     mode_point_in,
+    near_mode_arcs,
     near_mode_boundary,
 )
 from .workspace_arc import LANES, TOLERANCE_CM, arc_distance_range, settle_xy_box
@@ -56,7 +59,10 @@ from .workspace_tolerance import (
     ALL,
     MODE,
     NOMINAL,
+    T_BASE,
     T_DISTAL,
+    T_PROXIMAL,
+    VERTEX_SHRINK,
     _leg_proved_by_vertex,
     _leg_refuted_by_vertex,
     robust_range,
@@ -72,7 +78,36 @@ def boundary_shift(tol):
 
 
 @kernel
-def tolerant_leg_label(cx, cy, rho, legs, limits, leg, tol, sigma, h):
+def vertex_mode_label(px, py, rho, legs, leg, tlo, thi, tol, robust):
+    """A mode leg's existential certificate by the 16 vertex robots (every sign of
+    :math:`a_x, a_y, \\tau, \\kappa`, times ``VERTEX_SHRINK``): ``OUTSIDE`` if one misses
+    the whole box (``robust``), ``INSIDE`` if one reaches it (else), by the nominal mode
+    test on that robot (:func:`kernels.workspace5r.near_mode_arcs`, its elbows scaled by
+    :math:`(l_1 + \\tau) / l_1`); else ``BOUNDARY``."""
+    want = OUTSIDE if robust else INSIDE
+    t_a = VERTEX_SHRINK * tol[T_BASE]
+    t_1 = VERTEX_SHRINK * tol[T_PROXIMAL]
+    t_2 = VERTEX_SHRINK * tol[T_DISTAL]
+    if t_a == 0.0 and t_1 == 0.0 and t_2 == 0.0:
+        return BOUNDARY  # the nominal robot was tried
+    sigma = legs[leg, 4]
+    for k in range(16):
+        qx = px - (t_a if k & 1 else -t_a)  # P - (A + a)
+        qy = py - (t_a if k & 2 else -t_a)
+        l1 = legs[leg, 2] + (t_1 if k & 4 else -t_1)
+        l2 = legs[leg, 3] + (t_2 if k & 8 else -t_2)
+        scale = l1 / legs[leg, 2]
+        lo_x, lo_y = scale * legs[leg, 5], scale * legs[leg, 6]
+        hi_x, hi_y = scale * legs[leg, 7], scale * legs[leg, 8]
+        if near_mode_arcs(qx, qy, rho, l1, l2, sigma, lo_x, lo_y, hi_x, hi_y, tlo, thi):
+            continue
+        if mode_point_in(qx, qy, l1, l2, tlo, thi, sigma) == (want == INSIDE):
+            return want
+    return BOUNDARY
+
+
+@kernel
+def tolerant_leg_label(cx, cy, rho, legs, limits, leg, tol, sigma, h, search):
     """``OUTSIDE``, ``BOUNDARY`` or ``INSIDE`` of one leg over the box about ``(cx, cy)`` of
     half-diagonal ``rho`` for the mode in ``tol`` (module docstring; ``sigma`` and ``h`` are
     :func:`~kernels.workspace_tolerance.shift_bound` and :func:`boundary_shift`)."""
@@ -86,12 +121,13 @@ def tolerant_leg_label(cx, cy, rho, legs, limits, leg, tol, sigma, h):
     elif dmin - rho - sigma > l2 + t2 or dmax + rho + sigma < l2 - t2:
         return OUTSIDE
     if legs[leg, 4] != 0.0:
-        if near_mode_boundary(px, py, rho, legs, leg, tlo, thi):
+        if not near_mode_boundary(px, py, rho, legs, leg, tlo, thi):
+            inside = mode_point_in(px, py, l1, l2, tlo, thi, legs[leg, 4])
+            if inside != robust or not near_mode_boundary(px, py, rho + h, legs, leg, tlo, thi):
+                return INSIDE if inside else OUTSIDE  # the nominal robot, or every one (h)
+        if not search:
             return BOUNDARY
-        inside = mode_point_in(px, py, l1, l2, tlo, thi, legs[leg, 4])
-        if inside == robust and near_mode_boundary(px, py, rho + h, legs, leg, tlo, thi):
-            return BOUNDARY  # all-inside and some-outside speak for every robot: h
-        return INSIDE if inside else OUTSIDE
+        return vertex_mode_label(px, py, rho, legs, leg, tlo, thi, tol, robust)
     if robust:
         if dmin + rho + sigma <= l2 - t2 and dmax - rho - sigma >= l2 + t2:
             return INSIDE  # the Lipschitz bound (looser than robust_range's)
@@ -103,7 +139,7 @@ def tolerant_leg_label(cx, cy, rho, legs, limits, leg, tol, sigma, h):
 
 
 @kernel
-def tolerant_classify_box(xlo, xhi, ylo, yhi, legs, limits, tol):
+def tolerant_classify_box(xlo, xhi, ylo, yhi, legs, limits, tol, search):
     """``OUTSIDE`` (some leg out), ``INSIDE`` (both in) or ``BOUNDARY`` for the box and the
     mode in ``tol`` (``NOMINAL``: :func:`kernels.workspace5r.classify_box`)."""
     if tol[MODE] == NOMINAL:
@@ -113,19 +149,10 @@ def tolerant_classify_box(xlo, xhi, ylo, yhi, legs, limits, tol):
     rho = 0.5 * math.hypot(xhi - xlo, yhi - ylo) + TOLERANCE_CM
     sigma = shift_bound(tol)
     h = boundary_shift(tol)
-    first = tolerant_leg_label(cx, cy, rho, legs, limits, 0, tol, sigma, h)
+    first = tolerant_leg_label(cx, cy, rho, legs, limits, 0, tol, sigma, h, search)
     if first == OUTSIDE:
         return OUTSIDE
-    return min(first, tolerant_leg_label(cx, cy, rho, legs, limits, 1, tol, sigma, h))
-
-
-@kernel
-def tolerant_classify_boxes(boxes, legs, limits, tol, out):
-    """:func:`tolerant_classify_box` for every row ``x_lo, x_hi, y_lo, y_hi`` of ``boxes``."""
-    for r in range(boxes.shape[0]):
-        out[r] = tolerant_classify_box(
-            boxes[r, 0], boxes[r, 1], boxes[r, 2], boxes[r, 3], legs, limits, tol
-        )
+    return min(first, tolerant_leg_label(cx, cy, rho, legs, limits, 1, tol, sigma, h, search))
 
 
 @kernel(parallel=True)
@@ -136,7 +163,8 @@ def tolerant_level(legs, limits, tol, precision, rows, start, stop, children, ou
     for lane in numba.prange(min(LANES, n)):
         for i in range(lane, n, min(LANES, n)):
             box = rows[start + i]
-            label = tolerant_classify_box(box[0], box[1], box[2], box[3], legs, limits, tol)
+            leaf = box[1] - box[0] <= precision and box[3] - box[2] <= precision
+            label = tolerant_classify_box(box[0], box[1], box[2], box[3], legs, limits, tol, leaf)
             outcome[i] = settle_xy_box(label, rows, start + i, children, 2 * i, precision)
 
 

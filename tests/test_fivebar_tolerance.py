@@ -142,6 +142,47 @@ def test_the_some_kept_boxes_hold_every_sampled_robots_workspace(mode):
     assert covered(points[by_one], kept).all()
 
 
+def leg_candidates():
+    """The robots the existential certificates may exhibit, per leg ``a_x, a_y, tau, kappa``
+    (19, 4): the 16 corners of the leg's parameter box, the nominal leg and the nominal
+    leg with either extreme distal."""
+    corners = list(itertools.product((-1.0, 1.0), repeat=4))
+    rows = [*corners, (0.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0), (0.0, 0.0, 0.0, -1.0)]
+    return np.array(rows) * np.array([T_BASE_CM, T_BASE_CM, T_PROXIMAL_CM, T_DISTAL_CM])
+
+
+def legs_reached_by_candidates(robot, points, slack):
+    """(2, candidates, points): leg ``i`` of each candidate closes at each point."""
+    shifts = leg_candidates()
+    out = []
+    for leg in range(2):
+        base = np.array(robot.base_joints_cm()[leg]) + shifts[:, :2]
+        l1 = robot.proximal_cm[leg] + shifts[:, 2]
+        l2 = robot.distal_cm[leg] + shifts[:, 3]
+        limits = robot.joint_limits_deg[leg]
+        out.append(leg_reaches(points, base, l1, l2, limits, robot.elbows[leg], slack))
+    return np.array(out)
+
+
+@pytest.mark.parametrize("mode", MODES)
+def test_the_existential_certificates_are_some_robots(mode):
+    """``all``: every grid point outside the robust kept boxes is missed by one robot of
+    the tolerances (one leg of a corner robot, or of the nominal one with an extreme
+    distal); ``some``: every point of an inside box is reached by one robot (per leg; the
+    legs' parameters are independent). Checked to fail (mode ``+-``) with
+    ``vertex_mode_label`` of kernels/workspace5r_tolerance.py certifying without a robot."""
+    robot = robot_of(mode).robot
+    robust = run(mode, "all").outcome
+    points = grid_points(robust)
+    outside = points[~covered(points, robust.boxes)]
+    closes = legs_reached_by_candidates(robot, outside, -1e-9)
+    assert len(outside) > 5000 and (~closes).any(axis=1).any(axis=0).all()
+    some = run(mode, "some").outcome
+    inside = some.boxes[some.status == INSIDE]
+    points = points_in(inside, np.random.default_rng(4), 1)
+    assert legs_reached_by_candidates(robot, points, 1e-9).any(axis=1).all()
+
+
 def arc(centre, radius, start, stop, n=2000):
     """Points of the arc ``centre + radius e(t)``, t in [start, stop] (a signed radius)."""
     t = np.linspace(start, stop, n)
