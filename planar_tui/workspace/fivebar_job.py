@@ -277,5 +277,6 @@ JOB_KIND = JobKind(
         "[[workspace5r]]\nprecision_cm = 8.0\n"
         "geometric_reference = false\nrefine_precision_cm = 4.0\nsingularities = true\n"
         "singularity_free_circle = [0, 60]\n"
+        "[[workspace5r]]\nprecision_cm = 8.0\ngeometric_reference = false\ntolerance_cm = 0.1\n"
     ),
 )  # fmt: skip
