@@ -129,3 +129,25 @@ def test_a_some_job_paves_a_search_box_beyond_the_nominal_reach(tmp_path, kind):
     xlo, xhi, ylo, yhi = result.outcome.extent_cm
     assert xlo <= reach[0] - margin and reach[1] + margin <= xhi
     assert ylo <= reach[2] - margin and reach[3] + margin <= yhi
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_a_some_jobs_search_box_must_hold_the_grown_reach(cli, tmp_path, kind):
+    """The nominal reach box is a valid ``search_box_cm`` for the robust job, and refused
+    (one line, exit 2) for the "some" job, whose robots reach farther."""
+    from tests.test_workspace_3rpr import refused
+
+    job = load_preset(preset(tmp_path, kind, "all")).jobs[0]
+    reach = (
+        job.robot.reach_box_cm()
+        if kind == "workspace5r"
+        else job.spec.mechanism.reach_box(job.robot, job.spec)
+    )
+    box = f"search_box_cm = [[{reach[0]!r}, {reach[1]!r}], [{reach[2]!r}, {reach[3]!r}]]\n"
+    for mode in ("all", "some"):
+        text = PRESETS[kind][0].format(tolerance=box + TOLERANCE.format(mode=mode))
+        if mode == "all":
+            (tmp_path / "ok.toml").write_text(text, "utf-8")
+            assert load_preset(tmp_path / "ok.toml").jobs[0].spec.search_box_cm is not None
+        else:
+            refused(cli, tmp_path, kind, text, "search_box_cm")

@@ -126,10 +126,15 @@ class FiveBarSpec:
         """The refinement is at most the precision; the circle goes with ``singularities``
         and a working mode; a tolerance (:mod:`planar_tui.workspace.fivebar_tolerance`) is
         below the shortest link and takes the paving form, no singularities and no
-        geometric reference."""
+        geometric reference; a "some" job's search box holds the reach grown by the
+        tolerances."""
         lengths = {"proximal_cm": min(robot.proximal_cm), "distal_cm": min(robot.distal_cm)}
         check_tolerance(values, reader, TOLERANCE_KEYS_5R, lengths)
         refuse_reference(values, reader)
+        if values["search_box_cm"] is not None and values["tolerance_mode"] == "some":
+            from planar_tui.workspace.fivebar_tolerance import check_search_box
+
+            check_search_box(values, reader, robot)
         if not values["singularities"]:
             refuse_without_singularities(
                 values, reader, ("singularity_free_circle", "singularity_precision_cm")

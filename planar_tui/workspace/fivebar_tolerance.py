@@ -102,3 +102,19 @@ def tolerant_level_kernel(spec: Any, nominal: Any) -> Any:
         tolerant_level(legs, limits, tol, precision, rows, start, stop, children, outcome)
 
     return level
+
+
+def check_search_box(values: dict[str, Any], reader: Any, robot: Any) -> None:
+    """A "some" job's ``search_box_cm`` holds :func:`reach_box_cm` (one line, exit 2, if
+    not)."""
+    from types import SimpleNamespace
+
+    spec = SimpleNamespace(**values, tolerance_keys=TOLERANCE_KEYS_5R)
+    xlo, xhi, ylo, yhi = reach_box_cm(robot, spec)
+    (bxlo, bxhi), (bylo, byhi) = values["search_box_cm"]
+    if not (bxlo <= xlo and xhi <= bxhi and bylo <= ylo and yhi <= byhi):
+        raise reader.error(
+            "search_box_cm",
+            'cannot contain the reach of the robots within the tolerances (tolerance_mode = "some")',
+            f"a box containing x in [{xlo:.4g}, {xhi:.4g}], y in [{ylo:.4g}, {yhi:.4g}] cm",
+        )

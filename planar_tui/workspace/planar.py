@@ -104,7 +104,7 @@ class PlanarSpec:
     @classmethod
     def check(cls, values: dict[str, Any], reader: TableReader, robot: Any) -> dict[str, Any]:
         """The refinement precision cannot exceed the precision; an explicit search box
-        must hold the legs' reach; the box budget must fit the memory limit; the circle's
+        must hold the legs' reach (a "some" job's: grown by the tolerances); the box budget must fit the memory limit; the circle's
         keys go with ``singularities`` (:func:`check_circle_keys`)."""
         check_circle_keys(values, reader, cls.circle_keys)
         refine = values["refine_precision_cm"]
@@ -115,7 +115,10 @@ class PlanarSpec:
         box = values["search_box_cm"]
         if box is not None:
             spec = cls(**values)
-            rxlo, rxhi, rylo, ryhi = spec.mechanism.reach_box(robot, spec)
+            from planar_tui.workspace.tolerance import grown, reach_margin_cm
+
+            reach = grown(spec.mechanism.reach_box(robot, spec), reach_margin_cm(spec))
+            rxlo, rxhi, rylo, ryhi = reach  # a "some" job's robots reach farther
             (xlo, xhi), (ylo, yhi) = box
             holds = xlo <= rxlo and rxhi <= xhi and ylo <= rylo and ryhi <= yhi
             if rxlo <= rxhi and rylo <= ryhi and not holds:
