@@ -8,6 +8,7 @@ raises ``KeyboardInterrupt``, a batch run turns SIGTERM into
 run or written yet.
 """
 
+import gc
 import os
 import signal
 
@@ -28,6 +29,10 @@ def main() -> None:
     """Install the start-up signal handling, then import and run the CLI."""
     for signum in _START_EXITS:
         signal.signal(signum, _exit_while_starting)
+    # Loading the CLI makes many objects and next to no garbage cycles: no cyclic garbage
+    # collection until a command runs (:func:`planar_tui.cli.root` turns it back on), about
+    # 6 % of `planar-tui --help`.
+    gc.disable()
     from planar_tui.cli import main as cli_main
 
     cli_main()

@@ -179,3 +179,79 @@ def test_a_sweep_label_with_brackets_is_shown_as_written(cli, tmp_path):
     assert result.exit_code == 0, result.output
     assert "[bold]p:torques" in result.stdout and "[bold]p:sweep[1]" in result.stdout
     assert "[bold]p:sweep[1]" in result.stderr  # the sweep's progress bar
+
+
+def _coercions(annotation, **info):
+    """(ours, Typer's) value coercion of an option of ``annotation``."""
+    from typer._coercion import build_runtime_param, resolve_type_descriptor
+    from typer.models import OptionInfo
+
+    from planar_tui.cli.coercion import CommonValues
+
+    descriptor = resolve_type_descriptor(annotation, OptionInfo(**info))
+    ours = CommonValues(parameter_info=descriptor.parameter_info, annotation=annotation,
+                         descriptor=descriptor)  # fmt: skip
+    return ours, build_runtime_param(descriptor)
+
+
+def _outcome(coercion, value):
+    from typer._click.exceptions import BadParameter
+
+    try:
+        result = coercion._coerce_value(value, param=None, ctx=None)
+        return type(result), result
+    except BadParameter as error:
+        return "refused", error.message
+
+
+def test_option_values_are_coerced_as_typers_pydantic_adapters_coerce_them(tmp_path):
+    """The common values coerced without pydantic (:class:`planar_tui.cli.output.
+    CommonValues`) come out as Typer's own adapters make them, type included; the rest
+    (numbers, bad values, paths that must exist) goes to those adapters, messages and all."""
+    from pathlib import Path
+
+    import typer
+
+    from planar_tui.cli import output
+    from planar_tui.cli.coercion import CHECKED_TYPER
+
+    if not typer.__version__.startswith(CHECKED_TYPER):  # another Typer: Typer's own coercion
+        assert output.install_common_values is None
+        return
+    (tmp_path / "file.csv").write_text("x\n")
+    texts = ["", "-", ".", "a b", "é/ü", "~/x", "x/../y", str(tmp_path), "[[sweep]]", " 3 "]
+    cases = [
+        (str, {}, texts),
+        (list[str], {}, [texts, tuple(texts), []]),
+        (Path, {}, [*texts, str(tmp_path / "file.csv")]),
+        (Path, {"exists": True, "dir_okay": False}, [str(tmp_path), str(tmp_path / "no.csv")]),
+        (int, {}, ["3", " 4", "x", "1.5"]),
+        (float, {"min": 0.0}, ["0.5", "-1", "nan", "y"]),
+    ]
+    for annotation, info, values in cases:
+        ours, typers = _coercions(annotation, **info)
+        for value in values:
+            assert _outcome(ours, value) == _outcome(typers, value), (annotation, info, value)
+    refused = _outcome(_coercions(int)[0], "x")
+    assert refused[0] == "refused" and refused[1]  # the comparison can see a refusal
+
+
+def test_a_typer_release_not_checked_keeps_typers_own_coercion_and_the_cli_works(tmp_path):
+    """Under a Typer release whose private coercion API was not checked, the CLI does not
+    touch it (:mod:`planar_tui.cli.coercion` refuses to import) and still runs: a preset
+    copied with ``presets NAME --copy PATH`` (text and path options) is written."""
+    import subprocess
+    import sys
+
+    out = tmp_path / "copy.toml"
+    code = (
+        "import sys, typer; typer.__version__ = '99.0.0'\n"
+        "from planar_tui.cli import output\n"
+        "assert output.install_common_values is None, 'the private coercion was installed'\n"
+        "from planar_tui.entry import main\n"
+        f"sys.argv = ['planar-tui', 'presets', 'paper-a-table4', '--copy', {str(out)!r}]\n"
+        "main()\n"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert "[sensitivity]" in out.read_text()

@@ -20,7 +20,8 @@ from planar_tui.cli import app
 
 result = CliRunner().invoke(app, sys.argv[1:])
 heavy = ("numba", "SALib", "textual", "scipy", "mujoco", "numpy", "matplotlib", "dask",
-         "distributed")
+         "distributed", "shapely", "pydantic", "rich.markdown", "markdown_it", "pygments",
+         "rich.traceback", "rich.pretty", "attr")
 print(json.dumps({"code": result.exit_code, "loaded": [m for m in heavy if m in sys.modules]}))
 """
 
@@ -38,12 +39,50 @@ def modules_loaded_by(*args: str) -> dict:
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
-def test_help_loads_no_heavy_module():
-    probe = modules_loaded_by("--help")
+def words_printed_by(code: str) -> list[str]:
+    """The words a fresh ``python -c code`` (this checkout importable) prints."""
+    env = dict(os.environ, PYTHONPATH=str(REPO))
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True
+    )
+    return out.stdout.split()
+
+
+@pytest.mark.parametrize("command", [(), ("run",), ("workspace",), ("sweep",)])
+def test_help_loads_no_heavy_module(command):
+    """Nor typer's Markdown and traceback renderers (with markdown_it, pygments, attrs),
+    nor pydantic (typer's value coercion): help needs none of them."""
+    probe = modules_loaded_by(*command, "--help")
     assert probe == {"code": 0, "loaded": []}
 
 
+def test_help_renders_without_markdown_yet_the_real_modules_import_after_it():
+    """The help formatter's stand-ins for ``rich.markdown`` and ``rich.traceback``
+    (:func:`planar_tui.cli.output._import_help_formatter`) leave nothing behind: a later
+    import gets the real module, and typer's own names for them make the real objects."""
+    code = (
+        "import sys\n"
+        "from typer.testing import CliRunner\n"
+        "from planar_tui.cli import app\n"
+        "result = CliRunner().invoke(app, ['--help'])\n"
+        "assert result.exit_code == 0 and 'Usage: planar-tui' in result.stdout\n"
+        "before = 'rich.markdown' in sys.modules or 'rich.traceback' in sys.modules\n"
+        "import rich.markdown, rich.traceback, typer.rich_utils as utils\n"
+        "made = utils.Markdown('*x*')\n"
+        "try:\n"
+        "    raise ValueError('x')\n"
+        "except ValueError as error:\n"
+        "    traced = utils.Traceback.from_exception(type(error), error, error.__traceback__)\n"
+        "print(before, type(made) is rich.markdown.Markdown,\n"
+        "      type(traced) is rich.traceback.Traceback,\n"
+        "      rich.markdown.__file__.endswith('markdown.py'))\n"
+    )
+    assert words_printed_by(code) == ["False", "True", "True", "True"]
+
+
 def test_presets_list_loads_no_heavy_module():
+    """Nor pydantic: typer's coercion of the option values (``presets --copy``'s ``None``)
+    without it (:class:`planar_tui.cli.coercion.CommonValues`)."""
     assert modules_loaded_by("presets")["loaded"] == []
 
 
@@ -59,7 +98,7 @@ def test_a_warm_batch_run_never_imports_matplotlib(tmp_path):
     first run) imports no matplotlib; with `--plot` it does (the probe sees it)."""
     probe = modules_loaded_by("run", "paper-b-table3", "--out-dir", str(tmp_path))
     assert probe["code"] == 0 and "numba" in probe["loaded"]
-    assert "matplotlib" not in probe["loaded"]
+    assert "matplotlib" not in probe["loaded"] and "pydantic" not in probe["loaded"]
     plotted = modules_loaded_by(
         "torques", "paper-a-table1", "--out-dir", str(tmp_path), "--plot", str(tmp_path / "t.svg")
     )
@@ -79,11 +118,7 @@ def test_loading_a_cached_kernel_skips_numbas_scipy_blas_probe_but_blas_still_wo
         "dot = njit(lambda a, b: np.dot(a, b))\n"
         "print(before, dot(np.eye(2) * 2.0, np.ones(2)).tolist())\n"
     )
-    env = dict(os.environ, PYTHONPATH=str(REPO))
-    out = subprocess.run(
-        [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True
-    )
-    assert out.stdout.split() == ["False", "[2.0,", "2.0]"]
+    assert words_printed_by(code) == ["False", "[2.0,", "2.0]"]
 
 
 def test_importing_the_package_and_its_kernels_changes_nothing_in_the_process():
@@ -129,3 +164,33 @@ def test_a_sweep_on_one_worker_imports_no_dask(tmp_path):
     assert "numba" in probe["loaded"]
     assert "dask" not in probe["loaded"] and "distributed" not in probe["loaded"]
     assert (tmp_path / "sweep-sweep-1.csv").exists()
+
+
+@pytest.mark.parametrize(("command", "collecting"), [("--help", "False"), ("presets", "True")])
+def test_no_garbage_collection_while_the_cli_loads_but_while_a_command_runs(command, collecting):
+    """``planar_tui.entry.main`` turns the cyclic collector off while the CLI loads; every
+    command turns it back on (``--help`` ends before any command: still off)."""
+    code = (
+        "import atexit, gc, sys\n"
+        "atexit.register(lambda: print('collecting', gc.isenabled()))\n"
+        f"sys.argv = ['planar-tui', {command!r}]\n"
+        "from planar_tui.entry import main\n"
+        "main()\n"
+    )
+    assert words_printed_by(code)[-2:] == ["collecting", collecting]
+
+
+@pytest.mark.parametrize("collecting", [True, False])
+def test_preparing_the_kernels_leaves_garbage_collection_as_it_was(collecting):
+    """numba is imported without cyclic collection (:func:`planar_tui.runtime.
+    no_cyclic_collection`), which is then as before: on stays on, off stays off."""
+    code = (
+        "import gc, sys\n"
+        f"gc.enable() if {collecting} else gc.disable()\n"
+        "from planar_tui.runtime import no_cyclic_collection, prepare_kernels\n"
+        "with no_cyclic_collection():\n"
+        "    inside = gc.isenabled()\n"
+        "prepare_kernels()\n"
+        "print(inside, 'numba' in sys.modules, gc.isenabled())\n"
+    )
+    assert words_printed_by(code) == ["False", "True", str(collecting)]

@@ -197,3 +197,32 @@ def test_arc_distance_paving_is_parallel_and_the_same_on_1_and_2_threads():
     assert np.array_equal(one.boxes, two.boxes) and np.array_equal(one.status, two.status)
     assert (one.area_inside_cm2, one.area_kept_cm2) == (two.area_inside_cm2, two.area_kept_cm2)
     assert one.boxes_processed == two.boxes_processed
+
+
+def test_the_box_estimate_and_the_exact_reference_are_computed_once_per_geometry(monkeypatch):
+    """Paper B's Table 3 runs seven jobs on one geometry: the outer polygon of the box
+    estimate and the exact bracket are each made once (the polygons counted), and the
+    estimate's area and length are the polygon's own."""
+    from planar_tui.workspace import geometry
+
+    made = []
+    real = geometry.workspace_polygon
+
+    def counted(*args):
+        made.append(args[3:])
+        return real(*args)
+
+    monkeypatch.setattr(geometry, "workspace_polygon", counted)
+    limits = tuple((math.radians(lo), math.radians(hi)) for lo, hi in CASES[3][0])
+    orientation_rad = 0.0123  # a geometry no other test caches
+    area, length = geometry.outer_area_and_length(ROBOT, limits, orientation_rad)
+    polygon = real(ROBOT, limits, orientation_rad, 64, True)
+    assert (area, length) == (polygon.area, polygon.length)
+    assert made == [(64, True)]
+    same = geometry.outer_area_and_length(ROBOT, [list(pair) for pair in limits],
+                                          np.float64(orientation_rad))  # fmt: skip
+    bracket = geometry.geometric_area(ROBOT, limits, orientation_rad)
+    polygons = len(made)
+    assert same == (area, length) and polygons > 2
+    assert geometry.geometric_area(ROBOT, list(limits), orientation_rad) is bracket
+    assert len(made) == polygons

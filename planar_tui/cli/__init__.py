@@ -71,6 +71,7 @@ def root(
     ] = False,
 ) -> None:
     """Without a command: open the Textual app on a bundled preset (in a terminal)."""
+    gc.enable()  # off while the CLI loaded (planar_tui.entry.main)
     csvio.notice = _notice
     if context.invoked_subcommand is None:
         if not (sys.stdin.isatty() and sys.stdout.isatty()):

@@ -4,9 +4,11 @@ displays (one bar per job, one per sweep)."""
 
 from __future__ import annotations
 
+import importlib
 import signal
 import sys
 import threading
+import types
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
@@ -15,6 +17,11 @@ from typing import TYPE_CHECKING
 import typer
 from rich.console import Console
 from typer.core import TyperCommand, TyperGroup
+
+try:  # Typer's private coercion API, used only with the Typer releases it was checked with
+    from planar_tui.cli.coercion import install_common_values
+except ImportError:
+    install_common_values = None
 
 from planar_tui.errors import Cancelled, ExitCode, PresetError, Terminated
 
@@ -35,15 +42,27 @@ class _FlagsWithoutMetavar:
         self.help = _escaped(self.help)
         self.short_help = _escaped(self.short_help)
 
+    def format_help(self, ctx, formatter):
+        _import_help_formatter()
+        return super().format_help(ctx, formatter)
+
     def get_params(self, ctx):
         params = super().get_params(ctx)
         for param in params:
             if getattr(param, "is_flag", False) and param.metavar is None:
                 param.metavar = ""
+            _coerce_common_values(param)
             if getattr(param, "help", None) and not getattr(param, "_escaped", False):
                 param.help = _escaped(param.help)
                 param._escaped = True
         return params
+
+
+def _coerce_common_values(param) -> None:
+    """Give a Typer parameter the pydantic-free coercion of :mod:`planar_tui.cli.coercion`
+    where this Typer is one it was checked with; with any other Typer, Typer's own."""
+    if install_common_values is not None:
+        install_common_values(param)
 
 
 def _escaped(text: str | None) -> str | None:
@@ -51,6 +70,54 @@ def _escaped(text: str | None) -> str | None:
     from rich.markup import escape
 
     return None if text is None else escape(text)
+
+
+class _Deferred(type):
+    """The class of a stand-in for a class of another module (:func:`_import_help_formatter`):
+    calling it or reading an attribute of it imports that module and forwards there."""
+
+    _origin: tuple[str, str]
+
+    def _real(cls):
+        module, name = cls._origin
+        return getattr(importlib.import_module(module), name)
+
+    def __call__(cls, *args, **kwargs):
+        return cls._real()(*args, **kwargs)
+
+    def __getattr__(cls, name):
+        return getattr(cls._real(), name)
+
+
+#: What Typer's help formatter imports but ``planar-tui`` uses only in other cases:
+#: Markdown help (``rich.markdown``: markdown_it, pygments), pretty tracebacks
+#: (``rich.traceback``: rich.pretty, attrs; off here, ``pretty_exceptions_enable=False``).
+_DEFERRED = (("rich.markdown", "Markdown"), ("rich.traceback", "Traceback"))
+
+
+def _import_help_formatter() -> None:
+    """Import Typer's rich help formatter (``typer.rich_utils``, the same help as ever)
+    without the modules of :data:`_DEFERRED`: about 85 ms of a 0.3 s ``planar-tui --help``.
+    While it imports, a stand-in module holds each of those classes (a :class:`_Deferred`
+    that imports the real class when used); then the stand-ins leave ``sys.modules``, so
+    any later import gets the real module."""
+    if "typer.rich_utils" in sys.modules:
+        return
+    stand_ins = {}
+    for module, name in _DEFERRED:
+        if module not in sys.modules:
+            stand_ins[module] = types.ModuleType(module)
+            setattr(stand_ins[module], name, _Deferred(name, (), {"_origin": (module, name)}))
+    sys.modules.update(stand_ins)
+    try:
+        import typer.rich_utils
+    except ImportError:  # a Typer that wants more of those modules: load them for real
+        sys.modules.pop("typer.rich_utils", None)
+    finally:
+        for module, stand_in in stand_ins.items():
+            if sys.modules.get(module) is stand_in:
+                del sys.modules[module]
+    import typer.rich_utils  # noqa: F401
 
 
 class Group(_FlagsWithoutMetavar, TyperGroup):

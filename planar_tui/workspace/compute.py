@@ -372,20 +372,20 @@ def estimate_boxes(robot: Robot3RRR, spec) -> int:
     """About how many boxes the bisection will process (0 for ``geometric``), before it runs.
 
     From the outer polygon of the exact workspace (shapely, 64 segments per turn: a few
-    ms): its area A and boundary length L. The 5-D forms refine the whole area down to ε,
-    with their θ boxes: ``BOXES_PER_CELL[form] · A / ε²``; the arc-distance form proves
+    ms, once per geometry: :func:`~planar_tui.workspace.geometry.outer_area_and_length`):
+    its area A and boundary length L. The 5-D forms refine the whole area down to ε, with
+    their θ boxes: ``BOXES_PER_CELL[form] · A / ε²``; the arc-distance form proves
     inside boxes early and refines the boundary only: ``BOXES_PER_BOUNDARY_STEP · L / ε``;
     the leg-wise paving too, evaluating a few θ pieces per leg and (x, y) box:
     ``LEG_BOXES_PER_BOUNDARY_STEP[form] · L / ε``;
     a boundary refinement adds the latter at ``refine_precision_cm``. An estimate (within
     about 2x of the counts of paper B's tables), not a bound.
     """
-    from planar_tui.workspace.geometry import workspace_polygon
+    from planar_tui.workspace.geometry import outer_area_and_length
 
     if spec.form == "geometric":
         return 0
-    polygon = workspace_polygon(robot, spec.limits_rad, spec.orientation_rad, 64, True)
-    area, length = float(polygon.area), float(polygon.length)
+    area, length = outer_area_and_length(robot, spec.limits_rad, spec.orientation_rad, 64)
     eps = spec.precision_cm
     if spec.form == "arc-distance":
         boxes = BOXES_PER_BOUNDARY_STEP * length / eps
@@ -403,8 +403,13 @@ def estimate_boxes(robot: Robot3RRR, spec) -> int:
 
 def report_estimate(robot: Robot3RRR, spec, progress: Progress) -> int:
     """Put :func:`estimate_boxes` in ``progress.figures["boxes_estimate"]`` and warn
-    (``progress.warning``) when it exceeds the job's ``box_budget``."""
-    estimate = estimate_boxes(robot, spec)
+    (``progress.warning``) when it exceeds the job's ``box_budget`` (:func:`report_boxes`)."""
+    return report_boxes(estimate_boxes(robot, spec), spec, progress)
+
+
+def report_boxes(estimate: int, spec, progress: Progress) -> int:
+    """Put a workspace job's box ``estimate`` in ``progress.figures["boxes_estimate"]`` and
+    warn (``progress.warning``) when it exceeds the job's ``box_budget``."""
     progress.figures["boxes_estimate"] = float(estimate)
     if estimate > spec.box_budget:
         progress.warn(

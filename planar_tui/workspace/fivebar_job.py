@@ -31,6 +31,8 @@ from planar_tui.schema import (
     setting,
     string,
 )
+from planar_tui.workspace.columns import fivebar_figure_names
+from planar_tui.workspace.estimate import check_needs, estimate, report_box_estimate
 from planar_tui.workspace.fivebar import Robot5R
 from planar_tui.workspace.job import (
     BOXES_OPTION,
@@ -137,7 +139,9 @@ class FiveBarSpec:
                     problem,
                     "a centre inside the workspace, off its singularities",
                 )
-        return check_paving(values, reader)
+        values = check_paving(values, reader)
+        check_needs("workspace5r", FiveBarSpec(**values), reader, robot)  # memory and time
+        return values
 
 
 FiveBarJob = Job[FiveBarSpec, Robot5R]
@@ -212,6 +216,7 @@ def run_fivebar(
 
     job = ready.job
     budget = BoxBudget(job, progress)
+    report_box_estimate(job, progress)  # warned of over the box budget
     outcome = compute_fivebar(job.robot, job.spec, budget)
     singular = None
     if job.spec.singularities:
@@ -243,6 +248,8 @@ JOB_KIND = JobKind(
     render=render_workspace,
     extra_outputs=_extra_outputs,
     point_figures=point_figures,
+    estimate=estimate,
+    figure_names=fivebar_figure_names,
     command=Command(
         "workspace5r",
         "Five-bar workspace of every workspace5r job: summary CSV, boxes CSV (--boxes or the "

@@ -144,8 +144,31 @@ def geometric_area(
     Computed once per geometry in a process (robot, joint limits, orientation, tolerance):
     the jobs of a preset that share them (paper B's Table 3 has seven) share the result,
     an immutable :class:`GeometricArea`."""
-    limits = tuple((float(lo), float(hi)) for lo, hi in limits_rad)
-    return _geometric_area(robot, limits, float(orientation_rad), relative_tolerance, max_segments)
+    return _geometric_area(robot, *_geometry_key(limits_rad, orientation_rad),
+                           relative_tolerance, max_segments)  # fmt: skip
+
+
+def outer_area_and_length(
+    robot, limits_rad, orientation_rad, segments_per_turn: int = 64
+) -> tuple[float, float]:
+    """Area A (cm²) and boundary length L (cm) of the workspace's outer polygon at
+    ``segments_per_turn``: what a paving's box estimate is made of (A/ε², L/ε).
+
+    Computed once per geometry in a process, like :func:`geometric_area`: the seven jobs
+    of paper B's Table 3 estimate their boxes from one polygon."""
+    return _outer_area_and_length(robot, *_geometry_key(limits_rad, orientation_rad),
+                                  segments_per_turn)  # fmt: skip
+
+
+def _geometry_key(limits_rad, orientation_rad) -> tuple[tuple[tuple[float, float], ...], float]:
+    """Joint limits and orientation as plain hashable floats (the caches' keys)."""
+    return tuple((float(lo), float(hi)) for lo, hi in limits_rad), float(orientation_rad)
+
+
+@lru_cache(maxsize=64)
+def _outer_area_and_length(robot, limits_rad, orientation_rad, segments_per_turn):
+    polygon = workspace_polygon(robot, limits_rad, orientation_rad, segments_per_turn, True)
+    return float(polygon.area), float(polygon.length)
 
 
 @lru_cache(maxsize=64)

@@ -500,12 +500,11 @@ def render_workspace(job: WorkspaceJob, result: WorkspaceResult, console: Any) -
         console.print(singular.describe(), markup=False, highlight=False)
     boxes, status = outcome.boxes, outcome.status
     layers: list[Any] = []
-    if result.companions is not None:
+    companions = getattr(result, "companions", None)  # a five-bar's result has none
+    if companions is not None:
         from planar_tui.workspace.tolerance import map_layers
 
-        boxes, status, layers = map_layers(
-            outcome, result.companions, job.spec.tolerance_mode or "all"
-        )
+        boxes, status, layers = map_layers(outcome, companions, job.spec.tolerance_mode or "all")
     lines = render_map(boxes, status, width=width, layers=layers, **overlays(singular))
     for line in lines:
         console.print(line, markup=False, highlight=False, crop=True, soft_wrap=False)

@@ -25,6 +25,8 @@ from typing import Any, ClassVar
 from planar_tui.jobkind import Command, Job, JobKind, Option, OutputOption, PreparedJob, Tab
 from planar_tui.progress import Progress
 from planar_tui.schema import TableReader, number, plot_setting, setting, string
+from planar_tui.workspace.columns import planar_figure_names
+from planar_tui.workspace.estimate import check_needs, estimate, report_box_estimate
 from planar_tui.workspace.job import (
     WorkspaceResult,
     WorkspaceSpec,
@@ -89,8 +91,9 @@ class PlanarSpec:
     circle_centre_cm: tuple[float, float] | None = same_key("circle_centre_cm")
     singularity_precision_cm: float | None = same_key("singularity_precision_cm")
 
-    #: The kind's :class:`Mechanism` (set by each subclass; not a preset key).
+    #: The kind's :class:`Mechanism` and job kind's name (set by each subclass; not keys).
     mechanism: ClassVar[Any] = None
+    kind: ClassVar[str] = ""
     #: The robot's toleranced quantities, for a kind with tolerance keys
     #: (:mod:`planar_tui.workspace.tolerance`; ``()``: none).
     tolerance_keys: ClassVar[tuple[str, ...]] = ()
@@ -105,7 +108,8 @@ class PlanarSpec:
     def check(cls, values: dict[str, Any], reader: TableReader, robot: Any) -> dict[str, Any]:
         """The refinement precision cannot exceed the precision; an explicit search box
         must hold the legs' reach; the box budget must fit the memory limit; the circle's
-        keys go with ``singularities`` (:func:`check_circle_keys`)."""
+        keys go with ``singularities`` (:func:`check_circle_keys`); the job's estimated
+        memory and time must fit the limits (:func:`~planar_tui.workspace.estimate.check_needs`)."""
         check_circle_keys(values, reader, cls.circle_keys)
         refine = values["refine_precision_cm"]
         if refine is not None and refine > values["precision_cm"]:
@@ -126,6 +130,7 @@ class PlanarSpec:
                     "a box containing it",
                 )
         values["box_budget"] = _checked_box_budget(values["box_budget"], reader)
+        check_needs(cls.kind, cls(**values), reader, robot)
         return values
 
 
@@ -236,6 +241,7 @@ def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> 
 
     job = ready.job
     budget = BoxBudget(job, progress)
+    report_box_estimate(job, progress)  # warned of over the box budget
     outcome = compute_planar(job.robot, job.spec, budget)
     header: tuple[str, ...] = SUMMARY_HEADER
     row, summary = outcome.summary_row(), summary_line(outcome)
@@ -281,7 +287,11 @@ def planar_job_kind(
 ) -> JobKind:
     """The :class:`JobKind` of a fixed-orientation parallel kind ``name`` (its robot table
     ``robot`` + the name's suffix): the shared runner, terminal map, figure, command
-    (``--precision``, ``--boxes``, ``--map/--no-map``)."""
+    (``--precision``, ``--boxes``, ``--map/--no-map``), its estimate
+    (:mod:`planar_tui.workspace.estimate`) and sweep columns
+    (:mod:`planar_tui.workspace.columns`)."""
+    declared = getattr(settings, "kind", None)
+    assert declared == name, f"{settings.__name__}.kind is {declared!r}, not {name!r}"
     return JobKind(
         name=name,
         robot_kind="robot" + name.removeprefix("workspace"),
@@ -307,6 +317,8 @@ def planar_job_kind(
         tab=tab,
         figure="planar_tui.figures.workspace:from_planar_result",
         warmup=warmup,
+        estimate=estimate,
+        figure_names=planar_figure_names,
     )  # fmt: skip
 
 

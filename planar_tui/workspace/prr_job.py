@@ -52,6 +52,7 @@ class Spec3PRR(PlanarSpec):
         "distal length (cm; the line directions and strokes are exact)",
     )
     mechanism: ClassVar[Any] = MECHANISM
+    kind: ClassVar[str] = "workspace3prr"
     tolerance_keys: ClassVar[tuple[str, ...]] = TOLERANCE_KEYS_3PRR
     circle_keys: ClassVar[tuple[str, ...]] = (
         "slider_modes",

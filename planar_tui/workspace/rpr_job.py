@@ -53,6 +53,7 @@ class Spec3RPR(PlanarSpec):
     )
 
     mechanism: ClassVar[Any] = MECHANISM
+    kind: ClassVar[str] = "workspace3rpr"
     tolerance_keys: ClassVar[tuple[str, ...]] = TOLERANCE_KEYS_3RPR
 
     @classmethod

@@ -1,0 +1,32 @@
+"""The sweep columns of the 3-RPR, 3-PRR and five-bar jobs, named without running them (the
+kinds' ``figure_names`` hook: a resumed sweep checks its checkpoint's records against them,
+an optimisation's objectives and constraints must name one of them, before anything runs).
+
+A job's columns are its summary CSV's but the wall time (``seconds``: a sweep row has its
+own): the 3-RRR's summary columns (:data:`~planar_tui.workspace.compute.SUMMARY_HEADER`),
+then its singularity-free circle's (every job has them, empty without ``singularities``):
+the 3-RRR's for the 3-RPR and 3-PRR (:data:`planar_tui.workspace.singularity.HEADER`), the
+five-bar's with its singular box counts
+(:data:`planar_tui.workspace.fivebar_singularity.HEADER`), the five-bar's ``working_mode``
+in place of the ``strategy``. ``tests/test_workspace_columns.py`` holds them to the runs'.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+
+def planar_figure_names(job: Any) -> tuple[str, ...]:
+    """The columns of a 3-RPR or 3-PRR job (:func:`planar_tui.workspace.planar.run_planar`)."""
+    from planar_tui.workspace.compute import SUMMARY_HEADER
+    from planar_tui.workspace.singularity import HEADER
+
+    return (*SUMMARY_HEADER[:-1], *HEADER)
+
+
+def fivebar_figure_names(job: Any) -> tuple[str, ...]:
+    """The columns of a five-bar job (:func:`planar_tui.workspace.fivebar_job.run_fivebar`)."""
+    from planar_tui.workspace.compute import SUMMARY_HEADER
+    from planar_tui.workspace.fivebar_singularity import HEADER
+
+    return (SUMMARY_HEADER[0], "working_mode", *SUMMARY_HEADER[2:-1], *HEADER)
