@@ -80,6 +80,17 @@ def pave(job, should_stop) -> Any:
     return compute_workspace(job.robot, job.spec, BoxBudget(job, progress))
 
 
+def preview_job(job, cells: int = PREVIEW_CELLS) -> Any:
+    """The live preview's job: ``job`` paved in the arc-distance form over the legs' reach
+    box at precision ε = max(x_hi − x_lo, y_hi − y_lo) / ``cells`` (``None`` when the reach
+    discs do not meet)."""
+    x_lo, x_hi, y_lo, y_hi = job.robot.reach_box_cm(job.spec.orientation_rad)
+    if x_lo >= x_hi or y_lo >= y_hi:
+        return None
+    precision = max(x_hi - x_lo, y_hi - y_lo) / cells
+    return fine_job(job, precision_cm=precision, form="arc-distance", search_box_cm=None)
+
+
 class Paved(Message):
     """A re-paving or a preview finished in its worker (``outcome`` ``None``: ``error``)."""
 
@@ -361,12 +372,10 @@ class WorkspacePane(JobPane):
         self._preview_timer = self.set_timer(PREVIEW_DEBOUNCE_S, lambda: self.start_preview(job))
 
     def start_preview(self, job) -> None:
-        x_lo, x_hi, y_lo, y_hi = job.robot.reach_box_cm(job.spec.orientation_rad)
-        if x_lo >= x_hi or y_lo >= y_hi:
+        coarse = preview_job(job)
+        if coarse is None:
             self.explorer().show_text("(preview: the legs' reach discs do not meet)")
             return
-        precision = max(x_hi - x_lo, y_hi - y_lo) / PREVIEW_CELLS
-        coarse = fine_job(job, precision_cm=precision, form="arc-distance", search_box_cm=None)
         self.run_worker(
             lambda: self._pave_in_worker(coarse, "preview"), group="preview",
             thread=True, exclusive=True, exit_on_error=False,

@@ -1,0 +1,137 @@
+"""Benchmark of the app's live workspace preview (issue 20): ``python benchmarks/bench_app.py``.
+
+Goal: a coarse map redrawn within a second of each valid edit of a 3-RRR's geometry or
+joint limits. The app runs headless (``App.run_test``, as the Pilot tests do) on the
+bundled ``presets/paper-b-table3.toml`` with its Workspace tab shown. Each edit puts a new
+valid value into a field (what the keystroke that completes the value does: the field's
+``Input.Changed``) and times, from there, until the preview map of that value is drawn:
+``N`` edits of the joint limits (Workspace tab) and ``N`` of the distal link length
+(Robot tab), median and max of each. Baseline in the same process: the preview's paving
+called directly (no app), wall and CPU seconds. The 1-min load (``os.getloadavg``) is
+printed before and after (the machine is shared).
+
+Options: ``--edits N`` (default 5).
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import os
+import shutil
+import statistics
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(REPO))
+
+PRESET = REPO / "presets" / "paper-b-table3.toml"
+#: The bound on one wait: it only catches a hang.
+HANG_S = 300.0
+
+
+def limits_text(k: int) -> tuple[str, tuple]:
+    """The ``k``-th edit of the joint limits: the preset's widened by ``k`` degrees."""
+    limits = ((20 - k, 70 + k), (110 - k, 160 + k), (245 - k, 295 + k))
+    return str([list(pair) for pair in limits]), limits
+
+
+async def drawn(pilot, pane, predicate) -> float:
+    """Wait until the pane shows a preview whose job satisfies ``predicate``; the moment."""
+    deadline = time.monotonic() + HANG_S
+    while True:
+        job = pane._shown_job
+        if job is not None and "preview" in pane.explorer().note and predicate(job):
+            return time.perf_counter()
+        if time.monotonic() > deadline:
+            raise TimeoutError("no preview drawn")
+        await pilot.pause(0.01)
+
+
+async def app_latencies(edits: int) -> dict[str, list[float]]:
+    """Seconds from each valid edit to its preview drawn, per edited field."""
+    from planar_tui.app.app import WorkbenchApp
+    from planar_tui.app.workbench import Workbench
+
+    seconds: dict[str, list[float]] = {"joint limits": [], "distal_cm": []}
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / PRESET.name
+        shutil.copy(PRESET, path)
+        app = WorkbenchApp(Workbench.open(path), output_dir=Path(folder))
+        async with app.run_test(size=(120, 40)) as pilot:
+            app.action_show_tab("workspace")
+            await pilot.pause()
+            pane = app.query_one("#pane-workspace")
+            field = pane.query_one("#field-joint_limits_deg")
+            # warm-up: the first edit loads the paving's modules and cached kernels
+            for k in range(edits + 1):
+                text, limits = limits_text(k + 1)
+                start = time.perf_counter()
+                field.value = text
+                end = await drawn(pilot, pane, lambda job, t=limits: job.spec.joint_limits_deg == t)
+                if k:
+                    seconds["joint limits"].append(end - start)
+            distal = app.query_one("#pane-robot #form-robot3rrr #field-distal_cm")
+            for k in range(edits):
+                length_cm = 30.0 + 0.25 * (k + 1)
+                start = time.perf_counter()
+                distal.value = f"{length_cm:g}"
+                end = await drawn(pilot, pane, lambda job, d=length_cm: job.robot.distal_cm == d)
+                seconds["distal_cm"].append(end - start)
+    return seconds
+
+
+def paving_alone(edits: int) -> tuple[list[float], list[float], int]:
+    """Wall and CPU seconds of the preview's paving called directly (no app), box count."""
+    from planar_tui.app.widgets.workspace_pane import pave, preview_job
+    from planar_tui.presets import load_preset
+
+    job = next(job for job in load_preset(PRESET).jobs if job.kind == "workspace")
+    wall, cpu, boxes = [], [], 0
+    for k in range(edits + 1):
+        _, limits = limits_text(k + 1)
+        edited = preview_job(_with_limits(job, limits))
+        start_wall, start_cpu = time.perf_counter(), time.process_time()
+        outcome = pave(edited, lambda: False)
+        if k:  # the first call loads the modules and kernels
+            wall.append(time.perf_counter() - start_wall)
+            cpu.append(time.process_time() - start_cpu)
+        boxes = len(outcome.boxes)
+    return wall, cpu, boxes
+
+
+def _with_limits(job, limits):
+    import dataclasses
+
+    spec = dataclasses.replace(job.spec, joint_limits_deg=limits)
+    return dataclasses.replace(job, spec=spec)
+
+
+def row(name: str, values: list[float]) -> str:
+    return f"{name:<34} {statistics.median(values):>9.3f} {max(values):>9.3f}"
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--edits", type=int, default=5)
+    args = parser.parse_args()
+    load_before = os.getloadavg()[0]
+    wall, cpu, boxes = paving_alone(args.edits)
+    seconds = asyncio.run(app_latencies(args.edits))
+    load_after = os.getloadavg()[0]
+    print(f"preview of {PRESET.name}'s workspace job, {args.edits} edits each, {boxes} boxes")
+    print(f"{'':<34} {'median s':>9} {'max s':>9}")
+    print(row("paving alone, wall (baseline)", wall))
+    print(row("paving alone, CPU", cpu))
+    for name, values in seconds.items():
+        print(row(f"edit of {name} -> map drawn", values))
+        ratio = statistics.median(values) / statistics.median(wall)
+        print(f"{'':<34} {ratio:>8.1f}x the paving alone; goal 1 s")
+    print(f"1-min load: {load_before:.2f} before, {load_after:.2f} after ({os.cpu_count()} CPUs)")
+
+
+if __name__ == "__main__":
+    main()
