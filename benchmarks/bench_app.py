@@ -7,7 +7,8 @@ valid value into a field (what the keystroke that completes the value does: the 
 ``Input.Changed``) and times, from there, until the preview map of that value is drawn:
 ``N`` edits of the joint limits (Workspace tab) and ``N`` of the distal link length
 (Robot tab), median and max of each. Baseline in the same process: the preview's paving
-called directly (no app), wall and CPU seconds. The 1-min load (``os.getloadavg``) is
+called directly (no app), wall and CPU seconds, on every core and on one thread (as the
+app paves it). The 1-min load (``os.getloadavg``) is
 printed before and after (the machine is shared).
 
 Options: ``--edits N`` (default 5).
@@ -84,8 +85,9 @@ async def app_latencies(edits: int) -> dict[str, list[float]]:
     return seconds
 
 
-def paving_alone(edits: int) -> tuple[list[float], list[float], int]:
-    """Wall and CPU seconds of the preview's paving called directly (no app), box count."""
+def paving_alone(edits: int, threads: int | None) -> tuple[list[float], list[float], int]:
+    """Wall and CPU seconds of the preview's paving called directly (no app) on ``threads``
+    threads (``None``: every core), box count."""
     from planar_tui.app.widgets.workspace_pane import pave, preview_job
     from planar_tui.presets import load_preset
 
@@ -95,7 +97,7 @@ def paving_alone(edits: int) -> tuple[list[float], list[float], int]:
         _, limits = limits_text(k + 1)
         edited = preview_job(_with_limits(job, limits))
         start_wall, start_cpu = time.perf_counter(), time.process_time()
-        outcome = pave(edited, lambda: False)
+        outcome = pave(edited, lambda: False, threads)
         if k:  # the first call loads the modules and kernels
             wall.append(time.perf_counter() - start_wall)
             cpu.append(time.process_time() - start_cpu)
@@ -111,7 +113,7 @@ def _with_limits(job, limits):
 
 
 def row(name: str, values: list[float]) -> str:
-    return f"{name:<34} {statistics.median(values):>9.3f} {max(values):>9.3f}"
+    return f"{name:<40} {statistics.median(values):>9.3f} {max(values):>9.3f}"
 
 
 def main() -> None:
@@ -119,17 +121,20 @@ def main() -> None:
     parser.add_argument("--edits", type=int, default=5)
     args = parser.parse_args()
     load_before = os.getloadavg()[0]
-    wall, cpu, boxes = paving_alone(args.edits)
+    every_wall, every_cpu, _ = paving_alone(args.edits, None)
+    wall, cpu, boxes = paving_alone(args.edits, 1)
     seconds = asyncio.run(app_latencies(args.edits))
     load_after = os.getloadavg()[0]
     print(f"preview of {PRESET.name}'s workspace job, {args.edits} edits each, {boxes} boxes")
-    print(f"{'':<34} {'median s':>9} {'max s':>9}")
-    print(row("paving alone, wall (baseline)", wall))
-    print(row("paving alone, CPU", cpu))
+    print(f"{'':<40} {'median s':>9} {'max s':>9}")
+    print(row("paving alone, every core, wall", every_wall))
+    print(row("paving alone, every core, CPU", every_cpu))
+    print(row("paving alone, 1 thread, wall (baseline)", wall))
+    print(row("paving alone, 1 thread, CPU", cpu))
     for name, values in seconds.items():
         print(row(f"edit of {name} -> map drawn", values))
         ratio = statistics.median(values) / statistics.median(wall)
-        print(f"{'':<34} {ratio:>8.1f}x the paving alone; goal 1 s")
+        print(f"{'':<40} {ratio:>8.1f}x the paving alone; goal 1 s")
     print(f"1-min load: {load_before:.2f} before, {load_after:.2f} after ({os.cpu_count()} CPUs)")
 
 

@@ -1,6 +1,7 @@
 """Pilot tests of the explorable workspace map: the read-out at a known inside and a known
 outside point (the leg angles checked by forward kinematics here), the cursor, zoom, pan,
-the overlays, re-paving the view and the live preview after an edit."""
+the overlays, re-paving the view and the live preview after an edit (a newer edit
+replaces an older preview)."""
 
 from __future__ import annotations
 
@@ -143,3 +144,36 @@ async def test_an_edit_of_the_joint_limits_redraws_a_coarse_map(tmp_path):
         boxes = pane.query_one("#workspace-map").boxes
         kept_cm2 = float(np.sum((boxes[:, 1] - boxes[:, 0]) * (boxes[:, 3] - boxes[:, 2])))
         assert kept_cm2 > 106.75
+
+
+@async_test
+async def test_a_newer_edit_replaces_an_older_preview(tmp_path):
+    from planar_tui.app.widgets.workspace_pane import Paved, pave, preview_job
+
+    app = make_app(tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        app.action_show_tab("workspace")
+        await pilot.pause()
+        pane = app.query_one("#pane-workspace")
+        field = app.query_one("#pane-workspace #field-joint_limits_deg")
+        field.focus()
+        older = ((15, 75), (105, 165), (240, 300))
+        newer = ((10, 80), (100, 170), (235, 305))
+        field.value = str([list(pair) for pair in older])
+        await until(pilot, lambda: pane._preview_key is not None and pane._preview_key[1] == older)
+        older_job = pane._valid_job()
+        field.value = str([list(pair) for pair in newer])  # before the older map is drawn
+        explorer = pane.query_one("#workspace-map")
+
+        def newer_shown() -> bool:
+            shown = pane._shown_job
+            return "preview" in explorer.note and shown.spec.joint_limits_deg == newer
+
+        await until(pilot, newer_shown, 300)
+        # the older edit's map, arriving late from its worker, is not drawn over it
+        boxes = explorer.boxes.copy()
+        late = pave(preview_job(older_job), lambda: False)
+        pane.post_message(Paved("preview", preview_job(older_job), late))
+        await pilot.pause(0.2)
+        assert newer_shown() and np.array_equal(explorer.boxes, boxes)
+        assert not [w for w in pane.workers if w.group == "preview" and w.is_running]

@@ -27,10 +27,8 @@ from planar_tui.progress import ProgressState
 MAP_FOOTER_LINES = 3
 #: Seconds between two redraws of the map of the boxes kept so far while a job runs.
 PARTIAL_MAP_EVERY_S = 0.5
-#: Seconds after the last edit before the coarse preview map is computed.
-PREVIEW_DEBOUNCE_S = 0.25
-#: The preview's precision: the reach box's larger side over this.
-PREVIEW_CELLS = 32
+#: The preview's plot in cells (columns, rows) when the map pane has no size yet.
+PREVIEW_CELLS = (32, 16)
 #: The re-paving's precision: at most half the job's, and the view's width over this.
 REPAVE_CELLS = 96
 
@@ -71,24 +69,42 @@ def fine_job(job, **changes) -> Any:
     return dataclasses.replace(job, spec=spec)
 
 
-def pave(job, should_stop) -> Any:
-    """Pave ``job``'s workspace (:func:`planar_tui.workspace.compute.compute_workspace`)."""
+def pave(job, should_stop, threads: int | None = None) -> Any:
+    """Pave ``job``'s workspace (:func:`planar_tui.workspace.compute.compute_workspace`),
+    its parallel kernels on ``threads`` threads when given (Numba's count is per calling
+    thread: the other threads keep theirs)."""
+    import numba
+
     from planar_tui.progress import Progress
     from planar_tui.workspace.compute import BoxBudget, compute_workspace
 
     progress = Progress(should_stop=should_stop)
-    return compute_workspace(job.robot, job.spec, BoxBudget(job, progress))
+    before = numba.get_num_threads()
+    if threads is not None:
+        numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
+    try:
+        return compute_workspace(job.robot, job.spec, BoxBudget(job, progress))
+    finally:
+        numba.set_num_threads(before)
 
 
-def preview_job(job, cells: int = PREVIEW_CELLS) -> Any:
-    """The live preview's job: ``job`` paved in the arc-distance form over the legs' reach
-    box at precision ε = max(x_hi − x_lo, y_hi − y_lo) / ``cells`` (``None`` when the reach
-    discs do not meet)."""
+def preview_job(job, plot_cells: tuple[int, int] = PREVIEW_CELLS) -> Any:
+    """The live preview's job: ``job`` paved leg-wise in the arc-distance form over the
+    legs' reach box at the width of one map cell when the box fills a plot of
+    ``plot_cells`` = (columns, rows) cells (a cell twice as tall as wide),
+    ε = max((x_hi − x_lo) / columns, (y_hi − y_lo) / (2 rows)): no box finer than a
+    character cell (``None`` when the reach discs do not meet)."""
     x_lo, x_hi, y_lo, y_hi = job.robot.reach_box_cm(job.spec.orientation_rad)
     if x_lo >= x_hi or y_lo >= y_hi:
         return None
-    precision = max(x_hi - x_lo, y_hi - y_lo) / cells
+    columns, rows = (max(1, cells) for cells in plot_cells)
+    precision = max((x_hi - x_lo) / columns, (y_hi - y_lo) / (2 * rows))
     return fine_job(job, precision_cm=precision, form="arc-distance", search_box_cm=None)
+
+
+def preview_key(job) -> tuple:
+    """What the preview depends on: the robot, the joint limits and the orientation."""
+    return (job.robot, job.spec.joint_limits_deg, job.spec.orientation_deg)
 
 
 class Paved(Message):
@@ -121,7 +137,6 @@ class WorkspacePane(JobPane):
         super().__init__(*args, **kwargs)
         #: The inputs of the last preview (``None`` before the first edit).
         self._preview_key: Any = None
-        self._preview_timer: Any = None
         self._shown_job: Any = None
 
     def compose_results(self) -> ComposeResult:
@@ -306,7 +321,11 @@ class WorkspacePane(JobPane):
 
         worker = get_current_worker()
         try:
-            outcome = pave(job, lambda: worker.is_cancelled)
+            # the preview on one thread: its few boxes per level would wait on a busy
+            # machine's second core at each parallel level (0.2 s against 0.01 s, 2 cores
+            # at load 3; docs/app.md)
+            threads = 1 if purpose == "preview" else None
+            outcome = pave(job, lambda: worker.is_cancelled, threads)
         except Exception as error:  # a cancel, or the budget exceeded: said, never raised
             if not worker.is_cancelled:
                 self.post_message(Paved(purpose, job, None, f"not paved: {error}"))
@@ -350,29 +369,30 @@ class WorkspacePane(JobPane):
         self.schedule_preview()
 
     def schedule_preview(self) -> None:
-        """After a valid edit of the robot or the job (not at start), compute a coarse
-        map :data:`PREVIEW_DEBOUNCE_S` after the last edit (the next edit cancels it)."""
+        """After a valid edit of the robot or the job (not at start), start a coarse map
+        at once in a worker (a newer edit cancels it, and a map of an older edit that
+        arrives after a newer edit is dropped)."""
         if not self.available() or not self.is_attached:
             return
         job = self._valid_job()
         if not self.constant_orientation_3rrr(job):
             return
-        key = (job.robot, job.spec.joint_limits_deg, job.spec.orientation_deg)
+        key = preview_key(job)
         first = self._preview_key is None
         if key == self._preview_key:
             return
         self._preview_key = key
         if first or (self.result is not None and self.stale_reason is None):
             return
-        if self._preview_timer is not None:
-            self._preview_timer.stop()
         for worker in self.workers:
             if worker.group == "preview":
                 worker.cancel()
-        self._preview_timer = self.set_timer(PREVIEW_DEBOUNCE_S, lambda: self.start_preview(job))
+        self.start_preview(job)
 
     def start_preview(self, job) -> None:
-        coarse = preview_job(job)
+        explorer = self.explorer()
+        shown = explorer.content_region.width > 0 and explorer.content_region.height > 0
+        coarse = preview_job(job, explorer.plot_size() if shown else PREVIEW_CELLS)
         if coarse is None:
             self.explorer().show_text("(preview: the legs' reach discs do not meet)")
             return
@@ -382,9 +402,11 @@ class WorkspacePane(JobPane):
         )  # fmt: skip
 
     def _previewed(self, job, outcome) -> None:
-        """Show the preview unless a current result came meanwhile."""
+        """Show the preview unless a current result or a newer edit came meanwhile."""
         if self.result is not None and self.stale_reason is None:
             return
+        if self._preview_key != preview_key(job):
+            return  # an older edit's map: a newer edit's preview is on its way
         self._shown_job = job
         self.set_geometry(job, None)
         note = f"preview ε = {job.spec.precision_cm:.3g} cm (F5 runs the job)"
