@@ -25,6 +25,7 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+from typing import Any
 
 REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
@@ -66,7 +67,7 @@ async def app_latencies(edits: int) -> dict[str, list[float]]:
             app.action_show_tab("workspace")
             await pilot.pause()
             pane = app.query_one("#pane-workspace")
-            field = pane.query_one("#field-joint_limits_deg")
+            field: Any = pane.query_one("#field-joint_limits_deg")
             # warm-up: the first edit loads the paving's modules and cached kernels
             for k in range(edits + 1):
                 text, limits = limits_text(k + 1)
@@ -75,7 +76,7 @@ async def app_latencies(edits: int) -> dict[str, list[float]]:
                 end = await drawn(pilot, pane, lambda job, t=limits: job.spec.joint_limits_deg == t)
                 if k:
                     seconds["joint limits"].append(end - start)
-            distal = app.query_one("#pane-robot #form-robot3rrr #field-distal_cm")
+            distal: Any = app.query_one("#pane-robot #form-robot3rrr #field-distal_cm")
             for k in range(edits):
                 length_cm = 30.0 + 0.25 * (k + 1)
                 start = time.perf_counter()

@@ -126,15 +126,20 @@ async def test_read_out_at_an_inside_and_an_outside_point(tmp_path):
         assert "@" in str(explorer.render())
 
 
+async def limits_field(app, pilot):
+    """The Workspace tab's pane and its joint-limits field, focused."""
+    app.action_show_tab("workspace")
+    await pilot.pause()
+    field = app.query_one("#pane-workspace #field-joint_limits_deg")
+    field.focus()
+    return app.query_one("#pane-workspace"), field
+
+
 @async_test
 async def test_an_edit_of_the_joint_limits_redraws_a_coarse_map(tmp_path):
     app = make_app(tmp_path)
     async with app.run_test(size=SIZE) as pilot:
-        app.action_show_tab("workspace")
-        await pilot.pause()
-        pane = app.query_one("#pane-workspace")
-        field = app.query_one("#pane-workspace #field-joint_limits_deg")
-        field.focus()
+        pane, field = await limits_field(app, pilot)
         field.value = "[[10, 80], [100, 170], [235, 305]]"
         await until(pilot, lambda: "preview" in pane.query_one("#workspace-map").note, 300)
         await until(pilot, lambda: "preview ε" in str(pane.query_one("#workspace-legend").render()))
@@ -152,11 +157,7 @@ async def test_a_newer_edit_replaces_an_older_preview(tmp_path):
 
     app = make_app(tmp_path)
     async with app.run_test(size=SIZE) as pilot:
-        app.action_show_tab("workspace")
-        await pilot.pause()
-        pane = app.query_one("#pane-workspace")
-        field = app.query_one("#pane-workspace #field-joint_limits_deg")
-        field.focus()
+        pane, field = await limits_field(app, pilot)
         older = ((15, 75), (105, 165), (240, 300))
         newer = ((10, 80), (100, 170), (235, 305))
         field.value = str([list(pair) for pair in older])
