@@ -178,3 +178,23 @@ async def test_a_newer_edit_replaces_an_older_preview(tmp_path):
         await pilot.pause(0.2)
         assert newer_shown() and np.array_equal(explorer.boxes, boxes)
         assert not [w for w in pane.workers if w.group == "preview" and w.is_running]
+
+
+def test_the_preview_paves_the_same_boxes_on_one_thread():
+    import numba
+
+    from planar_tui.app.widgets.workspace_pane import pave, preview_job
+    from planar_tui.presets import load_preset
+
+    job = next(j for j in load_preset("tests/data/app/tiny.toml").jobs if j.kind == "workspace")
+    coarse = preview_job(job, (40, 12))
+    x_lo, x_hi, y_lo, y_hi = job.robot.reach_box_cm(job.spec.orientation_rad)
+    cell_cm = max((x_hi - x_lo) / 40, (y_hi - y_lo) / 24)  # the reach box fills 40×12 cells
+    before = numba.get_num_threads()
+    every, one = pave(coarse, lambda: False), pave(coarse, lambda: False, 1)
+    assert numba.get_num_threads() == before  # the caller's thread count is restored
+    assert len(one.boxes) and np.array_equal(one.boxes, every.boxes)
+    assert np.array_equal(one.status, every.status)
+    # no box narrower than a map cell, none wider than two
+    widths = one.boxes[:, 1] - one.boxes[:, 0]
+    assert np.min(widths) >= cell_cm * (1 - 1e-9) and np.max(widths) <= 2 * cell_cm * (1 + 1e-9)

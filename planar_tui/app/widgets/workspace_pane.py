@@ -28,7 +28,7 @@ MAP_FOOTER_LINES = 3
 #: Seconds between two redraws of the map of the boxes kept so far while a job runs.
 PARTIAL_MAP_EVERY_S = 0.5
 #: The preview's plot in cells (columns, rows) when the map pane has no size yet.
-PREVIEW_CELLS = (32, 16)
+PREVIEW_CELLS = (64, 32)
 #: The re-paving's precision: at most half the job's, and the view's width over this.
 REPAVE_CELLS = 96
 
@@ -89,16 +89,17 @@ def pave(job, should_stop, threads: int | None = None) -> Any:
 
 
 def preview_job(job, plot_cells: tuple[int, int] = PREVIEW_CELLS) -> Any:
-    """The live preview's job: ``job`` paved leg-wise in the arc-distance form over the
-    legs' reach box at the width of one map cell when the box fills a plot of
+    """The live preview's job: ``job`` paved in the arc-distance form over the legs' reach
+    box at twice the width ``w`` of one map cell when the box fills a plot of
     ``plot_cells`` = (columns, rows) cells (a cell twice as tall as wide),
-    ε = max((x_hi − x_lo) / columns, (y_hi − y_lo) / (2 rows)): no box finer than a
-    character cell (``None`` when the reach discs do not meet)."""
+    ``w = max((x_hi − x_lo) / columns, (y_hi − y_lo) / (2 rows))``, ε = 2 w: the
+    bisection's leaves are (ε/2, ε] wide, so no box is finer than a character cell
+    (``None`` when the reach discs do not meet)."""
     x_lo, x_hi, y_lo, y_hi = job.robot.reach_box_cm(job.spec.orientation_rad)
     if x_lo >= x_hi or y_lo >= y_hi:
         return None
     columns, rows = (max(1, cells) for cells in plot_cells)
-    precision = max((x_hi - x_lo) / columns, (y_hi - y_lo) / (2 * rows))
+    precision = 2.0 * max((x_hi - x_lo) / columns, (y_hi - y_lo) / (2 * rows))
     return fine_job(job, precision_cm=precision, form="arc-distance", search_box_cm=None)
 
 
