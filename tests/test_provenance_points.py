@@ -14,6 +14,7 @@ import pytest
 
 from planar_tui.provenance import read_sidecar, sidecar_path
 from tests.sweep_presets import TORQUES, TORQUES_BASE, write
+from tests.test_app_history import async_test, history_text, make_app, squeezed
 from tests.test_motion_cli import PRESET as TINY_MOTION
 
 POINTS = """[[sweep]]
@@ -154,3 +155,41 @@ def test_every_csv_planar_tui_run_writes_has_a_sidecar(tmp_path, cli):
     assert kinds["sweep.csv"] == "sweep" and kinds["opt-optimum.csv"] == "optimise"
     assert kinds["points/point-2.csv"] == "torques"
     assert kinds["tiny-indices.csv"] == "motion_uncertainty"
+
+
+def _swept(tmp_path, cli):
+    """The torques sweep run by the CLI: (its output folder, its sweep CSV's sidecar)."""
+    preset = write(tmp_path, "p.toml", TORQUES, POINTS, **TORQUES_BASE)
+    out = tmp_path / "out"
+    assert cli("sweep", preset, "--out-dir", out, "--workers", "1").exit_code == 0
+    return out, read_sidecar(out / "s.csv")
+
+
+def test_a_point_csv_opens_into_the_history_as_its_point_with_its_settings(tmp_path, cli):
+    from planar_tui.app.runs import RunHistory
+
+    out, study = _swept(tmp_path, cli)
+    run = RunHistory().add_csv(out / "pts" / "point-2.csv")
+    assert run.kind == "torques" and not run.note
+    assert run.label == f"{study.label} point 2"
+    assert run.settings["theta_deg"] == [[30, 60], [-45, 90]]
+    assert len(run.table.rows) == 2  # the point's own table: one row per state
+    text = run.describe()
+    assert f"point 2 of {study.label}: robot.masses_kg[2] = 2.0" in text
+    assert "masses_kg = [2.0, 2.0]" in text  # the point's robot, not the base job's 1.5
+
+
+@pytest.mark.slow
+@async_test
+async def test_tui_open_shows_a_point_csv_in_the_history(tmp_path, cli):
+    from textual.widgets import DataTable
+
+    out, study = _swept(tmp_path, cli)
+    app = make_app(tmp_path)
+    app.open_results([out / "pts" / "point-3.csv"])  # what `planar-tui tui --open` does
+    async with app.run_test(size=(80, 24)) as pilot:
+        await history_text(app, pilot)
+        row = [str(cell) for cell in app.screen.query_one(DataTable).get_row_at(0)]
+        assert row[2:4] == ["torques", f"{study.label} point 3"]
+        text = squeezed(app.export_text())
+        assert squeezed(f"point 3 of {study.label}: robot.masses_kg[2] = 3.0") in text
