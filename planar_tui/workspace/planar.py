@@ -61,7 +61,7 @@ class PlanarSpec:
     """The settings every fixed-orientation parallel workspace job has (angles in degrees,
     lengths in cm); a kind adds its own keys (``leg_limits_cm``) in a subclass."""
 
-    orientation_deg: float = setting(
+    orientation_deg: float | tuple[float, float] = setting(
         number(), default=0.0, type_doc="number", doc="platform orientation φ"
     )
     precision_cm: float = same_key("precision_cm")
@@ -102,6 +102,9 @@ class PlanarSpec:
 
     @property
     def orientation_rad(self) -> float:
+        """The single orientation in radians (a kind taking ranges has none then)."""
+        if isinstance(self.orientation_deg, tuple):
+            raise ValueError("orientation_deg is a range: no single orientation")
         return math.radians(self.orientation_deg)
 
     @classmethod
@@ -162,6 +165,9 @@ class Mechanism:
     #: The module certifying its singularities (``resolve_centre(job)``,
     #: ``compute_<kind>_singularities``...), if the kind has them.
     singularities: str | None = None
+    #: The module paving its orientation ranges (``compute_range(robot, spec, budget)``),
+    #: if the kind takes ``orientation_deg = [lo, hi]``.
+    orientation_range: str | None = None
 
     def level_kernel(self) -> Callable[..., None]:
         module, _, name = self.level.partition(":")
@@ -190,8 +196,12 @@ def compute_planar(robot: Any, spec: PlanarSpec, budget: Any) -> Any:
         square_about,
     )
 
-    started = time.perf_counter()
     mechanism: Mechanism = spec.mechanism
+    if isinstance(spec.orientation_deg, tuple):  # a range (the kind's check allowed it)
+        assert mechanism.orientation_range is not None
+        compute_range = importlib.import_module(mechanism.orientation_range).compute_range
+        return compute_range(robot, spec, budget)
+    started = time.perf_counter()
     box = spec.search_box_cm or square_about(mechanism.reach_box(robot, spec), spec.precision_cm)
     extent = (box[0][0], box[0][1], box[1][0], box[1][1])
     geometric = None
@@ -245,6 +255,10 @@ def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> 
     outcome = compute_planar(job.robot, job.spec, budget)
     header: tuple[str, ...] = SUMMARY_HEADER
     row, summary = outcome.summary_row(), summary_line(outcome)
+    if isinstance(job.spec.orientation_deg, tuple):
+        from planar_tui.workspace.orientation import describe as describe_range
+
+        summary += f"; {describe_range(job.spec)}"
     if job.spec.tolerance_keys:
         from planar_tui.workspace.tolerance import describe, tolerance_of
 
