@@ -75,7 +75,7 @@ import numba
 import numpy as np
 
 from ._jit import kernel
-from .workspace3rpr_orientation import rpr_piece_status
+from .workspace3prr import LEAF_GRID, grid_cell
 from .workspace_arc import (
     BOUNDARY,
     INSIDE,
@@ -85,14 +85,16 @@ from .workspace_arc import (
     arc_distance_range,
     settle_xy_box,
 )
+from .workspace_parallel_orientation import parallel_piece_status
 
 MAXIMAL = 0
 TOTAL = 1
 
-#: The mechanism of ``g`` and ``limits``: a 3-RRR (module docstring) or a 3-RPR
-#: (:mod:`kernels.workspace3rpr_orientation`).
+#: The mechanism of ``g`` and ``limits``: a 3-RRR (module docstring), a 3-RPR or a 3-PRR
+#: (:mod:`kernels.workspace_parallel_orientation`).
 RRR = 0
 RPR = 1
+PRR = 2
 
 #: Piece verdicts: some leg fails everywhere, undecided, every leg closes everywhere.
 PIECE_OUT = 0
@@ -129,10 +131,13 @@ def piece_status(cx, cy, rho_xy, phi_mid, phi_half, g, limits):
 
 @kernel
 def box_piece_status(mechanism, xlo, xhi, ylo, yhi, phi_mid, phi_half, g, limits):
-    """:func:`piece_status` of the box for a 3-RRR (``mechanism`` = ``RRR``), or
-    :func:`kernels.workspace3rpr_orientation.rpr_piece_status` for a 3-RPR (``RPR``)."""
-    if mechanism == RPR:
-        return rpr_piece_status(xlo, xhi, ylo, yhi, phi_mid, phi_half, g, limits)
+    """:func:`piece_status` of the box for a 3-RRR (``mechanism`` = ``RRR``), else
+    :func:`kernels.workspace_parallel_orientation.parallel_piece_status` of a 3-RPR
+    (``RPR``) or a 3-PRR (``PRR``)."""
+    if mechanism != RRR:
+        return parallel_piece_status(
+            mechanism == PRR, xlo, xhi, ylo, yhi, phi_mid, phi_half, g, limits
+        )
     cx = 0.5 * (xlo + xhi)
     cy = 0.5 * (ylo + yhi)
     rho_xy = 0.5 * math.hypot(xhi - xlo, yhi - ylo)
@@ -208,15 +213,17 @@ def range_level(
     work, mechanism,
 ):  # fmt: skip
     """Decide rows ``start .. stop - 1`` of a frontier of (x, y) boxes with
-    :func:`classify_box_range`, in parallel, then
-    :func:`~kernels.workspace_arc.settle_xy_box` (outside dropped, inside kept unsplit,
-    leaves at the precision kept as boundary, the rest halved across the wider side).
+        :func:`classify_box_range`, in parallel, then
+        :func:`~kernels.workspace_arc.settle_xy_box` (outside dropped, inside kept unsplit,
+        leaves at the precision kept as boundary, the rest halved across the wider side).
 
-    Row ``start + i`` writes ``children[2 i]``, ``children[2 i + 1]``, ``outcome[i]``
-    (``OUTSIDE``, ``BOUNDARY``, ``INSIDE`` or ``SPLIT``) and ``work[i]`` (orientation pieces
-    looked at). Boxes go to ``LANES`` interleaved lanes run by ``prange``, each with its own
-    piece stack; a box's outcome depends on that box only, so the result does not depend on
-    the number of threads.
+        Row ``start + i`` writes ``children[2 i]``, ``children[2 i + 1]``, ``outcome[i]``
+        (``OUTSIDE``, ``BOUNDARY``, ``INSIDE`` or ``SPLIT``) and ``work[i]`` (orientation pieces
+        looked at). A 3-PRR's boundary leaf is dropped when its ``LEAF_GRID`` × ``LEAF_GRID``
+    cells are all ``OUTSIDE`` (as :func:`kernels.workspace3prr.prr_level` does). Boxes go to
+    ``LANES`` interleaved lanes run by ``prange``, each with its own
+        piece stack; a box's outcome depends on that box only, so the result does not depend on
+        the number of threads.
     """
     n = stop - start
     lanes = min(LANES, n)
@@ -228,5 +235,20 @@ def range_level(
                 rows[r, 0], rows[r, 1], rows[r, 2], rows[r, 3],
                 mode, phi_lo, phi_hi, phi_min, g, limits, pieces, mechanism,
             )  # fmt: skip
+            leaf = rows[r, 1] - rows[r, 0] <= precision and rows[r, 3] - rows[r, 2] <= precision
+            if mechanism == PRR and leaf and label == BOUNDARY:  # the 3-PRR's leaf check
+                refuted = True
+                for k in range(LEAF_GRID * LEAF_GRID):
+                    x0, x1, y0, y1 = grid_cell(rows[r, 0], rows[r, 1], rows[r, 2], rows[r, 3],
+                                               LEAF_GRID, k)  # fmt: skip
+                    cell, more = classify_box_range(
+                        x0, x1, y0, y1, mode, phi_lo, phi_hi, phi_min, g, limits, pieces,
+                        mechanism,
+                    )  # fmt: skip
+                    cost += more
+                    if cell != OUTSIDE:
+                        refuted = False
+                        break
+                label = OUTSIDE if refuted else label
             work[i] = cost
             outcome[i] = settle_xy_box(label, rows, r, children, 2 * i, precision)

@@ -67,7 +67,7 @@ def default_form(robot, values) -> str:
     return "arc-distance" if isinstance(values.get("orientation_deg"), tuple) else "mean-value"
 
 
-def _arc_extent(q: tuple[float, float], lo: float, hi: float) -> tuple[float, ...]:
+def arc_extent(q: tuple[float, float], lo: float, hi: float) -> tuple[float, ...]:
     """``(min, max)`` of the x and y components of :math:`R(\\varphi) q` over
     :math:`\\varphi \\in [lo, hi]` (radians): the ends and the axis crossings inside."""
     radius, angle = math.hypot(*q), math.atan2(q[1], q[0])
@@ -98,7 +98,7 @@ def range_reach_box(bases, points, reaches, orientation_deg) -> tuple[float, flo
     ``points``, radii ``reaches``): its x extent lies in :math:`[\\max_i (\\min_\\varphi
     c_{x,i} - r_i), \\min_i (\\max_\\varphi c_{x,i} + r_i)]` (y alike)."""
     lo, hi = (math.radians(v) for v in orientation_deg)
-    extents = [_arc_extent(q, lo, hi) for q in points]
+    extents = [arc_extent(q, lo, hi) for q in points]
     legs = list(zip(bases, extents, reaches, strict=True))
     # centre c_i = A_i - R q_i: its min is A_i - max(R q_i)
     return (

@@ -94,13 +94,16 @@ def reach_box(robot: Robot3RPR, spec) -> tuple[float, float, float, float]:
     """Bounding box of the intersection of the discs :math:`|p - c_i| \\le \\overline\\rho_i`
     (empty when ``lo > hi``), or of its union over a range of orientations
     (:func:`~planar_tui.workspace.orientation.range_reach_box`)."""
+    from planar_tui.workspace.planar import single_orientation_rad
+
     his = [hi for _, hi in spec.leg_limits_cm]
-    if isinstance(spec.orientation_deg, tuple):
+    phi = single_orientation_rad(spec)
+    if phi is None:
         from planar_tui.workspace.orientation import range_reach_box
 
         bases, points = robot.base_joints_cm, robot.platform_points_cm
         return range_reach_box(bases, points, his, spec.orientation_deg)
-    centres = robot.centres_cm(spec.orientation_rad)
+    centres = robot.centres_cm(phi)
     return (
         max(cx - r for (cx, _), r in zip(centres, his, strict=True)),
         min(cx + r for (cx, _), r in zip(centres, his, strict=True)),

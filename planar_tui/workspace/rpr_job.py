@@ -11,8 +11,13 @@ from typing import Any, ClassVar
 from planar_tui.jobkind import Tab
 from planar_tui.schema import TableReader, setting
 from planar_tui.workspace import rpr
-from planar_tui.workspace.orientation import check_orientation
-from planar_tui.workspace.planar import Mechanism, PlanarSpec, planar_job_kind, same_key
+from planar_tui.workspace.planar import (
+    Mechanism,
+    PlanarSpec,
+    check_range_and_reference,
+    planar_job_kind,
+    same_key,
+)
 from planar_tui.workspace.rpr_tolerance import TOLERANCE_KEYS_3RPR
 from planar_tui.workspace.tolerance import check_tolerance, tolerance_fields
 
@@ -69,17 +74,7 @@ class Spec3RPR(PlanarSpec):
         ``orientation_mode`` checks, the ``natural`` form, no singularities and no geometric
         reference either; then the shared checks."""
         check_tolerance(values, reader, TOLERANCE_KEYS_3RPR, {})
-        check_orientation(values, reader, "natural")
-        ranged = isinstance(values["orientation_deg"], tuple)
-        if ranged and values["singularities"]:
-            raise reader.error(
-                "singularities", "is true with orientation_deg = [lo, hi]", "one orientation"
-            )
-        if (values["tolerance_mode"] is not None or ranged) and values["geometric_reference"]:
-            if reader.has("geometric_reference"):
-                found = "a tolerance" if values["tolerance_mode"] else "orientation_deg = [lo, hi]"
-                raise reader.error("geometric_reference", f"is true with {found}", "false")
-            values["geometric_reference"] = False  # its default is one orientation's exact area
+        check_range_and_reference(values, reader, "natural")
         return super().check(values, reader, robot)
 
 
