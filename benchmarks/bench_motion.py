@@ -10,12 +10,15 @@ Rows (kernels warmed first, baselines in the same process, each timing the best 
   ``--scalar-robots`` (256) Table 1 robots with their own parameters (±1 mm, ±10 g);
 * the lane-batched kernel ``rk4_lanes`` (the motion job's, ``LANES`` robots per SIMD block) on
   ``--robots`` (2048) such robots, 1 thread and 2 threads: time per robot, ratios to the
-  scalar kernels and to MuJoCo, 2-thread speed-up;
+  scalar kernels and to MuJoCo, 2-thread speed-up; the 6-link Table 1 chain takes its fused
+  step (``kernels/motion_lanes_n6.py``);
+* the general lane kernel (``rk4_lanes(..., fused=False)``, what the motion job ran before
+  the fused step) on the same robots, 1 thread: the fused step's baseline;
 * MuJoCo's multi-robot ``mujoco.rollout`` (RK4, 1e-4 s, each robot its own ``MjModel``,
   the torques as ``qfrc_applied``) on ``--mujoco-robots`` (64) robots, one thread;
 * with ``--asm``: the packed (ymm/zmm) and scalar double-precision instructions in the
-  machine code of the lane kernels' forward dynamics (compiled afresh: numba cannot show
-  the assembly of cached code);
+  machine code of the lane kernels' forward dynamics and of the fused step (compiled
+  afresh: numba cannot show the assembly of cached code);
 * a GPU column when a usable CUDA GPU is present (``--gpu-robots``, 65 536), else one line
   saying why it is skipped;
 * the Sobol' study of the Table 1 robot (12 inputs, ``--sobol-samples`` N = 1024, i.e.
@@ -90,6 +93,11 @@ def baseline_ms(robots: int = 8) -> float:
                       N_STEPS, 0, *records)  # fmt: skip
         best = min(best, one_thread_clock() - started)
     return best * 1e3
+
+
+def rk4_lanes_general(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n_steps):
+    """The general lane kernel (no fused step): the fused step's baseline."""
+    rk4_lanes(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n_steps, False)
 
 
 def cpu_ms(
@@ -177,6 +185,23 @@ def packed_instructions() -> str:
             elif fields[0].endswith("sd"):
                 counts["scalar sd"] += 1
         lines.append(f"{name}: " + ", ".join(f"{k} {v}" for k, v in sorted(counts.items())))
+    from planar_tui.kernels import motion_lanes_n6
+
+    function = njit(error_model="numpy", fastmath={"contract"})(motion_lanes_n6.rk4_step_6.py_func)
+    flat = [np.zeros(n * lanes) for _ in range(4)]
+    function(np.ones(3 * n * lanes), G, np.zeros(n), flat[0], flat[1], 1e-4, flat[2], flat[3])
+    counts = collections.Counter()
+    for line in next(iter(function.inspect_asm().values())).splitlines():
+        fields = line.split()
+        if fields and fields[0].startswith("v"):
+            register = "ymm" if "ymm" in line else "xmm"
+            if fields[0].endswith("pd") and register == "ymm":
+                counts["packed ymm"] += 1
+            elif fields[0].endswith("sd"):
+                counts["scalar sd"] += 1
+            if "fmadd" in fields[0] or "fmsub" in fields[0]:
+                counts["FMA"] += 1
+    lines.append("rk4_step_6 (fused): " + ", ".join(f"{k} {v}" for k, v in sorted(counts.items())))
     return "; ".join(lines)
 
 
@@ -235,6 +260,8 @@ def main() -> None:
     cpu_ms(17, 1, rk4_batch)
     baseline = baseline_ms()
     scalar, scalar_theta = cpu_ms(arguments.scalar_robots, 1, rk4_batch, repeats)
+    cpu_ms(LANES + 1, 1, rk4_lanes_general)
+    general, general_theta = cpu_ms(arguments.robots, 1, rk4_lanes_general, repeats)
     one, lanes_theta = cpu_ms(arguments.robots, 1, rk4_lanes, repeats)
     two, _ = cpu_ms(arguments.robots, 2, rk4_lanes, repeats)
     mujoco, mujoco_theta = mujoco_rollout_ms(arguments.mujoco_robots, max(1, repeats - 1))
@@ -250,18 +277,24 @@ def main() -> None:
     )
     print(f"| rk4_batch (scalar), {arguments.scalar_robots} robots, 1 thread | {scalar:.2f} | "
           f"{scalar / one:.2f} |")  # fmt: skip
-    print(f"| **rk4_lanes**, {arguments.robots} robots, 1 thread | {one:.3f} | 1.00 |")
+    print(f"| rk4_lanes general (fused=False), {arguments.robots} robots, 1 thread | "
+          f"{general:.3f} | {general / one:.2f} |")  # fmt: skip
+    print(f"| **rk4_lanes** (fused 6-link step), {arguments.robots} robots, 1 thread | {one:.3f} "
+          f"| 1.00 |")  # fmt: skip
     print(f"| rk4_lanes, {arguments.robots} robots, 2 threads | {two:.3f} | {two / one:.2f} |")
     print(f"| MuJoCo rollout, {arguments.mujoco_robots} robots (own models), 1 thread | "
           f"{mujoco:.2f} | {mujoco / one:.1f} |")  # fmt: skip
-    print(f"max |Δθ| lanes - scalar {gap:.1e} rad, lanes - MuJoCo {gap_mj:.1e} rad")
+    gap_general = np.abs(lanes_theta - general_theta).max()
+    print(f"max |Δθ| lanes - scalar {gap:.1e} rad, lanes - general lanes {gap_general:.1e} rad, "
+          f"lanes - MuJoCo {gap_mj:.1e} rad")  # fmt: skip
     two_note = (
         "2 threads: wall time, no ratio to the CPU-time row"
         if arguments.cpu_time
         else f"2 threads: {one / two:.2f}× (goal ≥ 1.9×)"
     )
     print(f"1 thread: {one:.2f} ms per robot (goal ≤ 2.0), {mujoco / one:.1f}× MuJoCo rollout "
-          f"(goal ≥ 40×), {scalar / one:.2f}× the scalar kernel; {two_note}")  # fmt: skip
+          f"(goal ≥ 40×), {scalar / one:.2f}× the scalar kernel, {general / one:.2f}× the general "
+          f"lane kernel; {two_note}")  # fmt: skip
     if arguments.asm:
         print(f"vector instructions: {packed_instructions()}")
     gpu = gpu_seconds(arguments.gpu_robots)

@@ -8,13 +8,16 @@ the OpenMP wait policy and numba's BLAS probe are set up once, explicitly, by
 from numba import njit
 
 
-def kernel(function=None, *, parallel: bool = False, inline: bool = False):
+def kernel(function=None, *, parallel: bool = False, inline: bool = False, fma: bool = False):
     """Compile ``function`` with ``njit(cache=True, nogil=True, error_model="numpy")``.
 
     ``parallel=True`` enables ``numba.prange`` loops. ``inline=True`` inlines the function's
     body into its callers at numba's level (``inline="always"``): LLVM never inlines one
     numba function into another, so a call inside a loop (e.g. the vector ``sincos`` of
-    :mod:`kernels.lane_trig`) otherwise stays a call and keeps the loop scalar. Usable bare
+    :mod:`kernels.lane_trig`) otherwise stays a call and keeps the loop scalar. ``fma=True``
+    lets LLVM contract ``a * b + c`` into one fused multiply-add (``fastmath={"contract"}``,
+    nothing else of fast-math): one rounding instead of two, so results move in the last
+    bits; for a kernel tested against a reference to a tolerance. Usable bare
     (``@kernel``) or with arguments (``@kernel(parallel=True)``).
     """
 
@@ -25,6 +28,7 @@ def kernel(function=None, *, parallel: bool = False, inline: bool = False):
             error_model="numpy",
             parallel=parallel,
             inline="always" if inline else "never",
+            fastmath={"contract"} if fma else False,
         )(f)
 
     return wrap if function is None else wrap(function)

@@ -32,12 +32,16 @@ from numba import prange
 from ._jit import kernel
 from .aba_planar import ABA_MIN_LINKS
 from .lane_trig import SINCOS_MAX_ABS, sincos
+from .motion_lanes_n6 import rk4_step_6
 
 #: Robots per block (SIMD lanes of the innermost loops). Measured (CPU time, 1 thread,
 #: Table 1 robots) on the project's machine, a Zen 3 (AVX2) KVM guest in this session: 128
 #: lanes 3-5 % faster than 64, 32 and 16 markedly slower (fixed cost per lane loop: the
 #: runtime alias checks and the loop set-up are paid per loop, not per lane), 256 no better.
 LANES = 128
+
+#: Links of the chains that take the fused step (:mod:`kernels.motion_lanes_n6`).
+FUSED_LINKS = 6
 
 # How the loops over lanes are kept vectorisable (each point was found with LLVM's
 # vectoriser remarks, ``--pass-remarks-missed=loop-vectorize``):
@@ -350,19 +354,29 @@ def rk4_step_lanes(params, gravity_m_s2, tau_Nm, q, w, step_s, work, matrix, dq,
 
 
 @kernel(parallel=True)
-def rk4_lanes(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n_steps):
+def rk4_lanes(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n_steps,
+              fused=True):  # fmt: skip
     r"""Advance every robot s of ``params`` (S, 3, n) by ``n_steps`` RK4 steps in place, in
     blocks of :data:`LANES` robots (module docstring); same arguments and results (to
-    round-off) as :func:`kernels.motion_rk4.rk4_batch`. Chunking in time changes no bit."""
+    round-off) as :func:`kernels.motion_rk4.rk4_batch`. Chunking in time changes no bit.
+
+    Chains of :data:`FUSED_LINKS` links take the fused step
+    (:func:`kernels.motion_lanes_n6.rk4_step_6`: one lane loop per step, fused multiply-adds),
+    unless ``fused=False`` (the general kernel, kept as the benchmark's baseline); a step in
+    which a lane's angle is past :data:`~kernels.lane_trig.SINCOS_MAX_ABS` is redone by the
+    general kernel."""
     samples, _, n = params.shape
     size = 1 if n >= ABA_MIN_LINKS else n
     n_blocks = (samples + LANES - 1) // LANES
     for block in prange(n_blocks):
         first = block * LANES
         count = min(LANES, samples - first)
-        p = np.empty((3, n, LANES))
-        q = np.empty((n, LANES))
-        w = np.empty((n, LANES))
+        flat_p = np.empty(3 * n * LANES)
+        flat_q = np.empty(n * LANES)
+        flat_w = np.empty(n * LANES)
+        p = flat_p.reshape((3, n, LANES))
+        q = flat_q.reshape((n, LANES))
+        w = flat_w.reshape((n, LANES))
         for lane in range(LANES):
             s = first + min(lane, count - 1)
             for i in range(n):
@@ -378,7 +392,17 @@ def rk4_lanes(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n
         qs = np.empty((n, LANES))
         acc = np.empty(_ACC_ROWS * LANES)
         trig = np.empty(3 * LANES)
+        next_q = np.empty(n * LANES)
+        next_w = np.empty(n * LANES)
         for _ in range(n_steps):
+            if fused and n == FUSED_LINKS:
+                beyond = rk4_step_6(flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s,
+                                    next_q, next_w)  # fmt: skip
+                if beyond == 0:
+                    for k in range(n * LANES):
+                        flat_q[k] = next_q[k]
+                        flat_w[k] = next_w[k]
+                    continue
             rk4_step_lanes(p, gravity_m_s2, torque_Nm, q, w, step_s, work, matrix, dq, dw, qs,
                            acc, trig)  # fmt: skip
         for lane in range(count):

@@ -74,12 +74,11 @@ def near_arc(qx, qy, radius, start, stop, rho):
 
 
 @kernel
-def near_mode_boundary(px, py, rho, legs, leg, tlo, thi):
-    """True if ``p`` (relative to the base joint) is within ``rho`` of one of the four
-    arcs holding the boundary of :math:`R_\\sigma` (module docstring); ``legs[leg, 5:9]``
-    are the elbows :math:`B(\\underline\\theta) - A`, :math:`B(\\overline\\theta) - A`."""
-    l1 = legs[leg, 2]
-    l2 = legs[leg, 3]
+def near_mode_arcs(px, py, rho, l1, l2, sigma, b_lo_x, b_lo_y, b_hi_x, b_hi_y, tlo, thi):
+    """True if ``p`` (relative to the base joint) is within ``rho`` of one of the four arcs
+    holding the boundary of :math:`R_\\sigma` (module docstring) of a leg with links ``l1``,
+    ``l2``, elbow sign ``sigma`` and elbows ``b_lo``, ``b_hi`` at the joint limits
+    (relative to the base joint)."""
     if near_arc(px, py, l1 + l2, tlo, thi, rho):
         return True
     shift = 0.0 if l1 >= l2 else math.pi
@@ -87,25 +86,38 @@ def near_mode_boundary(px, py, rho, legs, leg, tlo, thi):
         return True
     if thi - tlo >= 2.0 * math.pi:
         return False
-    fold = -legs[leg, 4] * math.pi
+    fold = -sigma * math.pi
     a0 = min(tlo, tlo + fold)
-    if near_arc(px - legs[leg, 5], py - legs[leg, 6], l2, a0, a0 + math.pi, rho):
+    if near_arc(px - b_lo_x, py - b_lo_y, l2, a0, a0 + math.pi, rho):
         return True
     a1 = min(thi, thi + fold)
-    return near_arc(px - legs[leg, 7], py - legs[leg, 8], l2, a1, a1 + math.pi, rho)
+    return near_arc(px - b_hi_x, py - b_hi_y, l2, a1, a1 + math.pi, rho)
+
+
+@kernel
+def near_mode_boundary(px, py, rho, legs, leg, tlo, thi):
+    """:func:`near_mode_arcs` of leg ``leg`` (``legs[leg, 5:9]`` are the elbows
+    :math:`B(\\underline\\theta) - A`, :math:`B(\\overline\\theta) - A`)."""
+    return near_mode_arcs(
+        px, py, rho, legs[leg, 2], legs[leg, 3], legs[leg, 4], legs[leg, 5], legs[leg, 6],
+        legs[leg, 7], legs[leg, 8], tlo, thi,
+    )  # fmt: skip
+
+
+@kernel
+def leg_at(cx, cy, legs, limits, leg):
+    """``(px, py, l1, l2, tlo, thi)``: the point relative to leg ``leg``'s base joint, its
+    link lengths and joint limits."""
+    px = cx - legs[leg, 0]
+    return px, cy - legs[leg, 1], legs[leg, 2], legs[leg, 3], limits[leg, 0], limits[leg, 1]
 
 
 @kernel
 def leg_label(cx, cy, rho, legs, limits, leg):
     """``OUTSIDE``, ``BOUNDARY`` or ``INSIDE`` for one leg over the box about ``(cx, cy)``
     of half-diagonal ``rho`` (module docstring)."""
-    px = cx - legs[leg, 0]
-    py = cy - legs[leg, 1]
-    l1 = legs[leg, 2]
-    l2 = legs[leg, 3]
+    px, py, l1, l2, tlo, thi = leg_at(cx, cy, legs, limits, leg)
     sigma = legs[leg, 4]
-    tlo = limits[leg, 0]
-    thi = limits[leg, 1]
     dmin, dmax = arc_distance_range(px, py, l1, tlo, thi)
     if dmin - rho > l2 or dmax + rho < l2:
         return OUTSIDE

@@ -46,6 +46,17 @@ async def history_text(app, pilot) -> str:
     return app.export_text()
 
 
+async def compare_latest(app, pilot):
+    """``F10`` then ``c``: the comparison of the latest run with the one before it."""
+    from planar_tui.app.screens.history import CompareScreen, HistoryScreen
+
+    await pilot.press("f10")
+    await until(pilot, lambda: isinstance(app.screen, HistoryScreen))
+    await pilot.press("c")
+    await until(pilot, lambda: isinstance(app.screen, CompareScreen))
+    return app.screen.comparison
+
+
 def tiny(tmp_path: Path) -> Path:
     path = tmp_path / "tiny.toml"
     shutil.copy(DATA / "tiny.toml", path)
@@ -55,6 +66,15 @@ def tiny(tmp_path: Path) -> Path:
 def rows_of(path: Path) -> list[dict[str, str]]:
     with path.open(encoding="utf-8", newline="") as stream:
         return list(csv.DictReader(stream))
+
+
+SCROLL_BARS = str.maketrans("", "", "▁▂▃▄▅▆▇█▉▊▋▌▍▎▏")
+
+
+def squeezed(text: str) -> str:
+    """``text`` without white space and scroll bars (a screen wraps lines anywhere in a
+    long word, and a scroll bar's thumb ends some lines)."""
+    return "".join(text.translate(SCROLL_BARS).split())
 
 
 def make_app(tmp_path: Path, preset: Path | None = None):
@@ -100,7 +120,7 @@ def test_two_sensitivity_runs_compared_show_each_index_and_its_difference(two_se
         assert shown[:2] == (str(int(ra["torque"])), ra["parameter"])
         for k, name in ((2, "S1"), (5, "ST")):
             x, y = float(ra[name]), float(rb[name])
-            assert shown[k : k + 3] == (f"{x:.6g}", f"{y:.6g}", f"{y - x:+.3g}")
+            assert shown[k : k + 3] == (f"{x:.4g}", f"{y:.4g}", f"{y - x:+.3g}")
             differ += x != y
     assert differ > 0  # another seed: other estimates
     assert "setting seed: A 1, B 2" in comparison.notes
@@ -132,9 +152,78 @@ async def test_the_compare_screen_shows_two_sensitivity_runs_side_by_side(
         rows_a, rows_b = (rows_of(p) for p in two_sensitivity_csvs)
         first = table.get_row_at(0)
         x, y = float(rows_a[0]["ST"]), float(rows_b[0]["ST"])
-        assert first[5:8] == [f"{x:.6g}", f"{y:.6g}", f"{y - x:+.3g}"]
+        assert first[5:8] == [f"{x:.4g}", f"{y:.4g}", f"{y - x:+.3g}"]
         await pilot.press("escape")
         await until(pilot, lambda: isinstance(app.screen, HistoryScreen))
+
+
+RECORDED = [DATA / "history" / f"seed{seed}.csv" for seed in (1, 2)]
+
+
+def expected_comparison_rows(a_path: Path, b_path: Path) -> list[list[str]]:
+    """Each row the comparison of the sensitivity CSVs A and B must show, read from the
+    files themselves: torque, parameter, then S1 and ST of A, of B and B − A."""
+    rows = []
+    for ra, rb in zip(rows_of(a_path), rows_of(b_path), strict=True):
+        assert (ra["torque"], ra["parameter"]) == (rb["torque"], rb["parameter"])
+        cells = [ra["torque"], ra["parameter"]]
+        for name in ("S1", "ST"):
+            x, y = float(ra[name]), float(rb[name])
+            cells += [f"{x:.4g}", f"{y:.4g}", f"{y - x:+.3g}"]
+        rows.append(cells)
+    return rows
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("size", [(80, 24), (120, 40)], ids=lambda s: f"{s[0]}x{s[1]}")
+@async_test
+async def test_the_compare_screen_shows_every_index_of_both_runs_and_their_difference(
+    tmp_path, size
+):
+    """Two recorded Sobol' runs (seeds 1 and 2, tests/data/app/history): every cell of the
+    comparison is the CSVs' own value or their difference, at 80×24 and 120×40; marking
+    them the other way round (space) swaps A and B and every difference's sign."""
+    from textual.widgets import DataTable
+
+    from planar_tui.app.screens.history import CompareScreen, HistoryScreen
+
+    app = make_app(tmp_path)
+    app.open_results(RECORDED)
+    async with app.run_test(size=size) as pilot:
+        await history_text(app, pilot)
+        for order in (RECORDED, RECORDED[::-1]):
+            history = app.screen
+            assert isinstance(history, HistoryScreen)
+            for path in order:  # mark A, then B (space), on their rows
+                row = 0 if path == RECORDED[0] else 1
+                history.query_one(DataTable).move_cursor(row=row)
+                await pilot.press("space")
+            assert [run.source for run in history.marked] == [str(p) for p in order]
+            marks = [history.query_one(DataTable).get_row_at(k)[0] for k in (0, 1)]
+            assert marks == (["A", "B"] if order == RECORDED else ["B", "A"])
+            await pilot.press("c")
+            await until(pilot, lambda: isinstance(app.screen, CompareScreen))
+            await pilot.pause()
+            table = app.screen.query_one(DataTable)
+            expected = expected_comparison_rows(*order)
+            assert [str(c.label) for c in table.columns.values()] == [
+                "torque", "parameter", "S1 A", "S1 B", "S1 B−A", "ST A", "ST B", "ST B−A",
+            ]  # fmt: skip
+            assert table.row_count == len(expected) == 8
+            shown = [[str(cell) for cell in table.get_row_at(k)] for k in range(8)]
+            assert shown == expected
+            assert sum(row[4] not in ("+0", "-0") for row in shown) >= 4  # seeds differ
+            text = app.export_text()
+            first, second = (1, 2) if order == RECORDED else (2, 1)
+            assert f"#{first} (A) vs #{second} (B): sensitivity" in text
+            assert f"setting seed: A {first}, B {second}" in text
+            # on screen, each row on a line of its own, every column at 80 columns too
+            lines = [line.split() for line in text.splitlines()]
+            for row in expected:
+                assert row in lines
+            await pilot.press("escape")
+            await until(pilot, lambda: isinstance(app.screen, HistoryScreen))
+            history.marked.clear()
 
 
 def boxes(*rows) -> CsvTable:
@@ -179,19 +268,46 @@ def test_a_result_csv_written_by_run_opens_with_its_settings(tmp_path, cli):
 
 
 @pytest.mark.slow
+@pytest.mark.parametrize("size", [(80, 24), (120, 40)], ids=lambda s: f"{s[0]}x{s[1]}")
 @async_test
-async def test_tui_open_shows_the_result_in_the_history_with_its_settings(tmp_path, cli):
+async def test_tui_open_shows_the_result_in_the_history_with_its_settings(tmp_path, cli, size):
+    """A CSV written by ``planar-tui run`` opens (as ``tui --open`` opens it) in the
+    history: its row (kind, label, start time, the preset's digest) and, below, every
+    key of the preset's ``[simulate]`` and ``[robot]`` tables with the value written there
+    (read here with tomllib), the preset's path and digest (hashlib) and the command that wrote it."""
+    import hashlib
+    import tomllib
+
+    from textual.widgets import DataTable
+
     from planar_tui.app.screens.history import HistoryScreen
 
+    preset = tiny(tmp_path)
     out = tmp_path / "out"
-    assert cli("run", tiny(tmp_path), "--job", "simulate", "--out-dir", out).exit_code == 0
+    assert cli("run", preset, "--job", "simulate", "--out-dir", out).exit_code == 0
     app = make_app(tmp_path)
     app.open_results([out / "tiny-simulate.csv"])  # what `planar-tui tui --open` does
-    async with app.run_test(size=(80, 24)) as pilot:
+    digest = hashlib.sha256(preset.read_bytes()).hexdigest()
+    toml = tomllib.loads(preset.read_text("utf-8"))
+    written, robot = toml["simulate"], toml["robot"]
+    async with app.run_test(size=size) as pilot:
         text = await history_text(app, pilot)
         assert "Run history: 1 run" in text
-        assert "simulate" in text and "tiny:simulate" in text
-        assert "duration_s = 0.2" in text  # the highlighted run's settings, below
+        row = [str(cell) for cell in app.screen.query_one(DataTable).get_row_at(0)]
+        assert row[1:4] == ["1", "simulate", "tiny:simulate"]
+        assert row[4] != "-" and row[5:9] == ["-", "-", "-", "-"]  # no seed, N, form, ε
+        assert row[9] == digest[:8]
+        words = squeezed(text)  # the detail wraps at the screen's width, even in a path
+        app.screen.query_one("#history-detail").scroll_end(animate=False)  # the robot last
+        await pilot.pause()
+        end = squeezed(app.export_text())
+        assert squeezed(f"preset: {preset.absolute()} (sha256 {digest})") in words + end
+        assert squeezed(f"command: planar-tui run {preset} --job simulate") in end
+        for table, shown, where in ((written, "settings:", words), (robot, "robot:", end)):
+            for key, value in table.items():
+                if key != "output":  # angles given as integers are floats in the job
+                    value = [float(v) for v in value] if isinstance(value, list) else value
+                    assert squeezed(f"{key} = {value!r}") in where.split(shown)[1], key
         await pilot.press("escape")
         await pilot.press("f10")
         await until(pilot, lambda: isinstance(app.screen, HistoryScreen))
@@ -210,8 +326,6 @@ def test_tui_open_refuses_a_file_that_is_no_result_in_one_line(tmp_path, cli):
 @pytest.mark.slow
 @async_test
 async def test_runs_of_the_session_are_kept_and_two_simulations_overlaid(tmp_path):
-    from planar_tui.app.screens.history import CompareScreen, HistoryScreen
-
     app = make_app(tmp_path)
     async with app.run_test(size=(80, 24)) as pilot:
         app.action_show_tab("simulate")
@@ -222,11 +336,7 @@ async def test_runs_of_the_session_are_kept_and_two_simulations_overlaid(tmp_pat
             await pilot.pause(0.1)
         assert [run.kind for run in app.run_history] == ["simulate", "simulate"]
         assert app.run_history.runs[0].provenance.duration_s > 0
-        await pilot.press("f10")
-        await until(pilot, lambda: isinstance(app.screen, HistoryScreen))
-        await pilot.press("c")
-        await until(pilot, lambda: isinstance(app.screen, CompareScreen))
-        comparison = app.screen.comparison
+        comparison = await compare_latest(app, pilot)
         assert comparison.series and comparison.series[0][0] == "A θ1"
         assert "same settings" in comparison.notes
         by_column = {row[0]: row for row in comparison.rows}
@@ -299,3 +409,54 @@ async def test_the_picker_lists_bundled_and_recent_presets_and_opens_a_broken_on
         assert app.problems[0].key == "simulate.step_s"
         validation = str(app.query_one("#validation").render())
         assert validation.startswith("error: simulate.step_s")
+
+
+def test_tables_that_are_no_tables_become_empty_tables_with_one_line_each():
+    from planar_tui.app.workbench import repair_tables
+
+    document = {
+        "robot": 3,
+        "simulate": [{"duration_s": 1.0}, "fast"],
+        "torques": {"robot": [1, 2], "angles_deg": [[0.0]]},
+        "sensitivity": {"samples": 8},
+    }
+    lines = repair_tables(document)
+    assert lines == [
+        "robot: is an integer (expected a table [robot]); opened as an empty table, saving writes it",
+        "simulate[2]: is a text (expected a table [simulate[2]]); opened as an empty table, saving writes it",
+        "torques.robot: is an array (expected a table [torques.robot]); opened as an empty table, saving writes it",
+    ]  # fmt: skip
+    assert document == {
+        "robot": {},
+        "simulate": [{"duration_s": 1.0}, {}],
+        "torques": {"robot": {}, "angles_deg": [[0.0]]},
+        "sensitivity": {"samples": 8},
+    }
+    assert repair_tables(document) == []  # nothing left to repair
+
+
+@pytest.mark.slow
+@async_test
+async def test_a_preset_with_a_table_that_is_no_table_opens_marked_and_modified(tmp_path):
+    """``planar-tui tui PRESET`` (and the picker) open such a preset instead of refusing
+    it: the table empty, its fields marked, a warning naming it, the file untouched."""
+    from planar_tui.app.app import WorkbenchApp
+    from planar_tui.app.workbench import Workbench
+
+    text = (DATA / "tiny.toml").read_text()
+    start = text.index("[robot]")
+    end = text.index("\n[", start + 1)
+    broken = tmp_path / "broken.toml"
+    broken.write_text(text[:start] + "robot = 3\n" + text[end + 1 :], "utf-8")
+    before = broken.read_bytes()
+    app = WorkbenchApp(Workbench.open_marked(broken), output_dir=tmp_path)
+    async with app.run_test(size=(80, 24)) as pilot:
+        await until(pilot, lambda: bool(app.problems))
+        assert app.workbench.document["robot"] == {}
+        assert app.workbench.modified  # the file says robot = 3: saving would change it
+        assert any(problem.key.startswith("robot") for problem in app.problems)
+        shown = [str(toast.message) for toast in app._notifications]
+        assert any(
+            line.startswith("robot: is an integer (expected a table [robot])") for line in shown
+        )
+    assert broken.read_bytes() == before

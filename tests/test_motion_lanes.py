@@ -13,7 +13,8 @@ import pytest
 from planar_tui.kernels.aba_planar import ABA_MIN_LINKS
 from planar_tui.kernels.dynamics import energies
 from planar_tui.kernels.lane_trig import SINCOS_MAX_ABS, sincos
-from planar_tui.kernels.motion_lanes import LANES, rk4_lanes
+from planar_tui.kernels.motion_lanes import FUSED_LINKS, LANES, rk4_lanes
+from planar_tui.kernels.motion_lanes_codegen import fused_source
 from planar_tui.kernels.motion_rk4 import design_parameters, rk4_batch
 
 from benchmarks.mujoco_model import chain_model
@@ -63,6 +64,39 @@ def test_sincos_is_within_one_ulp_of_the_c_library():
     assert (ulp_steps(s, np.sin(angles)) > 0).mean() < 0.05  # mostly the same double
 
 
+def test_sincos_with_fused_multiply_adds_is_within_one_ulp_of_the_c_library():
+    """The fused lane kernel (``kernels/motion_lanes_n6.py``) is compiled with FMA
+    contraction, which also applies to the ``sincos`` inlined into it."""
+    from numba import njit
+
+    @njit(fastmath={"contract"})
+    def many(x, s, c):
+        for i in range(x.shape[0]):
+            s[i], c[i] = sincos(x[i])
+
+    rng = np.random.default_rng(6)
+    angles = np.concatenate([
+        rng.uniform(-10.0, 10.0, 200_000),
+        rng.uniform(-SINCOS_MAX_ABS, SINCOS_MAX_ABS, 200_000),
+        np.nextafter(np.arange(-3000, 3000) * (np.pi / 2), np.inf),
+    ])  # fmt: skip
+    s, c = np.empty_like(angles), np.empty_like(angles)
+    many(angles, s, c)
+    assert ulp_steps(s, np.sin(angles)).max() <= 1
+    assert ulp_steps(c, np.cos(angles)).max() <= 1
+    asm = next(iter(many.inspect_asm().values()))
+    assert "vfmadd" in asm or "vfnmadd" in asm or "vfmsub" in asm  # contraction took place
+
+
+def test_the_checked_in_fused_kernel_is_the_generators_output():
+    from pathlib import Path
+
+    import planar_tui.kernels.motion_lanes_n6 as generated
+
+    assert Path(generated.__file__).read_text() == fused_source(FUSED_LINKS, LANES)
+    assert generated.LANES == LANES
+
+
 def test_sincos_against_mpmath_at_hard_angles():
     """Angles whose reduction cancels most bits (next to multiples of pi/2, and a known hard
     case for a two-part pi/2): the error against the exact value is below 1 ulp."""
@@ -86,6 +120,11 @@ def test_lanes_equal_the_scalar_kernel_after_one_second_on_table1_robots():
     assert np.abs(theta).max() > 0.3  # the arms moved
     assert np.abs(theta - ref_theta).max() <= 1e-12 * np.abs(ref_theta).max()
     assert np.abs(omega - ref_omega).max() <= 1e-12 * np.abs(ref_omega).max()
+    # the fused 6-link step (FMA) against the general lane kernel (no FMA)
+    general_theta, general_omega = np.zeros(shape), np.zeros(shape)
+    rk4_lanes(params, 9.81, TORQUES, general_theta, general_omega, 1e-4, 10_000, False)
+    assert 0.0 < np.abs(theta - general_theta).max() <= 1e-12 * np.abs(ref_theta).max()
+    assert np.abs(omega - general_omega).max() <= 1e-12 * np.abs(ref_omega).max()
 
 
 def test_chunked_in_time_gives_the_same_bits_and_one_robot_matches_mujoco():

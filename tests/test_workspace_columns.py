@@ -25,7 +25,8 @@ VARIANTS = {
     "workspace3prr": [{}, {"singularities": True}, {"form": "geometric"},
                       {"tolerance_cm": 0.05, "tolerance_mode": "some"}],
     "workspace5r": [{}, {"singularities": True}, {"form": "geometric"},
-                    {"singularities": True, "singularity_free_circle": (0.0, 60.0)}],
+                    {"singularities": True, "singularity_free_circle": (0.0, 60.0)},
+                    {"tolerance_cm": 0.05, "tolerance_mode": "all"}],
 }  # fmt: skip
 CASES = [(kind, changes) for kind, variants in VARIANTS.items() for changes in variants]
 

@@ -98,7 +98,9 @@ def counted_boxes(job):
     kind = JOB_KINDS[job.kind]
     result = kind.run(kind.prepare_job(job), Progress())
     singular = result.singularity
-    return result.outcome.boxes_processed + (0 if singular is None else singular.boxes_processed)
+    companions = sum(o.boxes_processed for o in (result.companions or {}).values())
+    singular_boxes = 0 if singular is None else singular.boxes_processed
+    return result.outcome.boxes_processed + singular_boxes + companions
 
 
 #: The bundled designs' jobs (preset, job index, changes to the job's own settings).
@@ -111,6 +113,9 @@ BUNDLED = [
     ("workspace-3prr.toml", 0, {"tolerance_cm": 0.1, "tolerance_mode": "some"}),
     ("fivebar-illustrative.toml", 0, {}),
     ("fivebar-illustrative.toml", 1, {}),
+    ("fivebar-illustrative.toml", 0, {"tolerance_cm": 0.1, "tolerance_mode": "all"}),
+    ("fivebar-illustrative.toml", 0, {"tolerance_cm": 0.1, "tolerance_mode": "some"}),
+    ("workspace-3prr.toml", 0, {"tolerance_cm": 0.1, "tolerance_mode": "all"}),
 ]
 #: The stated factor between the estimated and the counted boxes.
 FACTOR = 2.0

@@ -401,13 +401,16 @@ def test_per_quantity_tolerances_override_the_uniform_one():
 
 
 def test_the_figure_overlays_nominal_robust_and_some(tmp_path):
-    from planar_tui.workspace.job import WorkspaceResult, tolerance_companions
+    from planar_tui.workspace.job import WorkspaceResult
+    from planar_tui.workspace.tolerance import tolerance_companions
 
     spec = spec_for(tolerance_cm=0.1, tolerance_mode="all")
     job = _Job(spec)
     job.robot = ROBOT
     outcome = run(spec)
-    companions = tolerance_companions(ROBOT, spec, lambda: BoxBudget(job, Progress()))
+    companions = tolerance_companions(
+        ROBOT, spec, lambda: BoxBudget(job, Progress()), compute_workspace
+    )
     assert set(companions) == {"nominal", "some"}
     from planar_tui.csvio import CsvTable
     from planar_tui.figures.workspace import from_result

@@ -10,6 +10,9 @@ second joint's final angle over its link mass and the duration). On
 ``tests/data/app/explore.toml``: ``playback`` is the Simulate tab after its run, form
 hidden, the arm focused and scrubbed to t = 0.5 s; ``explore`` the Workspace tab after its
 run, form hidden, the map focused, the cursor moved and the exact boundary shown (``b``).
+``history`` is the run history (``F10``) of two Sobol' runs of tiny (seeds 1 and 2) opened
+from their CSVs and sidecars in ``tests/data/app/history/`` (as ``planar-tui tui --open``
+opens them; times shown in UTC), ``compare`` their comparison (``c``).
 
 ``python docs/screenshots/make_screenshots.py NAME ...`` regenerates only those captures
 (and skips the runs no named capture needs).
@@ -21,6 +24,7 @@ import asyncio
 import os
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[2]
@@ -31,6 +35,10 @@ from planar_tui.app.settings import CONFIG_DIR_VARIABLE  # noqa: E402
 # a fresh settings folder: the user's saved settings (form hidden, theme) neither change
 # the captures nor are overwritten by them
 os.environ[CONFIG_DIR_VARIABLE] = tempfile.mkdtemp(prefix="planar-tui-captures-")
+# the history's start times in UTC, whatever the machine's zone; recent files kept apart
+os.environ["TZ"] = "UTC"
+time.tzset()
+os.environ["PLANAR_TUI_STATE_DIR"] = tempfile.mkdtemp(prefix="planar-tui-captures-state-")
 
 from planar_tui.app.app import WorkbenchApp  # noqa: E402
 from planar_tui.app.workbench import Workbench  # noqa: E402
@@ -39,6 +47,9 @@ OUT = Path(__file__).resolve().parent
 SIZE = (80, 24)
 #: The captures asked for on the command line (none: all of them).
 SELECTED = set(sys.argv[1:])
+#: The captures other than the history's (they need the tabs' runs).
+OTHERS = ("robot", "sensitivity", "workspace", "simulate", "motion", "help", "sweep",
+          "sensitivity-6r", "playback", "explore")  # fmt: skip
 
 
 def wanted(*names: str) -> bool:
@@ -60,6 +71,9 @@ def save(app: WorkbenchApp, name: str) -> None:
 
 
 async def main() -> None:
+    await history()
+    if SELECTED and not wanted(*OTHERS):
+        return
     app = WorkbenchApp(Workbench.open(Path("tests/data/app/tiny.toml")), output_dir="/tmp")
     async with app.run_test(size=SIZE) as pilot:
         await pilot.pause()
@@ -136,6 +150,26 @@ async def views() -> None:
         await pilot.press("right", "right", "up", "up", "b")
         await pilot.pause(0.3)
         save(app, "explore")
+
+
+async def history() -> None:
+    """The run history of two recorded runs and their comparison (``history``,
+    ``compare``)."""
+    if not wanted("history", "compare"):
+        return
+    runs = [Path(f"tests/data/app/history/seed{seed}.csv") for seed in (1, 2)]
+    app = WorkbenchApp(Workbench.open(Path("tests/data/app/tiny.toml")), output_dir="/tmp")
+    app.open_results(runs)  # as `planar-tui tui --open` does: the history shows first
+    async with app.run_test(size=SIZE) as pilot:
+        while "Run history" not in app.export_text():
+            await pilot.pause(0.05)
+        await pilot.pause(0.3)
+        save(app, "history")
+        await pilot.press("c")
+        while "(A) vs" not in app.export_text():
+            await pilot.pause(0.05)
+        await pilot.pause(0.3)
+        save(app, "compare")
 
 
 def sync_readme() -> None:

@@ -2,12 +2,15 @@
 :class:`planar_tui.app.screens.history.CompareScreen`).
 
 - Sensitivity: the rows matched by posture, speed, torque, parameter and method, each
-  index of run A and run B and the difference B − A.
+  index of run A and run B (4 significant digits, :data:`INDEX_DIGITS`) and the
+  difference B − A.
 - Workspace: every summary figure (areas, boxes, precision) of A and B and B − A; with
   both runs' boxes, an overlay map (:func:`overlay_map`).
 - Simulate: per column, the final values and the largest difference over the common
   times (B interpolated linearly onto A's times); the joint angles of both overlaid
   (:attr:`Comparison.series`).
+- Sweep and optimisation: rows matched by point (evaluation) number, every numeric
+  column of A, B and B − A.
 - Any other table: rows matched by their text columns (else by position), every numeric
   column of A, B and B − A.
 """
@@ -25,6 +28,13 @@ from planar_tui.csvio import CsvTable
 #: Sensitivity rows are matched by these columns and compared on these.
 SENSITIVITY_KEYS = ("posture", "speed_rad_s", "torque", "parameter", "method")
 SENSITIVITY_VALUES = ("S1", "ST")
+
+#: The column a sweep's (an optimisation's) rows are matched by.
+STUDY_KEYS = {"sweep": "point", "optimise": "evaluation"}
+
+#: Significant digits of a sensitivity index (A and B; B − A has 3): a Monte Carlo index
+#: has fewer meaningful ones, and the eight columns then fit 80 columns.
+INDEX_DIGITS = 4
 
 #: Most rows a comparison lists (the tables themselves are exported whole).
 MAX_ROWS = 2000
@@ -50,9 +60,10 @@ def number(value: Any) -> float | None:
     return float(value)
 
 
-def shown(value: float | None) -> str:
-    """A number as the comparison shows it (6 significant digits), ``-`` for none."""
-    return "-" if value is None or math.isnan(value) else f"{value:.6g}"
+def shown(value: float | None, digits: int = 6) -> str:
+    """A number as the comparison shows it (``digits`` significant digits), ``-`` for
+    none."""
+    return "-" if value is None or math.isnan(value) else f"{value:.{digits}g}"
 
 
 def difference(a: float | None, b: float | None) -> str:
@@ -69,11 +80,11 @@ def _text_columns(table: CsvTable) -> list[str]:
             if any(isinstance(row[k], str) for row in table.rows)]  # fmt: skip
 
 
-def matched_rows(a: CsvTable, b: CsvTable, keys: Sequence[str], values: Sequence[str]
-                 ) -> tuple[tuple[str, ...], list[tuple[str, ...]]]:  # fmt: skip
+def matched_rows(a: CsvTable, b: CsvTable, keys: Sequence[str], values: Sequence[str],
+                 digits: int = 6) -> tuple[tuple[str, ...], list[tuple[str, ...]]]:  # fmt: skip
     """Rows of A and B matched by the ``keys`` columns (by position when there are none):
-    the keys, then for each of ``values`` A, B and B − A; rows of one run alone show
-    ``-`` for the other."""
+    the keys, then for each of ``values`` A, B (``digits`` significant digits) and
+    B − A; rows of one run alone show ``-`` for the other."""
     ca, cb = _columns(a), _columns(b)
 
     def key(row: Sequence[Any], columns: dict[str, int], position: int) -> tuple[Any, ...]:
@@ -91,7 +102,7 @@ def matched_rows(a: CsvTable, b: CsvTable, keys: Sequence[str], values: Sequence
         for v in values:
             x = number(ra[ca[v]]) if ra is not None and v in ca else None
             y = number(rb[cb[v]]) if rb is not None and v in cb else None
-            cells += [shown(x), shown(y), difference(x, y)]
+            cells += [shown(x, digits), shown(y, digits), difference(x, y)]
         out.append(tuple(cells))
     return header, out
 
@@ -226,11 +237,15 @@ def compare_runs(a: Run, b: Run) -> Comparison:
         keys = [k for k in SENSITIVITY_KEYS if k in a.table.header and k in b.table.header]
         keys, same = varying(keys, a.table, b.table)
         notes += [f"every row: {same}"] if same else []
-        header, rows = matched_rows(a.table, b.table, keys, SENSITIVITY_VALUES)
+        header, rows = matched_rows(a.table, b.table, keys, SENSITIVITY_VALUES, INDEX_DIGITS)
     elif len(a.table.rows) == 1 and len(b.table.rows) == 1:
         header, rows = figures_side_by_side(a.table, b.table)
     elif a.kind == "simulate" and "t_s" in a.table.header and "t_s" in b.table.header:
         header, rows, series = simulation_figures(a.table, b.table)
+    elif STUDY_KEYS.get(a.kind) in a.table.header and STUDY_KEYS[a.kind] in b.table.header:
+        key, text = STUDY_KEYS[a.kind], set(_text_columns(a.table))
+        values = [v for v in a.table.header if v not in text | {key} and v in b.table.header]
+        header, rows = matched_rows(a.table, b.table, [key], values)
     else:
         keys = [k for k in _text_columns(a.table) if k in b.table.header]
         values = [v for v in a.table.header if v not in keys and v in b.table.header]

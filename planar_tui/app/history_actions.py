@@ -1,4 +1,5 @@
-"""The workbench's run history: every finished run kept (:mod:`planar_tui.app.runs`),
+"""The workbench's run history: every finished run kept (:mod:`planar_tui.app.runs`:
+jobs, sweeps and optimisations),
 result CSVs opened into it (``planar-tui tui --open``, the history's ``o``), and the
 history screen (``F10``, :mod:`planar_tui.app.screens.history`)."""
 
@@ -35,6 +36,23 @@ class HistoryActions:
     def on_batch_job_done(self, message: Any) -> None:
         """A job of "run all" finished: keep it."""
         self.run_history.add_result(message.job, message.result)
+
+    def on_sweep_finished(self, message: Any) -> None:
+        """A sweep ran to its end (failed points included): keep it."""
+        run = message.run
+        if message.error is None and not message.cancelled and run is not None:
+            failed = f", {run.failed} failed" if run.failed else ""
+            started = time.time() - message.seconds
+            self.run_history.add_study("sweep", run.sweep, run, f"{len(run.outcomes)} points"
+                                       f"{failed}", (started, message.seconds))  # fmt: skip
+
+    def on_optimise_finished(self, message: Any) -> None:
+        """An optimisation ran to its end: keep it (its evaluations and its optimum)."""
+        run = message.run
+        if message.error is None and not message.cancelled and run is not None:
+            summary = f"{len(run.evaluations)} evaluations, {run.failed} failed"
+            timing = (run.started_s, time.time() - run.started_s)
+            self.run_history.add_study("optimise", run.optimisation, run, summary, timing)
 
     def open_results(self, paths: list[Path | str]) -> None:
         """Open result CSVs into the history (``planar-tui tui --open``); the first that

@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from planar_tui.csvio import CsvTable
-from planar_tui.provenance import Provenance, job_provenance, read_sidecar
+from planar_tui.provenance import Provenance, job_provenance, read_sidecar, study_provenance
 
 #: The job kind of each table kind :func:`planar_tui.figures.dispatch.recognise` names.
 TABLE_KINDS = {
@@ -125,10 +125,15 @@ def _local_time(iso: str) -> str:
 
 def table_kind(table: CsvTable) -> str | None:
     """The kind of a result table by its header (:func:`planar_tui.figures.dispatch.
-    recognise`), as a job kind (:data:`TABLE_KINDS`); ``None`` if not recognised."""
+    recognise`), as a job kind (:data:`TABLE_KINDS`), or ``"optimise"`` (``evaluation``
+    first, ``status, message`` last); ``None`` if not recognised."""
     from planar_tui.figures.dispatch import recognise
 
     found = recognise(table.header)
+    if found is None and table.header[:1] == ("evaluation",) and table.header[-2:] == (
+        "status", "message",
+    ):  # fmt: skip
+        return "optimise"  # an optimisation's evaluations or optimum (drawn by its screen)
     return None if found is None else TABLE_KINDS.get(found, found)
 
 
@@ -155,6 +160,19 @@ class RunHistory:
             kind=job.kind, label=job.label, table=result.table,
             provenance=job_provenance(job, timing), summary=result.summary, result=result,
             extra_tables=dict(result.extra_tables),
+        )  # fmt: skip
+
+    def add_study(self, kind: str, study: Any, result: Any, summary: str,
+                  timing: tuple[float, float] | None = None) -> Run:  # fmt: skip
+        """Keep a finished sweep or optimisation of this session (``kind`` ``"sweep"`` or
+        ``"optimise"``; ``study`` its :class:`~planar_tui.sweep.spec.Sweep` or
+        :class:`~planar_tui.optimise.spec.Optimisation`, ``result`` its run: the table it
+        writes, and an optimisation's optimum as the extra table ``optimum``)."""
+        extra = {"optimum": result.optimum_table} if kind == "optimise" else {}
+        return self._add(
+            kind=kind, label=study.label, table=result.table,
+            provenance=study_provenance(kind, study, timing), summary=summary, result=result,
+            extra_tables=extra,
         )  # fmt: skip
 
     def add_csv(self, path: Path | str) -> Run:

@@ -119,8 +119,8 @@ class ViewActions:
 
     @classmethod
     def binding_sources(cls) -> list[tuple[str, list[Any]]]:
-        """``(where, bindings)``: the app's, then each tab's own, then a field's (for
-        the help screen)."""
+        """``(where, bindings)``: the app's, then each tab's own, the Torques drawing's, a
+        field's, the run history's and the comparison's (for the help screen)."""
         from textual.app import App
         from textual.binding import Binding
         from textual.screen import Screen
@@ -138,7 +138,14 @@ class ViewActions:
             own = [b for b in vars(pane).get("BINDINGS", []) if not isinstance(b, tuple)]
             if own:
                 sources.append((f"{titles.get(name, name)} tab", own))
+        from planar_tui.app.widgets.torques_pane import StateView
+
+        sources.append(("Torques tab, its drawing focused", list(StateView.BINDINGS)))
         sources.append(("in a field", list(Field.BINDINGS)))
+        from planar_tui.app.screens.history import CompareScreen, HistoryScreen
+
+        sources.append(("Run history (F10)", list(HistoryScreen.BINDINGS)))
+        sources.append(("Comparison (c in the history)", list(CompareScreen.BINDINGS)))
         return sources
 
     # -- undo in place --------------------------------------------------------------------

@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from planar_tui.figures.workspace import BOUNDARY_SEGMENTS, _polygon_rings, draw
+from planar_tui.figures.workspace import BOUNDARY_SEGMENTS, _polygon_rings, draw, draw_tolerance
 
 
 def draw_fivebar(ax: Any, robot: Any, point: tuple[float, float]) -> bool:
@@ -35,7 +35,8 @@ def draw_fivebar(ax: Any, robot: Any, point: tuple[float, float]) -> bool:
 
 
 def from_result(job: Any, result: Any) -> Any:
-    """The figure of a finished ``[[workspace5r]]`` job."""
+    """The figure of a finished ``[[workspace5r]]`` job (with a tolerance, the overlaid
+    workspaces of :func:`~planar_tui.figures.workspace.draw_tolerance`)."""
     import numpy as np
 
     from planar_tui.workspace.compute import INSIDE
@@ -43,6 +44,8 @@ def from_result(job: Any, result: Any) -> Any:
     from planar_tui.workspace.job import map_title
 
     outcome = result.outcome
+    if getattr(result, "companions", None):
+        return draw_tolerance(job, result, workspace_polygon(job.robot, BOUNDARY_SEGMENTS, False))
     boxes = np.asarray(outcome.boxes)[:, :4] if len(outcome.boxes) else np.zeros((0, 4))
     singular = result.singularity
     if singular is not None and singular.centre_cm is None:

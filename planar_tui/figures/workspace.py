@@ -260,9 +260,10 @@ TOLERANCE_LAYERS = (
 )
 
 
-def draw_tolerance(job: Any, result: Any) -> Any:
+def draw_tolerance(job: Any, result: Any, exact: Any = None) -> Any:
     """A tolerance-certified job: the "some", nominal and robust ("all") workspaces
-    overlaid, each bracket in the legend, and the nominal exact boundary."""
+    overlaid, each bracket in the legend, and the nominal exact boundary (``exact``, the
+    kind's inner polygon; default the 3-RRR's)."""
     import textwrap
 
     import numpy as np
@@ -284,8 +285,10 @@ def draw_tolerance(job: Any, result: Any) -> Any:
             verts, facecolors=colour, edgecolors="none", gid=f"{name}-{which}",
             label=f"{label}: {area:.5g} cm2", rasterized=len(b) > RASTER_ABOVE,
         ))  # fmt: skip
-    polygon = workspace_polygon(job.robot, job.spec.limits_rad, job.spec.orientation_rad,
-                                BOUNDARY_SEGMENTS, False)  # fmt: skip
+    polygon = exact
+    if polygon is None:
+        polygon = workspace_polygon(job.robot, job.spec.limits_rad, job.spec.orientation_rad,
+                                    BOUNDARY_SEGMENTS, False)  # fmt: skip
     for k, ring in enumerate(_polygon_rings(polygon)):
         ax.plot(ring[:, 0], ring[:, 1], color="k", lw=0.8, gid="exact",
                 label="nominal exact boundary" if k == 0 else None)  # fmt: skip
@@ -304,7 +307,8 @@ def draw_tolerance(job: Any, result: Any) -> Any:
 
 def from_planar_result(job: Any, result: Any) -> Any:
     """The figure of a finished 3-RPR or 3-PRR job (:mod:`planar_tui.workspace.planar`):
-    boxes and the exact boundary (the inner polygon of the kind's exact reference)."""
+    boxes and the exact boundary (the inner polygon of the kind's exact reference); with a
+    tolerance, :func:`draw_tolerance`."""
     import numpy as np
 
     from planar_tui.workspace.compute import INSIDE
@@ -317,5 +321,7 @@ def from_planar_result(job: Any, result: Any) -> Any:
         if isinstance(job.spec.orientation_deg, tuple)  # a range: no single boundary
         else job.spec.mechanism.polygon(job.robot, job.spec, BOUNDARY_SEGMENTS, False)
     )
+    if getattr(result, "companions", None):
+        return draw_tolerance(job, result, exact)
     return draw(boxes, np.asarray(outcome.status) == INSIDE, map_title(job, outcome),
                 summary=result.summary, exact=exact)  # fmt: skip

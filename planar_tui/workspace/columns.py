@@ -8,7 +8,8 @@ then its singularity-free circle's (every job has them, empty without ``singular
 the 3-RRR's for the 3-RPR and 3-PRR (:data:`planar_tui.workspace.singularity.HEADER`), the
 five-bar's with its singular box counts
 (:data:`planar_tui.workspace.fivebar_singularity.HEADER`), the five-bar's ``working_mode``
-in place of the ``strategy``. ``tests/test_workspace_columns.py`` holds them to the runs'.
+in place of the ``strategy``; with a tolerance, ``tolerance_mode`` and the half-widths
+(:func:`tolerance_names`). ``tests/test_workspace_columns.py`` holds them to the runs'.
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ def planar_figure_names(job: Any) -> tuple[str, ...]:
     from planar_tui.workspace.compute import SUMMARY_HEADER
     from planar_tui.workspace.singularity import HEADER
 
-    return (*SUMMARY_HEADER[:-1], *HEADER)
+    return (*SUMMARY_HEADER[:-1], *HEADER, *tolerance_names(job))
 
 
 def fivebar_figure_names(job: Any) -> tuple[str, ...]:
@@ -29,4 +30,15 @@ def fivebar_figure_names(job: Any) -> tuple[str, ...]:
     from planar_tui.workspace.compute import SUMMARY_HEADER
     from planar_tui.workspace.fivebar_singularity import HEADER
 
-    return (SUMMARY_HEADER[0], "working_mode", *SUMMARY_HEADER[2:-1], *HEADER)
+    return (SUMMARY_HEADER[0], "working_mode", *SUMMARY_HEADER[2:-1], *HEADER,
+            *tolerance_names(job))  # fmt: skip
+
+
+def tolerance_names(job: Any) -> tuple[str, ...]:
+    """A tolerance-certified job's last columns (:func:`~planar_tui.workspace.tolerance.
+    tolerance_header` of its kind's quantities; none without a tolerance)."""
+    from planar_tui.workspace.tolerance import spec_keys, tolerance_header, tolerance_of
+
+    if tolerance_of(job.spec) is None:
+        return ()
+    return tolerance_header(spec_keys(job.spec))

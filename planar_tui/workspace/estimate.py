@@ -47,6 +47,8 @@ TOLERANCE_BOXES = {
     ("workspace3rpr", "some"): 5.0,
     ("workspace3prr", "all"): 5.0,
     ("workspace3prr", "some"): 16.0,
+    ("workspace5r", "all"): 1.0,
+    ("workspace5r", "some"): 1.0,
 }
 #: Singularity boxes per ε_s of the search box's width + height, by kind.
 SINGULAR_BOXES_PER_STEP = {"workspace3rpr": 10.0, "workspace3prr": 10.0, "workspace5r": 20.0}
@@ -100,9 +102,11 @@ def estimate_boxes(kind: str, robot: Any, spec: Any) -> int:
     if spec.refine_precision_cm is not None:
         boxes += BOXES_PER_BOUNDARY_STEP * length / spec.refine_precision_cm
     tolerance = largest_tolerance_cm(spec)
-    if tolerance is not None:
+    if tolerance is not None:  # the job's paving and its figure's: the nominal, the other mode
         width, mode = tolerance
-        boxes += TOLERANCE_BOXES.get((kind, mode), 16.0) * length * width / (eps * eps)
+        other = "some" if mode == "all" else "all"
+        band = sum(TOLERANCE_BOXES.get((kind, m), 16.0) for m in (mode, other))
+        boxes = 3.0 * boxes + band * length * width / (eps * eps)
     if spec.singularities:
         precision = spec.singularity_precision_cm or eps
         boxes += SINGULAR_BOXES_PER_STEP[kind] * ((xhi - xlo) + (yhi - ylo)) / precision

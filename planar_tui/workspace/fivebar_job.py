@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 from planar_tui.jobkind import (
     Command,
@@ -34,6 +34,7 @@ from planar_tui.schema import (
 from planar_tui.workspace.columns import fivebar_figure_names
 from planar_tui.workspace.estimate import check_needs, estimate, report_box_estimate
 from planar_tui.workspace.fivebar import Robot5R
+from planar_tui.workspace.fivebar_tolerance import TOLERANCE_FIELDS_5R, TOLERANCE_KEYS_5R
 from planar_tui.workspace.job import (
     BOXES_OPTION,
     MAP_VIEW,
@@ -50,6 +51,7 @@ from planar_tui.workspace.job import (
     singularity_precision_setting,
 )
 from planar_tui.workspace.singularity import read_centre, refuse_without_singularities
+from planar_tui.workspace.tolerance import check_tolerance, refuse_reference, tolerance_report
 
 if TYPE_CHECKING:
     from planar_tui.workspace.compute import BoxBudget, WorkspaceOutcome
@@ -113,12 +115,28 @@ class FiveBarSpec:
         doc="centre of the largest singularity-free circle to certify (needs "
         "`singularities = true` and a working mode)",
     )
+    tolerance_cm: float | None = TOLERANCE_FIELDS_5R[0]
+    tolerances_cm: tuple[tuple[str, float], ...] | None = TOLERANCE_FIELDS_5R[1]
+    tolerance_mode: str | None = TOLERANCE_FIELDS_5R[2]
     plot: str | None = plot_setting()
+
+    #: The robot's toleranced quantities (:mod:`planar_tui.workspace.fivebar_tolerance`).
+    tolerance_keys: ClassVar[tuple[str, ...]] = TOLERANCE_KEYS_5R
 
     @staticmethod
     def check(values: dict[str, Any], reader: TableReader, robot: Robot5R) -> dict[str, Any]:
         """The refinement is at most the precision; the circle goes with ``singularities``
-        and a working mode."""
+        and a working mode; a tolerance (:mod:`planar_tui.workspace.fivebar_tolerance`) is
+        below the shortest link and takes the paving form, no singularities and no
+        geometric reference; a "some" job's search box holds the reach grown by the
+        tolerances."""
+        lengths = {"proximal_cm": min(robot.proximal_cm), "distal_cm": min(robot.distal_cm)}
+        check_tolerance(values, reader, TOLERANCE_KEYS_5R, lengths)
+        refuse_reference(values, reader)
+        if values["search_box_cm"] is not None and values["tolerance_mode"] == "some":
+            from planar_tui.workspace.fivebar_tolerance import check_search_box
+
+            check_search_box(values, reader, robot)
         if not values["singularities"]:
             refuse_without_singularities(
                 values, reader, ("singularity_free_circle", "singularity_precision_cm")
@@ -153,6 +171,8 @@ class FiveBarResult(JobResult):
 
     outcome: WorkspaceOutcome
     singularity: FiveBarSingularities | None = None
+    #: With a tolerance: the nominal and the other mode's outcomes (map and figure).
+    companions: dict[str, WorkspaceOutcome] | None = None
 
 
 def compute_fivebar(robot: Robot5R, spec: FiveBarSpec, budget: BoxBudget) -> WorkspaceOutcome:
@@ -162,16 +182,18 @@ def compute_fivebar(robot: Robot5R, spec: FiveBarSpec, budget: BoxBudget) -> Wor
     from planar_tui.kernels.workspace5r import level
     from planar_tui.workspace.compute import (
         WorkspaceOutcome,
-        default_search_box,
         finished_outcome,
         pave_in_levels,
+        square_about,
     )
     from planar_tui.workspace.fivebar import geometric_area
+    from planar_tui.workspace.fivebar_tolerance import reach_box_cm, tolerant_level_kernel
 
     started = time.perf_counter()
-    box = spec.search_box_cm or default_search_box(robot, 0.0, spec.precision_cm)
+    box = spec.search_box_cm or square_about(reach_box_cm(robot, spec), spec.precision_cm)
     extent = (box[0][0], box[0][1], box[1][0], box[1][1])
     legs, limits = robot.leg_arrays()
+    level = tolerant_level_kernel(spec, level)
     geometric = None
     if spec.geometric_reference or spec.form == "geometric":
         geometric = geometric_area(robot)
@@ -222,19 +244,22 @@ def run_fivebar(
     if job.spec.singularities:
         singular = compute_singularities(job, outcome.extent_cm, budget)
     base = outcome.summary_row()
-    row = [base[0], job.robot.working_mode, *base[2:11], *singularity_columns(singular), base[11]]
+    row = [base[0], job.robot.working_mode, *base[2:11], *singularity_columns(singular)]
     summary = f"{summary_line(outcome)}, working mode {job.robot.working_mode}"
     if singular is not None:
         summary += f"; {singular.describe()}"
+    # the 3-RRR's columns, the working mode in place of the strategy
+    header: tuple[str, ...] = (SUMMARY_HEADER[0], "working_mode", *SUMMARY_HEADER[2:-1], *HEADER)
+    report = tolerance_report(job, lambda: BoxBudget(job, progress), compute_fivebar)
+    if report is not None:
+        header, row, summary = header + report.header, row + report.cells, summary + report.text
     return FiveBarResult(
-        # the 3-RRR's columns, the working mode in place of the strategy
-        table=CsvTable(
-            (SUMMARY_HEADER[0], "working_mode", *SUMMARY_HEADER[2:-1], *HEADER, "seconds"), [row]
-        ),
+        table=CsvTable((*header, "seconds"), [[*row, base[11]]]),
         summary=summary,
         extra_tables={"boxes": boxes_table(outcome)},
         outcome=outcome,
         singularity=singular,
+        companions=None if report is None else report.companions,
     )
 
 
@@ -264,5 +289,6 @@ JOB_KIND = JobKind(
         "[[workspace5r]]\nprecision_cm = 8.0\n"
         "geometric_reference = false\nrefine_precision_cm = 4.0\nsingularities = true\n"
         "singularity_free_circle = [0, 60]\n"
+        "[[workspace5r]]\nprecision_cm = 8.0\ngeometric_reference = false\ntolerance_cm = 0.1\n"
     ),
 )  # fmt: skip

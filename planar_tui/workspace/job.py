@@ -404,16 +404,11 @@ def run_workspace(
         compute_singularities,
         singularity_columns,
     )
-    from planar_tui.workspace.tolerance import (
-        TOLERANCE_HEADER,
-        companions_text,
-        tolerance_columns,
-    )
+    from planar_tui.workspace.tolerance import tolerance_report
 
     job, circle = ready.job, ready.prepared.circle
     budget = BoxBudget(job, progress)
     singular = None
-    tolerance = tolerance_of(job.spec)
     if isinstance(job.spec.orientation_deg, tuple):
         outcome = compute_orientation_workspace(job.robot, job.spec, budget)
     else:
@@ -429,12 +424,9 @@ def run_workspace(
         summary = summary_text(job.spec, outcome)
     if singular is not None:
         summary += f"; {singular.describe()}"
-    companions = None
-    if tolerance is not None:
-        row += tolerance_columns(job.spec)
-        header += TOLERANCE_HEADER
-        companions = tolerance_companions(job.robot, job.spec, lambda: BoxBudget(job, progress))
-        summary += f"; {describe_tolerance(tolerance)}; {companions_text(companions)}"
+    report = tolerance_report(job, lambda: BoxBudget(job, progress), compute_workspace)
+    if report is not None:
+        row, header, summary = row + report.cells, header + report.header, summary + report.text
     row.append(base[-1])
     header += (SUMMARY_HEADER[-1],)
     return WorkspaceResult(
@@ -443,28 +435,8 @@ def run_workspace(
         extra_tables={"boxes": boxes_table(outcome)},
         outcome=outcome,
         singularity=singular,
-        companions=companions,
+        companions=None if report is None else report.companions,
     )
-
-
-def tolerance_companions(robot: Any, spec: Any, budget_for: Any) -> dict[str, Any]:
-    """The other two workspaces a tolerance-certified job is drawn with (map, figure):
-    ``{"nominal": ..., <the other mode>: ...}`` (:class:`WorkspaceOutcome`), each paved
-    at the job's precision with ``budget_for()`` (a fresh
-    :class:`~planar_tui.workspace.compute.BoxBudget`)."""
-    from dataclasses import replace
-
-    from planar_tui.workspace.compute import compute_workspace
-
-    other = "some" if spec.tolerance_mode == "all" else "all"
-    specs = {
-        "nominal": replace(
-            spec, tolerance_cm=None, tolerances_cm=None, tolerance_mode=None,
-            geometric_reference=False,
-        ),
-        other: replace(spec, tolerance_mode=other, geometric_reference=False),
-    }  # fmt: skip
-    return {name: compute_workspace(robot, s, budget_for()) for name, s in specs.items()}
 
 
 def map_title(job: WorkspaceJob, outcome: WorkspaceOutcome) -> str:

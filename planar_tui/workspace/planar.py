@@ -110,9 +110,10 @@ class PlanarSpec:
     @classmethod
     def check(cls, values: dict[str, Any], reader: TableReader, robot: Any) -> dict[str, Any]:
         """The refinement precision cannot exceed the precision; an explicit search box
-        must hold the legs' reach; the box budget must fit the memory limit; the circle's
-        keys go with ``singularities`` (:func:`check_circle_keys`); the job's estimated
-        memory and time must fit the limits (:func:`~planar_tui.workspace.estimate.check_needs`)."""
+        must hold the legs' reach (a "some" job's: grown by the tolerances); the box budget
+        must fit the memory limit; the circle's keys go with ``singularities``
+        (:func:`check_circle_keys`); the job's estimated memory and time must fit the limits
+        (:func:`~planar_tui.workspace.estimate.check_needs`)."""
         check_circle_keys(values, reader, cls.circle_keys)
         refine = values["refine_precision_cm"]
         if refine is not None and refine > values["precision_cm"]:
@@ -122,7 +123,10 @@ class PlanarSpec:
         box = values["search_box_cm"]
         if box is not None:
             spec = cls(**values)
-            rxlo, rxhi, rylo, ryhi = spec.mechanism.reach_box(robot, spec)
+            from planar_tui.workspace.tolerance import grown, reach_margin_cm
+
+            reach = grown(spec.mechanism.reach_box(robot, spec), reach_margin_cm(spec))
+            rxlo, rxhi, rylo, ryhi = reach  # a "some" job's robots reach farther
             (xlo, xhi), (ylo, yhi) = box
             holds = xlo <= rxlo and rxhi <= xhi and ylo <= rylo and ryhi <= yhi
             if rxlo <= rxhi and rylo <= ryhi and not holds:
@@ -256,6 +260,7 @@ def compute_planar(robot: Any, spec: PlanarSpec, budget: Any) -> Any:
         pave_in_levels,
         square_about,
     )
+    from planar_tui.workspace.tolerance import grown, reach_margin_cm
 
     mechanism: Mechanism = spec.mechanism
     if isinstance(spec.orientation_deg, tuple):  # a range (the kind's check allowed it)
@@ -263,7 +268,8 @@ def compute_planar(robot: Any, spec: PlanarSpec, budget: Any) -> Any:
         compute_range = importlib.import_module(mechanism.orientation_range).compute_range
         return compute_range(robot, spec, budget)
     started = time.perf_counter()
-    box = spec.search_box_cm or square_about(mechanism.reach_box(robot, spec), spec.precision_cm)
+    reach = grown(mechanism.reach_box(robot, spec), reach_margin_cm(spec))  # "some": farther
+    box = spec.search_box_cm or square_about(reach, spec.precision_cm)
     extent = (box[0][0], box[0][1], box[1][0], box[1][1])
     geometric = None
     if spec.geometric_reference or spec.form == "geometric":
@@ -320,11 +326,6 @@ def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> 
         from planar_tui.workspace.orientation import describe as describe_range
 
         summary += f"; {describe_range(job.spec)}"
-    if job.spec.tolerance_keys:
-        from planar_tui.workspace.tolerance import describe, tolerance_of
-
-        tolerance = tolerance_of(job.spec, job.spec.tolerance_keys)
-        summary += "" if tolerance is None else f"; {describe(tolerance)}"
     singular = None
     module = job.spec.mechanism.singularities
     if module is not None:  # the circle's columns before the last one, the wall time
@@ -336,12 +337,22 @@ def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> 
             summary += f"; {singular.describe()}"
         cells = [""] * len(HEADER) if singular is None else singular.columns()
         header, row = (*header[:-1], *HEADER, header[-1]), [*row[:-1], *cells, row[-1]]
+    from planar_tui.workspace.tolerance import tolerance_report
+
+    report = tolerance_report(job, lambda: BoxBudget(job, progress), compute_planar)
+    if report is not None:  # its columns before the wall time too
+        header, row = (
+            (*header[:-1], *report.header, header[-1]),
+            [*row[:-1], *report.cells, row[-1]],
+        )
+        summary += report.text
     return WorkspaceResult(
         table=CsvTable(header, [row]),
         summary=summary,
         extra_tables={"boxes": boxes_table(outcome)},
         outcome=outcome,
         singularity=singular,
+        companions=None if report is None else report.companions,
     )
 
 

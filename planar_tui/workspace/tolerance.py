@@ -66,6 +66,7 @@ TOLERANCE_MODES = ("all", "some")
 TOLERANCE_KEYS_3RRR = ("base_joints_cm", "platform_points_cm", "proximal_cm", "distal_cm")
 #: Summary CSV columns of a tolerance-certified job (appended before ``seconds``).
 TOLERANCE_HEADER = ("tolerance_mode", *(f"tolerance_{key}" for key in TOLERANCE_KEYS_3RRR))
+#: (a kind's own: :func:`tolerance_header`)
 
 
 @dataclass(frozen=True)
@@ -168,7 +169,7 @@ def check_tolerance(
                 where, f"is ±{widths[key]:g} cm on {key} = {length:g} cm", f"< {length:g} cm"
             )
     problems = (
-        ("orientation_deg", isinstance(values["orientation_deg"], tuple), "one orientation"),
+        ("orientation_deg", isinstance(values.get("orientation_deg"), tuple), "one orientation"),
         ("form", values["form"] == "geometric", "an interval form or arc-distance"),
         ("strategy", values.get("strategy") == "joint", '"legwise" (or form = "arc-distance")'),
         ("expanded", values.get("expanded"), "false"),
@@ -179,8 +180,25 @@ def check_tolerance(
             raise reader.error(key, f"is {values[key]!r} with a tolerance", expected)
 
 
-def tolerance_of(spec: Any, keys: Sequence[str] = TOLERANCE_KEYS_3RRR) -> Tolerance | None:
-    """The spec's :class:`Tolerance` (``None`` without one)."""
+def refuse_reference(values: dict[str, Any], reader: Any) -> None:
+    """With a tolerance, ``geometric_reference`` is off (its default, the nominal robot's
+    exact area, is not the tolerance-certified one's) and refused if asked for."""
+    if values["tolerance_mode"] is not None and values["geometric_reference"]:
+        if reader.has("geometric_reference"):
+            raise reader.error("geometric_reference", "is true with a tolerance", "false")
+        values["geometric_reference"] = False
+
+
+def spec_keys(spec: Any) -> tuple[str, ...]:
+    """The toleranced quantities of a spec's kind: its ``tolerance_keys`` (the 3-RPR, 3-PRR
+    and five-bar specs), else the 3-RRR's."""
+    return tuple(getattr(spec, "tolerance_keys", ())) or TOLERANCE_KEYS_3RRR
+
+
+def tolerance_of(spec: Any, keys: Sequence[str] | None = None) -> Tolerance | None:
+    """The spec's :class:`Tolerance` (``None`` without one) over ``keys`` (default: the
+    spec's kind's, :func:`spec_keys`)."""
+    keys = spec_keys(spec) if keys is None else keys
     uniform = getattr(spec, "tolerance_cm", None)
     table = getattr(spec, "tolerances_cm", None)
     if uniform is None and table is None:
@@ -216,6 +234,27 @@ def erosion_bound_cm(tolerance: Tolerance) -> float:
     )
 
 
+def reach_margin_cm(spec: Any) -> float:
+    r"""How far beyond the nominal robot's reach a spec's workspace may extend: for
+    ``"some"``, :math:`\sqrt2 \sum_k t_k` over the kind's quantities (a toleranced point
+    moves by at most :math:`\sqrt2\,t`, a length by :math:`t`, and a leg's reach by at most
+    their sum: the 3-RPR's :math:`\sigma`, the 3-PRR's :math:`\sigma + t_l`, the five-bar's
+    :math:`\sqrt2\,t_A + t_1 + t_2` are below it); 0 for the nominal robot and the robust
+    workspace (inside the nominal one)."""
+    tolerance = tolerance_of(spec)
+    if tolerance is None or tolerance.mode != "some":
+        return 0.0
+    return math.sqrt(2.0) * sum(width for _, width in tolerance.half_widths_cm)
+
+
+def grown(
+    box: tuple[float, float, float, float], margin: float
+) -> tuple[float, float, float, float]:
+    """The box ``(x_lo, x_hi, y_lo, y_hi)`` grown by ``margin`` on every side."""
+    xlo, xhi, ylo, yhi = box
+    return (xlo - margin, xhi + margin, ylo - margin, yhi + margin)
+
+
 def kernel_tolerance(tolerance: Tolerance | None, orientation_rad: float) -> np.ndarray:
     """The kernels' ``tol`` vector (:mod:`planar_tui.kernels.workspace_tolerance`)."""
     from planar_tui.kernels.workspace_tolerance import ALL, NOMINAL, SOME, tolerance_vector
@@ -239,12 +278,65 @@ def tolerant_vector(spec: Any) -> np.ndarray | None:
     return None if tolerance is None else kernel_tolerance(tolerance, spec.orientation_rad)
 
 
+def tolerance_header(keys: Sequence[str]) -> tuple[str, ...]:
+    """Summary CSV columns of a tolerance-certified job whose kind tolerances ``keys``:
+    ``tolerance_mode`` and ``tolerance_<key>`` per key (:data:`TOLERANCE_HEADER`, the
+    3-RRR's)."""
+    return ("tolerance_mode", *(f"tolerance_{key}" for key in keys))
+
+
 def tolerance_columns(spec: Any) -> list[Any]:
-    """The :data:`TOLERANCE_HEADER` values of a spec (``[]`` without a tolerance)."""
+    """The :func:`tolerance_header` values of a spec (``[]`` without a tolerance)."""
     tolerance = tolerance_of(spec)
     if tolerance is None:
         return []
-    return [tolerance.mode, *(tolerance.of(key) for key in TOLERANCE_KEYS_3RRR)]
+    return [tolerance.mode, *(tolerance.of(key) for key in spec_keys(spec))]
+
+
+def tolerance_companions(robot: Any, spec: Any, budget_for: Any, compute: Any) -> dict[str, Any]:
+    """The other two workspaces a tolerance-certified job is drawn with (map, figure):
+    ``{"nominal": ..., <the other mode>: ...}``, each paved at the job's precision by
+    ``compute(robot, spec, budget)`` (the kind's paving: the 3-RRR's
+    :func:`~planar_tui.workspace.compute.compute_workspace`...) with ``budget_for()`` (a
+    fresh :class:`~planar_tui.workspace.compute.BoxBudget`)."""
+    from dataclasses import replace
+
+    other = "some" if spec.tolerance_mode == "all" else "all"
+    specs = {
+        "nominal": replace(
+            spec, tolerance_cm=None, tolerances_cm=None, tolerance_mode=None,
+            geometric_reference=False,
+        ),
+        other: replace(spec, tolerance_mode=other, geometric_reference=False),
+    }  # fmt: skip
+    return {name: compute(robot, s, budget_for()) for name, s in specs.items()}
+
+
+@dataclass(frozen=True)
+class ToleranceReport:
+    """What a tolerance-certified job adds to its result: the summary CSV's ``header`` and
+    ``cells`` (before ``seconds``), the ``companions`` (:func:`tolerance_companions`) and
+    the summary's ``text`` (``; tolerance all ±0.1 cm; nominal [..] cm2, some [..] cm2``)."""
+
+    header: tuple[str, ...]
+    cells: list[Any]
+    companions: dict[str, Any]
+    text: str
+
+
+def tolerance_report(job: Any, budget_for: Any, compute: Any) -> ToleranceReport | None:
+    """The :class:`ToleranceReport` of a job (``None`` without a tolerance), its companions
+    paved by ``compute`` with ``budget_for()`` (:func:`tolerance_companions`)."""
+    tolerance = tolerance_of(job.spec)
+    if tolerance is None:
+        return None
+    companions = tolerance_companions(job.robot, job.spec, budget_for, compute)
+    return ToleranceReport(
+        tolerance_header(spec_keys(job.spec)),
+        tolerance_columns(job.spec),
+        companions,
+        f"; {describe(tolerance)}; {companions_text(companions)}",
+    )
 
 
 def describe(tolerance: Tolerance) -> str:

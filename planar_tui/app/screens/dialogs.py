@@ -147,6 +147,15 @@ HELP_DETAILS = {
     "cancel": "cancel the running job (in the footer only while one runs)",
     "open": "open a preset (recent, bundled, or a path; → completes)",
     "history": "run history: every run, compare two, open a result CSV",
+    "mark": "mark the highlighted run: A, then B (again: unmark)",
+    "compare": "compare the marked runs A and B, else the highlighted run with the "
+    "latest other run of its kind",
+    "open_result": "open a result CSV into the history",
+    "close": "close (back to where it was opened)",
+    "state(-1)": "draw the arm at the previous state (theta_deg row)",
+    "state(1)": "draw the arm at the next state",
+    "state_at(0)": "the first state",
+    "state_at(-1)": "the last state",
     "save": "save (comments kept; a bundled preset asks for a path; an invalid one "
     "is saved as a draft if you confirm)",
     "undo": "undo the latest edit, in place (same tab and field; results kept)",
