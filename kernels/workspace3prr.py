@@ -73,28 +73,41 @@ def _box_distance(xlo, xhi, ylo, yhi, x, y):
 
 
 @kernel
-def classify_prr_box(xlo, xhi, ylo, yhi, p):
-    """``OUTSIDE``, ``BOUNDARY`` or ``INSIDE`` for the (x, y) box (module docstring)."""
+def prr_leg_label(xlo, xhi, ylo, yhi, ax, ay, bx, by, out_seg, out_end, in_seg, in_end):
+    """One leg's ``OUTSIDE``, ``BOUNDARY`` or ``INSIDE`` over the box, its shifted stroke
+    ends ``(ax, ay)``, ``(bx, by)`` and its four thresholds (module docstring)."""
     cx = 0.5 * (xlo + xhi)
     cy = 0.5 * (ylo + yhi)
     rho = 0.5 * math.hypot(xhi - xlo, yhi - ylo)
+    seg_min = segment_distance(cx, cy, ax, ay, bx, by) - rho
+    seg_max = 0.0
+    end_max = 0.0
+    for x in (xlo, xhi):
+        for y in (ylo, yhi):
+            seg_max = max(seg_max, segment_distance(x, y, ax, ay, bx, by))
+            end_max = max(end_max, end_distance(x, y, ax, ay, bx, by))
+    end_min = max(
+        _box_distance(xlo, xhi, ylo, yhi, ax, ay), _box_distance(xlo, xhi, ylo, yhi, bx, by)
+    )
+    if seg_min - TOLERANCE_CM > out_seg or end_max + TOLERANCE_CM < out_end:
+        return OUTSIDE
+    if seg_max + TOLERANCE_CM > in_seg or end_min - TOLERANCE_CM < in_end:
+        return BOUNDARY
+    return INSIDE
+
+
+@kernel
+def classify_prr_box(xlo, xhi, ylo, yhi, p):
+    """``OUTSIDE``, ``BOUNDARY`` or ``INSIDE`` for the (x, y) box (module docstring)."""
     inside = True
     for leg in range(3):
-        ax, ay, bx, by = p[leg, 0], p[leg, 1], p[leg, 2], p[leg, 3]
-        seg_min = segment_distance(cx, cy, ax, ay, bx, by) - rho
-        seg_max = 0.0
-        end_max = 0.0
-        for x in (xlo, xhi):
-            for y in (ylo, yhi):
-                seg_max = max(seg_max, segment_distance(x, y, ax, ay, bx, by))
-                end_max = max(end_max, end_distance(x, y, ax, ay, bx, by))
-        end_min = max(
-            _box_distance(xlo, xhi, ylo, yhi, ax, ay), _box_distance(xlo, xhi, ylo, yhi, bx, by)
-        )
-        if seg_min - TOLERANCE_CM > p[leg, 5] or end_max + TOLERANCE_CM < p[leg, 6]:
+        label = prr_leg_label(
+            xlo, xhi, ylo, yhi, p[leg, 0], p[leg, 1], p[leg, 2], p[leg, 3],
+            p[leg, 5], p[leg, 6], p[leg, 7], p[leg, 8],
+        )  # fmt: skip
+        if label == OUTSIDE:
             return OUTSIDE
-        if seg_max + TOLERANCE_CM > p[leg, 7] or end_min - TOLERANCE_CM < p[leg, 8]:
-            inside = False
+        inside = inside and label == INSIDE
     return INSIDE if inside else BOUNDARY
 
 
@@ -111,18 +124,26 @@ def prr_point_feasible(x, y, p):
 
 
 @kernel
-def _refuted(xlo, xhi, ylo, yhi, p, n):
-    """True if each cell of an ``n`` x ``n`` grid over the box is ``OUTSIDE``."""
+def grid_cell(xlo, xhi, ylo, yhi, n, k):
+    """Cell ``k`` (row-major, ``k = n i + j``) of an ``n`` x ``n`` grid over the box."""
+    i = k // n
+    j = k % n
     hx = (xhi - xlo) / n
     hy = (yhi - ylo) / n
-    for i in range(n):
-        x0 = xlo + i * hx
-        x1 = xhi if i == n - 1 else xlo + (i + 1) * hx
-        for j in range(n):
-            y0 = ylo + j * hy
-            y1 = yhi if j == n - 1 else ylo + (j + 1) * hy
-            if classify_prr_box(x0, x1, y0, y1, p) != OUTSIDE:
-                return False
+    x0 = xlo + i * hx
+    x1 = xhi if i == n - 1 else xlo + (i + 1) * hx
+    y0 = ylo + j * hy
+    y1 = yhi if j == n - 1 else ylo + (j + 1) * hy
+    return x0, x1, y0, y1
+
+
+@kernel
+def _refuted(xlo, xhi, ylo, yhi, p, n):
+    """True if each cell of an ``n`` x ``n`` grid over the box is ``OUTSIDE``."""
+    for k in range(n * n):
+        x0, x1, y0, y1 = grid_cell(xlo, xhi, ylo, yhi, n, k)
+        if classify_prr_box(x0, x1, y0, y1, p) != OUTSIDE:
+            return False
     return True
 
 

@@ -54,15 +54,27 @@ def squared_distance_range(xlo, xhi, ylo, yhi, cx, cy):
 
 
 @kernel
+def leg_label(slo, shi, out_lo, out_hi, in_lo, in_hi):
+    """``OUTSIDE`` if the squared distance range ``[slo, shi]`` has ``shi < out_lo²`` or
+    ``slo > out_hi²``, ``INSIDE`` if it lies in ``[in_lo², in_hi²]`` (thresholds ``>= 0``,
+    their squares rounded outward), else ``BOUNDARY``."""
+    if shi < down(out_lo * out_lo) or slo > up(out_hi * out_hi):
+        return OUTSIDE
+    if slo < up(in_lo * in_lo) or shi > down(in_hi * in_hi):
+        return BOUNDARY
+    return INSIDE
+
+
+@kernel
 def classify_rpr_box(xlo, xhi, ylo, yhi, p):
     """``OUTSIDE``, ``BOUNDARY`` or ``INSIDE`` for the (x, y) box (module docstring)."""
     inside = True
     for leg in range(3):
         slo, shi = squared_distance_range(xlo, xhi, ylo, yhi, p[leg, 0], p[leg, 1])
-        if shi < down(p[leg, 4] * p[leg, 4]) or slo > up(p[leg, 5] * p[leg, 5]):
+        label = leg_label(slo, shi, p[leg, 4], p[leg, 5], p[leg, 6], p[leg, 7])
+        if label == OUTSIDE:
             return OUTSIDE
-        if slo < up(p[leg, 6] * p[leg, 6]) or shi > down(p[leg, 7] * p[leg, 7]):
-            inside = False
+        inside = inside and label == INSIDE
     return INSIDE if inside else BOUNDARY
 
 

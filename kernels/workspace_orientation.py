@@ -75,6 +75,7 @@ import numba
 import numpy as np
 
 from ._jit import kernel
+from .workspace3prr import LEAF_GRID, grid_cell
 from .workspace_arc import (
     BOUNDARY,
     INSIDE,
@@ -84,9 +85,16 @@ from .workspace_arc import (
     arc_distance_range,
     settle_xy_box,
 )
+from .workspace_parallel_orientation import parallel_piece_status
 
 MAXIMAL = 0
 TOTAL = 1
+
+#: The mechanism of ``g`` and ``limits``: a 3-RRR (module docstring), a 3-RPR or a 3-PRR
+#: (:mod:`kernels.workspace_parallel_orientation`).
+RRR = 0
+RPR = 1
+PRR = 2
 
 #: Piece verdicts: some leg fails everywhere, undecided, every leg closes everywhere.
 PIECE_OUT = 0
@@ -122,13 +130,29 @@ def piece_status(cx, cy, rho_xy, phi_mid, phi_half, g, limits):
 
 
 @kernel
-def classify_box_range(xlo, xhi, ylo, yhi, mode, phi_lo, phi_hi, phi_min, g, limits, pieces):
+def box_piece_status(mechanism, xlo, xhi, ylo, yhi, phi_mid, phi_half, g, limits):
+    """:func:`piece_status` of the box for a 3-RRR (``mechanism`` = ``RRR``), else
+    :func:`kernels.workspace_parallel_orientation.parallel_piece_status` of a 3-RPR
+    (``RPR``) or a 3-PRR (``PRR``)."""
+    if mechanism != RRR:
+        return parallel_piece_status(
+            mechanism == PRR, xlo, xhi, ylo, yhi, phi_mid, phi_half, g, limits
+        )
+    cx = 0.5 * (xlo + xhi)
+    cy = 0.5 * (ylo + yhi)
+    rho_xy = 0.5 * math.hypot(xhi - xlo, yhi - ylo)
+    return piece_status(cx, cy, rho_xy, phi_mid, phi_half, g, limits)
+
+
+@kernel
+def classify_box_range(
+    xlo, xhi, ylo, yhi, mode, phi_lo, phi_hi, phi_min, g, limits, pieces, mechanism
+):  # fmt: skip
     """``(label, work)``: ``OUTSIDE``, ``BOUNDARY`` or ``INSIDE`` of the box for the maximal
     (``mode`` = ``MAXIMAL``) or total (``TOTAL``) orientation workspace over ``[phi_lo,
     phi_hi]`` (module docstring), and the orientation pieces looked at (the work done);
-    ``pieces`` is a scratch array of ``(PIECE_STACK, 2)``."""
-    cx = 0.5 * (xlo + xhi)
-    cy = 0.5 * (ylo + yhi)
+    ``pieces`` is a scratch array of ``(PIECE_STACK, 2)``. The piece test is
+    :func:`box_piece_status` of ``mechanism`` (both keep the platform points at ``g[2:8]``)."""
     rho_xy = 0.5 * math.hypot(xhi - xlo, yhi - ylo)
     # pieces no narrower than the box's own blur: |q|·width ≥ rho_xy (see module docstring)
     q_far = max(math.hypot(g[2], g[3]), math.hypot(g[4], g[5]), math.hypot(g[6], g[7]))
@@ -145,11 +169,11 @@ def classify_box_range(xlo, xhi, ylo, yhi, mode, phi_lo, phi_hi, phi_min, g, lim
         hi = pieces[n, 1]
         mid = 0.5 * (lo + hi)
         half = max(hi - mid, mid - lo)
-        at_point = piece_status(cx, cy, rho_xy, mid, 0.0, g, limits)
+        at_point = box_piece_status(mechanism, xlo, xhi, ylo, yhi, mid, 0.0, g, limits)
         if mode == MAXIMAL:
             if at_point == PIECE_IN:
                 return INSIDE, work
-            verdict = piece_status(cx, cy, rho_xy, mid, half, g, limits)
+            verdict = box_piece_status(mechanism, xlo, xhi, ylo, yhi, mid, half, g, limits)
             if verdict == PIECE_IN:
                 return INSIDE, work
             if verdict == PIECE_OUT:
@@ -157,7 +181,7 @@ def classify_box_range(xlo, xhi, ylo, yhi, mode, phi_lo, phi_hi, phi_min, g, lim
         else:
             if at_point == PIECE_OUT:
                 return OUTSIDE, work
-            verdict = piece_status(cx, cy, rho_xy, mid, half, g, limits)
+            verdict = box_piece_status(mechanism, xlo, xhi, ylo, yhi, mid, half, g, limits)
             if verdict == PIECE_IN:
                 continue
         if hi - lo > narrowest and n + 2 <= pieces.shape[0]:
@@ -174,30 +198,32 @@ def classify_box_range(xlo, xhi, ylo, yhi, mode, phi_lo, phi_hi, phi_min, g, lim
 
 
 @kernel
-def classify_boxes_range(boxes, mode, phi_lo, phi_hi, phi_min, g, limits, pieces, out):
+def classify_boxes_range(boxes, mode, phi_lo, phi_hi, phi_min, g, limits, pieces, out, mechanism):
     """:func:`classify_box_range` for every row ``x_lo, x_hi, y_lo, y_hi`` of ``boxes``."""
     for r in range(boxes.shape[0]):
         out[r] = classify_box_range(
             boxes[r, 0], boxes[r, 1], boxes[r, 2], boxes[r, 3],
-            mode, phi_lo, phi_hi, phi_min, g, limits, pieces,
+            mode, phi_lo, phi_hi, phi_min, g, limits, pieces, mechanism,
         )[0]  # fmt: skip
 
 
 @kernel(parallel=True)
 def range_level(
     mode, phi_lo, phi_hi, phi_min, g, limits, precision, rows, start, stop, children, outcome,
-    work,
+    work, mechanism,
 ):  # fmt: skip
     """Decide rows ``start .. stop - 1`` of a frontier of (x, y) boxes with
-    :func:`classify_box_range`, in parallel, then
-    :func:`~kernels.workspace_arc.settle_xy_box` (outside dropped, inside kept unsplit,
-    leaves at the precision kept as boundary, the rest halved across the wider side).
+        :func:`classify_box_range`, in parallel, then
+        :func:`~kernels.workspace_arc.settle_xy_box` (outside dropped, inside kept unsplit,
+        leaves at the precision kept as boundary, the rest halved across the wider side).
 
-    Row ``start + i`` writes ``children[2 i]``, ``children[2 i + 1]``, ``outcome[i]``
-    (``OUTSIDE``, ``BOUNDARY``, ``INSIDE`` or ``SPLIT``) and ``work[i]`` (orientation pieces
-    looked at). Boxes go to ``LANES`` interleaved lanes run by ``prange``, each with its own
-    piece stack; a box's outcome depends on that box only, so the result does not depend on
-    the number of threads.
+        Row ``start + i`` writes ``children[2 i]``, ``children[2 i + 1]``, ``outcome[i]``
+        (``OUTSIDE``, ``BOUNDARY``, ``INSIDE`` or ``SPLIT``) and ``work[i]`` (orientation pieces
+        looked at). A 3-PRR's boundary leaf is dropped when its ``LEAF_GRID`` × ``LEAF_GRID``
+    cells are all ``OUTSIDE`` (as :func:`kernels.workspace3prr.prr_level` does). Boxes go to
+    ``LANES`` interleaved lanes run by ``prange``, each with its own
+        piece stack; a box's outcome depends on that box only, so the result does not depend on
+        the number of threads.
     """
     n = stop - start
     lanes = min(LANES, n)
@@ -207,7 +233,22 @@ def range_level(
             r = start + i
             label, cost = classify_box_range(
                 rows[r, 0], rows[r, 1], rows[r, 2], rows[r, 3],
-                mode, phi_lo, phi_hi, phi_min, g, limits, pieces,
+                mode, phi_lo, phi_hi, phi_min, g, limits, pieces, mechanism,
             )  # fmt: skip
+            leaf = rows[r, 1] - rows[r, 0] <= precision and rows[r, 3] - rows[r, 2] <= precision
+            if mechanism == PRR and leaf and label == BOUNDARY:  # the 3-PRR's leaf check
+                refuted = True
+                for k in range(LEAF_GRID * LEAF_GRID):
+                    x0, x1, y0, y1 = grid_cell(rows[r, 0], rows[r, 1], rows[r, 2], rows[r, 3],
+                                               LEAF_GRID, k)  # fmt: skip
+                    cell, more = classify_box_range(
+                        x0, x1, y0, y1, mode, phi_lo, phi_hi, phi_min, g, limits, pieces,
+                        mechanism,
+                    )  # fmt: skip
+                    cost += more
+                    if cell != OUTSIDE:
+                        refuted = False
+                        break
+                label = OUTSIDE if refuted else label
             work[i] = cost
             outcome[i] = settle_xy_box(label, rows, r, children, 2 * i, precision)

@@ -8,7 +8,9 @@ the form and the precision ε where the kind has them, the start time (UTC, ISO 
 the duration in seconds.
 
 One home: :func:`job_provenance` (a job), :func:`study_provenance` (a sweep or an
-optimisation), :func:`write_sidecar` (written atomically right after its CSV, by the
+optimisation), :func:`point_provenance` (one point's tables of a sweep with
+``point_outputs``: the point's job as a job's, plus ``point``: the sweep's label, the
+point's number and its values by key path), :func:`write_sidecar` (written atomically right after its CSV, by the
 same writers, :func:`planar_tui.csvio.write_text_atomic`) and :func:`read_sidecar`. A
 sidecar is a planned output like its CSV (:func:`planned_sidecar`): the run plan checks
 it before anything runs, by the CSVs' rules (:func:`planar_tui.batch.check_planned`).
@@ -107,6 +109,7 @@ class Provenance:
     command: str = ""
     started_utc: str | None = None
     duration_s: float | None = None
+    point: Mapping[str, Any] | None = None
     format: int = FORMAT
 
     def to_json(self) -> str:
@@ -175,6 +178,22 @@ def study_provenance(kind: str, study: Any, timing: tuple[float, float] | None =
     made = _made(kind, study.label, study.preset_path, settings, base.robot, timing)
     return dataclasses.replace(
         made, seed=base.seed, samples=base.samples, form=base.form, precision_cm=base.precision_cm
+    )
+
+
+def point_provenance(sweep: Any, point: Any, timing: tuple[float, float] | None = None
+                     ) -> Provenance:  # fmt: skip
+    """The provenance of one point's CSV tables (``point_outputs``) of ``sweep`` (a
+    :class:`~planar_tui.sweep.spec.Sweep`): the point's job (the sweep's base job with the
+    point's values applied) as :func:`job_provenance` has it, and ``point`` = ``{"sweep":
+    label, "number": n, "values": {key path: value}}``."""
+    values = {
+        path.text: value.item() if hasattr(value, "item") else value  # NumPy scalars unwrapped
+        for path, value in zip(sweep.paths, point.values, strict=True)
+    }
+    return dataclasses.replace(
+        job_provenance(point.job, timing),
+        point={"sweep": sweep.label, "number": point.number, "values": values},
     )
 
 

@@ -409,3 +409,54 @@ async def test_the_picker_lists_bundled_and_recent_presets_and_opens_a_broken_on
         assert app.problems[0].key == "simulate.step_s"
         validation = str(app.query_one("#validation").render())
         assert validation.startswith("error: simulate.step_s")
+
+
+def test_tables_that_are_no_tables_become_empty_tables_with_one_line_each():
+    from planar_tui.app.workbench import repair_tables
+
+    document = {
+        "robot": 3,
+        "simulate": [{"duration_s": 1.0}, "fast"],
+        "torques": {"robot": [1, 2], "angles_deg": [[0.0]]},
+        "sensitivity": {"samples": 8},
+    }
+    lines = repair_tables(document)
+    assert lines == [
+        "robot: is an integer (expected a table [robot]); opened as an empty table, saving writes it",
+        "simulate[2]: is a text (expected a table [simulate[2]]); opened as an empty table, saving writes it",
+        "torques.robot: is an array (expected a table [torques.robot]); opened as an empty table, saving writes it",
+    ]  # fmt: skip
+    assert document == {
+        "robot": {},
+        "simulate": [{"duration_s": 1.0}, {}],
+        "torques": {"robot": {}, "angles_deg": [[0.0]]},
+        "sensitivity": {"samples": 8},
+    }
+    assert repair_tables(document) == []  # nothing left to repair
+
+
+@pytest.mark.slow
+@async_test
+async def test_a_preset_with_a_table_that_is_no_table_opens_marked_and_modified(tmp_path):
+    """``planar-tui tui PRESET`` (and the picker) open such a preset instead of refusing
+    it: the table empty, its fields marked, a warning naming it, the file untouched."""
+    from planar_tui.app.app import WorkbenchApp
+    from planar_tui.app.workbench import Workbench
+
+    text = (DATA / "tiny.toml").read_text()
+    start = text.index("[robot]")
+    end = text.index("\n[", start + 1)
+    broken = tmp_path / "broken.toml"
+    broken.write_text(text[:start] + "robot = 3\n" + text[end + 1 :], "utf-8")
+    before = broken.read_bytes()
+    app = WorkbenchApp(Workbench.open_marked(broken), output_dir=tmp_path)
+    async with app.run_test(size=(80, 24)) as pilot:
+        await until(pilot, lambda: bool(app.problems))
+        assert app.workbench.document["robot"] == {}
+        assert app.workbench.modified  # the file says robot = 3: saving would change it
+        assert any(problem.key.startswith("robot") for problem in app.problems)
+        shown = [str(toast.message) for toast in app._notifications]
+        assert any(
+            line.startswith("robot: is an integer (expected a table [robot])") for line in shown
+        )
+    assert broken.read_bytes() == before

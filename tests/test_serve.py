@@ -11,10 +11,11 @@ import sys
 import time
 import urllib.error
 import urllib.request
+from contextlib import contextmanager
 
 import pytest
 
-from planar_tui.cli.serve import server_command
+from planar_tui.cli.serve import public_url, server_command
 from tests.conftest import PRESETS, REPO
 
 
@@ -42,16 +43,17 @@ def free_port() -> int:
         return probe.getsockname()[1]
 
 
-@pytest.mark.slow
-def test_serve_answers_with_the_app_page_on_localhost_and_stops(tmp_path):
-    port = free_port()
+@contextmanager
+def served(tmp_path, port: int, *options: str):
+    """A ``planar-tui serve paper-a-table1 OPTIONS`` process on ``port``: yields (the page
+    it answers at 127.0.0.1, the log file); stopped by SIGTERM after, exit 0."""
     env = {**os.environ, "PYTHONPATH": str(REPO)}
     log = tmp_path / "server.log"
+    command = [sys.executable, "-m", "planar_tui", "serve", "paper-a-table1", "--port", str(port)]
     with log.open("wb") as output:
         server = subprocess.Popen(
-            [sys.executable, "-m", "planar_tui", "serve", "paper-a-table1", "--port", str(port)],
-            cwd=tmp_path, env=env, stdout=output, stderr=subprocess.STDOUT,
-        )  # fmt: skip
+            [*command, *options], cwd=tmp_path, env=env, stdout=output, stderr=subprocess.STDOUT
+        )
     try:
         page, deadline = None, time.monotonic() + 120  # a busy machine: the bound is a hang
         while page is None:
@@ -63,11 +65,7 @@ def test_serve_answers_with_the_app_page_on_localhost_and_stops(tmp_path):
                     page = answer.read().decode()
             except (urllib.error.URLError, ConnectionError):
                 time.sleep(0.2)
-        assert "<div>planar-tui</div>" in page  # the app's name on the page
-        assert f"ws://127.0.0.1:{port}/ws" in page  # the terminal's websocket, same server
-        assert "textual.js" in page
-        screen = asyncio.run(first_screen(f"http://127.0.0.1:{port}/ws"))
-        assert b"ok: paper-a-table1, 3 jobs valid" in screen  # the app itself, validated
+        yield page, log
     finally:
         server.send_signal(signal.SIGTERM)
         try:
@@ -77,7 +75,47 @@ def test_serve_answers_with_the_app_page_on_localhost_and_stops(tmp_path):
             server.wait(timeout=10)
             pytest.fail("the server did not stop on SIGTERM")
     assert server.returncode == 0, log.read_text()
+
+
+@pytest.mark.slow
+def test_serve_answers_with_the_app_page_on_localhost_and_stops(tmp_path):
+    port = free_port()
+    with served(tmp_path, port) as (page, log):
+        assert "<div>planar-tui</div>" in page  # the app's name on the page
+        assert f"ws://127.0.0.1:{port}/ws" in page  # the terminal's websocket, same server
+        assert "textual.js" in page
+        screen = asyncio.run(first_screen(f"http://127.0.0.1:{port}/ws"))
+        assert b"ok: paper-a-table1, 3 jobs valid" in screen  # the app itself, validated
     assert "serving on http://127.0.0.1:" in log.read_text()
+
+
+@pytest.mark.slow
+def test_on_every_interface_the_page_names_the_public_url_for_its_websocket(tmp_path):
+    """Bound to 0.0.0.0 the page must not send the browser to ws://0.0.0.0 (unreachable):
+    it names ``--public-url``, here this machine's loopback address."""
+    port = free_port()
+    public = f"http://127.0.0.1:{port}"
+    with served(tmp_path, port, "--host", "0.0.0.0", "--public-url", public) as (page, log):
+        assert "ws://0.0.0.0" not in page
+        assert f"ws://127.0.0.1:{port}/ws" in page  # the browser's websocket, reachable
+    assert f"browsers open {public}" in log.read_text()
+
+
+def test_the_public_url_is_checked_and_defaults_to_a_reachable_name():
+    import socket
+
+    assert public_url("127.0.0.1", 8000, None) == "http://127.0.0.1:8000"
+    assert public_url("0.0.0.0", 8001, None) == f"http://{socket.getfqdn()}:8001"
+    assert public_url("::1", 8002, None) == "http://[::1]:8002"
+    assert public_url("0.0.0.0", 8000, "https://lab.example/") == "https://lab.example"
+
+
+def test_a_bad_public_url_is_one_line_exit_2(cli):
+    result = cli("serve", "--public-url", "ftp://x")
+    assert result.exit_code == 2
+    assert result.stderr == (
+        "error: command line: --public-url: is 'ftp://x' (expected an http:// or https:// URL)\n"
+    )
 
 
 def test_the_served_command_opens_the_preset_by_absolute_path(tmp_path, monkeypatch):

@@ -202,7 +202,9 @@ point_outputs = "pts"
 """)  # fmt: skip
     out = tmp_path / "out"
     _interrupted_after(ten, out, 2)
-    assert sorted(p.name for p in (out / "pts").iterdir()) == ["point-01.csv", "point-02.csv"]
+    assert sorted(p.name for p in (out / "pts").iterdir()) == [
+        "point-01.csv", "point-01.csv.json", "point-02.csv", "point-02.csv.json"
+    ]  # fmt: skip
     (out / "pts" / "notes.txt").write_text("mine")  # not a point file: kept
     three = the_sweep(tmp_path, TORQUES, TORQUES_BASE, """job = "torques"
 values."robot.masses_kg[2]" = [1.0, 1.5, 2.0]
@@ -211,7 +213,7 @@ point_outputs = "pts"
 """)  # fmt: skip
     run_sweep(three, out_dir=out, resume=True)  # another sweep's checkpoint: afresh
     names = sorted(p.name for p in (out / "pts").iterdir())
-    assert names == ["notes.txt", "point-1.csv", "point-2.csv", "point-3.csv"]
+    assert names == ["notes.txt", *(f"point-{n}.csv{s}" for n in (1, 2, 3) for s in ("", ".json"))]
 
 
 def test_resume_rewrites_the_missing_point_files_of_finished_points(tmp_path, monkeypatch):

@@ -19,16 +19,19 @@ point_outputs = "pts"
 """
 
 
-def test_a_users_point_file_in_the_folder_is_refused_by_name_and_kept(tmp_path, cli):
+@pytest.mark.parametrize("name", ["point-99.csv", "point-1.csv.json"])
+def test_a_users_point_file_in_the_folder_is_refused_by_name_and_kept(tmp_path, cli, name):
+    """A CSV or a provenance sidecar (``point-1.csv.json`` would be overwritten)."""
     preset = write(tmp_path, "p.toml", TORQUES, POINTS, **TORQUES_BASE)
     out = tmp_path / "out"
     (out / "pts").mkdir(parents=True)
-    (out / "pts" / "point-99.csv").write_text("mine\n")
+    (out / "pts" / name).write_text("mine\n")
     result = cli("sweep", preset, "--out-dir", out, "--workers", "1")
     assert result.exit_code == ExitCode.BAD_INPUT
     line = one_line(result)
-    assert "point-99.csv" in line and "did not write" in line
-    assert (out / "pts" / "point-99.csv").read_text() == "mine\n"
+    assert name in line and "did not write" in line
+    assert (out / "pts" / name).read_text() == "mine\n"
+    assert sorted(p.name for p in (out / "pts").iterdir()) == [name]
     assert not (out / "s.csv").exists()
 
 
@@ -50,16 +53,19 @@ def test_a_fresh_run_deletes_only_the_point_files_its_record_names(tmp_path, cli
     preset = write(tmp_path, "p.toml", TORQUES, POINTS, **TORQUES_BASE)
     out = tmp_path / "out"
     assert cli("sweep", preset, "--out-dir", out, "--workers", "1").exit_code == 0
-    assert sorted(p.name for p in (out / "pts").iterdir()) == ["point-1.csv", "point-2.csv"]
+    both = ["point-1.csv", "point-1.csv.json", "point-2.csv", "point-2.csv.json"]
+    assert sorted(p.name for p in (out / "pts").iterdir()) == both
     record = out / "s.csv.point-files.txt"
-    assert record.read_text().split() == ["point-1.csv", "point-2.csv"]
+    assert record.read_text().split() == both  # each name recorded before its file
     (out / "pts" / "notes.txt").write_text("kept")  # no point file: not the sweep's business
     (out / "s.csv").unlink()
     one = write(tmp_path, "p.toml", TORQUES, POINTS.replace("[1.0, 2.0]", "[3.0]"),
                 **TORQUES_BASE)  # fmt: skip
     assert cli("sweep", one, "--out-dir", out, "--workers", "1").exit_code == 0
-    assert sorted(p.name for p in (out / "pts").iterdir()) == ["notes.txt", "point-1.csv"]
-    assert record.read_text().split() == ["point-1.csv"]
+    assert sorted(p.name for p in (out / "pts").iterdir()) == [
+        "notes.txt", "point-1.csv", "point-1.csv.json"
+    ]  # fmt: skip
+    assert record.read_text().split() == ["point-1.csv", "point-1.csv.json"]
 
 
 def _interrupted_checkpoint(tmp_path, cli, sweep_text=POINTS):

@@ -52,6 +52,13 @@ def check_against_reference(robot, limits, phi, mode, precision, samples):
     limits_rad = tuple((math.radians(a), math.radians(b)) for a, b in limits)
     inner, outer = reference_polygons(robot, limits_rad, phi, mode, samples, segments=512)
     assert inner.area <= outer.area
+    assert_bracketed(outcome, inner, outer)
+    return outcome, inner, outer
+
+
+def assert_bracketed(outcome, inner, outer):
+    """The paving's inside boxes lie in the ``outer`` reference and its kept boxes hold the
+    ``inner`` one (as sets, to 1e-9 relative), and the area brackets overlap."""
     inside = union_of(outcome.boxes[outcome.status == 2])
     kept = union_of(outcome.boxes)
     scale = max(outer.area, 1.0)
@@ -59,7 +66,6 @@ def check_against_reference(robot, limits, phi, mode, precision, samples):
     assert inner.difference(kept).area <= 1e-9 * scale
     assert outcome.area_inside_cm2 <= outer.area * (1 + 1e-12)
     assert inner.area <= outcome.area_kept_cm2 * (1 + 1e-12)
-    return outcome, inner, outer
 
 
 @pytest.mark.parametrize("mode", ["maximal", "total"])

@@ -21,7 +21,9 @@ def run_app(preset_argument: str | None = None, opened: tuple[str, ...] = ()) ->
     """Open the workbench on a preset path or bundled name (default: the preset last
     opened or saved, see :func:`last_preset`, else a bundled preset).
 
-    A bad preset raises the CLI's :class:`~planar_tui.errors.PresetError` before the
+    A preset whose values are wrong opens with its problems marked on the tabs (a table
+    that is no table as an empty one, :meth:`Workbench.open_marked`); one that cannot be
+    read or is no TOML raises the CLI's :class:`~planar_tui.errors.PresetError` before the
     terminal is taken over, so the CLI prints its one-line error and exits with 2; so does
     a result CSV of ``opened`` (``planar-tui tui --open``) that cannot be read. Those open
     into the run history, which the app shows first.
@@ -40,7 +42,7 @@ def run_app(preset_argument: str | None = None, opened: tuple[str, ...] = ()) ->
     from planar_tui.app.app import WorkbenchApp
     from planar_tui.app.workbench import Workbench
 
-    app = WorkbenchApp(Workbench.open(preset_argument or last_preset()), warm_kernels=True)
+    app = WorkbenchApp(Workbench.open_marked(preset_argument or last_preset()), warm_kernels=True)
     app.open_results(list(opened))
     app.run()
     code = app.return_code or 0

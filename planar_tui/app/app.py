@@ -180,7 +180,7 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
                 exit_on_error=False,
             )  # fmt: skip
         self.set_interval(REFRESH_S, self._refresh_progress)
-        self.revalidate()
+        self.report_opened(say_valid=False)
 
     # -- state helpers --------------------------------------------------------------
     @property

@@ -38,25 +38,6 @@ if TYPE_CHECKING:
 __all__ = ["FileActions"]
 
 
-def tables_are_tables(document: dict[str, Any]) -> bool:
-    """Whether every robot and job table of a preset document is a table (or an array of
-    tables), and so is a job's own robot table: what the tabs need to show a preset whose
-    values are wrong (a value of the wrong type inside a table is marked on its field)."""
-    from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
-
-    def table_ok(value: Any) -> bool:
-        return isinstance(value, dict) and all(
-            isinstance(value[name], dict) for name in ROBOT_KINDS if name in value
-        )
-
-    for name in (*ROBOT_KINDS, *JOB_KINDS):
-        value = document.get(name)
-        tables = value if isinstance(value, list) else [value]
-        if value is not None and not all(table_ok(table) for table in tables):
-            return False
-    return True
-
-
 class FileActions:
     """Mixed into :class:`~planar_tui.app.app.WorkbenchApp` (which provides
     ``workbench``, ``output_dir``, ``jobs``, ``revalidate`` and Textual's ``App``)."""
@@ -204,25 +185,33 @@ class FileActions:
         from planar_tui.app.workbench import Workbench
 
         try:
-            bench = Workbench.open(argument, check=False)
-            if not tables_are_tables(bench.document):
-                bench.validate()  # a table that is no table: the tabs cannot show it
+            bench = Workbench.open_marked(argument)
         except PresetError as error:
             self.push_screen(MessageDialog("Cannot open preset", str(error)))
             return False
         self.workbench = bench
         await self.recompose()
-        valid = self.revalidate()
         self.show_document_state()
         if not is_bundled(bench.path):
             recent.remember("presets", bench.path)
+        self.report_opened()
+        return True
+
+    def report_opened(self, *, say_valid: bool = True) -> None:
+        """Validate the document just opened and say so: opened (unless ``say_valid`` is
+        false: the app's start), or opened with its problems marked; a table that was no
+        table is said in a warning of its own."""
+        valid = self.revalidate()
+        for note in self.workbench.take_notes():
+            self.notify(note, title="Opened as an empty table", severity="warning", timeout=20)
+        path = self.workbench.path
         if valid:
-            self.notify(f"Opened {bench.path}")
+            if say_valid:
+                self.notify(f"Opened {path}")
         else:
             count = len(self.problems)
-            self.notify(f"Opened {bench.path} with {count} problem{'s' if count > 1 else ''}: "
+            self.notify(f"Opened {path} with {count} problem{'s' if count > 1 else ''}: "
                         "marked on the tabs (ctrl+g: go to the first)", severity="warning")  # fmt: skip
-        return True
 
     # -- save -------------------------------------------------------------------------
     def action_save(self) -> None:

@@ -5,7 +5,9 @@ A run keeps what made it (its :class:`~planar_tui.provenance.Provenance`: preset
 kind, robot, settings, seed, N, form, ε, start time and duration) and its main table.
 A CSV opened from a file (``planar-tui tui --open RESULT.csv``, the history's ``o``) reads
 its provenance sidecar (``RESULT.csv.json``); without one, the kind is inferred from the
-header (as ``planar-tui plot`` does) and the run says so (:attr:`Run.note`).
+header (as ``planar-tui plot`` does) and the run says so (:attr:`Run.note`). A sweep's
+point CSV (``point_outputs``) opens as its job's run, labelled by the sweep and the point's
+number, its values in the detail.
 """
 
 from __future__ import annotations
@@ -87,6 +89,9 @@ class Run:
             lines.append(
                 "settings: " + ", ".join(f"{k} = {_toml(v)}" for k, v in p.settings.items())
             )
+            if p.point:  # one point's tables of a sweep (point_outputs)
+                values = ", ".join(f"{k} = {_toml(v)}" for k, v in p.point["values"].items())
+                lines.append(f"point {p.point['number']} of {p.point['sweep']}: {values}")
             if self.note:
                 lines.append(self.note)
         if self.summary:
@@ -199,6 +204,8 @@ class RunHistory:
             if not kind_ok:
                 note = f"note: the sidecar says {record.kind}, the header looks like {inferred}"
         label = record.label if record is not None else path.stem
+        if record is not None and record.point:
+            label = f"{record.point['sweep']} point {record.point['number']}"
         summary = f"{len(table.rows)} rows from {path.name}"
         return self._add(kind=kind, label=label, table=table, provenance=record,
                          source=str(path), summary=summary, note=note)  # fmt: skip

@@ -137,6 +137,16 @@ class Workbench:
             bench.validate()
         return bench
 
+    @classmethod
+    def open_marked(cls, argument: str | Path | None) -> Workbench:
+        """Open a preset for the app whatever its values (they are marked on the tabs): a
+        table that is no table (``robot = 3``) becomes an empty table in the document, the
+        file as it was (so the document shows as modified), and :attr:`notes` says which
+        (:func:`repair_tables`). Only a file that cannot be read or is no TOML raises."""
+        bench = cls.open(argument, check=False)
+        bench.notes += repair_tables(bench.document)
+        return bench
+
     # -- edits, undo, saved state -----------------------------------------------------
     @property
     def modified(self) -> bool:
@@ -417,3 +427,42 @@ def find_unreadable(document: Any) -> tuple[str | None, str, str]:
             continue
         stack.extend((k, v, depth + 1) for k, v in reversed(items))
     return None, "", "a preset of plain TOML values"
+
+
+def repair_tables(document: dict[str, Any]) -> list[str]:
+    """Make every robot and job table of a preset document a table, as the tabs need (a
+    value of the wrong type inside a table is marked on its field instead): a robot or job
+    table, an entry of an array of job tables, or a job's own robot table that is no table
+    is replaced by an empty table. Returns one line per replacement, in the loader's words
+    (``robot: is an integer (expected a table [robot])``)."""
+    from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
+
+    def kind_of(value: Any) -> str:
+        name = {bool: "a boolean", int: "an integer", float: "a number", str: "a text"}
+        return name.get(type(value), "an array" if isinstance(value, list) else "a value")
+
+    lines: list[str] = []
+
+    def made_table(value: Any, where: str) -> dict[str, Any]:
+        if isinstance(value, dict):
+            return value
+        lines.append(f"{where}: is {kind_of(value)} (expected a table [{where}]); opened as an "
+                     "empty table, saving writes it")  # fmt: skip
+        return {}
+
+    for name in (*ROBOT_KINDS, *JOB_KINDS):
+        if name not in document:
+            continue
+        value = document[name]
+        if name in JOB_KINDS and isinstance(value, list):
+            labels = [f"{name}[{k + 1}]" for k in range(len(value))]
+            document[name] = [made_table(v, label) for v, label in zip(value, labels, strict=True)]
+            labelled = list(zip(labels, document[name], strict=True))
+        else:
+            document[name] = made_table(value, name)
+            labelled = [(name, document[name])]
+        for label, table in labelled if name in JOB_KINDS else ():
+            for robot in ROBOT_KINDS:
+                if robot in table:
+                    table[robot] = made_table(table[robot], f"{label}.{robot}")
+    return lines

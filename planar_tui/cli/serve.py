@@ -4,7 +4,9 @@
 Each browser tab that opens the page starts its own ``planar-tui tui`` process on the
 preset; the server binds to ``127.0.0.1`` by default, so only this machine reaches it. From
 a laptop, tunnel the port over SSH (``ssh -L 8000:localhost:8000 HOST``) and open
-``http://localhost:8000``.
+``http://localhost:8000``. Bound to every interface (``--host 0.0.0.0``), the page must
+name an address the browser can reach for its websocket: ``--public-url`` (default
+``http://HOSTNAME:PORT`` with this machine's name, :func:`public_url`).
 """
 
 from __future__ import annotations
@@ -35,6 +37,29 @@ def server_command(preset: str | None, opened: list[str]) -> str:
     return shlex.join(words)
 
 
+#: Addresses that bind every interface: no browser can connect to them.
+WILDCARD_HOSTS = ("0.0.0.0", "::", "")
+
+
+def public_url(host: str, port: int, given: str | None) -> str:
+    """The URL the served page gives the browser for its websocket: ``given`` (checked:
+    ``http://`` or ``https://`` and a host), else ``http://HOST:PORT``, with this machine's
+    name (:func:`socket.getfqdn`) in place of a wildcard ``HOST``."""
+    import socket
+    from urllib.parse import urlsplit
+
+    if given is not None:
+        parts = urlsplit(given)
+        if parts.scheme not in ("http", "https") or not parts.hostname:
+            raise PresetError(
+                "command line", "--public-url", f"is {given!r}", "an http:// or https:// URL"
+            )
+        return given.rstrip("/")
+    shown = socket.getfqdn() if host in WILDCARD_HOSTS else host
+    shown = f"[{shown}]" if ":" in shown else shown
+    return f"http://{shown}:{port}"
+
+
 #: The preset argument of ``tui`` and ``serve``.
 AppPresetArg = Annotated[
     str | None,
@@ -59,12 +84,22 @@ def serve(
     ] = "127.0.0.1",
     port: Annotated[int, typer.Option("--port", help="TCP port (1-65535).")] = 8000,
     open_results: OpenOption = None,
+    public: Annotated[
+        str | None,
+        typer.Option(
+            "--public-url",
+            metavar="URL",
+            help="The address browsers reach the server at (default http://HOST:PORT, this "
+            "machine's name for --host 0.0.0.0).",
+        ),
+    ] = None,
 ) -> None:
     """Serve the workbench in a web browser (textual-serve), on http://HOST:PORT; from a
     laptop: ssh -L 8000:localhost:8000 HOST, then open http://localhost:8000."""
     with reported_errors():
         if not 1 <= port <= 65535:
             raise PresetError("command line", "--port", f"is {port}", "a port from 1 to 65535")
+        url = public_url(host, port, public)
         command = server_command(preset, list(open_results or ()))
     try:
         from textual_serve.server import Server
@@ -73,8 +108,13 @@ def serve(
             'error: planar-tui serve needs textual-serve: pip install "planar-tui[serve]"',
             ExitCode.BAD_INPUT,
         ) from None
-    server = Server(command, host=host, port=port, title="planar-tui")
-    stderr.print(f"planar-tui: serving on http://{host}:{port} (Ctrl-C stops)", markup=False)
+    server = Server(command, host=host, port=port, title="planar-tui", public_url=url)
+    reached = "" if url == f"http://{host}:{port}" else f", browsers open {url}"
+    stderr.print(
+        f"planar-tui: serving on http://{host}:{port}{reached} (Ctrl-C stops)",
+        markup=False,
+        soft_wrap=True,  # a URL is never cut by a line break
+    )
     try:
         server.serve()
     except OSError as error:

@@ -316,7 +316,11 @@ def from_planar_result(job: Any, result: Any) -> Any:
 
     outcome = result.outcome
     boxes = np.asarray(outcome.boxes)[:, :4] if len(outcome.boxes) else np.zeros((0, 4))
-    exact = job.spec.mechanism.polygon(job.robot, job.spec, BOUNDARY_SEGMENTS, False)
+    exact = (
+        None
+        if isinstance(job.spec.orientation_deg, tuple)  # a range: no single boundary
+        else job.spec.mechanism.polygon(job.robot, job.spec, BOUNDARY_SEGMENTS, False)
+    )
     if getattr(result, "companions", None):
         return draw_tolerance(job, result, exact)
     return draw(boxes, np.asarray(outcome.status) == INSIDE, map_title(job, outcome),

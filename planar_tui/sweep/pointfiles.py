@@ -10,6 +10,13 @@ Before anything runs (:func:`check_point_folder`) a sweep refuses a point folder
 a symbolic link (or lies under one inside the output folder: its files would be written,
 and deleted, elsewhere), and a folder holding ``point-*.csv`` files its record does not
 name (a user's own, another sweep's): one line naming one of them.
+
+Each point CSV has its provenance sidecar (``point-007.csv.json``,
+:func:`planar_tui.provenance.point_provenance`), a point file like its CSV: recorded
+before it is written (:func:`write_point_file`), deleted with the CSV when the sweep
+starts afresh, looked for when it resumes (a point whose CSV or sidecar is missing runs
+again), and a ``point-*.csv.json`` the record does not name is foreign (refused, never
+deleted or overwritten).
 """
 
 from __future__ import annotations
@@ -17,13 +24,18 @@ from __future__ import annotations
 import os
 import re
 from pathlib import Path
+from typing import Any
 
 from planar_tui.errors import PresetError
+from planar_tui.provenance import has_sidecar, sidecar_path, write_sidecar
 
 #: The record's suffix, after the sweep CSV's name.
 SUFFIX = ".point-files.txt"
-#: The names point files have (``point-007.csv``, ``point-007-boxes.csv``).
-POINT_FILE = re.compile(r"^point-[0-9]+(?:-[A-Za-z0-9_.-]+)?\.csv$")
+#: The names point files have (``point-007.csv``, ``point-007-boxes.csv`` and their
+#: sidecars ``point-007.csv.json``, ``point-007-boxes.csv.json``).
+POINT_FILE = re.compile(r"^point-[0-9]+(?:-[A-Za-z0-9_.-]+)?\.csv(?:\.json)?$")
+#: The patterns of the point files a folder may hold (CSVs and their sidecars).
+POINT_GLOBS = ("point-*.csv", "point-*.csv.json")
 
 
 def manifest_path(output: Path) -> Path:
@@ -57,18 +69,21 @@ def symlink_in(folder: Path, out_dir: Path) -> Path | None:
 
 
 def foreign_files(folder: Path, manifest: Path) -> list[Path]:
-    """The ``point-*.csv`` entries of ``folder`` that the record does not name, sorted."""
+    """The ``point-*.csv`` and ``point-*.csv.json`` entries of ``folder`` that the record
+    does not name, sorted."""
     if not folder.is_dir():
         return []
     mine = recorded_files(manifest)
-    return sorted(path for path in folder.glob("point-*.csv") if path.name not in mine)
+    found = {path for pattern in POINT_GLOBS for path in folder.glob(pattern)}
+    return sorted(path for path in found if path.name not in mine)
 
 
 def check_point_folder(
     preset_path: Path | str, key: str, folder: Path, out_dir: Path, manifest: Path
 ) -> None:
     """Refuse (:class:`PresetError`, exit code 2) a point folder that is, or lies under, a
-    symbolic link, or that holds ``point-*.csv`` files this sweep did not write."""
+    symbolic link, or that holds ``point-*.csv`` (or ``.csv.json``) files this sweep did
+    not write."""
     link = symlink_in(folder, out_dir)
     if link is not None:
         raise PresetError(
@@ -122,3 +137,30 @@ class PointFileRecord:
             stream.flush()
             os.fsync(stream.fileno())
         self._known.add(name)
+
+
+def with_sidecars(names: list[str]) -> list[str]:
+    """``names`` (point CSVs), each followed by its sidecar's name when it gets one
+    (:func:`planar_tui.provenance.has_sidecar`): the files a finished point leaves."""
+    return [made for name in names
+            for made in [name, *([sidecar_path(name).name] if has_sidecar(name) else [])]]  # fmt: skip
+
+
+def write_point_file(path: Path, text: str, record: PointFileRecord | None, provenance: Any
+                     ) -> None:  # fmt: skip
+    """Write one point CSV ``text`` at ``path`` and its sidecar ``provenance`` (a
+    :class:`~planar_tui.provenance.Provenance`), each atomically and recorded first; a
+    file that cannot be written is :class:`~planar_tui.batch.OutputFailed`."""
+    from planar_tui.batch import OutputFailed
+    from planar_tui.csvio import write_atomic
+
+    target = path
+    try:
+        if record is not None:
+            for name in with_sidecars([path.name]):
+                record.add(name)
+        write_atomic(path, lambda stream: stream.write(text))
+        target = sidecar_path(path)
+        write_sidecar(path, provenance)
+    except OSError as error:
+        raise OutputFailed(target, error.strerror or str(error)) from None

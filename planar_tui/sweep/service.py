@@ -16,12 +16,23 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from planar_tui.csvio import CsvTable, write_atomic, write_csv_atomic
+from planar_tui.csvio import CsvTable, write_csv_atomic
 from planar_tui.errors import PresetError
 from planar_tui.progress import Progress
-from planar_tui.provenance import planned_sidecar, study_provenance, write_sidecar
+from planar_tui.provenance import (
+    planned_sidecar,
+    point_provenance,
+    study_provenance,
+    write_sidecar,
+)
 from planar_tui.sweep.checkpoint import CheckpointWriter, checkpoint_path, read_finished
-from planar_tui.sweep.pointfiles import PointFileRecord, check_point_folder, manifest_path
+from planar_tui.sweep.pointfiles import (
+    PointFileRecord,
+    check_point_folder,
+    manifest_path,
+    with_sidecars,
+    write_point_file,
+)
 from planar_tui.sweep.points import Point, SweepPoints, make_points
 from planar_tui.sweep.spec import Sweep
 from planar_tui.sweep.table import sweep_table
@@ -242,9 +253,10 @@ def run_sweep(
 
             def files_missing(number: int) -> bool:
                 job = job_of(number)
-                return job is None or not all(
-                    (folder / name).is_file() for name in point_file_names(stem(number), job)
-                )
+                if job is None:
+                    return True
+                names = with_sidecars(point_file_names(stem(number), job))
+                return not all((folder / name).is_file() for name in names)
 
             missing = [number for number, outcome in finished.items()
                        if outcome.status == OK and files_missing(number)]  # fmt: skip
@@ -288,14 +300,11 @@ def run_sweep(
                 on_outcome(run.outcomes[number])
 
         def finished_point(outcome: PointOutcome) -> None:
-            if folder is not None:
+            if folder is not None and outcome.tables:
+                timing = (time.time() - outcome.seconds, outcome.seconds)
+                provenance = point_provenance(sweep, points[outcome.number - 1], timing)
                 for name, text in outcome.tables.items():
-                    try:
-                        if record is not None:
-                            record.add(name)
-                        write_atomic(folder / name, lambda stream, text=text: stream.write(text))
-                    except OSError as error:
-                        raise OutputFailed(folder / name, error.strerror or str(error)) from None
+                    write_point_file(folder / name, text, record, provenance)
             if writer is not None:
                 try:
                     writer.add(outcome)

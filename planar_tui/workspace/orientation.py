@@ -36,9 +36,9 @@ def read_orientation(reader, name, default, robot, values):
     return (lo, hi)
 
 
-def check_orientation(values: dict, reader) -> None:
-    """``orientation_mode`` goes with a range and only with one; a range takes the
-    ``arc-distance`` form only (its default there)."""
+def check_orientation(values: dict, reader, range_form: str = "arc-distance") -> None:
+    """``orientation_mode`` goes with a range and only with one; a range takes the form
+    ``range_form`` only (the 3-RRR's ``arc-distance``, its default there)."""
     mode = values["orientation_mode"]
     ranged = isinstance(values["orientation_deg"], tuple)
     if ranged and mode is None:
@@ -53,11 +53,11 @@ def check_orientation(values: dict, reader) -> None:
             f"is {mode!r} with a single orientation_deg",
             "orientation_deg = [lo, hi], or no orientation_mode",
         )
-    if ranged and values["form"] != "arc-distance":
+    if ranged and values["form"] != range_form:
         raise reader.error(
             "form",
             f"is {values['form']!r} with orientation_deg = [lo, hi]",
-            '"arc-distance" (the only form over a range of orientations)',
+            f'"{range_form}" (the only form over a range of orientations)',
         )
 
 
@@ -67,7 +67,7 @@ def default_form(robot, values) -> str:
     return "arc-distance" if isinstance(values.get("orientation_deg"), tuple) else "mean-value"
 
 
-def _arc_extent(q: tuple[float, float], lo: float, hi: float) -> tuple[float, ...]:
+def arc_extent(q: tuple[float, float], lo: float, hi: float) -> tuple[float, ...]:
     """``(min, max)`` of the x and y components of :math:`R(\\varphi) q` over
     :math:`\\varphi \\in [lo, hi]` (radians): the ends and the axis crossings inside."""
     radius, angle = math.hypot(*q), math.atan2(q[1], q[0])
@@ -83,21 +83,29 @@ def _arc_extent(q: tuple[float, float], lo: float, hi: float) -> tuple[float, ..
 
 def reach_box_for(robot: Robot3RRR, orientation_deg) -> tuple[float, float, float, float]:
     """Bounding box of the legs' reach at one orientation, or of the union of the reaches
-    over a range: at each φ the reach is :math:`\\cap_i D(A_i - R(\\varphi) q_i, l_1 + l_2)`,
-    whose x extent lies in :math:`[\\max_i \\min_\\varphi c_{x,i} - L, \\min_i \\max_\\varphi
-    c_{x,i} + L]` (y alike)."""
+    over a range (:func:`range_reach_box` with every leg's reach :math:`l_1 + l_2`)."""
     if not isinstance(orientation_deg, tuple):
         return robot.reach_box_cm(math.radians(orientation_deg))
-    lo, hi = (math.radians(v) for v in orientation_deg)
     reach = robot.proximal_cm + robot.distal_cm
-    extents = [_arc_extent(q, lo, hi) for q in robot.platform_points_cm()]
-    bases = robot.base_joints_cm()
+    return range_reach_box(
+        robot.base_joints_cm(), robot.platform_points_cm(), (reach,) * 3, orientation_deg
+    )
+
+
+def range_reach_box(bases, points, reaches, orientation_deg) -> tuple[float, float, float, float]:
+    """Bounding box of the union over :math:`\\varphi \\in` ``orientation_deg`` (degrees) of
+    :math:`\\cap_i D(A_i - R(\\varphi) q_i, r_i)` (base joints ``bases``, platform points
+    ``points``, radii ``reaches``): its x extent lies in :math:`[\\max_i (\\min_\\varphi
+    c_{x,i} - r_i), \\min_i (\\max_\\varphi c_{x,i} + r_i)]` (y alike)."""
+    lo, hi = (math.radians(v) for v in orientation_deg)
+    extents = [arc_extent(q, lo, hi) for q in points]
+    legs = list(zip(bases, extents, reaches, strict=True))
     # centre c_i = A_i - R q_i: its min is A_i - max(R q_i)
     return (
-        max(a[0] - e[1] for a, e in zip(bases, extents, strict=True)) - reach,
-        min(a[0] - e[0] for a, e in zip(bases, extents, strict=True)) + reach,
-        max(a[1] - e[3] for a, e in zip(bases, extents, strict=True)) - reach,
-        min(a[1] - e[2] for a, e in zip(bases, extents, strict=True)) + reach,
+        max(a[0] - e[1] - r for a, e, r in legs),
+        min(a[0] - e[0] + r for a, e, r in legs),
+        max(a[1] - e[3] - r for a, e, r in legs),
+        min(a[1] - e[2] + r for a, e, r in legs),
     )
 
 
@@ -126,47 +134,53 @@ def geometry_vector(robot: Robot3RRR):
     return np.array(values)
 
 
-def phi_min_rad(robot: Robot3RRR, precision_cm: float) -> float:
+def phi_min_rad(points, precision_cm: float) -> float:
     """Narrowest orientation piece: its chord term :math:`2|q|\\sin(h/2) \\le |q| h` stays
-    below ``precision_cm / 2`` for the farthest platform point (h the half-width)."""
-    farthest = max(math.hypot(*q) for q in robot.platform_points_cm())
+    below ``precision_cm / 2`` for the farthest platform point of ``points`` (h the
+    half-width)."""
+    farthest = max(math.hypot(*q) for q in points)
     return precision_cm / max(farthest, 1e-300)
 
 
-def _range_stage(robot, spec, seeds, precision, budget, inside_cm2=0.0):
+def range_stage(g, limits, mechanism, points, spec, seeds, precision, budget, inside_cm2=0.0):
     """Level-wise 2-D paving of the disjoint (x, y) boxes ``seeds`` with the orientation-range
-    test, every level in parallel (:func:`planar_tui.workspace.compute.pave_in_levels`);
-    returns the kept boxes and their status (2 inside, 1 boundary)."""
+    test of ``mechanism`` (``g``, ``limits``: its arrays, ``points`` its platform points;
+    :mod:`planar_tui.kernels.workspace_orientation`), every level in parallel
+    (:func:`planar_tui.workspace.compute.pave_in_levels`); returns the kept boxes and their
+    status (2 inside, 1 boundary)."""
     import numpy as np
 
-    from planar_tui.kernels.workspace_arc import limits_array
     from planar_tui.kernels.workspace_orientation import MAXIMAL, TOTAL, range_level
     from planar_tui.workspace.compute import pave_in_levels
 
     mode = MAXIMAL if spec.orientation_mode == "maximal" else TOTAL
     lo, hi = (math.radians(v) for v in spec.orientation_deg)
-    g = geometry_vector(robot)
-    limits = limits_array(spec.limits_rad)
-    phi_min = phi_min_rad(robot, precision)
+    phi_min = phi_min_rad(points, precision)
 
     def decide(rows, start, stop, children, outcome):
         work = np.empty(stop - start, dtype=np.int64)
         range_level(
             mode, lo, hi, phi_min, g, limits, precision, rows, start, stop, children, outcome,
-            work,
+            work, mechanism,
         )  # fmt: skip
 
     return pave_in_levels(seeds, budget, decide, inside_cm2)
+
+
+def _range_stage(robot, spec, seeds, precision, budget, inside_cm2=0.0):
+    """:func:`range_stage` of a 3-RRR."""
+    from planar_tui.kernels.workspace_arc import limits_array
+    from planar_tui.kernels.workspace_orientation import RRR
+
+    g, limits = geometry_vector(robot), limits_array(spec.limits_rad)
+    points = robot.platform_points_cm()
+    return range_stage(g, limits, RRR, points, spec, seeds, precision, budget, inside_cm2)
 
 
 def compute_orientation_workspace(robot: Robot3RRR, spec, budget):
     """The maximal or total orientation workspace of ``spec`` (``orientation_deg`` a range)
     as a :class:`~planar_tui.workspace.compute.WorkspaceOutcome`: the bisection down to
     ``precision_cm``, then the boundary boxes again down to ``refine_precision_cm``."""
-    import numpy as np
-
-    from planar_tui.workspace.compute import finished_outcome
-
     started = time.perf_counter()
     box = search_box(robot, spec)
     extent = (box[0][0], box[0][1], box[1][0], box[1][1])
@@ -178,15 +192,32 @@ def compute_orientation_workspace(robot: Robot3RRR, spec, budget):
         geometric = budget.progress.wait_for(
             reference_area, robot, spec.limits_rad, spec.orientation_deg, spec.orientation_mode
         )
+
+    def stage(seeds, precision, inside_cm2):
+        return _range_stage(robot, spec, seeds, precision, budget, inside_cm2)
+
+    return paved_range(stage, spec, budget, extent, geometric, started)
+
+
+def paved_range(stage, spec, budget, extent, geometric, started, disjoint=False):
+    """The paving of an orientation range from the search box ``extent``: ``stage(seeds,
+    precision, inside_cm2)`` (a :func:`range_stage`) down to ``precision_cm``, then the
+    boundary boxes down to ``refine_precision_cm``
+    (:func:`~planar_tui.workspace.compute.finished_outcome`)."""
+    import numpy as np
+
+    from planar_tui.workspace.compute import finished_outcome
+
     budget.progress.start(1.0, f"{spec.orientation_mode} orientation workspace")
-    boxes, status = _range_stage(robot, spec, np.array([extent]), spec.precision_cm, budget)
+    boxes, status = stage(np.array([extent]), spec.precision_cm, 0.0)
 
     def refine(seeds, inside_cm2):
-        return _range_stage(robot, spec, seeds, spec.refine_precision_cm, budget, inside_cm2)
+        return stage(seeds, spec.refine_precision_cm, inside_cm2)
 
     return finished_outcome(
-        spec, boxes, status, refine, budget, geometric, started, extent, form=spec.form
-    )
+        spec, boxes, status, refine, budget, geometric, started, extent, form=spec.form,
+        disjoint=disjoint,
+    )  # fmt: skip
 
 
 def orientation_columns(spec) -> list:

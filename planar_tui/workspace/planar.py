@@ -61,7 +61,7 @@ class PlanarSpec:
     """The settings every fixed-orientation parallel workspace job has (angles in degrees,
     lengths in cm); a kind adds its own keys (``leg_limits_cm``) in a subclass."""
 
-    orientation_deg: float = setting(
+    orientation_deg: float | tuple[float, float] = setting(
         number(), default=0.0, type_doc="number", doc="platform orientation φ"
     )
     precision_cm: float = same_key("precision_cm")
@@ -102,6 +102,9 @@ class PlanarSpec:
 
     @property
     def orientation_rad(self) -> float:
+        """The single orientation in radians (a kind taking ranges has none then)."""
+        if isinstance(self.orientation_deg, tuple):
+            raise ValueError("orientation_deg is a range: no single orientation")
         return math.radians(self.orientation_deg)
 
     @classmethod
@@ -138,6 +141,67 @@ class PlanarSpec:
         return values
 
 
+def single_orientation_rad(spec: Any) -> float | None:
+    """The spec's one orientation in radians (a degenerate range ``[φ, φ]`` built in code
+    counts as one), or ``None`` over a range."""
+    phi = spec.orientation_deg
+    if not isinstance(phi, tuple):
+        return math.radians(phi)
+    return math.radians(phi[0]) if phi[0] == phi[1] else None
+
+
+def check_range_and_reference(values: dict[str, Any], reader: TableReader, form: str) -> None:
+    """An orientation range takes the 3-RRR's ``orientation_mode`` checks
+    (:func:`~planar_tui.workspace.orientation.check_orientation`) with the kind's box form
+    ``form`` only, and no singularities; with a range or a tolerance the job has no geometric
+    reference (one orientation's nominal area is not the job's: off by default, refused if
+    asked for)."""
+    from planar_tui.workspace.orientation import check_orientation
+
+    check_orientation(values, reader, form)
+    ranged = isinstance(values["orientation_deg"], tuple)
+    if ranged and values["singularities"]:
+        raise reader.error(
+            "singularities", "is true with orientation_deg = [lo, hi]", "one orientation"
+        )
+    if (values["tolerance_mode"] is not None or ranged) and values["geometric_reference"]:
+        if reader.has("geometric_reference"):
+            found = "a tolerance" if values["tolerance_mode"] else "orientation_deg = [lo, hi]"
+            raise reader.error("geometric_reference", f"is true with {found}", "false")
+        values["geometric_reference"] = False  # its default is one orientation's exact area
+
+
+def compute_range(robot: Any, spec: Any, budget: Any, g: Any, limits: Any, mechanism: int) -> Any:
+    """The maximal or total orientation workspace of a parallel kind's spec with
+    ``orientation_deg = (lo, hi)``: the 3-RRR's range paving
+    (:func:`~planar_tui.workspace.orientation.range_stage`) of the kernels' ``mechanism``
+    with its arrays ``g`` (the platform points at ``g[2:8]``) and ``limits``."""
+    from planar_tui.workspace.compute import square_about
+    from planar_tui.workspace.orientation import paved_range, range_stage
+
+    started = time.perf_counter()
+    box = spec.search_box_cm or square_about(spec.mechanism.reach_box(robot, spec),
+                                             spec.precision_cm)  # fmt: skip
+    extent = (box[0][0], box[0][1], box[1][0], box[1][1])
+    points = robot.platform_points_cm
+
+    def stage(seeds, precision, inside_cm2):
+        return range_stage(g, limits, mechanism, points, spec, seeds, precision, budget, inside_cm2)
+
+    return paved_range(stage, spec, budget, extent, None, started, disjoint=True)
+
+
+def platform_and_base_vector(platform: Any, base: Any) -> Any:
+    """``[0, 0, q1, q2, q3, B1, B2, B3]`` flattened (cm): the 3-RRR's layout of the range
+    kernels' ``g`` (:mod:`planar_tui.kernels.workspace_orientation`)."""
+    import numpy as np
+
+    values = [0.0, 0.0]
+    for point in (*platform, *base):
+        values += [float(point[0]), float(point[1])]
+    return np.array(values)
+
+
 def check_circle_keys(values: dict[str, Any], reader: TableReader, names: tuple[str, ...]) -> None:
     """The circle's keys ``names`` go with ``singularities = true``, which needs a form
     with boxes."""
@@ -166,6 +230,9 @@ class Mechanism:
     #: The module certifying its singularities (``resolve_centre(job)``,
     #: ``compute_<kind>_singularities``...), if the kind has them.
     singularities: str | None = None
+    #: The module paving its orientation ranges (``compute_range(robot, spec, budget)``),
+    #: if the kind takes ``orientation_deg = [lo, hi]``.
+    orientation_range: str | None = None
 
     def level_kernel(self) -> Callable[..., None]:
         module, _, name = self.level.partition(":")
@@ -195,8 +262,12 @@ def compute_planar(robot: Any, spec: PlanarSpec, budget: Any) -> Any:
     )
     from planar_tui.workspace.tolerance import grown, reach_margin_cm
 
-    started = time.perf_counter()
     mechanism: Mechanism = spec.mechanism
+    if isinstance(spec.orientation_deg, tuple):  # a range (the kind's check allowed it)
+        assert mechanism.orientation_range is not None
+        compute_range = importlib.import_module(mechanism.orientation_range).compute_range
+        return compute_range(robot, spec, budget)
+    started = time.perf_counter()
     reach = grown(mechanism.reach_box(robot, spec), reach_margin_cm(spec))  # "some": farther
     box = spec.search_box_cm or square_about(reach, spec.precision_cm)
     extent = (box[0][0], box[0][1], box[1][0], box[1][1])
@@ -251,6 +322,10 @@ def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> 
     outcome = compute_planar(job.robot, job.spec, budget)
     header: tuple[str, ...] = SUMMARY_HEADER
     row, summary = outcome.summary_row(), summary_line(outcome)
+    if isinstance(job.spec.orientation_deg, tuple):
+        from planar_tui.workspace.orientation import describe as describe_range
+
+        summary += f"; {describe_range(job.spec)}"
     singular = None
     module = job.spec.mechanism.singularities
     if module is not None:  # the circle's columns before the last one, the wall time

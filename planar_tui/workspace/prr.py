@@ -111,12 +111,30 @@ def leg_parameters(robot: Robot3PRR, spec) -> object:
 
 
 def reach_box(robot: Robot3PRR, spec) -> tuple[float, float, float, float]:
-    """Bounding box of the intersection of the stadiums' boxes (empty when ``lo > hi``)."""
-    ends = robot.shifted_ends_cm(spec.orientation_rad)
+    """Bounding box of the intersection of the stadiums' boxes (empty when ``lo > hi``);
+    over a range of orientations each stadium's box is widened by the extent of
+    :math:`-R(\\varphi) q_i` over the range
+    (:func:`~planar_tui.workspace.orientation.arc_extent`)."""
+    from planar_tui.workspace.planar import single_orientation_rad
+
+    phi = single_orientation_rad(spec)
+    extents: list[tuple[float, ...]] = [(0.0, 0.0, 0.0, 0.0)] * 3  # one φ: ends shifted
+    if phi is None:
+        from planar_tui.workspace.orientation import arc_extent
+
+        lo, hi = (math.radians(v) for v in spec.orientation_deg)
+        extents = [arc_extent(q, lo, hi) for q in robot.platform_points_cm]
+    ends = robot.shifted_ends_cm(0.0 if phi is None else phi)
+    if phi is None:  # unshift: E_k = E'_k(0) + q_i
+        ends = tuple(
+            (ax + qx, ay + qy, bx + qx, by + qy)
+            for (ax, ay, bx, by), (qx, qy) in zip(ends, robot.platform_points_cm, strict=True)
+        )
     boxes = [
-        (min(ax, bx) - r, max(ax, bx) + r, min(ay, by) - r, max(ay, by) + r)
-        for (ax, ay, bx, by), r in zip(ends, robot.distal_cm, strict=True)
-    ]
+        (min(ax, bx) - e[1] - r, max(ax, bx) - e[0] + r, min(ay, by) - e[3] - r,
+         max(ay, by) - e[2] + r)
+        for (ax, ay, bx, by), r, e in zip(ends, robot.distal_cm, extents, strict=True)
+    ]  # fmt: skip
     return (
         max(b[0] for b in boxes),
         min(b[1] for b in boxes),
@@ -151,10 +169,14 @@ def leg_polygon(ends, length, segments_per_turn, outward):
 
 
 def workspace_polygon(robot: Robot3PRR, spec, segments_per_turn: int, outward: bool):
-    """Inner (``outward=False``) or outer polygon of the workspace: three regions intersected."""
+    """Inner (``outward=False``) or outer polygon of the workspace: three regions intersected
+    (over a range of orientations, at its middle one)."""
     from shapely import intersection_all
 
-    ends = robot.shifted_ends_cm(spec.orientation_rad)
+    phi = spec.orientation_deg  # over a range, its middle orientation (a size, for estimates)
+    ends = robot.shifted_ends_cm(
+        math.radians(0.5 * (phi[0] + phi[1])) if isinstance(phi, tuple) else spec.orientation_rad
+    )
     return intersection_all(
         [
             leg_polygon(e, length, segments_per_turn, outward)

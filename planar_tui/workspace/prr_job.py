@@ -11,7 +11,13 @@ from typing import Any, ClassVar
 from planar_tui.jobkind import Tab
 from planar_tui.schema import TableReader, setting, string
 from planar_tui.workspace import prr
-from planar_tui.workspace.planar import Mechanism, PlanarSpec, planar_job_kind, same_key
+from planar_tui.workspace.planar import (
+    Mechanism,
+    PlanarSpec,
+    check_range_and_reference,
+    planar_job_kind,
+    same_key,
+)
 from planar_tui.workspace.prr_tolerance import TOLERANCE_KEYS_3PRR
 from planar_tui.workspace.tolerance import check_tolerance, tolerance_fields
 
@@ -21,6 +27,7 @@ MECHANISM = Mechanism(
     polygon=prr.workspace_polygon,
     level="planar_tui.kernels.workspace3prr:prr_level",
     singularities="planar_tui.workspace.prr_singularity",
+    orientation_range="planar_tui.workspace.prr_orientation",
 )
 
 
@@ -29,6 +36,8 @@ class Spec3PRR(PlanarSpec):
     """Settings of one 3-PRR workspace job (lengths in cm, the orientation in degrees); the
     strokes and links are the robot's (``[robot3prr]``)."""
 
+    orientation_deg: float | tuple[float, float] = same_key("orientation_deg")
+    orientation_mode: str | None = same_key("orientation_mode")
     form: str = setting(
         string(choices=("distance", "geometric")),
         default="distance",
@@ -64,12 +73,11 @@ class Spec3PRR(PlanarSpec):
     def check(cls, values: dict[str, Any], reader: TableReader, robot: Any) -> dict[str, Any]:
         """A tolerance (:mod:`planar_tui.workspace.prr_tolerance`) is below the shortest
         distal, takes the distance form, no singularities and no geometric reference (as
-        the 3-RPR's); then the shared checks."""
+        the 3-RPR's); an orientation range (:mod:`planar_tui.workspace.prr_orientation`)
+        as the 3-RPR's (:func:`~planar_tui.workspace.planar.check_range_and_reference`);
+        then the shared checks."""
         check_tolerance(values, reader, TOLERANCE_KEYS_3PRR, {"distal_cm": min(robot.distal_cm)})
-        if values["tolerance_mode"] is not None and values["geometric_reference"]:
-            if reader.has("geometric_reference"):
-                raise reader.error("geometric_reference", "is true with a tolerance", "false")
-            values["geometric_reference"] = False  # its default is the nominal robot's area
+        check_range_and_reference(values, reader, "distance")
         return super().check(values, reader, robot)
 
 

@@ -92,9 +92,18 @@ def leg_parameters(robot: Robot3RPR, spec) -> object:
 
 def reach_box(robot: Robot3RPR, spec) -> tuple[float, float, float, float]:
     """Bounding box of the intersection of the discs :math:`|p - c_i| \\le \\overline\\rho_i`
-    (empty when ``lo > hi``)."""
-    centres = robot.centres_cm(spec.orientation_rad)
+    (empty when ``lo > hi``), or of its union over a range of orientations
+    (:func:`~planar_tui.workspace.orientation.range_reach_box`)."""
+    from planar_tui.workspace.planar import single_orientation_rad
+
     his = [hi for _, hi in spec.leg_limits_cm]
+    phi = single_orientation_rad(spec)
+    if phi is None:
+        from planar_tui.workspace.orientation import range_reach_box
+
+        bases, points = robot.base_joints_cm, robot.platform_points_cm
+        return range_reach_box(bases, points, his, spec.orientation_deg)
+    centres = robot.centres_cm(phi)
     return (
         max(cx - r for (cx, _), r in zip(centres, his, strict=True)),
         min(cx + r for (cx, _), r in zip(centres, his, strict=True)),
@@ -115,10 +124,13 @@ def annulus(centre, lo, hi, segments_per_turn, outward):
 
 
 def workspace_polygon(robot: Robot3RPR, spec, segments_per_turn: int, outward: bool):
-    """Inner (``outward=False``) or outer polygon of the workspace: three annuli intersected."""
+    """Inner (``outward=False``) or outer polygon of the workspace: three annuli intersected
+    (over a range of orientations, at its middle one: a size for the job's estimate)."""
     from shapely import intersection_all
 
-    centres = robot.centres_cm(spec.orientation_rad)
+    phi = spec.orientation_deg
+    centres = robot.centres_cm(math.radians(0.5 * (phi[0] + phi[1])) if isinstance(phi, tuple)
+                               else spec.orientation_rad)  # fmt: skip
     return intersection_all(
         [
             annulus(c, lo, hi, segments_per_turn, outward)

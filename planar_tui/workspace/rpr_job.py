@@ -11,7 +11,13 @@ from typing import Any, ClassVar
 from planar_tui.jobkind import Tab
 from planar_tui.schema import TableReader, setting
 from planar_tui.workspace import rpr
-from planar_tui.workspace.planar import Mechanism, PlanarSpec, planar_job_kind
+from planar_tui.workspace.planar import (
+    Mechanism,
+    PlanarSpec,
+    check_range_and_reference,
+    planar_job_kind,
+    same_key,
+)
 from planar_tui.workspace.rpr_tolerance import TOLERANCE_KEYS_3RPR
 from planar_tui.workspace.tolerance import check_tolerance, tolerance_fields
 
@@ -21,6 +27,7 @@ MECHANISM = Mechanism(
     polygon=rpr.workspace_polygon,
     level="planar_tui.kernels.workspace3rpr:rpr_level",
     singularities="planar_tui.workspace.rpr_singularity",
+    orientation_range="planar_tui.workspace.rpr_orientation",
 )
 
 
@@ -39,6 +46,8 @@ def _leg_limits(reader: TableReader, name, default, robot, values):
 class Spec3RPR(PlanarSpec):
     """Settings of one 3-RPR workspace job (lengths in cm, the orientation in degrees)."""
 
+    orientation_deg: float | tuple[float, float] = same_key("orientation_deg")
+    orientation_mode: str | None = same_key("orientation_mode")
     leg_limits_cm: tuple[tuple[float, float], ...] = setting(
         _leg_limits,
         type_doc="3 rows `[lo, hi]`, 0 ≤ lo < hi",
@@ -61,12 +70,11 @@ class Spec3RPR(PlanarSpec):
         """A tolerance (:mod:`planar_tui.workspace.rpr_tolerance`; the leg limits are exact)
         takes a box form, no singularities and no geometric reference (the nominal robot's
         exact area is not the tolerance-certified one's: off by default, refused if asked
-        for); then the shared checks."""
+        for); an orientation range (:mod:`planar_tui.workspace.rpr_orientation`) the 3-RRR's
+        ``orientation_mode`` checks, the ``natural`` form, no singularities and no geometric
+        reference either; then the shared checks."""
         check_tolerance(values, reader, TOLERANCE_KEYS_3RPR, {})
-        if values["tolerance_mode"] is not None and values["geometric_reference"]:
-            if reader.has("geometric_reference"):
-                raise reader.error("geometric_reference", "is true with a tolerance", "false")
-            values["geometric_reference"] = False  # its default is the nominal robot's area
+        check_range_and_reference(values, reader, "natural")
         return super().check(values, reader, robot)
 
 
