@@ -318,21 +318,24 @@ async def test_help_palette_and_quit(tmp_path):
 
 
 @async_test
-async def test_a_bad_preset_opens_with_its_problems_marked_one_the_tabs_cannot_show_is_refused(
-    tmp_path,
-):
+async def test_a_bad_preset_opens_with_its_problems_marked_and_a_shapeless_one_too(tmp_path):
     app = make_app(tmp_path)
     bad = tmp_path / "bad.toml"
     bad.write_text("[robot]\nlengths_m = [1.0]\nmasses_kg = [1.0, 2.0]\n")
     shapeless = tmp_path / "shapeless.toml"
     shapeless.write_text("robot = 3\n")
+    nothing = tmp_path / "nothing.toml"
+    nothing.write_text("robot = [\n")  # no TOML: refused, the preset kept
     async with app.run_test(size=SIZE) as pilot:
-        assert not await app.open_preset(str(shapeless))  # [robot] is no table
+        assert not await app.open_preset(str(nothing))
         await pilot.pause()
         assert isinstance(app.screen, MessageDialog)
-        assert "robot: is an integer" in app.export_text()
         assert app.workbench.path.name == "tiny.toml"
         app.pop_screen()
+        assert await app.open_preset(str(shapeless))  # [robot] is no table: opened empty
+        await pilot.pause()
+        assert app.workbench.path == shapeless and app.workbench.document["robot"] == {}
+        assert app.workbench.modified and shapeless.read_text() == "robot = 3\n"
         assert await app.open_preset(str(bad))  # wrong values: opened, marked
         await pilot.pause()
         assert app.workbench.path == bad and not isinstance(app.screen, MessageDialog)

@@ -263,3 +263,21 @@ def test_the_app_tab_runs_the_job_and_shows_its_map(tmp_path):
             assert result.outcome.area_inside_cm2 <= g.area_cm2 <= result.outcome.area_kept_cm2
 
     asyncio.run(drive())
+
+
+def test_a_leg_limit_of_1e199_cm_gives_the_exact_area_of_a_long_finite_one(tmp_path):
+    """An upper leg limit far beyond the reach box leaves the intersection unchanged: the
+    polygons of a 1e199 cm limit (capped at the reach box, else GEOS overflowed and the
+    "exact" area came out 0) equal those of 1e4 cm, and the grid reference brackets them."""
+    from planar_tui.workspace.rpr import workspace_polygon
+
+    huge = job_of(tmp_path, limits=((20, 1e199), (20, 80), (20, 80)))
+    finite = job_of(tmp_path, limits=((20, 1e4), (20, 80), (20, 80)))
+    for outward in (False, True):
+        area = workspace_polygon(huge.robot, huge.spec, 256, outward).area
+        assert area == pytest.approx(
+            workspace_polygon(finite.robot, finite.spec, 256, outward).area, rel=1e-12
+        )
+        assert area > 0.0
+    inside, kept = grid_bracket(finite)
+    assert inside <= workspace_polygon(huge.robot, huge.spec, 256, True).area <= kept

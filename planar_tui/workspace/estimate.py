@@ -67,18 +67,25 @@ SEGMENTS_PER_TURN = 32
 def _geometry(kind: str, robot: Any, spec: Any) -> tuple[float, tuple[float, ...]]:
     """The boundary length :math:`L` (cm) and the search box ``(x_lo, x_hi, y_lo, y_hi)``
     the job paves."""
+    from shapely.errors import GEOSException
+
     from planar_tui.workspace.compute import square_about
 
     if kind == "workspace5r":
         from planar_tui.workspace.fivebar import workspace_polygon
 
-        polygon = workspace_polygon(robot, SEGMENTS_PER_TURN, True)
         reach = robot.reach_box_cm()
+        outline = lambda: workspace_polygon(robot, SEGMENTS_PER_TURN, True)  # noqa: E731
     else:
-        polygon = spec.mechanism.polygon(robot, spec, SEGMENTS_PER_TURN, True)
         reach = spec.mechanism.reach_box(robot, spec)
+        outline = lambda: spec.mechanism.polygon(robot, spec, SEGMENTS_PER_TURN, True)  # noqa: E731
     box = spec.search_box_cm or square_about(reach, spec.precision_cm)
-    return float(polygon.length), (box[0][0], box[0][1], box[1][0], box[1][1])
+    xlo, xhi, ylo, yhi = box[0][0], box[0][1], box[1][0], box[1][1]
+    try:
+        length = float(outline().length)
+    except GEOSException:  # GEOS cannot node it (lengths near 1e199 cm): the box's perimeter
+        length = 2.0 * ((xhi - xlo) + (yhi - ylo))
+    return length, (xlo, xhi, ylo, yhi)
 
 
 def largest_tolerance_cm(spec: Any) -> tuple[float, str] | None:

@@ -131,12 +131,18 @@ def workspace_polygon(robot: Robot3RPR, spec, segments_per_turn: int, outward: b
     phi = spec.orientation_deg
     centres = robot.centres_cm(math.radians(0.5 * (phi[0] + phi[1])) if isinstance(phi, tuple)
                                else spec.orientation_rad)  # fmt: skip
-    return intersection_all(
-        [
-            annulus(c, lo, hi, segments_per_turn, outward)
-            for c, (lo, hi) in zip(centres, spec.leg_limits_cm, strict=True)
-        ]
-    )
+    xlo, xhi, ylo, yhi = reach_box(robot, spec)
+    annuli = []
+    for (cx, cy), (lo, hi) in zip(centres, spec.leg_limits_cm, strict=True):
+        # The workspace lies in the reach box: a disc of twice the farthest corner's
+        # distance covers the box (its polygons too: their inradius is above 0.92 r from 8
+        # segments a turn), so larger radii give the same intersection; capped, a limit of
+        # 1e199 cm no longer overflows GEOS (which gave an empty "exact" workspace).
+        cap = 2.0 * max(math.hypot(x - cx, y - cy) for x in (xlo, xhi) for y in (ylo, yhi))
+        if math.isfinite(cap) and cap > 0.0:
+            lo, hi = min(lo, cap), min(hi, cap)
+        annuli.append(annulus((cx, cy), lo, hi, segments_per_turn, outward))
+    return intersection_all(annuli)
 
 
 ROBOT_KIND = RobotKind("robot3rpr", Robot3RPR, example="[robot3rpr]\n")
