@@ -55,9 +55,15 @@ def test_a_burst_of_keys_lands_in_order_and_undo_stays_in_place(tmp_path):
         term.send(END + CTRL_U + "200\t" + END + CTRL_U + "1e-5")  # one write: a burst
         screen = term.wait_for(lambda s: value_under(s, "step_s") == "1e-5", 30, "the burst typed")
         assert value_under(screen, "duration_s") == "200", screen
-        term.send(CTRL_Z)  # undo (the burst was one edit): in place, same tab and field
+        term.send(CTRL_Z)  # undo: in place, same tab and field
         screen = term.wait_for(lambda s: value_under(s, "step_s") == "0.001", 30, "the undo")
+        if value_under(screen, "duration_s") == "200":
+            # Edits of one table within 1.5 s are one undo step (history.COALESCE_S); on a
+            # busy machine the burst's two fields may be applied further apart: two steps.
+            term.send(CTRL_Z)
+            screen = term.wait_for(lambda s: value_under(s, "duration_s") == "0.2", 30, "undo 2")
         assert value_under(screen, "duration_s") == "0.2", screen
+        assert value_under(screen, "step_s") == "0.001", screen
         focused = [line for line in screen.splitlines() if line.startswith("█")]
         assert [line.split("▕")[0].strip() for line in focused] == ["█0.001"], screen
         term.send("\x11")  # ctrl+q: back at the saved state, so it quits without asking
