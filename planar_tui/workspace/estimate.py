@@ -71,18 +71,18 @@ def _geometry(kind: str, robot: Any, spec: Any) -> tuple[float, tuple[float, ...
 
     from planar_tui.workspace.compute import square_about
 
-    if kind == "workspace5r":
-        from planar_tui.workspace.fivebar import workspace_polygon
-
-        reach = robot.reach_box_cm()
-        outline = lambda: workspace_polygon(robot, SEGMENTS_PER_TURN, True)  # noqa: E731
-    else:
-        reach = spec.mechanism.reach_box(robot, spec)
-        outline = lambda: spec.mechanism.polygon(robot, spec, SEGMENTS_PER_TURN, True)  # noqa: E731
+    five_bar = kind == "workspace5r"
+    reach = robot.reach_box_cm() if five_bar else spec.mechanism.reach_box(robot, spec)
     box = spec.search_box_cm or square_about(reach, spec.precision_cm)
     xlo, xhi, ylo, yhi = box[0][0], box[0][1], box[1][0], box[1][1]
     try:
-        length = float(outline().length)
+        if five_bar:
+            from planar_tui.workspace.fivebar import workspace_polygon
+
+            outline = workspace_polygon(robot, SEGMENTS_PER_TURN, True)
+        else:
+            outline = spec.mechanism.polygon(robot, spec, SEGMENTS_PER_TURN, True)
+        length = float(outline.length)
     except GEOSException:  # GEOS cannot node it (lengths near 1e199 cm): the box's perimeter
         length = 2.0 * ((xhi - xlo) + (yhi - ylo))
     return length, (xlo, xhi, ylo, yhi)
