@@ -32,6 +32,7 @@ The parameter vector ``p`` is ``[l1, l2, dx0, dy0, dx1, dy1, dx2, dy2, a, b, cos
 import math
 
 import numpy as np
+from numba import prange
 
 from ._jit import kernel
 from .interval import (
@@ -384,6 +385,25 @@ def bisect_chunk(form, p, precision, angle_scale, stack, n_stack, kept, n_kept, 
         stack[n_stack + 1, 10] = widest
         n_stack += 2
     return n_stack, n_kept, processed, DONE
+
+
+@kernel(parallel=True)
+def bisect_blocks(form, p, precision, angle_scale, stacks, n_stack, kept, n_kept, max_boxes,
+                  processed, codes):  # fmt: skip
+    """:func:`bisect_chunk` on every block ``b`` at once (``prange``), each on its own stack
+    ``stacks[b, :n_stack[b]]`` and kept rows ``kept[b, n_kept[b]:]``: at most ``max_boxes``
+    boxes each; writes back ``n_stack[b]``, ``n_kept[b]``, ``processed[b]`` and the halt
+    code ``codes[b]``. Every box is decided from itself alone, so the kept boxes of the
+    whole paving are the same multiset however the boxes are shared among blocks."""
+    for b in prange(stacks.shape[0]):
+        ns, nk, done, code = bisect_chunk(
+            form, p, precision, angle_scale, stacks[b], n_stack[b], kept[b], n_kept[b],
+            max_boxes,
+        )  # fmt: skip
+        n_stack[b] = ns
+        n_kept[b] = nk
+        processed[b] = done
+        codes[b] = code
 
 
 @kernel

@@ -215,43 +215,12 @@ def grow(array: np.ndarray) -> np.ndarray:
 
 
 def _interval_stage(form_code, p, spec, box, budget) -> np.ndarray:
-    """Paper's Algorithm 1 over 5-D boxes; returns the kept (x, y) boxes (may repeat)."""
-    from planar_tui.kernels.workspace3rrr import (
-        DONE,
-        KEPT_FULL,
-        STACK_COLUMNS,
-        STACK_FULL,
-        bisect_chunk,
-    )
+    """Paper's Algorithm 1 over 5-D boxes on every thread
+    (:func:`planar_tui.workspace.joint.joint_stage`); the kept (x, y) boxes (may repeat)."""
+    from planar_tui.workspace.joint import joint_stage
 
-    limits = np.array(spec.limits_rad).ravel()
-    stack = np.zeros((256, STACK_COLUMNS))
-    stack[0, :4] = [box[0][0], box[0][1], box[1][0], box[1][1]]
-    stack[0, 4:10] = limits
-    stack[0, 10] = -1.0
-    widths = stack[0, 1:10:2] - stack[0, 0:10:2]
-    root_volume = float(np.prod(widths))
-    kept = np.zeros((4096, 4))
-    n_stack, n_kept = 1, 0
-    kept_area = 0.0  # sum over kept boxes: with repeats, an upper bound of their union
-    while True:
-        previous = n_kept
-        n_stack, n_kept, processed, code = bisect_chunk(
-            form_code, p, spec.precision_cm, spec.angle_scale, stack, n_stack, kept, n_kept,
-            CHUNK_BOXES,
-        )  # fmt: skip
-        pending = stack[:n_stack]
-        volume = float(np.sum(np.prod(pending[:, 1:10:2] - pending[:, 0:10:2], axis=1)))
-        kept_area += xy_area(kept[previous:n_kept])
-        upper = kept_area + xy_area(pending)
-        budget.progress.show_partial(boxes_cm=read_only(kept[:n_kept]), status=None)
-        budget.spend(processed, 1.0 - volume / root_volume, 0.0, upper)
-        if code == DONE:
-            return kept[:n_kept]
-        if code == KEPT_FULL:
-            kept = grow(kept)
-        elif code == STACK_FULL:
-            stack = grow(stack)
+    return joint_stage(form_code, p, spec.precision_cm, spec.angle_scale,
+                       np.array(spec.limits_rad), box, budget, CHUNK_BOXES)  # fmt: skip
 
 
 def _arc_stage(p, limits, precision, seeds, budget, inside_cm2=0.0, tol=None):

@@ -1,0 +1,117 @@
+"""The ``joint`` strategy's paving: paper B's Algorithm 1 over ``(x, y, θ1, θ2, θ3)`` boxes,
+on every thread.
+
+Algorithm 1 is a depth-first bisection: pop a box, discard it when some leg's enclosure
+:math:`F_i` excludes 0, keep its (x, y) projection when its x and y widths are both
+:math:`\\le \\varepsilon`, else halve its widest side and push both halves
+(:func:`planar_tui.kernels.workspace3rrr.bisect_chunk`). Every box is decided from itself
+alone, so the boxes can be shared among threads in any way: each block (one per Numba
+thread) runs the bisection on its own stack (:func:`~planar_tui.kernels.workspace3rrr.bisect_blocks`,
+``prange``), in rounds of at most ``CHUNK_BOXES / blocks`` boxes each so that progress and
+Cancel/Ctrl-C are honoured within a fraction of a second. Between rounds a block whose stack
+ran empty takes the bottom half of the fullest stack: the shallowest boxes, the largest
+pieces of work left (work sharing). The kept boxes form the same multiset whatever the
+number of threads or the sharing, and so the job's result (their distinct rows,
+:func:`planar_tui.workspace.compute.unique_rows`) and the count of processed boxes are the
+same as the sequential bisection's.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from planar_tui.progress import read_only
+
+if TYPE_CHECKING:
+    from planar_tui.workspace.compute import BoxBudget
+
+#: Boxes per round while some block has nothing to do and no stack can be shared (the
+#: first boxes below the root): a short round, so that the work is shared soon.
+SEED_ROUND_BOXES = 256
+
+
+def share_work(stacks: np.ndarray, n_stack: np.ndarray) -> None:
+    """Give every block with an empty stack the bottom half of the fullest stack (rows
+    ``0 .. k-1``, pushed first: the shallowest boxes), in place; a stack of one box is not
+    split."""
+    for block in np.flatnonzero(n_stack == 0):
+        donor = int(np.argmax(n_stack))
+        count = int(n_stack[donor])
+        if count < 2:
+            return
+        moved = count // 2
+        stacks[block, :moved] = stacks[donor, :moved]
+        stacks[donor, : count - moved] = stacks[donor, moved:count]
+        n_stack[block] = moved
+        n_stack[donor] = count - moved
+
+
+def grow_axis1(array: np.ndarray) -> np.ndarray:
+    """``array`` with its second axis doubled (the new rows zero)."""
+    grown = np.zeros((array.shape[0], 2 * array.shape[1], *array.shape[2:]), array.dtype)
+    grown[:, : array.shape[1]] = array
+    return grown
+
+
+def joint_stage(
+    form_code: int, p: np.ndarray, precision_cm: float, angle_scale: float,
+    limits_rad: np.ndarray, box: tuple[tuple[float, float], tuple[float, float]],
+    budget: BoxBudget, chunk_boxes: int, blocks: int | None = None,
+) -> np.ndarray:  # fmt: skip
+    """The kept (x, y) boxes of Algorithm 1 from the root ``box × limits_rad`` (rows
+    ``x_lo, x_hi, y_lo, y_hi``; a box may repeat), on ``blocks`` stacks (default: one per
+    Numba thread). After each round the budget gets the boxes processed, the fraction of
+    the root's 5-D volume decided and an upper bound of the kept area (the kept boxes'
+    areas summed, plus the pending boxes' (x, y) areas), and the progress a read-only view
+    of the boxes kept so far (once there are some)."""
+    from numba import get_num_threads
+
+    from planar_tui.kernels.workspace3rrr import (
+        STACK_COLUMNS,
+        STACK_FULL,
+        bisect_blocks,
+    )
+    from planar_tui.workspace.compute import xy_area
+
+    blocks = blocks or get_num_threads()
+    stacks = np.zeros((blocks, 256, STACK_COLUMNS))
+    stacks[0, 0, :4] = [box[0][0], box[0][1], box[1][0], box[1][1]]
+    stacks[0, 0, 4:10] = np.asarray(limits_rad, dtype=np.float64).ravel()
+    stacks[0, 0, 10] = -1.0
+    root_volume = float(np.prod(stacks[0, 0, 1:10:2] - stacks[0, 0, 0:10:2]))
+    n_stack = np.zeros(blocks, dtype=np.int64)
+    n_stack[0] = 1
+    per_round = max(1, chunk_boxes // blocks)
+    kept = np.zeros((blocks, per_round, 4))  # a processed box keeps at most one row
+    n_kept = np.zeros(blocks, dtype=np.int64)
+    processed = np.zeros(blocks, dtype=np.int64)
+    codes = np.zeros(blocks, dtype=np.int64)
+    found = np.zeros((4096, 4))
+    n_found = 0
+    kept_area = 0.0  # sum over kept boxes: with repeats, an upper bound of their union
+    while n_stack.sum() > 0:
+        share_work(stacks, n_stack)
+        idle = bool(np.any(n_stack == 0))
+        n_kept[:] = 0
+        bisect_blocks(
+            form_code, p, precision_cm, angle_scale, stacks, n_stack, kept, n_kept,
+            min(per_round, SEED_ROUND_BOXES) if idle else per_round, processed, codes,
+        )  # fmt: skip
+        for block in range(blocks):
+            rows = kept[block, : n_kept[block]]
+            while n_found + len(rows) > len(found):
+                found = np.concatenate([found, np.zeros_like(found)])
+            found[n_found : n_found + len(rows)] = rows
+            n_found += len(rows)
+            kept_area += xy_area(rows)
+        if np.any(codes == STACK_FULL):
+            stacks = grow_axis1(stacks)
+        pending = np.concatenate([stacks[b, : n_stack[b]] for b in range(blocks)])
+        volume = float(np.sum(np.prod(pending[:, 1:10:2] - pending[:, 0:10:2], axis=1)))
+        if n_found:
+            budget.progress.show_partial(boxes_cm=read_only(found[:n_found]), status=None)
+        budget.spend(int(processed.sum()), 1.0 - volume / root_volume, 0.0,
+                     kept_area + xy_area(pending))  # fmt: skip
+    return found[:n_found]

@@ -1,0 +1,114 @@
+"""The joint strategy's bisection (paper B, Algorithm 1) shared among threads
+(:mod:`planar_tui.workspace.joint`): the same kept boxes and processed count as the
+sequential depth-first bisection, whatever the number of blocks."""
+
+import math
+
+import numpy as np
+import pytest
+from planar_tui.kernels.workspace3rrr import (
+    DONE,
+    KEPT_FULL,
+    MEAN_VALUE,
+    NATURAL,
+    SLOPE,
+    STACK_COLUMNS,
+    STACK_FULL,
+    bisect_chunk,
+)
+
+from planar_tui.progress import Progress
+from planar_tui.workspace.compute import unique_rows
+from planar_tui.workspace.joint import joint_stage, share_work
+from planar_tui.workspace.robot import Robot3RRR
+
+LIMITS_RAD = np.radians([[20, 70], [110, 160], [245, 295]])
+BOX = ((0.0, 120.0), (0.0, 120.0))
+
+
+class Budget:
+    """Counts the boxes processed; keeps the last progress fraction."""
+
+    def __init__(self):
+        self.progress = Progress()
+        self.processed = 0
+        self.fractions = []
+
+    def spend(self, processed, fraction, lower_cm2, upper_cm2):
+        self.processed += processed
+        self.fractions.append(fraction)
+
+
+def parameters(phi_rad=0.0):
+    from planar_tui.kernels.workspace3rrr import parameter_vector
+
+    robot = Robot3RRR()
+    return parameter_vector(
+        robot.proximal_cm, robot.distal_cm, robot.leg_offsets_cm(phi_rad),
+        robot.base_side_cm, robot.platform_side_cm, phi_rad,
+    )  # fmt: skip
+
+
+def sequential(form, p, precision_cm):
+    """The plain depth-first Algorithm 1: one stack, bisect_chunk until DONE."""
+    stack = np.zeros((4096, STACK_COLUMNS))
+    stack[0, :4] = [*BOX[0], *BOX[1]]
+    stack[0, 4:10] = LIMITS_RAD.ravel()
+    stack[0, 10] = -1.0
+    kept = np.zeros((1 << 20, 4))
+    n_stack, n_kept, total = 1, 0, 0
+    while True:
+        n_stack, n_kept, processed, code = bisect_chunk(
+            form, p, precision_cm, 10.0, stack, n_stack, kept, n_kept, 10**9
+        )
+        total += processed
+        assert code not in (KEPT_FULL, STACK_FULL)
+        if code == DONE:
+            return kept[:n_kept], total
+
+
+@pytest.mark.parametrize("form", [NATURAL, MEAN_VALUE, SLOPE])
+def test_every_block_count_keeps_the_sequential_boxes(form):
+    p = parameters()
+    precision = 120 / 2**6
+    expected, expected_processed = sequential(form, p, precision)
+    assert len(expected) > 100  # a paving with a boundary, not a trivial one
+    for blocks in (1, 2, 3, 7):
+        budget = Budget()
+        kept = joint_stage(form, p, precision, 10.0, LIMITS_RAD, BOX, budget, 5000, blocks)
+        # the same multiset of kept boxes, so the same distinct rows, and every box once
+        assert len(kept) == len(expected)
+        np.testing.assert_array_equal(unique_rows(kept), unique_rows(expected))
+        assert budget.processed == expected_processed
+        assert budget.fractions[-1] == pytest.approx(1.0)
+        assert all(
+            b >= a - 1e-12 for a, b in zip(budget.fractions, budget.fractions[1:], strict=False)
+        )
+
+
+def test_share_work_moves_the_bottom_half_of_the_fullest_stack():
+    stacks = np.zeros((3, 8, STACK_COLUMNS))
+    stacks[1, :5, 0] = [1, 2, 3, 4, 5]  # pushed first at the bottom
+    stacks[2, :2, 0] = [6, 7]
+    n_stack = np.array([0, 5, 2])
+    share_work(stacks, n_stack)
+    assert list(n_stack) == [2, 3, 2]
+    assert list(stacks[0, :2, 0]) == [1, 2]  # the shallowest boxes move
+    assert list(stacks[1, :3, 0]) == [3, 4, 5]
+    # a single box is never split
+    one = np.zeros((2, 4, STACK_COLUMNS))
+    counts = np.array([1, 0])
+    share_work(one, counts)
+    assert list(counts) == [1, 0]
+
+
+def test_the_shared_paving_reproduces_table3_natural_area_bracket():
+    """Independent check of the threaded paving at the paper's precision: the natural
+    form's kept area covers the exact area 106.750 cm² (paper B, Table 3)."""
+    from planar_tui.workspace.compute import xy_area
+
+    p = parameters()
+    budget = Budget()
+    kept = unique_rows(joint_stage(SLOPE, p, 120 / 2**8, 10.0, LIMITS_RAD, BOX, budget, 20000, 2))
+    assert xy_area(kept) >= 106.75
+    assert math.isfinite(xy_area(kept))
