@@ -1,51 +1,106 @@
 """The registries of robot kinds and job kinds: one line per kind.
 
 A new job kind is one module in its domain package ending with a
-:class:`~planar_tui.jobkind.JobKind`, plus one line in :data:`JOB_KINDS`; the preset
-loader, the batch service, the run plan, sweeps, the CLI (its ``run`` and the kind's own
-command), preset saving, figures, warm-up and the app (the kind's tab) pick it up.
-Nothing imported here loads numpy, numba, SALib or Textual (runners import them when they
-run), so ``planar-tui --help`` can list the kinds' commands at once.
+:class:`~planar_tui.jobkind.JobKind` named ``JOB_KIND``, plus one line in :data:`JOB_KINDS`
+(its name and its module); the preset loader, the batch service, the run plan, sweeps, the
+CLI (its ``run`` and the kind's own command), preset saving, figures, warm-up and the app
+(the kind's tab) pick it up. A robot kind likewise (``ROBOT_KIND``, :data:`ROBOT_KINDS`).
+
+A kind's module is imported when the kind is first looked up (``JOB_KINDS["workspace"]``,
+or iterating over the values), never before: listing the names (``in``, iterating over
+the keys) imports nothing, so ``planar-tui run`` loads only the kinds of the jobs it runs
+and their dependencies. Nothing imported by a kind's module loads numpy, numba, SALib or
+Textual (runners import them when they run), so ``planar-tui --help`` can list every
+kind's command at once.
 """
 
-from collections.abc import Iterator
+from __future__ import annotations
+
+import importlib
+from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
+from typing import Generic, Protocol, TypeVar
 
-from planar_tui.dynamics import robot as serial_robot
-from planar_tui.dynamics import simulate, torques
 from planar_tui.jobkind import JobKind, RobotKind
-from planar_tui.motion import job as motion_uncertainty
-from planar_tui.sensitivity import job as sensitivity
-from planar_tui.workspace import fivebar as robot5r
-from planar_tui.workspace import fivebar_job as workspace5r
-from planar_tui.workspace import job as workspace
-from planar_tui.workspace import prr, prr_job, rpr, rpr_job
-from planar_tui.workspace import robot as robot3rrr
 
-ROBOT_KINDS: dict[str, RobotKind] = {
-    kind.name: kind
-    for kind in (
-        serial_robot.ROBOT_KIND,
-        robot3rrr.ROBOT_KIND,
-        rpr.ROBOT_KIND,
-        prr.ROBOT_KIND,
-        robot5r.ROBOT_KIND,
-    )
-}
 
-JOB_KINDS: dict[str, JobKind] = {
-    kind.name: kind
-    for kind in (
-        simulate.JOB_KIND,
-        torques.JOB_KIND,
-        sensitivity.JOB_KIND,
-        workspace.JOB_KIND,
-        workspace5r.JOB_KIND,
-        motion_uncertainty.JOB_KIND,
-        rpr_job.JOB_KIND,
-        prr_job.JOB_KIND,
-    )
-}
+class _Named(Protocol):
+    @property
+    def name(self) -> str: ...
+
+
+KindT = TypeVar("KindT", bound=_Named)
+
+
+class Registry(Mapping[str, KindT], Generic[KindT]):
+    """Kinds by name, in declaration order, each read from its module's ``attribute``
+    when first looked up (then kept). A kind whose declared name differs from its line's
+    is a programming error (:class:`RuntimeError`, caught by the tests)."""
+
+    def __init__(self, attribute: str, modules: Mapping[str, str]):
+        self._attribute = attribute
+        self._modules: dict[str, str | None] = dict(modules)
+        self._loaded: dict[str, KindT] = {}
+
+    def __getitem__(self, name: str) -> KindT:
+        kind = self._loaded.get(name)
+        if kind is not None:
+            return kind
+        module = self._modules[name]  # KeyError: no such kind
+        assert module is not None  # a kind registered as an object is in _loaded
+        kind = getattr(importlib.import_module(module), self._attribute)
+        if kind.name != name:
+            raise RuntimeError(f"{module}.{self._attribute} is named {kind.name!r}, not {name!r}")
+        self._loaded[name] = kind
+        return kind
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._modules)
+
+    def __len__(self) -> int:
+        return len(self._modules)
+
+    def __contains__(self, name: object) -> bool:
+        return name in self._modules
+
+    def loaded(self) -> tuple[str, ...]:
+        """The names of the kinds looked up so far (their modules imported)."""
+        return tuple(name for name in self._modules if name in self._loaded)
+
+    def add(self, kind: KindT) -> None:
+        """Register ``kind`` itself (no module to import), last."""
+        self._modules[kind.name] = None
+        self._loaded[kind.name] = kind
+
+    def remove(self, name: str) -> None:
+        del self._modules[name]
+        self._loaded.pop(name, None)
+
+
+ROBOT_KINDS: Registry[RobotKind] = Registry(
+    "ROBOT_KIND",
+    {
+        "robot": "planar_tui.dynamics.robot",
+        "robot3rrr": "planar_tui.workspace.robot",
+        "robot3rpr": "planar_tui.workspace.rpr",
+        "robot3prr": "planar_tui.workspace.prr",
+        "robot5r": "planar_tui.workspace.fivebar",
+    },
+)
+
+JOB_KINDS: Registry[JobKind] = Registry(
+    "JOB_KIND",
+    {
+        "simulate": "planar_tui.dynamics.simulate",
+        "torques": "planar_tui.dynamics.torques",
+        "sensitivity": "planar_tui.sensitivity.job",
+        "workspace": "planar_tui.workspace.job",
+        "workspace5r": "planar_tui.workspace.fivebar_job",
+        "motion_uncertainty": "planar_tui.motion.job",
+        "workspace3rpr": "planar_tui.workspace.rpr_job",
+        "workspace3prr": "planar_tui.workspace.prr_job",
+    },
+)
 
 
 @contextmanager
@@ -57,11 +112,11 @@ def registered(kind: JobKind) -> Iterator[JobKind]:
         raise ValueError(f"a job kind named {kind.name!r} is registered already")
     if kind.robot_kind not in ROBOT_KINDS:
         raise ValueError(f"{kind.name}: no robot kind {kind.robot_kind!r}")
-    JOB_KINDS[kind.name] = kind
+    JOB_KINDS.add(kind)
     try:
         yield kind
     finally:
-        del JOB_KINDS[kind.name]
+        JOB_KINDS.remove(kind.name)
 
 
-__all__ = ["JOB_KINDS", "ROBOT_KINDS", "registered"]
+__all__ = ["JOB_KINDS", "ROBOT_KINDS", "Registry", "registered"]

@@ -194,3 +194,45 @@ def test_preparing_the_kernels_leaves_garbage_collection_as_it_was(collecting):
         "print(inside, 'numba' in sys.modules, gc.isenabled())\n"
     )
     assert words_printed_by(code) == ["False", "True", str(collecting)]
+
+
+KINDS_PROBE = """
+import json, sys
+from typer.testing import CliRunner
+from planar_tui.cli import build_app
+from planar_tui.registry import JOB_KINDS
+
+result = CliRunner().invoke(build_app(sys.argv[1]), sys.argv[1:])
+print(json.dumps({"code": result.exit_code, "kinds": list(JOB_KINDS.loaded()),
+                  "modules": sorted(m for m in sys.modules if m.startswith("planar_tui."))}))
+"""
+
+#: Every job kind's module (and the modules only those kinds use).
+KIND_MODULES = {
+    "planar_tui.dynamics.simulate", "planar_tui.dynamics.torques", "planar_tui.sensitivity.job",
+    "planar_tui.workspace.job", "planar_tui.workspace.fivebar_job", "planar_tui.motion.job",
+    "planar_tui.workspace.rpr_job", "planar_tui.workspace.prr_job",
+    "planar_tui.workspace.orientation", "planar_tui.workspace.tolerance",
+}  # fmt: skip
+
+
+def kinds_loaded_by(*args: str) -> dict:
+    env = dict(os.environ, PYTHONPATH=str(REPO))
+    out = subprocess.run([sys.executable, "-c", KINDS_PROBE, *args], capture_output=True,
+                         text=True, env=env, check=True, cwd=REPO)  # fmt: skip
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def test_a_run_imports_only_the_kinds_of_its_jobs(tmp_path):
+    """Issue 21: job kinds and their dependencies are imported only when a job of that
+    kind runs (:class:`planar_tui.registry.Registry`, ``build_app("run")``)."""
+    preset = tmp_path / "torques.toml"
+    preset.write_text("[robot]\nlengths_m = [0.3, 0.2]\nmasses_kg = [1.0, 0.8]\n\n"
+                      "[torques]\ntheta_deg = [[0, 10]]\n")  # fmt: skip
+    probe = kinds_loaded_by("run", str(preset), "--out-dir", str(tmp_path))
+    assert probe["code"] == 0 and (tmp_path / "torques-torques-1.csv").exists()
+    assert probe["kinds"] == ["torques"]
+    assert KIND_MODULES & set(probe["modules"]) == {"planar_tui.dynamics.torques"}
+    # the probe sees a kind's module when one is loaded: every kind's command builds them
+    everything = kinds_loaded_by("--help")
+    assert everything["code"] == 0 and set(everything["modules"]) >= KIND_MODULES

@@ -85,9 +85,15 @@ def root(
         open_app(None)
 
 
-def build_app() -> typer.Typer:
+def build_app(command: str | None = None) -> typer.Typer:
     """The ``planar-tui`` Typer app, its job commands made from the registry now (a kind
-    registered before this call has its command, :func:`planar_tui.registry.registered`)."""
+    registered before this call has its command, :func:`planar_tui.registry.registered`).
+
+    ``command`` is the command about to run (the first argument), when known: if it is one
+    of the commands that are not a kind's (``run``, ``sweep``, ``plot`` ...), the kinds'
+    own commands are left out, so that no job kind's module is imported for it (``run``
+    loads only the kinds of the jobs it runs); any other value, or none, builds them all
+    (the help lists them, a mistyped command is matched against them)."""
     from planar_tui.registry import JOB_KINDS
 
     app = typer.Typer(name="planar-tui", cls=Group, help=HELP, add_completion=False,
@@ -95,10 +101,12 @@ def build_app() -> typer.Typer:
     app.callback(invoke_without_command=True)(root)
     (first, function), *others = COMMANDS  # tui, then the kinds' commands, then the rest
     app.command(first, cls=Command)(function)
-    for kind in JOB_KINDS.values():
-        if kind.command is not None:
-            command = kind_command(kind)
-            app.command(kind.command.name, cls=Command, help=kind.command.help)(command)
+    if command not in dict(COMMANDS):
+        for kind in JOB_KINDS.values():
+            if kind.command is not None:
+                app.command(kind.command.name, cls=Command, help=kind.command.help)(
+                    kind_command(kind)
+                )
     for name, function in others:
         app.command(name, cls=Command)(function)
     return app
@@ -122,7 +130,7 @@ def main() -> None:
         signal.signal(signal.SIGINT, output._interrupt)
         signal.signal(signal.SIGTERM, signal.SIG_DFL)
         configure_process()
-        build_app()(prog_name="planar-tui")
+        build_app(sys.argv[1] if len(sys.argv) > 1 else None)(prog_name="planar-tui")
     except KeyboardInterrupt:
         # Ctrl-C before Typer's own handling starts: while it builds the Click command
         # from the commands' signatures (~50 ms after the imports).
