@@ -411,14 +411,14 @@ def run_job(
     """
     from planar_tui.errors import Cancelled
     from planar_tui.runtime import prepare_kernels
-    from planar_tui.warmup import warm_kernels
+    from planar_tui.warmup import units_for, warm_kernels
 
     prepare_kernels()
     progress = progress or Progress()
     try:
         kind = JOB_KINDS[job.kind]
         ready = job if isinstance(job, PreparedJob) else kind.prepare_job(job)
-        warm_kernels([job.kind], progress)
+        warm_kernels(units_for(ready.job), progress)
         return kind.run(ready, progress)
     except (PresetError, Cancelled, KeyboardInterrupt) as error:
         _release(error, progress)

@@ -256,7 +256,9 @@ class JobKind:
     figure, as an import path ``module:function`` taking ``(job, result)``; ``None``: the
     kind draws no figure, and a ``--plot`` or ``plot`` key for it is refused before
     anything runs) and ``warmup`` (a tiny example job table in TOML, run with its robot
-    kind's ``example`` to compile the kind's kernels, :mod:`planar_tui.warmup`).
+    kind's ``example`` to compile the kind's kernels, :mod:`planar_tui.warmup`; or such
+    examples by part, ``{"joint": ..., "orientation": ...}``, with ``warmup_parts(job)``
+    naming the parts a job's run needs, so that a cold run compiles only their kernels).
     ``overrides(table, given)`` adjusts the keys that follow an overridden one in the TOML
     table the command-line options are applied to (e.g. a workspace's refinement
     precision capped by a new precision): see :func:`planar_tui.batch.apply_overrides`.
@@ -276,7 +278,8 @@ class JobKind:
     command: Command | None = None
     tab: Tab | None = None
     figure: str | None = None
-    warmup: str | None = None
+    warmup: str | Mapping[str, str] | None = None
+    warmup_parts: Callable[[Job[Any, Any]], tuple[str, ...]] | None = None
     figure_names: Callable[[Job[Any, Any]], tuple[str, ...]] | None = None
     estimate: Callable[[Job[Any, Any]], tuple[float, float]] | None = None
 

@@ -17,7 +17,7 @@ kind's command at once.
 from __future__ import annotations
 
 import importlib
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterator, Mapping, MutableMapping
 from contextlib import contextmanager
 from typing import Generic, Protocol, TypeVar
 
@@ -32,10 +32,12 @@ class _Named(Protocol):
 KindT = TypeVar("KindT", bound=_Named)
 
 
-class Registry(Mapping[str, KindT], Generic[KindT]):
+class Registry(MutableMapping[str, KindT], Generic[KindT]):
     """Kinds by name, in declaration order, each read from its module's ``attribute``
     when first looked up (then kept). A kind whose declared name differs from its line's
-    is a programming error (:class:`RuntimeError`, caught by the tests)."""
+    is a programming error (:class:`RuntimeError`, caught by the tests). Setting a name
+    registers that kind object itself (no module to import), in place of the line's or
+    last; deleting one removes it (tests: :func:`registered`, ``monkeypatch.setitem``)."""
 
     def __init__(self, attribute: str, modules: Mapping[str, str]):
         self._attribute = attribute
@@ -67,12 +69,11 @@ class Registry(Mapping[str, KindT], Generic[KindT]):
         """The names of the kinds looked up so far (their modules imported)."""
         return tuple(name for name in self._modules if name in self._loaded)
 
-    def add(self, kind: KindT) -> None:
-        """Register ``kind`` itself (no module to import), last."""
-        self._modules[kind.name] = None
-        self._loaded[kind.name] = kind
+    def __setitem__(self, name: str, kind: KindT) -> None:
+        self._modules.setdefault(name, None)
+        self._loaded[name] = kind
 
-    def remove(self, name: str) -> None:
+    def __delitem__(self, name: str) -> None:
         del self._modules[name]
         self._loaded.pop(name, None)
 
@@ -112,11 +113,11 @@ def registered(kind: JobKind) -> Iterator[JobKind]:
         raise ValueError(f"a job kind named {kind.name!r} is registered already")
     if kind.robot_kind not in ROBOT_KINDS:
         raise ValueError(f"{kind.name}: no robot kind {kind.robot_kind!r}")
-    JOB_KINDS.add(kind)
+    JOB_KINDS[kind.name] = kind
     try:
         yield kind
     finally:
-        JOB_KINDS.remove(kind.name)
+        del JOB_KINDS[kind.name]
 
 
 __all__ = ["JOB_KINDS", "ROBOT_KINDS", "Registry", "registered"]

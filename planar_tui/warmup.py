@@ -34,23 +34,60 @@ import tempfile
 import threading
 from collections.abc import Iterable
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 from planar_tui.progress import Progress
 from planar_tui.runtime import design_cache_suspended
 
+if TYPE_CHECKING:
+    from planar_tui.jobkind import Job
+
 STAGE = "compiling kernels (first run only)"
 
 
-def example(kind: str) -> str | None:
-    """The TOML preset of ``kind``'s warm-up example: its robot kind's ``example`` table and
-    its own ``warmup`` job tables (declared in the kind's module); ``None`` for a kind
-    without one (nothing to compile)."""
-    from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
+def parts(kind: str) -> dict[str, str]:
+    """The job tables (TOML) of ``kind``'s warm-up examples by part, as declared in the
+    kind's module: ``{"": tables}`` for a kind with one example, ``{}`` for a kind without
+    one (nothing to compile)."""
+    from planar_tui.registry import JOB_KINDS
 
     declared = JOB_KINDS.get(kind)
     if declared is None or declared.warmup is None:
+        return {}
+    if isinstance(declared.warmup, str):
+        return {"": declared.warmup}
+    return dict(declared.warmup)
+
+
+def units(kind: str) -> list[str]:
+    """The warm-up units of ``kind``: ``kind`` for a kind with one example, ``kind:part``
+    for each part of one with several, none for a kind without."""
+    return [f"{kind}:{part}" if part else kind for part in parts(kind)]
+
+
+def units_for(job: Job[Any, Any]) -> list[str]:
+    """The warm-up units a run of ``job`` needs: the parts its kind's ``warmup_parts``
+    names for it (so a cold run compiles only the kernels the job calls), else all."""
+    from planar_tui.registry import JOB_KINDS
+
+    declared = JOB_KINDS[job.kind]
+    if declared.warmup_parts is None or isinstance(declared.warmup, str):
+        return units(job.kind)
+    return [f"{job.kind}:{part}" for part in declared.warmup_parts(job)]
+
+
+def example(unit: str) -> str | None:
+    """The TOML preset of a warm-up unit (``kind`` or ``kind:part``): its robot kind's
+    ``example`` table, then the unit's job tables (a bare kind: every part's); ``None``
+    where there is nothing to compile."""
+    from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
+
+    kind, _, part = unit.partition(":")
+    tables = parts(kind)
+    chosen = [tables[part]] if part in tables else [] if ":" in unit else list(tables.values())
+    if not chosen:
         return None
-    return ROBOT_KINDS[declared.robot_kind].example + declared.warmup
+    return ROBOT_KINDS[JOB_KINDS[kind].robot_kind].example + "".join(chosen)
 
 
 _lock = threading.Lock()
@@ -71,27 +108,32 @@ def kernel_sources_stamp() -> bytes:
     return "\0".join(stamps).encode()
 
 
-def marker(kind: str) -> Path:
-    """The file that says ``kind``'s kernels are compiled into the current kernel cache:
-    named by the kind's runner module, numba's version and :func:`kernel_sources_stamp`."""
+def marker(unit: str) -> Path:
+    """The file that says the kernels of a warm-up unit (``kind`` or ``kind:part``) are
+    compiled into the current kernel cache: named by the unit, the kind's runner module,
+    numba's version and :func:`kernel_sources_stamp`."""
     import numba
 
     from planar_tui.registry import JOB_KINDS
     from planar_tui.runtime import prepare_kernels
 
+    kind, _, part = unit.partition(":")
     module = sys.modules[JOB_KINDS[kind].run.__module__]
     digest = hashlib.sha256(
         Path(module.__file__).read_bytes() + numba.__version__.encode() + kernel_sources_stamp()
     )
-    return prepare_kernels() / f"warm-{kind}-{digest.hexdigest()[:12]}"
+    name = f"{kind}-{part}" if part else kind
+    return prepare_kernels() / f"warm-{name}-{digest.hexdigest()[:12]}"
 
 
-def missing(kinds: Iterable[str]) -> list[str]:
-    """The kinds among ``kinds`` whose kernels are not known to be compiled (no marker)."""
+def missing(kinds_or_units: Iterable[str]) -> list[str]:
+    """The warm-up units (a kind stands for all of its units) whose kernels are not known
+    to be compiled (no marker)."""
+    expanded = [u for name in kinds_or_units for u in (units(name) if ":" not in name else [name])]
     return [
-        kind
-        for kind in dict.fromkeys(kinds)
-        if example(kind) is not None and not marker(kind).exists()
+        unit
+        for unit in dict.fromkeys(expanded)
+        if example(unit) is not None and not marker(unit).exists()
     ]
 
 
@@ -124,44 +166,51 @@ class _CompileWatcher:
         return self._context.__exit__(*exc)
 
 
-def _run_example(kind: str) -> None:
-    """Run ``kind``'s example job (compiling and caching its kernels), then mark it."""
+def _run_example(unit: str) -> None:
+    """Run a warm-up unit's example jobs (compiling and caching their kernels), then mark
+    it; a bare kind with several parts runs each part (each marked)."""
     from planar_tui.presets import load_preset
     from planar_tui.registry import JOB_KINDS
 
+    if ":" not in unit and units(unit) != [unit]:
+        for part in units(unit):
+            _run_example(part)
+        return
+    kind = unit.partition(":")[0]
     with _lock:  # one example at a time: concurrent warm-ups wait, then find the marker
-        if marker(kind).exists():
+        if marker(unit).exists():
             return
         with (
             tempfile.TemporaryDirectory(prefix="planar-tui-warmup-") as folder,
             design_cache_suspended(),
         ):
-            path = Path(folder) / f"warmup-{kind}.toml"
-            path.write_text(example(kind) or "", encoding="utf-8")
+            path = Path(folder) / f"warmup-{unit.replace(':', '-')}.toml"
+            path.write_text(example(unit) or "", encoding="utf-8")
             for job in load_preset(path).jobs_of(kind):
                 JOB_KINDS[kind].run(JOB_KINDS[kind].prepare_job(job), Progress())
         with contextlib.suppress(OSError):  # read-only cache: compiled in memory anyway
-            marker(kind).touch()
+            marker(unit).touch()
 
 
-def warm_kernels(kinds: Iterable[str], progress: Progress) -> list[str]:
-    """Compile the kernels of the job kinds ``kinds`` that are not cached yet, in the
-    stage :data:`STAGE` of ``progress`` (none when all are cached); returns the kinds
-    compiled. Raises :class:`~planar_tui.errors.Cancelled` within
-    :data:`~planar_tui.progress.POLL_S` of a cancel."""
-    todo = missing(kinds)
+def warm_kernels(kinds_or_units: Iterable[str], progress: Progress) -> list[str]:
+    """Compile the kernels of the warm-up units ``kinds_or_units`` (job kinds, each standing for all of
+    its units, or ``kind:part``, :func:`units_for`) that are not cached yet, in the stage
+    :data:`STAGE` of ``progress`` (none when all are cached); returns the units compiled.
+    Raises :class:`~planar_tui.errors.Cancelled` within :data:`~planar_tui.progress.POLL_S`
+    of a cancel."""
+    todo = missing(kinds_or_units)
     if not todo:
         return []
     progress.start(len(todo), STAGE, f"{todo[0]} kernels")
     with _CompileWatcher() as watcher:
-        for kind in todo:
+        for unit in todo:
             shown = [""]
 
-            def show_kernel(kind=kind, shown=shown) -> None:
+            def show_kernel(unit=unit, shown=shown) -> None:
                 if watcher.current != shown[0]:
                     shown[0] = watcher.current
-                    progress.advance(0.0, f"{kind}: {watcher.current}")
+                    progress.advance(0.0, f"{unit}: {watcher.current}")
 
-            progress.wait_for(_run_example, kind, on_poll=show_kernel)
-            progress.advance(1.0, f"{kind} kernels ready", kernels_compiled=watcher.compiled)
+            progress.wait_for(_run_example, unit, on_poll=show_kernel)
+            progress.advance(1.0, f"{unit} kernels ready", kernels_compiled=watcher.compiled)
     return todo

@@ -7,6 +7,8 @@ from __future__ import annotations
 import os
 import shutil
 
+import pytest
+
 from planar_tui import runtime, warmup
 
 
@@ -39,3 +41,65 @@ def test_the_warm_up_example_leaves_nothing_in_the_design_cache(tmp_path, monkey
     warmup._run_example("sensitivity")
     assert (tmp_path / "sensitivity.marker").exists()  # the example did run
     assert not folder.exists() or not any(folder.glob("*.npy"))
+
+
+WORKSPACE_ROBOT = "[robot3rrr]\n"
+LIMITS = "joint_limits_deg = [[20, 70], [110, 160], [245, 295]]\nprecision_cm = 8.0\n"
+
+
+def test_a_workspace_job_warms_only_the_parts_its_run_calls(tmp_path):
+    from planar_tui.presets import load_preset
+
+    tables = [
+        'form = "arc-distance"',
+        'form = "slope"\nstrategy = "joint"',
+        'form = "natural"',  # the leg-wise strategy by default
+        'form = "geometric"',
+        'orientation_deg = [-5, 5]\norientation_mode = "total"',
+        'form = "arc-distance"\nsingularities = true\nelbow = [1, -1, 1]',
+    ]
+    preset = tmp_path / "p.toml"
+    preset.write_text(WORKSPACE_ROBOT + "".join(f"[[workspace]]\n{LIMITS}{t}\n" for t in tables))
+    assert [warmup.units_for(job) for job in load_preset(preset).jobs] == [
+        ["workspace:arc-distance"],
+        ["workspace:joint"],
+        ["workspace:legwise"],
+        [],
+        ["workspace:orientation"],
+        ["workspace:arc-distance", "workspace:singularities"],
+    ]
+    # a kind with one example is one unit; a bare kind stands for all of its parts
+    assert warmup.units("torques") == ["torques"]
+    assert set(warmup.units("workspace")) == {
+        "workspace:legwise", "workspace:joint", "workspace:arc-distance",
+        "workspace:singularities", "workspace:orientation",
+    }  # fmt: skip
+    whole = warmup.example("workspace")
+    assert whole is not None and whole.count("[[workspace]]") == 5
+    assert whole.count("[robot3rrr]") == 1
+
+
+@pytest.mark.slow  # a fresh process compiling kernels
+def test_a_cold_run_compiles_only_the_kernels_of_its_jobs(tmp_path):
+    """Issue 21: an empty kernel cache, one arc-distance job: the warm-up runs that part
+    alone, and numba's own cache then holds the arc-distance kernels but none of the
+    bisection's (joint strategy) nor the leg-wise paving's."""
+    import subprocess
+    import sys
+
+    from tests.conftest import REPO
+
+    preset = tmp_path / "arc.toml"
+    preset.write_text(WORKSPACE_ROBOT + f'[workspace]\n{LIMITS}form = "arc-distance"\n')
+    cache = tmp_path / "cache"
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache), PYTHONPATH=str(REPO))
+    subprocess.run([sys.executable, "-m", "planar_tui", "run", str(preset), "--out-dir",
+                    str(tmp_path / "out")], check=True, capture_output=True, env=env,
+                   timeout=900)  # fmt: skip
+    (folder,) = cache.iterdir()
+    markers = sorted(p.name.rsplit("-", 1)[0] for p in folder.glob("warm-*"))
+    assert markers == ["warm-workspace-arc-distance"]
+    compiled = " ".join(p.name for p in folder.rglob("*.nbi"))
+    assert "arc_level" in compiled  # the probe sees the kernels numba cached
+    assert "bisect_chunk" not in compiled and "bisect_blocks" not in compiled
+    assert "workspace_legwise" not in compiled

@@ -208,7 +208,7 @@ def test_union_area_of_duplicates_and_nested_boxes():
 
 
 def test_unique_rows_equals_numpy_unique():
-    from planar_tui.workspace.compute import unique_rows
+    from planar_tui.workspace.boxes import unique_rows
 
     rng = np.random.default_rng(5)
     boxes = rng.integers(0, 3, (500, 4)).astype(np.float64) * 0.5

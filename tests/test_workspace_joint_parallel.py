@@ -18,7 +18,7 @@ from planar_tui.kernels.workspace3rrr import (
 )
 
 from planar_tui.progress import Progress
-from planar_tui.workspace.compute import unique_rows
+from planar_tui.workspace.boxes import unique_rows
 from planar_tui.workspace.joint import joint_stage, share_work
 from planar_tui.workspace.robot import Robot3RRR
 
@@ -105,7 +105,7 @@ def test_share_work_moves_the_bottom_half_of_the_fullest_stack():
 def test_the_shared_paving_reproduces_table3_natural_area_bracket():
     """Independent check of the threaded paving at the paper's precision: the natural
     form's kept area covers the exact area 106.750 cm² (paper B, Table 3)."""
-    from planar_tui.workspace.compute import xy_area
+    from planar_tui.workspace.boxes import xy_area
 
     p = parameters()
     budget = Budget()

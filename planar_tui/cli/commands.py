@@ -215,20 +215,19 @@ def warmup() -> None:
 
     from planar_tui import progress as core
     from planar_tui.registry import JOB_KINDS
-    from planar_tui.warmup import warm_kernels
+    from planar_tui.warmup import missing, warm_kernels
 
     columns = (TextColumn("{task.description}", markup=False), BarColumn(bar_width=24),
                MofNCompleteColumn())  # fmt: skip
     with reported_errors(), Progress(*columns, TimeElapsedColumn(), console=stderr) as bars:
-        task = bars.add_task("kernels", total=len(JOB_KINDS))
+        todo = missing(JOB_KINDS)  # warm-up units: a kind, or a part of one
+        task = bars.add_task("kernels", total=len(todo))
 
         def update(state) -> None:
             bars.update(task, completed=state.completed, description=state.detail[:40])
 
-        done = warm_kernels(
-            JOB_KINDS, core.Progress(on_update=update, should_stop=_INTERRUPTED.is_set)
-        )
-        bars.update(task, completed=len(JOB_KINDS), description="kernels ready")
+        done = warm_kernels(todo, core.Progress(on_update=update, should_stop=_INTERRUPTED.is_set))
+        bars.update(task, completed=len(todo), description="kernels ready")
     stdout.print(f"compiled: {', '.join(done) or 'nothing (all cached)'}", markup=False)
 
 

@@ -40,6 +40,7 @@ from planar_tui.csvio import CsvTable
 from planar_tui.errors import JobError
 from planar_tui.jobkind import Job, option_or_key
 from planar_tui.progress import Progress, read_only
+from planar_tui.workspace.boxes import unique_rows, xy_area
 from planar_tui.workspace.forms import INTERVAL_FORMS, kernel_form
 from planar_tui.workspace.robot import Robot3RRR
 from planar_tui.workspace.tolerance import tolerant_vector
@@ -190,28 +191,6 @@ class BoxBudget:
             area_upper_cm2=upper_cm2,
             boxes_processed=float(self.processed),
         )
-
-
-def xy_area(boxes: np.ndarray) -> float:
-    """Sum of the (x, y) areas of rows ``x_lo, x_hi, y_lo, y_hi, ...`` (>= their union)."""
-    return float(np.sum((boxes[:, 1] - boxes[:, 0]) * (boxes[:, 3] - boxes[:, 2])))
-
-
-def unique_rows(boxes: np.ndarray) -> np.ndarray:
-    """Distinct rows of ``boxes`` (lexicographic order); several times faster than
-    ``np.unique(axis=0)``, which sorts a structured view."""
-    if len(boxes) == 0:
-        return boxes.copy()
-    ordered = boxes[np.lexsort(boxes.T[::-1])]
-    first = np.ones(len(ordered), dtype=bool)
-    first[1:] = np.any(ordered[1:] != ordered[:-1], axis=1)
-    return np.ascontiguousarray(ordered[first])
-
-
-def grow(array: np.ndarray) -> np.ndarray:
-    grown = np.zeros((2 * array.shape[0], *array.shape[1:]), dtype=array.dtype)
-    grown[: array.shape[0]] = array
-    return grown
 
 
 def _interval_stage(form_code, p, spec, box, budget) -> np.ndarray:

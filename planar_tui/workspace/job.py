@@ -512,6 +512,38 @@ BOXES_OPTION = OutputOption(
 )
 MAP_VIEW = ("--map/--no-map", "Print the character-cell map.")
 
+#: The warm-up examples by part (:mod:`planar_tui.warmup`): a cold run compiles the
+#: kernels of the parts its jobs need (:func:`warmup_parts`), not every part's.
+_WARMUP_TABLE = (
+    "[[workspace]]\njoint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n"
+    "precision_cm = 8.0\ngeometric_reference = false\n"
+)
+WARMUP_PARTS = {
+    **{strategy: _WARMUP_TABLE + f'refine_precision_cm = 4.0\nstrategy = "{strategy}"\n'
+       for strategy in STRATEGIES},
+    "arc-distance": _WARMUP_TABLE + 'form = "arc-distance"\n',
+    "singularities": _WARMUP_TABLE + 'form = "arc-distance"\nsingularities = true\n'
+    "elbow = [1, -1, 1]\n",
+    "orientation": _WARMUP_TABLE + 'orientation_deg = [-1, 1]\norientation_mode = "total"\n',
+}  # fmt: skip
+
+
+def warmup_parts(job: Job[WorkspaceSpec, Robot3RRR]) -> tuple[str, ...]:
+    """The parts of :data:`WARMUP_PARTS` whose kernels a run of ``job`` calls: a range of
+    orientations, the arc-distance form or an interval form's strategy (none for the
+    exact geometric area alone), and the singularities where asked."""
+    spec = job.spec
+    if isinstance(spec.orientation_deg, tuple):
+        parts = ["orientation"]
+    elif spec.form == "geometric":
+        parts = []
+    elif spec.form == "arc-distance":
+        parts = ["arc-distance"]
+    else:
+        parts = [spec.strategy]
+    return (*parts, "singularities") if spec.singularities else tuple(parts)
+
+
 JOB_KIND = JobKind(
     name="workspace",
     robot_kind="robot3rrr",
@@ -547,18 +579,6 @@ JOB_KIND = JobKind(
     ),
     tab=Tab("Workspace", 2, "planar_tui.app.widgets.workspace_pane:WorkspacePane"),
     figure="planar_tui.figures.workspace:from_result",
-    warmup="".join(
-        "[[workspace]]\njoint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n"
-        "precision_cm = 8.0\nrefine_precision_cm = 4.0\ngeometric_reference = false\n"
-        f'strategy = "{strategy}"\n'
-        for strategy in ("legwise", "joint")
-    )
-    + (
-        "[[workspace]]\njoint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n"
-        'precision_cm = 8.0\nform = "arc-distance"\ngeometric_reference = false\n'
-        "singularities = true\nelbow = [1, -1, 1]\n"
-        "[[workspace]]\njoint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n"
-        'orientation_deg = [-1, 1]\norientation_mode = "total"\nprecision_cm = 8.0\n'
-        "geometric_reference = false\n"
-    ),
+    warmup=WARMUP_PARTS,
+    warmup_parts=warmup_parts,
 )  # fmt: skip

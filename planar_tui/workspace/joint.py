@@ -12,20 +12,30 @@ Cancel/Ctrl-C are honoured within a fraction of a second. Between rounds a block
 ran empty takes the bottom half of the fullest stack: the shallowest boxes, the largest
 pieces of work left (work sharing). The kept boxes form the same multiset whatever the
 number of threads or the sharing, and so the job's result (their distinct rows,
-:func:`planar_tui.workspace.compute.unique_rows`) and the count of processed boxes are the
+:func:`planar_tui.workspace.boxes.unique_rows`) and the count of processed boxes are the
 same as the sequential bisection's.
 """
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 import numpy as np
 
-from planar_tui.progress import read_only
+from planar_tui.progress import Progress, read_only
+from planar_tui.workspace.boxes import xy_area
 
-if TYPE_CHECKING:
-    from planar_tui.workspace.compute import BoxBudget
+
+class Budget(Protocol):
+    """What the paving reports to (:class:`planar_tui.workspace.compute.BoxBudget`)."""
+
+    @property
+    def progress(self) -> Progress: ...
+
+    def spend(
+        self, processed: int, fraction: float, lower_cm2: float, upper_cm2: float
+    ) -> None: ...
+
 
 #: Boxes per round while some block has nothing to do and no stack can be shared (the
 #: first boxes below the root): a short round, so that the work is shared soon.
@@ -58,7 +68,7 @@ def grow_axis1(array: np.ndarray) -> np.ndarray:
 def joint_stage(
     form_code: int, p: np.ndarray, precision_cm: float, angle_scale: float,
     limits_rad: np.ndarray, box: tuple[tuple[float, float], tuple[float, float]],
-    budget: BoxBudget, chunk_boxes: int, blocks: int | None = None,
+    budget: Budget, chunk_boxes: int, blocks: int | None = None,
 ) -> np.ndarray:  # fmt: skip
     """The kept (x, y) boxes of Algorithm 1 from the root ``box × limits_rad`` (rows
     ``x_lo, x_hi, y_lo, y_hi``; a box may repeat), on ``blocks`` stacks (default: one per
@@ -73,7 +83,6 @@ def joint_stage(
         STACK_FULL,
         bisect_blocks,
     )
-    from planar_tui.workspace.compute import xy_area
 
     blocks = blocks or get_num_threads()
     stacks = np.zeros((blocks, 256, STACK_COLUMNS))

@@ -263,7 +263,7 @@ def compute_singularities(
 
     from planar_tui.kernels.singularity3rrr import box_status, singular_bisect_chunk
     from planar_tui.kernels.workspace3rrr import CHUNK_LIMIT, DONE, KEPT_FULL, STACK_FULL
-    from planar_tui.workspace.compute import grow, xy_area
+    from planar_tui.workspace.boxes import grow, xy_area
 
     started = time.perf_counter()
     progress = budget.progress
