@@ -34,10 +34,10 @@ details in the kernel's docstring): ``all`` (robust) inside iff every leg has
 :math:`d_{\\min} + \\rho + \\sigma \\le l_2 - t_2` and :math:`d_{\\max} - \\rho - \\sigma \\ge l_2
 + t_2` (or the 3-RRR's first-order bound) and, in a mode, the centre inside and farther than
 :math:`\\rho + h` from the arcs; ``all`` outside when one vertex robot (or, in a mode, the
-nominal robot, or on a leaf box one of the 16 vertex robots) misses the box; ``some`` outside when :math:`d_{\\min} - \\rho - \\sigma > l_2
+nominal robot, or one of the 16 vertex robots) misses the box; ``some`` outside when :math:`d_{\\min} - \\rho - \\sigma > l_2
 + t_2` or :math:`d_{\\max} + \\rho + \\sigma < l_2 - t_2`, or in a mode the centre is outside,
 farther than :math:`\\rho + h` from the arcs; ``some`` inside when one vertex robot (in a
-mode, the nominal robot or on a leaf box a vertex robot) reaches the box (the legs' parameters are independent, so one
+mode, the nominal robot or a vertex robot) reaches the box (the legs' parameters are independent, so one
 robot serves both legs).
 
 **Bound** (:func:`erosion_bound_cm`, :math:`B = h = \\sqrt2\\,t_A + t_1 + t_2`): the robust
