@@ -121,7 +121,10 @@ def test_robust_inside_boxes_are_reached_by_every_sampled_robot(mode):
     """``all``: every point of an inside box is reached by every corner and random robot.
     Checked to fail with the bound zeroed: with ``shift_bound`` and ``boundary_shift`` of
     kernels/workspace_tolerance.py and kernels/workspace5r_tolerance.py returning 0.0 (and
-    the Numba cache cleared), corner robots miss points of inside boxes in both modes."""
+    the Numba cache cleared), corner robots miss points of inside boxes in both modes; with
+    only ``boundary_shift`` made too small (times 0.85, or 0.5, or 0; rechecked after the
+    vertex robots were tried on boxes of every size), this test and
+    ``test_the_some_kept_boxes_hold_every_sampled_robots_workspace`` fail in mode ``+-``."""
     result = run(mode, "all")
     inside = result.outcome.boxes[result.outcome.status == INSIDE]
     assert len(inside) > 200
