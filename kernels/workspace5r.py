@@ -74,24 +74,60 @@ def near_arc(qx, qy, radius, start, stop, rho):
 
 
 @kernel
-def near_mode_arcs(px, py, rho, l1, l2, sigma, b_lo_x, b_lo_y, b_hi_x, b_hi_y, tlo, thi):
+def circle_family_far(qx, qy, t_a, radius, spread, rho):
+    """True if every circle of centre :math:`a` (:math:`|a_x|, |a_y| \\le t_a`, relative to
+    the origin of ``q``) and radius in :math:`[\\max(0, r - s), r + s]` (``radius``,
+    ``spread``) is farther than ``rho`` from ``q``: the distance from ``q`` to such a
+    circle is :math:`||q - a| - r'|`, and :math:`|q - a|` lies between the distances from
+    ``q`` to the nearest and farthest points of the square (exactly, per direction: the
+    square's support :math:`t_a (|\\cos\\theta| + |\\sin\\theta|)` instead of
+    :math:`\\sqrt2\\,t_a`)."""
+    ux = abs(qx)
+    uy = abs(qy)
+    near = math.hypot(max(ux - t_a, 0.0), max(uy - t_a, 0.0))
+    far = math.hypot(ux + t_a, uy + t_a)
+    return near - (radius + spread) > rho or max(radius - spread, 0.0) - far > rho
+
+
+@kernel
+def near_family_arc(qx, qy, radius, start, stop, rho, h, t_a, spread):
+    """:func:`near_arc` for every robot of a family: False (proved far) if the nominal arc
+    is farther than ``rho + h`` (every robot's arc lies within ``h`` of it, point by point)
+    or :func:`circle_family_far` (every robot's arc lies on one of those circles); with
+    ``h = t_a = spread = 0``, :func:`near_arc` itself."""
+    if not near_arc(qx, qy, radius, start, stop, rho + h):
+        return False
+    return not circle_family_far(qx, qy, t_a, radius, spread, rho)
+
+
+@kernel
+def near_mode_arcs(px, py, rho, l1, l2, sigma, b_lo_x, b_lo_y, b_hi_x, b_hi_y, tlo, thi, family):
     """True if ``p`` (relative to the base joint) is within ``rho`` of one of the four arcs
     holding the boundary of :math:`R_\\sigma` (module docstring) of a leg with links ``l1``,
     ``l2``, elbow sign ``sigma`` and elbows ``b_lo``, ``b_hi`` at the joint limits
-    (relative to the base joint)."""
-    if near_arc(px, py, l1 + l2, tlo, thi, rho):
+    (relative to the base joint); ``family = (h, t_A, t_1 + t_2)`` asks it of every robot
+    within the tolerances (:func:`near_family_arc`: the outer and inner arcs are circles of
+    centre :math:`A + a` and radius :math:`|l_1 \\pm l_2|` moved by at most
+    :math:`t_1 + t_2`; an elbow arc's centre :math:`A + a + (l_1 + \\tau) e(\\theta_\\pm)`
+    is the nominal one moved by :math:`a` and by at most :math:`t_1`, which joins the
+    radius's :math:`t_2`), ``(0, 0, 0)`` of the nominal robot."""
+    h, t_a, spread = family
+    if near_family_arc(px, py, l1 + l2, tlo, thi, rho, h, t_a, spread):
         return True
     shift = 0.0 if l1 >= l2 else math.pi
-    if near_arc(px, py, abs(l1 - l2), tlo + shift, thi + shift, rho):
+    inner = abs(l1 - l2)
+    if near_family_arc(px, py, inner, tlo + shift, thi + shift, rho, h, t_a, spread):
         return True
     if thi - tlo >= 2.0 * math.pi:
         return False
     fold = -sigma * math.pi
     a0 = min(tlo, tlo + fold)
-    if near_arc(px - b_lo_x, py - b_lo_y, l2, a0, a0 + math.pi, rho):
+    qx, qy = px - b_lo_x, py - b_lo_y
+    if near_family_arc(qx, qy, l2, a0, a0 + math.pi, rho, h, t_a, spread):
         return True
     a1 = min(thi, thi + fold)
-    return near_arc(px - b_hi_x, py - b_hi_y, l2, a1, a1 + math.pi, rho)
+    qx, qy = px - b_hi_x, py - b_hi_y
+    return near_family_arc(qx, qy, l2, a1, a1 + math.pi, rho, h, t_a, spread)
 
 
 @kernel
@@ -100,7 +136,7 @@ def near_mode_boundary(px, py, rho, legs, leg, tlo, thi):
     :math:`B(\\underline\\theta) - A`, :math:`B(\\overline\\theta) - A`)."""
     return near_mode_arcs(
         px, py, rho, legs[leg, 2], legs[leg, 3], legs[leg, 4], legs[leg, 5], legs[leg, 6],
-        legs[leg, 7], legs[leg, 8], tlo, thi,
+        legs[leg, 7], legs[leg, 8], tlo, thi, (0.0, 0.0, 0.0),
     )  # fmt: skip
 
 

@@ -27,13 +27,23 @@ Per leg, over the box of centre :math:`c` and half-diagonal :math:`\\rho` (plus
   (:func:`kernels.workspace5r.near_mode_boundary`), ``BOUNDARY``; else the nominal robot
   labels the whole box as it labels :math:`c`, which settles the existential claims
   (``ALL``-outside: the nominal robot misses the box; ``SOME``-inside: it reaches it). The
-  universal ones (``ALL``-inside, ``SOME``-outside) need the centre farther than
-  :math:`\\rho + h` from the arcs, :math:`h = \\sigma + t_2` (:func:`boundary_shift`): then
-  no robot's boundary meets the box (each of a robot's arcs lies within :math:`h` of the
-  nominal one, point by point), so every robot labels every point as the nominal robot
-  labels :math:`c`. Otherwise, on a box of any size, the 16 vertex robots are tried for the
-  existential claim with the same exact test on each robot (:func:`vertex_mode_label`);
-  else ``BOUNDARY``. The vertex robots' boundaries are the extreme ones: each point of a
+  universal ones (``ALL``-inside, ``SOME``-outside) need every robot's four arcs farther
+  than :math:`\\rho` from the centre (:func:`robots_near_mode_boundary`), proved arc by arc
+  either by the nominal arc farther than :math:`\\rho + h`, :math:`h = \\sigma + t_2`
+  (:func:`boundary_shift`; each of a robot's arcs lies within :math:`h` of the nominal one,
+  point by point) or by the per-direction circle bound (each robot's outer and inner arcs
+  lie on circles of centre :math:`A + a` and radius :math:`|l_1 \\pm l_2|` moved by at
+  most :math:`t_1 + t_2`, its elbow arcs on circles about the nominal elbow moved by
+  :math:`a` and at most :math:`t_1`, radius :math:`l_2` moved by at most :math:`t_2`; the
+  distance from the centre to every such circle is bounded below through the exact nearest
+  and farthest points of the square of :math:`a`:
+  :func:`kernels.workspace5r.circle_family_far`, which moves a circle by
+  :math:`t_A (|\\cos\\theta| + |\\sin\\theta|) + t_1 + t_2` in the direction
+  :math:`\\theta` from its centre instead of :math:`h`); then no robot's boundary meets the
+  box, so every robot labels every point as the nominal robot labels :math:`c`.
+  Otherwise, on a box of any size, the 16 vertex robots are tried for the existential
+  claim with the same exact test on each robot (:func:`vertex_mode_label`); else
+  ``BOUNDARY``. The vertex robots' boundaries are the extreme ones: each point of a
   boundary arc moves by a linear function of :math:`(a, \\tau, \\kappa)` along the arc's
   normal (the outer arc by :math:`a \\cdot e(\\theta) + \\tau + \\kappa`, the inner by
   :math:`a \\cdot e(\\theta) + \\tau - \\kappa`, an elbow arc by :math:`a \\cdot n + \\tau\\,
@@ -113,9 +123,25 @@ def vertex_mode_label(px, py, rho, legs, leg, tlo, thi, tol, robust):
         hi_x, hi_y = scale * legs[leg, 7], scale * legs[leg, 8]
         if mode_point_in(qx, qy, l1, l2, tlo, thi, sigma) != (want == INSIDE):
             continue
-        if not near_mode_arcs(qx, qy, rho, l1, l2, sigma, lo_x, lo_y, hi_x, hi_y, tlo, thi):
+        nominal = (0.0, 0.0, 0.0)  # this robot alone
+        if not near_mode_arcs(
+            qx, qy, rho, l1, l2, sigma, lo_x, lo_y, hi_x, hi_y, tlo, thi, nominal
+        ):
             return want
     return BOUNDARY
+
+
+@kernel
+def robots_near_mode_boundary(px, py, rho, h, legs, leg, tlo, thi, tol):
+    """:func:`kernels.workspace5r.near_mode_arcs` of leg ``leg`` for every robot within the
+    tolerances: False proves that no robot's boundary arc comes within ``rho`` of ``p``,
+    arc by arc by the isotropic :math:`h` or the per-direction circle bound
+    (:func:`kernels.workspace5r.circle_family_far`)."""
+    family = (h, tol[T_BASE], tol[T_PROXIMAL] + tol[T_DISTAL])
+    return near_mode_arcs(
+        px, py, rho, legs[leg, 2], legs[leg, 3], legs[leg, 4], legs[leg, 5], legs[leg, 6],
+        legs[leg, 7], legs[leg, 8], tlo, thi, family,
+    )  # fmt: skip
 
 
 @kernel
@@ -135,7 +161,9 @@ def tolerant_leg_label(cx, cy, rho, legs, limits, leg, tol, sigma, h):
     if legs[leg, 4] != 0.0:
         if not near_mode_boundary(px, py, rho, legs, leg, tlo, thi):
             inside = mode_point_in(px, py, l1, l2, tlo, thi, legs[leg, 4])
-            if inside != robust or not near_mode_boundary(px, py, rho + h, legs, leg, tlo, thi):
+            if inside != robust or not robots_near_mode_boundary(
+                px, py, rho, h, legs, leg, tlo, thi, tol
+            ):
                 return INSIDE if inside else OUTSIDE  # the nominal robot, or every one (h)
             if rho >= h or not near_mode_boundary(px, py, h - rho, legs, leg, tlo, thi):
                 return BOUNDARY  # no robot's arcs pass the box (pruning only)

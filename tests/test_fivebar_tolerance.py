@@ -191,12 +191,45 @@ def test_the_vertex_robots_decide_the_band_above_the_leaves(tolerance_mode):
     """Mode ``+-``: the band between the nominal boundary and the boundary shifted by ``h``
     is decided by the vertex robots on boxes of every size (their soundness is
     ``test_the_existential_certificates_are_some_robots``), so the certified paving
-    processes at most 1.6x the nominal paving's boxes (a count, not a time: 1.22x robust,
-    1.38x "some" at ε = 0.2 cm). Checked to fail with the vertex robots tried on leaf boxes
+    processes at most 1.6x the nominal paving's boxes (a count, not a time: 1.12x robust,
+    1.28x "some" at ε = 0.2 cm). Checked to fail with the vertex robots tried on leaf boxes
     only (the earlier kernel: 2.2x robust, 4.1x "some")."""
     nominal = run("+-", precision=0.2).outcome.boxes_processed
     certified = run("+-", tolerance_mode, precision=0.2).outcome.boxes_processed
     assert nominal < certified <= 1.6 * nominal
+
+
+def test_the_circle_family_bound_holds_for_every_sampled_circle():
+    """``circle_family_far`` (the per-direction bound of a mode's universal certificates):
+    where it proves a point farther than ``rho`` from every circle of centre ``a`` in the
+    square ``|a_x|, |a_y| <= t_a`` and radius in ``[max(0, r - s), r + s]``, no sampled
+    circle (centres on the square's edges, 256 a side, and inside it; the extreme and
+    random radii) comes within ``rho``; and it proves more than the isotropic bound
+    ``| |q| - r | > rho + sqrt(2) t_a + s`` does. Checked to fail with ``t_a`` or
+    ``spread`` times 0.85 inside ``circle_family_far``."""
+    from planar_tui.kernels.workspace5r import circle_family_far
+
+    rng = np.random.default_rng(5)
+    side = np.linspace(-1.0, 1.0, 256)
+    ones = np.ones_like(side)
+    square = np.vstack([np.column_stack(pair) for pair in
+                        ((side, ones), (side, -ones), (ones, side), (-ones, side))])  # fmt: skip
+    square = np.vstack([square, rng.uniform(-1.0, 1.0, (64, 2))])
+    proved = isotropic = 0
+    for _ in range(4000):
+        t_a, spread, rho = rng.uniform(0.0, 1.0), rng.uniform(0.0, 1.0), rng.uniform(0.0, 2.0)
+        radius = rng.uniform(0.0, 20.0)
+        qx, qy = rng.uniform(-25.0, 25.0, 2)
+        isotropic += abs(math.hypot(qx, qy) - radius) > rho + math.sqrt(2.0) * t_a + spread
+        if not circle_family_far(qx, qy, t_a, radius, spread, rho):
+            continue
+        proved += 1
+        centres = t_a * square
+        to_centre = np.hypot(qx - centres[:, 0], qy - centres[:, 1])
+        radii = np.concatenate([[max(radius - spread, 0.0), radius + spread],
+                                rng.uniform(max(radius - spread, 0.0), radius + spread, 8)])  # fmt: skip
+        assert np.abs(to_centre[:, None] - radii[None, :]).min() > rho
+    assert proved > isotropic > 1000
 
 
 def arc(centre, radius, start, stop, n=2000):
