@@ -102,8 +102,9 @@ def in_process() -> None:
 #: The ratios of :func:`tolerance` before the vertex robots decided boxes of every size (the
 #: kernel at commit 00b8acc; this table, medians of 3 runs of the median of 5; 2-core KVM
 #: guest, 1-min load 13.1-14.1): (mode, tolerance cm, tolerance_mode) -> (time ratio, boxes
-#: ratio). After, in the same conditions: 1.71, 1.57, 1.79, 1.86 (any mode) and 1.98, 1.88,
-#: 2.73, 2.41 (mode ``+-``).
+#: ratio). After (the vertex robots on every box and the per-direction circle bound), in the
+#: same conditions (load 13.4-13.9): 1.72, 1.61, 1.88, 1.96 (any mode) and 2.20, 1.92, 2.63,
+#: 2.42 (mode ``+-``; boxes 1.01, 1.02, 1.18, 1.25).
 BEFORE = {
     ("any", 0.01, "all"): (1.79, 0.99), ("any", 0.01, "some"): (1.60, 1.01),
     ("any", 0.1, "all"): (1.92, 1.00), ("any", 0.1, "some"): (1.90, 1.22),

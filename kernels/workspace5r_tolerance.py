@@ -51,7 +51,7 @@ Per leg, over the box of centre :math:`c` and half-diagonal :math:`\\rho` (plus
   boundary and the nominal one shifted by :math:`h`, where the true robust (or "some")
   boundary lies, is decided on boxes as wide as the band instead of leaf by leaf (issue
   25: the robust paving of mode ``+-`` at ±1 mm processed 2.4x the nominal paving's boxes,
-  "some" 3.9x; now 1.28x and 1.35x). The search is skipped (``BOUNDARY``, always sound)
+  "some" 3.9x; now 1.18x and 1.25x with the per-direction bound above). The search is skipped (``BOUNDARY``, always sound)
   where no robot can decide: the centre within :math:`\\rho - h` of the nominal arcs (each
   robot's arcs then come within :math:`\\rho` of it), or the nominal robot labelling the box
   against the claim with its arcs farther than :math:`h - \\rho` (no robot's arcs pass the

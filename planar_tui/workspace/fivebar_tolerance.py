@@ -27,16 +27,23 @@ of the nominal one: the outer arc :math:`A + (l_1 + l_2) e(\\theta)`, the inner 
 l_2 e(\\psi)` about the elbows at the joint limits. So a box whose centre :math:`c` is
 farther than :math:`\\rho + h` from the nominal arcs meets no robot's boundary, and
 :math:`B \\times \\Pi` being connected, every robot labels every point as the nominal robot
-labels :math:`c` (the label changes only across a boundary).
+labels :math:`c` (the label changes only across a boundary). Per direction, an arc is also
+proved far when every circle it may lie on is: centre :math:`A + a` (an elbow arc's: the
+nominal elbow plus :math:`a` and at most :math:`t_1`), radius within :math:`t_1 + t_2` of
+the nominal; with :math:`n, f` the exact nearest and farthest distances from :math:`q = c -`
+centre to the square of :math:`a`, when :math:`n - (r + t_1 + t_2) > \\rho` or
+:math:`\\max(0, r - t_1 - t_2) - f > \\rho`
+(:func:`~planar_tui.kernels.workspace5r.circle_family_far`: a shift of :math:`t_A (|\\cos
+\\theta| + |\\sin\\theta|) + t_1 + t_2` in the direction :math:`\\theta`, not :math:`h`).
 
 **Certificates** (per leg, :math:`d` at the box centre, :math:`\\rho` its half-diagonal;
 details in the kernel's docstring): ``all`` (robust) inside iff every leg has
 :math:`d_{\\min} + \\rho + \\sigma \\le l_2 - t_2` and :math:`d_{\\max} - \\rho - \\sigma \\ge l_2
-+ t_2` (or the 3-RRR's first-order bound) and, in a mode, the centre inside and farther than
-:math:`\\rho + h` from the arcs; ``all`` outside when one vertex robot (or, in a mode, the
++ t_2` (or the 3-RRR's first-order bound) and, in a mode, the centre inside and every robot's arcs proved farther than
+:math:`\\rho` (by :math:`\\rho + h` or per direction); ``all`` outside when one vertex robot (or, in a mode, the
 nominal robot, or one of the 16 vertex robots) misses the box; ``some`` outside when :math:`d_{\\min} - \\rho - \\sigma > l_2
 + t_2` or :math:`d_{\\max} + \\rho + \\sigma < l_2 - t_2`, or in a mode the centre is outside,
-farther than :math:`\\rho + h` from the arcs; ``some`` inside when one vertex robot (in a
+every robot's arcs proved farther than :math:`\\rho`; ``some`` inside when one vertex robot (in a
 mode, the nominal robot or a vertex robot) reaches the box (the legs' parameters are independent, so one
 robot serves both legs).
 
