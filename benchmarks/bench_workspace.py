@@ -12,6 +12,9 @@ counts side by side), with the exact area; then the parallel paving of a paving 
 1 s on one thread, with 1, 2 (and every) thread(s), best of 3 interleaved runs each, with
 the load average before and after (the machine is shared).
 
+Part ``--part joint`` (issue 21): paper B's bisection (the joint strategy) on Table 3's four
+interval jobs on 1, 2 and every thread, best of 3 interleaved runs, identical boxes checked.
+
 Part 3 (``--part tolerance``, issue 25): a tolerance-certified workspace at ε = 0.05 cm
 against the nominal one in the same process, printed as a ratio (goal <= 3).
 
@@ -273,17 +276,21 @@ def _kernel_share(s) -> float:
     return inside[0] / total
 
 
-def parallel_paving(precision: float = 0.008, runs: int = 3) -> None:
-    """Leg-wise paving of the 120° case (mean-value) on 1, 2 and every thread: best of
-    ``runs`` interleaved runs each, identical boxes checked."""
+def thread_counts() -> list[int]:
+    """1, 2 and every usable thread."""
     import os
 
     import numba
+
+    return sorted({1, 2, min(os.cpu_count() or 1, numba.config.NUMBA_NUM_THREADS)})
+
+
+def by_threads(s, counts, runs):
+    """Best seconds of ``runs`` interleaved runs of spec ``s`` per thread count, the
+    outcomes, and whether every count gave the same boxes and status."""
+    import numba
     import numpy as np
 
-    counts = sorted({1, 2, min(os.cpu_count() or 1, numba.config.NUMBA_NUM_THREADS)})
-    s = wide_spec("mean-value", precision, "legwise")
-    before = load()
     best, outs = {}, {}
     for _ in range(runs):
         for n in counts:
@@ -291,12 +298,24 @@ def parallel_paving(precision: float = 0.008, runs: int = 3) -> None:
             seconds, out = timed(s)
             best[n] = min(best.get(n, math.inf), seconds)
             outs[n] = out
-    share = _kernel_share(s)
     numba.set_num_threads(counts[-1])
     same = all(
         np.array_equal(outs[n].boxes, outs[1].boxes) and np.array_equal(outs[n].status, outs[1].status)
         for n in counts
     )  # fmt: skip
+    return best, outs, same
+
+
+def parallel_paving(precision: float = 0.008, runs: int = 3) -> None:
+    """Leg-wise paving of the 120° case (mean-value) on 1, 2 and every thread: best of
+    ``runs`` interleaved runs each, identical boxes checked."""
+    import os
+
+    counts = thread_counts()
+    s = wide_spec("mean-value", precision, "legwise")
+    before = load()
+    best, outs, same = by_threads(s, counts, runs)
+    share = _kernel_share(s)
     print(f"\n## Parallel leg-wise paving (120° case, mean-value, ε = {precision:g} cm)\n")
     print(f"{os.cpu_count()} CPUs; load average before {before}, after {load()}; "
           f"same boxes and areas for every thread count: {same}\n")  # fmt: skip
@@ -310,6 +329,33 @@ def parallel_paving(precision: float = 0.008, runs: int = 3) -> None:
             f"| {n} | {best[n]:.3f} | {best[1] / best[n]:.2f}x | {o.boxes_processed:,} "
             f"| [{o.area_inside_cm2:.3f}, {o.area_kept_cm2:.3f}] |"
         )
+
+
+def joint_threads(runs: int = 3) -> None:
+    """Issue 21: paper B's Algorithm 1 (the joint strategy) on Table 3's four interval jobs
+    at the paper's precision, on 1, 2 and every thread (one stack per thread, work
+    shared: :mod:`planar_tui.workspace.joint`), best of ``runs`` interleaved runs,
+    identical boxes checked; the baseline is the same bisection on one thread."""
+    counts = thread_counts()
+    before = load()
+    print("\n## Paper B's bisection (joint strategy) on every thread: Table 3 at ε = 0.1172 cm\n")
+    print("| form | boxes | " + " | ".join(f"{n} thread(s) s" for n in counts)
+          + f" | speed-up on {counts[-1]} | same boxes |")  # fmt: skip
+    print("|---|---:|" + "---:|" * len(counts) + "---:|---|")
+    totals = dict.fromkeys(counts, 0.0)
+    for form, extra in (("natural", {}), ("natural", {"expanded": True}), ("slope", {}),
+                        ("mean-value", {})):  # fmt: skip
+        s = spec(3, form, refine_precision_cm=None, **extra)
+        best, outs, same = by_threads(s, counts, runs)
+        for n in counts:
+            totals[n] += best[n]
+        name = form + (" (expanded)" if extra else "")
+        cells = " | ".join(f"{best[n]:.3f}" for n in counts)
+        print(f"| {name} | {outs[1].boxes_processed:,} | {cells} | "
+              f"{best[1] / best[counts[-1]]:.2f}x | {same} |")  # fmt: skip
+    cells = " | ".join(f"{totals[n]:.3f}" for n in counts)
+    print(f"| all four | | {cells} | {totals[1] / totals[counts[-1]]:.2f}x | |")
+    print(f"\nload average before {before}, after {load()}")
 
 
 JOINT = 'strategy = "joint"\n'
@@ -476,8 +522,8 @@ if __name__ == "__main__":
     import argparse
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--part", choices=("all", "paper", "legwise", "parallel", "cli", "kinds",
-                                            "fivebar", "tolerance"), default="all")  # fmt: skip
+    parser.add_argument("--part", choices=("all", "paper", "legwise", "parallel", "joint", "cli",
+                                            "kinds", "fivebar", "tolerance"), default="all")  # fmt: skip
     parser.add_argument(
         "--quick",
         action="store_true",
@@ -490,6 +536,8 @@ if __name__ == "__main__":
         legwise_vs_joint(joint_at_fine=not args.quick)
     if args.part in ("all", "parallel"):
         parallel_paving()
+    if args.part in ("all", "joint"):
+        joint_threads()
     if args.part in ("all", "cli"):
         whole_process()
     if args.part in ("all", "kinds"):

@@ -198,3 +198,44 @@ def test_the_preview_paves_the_same_boxes_on_one_thread():
     # no box narrower than a map cell, none wider than two
     widths = one.boxes[:, 1] - one.boxes[:, 0]
     assert np.min(widths) >= cell_cm * (1 - 1e-9) and np.max(widths) <= 2 * cell_cm * (1 + 1e-9)
+
+
+@async_test
+async def test_a_tolerance_job_shows_the_nominal_and_some_layers_as_the_cli_map(tmp_path):
+    """Issue 25: the tab draws a tolerance-certified job's robust boxes with the nominal and
+    "some" workspaces as layers (their glyphs and legends), fitted to the widest layer, as
+    the CLI's map does."""
+    from planar_tui.workspace.tolerance import MAP_LAYERS
+
+    app = make_app(tmp_path, "workspace-tolerance.toml")
+    async with app.run_test(size=(120, 40)) as pilot:
+        await run_tab(app, pilot, "workspace")
+        pane = app.query_one("#pane-workspace")
+        explorer = pane.query_one("#workspace-map")
+        await pilot.pause()
+        legend = str(pane.query_one("#workspace-legend").render())
+        drawn = str(explorer.render())
+        some = pane.result.companions["some"].boxes
+        robust = explorer.boxes
+        x_lo, x_hi, y_lo, y_hi = explorer.extent()
+        cli = cli_map(pane.job, pane.result)
+    for _, glyph, text in MAP_LAYERS:
+        assert f"{glyph} {text}" in legend
+        assert glyph in drawn and glyph in cli  # ±1 mm: cells only the nominal or some reach
+    assert len(robust) and np.array_equal(robust, pane.result.outcome.boxes)
+    assert x_lo <= some[:, 0].min() and some[:, 1].max() <= x_hi  # fitted to the widest layer
+    assert y_lo <= some[:, 2].min() and some[:, 3].max() <= y_hi
+
+
+def cli_map(job, result) -> str:
+    """The CLI's map of the same job and result (its kind's terminal view, what
+    ``planar-tui workspace`` prints)."""
+    import io
+
+    from rich.console import Console
+
+    from planar_tui.registry import JOB_KINDS
+
+    out = io.StringIO()
+    JOB_KINDS["workspace"].render(job, result, Console(file=out, width=120))
+    return out.getvalue()

@@ -470,14 +470,8 @@ def render_workspace(job: WorkspaceJob, result: WorkspaceResult, console: Any) -
     singular = result.singularity
     if singular is not None:
         console.print(singular.describe(), markup=False, highlight=False)
-    boxes, status = outcome.boxes, outcome.status
-    layers: list[Any] = []
-    companions = getattr(result, "companions", None)  # a five-bar's result has none
-    if companions is not None:
-        from planar_tui.workspace.tolerance import map_layers
-
-        boxes, status, layers = map_layers(outcome, companions, job.spec.tolerance_mode or "all")
-    lines = render_map(boxes, status, width=width, layers=layers, **overlays(singular))
+    boxes, status, drawn = map_content(job, result)
+    lines = render_map(boxes, status, width=width, **drawn)
     for line in lines:
         console.print(line, markup=False, highlight=False, crop=True, soft_wrap=False)
 
@@ -487,6 +481,24 @@ def point_figures(job: WorkspaceJob, result: WorkspaceResult) -> dict[str, Any]:
     has its own timing)."""
     header, (row,) = result.table.header, result.table.rows
     return {name: value for name, value in zip(header, row, strict=True) if name != "seconds"}
+
+
+def map_content(job: Job[Any, Any], result: Any) -> tuple[Any, Any, dict[str, Any]]:
+    """What the map of a finished workspace job (any parallel kind) shows: its boxes, their
+    status and the ``render_map`` keywords: the singular boxes and the circle
+    (:func:`overlays`) and, for a tolerance-certified job, the robust workspace's boxes
+    with the nominal and "some" workspaces as ``layers``
+    (:func:`planar_tui.workspace.tolerance.map_layers`). The CLI's map and the app's
+    workspace tabs draw the same."""
+    outcome = result.outcome
+    drawn = overlays(getattr(result, "singularity", None))
+    companions = getattr(result, "companions", None)
+    if not companions:
+        return outcome.boxes, outcome.status, drawn
+    from planar_tui.workspace.tolerance import map_layers
+
+    boxes, status, layers = map_layers(outcome, companions, job.spec.tolerance_mode or "all")
+    return boxes, status, {**drawn, "layers": layers}
 
 
 def overlays(singular: SingularityOutcome | FiveBarSingularities | None) -> dict[str, Any]:

@@ -156,7 +156,9 @@ class MapExplorer(Widget):
 
         if not len(self.boxes):
             return
-        x_lo, x_hi, y_lo, y_hi = fit_extent(self.boxes, (0.0, 1.0, 0.0, 1.0))
+        layers = [np.reshape(b, (-1, 4)) for b, _, _ in self.overlays.get("layers", ())]
+        x_lo, x_hi, y_lo, y_hi = fit_extent(np.concatenate([self.boxes, *layers]),
+                                            (0.0, 1.0, 0.0, 1.0))  # fmt: skip
         columns, rows = self.plot_size()
         self.cell_cm = max((x_hi - x_lo) / columns, (y_hi - y_lo) / (2 * rows), 1e-9)
         self.centre_cm = (0.5 * (x_lo + x_hi), 0.5 * (y_lo + y_hi))
@@ -285,10 +287,11 @@ class MapExplorer(Widget):
             items.append(EXACT_ITEM)
         if self.show_mode and self.in_mode is not None:
             items.append(MODE_ITEM)
-        if self.overlays:
+        if "singular" in self.overlays or "circle" in self.overlays:
             from planar_tui.workspace.map import SINGULAR_LEGEND_ITEMS
 
             items += SINGULAR_LEGEND_ITEMS
+        items += [f"{glyph} {text}" for _, glyph, text in self.overlays.get("layers", ())]
         if self.note:
             items.append(self.note)
         return wrapped_legend(items, width)

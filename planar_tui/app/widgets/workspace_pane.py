@@ -184,12 +184,13 @@ class WorkspacePane(JobPane):
             explorer.show_text("(no box kept: the workspace is empty at this precision)")
             self.query_one("#workspace-legend", Static).update("")
             return
-        from planar_tui.workspace.job import overlays
+        from planar_tui.workspace.job import map_content
 
         refit = self._shown_job is not job
         self._shown_job = job
         self.set_geometry(job, result)
-        self.draw_map(outcome.boxes, outcome.status, "", refit, **overlays(result.singularity))
+        boxes, status, drawn = map_content(job, result)  # as the CLI's map: layers too
+        self.draw_map(boxes, status, "", refit, **drawn)
 
     # -- the geometry at the cursor -------------------------------------------------------
     def constant_orientation_3rrr(self, job: Any) -> bool:
