@@ -387,19 +387,37 @@ def bisect_chunk(form, p, precision, angle_scale, stack, n_stack, kept, n_kept, 
     return n_stack, n_kept, processed, DONE
 
 
+#: Boxes a block of :func:`bisect_blocks` bisects between two looks at the other blocks.
+SHARE_QUOTA = 512
+
+
 @kernel(parallel=True)
 def bisect_blocks(form, p, precision, angle_scale, stacks, n_stack, kept, n_kept, max_boxes,
                   processed, codes):  # fmt: skip
     """:func:`bisect_chunk` on every block ``b`` at once (``prange``), each on its own stack
-    ``stacks[b, :n_stack[b]]`` and kept rows ``kept[b, n_kept[b]:]``: at most ``max_boxes``
-    boxes each; writes back ``n_stack[b]``, ``n_kept[b]``, ``processed[b]`` and the halt
-    code ``codes[b]``. Every box is decided from itself alone, so the kept boxes of the
-    whole paving are the same multiset however the boxes are shared among blocks."""
+    ``stacks[b, :n_stack[b]]`` and kept rows ``kept[b, n_kept[b]:]``, for at most
+    ``max_boxes`` boxes each, in steps of :data:`SHARE_QUOTA`: a block whose stack runs
+    empty raises a shared flag and the others return after their current step, so the
+    caller can share the work out again. Writes back ``n_stack[b]``, ``n_kept[b]``,
+    ``processed[b]`` and the halt code ``codes[b]``. Every box is decided from itself
+    alone, so the kept boxes of the whole paving are the same multiset however the boxes
+    are shared among blocks."""
+    hungry = np.zeros(1, dtype=np.int64)  # set by a block whose stack ran empty
     for b in prange(stacks.shape[0]):
-        ns, nk, done, code = bisect_chunk(
-            form, p, precision, angle_scale, stacks[b], n_stack[b], kept[b], n_kept[b],
-            max_boxes,
-        )  # fmt: skip
+        ns = n_stack[b]
+        nk = n_kept[b]
+        done = 0
+        code = DONE
+        while True:
+            ns, nk, step, code = bisect_chunk(
+                form, p, precision, angle_scale, stacks[b], ns, kept[b], nk,
+                min(SHARE_QUOTA, max_boxes - done),
+            )  # fmt: skip
+            done += step
+            if code != CHUNK_LIMIT or done >= max_boxes or hungry[0] != 0:
+                break
+        if ns == 0:
+            hungry[0] = 1
         n_stack[b] = ns
         n_kept[b] = nk
         processed[b] = done
