@@ -37,11 +37,6 @@ class Budget(Protocol):
     ) -> None: ...
 
 
-#: Boxes per round while some block has nothing to do and no stack can be shared (the
-#: first boxes below the root): a short round, so that the work is shared soon.
-SEED_ROUND_BOXES = 256
-
-
 def share_work(stacks: np.ndarray, n_stack: np.ndarray) -> None:
     """Give every block with an empty stack the bottom half of the fullest stack (rows
     ``0 .. k-1``, pushed first: the shallowest boxes), in place; a stack of one box is not
@@ -102,11 +97,10 @@ def joint_stage(
     kept_area = 0.0  # sum over kept boxes: with repeats, an upper bound of their union
     while n_stack.sum() > 0:
         share_work(stacks, n_stack)
-        idle = bool(np.any(n_stack == 0))
         n_kept[:] = 0
         bisect_blocks(
             form_code, p, precision_cm, angle_scale, stacks, n_stack, kept, n_kept,
-            min(per_round, SEED_ROUND_BOXES) if idle else per_round, processed, codes,
+            per_round, processed, codes,
         )  # fmt: skip
         for block in range(blocks):
             rows = kept[block, : n_kept[block]]
