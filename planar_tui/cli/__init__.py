@@ -137,6 +137,15 @@ def main() -> None:
         if not output._REPORTED:
             os.write(2, b"interrupted: nothing was written\n")
         sys.exit(ExitCode.INTERRUPTED)
+    except Exception as error:
+        # A Ctrl-C that Python wrapped: while a kind's module is imported for the help or
+        # a kind's command, one landing in a dataclass field's ``__set_name__`` surfaces
+        # as a RuntimeError caused by it (:func:`output.caused_by_interrupt`).
+        if not output.caused_by_interrupt(error):
+            raise
+        if not output._REPORTED:
+            os.write(2, b"interrupted: nothing was written\n")
+        sys.exit(ExitCode.INTERRUPTED)
     except SystemExit as exit_:
         # Typer turns a Ctrl-C outside the commands' own handling (while a command's
         # modules load, say) into a silent exit 130: say it in one line too.

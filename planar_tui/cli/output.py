@@ -152,6 +152,22 @@ def _interrupt(signum, frame) -> None:
     raise KeyboardInterrupt
 
 
+def caused_by_interrupt(error: BaseException) -> bool:
+    """Whether ``error`` is a Ctrl-C that Python wrapped on its way up: a
+    ``KeyboardInterrupt`` raised inside a class body's ``__set_name__`` (a dataclass field
+    while a module is imported) reaches the caller as a :class:`RuntimeError` caused by it
+    (Python 3.11), as can an error that a library raised while handling one (its cause or
+    context, followed to the first)."""
+    seen: set[int] = set()
+    cause: BaseException | None = error
+    while cause is not None and id(cause) not in seen:
+        if isinstance(cause, KeyboardInterrupt):
+            return True
+        seen.add(id(cause))
+        cause = cause.__cause__ or cause.__context__
+    return False
+
+
 def _unraisable(unraisable) -> None:
     """``sys.unraisablehook``: a Ctrl-C that could not be raised where it landed stops
     the run at its next progress check instead of printing a traceback and being lost."""
@@ -181,6 +197,12 @@ def reported_errors() -> Iterator[None]:
             "terminated: the running job's output was not written", ExitCode.TERMINATED
         ) from None
     except (KeyboardInterrupt, Cancelled):
+        raise fail(
+            "interrupted: the running job's output was not written", ExitCode.INTERRUPTED
+        ) from None
+    except Exception as error:
+        if not caused_by_interrupt(error):
+            raise
         raise fail(
             "interrupted: the running job's output was not written", ExitCode.INTERRUPTED
         ) from None
