@@ -11,6 +11,7 @@ run or written yet.
 import gc
 import os
 import signal
+import sys
 
 #: What the process prints and returns when a signal arrives while it starts.
 _START_EXITS = {
@@ -33,6 +34,14 @@ def main() -> None:
     # collection until a command runs (:func:`planar_tui.cli.root` turns it back on), about
     # 6 % of `planar-tui --help`.
     gc.disable()
+    from planar_tui import helpcache
+
+    arguments = sys.argv[1:]
+    page = helpcache.cached_page(arguments)  # a help page printed before: no Typer, no Rich
+    if page is not None:
+        helpcache.print_page(page)
+        sys.exit(0)
     from planar_tui.cli import main as cli_main
 
-    cli_main()
+    with helpcache.recording(arguments):
+        cli_main()

@@ -74,6 +74,17 @@ def isolated_settings(tmp_path_factory, monkeypatch):
     return folder
 
 
+@pytest.fixture(autouse=True)
+def isolated_help_pages(tmp_path_factory, monkeypatch):
+    """Every test gets its own empty folder of saved help pages
+    (``PLANAR_TUI_HELP_CACHE_DIR``, :mod:`planar_tui.helpcache`): a console script started
+    by a test renders its help rather than print a page an earlier test saved, and nothing
+    is written in the user's cache."""
+    folder = tmp_path_factory.mktemp("help-pages")
+    monkeypatch.setenv("PLANAR_TUI_HELP_CACHE_DIR", str(folder))
+    return folder
+
+
 @pytest.fixture
 def cli():
     """Invoke ``planar-tui`` in-process; returns click's Result (exit_code, stdout, stderr)."""
