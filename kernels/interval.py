@@ -179,12 +179,17 @@ def isincos(alo, ahi):
     floor((hi + s) 2/pi)`` with a slack ``s`` of a few ulps (errs towards including):
     ``j mod 4 = 0, 1, 2, 3`` are the maxima of cos, of sin, the minima of cos, of sin.
     """
+    return isincos_ends(alo, ahi, math.sin(alo), math.sin(ahi), math.cos(alo), math.cos(ahi))
+
+
+@kernel
+def isincos_ends(alo, ahi, s1, s2, c1, c2):
+    """:func:`isincos` given the libm values at the ends, ``s1 = sin(alo)``,
+    ``s2 = sin(ahi)``, ``c1 = cos(alo)``, ``c2 = cos(ahi)``: the same result bit for bit,
+    for callers that keep those values (a bisection computes each end once, at the split
+    that makes it, for both halves)."""
     if ahi - alo >= _TWO_PI:
         return -1.0, 1.0, -1.0, 1.0
-    s1 = math.sin(alo)
-    s2 = math.sin(ahi)
-    c1 = math.cos(alo)
-    c2 = math.cos(ahi)
     slo, shi = _clamp_unit(min(s1, s2), max(s1, s2))
     clo, chi = _clamp_unit(min(c1, c2), max(c1, c2))
     slack = 4.0 * (abs(alo) + abs(ahi) + 1.0) * 2.220446049250313e-16

@@ -42,6 +42,7 @@ from .interval import (
     imul,
     iscale,
     isincos,
+    isincos_ends,
     isqr,
     isub,
     psincos,
@@ -54,9 +55,12 @@ SLOPE = 2
 NATURAL_EXPANDED = 3
 
 # Stack and kept-box layouts: one row per box.
-# stack row: x_lo, x_hi, y_lo, y_hi, t1_lo, t1_hi, t2_lo, t2_hi, t3_lo, t3_hi, split
-# (split: index 0-4 of the variable whose bisection made the box, -1 for the root)
-STACK_COLUMNS = 11
+# stack row: x_lo, x_hi, y_lo, y_hi, t1_lo, t1_hi, t2_lo, t2_hi, t3_lo, t3_hi, split,
+# then per leg i the libm values at its angle's ends, sin(lo), sin(hi), cos(lo), cos(hi)
+# (columns ENDS + 4 i .. ENDS + 4 i + 3; split: index 0-4 of the variable whose
+# bisection made the box, -1 for the root)
+ENDS = 11
+STACK_COLUMNS = ENDS + 12
 # kept row:  x_lo, x_hi, y_lo, y_hi
 DONE = 0
 CHUNK_LIMIT = 1
@@ -163,11 +167,18 @@ def _times_centered(glo, ghi, xlo, xhi, m):
 @kernel
 def mean_value(xlo, xhi, ylo, yhi, tlo, thi, dx, dy, l1, l2):
     """Mean-value form (paper eq. 14) of one leg constraint."""
+    slo, shi, clo, chi = isincos(tlo, thi)
+    return mean_value_sc(xlo, xhi, ylo, yhi, tlo, thi, slo, shi, clo, chi, dx, dy, l1, l2)
+
+
+@kernel
+def mean_value_sc(xlo, xhi, ylo, yhi, tlo, thi, slo, shi, clo, chi, dx, dy, l1, l2):
+    """:func:`mean_value` given :math:`\\sin\\Theta \\subseteq [s_{lo}, s_{hi}]` and
+    :math:`\\cos\\Theta \\subseteq [c_{lo}, c_{hi}]` (:func:`isincos`)."""
     mx = 0.5 * (xlo + xhi)
     my = 0.5 * (ylo + yhi)
     mt = 0.5 * (tlo + thi)
     flo, fhi = point_value(mx, my, mt, dx, dy, l1, l2)
-    slo, shi, clo, chi = isincos(tlo, thi)
     pxlo, pxhi = iadd_scalar(xlo, xhi, dx)
     pylo, pyhi = iadd_scalar(ylo, yhi, dy)
     # D_x F = 2 U, D_y F = 2 V
@@ -201,11 +212,17 @@ def sinc_lower(h):
 @kernel
 def slope(xlo, xhi, ylo, yhi, tlo, thi, dx, dy, l1, l2):
     """Slope form of one leg constraint about the box midpoint (see module docstring)."""
+    slo, shi, clo, chi = isincos(tlo, thi)
+    return slope_sc(xlo, xhi, ylo, yhi, tlo, thi, slo, shi, clo, chi, dx, dy, l1, l2)
+
+
+@kernel
+def slope_sc(xlo, xhi, ylo, yhi, tlo, thi, slo, shi, clo, chi, dx, dy, l1, l2):
+    """:func:`slope` given the enclosures of :math:`\\sin\\Theta` and :math:`\\cos\\Theta`."""
     mx = 0.5 * (xlo + xhi)
     my = 0.5 * (ylo + yhi)
     mt = 0.5 * (tlo + thi)
     flo, fhi = point_value(mx, my, mt, dx, dy, l1, l2)
-    slo, shi, clo, chi = isincos(tlo, thi)
     # S_x = X + m_x + 2 dx - 2 l1 cos(Theta)
     alo, ahi = iadd_scalar(xlo, xhi, mx)
     alo, ahi = iadd_scalar(alo, ahi, 2.0 * dx)
@@ -250,17 +267,24 @@ def natural_expanded(leg, xlo, xhi, ylo, yhi, tlo, thi, p):
     The terms are evaluated in the order printed, with the paper's layout
     :math:`A_1 = (0,0), A_2 = (a,0), A_3 = (a/2, a\\sqrt3/2)`.
     """
+    slo, shi, clo, chi = isincos(tlo, thi)
+    return natural_expanded_sc(leg, xlo, xhi, ylo, yhi, slo, shi, clo, chi, p)
+
+
+@kernel
+def natural_expanded_sc(leg, xlo, xhi, ylo, yhi, slo, shi, clo, chi, p):
+    """:func:`natural_expanded` given the enclosures of :math:`\\sin\\Theta` and
+    :math:`\\cos\\Theta`."""
     l1 = p[0]
     l2 = p[1]
     if leg == 0:
-        return natural_compact(xlo, xhi, ylo, yhi, tlo, thi, p[2], p[3], l1, l2)
+        return _compact(xlo, xhi, ylo, yhi, slo, shi, clo, chi, p[2], p[3], l1, l2)
     a = p[8]
     b = p[9]
     cf = p[10]
     sf = p[11]
     x2lo, x2hi = isqr(xlo, xhi)
     y2lo, y2hi = isqr(ylo, yhi)
-    slo, shi, clo, chi = isincos(tlo, thi)
     lclo, lchi = iscale(clo, chi, l1)
     lslo, lshi = iscale(slo, shi, l1)
     if leg == 1:
@@ -305,15 +329,24 @@ def natural_expanded(leg, xlo, xhi, ylo, yhi, tlo, thi, p):
 @kernel
 def leg_enclosure(form, leg, xlo, xhi, ylo, yhi, tlo, thi, p):
     """Enclosure of :math:`f_{leg}` over the box by the chosen ``form`` (module constants)."""
+    slo, shi, clo, chi = isincos(tlo, thi)
+    return leg_enclosure_sc(form, leg, xlo, xhi, ylo, yhi, tlo, thi, slo, shi, clo, chi, p)
+
+
+@kernel
+def leg_enclosure_sc(form, leg, xlo, xhi, ylo, yhi, tlo, thi, slo, shi, clo, chi, p):
+    """:func:`leg_enclosure` given the enclosures of :math:`\\sin\\Theta` and
+    :math:`\\cos\\Theta` (:func:`~kernels.interval.isincos`): the same result."""
     dx = p[2 + 2 * leg]
     dy = p[3 + 2 * leg]
     if form == MEAN_VALUE:
-        return mean_value(xlo, xhi, ylo, yhi, tlo, thi, dx, dy, p[0], p[1])
+        return mean_value_sc(xlo, xhi, ylo, yhi, tlo, thi, slo, shi, clo, chi, dx, dy,
+                             p[0], p[1])  # fmt: skip
     if form == SLOPE:
-        return slope(xlo, xhi, ylo, yhi, tlo, thi, dx, dy, p[0], p[1])
+        return slope_sc(xlo, xhi, ylo, yhi, tlo, thi, slo, shi, clo, chi, dx, dy, p[0], p[1])
     if form == NATURAL_EXPANDED:
-        return natural_expanded(leg, xlo, xhi, ylo, yhi, tlo, thi, p)
-    return natural_compact(xlo, xhi, ylo, yhi, tlo, thi, dx, dy, p[0], p[1])
+        return natural_expanded_sc(leg, xlo, xhi, ylo, yhi, slo, shi, clo, chi, p)
+    return _compact(xlo, xhi, ylo, yhi, slo, shi, clo, chi, dx, dy, p[0], p[1])
 
 
 @kernel
@@ -341,17 +374,16 @@ def bisect_chunk(form, p, precision, angle_scale, stack, n_stack, kept, n_kept, 
         first_leg, last_leg = (split - 2, split - 1) if split >= 2 else (0, 3)
         feasible = True
         for leg in range(first_leg, last_leg):
-            flo, fhi = leg_enclosure(
-                form,
-                leg,
-                stack[row, 0],
-                stack[row, 1],
-                stack[row, 2],
-                stack[row, 3],
-                stack[row, 4 + 2 * leg],
-                stack[row, 5 + 2 * leg],
-                p,
+            tlo = stack[row, 4 + 2 * leg]
+            thi = stack[row, 5 + 2 * leg]
+            e = ENDS + 4 * leg  # the ends' libm values: no sin or cos computed here
+            slo, shi, clo, chi = isincos_ends(
+                tlo, thi, stack[row, e], stack[row, e + 1], stack[row, e + 2], stack[row, e + 3]
             )
+            flo, fhi = leg_enclosure_sc(
+                form, leg, stack[row, 0], stack[row, 1], stack[row, 2], stack[row, 3],
+                tlo, thi, slo, shi, clo, chi, p,
+            )  # fmt: skip
             if flo > 0.0 or fhi < 0.0:
                 feasible = False
                 break
@@ -377,14 +409,44 @@ def bisect_chunk(form, p, precision, angle_scale, stack, n_stack, kept, n_kept, 
         lo = stack[row, 2 * widest]
         hi = stack[row, 2 * widest + 1]
         mid = 0.5 * (lo + hi)
-        for j in range(10):
-            stack[n_stack + 1, j] = stack[row, j]
+        child = n_stack + 1
+        for j in range(STACK_COLUMNS):
+            stack[child, j] = stack[row, j]
         stack[row, 2 * widest + 1] = mid
-        stack[n_stack + 1, 2 * widest] = mid
+        stack[child, 2 * widest] = mid
         stack[row, 10] = widest
-        stack[n_stack + 1, 10] = widest
+        stack[child, 10] = widest
+        if widest >= 2:  # the new end's sin and cos, once for both halves
+            e = ENDS + 4 * (widest - 2)
+            s = math.sin(mid)
+            c = math.cos(mid)
+            stack[row, e + 1] = s
+            stack[row, e + 3] = c
+            stack[child, e] = s
+            stack[child, e + 2] = c
         n_stack += 2
     return n_stack, n_kept, processed, DONE
+
+
+@kernel
+def root_row(row, xlo, xhi, ylo, yhi, limits):
+    """Fill ``row`` (a stack row) with the root box ``[xlo, xhi] × [ylo, yhi] × limits``
+    (``limits[i] = (lo, hi)`` of leg i's angle, rad) and its angles' end values."""
+    row[0] = xlo
+    row[1] = xhi
+    row[2] = ylo
+    row[3] = yhi
+    for leg in range(3):
+        lo = limits[leg, 0]
+        hi = limits[leg, 1]
+        row[4 + 2 * leg] = lo
+        row[5 + 2 * leg] = hi
+        e = ENDS + 4 * leg
+        row[e] = math.sin(lo)
+        row[e + 1] = math.sin(hi)
+        row[e + 2] = math.cos(lo)
+        row[e + 3] = math.cos(hi)
+    row[10] = -1.0
 
 
 #: Boxes a block of :func:`bisect_blocks` bisects between two looks at the other blocks.

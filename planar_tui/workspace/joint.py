@@ -77,13 +77,13 @@ def joint_stage(
         STACK_COLUMNS,
         STACK_FULL,
         bisect_blocks,
+        root_row,
     )
 
     blocks = blocks or get_num_threads()
     stacks = np.zeros((blocks, 256, STACK_COLUMNS))
-    stacks[0, 0, :4] = [box[0][0], box[0][1], box[1][0], box[1][1]]
-    stacks[0, 0, 4:10] = np.asarray(limits_rad, dtype=np.float64).ravel()
-    stacks[0, 0, 10] = -1.0
+    root_row(stacks[0, 0], box[0][0], box[0][1], box[1][0], box[1][1],
+             np.asarray(limits_rad, dtype=np.float64).reshape(3, 2))  # fmt: skip
     root_volume = float(np.prod(stacks[0, 0, 1:10:2] - stacks[0, 0, 0:10:2]))
     n_stack = np.zeros(blocks, dtype=np.int64)
     n_stack[0] = 1
