@@ -214,3 +214,31 @@ def test_unique_rows_equals_numpy_unique():
     boxes = rng.integers(0, 3, (500, 4)).astype(np.float64) * 0.5
     np.testing.assert_array_equal(unique_rows(boxes), np.unique(boxes, axis=0))
     assert unique_rows(np.zeros((0, 4))).shape == (0, 4)
+
+
+def test_unique_rows_of_grid_cells_equals_numpy_unique():
+    """The grid path (:func:`planar_tui.workspace.boxes._unique_grid_cells`): cells of one
+    grid in any order and repeated, as a bisection keeps them; and the near-grids it must
+    hand to the sort (rows that round to one cell, mixed sizes, too many cells)."""
+    from planar_tui.workspace import boxes as module
+
+    rng = np.random.default_rng(7)
+    width, height = 120 / 1024, 120 / 512
+    i = rng.integers(0, 40, 3000)
+    j = rng.integers(0, 25, 3000)
+    x_lo, y_lo = 13.0 + i * width, -4.0 + j * height
+    cells = np.column_stack([x_lo, x_lo + width, y_lo, y_lo + height])
+    assert module._unique_grid_cells(cells) is not None  # the grid path is taken
+    np.testing.assert_array_equal(module.unique_rows(cells), np.unique(cells, axis=0))
+    near = cells.copy()
+    near[5, 0:2] += 2.0**-30  # same width, off the grid: rounds to its old cell
+    near = np.vstack([near, cells[5]])  # ... which another row holds
+    assert np.all(near[:, 1] - near[:, 0] == width)  # so only the cell check can refuse
+    assert module._unique_grid_cells(near) is None
+    np.testing.assert_array_equal(module.unique_rows(near), np.unique(near, axis=0))
+    mixed = np.vstack([cells[:10], [[0.0, 2 * width, 0.0, height]]])
+    assert module._unique_grid_cells(mixed) is None
+    np.testing.assert_array_equal(module.unique_rows(mixed), np.unique(mixed, axis=0))
+    far = np.array([[0.0, 1e-3, 0.0, 1e-3], [100.0, 100.001, 100.0, 100.001]])
+    assert module._unique_grid_cells(far) is None  # 10^10 cells: sorted instead
+    np.testing.assert_array_equal(module.unique_rows(far), np.unique(far, axis=0))
