@@ -362,6 +362,7 @@ def bisect_chunk(form, p, precision, angle_scale, stack, n_stack, kept, n_kept, 
     ``CHUNK_LIMIT``, ``KEPT_FULL`` or ``STACK_FULL`` (grow the array and call again).
     """
     processed = 0
+    refuter = 0  # the leg that last excluded a box: tried first (neighbours often agree)
     while n_stack > 0:
         halt = chunk_halt(processed, max_boxes, n_kept, kept.shape[0], n_stack, stack.shape[0])
         if halt != DONE:
@@ -371,9 +372,10 @@ def bisect_chunk(form, p, precision, angle_scale, stack, n_stack, kept, n_kept, 
         processed += 1
         # A theta_j bisection leaves F_i (i != j) as the parent's, which contained 0.
         split = int(stack[row, 10])
-        first_leg, last_leg = (split - 2, split - 1) if split >= 2 else (0, 3)
+        first_leg, n_legs = (split - 2, 1) if split >= 2 else (refuter, 3)
         feasible = True
-        for leg in range(first_leg, last_leg):
+        for k in range(n_legs):
+            leg = (first_leg + k) % 3
             tlo = stack[row, 4 + 2 * leg]
             thi = stack[row, 5 + 2 * leg]
             e = ENDS + 4 * leg  # the ends' libm values: no sin or cos computed here
@@ -386,6 +388,7 @@ def bisect_chunk(form, p, precision, angle_scale, stack, n_stack, kept, n_kept, 
             )  # fmt: skip
             if flo > 0.0 or fhi < 0.0:
                 feasible = False
+                refuter = leg
                 break
         if not feasible:
             continue
