@@ -3,10 +3,12 @@ Numba threads."""
 
 from __future__ import annotations
 
+import os
 import subprocess
 from pathlib import Path
 
 import pytest
+from hypothesis import settings
 from typer.testing import CliRunner
 
 from planar_tui.runtime import prepare_kernels
@@ -18,6 +20,14 @@ REFERENCE = REPO / "tests" / "data" / "reference"
 # Like every front end, the suite sets numba up before any kernel is imported (the test
 # modules import kernels at module level): compiled kernels go to planar-tui's cache.
 prepare_kernels()
+
+# Hypothesis draws the same examples on every run (derived from each test), so the suite
+# passes or fails the same way on every machine; no example database is written (an
+# example found once and replayed ever after would make a checkout's results its own).
+# ``HYPOTHESIS_PROFILE=explore`` draws fresh random examples, to look for new failures.
+settings.register_profile("repeatable", derandomize=True, database=None)
+settings.register_profile("explore", database=None)
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "repeatable"))
 
 
 def on_one_and_two_threads(run):

@@ -156,15 +156,19 @@ def caused_by_interrupt(error: BaseException) -> bool:
     """Whether ``error`` is a Ctrl-C that Python wrapped on its way up: a
     ``KeyboardInterrupt`` raised inside a class body's ``__set_name__`` (a dataclass field
     while a module is imported) reaches the caller as a :class:`RuntimeError` caused by it
-    (Python 3.11), as can an error that a library raised while handling one (its cause or
-    context, followed to the first)."""
+    (Python 3.11). Only explicit causes are followed (``raise ... from``, as Python's wrap
+    is): an error merely raised while a Ctrl-C was being handled (its ``__context__``,
+    such as the exit of a command that already reported the interrupt) is its own, and
+    Typer's and Click's exits never count."""
+    if isinstance(error, (typer.Exit, typer.Abort)):
+        return False
     seen: set[int] = set()
     cause: BaseException | None = error
     while cause is not None and id(cause) not in seen:
         if isinstance(cause, KeyboardInterrupt):
             return True
         seen.add(id(cause))
-        cause = cause.__cause__ or cause.__context__
+        cause = cause.__cause__
     return False
 
 

@@ -52,8 +52,8 @@ def _unique_grid_cells(boxes: np.ndarray) -> np.ndarray | None:
         return None
     x_min = boxes[:, 0].min()
     y_min = boxes[:, 2].min()
-    n_x = int(round((boxes[:, 0].max() - x_min) / width[0])) + 1
-    n_y = int(round((boxes[:, 2].max() - y_min) / height[0])) + 1
+    n_x = int(np.rint((boxes[:, 0].max() - x_min) / width[0])) + 1
+    n_y = int(np.rint((boxes[:, 2].max() - y_min) / height[0])) + 1
     if n_x * n_y > MAX_GRID_CELLS:
         return None
     i = np.rint((boxes[:, 0] - x_min) / width[0]).astype(np.int64)

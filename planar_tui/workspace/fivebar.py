@@ -179,7 +179,9 @@ def mode_band(a, l1, l2, lo, hi, sigma, segments_per_turn):
         _arc(*bhi, l2, hi + fold, hi, segments_per_turn),  # θ = hi, folded to extended
         _arc(ax, ay, l1 + l2, hi, lo, segments_per_turn),  # extended
     ]
-    ring = np.vstack([p for p, _ in pieces])
+    # consecutive arcs meet where one ends and the next starts: each junction once (two
+    # float copies 1e-14 apart made a near-zero edge whose mitre GEOS computed from NaN)
+    ring = np.vstack([pieces[0][0], *(p[1:] for p, _ in pieces[1:])])[:-1]
     polygon = Polygon(ring).buffer(0)
     return polygon, max(abs(s) for _, s in pieces)
 
