@@ -178,9 +178,13 @@ class _Tee:
 @contextmanager
 def recording(arguments: Sequence[str]) -> Iterator[None]:
     """Run the block (the CLI) and, if ``arguments`` ask for a help page and the block
-    exits with code 0 having written nothing on stderr, save what it wrote on stdout."""
+    exits with code 0 having written nothing on stderr, save what it wrote on stdout.
+
+    Only a UTF-8 stdout is recorded: Click writes through a stream of its own over the
+    binary buffer when the text stream's encoding is ASCII (a misconfigured locale), which
+    this copy would not see."""
     folder = pages_folder() if is_help_request(arguments) else None
-    if folder is None:
+    if folder is None or not _utf8(getattr(sys.stdout, "encoding", None)):
         yield
         return
     key = help_key(arguments)  # before the run: the key of what is printed now
@@ -195,6 +199,16 @@ def recording(arguments: Sequence[str]) -> Iterator[None]:
         raise
     finally:
         sys.stdout, sys.stderr = out._stream, err._stream
+
+
+def _utf8(encoding: str | None) -> bool:
+    """Whether ``encoding`` names UTF-8."""
+    import codecs
+
+    try:
+        return encoding is not None and codecs.lookup(encoding).name == "utf-8"
+    except LookupError:
+        return False
 
 
 def _save(folder: Path, key: str, page: bytes) -> None:

@@ -112,6 +112,15 @@ def test_an_error_is_never_saved_and_an_unwritable_cache_changes_nothing(tmp_pat
     assert not_a_folder.read_text() == "a file where the folder should be"
 
 
+def test_an_ascii_stdout_is_never_recorded(tmp_path):
+    """With an ASCII stdout Click writes through its own stream over the binary buffer,
+    past the recording: no page is saved, the help is still printed."""
+    pages = tmp_path / "pages"
+    code, out, imported = run_entry(["--help"], pages, PYTHONIOENCODING="ascii")
+    assert code == 0 and b"Usage: planar-tui" in out and "typer" in imported
+    assert not pages.exists()
+
+
 def test_only_help_requests_are_cached():
     assert helpcache.is_help_request(["--help"])
     assert helpcache.is_help_request(["run", "--help"])
