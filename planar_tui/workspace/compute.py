@@ -438,7 +438,11 @@ def compute_workspace(robot: Robot3RRR, spec, budget: BoxBudget) -> WorkspaceOut
 
     return finished_outcome(
         spec, boxes, status, refine, budget, geometric, started, extent,
-        form=spec.form + (" (expanded)" if spec.expanded else ""), disjoint=legwise,
+        form=spec.form + (" (expanded)" if spec.expanded else ""),
+        # the leg-wise and arc-distance pavings split boxes into disjoint halves: their
+        # union's area is the sum (the sweep of union_area took 0.12 s of Table 3's
+        # refined arc-distance job, 135 924 boxes, for the same figure)
+        disjoint=legwise or spec.form == "arc-distance",
         strategy=spec.strategy if interval_form else "", xy_boxes=xy_boxes,
     )  # fmt: skip
 
