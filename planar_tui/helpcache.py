@@ -211,8 +211,15 @@ def _utf8(encoding: str | None) -> bool:
         return False
 
 
+#: The most pages kept: saving one more removes the least recently saved beyond it.
+MAX_PAGES = 64
+_PAGE_NAME = re.compile(r"[0-9a-f]{32}\.txt\Z")
+
+
 def _save(folder: Path, key: str, page: bytes) -> None:
-    """Write the page under its key (temporary file, then rename); errors are ignored."""
+    """Write the page under its key (temporary file, then rename), then keep the
+    :data:`MAX_PAGES` newest pages (only files named as pages are; terminal sizes vary, so
+    the folder would otherwise grow without end); errors are ignored."""
     import tempfile
 
     try:
@@ -225,5 +232,11 @@ def _save(folder: Path, key: str, page: bytes) -> None:
         except BaseException:
             os.unlink(temporary)
             raise
+        with os.scandir(folder) as entries:
+            pages = [entry for entry in entries if _PAGE_NAME.match(entry.name)]
+        if len(pages) > MAX_PAGES:
+            pages.sort(key=lambda entry: entry.stat().st_mtime_ns, reverse=True)
+            for entry in pages[MAX_PAGES:]:
+                os.unlink(entry.path)
     except OSError:
         pass

@@ -121,6 +121,22 @@ def test_an_ascii_stdout_is_never_recorded(tmp_path):
     assert not pages.exists()
 
 
+def test_the_folder_keeps_the_newest_pages_and_nothing_else_is_touched(tmp_path):
+    pages = tmp_path / "pages"
+    pages.mkdir()
+    for n in range(helpcache.MAX_PAGES):
+        old = pages / f"{n:032x}.txt"
+        old.write_text("an old page")
+        os.utime(old, ns=(10**9 * n, 10**9 * n))
+    (pages / "notes.txt").write_text("not a page")
+    code, _, _ = run_entry(["--help"], pages)
+    assert code == 0
+    saved = sorted(path.name for path in pages.glob("*.txt"))
+    assert len(saved) == helpcache.MAX_PAGES + 1  # the pages and the notes
+    assert f"{0:032x}.txt" not in saved  # the least recently saved went
+    assert f"{1:032x}.txt" in saved and "notes.txt" in saved
+
+
 def test_only_help_requests_are_cached():
     assert helpcache.is_help_request(["--help"])
     assert helpcache.is_help_request(["run", "--help"])
