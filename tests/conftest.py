@@ -21,6 +21,14 @@ REFERENCE = REPO / "tests" / "data" / "reference"
 # modules import kernels at module level): compiled kernels go to planar-tui's cache.
 prepare_kernels()
 
+# Dask's comms give up on a peer silent for 30 s (connect, and an open connection): on a
+# machine busy with other work a worker process starting or restarting can take longer, so
+# the suite's clusters (and the CLI processes it starts, which inherit the environment)
+# wait up to 300 s; these only bound a hang. (`--scheduler`'s own probe has its own
+# timeout, PLANAR_TUI_SCHEDULER_TIMEOUT_S, which this does not change.)
+os.environ.setdefault("DASK_DISTRIBUTED__COMM__TIMEOUTS__CONNECT", "300s")
+os.environ.setdefault("DASK_DISTRIBUTED__COMM__TIMEOUTS__TCP", "300s")
+
 # Hypothesis draws the same examples on every run (derived from each test), so the suite
 # passes or fails the same way on every machine; no example database is written (an
 # example found once and replayed ever after would make a checkout's results its own).

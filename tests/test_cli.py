@@ -152,7 +152,7 @@ def test_sigint_to_a_real_process_leaves_no_partial_csv(tmp_path):
     )
     time.sleep(4.0)
     process.send_signal(signal.SIGINT)
-    _, err = process.communicate(timeout=60)
+    _, err = process.communicate(timeout=600)
     assert process.returncode == ExitCode.INTERRUPTED, err
     assert "Traceback" not in err
     assert not (tmp_path / "out").exists() or list((tmp_path / "out").iterdir()) == []

@@ -55,7 +55,7 @@ def test_no_command_in_a_pipe_exits_2_quickly_with_the_usage():
             stdin=subprocess.DEVNULL,
             capture_output=True,
             text=True,
-            timeout=20,
+            timeout=120,
             cwd=REPO,
         )
     except subprocess.TimeoutExpired as error:

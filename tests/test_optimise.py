@@ -298,7 +298,7 @@ def test_ctrl_c_then_resume_gives_the_uninterrupted_csv(tmp_path, cli):
         assert time.monotonic() < deadline, "no evaluation finished"
         time.sleep(0.01)
     os.killpg(process.pid, signal.SIGINT)
-    _, err = process.communicate(timeout=60)
+    _, err = process.communicate(timeout=600)
     assert process.returncode == ExitCode.INTERRUPTED, err
     assert err.strip().splitlines()[-1].startswith("interrupted: finished evaluations are")
     assert "Traceback" not in err

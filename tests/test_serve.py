@@ -69,7 +69,7 @@ def served(tmp_path, port: int, *options: str):
     finally:
         server.send_signal(signal.SIGTERM)
         try:
-            server.wait(timeout=30)
+            server.wait(timeout=120)
         except subprocess.TimeoutExpired:
             server.kill()
             server.wait(timeout=10)

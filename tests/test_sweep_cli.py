@@ -53,7 +53,7 @@ output = "interrupted.csv"
         assert time.monotonic() < deadline, "no point finished"
         time.sleep(0.02)
     os.killpg(process.pid, signal.SIGINT)  # as a terminal's Ctrl-C: the whole group
-    _, err = process.communicate(timeout=60)
+    _, err = process.communicate(timeout=600)
     assert process.returncode == ExitCode.INTERRUPTED, err
     assert "dask: local cluster of 2 worker processes, dashboard http" in err
     assert err.strip().splitlines()[-1].startswith("interrupted: finished points are in the")
@@ -149,7 +149,7 @@ output = "second.csv"
         assert time.monotonic() < deadline, "no point of the second sweep finished"
         time.sleep(0.02)
     os.killpg(process.pid, signal.SIGINT)
-    _, err = process.communicate(timeout=60)
+    _, err = process.communicate(timeout=600)
     assert process.returncode == ExitCode.INTERRUPTED, err
     assert (out / "first.csv").exists() and not (out / "second.csv").exists()
     kept = {json.loads(line)["number"]: json.loads(line)["seconds"]

@@ -306,7 +306,7 @@ def test_ctrl_c_exits_130_quickly_and_writes_nothing(tmp_path):
     assert process.poll() is None, "the job finished before it could be interrupted"
     process.send_signal(signal.SIGINT)
     sent = time.perf_counter()
-    _, stderr = process.communicate(timeout=30)
+    _, stderr = process.communicate(timeout=300)
     assert time.perf_counter() - sent < 5.0  # 10x the 0.5 s goal (exit included)
     assert process.returncode == 130, stderr.decode()
     assert not (tmp_path / "ws.csv").exists() and not (tmp_path / "b.csv").exists()
