@@ -127,7 +127,9 @@ def _l2_squared(l2):
 
 @kernel
 def _compact(xlo, xhi, ylo, yhi, slo, shi, clo, chi, dx, dy, l1, l2):
-    """:math:`(X + d_x - l_1 C)^2 + (Y + d_y - l_1 S) ^2 - l_2^2` given enclosures S, C."""
+    """The natural extension of the compact form (``NATURAL``),
+    :math:`(X + d_x - l_1 C)^2 + (Y + d_y - l_1 S)^2 - l_2^2`, given the enclosures
+    :math:`S \\supseteq \\sin\\Theta` and :math:`C \\supseteq \\cos\\Theta`."""
     alo, ahi = iadd_scalar(xlo, xhi, dx)
     blo, bhi = iscale(clo, chi, l1)
     ulo, uhi = isub(alo, ahi, blo, bhi)
@@ -139,13 +141,6 @@ def _compact(xlo, xhi, ylo, yhi, slo, shi, clo, chi, dx, dy, l1, l2):
     slo, shi = iadd(u2lo, u2hi, v2lo, v2hi)
     klo, khi = _l2_squared(l2)
     return isub(slo, shi, klo, khi)
-
-
-@kernel
-def natural_compact(xlo, xhi, ylo, yhi, tlo, thi, dx, dy, l1, l2):
-    """Natural extension of :math:`(X + d_x - l_1\\cos\\Theta)^2 + (Y + d_y - l_1\\sin\\Theta)^2 - l_2^2`."""
-    slo, shi, clo, chi = isincos(tlo, thi)
-    return _compact(xlo, xhi, ylo, yhi, slo, shi, clo, chi, dx, dy, l1, l2)
 
 
 @kernel

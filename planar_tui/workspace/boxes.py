@@ -17,7 +17,7 @@ def unique_rows(boxes: np.ndarray) -> np.ndarray:
     ``np.unique(axis=0)``, which sorts a structured view. Cells of one grid (the kept
     boxes of a bisection: every row ``x_lo, x_hi, y_lo, y_hi`` the same size, the Table 3
     paving's 944 417 rows of 10 732 cells) are told apart by their cell numbers without
-    sorting (:func:`_unique_grid_cells`, ten times faster)."""
+    sorting (:func:`_unique_grid_cells`: 0.07 s against the sort's 0.21 s there)."""
     if len(boxes) == 0:
         return boxes.copy()
     cells = _unique_grid_cells(boxes)
