@@ -131,16 +131,12 @@ def main() -> None:
         signal.signal(signal.SIGTERM, signal.SIG_DFL)
         configure_process()
         build_app(sys.argv[1] if len(sys.argv) > 1 else None)(prog_name="planar-tui")
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, Exception) as error:
         # Ctrl-C before Typer's own handling starts: while it builds the Click command
-        # from the commands' signatures (~50 ms after the imports).
-        if not output._REPORTED:
-            os.write(2, b"interrupted: nothing was written\n")
-        sys.exit(ExitCode.INTERRUPTED)
-    except Exception as error:
-        # A Ctrl-C that Python wrapped: while a kind's module is imported for the help or
-        # a kind's command, one landing in a dataclass field's ``__set_name__`` surfaces
-        # as a RuntimeError caused by it (:func:`output.caused_by_interrupt`).
+        # from the commands' signatures (~50 ms after the imports), or while a kind's
+        # module is imported for them, where one landing in a dataclass field's
+        # ``__set_name__`` surfaces as a RuntimeError caused by it
+        # (:func:`output.caused_by_interrupt`).
         if not output.caused_by_interrupt(error):
             raise
         if not output._REPORTED:

@@ -153,10 +153,10 @@ def _interrupt(signum, frame) -> None:
 
 
 def caused_by_interrupt(error: BaseException) -> bool:
-    """Whether ``error`` is a Ctrl-C that Python wrapped on its way up: a
-    ``KeyboardInterrupt`` raised inside a class body's ``__set_name__`` (a dataclass field
-    while a module is imported) reaches the caller as a :class:`RuntimeError` caused by it
-    (Python 3.11). Only explicit causes are followed (``raise ... from``, as Python's wrap
+    """Whether ``error`` is a Ctrl-C (a ``KeyboardInterrupt``), or one that Python wrapped
+    on its way up: a ``KeyboardInterrupt`` raised inside a class body's ``__set_name__``
+    (a dataclass field while a module is imported) reaches the caller as a
+    :class:`RuntimeError` caused by it (Python 3.11). Only explicit causes are followed (``raise ... from``, as Python's wrap
     is): an error merely raised while a Ctrl-C was being handled (its ``__context__``,
     such as the exit of a command that already reported the interrupt) is its own, and
     Typer's and Click's exits never count."""
@@ -200,12 +200,8 @@ def reported_errors() -> Iterator[None]:
         raise fail(
             "terminated: the running job's output was not written", ExitCode.TERMINATED
         ) from None
-    except (KeyboardInterrupt, Cancelled):
-        raise fail(
-            "interrupted: the running job's output was not written", ExitCode.INTERRUPTED
-        ) from None
-    except Exception as error:
-        if not caused_by_interrupt(error):
+    except (KeyboardInterrupt, Exception) as error:
+        if not (isinstance(error, Cancelled) or caused_by_interrupt(error)):
             raise
         raise fail(
             "interrupted: the running job's output was not written", ExitCode.INTERRUPTED
