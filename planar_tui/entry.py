@@ -36,12 +36,12 @@ def main() -> None:
     gc.disable()
     from planar_tui import helpcache
 
-    arguments = sys.argv[1:]
-    page = helpcache.cached_page(arguments)  # a help page printed before: no Typer, no Rich
+    path = helpcache.page_path(sys.argv[1:])  # None: not a help request (or no cache)
+    page = helpcache.cached_page(path)  # a help page printed before: no Typer, no Rich
     if page is not None:
         helpcache.print_page(page)
         sys.exit(0)
     from planar_tui.cli import main as cli_main
 
-    with helpcache.recording(arguments):
+    with helpcache.recording(path):
         cli_main()

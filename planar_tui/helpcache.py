@@ -139,14 +139,20 @@ def pages_folder() -> Path | None:
     return Path(platformdirs.user_cache_dir("planar-tui", appauthor=False)) / "help-pages"
 
 
-def cached_page(arguments: Sequence[str]) -> bytes | None:
-    """The saved page for ``arguments``, or ``None`` (not a help request, the cache off,
-    nothing saved for this key, or the file unreadable)."""
+def page_path(arguments: Sequence[str]) -> Path | None:
+    """Where the page for ``arguments`` is saved (``FOLDER/KEY.txt``), or ``None`` when
+    they are not a help request or the cache is off."""
     folder = pages_folder() if is_help_request(arguments) else None
-    if folder is None:
+    return None if folder is None else folder / f"{help_key(arguments)}.txt"
+
+
+def cached_page(path: Path | None) -> bytes | None:
+    """The page saved at ``path`` (:func:`page_path`), or ``None`` (no path, nothing saved
+    there, or the file unreadable)."""
+    if path is None:
         return None
     try:
-        return (folder / f"{help_key(arguments)}.txt").read_bytes()
+        return path.read_bytes()
     except OSError:
         return None
 
@@ -176,18 +182,17 @@ class _Tee:
 
 
 @contextmanager
-def recording(arguments: Sequence[str]) -> Iterator[None]:
-    """Run the block (the CLI) and, if ``arguments`` ask for a help page and the block
-    exits with code 0 having written nothing on stderr, save what it wrote on stdout.
+def recording(path: Path | None) -> Iterator[None]:
+    """Run the block (the CLI) and, given the page's ``path`` (:func:`page_path`; ``None``:
+    not a help request or no cache), if the block exits with code 0 having written nothing
+    on stderr, save what it wrote on stdout there.
 
     Only a UTF-8 stdout is recorded: Click writes through a stream of its own over the
     binary buffer when the text stream's encoding is ASCII (a misconfigured locale), which
     this copy would not see."""
-    folder = pages_folder() if is_help_request(arguments) else None
-    if folder is None or not _utf8(getattr(sys.stdout, "encoding", None)):
+    if path is None or not _utf8(getattr(sys.stdout, "encoding", None)):
         yield
         return
-    key = help_key(arguments)  # before the run: the key of what is printed now
     out, err = _Tee(sys.stdout), _Tee(sys.stderr)
     sys.stdout, sys.stderr = out, err
     try:
@@ -195,7 +200,7 @@ def recording(arguments: Sequence[str]) -> Iterator[None]:
     except SystemExit as exit_:
         if exit_.code in (None, 0) and not "".join(err.written) and out.written:
             text = "".join(out.written).replace("\n", os.linesep)  # as the text layer wrote it
-            _save(folder, key, text.encode(out.encoding or "utf-8", out.errors or "strict"))
+            _save(path, text.encode(out.encoding or "utf-8", out.errors or "strict"))
         raise
     finally:
         sys.stdout, sys.stderr = out._stream, err._stream
@@ -216,19 +221,20 @@ MAX_PAGES = 64
 _PAGE_NAME = re.compile(r"[0-9a-f]{32}\.txt\Z")
 
 
-def _save(folder: Path, key: str, page: bytes) -> None:
-    """Write the page under its key (temporary file, then rename), then keep the
+def _save(path: Path, page: bytes) -> None:
+    """Write the page at ``path`` (temporary file, then rename), then keep the
     :data:`MAX_PAGES` newest pages (only files named as pages are; terminal sizes vary, so
     the folder would otherwise grow without end); errors are ignored."""
     import tempfile
 
+    folder = path.parent
     try:
         folder.mkdir(parents=True, exist_ok=True)
-        descriptor, temporary = tempfile.mkstemp(dir=folder, prefix=f".{key}.", suffix=".tmp")
+        descriptor, temporary = tempfile.mkstemp(dir=folder, prefix=f".{path.stem}.", suffix=".tmp")
         try:
             with os.fdopen(descriptor, "wb") as file:
                 file.write(page)
-            os.replace(temporary, folder / f"{key}.txt")
+            os.replace(temporary, path)
         except BaseException:
             os.unlink(temporary)
             raise
