@@ -335,26 +335,42 @@ def joint_threads(runs: int = 3) -> None:
     """Issue 21: paper B's Algorithm 1 (the joint strategy) on Table 3's four interval jobs
     at the paper's precision, on 1, 2 and every thread (one stack per thread, work
     shared: :mod:`planar_tui.workspace.joint`), best of ``runs`` interleaved runs,
-    identical boxes checked; the baseline is the same bisection on one thread."""
+    identical boxes checked; the baselines are the same bisection on one thread, and on
+    one thread without the legs' verdict memo (``MEMO_SLOTS = 0``: every verdict computed
+    afresh), identical boxes checked too."""
+    from planar_tui.kernels import workspace3rrr
+
     counts = thread_counts()
     before = load()
     print("\n## Paper B's bisection (joint strategy) on every thread: Table 3 at ε = 0.1172 cm\n")
-    print("| form | boxes | " + " | ".join(f"{n} thread(s) s" for n in counts)
-          + f" | speed-up on {counts[-1]} | same boxes |")  # fmt: skip
-    print("|---|---:|" + "---:|" * len(counts) + "---:|---|")
+    print("| form | boxes | 1 thread, no memo s | "
+          + " | ".join(f"{n} thread(s) s" for n in counts)
+          + f" | memo speed-up | speed-up on {counts[-1]} | same boxes |")  # fmt: skip
+    print("|---|---:|---:|" + "---:|" * len(counts) + "---:|---:|---|")
     totals = dict.fromkeys(counts, 0.0)
+    total_plain = 0.0
+    memo_slots = workspace3rrr.MEMO_SLOTS
     for form, extra in (("natural", {}), ("natural", {"expanded": True}), ("slope", {}),
                         ("mean-value", {})):  # fmt: skip
         s = spec(3, form, refine_precision_cm=None, **extra)
+        workspace3rrr.MEMO_SLOTS = 0
+        try:
+            plain, plain_outs, _ = by_threads(s, [1], runs)
+        finally:
+            workspace3rrr.MEMO_SLOTS = memo_slots
         best, outs, same = by_threads(s, counts, runs)
+        same = same and outs[1].boxes_processed == plain_outs[1].boxes_processed
+        same = same and bool((outs[1].boxes == plain_outs[1].boxes).all())
+        total_plain += plain[1]
         for n in counts:
             totals[n] += best[n]
         name = form + (" (expanded)" if extra else "")
         cells = " | ".join(f"{best[n]:.3f}" for n in counts)
-        print(f"| {name} | {outs[1].boxes_processed:,} | {cells} | "
-              f"{best[1] / best[counts[-1]]:.2f}x | {same} |")  # fmt: skip
+        print(f"| {name} | {outs[1].boxes_processed:,} | {plain[1]:.3f} | {cells} | "
+              f"{plain[1] / best[1]:.2f}x | {best[1] / best[counts[-1]]:.2f}x | {same} |")  # fmt: skip
     cells = " | ".join(f"{totals[n]:.3f}" for n in counts)
-    print(f"| all four | | {cells} | {totals[1] / totals[counts[-1]]:.2f}x | |")
+    print(f"| all four | | {total_plain:.3f} | {cells} | {total_plain / totals[1]:.2f}x | "
+          f"{totals[1] / totals[counts[-1]]:.2f}x | |")  # fmt: skip
     print(f"\nload average before {before}, after {load()}")
 
 

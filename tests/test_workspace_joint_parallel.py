@@ -1,6 +1,7 @@
 """The joint strategy's bisection (paper B, Algorithm 1) shared among threads
 (:mod:`planar_tui.workspace.joint`): the same kept boxes and processed count as the
-sequential depth-first bisection, whatever the number of blocks."""
+sequential depth-first bisection, whatever the number of blocks and with or without the
+legs' verdict memo."""
 
 import math
 
@@ -22,7 +23,7 @@ from planar_tui.kernels.workspace3rrr import (
 
 from planar_tui.progress import Progress
 from planar_tui.workspace.boxes import unique_rows
-from planar_tui.workspace.joint import joint_stage, share_work
+from planar_tui.workspace.joint import joint_stage, new_memos, share_work
 from planar_tui.workspace.robot import Robot3RRR
 
 LIMITS_RAD = np.radians([[20, 70], [110, 160], [245, 295]])
@@ -52,15 +53,17 @@ def parameters(phi_rad=0.0):
     )  # fmt: skip
 
 
-def sequential(form, p, precision_cm):
-    """The plain depth-first Algorithm 1: one stack, bisect_chunk until DONE."""
+def sequential(form, p, precision_cm, memo_slots=None):
+    """The plain depth-first Algorithm 1: one stack, bisect_chunk until DONE (with a memo
+    of ``memo_slots`` slots per leg, default the product's)."""
     stack = np.zeros((4096, STACK_COLUMNS))
     root_row(stack[0], *BOX[0], *BOX[1], LIMITS_RAD)
     kept = np.zeros((1 << 20, 4))
+    memo = new_memos(1, memo_slots)[0]
     n_stack, n_kept, total = 1, 0, 0
     while True:
         n_stack, n_kept, processed, code = bisect_chunk(
-            form, p, precision_cm, 10.0, stack, n_stack, kept, n_kept, 10**9
+            form, p, precision_cm, 10.0, stack, n_stack, kept, n_kept, 10**9, memo
         )
         total += processed
         assert code not in (KEPT_FULL, STACK_FULL)
@@ -102,16 +105,63 @@ def algorithm_1(form, p, precision_cm, angle_scale=10.0):
 @pytest.mark.parametrize("form", [NATURAL, NATURAL_EXPANDED, MEAN_VALUE, SLOPE])
 def test_the_kernel_keeps_the_boxes_of_algorithm_1_as_printed(form):
     """The kernel's shortcuts (a θ_j bisection re-evaluates leg j only; the angles' end
-    values computed once, at the split that makes them) change no box: the same kept
-    rows and the same count of boxes as Algorithm 1 evaluated afresh box by box."""
+    values computed once, at the split that makes them; the legs' verdicts remembered,
+    in a memo of any size, one slot making every box collide) change no box: the same
+    kept rows and the same count of boxes as Algorithm 1 evaluated afresh box by box."""
     p = parameters()
     precision = 120 / 2**6
     expected, expected_processed = algorithm_1(form, p, precision)
     assert len(expected) > 50  # a paving with a boundary, not a trivial one
-    kept, processed = sequential(form, p, precision)
-    assert processed == expected_processed
-    np.testing.assert_array_equal(np.sort(kept.view("f8,f8,f8,f8"), axis=0),
-                                  np.sort(expected.view("f8,f8,f8,f8"), axis=0))  # fmt: skip
+    for memo_slots in (None, 0, 1, 64):
+        kept, processed = sequential(form, p, precision, memo_slots)
+        assert processed == expected_processed
+        np.testing.assert_array_equal(np.sort(kept.view("f8,f8,f8,f8"), axis=0),
+                                      np.sort(expected.view("f8,f8,f8,f8"), axis=0))  # fmt: skip
+
+
+def root_stack():
+    stack = np.zeros((64, STACK_COLUMNS))
+    root_row(stack[0], *BOX[0], *BOX[1], LIMITS_RAD)
+    return stack
+
+
+def test_a_remembered_verdict_is_used_for_its_own_box_only():
+    """The memo is consulted: a row holding the root's leg-0 box with the verdict
+    "excludes 0" (false: the root holds the workspace) discards the root at once; the
+    same row with one bound an ulp off is not used."""
+    from planar_tui.kernels.workspace3rrr import MEMO_SLOTS, memo_slot
+
+    p = parameters()
+    leg0 = (*BOX[0], *BOX[1], *LIMITS_RAD[0])
+
+    def run(memo):
+        kept = np.zeros((16, 4))
+        _, n_kept, processed, _ = bisect_chunk(
+            NATURAL, p, 1.0, 10.0, root_stack(), 1, kept, 0, 3, memo
+        )
+        return processed, n_kept
+
+    assert run(new_memos(1)[0]) == (3, 0)  # the root is split, its halves popped
+    lying = new_memos(1)[0]
+    lying[0, memo_slot(*leg0, MEMO_SLOTS)] = (*leg0, 1.0)
+    assert run(lying) == (1, 0)  # the lie is believed: the root is gone
+    off_by_an_ulp = (*leg0[:5], np.nextafter(leg0[5], np.inf))
+    memo = new_memos(1)[0]
+    memo[0, memo_slot(*leg0, MEMO_SLOTS)] = (*off_by_an_ulp, 1.0)
+    assert run(memo) == (3, 0)
+
+
+def test_memo_slots_are_a_power_of_two_and_in_range():
+    from planar_tui.kernels.workspace3rrr import memo_slot
+
+    with pytest.raises(ValueError, match="power of two"):
+        new_memos(1, 3000)
+    rng = np.random.default_rng(3)
+    bounds = rng.uniform(-1e6, 1e6, size=(2000, 6))
+    for slots in (1, 2, 4096):
+        seen = {memo_slot(*row, slots) for row in bounds}
+        assert min(seen) >= 0 and max(seen) < slots
+        assert len(seen) >= min(slots, 2000) // 2  # the boxes spread out
 
 
 @pytest.mark.parametrize("form", [NATURAL, MEAN_VALUE, SLOPE])

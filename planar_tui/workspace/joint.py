@@ -14,6 +14,13 @@ pieces of work left (work sharing). The kept boxes form the same multiset whatev
 number of threads or the sharing, and so the job's result (their distinct rows,
 :func:`planar_tui.workspace.boxes.unique_rows`) and the count of processed boxes are the
 same as the sequential bisection's.
+
+A leg's verdict (:math:`0 \\notin F_i`) depends on the box's ``(x, y, θ_i)`` alone, and the
+bisection meets the same such box again under other angles of the other legs: 12.4
+million leg evaluations of Table 3's expanded form hold 0.9 million distinct boxes. Each
+block keeps the verdicts it computed in a direct-mapped memo (:func:`new_memos`; one
+verdict per slot, used only when all six bounds match, so bit for bit the verdict computed
+afresh), which kept 83 % of them and made that bisection 2.5 times faster on one thread.
 """
 
 from __future__ import annotations
@@ -60,17 +67,32 @@ def grow_axis1(array: np.ndarray) -> np.ndarray:
     return grown
 
 
+def new_memos(blocks: int, slots: int | None = None) -> np.ndarray:
+    """Empty leg-verdict memos for ``blocks`` bisection blocks
+    (:func:`planar_tui.kernels.workspace3rrr.leg_excludes_zero`): ``slots`` per leg (a
+    power of two; default ``MEMO_SLOTS``; 0: none), every row NaN (matching no box)."""
+    from planar_tui.kernels.workspace3rrr import MEMO_COLUMNS, MEMO_SLOTS
+
+    slots = MEMO_SLOTS if slots is None else slots
+    if slots & (slots - 1):
+        raise ValueError(f"memo slots must be a power of two or 0, not {slots}")
+    return np.full((blocks, 3, slots, MEMO_COLUMNS), np.nan)
+
+
 def joint_stage(
     form_code: int, p: np.ndarray, precision_cm: float, angle_scale: float,
     limits_rad: np.ndarray, box: tuple[tuple[float, float], tuple[float, float]],
     budget: Budget, chunk_boxes: int, blocks: int | None = None,
+    memo_slots: int | None = None,
 ) -> np.ndarray:  # fmt: skip
     """The kept (x, y) boxes of Algorithm 1 from the root ``box × limits_rad`` (rows
     ``x_lo, x_hi, y_lo, y_hi``; a box may repeat), on ``blocks`` stacks (default: one per
     Numba thread). After each round the budget gets the boxes processed, the fraction of
     the root's 5-D volume decided and an upper bound of the kept area (the kept boxes'
     areas summed, plus the pending boxes' (x, y) areas), and the progress a read-only view
-    of the boxes kept so far (once there are some)."""
+    of the boxes kept so far (once there are some). Each block remembers its legs'
+    verdicts in a memo of ``memo_slots`` slots per leg (:func:`new_memos`); the memo
+    changes no box, only the time."""
     from numba import get_num_threads
 
     from planar_tui.kernels.workspace3rrr import (
@@ -92,6 +114,7 @@ def joint_stage(
     n_kept = np.zeros(blocks, dtype=np.int64)
     processed = np.zeros(blocks, dtype=np.int64)
     codes = np.zeros(blocks, dtype=np.int64)
+    memos = new_memos(blocks, memo_slots)
     found = np.zeros((4096, 4))
     n_found = 0
     kept_area = 0.0  # sum over kept boxes: with repeats, an upper bound of their union
@@ -100,7 +123,7 @@ def joint_stage(
         n_kept[:] = 0
         bisect_blocks(
             form_code, p, precision_cm, angle_scale, stacks, n_stack, kept, n_kept,
-            per_round, processed, codes,
+            per_round, processed, codes, memos,
         )  # fmt: skip
         for block in range(blocks):
             rows = kept[block, : n_kept[block]]
