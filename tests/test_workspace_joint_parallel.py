@@ -19,11 +19,12 @@ from planar_tui.kernels.workspace3rrr import (
     bisect_chunk,
     leg_enclosure,
     root_row,
+    share_work,
 )
 
 from planar_tui.progress import Progress
 from planar_tui.workspace.boxes import unique_rows
-from planar_tui.workspace.joint import joint_stage, new_memos, share_work
+from planar_tui.workspace.joint import joint_stage, new_memos
 from planar_tui.workspace.robot import Robot3RRR
 
 LIMITS_RAD = np.radians([[20, 70], [110, 160], [245, 295]])

@@ -6,12 +6,14 @@ Algorithm 1 is a depth-first bisection: pop a box, discard it when some leg's en
 :math:`\\le \\varepsilon`, else halve its widest side and push both halves
 (:func:`planar_tui.kernels.workspace3rrr.bisect_chunk`). Every box is decided from itself
 alone, so the boxes can be shared among threads in any way: each block (one per Numba
-thread) runs the bisection on its own stack (:func:`~planar_tui.kernels.workspace3rrr.bisect_blocks`,
-``prange``), in rounds of at most ``CHUNK_BOXES / blocks`` boxes each so that progress and
-Cancel/Ctrl-C are honoured within a fraction of a second. Between rounds a block whose stack
-ran empty takes the bottom half of the fullest stack: the shallowest boxes, the largest
-pieces of work left (work sharing). The kept boxes form the same multiset whatever the
-number of threads or the sharing, and so the job's result (their distinct rows,
+thread) runs the bisection on its own stack
+(:func:`~planar_tui.kernels.workspace3rrr.bisect_blocks`, ``prange``), at most
+``CHUNK_BOXES / blocks`` boxes a block between two returns to Python so that progress and
+Cancel/Ctrl-C are honoured within a fraction of a second. A block whose stack runs empty
+ends the kernel's round, and before the next it takes the bottom half of the fullest
+stack: the shallowest boxes, the largest pieces of work left (work sharing,
+:func:`~planar_tui.kernels.workspace3rrr.share_work`, in compiled code). The kept boxes
+form the same multiset whatever the number of threads or the sharing, and so the job's result (their distinct rows,
 :func:`planar_tui.workspace.boxes.unique_rows`) and the count of processed boxes are the
 same as the sequential bisection's.
 
@@ -42,22 +44,6 @@ class Budget(Protocol):
     def spend(
         self, processed: int, fraction: float, lower_cm2: float, upper_cm2: float
     ) -> None: ...
-
-
-def share_work(stacks: np.ndarray, n_stack: np.ndarray) -> None:
-    """Give every block with an empty stack the bottom half of the fullest stack (rows
-    ``0 .. k-1``, pushed first: the shallowest boxes), in place; a stack of one box is not
-    split."""
-    for block in np.flatnonzero(n_stack == 0):
-        donor = int(np.argmax(n_stack))
-        count = int(n_stack[donor])
-        if count < 2:
-            return
-        moved = count // 2
-        stacks[block, :moved] = stacks[donor, :moved]
-        stacks[donor, : count - moved] = stacks[donor, moved:count]
-        n_stack[block] = moved
-        n_stack[donor] = count - moved
 
 
 def grow_axis1(array: np.ndarray) -> np.ndarray:
@@ -119,7 +105,6 @@ def joint_stage(
     n_found = 0
     kept_area = 0.0  # sum over kept boxes: with repeats, an upper bound of their union
     while n_stack.sum() > 0:
-        share_work(stacks, n_stack)
         n_kept[:] = 0
         bisect_blocks(
             form_code, p, precision_cm, angle_scale, stacks, n_stack, kept, n_kept,
