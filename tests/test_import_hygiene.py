@@ -121,6 +121,25 @@ def test_loading_a_cached_kernel_skips_numbas_scipy_blas_probe_but_blas_still_wo
     assert words_printed_by(code) == ["False", "[2.0,", "2.0]"]
 
 
+def test_prepare_kernels_builds_no_cffi_parser_and_leaves_cffi_importable():
+    """numba's cffi typing module is imported with cffi hidden (no pycparser: its C lexer
+    took half of numba's first dispatch), kernels run, and cffi (pymoo's moocore needs it)
+    imports as usual after."""
+    code = (
+        "import sys, numpy as np\n"
+        "from planar_tui.runtime import prepare_kernels\n"
+        "prepare_kernels()\n"
+        "from numba.core.typing import cffi_utils\n"
+        "from planar_tui.kernels.dynamics import inverse_dynamics\n"
+        "x = np.ones(3)\n"
+        "inverse_dynamics(x, x, x, 9.81, x, x, x)\n"
+        "parser = 'pycparser' in sys.modules\n"
+        "import cffi\n"
+        "print(cffi_utils.SUPPORTED, parser, type(cffi.FFI()).__name__)\n"
+    )
+    assert words_printed_by(code) == ["False", "False", "FFI"]
+
+
 def test_importing_the_package_and_its_kernels_changes_nothing_in_the_process():
     """Process set-up happens where a front end starts (``planar_tui.runtime``), never as
     a side effect of an import: no environment variable, no numba setting, no BLAS patch."""
