@@ -338,7 +338,7 @@ def joint_threads(runs: int = 3) -> None:
     identical boxes checked; the baselines are the same bisection on one thread, and on
     one thread without the legs' verdict memo (``MEMO_SLOTS = 0``: every verdict computed
     afresh), identical boxes checked too."""
-    from planar_tui.kernels import workspace3rrr
+    from planar_tui.kernels import bisection3rrr
 
     counts = thread_counts()
     before = load()
@@ -349,15 +349,15 @@ def joint_threads(runs: int = 3) -> None:
     print("|---|---:|---:|" + "---:|" * len(counts) + "---:|---:|---|")
     totals = dict.fromkeys(counts, 0.0)
     total_plain = 0.0
-    memo_slots = workspace3rrr.MEMO_SLOTS
+    memo_slots = bisection3rrr.MEMO_SLOTS
     for form, extra in (("natural", {}), ("natural", {"expanded": True}), ("slope", {}),
                         ("mean-value", {})):  # fmt: skip
         s = spec(3, form, refine_precision_cm=None, **extra)
-        workspace3rrr.MEMO_SLOTS = 0
+        bisection3rrr.MEMO_SLOTS = 0
         try:
             plain, plain_outs, _ = by_threads(s, [1], runs)
         finally:
-            workspace3rrr.MEMO_SLOTS = memo_slots
+            bisection3rrr.MEMO_SLOTS = memo_slots
         best, outs, same = by_threads(s, counts, runs)
         same = same and outs[1].boxes_processed == plain_outs[1].boxes_processed
         same = same and bool((outs[1].boxes == plain_outs[1].boxes).all())

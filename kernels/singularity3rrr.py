@@ -55,7 +55,7 @@ import math
 
 from ._jit import kernel
 from .interval import down, iadd, iadd_scalar, imul, iscale, isincos, isqr, isqrt, isub, up
-from .workspace3rrr import DONE, chunk_halt, keep_xy_box, split_xy_widest
+from .workspace3rrr import DONE, keep_xy_box, pop_row, split_xy_widest
 
 GOOD = 3
 SINGULAR = 2
@@ -257,17 +257,17 @@ def singular_bisect_chunk(
     ``bounds`` ``[r_in, r_out]`` is updated in place (start it at the distances from
     ``(cx, cy)`` to the search box's edges); ``sign`` is that of :math:`\\det A(c)`
     (0: no circle). Returns ``(n_stack, n_kept, processed, code)`` like
-    :func:`kernels.workspace3rrr.bisect_chunk` (``code`` from :func:`chunk_halt`); kept
+    :func:`kernels.bisection3rrr.bisect_chunk` (``code`` from
+    :func:`~kernels.workspace3rrr.chunk_halt`, by :func:`~kernels.workspace3rrr.pop_row`); kept
     leaves carry ``SINGULAR`` or ``EDGE``.
     """
     processed = 0
     work = 0
     while n_stack > 0:
-        halt = chunk_halt(work, max_work, n_kept, kept.shape[0], n_stack, stack.shape[0])
+        halt, row = pop_row(work, max_work, n_kept, kept, n_stack, stack)
         if halt != DONE:
             return n_stack, n_kept, processed, halt
-        n_stack -= 1
-        row = n_stack
+        n_stack = row
         processed += 1
         work += 1
         xlo = stack[row, 0]

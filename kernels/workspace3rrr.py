@@ -1,4 +1,5 @@
-"""Interval enclosures of the 3-RRR leg constraints and the paper's bisection (paper B, Alg. 1).
+"""Interval enclosures of the 3-RRR leg constraints (paper B); its Algorithm 1 is
+:mod:`kernels.bisection3rrr`.
 
 Leg ``i`` of a 3-RRR with base joint :math:`A_i`, proximal length :math:`l_1`, distal length
 :math:`l_2` and platform point :math:`C_i = (x, y) + o_i` (:math:`o_i` the platform offset at the
@@ -32,7 +33,6 @@ The parameter vector ``p`` is ``[l1, l2, dx0, dy0, dx1, dy1, dx2, dy2, a, b, cos
 import math
 
 import numpy as np
-from numba import prange
 
 from ._jit import kernel
 from .interval import (
@@ -42,7 +42,6 @@ from .interval import (
     imul,
     iscale,
     isincos,
-    isincos_ends,
     isqr,
     isub,
     psincos,
@@ -54,14 +53,8 @@ MEAN_VALUE = 1
 SLOPE = 2
 NATURAL_EXPANDED = 3
 
-# Stack and kept-box layouts: one row per box.
-# stack row: x_lo, x_hi, y_lo, y_hi, t1_lo, t1_hi, t2_lo, t2_hi, t3_lo, t3_hi, split,
-# then per leg i the libm values at its angle's ends, sin(lo), sin(hi), cos(lo), cos(hi)
-# (columns ENDS + 4 i .. ENDS + 4 i + 3; split: index 0-4 of the variable whose
-# bisection made the box, -1 for the root)
-ENDS = 11
-STACK_COLUMNS = ENDS + 12
-# kept row:  x_lo, x_hi, y_lo, y_hi
+# Halt codes of the bisections' chunks (:func:`chunk_halt`); a kept row is
+# x_lo, x_hi, y_lo, y_hi.
 DONE = 0
 CHUNK_LIMIT = 1
 KEPT_FULL = 2
@@ -80,6 +73,17 @@ def chunk_halt(processed, max_boxes, n_kept, kept_capacity, n_stack, stack_capac
     if n_stack + 1 >= stack_capacity:
         return STACK_FULL
     return DONE
+
+
+@kernel(inline=True)
+def pop_row(processed, max_boxes, n_kept, kept, n_stack, stack):
+    """The chunked bisections' pop: ``(halt, n_stack)`` with ``halt`` from
+    :func:`chunk_halt`; when it is ``DONE`` the top row is popped (the ``n_stack``
+    returned is one less, the popped row's index), else nothing changes."""
+    halt = chunk_halt(processed, max_boxes, n_kept, kept.shape[0], n_stack, stack.shape[0])
+    if halt != DONE:
+        return halt, n_stack
+    return DONE, n_stack - 1
 
 
 @kernel
@@ -341,256 +345,6 @@ def leg_enclosure_sc(form, leg, xlo, xhi, ylo, yhi, tlo, thi, slo, shi, clo, chi
         return natural_expanded_sc(leg, xlo, xhi, ylo, yhi, slo, shi, clo, chi, p[0], p[1],
                                    p[2], p[3], p[8], p[9], p[10], p[11])  # fmt: skip
     return _compact(xlo, xhi, ylo, yhi, slo, shi, clo, chi, dx, dy, p[0], p[1])
-
-
-#: Slots of a bisection's verdict memo per leg (a power of two): 4 096 slots (three legs,
-#: 688 kB a thread) kept 83 % of Table 3's leg verdicts, 1 024 kept 75 % and 65 536 90 %
-#: (92.7 % repeat), and ran fastest.
-MEMO_SLOTS = 4096
-#: A memo row: the leg's box ``x_lo, x_hi, y_lo, y_hi, t_lo, t_hi`` and its verdict (1.0
-#: when the leg's enclosure excludes 0, else 0.0); a row of NaN matches no box.
-MEMO_COLUMNS = 7
-
-
-@kernel
-def memo_slot(xlo, xhi, ylo, yhi, tlo, thi, slots):
-    """The memo slot (``0 .. slots - 1``, ``slots`` a power of two) of a leg's
-    ``(x, y, θ)`` box: the fractional part of a mix of its bounds times the golden ratio's
-    inverse (Knuth's multiplicative hashing). Any slot is correct, since a row is used
-    only when all six bounds match; the mix only spreads the boxes."""
-    mix = (xlo * 0.7548776662466927 + xhi * 0.5698402909980532 + ylo * 0.3247179572447460
-           + yhi * 0.8191725133961645 + tlo * 97.41935483870968 + thi * 61.80339887498949)  # fmt: skip
-    f = mix * 0.6180339887498949
-    return int((f - math.floor(f)) * slots) & (slots - 1)
-
-
-@kernel(inline=True)
-def leg_excludes_zero(form, leg, stack, row, p, memo):
-    """:math:`0 \\notin F_{leg}` over the box ``stack[row]`` (its (x, y) box and the leg's
-    angle, with the angle's end values), by ``form``; remembered in ``memo`` (shape
-    ``(3, slots, MEMO_COLUMNS)``, ``slots`` a power of two, or 0 for no memo).
-
-    A leg's verdict depends on its own ``(x, y, θ_leg)`` box alone, and Algorithm 1 meets
-    the same such box again and again under other angles of the other legs (92.7 % of
-    Table 3's expanded-form evaluations repeat one). A memo row is used only when all six
-    bounds are equal to the box's, so the verdict is the one computed afresh, bit for
-    bit; a slot holds the latest box that fell into it. Inlined into the bisection
-    (passing the arrays to a call cost a third of its time).
-    """
-    xlo = stack[row, 0]
-    xhi = stack[row, 1]
-    ylo = stack[row, 2]
-    yhi = stack[row, 3]
-    tlo = stack[row, 4 + 2 * leg]
-    thi = stack[row, 5 + 2 * leg]
-    slots = memo.shape[1]
-    slot = 0
-    if slots > 0:
-        slot = memo_slot(xlo, xhi, ylo, yhi, tlo, thi, slots)
-        if (memo[leg, slot, 0] == xlo and memo[leg, slot, 1] == xhi
-                and memo[leg, slot, 2] == ylo and memo[leg, slot, 3] == yhi
-                and memo[leg, slot, 4] == tlo and memo[leg, slot, 5] == thi):  # fmt: skip
-            return memo[leg, slot, 6] != 0.0
-    e = ENDS + 4 * leg  # the ends' libm values: no sin or cos computed here
-    slo, shi, clo, chi = isincos_ends(
-        tlo, thi, stack[row, e], stack[row, e + 1], stack[row, e + 2], stack[row, e + 3]
-    )
-    flo, fhi = leg_enclosure_sc(form, leg, xlo, xhi, ylo, yhi, tlo, thi, slo, shi, clo, chi, p)
-    excluded = flo > 0.0 or fhi < 0.0
-    if slots > 0:
-        memo[leg, slot, 0] = xlo
-        memo[leg, slot, 1] = xhi
-        memo[leg, slot, 2] = ylo
-        memo[leg, slot, 3] = yhi
-        memo[leg, slot, 4] = tlo
-        memo[leg, slot, 5] = thi
-        memo[leg, slot, 6] = 1.0 if excluded else 0.0
-    return excluded
-
-
-@kernel
-def bisect_chunk(form, p, precision, angle_scale, stack, n_stack, kept, n_kept, max_boxes,
-                 memo):  # fmt: skip
-    """Run at most ``max_boxes`` steps of Algorithm 1 on an explicit stack (no recursion).
-
-    Pop a box; if :math:`0 \\notin F_i` for some leg, discard it (only the leg whose angle
-    was just bisected is re-evaluated: the others' enclosures are unchanged; a leg's
-    verdict met before is taken from ``memo``, :func:`leg_excludes_zero`); else if its x
-    and y widths are both :math:`\\le \\varepsilon`, append its (x, y) projection to
-    ``kept``; else bisect the widest of :math:`x, y, k\\theta_1, k\\theta_2, k\\theta_3`
-    and push both halves.
-
-    Returns ``(n_stack, n_kept, processed, status)``; ``status`` is ``DONE`` (stack empty),
-    ``CHUNK_LIMIT``, ``KEPT_FULL`` or ``STACK_FULL`` (grow the array and call again).
-    """
-    processed = 0
-    refuter = 0  # the leg that last excluded a box: tried first (neighbours often agree)
-    while n_stack > 0:
-        halt = chunk_halt(processed, max_boxes, n_kept, kept.shape[0], n_stack, stack.shape[0])
-        if halt != DONE:
-            return n_stack, n_kept, processed, halt
-        n_stack -= 1
-        row = n_stack
-        processed += 1
-        # A theta_j bisection leaves F_i (i != j) as the parent's, which contained 0.
-        split = int(stack[row, 10])
-        first_leg, n_legs = (split - 2, 1) if split >= 2 else (refuter, 3)
-        feasible = True
-        for k in range(n_legs):
-            leg = (first_leg + k) % 3
-            if leg_excludes_zero(form, leg, stack, row, p, memo):
-                feasible = False
-                refuter = leg
-                break
-        if not feasible:
-            continue
-        wx = stack[row, 1] - stack[row, 0]
-        wy = stack[row, 3] - stack[row, 2]
-        if wx <= precision and wy <= precision:
-            for j in range(4):
-                kept[n_kept, j] = stack[row, j]
-            n_kept += 1
-            continue
-        widest = 0
-        wmax = wx
-        if wy > wmax:
-            widest = 1
-            wmax = wy
-        for leg in range(3):
-            w = angle_scale * (stack[row, 5 + 2 * leg] - stack[row, 4 + 2 * leg])
-            if w > wmax:
-                widest = 2 + leg
-                wmax = w
-        lo = stack[row, 2 * widest]
-        hi = stack[row, 2 * widest + 1]
-        mid = 0.5 * (lo + hi)
-        child = n_stack + 1
-        for j in range(STACK_COLUMNS):
-            stack[child, j] = stack[row, j]
-        stack[row, 2 * widest + 1] = mid
-        stack[child, 2 * widest] = mid
-        stack[row, 10] = widest
-        stack[child, 10] = widest
-        if widest >= 2:  # the new end's sin and cos, once for both halves
-            e = ENDS + 4 * (widest - 2)
-            s = math.sin(mid)
-            c = math.cos(mid)
-            stack[row, e + 1] = s
-            stack[row, e + 3] = c
-            stack[child, e] = s
-            stack[child, e + 2] = c
-        n_stack += 2
-    return n_stack, n_kept, processed, DONE
-
-
-@kernel
-def root_row(row, xlo, xhi, ylo, yhi, limits):
-    """Fill ``row`` (a stack row) with the root box ``[xlo, xhi] × [ylo, yhi] × limits``
-    (``limits[i] = (lo, hi)`` of leg i's angle, rad) and its angles' end values."""
-    row[0] = xlo
-    row[1] = xhi
-    row[2] = ylo
-    row[3] = yhi
-    for leg in range(3):
-        lo = limits[leg, 0]
-        hi = limits[leg, 1]
-        row[4 + 2 * leg] = lo
-        row[5 + 2 * leg] = hi
-        e = ENDS + 4 * leg
-        row[e] = math.sin(lo)
-        row[e + 1] = math.sin(hi)
-        row[e + 2] = math.cos(lo)
-        row[e + 3] = math.cos(hi)
-    row[10] = -1.0
-
-
-#: Boxes a block of :func:`bisect_blocks` bisects between two looks at the other blocks.
-SHARE_QUOTA = 512
-
-
-@kernel
-def share_work(stacks, n_stack):
-    """Give every block with an empty stack the bottom half of the fullest stack (rows
-    ``0 .. k-1``, pushed first: the shallowest boxes, the largest pieces of work left), in
-    place; a stack of one box is not split."""
-    for block in range(stacks.shape[0]):
-        if n_stack[block] != 0:
-            continue
-        donor = np.argmax(n_stack)
-        count = n_stack[donor]
-        if count < 2:
-            return
-        moved = count // 2
-        for i in range(moved):
-            for j in range(stacks.shape[2]):
-                stacks[block, i, j] = stacks[donor, i, j]
-        for i in range(count - moved):  # down the stack: row moved + i is read before written
-            for j in range(stacks.shape[2]):
-                stacks[donor, i, j] = stacks[donor, moved + i, j]
-        n_stack[block] = moved
-        n_stack[donor] = count - moved
-
-
-@kernel(parallel=True)
-def bisect_round(form, p, precision, angle_scale, stacks, n_stack, kept, n_kept, max_boxes,
-                 processed, codes, memos):  # fmt: skip
-    """One round of :func:`bisect_blocks`: :func:`bisect_chunk` on every block ``b`` at
-    once (``prange``), each on its own stack ``stacks[b, :n_stack[b]]`` and kept rows
-    ``kept[b, n_kept[b]:]``, until it has processed ``max_boxes`` boxes in all
-    (``processed[b]`` counts them), in steps of :data:`SHARE_QUOTA`: a block whose stack
-    runs empty raises a shared flag and the others return after their current step.
-    Block ``b`` keeps its leg verdicts in ``memos[b]``; its halt code goes to
-    ``codes[b]``."""
-    hungry = np.zeros(1, dtype=np.int64)  # set by a block whose stack ran empty
-    for b in prange(stacks.shape[0]):
-        ns = n_stack[b]
-        nk = n_kept[b]
-        done = processed[b]
-        code = DONE
-        while done < max_boxes:
-            ns, nk, step, code = bisect_chunk(
-                form, p, precision, angle_scale, stacks[b], ns, kept[b], nk,
-                min(SHARE_QUOTA, max_boxes - done), memos[b],
-            )  # fmt: skip
-            done += step
-            if code != CHUNK_LIMIT or hungry[0] != 0:
-                break
-        if done >= max_boxes and code == DONE and ns > 0:
-            code = CHUNK_LIMIT
-        if ns == 0:
-            hungry[0] = 1
-        n_stack[b] = ns
-        n_kept[b] = nk
-        processed[b] = done
-        codes[b] = code
-
-
-@kernel
-def bisect_blocks(form, p, precision, angle_scale, stacks, n_stack, kept, n_kept, max_boxes,
-                  processed, codes, memos):  # fmt: skip
-    """Algorithm 1 on every block at once for at most ``max_boxes`` boxes a block: rounds
-    of :func:`bisect_round`, the work shared out (:func:`share_work`) before each, until
-    every stack is empty, a block has processed ``max_boxes`` boxes, or a block's kept
-    rows or stack are full (``KEPT_FULL``, ``STACK_FULL``: the caller grows them and
-    calls again). Writes back ``n_stack[b]``, ``n_kept[b]`` (rows ``kept[b, :n_kept[b]]``,
-    appended to what was there), ``processed[b]`` (this call's boxes) and the halt code
-    ``codes[b]``. Every box is decided from itself alone, so the kept boxes of the whole
-    paving are the same multiset however the boxes are shared among blocks. The rounds
-    stay in compiled code: a block whose stack runs empty costs a share of the work, not
-    a return to Python (2 threads ended 346 rounds in Table 3's expanded paving, 144 of
-    them full)."""
-    for b in range(stacks.shape[0]):
-        processed[b] = 0
-        codes[b] = DONE
-    while True:
-        share_work(stacks, n_stack)
-        bisect_round(form, p, precision, angle_scale, stacks, n_stack, kept, n_kept,
-                     max_boxes, processed, codes, memos)  # fmt: skip
-        if n_stack.sum() == 0:
-            return
-        for b in range(stacks.shape[0]):
-            if codes[b] == KEPT_FULL or codes[b] == STACK_FULL or processed[b] >= max_boxes:
-                return
 
 
 @kernel

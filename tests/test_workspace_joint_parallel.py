@@ -7,6 +7,12 @@ import math
 
 import numpy as np
 import pytest
+from planar_tui.kernels.bisection3rrr import (
+    STACK_COLUMNS,
+    bisect_chunk,
+    root_row,
+    share_work,
+)
 from planar_tui.kernels.workspace3rrr import (
     DONE,
     KEPT_FULL,
@@ -14,12 +20,8 @@ from planar_tui.kernels.workspace3rrr import (
     NATURAL,
     NATURAL_EXPANDED,
     SLOPE,
-    STACK_COLUMNS,
     STACK_FULL,
-    bisect_chunk,
     leg_enclosure,
-    root_row,
-    share_work,
 )
 
 from planar_tui.progress import Progress
@@ -130,7 +132,7 @@ def test_a_remembered_verdict_is_used_for_its_own_box_only():
     """The memo is consulted: a row holding the root's leg-0 box with the verdict
     "excludes 0" (false: the root holds the workspace) discards the root at once; the
     same row with one bound an ulp off is not used."""
-    from planar_tui.kernels.workspace3rrr import MEMO_SLOTS, memo_slot
+    from planar_tui.kernels.bisection3rrr import MEMO_SLOTS, memo_slot
 
     p = parameters()
     leg0 = (*BOX[0], *BOX[1], *LIMITS_RAD[0])
@@ -153,7 +155,7 @@ def test_a_remembered_verdict_is_used_for_its_own_box_only():
 
 
 def test_memo_slots_are_a_power_of_two_and_in_range():
-    from planar_tui.kernels.workspace3rrr import memo_slot
+    from planar_tui.kernels.bisection3rrr import memo_slot
 
     with pytest.raises(ValueError, match="power of two"):
         new_memos(1, 3000)

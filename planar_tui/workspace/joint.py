@@ -4,15 +4,15 @@ on every thread.
 Algorithm 1 is a depth-first bisection: pop a box, discard it when some leg's enclosure
 :math:`F_i` excludes 0, keep its (x, y) projection when its x and y widths are both
 :math:`\\le \\varepsilon`, else halve its widest side and push both halves
-(:func:`planar_tui.kernels.workspace3rrr.bisect_chunk`). Every box is decided from itself
+(:func:`planar_tui.kernels.bisection3rrr.bisect_chunk`). Every box is decided from itself
 alone, so the boxes can be shared among threads in any way: each block (one per Numba
 thread) runs the bisection on its own stack
-(:func:`~planar_tui.kernels.workspace3rrr.bisect_blocks`, ``prange``), at most
+(:func:`~planar_tui.kernels.bisection3rrr.bisect_blocks`, ``prange``), at most
 ``CHUNK_BOXES / blocks`` boxes a block between two returns to Python so that progress and
 Cancel/Ctrl-C are honoured within a fraction of a second. A block whose stack runs empty
 ends the kernel's round, and before the next it takes the bottom half of the fullest
 stack: the shallowest boxes, the largest pieces of work left (work sharing,
-:func:`~planar_tui.kernels.workspace3rrr.share_work`, in compiled code). The kept boxes
+:func:`~planar_tui.kernels.bisection3rrr.share_work`, in compiled code). The kept boxes
 form the same multiset whatever the number of threads or the sharing, and so the job's result (their distinct rows,
 :func:`planar_tui.workspace.boxes.unique_rows`) and the count of processed boxes are the
 same as the sequential bisection's.
@@ -55,9 +55,9 @@ def grow_axis1(array: np.ndarray) -> np.ndarray:
 
 def new_memos(blocks: int, slots: int | None = None) -> np.ndarray:
     """Empty leg-verdict memos for ``blocks`` bisection blocks
-    (:func:`planar_tui.kernels.workspace3rrr.leg_excludes_zero`): ``slots`` per leg (a
+    (:func:`planar_tui.kernels.bisection3rrr.leg_excludes_zero`): ``slots`` per leg (a
     power of two; default ``MEMO_SLOTS``; 0: none), every row NaN (matching no box)."""
-    from planar_tui.kernels.workspace3rrr import MEMO_COLUMNS, MEMO_SLOTS
+    from planar_tui.kernels.bisection3rrr import MEMO_COLUMNS, MEMO_SLOTS
 
     slots = MEMO_SLOTS if slots is None else slots
     if slots & (slots - 1):
@@ -81,12 +81,8 @@ def joint_stage(
     changes no box, only the time."""
     from numba import get_num_threads
 
-    from planar_tui.kernels.workspace3rrr import (
-        STACK_COLUMNS,
-        STACK_FULL,
-        bisect_blocks,
-        root_row,
-    )
+    from planar_tui.kernels.bisection3rrr import STACK_COLUMNS, bisect_blocks, root_row
+    from planar_tui.kernels.workspace3rrr import STACK_FULL
 
     blocks = blocks or get_num_threads()
     stacks = np.zeros((blocks, 256, STACK_COLUMNS))
