@@ -108,18 +108,38 @@ def algorithm_1(form, p, precision_cm, angle_scale=10.0):
 @pytest.mark.parametrize("form", [NATURAL, NATURAL_EXPANDED, MEAN_VALUE, SLOPE])
 def test_the_kernel_keeps_the_boxes_of_algorithm_1_as_printed(form):
     """The kernel's shortcuts (a θ_j bisection re-evaluates leg j only; the angles' end
-    values computed once, at the split that makes them; the legs' verdicts remembered,
-    in a memo of any size, one slot making every box collide) change no box: the same
-    kept rows and the same count of boxes as Algorithm 1 evaluated afresh box by box."""
+    values computed once, at the split that makes them; the legs' verdicts and the boxes
+    kept remembered, in a memo of any size, one slot making every box collide) change no
+    box: the same count of boxes as Algorithm 1 evaluated afresh box by box, and the same
+    kept boxes: every one, repeats included, without a memo; the same distinct ones, each
+    written at least once and at most as often, with one."""
     p = parameters()
     precision = 120 / 2**6
     expected, expected_processed = algorithm_1(form, p, precision)
     assert len(expected) > 50  # a paving with a boundary, not a trivial one
+    assert len(unique_rows(expected)) < len(expected)  # Algorithm 1 keeps cells repeatedly
     for memo_slots in (None, 0, 1, 64):
         kept, processed = sequential(form, p, precision, memo_slots)
         assert processed == expected_processed
-        np.testing.assert_array_equal(np.sort(kept.view("f8,f8,f8,f8"), axis=0),
-                                      np.sort(expected.view("f8,f8,f8,f8"), axis=0))  # fmt: skip
+        if memo_slots == 0:
+            np.testing.assert_array_equal(np.sort(kept.view("f8,f8,f8,f8"), axis=0),
+                                          np.sort(expected.view("f8,f8,f8,f8"), axis=0))  # fmt: skip
+        else:
+            np.testing.assert_array_equal(unique_rows(kept), unique_rows(expected))
+            assert len(kept) <= len(expected)
+
+
+@pytest.mark.parametrize("form", [NATURAL, NATURAL_EXPANDED])
+def test_a_cell_kept_again_is_written_once_with_the_memo(form):
+    """The memo's plane of kept boxes: a (x, y) cell that Algorithm 1 keeps again under
+    other angles is written once (up to the memo's collisions), not once a time."""
+    p = parameters()
+    precision = 120 / 2**7
+    every, _ = sequential(form, p, precision, 0)
+    remembered, _ = sequential(form, p, precision)
+    cells = len(unique_rows(every))
+    assert len(every) > 3 * cells  # the repeats the memo spares
+    assert cells <= len(remembered) <= 1.1 * cells
 
 
 def root_stack():
@@ -171,14 +191,21 @@ def test_memo_slots_are_a_power_of_two_and_in_range():
 def test_every_block_count_keeps_the_sequential_boxes(form):
     p = parameters()
     precision = 120 / 2**6
-    expected, expected_processed = sequential(form, p, precision)
+    expected, expected_processed = sequential(form, p, precision, 0)
     assert len(expected) > 100  # a paving with a boundary, not a trivial one
     for blocks in (1, 2, 3, 7):
         budget = Budget()
-        kept = joint_stage(form, p, precision, 10.0, LIMITS_RAD, BOX, budget, 5000, blocks)
-        # the same multiset of kept boxes, so the same distinct rows, and every box once
+        kept = joint_stage(form, p, precision, 10.0, LIMITS_RAD, BOX, budget, 5000, blocks, 0)
+        # without a memo: the same multiset of kept boxes, so the same distinct rows
         assert len(kept) == len(expected)
         np.testing.assert_array_equal(unique_rows(kept), unique_rows(expected))
+        # with the memo: the same distinct rows, about once a block (a cell whose slot
+        # another cell took in between is written again)
+        remembered = joint_stage(form, p, precision, 10.0, LIMITS_RAD, BOX, Budget(), 5000,
+                                 blocks)  # fmt: skip
+        cells = unique_rows(expected)
+        np.testing.assert_array_equal(unique_rows(remembered), cells)
+        assert len(remembered) <= min(len(expected), 2 * blocks * len(cells))
         assert budget.processed == expected_processed
         assert budget.fractions[-1] == pytest.approx(1.0)
         assert all(

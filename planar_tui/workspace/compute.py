@@ -62,8 +62,11 @@ class Reach(Protocol):
     def reach_box_cm(self, orientation_rad: float) -> tuple[float, float, float, float]: ...
 
 
-#: Boxes per kernel call: ~50 ms of work at ~1 µs per 5-D box.
-CHUNK_BOXES = 50_000
+#: Boxes per kernel call of the joint bisection, all threads together: 10-50 ms of work
+#: at the 0.1-0.25 µs a 5-D box takes with the verdict memo on one thread (Table 3's
+#: forms); at 50 000 the returns to Python for progress took a tenth of the expanded
+#: form's paving.
+CHUNK_BOXES = 200_000
 #: Leaf check of the arc-distance form: an n x n sub-grid may prove a leaf outside.
 LEAF_GRID = 8
 #: Wall time one slice of a level-wise 2-D paving (:func:`pave_in_levels`) aims at.

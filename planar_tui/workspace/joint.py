@@ -54,15 +54,16 @@ def grow_axis1(array: np.ndarray) -> np.ndarray:
 
 
 def new_memos(blocks: int, slots: int | None = None) -> np.ndarray:
-    """Empty leg-verdict memos for ``blocks`` bisection blocks
-    (:func:`planar_tui.kernels.bisection3rrr.leg_excludes_zero`): ``slots`` per leg (a
-    power of two; default ``MEMO_SLOTS``; 0: none), every row NaN (matching no box)."""
-    from planar_tui.kernels.bisection3rrr import MEMO_COLUMNS, MEMO_SLOTS
+    """Empty memos for ``blocks`` bisection blocks: the legs' verdicts
+    (:func:`planar_tui.kernels.bisection3rrr.leg_excludes_zero`) and the boxes kept
+    (:func:`~planar_tui.kernels.bisection3rrr.kept_before`), ``slots`` each (a power of
+    two; default ``MEMO_SLOTS``; 0: none), every row NaN (matching no box)."""
+    from planar_tui.kernels.bisection3rrr import MEMO_COLUMNS, MEMO_PLANES, MEMO_SLOTS
 
     slots = MEMO_SLOTS if slots is None else slots
     if slots & (slots - 1):
         raise ValueError(f"memo slots must be a power of two or 0, not {slots}")
-    return np.full((blocks, 3, slots, MEMO_COLUMNS), np.nan)
+    return np.full((blocks, MEMO_PLANES, slots, MEMO_COLUMNS), np.nan)
 
 
 def joint_stage(
