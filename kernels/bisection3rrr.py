@@ -40,9 +40,9 @@ from .workspace3rrr import (
 ENDS = 11
 STACK_COLUMNS = ENDS + 12
 
-#: Slots of a bisection's verdict memo per leg (a power of two): 4 096 slots (three legs,
-#: 688 kB a thread) kept 83 % of Table 3's leg verdicts, 1 024 kept 75 % and 65 536 90 %
-#: (92.7 % repeat), and ran fastest.
+#: Slots of a bisection's memo per plane (a power of two): 4 096 slots (three legs, 688 kB
+#: a thread; 917 kB with the kept boxes' plane) kept 83 % of Table 3's leg verdicts, 1 024
+#: kept 75 % and 65 536 90 % (92.7 % repeat), and ran fastest.
 MEMO_SLOTS = 4096
 #: A memo row: the leg's box ``x_lo, x_hi, y_lo, y_hi, t_lo, t_hi`` and its verdict (1.0
 #: when the leg's enclosure excludes 0, else 0.0); a row of NaN matches no box.
