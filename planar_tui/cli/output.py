@@ -156,10 +156,10 @@ def caused_by_interrupt(error: BaseException) -> bool:
     """Whether ``error`` is a Ctrl-C (a ``KeyboardInterrupt``), or one that Python wrapped
     on its way up: a ``KeyboardInterrupt`` raised inside a class body's ``__set_name__``
     (a dataclass field while a module is imported) reaches the caller as a
-    :class:`RuntimeError` caused by it (Python 3.11). Only explicit causes are followed (``raise ... from``, as Python's wrap
-    is): an error merely raised while a Ctrl-C was being handled (its ``__context__``,
-    such as the exit of a command that already reported the interrupt) is its own, and
-    Typer's and Click's exits never count."""
+    :class:`RuntimeError` caused by it (Python 3.11). Only explicit causes are followed
+    (``raise ... from``, as Python's wrap is): an error merely raised while a Ctrl-C was
+    being handled (its ``__context__``, such as the exit of a command that already
+    reported the interrupt) is its own, and Typer's and Click's exits never count."""
     if isinstance(error, (typer.Exit, typer.Abort)):
         return False
     seen: set[int] = set()
