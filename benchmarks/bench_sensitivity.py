@@ -22,7 +22,7 @@ columns (one robot at a time), ns per robot, 6R design of 200 000 rows, best of 
 the same doubles (checked here).
 
 Every cache used lives in a temporary folder (``PLANAR_TUI_CACHE_DIR``), never the user's.
-Run: ``/work/venv/bin/python benchmarks/bench_sensitivity.py [--runs 7]``.
+Run: ``python benchmarks/bench_sensitivity.py [--runs 7]``.
 """
 
 from __future__ import annotations

@@ -18,7 +18,7 @@ from typing import Any
 from planar_tui.errors import PresetError
 from planar_tui.jobkind import Job
 from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
-from planar_tui.schema import TableReader, markdown_table, suggest, type_name
+from planar_tui.schema import TableReader, suggest, type_name
 
 #: The top-level table of sweeps (``[[sweep]]``): accepted here as tables, read and
 #: checked by :mod:`planar_tui.sweep.spec` (a layer above).
@@ -184,16 +184,6 @@ def parse_job(path: Path | str, document: Mapping[str, Any], kind: str, index: i
 def load_preset(path: Path | str) -> Preset:
     """Read, parse and validate a preset file (see :func:`parse_preset`)."""
     return parse_preset(path, read_toml(path))
-
-
-def reference_tables() -> dict[str, str]:
-    """The README's preset reference: a Markdown table per robot and job table, made from
-    the declared keys (``tests/test_schema.py`` checks the README holds them)."""
-    tables = {name: markdown_table(kind.model) for name, kind in ROBOT_KINDS.items()}
-    for name, kind in JOB_KINDS.items():
-        output = f"| `output` | relative path | `PRESET-{name}-K.csv` | CSV file name |"
-        tables[name] = markdown_table(kind.settings, [output])
-    return tables
 
 
 def copy_bundled_preset(name: str, target: Path) -> Path:

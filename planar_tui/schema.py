@@ -9,7 +9,7 @@ one-line meaning. That one declaration drives
   optional ``check(values, reader, context)`` hook for rules between keys),
 * dumping (:func:`dump_settings`: the TOML table a saved preset holds),
 * the allowed keys (:func:`setting_keys`: unknown keys are refused with a suggestion),
-* the README's preset tables (:func:`markdown_table`, checked by ``tests/test_schema.py``)
+* the preset reference (``docs/gen_reference.py`` writes ``docs/reference/presets.md``)
 * and the app's form (the keys, in order, with their meaning as a tooltip).
 
 Fields without a :class:`Key` are derived values (e.g. the solved isotropic posture).
@@ -165,16 +165,6 @@ def dump_settings(settings: Any) -> dict[str, Any]:
         if value is not None:
             table[key.name] = key.to_toml(value)
     return table
-
-
-def markdown_table(settings_class: type, extra_rows: Sequence[str] = ()) -> str:
-    """The README's table of a settings dataclass: key, type, default, meaning (then
-    ``extra_rows``, already formatted)."""
-    lines = ["| key | type | default | meaning |", "|---|---|---|---|"]
-    for _, key in declared_keys(settings_class):
-        default = key.documented_default()
-        lines.append(f"| `{key.name}` | {key.type_doc} | {default} | {key.doc} |")
-    return "\n".join([*lines, *extra_rows])
 
 
 # -- readers: one per kind of value -----------------------------------------------------

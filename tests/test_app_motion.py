@@ -76,7 +76,7 @@ async def test_motion_run_plots_the_band_and_shows_the_tables(tmp_path, cli):
 
 
 def test_the_docs_name_the_tab_keys_the_app_binds():
-    """README's tab keys and docs/motion.md's Motion-tab key are the app's bindings: the
+    """docs/app.md's tab keys and docs/motion.md's Motion-tab key are the app's bindings: the
     function keys anywhere, the digits on the tab bar only (F8 is the sweep, not a tab)."""
     from planar_tui.app.app import WorkbenchApp
     from tests.conftest import REPO
@@ -88,9 +88,9 @@ def test_the_docs_name_the_tab_keys_the_app_binds():
         elif binding.action.startswith("digit_tab("):
             digits[int(binding.action[10:-1])] = binding.key
     listed = " ".join(f"`{function_keys[k]}`" for k in sorted(function_keys))
-    readme = " ".join((REPO / "README.md").read_text(encoding="utf-8").split())
-    assert f"keys {listed} anywhere for the first six" in readme
-    assert f"`{digits[1]}`…`{digits[6]}` on the tab bar, never in a form" in readme
+    app = " ".join((REPO / "docs" / "app.md").read_text(encoding="utf-8").split())
+    assert f"keys {listed} anywhere for the first six" in app
+    assert f"`{digits[1]}`…`{digits[6]}` on the tab bar, never in a form" in app
     motion = " ".join((REPO / "docs" / "motion.md").read_text(encoding="utf-8").split())
     assert f"(Motion tab, key `{digits[6]}` / `{function_keys[6]}`)" in motion
 

@@ -1,5 +1,5 @@
 """The SALib hand-off: the exported runs are the job's, SALib's own estimators on them give
-the job's indices back, and the README's three lines run on them."""
+the job's indices back, and docs/interop.md's three lines run on them."""
 
 from __future__ import annotations
 
@@ -19,7 +19,7 @@ from planar_tui.presets import load_preset
 from tests.conftest import REPO
 
 TINY = REPO / "tests" / "data" / "app" / "tiny.toml"
-README = (REPO / "README.md").read_text(encoding="utf-8")
+INTEROP = (REPO / "docs" / "interop.md").read_text(encoding="utf-8")
 
 
 @pytest.fixture(scope="module")
@@ -99,9 +99,9 @@ def test_salib_estimators_on_the_exported_runs_give_the_jobs_indices(sensitivity
             np.testing.assert_allclose(theirs["ST"], ours[2, k], rtol=1e-9, atol=1e-12)
 
 
-def readme_example() -> str:
-    start = README.index("\n## Interoperability\n")
-    section = README[start : README.index("\n## ", start + 1)]
+def docs_example() -> str:
+    start = INTEROP.index("\n## Overview\n")
+    section = INTEROP[start : INTEROP.index("\n## ", start + 1)]
     block = re.search(r"```python\n(.*?)```", section, re.S)
     assert block is not None
     code = block.group(1)
@@ -109,13 +109,13 @@ def readme_example() -> str:
     return code
 
 
-def test_the_readme_example_runs_on_the_exported_runs(sensitivity_run, monkeypatch):
+def test_the_docs_example_runs_on_the_exported_runs(sensitivity_run, monkeypatch):
     """RBD-FAST on the Sobol' runs agrees loosely with the job's Sobol' indices: the same
     dominant input for each torque, every first-order index within 0.1."""
     _, result, folder = sensitivity_run
     monkeypatch.chdir(folder)
     scope: dict = {}
-    exec(readme_example(), scope)
+    exec(docs_example(), scope)
     analysed = scope["sp"].analysis
     ours = analysis(result, "sobol").indices
     for k, output in enumerate(("tau1_Nm", "tau2_Nm")):

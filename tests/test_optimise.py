@@ -17,7 +17,6 @@ import time
 import pytest
 
 from planar_tui.errors import ExitCode
-from planar_tui.optimise.spec import reference_table
 from tests.conftest import REPO
 
 G, L1, L2, M1, M2 = 9.81, 0.5, 0.4, 2.0, 1.0
@@ -438,11 +437,6 @@ def test_a_preset_without_optimise_tables_is_refused(tmp_path, cli):
         result.stderr == f"error: {preset}: optimise: no [[optimise]] table in this "
         "preset (expected an [[optimise]] table)\n"
     )
-
-
-def test_the_readme_holds_the_reference_generated_from_the_declarations():
-    readme = (REPO / "README.md").read_text(encoding="utf-8")
-    assert reference_table() in readme, reference_table()
 
 
 def test_the_sensitivity_jobs_torque_variance_is_the_closed_form(tmp_path):

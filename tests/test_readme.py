@@ -1,8 +1,12 @@
-"""The README says what the commands do: its CSV column lists are the headers of the files
-the CLI writes, and it states the Python version the package requires."""
+"""The README and the documentation say what is true: the README's commands table is the
+CLI's commands, its Quick start is what CI runs, its links resolve, and it stays a short
+page for users (no development log, no machine paths); docs/csv.md's column lists are the
+headers of the files the CLI writes; docs/development.md's recipe for a new job kind names
+files that exist."""
 
 from __future__ import annotations
 
+import ast
 import csv
 import re
 import tomllib
@@ -12,6 +16,7 @@ import pytest
 from tests.conftest import REPO
 
 README = (REPO / "README.md").read_text(encoding="utf-8")
+DOCS = REPO / "docs"
 TINY = REPO / "tests" / "data" / "app" / "tiny.toml"
 
 #: Added to the tiny preset: a torques job, a motion job and the workspace's boxes CSV.
@@ -29,11 +34,15 @@ output = "tiny-motion.csv"
 """
 
 
-def section(title: str) -> str:
-    """The README's text under ``## title``, up to the next ``## `` heading."""
-    start = README.index(f"\n## {title}\n")
-    end = README.find("\n## ", start + 1)
-    return README[start:end]
+def section(title: str, text: str = README) -> str:
+    """The text under ``## title`` (the README's by default), up to the next ``## ``."""
+    start = text.index(f"\n## {title}\n")
+    end = text.find("\n## ", start + 1)
+    return text[start:] if end < 0 else text[start:end]
+
+
+def doc(name: str) -> str:
+    return (DOCS / name).read_text(encoding="utf-8")
 
 
 def expand(columns: str, n_links: int) -> list[str]:
@@ -52,8 +61,8 @@ def expand(columns: str, n_links: int) -> list[str]:
 
 
 def documented_columns(n_links: int) -> dict[str, list[str]]:
-    """Each ``- **kind** ...: `columns``` line of the CSV formats section, by its label."""
-    lines = re.findall(r"^- \*\*(\w+)\*\*( \w+)?.*?: `([^`]+)`", section("CSV formats"), re.M)
+    """Each ``- **kind** ...: `columns``` line of docs/csv.md, by its label."""
+    lines = re.findall(r"^- \*\*(\w+)\*\*( \w+)?.*?: `([^`]+)`", doc("csv.md"), re.M)
     return {(kind + (extra or "")).strip(): expand(cols, n_links) for kind, extra, cols in lines}
 
 
@@ -87,10 +96,10 @@ def test_csv_column_lists_match_the_files_the_commands_write(cli, tmp_path):
 
 
 def documented_band_columns(n_links: int) -> list[str]:
-    """The motion band CSV's columns as the README says: ``t_s``, then per output
+    """The motion band CSV's columns as docs/csv.md says: ``t_s``, then per output
     (``theta1_rad … thetan_rad, tip_x_m, tip_y_m``) ``NAME_mean, NAME_std …``."""
     text = re.search(r"^- The \*\*motion_uncertainty band\*\* CSV.*?(?=^- )",
-                     section("CSV formats"), re.M | re.S).group(0)  # fmt: skip
+                     doc("csv.md"), re.M | re.S).group(0)  # fmt: skip
     quoted = re.findall(r"`([^`]+)`", " ".join(text.split()))
     outputs = next(q for q in quoted if "…" in q)
     statistics = next(q for q in quoted if q.startswith("NAME_"))
@@ -101,11 +110,12 @@ def documented_band_columns(n_links: int) -> list[str]:
 def test_the_python_version_is_the_one_the_package_requires():
     required = tomllib.loads((REPO / "pyproject.toml").read_text())["project"]["requires-python"]
     assert required == ">=3.11"
-    assert "Needs Python 3.11 or newer" in section("Quick start")
+    assert "needs Python 3.11 or newer" in section("Install")
+    assert "planar-tui needs Python 3.11 or newer" in doc("install.md")
 
 
 def test_the_new_job_kind_recipe_names_files_that_exist_and_the_kind_gets_a_command():
-    """The "new job kind" recipe of the Development section names exactly the files a kind
+    """The "new job kind" recipe of docs/development.md names exactly the files a kind
     touches (its module, the registry, its tests): they exist; and a kind registered as
     it says (the toy kind of ``tests/test_toy_kind.py``) is a command of ``--help``."""
     from typer.testing import CliRunner
@@ -114,7 +124,7 @@ def test_the_new_job_kind_recipe_names_files_that_exist_and_the_kind_gets_a_comm
     from planar_tui.registry import JOB_KINDS, registered
     from tests.test_toy_kind import TOY
 
-    development = section("Development")
+    development = doc("development.md")
     recipe = development[development.index("- **A new job kind**") :]
     recipe = recipe[: recipe.index("\n- **", 1)]
     named = set(re.findall(r"`((?:planar_tui|tests)/[\w/]+\.py)", recipe))
@@ -126,3 +136,98 @@ def test_the_new_job_kind_recipe_names_files_that_exist_and_the_kind_gets_a_comm
     commands = re.findall(r"│ (\w+) ", help_text)
     assert "kinetic" in commands
     assert {k.command.name for k in JOB_KINDS.values() if k.command} <= set(commands)
+
+
+def cli_commands() -> set[str]:
+    import typer
+
+    from planar_tui.cli import build_app
+
+    return set(typer.main.get_command(build_app()).commands)
+
+
+def test_the_commands_table_is_the_clis_commands():
+    """Every row of the README's commands table is a command of the CLI (or ``--version``),
+    and every command of the CLI has its row."""
+    rows = re.findall(r"^\| `planar-tui ([^` ]+)[^`]*` \|", section("Commands"), re.M)
+    assert len(rows) == len(set(rows)), rows
+    assert set(rows) - {"--version"} == cli_commands()
+    assert "--version" in rows
+
+
+def test_the_quick_start_has_the_two_commands_ci_runs():
+    block = re.search(r"```sh\n(.*?)```", section("Quick start"), re.S).group(1)
+    assert block.splitlines() == [
+        "python3 -m venv .venv && .venv/bin/pip install -q -e . && .venv/bin/planar-tui "
+        "simulate paper-a-table1 --out-dir out",
+        'python3 -m venv .venv && .venv/bin/pip install -q -e ".[test]" && .venv/bin/python '
+        "-m pytest -n 2",
+    ]
+    ci = (REPO / ".ci" / "run").read_text(encoding="utf-8")
+    assert "python3 -m venv .venv\n" in ci
+    assert '.venv/bin/pip install -q -e ".[test]"\n' in ci
+    assert ".venv/bin/python -m pytest -n 2\n" in ci
+    assert "first run" in section("Quick start") and "compile" in section("Quick start")
+
+
+def headings_slugs(text: str) -> set[str]:
+    """The anchors of a Markdown text's headings, as the site (and GitHub) makes them."""
+    from pymdownx.slugs import slugify
+
+    slug = slugify(case="lower")
+    text = re.sub(r"```.*?```", "", text, flags=re.S)
+    return {slug(title.strip(), "-") for title in re.findall(r"^#+ (.+)$", text, re.M)}
+
+
+def test_the_readmes_links_resolve():
+    links = re.findall(r"\]\(([^)\s]+)\)", README)
+    assert links
+    for link in links:
+        if re.match(r"[a-z]+://", link):
+            continue
+        target, _, anchor = link.partition("#")
+        path = (REPO / target) if target else REPO / "README.md"
+        assert path.exists(), link
+        if anchor:
+            text = path.read_text(encoding="utf-8")
+            assert anchor in headings_slugs(text), link
+
+
+#: An absolute path of a particular machine (a home, a scratch or a work folder).
+MACHINE_PATH = re.compile(r"(?<![\w.~$])/(?:work|root|home|tmp)/")
+
+
+def test_the_readme_is_a_short_page_without_development_log():
+    assert len(README.splitlines()) <= 500
+    assert re.findall(r"\b[Ii]ssues? #?\d+|(?<![\w`])#\d+\b", README) == []
+    assert re.findall(r"\bpass(?:es)?\b", README) == []
+    assert re.findall(r"\b20\d\d-\d\d-\d\d\b|\d\d:\d\d UTC", README) == []
+    assert MACHINE_PATH.findall(README) == []
+
+
+def docstrings(path) -> list[str]:
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    nodes = [tree, *ast.walk(tree)]
+    return [
+        text
+        for node in nodes
+        if isinstance(node, ast.Module | ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef)
+        and (text := ast.get_docstring(node)) is not None
+    ]
+
+
+def test_no_machine_paths_in_the_docs_or_the_benchmarks_docstrings():
+    pages = sorted(DOCS.rglob("*.md"))
+    assert len(pages) >= 10
+    found = [page.name for page in pages if MACHINE_PATH.search(page.read_text(encoding="utf-8"))]
+    assert found == []
+    benchmarks = sorted((REPO / "benchmarks").glob("*.py"))
+    assert benchmarks
+    found = [b.name for b in benchmarks if any(MACHINE_PATH.search(d) for d in docstrings(b))]
+    assert found == []
+
+
+def test_the_machine_path_check_sees_paths():
+    assert MACHINE_PATH.search("Run: ``/work/venv/bin/python x.py``")
+    assert MACHINE_PATH.search("see /tmp/out.csv")
+    assert not MACHINE_PATH.search("`TMPDIR/planar-tui-UID` and ~/.cache/planar-tui and a/home/b")

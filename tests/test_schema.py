@@ -1,5 +1,5 @@
 """Each preset key is declared once: the declaration drives parsing, dumping, the allowed
-keys and the README's preset reference."""
+keys and the preset reference (docs/reference/presets.md, tests/test_docs_reference.py)."""
 
 from __future__ import annotations
 
@@ -8,17 +8,10 @@ import dataclasses
 import pytest
 
 from planar_tui.errors import PresetError
-from planar_tui.presets import load_preset, reference_tables
+from planar_tui.presets import load_preset
 from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
 from planar_tui.schema import TableReader, declared_keys, dump_settings, parse_settings
-from tests.conftest import PRESETS, REPO
-
-
-@pytest.mark.parametrize("name", sorted(reference_tables()))
-def test_the_readme_holds_the_table_generated_from_the_declarations(name):
-    table = reference_tables()[name]
-    readme = (REPO / "README.md").read_text(encoding="utf-8")
-    assert table in readme, f"README.md lacks the [{name}] table; it should read:\n{table}"
+from tests.conftest import PRESETS
 
 
 def test_every_setting_without_a_key_is_a_derived_value():

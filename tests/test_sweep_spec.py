@@ -224,12 +224,13 @@ def test_a_preset_with_sweeps_loads_edits_and_saves(tmp_path):
     assert parse_toml(saved, saved.read_text())["sweep"] == preset.raw["sweep"]
 
 
-def test_the_readme_documents_every_sweep_key():
+def test_the_docs_document_every_sweep_key():
     from planar_tui.sweep.spec import SWEEP_KEYS
     from tests.conftest import REPO
 
-    readme = (REPO / "README.md").read_text(encoding="utf-8")
-    section = readme[readme.index("\n## Sweeps\n") : readme.index("\n## CSV formats\n")]
+    page = (REPO / "docs" / "sweeps.md").read_text(encoding="utf-8")
+    start = page.index("\n## The `[[sweep]]` table\n")
+    section = page[start : page.index("\n## ", start + 1)]
     documented = [line.split("`")[1] for line in section.splitlines() if line.startswith("| `")]
     assert documented == list(SWEEP_KEYS)
 

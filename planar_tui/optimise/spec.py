@@ -3,8 +3,8 @@ varies and over what (``variables``), what it maximises or minimises (columns of
 summary figures, one or several), under which ``constraints``, with how many evaluations.
 
 The keys are declared once (:class:`OptimiseTable`, :func:`planar_tui.schema.setting`):
-the declaration reads them, names the allowed keys and writes the README's reference
-(:func:`reference_table`). Key paths and the job come from the sweep's readers
+the declaration reads them, names the allowed keys and writes the preset reference
+(``docs/gen_reference.py``). Key paths and the job come from the sweep's readers
 (:func:`planar_tui.sweep.spec.job_context`, :func:`~planar_tui.sweep.spec.read_key_path`),
 with the sweep's one-line errors.
 """
@@ -27,7 +27,6 @@ from planar_tui.schema import (
     TableReader,
     figure_path,
     integer,
-    markdown_table,
     parse_settings,
     relative_path,
     setting,
@@ -126,11 +125,6 @@ class OptimiseTable:
                                type_doc="relative path ending `.svg`, `.png` or `.pdf`",
                                doc="convergence (one objective) or front (two) figure; `--plot "
                                "FILE` overrides it")  # fmt: skip
-
-
-def reference_table() -> str:
-    """The README's ``[[optimise]]`` reference, from the declarations."""
-    return markdown_table(OptimiseTable)
 
 
 @dataclass(frozen=True)
