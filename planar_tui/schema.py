@@ -46,7 +46,7 @@ class Key:
     ``read(reader, name, default, context, values)`` returns the checked value (``values``
     holds the keys read before it, ``context`` the job's robot or ``None``); ``dump``
     turns a value back into TOML (``None`` values are left out); ``type_doc`` and
-    ``default_doc`` are the README's "type" and "default" cells.
+    ``default_doc`` are the preset reference's "type" and "default" cells.
     """
 
     name: str

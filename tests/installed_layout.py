@@ -8,7 +8,7 @@ that installed layout, which :func:`installed_layout` copies into a folder; a ba
 ``lint-imports`` in an editable checkout stops at ``planar_tui.kernels does not exist``.
 
 ``python -m tests.installed_layout`` runs ``lint-imports`` with the repository's contracts
-on the checkout laid out so (what ``.ci/run`` and the README's Development section run);
+on the checkout laid out so (what ``.ci/run`` and docs/development.md run);
 its exit code is lint-imports'.
 """
 

@@ -13,7 +13,7 @@ from tests.conftest import REPO
 
 NAMES = ["2R, paper A Table 3", 'the "fast" arm', "two\nlines", "Rückenstütze ½ → π", "=1+1", "-x"]
 #: How a name is written where it differs: a text cell a spreadsheet would run as a
-#: formula gets a leading ' (README, "CSV formats").
+#: formula gets a leading ' (docs/csv.md).
 WRITTEN = {"=1+1": "'=1+1", "-x": "'-x"}
 
 

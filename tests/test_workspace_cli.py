@@ -133,7 +133,7 @@ def test_bad_command_line_values_exit_2(cli, tmp_path, option, value):
 
 
 def test_box_budget_stops_with_a_clear_message_and_writes_nothing(cli, tmp_path):
-    """A budget exceeded mid-run is a failed job (exit code 1, as the README says), not
+    """A budget exceeded mid-run is a failed job (exit code 1, as docs/cli.md says), not
     bad input; it names the preset's box_budget and precision_cm."""
     preset = write_preset(tmp_path, extra="box_budget = 1000\n")
     result = cli("workspace", preset, "--out-dir", tmp_path, "--boxes", tmp_path / "b.csv")

@@ -172,24 +172,24 @@ async def history() -> None:
         save(app, "compare")
 
 
-def sync_readme() -> None:
-    """Put each text capture into the README's code block under its ``[SVG](…NAME.svg)``
-    heading, so the README shows what the app shows."""
+def sync_page() -> None:
+    """Put each text capture into docs/app.md's code block under its ``[SVG](…NAME.svg)``
+    heading, so the page shows what the app shows."""
     import re
 
-    readme = REPO / "README.md"
-    text = readme.read_text(encoding="utf-8")
+    page = REPO / "docs" / "app.md"
+    text = page.read_text(encoding="utf-8")
     for capture in sorted(OUT.glob("*.txt")):
         pattern = re.compile(
-            r"(\(docs/screenshots/" + re.escape(capture.stem) + r"\.svg\)[^\n]*\n\n```text\n)"
+            r"(\(screenshots/" + re.escape(capture.stem) + r"\.svg\)[^\n]*\n\n```text\n)"
             r"(.*?)(```)",
             re.DOTALL,
         )
         body = capture.read_text(encoding="utf-8").rstrip("\n") + "\n"
         text = pattern.sub(lambda match, body=body: match[1] + body + match[3], text)
-    readme.write_text(text, encoding="utf-8")
+    page.write_text(text, encoding="utf-8")
 
 
 if __name__ == "__main__":
     asyncio.run(main())
-    sync_readme()
+    sync_page()
