@@ -85,19 +85,34 @@ def run_jobs(
         raise fail(f"error: {error}", ExitCode.RUN_FAILED) from None
 
     summary = Table(title=summary_title(command, plan), title_justify="left", show_lines=True)
-    summary.add_column("job", overflow="fold")
+    names = [(row.label, shown_path(row.output, plan.out_dir)) for row in rows]
+    summary.add_column("job and file", no_wrap=True, overflow="fold")
     summary.add_column("run s", justify="right", no_wrap=True)
     summary.add_column("compile s", justify="right", no_wrap=True)
-    summary.add_column("output and result", overflow="fold", ratio=1)
-    for row in rows:
-        output = Text(str(row.output), no_wrap=True, overflow="fold")
+    summary.add_column("result")
+    for row, (label, name) in zip(rows, names, strict=True):
         summary.add_row(
-            Text(row.label),
+            Text(f"{label}\n{name}"),
             f"{row.seconds - row.compile_seconds:.3f}",
             f"{row.compile_seconds:.3f}",
-            Text("\n").join([output, Text(row.summary)]),
+            Text(row.summary),
         )
     stdout.print(summary)
+    if plan.out_dir is not None and any(is_inside(row.output, plan.out_dir) for row in rows):
+        stdout.print(f"files in {plan.out_dir}", markup=False, highlight=False, soft_wrap=True)
+
+
+def is_inside(path: Path, folder: Path) -> bool:
+    """Whether ``path`` lies in ``folder`` (compared as absolute paths)."""
+    return Path(os.path.abspath(path)).is_relative_to(os.path.abspath(folder))
+
+
+def shown_path(path: Path, out_dir: Path | None) -> str:
+    """A written file as the summary names it: relative to the output folder when inside
+    it (the folder is said once, below the table), else as given."""
+    if out_dir is None or not is_inside(path, out_dir):
+        return str(path)
+    return os.path.relpath(os.path.abspath(path), os.path.abspath(out_dir))
 
 
 def study_client(stack: ExitStack, wanted: bool, workers: int | None, scheduler: str | None
