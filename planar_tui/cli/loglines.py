@@ -19,7 +19,7 @@ import threading
 import time
 from collections.abc import Callable
 
-from planar_tui.cli.output import clock_text
+from planar_tui.cli.output import clock_text, stage_title
 from planar_tui.progress import ProgressState
 
 #: Longest time between two lines of a running stage (seconds).
@@ -36,8 +36,11 @@ def rate_of(state: ProgressState, now_s: float) -> float | None:
 
 
 def rate_text(rate: float | None, unit: str) -> str:
-    """A rate with three significant digits (``350 pt/s``), ``-- pt/s`` when unknown."""
-    return f"-- {unit}/s" if rate is None else f"{rate:.3g} {unit}/s"
+    """A rate with three significant digits (``0.35 pt/s``; whole units from 100 on:
+    ``48,700 pt/s``), ``-- pt/s`` when unknown."""
+    if rate is None:
+        return f"-- {unit}/s"
+    return f"{rate:,.0f} {unit}/s" if rate >= 100 else f"{rate:.3g} {unit}/s"
 
 
 def progress_line(label: str, state: ProgressState, now_s: float, unit: str = "") -> str:
@@ -46,7 +49,7 @@ def progress_line(label: str, state: ProgressState, now_s: float, unit: str = ""
     stage's elapsed time, then the runner's detail on an indented line of its own."""
     elapsed_s = max(now_s - state.stage_started_s, 0.0)
     whole = state.total > 1 and float(state.total).is_integer()
-    parts = [f"{label} {state.stage}".strip() + ":", f"{100.0 * state.fraction:.0f}%"]
+    parts = [stage_title(label, state.stage) + ":", f"{100.0 * state.fraction:.0f}%"]
     if whole:
         parts.append(f"{state.completed:,.0f}/{state.total:,.0f}")
     rate = rate_of(state, now_s)

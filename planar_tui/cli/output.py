@@ -287,7 +287,8 @@ def progress_figures(
 def job_progress_display(console: Console):
     """A rich progress display for one job, complete at 80 columns: the job and stage on
     their own line, then the bar with percent, count and ETA, then the runner's detail
-    (folded, never cut). Its task takes ``detail`` and ``done_s`` fields."""
+    (folded, never cut). Its task takes ``detail``, ``done_s``, ``rate`` (text) and
+    ``eta_s`` fields (:func:`progress_bar` sets them)."""
     from rich.progress import BarColumn, Progress, ProgressColumn
     from rich.table import Column
     from rich.text import Text
@@ -298,7 +299,7 @@ def job_progress_display(console: Console):
             figures = progress_figures(
                 task.completed,
                 task.total or 0.0,
-                task.time_remaining,
+                fields["eta_s"],
                 fields["done_s"],
                 fields["rate"],
             )
@@ -341,8 +342,9 @@ def stage_title(label: str, stage: str) -> str:
 @contextmanager
 def progress_bar(bars, label: str, unit: str = ""):
     """One progress task for ``label``'s run (stage, figures and detail), as a
-    :class:`~planar_tui.progress.Progress` for the runner. A new stage restarts the bar and
-    its speed estimate; with ``unit`` (``pt``) the figures show the stage's rate (units per
+    :class:`~planar_tui.progress.Progress` for the runner. A new stage restarts the bar;
+    the ETA is the stage's at its rate so far
+    (:meth:`~planar_tui.progress.ProgressState.eta_s`); with ``unit`` (``pt``) the figures show the stage's rate (units per
     second since it began). The last line says ``done`` with the total time and the
     runner's last detail (a workspace's final area bracket)."""
     import time
@@ -351,7 +353,7 @@ def progress_bar(bars, label: str, unit: str = ""):
     from planar_tui.progress import Progress
 
     started = time.monotonic()
-    task = bars.add_task(label, total=1.0, detail="", done_s=None, rate="")
+    task = bars.add_task(label, total=1.0, detail="", done_s=None, rate="", eta_s=None)
     warned = set()
     stage = None
 
@@ -363,7 +365,8 @@ def progress_bar(bars, label: str, unit: str = ""):
         if state.stage != stage:
             stage = state.stage
             bars.reset(task, total=state.total, completed=state.completed)
-        rate = rate_text(rate_of(state, time.monotonic()), unit) if unit else ""
+        now_s = time.monotonic()
+        rate = rate_text(rate_of(state, now_s), unit) if unit else ""
         bars.update(
             task,
             completed=state.completed,
@@ -371,6 +374,7 @@ def progress_bar(bars, label: str, unit: str = ""):
             description=stage_title(label, state.stage),
             detail=state.detail,
             rate=rate,
+            eta_s=state.eta_s(now_s),
         )
 
     yield Progress(on_update=update, should_stop=_INTERRUPTED.is_set)
