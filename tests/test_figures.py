@@ -639,13 +639,13 @@ def test_simulate_energy_panel_is_the_drift_net_of_the_torques_work(tmp_path):
     assert ax.title.get_window_extent().width < ax.get_window_extent().width
 
 
-def test_simulate_figure_from_a_csv_alone_makes_no_drift_claim(results):
+def test_simulate_figure_from_a_csv_alone_names_the_torques_work_not_a_drift(results):
     _, result = results["simulate"]
     fig = figures.figure_for_table(result.table)
     (ax,) = [ax for ax in fig.axes if ax.get_ylabel() == "E(t) − E(0) (J)"]
     energy = result.kinetic_J + result.potential_J
     assert ax.lines[0].get_ydata().tolist() == (energy - energy[0]).tolist()
-    assert ax.get_title().startswith("energy change, max ") and "drift" not in ax.get_title()
+    assert ax.get_title().startswith("≈ torques' work W, max ") and "drift" not in ax.get_title()
     fig.canvas.draw()
     assert ax.title.get_window_extent().width < ax.get_window_extent().width
 
