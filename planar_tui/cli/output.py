@@ -344,9 +344,10 @@ def progress_bar(bars, label: str, unit: str = ""):
     """One progress task for ``label``'s run (stage, figures and detail), as a
     :class:`~planar_tui.progress.Progress` for the runner. A new stage restarts the bar;
     the ETA is the stage's at its rate so far
-    (:meth:`~planar_tui.progress.ProgressState.eta_s`); with ``unit`` (``pt``) the figures show the stage's rate (units per
-    second since it began). The last line says ``done`` with the total time and the
-    runner's last detail (a workspace's final area bracket)."""
+    (:meth:`~planar_tui.progress.ProgressState.eta_s`); with ``unit`` (``pt``) the figures
+    show the stage's rate (units per second since it began). The last line says ``done``
+    with the total time and the runner's last detail (a workspace's final area
+    bracket)."""
     import time
 
     from planar_tui.cli.loglines import rate_of, rate_text

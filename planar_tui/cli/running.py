@@ -48,10 +48,10 @@ def run_jobs(
 ) -> None:
     """Run the plan's jobs through the batch service, one progress display each
     (:func:`~planar_tui.cli.output.progress_display`), then print a summary titled by
-    ``command`` and the presets (:func:`summary_title`); its ``compile s`` column is the
-    first run's kernel compilation (the stage :data:`planar_tui.warmup.STAGE`), its
-    ``run s`` the rest of the job, which the CSVs' ``seconds`` columns measure (their
-    computation alone). Each job's files are written as soon as it finishes. A job that raises an
+    ``command`` and the presets (:func:`summary_title`): its ``compile s`` are the first
+    run's kernel compilation (the stage :data:`planar_tui.warmup.STAGE`), its ``run s``
+    the rest of the job (a workspace CSV's ``seconds`` are its computation alone). Each
+    job's files are written as soon as it finishes. A job that raises an
     unexpected error, or an output that cannot be written, ends the run with one
     ``error:`` line and exit code 1 (``PLANAR_TUI_DEBUG=1`` shows the traceback). ``show``
     prints each kind's terminal view; ``after(job, result)`` writes what the command's
@@ -200,7 +200,8 @@ def run_optimisations(plan: RunPlan, workers: int | None, scheduler: str | None)
     re-run at the job's settings and its files. An infeasible evaluation (a design its job
     refuses: a centre its mode cannot reach) is the optimisation's business and counted;
     a failed one (the job broke) is counted too, the run goes on and its files are written,
-    and the exit code is 1, as for a failed sweep point. Ctrl-C exits 130 with every finished evaluation in the checkpoint (``--resume``)."""
+    and the exit code is 1, as for a failed sweep point. Ctrl-C exits 130 with every
+    finished evaluation in the checkpoint (``--resume``)."""
     from planar_tui.batch import OutputFailed
     from planar_tui.optimise.run import run_optimisation
 

@@ -82,7 +82,8 @@ def point_file_names(stem: str, job: Job) -> list[str]:
 def run_point(task: PointTask, progress: Progress | None = None) -> PointOutcome:
     """Run one point through the batch service; any failure of the point (a box budget,
     no isotropic posture, a diverged result, an unexpected error) becomes a ``failed``
-    outcome with a one-line message (values the job refuses: ``task.refused``). Only a cancel (:class:`Cancelled`, Ctrl-C) escapes."""
+    outcome with a one-line message (values the job refuses: ``task.refused``). Only a
+    cancel (:class:`Cancelled`, Ctrl-C) escapes."""
     from planar_tui import batch
     from planar_tui.errors import Cancelled, PresetError
     from planar_tui.registry import JOB_KINDS
