@@ -75,6 +75,14 @@ def test_a_stage_not_started_shows_no_rate_and_no_eta():
     assert lines == ["job integrating: 0% 0/200 -- units/s ETA -- elapsed 0:00:00"]
 
 
+def test_a_warning_is_logged_once():
+    clock, lines = Clock(), []
+    log = ProgressLog("job", lines.append, clock=clock)
+    for _ in range(2):
+        log.update(ProgressState(0, 4, "bisection", "", warning="over budget"))
+    assert lines[0] == "warning: job: over budget" and lines.count(lines[0]) == 1
+
+
 def test_the_heartbeat_thread_writes_while_nothing_reports():
     clock, lines = Clock(), []
     with ProgressLog("job", lines.append, clock=clock, interval_s=0.0) as log:

@@ -90,12 +90,17 @@ class ProgressLog:
         self._lock = threading.Lock()
         self._state: ProgressState | None = None
         self._last_line_s = float("-inf")
+        self._warned: set[str] = set()
         self._stopped = threading.Event()
         self._thread: threading.Thread | None = None
 
     def update(self, state: ProgressState) -> None:
-        """Take the runner's latest state; write a line if one is due."""
+        """Take the runner's latest state; write a line if one is due, and a job-wide
+        warning once (``warning: LABEL: TEXT``)."""
         with self._lock:
+            if state.warning and state.warning not in self._warned:
+                self._warned.add(state.warning)
+                self._write(f"warning: {self.label}: {state.warning}")
             new_stage = self._state is None or state.stage != self._state.stage
             self._state = state
             self._line_if_due(force=new_stage)
