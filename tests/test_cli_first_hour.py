@@ -68,6 +68,17 @@ def test_log_lines_come_at_each_stage_and_every_10_s_with_percent_rate_and_eta()
     assert lines[-1] == "p:sweep[1] done in 0:01:25\n  20/50 points, 0 failed"
 
 
+def test_a_run_that_reports_nothing_yet_still_gets_a_line_every_10_s():
+    clock, lines = Clock(), []
+    log = ProgressLog("job", lines.append, clock=clock)
+    clock.now_s += 9.0
+    log.heartbeat()
+    assert lines == []
+    clock.now_s += 1.0
+    log.heartbeat()
+    assert lines == ["job: starting (elapsed 0:00:10)"]
+
+
 def test_a_stage_not_started_shows_no_rate_and_no_eta():
     clock, lines = Clock(), []
     log = ProgressLog("job", lines.append, clock=clock)

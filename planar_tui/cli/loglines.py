@@ -89,7 +89,8 @@ class ProgressLog:
         self._interval_s = interval_s
         self._lock = threading.Lock()
         self._state: ProgressState | None = None
-        self._last_line_s = float("-inf")
+        self._started_s = clock()
+        self._last_line_s = self._started_s
         self._warned: set[str] = set()
         self._stopped = threading.Event()
         self._thread: threading.Thread | None = None
@@ -120,10 +121,13 @@ class ProgressLog:
 
     def _line_if_due(self, force: bool) -> None:
         now_s = self._clock()
-        if self._state is None or not (force or now_s - self._last_line_s >= self._interval_s):
+        if not (force or now_s - self._last_line_s >= self._interval_s):
             return
         self._last_line_s = now_s
-        self._write(progress_line(self.label, self._state, now_s, self.unit))
+        if self._state is None:  # nothing reported yet (imports, a set-up): still alive
+            self._write(f"{self.label}: starting (elapsed {clock_text(now_s - self._started_s)})")
+        else:
+            self._write(progress_line(self.label, self._state, now_s, self.unit))
 
     def __enter__(self) -> ProgressLog:
         def beat() -> None:
