@@ -36,8 +36,8 @@ def rate_of(state: ProgressState, now_s: float) -> float | None:
 
 
 def rate_text(rate: float | None, unit: str) -> str:
-    """A rate with three significant digits (``0.35 pt/s``; whole units from 100 on:
-    ``48,700 pt/s``), ``-- pt/s`` when unknown."""
+    """A rate with three significant digits (``0.35 pt/s``), in whole units from 100 on
+    (``48,733 pt/s``); ``-- pt/s`` when unknown."""
     if rate is None:
         return f"-- {unit}/s"
     return f"{rate:,.0f} {unit}/s" if rate >= 100 else f"{rate:.3g} {unit}/s"
