@@ -47,12 +47,15 @@ class OutputPlan:
 
 @dataclass(frozen=True)
 class SummaryRow:
-    """One finished job for the run summary."""
+    """One finished job for the run summary: ``seconds`` the whole run, of which
+    ``compile_seconds`` compiled its kernels (a first run only, the stage
+    :data:`planar_tui.warmup.STAGE`)."""
 
     label: str
     seconds: float
     output: Path
     summary: str
+    compile_seconds: float = 0.0
 
 
 class JobFailed(Exception):
@@ -507,4 +510,5 @@ def run_plans(
         write_result(plan, result, (started_epoch_s, seconds))
         if on_finished is not None:
             on_finished(plan.job, result)
-        yield SummaryRow(plan.job.label, seconds, plan.main, result.summary)
+        compile_s = min(progress.figures.get("compile_s", 0.0), seconds)
+        yield SummaryRow(plan.job.label, seconds, plan.main, result.summary, compile_s)

@@ -27,13 +27,18 @@ def bundled_presets() -> list[Path]:
 
 
 def preset_description(path: Path) -> str:
-    """The first comment line of a preset (its one-line description)."""
+    """A preset's description: its first comment paragraph (the comment lines before the
+    first empty comment line or other line), joined into one line; a sentence that goes
+    on to the next line is not cut."""
+    words: list[str] = []
     for line in path.read_text(encoding="utf-8").splitlines():
-        if line.startswith("#"):
-            return line.lstrip("# ").strip()
-        if line.strip():
-            break
-    return ""
+        text = line.lstrip("#").strip()
+        if not line.startswith("#") or not text:
+            if words or line.strip() not in ("", "#"):
+                break
+            continue
+        words.append(text)
+    return " ".join(words)
 
 
 def resolve_preset(argument: str | Path) -> Path:

@@ -32,6 +32,7 @@ import hashlib
 import sys
 import tempfile
 import threading
+import time
 from collections.abc import Iterable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -192,10 +193,19 @@ def _run_example(unit: str) -> None:
             marker(unit).touch()
 
 
+def compiling_text(unit: str, kernel: str, elapsed_s: float) -> str:
+    """The detail of the compile stage: the unit, the kernel numba is compiling (when
+    known) and the unit's whole seconds so far (``workspace: compiling bisect_boxes, 12 s``)."""
+    what = f"compiling {kernel}" if kernel else "compiling"
+    return f"{unit}: {what}, {elapsed_s:.0f} s"
+
+
 def warm_kernels(kinds_or_units: Iterable[str], progress: Progress) -> list[str]:
     """Compile the kernels of the warm-up units ``kinds_or_units`` (job kinds, each standing for all of
     its units, or ``kind:part``, :func:`units_for`) that are not cached yet, in the stage
-    :data:`STAGE` of ``progress`` (none when all are cached); returns the units compiled.
+    :data:`STAGE` of ``progress`` (none when all are cached; its detail names the kernel
+    being compiled and the seconds so far, :func:`compiling_text`; its figure
+    ``compile_s`` the stage's seconds); returns the units compiled.
     Raises :class:`~planar_tui.errors.Cancelled` within :data:`~planar_tui.progress.POLL_S`
     of a cancel."""
     todo = missing(kinds_or_units)
@@ -204,13 +214,16 @@ def warm_kernels(kinds_or_units: Iterable[str], progress: Progress) -> list[str]
     progress.start(len(todo), STAGE, f"{todo[0]} kernels")
     with _CompileWatcher() as watcher:
         for unit in todo:
+            started_s = time.monotonic()
             shown = [""]
 
-            def show_kernel(unit=unit, shown=shown) -> None:
-                if watcher.current != shown[0]:
-                    shown[0] = watcher.current
-                    progress.advance(0.0, f"{unit}: {watcher.current}")
+            def show_kernel(unit=unit, shown=shown, started_s=started_s) -> None:
+                text = compiling_text(unit, watcher.current, time.monotonic() - started_s)
+                if text != shown[0]:
+                    shown[0] = text
+                    progress.advance(0.0, text)
 
             progress.wait_for(_run_example, unit, on_poll=show_kernel)
             progress.advance(1.0, f"{unit} kernels ready", kernels_compiled=watcher.compiled)
+        progress.advance(0.0, compile_s=time.monotonic() - progress.stage_started_s)
     return todo

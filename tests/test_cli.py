@@ -52,7 +52,7 @@ def test_simulate_writes_both_runs_with_exact_header(tmp_path, cli):
     assert fall[0][1:13] == [0.0] * 12
     assert max(abs(r[-1]) for r in fall) <= 1e-9
     assert fall[-1][1] < -0.5  # the arm has fallen (the first joint turned well below horizontal)
-    assert "run summary" in result.stdout
+    assert "simulate paper-a-table1: 2 jobs" in result.stdout
 
 
 def test_simulate_out_option_numbers_several_jobs(tmp_path, cli):

@@ -102,16 +102,22 @@ def test_workspace_maps_are_titled_and_done_lines_show_the_final_bracket(cli, tm
         row = read_row(tmp_path / name)
         inside, kept = float(row["area_inside_cm2"]), float(row["area_kept_cm2"])
         assert 0 < inside < kept
-        done = stderr.index(f"ws:workspace[{number}] done")
-        details = [line for line in stderr[done + 1 : done + 3] if "area in" in line]
-        assert details == [f"  {int(row['boxes_processed']):,} boxes, area in "
-                           f"[{inside:.5g}, {kept:.5g}] cm2"]  # fmt: skip
+        pattern = rf"ws:workspace\[{number}\] done in 0:\d\d:\d\d"
+        (done,) = [n for n, line in enumerate(stderr) if re.fullmatch(pattern, line)]
+        assert stderr[done + 1] == (
+            f"  {int(row['boxes_processed']):,} boxes, area in [{inside:.5g}, {kept:.5g}] cm2"
+        )
 
 
-def test_cli_progress_at_80_columns_shows_count_percent_and_time_uncut(cli, tmp_path):
+def test_cli_progress_at_80_columns_shows_count_percent_and_time_uncut(cli, tmp_path, monkeypatch):
+    from planar_tui.cli import output
+
+    monkeypatch.setattr(output.stderr, "_force_terminal", True)
+    monkeypatch.setattr(output.stderr, "_color_system", None)
     result = cli("simulate", TINY, "--out-dir", tmp_path)
     assert result.exit_code == 0, result.output
-    lines = result.stderr.splitlines()
+    shown = re.sub(r"\x1b\[[0-9;?]*[A-Za-z]|\r", "\n", result.stderr)  # the last frame's lines
+    lines = [line.rstrip() for line in shown.split("\n")]
     assert "tiny:simulate done" in lines
     bar = lines[lines.index("tiny:simulate done") + 1]
     assert re.search(r"━ 100%  200/200  in 0:00:\d\d$", bar), bar
@@ -130,7 +136,7 @@ def test_progress_display_mid_run_at_80_columns():
     console = Console(width=80, record=True, force_terminal=True, file=io.StringIO())
     bars = job_progress_display(console)
     detail = "1,234,567 boxes, area in [102.67, 147.38] cm2 (a long detail, folded not cut)"
-    with progress_bar(bars, _Job()) as progress:
+    with progress_bar(bars, _Job.label) as progress:
         progress.start(5000, "natural-expanded bisection, a long stage name")
         progress.advance(1000, detail)
         time.sleep(0.05)

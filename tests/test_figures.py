@@ -192,7 +192,8 @@ def test_sweep_figures_mark_the_failed_points():
     assert failed and all(len(line.get_xdata()) == 1 for line in failed)
     assert failed[0].get_xdata()[0] == 10  # point 4: orientation 10 deg
     lines = _by_gid(one, "sweep")
-    assert len(lines) == 7 and all(len(line.get_xdata()) == 4 for line in lines)
+    # 6 figures: area_geometric_error_cm2 holds 0.001 at every point, no panel
+    assert len(lines) == 6 and all(len(line.get_xdata()) == 4 for line in lines)
     two = figures.figure_for_table(figures.read_table(FIXTURES / "sweep-grid.csv"))
     heat = _by_gid(two, "heat", "collections")
     assert len(heat) == 2 and heat[0].get_array().shape == (9,)  # 3 x 3 cells, row-major
@@ -639,13 +640,13 @@ def test_simulate_energy_panel_is_the_drift_net_of_the_torques_work(tmp_path):
     assert ax.title.get_window_extent().width < ax.get_window_extent().width
 
 
-def test_simulate_figure_from_a_csv_alone_makes_no_drift_claim(results):
+def test_simulate_figure_from_a_csv_alone_names_the_torques_work_not_a_drift(results):
     _, result = results["simulate"]
     fig = figures.figure_for_table(result.table)
     (ax,) = [ax for ax in fig.axes if ax.get_ylabel() == "E(t) − E(0) (J)"]
     energy = result.kinetic_J + result.potential_J
     assert ax.lines[0].get_ydata().tolist() == (energy - energy[0]).tolist()
-    assert ax.get_title().startswith("energy change, max ") and "drift" not in ax.get_title()
+    assert ax.get_title().startswith("≈ torques' work W, max ") and "drift" not in ax.get_title()
     fig.canvas.draw()
     assert ax.title.get_window_extent().width < ax.get_window_extent().width
 

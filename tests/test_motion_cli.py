@@ -58,8 +58,14 @@ def test_motion_command_writes_band_and_indices(cli, tmp_path):
     # 3 recorded times (at_s among them) × 4 outputs × 4 parameters × 1 method
     assert len(indices) - 1 == 3 * 4 * 4
     assert {row[1] for row in indices[1:] if row[5] != ""} == {"0.005", "0.01"}  # at_s: CIs
+    # the angles at t = 0 do not vary (the tip does, with the lengths): no index
+    at_start = [row for row in indices[1:] if row[1] == "0.0" and row[0].startswith("theta")]
+    assert at_start and all(row[4:9] == [""] * 5 for row in at_start)
     aggregated = read_csv(tmp_path / "tiny-aggregated.csv")
     assert len(aggregated) - 1 == 5 * 4  # 4 outputs and all of them × 4 parameters
+    outputs = [column[: -len("_mean")] for column in band[0] if column.endswith("_mean")]
+    assert {row[0] for row in aggregated[1:]} == {*outputs, "all outputs"}  # as in the indices
+    assert {row[0] for row in indices[1:]} == set(outputs)
     assert "% of ST per output · t = 0.01 s" in result.stdout
     assert "112 robots integrated on cpu\n" in result.stdout  # 16 + 16 (4 + 2)
 

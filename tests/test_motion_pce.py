@@ -44,10 +44,10 @@ def test_pce_indices_at_every_recorded_time_match_quadrature():
     aggregated = result.extra_tables["aggregated"]
     cells = {(r[0], r[1]): r for r in aggregated.rows}
     for j, name in enumerate(names):
-        _, _, _, s1, st, _, runs = cells[("θ1", name)]
+        _, _, _, s1, st, _, runs = cells[("theta1_rad", name)]
         assert runs == 128
         assert abs(s1 - exact_first[j]) <= 0.01 and abs(st - exact_total[j]) <= 0.01
-    assert {r[0] for r in aggregated.rows} >= {"θ1", "all outputs"}
+    assert {r[0] for r in aggregated.rows} >= {"theta1_rad", "all outputs"}
     assert [a.speed_rad_s for a in result.analyses] == [pytest.approx(0.5)]  # at_s: the end
     fig = figures.figure_for_table(table, job.label)  # 11 times: stacked lines
     assert any(ax.get_gid() == "stacked" for ax in fig.axes)

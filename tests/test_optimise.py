@@ -89,7 +89,10 @@ plot = "opt.png"
     )
     result = cli("optimise", preset, "--out-dir", tmp_path, "--workers", "1")
     assert result.exit_code == 0, result.output
-    assert "60 evaluations in 5 generations, 0 failed; optimum: evaluation" in result.stdout
+    assert (
+        "60 evaluations in 5 generations, 0 infeasible, 0 failed; optimum: evaluation"
+        in result.stdout
+    )
     (best,) = rows(tmp_path / "opt-optimum.csv")
     assert abs(float(best["theta_deg[1][1]"])) < 3.0
     assert float(best["tau1_abs_max_Nm"]) == pytest.approx(A + B, rel=2e-3)

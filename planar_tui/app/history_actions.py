@@ -50,7 +50,10 @@ class HistoryActions:
         """An optimisation ran to its end: keep it (its evaluations and its optimum)."""
         run = message.run
         if message.error is None and not message.cancelled and run is not None:
-            summary = f"{len(run.evaluations)} evaluations, {run.failed} failed"
+            summary = (
+                f"{len(run.evaluations)} evaluations, {run.infeasible} infeasible, "
+                f"{run.failed} failed"
+            )
             timing = (run.started_s, time.time() - run.started_s)
             self.run_history.add_study("optimise", run.optimisation, run, summary, timing)
 

@@ -85,7 +85,8 @@ class OptimiseActions:
             elif run is not None:
                 done = "cancelled" if message.cancelled else "done"
                 pane.controls().status(f"optimisation {done}: {len(run.evaluations)} "
-                                       f"evaluations, {run.failed} failed")  # fmt: skip
+                                       f"evaluations, {run.infeasible} infeasible, "
+                                       f"{run.failed} failed")  # fmt: skip
         if message.error is not None:
             error = message.error
             text = error.message if isinstance(error, PresetError) else (

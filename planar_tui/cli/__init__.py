@@ -2,9 +2,10 @@
 
 Batch jobs run from TOML presets and write CSV. Exit codes: 0 ok, 1 a job failed,
 2 bad input (preset or option), 130 interrupted (Ctrl-C), 143 terminated (SIGTERM).
-Progress bars go to stderr; tables and summaries to stdout. Heavy modules (numpy, numba,
-SALib, Textual) are imported only when a job or the app runs, so ``planar-tui --help`` is
-instant.
+Progress goes to stderr (a bar in a terminal; in a log or pipe, plain lines at each stage
+and at least every 10 s: :mod:`planar_tui.cli.loglines`); tables and summaries to stdout.
+Heavy modules (numpy, numba, SALib, Textual) are imported only when a job or the app
+runs, so ``planar-tui --help`` is instant.
 
 The commands are made by :func:`build_app` when the CLI runs, from the registry: each
 job kind's own command (:mod:`planar_tui.cli.kinds`, from its declared

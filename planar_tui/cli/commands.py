@@ -16,13 +16,12 @@ import typer
 from planar_tui.cli import interop
 from planar_tui.cli.kinds import JobOption, OutDirOption, PlotOption, PresetArg
 from planar_tui.cli.output import (
-    _INTERRUPTED,
     check_figure_option,
     check_workers,
     fail,
     load_presets,
+    progress_display,
     reported_errors,
-    stderr,
     stdout,
 )
 from planar_tui.cli.serve import AppPresetArg, OpenOption, serve
@@ -100,7 +99,7 @@ def run(
                         resume=resume, workers=workers, scheduler=scheduler)  # fmt: skip
         print_notes(plan)
         if plan.jobs:
-            run_jobs(plan)
+            run_jobs(plan, "run")
         run_sweeps(plan, workers, scheduler)
         run_optimisations(plan, workers, scheduler)
 
@@ -211,23 +210,13 @@ def run_studies(
 def warmup() -> None:
     """Compile every job kind's kernels into the cache (for batch machines: later runs
     start without the first-run compilation)."""
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
-
-    from planar_tui import progress as core
     from planar_tui.registry import JOB_KINDS
     from planar_tui.warmup import missing, warm_kernels
 
-    columns = (TextColumn("{task.description}", markup=False), BarColumn(bar_width=24),
-               MofNCompleteColumn())  # fmt: skip
-    with reported_errors(), Progress(*columns, TimeElapsedColumn(), console=stderr) as bars:
+    with reported_errors():
         todo = missing(JOB_KINDS)  # warm-up units: a kind, or a part of one
-        task = bars.add_task("kernels", total=len(todo))
-
-        def update(state) -> None:
-            bars.update(task, completed=state.completed, description=state.detail[:40])
-
-        done = warm_kernels(todo, core.Progress(on_update=update, should_stop=_INTERRUPTED.is_set))
-        bars.update(task, completed=len(todo), description="kernels ready")
+        with progress_display("warmup") as progress:
+            done = warm_kernels(todo, progress)
     stdout.print(f"compiled: {', '.join(done) or 'nothing (all cached)'}", markup=False)
 
 
@@ -254,8 +243,10 @@ def list_presets(
             if copy is not None:
                 raise PresetError("command line", "--copy", "is given without NAME",
                                   "planar-tui presets NAME --copy PATH")  # fmt: skip
-            for path in bundled_presets():
-                typer.echo(f"{path.stem:<24} {preset_description(path)}")
+            paths = bundled_presets()
+            width = max((len(path.stem) for path in paths), default=0)
+            for path in paths:
+                typer.echo(f"{path.stem:<{width}}  {preset_description(path)}")
         elif copy is None:
             typer.echo(bundled_preset(name).read_text(encoding="utf-8"), nl=False)
         else:

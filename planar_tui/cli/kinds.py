@@ -83,7 +83,15 @@ def run_kind(
         if options:
             jobs = apply_overrides(jobs, options)
         plan = plan_run(jobs, out_dir, out=out, extra_out=extra_out, plot=plot)
-        run_jobs(plan, show=show, after=job_exports(plan, exports or {}))
+        from planar_tui.registry import JOB_KINDS
+
+        command = JOB_KINDS[kind].command
+        run_jobs(
+            plan,
+            kind if command is None else command.name,
+            show=show,
+            after=job_exports(plan, exports or {}),
+        )
 
 
 def _parameter(name: str, annotation: Any, default: Any) -> inspect.Parameter:

@@ -5,6 +5,7 @@ displays (one bar per job, one per sweep)."""
 from __future__ import annotations
 
 import importlib
+import re
 import signal
 import sys
 import threading
@@ -26,31 +27,39 @@ except ImportError:
 from planar_tui.errors import Cancelled, ExitCode, PresetError, Terminated
 
 if TYPE_CHECKING:
-    from planar_tui.jobkind import Job
     from planar_tui.presets import Preset
 
 
 class _FlagsWithoutMetavar:
     """Help for flags (``--map/--no-map``, ``--version``, ``--help``) without a value
     placeholder: Typer's rich help otherwise prints ``<bool>`` after them, as if they took
-    a value. A flag's metavar is only ever shown in help. Help texts are shown as
+    a value. A flag's metavar is only ever shown in help. An argument is named in capitals
+    in the usage line (``PRESET``; this Click shows ``{preset}``). Help texts are shown as
     written: Typer reads them as Rich markup, which would swallow ``[[sweep]]``, so
     brackets are escaped (:func:`rich.markup.escape`)."""
 
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
-        self.help = _escaped(self.help)
-        self.short_help = _escaped(self.short_help)
+        self.help = _escaped(_reflowed(self.help))
+        self.short_help = _escaped(_reflowed(self.short_help))
 
     def format_help(self, ctx, formatter):
         _import_help_formatter()
         return super().format_help(ctx, formatter)
+
+    def collect_usage_pieces(self, ctx):
+        """The usage line's pieces with a required argument as ``PRESET``, not Typer's
+        ``{PRESET}`` (an optional one stays ``[NAME]``)."""
+        pieces = super().collect_usage_pieces(ctx)
+        return [re.sub(r"^\{(.+)\}(\.\.\.)?$", r"\1\2", piece) for piece in pieces]
 
     def get_params(self, ctx):
         params = super().get_params(ctx)
         for param in params:
             if getattr(param, "is_flag", False) and param.metavar is None:
                 param.metavar = ""
+            if param.param_type_name == "argument" and param.metavar is None:
+                param.metavar = param.name.upper()  # not Click's ``{preset}``
             _coerce_common_values(param)
             if getattr(param, "help", None) and not getattr(param, "_escaped", False):
                 param.help = _escaped(param.help)
@@ -63,6 +72,15 @@ def _coerce_common_values(param) -> None:
     where this Typer is one it was checked with; with any other Typer, Typer's own."""
     if install_common_values is not None:
         install_common_values(param)
+
+
+def _reflowed(text: str | None) -> str | None:
+    """``text`` with each paragraph (separated by an empty line) on one line: a docstring's
+    line breaks would otherwise break the help's lines mid-sentence."""
+    if text is None:
+        return None
+    paragraphs = re.split(r"\n\s*\n", text.strip())
+    return "\n\n".join(" ".join(paragraph.split()) for paragraph in paragraphs)
 
 
 def _escaped(text: str | None) -> str | None:
@@ -243,15 +261,22 @@ def clock_text(seconds: float) -> str:
 
 
 def progress_figures(
-    completed: float, total: float, remaining_s: float | None, done_s: float | None = None
+    completed: float,
+    total: float,
+    remaining_s: float | None,
+    done_s: float | None = None,
+    rate: str = "",
 ) -> str:
     """The figures beside a job's bar: percent, ``done/total`` when the runner counts whole
     units (steps, states, evaluations; a workspace counts a fraction and shows its boxes in
-    the detail line), and ``ETA H:MM:SS`` (``-:--:--`` until known), or ``in H:MM:SS``
-    once the job is done (``done_s`` seconds after it started)."""
+    the detail line), the ``rate`` text when given (a sweep's ``3.2 pt/s``), and ``ETA
+    H:MM:SS`` (``-:--:--`` until known), or ``in H:MM:SS`` once the job is done
+    (``done_s`` seconds after it started)."""
     parts = [f"{100.0 * completed / total if total else 100.0:3.0f}%"]
     if total > 1 and float(total).is_integer():
         parts.append(f"{completed:,.0f}/{total:,.0f}")
+    if rate:
+        parts.append(rate)
     if done_s is not None:
         parts.append(f"in {clock_text(done_s)}")
     else:
@@ -262,15 +287,21 @@ def progress_figures(
 def job_progress_display(console: Console):
     """A rich progress display for one job, complete at 80 columns: the job and stage on
     their own line, then the bar with percent, count and ETA, then the runner's detail
-    (folded, never cut). Its task takes ``detail`` and ``done_s`` fields."""
+    (folded, never cut). Its task takes ``detail``, ``done_s``, ``rate`` (text) and
+    ``eta_s`` fields (:func:`progress_bar` sets them)."""
     from rich.progress import BarColumn, Progress, ProgressColumn
     from rich.table import Column
     from rich.text import Text
 
     class FiguresColumn(ProgressColumn):
         def render(self, task) -> Text:
+            fields = task.fields
             figures = progress_figures(
-                task.completed, task.total or 0.0, task.time_remaining, task.fields["done_s"]
+                task.completed,
+                task.total or 0.0,
+                fields["eta_s"],
+                fields["done_s"],
+                fields["rate"],
             )
             return Text(figures, no_wrap=True)
 
@@ -302,18 +333,28 @@ def sigterm_as_interrupt() -> Iterator[None]:
         signal.signal(signal.SIGTERM, previous)
 
 
+def stage_title(label: str, stage: str) -> str:
+    """What a progress display calls a stage of ``label``'s run: ``LABEL STAGE``, or the
+    stage alone where it already names the run (a sweep's counting stage is its label)."""
+    return stage if stage.startswith(label) else f"{label} {stage}".strip()
+
+
 @contextmanager
-def progress_bar(bars, job: Job):
-    """One progress task for ``job`` (stage, figures and detail), as a
-    :class:`~planar_tui.progress.Progress` for the runner. A new stage restarts the bar and
-    its speed estimate; the last line says ``done`` with the total time and the runner's
-    last detail (a workspace's final area bracket)."""
+def progress_bar(bars, label: str, unit: str = ""):
+    """One progress task for ``label``'s run (stage, figures and detail), as a
+    :class:`~planar_tui.progress.Progress` for the runner. A new stage restarts the bar;
+    the ETA is the stage's at its rate so far
+    (:meth:`~planar_tui.progress.ProgressState.eta_s`); with ``unit`` (``pt``) the figures
+    show the stage's rate (units per second since it began). The last line says ``done``
+    with the total time and the runner's last detail (a workspace's final area
+    bracket)."""
     import time
 
+    from planar_tui.cli.loglines import rate_of, rate_text
     from planar_tui.progress import Progress
 
     started = time.monotonic()
-    task = bars.add_task(job.label, total=1.0, detail="", done_s=None)
+    task = bars.add_task(label, total=1.0, detail="", done_s=None, rate="", eta_s=None)
     warned = set()
     stage = None
 
@@ -321,37 +362,49 @@ def progress_bar(bars, job: Job):
         nonlocal stage
         if state.warning and state.warning not in warned:
             warned.add(state.warning)
-            bars.console.print(f"warning: {job.label}: {state.warning}", markup=False)
+            bars.console.print(f"warning: {label}: {state.warning}", markup=False)
         if state.stage != stage:
             stage = state.stage
             bars.reset(task, total=state.total, completed=state.completed)
+        now_s = time.monotonic()
+        rate = rate_text(rate_of(state, now_s), unit) if unit else ""
         bars.update(
             task,
             completed=state.completed,
             total=state.total,
-            description=f"{job.label} {state.stage}".strip(),
+            description=stage_title(label, state.stage),
             detail=state.detail,
+            rate=rate,
+            eta_s=state.eta_s(now_s),
         )
 
     yield Progress(on_update=update, should_stop=_INTERRUPTED.is_set)
     (current,) = (t for t in bars.tasks if t.id == task)
     done_s = time.monotonic() - started
-    bars.update(task, completed=current.total, description=f"{job.label} done", done_s=done_s)
+    bars.update(task, completed=current.total, description=f"{label} done", done_s=done_s)
 
 
-def sweep_progress_display(console: Console):
-    """A rich display with one bar per sweep: points done/total, failures, rate, ETA."""
-    from rich import progress as bar
-    from rich.table import Column
-    from rich.text import Text
+@contextmanager
+def progress_display(label: str, unit: str = ""):
+    """A :class:`~planar_tui.progress.Progress` for the run of ``label`` shown on stderr:
+    a bar (:func:`job_progress_display`, :func:`progress_bar`) in a terminal, plain lines
+    (:class:`~planar_tui.cli.loglines.ProgressLog`: each stage, at least every 10 s, then
+    ``done``) in a log or pipe, where a bar would show nothing until the end."""
+    if stderr.is_terminal:
+        with job_progress_display(stderr) as bars, progress_bar(bars, label, unit) as progress:
+            yield progress
+        return
+    import time
 
-    class RateColumn(bar.ProgressColumn):
-        def render(self, task) -> Text:
-            speed = task.finished_speed or task.speed
-            return Text("-- pt/s" if speed is None else f"{speed:.3g} pt/s")
+    from planar_tui.cli.loglines import ProgressLog
+    from planar_tui.progress import Progress
 
-    return bar.Progress(
-        bar.TextColumn("{task.description}", markup=False), bar.BarColumn(bar_width=None),
-        bar.MofNCompleteColumn(), bar.TextColumn("{task.fields[failed]} failed"), RateColumn(table_column=Column(no_wrap=True)),
-        bar.TextColumn("ETA"), bar.TimeRemainingColumn(), console=console, expand=True,
-    )  # fmt: skip
+    started = time.monotonic()
+    with ProgressLog(label, said, unit) as log:
+        yield Progress(on_update=log.update, should_stop=_INTERRUPTED.is_set)
+        log.done(time.monotonic() - started)
+
+
+def said(text: str) -> None:
+    """A line on stderr, as written (no markup, never wrapped)."""
+    stderr.print(text, markup=False, highlight=False, soft_wrap=True)

@@ -6,37 +6,52 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable
-from contextlib import ExitStack, contextmanager
+from contextlib import AbstractContextManager, ExitStack
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from planar_tui.cli.output import (
-    _INTERRUPTED,
     fail,
-    job_progress_display,
-    progress_bar,
+    progress_display,
+    said,
     sigterm_as_interrupt,
-    stderr,
     stdout,
-    sweep_progress_display,
 )
 from planar_tui.errors import Cancelled, ExitCode, Terminated
 
 if TYPE_CHECKING:
     from planar_tui.jobkind import Job
     from planar_tui.plan import RunPlan
+    from planar_tui.progress import Progress
 
 
 def print_notes(plan: RunPlan) -> None:
     """What the plan says before it runs (a replaced checkpoint), on stderr."""
     for note in plan.notes:
-        stderr.print(note, markup=False, highlight=False, soft_wrap=True)
+        said(note)
+
+
+def summary_title(command: str, plan: RunPlan) -> str:
+    """The summary table's title: the command, the presets it ran and how many jobs
+    (``simulate paper-a-table1: 3 jobs``)."""
+    presets = dict.fromkeys(Path(entry.job.preset_path).stem for entry in plan.jobs)
+    count = len(plan.jobs)
+    return f"{command} {', '.join(presets)}: {count} job{'s' if count != 1 else ''}"
 
 
 def run_jobs(
-    plan: RunPlan, *, show: bool = True, after: Callable[[Job, Any], None] | None = None
+    plan: RunPlan,
+    command: str,
+    *,
+    show: bool = True,
+    after: Callable[[Job, Any], None] | None = None,
 ) -> None:
-    """Run the plan's jobs through the batch service, one progress bar each, then print a
-    summary; each job's files are written as soon as it finishes. A job that raises an
+    """Run the plan's jobs through the batch service, one progress display each
+    (:func:`~planar_tui.cli.output.progress_display`), then print a summary titled by
+    ``command`` and the presets (:func:`summary_title`): its ``compile s`` are the first
+    run's kernel compilation (the stage :data:`planar_tui.warmup.STAGE`), its ``run s``
+    the rest of the job (a workspace CSV's ``seconds`` are its computation alone). Each
+    job's files are written as soon as it finishes. A job that raises an
     unexpected error, or an output that cannot be written, ends the run with one
     ``error:`` line and exit code 1 (``PLANAR_TUI_DEBUG=1`` shows the traceback). ``show``
     prints each kind's terminal view; ``after(job, result)`` writes what the command's
@@ -48,10 +63,8 @@ def run_jobs(
     from planar_tui import batch
     from planar_tui.registry import JOB_KINDS
 
-    @contextmanager
-    def progress_for(job: Job):
-        with job_progress_display(stderr) as bars, progress_bar(bars, job) as progress:
-            yield progress
+    def progress_for(job: Job) -> AbstractContextManager[Progress]:
+        return progress_display(job.label)
 
     def render(job: Job, result) -> None:
         if after is not None:
@@ -71,17 +84,35 @@ def run_jobs(
     except (batch.OutputFailed, batch.NonFiniteResult) as error:
         raise fail(f"error: {error}", ExitCode.RUN_FAILED) from None
 
-    summary = Table(title="planar-tui run summary", title_justify="left", show_lines=True)
-    summary.add_column("job", no_wrap=True)
-    summary.add_column("seconds", justify="right", no_wrap=True)
-    summary.add_column("output and result", overflow="fold")
-    for row in rows:
-        summary.add_row(Text(row.label), f"{row.seconds:.3f}", Text(f"{row.output}\n{row.summary}"))
+    summary = Table(title=summary_title(command, plan), title_justify="left", show_lines=True)
+    names = [(row.label, shown_path(row.output, plan.out_dir)) for row in rows]
+    summary.add_column("job and file", no_wrap=True, overflow="fold")
+    summary.add_column("run s", justify="right", no_wrap=True)
+    summary.add_column("compile s", justify="right", no_wrap=True)
+    summary.add_column("result")
+    for row, (label, name) in zip(rows, names, strict=True):
+        summary.add_row(
+            Text(f"{label}\n{name}"),
+            f"{row.seconds - row.compile_seconds:.3f}",
+            f"{row.compile_seconds:.3f}",
+            Text(row.summary),
+        )
     stdout.print(summary)
+    if plan.out_dir is not None and any(is_inside(row.output, plan.out_dir) for row in rows):
+        stdout.print(f"files in {plan.out_dir}", markup=False, highlight=False, soft_wrap=True)
 
 
-def _said(text: str) -> None:
-    stderr.print(text, markup=False, highlight=False, soft_wrap=True)
+def is_inside(path: Path, folder: Path) -> bool:
+    """Whether ``path`` lies in ``folder`` (compared as absolute paths)."""
+    return Path(os.path.abspath(path)).is_relative_to(os.path.abspath(folder))
+
+
+def shown_path(path: Path, out_dir: Path | None) -> str:
+    """A written file as the summary names it: relative to the output folder when inside
+    it (the folder is said once, below the table), else as given."""
+    if out_dir is None or not is_inside(path, out_dir):
+        return str(path)
+    return os.path.relpath(os.path.abspath(path), os.path.abspath(out_dir))
 
 
 def study_client(stack: ExitStack, wanted: bool, workers: int | None, scheduler: str | None
@@ -97,7 +128,7 @@ def study_client(stack: ExitStack, wanted: bool, workers: int | None, scheduler:
         return None
     from planar_tui.sweep.execute import DaskTarget, dask_client
 
-    return stack.enter_context(dask_client(DaskTarget(count, scheduler), _said))
+    return stack.enter_context(dask_client(DaskTarget(count, scheduler), said))
 
 
 def run_sweeps(plan: RunPlan, workers: int | None, scheduler: str | None) -> None:
@@ -108,7 +139,6 @@ def run_sweeps(plan: RunPlan, workers: int | None, scheduler: str | None) -> Non
     written are deleted: Ctrl-C keeps them all, so ``--resume`` rebuilds the finished
     sweeps from theirs and computes only what is left."""
     from planar_tui.batch import OutputFailed
-    from planar_tui.progress import Progress
     from planar_tui.sweep.service import resume_note, run_sweep
 
     failed = 0
@@ -119,26 +149,17 @@ def run_sweeps(plan: RunPlan, workers: int | None, scheduler: str | None) -> Non
             client = study_client(stack, bool(plan.sweeps), workers, scheduler)
             for entry in plan.sweeps:
                 sweep, points = entry.sweep, entry.points
-                with sweep_progress_display(stderr) as bars:
-                    task = bars.add_task(sweep.label, total=len(points), failed=0)
-
-                    def update(state, bars=bars, task=task, label=sweep.label) -> None:
-                        if state.stage == label:
-                            bars.update(task, completed=state.completed,
-                                        failed=int(state.figures.get("failed", 0)))  # fmt: skip
-
-                    try:
+                try:
+                    with progress_display(sweep.label, "pt") as progress:
                         result = run_sweep(
-                            sweep, Progress(on_update=update, should_stop=_INTERRUPTED.is_set),
-                            points=points, out_dir=plan.out_dir,
+                            sweep, progress, points=points, out_dir=plan.out_dir,
                             resume=plan.resume, client=client, keep_checkpoint=True,
-                            announce=_said,
+                            announce=said,
                         )  # fmt: skip
-                    except OutputFailed as error:
-                        unwritten += 1
-                        _said(f"error: {sweep.label}: {error} (finished points are in its "
-                              "checkpoint)")  # fmt: skip
-                        continue
+                except OutputFailed as error:
+                    unwritten += 1
+                    said(f"error: {sweep.label}: {error} (finished points are in its checkpoint)")
+                    continue
                 done.append(result)
                 failed += result.failed
                 resumed = resume_note(result)
@@ -150,7 +171,7 @@ def run_sweeps(plan: RunPlan, workers: int | None, scheduler: str | None) -> Non
                 )  # fmt: skip
                 if result.figure_error is not None:
                     unwritten += 1
-                    _said(f"error: {sweep.label}: {result.figure_error}")
+                    said(f"error: {sweep.label}: {result.figure_error}")
     except Terminated:
         raise fail(
             "terminated: finished points are in the sweeps' checkpoints (--resume "
@@ -176,36 +197,37 @@ def run_sweeps(plan: RunPlan, workers: int | None, scheduler: str | None) -> Non
 def run_optimisations(plan: RunPlan, workers: int | None, scheduler: str | None) -> None:
     """Run the plan's optimisations, one progress bar each (evaluations, failures), a
     summary line each on stdout: its evaluations, failures, the optimum or Pareto set
-    re-run at the job's settings and its files. A failed evaluation is counted, not fatal;
-    Ctrl-C exits 130 with every finished evaluation in the checkpoint (``--resume``)."""
+    re-run at the job's settings and its files. An infeasible evaluation (a design its job
+    refuses: a centre its mode cannot reach) is the optimisation's business and counted;
+    a failed one (the job broke) is counted too, the run goes on and its files are written,
+    and the exit code is 1, as for a failed sweep point. Ctrl-C exits 130 with every
+    finished evaluation in the checkpoint (``--resume``)."""
     from planar_tui.batch import OutputFailed
     from planar_tui.optimise.run import run_optimisation
-    from planar_tui.progress import Progress
 
     unwritten = 0
+    failed = 0
     try:
         with sigterm_as_interrupt(), ExitStack() as stack:
             client = study_client(stack, bool(plan.optimisations), workers, scheduler)
             for opt in plan.optimisations:
-                with sweep_progress_display(stderr) as bars:
-                    task = bars.add_task(opt.label, total=opt.budget, failed=0)
-
-                    def update(state, bars=bars, task=task) -> None:
-                        bars.update(task, completed=state.completed, total=state.total,
-                                    description=state.stage,
-                                    failed=int(state.figures.get("failed", 0)))  # fmt: skip
-
-                    try:
+                try:
+                    with progress_display(opt.label, "eval") as progress:
                         result = run_optimisation(
-                            opt, Progress(on_update=update, should_stop=_INTERRUPTED.is_set),
-                            client=client, out_dir=plan.out_dir, resume=plan.resume,
-                        )  # fmt: skip
-                    except OutputFailed as error:
-                        unwritten += 1
-                        _said(f"error: {opt.label}: {error} (finished evaluations are in its "
-                              "checkpoint)")  # fmt: skip
-                        continue
+                            opt,
+                            progress,
+                            client=client,
+                            out_dir=plan.out_dir,
+                            resume=plan.resume,
+                        )
+                except OutputFailed as error:
+                    unwritten += 1
+                    said(
+                        f"error: {opt.label}: {error} (finished evaluations are in its checkpoint)"
+                    )
+                    continue
                 best = result.certified
+                failed += result.failed
                 found = "no feasible design" if not best else (
                     f"optimum: evaluation {best[0][0].number}" if len(opt.objectives) == 1
                     else f"Pareto set of {len(best)}")  # fmt: skip
@@ -213,19 +235,22 @@ def run_optimisations(plan: RunPlan, workers: int | None, scheduler: str | None)
                 resumed = f", {result.resumed} from the checkpoint" if result.resumed else ""
                 stdout.print(
                     f"{opt.label}: {len(result.evaluations)} evaluations in "
-                    f"{result.generations} generations, {result.failed} failed{resumed}; "
+                    f"{result.generations} generations, {result.infeasible} infeasible, "
+                    f"{result.failed} failed{resumed}; "
                     f"{found} -> {result.output}, {result.pareto}{figure}",
                     markup=False, highlight=False, soft_wrap=True,
                 )  # fmt: skip
                 if result.figure_error is not None:
                     unwritten += 1
-                    _said(f"error: {opt.label}: {result.figure_error}")
+                    said(f"error: {opt.label}: {result.figure_error}")
     except Terminated:
         raise fail("terminated: finished evaluations are in the optimisation's checkpoint "
                    "(--resume finishes it)", ExitCode.TERMINATED) from None  # fmt: skip
     except (KeyboardInterrupt, Cancelled):
         raise fail("interrupted: finished evaluations are in the optimisation's checkpoint "
                    "(--resume finishes it)", ExitCode.INTERRUPTED) from None  # fmt: skip
-    if unwritten:
-        raise fail(f"error: {unwritten} optimisation file(s) not written (see above)",
-                   ExitCode.RUN_FAILED)  # fmt: skip
+    if failed or unwritten:
+        parts = [f"{failed} evaluation(s) failed (status failed in the CSV)"] if failed else []
+        if unwritten:
+            parts.append(f"{unwritten} optimisation file(s) not written (see above)")
+        raise fail("error: " + "; ".join(parts), ExitCode.RUN_FAILED)

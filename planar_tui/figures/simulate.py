@@ -6,8 +6,8 @@ The energy-balance panel: with the constant joint torques ``τ`` known (a finish
 ``torques_Nm``), the work they have done is ``W(t) = Σ τ_i (θ_i(t) − θ_i(0))`` (relative
 joint angles, the generalised coordinates), so the panel shows the integrator's drift
 ``E(t) − E(0) − W(t)``, zero for an exact solution. The simulate CSV does not hold the
-torques, so a figure drawn from the file alone shows ``E(t) − E(0)`` with no claim of
-drift (it is the torques' work unless they are zero).
+torques, so a figure drawn from the file alone shows ``E(t) − E(0)`` titled as what it
+is: the torques' work ``W(t)`` (plus the drift, orders of magnitude smaller), not a drift.
 
 Read from the simulate CSV (``t_s, theta*_rad, omega*_rad_s, kinetic_J, potential_J,
 energy_J``); the CSV does not hold the link lengths either, so a figure drawn from the
@@ -65,7 +65,7 @@ def draw(table: CsvTable, title: str, lengths_m: Any = None, torques_Nm: Any = N
     if torques_Nm is not None and len(torques_Nm) == n:
         balance, label, name = energy_drift_J(energy, theta, torques_Nm), "E − E(0) − W", "drift"
     else:
-        balance, label, name = energy - energy[0], "E(t) − E(0)", "energy change"
+        balance, label, name = energy - energy[0], "E(t) − E(0)", "≈ torques' work W"
     ax_drift.plot(t, balance, color="k", gid="series")
     largest = float(np.max(np.abs(balance)))
     ax_drift.set(xlabel="t (s)", ylabel=f"{label} (J)", title=f"{name}, max {largest:.2e} J")

@@ -6,11 +6,15 @@ such as ``orientation_deg`` or ``form``, a robot key ``robot3rrr.distal_cm``, a 
 element ``robot.lengths_m[2]``) that take at least two values; a key whose cells are all
 numbers is numeric, any other (text such as a workspace ``form``, a list such as a
 posture) is categorical, its values in order of first appearance. The figures are the
-other numeric columns but ``seconds`` and the settings echoed by the kind's summary
-(``precision_cm``, or a column equal to a varied key's, such as ``orientation_lo_deg``). A
-figure is never taken as an axis: a table where no key column varies is refused.
+other numeric columns but ``seconds``, the settings echoed by the kind's summary
+(``precision_cm``, or a column equal to a varied key's, such as ``orientation_lo_deg``)
+and those that hold one value at every point (nothing to plot). A figure is never taken
+as an axis: a table where no key column varies is refused.
 
 - One numeric key: each figure against it as a line.
+- Numeric keys that move together (a ``zip`` sweep: each value of one goes with one value
+  of the others, ``proximal_cm`` 20 → 40 with ``distal_cm`` 40 → 20): one axis, the first
+  key's, each figure against it as a line, the others' values named in the axis label.
 - One categorical key: each figure as points over the categories (tick labels).
 - A categorical key and a numeric key: one line per category against the numeric key.
 - Two numeric keys: a heat map per figure (a full grid), or the points coloured by the
@@ -128,7 +132,39 @@ def split_columns(table: CsvTable) -> tuple[list[str], list[str]]:
             figures.append(name)
     echoes = [name for name in figures
               if any(_same(column(table, name), column(table, key)) for key in varied)]  # fmt: skip
-    return varied, [name for name in figures if name not in echoes]
+    return varied, [
+        name for name in figures if name not in echoes and _varies_numerically(column(table, name))
+    ]
+
+
+def _varies_numerically(values: Any) -> bool:
+    """Whether a figure column holds two different finite values (a constant is no plot)."""
+    import numpy as np
+
+    finite = values[np.isfinite(values)]
+    return bool(finite.size and finite.max() > finite.min())
+
+
+def zipped(axes_keys: list[Axis]) -> bool:
+    """Whether numeric keys move together: every value of each goes with one value of each
+    other (as many distinct tuples as distinct values of every key), so one key orders the
+    points and the others follow (a ``zip`` sweep, not a grid)."""
+    if len(axes_keys) < 2 or any(axis.categorical for axis in axes_keys):
+        return False
+    columns = [axis.values.tolist() for axis in axes_keys]
+    tuples = len(set(zip(*columns, strict=True)))
+    return all(len(set(values)) == tuples for values in columns)
+
+
+def _followers_label(lead: Axis, followers: list[Axis]) -> str:
+    """The axis label of zipped keys: ``LEAD (with KEY first → last, ...)``, the followers'
+    values at the lead's smallest and largest."""
+    import numpy as np
+
+    order = np.argsort(lead.values, kind="stable")
+    first, last = order[0], order[-1]
+    parts = [f"{f.name} {f.values[first]:g} → {f.values[last]:g}" for f in followers]
+    return f"{lead.name} (with {', '.join(parts)})"
 
 
 def _same(values: Any, other: Any) -> bool:
@@ -147,7 +183,11 @@ def draw(table: CsvTable, title: str) -> Any:
     if not varied:
         raise ValueError("the sweep has no varied key column")
     failed = np.array([s != "ok" for s in text_column(table, "status")], dtype=bool)
-    axes_keys = [key_axis(table, name) for name in varied[:2]]
+    every_key = [key_axis(table, name) for name in varied]
+    axes_keys = every_key[:2]
+    xlabel = None
+    if zipped(every_key):  # one axis: the others follow it
+        axes_keys, xlabel = every_key[:1], _followers_label(every_key[0], every_key[1:])
     if len(axes_keys) == 2 and axes_keys[0].categorical and not axes_keys[1].categorical:
         axes_keys.reverse()  # the numeric key across, one line per category
     if not figures or failed.all():
@@ -161,7 +201,7 @@ def draw(table: CsvTable, title: str) -> Any:
         y = column(table, name)
         if len(axes_keys) == 1:
             _line(ax, axes_keys[0], y, failed)
-            ax.set(ylabel=name)
+            ax.set(ylabel=name, xlabel=xlabel or axes_keys[0].name)
         elif axes_keys[1].categorical and not axes_keys[0].categorical:
             _lines_per_category(ax, axes_keys[0], axes_keys[1], y, failed)
             ax.set(ylabel=name)
@@ -193,7 +233,7 @@ def _failures_only(axes_keys: list[Axis], failed: Any, title: str) -> Any:
             set_limits(-0.5, len(axis.categories) - 0.5)
     _ticks(ax, across, "x")
     ax.set(xlabel=across.name)
-    note = "no point succeeded" if failed.all() else "the table holds no figure column"
+    note = "no point succeeded" if failed.all() else "no figure column varies"
     ax.text(0.5, 0.5, note, transform=ax.transAxes, ha="center", va="center", gid="note")
     ax.grid(alpha=0.3)
     fig.suptitle(title)

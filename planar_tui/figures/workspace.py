@@ -216,7 +216,7 @@ def from_summary_table(table: CsvTable, title: str) -> Any:
     forms = text_column(table, "form")
     kept, inside = column(table, "area_kept_cm2"), column(table, "area_inside_cm2")
     exact = column(table, "area_geometric_cm2") if "area_geometric_cm2" in table.header else None
-    fig = new_figure(7.0, 1.2 + 0.5 * len(forms))
+    fig = new_figure(8.5, 1.6 + 0.5 * len(forms))
     ax = fig.add_subplot()
     y = np.arange(len(forms))
     ax.barh(y, kept - inside, left=inside, color=BOUNDARY_COLOUR, label="bracket [inside, kept]")
@@ -226,7 +226,8 @@ def from_summary_table(table: CsvTable, title: str) -> Any:
     labels = [f"{f}, ε = {e:g}" for f, e in zip(forms, column(table, "precision_cm"), strict=True)]
     ax.set_yticks(y, labels)
     ax.set(xlabel="area (cm²)", title="certified area bracket")
-    ax.legend(fontsize="small", loc="lower right")
+    # beside the bars, never over them: the exact-area marker sits at a bar's end
+    ax.legend(fontsize="small", loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
     fig.suptitle(title)
     return fig
 

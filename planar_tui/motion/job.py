@@ -272,7 +272,8 @@ def analyse_trajectory(job, unit, trajectory, problem, labels, progress):
         analyses.append(Analysis("pce", "", t_s, problem.names, indices,
                                  sensitivity_percent(indices, "ST"), tuple(labels),
                                  f"t = {t_s:g} s", runs=len(unit),
-                                 loo_error=result.loo_error[k]))  # fmt: skip
+                                 loo_error=result.loo_error[k],
+                                 defined=np.ptp(outputs[keep][:, k], axis=0) > 0))  # fmt: skip
     rows = aggregate_rows(labels, problem.names, "pce", result.aggregated, result.overall,
                           len(unit))  # fmt: skip
     return analyses, rows, ((note,) if note else ())
@@ -518,7 +519,9 @@ def run_motion(
         order = {m: i for i, m in enumerate([*index_methods, "pce"])}  # within a time
         by_time = sorted(time_analyses, key=lambda a: (a.speed_rad_s, order[a.method]))
         extra_tables["indices"] = indices_table(by_time, names)
-        extra_tables["aggregated"] = CsvTable(AGGREGATED_HEADER, aggregated)
+        named = dict(zip(labels, names, strict=True))  # the CSVs' ASCII names, as the indices'
+        ascii_rows = [(named.get(row[0], row[0]), *row[1:]) for row in aggregated]
+        extra_tables["aggregated"] = CsvTable(AGGREGATED_HEADER, ascii_rows)
     return MotionResult(
         table=band_table(t_s, band, names),
         extra_tables=extra_tables,

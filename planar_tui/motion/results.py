@@ -6,7 +6,8 @@ the outputs of each method's robots at each time of ``at_s``, and their point es
 (:func:`~planar_tui.sensitivity.engine.point_indices`) at every other recorded time, with
 the aggregated indices over each trajectory (:func:`index_trajectories`). An output that
 does not vary over those robots (a joint that cannot move, a time-0 angle) has no index:
-it is given 0 for every input (and, at ``at_s``, a note), never a NaN or a warning.
+its indices are undefined, empty cells in the indices CSV (``Analysis.defined``; zeros in
+the arrays, and at ``at_s`` a note), never a NaN or a warning.
 """
 
 from __future__ import annotations
@@ -43,7 +44,8 @@ def indices_table(analyses: Sequence, names: Sequence[str]) -> CsvTable:
 def analyse_times(design, at_outputs, spec, problem, labels, methods, progress):
     """``(analyses, notes)``: an :class:`~planar_tui.sensitivity.results.Analysis` per time
     of ``at_outputs`` ({step: (S, n_out)}) and index method; outputs without variance over
-    a method's robots get zeros and a note."""
+    a method's robots have no indices (``defined`` false, zeros in the arrays) and a
+    note."""
     from planar_tui.sensitivity.engine import analyse
     from planar_tui.sensitivity.results import Analysis, sensitivity_percent
 
@@ -64,7 +66,7 @@ def analyse_times(design, at_outputs, spec, problem, labels, methods, progress):
             for k in np.flatnonzero(~varying):
                 notes.append(
                     f"{labels[k]} at t = {t_s:g} s does not vary over the {method} robots: "
-                    "no variance to apportion, every index 0"
+                    "no variance to apportion, no index (empty in the CSV)"
                 )
             percent = sensitivity_percent(indices, "ST")
             analyses.append(
@@ -78,6 +80,7 @@ def analyse_times(design, at_outputs, spec, problem, labels, methods, progress):
                     tuple(labels),
                     f"t = {t_s:g} s",
                     runs=outputs.shape[0],
+                    defined=varying,
                 )
             )
     return analyses, tuple(notes)
@@ -100,7 +103,8 @@ def index_trajectories(design, every, variances, at_analyses, spec, problem, lab
     {method: {step: (4, M, D) point indices}} (:func:`~planar_tui.sensitivity.engine.point_indices`),
     replaced at the ``at_s`` steps by ``at_analyses`` (with their confidence intervals);
     ``variances`` {method: {step: (M,)}} the outputs' variances over independent uniform
-    robots, the weights of each method's aggregated rows (:func:`aggregate_rows`)."""
+    robots, the weights of each method's aggregated rows (:func:`aggregate_rows`); an
+    output of zero variance at a stop has no indices there (``defined``)."""
     from planar_tui.sensitivity.aggregate import trajectory_aggregates
     from planar_tui.sensitivity.results import Analysis, sensitivity_percent
 
@@ -116,7 +120,8 @@ def index_trajectories(design, every, variances, at_analyses, spec, problem, lab
                 indices = by_step[step]
                 analysis = Analysis(method, "", t_s, problem.names, indices,
                                     sensitivity_percent(indices, "ST"), tuple(labels),
-                                    f"t = {t_s:g} s", runs=runs)  # fmt: skip
+                                    f"t = {t_s:g} s", runs=runs,
+                                    defined=variances[method][step] > 0)  # fmt: skip
             analyses.append(analysis)
         indices = np.stack([a.indices[[0, 2]] for a in analyses[-len(steps) :]], axis=1)
         weights = np.stack([variances[method][step] for step in steps])

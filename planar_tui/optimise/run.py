@@ -9,7 +9,8 @@ replays the optimiser: a number already in the checkpoint is not run again.
 
 The objective of pymoo is ``F = sense · value`` (``sense`` −1 to maximise); the
 constraints are ``G ≤ 0`` (:class:`~planar_tui.optimise.spec.Constraint`) plus one more,
-``G = 1`` for a failed evaluation (``0`` otherwise), so a failure is infeasible.
+``G = 1`` for an evaluation that is not ``ok`` (``0`` otherwise): a design its job refuses
+(status ``infeasible``) or one whose job broke (``failed``).
 """
 
 from __future__ import annotations
@@ -28,7 +29,7 @@ from planar_tui.errors import PresetError
 from planar_tui.optimise.spec import Optimisation
 from planar_tui.progress import Progress
 from planar_tui.provenance import planned_sidecar, study_provenance, write_sidecar
-from planar_tui.sweep.worker import FAILED, OK, PointOutcome, PointTask
+from planar_tui.sweep.worker import FAILED, INFEASIBLE, OK, PointOutcome, PointTask
 
 if TYPE_CHECKING:
     from planar_tui.batch import PlannedFile
@@ -68,7 +69,14 @@ class OptimiseRun:
 
     @property
     def failed(self) -> int:
+        """Evaluations whose job broke (status ``failed``)."""
         return sum(1 for e in self.evaluations if e.outcome.status == FAILED)
+
+    @property
+    def infeasible(self) -> int:
+        """Evaluations whose design the job refuses (status ``infeasible``: a centre its
+        working mode cannot reach)."""
+        return sum(1 for e in self.evaluations if e.outcome.status == INFEASIBLE)
 
     @property
     def table(self) -> CsvTable:
@@ -231,15 +239,16 @@ class _Runner:
 
 def _task_or_failure(opt: Optimisation, number: int, values: tuple[Any, ...], coarse: bool
                      ) -> PointTask | PointOutcome:  # fmt: skip
-    """The task of one design, or its failed outcome when its job cannot be made (a value
-    the job refuses: the evaluation fails, the optimisation goes on)."""
+    """The task of one design, or its infeasible outcome when its job cannot be made (a
+    value the job refuses: the evaluation is infeasible, the optimisation goes on; a job
+    that refuses it only while running says so likewise, ``refused``)."""
     from planar_tui.sweep.points import make_point
 
     try:
         point = make_point(opt.sweep(coarse), number, opt.point_values(values, coarse))
     except PresetError as error:
-        return PointOutcome(number, FAILED, " ".join(error.message.split()), {}, 0.0)
-    return PointTask(number, point.job)
+        return PointOutcome(number, INFEASIBLE, " ".join(error.message.split()), {}, 0.0)
+    return PointTask(number, point.job, refused=INFEASIBLE)
 
 
 def run_optimisation(
@@ -420,7 +429,7 @@ def _g(opt: Optimisation, outcome: PointOutcome) -> tuple[float, ...]:
 
 
 def _detail(run: OptimiseRun, done: int) -> str:
-    text = f"generation {run.generations}, {run.failed} failed"
+    text = f"generation {run.generations}, {run.infeasible} infeasible, {run.failed} failed"
     return text + (f", {run.resumed} from the checkpoint" if run.resumed else "")
 
 

@@ -34,7 +34,10 @@ class Analysis:
     ``outputs`` names the n outputs in tables (default ``τ1 … τn``, the torques) and
     ``context`` replaces "posture · speed" in a table's title (e.g. ``t = 1 s`` for the
     motion job, whose analyses share a time instead of a posture and speed); ``runs`` the
-    model runs the method made, ``loo_error`` a PCE's leave-one-out error per output."""
+    model runs the method made, ``loo_error`` a PCE's leave-one-out error per output.
+    ``defined`` (n,) says which outputs have indices at all: one that does not vary over
+    the robots (the motion job's angles at t = 0) has no variance to apportion, its
+    indices are undefined (zeros in ``indices``, empty cells in a CSV); ``None``: all."""
 
     method: str
     posture: str
@@ -46,6 +49,11 @@ class Analysis:
     context: str = ""
     runs: int = 0
     loo_error: np.ndarray | None = None  # (n,) for a PCE
+    defined: np.ndarray | None = None  # (n,) bool
+
+    def is_defined(self, k: int) -> bool:
+        """Whether output ``k`` has indices (see ``defined``)."""
+        return self.defined is None or bool(self.defined[k])
 
     def output_labels(self) -> tuple[str, ...]:
         """The n outputs' row labels: ``outputs``, or the torques ``τ1 … τn``."""
@@ -70,10 +78,14 @@ def grouped(analyses: Sequence[Analysis], key: Callable[[Analysis], Any]) -> dic
 def index_rows(group: Sequence[Analysis]) -> Iterator[tuple[int, tuple]]:
     """The :data:`INDEX_COLUMNS` cells of a group of analyses sharing their inputs (one
     per method): per output ``k``, parameter and method, ``(k, cells)``. A NaN half-width
-    (not computed: point estimates only) is an empty cell."""
+    (not computed: point estimates only) is an empty cell, and so is every index of an
+    output without indices (:attr:`Analysis.defined`)."""
     for k in range(group[0].indices.shape[1]):
         for j, name in enumerate(group[0].names):
             for a in group:
+                if not a.is_defined(k):
+                    yield k, (name, a.method, "", "", "", "", "")
+                    continue
                 s1, s1_conf, st, st_conf = (float(v) for v in a.indices[:, k, j])
                 yield k, (name, a.method, s1, _conf_cell(s1_conf), st, _conf_cell(st_conf),
                           float(a.percent[k, j]))  # fmt: skip

@@ -27,7 +27,7 @@ from pathlib import Path
 from typing import Any
 
 from planar_tui.csvio import write_text_atomic
-from planar_tui.sweep.worker import FAILED, OK, PointOutcome
+from planar_tui.sweep.worker import FAILED, INFEASIBLE, OK, PointOutcome
 
 SUFFIX = ".checkpoint.jsonl"
 
@@ -58,7 +58,7 @@ def existing_fingerprint(path: Path) -> str | None:
 #: Most warning lines about dropped records one checkpoint gives (then a count).
 MAX_WARNINGS = 5
 #: The statuses a finished point may have.
-STATUSES = (OK, FAILED)
+STATUSES = (OK, FAILED, INFEASIBLE)
 #: Longest text a record's message or text figure may hold.
 MAX_TEXT = 10_000
 
@@ -100,8 +100,12 @@ def record_problem(
     figures = record["figures"]
     if not isinstance(figures, dict):
         return f"figures {shown_value(figures)} is not a mapping"
-    if record["status"] == FAILED and figures:
-        return "a failed point has figures"
+    if record["status"] != OK and figures:
+        return (
+            "a failed point has figures"
+            if record["status"] == FAILED
+            else ("an infeasible point has figures")
+        )
     known = columns(number) if record["status"] == OK else ()
     for name, value in figures.items():
         if known is not None and name not in known:

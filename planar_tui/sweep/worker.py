@@ -18,6 +18,9 @@ from planar_tui.progress import Progress
 
 OK = "ok"
 FAILED = "failed"
+#: An optimisation's evaluation whose design its job refuses (a centre its working mode
+#: cannot reach): the optimiser's constraint, not a failure (:attr:`PointTask.refused`).
+INFEASIBLE = "infeasible"
 #: A point a cancelled sweep did not run (a row of the app's partial table; never in a CSV
 #: the CLI writes).
 CANCELLED = "cancelled"
@@ -27,16 +30,20 @@ CANCELLED = "cancelled"
 class PointTask:
     """A point to run: its number, its job (parsed settings and robot: small, picklable)
     and whether its CSV tables are wanted (``point_outputs``), as ``stem`` + ``.csv`` and
-    ``stem-TABLE.csv`` for the job's extra tables."""
+    ``stem-TABLE.csv`` for the job's extra tables. ``refused`` is the status of a point
+    whose job refuses its values (a :class:`~planar_tui.errors.PresetError`): ``failed``
+    in a sweep, :data:`INFEASIBLE` in an optimisation."""
 
     number: int
     job: Job
     tables_stem: str | None = None
+    refused: str = FAILED
 
 
 @dataclass(frozen=True)
 class PointOutcome:
-    """A finished point: ``status`` ``ok`` or ``failed`` with its one-line ``message``,
+    """A finished point: ``status`` ``ok``, ``failed`` or ``infeasible`` (an optimisation's
+    design its job refuses) with its one-line ``message``,
     the kind's summary ``figures`` (name with unit -> number or text, in column order),
     the wall ``seconds`` and, when asked for, its CSV ``tables`` (file name -> text)."""
 
@@ -75,7 +82,8 @@ def point_file_names(stem: str, job: Job) -> list[str]:
 def run_point(task: PointTask, progress: Progress | None = None) -> PointOutcome:
     """Run one point through the batch service; any failure of the point (a box budget,
     no isotropic posture, a diverged result, an unexpected error) becomes a ``failed``
-    outcome with a one-line message. Only a cancel (:class:`Cancelled`, Ctrl-C) escapes."""
+    outcome with a one-line message (values the job refuses: ``task.refused``). Only a
+    cancel (:class:`Cancelled`, Ctrl-C) escapes."""
     from planar_tui import batch
     from planar_tui.errors import Cancelled, PresetError
     from planar_tui.registry import JOB_KINDS
@@ -100,7 +108,7 @@ def run_point(task: PointTask, progress: Progress | None = None) -> PointOutcome
     except (Cancelled, KeyboardInterrupt):
         raise
     except PresetError as error:
-        status, message, figures, tables = FAILED, _one_line(error.message), {}, {}
+        status, message, figures, tables = task.refused, _one_line(error.message), {}, {}
     except (batch.JobFailed, batch.NonFiniteResult) as error:
         status, message, figures, tables = FAILED, _one_line(str(error)), {}, {}
     except Exception as error:  # a figure that cannot be computed, say

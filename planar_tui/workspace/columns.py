@@ -3,8 +3,10 @@ kinds' ``figure_names`` hook: a resumed sweep checks its checkpoint's records ag
 an optimisation's objectives and constraints must name one of them, before anything runs).
 
 A job's columns are its summary CSV's but the wall time (``seconds``: a sweep row has its
-own): the 3-RRR's summary columns (:data:`~planar_tui.workspace.compute.SUMMARY_HEADER`),
-then its singularity-free circle's (every job has them, empty without ``singularities``):
+own): the 3-RRR's summary columns (:data:`~planar_tui.workspace.compute.SUMMARY_HEADER`;
+the 3-RPR and 3-PRR with the 3-RRR's orientation columns,
+:data:`~planar_tui.workspace.orientation.ORIENTATION_HEADER`), then its singularity-free
+circle's (every job has them, empty without ``singularities``):
 the 3-RRR's for the 3-RPR and 3-PRR (:data:`planar_tui.workspace.singularity.HEADER`), the
 five-bar's with its singular box counts
 (:data:`planar_tui.workspace.fivebar_singularity.HEADER`), the five-bar's ``working_mode``
@@ -20,9 +22,10 @@ from typing import Any
 def planar_figure_names(job: Any) -> tuple[str, ...]:
     """The columns of a 3-RPR or 3-PRR job (:func:`planar_tui.workspace.planar.run_planar`)."""
     from planar_tui.workspace.compute import SUMMARY_HEADER
+    from planar_tui.workspace.orientation import ORIENTATION_HEADER
     from planar_tui.workspace.singularity import HEADER
 
-    return (*SUMMARY_HEADER[:-1], *HEADER, *tolerance_names(job))
+    return (*SUMMARY_HEADER[:-1], *ORIENTATION_HEADER, *HEADER, *tolerance_names(job))
 
 
 def fivebar_figure_names(job: Any) -> tuple[str, ...]:

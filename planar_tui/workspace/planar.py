@@ -306,8 +306,8 @@ def compute_planar(robot: Any, spec: PlanarSpec, budget: Any) -> Any:
 
 
 def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> WorkspaceResult:
-    """Run one fixed-orientation workspace job of a parallel kind: the summary CSV (the
-    3-RRR's columns), the boxes and the one-line summary."""
+    """Run one workspace job of a parallel kind: the summary CSV (the 3-RRR's columns, its
+    orientation's among them), the boxes and the one-line summary."""
     from planar_tui.csvio import CsvTable
     from planar_tui.workspace.compute import (
         SUMMARY_HEADER,
@@ -320,8 +320,12 @@ def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> 
     budget = BoxBudget(job, progress)
     report_box_estimate(job, progress)  # warned of over the box budget
     outcome = compute_planar(job.robot, job.spec, budget)
-    header: tuple[str, ...] = SUMMARY_HEADER
-    row, summary = outcome.summary_row(), summary_line(outcome)
+    from planar_tui.workspace.orientation import ORIENTATION_HEADER, orientation_columns
+
+    base, summary = outcome.summary_row(), summary_line(outcome)
+    # the orientation's columns where the 3-RRR has them, before the wall time
+    header: tuple[str, ...] = (*SUMMARY_HEADER[:-1], *ORIENTATION_HEADER, SUMMARY_HEADER[-1])
+    row = [*base[:-1], *orientation_columns(job.spec), base[-1]]
     if isinstance(job.spec.orientation_deg, tuple):
         from planar_tui.workspace.orientation import describe as describe_range
 
