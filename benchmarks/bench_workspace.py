@@ -47,10 +47,11 @@ from planar_tui.runtime import prepare_kernels  # noqa: E402
 prepare_kernels()  # before any kernel is imported
 
 from planar_tui.progress import Progress  # noqa: E402
-from planar_tui.workspace.compute import BoxBudget, compute_workspace  # noqa: E402
-from planar_tui.workspace.geometry import geometric_area  # noqa: E402
-from planar_tui.workspace.job import WorkspaceSpec  # noqa: E402
-from planar_tui.workspace.robot import Robot3RRR  # noqa: E402
+from planar_tui.workspace.paving.levels import BoxBudget  # noqa: E402
+from planar_tui.workspace.rrr.compute import compute_workspace  # noqa: E402
+from planar_tui.workspace.rrr.geometry import geometric_area  # noqa: E402
+from planar_tui.workspace.rrr.job import WorkspaceSpec  # noqa: E402
+from planar_tui.workspace.rrr.robot import Robot3RRR  # noqa: E402
 
 REFERENCE = REPO / "tests" / "data" / "reference" / "paper_workspace_tables.csv"
 ROBOT = Robot3RRR()
@@ -334,7 +335,7 @@ def parallel_paving(precision: float = 0.008, runs: int = 3) -> None:
 def joint_threads(runs: int = 3) -> None:
     """Issue 21: paper B's Algorithm 1 (the joint strategy) on Table 3's four interval jobs
     at the paper's precision, on 1, 2 and every thread (one stack per thread, work
-    shared: :mod:`planar_tui.workspace.joint`), best of ``runs`` interleaved runs,
+    shared: :mod:`planar_tui.workspace.rrr.joint`), best of ``runs`` interleaved runs,
     identical boxes checked; the baselines are the same bisection on one thread, and on
     one thread without the legs' verdict memo (``MEMO_SLOTS = 0``: every verdict computed
     afresh), identical boxes checked too."""
@@ -425,7 +426,7 @@ def other_kinds() -> None:
 
     from planar_tui.presets import load_preset
     from planar_tui.resources import resolve_preset
-    from planar_tui.workspace.planar import compute_planar
+    from planar_tui.workspace.paving.runner import compute_planar
 
     print("\n## 3-RPR and 3-PRR (issue 25): bundled designs at ε = 0.05 cm\n")
     print("| run | seconds | target |")

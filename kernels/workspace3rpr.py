@@ -31,7 +31,7 @@ box is ``OUTSIDE`` if some leg's distance range :math:`[d_{lo}, d_{hi}]` has
 :math:`d_{hi} < out_{lo}` or :math:`d_{lo} > out_{hi}`, ``INSIDE`` if every leg's lies in
 :math:`[in_{lo}, in_{hi}]`. For the nominal robot all four are ``rho_lo, rho_hi`` (the test
 above); a tolerance-certified job moves them
-(:func:`planar_tui.workspace.rpr_tolerance.leg_thresholds`); the comparisons are on the
+(:func:`planar_tui.workspace.rpr.tolerance.leg_thresholds`); the comparisons are on the
 squared distances, the squared thresholds rounded outward.
 """
 

@@ -82,10 +82,10 @@ ROBOT_KINDS: Registry[RobotKind] = Registry(
     "ROBOT_KIND",
     {
         "robot": "planar_tui.dynamics.robot",
-        "robot3rrr": "planar_tui.workspace.robot",
-        "robot3rpr": "planar_tui.workspace.rpr",
-        "robot3prr": "planar_tui.workspace.prr",
-        "robot5r": "planar_tui.workspace.fivebar",
+        "robot3rrr": "planar_tui.workspace.rrr.robot",
+        "robot3rpr": "planar_tui.workspace.rpr.robot",
+        "robot3prr": "planar_tui.workspace.prr.robot",
+        "robot5r": "planar_tui.workspace.fivebar.robot",
     },
 )
 
@@ -95,11 +95,11 @@ JOB_KINDS: Registry[JobKind] = Registry(
         "simulate": "planar_tui.dynamics.simulate",
         "torques": "planar_tui.dynamics.torques",
         "sensitivity": "planar_tui.sensitivity.job",
-        "workspace": "planar_tui.workspace.job",
-        "workspace5r": "planar_tui.workspace.fivebar_job",
+        "workspace": "planar_tui.workspace.rrr.job",
+        "workspace5r": "planar_tui.workspace.fivebar.job",
         "motion_uncertainty": "planar_tui.motion.job",
-        "workspace3rpr": "planar_tui.workspace.rpr_job",
-        "workspace3prr": "planar_tui.workspace.prr_job",
+        "workspace3rpr": "planar_tui.workspace.rpr.job",
+        "workspace3prr": "planar_tui.workspace.prr.job",
     },
 )
 

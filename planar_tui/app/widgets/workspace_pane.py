@@ -23,7 +23,7 @@ from planar_tui.jobkind import JobResult
 from planar_tui.presets import Job
 from planar_tui.progress import ProgressState
 
-#: Lines of :func:`planar_tui.workspace.map.render_map` below the plot rows.
+#: Lines of :func:`planar_tui.workspace.paving.map.render_map` below the plot rows.
 MAP_FOOTER_LINES = 3
 #: Seconds between two redraws of the map of the boxes kept so far while a job runs.
 PARTIAL_MAP_EVERY_S = 0.5
@@ -42,7 +42,7 @@ def fitted_map(boxes, status, width: int, height: int, **overlays) -> list[str]:
     others show the plain axis ``│``), so each label points at its row. ``overlays`` are
     ``render_map``'s ``singular`` and ``circle``.
     """
-    from planar_tui.workspace.map import render_map
+    from planar_tui.workspace.paving.map import render_map
 
     lines = render_map(boxes, status, width=width, **overlays)
     while len(lines) > height and width > 20:
@@ -70,13 +70,14 @@ def fine_job(job, **changes) -> Any:
 
 
 def pave(job, should_stop, threads: int | None = None) -> Any:
-    """Pave ``job``'s workspace (:func:`planar_tui.workspace.compute.compute_workspace`),
+    """Pave ``job``'s workspace (:func:`planar_tui.workspace.rrr.compute.compute_workspace`),
     its parallel kernels on ``threads`` threads when given (Numba's count is per calling
     thread: the other threads keep theirs)."""
     import numba
 
     from planar_tui.progress import Progress
-    from planar_tui.workspace.compute import BoxBudget, compute_workspace
+    from planar_tui.workspace.paving.levels import BoxBudget
+    from planar_tui.workspace.rrr.compute import compute_workspace
 
     progress = Progress(should_stop=should_stop)
     before = numba.get_num_threads()
@@ -184,7 +185,7 @@ class WorkspacePane(JobPane):
             explorer.show_text("(no box kept: the workspace is empty at this precision)")
             self.query_one("#workspace-legend", Static).update("")
             return
-        from planar_tui.workspace.job import map_content
+        from planar_tui.workspace.paving.result import map_content
 
         refit = self._shown_job is not job
         self._shown_job = job
@@ -211,7 +212,7 @@ class WorkspacePane(JobPane):
         robot, spec = job.robot, job.spec
 
         def rings() -> list[list[tuple[float, float]]]:
-            from planar_tui.workspace.geometry import workspace_polygon
+            from planar_tui.workspace.rrr.geometry import workspace_polygon
 
             polygon = workspace_polygon(robot, spec.limits_rad, spec.orientation_rad, 256, False)
             parts = getattr(polygon, "geoms", [polygon])
