@@ -300,3 +300,16 @@ class JobKind:
         """The job ready to run (see ``prepare``, called once here); :class:`PresetError`
         if it cannot run."""
         return PreparedJob(job, None if self.prepare is None else self.prepare(job))
+
+
+def resolve(path: str) -> Any:
+    """The object an import path names: ``"package.module:attribute"`` (the attribute of
+    that module, imported then) or ``"package.module"`` (the module). The one resolver of
+    the ``module:attr`` strings the kinds declare (a tab's pane, a figure function, a
+    registry line) and of the modules imported on demand; ``ImportError`` or
+    ``AttributeError`` when it names nothing."""
+    import importlib
+
+    module, _, attribute = path.partition(":")
+    found = importlib.import_module(module)
+    return getattr(found, attribute) if attribute else found

@@ -16,12 +16,11 @@ kind's command at once.
 
 from __future__ import annotations
 
-import importlib
 from collections.abc import Iterator, Mapping, MutableMapping
 from contextlib import contextmanager
 from typing import Generic, Protocol, TypeVar
 
-from planar_tui.jobkind import JobKind, RobotKind
+from planar_tui.jobkind import JobKind, RobotKind, resolve
 
 
 class _Named(Protocol):
@@ -50,7 +49,7 @@ class Registry(MutableMapping[str, KindT], Generic[KindT]):
             return kind
         module = self._modules[name]  # KeyError: no such kind
         assert module is not None  # a kind registered as an object is in _loaded
-        kind = getattr(importlib.import_module(module), self._attribute)
+        kind = resolve(f"{module}:{self._attribute}")
         if kind.name != name:
             raise RuntimeError(f"{module}.{self._attribute} is named {kind.name!r}, not {name!r}")
         self._loaded[name] = kind

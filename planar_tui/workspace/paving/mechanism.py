@@ -15,12 +15,13 @@ its kernels (``kernels/``) and its registry lines (:mod:`planar_tui.registry`);
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 
 if TYPE_CHECKING:
     from planar_tui.workspace.paving.geometry import GeometricArea
 
 
+@runtime_checkable
 class Mechanism(Protocol):
     """One parallel robot's separator: its leg test kernel, reach box, exact polygon,
     singularity test, orientation-range test, tolerance bounds and estimate constants.
