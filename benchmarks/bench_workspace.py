@@ -32,7 +32,6 @@ from __future__ import annotations
 import csv
 import itertools
 import math
-import statistics
 import subprocess
 import sys
 import tempfile
@@ -46,6 +45,7 @@ from planar_tui.runtime import prepare_kernels  # noqa: E402
 
 prepare_kernels()  # before any kernel is imported
 
+from benchmarks.timing import load, wall  # noqa: E402
 from planar_tui.progress import Progress  # noqa: E402
 from planar_tui.workspace.paving.levels import BoxBudget  # noqa: E402
 from planar_tui.workspace.rrr.compute import compute_workspace  # noqa: E402
@@ -167,10 +167,6 @@ def in_process() -> None:
 #: Issue 12's case: 120° joint ranges, φ = −20°, paper B's robot.
 WIDE = (((-30, 90), (90, 210), (210, 330)), -20.0)
 INTERVAL_FORMS = ("natural", "mean-value", "slope")
-
-
-def load() -> str:
-    return " ".join(Path("/proc/loadavg").read_text().split()[:3])
 
 
 def wide_spec(form, precision, strategy, **extra):
@@ -387,15 +383,6 @@ form = "{form}"
 geometric_reference = false
 {extra}output = "out.csv"
 """
-
-
-def wall(command, runs=3):
-    times = []
-    for _ in range(runs):
-        started = time.perf_counter()
-        subprocess.run(command, check=True, capture_output=True, cwd=REPO)
-        times.append(time.perf_counter() - started)
-    return statistics.median(times)
 
 
 FLOOR = (

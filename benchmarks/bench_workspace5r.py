@@ -123,7 +123,7 @@ def tolerance(runs: int = 5) -> None:
     these.)"""
     from statistics import median
 
-    from benchmarks.bench_workspace import load
+    from benchmarks.timing import load
     from planar_tui.presets import load_preset
     from planar_tui.progress import Progress
     from planar_tui.workspace.fivebar.job import compute_fivebar
@@ -171,7 +171,7 @@ def tolerance(runs: int = 5) -> None:
 
 
 def whole_process() -> None:
-    from benchmarks.bench_workspace import wall  # the floor: its part "cli"
+    from benchmarks.timing import wall  # the floor: bench_workspace.py, its part "cli"
 
     print("\n## Five-bar, whole process through the CLI (median of 3, Numba cache warm)\n")
     print("| run | seconds | goal |")

@@ -78,23 +78,6 @@ def classify_rpr_box(xlo, xhi, ylo, yhi, p):
     return INSIDE if inside else BOUNDARY
 
 
-@kernel
-def rpr_point_feasible(x, y, p):
-    """Every leg closes at the platform position ``(x, y)`` (float test, for references)."""
-    for leg in range(3):
-        f = (x - p[leg, 0]) ** 2 + (y - p[leg, 1]) ** 2
-        if f < p[leg, 2] * p[leg, 2] or f > p[leg, 3] * p[leg, 3]:
-            return False
-    return True
-
-
-@kernel
-def classify_rpr_boxes(boxes, p, out):
-    """:func:`classify_rpr_box` for every row ``x_lo, x_hi, y_lo, y_hi`` of ``boxes``."""
-    for r in range(boxes.shape[0]):
-        out[r] = classify_rpr_box(boxes[r, 0], boxes[r, 1], boxes[r, 2], boxes[r, 3], p)
-
-
 @kernel(parallel=True)
 def rpr_level(p, precision, rows, start, stop, children, outcome):
     """Decide rows ``start .. stop - 1`` of a frontier of (x, y) boxes in parallel: label

@@ -140,7 +140,6 @@ class Workspace2RPRPane(WorkspacePane):
     """The toy's app tab: the workspace pane on ``[[workspace2rpr]]`` jobs."""
 
     kind = "workspace2rpr"
-    explores_3rrr = False
 
 
 ROBOT_KIND = RobotKind("robot2rpr", Robot2RPR, example="[robot2rpr]\n")

@@ -22,6 +22,7 @@ from planar_tui.app.widgets.workspace_explorer import MapExplorer, cell_status
 from planar_tui.jobkind import JobResult
 from planar_tui.presets import Job
 from planar_tui.progress import ProgressState
+from planar_tui.registry import JOB_KINDS
 
 #: Lines of :func:`planar_tui.workspace.paving.map.render_map` below the plot rows.
 MAP_FOOTER_LINES = 3
@@ -122,10 +123,6 @@ class WorkspacePane(JobPane):
     cursor, the read-out and summary."""
 
     kind = "workspace"
-    #: Whether the map draws the 3-RRR at its cursor, reads its legs' angles, overlays
-    #: its exact boundary, re-paves the view and previews edits (the 3-RRR's pane; the
-    #: other parallel robots' panes reuse the map alone).
-    explores_3rrr = True
     _partial_drawn_s = 0.0
 
     DEFAULT_CSS = """
@@ -192,6 +189,15 @@ class WorkspacePane(JobPane):
         self.set_geometry(job, result)
         boxes, status, drawn = map_content(job, result)  # as the CLI's map: layers too
         self.draw_map(boxes, status, "", refit, **drawn)
+
+    @property
+    def explores_3rrr(self) -> bool:
+        """Whether the map draws the 3-RRR at its cursor, reads its legs' angles, overlays
+        its exact boundary, re-paves the view and previews edits: the kind's robot says so
+        (:attr:`~planar_tui.workspace.paving.mechanism.Mechanism.explores`; the other
+        parallel robots' panes reuse the map alone)."""
+        mechanism = getattr(JOB_KINDS[self.kind].settings, "mechanism", None)
+        return bool(mechanism is not None and mechanism.explores)
 
     # -- the geometry at the cursor -------------------------------------------------------
     def constant_orientation_3rrr(self, job: Any) -> bool:

@@ -18,7 +18,6 @@ from typing import TYPE_CHECKING, Any, ClassVar
 
 from planar_tui.jobkind import (
     Command,
-    Job,
     JobKind,
     JobResult,
     PreparedJob,
@@ -216,9 +215,6 @@ class FiveBarSpec:
         values = check_paving(values, reader)
         check_needs("workspace5r", FiveBarSpec(**values), reader, robot)  # memory and time
         return values
-
-
-FiveBarJob = Job[FiveBarSpec, Robot5R]
 
 
 @dataclass(frozen=True, kw_only=True)

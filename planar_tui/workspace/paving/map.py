@@ -24,7 +24,6 @@ SINGULAR_LEGEND_ITEMS = (
     f"{CIRCLE_GLYPH} singularity-free circle (r_in)",
     f"{CENTRE_GLYPH} its centre",
 )
-SINGULAR_LEGEND = "  ".join(SINGULAR_LEGEND_ITEMS)
 #: Terminal cells are about twice as tall as wide.
 CELL_ASPECT = 2.0
 _LABEL_WIDTH = 8  # "-123.45 " then the axis line

@@ -203,21 +203,6 @@ def tolerance_of(spec: Any, keys: Sequence[str] | None = None) -> Tolerance | No
     return Tolerance(tuple(widths.items()), spec.tolerance_mode or "all")
 
 
-def parameter_box(nominal: Any, half_width: Any) -> tuple[np.ndarray, np.ndarray]:
-    """Intervals ``(lo, hi)`` of a parameter vector (per-entry half-widths)."""
-    import numpy as np
-
-    p, w = np.asarray(nominal, dtype=np.float64), np.asarray(half_width, dtype=np.float64)
-    return p - w, p + w
-
-
-def vertex_parameters(nominal: Any, half_width: Any, signs: Any) -> np.ndarray:
-    """One robot at a vertex of the parameter box: ``nominal + signs * half_width``."""
-    import numpy as np
-
-    return np.asarray(nominal, dtype=np.float64) + np.asarray(signs) * np.asarray(half_width)
-
-
 def erosion_bound_cm(tolerance: Tolerance) -> float:
     """:math:`\\sigma + t_2 = \\sqrt2 (t_A + t_q) + t_1 + t_2`: the most any leg's
     constraint (:math:`l_2 - d_{\\min}`, :math:`d_{\\max} - l_2`) moves over the tolerances."""
@@ -275,8 +260,7 @@ def tolerant_vector(spec: Any) -> np.ndarray | None:
 
 def tolerance_header(keys: Sequence[str]) -> tuple[str, ...]:
     """Summary CSV columns of a tolerance-certified job whose kind tolerances ``keys``:
-    ``tolerance_mode`` and ``tolerance_<key>`` per key (:data:`~planar_tui.workspace.rrr.robot.TOLERANCE_HEADER`, the
-    3-RRR's)."""
+    ``tolerance_mode`` and ``tolerance_<key>`` per key."""
     return ("tolerance_mode", *(f"tolerance_{key}" for key in keys))
 
 

@@ -95,7 +95,3 @@ ROBOT_KIND = RobotKind("robot3rrr", Robot3RRR, example="[robot3rrr]\n")
 
 #: The 3-RRR's toleranced quantities (keys of ``tolerances_cm``).
 TOLERANCE_KEYS_3RRR = ("base_joints_cm", "platform_points_cm", "proximal_cm", "distal_cm")
-
-
-#: Summary CSV columns of a tolerance-certified job (appended before ``seconds``).
-TOLERANCE_HEADER = ("tolerance_mode", *(f"tolerance_{key}" for key in TOLERANCE_KEYS_3RRR))
