@@ -252,10 +252,18 @@ def compute_fivebar(robot: Robot5R, spec: FiveBarSpec, budget: BoxBudget) -> Wor
     if spec.form == "geometric":
         assert geometric is not None
         return WorkspaceOutcome(
-            spec.form, spec.precision_cm, None, np.zeros((0, 4)), np.zeros(0, np.int64), 0,
-            geometric.outer_cm2, geometric.inner_cm2, geometric,
-            time.perf_counter() - started, extent,
-        )  # fmt: skip
+            spec.form,
+            spec.precision_cm,
+            None,
+            np.zeros((0, 4)),
+            np.zeros(0, np.int64),
+            0,
+            geometric.outer_cm2,
+            geometric.inner_cm2,
+            geometric,
+            time.perf_counter() - started,
+            extent,
+        )
 
     def pave(seeds, precision, inside_cm2=0.0):
         def decide(rows, start, stop, children, outcome):
@@ -266,9 +274,17 @@ def compute_fivebar(robot: Robot5R, spec: FiveBarSpec, budget: BoxBudget) -> Wor
     budget.progress.start(1.0, "five-bar paving")
     boxes, status = pave(np.array([extent]), spec.precision_cm)
     return finished_outcome(
-        spec, boxes, status, lambda seeds, inside: pave(seeds, spec.refine_precision_cm, inside),
-        budget, geometric, started, extent, form=spec.form, disjoint=True,
-    )  # fmt: skip
+        spec,
+        boxes,
+        status,
+        lambda seeds, inside: pave(seeds, spec.refine_precision_cm, inside),
+        budget,
+        geometric,
+        started,
+        extent,
+        form=spec.form,
+        disjoint=True,
+    )
 
 
 def run_fivebar(
@@ -320,8 +336,13 @@ def fivebar_figure_names(job: Any) -> tuple[str, ...]:
     from planar_tui.workspace.fivebar.singularity import HEADER
     from planar_tui.workspace.paving.levels import SUMMARY_HEADER
 
-    return (SUMMARY_HEADER[0], "working_mode", *SUMMARY_HEADER[2:-1], *HEADER,
-            *tolerance_names(job))  # fmt: skip
+    return (
+        SUMMARY_HEADER[0],
+        "working_mode",
+        *SUMMARY_HEADER[2:-1],
+        *HEADER,
+        *tolerance_names(job),
+    )
 
 
 JOB_KIND = JobKind(
@@ -352,4 +373,4 @@ JOB_KIND = JobKind(
         "singularity_free_circle = [0, 60]\n"
         "[[workspace5r]]\nprecision_cm = 8.0\ngeometric_reference = false\ntolerance_cm = 0.1\n"
     ),
-)  # fmt: skip
+)

@@ -139,9 +139,13 @@ class Robot5R:
 
         rows = []
         for (ax, ay), l1, l2, s, (lo, hi) in zip(
-            self.base_joints_cm(), self.proximal_cm, self.distal_cm, self.elbows,
-            self.limits_rad, strict=True,
-        ):  # fmt: skip
+            self.base_joints_cm(),
+            self.proximal_cm,
+            self.distal_cm,
+            self.elbows,
+            self.limits_rad,
+            strict=True,
+        ):
             ends = [l1 * math.cos(lo), l1 * math.sin(lo), l1 * math.cos(hi), l1 * math.sin(hi)]
             rows.append([ax, ay, l1, l2, s, *ends])
         legs = np.array(rows, dtype=np.float64)

@@ -170,9 +170,22 @@ def certify_circle(job, centre, extent, precision, budget) -> tuple[float, float
     def decide(rows, start, stop, children, outcome):
         witness = np.empty(stop - start)
         circle_level(
-            g, r, elbow, limits, cx, cy, sign, reach, precision, rows, start, stop, children,
-            outcome, witness,
-        )  # fmt: skip
+            g,
+            r,
+            elbow,
+            limits,
+            cx,
+            cy,
+            sign,
+            reach,
+            precision,
+            rows,
+            start,
+            stop,
+            children,
+            outcome,
+            witness,
+        )
         upper.append(float(witness.min(initial=math.inf)))
 
     budget.progress.start(1.0, "singularity-free circle")

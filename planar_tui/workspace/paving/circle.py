@@ -83,8 +83,12 @@ def given_or_centroid(job: Any, polygon_of: Any) -> tuple[float, float]:
         return job.spec.circle_centre_cm
     polygon = polygon_of(job.robot, job.spec, 256, False)
     if polygon.is_empty:
-        raise PresetError(job.preset_path, f"{job.key}.circle_centre_cm",
-                          "has no default: the workspace is empty", "a non-empty workspace")  # fmt: skip
+        raise PresetError(
+            job.preset_path,
+            f"{job.key}.circle_centre_cm",
+            "has no default: the workspace is empty",
+            "a non-empty workspace",
+        )
     point = polygon.centroid
     if not polygon.contains(point):
         point = polygon.representative_point()

@@ -29,9 +29,12 @@ PAPER_B_PLATFORM_CM = ((0.0, 0.0), (40.0, 0.0), (20.0, 40.0))
 def paper_b_points(default, default_doc: str, doc: str):
     """A robot key of three ``[x, y]`` points (cm) defaulting to paper B's ``default``."""
     return setting(
-        three_points, default=default, default_doc=default_doc, type_doc="3 points `[x, y]`",
+        three_points,
+        default=default,
+        default_doc=default_doc,
+        type_doc="3 points `[x, y]`",
         doc=doc,
-    )  # fmt: skip
+    )
 
 
 def platform_points():

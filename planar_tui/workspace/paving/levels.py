@@ -267,9 +267,19 @@ def report_boxes(estimate: int, spec, progress: Progress) -> int:
 
 
 def finished_outcome(
-    spec, boxes, status, refine, budget, geometric, started, extent, *, form, disjoint=False,
+    spec,
+    boxes,
+    status,
+    refine,
+    budget,
+    geometric,
+    started,
+    extent,
+    *,
+    form,
+    disjoint=False,
     **extra,
-) -> WorkspaceOutcome:  # fmt: skip
+) -> WorkspaceOutcome:
     """The stages every paving ends with: with ``refine_precision_cm``, the boundary boxes
     paved again by ``refine(seeds, inside_cm2)`` (returning boxes and status); then the
     certified areas ``inside = |∪ inside boxes|``, ``kept = |∪ kept boxes|`` (plain sums

@@ -115,9 +115,21 @@ def range_stage(g, limits, mechanism, points, spec, seeds, precision, budget, in
     def decide(rows, start, stop, children, outcome):
         work = np.empty(stop - start, dtype=np.int64)
         range_level(
-            mode, lo, hi, phi_min, g, limits, precision, rows, start, stop, children, outcome,
-            work, mechanism,
-        )  # fmt: skip
+            mode,
+            lo,
+            hi,
+            phi_min,
+            g,
+            limits,
+            precision,
+            rows,
+            start,
+            stop,
+            children,
+            outcome,
+            work,
+            mechanism,
+        )
 
     return pave_in_levels(seeds, budget, decide, inside_cm2)
 
@@ -138,9 +150,17 @@ def paved_range(stage, spec, budget, extent, geometric, started, disjoint=False)
         return stage(seeds, spec.refine_precision_cm, inside_cm2)
 
     return finished_outcome(
-        spec, boxes, status, refine, budget, geometric, started, extent, form=spec.form,
+        spec,
+        boxes,
+        status,
+        refine,
+        budget,
+        geometric,
+        started,
+        extent,
+        form=spec.form,
         disjoint=disjoint,
-    )  # fmt: skip
+    )
 
 
 def orientation_columns(spec) -> list:

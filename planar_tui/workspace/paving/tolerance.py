@@ -283,11 +283,14 @@ def tolerance_companions(robot: Any, spec: Any, budget_for: Any, compute: Any) -
     other = "some" if spec.tolerance_mode == "all" else "all"
     specs = {
         "nominal": replace(
-            spec, tolerance_cm=None, tolerances_cm=None, tolerance_mode=None,
+            spec,
+            tolerance_cm=None,
+            tolerances_cm=None,
+            tolerance_mode=None,
             geometric_reference=False,
         ),
         other: replace(spec, tolerance_mode=other, geometric_reference=False),
-    }  # fmt: skip
+    }
     return {name: compute(robot, s, budget_for()) for name, s in specs.items()}
 
 

@@ -131,10 +131,14 @@ def reach_box(robot: Robot3PRR, spec) -> tuple[float, float, float, float]:
             for (ax, ay, bx, by), (qx, qy) in zip(ends, robot.platform_points_cm, strict=True)
         )
     boxes = [
-        (min(ax, bx) - e[1] - r, max(ax, bx) - e[0] + r, min(ay, by) - e[3] - r,
-         max(ay, by) - e[2] + r)
+        (
+            min(ax, bx) - e[1] - r,
+            max(ax, bx) - e[0] + r,
+            min(ay, by) - e[3] - r,
+            max(ay, by) - e[2] + r,
+        )
         for (ax, ay, bx, by), r, e in zip(ends, robot.distal_cm, extents, strict=True)
-    ]  # fmt: skip
+    ]
     return (
         max(b[0] for b in boxes),
         min(b[1] for b in boxes),

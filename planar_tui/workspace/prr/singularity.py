@@ -36,9 +36,13 @@ def kernel_inputs(robot: Robot3PRR, spec) -> tuple[Any, Any]:
     offsets = np.array([[c * qx - s * qy, s * qx + c * qy] for qx, qy in robot.platform_points_cm])
     rows = []
     for (bx, by), angle, (lo, hi), length, (rx, ry) in zip(
-        robot.slider_points_cm, robot.slider_angles_deg, robot.strokes_cm, robot.distal_cm,
-        offsets, strict=True,
-    ):  # fmt: skip
+        robot.slider_points_cm,
+        robot.slider_angles_deg,
+        robot.strokes_cm,
+        robot.distal_cm,
+        offsets,
+        strict=True,
+    ):
         ux, uy = math.cos(math.radians(angle)), math.sin(math.radians(angle))
         rows.append([bx - rx, by - ry, ux, uy, lo, hi, length])
     return np.array(rows), offsets
@@ -82,17 +86,29 @@ def resolve_circle(job: Any) -> tuple[tuple[float, float], tuple[int, int, int]]
         reach = [sigma for sigma, link in zip((1, -1), per_mode, strict=True) if link is not None]
         if spec.slider_modes is not None:
             if spec.slider_modes[leg] not in reach:
-                raise PresetError(job.preset_path, key, f"{where} is not reachable: leg "
-                                  f"{leg + 1} cannot close in its mode {spec.slider_modes[leg]:+d} "
-                                  "within its stroke", expected)  # fmt: skip
+                raise PresetError(
+                    job.preset_path,
+                    key,
+                    f"{where} is not reachable: leg "
+                    f"{leg + 1} cannot close in its mode {spec.slider_modes[leg]:+d} "
+                    "within its stroke",
+                    expected,
+                )
             modes.append(spec.slider_modes[leg])
         elif not reach:
-            raise PresetError(job.preset_path, key, f"{where} is not reachable: leg {leg + 1} "
-                              "cannot close within its stroke", expected)  # fmt: skip
+            raise PresetError(
+                job.preset_path,
+                key,
+                f"{where} is not reachable: leg {leg + 1} cannot close within its stroke",
+                expected,
+            )
         elif len(reach) == 2:
-            raise PresetError(job.preset_path, f"{job.key}.slider_modes",
-                              f"is not set and leg {leg + 1} reaches {where} in both modes "
-                              "within its stroke", "slider_modes = [s1, s2, s3], each 1 or -1")  # fmt: skip
+            raise PresetError(
+                job.preset_path,
+                f"{job.key}.slider_modes",
+                f"is not set and leg {leg + 1} reaches {where} in both modes within its stroke",
+                "slider_modes = [s1, s2, s3], each 1 or -1",
+            )
         else:
             modes.append(reach[0])
     links = [
@@ -128,10 +144,13 @@ def compute_singularities(job: Any, circle, extent, budget: Any) -> FreeCircle:
     status = np.zeros((1, 4))
     boxes_status(np.array([[cx, cx, cy, cy]]), g, sigma, offsets, status)
     if status[0, 0] != 1.0 or status[0, 2] <= 0.0 <= status[0, 3]:
-        raise PresetError(job.preset_path, f"{job.key}.circle_centre_cm",
-                          f"({cx:.6g}, {cy:.6g}) cm cannot be proved reachable and off the "
-                          "singularities (within round-off)",
-                          "a centre inside the workspace, off its singularities")  # fmt: skip
+        raise PresetError(
+            job.preset_path,
+            f"{job.key}.circle_centre_cm",
+            f"({cx:.6g}, {cy:.6g}) cm cannot be proved reachable and off the "
+            "singularities (within round-off)",
+            "a centre inside the workspace, off its singularities",
+        )
     sign = 1.0 if status[0, 2] > 0.0 else -1.0
 
     def decide(rows, start, stop, children, outcome):

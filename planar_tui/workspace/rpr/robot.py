@@ -107,8 +107,9 @@ def workspace_polygon(robot: Robot3RPR, spec, segments_per_turn: int, outward: b
     from shapely import intersection_all
 
     phi = spec.orientation_deg
-    centres = robot.centres_cm(math.radians(0.5 * (phi[0] + phi[1])) if isinstance(phi, tuple)
-                               else spec.orientation_rad)  # fmt: skip
+    centres = robot.centres_cm(
+        math.radians(0.5 * (phi[0] + phi[1])) if isinstance(phi, tuple) else spec.orientation_rad
+    )
     xlo, xhi, ylo, yhi = reach_box(robot, spec)
     annuli = []
     for (cx, cy), (lo, hi) in zip(centres, spec.leg_limits_cm, strict=True):

@@ -52,9 +52,12 @@ def workspace_margin_cm(robot: Robot3RPR, spec, point) -> float:
     outside)."""
     centres = robot.centres_cm(spec.orientation_rad)
     return min(
-        min(math.hypot(point[0] - cx, point[1] - cy) - lo, hi - math.hypot(point[0] - cx, point[1] - cy))
+        min(
+            math.hypot(point[0] - cx, point[1] - cy) - lo,
+            hi - math.hypot(point[0] - cx, point[1] - cy),
+        )
         for (cx, cy), (lo, hi) in zip(centres, spec.leg_limits_cm, strict=True)
-    )  # fmt: skip
+    )
 
 
 def det_sign(robot: Robot3RPR, spec, point) -> int:

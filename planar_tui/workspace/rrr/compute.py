@@ -49,8 +49,16 @@ def _interval_stage(form_code, p, spec, box, budget) -> np.ndarray:
     (:func:`planar_tui.workspace.rrr.joint.joint_stage`); the kept (x, y) boxes (may repeat)."""
     from planar_tui.workspace.rrr.joint import joint_stage
 
-    return joint_stage(form_code, p, spec.precision_cm, spec.angle_scale,
-                       np.array(spec.limits_rad), box, budget, CHUNK_BOXES)  # fmt: skip
+    return joint_stage(
+        form_code,
+        p,
+        spec.precision_cm,
+        spec.angle_scale,
+        np.array(spec.limits_rad),
+        box,
+        budget,
+        CHUNK_BOXES,
+    )
 
 
 def _arc_stage(p, limits, precision, seeds, budget, inside_cm2=0.0, tol=None):
@@ -167,10 +175,18 @@ def compute_workspace(robot: Robot3RRR, spec, budget: BoxBudget) -> WorkspaceOut
         assert geometric is not None
         empty = np.zeros((0, 4))
         return WorkspaceOutcome(
-            spec.form, spec.precision_cm, None, empty, np.zeros(0, np.int64), 0,
-            geometric.outer_cm2, geometric.inner_cm2, geometric,
-            time.perf_counter() - started, extent,
-        )  # fmt: skip
+            spec.form,
+            spec.precision_cm,
+            None,
+            empty,
+            np.zeros(0, np.int64),
+            0,
+            geometric.outer_cm2,
+            geometric.inner_cm2,
+            geometric,
+            time.perf_counter() - started,
+            extent,
+        )
 
     report_estimate(robot, spec, budget.progress)
     tol = tolerant_vector(spec)  # None: the nominal robot
@@ -205,11 +221,19 @@ def compute_workspace(robot: Robot3RRR, spec, budget: BoxBudget) -> WorkspaceOut
         return _arc_stage(p, limits, spec.refine_precision_cm, seeds, budget, inside_cm2, tol)
 
     return finished_outcome(
-        spec, boxes, status, refine, budget, geometric, started, extent,
+        spec,
+        boxes,
+        status,
+        refine,
+        budget,
+        geometric,
+        started,
+        extent,
         form=spec.form + (" (expanded)" if spec.expanded else ""),
         # the leg-wise and arc-distance pavings split boxes into disjoint halves: their
         # union's area is the sum (the sweep of union_area took 0.12 s of Table 3's
         # refined arc-distance job, 135 924 boxes, for the same figure)
         disjoint=legwise or spec.form == "arc-distance",
-        strategy=spec.strategy if interval_form else "", xy_boxes=xy_boxes,
-    )  # fmt: skip
+        strategy=spec.strategy if interval_form else "",
+        xy_boxes=xy_boxes,
+    )

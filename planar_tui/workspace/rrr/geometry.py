@@ -29,8 +29,9 @@ def geometric_area(
     Computed once per geometry in a process (robot, joint limits, orientation, tolerance):
     the jobs of a preset that share them (paper B's Table 3 has seven) share the result,
     an immutable :class:`GeometricArea`."""
-    return _geometric_area(robot, *_geometry_key(limits_rad, orientation_rad),
-                           relative_tolerance, max_segments)  # fmt: skip
+    return _geometric_area(
+        robot, *_geometry_key(limits_rad, orientation_rad), relative_tolerance, max_segments
+    )
 
 
 def outer_area_and_length(
@@ -41,8 +42,9 @@ def outer_area_and_length(
 
     Computed once per geometry in a process, like :func:`geometric_area`: the seven jobs
     of paper B's Table 3 estimate their boxes from one polygon."""
-    return _outer_area_and_length(robot, *_geometry_key(limits_rad, orientation_rad),
-                                  segments_per_turn)  # fmt: skip
+    return _outer_area_and_length(
+        robot, *_geometry_key(limits_rad, orientation_rad), segments_per_turn
+    )
 
 
 def _geometry_key(limits_rad, orientation_rad) -> tuple[tuple[tuple[float, float], ...], float]:

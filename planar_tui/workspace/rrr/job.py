@@ -308,13 +308,15 @@ _WARMUP_TABLE = (
     "precision_cm = 8.0\ngeometric_reference = false\n"
 )
 WARMUP_PARTS = {
-    **{strategy: _WARMUP_TABLE + f'refine_precision_cm = 4.0\nstrategy = "{strategy}"\n'
-       for strategy in STRATEGIES},
+    **{
+        strategy: _WARMUP_TABLE + f'refine_precision_cm = 4.0\nstrategy = "{strategy}"\n'
+        for strategy in STRATEGIES
+    },
     "arc-distance": _WARMUP_TABLE + 'form = "arc-distance"\n',
     "singularities": _WARMUP_TABLE + 'form = "arc-distance"\nsingularities = true\n'
     "elbow = [1, -1, 1]\n",
     "orientation": _WARMUP_TABLE + 'orientation_deg = [-1, 1]\norientation_mode = "total"\n',
-}  # fmt: skip
+}
 
 
 def warmup_parts(job: Job[WorkspaceSpec, Robot3RRR]) -> tuple[str, ...]:
@@ -354,14 +356,24 @@ JOB_KIND = JobKind(
         "run with --form mean-value writes table3-natural--form-mean-value.csv); names given "
         "with --out and --boxes are kept.",
         options=(
-            Option("--form", "form",
-                   "natural, mean-value, slope, arc-distance or geometric; overrides `form`."),
+            Option(
+                "--form",
+                "form",
+                "natural, mean-value, slope, arc-distance or geometric; overrides `form`.",
+            ),
             PRECISION_OPTION,
-            Option("--tolerance", "tolerance_cm",
-                   "Manufacturing tolerance +- in cm on every length and joint coordinate; "
-                   "overrides `tolerance_cm`.", float),
-            Option("--tolerance-mode", "tolerance_mode",
-                   "all (the robust workspace) or some; overrides `tolerance_mode`."),
+            Option(
+                "--tolerance",
+                "tolerance_cm",
+                "Manufacturing tolerance +- in cm on every length and joint coordinate; "
+                "overrides `tolerance_cm`.",
+                float,
+            ),
+            Option(
+                "--tolerance-mode",
+                "tolerance_mode",
+                "all (the robust workspace) or some; overrides `tolerance_mode`.",
+            ),
         ),
         outputs=(BOXES_OPTION,),
         view=MAP_VIEW,
@@ -370,4 +382,4 @@ JOB_KIND = JobKind(
     figure="planar_tui.figures.workspace:from_result",
     warmup=WARMUP_PARTS,
     warmup_parts=warmup_parts,
-)  # fmt: skip
+)

@@ -69,11 +69,17 @@ def new_memos(blocks: int, slots: int | None = None) -> np.ndarray:
 
 
 def joint_stage(
-    form_code: int, p: np.ndarray, precision_cm: float, angle_scale: float,
-    limits_rad: np.ndarray, box: tuple[tuple[float, float], tuple[float, float]],
-    budget: Budget, chunk_boxes: int, blocks: int | None = None,
+    form_code: int,
+    p: np.ndarray,
+    precision_cm: float,
+    angle_scale: float,
+    limits_rad: np.ndarray,
+    box: tuple[tuple[float, float], tuple[float, float]],
+    budget: Budget,
+    chunk_boxes: int,
+    blocks: int | None = None,
     memo_slots: int | None = None,
-) -> np.ndarray:  # fmt: skip
+) -> np.ndarray:
     """The kept (x, y) boxes of Algorithm 1 from the root ``box × limits_rad`` (rows
     ``x_lo, x_hi, y_lo, y_hi``; a box may repeat), on ``blocks`` stacks (default: one per
     Numba thread). After each round the budget gets the boxes processed, the fraction of
@@ -91,8 +97,14 @@ def joint_stage(
 
     blocks = blocks or get_num_threads()
     stacks = np.zeros((blocks, 256, STACK_COLUMNS))
-    root_row(stacks[0, 0], box[0][0], box[0][1], box[1][0], box[1][1],
-             np.asarray(limits_rad, dtype=np.float64).reshape(3, 2))  # fmt: skip
+    root_row(
+        stacks[0, 0],
+        box[0][0],
+        box[0][1],
+        box[1][0],
+        box[1][1],
+        np.asarray(limits_rad, dtype=np.float64).reshape(3, 2),
+    )
     root_volume = float(np.prod(stacks[0, 0, 1:10:2] - stacks[0, 0, 0:10:2]))
     n_stack = np.zeros(blocks, dtype=np.int64)
     n_stack[0] = 1
@@ -108,9 +120,19 @@ def joint_stage(
     while n_stack.sum() > 0:
         n_kept[:] = 0
         bisect_blocks(
-            form_code, p, precision_cm, angle_scale, stacks, n_stack, kept, n_kept,
-            per_round, processed, codes, memos,
-        )  # fmt: skip
+            form_code,
+            p,
+            precision_cm,
+            angle_scale,
+            stacks,
+            n_stack,
+            kept,
+            n_kept,
+            per_round,
+            processed,
+            codes,
+            memos,
+        )
         for block in range(blocks):
             rows = kept[block, : n_kept[block]]
             while n_found + len(rows) > len(found):
@@ -124,6 +146,7 @@ def joint_stage(
         volume = float(np.sum(np.prod(pending[:, 1:10:2] - pending[:, 0:10:2], axis=1)))
         if n_found:
             budget.progress.show_partial(boxes_cm=read_only(found[:n_found]), status=None)
-        budget.spend(int(processed.sum()), 1.0 - volume / root_volume, 0.0,
-                     kept_area + xy_area(pending))  # fmt: skip
+        budget.spend(
+            int(processed.sum()), 1.0 - volume / root_volume, 0.0, kept_area + xy_area(pending)
+        )
     return found[:n_found]

@@ -72,9 +72,19 @@ def legwise_stage(form_code, p, spec, box, budget, tol=None):
             counts = np.empty(n, dtype=np.int64)
             started = time.perf_counter()
             pave_level(
-                form_code, p, spec.precision_cm, spec.angle_scale, frontier, start, stop,
-                children, outcome, counts, limits, tol,
-            )  # fmt: skip
+                form_code,
+                p,
+                spec.precision_cm,
+                spec.angle_scale,
+                frontier,
+                start,
+                stop,
+                children,
+                outcome,
+                counts,
+                limits,
+                tol,
+            )
             elapsed = time.perf_counter() - started
             if elapsed > SLICE_TARGET_S and slice_boxes > 256:
                 slice_boxes //= 2

@@ -244,9 +244,23 @@ def compute_singularities(
     while True:
         tic = time.perf_counter()
         n_stack, n_kept, processed, code = singular_bisect_chunk(
-            g, r, elbow, limits, precision, LEAF_GRID, cx, cy, sign, stack, n_stack, kept,
-            status, n_kept, work, bounds,
-        )  # fmt: skip
+            g,
+            r,
+            elbow,
+            limits,
+            precision,
+            LEAF_GRID,
+            cx,
+            cy,
+            sign,
+            stack,
+            n_stack,
+            kept,
+            status,
+            n_kept,
+            work,
+            bounds,
+        )
         if code == CHUNK_LIMIT:  # aim at CHUNK_S of work per call
             elapsed = time.perf_counter() - tic
             work = int(min(max(work * CHUNK_S / max(elapsed, 1e-6), 256), 4 * work))
