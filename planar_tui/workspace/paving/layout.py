@@ -21,8 +21,6 @@ def three_points(reader, name, default, context, values):
 #: Paper B's base (an equilateral triangle of side 120 cm) and platform (base and height
 #: 40 cm): the illustrative 3-RPR's geometry.
 PAPER_B_BASE_CM = ((0.0, 0.0), (120.0, 0.0), (60.0, 60.0 * math.sqrt(3.0)))
-
-
 PAPER_B_PLATFORM_CM = ((0.0, 0.0), (40.0, 0.0), (20.0, 40.0))
 
 

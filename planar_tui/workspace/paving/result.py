@@ -8,8 +8,9 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Protocol
 
 from planar_tui.jobkind import Job, JobResult, Option, OutputOption
+from planar_tui.workspace.paving.orientation import describe
 from planar_tui.workspace.paving.tolerance import describe as describe_tolerance
-from planar_tui.workspace.paving.tolerance import tolerance_of
+from planar_tui.workspace.paving.tolerance import map_layers, tolerance_of
 
 if TYPE_CHECKING:
     from planar_tui.workspace.paving.levels import WorkspaceOutcome
@@ -38,7 +39,7 @@ class WorkspaceResult(JobResult):
     ``extra_tables["boxes"]``."""
 
     outcome: WorkspaceOutcome
-    #: :class:`~planar_tui.workspace.rrr.singularity.SingularityOutcome` with ``singularities``.
+    #: The robot's singularity outcome, with ``singularities``.
     singularity: SingularOverlay | None = None
     #: With a tolerance: the nominal and the other mode's outcomes (map and figure).
     companions: dict[str, WorkspaceOutcome] | None = None
@@ -47,8 +48,6 @@ class WorkspaceResult(JobResult):
 def map_title(job: Job[Any, Any], outcome: WorkspaceOutcome) -> str:
     """What a map shows: ``paper-b-table3:workspace[4]: mean-value, ε = 0.1172 cm`` (and
     the refinement precision), as run, overrides included."""
-    from planar_tui.workspace.paving.orientation import describe
-
     title = f"{job.label}: {outcome.form}, ε = {outcome.precision_cm:.4g} cm"
     if isinstance(getattr(job.spec, "orientation_deg", None), tuple):  # a five-bar has none
         title += f", {describe(job.spec)}"
@@ -100,8 +99,6 @@ def map_content(job: Job[Any, Any], result: Any) -> tuple[Any, Any, dict[str, An
     companions = getattr(result, "companions", None)
     if not companions:
         return outcome.boxes, outcome.status, drawn
-    from planar_tui.workspace.paving.tolerance import map_layers
-
     boxes, status, layers = map_layers(outcome, companions, job.spec.tolerance_mode or "all")
     return boxes, status, {**drawn, "layers": layers}
 
