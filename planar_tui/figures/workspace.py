@@ -157,10 +157,7 @@ def draw(boxes: Any, inside: Any, title: str, robot: Any = None, spec: Any = Non
     if singularity is not None:
         draw_singularity(ax, singularity)
     if with_robot:
-        from planar_tui.workspace.rrr.geometry import workspace_polygon
-
-        polygon = workspace_polygon(robot, spec.limits_rad, spec.orientation_rad,
-                                    BOUNDARY_SEGMENTS, False)  # fmt: skip
+        polygon = spec.mechanism.polygon(robot, spec, BOUNDARY_SEGMENTS, False)
         for k, ring in enumerate(_polygon_rings(polygon)):
             for target in (ax, overview):
                 target.plot(ring[:, 0], ring[:, 1], color="k", lw=1.0, gid="exact",
@@ -263,7 +260,7 @@ TOLERANCE_LAYERS = (
 def draw_tolerance(job: Any, result: Any, exact: Any = None) -> Any:
     """A tolerance-certified job: the "some", nominal and robust ("all") workspaces
     overlaid, each bracket in the legend, and the nominal exact boundary (``exact``, the
-    kind's inner polygon; default the 3-RRR's)."""
+    kind's inner polygon; default its robot's, :meth:`Mechanism.polygon`)."""
     import textwrap
 
     import numpy as np
@@ -271,7 +268,6 @@ def draw_tolerance(job: Any, result: Any, exact: Any = None) -> Any:
 
     from planar_tui.workspace.paving.levels import INSIDE
     from planar_tui.workspace.paving.result import map_title
-    from planar_tui.workspace.rrr.geometry import workspace_polygon
 
     outcomes = {job.spec.tolerance_mode: result.outcome, **result.companions}
     fig = new_figure(9.0, 5.5)
@@ -286,9 +282,8 @@ def draw_tolerance(job: Any, result: Any, exact: Any = None) -> Any:
             label=f"{label}: {area:.5g} cm2", rasterized=len(b) > RASTER_ABOVE,
         ))  # fmt: skip
     polygon = exact
-    if polygon is None:
-        polygon = workspace_polygon(job.robot, job.spec.limits_rad, job.spec.orientation_rad,
-                                    BOUNDARY_SEGMENTS, False)  # fmt: skip
+    if polygon is None:  # the robot's own (a 3-RRR job passes none)
+        polygon = job.spec.mechanism.polygon(job.robot, job.spec, BOUNDARY_SEGMENTS, False)
     for k, ring in enumerate(_polygon_rings(polygon)):
         ax.plot(ring[:, 0], ring[:, 1], color="k", lw=0.8, gid="exact",
                 label="nominal exact boundary" if k == 0 else None)  # fmt: skip
