@@ -100,12 +100,14 @@ class Mechanism(Protocol):
     def compute_singularities(self, job: Any, prepared: Any, extent: Any, budget: Any) -> Any:
         """The singular boxes and the certified circle (a
         :class:`~planar_tui.workspace.paving.result.SingularOverlay` with ``columns()``)."""
-        raise NotImplementedError(f"{self.name} certifies no singularities")
+        problem = f"{self.name} certifies no singularities (has_singularities is false)"
+        raise NotImplementedError(problem)
 
     def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:
         """The maximal or total orientation workspace over ``orientation_deg = [lo, hi]``
         (a :class:`~planar_tui.workspace.paving.levels.WorkspaceOutcome`)."""
-        raise NotImplementedError(f"{self.name} paves no orientation range")
+        problem = f"{self.name} paves no orientation range (has_orientation_ranges is false)"
+        raise NotImplementedError(problem)
 
 
 __all__ = ["Mechanism"]
