@@ -1,15 +1,15 @@
-"""The sweep columns of the workspace jobs of the generic runner and the tolerance columns,
-named without running them (the kinds' ``figure_names`` hook: a resumed sweep checks its
-checkpoint's records against them, an optimisation's objectives and constraints must name
-one of them, before anything runs).
+"""The sweep columns of the 3-RPR, 3-PRR and five-bar jobs, named without running them (the
+kinds' ``figure_names`` hook: a resumed sweep checks its checkpoint's records against them,
+an optimisation's objectives and constraints must name one of them, before anything runs).
 
 A job's columns are its summary CSV's but the wall time (``seconds``: a sweep row has its
-own): the summary columns (:data:`~planar_tui.workspace.paving.levels.SUMMARY_HEADER`), then
-the singularity-free circle's of a robot that certifies them (every job has them, empty
-without ``singularities``; :data:`planar_tui.workspace.paving.circle.HEADER`); with a
-tolerance, ``tolerance_mode`` and the half-widths (:func:`tolerance_names`). A robot with its
-own runner names its own (the five-bar's, :mod:`planar_tui.workspace.fivebar.job`).
-``tests/test_workspace_columns.py`` holds them to the runs'.
+own): the 3-RRR's summary columns (:data:`~planar_tui.workspace.paving.levels.SUMMARY_HEADER`),
+then its singularity-free circle's (every job has them, empty without ``singularities``):
+the 3-RRR's for the 3-RPR and 3-PRR (:data:`planar_tui.workspace.paving.circle.HEADER`), for
+a robot whose Mechanism certifies singularities; the five-bar names its own
+(:func:`planar_tui.workspace.fivebar.job.fivebar_figure_names`: its ``working_mode``
+in place of the ``strategy``); with a tolerance, ``tolerance_mode`` and the half-widths
+(:func:`tolerance_names`). ``tests/test_workspace_columns.py`` holds them to the runs'.
 """
 
 from __future__ import annotations
@@ -18,9 +18,7 @@ from typing import Any
 
 
 def planar_figure_names(job: Any) -> tuple[str, ...]:
-    """The columns of a job of the generic runner
-    (:func:`planar_tui.workspace.paving.runner.run_planar`): the circle's with a robot that
-    certifies singularities."""
+    """The columns of a 3-RPR or 3-PRR job (:func:`planar_tui.workspace.paving.runner.run_planar`)."""
     from planar_tui.workspace.paving.circle import HEADER
     from planar_tui.workspace.paving.levels import SUMMARY_HEADER
 
