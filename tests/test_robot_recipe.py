@@ -1,8 +1,8 @@
 """The README's recipe for a new parallel robot names real files (issue 32): for every
-robot of the workspace, its subpackage (``__init__.py``, ``robot.py``, ``job.py``), its
-kernel in ``kernels/``, its registry lines, its entry in the packages list and in the
-import contract that keeps the robots independent, and its app pane; the core names none
-of them (``tests/test_new_mechanism.py`` follows the recipe in one file)."""
+robot of the workspace, its subpackage (``__init__.py``, ``robot.py``, ``mechanism.py``,
+``job.py``), its kernel in ``kernels/``, its registry lines, its entry in the packages list
+and in the import contract that keeps the robots independent, and its app pane; the core
+names none of them (``tests/test_new_mechanism.py`` follows the recipe in one file)."""
 
 from __future__ import annotations
 
@@ -21,7 +21,7 @@ ROBOTS = {
     "fivebar": ("workspace5r", "robot5r", "workspace5r"),
 }
 #: The files of a robot's subpackage the recipe names.
-SUBPACKAGE_FILES = ("__init__.py", "robot.py", "job.py")
+SUBPACKAGE_FILES = ("__init__.py", "robot.py", "mechanism.py", "job.py")
 
 
 def pyproject() -> dict:
@@ -52,7 +52,7 @@ def test_each_robot_provides_its_mechanism_and_its_tab(robot):
     job_kind = JOB_KINDS[ROBOTS[robot][0]]
     mechanism = job_kind.settings.mechanism
     assert isinstance(mechanism, Mechanism)
-    assert type(mechanism).__module__.startswith(f"planar_tui.workspace.{robot}.")
+    assert type(mechanism).__module__ == f"planar_tui.workspace.{robot}.mechanism"
     assert job_kind.tab is not None
 
 

@@ -11,9 +11,7 @@ are never split, boundary boxes are halved down to ``precision_cm`` (and again d
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
 from dataclasses import dataclass
-from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, ClassVar
 
 from planar_tui.jobkind import (
@@ -32,7 +30,8 @@ from planar_tui.schema import (
     setting,
     string,
 )
-from planar_tui.workspace.fivebar.robot import Robot5R, workspace_polygon
+from planar_tui.workspace.fivebar.mechanism import MECHANISM
+from planar_tui.workspace.fivebar.robot import Robot5R
 from planar_tui.workspace.fivebar.tolerance import (
     TOLERANCE_FIELDS_5R,
     TOLERANCE_KEYS_5R,
@@ -87,47 +86,6 @@ def _search_box(reader: TableReader, name, default, robot: Robot5R, values):
     if rxlo <= rxhi and not (xlo <= rxlo and rxhi <= xhi and ylo <= rylo and ryhi <= yhi):
         raise reader.error(name, "cannot contain the robot's reach", expected)
     return rows
-
-
-class MechanismFiveBar(Mechanism):
-    """The five-bar's separator (:class:`~planar_tui.workspace.paving.mechanism.Mechanism`):
-    the exact leg test of :mod:`planar_tui.kernels.workspace5r` (or its tolerance-certified
-    form, :func:`~planar_tui.workspace.fivebar.tolerance.tolerant_level_kernel`); its
-    singularities are its job's own (:mod:`.singularity`)."""
-
-    name = "five-bar"
-    explores = False
-    tolerance_keys = TOLERANCE_KEYS_5R
-    singular_boxes_per_step = 20.0
-    tolerance_boxes = MappingProxyType({"all": 1.0, "some": 1.0})
-    has_singularities = False  # its runner, not the generic one, certifies them
-    has_orientation_ranges = False
-
-    def parameters(self, robot: Any, spec: Any) -> Any:
-        return robot.leg_arrays()
-
-    def level_kernel(self) -> Callable[..., None]:
-        from planar_tui.kernels.workspace5r import level
-
-        return level
-
-    def decider(self, robot: Any, spec: Any, precision_cm: float) -> Callable[..., None]:
-        (legs, limits), level = self.parameters(robot, spec), self.level_kernel()
-        level = tolerant_level_kernel(spec, level)
-
-        def decide(rows: Any, start: int, stop: int, children: Any, outcome: Any) -> None:
-            level(legs, limits, precision_cm, rows, start, stop, children, outcome)
-
-        return decide
-
-    def reach_box(self, robot: Any, spec: Any) -> tuple[float, float, float, float]:
-        return robot.reach_box_cm()
-
-    def polygon(self, robot: Any, spec: Any, segments_per_turn: int, outward: bool) -> Any:
-        return workspace_polygon(robot, segments_per_turn, outward)
-
-
-MECHANISM = MechanismFiveBar()
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -233,7 +191,7 @@ def compute_fivebar(robot: Robot5R, spec: FiveBarSpec, budget: BoxBudget) -> Wor
 
     from planar_tui.kernels.workspace5r import level
     from planar_tui.workspace.fivebar.robot import geometric_area
-    from planar_tui.workspace.fivebar.tolerance import reach_box_cm, tolerant_level_kernel
+    from planar_tui.workspace.fivebar.tolerance import reach_box_cm
     from planar_tui.workspace.paving.levels import (
         WorkspaceOutcome,
         finished_outcome,
