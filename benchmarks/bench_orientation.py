@@ -34,12 +34,13 @@ prepare_kernels()  # before any kernel is imported
 
 from planar_tui.jobkind import Job  # noqa: E402
 from planar_tui.progress import Progress  # noqa: E402
-from planar_tui.workspace.compute import BoxBudget, compute_workspace  # noqa: E402
-from planar_tui.workspace.job import WorkspaceSpec  # noqa: E402
-from planar_tui.workspace.orientation import compute_orientation_workspace  # noqa: E402
-from planar_tui.workspace.orientation_reference import reference_area  # noqa: E402
-from planar_tui.workspace.robot import Robot3RRR  # noqa: E402
-from planar_tui.workspace.singularity import compute_singularities  # noqa: E402
+from planar_tui.workspace.paving.levels import BoxBudget  # noqa: E402
+from planar_tui.workspace.rrr.compute import compute_workspace  # noqa: E402
+from planar_tui.workspace.rrr.job import WorkspaceSpec  # noqa: E402
+from planar_tui.workspace.rrr.orientation import compute_orientation_workspace  # noqa: E402
+from planar_tui.workspace.rrr.orientation_reference import reference_area  # noqa: E402
+from planar_tui.workspace.rrr.robot import Robot3RRR  # noqa: E402
+from planar_tui.workspace.rrr.singularity import compute_singularities  # noqa: E402
 
 ROBOT = Robot3RRR()
 LIMITS = ((20.0, 70.0), (110.0, 160.0), (245.0, 295.0))
@@ -70,7 +71,7 @@ def spec(**changes):
 
 
 def main() -> None:
-    from planar_tui.workspace.singularity import prepare_workspace
+    from planar_tui.workspace.rrr.job import prepare_workspace
 
     rows = []
     for eps in (0.25, 0.125):

@@ -32,7 +32,6 @@ from __future__ import annotations
 import csv
 import itertools
 import math
-import statistics
 import subprocess
 import sys
 import tempfile
@@ -46,11 +45,13 @@ from planar_tui.runtime import prepare_kernels  # noqa: E402
 
 prepare_kernels()  # before any kernel is imported
 
+from benchmarks.timing import load, wall  # noqa: E402
 from planar_tui.progress import Progress  # noqa: E402
-from planar_tui.workspace.compute import BoxBudget, compute_workspace  # noqa: E402
-from planar_tui.workspace.geometry import geometric_area  # noqa: E402
-from planar_tui.workspace.job import WorkspaceSpec  # noqa: E402
-from planar_tui.workspace.robot import Robot3RRR  # noqa: E402
+from planar_tui.workspace.paving.levels import BoxBudget  # noqa: E402
+from planar_tui.workspace.rrr.compute import compute_workspace  # noqa: E402
+from planar_tui.workspace.rrr.geometry import geometric_area  # noqa: E402
+from planar_tui.workspace.rrr.job import WorkspaceSpec  # noqa: E402
+from planar_tui.workspace.rrr.robot import Robot3RRR  # noqa: E402
 
 REFERENCE = REPO / "tests" / "data" / "reference" / "paper_workspace_tables.csv"
 ROBOT = Robot3RRR()
@@ -166,10 +167,6 @@ def in_process() -> None:
 #: Issue 12's case: 120° joint ranges, φ = −20°, paper B's robot.
 WIDE = (((-30, 90), (90, 210), (210, 330)), -20.0)
 INTERVAL_FORMS = ("natural", "mean-value", "slope")
-
-
-def load() -> str:
-    return " ".join(Path("/proc/loadavg").read_text().split()[:3])
 
 
 def wide_spec(form, precision, strategy, **extra):
@@ -334,7 +331,7 @@ def parallel_paving(precision: float = 0.008, runs: int = 3) -> None:
 def joint_threads(runs: int = 3) -> None:
     """Issue 21: paper B's Algorithm 1 (the joint strategy) on Table 3's four interval jobs
     at the paper's precision, on 1, 2 and every thread (one stack per thread, work
-    shared: :mod:`planar_tui.workspace.joint`), best of ``runs`` interleaved runs,
+    shared: :mod:`planar_tui.workspace.rrr.joint`), best of ``runs`` interleaved runs,
     identical boxes checked; the baselines are the same bisection on one thread, and on
     one thread without the legs' verdict memo (``MEMO_SLOTS = 0``: every verdict computed
     afresh), identical boxes checked too."""
@@ -388,15 +385,6 @@ geometric_reference = false
 """
 
 
-def wall(command, runs=3):
-    times = []
-    for _ in range(runs):
-        started = time.perf_counter()
-        subprocess.run(command, check=True, capture_output=True, cwd=REPO)
-        times.append(time.perf_counter() - started)
-    return statistics.median(times)
-
-
 FLOOR = (
     "import numba, numpy as np\n"
     "from planar_tui.kernels.workspace_union import union_area\n"
@@ -425,7 +413,7 @@ def other_kinds() -> None:
 
     from planar_tui.presets import load_preset
     from planar_tui.resources import resolve_preset
-    from planar_tui.workspace.planar import compute_planar
+    from planar_tui.workspace.paving.runner import compute_planar
 
     print("\n## 3-RPR and 3-PRR (issue 25): bundled designs at ε = 0.05 cm\n")
     print("| run | seconds | target |")
@@ -558,9 +546,11 @@ if __name__ == "__main__":
         whole_process()
     if args.part in ("all", "kinds"):
         other_kinds()
-    if args.part in ("all", "fivebar"):  # issue 25's five-bar goal
-        from benchmarks.bench_workspace5r import main as fivebar
-
-        fivebar()
+    if args.part in ("all", "fivebar"):  # issue 25's five-bar goal: its own script
+        subprocess.run(
+            [sys.executable, str(REPO / "benchmarks" / "bench_workspace5r.py")],
+            check=True,
+            cwd=REPO,
+        )
     if args.part in ("all", "tolerance"):
         tolerance_goal()

@@ -45,9 +45,10 @@ def best_of(run, runs=3):
 def baseline_seconds() -> float:
     """The 3-RRR's arc-distance paving of paper B's Table 3 at ε = EPS (best of 3)."""
     from planar_tui.progress import Progress
-    from planar_tui.workspace.compute import BoxBudget, compute_workspace
-    from planar_tui.workspace.job import WorkspaceSpec
-    from planar_tui.workspace.robot import Robot3RRR
+    from planar_tui.workspace.paving.levels import BoxBudget
+    from planar_tui.workspace.rrr.compute import compute_workspace
+    from planar_tui.workspace.rrr.job import WorkspaceSpec
+    from planar_tui.workspace.rrr.robot import Robot3RRR
 
     spec = WorkspaceSpec(
         joint_limits_deg=((20, 70), (110, 160), (245, 295)), precision_cm=EPS,
@@ -69,9 +70,9 @@ def baseline_seconds() -> float:
 def in_process() -> None:
     from planar_tui.presets import load_preset
     from planar_tui.progress import Progress
-    from planar_tui.workspace.compute import BoxBudget
-    from planar_tui.workspace.fivebar import geometric_area
-    from planar_tui.workspace.fivebar_job import compute_fivebar
+    from planar_tui.workspace.fivebar.job import compute_fivebar
+    from planar_tui.workspace.fivebar.robot import geometric_area
+    from planar_tui.workspace.paving.levels import BoxBudget
 
     base = baseline_seconds()
     print(f"\n## Five-bar workspace at ε = {EPS} cm, in process (best of 3)\n")
@@ -122,11 +123,11 @@ def tolerance(runs: int = 5) -> None:
     these.)"""
     from statistics import median
 
-    from benchmarks.bench_workspace import load
+    from benchmarks.timing import load
     from planar_tui.presets import load_preset
     from planar_tui.progress import Progress
-    from planar_tui.workspace.compute import BoxBudget
-    from planar_tui.workspace.fivebar_job import compute_fivebar
+    from planar_tui.workspace.fivebar.job import compute_fivebar
+    from planar_tui.workspace.paving.levels import BoxBudget
 
     print(f"\n## Five-bar, tolerance-certified at ε = {EPS} cm (goal: <= 3x nominal)\n")
     print(f"load before: {load()}\n")
@@ -170,7 +171,7 @@ def tolerance(runs: int = 5) -> None:
 
 
 def whole_process() -> None:
-    from benchmarks.bench_workspace import wall  # the floor: its part "cli"
+    from benchmarks.timing import wall  # the floor: bench_workspace.py, its part "cli"
 
     print("\n## Five-bar, whole process through the CLI (median of 3, Numba cache warm)\n")
     print("| run | seconds | goal |")

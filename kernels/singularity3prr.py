@@ -23,7 +23,7 @@ rigorous arithmetic of :mod:`kernels.interval`. A leg is *out* if :math:`l^2 - h
 :math:`d_i` does not depend on the stroke).
 
 **Paving** (:func:`prr_singular_level`, a level of
-:func:`planar_tui.workspace.compute.pave_in_levels`): a box with every leg *in* and a
+:func:`planar_tui.workspace.paving.levels.pave_in_levels`): a box with every leg *in* and a
 determinant excluding 0 is *good* (no bad point: dropped, ``OUTSIDE``); a box with some leg
 *out* is all *bad* (kept unsplit, labelled ``INSIDE`` here); any other box is halved down to
 ``precision`` and kept (``BOUNDARY``: may hold a singular pose, or the edge of

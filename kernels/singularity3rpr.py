@@ -16,7 +16,7 @@ with the rigorous arithmetic of :mod:`kernels.interval`, so the enclosure holds
 :math:`\\det A(p)` for every point of the box.
 
 **Paving** (:func:`singular_level`, a level of
-:func:`planar_tui.workspace.compute.pave_in_levels`): a box proved outside the workspace
+:func:`planar_tui.workspace.paving.levels.pave_in_levels`): a box proved outside the workspace
 (:func:`~kernels.workspace3rpr.classify_rpr_box`) or whose determinant enclosure excludes 0
 holds no singular pose of the workspace and is dropped; any other box is halved down to
 ``precision`` and kept. Every singular pose of the workspace lies in a kept leaf.

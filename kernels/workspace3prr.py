@@ -36,7 +36,7 @@ compare with in place of :math:`l`: ``out_seg`` (``OUTSIDE`` if :math:`\\min d_{
 it), ``out_end`` (if :math:`\\max d_{end} <` it), ``in_seg`` (``INSIDE`` needs
 :math:`\\max d_{seg} \\le` it), ``in_end`` (and :math:`\\min d_{end} \\ge` it). All four are
 :math:`l` for the nominal robot; a tolerance-certified job moves them
-(:func:`planar_tui.workspace.prr_tolerance.leg_thresholds`).
+(:func:`planar_tui.workspace.prr.tolerance.leg_thresholds`).
 """
 
 import math

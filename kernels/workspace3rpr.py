@@ -31,7 +31,7 @@ box is ``OUTSIDE`` if some leg's distance range :math:`[d_{lo}, d_{hi}]` has
 :math:`d_{hi} < out_{lo}` or :math:`d_{lo} > out_{hi}`, ``INSIDE`` if every leg's lies in
 :math:`[in_{lo}, in_{hi}]`. For the nominal robot all four are ``rho_lo, rho_hi`` (the test
 above); a tolerance-certified job moves them
-(:func:`planar_tui.workspace.rpr_tolerance.leg_thresholds`); the comparisons are on the
+(:func:`planar_tui.workspace.rpr.tolerance.leg_thresholds`); the comparisons are on the
 squared distances, the squared thresholds rounded outward.
 """
 
@@ -76,23 +76,6 @@ def classify_rpr_box(xlo, xhi, ylo, yhi, p):
             return OUTSIDE
         inside = inside and label == INSIDE
     return INSIDE if inside else BOUNDARY
-
-
-@kernel
-def rpr_point_feasible(x, y, p):
-    """Every leg closes at the platform position ``(x, y)`` (float test, for references)."""
-    for leg in range(3):
-        f = (x - p[leg, 0]) ** 2 + (y - p[leg, 1]) ** 2
-        if f < p[leg, 2] * p[leg, 2] or f > p[leg, 3] * p[leg, 3]:
-            return False
-    return True
-
-
-@kernel
-def classify_rpr_boxes(boxes, p, out):
-    """:func:`classify_rpr_box` for every row ``x_lo, x_hi, y_lo, y_hi`` of ``boxes``."""
-    for r in range(boxes.shape[0]):
-        out[r] = classify_rpr_box(boxes[r, 0], boxes[r, 1], boxes[r, 2], boxes[r, 3], p)
 
 
 @kernel(parallel=True)

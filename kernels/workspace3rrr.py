@@ -164,15 +164,9 @@ def _times_centered(glo, ghi, xlo, xhi, m):
 
 
 @kernel
-def mean_value(xlo, xhi, ylo, yhi, tlo, thi, dx, dy, l1, l2):
-    """Mean-value form (paper eq. 14) of one leg constraint."""
-    slo, shi, clo, chi = isincos(tlo, thi)
-    return mean_value_sc(xlo, xhi, ylo, yhi, tlo, thi, slo, shi, clo, chi, dx, dy, l1, l2)
-
-
-@kernel
 def mean_value_sc(xlo, xhi, ylo, yhi, tlo, thi, slo, shi, clo, chi, dx, dy, l1, l2):
-    """:func:`mean_value` given :math:`\\sin\\Theta \\subseteq [s_{lo}, s_{hi}]` and
+    """Mean-value form (paper eq. 14) of one leg constraint, given
+    :math:`\\sin\\Theta \\subseteq [s_{lo}, s_{hi}]` and
     :math:`\\cos\\Theta \\subseteq [c_{lo}, c_{hi}]` (:func:`isincos`)."""
     mx = 0.5 * (xlo + xhi)
     my = 0.5 * (ylo + yhi)
@@ -209,15 +203,9 @@ def sinc_lower(h):
 
 
 @kernel
-def slope(xlo, xhi, ylo, yhi, tlo, thi, dx, dy, l1, l2):
-    """Slope form of one leg constraint about the box midpoint (see module docstring)."""
-    slo, shi, clo, chi = isincos(tlo, thi)
-    return slope_sc(xlo, xhi, ylo, yhi, tlo, thi, slo, shi, clo, chi, dx, dy, l1, l2)
-
-
-@kernel
 def slope_sc(xlo, xhi, ylo, yhi, tlo, thi, slo, shi, clo, chi, dx, dy, l1, l2):
-    """:func:`slope` given the enclosures of :math:`\\sin\\Theta` and :math:`\\cos\\Theta`."""
+    """Slope form of one leg constraint about the box midpoint (see module docstring), given
+    the enclosures of :math:`\\sin\\Theta` and :math:`\\cos\\Theta`."""
     mx = 0.5 * (xlo + xhi)
     my = 0.5 * (ylo + yhi)
     mt = 0.5 * (tlo + thi)
@@ -345,26 +333,6 @@ def leg_enclosure_sc(form, leg, xlo, xhi, ylo, yhi, tlo, thi, slo, shi, clo, chi
         return natural_expanded_sc(leg, xlo, xhi, ylo, yhi, slo, shi, clo, chi, p[0], p[1],
                                    p[2], p[3], p[8], p[9], p[10], p[11])  # fmt: skip
     return _compact(xlo, xhi, ylo, yhi, slo, shi, clo, chi, dx, dy, p[0], p[1])
-
-
-@kernel
-def enclose_legs(form, boxes, p, out):
-    """Enclosures of all three legs over every row of ``boxes`` (layout of the stack)."""
-    for r in range(boxes.shape[0]):
-        for leg in range(3):
-            lo, hi = leg_enclosure(
-                form,
-                leg,
-                boxes[r, 0],
-                boxes[r, 1],
-                boxes[r, 2],
-                boxes[r, 3],
-                boxes[r, 4 + 2 * leg],
-                boxes[r, 5 + 2 * leg],
-                p,
-            )
-            out[r, leg, 0] = lo
-            out[r, leg, 1] = hi
 
 
 def parameter_vector(l1_cm, l2_cm, offsets_cm, a_cm=0.0, b_cm=0.0, phi_rad=0.0):

@@ -1,5 +1,5 @@
 """Exact leg-wise test of the five-bar's workspace (one leg = a 3-RRR leg with
-:math:`q_i = 0`) and its level-wise 2-D paving (:mod:`planar_tui.workspace.fivebar`).
+:math:`q_i = 0`) and its level-wise 2-D paving (:mod:`planar_tui.workspace.fivebar.robot`).
 
 ``legs`` has one row per leg ``ax, ay, l1, l2, sigma, bx_lo, by_lo, bx_hi, by_hi`` (cm;
 ``sigma`` the elbow sign of the working mode, 0 for any branch; ``b_lo``, ``b_hi`` the
@@ -14,7 +14,7 @@ half-diagonal :math:`\\rho` about :math:`c` the leg is *out* if :math:`d_{\\min}
 \\le d_{\\max}(c) - \\rho`.
 
 **One branch** (``sigma = ±1``): the region :math:`R_\\sigma \\subseteq R` is closed and its
-boundary lies on four arcs (module docstring of :mod:`planar_tui.workspace.fivebar`). The
+boundary lies on four arcs (module docstring of :mod:`planar_tui.workspace.fivebar.robot`). The
 distance from a point to an arc is 1-Lipschitz (the :math:`d_{\\min}` of
 :func:`arc_distance_range`): when the box's centre is farther than :math:`\\rho` from all
 four arcs, the (connected) box misses :math:`\\partial R_\\sigma`, so it lies wholly inside

@@ -1,6 +1,6 @@
 """Tolerance-certified five-bar workspaces: the exact leg-wise test of
 :mod:`kernels.workspace5r` with interval parameters (derivation and bound in
-:mod:`planar_tui.workspace.fivebar_tolerance`).
+:mod:`planar_tui.workspace.fivebar.tolerance`).
 
 Every robot within the tolerances has, per leg and independently, the base joint
 :math:`A_i + a` (:math:`|a_x|, |a_y| \\le t_A`), the proximal :math:`l_1 + \\tau`

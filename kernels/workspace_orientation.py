@@ -197,16 +197,6 @@ def classify_box_range(
     return (OUTSIDE if mode == MAXIMAL else INSIDE), work
 
 
-@kernel
-def classify_boxes_range(boxes, mode, phi_lo, phi_hi, phi_min, g, limits, pieces, out, mechanism):
-    """:func:`classify_box_range` for every row ``x_lo, x_hi, y_lo, y_hi`` of ``boxes``."""
-    for r in range(boxes.shape[0]):
-        out[r] = classify_box_range(
-            boxes[r, 0], boxes[r, 1], boxes[r, 2], boxes[r, 3],
-            mode, phi_lo, phi_hi, phi_min, g, limits, pieces, mechanism,
-        )[0]  # fmt: skip
-
-
 @kernel(parallel=True)
 def range_level(
     mode, phi_lo, phi_hi, phi_min, g, limits, precision, rows, start, stop, children, outcome,

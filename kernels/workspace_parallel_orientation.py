@@ -35,11 +35,11 @@ classification (maximal, total) is :func:`kernels.workspace_orientation.classify
 (1e-9 cm), far above the round-off of the chord, of the shifted features' cos/sin and of the
 threshold sums at robot scale (about 1e-14 cm at 100 cm). At a point orientation (``h = 0``:
 a degenerate range, the midpoint tests) :math:`\\delta = 0` and the shifted features are
-computed by the same float formulas as :meth:`planar_tui.workspace.rpr.Robot3RPR.centres_cm`
-and :meth:`planar_tui.workspace.prr.Robot3PRR.shifted_ends_cm`: the test is then the
+computed by the same float formulas as :meth:`planar_tui.workspace.rpr.robot.Robot3RPR.centres_cm`
+and :meth:`planar_tui.workspace.prr.robot.Robot3PRR.shifted_ends_cm`: the test is then the
 constant-orientation job's bit for bit, trusting the same cos/sin.
 
-Geometry vector ``g`` (the 3-RRR's layout, :func:`planar_tui.workspace.planar.
+Geometry vector ``g`` (the 3-RRR's layout, :func:`planar_tui.workspace.paving.runner.
 platform_and_base_vector`): ``[0, 0, qx1, qy1, qx2, qy2, qx3, qy3, bx1, by1, bx2, by2, bx3,
 by3]`` (cm; ``b`` the base joints :math:`A_i` of a 3-RPR, the slider line points
 :math:`B_i` of a 3-PRR). ``limits``: a 3-RPR's (3, 2) leg limits ``[lo, hi]``; a 3-PRR's

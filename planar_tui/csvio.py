@@ -62,7 +62,7 @@ class CsvTable:
     def first_non_finite_column(self) -> str | None:
         """The first column holding a NaN or an infinity, or ``None`` (one vectorised test
         for a float array or rows that test themselves, ``rows.non_finite_column()``, as
-        :class:`~planar_tui.workspace.compute.BoxRows` does; a pass over the cells
+        :class:`~planar_tui.workspace.paving.levels.BoxRows` does; a pass over the cells
         otherwise)."""
         own_test = getattr(self.rows, "non_finite_column", None)
         if own_test is not None:

@@ -1,7 +1,7 @@
 """What a robot kind and a job kind are, what a job is and what running one returns.
 
 A job kind lives in one module of its domain package (``planar_tui/dynamics/simulate.py``,
-``planar_tui/sensitivity/job.py``, ``planar_tui/workspace/job.py`` ...), which holds its
+``planar_tui/sensitivity/job.py``, ``planar_tui/workspace/rrr/job.py`` ...), which holds its
 settings dataclass (the preset keys, declared once with :func:`planar_tui.schema.setting`),
 its runner, its result dataclass and its terminal view, and ends with one
 :class:`JobKind` that declares the rest as data: its CLI command and options
@@ -300,3 +300,16 @@ class JobKind:
         """The job ready to run (see ``prepare``, called once here); :class:`PresetError`
         if it cannot run."""
         return PreparedJob(job, None if self.prepare is None else self.prepare(job))
+
+
+def resolve(path: str) -> Any:
+    """The object an import path names: ``"package.module:attribute"`` (the attribute of
+    that module, imported then) or ``"package.module"`` (the module). The one resolver of
+    the ``module:attr`` strings the kinds declare (a tab's pane, a figure function, a
+    registry line) and of the modules imported on demand; ``ImportError`` or
+    ``AttributeError`` when it names nothing."""
+    import importlib
+
+    module, _, attribute = path.partition(":")
+    found = importlib.import_module(module)
+    return getattr(found, attribute) if attribute else found

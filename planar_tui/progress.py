@@ -54,7 +54,7 @@ class ProgressState:
     ``partial`` maps names to live partial results: **read-only NumPy views** into the
     runner's own arrays (not copies), valid until the next update replaces them (e.g. the
     workspace's ``boxes_cm`` and ``status`` kept so far, see
-    :mod:`planar_tui.workspace.compute`); copy what must outlive the run.
+    :mod:`planar_tui.workspace.paving.levels`); copy what must outlive the run.
     ``stage_started_s`` is the :func:`time.monotonic` time the stage began (for an ETA),
     ``cancel_requested`` whether a cancel was asked for (the runner stops at its next
     check); ``cancelled`` is true only on the last state of a run that stopped on a cancel.

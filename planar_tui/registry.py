@@ -16,12 +16,11 @@ kind's command at once.
 
 from __future__ import annotations
 
-import importlib
 from collections.abc import Iterator, Mapping, MutableMapping
 from contextlib import contextmanager
 from typing import Generic, Protocol, TypeVar
 
-from planar_tui.jobkind import JobKind, RobotKind
+from planar_tui.jobkind import JobKind, RobotKind, resolve
 
 
 class _Named(Protocol):
@@ -50,7 +49,7 @@ class Registry(MutableMapping[str, KindT], Generic[KindT]):
             return kind
         module = self._modules[name]  # KeyError: no such kind
         assert module is not None  # a kind registered as an object is in _loaded
-        kind = getattr(importlib.import_module(module), self._attribute)
+        kind = resolve(f"{module}:{self._attribute}")
         if kind.name != name:
             raise RuntimeError(f"{module}.{self._attribute} is named {kind.name!r}, not {name!r}")
         self._loaded[name] = kind
@@ -82,10 +81,10 @@ ROBOT_KINDS: Registry[RobotKind] = Registry(
     "ROBOT_KIND",
     {
         "robot": "planar_tui.dynamics.robot",
-        "robot3rrr": "planar_tui.workspace.robot",
-        "robot3rpr": "planar_tui.workspace.rpr",
-        "robot3prr": "planar_tui.workspace.prr",
-        "robot5r": "planar_tui.workspace.fivebar",
+        "robot3rrr": "planar_tui.workspace.rrr.robot",
+        "robot3rpr": "planar_tui.workspace.rpr.robot",
+        "robot3prr": "planar_tui.workspace.prr.robot",
+        "robot5r": "planar_tui.workspace.fivebar.robot",
     },
 )
 
@@ -95,11 +94,11 @@ JOB_KINDS: Registry[JobKind] = Registry(
         "simulate": "planar_tui.dynamics.simulate",
         "torques": "planar_tui.dynamics.torques",
         "sensitivity": "planar_tui.sensitivity.job",
-        "workspace": "planar_tui.workspace.job",
-        "workspace5r": "planar_tui.workspace.fivebar_job",
+        "workspace": "planar_tui.workspace.rrr.job",
+        "workspace5r": "planar_tui.workspace.fivebar.job",
         "motion_uncertainty": "planar_tui.motion.job",
-        "workspace3rpr": "planar_tui.workspace.rpr_job",
-        "workspace3prr": "planar_tui.workspace.prr_job",
+        "workspace3rpr": "planar_tui.workspace.rpr.job",
+        "workspace3prr": "planar_tui.workspace.prr.job",
     },
 )
 

@@ -35,7 +35,7 @@ def test_cell_status_prefers_singular_then_inside():
 
 def test_the_legend_fits_80_columns():
     from planar_tui.app.widgets.workspace_explorer import EXACT_ITEM, LEGEND_ITEMS, MODE_ITEM
-    from planar_tui.workspace.map import SINGULAR_LEGEND_ITEMS
+    from planar_tui.workspace.paving.map import SINGULAR_LEGEND_ITEMS
 
     items = [*LEGEND_ITEMS, EXACT_ITEM, MODE_ITEM, *SINGULAR_LEGEND_ITEMS]
     assert all(len(line) <= 80 for line in wrapped_legend(items, 80).splitlines())
@@ -205,7 +205,7 @@ async def test_a_tolerance_job_shows_the_nominal_and_some_layers_as_the_cli_map(
     """Issue 25: the tab draws a tolerance-certified job's robust boxes with the nominal and
     "some" workspaces as layers (their glyphs and legends), fitted to the widest layer, as
     the CLI's map does."""
-    from planar_tui.workspace.tolerance import MAP_LAYERS
+    from planar_tui.workspace.paving.tolerance import MAP_LAYERS
 
     app = make_app(tmp_path, "workspace-tolerance.toml")
     async with app.run_test(size=(120, 40)) as pilot:

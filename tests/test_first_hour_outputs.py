@@ -11,7 +11,7 @@ import pytest
 from planar_tui.presets import load_preset
 from planar_tui.progress import Progress
 from planar_tui.registry import JOB_KINDS
-from planar_tui.workspace.compute import SUMMARY_HEADER
+from planar_tui.workspace.paving.levels import SUMMARY_HEADER
 from tests.test_workspace_estimate import preset
 
 #: The 3-RRR summary's orientation columns, as docs/workspace.md lists them.

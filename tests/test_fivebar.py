@@ -28,7 +28,7 @@ def jobs():
 
 
 def run(job, **changes):
-    from planar_tui.workspace.fivebar_job import run_fivebar
+    from planar_tui.workspace.fivebar.job import run_fivebar
 
     spec = dataclasses.replace(job.spec, **changes)
     return run_fivebar(PreparedJob(dataclasses.replace(job, spec=spec), None), Progress())
@@ -80,7 +80,7 @@ def grid_area(robot, spacing):
     error (every cell that straddles the boundary lies within its diagonal of it: the tube
     of radius δ about boundary curves of total length L has area ≤ 2δL + πδ² per piece;
     L from the exact outer polygon, at most 16 arcs)."""
-    from planar_tui.workspace.fivebar import workspace_polygon
+    from planar_tui.workspace.fivebar.robot import workspace_polygon
 
     xlo, xhi, ylo, yhi = robot.reach_box_cm()
     xs = np.arange(xlo + spacing / 2, xhi, spacing)
@@ -95,7 +95,7 @@ def grid_area(robot, spacing):
 
 def test_the_mode_band_polygon_has_the_closed_form_area_of_a_leg():
     """One leg in a mode sweeps area 2 l1 l2 Δθ (∫ r Δθ dr over the annulus)."""
-    from planar_tui.workspace.fivebar import mode_band
+    from planar_tui.workspace.fivebar.robot import mode_band
 
     for l1, l2, sigma in ((45.0, 55.0, 1), (60.0, 25.0, -1), (30.0, 30.0, 1)):
         lo, hi = math.radians(-20), math.radians(150)
@@ -108,7 +108,7 @@ def test_the_mode_band_polygon_has_the_closed_form_area_of_a_leg():
 
 def check_bracket(robot, outcome, spacing):
     """The certified bracket holds the polygon reference and the grid reference."""
-    from planar_tui.workspace.fivebar import geometric_area
+    from planar_tui.workspace.fivebar.robot import geometric_area
 
     exact = geometric_area(robot)
     assert outcome.area_inside_cm2 <= exact.outer_cm2
@@ -137,7 +137,7 @@ def test_the_bundled_jobs_bracket_the_exact_area_within_2_percent():
     mode=st.sampled_from(["any", "++", "+-", "-+", "--"]),
 )
 def test_random_geometries_bracket_the_exact_area(d, lengths, lo, span, mode):
-    from planar_tui.workspace.fivebar import Robot5R
+    from planar_tui.workspace.fivebar.robot import Robot5R
 
     robot = Robot5R(
         base_separation_cm=max(d, 1e-3),

@@ -17,13 +17,13 @@ import pytest
 from planar_tui.jobkind import PreparedJob
 from planar_tui.presets import load_preset
 from planar_tui.progress import Progress
-from planar_tui.workspace.compute import INSIDE
+from planar_tui.workspace.paving.levels import INSIDE
 from tests.conftest import PRESETS, on_one_and_two_threads
 
 T_BASE_CM, T_PROXIMAL_CM, T_DISTAL_CM = 0.4, 0.3, 0.5
 TOLERANCES = (("base_joints_cm", T_BASE_CM), ("distal_cm", T_DISTAL_CM),
               ("proximal_cm", T_PROXIMAL_CM))  # fmt: skip
-#: The derived bound B = √2 t_A + t_1 + t_2 (planar_tui.workspace.fivebar_tolerance).
+#: The derived bound B = √2 t_A + t_1 + t_2 (planar_tui.workspace.fivebar.tolerance).
 BOUND_CM = math.sqrt(2.0) * T_BASE_CM + T_PROXIMAL_CM + T_DISTAL_CM
 PRECISION_CM = 0.5
 
@@ -35,7 +35,7 @@ def robot_of(mode):
 
 
 def run(mode, tolerance_mode=None, tolerances=TOLERANCES, precision=PRECISION_CM):
-    from planar_tui.workspace.fivebar_job import run_fivebar
+    from planar_tui.workspace.fivebar.job import run_fivebar
 
     job = robot_of(mode)
     changes = {"precision_cm": precision, "geometric_reference": False}
@@ -241,13 +241,13 @@ def arc(centre, radius, start, stop, n=2000):
 def eroded_workspace(robot, bound):
     """The nominal workspace eroded by ``bound``, by shapely geometry: per leg, in any
     branch ``d_min <= l2 - B`` and ``d_max >= l2 + B`` (the leg regions of the distals
-    ``l2 ∓ B``: :func:`planar_tui.workspace.geometry.leg_region`, inner polygons); in a
+    ``l2 ∓ B``: :func:`planar_tui.workspace.paving.geometry.leg_region`, inner polygons); in a
     working mode its region (the mode band, eroded by the chords' sagitta) less the points
     within ``B`` (+ the chords' sagitta) of its four boundary arcs, drawn here."""
     from shapely import LineString, affinity, intersection_all, union_all
 
-    from planar_tui.workspace.fivebar import mode_band
-    from planar_tui.workspace.geometry import leg_region
+    from planar_tui.workspace.fivebar.robot import mode_band
+    from planar_tui.workspace.paving.geometry import leg_region
 
     regions = []
     for leg, a in enumerate(robot.base_joints_cm()):
@@ -347,10 +347,10 @@ def test_the_bundled_study_reads_its_tolerances_and_loses_area_at_one_millimetre
     """``fivebar-tolerance``: the "+-" five-bar at ±0.1 mm and ±1 mm, robust mode; at a
     coarse ε (no refinement) the ±1 mm robust kept area is already below the exact nominal
     area (polygon geometry), and below the ±0.1 mm one's."""
-    from planar_tui.workspace.compute import BoxBudget
-    from planar_tui.workspace.fivebar import geometric_area
-    from planar_tui.workspace.fivebar_job import compute_fivebar
-    from planar_tui.workspace.tolerance import tolerance_of
+    from planar_tui.workspace.fivebar.job import compute_fivebar
+    from planar_tui.workspace.fivebar.robot import geometric_area
+    from planar_tui.workspace.paving.levels import BoxBudget
+    from planar_tui.workspace.paving.tolerance import tolerance_of
 
     jobs = load_preset(PRESETS / "fivebar-tolerance.toml").jobs
     read = [(t.mode, *map(t.of, ("base_joints_cm", "proximal_cm", "distal_cm")))

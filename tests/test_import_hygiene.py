@@ -229,9 +229,9 @@ print(json.dumps({"code": result.exit_code, "kinds": list(JOB_KINDS.loaded()),
 #: Every job kind's module (and the modules only those kinds use).
 KIND_MODULES = {
     "planar_tui.dynamics.simulate", "planar_tui.dynamics.torques", "planar_tui.sensitivity.job",
-    "planar_tui.workspace.job", "planar_tui.workspace.fivebar_job", "planar_tui.motion.job",
-    "planar_tui.workspace.rpr_job", "planar_tui.workspace.prr_job",
-    "planar_tui.workspace.orientation", "planar_tui.workspace.tolerance",
+    "planar_tui.workspace.rrr.job", "planar_tui.workspace.fivebar.job", "planar_tui.motion.job",
+    "planar_tui.workspace.rpr.job", "planar_tui.workspace.prr.job",
+    "planar_tui.workspace.paving.orientation", "planar_tui.workspace.paving.tolerance",
 }  # fmt: skip
 
 

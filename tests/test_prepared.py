@@ -13,7 +13,7 @@ from planar_tui.presets import load_preset
 from planar_tui.registry import JOB_KINDS
 from planar_tui.sweep.service import run_sweep
 from planar_tui.sweep.spec import parse_sweeps
-from planar_tui.workspace.job import WorkspacePrepared
+from planar_tui.workspace.rrr.job import WorkspacePrepared
 from tests.sweep_presets import WORKSPACE, WORKSPACE_BASE, write
 
 SENSITIVITY = """[robot]

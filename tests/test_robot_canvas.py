@@ -174,7 +174,7 @@ def test_table1_arm_at_a_known_posture_cell_by_cell():
 def test_rrr_legs_close_in_the_working_mode_of_the_limits():
     """The leg angles at a point satisfy |C_i - B_i| = l2 with B_i = A_i + l1 e(θ_i), and
     lie within the joint limits (checked by forward kinematics here)."""
-    from planar_tui.workspace.robot import Robot3RRR
+    from planar_tui.workspace.rrr.robot import Robot3RRR
 
     robot = Robot3RRR()
     limits = [(math.radians(-180), math.radians(180))] * 3

@@ -14,7 +14,7 @@ import pytest
 from planar_tui.jobkind import PreparedJob
 from planar_tui.presets import load_preset
 from planar_tui.progress import Progress
-from planar_tui.workspace.compute import INSIDE
+from planar_tui.workspace.paving.levels import INSIDE
 
 PRESETS = {
     "workspace3rpr": (

@@ -10,9 +10,9 @@ import math
 import numpy as np
 import pytest
 
-from planar_tui.workspace.prr import Robot3PRR
-from planar_tui.workspace.prr_job import Spec3PRR
-from planar_tui.workspace.rpr import PAPER_B_BASE_CM, PAPER_B_PLATFORM_CM
+from planar_tui.workspace.paving.layout import PAPER_B_BASE_CM, PAPER_B_PLATFORM_CM
+from planar_tui.workspace.prr.job import Spec3PRR
+from planar_tui.workspace.prr.robot import Robot3PRR
 from tests.test_workspace_3prr import preset_text
 from tests.test_workspace_3rpr import refused
 from tests.test_workspace_3rpr_orientation import (

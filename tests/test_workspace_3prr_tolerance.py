@@ -11,7 +11,7 @@ import math
 import numpy as np
 import pytest
 
-from planar_tui.workspace.compute import INSIDE
+from planar_tui.workspace.paving.levels import INSIDE
 from tests.test_workspace_3prr import job_of, preset_text
 from tests.test_workspace_3rpr import pave, refused
 from tests.test_workspace_3rpr_tolerance import box_points, in_boxes

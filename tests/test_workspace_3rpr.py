@@ -15,8 +15,8 @@ from hypothesis import strategies as st
 
 from planar_tui.presets import load_preset
 from planar_tui.progress import Progress
-from planar_tui.workspace.compute import INSIDE, BoxBudget
-from planar_tui.workspace.planar import compute_planar
+from planar_tui.workspace.paving.levels import INSIDE, BoxBudget
+from planar_tui.workspace.paving.runner import compute_planar
 from tests.conftest import PRESETS, on_one_and_two_threads
 
 JOB = """
@@ -269,7 +269,7 @@ def test_a_leg_limit_of_1e199_cm_gives_the_exact_area_of_a_long_finite_one(tmp_p
     """An upper leg limit far beyond the reach box leaves the intersection unchanged: the
     polygons of a 1e199 cm limit (capped at the reach box, else GEOS overflowed and the
     "exact" area came out 0) equal those of 1e4 cm, and the grid reference brackets them."""
-    from planar_tui.workspace.rpr import workspace_polygon
+    from planar_tui.workspace.rpr.robot import workspace_polygon
 
     huge = job_of(tmp_path, limits=((20, 1e199), (20, 80), (20, 80)))
     finite = job_of(tmp_path, limits=((20, 1e4), (20, 80), (20, 80)))

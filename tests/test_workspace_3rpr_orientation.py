@@ -14,10 +14,11 @@ import numpy as np
 import pytest
 
 from planar_tui.progress import Progress
-from planar_tui.workspace.compute import INSIDE, BoxBudget
-from planar_tui.workspace.planar import compute_planar
-from planar_tui.workspace.rpr import PAPER_B_BASE_CM, PAPER_B_PLATFORM_CM, Robot3RPR, annulus
-from planar_tui.workspace.rpr_job import Spec3RPR
+from planar_tui.workspace.paving.layout import PAPER_B_BASE_CM, PAPER_B_PLATFORM_CM
+from planar_tui.workspace.paving.levels import INSIDE, BoxBudget
+from planar_tui.workspace.paving.runner import compute_planar
+from planar_tui.workspace.rpr.job import Spec3RPR
+from planar_tui.workspace.rpr.robot import Robot3RPR, annulus
 from tests.conftest import on_one_and_two_threads
 from tests.test_workspace_3rpr import preset_text, refused
 from tests.test_workspace_orientation import _Job, assert_bracketed

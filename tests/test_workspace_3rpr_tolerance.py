@@ -11,7 +11,7 @@ import math
 import numpy as np
 import pytest
 
-from planar_tui.workspace.compute import INSIDE
+from planar_tui.workspace.paving.levels import INSIDE
 from tests.test_workspace_3rpr import job_of, pave, preset_text, refused
 
 #: Tolerances large enough that the robust, nominal and "some" regions differ by many boxes.

@@ -10,10 +10,11 @@ import pytest
 from planar_tui.kernels.workspace_arc import limits_array, points_feasible
 
 from planar_tui.progress import Progress
-from planar_tui.workspace.compute import BoxBudget, compute_workspace, kernel_parameters
-from planar_tui.workspace.geometry import geometric_area, workspace_polygon
-from planar_tui.workspace.job import WorkspaceSpec
-from planar_tui.workspace.robot import Robot3RRR
+from planar_tui.workspace.paving.levels import BoxBudget
+from planar_tui.workspace.rrr.compute import compute_workspace, kernel_parameters
+from planar_tui.workspace.rrr.geometry import geometric_area, workspace_polygon
+from planar_tui.workspace.rrr.job import WorkspaceSpec
+from planar_tui.workspace.rrr.robot import Robot3RRR
 from tests.conftest import REFERENCE, on_one_and_two_threads
 
 ROBOT = Robot3RRR()
@@ -203,7 +204,7 @@ def test_the_box_estimate_and_the_exact_reference_are_computed_once_per_geometry
     """Paper B's Table 3 runs seven jobs on one geometry: the outer polygon of the box
     estimate and the exact bracket are each made once (the polygons counted), and the
     estimate's area and length are the polygon's own."""
-    from planar_tui.workspace import geometry
+    from planar_tui.workspace.rrr import geometry
 
     made = []
     real = geometry.workspace_polygon

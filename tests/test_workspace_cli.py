@@ -13,7 +13,7 @@ from planar_tui.batch import run_job
 from planar_tui.errors import Cancelled
 from planar_tui.presets import load_preset
 from planar_tui.progress import Progress
-from planar_tui.workspace.map import BOUNDARY_GLYPH, INSIDE_GLYPH, render_map
+from planar_tui.workspace.paving.map import BOUNDARY_GLYPH, INSIDE_GLYPH, render_map
 from tests.conftest import PRESETS
 
 ROBOT = """
@@ -207,7 +207,7 @@ def test_bundled_paper_b_presets_load(table):
 
 
 def test_map_coverage_matches_a_brute_force_overlap():
-    from planar_tui.workspace.map import _coverage
+    from planar_tui.workspace.paving.map import _coverage
 
     rng = np.random.default_rng(3)
     x, y, w = rng.uniform(-1, 10, 300), rng.uniform(-1, 5, 300), rng.uniform(0.01, 1.5, 300)

@@ -1,5 +1,5 @@
 """The 3-RPR, 3-PRR and five-bar kinds name their sweep columns without running
-(``figure_names``, :mod:`planar_tui.workspace.columns`): the names are the columns a run
+(``figure_names``, :mod:`planar_tui.workspace.paving.columns`): the names are the columns a run
 reports (nominal, with singularities, with a tolerance, the geometric form), an
 optimisation naming another column is refused before it runs, and a cancelled sweep of a
 new kind resumes its finished points."""

@@ -1,4 +1,4 @@
-"""The 3-RPR, 3-PRR and five-bar workspace kinds' estimates (:mod:`planar_tui.workspace.estimate`):
+"""The 3-RPR, 3-PRR and five-bar workspace kinds' estimates (:mod:`planar_tui.workspace.paving.estimate`):
 a job over the memory or time limit refused before it runs (one line, exit code 2, nothing
 written), the estimated box count against the count of real runs on the bundled designs, the
 boundary length it rests on against a closed form, and sweeps and optimisations over these
@@ -16,7 +16,7 @@ from planar_tui.errors import ExitCode
 from planar_tui.presets import load_preset
 from planar_tui.progress import Progress
 from planar_tui.registry import JOB_KINDS
-from planar_tui.workspace.estimate import MIN_BOXES, _geometry, estimate_boxes
+from planar_tui.workspace.paving.estimate import MIN_BOXES, _geometry, estimate_boxes
 from tests.conftest import PRESETS
 from tests.sweep_presets import one_line
 

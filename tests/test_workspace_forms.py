@@ -20,7 +20,7 @@ from planar_tui.kernels.workspace_arc import (
 )
 from planar_tui.kernels.workspace_union import union_area
 
-from planar_tui.workspace.robot import Robot3RRR
+from planar_tui.workspace.rrr.robot import Robot3RRR
 
 PAPER = Robot3RRR()  # a = 120, b = 40, l1 = l2 = 30 cm (paper B, Table 2)
 FORMS = (
@@ -208,7 +208,7 @@ def test_union_area_of_duplicates_and_nested_boxes():
 
 
 def test_unique_rows_equals_numpy_unique():
-    from planar_tui.workspace.boxes import unique_rows
+    from planar_tui.workspace.paving.boxes import unique_rows
 
     rng = np.random.default_rng(5)
     boxes = rng.integers(0, 3, (500, 4)).astype(np.float64) * 0.5
@@ -217,10 +217,10 @@ def test_unique_rows_equals_numpy_unique():
 
 
 def test_unique_rows_of_grid_cells_equals_numpy_unique():
-    """The grid path (:func:`planar_tui.workspace.boxes._unique_grid_cells`): cells of one
+    """The grid path (:func:`planar_tui.workspace.paving.boxes._unique_grid_cells`): cells of one
     grid in any order and repeated, as a bisection keeps them; and the near-grids it must
     hand to the sort (rows that round to one cell, mixed sizes, too many cells)."""
-    from planar_tui.workspace import boxes as module
+    from planar_tui.workspace.paving import boxes as module
 
     rng = np.random.default_rng(7)
     width, height = 120 / 1024, 120 / 512

@@ -1,5 +1,5 @@
 """The joint strategy's bisection (paper B, Algorithm 1) shared among threads
-(:mod:`planar_tui.workspace.joint`): the same kept boxes and processed count as the
+(:mod:`planar_tui.workspace.rrr.joint`): the same kept boxes and processed count as the
 sequential depth-first bisection, whatever the number of blocks and with or without the
 legs' verdict memo."""
 
@@ -25,9 +25,9 @@ from planar_tui.kernels.workspace3rrr import (
 )
 
 from planar_tui.progress import Progress
-from planar_tui.workspace.boxes import unique_rows
-from planar_tui.workspace.joint import joint_stage, new_memos
-from planar_tui.workspace.robot import Robot3RRR
+from planar_tui.workspace.paving.boxes import unique_rows
+from planar_tui.workspace.rrr.joint import joint_stage, new_memos
+from planar_tui.workspace.rrr.robot import Robot3RRR
 
 LIMITS_RAD = np.radians([[20, 70], [110, 160], [245, 295]])
 BOX = ((0.0, 120.0), (0.0, 120.0))
@@ -232,7 +232,7 @@ def test_share_work_moves_the_bottom_half_of_the_fullest_stack():
 def test_the_shared_paving_reproduces_table3_natural_area_bracket():
     """Independent check of the threaded paving at the paper's precision: the natural
     form's kept area covers the exact area 106.750 cm² (paper B, Table 3)."""
-    from planar_tui.workspace.boxes import xy_area
+    from planar_tui.workspace.paving.boxes import xy_area
 
     p = parameters()
     budget = Budget()

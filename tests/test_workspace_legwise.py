@@ -14,15 +14,11 @@ from planar_tui.kernels.workspace_union import union_area
 
 from planar_tui.presets import load_preset
 from planar_tui.progress import Progress
-from planar_tui.workspace.compute import (
-    BoxBudget,
-    compute_workspace,
-    estimate_boxes,
-    kernel_parameters,
-)
-from planar_tui.workspace.geometry import geometric_area
-from planar_tui.workspace.job import WorkspaceSpec
-from planar_tui.workspace.robot import Robot3RRR
+from planar_tui.workspace.paving.levels import BoxBudget
+from planar_tui.workspace.rrr.compute import compute_workspace, estimate_boxes, kernel_parameters
+from planar_tui.workspace.rrr.geometry import geometric_area
+from planar_tui.workspace.rrr.job import WorkspaceSpec
+from planar_tui.workspace.rrr.robot import Robot3RRR
 from tests.conftest import PRESETS, on_one_and_two_threads
 
 PAPER = Robot3RRR()

@@ -7,7 +7,7 @@ import re
 import numpy as np
 import pytest
 
-from planar_tui.workspace.map import render_map
+from planar_tui.workspace.paving.map import render_map
 
 
 @pytest.mark.parametrize("height", [6, 8, 9, 12, 30])

@@ -9,11 +9,11 @@ import numpy as np
 import pytest
 
 from planar_tui.progress import Progress
-from planar_tui.workspace.compute import BoxBudget
-from planar_tui.workspace.job import WorkspaceSpec
-from planar_tui.workspace.orientation import compute_orientation_workspace, reach_box_for
-from planar_tui.workspace.orientation_reference import reference_polygons
-from planar_tui.workspace.robot import Robot3RRR
+from planar_tui.workspace.paving.levels import BoxBudget
+from planar_tui.workspace.rrr.job import WorkspaceSpec
+from planar_tui.workspace.rrr.orientation import compute_orientation_workspace, reach_box_for
+from planar_tui.workspace.rrr.orientation_reference import reference_polygons
+from planar_tui.workspace.rrr.robot import Robot3RRR
 from tests.conftest import on_one_and_two_threads
 
 TABLE3 = ((20.0, 70.0), (110.0, 160.0), (245.0, 295.0))
@@ -233,7 +233,7 @@ def test_a_failed_overlay_is_snapped_and_kept_on_its_side_of_the_exact_one():
     import shapely
     from shapely.errors import GEOSException
 
-    from planar_tui.workspace.orientation_reference import GRID_CM, _overlay
+    from planar_tui.workspace.rrr.orientation_reference import GRID_CM, _overlay
 
     first = shapely.Point(0.0, 0.0).buffer(10.0, quad_segs=64)
     second = shapely.Point(7.3, 1.1).buffer(6.0, quad_segs=64)

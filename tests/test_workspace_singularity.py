@@ -14,7 +14,7 @@ import pytest
 
 from planar_tui.batch import prepare_jobs, run_job
 from planar_tui.presets import load_preset
-from planar_tui.workspace.robot import Robot3RRR
+from planar_tui.workspace.rrr.robot import Robot3RRR
 
 TABLE3 = """
 [robot3rrr]
@@ -246,7 +246,7 @@ def test_float_model_reproduces_the_kernels_det_at_points():
     of the two constructions on random reachable points)."""
     from planar_tui.kernels.singularity3rrr import box_status
 
-    from planar_tui.workspace.singularity import Circle, kernel_inputs
+    from planar_tui.workspace.rrr.singularity import Circle, kernel_inputs
 
     class Spec:
         orientation_rad = 0.3

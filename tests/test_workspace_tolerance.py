@@ -14,10 +14,11 @@ import numpy as np
 import pytest
 
 from planar_tui.progress import Progress
-from planar_tui.workspace.compute import INSIDE, BoxBudget, compute_workspace
-from planar_tui.workspace.job import WorkspaceSpec
-from planar_tui.workspace.robot import Robot3RRR
-from planar_tui.workspace.tolerance import Tolerance, erosion_bound_cm, tolerance_of
+from planar_tui.workspace.paving.levels import INSIDE, BoxBudget
+from planar_tui.workspace.paving.tolerance import Tolerance, erosion_bound_cm, tolerance_of
+from planar_tui.workspace.rrr.compute import compute_workspace
+from planar_tui.workspace.rrr.job import WorkspaceSpec
+from planar_tui.workspace.rrr.robot import Robot3RRR
 from tests.conftest import on_one_and_two_threads
 
 ROBOT = Robot3RRR()  # paper B, Table 2
@@ -181,11 +182,11 @@ def test_some_kept_boxes_hold_every_sampled_robots_workspace(form, keys, phi):
 
 def eroded_polygon(bound_cm, phi):
     """The nominal workspace eroded in constraint value, exactly (inner polygons of
-    :mod:`planar_tui.workspace.geometry`): per leg ``d_min <= l2 - B`` and
+    :mod:`planar_tui.workspace.paving.geometry`): per leg ``d_min <= l2 - B`` and
     ``d_max >= l2 + B``, i.e. ``leg_region(l1, l2 - B) ∩ leg_region(l1, l2 + B)``."""
     from shapely import affinity, intersection_all
 
-    from planar_tui.workspace.geometry import leg_region
+    from planar_tui.workspace.paving.geometry import leg_region
 
     regions = []
     l1, l2 = ROBOT.proximal_cm, ROBOT.distal_cm
@@ -242,7 +243,7 @@ def test_tolerance_brackets_nest_as_the_sets_do():
     each proved area is at most the next set's kept area and the exact nominal area lies
     between the robust proved and the "some" kept areas; at ±1 mm the loss is real: the
     robust kept area is below the exact nominal area."""
-    from planar_tui.workspace.geometry import geometric_area
+    from planar_tui.workspace.rrr.geometry import geometric_area
 
     exact = geometric_area(ROBOT, spec_for().limits_rad, 0.0).area_cm2
     robust_1, robust_01, some_01, some_1 = (
@@ -351,7 +352,7 @@ def test_cli_options_override_the_tolerance_keys(cli, tmp_path):
 
 def test_without_tolerance_keys_the_summary_is_unchanged(cli, tmp_path):
     """No tolerance: the nominal summary columns only (the bundled presets' CSVs)."""
-    from planar_tui.workspace.compute import SUMMARY_HEADER
+    from planar_tui.workspace.paving.levels import SUMMARY_HEADER
 
     result = cli("workspace", write(tmp_path, ""), "--out-dir", tmp_path, "--no-map")
     assert result.exit_code == 0, result.output
@@ -401,8 +402,8 @@ def test_per_quantity_tolerances_override_the_uniform_one():
 
 
 def test_the_figure_overlays_nominal_robust_and_some(tmp_path):
-    from planar_tui.workspace.job import WorkspaceResult
-    from planar_tui.workspace.tolerance import tolerance_companions
+    from planar_tui.workspace.paving.result import WorkspaceResult
+    from planar_tui.workspace.paving.tolerance import tolerance_companions
 
     spec = spec_for(tolerance_cm=0.1, tolerance_mode="all")
     job = _Job(spec)
@@ -428,7 +429,7 @@ def test_the_bundled_study_reads_its_tolerances_and_loses_area_at_one_millimetre
     coarse ε (no refinement) the ±1 mm robust kept area is already below the exact
     nominal area, and the ±0.1 mm one's bracket is above the ±1 mm one's."""
     from planar_tui.presets import load_preset
-    from planar_tui.workspace.geometry import geometric_area
+    from planar_tui.workspace.rrr.geometry import geometric_area
     from tests.conftest import PRESETS
 
     jobs = load_preset(PRESETS / "paper-b-tolerance.toml").jobs

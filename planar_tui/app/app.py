@@ -140,15 +140,13 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
     def pane_classes() -> dict[str, type]:
         """The dedicated pane of each tab (a job kind's ``Tab.pane``, ``module:Class``); a
         job kind without one gets :class:`JobPane`."""
-        import importlib
-
+        from planar_tui.jobkind import resolve
         from planar_tui.registry import JOB_KINDS
 
         panes: dict[str, type] = {"robot": RobotPane}
         for name, kind in JOB_KINDS.items():
             if kind.tab is not None and kind.tab.pane is not None:
-                module, _, attribute = kind.tab.pane.partition(":")
-                panes[name] = getattr(importlib.import_module(module), attribute)
+                panes[name] = resolve(kind.tab.pane)
         return panes
 
     def compose(self) -> ComposeResult:

@@ -4,7 +4,6 @@ displays (one bar per job, one per sweep)."""
 
 from __future__ import annotations
 
-import importlib
 import re
 import signal
 import sys
@@ -25,6 +24,7 @@ except ImportError:
     install_common_values = None
 
 from planar_tui.errors import Cancelled, ExitCode, PresetError, Terminated
+from planar_tui.jobkind import resolve
 
 if TYPE_CHECKING:
     from planar_tui.presets import Preset
@@ -98,7 +98,7 @@ class _Deferred(type):
 
     def _real(cls):
         module, name = cls._origin
-        return getattr(importlib.import_module(module), name)
+        return resolve(f"{module}:{name}")
 
     def __call__(cls, *args, **kwargs):
         return cls._real()(*args, **kwargs)

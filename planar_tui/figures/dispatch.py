@@ -10,12 +10,12 @@ figure (:func:`figure_problem`).
 
 from __future__ import annotations
 
-import importlib
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 from planar_tui.csvio import CsvTable
+from planar_tui.jobkind import resolve
 
 #: (kind, module, recogniser, drawing function), tried in order: a sweep's table also holds
 #: its kind's summary columns, so it comes first.
@@ -40,7 +40,7 @@ class UnknownTable(ValueError):
 
 
 def _module(name: str) -> Any:
-    return importlib.import_module(f"planar_tui.figures.{name}")
+    return resolve(f"planar_tui.figures.{name}")
 
 
 def recognise(header: tuple[str, ...] | list[str]) -> str | None:
@@ -94,8 +94,7 @@ def figure_for_result(job: Any, result: Any) -> Any:
     problem = figure_problem(job.kind)
     if problem is not None:
         raise ValueError(problem)
-    module, _, function = JOB_KINDS[job.kind].figure.partition(":")
-    return getattr(importlib.import_module(module), function)(job, result)
+    return resolve(JOB_KINDS[job.kind].figure)(job, result)
 
 
 def from_main_table(job: Any, result: Any) -> Any:

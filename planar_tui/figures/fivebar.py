@@ -1,6 +1,6 @@
 """Figure of a five-bar workspace: the kept boxes (inside / boundary), the singular leaves
 and the singularity-free circle (:func:`planar_tui.figures.workspace.draw`), the exact
-boundary (:func:`planar_tui.workspace.fivebar.workspace_polygon`, inner polygon) and the
+boundary (:func:`planar_tui.workspace.fivebar.robot.workspace_polygon`, inner polygon) and the
 robot at a pose inside (legs ``A_i B_i P`` in the working mode, or the first branch
 within the limits)."""
 
@@ -14,7 +14,7 @@ from planar_tui.figures.workspace import BOUNDARY_SEGMENTS, _polygon_rings, draw
 
 def draw_fivebar(ax: Any, robot: Any, point: tuple[float, float]) -> bool:
     """The legs ``A_i, B_i, P`` at ``point`` (False, nothing drawn, if out of reach)."""
-    from planar_tui.workspace.fivebar import leg_angles
+    from planar_tui.workspace.fivebar.robot import leg_angles
 
     joints = []
     for (a, l1, angles, sign, (lo, hi)) in zip(robot.base_joints_cm(), robot.proximal_cm,
@@ -39,9 +39,9 @@ def from_result(job: Any, result: Any) -> Any:
     workspaces of :func:`~planar_tui.figures.workspace.draw_tolerance`)."""
     import numpy as np
 
-    from planar_tui.workspace.compute import INSIDE
-    from planar_tui.workspace.fivebar import workspace_polygon
-    from planar_tui.workspace.job import map_title
+    from planar_tui.workspace.fivebar.robot import workspace_polygon
+    from planar_tui.workspace.paving.levels import INSIDE
+    from planar_tui.workspace.paving.result import map_title
 
     outcome = result.outcome
     if getattr(result, "companions", None):

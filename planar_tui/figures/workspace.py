@@ -1,6 +1,6 @@
 """Figure of a 3-RRR workspace (paper B, figures 4-6): the kept boxes coloured inside /
 boundary, the exact boundary (the geometric form's inner polygon,
-:func:`planar_tui.workspace.geometry.workspace_polygon`) drawn over them, and the robot at
+:func:`planar_tui.workspace.rrr.geometry.workspace_polygon`) drawn over them, and the robot at
 a pose inside the workspace (base triangle, legs, platform); axes in cm, equal aspect.
 
 The pose: the platform point at a point inside the exact workspace, then each leg's
@@ -146,7 +146,7 @@ def draw(boxes: Any, inside: Any, title: str, robot: Any = None, spec: Any = Non
     exact boundary and the robot when ``robot`` and ``spec`` are given (a 3-RRR), the
     boundary of the polygon ``exact`` alone (another mechanism), and the type II
     singularities and singularity-free circle when ``singularity`` is given
-    (:class:`~planar_tui.workspace.singularity.SingularityOutcome`)."""
+    (:class:`~planar_tui.workspace.rrr.singularity.SingularityOutcome`)."""
     with_robot = robot is not None and spec is not None
     fig = new_figure(12.0 if with_robot else 7.0, 6.0)
     if with_robot:
@@ -157,10 +157,7 @@ def draw(boxes: Any, inside: Any, title: str, robot: Any = None, spec: Any = Non
     if singularity is not None:
         draw_singularity(ax, singularity)
     if with_robot:
-        from planar_tui.workspace.geometry import workspace_polygon
-
-        polygon = workspace_polygon(robot, spec.limits_rad, spec.orientation_rad,
-                                    BOUNDARY_SEGMENTS, False)  # fmt: skip
+        polygon = spec.mechanism.polygon(robot, spec, BOUNDARY_SEGMENTS, False)
         for k, ring in enumerate(_polygon_rings(polygon)):
             for target in (ax, overview):
                 target.plot(ring[:, 0], ring[:, 1], color="k", lw=1.0, gid="exact",
@@ -236,8 +233,8 @@ def from_result(job: Any, result: Any) -> Any:
     """The figure of a finished workspace job: boxes, exact boundary, the robot."""
     import numpy as np
 
-    from planar_tui.workspace.compute import INSIDE
-    from planar_tui.workspace.job import map_title
+    from planar_tui.workspace.paving.levels import INSIDE
+    from planar_tui.workspace.paving.result import map_title
 
     outcome = result.outcome
     if outcome is None:
@@ -264,15 +261,14 @@ TOLERANCE_LAYERS = (
 def draw_tolerance(job: Any, result: Any, exact: Any = None) -> Any:
     """A tolerance-certified job: the "some", nominal and robust ("all") workspaces
     overlaid, each bracket in the legend, and the nominal exact boundary (``exact``, the
-    kind's inner polygon; default the 3-RRR's)."""
+    kind's inner polygon; default its robot's, :meth:`Mechanism.polygon`)."""
     import textwrap
 
     import numpy as np
     from matplotlib.collections import PolyCollection
 
-    from planar_tui.workspace.compute import INSIDE
-    from planar_tui.workspace.geometry import workspace_polygon
-    from planar_tui.workspace.job import map_title
+    from planar_tui.workspace.paving.levels import INSIDE
+    from planar_tui.workspace.paving.result import map_title
 
     outcomes = {job.spec.tolerance_mode: result.outcome, **result.companions}
     fig = new_figure(9.0, 5.5)
@@ -287,9 +283,8 @@ def draw_tolerance(job: Any, result: Any, exact: Any = None) -> Any:
             label=f"{label}: {area:.5g} cm2", rasterized=len(b) > RASTER_ABOVE,
         ))  # fmt: skip
     polygon = exact
-    if polygon is None:
-        polygon = workspace_polygon(job.robot, job.spec.limits_rad, job.spec.orientation_rad,
-                                    BOUNDARY_SEGMENTS, False)  # fmt: skip
+    if polygon is None:  # the robot's own (a 3-RRR job passes none)
+        polygon = job.spec.mechanism.polygon(job.robot, job.spec, BOUNDARY_SEGMENTS, False)
     for k, ring in enumerate(_polygon_rings(polygon)):
         ax.plot(ring[:, 0], ring[:, 1], color="k", lw=0.8, gid="exact",
                 label="nominal exact boundary" if k == 0 else None)  # fmt: skip
@@ -307,13 +302,13 @@ def draw_tolerance(job: Any, result: Any, exact: Any = None) -> Any:
 
 
 def from_planar_result(job: Any, result: Any) -> Any:
-    """The figure of a finished 3-RPR or 3-PRR job (:mod:`planar_tui.workspace.planar`):
+    """The figure of a finished 3-RPR or 3-PRR job (:mod:`planar_tui.workspace.paving.runner`):
     boxes and the exact boundary (the inner polygon of the kind's exact reference); with a
     tolerance, :func:`draw_tolerance`."""
     import numpy as np
 
-    from planar_tui.workspace.compute import INSIDE
-    from planar_tui.workspace.job import map_title
+    from planar_tui.workspace.paving.levels import INSIDE
+    from planar_tui.workspace.paving.result import map_title
 
     outcome = result.outcome
     boxes = np.asarray(outcome.boxes)[:, :4] if len(outcome.boxes) else np.zeros((0, 4))

@@ -8,13 +8,13 @@ matrix is bit-identical to SALib sampling the real problem. One design serves ev
 
 from __future__ import annotations
 
-import importlib
 import math
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 
 import numpy as np
 
+from planar_tui.jobkind import resolve
 from planar_tui.progress import Progress
 from planar_tui.uq import EFAST_HARMONICS as M_HARMONICS
 from planar_tui.uq import EFAST_MIN_SAMPLES, design_rows
@@ -148,7 +148,7 @@ def unit_design(
 
     def draw() -> np.ndarray:
         if progress is not None and method == "sobol":  # ~1 s the first time
-            progress.wait_for(importlib.import_module, "scipy.stats")
+            progress.wait_for(resolve, "scipy.stats")
         return draw_unit_design(method, num_vars, samples, seed, chunk_done)
 
     key = (method, num_vars, samples, seed)

@@ -209,7 +209,7 @@ def help_text(sources: list[tuple[str, list[Binding]]]) -> str:
     (the app's first, ``where`` empty; then each tab's and a field's), one line per
     action with all its keys; then units and glyphs."""
     from planar_tui.app.widgets.workspace_explorer import EXACT_ITEM, LEGEND_ITEMS, MODE_ITEM
-    from planar_tui.workspace.map import SINGULAR_LEGEND_ITEMS
+    from planar_tui.workspace.paving.map import SINGULAR_LEGEND_ITEMS
 
     map_legend = ", ".join((*LEGEND_ITEMS, EXACT_ITEM, MODE_ITEM, *SINGULAR_LEGEND_ITEMS))
     lines = [HELP_INTRO]

@@ -132,10 +132,10 @@ def leg_modes(
     elbow: Sequence[int] | None = None,
 ) -> list[tuple[float, int] | None]:
     """Per leg, the active angle θ_i (rad) and its working mode ``s`` (``θ = α + sβ``,
-    :func:`planar_tui.workspace.singularity.leg_angles`) within the joint limits at
+    :func:`planar_tui.workspace.rrr.singularity.leg_angles`) within the joint limits at
     ``point_cm``: the mode ``elbow[i]`` when given and within the limits, else the first of
     ``+1, -1`` within them; ``None`` where the leg cannot close within its limits."""
-    from planar_tui.workspace.singularity import leg_angles
+    from planar_tui.workspace.rrr.singularity import leg_angles
 
     legs: list[tuple[float, int] | None] = []
     for leg, (angles, (lo, hi)) in enumerate(

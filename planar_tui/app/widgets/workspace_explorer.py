@@ -1,5 +1,5 @@
 """The workspace map, explorable: a cursor, zoom and pan over the CLI's character-cell map
-(:func:`planar_tui.workspace.map.render_map`), the cell's status and the legs' joint
+(:func:`planar_tui.workspace.paving.map.render_map`), the cell's status and the legs' joint
 angles read out at the cursor, the exact boundary and the circle's working mode overlaid.
 
 The view is aspect-true (a cell is twice as tall as wide): :attr:`MapExplorer.cell_cm` cm
@@ -152,7 +152,7 @@ class MapExplorer(Widget):
         return max(10, size.width - LABEL_CELLS), max(3, size.height - AXIS_LINES)
 
     def fit(self) -> None:
-        from planar_tui.workspace.map import fit_extent
+        from planar_tui.workspace.paving.map import fit_extent
 
         if not len(self.boxes):
             return
@@ -231,7 +231,7 @@ class MapExplorer(Widget):
     # -- drawing --------------------------------------------------------------------------
     def map_lines(self) -> list[str]:
         """The map rows and the x axis (``render_map``) with the overlays asked for."""
-        from planar_tui.workspace.map import BOUNDARY_GLYPH, OUTSIDE_GLYPH, render_map
+        from planar_tui.workspace.paving.map import BOUNDARY_GLYPH, OUTSIDE_GLYPH, render_map
 
         columns, rows = self.plot_size()
         width, height = columns + LABEL_CELLS, rows + 3
@@ -288,7 +288,7 @@ class MapExplorer(Widget):
         if self.show_mode and self.in_mode is not None:
             items.append(MODE_ITEM)
         if "singular" in self.overlays or "circle" in self.overlays:
-            from planar_tui.workspace.map import SINGULAR_LEGEND_ITEMS
+            from planar_tui.workspace.paving.map import SINGULAR_LEGEND_ITEMS
 
             items += SINGULAR_LEGEND_ITEMS
         items += [f"{glyph} {text}" for _, glyph, text in self.overlays.get("layers", ())]

@@ -22,8 +22,9 @@ from planar_tui.app.widgets.workspace_explorer import MapExplorer, cell_status
 from planar_tui.jobkind import JobResult
 from planar_tui.presets import Job
 from planar_tui.progress import ProgressState
+from planar_tui.registry import JOB_KINDS
 
-#: Lines of :func:`planar_tui.workspace.map.render_map` below the plot rows.
+#: Lines of :func:`planar_tui.workspace.paving.map.render_map` below the plot rows.
 MAP_FOOTER_LINES = 3
 #: Seconds between two redraws of the map of the boxes kept so far while a job runs.
 PARTIAL_MAP_EVERY_S = 0.5
@@ -42,7 +43,7 @@ def fitted_map(boxes, status, width: int, height: int, **overlays) -> list[str]:
     others show the plain axis ``│``), so each label points at its row. ``overlays`` are
     ``render_map``'s ``singular`` and ``circle``.
     """
-    from planar_tui.workspace.map import render_map
+    from planar_tui.workspace.paving.map import render_map
 
     lines = render_map(boxes, status, width=width, **overlays)
     while len(lines) > height and width > 20:
@@ -70,13 +71,14 @@ def fine_job(job, **changes) -> Any:
 
 
 def pave(job, should_stop, threads: int | None = None) -> Any:
-    """Pave ``job``'s workspace (:func:`planar_tui.workspace.compute.compute_workspace`),
+    """Pave ``job``'s workspace (:func:`planar_tui.workspace.rrr.compute.compute_workspace`),
     its parallel kernels on ``threads`` threads when given (Numba's count is per calling
     thread: the other threads keep theirs)."""
     import numba
 
     from planar_tui.progress import Progress
-    from planar_tui.workspace.compute import BoxBudget, compute_workspace
+    from planar_tui.workspace.paving.levels import BoxBudget
+    from planar_tui.workspace.rrr.compute import compute_workspace
 
     progress = Progress(should_stop=should_stop)
     before = numba.get_num_threads()
@@ -121,10 +123,6 @@ class WorkspacePane(JobPane):
     cursor, the read-out and summary."""
 
     kind = "workspace"
-    #: Whether the map draws the 3-RRR at its cursor, reads its legs' angles, overlays
-    #: its exact boundary, re-paves the view and previews edits (the 3-RRR's pane; the
-    #: other parallel robots' panes reuse the map alone).
-    explores_3rrr = True
     _partial_drawn_s = 0.0
 
     DEFAULT_CSS = """
@@ -184,13 +182,22 @@ class WorkspacePane(JobPane):
             explorer.show_text("(no box kept: the workspace is empty at this precision)")
             self.query_one("#workspace-legend", Static).update("")
             return
-        from planar_tui.workspace.job import map_content
+        from planar_tui.workspace.paving.result import map_content
 
         refit = self._shown_job is not job
         self._shown_job = job
         self.set_geometry(job, result)
         boxes, status, drawn = map_content(job, result)  # as the CLI's map: layers too
         self.draw_map(boxes, status, "", refit, **drawn)
+
+    @property
+    def explores_3rrr(self) -> bool:
+        """Whether the map draws the 3-RRR at its cursor, reads its legs' angles, overlays
+        its exact boundary, re-paves the view and previews edits: the kind's robot says so
+        (:attr:`~planar_tui.workspace.paving.mechanism.Mechanism.explores`; the other
+        parallel robots' panes reuse the map alone)."""
+        mechanism = getattr(JOB_KINDS[self.kind].settings, "mechanism", None)
+        return bool(mechanism is not None and mechanism.explores)
 
     # -- the geometry at the cursor -------------------------------------------------------
     def constant_orientation_3rrr(self, job: Any) -> bool:
@@ -211,7 +218,7 @@ class WorkspacePane(JobPane):
         robot, spec = job.robot, job.spec
 
         def rings() -> list[list[tuple[float, float]]]:
-            from planar_tui.workspace.geometry import workspace_polygon
+            from planar_tui.workspace.rrr.geometry import workspace_polygon
 
             polygon = workspace_polygon(robot, spec.limits_rad, spec.orientation_rad, 256, False)
             parts = getattr(polygon, "geoms", [polygon])

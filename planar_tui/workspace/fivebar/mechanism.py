@@ -1,0 +1,53 @@
+"""The five-bar's separator (:class:`~planar_tui.workspace.paving.mechanism.Mechanism`):
+its reach box and polygon for the estimate, its leg test for the paving."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from types import MappingProxyType
+from typing import Any
+
+from planar_tui.workspace.fivebar.robot import workspace_polygon
+from planar_tui.workspace.fivebar.tolerance import TOLERANCE_KEYS_5R, tolerant_level_kernel
+from planar_tui.workspace.paving.mechanism import Mechanism
+
+
+class MechanismFiveBar(Mechanism):
+    """The five-bar's separator (:class:`~planar_tui.workspace.paving.mechanism.Mechanism`):
+    the exact leg test of :mod:`planar_tui.kernels.workspace5r` (or its tolerance-certified
+    form, :func:`~planar_tui.workspace.fivebar.tolerance.tolerant_level_kernel`); its
+    singularities are its job's own (:mod:`.singularity`)."""
+
+    name = "five-bar"
+    explores = False
+    tolerance_keys = TOLERANCE_KEYS_5R
+    singular_boxes_per_step = 20.0
+    tolerance_boxes = MappingProxyType({"all": 1.0, "some": 1.0})
+    has_singularities = False  # its runner, not the generic one, certifies them
+    has_orientation_ranges = False
+
+    def parameters(self, robot: Any, spec: Any) -> Any:
+        return robot.leg_arrays()
+
+    def level_kernel(self) -> Callable[..., None]:
+        from planar_tui.kernels.workspace5r import level
+
+        return level
+
+    def decider(self, robot: Any, spec: Any, precision_cm: float) -> Callable[..., None]:
+        (legs, limits), level = self.parameters(robot, spec), self.level_kernel()
+        level = tolerant_level_kernel(spec, level)
+
+        def decide(rows: Any, start: int, stop: int, children: Any, outcome: Any) -> None:
+            level(legs, limits, precision_cm, rows, start, stop, children, outcome)
+
+        return decide
+
+    def reach_box(self, robot: Any, spec: Any) -> tuple[float, float, float, float]:
+        return robot.reach_box_cm()
+
+    def polygon(self, robot: Any, spec: Any, segments_per_turn: int, outward: bool) -> Any:
+        return workspace_polygon(robot, segments_per_turn, outward)
+
+
+MECHANISM = MechanismFiveBar()

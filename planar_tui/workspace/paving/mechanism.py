@@ -1,0 +1,113 @@
+"""The :class:`Mechanism` protocol: what the paving core asks of one parallel robot.
+
+The core paves (x, y) boxes level by level (:func:`~planar_tui.workspace.paving.levels.
+pave_in_levels`) and certifies ``|inside| <= exact area <= |kept|``; a robot is the
+*separator* it paves with, as codac and pyIbex compose one paver with many separators.
+Each robot subpackage (:mod:`planar_tui.workspace.rrr`, :mod:`~planar_tui.workspace.rpr`,
+:mod:`~planar_tui.workspace.prr`, :mod:`~planar_tui.workspace.fivebar`) provides one
+instance, its specs' ``mechanism``; the core never names a robot.
+
+A new parallel robot is one subpackage (its robot table, its job and its ``Mechanism``),
+its kernels (``kernels/``) and its registry lines (:mod:`planar_tui.registry`);
+``tests/test_new_mechanism.py`` defines one in a test file.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
+
+if TYPE_CHECKING:
+    from planar_tui.workspace.paving.geometry import GeometricArea
+
+
+@runtime_checkable
+class Mechanism(Protocol):
+    """One parallel robot's separator: its leg test kernel, reach box, exact polygon,
+    singularity test, orientation-range test, tolerance bounds and estimate constants.
+
+    Every method takes the robot (its table's model) and the job's spec. The leg test is
+    ``level_kernel()(parameters(robot, spec), precision_cm, rows, start, stop, children,
+    outcome)``: one level of the paving in parallel, writing per row ``start + i`` its
+    outcome (:func:`~planar_tui.kernels.workspace_arc.settle_xy_box`: inside, boundary,
+    outside or split) and its halves. A box it proves inside or outside is never split.
+
+    Later capabilities are methods of this protocol, each written once per robot and never
+    inside the core: dexterity (the condition number over a box), certified paths
+    (a segment inside the singularity-free workspace), dynamics (the platform's inverse
+    dynamics) and direct kinematics (the assembly modes at given actuator values).
+    """
+
+    #: The robot's name in messages and titles (``"3-RPR"``).
+    name: str
+    #: Whether the app's workspace tab explores its map (the robot drawn at the cursor).
+    explores: bool
+    #: The toleranced quantities (the keys of ``tolerances_cm``; ``()``: none).
+    tolerance_keys: tuple[str, ...]
+    #: The estimate's singularity boxes per ε_s of the search box's width + height
+    #: (:mod:`planar_tui.workspace.paving.estimate`).
+    singular_boxes_per_step: float
+    #: The estimate's boxes per ε² of boundary length × tolerance, by ``tolerance_mode``.
+    tolerance_boxes: Mapping[str, float]
+    #: Whether it certifies singularities (:meth:`resolve_centre`,
+    #: :meth:`compute_singularities`) and paves orientation ranges (:meth:`compute_range`).
+    has_singularities: bool
+    has_orientation_ranges: bool
+
+    def parameters(self, robot: Any, spec: Any) -> Any:
+        """The leg test kernel's parameter array (its tolerance bounds included)."""
+        ...
+
+    def level_kernel(self) -> Callable[..., None]:
+        """The leg test kernel (imported when called: kernels load numba)."""
+        ...
+
+    def decider(self, robot: Any, spec: Any, precision_cm: float) -> Callable[..., None]:
+        """One level's decision ``decide(rows, start, stop, children, outcome)`` at
+        ``precision_cm``: the leg test kernel with this robot's parameters bound in (a
+        robot whose kernel takes other arguments overrides this)."""
+        p, level = self.parameters(robot, spec), self.level_kernel()
+
+        def decide(rows: Any, start: int, stop: int, children: Any, outcome: Any) -> None:
+            level(p, precision_cm, rows, start, stop, children, outcome)
+
+        return decide
+
+    def reach_box(self, robot: Any, spec: Any) -> tuple[float, float, float, float]:
+        """A box ``(x_lo, x_hi, y_lo, y_hi)`` holding the nominal robot's workspace (empty
+        when ``lo > hi``)."""
+        ...
+
+    def polygon(self, robot: Any, spec: Any, segments_per_turn: int, outward: bool) -> Any:
+        """The inner (``outward=False``) or outer shapely polygon of the exact workspace."""
+        ...
+
+    def geometric_area(self, robot: Any, spec: Any) -> GeometricArea:
+        """The exact area's bracket from :meth:`polygon`
+        (:func:`~planar_tui.workspace.paving.geometry.polygon_bracket`)."""
+        from planar_tui.workspace.paving.geometry import polygon_bracket  # numpy
+
+        def polygon(segments: int, outward: bool) -> Any:
+            return self.polygon(robot, spec, segments, outward)
+
+        return polygon_bracket(polygon, 2e-5, 1 << 18)
+
+    def resolve_centre(self, job: Any) -> object:
+        """The singularity-free circle's centre of a job with ``singularities``, checked
+        before anything runs (``None`` without)."""
+        return None
+
+    def compute_singularities(self, job: Any, prepared: Any, extent: Any, budget: Any) -> Any:
+        """The singular boxes and the certified circle (a
+        :class:`~planar_tui.workspace.paving.result.SingularOverlay` with ``columns()``)."""
+        problem = f"{self.name} certifies no singularities (has_singularities is false)"
+        raise NotImplementedError(problem)
+
+    def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:
+        """The maximal or total orientation workspace over ``orientation_deg = [lo, hi]``
+        (a :class:`~planar_tui.workspace.paving.levels.WorkspaceOutcome`)."""
+        problem = f"{self.name} paves no orientation range (has_orientation_ranges is false)"
+        raise NotImplementedError(problem)
+
+
+__all__ = ["Mechanism"]

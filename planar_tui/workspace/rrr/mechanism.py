@@ -1,0 +1,77 @@
+"""The 3-RRR's separator (:class:`~planar_tui.workspace.paving.mechanism.Mechanism`).
+
+Its leg test is the exact arc-distance test of :mod:`planar_tui.kernels.workspace_arc`
+(each leg's reachable annulus sector, the joint limits as arcs); the interval forms of
+paper B (the joint bisection and the leg-wise paving, :mod:`.compute`) are its own runner's
+stages, ahead of that test. Its ``[workspace]`` job runs its own stages
+(:func:`~planar_tui.workspace.rrr.job.run_workspace`), its box estimate is
+:func:`~planar_tui.workspace.rrr.compute.estimate_boxes`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from types import MappingProxyType
+from typing import Any
+
+from planar_tui.workspace.paving.mechanism import Mechanism
+from planar_tui.workspace.rrr.orientation import compute_orientation_workspace, reach_box_for
+from planar_tui.workspace.rrr.robot import TOLERANCE_KEYS_3RRR
+from planar_tui.workspace.rrr.singularity import compute_singularities, resolve_circle
+
+
+class Mechanism3RRR(Mechanism):
+    """The 3-RRR of paper B: three RR legs, the active joints' limits as arcs."""
+
+    name = "3-RRR"
+    explores = True
+    tolerance_keys = TOLERANCE_KEYS_3RRR
+    # its own estimate (:func:`planar_tui.workspace.rrr.compute.estimate_boxes`)
+    singular_boxes_per_step = 0.0
+    tolerance_boxes = MappingProxyType({})
+    has_singularities = True
+    has_orientation_ranges = True
+
+    def parameters(self, robot: Any, spec: Any) -> Any:
+        from planar_tui.workspace.rrr.compute import kernel_parameters  # numpy
+
+        return kernel_parameters(robot, spec)
+
+    def level_kernel(self) -> Callable[..., None]:
+        from planar_tui.kernels.workspace_arc import arc_level
+
+        return arc_level
+
+    def decider(self, robot: Any, spec: Any, precision_cm: float) -> Callable[..., None]:
+        from planar_tui.kernels.workspace_arc import limits_array
+        from planar_tui.workspace.rrr.compute import LEAF_GRID
+
+        p, limits = self.parameters(robot, spec), limits_array(spec.limits_rad)
+        level = self.level_kernel()
+
+        def decide(rows: Any, start: int, stop: int, children: Any, outcome: Any) -> None:
+            level(p, limits, precision_cm, LEAF_GRID, rows, start, stop, children, outcome)
+
+        return decide
+
+    def reach_box(self, robot: Any, spec: Any) -> tuple[float, float, float, float]:
+        return reach_box_for(robot, spec.orientation_deg)
+
+    def polygon(self, robot: Any, spec: Any, segments_per_turn: int, outward: bool) -> Any:
+        from planar_tui.workspace.rrr.geometry import workspace_polygon  # numpy, shapely
+
+        return workspace_polygon(
+            robot, spec.limits_rad, spec.orientation_rad, segments_per_turn, outward
+        )
+
+    def resolve_centre(self, job: Any) -> object:
+        return resolve_circle(job) if job.spec.singularities else None
+
+    def compute_singularities(self, job: Any, prepared: Any, extent: Any, budget: Any) -> Any:
+        return compute_singularities(job, prepared, extent, budget)
+
+    def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:
+        return compute_orientation_workspace(robot, spec, budget)
+
+
+MECHANISM = Mechanism3RRR()
