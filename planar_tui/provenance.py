@@ -146,8 +146,9 @@ class Provenance:
             allowed = FIELD_TYPES[key]
             if isinstance(value, bool) or not isinstance(value, allowed):
                 names = " or ".join(_JSON_NAMES[t] for t in allowed)
-                raise ValueError(f"{key!r} is {_JSON_NAMES.get(type(value), 'a value')}, "
-                                 f"must be {names}")  # fmt: skip
+                raise ValueError(
+                    f"{key!r} is {_JSON_NAMES.get(type(value), 'a value')}, must be {names}"
+                )
         _check_point(known.get("point"))
         _check_time(known.get("started_utc"))
         return cls(**known)
@@ -158,16 +159,33 @@ MAX_DEPTH = 32
 
 #: The JSON types each sidecar key may hold (``kind`` is checked first).
 FIELD_TYPES: dict[str, tuple[type, ...]] = {
-    "kind": (str,), "label": (str,), "preset_path": (str,),
-    "preset_sha256": (str, type(None)), "settings": (dict,), "robot": (dict,),
-    "seed": (int, type(None)), "samples": (int, type(None)), "form": (str, type(None)),
-    "precision_cm": (int, float, type(None)), "version": (str,), "command": (str,),
-    "started_utc": (str, type(None)), "duration_s": (int, float, type(None)),
-    "point": (dict, type(None)), "format": (int,),
-}  # fmt: skip
+    "kind": (str,),
+    "label": (str,),
+    "preset_path": (str,),
+    "preset_sha256": (str, type(None)),
+    "settings": (dict,),
+    "robot": (dict,),
+    "seed": (int, type(None)),
+    "samples": (int, type(None)),
+    "form": (str, type(None)),
+    "precision_cm": (int, float, type(None)),
+    "version": (str,),
+    "command": (str,),
+    "started_utc": (str, type(None)),
+    "duration_s": (int, float, type(None)),
+    "point": (dict, type(None)),
+    "format": (int,),
+}
 
-_JSON_NAMES = {str: "text", dict: "an object", int: "an integer", float: "a number",
-               type(None): "null", bool: "true or false", list: "an array"}  # fmt: skip
+_JSON_NAMES = {
+    str: "text",
+    dict: "an object",
+    int: "an integer",
+    float: "a number",
+    type(None): "null",
+    bool: "true or false",
+    list: "an array",
+}
 
 
 def _depth(value: Any) -> int:
@@ -177,8 +195,9 @@ def _depth(value: Any) -> int:
         item, level = stack.pop()
         if isinstance(item, dict | list):
             deepest = max(deepest, level + 1)
-            stack.extend((child, level + 1) for child in
-                         (item.values() if isinstance(item, dict) else item))  # fmt: skip
+            stack.extend(
+                (child, level + 1) for child in (item.values() if isinstance(item, dict) else item)
+            )
     return deepest
 
 
@@ -186,8 +205,11 @@ def _check_point(point: Any) -> None:
     """A point's ``{"sweep": text, "number": integer, "values": object}``, or ``None``."""
     if point is None:
         return
-    for key, allowed, name in (("sweep", str, "text"), ("number", int, "an integer"),
-                               ("values", dict, "an object")):  # fmt: skip
+    for key, allowed, name in (
+        ("sweep", str, "text"),
+        ("number", int, "an integer"),
+        ("values", dict, "an object"),
+    ):
         value = point.get(key)
         if isinstance(value, bool) or not isinstance(value, allowed):
             raise ValueError(f"'point.{key}' must be {name}")

@@ -97,8 +97,9 @@ def open_bounded(path: Path | str, max_bytes: int, what: str) -> BinaryIO:
         if not stat.S_ISREG(status.st_mode):
             raise BoundedReadError("is not a regular file (a device, FIFO or socket)")
         if status.st_size > max_bytes:
-            raise BoundedReadError(f"is {_size(status.st_size)}, more than the "
-                                   f"{_size(max_bytes)} {what} may have")  # fmt: skip
+            raise BoundedReadError(
+                f"is {_size(status.st_size)}, more than the {_size(max_bytes)} {what} may have"
+            )
         os.set_blocking(descriptor, True)
         return os.fdopen(descriptor, "rb")
     except BaseException:

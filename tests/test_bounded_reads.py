@@ -34,10 +34,15 @@ from tests.conftest import PRESETS
 DATA = Path(__file__).parent / "data" / "app"
 
 GOOD = {
-    "kind": "torques", "label": "p:torques", "preset_path": "/p.toml", "preset_sha256": None,
-    "settings": {"theta_deg": [[0.0, 10.0]]}, "robot": {"lengths_m": [0.303, 0.214]},
-    "started_utc": "2026-01-02T03:04:05+00:00", "duration_s": 0.5,
-}  # fmt: skip
+    "kind": "torques",
+    "label": "p:torques",
+    "preset_path": "/p.toml",
+    "preset_sha256": None,
+    "settings": {"theta_deg": [[0.0, 10.0]]},
+    "robot": {"lengths_m": [0.303, 0.214]},
+    "started_utc": "2026-01-02T03:04:05+00:00",
+    "duration_s": 0.5,
+}
 
 
 def result_csv(folder: Path, sidecar: str | None = None) -> Path:
@@ -74,9 +79,8 @@ BAD_FIELDS = [
     ({"seed": 1.5}, "'seed' is a number, must be an integer or null"),
     ({"samples": True}, "'samples' is true or false, must be an integer or null"),
     ({"duration_s": "1 s"}, "'duration_s' is text, must be an integer or a number or null"),
-    ({"settings": {"a": json.loads("[" * 32 + "1" + "]" * 32)}},
-     "nested more than 32 levels deep"),
-]  # fmt: skip
+    ({"settings": {"a": json.loads("[" * 32 + "1" + "]" * 32)}}, "nested more than 32 levels deep"),
+]
 
 
 @pytest.mark.parametrize(("change", "message"), BAD_FIELDS)

@@ -88,9 +88,11 @@ TORQUES = ROBOT + "\n[torques]\ntheta_deg = [[0, 10]]\n"
 def test_optimisation_variables_that_overlap_are_refused(tmp_path, cli, variables, problem):
     preset = write(
         tmp_path,
-        TORQUES + '\n[[optimise]]\njob = "torques"\noutput = "o.csv"\n'
-        + variables + 'minimise = "tau1_abs_max_Nm"\n',
-    )  # fmt: skip
+        TORQUES
+        + '\n[[optimise]]\njob = "torques"\noutput = "o.csv"\n'
+        + variables
+        + 'minimise = "tau1_abs_max_Nm"\n',
+    )
     result = cli("optimise", preset, "--out-dir", tmp_path, "--workers", "1")
     refused(result, f"error: {preset}: ", problem)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["p.toml"]
@@ -102,6 +104,120 @@ def test_sweep_key_paths_that_overlap_are_refused(tmp_path, cli):
         TORQUES + '\n[[sweep]]\njob = "torques"\n'
         'values."robot.masses_kg" = [[1.0, 0.8], [1.1, 0.7]]\n'
         'values."robot.masses_kg[2]" = [0.5, 0.6]\n',
-    )  # fmt: skip
+    )
     result = cli("sweep", preset, "--out-dir", tmp_path)
     refused(result, 'sweep[1].values."robot.masses_kg[2]": overlaps robot.masses_kg')
+
+
+# -- export: only XML characters -----------------------------------------------------------
+@pytest.mark.parametrize(
+    ("name", "format_name", "written"),
+    [
+        ("a \\u0007 \\u001b[31m", "urdf", "a \ufffd \ufffd[31m"),
+        ("a\\u0000b", "mjcf", "a\ufffdb"),
+        ("tab\\there \\ud7ff \\ufffe", "urdf", "tab\there \ud7ff \ufffd"),
+    ],
+)
+def test_export_writes_only_xml_characters(tmp_path, cli, name, format_name, written):
+    import xml.etree.ElementTree as ET
+
+    preset = write(tmp_path, ROBOT.replace("[robot]\n", f'[robot]\nname = "{name}"\n'))
+    model = tmp_path / f"m.{format_name}"
+    result = cli("export", preset, "--format", format_name, "--out", model)
+    assert result.exit_code == 0, result.output
+    root = ET.parse(model).getroot()  # Python's parser takes it
+    assert root.get("name" if format_name == "urdf" else "model") == written
+    again = cli("import", model, "--out", tmp_path / "back.toml")  # and so does planar-tui
+    assert again.exit_code == 0, again.output
+
+
+# -- empty paths -----------------------------------------------------------------------------
+SIMULATE = ROBOT + "\n[simulate]\nduration_s = 0.01\n"
+
+
+@pytest.mark.parametrize(
+    ("command", "option"),
+    [
+        (("simulate", "{p}", "--out", ""), "--out"),
+        (("simulate", "{p}", "-o", ""), "-o"),
+        (("simulate", "{p}", "--out="), "--out"),
+        (("run", "{p}", "--out-dir", ""), "--out-dir"),
+        (("presets", "paper-a-table1", "--copy", ""), "--copy"),
+        (("sensitivity", "{p}", "--export-problem", ""), "--export-problem"),
+        (("plot", "r.csv", "--out", ""), "--out"),
+    ],
+)
+def test_an_empty_path_is_refused(tmp_path, cli, monkeypatch, command, option):
+    monkeypatch.chdir(tmp_path)
+    preset = write(tmp_path, SIMULATE)
+    result = cli(*(part.format(p=preset) for part in command))
+    refused(result, f"error: command line: {option}: is empty (expected a file or folder path)")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["p.toml"]  # nothing written
+
+
+# -- sensitivity --export-problem of a PCE-only job ------------------------------------------
+SENSITIVITY = ROBOT + '\n[sensitivity]\nposture = "singular"\nsamples = 64\nseed = 1\n'
+
+
+def test_export_problem_of_a_pce_only_job_is_refused_before_it_runs(tmp_path, cli):
+    preset = write(tmp_path, SENSITIVITY + 'methods = ["pce"]\n')
+    result = cli("sensitivity", preset, "--export-problem", tmp_path / "salib")
+    refused(
+        result,
+        "error: command line: --export-problem: job p:sensitivity runs only pce, "
+        "which has no SALib design to export",
+    )
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["p.toml"]  # no CSV either
+
+
+def test_export_problem_of_sobol_and_pce_exports_the_sobol_design(tmp_path, cli):
+    import numpy as np
+
+    preset = write(tmp_path, SENSITIVITY + 'methods = ["sobol", "pce"]\n')
+    folder = tmp_path / "salib"
+    result = cli("sensitivity", preset, "--out-dir", tmp_path, "--export-problem", folder)
+    assert result.exit_code == 0, result.output
+    assert sorted(p.name for p in folder.iterdir()) == ["sobol"]
+    x, y = np.load(folder / "sobol" / "X.npy"), np.load(folder / "sobol" / "Y.npy")
+    assert x.shape == (64 * (4 + 2), 4) and y.shape[0] == x.shape[0]  # Saltelli: N (D + 2)
+
+
+# -- numbers at the edge of the floats ---------------------------------------------------------
+def test_3rpr_leg_limits_are_bounded_like_lengths(tmp_path, cli):
+    preset = write(
+        tmp_path,
+        "[robot3rpr]\n\n[[workspace3rpr]]\nprecision_cm = 1\n"
+        "leg_limits_cm = [[0, 1e300], [0, 1e300], [0, 1e300]]\n",
+    )
+    result = cli("workspace3rpr", preset, "--out-dir", tmp_path)
+    refused(
+        result,
+        "workspace3rpr[1].leg_limits_cm: leg 1 range [0, 1e+300] (expected 0 <= lo < hi <= 1e+50)",
+    )
+
+
+def test_the_box_estimate_of_an_infinite_outline_is_capped_not_an_overflow(monkeypatch):
+    from types import SimpleNamespace
+
+    from planar_tui.workspace import estimate
+
+    spec = SimpleNamespace(
+        form="natural", precision_cm=1.0, refine_precision_cm=None, singularities=False
+    )
+    geometry = (float("inf"), (0.0, 1.0, 0.0, 1.0))
+    monkeypatch.setattr(estimate, "_geometry", lambda kind, robot, spec: geometry)
+    boxes = estimate.estimate_boxes("workspace3rpr", None, spec)
+    assert boxes == int(estimate.MAX_ESTIMATED_BOXES) + estimate.MIN_BOXES
+
+
+def test_isotropic_posture_of_a_3r_with_a_1e30_m_middle_link_is_refused(tmp_path, cli):
+    preset = write(
+        tmp_path,
+        "[robot]\nlengths_m = [0.3, 1e30, 0.2]\nmasses_kg = [1, 1, 1]\n"
+        '\n[sensitivity]\nposture = "isotropic"\nsamples = 64\n',
+    )
+    result = cli("sensitivity", preset, "--out-dir", tmp_path)
+    refused(
+        result,
+        "sensitivity.posture: robot has no isotropic posture: the minimum condition number is",
+    )

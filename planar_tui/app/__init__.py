@@ -31,8 +31,9 @@ def _open_bench(workbench: Any, preset_argument: str | None) -> Any:
         if remembered is None:
             raise
         where = f"the last preset opened, remembered in {settings_path()}; pass a preset to open"
-        raise PresetError(error.path, error.key, f"{error.problem} ({where})",
-                          error.expected) from None  # fmt: skip
+        raise PresetError(
+            error.path, error.key, f"{error.problem} ({where})", error.expected
+        ) from None
 
 
 def run_app(preset_argument: str | None = None, opened: tuple[str, ...] = ()) -> None:

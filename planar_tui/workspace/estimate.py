@@ -98,6 +98,11 @@ def largest_tolerance_cm(spec: Any) -> tuple[float, str] | None:
     return max(widths), getattr(spec, "tolerance_mode", None) or "all"
 
 
+#: The most boxes an estimate names (far beyond any limit): a geometry whose outline is
+#: infinite (leg limits near 1e300 cm) is refused by the limits, not by an overflow.
+MAX_ESTIMATED_BOXES = 1e18
+
+
 def estimate_boxes(kind: str, robot: Any, spec: Any) -> int:
     """About how many boxes the job of kind ``kind`` processes (module docstring; 0 for the
     ``geometric`` form)."""
@@ -117,6 +122,8 @@ def estimate_boxes(kind: str, robot: Any, spec: Any) -> int:
     if spec.singularities:
         precision = spec.singularity_precision_cm or eps
         boxes += SINGULAR_BOXES_PER_STEP[kind] * ((xhi - xlo) + (yhi - ylo)) / precision
+    if not boxes < MAX_ESTIMATED_BOXES:  # infinite or NaN (leg limits of 1e300 cm): capped
+        boxes = MAX_ESTIMATED_BOXES
     return math.ceil(boxes) + MIN_BOXES
 
 

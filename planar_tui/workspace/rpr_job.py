@@ -31,14 +31,21 @@ MECHANISM = Mechanism(
 )
 
 
+#: Longest leg (cm), as the serial robots' lengths are bounded (``SCALE_MAX``): the
+#: geometry's outline and the estimate stay finite.
+MAX_LEG_CM = 1e50
+
+
 def _leg_limits(reader: TableReader, name, default, robot, values):
-    """Three ``[lo, hi]`` rows in cm with ``0 <= lo < hi``."""
+    """Three ``[lo, hi]`` rows in cm with ``0 <= lo < hi <=`` :data:`MAX_LEG_CM`."""
     rows = reader.number_rows(name, columns=2, row_doc="[lo, hi] in cm")
     if len(rows) != 3:
         raise reader.error(name, f"has {len(rows)} rows", "3 rows [lo, hi], one per leg")
     for leg, (lo, hi) in enumerate(rows, start=1):
-        if not 0.0 <= lo < hi:
-            raise reader.error(name, f"leg {leg} range [{lo:g}, {hi:g}]", "0 <= lo < hi")
+        if not 0.0 <= lo < hi <= MAX_LEG_CM:
+            raise reader.error(
+                name, f"leg {leg} range [{lo:g}, {hi:g}]", f"0 <= lo < hi <= {MAX_LEG_CM:g}"
+            )
     return rows
 
 
