@@ -221,3 +221,62 @@ def test_isotropic_posture_of_a_3r_with_a_1e30_m_middle_link_is_refused(tmp_path
         result,
         "sensitivity.posture: robot has no isotropic posture: the minimum condition number is",
     )
+
+
+# -- a forged optimisation checkpoint record -------------------------------------------------
+def test_a_forged_optimisation_checkpoint_record_is_dropped_on_resume(tmp_path, cli):
+    import json
+
+    from planar_tui.optimise.run import run_optimisation
+    from planar_tui.optimise.spec import parse_optimisations
+
+    preset = write(
+        tmp_path,
+        TORQUES + '\n[[optimise]]\njob = "torques"\noutput = "o.csv"\nbudget = 8\n'
+        'variables."robot.masses_kg[1]" = { from = 0.5, to = 2 }\nminimise = "tau1_abs_max_Nm"\n',
+    )  # fmt: skip
+    out = tmp_path / "out"
+    (opt,) = parse_optimisations(load_preset(preset))
+    run_optimisation(opt, out_dir=out, keep_checkpoint=True)
+    checkpoint = out / "o.csv.checkpoint.jsonl"
+    lines = checkpoint.read_text().splitlines()
+    for path in out.iterdir():
+        if path != checkpoint:
+            path.unlink()
+    record = json.loads(lines[1])
+    assert record["number"] == 1 and record["status"] == "ok"
+    record["figures"]["tau1_abs_max_Nm"] = -1e300  # well-formed, finite, a column: forged
+    lines[1] = json.dumps(record)
+    checkpoint.write_text("\n".join(lines) + "\n")
+    result = cli("optimise", preset, "--out-dir", out, "--resume", "--workers", "1")
+    assert result.exit_code == 0, result.output
+    warnings = [line for line in result.stderr.splitlines() if line.startswith("warning:")]
+    assert warnings == [
+        f"warning: {checkpoint}:2: record dropped (its digest is not this run's: edited, "
+        "damaged or from another run): its point runs again"
+    ]
+    assert "-1e+300" not in (out / "o.csv").read_text()
+    assert "e+300" not in (out / "o.csv").read_text() and "1e300" not in (out / "o.csv").read_text()
+
+
+# -- box budgets refused up front --------------------------------------------------------------
+def test_a_job_estimated_far_past_its_box_budget_is_refused_up_front(tmp_path):
+    from planar_tui.workspace.estimate import BUDGET_FACTOR, needs
+
+    job = (
+        "[robot3rpr]\n\n[[workspace3rpr]]\nleg_limits_cm = [[20, 80], [20, 80], [20, 80]]\n"
+        "orientation_deg = 0\nprecision_cm = 0.0005\n"
+    )
+    path = write(tmp_path, job + "box_budget = 1000000\n")
+    with pytest.raises(PresetError) as caught:
+        load_preset(path)
+    assert str(caught.value).startswith(
+        f"error: {path}: workspace3rpr[1].precision_cm: is 0.0005 cm: about "
+    )
+    assert "boxes, more than 4 × box_budget = 1,000,000: it would stop at its budget" in str(
+        caught.value
+    )
+    path = write(tmp_path, job + "box_budget = 10000000\n")  # 4 × 10 M: within
+    (ok,) = load_preset(path).jobs
+    boxes, _, _ = needs(ok.kind, ok.robot, ok.spec)
+    assert 1_000_000 * BUDGET_FACTOR < boxes <= 10_000_000 * BUDGET_FACTOR

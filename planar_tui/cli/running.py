@@ -199,6 +199,7 @@ def run_optimisations(plan: RunPlan, workers: int | None, scheduler: str | None)
                         result = run_optimisation(
                             opt, Progress(on_update=update, should_stop=_INTERRUPTED.is_set),
                             client=client, out_dir=plan.out_dir, resume=plan.resume,
+                            announce=_said,
                         )  # fmt: skip
                     except OutputFailed as error:
                         unwritten += 1

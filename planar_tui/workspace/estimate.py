@@ -162,7 +162,25 @@ def check_needs(kind: str, spec: Any, reader: TableReader, robot: Any) -> None:
     from planar_tui.limits import memory_problem, time_problem
 
     boxes, memory, seconds = needs(kind, robot, spec)
-    problem = memory_problem(memory) or time_problem(seconds)
+    problem = memory_problem(memory) or time_problem(seconds) or budget_problem(boxes, spec)
     if problem is not None:
         found = f"is {spec.precision_cm:g} cm: about {count_text(boxes)} boxes, {problem}"
         raise reader.error("precision_cm", found, COARSER)
+
+
+#: How many times ``box_budget`` an estimate may name before the job is refused up front:
+#: the estimate is within a factor 2 on the bundled designs, so a job estimated past 4
+#: times its budget would only stop at the budget, minutes later, with nothing written.
+BUDGET_FACTOR = 4
+
+
+def budget_problem(boxes: int, spec: Any) -> str | None:
+    """``more than 4 × box_budget = …: it would stop at its budget`` when the estimate
+    exceeds :data:`BUDGET_FACTOR` times the job's ``box_budget``, else ``None``."""
+    budget = spec.box_budget
+    if boxes <= BUDGET_FACTOR * budget:
+        return None
+    return (
+        f"more than {BUDGET_FACTOR} × box_budget = {count_text(budget)}: it would stop at "
+        "its budget with nothing written"
+    )
