@@ -280,3 +280,21 @@ def test_a_job_estimated_far_past_its_box_budget_is_refused_up_front(tmp_path):
     (ok,) = load_preset(path).jobs
     boxes, _, _ = needs(ok.kind, ok.robot, ok.spec)
     assert 1_000_000 * BUDGET_FACTOR < boxes <= 10_000_000 * BUDGET_FACTOR
+
+
+# -- plot of a large CSV says it may take minutes --------------------------------------------
+def test_plot_of_a_csv_past_the_slow_figure_rows_says_so_before_drawing(tmp_path, cli, monkeypatch):
+    from planar_tui.cli import commands
+    from planar_tui.csvio import CsvTable
+    from planar_tui.dynamics.torques import torques_header
+
+    csv = tmp_path / "r.csv"
+    rows = [[0.1 * k, 0.2, 0, 0, 0, 0, 1.5 + k, 0.25] for k in range(5)]
+    csv.write_text("\n".join(CsvTable(torques_header(2), rows).lines()) + "\n")
+    monkeypatch.setattr(commands, "SLOW_FIGURE_ROWS", 4)
+    result = cli("plot", csv, "--out", tmp_path / "r.png")
+    assert result.exit_code == 0, result.output
+    assert result.stderr == "drawing 5 rows of r.csv: a figure of this size can take minutes\n"
+    monkeypatch.setattr(commands, "SLOW_FIGURE_ROWS", 5)
+    result = cli("plot", csv, "--out", tmp_path / "again.png")
+    assert result.exit_code == 0 and result.stderr == ""
