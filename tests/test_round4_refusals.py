@@ -234,7 +234,7 @@ def test_a_forged_optimisation_checkpoint_record_is_dropped_on_resume(tmp_path, 
         tmp_path,
         TORQUES + '\n[[optimise]]\njob = "torques"\noutput = "o.csv"\nbudget = 8\n'
         'variables."robot.masses_kg[1]" = { from = 0.5, to = 2 }\nminimise = "tau1_abs_max_Nm"\n',
-    )  # fmt: skip
+    )
     out = tmp_path / "out"
     (opt,) = parse_optimisations(load_preset(preset))
     run_optimisation(opt, out_dir=out, keep_checkpoint=True)
