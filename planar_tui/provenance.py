@@ -189,16 +189,20 @@ _JSON_NAMES = {
 
 
 def _depth(value: Any) -> int:
-    """How deep ``value``'s arrays and objects nest (0 for a scalar), without recursion."""
-    deepest, stack = 0, [(value, 0)]
-    while stack:
-        item, level = stack.pop()
-        if isinstance(item, dict | list):
-            deepest = max(deepest, level + 1)
-            stack.extend(
-                (child, level + 1) for child in (item.values() if isinstance(item, dict) else item)
-            )
-    return deepest
+    """How deep ``value``'s arrays and objects nest (0 for a scalar), level by level
+    without recursion; counting stops past :data:`MAX_DEPTH`."""
+    level, frontier = 0, [value]
+    while level <= MAX_DEPTH:
+        containers = [item for item in frontier if isinstance(item, dict | list)]
+        if not containers:
+            break
+        level += 1
+        frontier = [
+            child
+            for item in containers
+            for child in (item.values() if isinstance(item, dict) else item)
+        ]
+    return level
 
 
 def _check_point(point: Any) -> None:
