@@ -132,7 +132,7 @@ def test_export_writes_only_xml_characters(tmp_path, cli, name, format_name, wri
 
 
 # -- empty paths -----------------------------------------------------------------------------
-SIMULATE = ROBOT + "\n[simulate]\nduration_s = 0.01\n"
+SIMULATE = ROBOT + "\n[simulate]\nduration_s = 0.01\nstep_s = 0.001\n"
 
 
 @pytest.mark.parametrize(
@@ -161,7 +161,9 @@ SENSITIVITY = ROBOT + '\n[sensitivity]\nposture = "singular"\nsamples = 64\nseed
 
 def test_export_problem_of_a_pce_only_job_is_refused_before_it_runs(tmp_path, cli):
     preset = write(tmp_path, SENSITIVITY + 'methods = ["pce"]\n')
-    result = cli("sensitivity", preset, "--export-problem", tmp_path / "salib")
+    result = cli(
+        "sensitivity", preset, "--out-dir", tmp_path, "--export-problem", tmp_path / "salib"
+    )
     refused(
         result,
         "error: command line: --export-problem: job p:sensitivity runs only pce, "
