@@ -194,8 +194,11 @@ def test_3rpr_leg_limits_are_bounded_like_lengths(tmp_path, cli):
     result = cli("workspace3rpr", preset, "--out-dir", tmp_path)
     refused(
         result,
-        "workspace3rpr[1].leg_limits_cm: leg 1 range [0, 1e+300] (expected 0 <= lo < hi <= 1e+50)",
+        "workspace3rpr[1].leg_limits_cm: leg 1 range [0, 1e+300] (expected 0 <= lo < hi <= 1e+200)",
     )
+    write(tmp_path, preset.read_text().replace("1e300", "1e200"))  # at the bound: too large
+    result = cli("workspace3rpr", preset, "--out-dir", tmp_path)
+    refused(result, "workspace3rpr[1].precision_cm: is 1 cm: about 1e+18 boxes, needs about")
 
 
 def test_the_box_estimate_of_an_infinite_outline_is_capped_not_an_overflow(monkeypatch):

@@ -34,6 +34,7 @@ time :data:`SECONDS_PER_BOX` a box (measured 1.7 to 9.3 µs on a busy 2-core mac
 from __future__ import annotations
 
 import math
+import warnings
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
@@ -76,13 +77,15 @@ def _geometry(kind: str, robot: Any, spec: Any) -> tuple[float, tuple[float, ...
     box = spec.search_box_cm or square_about(reach, spec.precision_cm)
     xlo, xhi, ylo, yhi = box[0][0], box[0][1], box[1][0], box[1][1]
     try:
-        if five_bar:
-            from planar_tui.workspace.fivebar import workspace_polygon
+        with warnings.catch_warnings():  # infinite coordinates (legs near 1e200 cm): capped
+            warnings.simplefilter("ignore", RuntimeWarning)
+            if five_bar:
+                from planar_tui.workspace.fivebar import workspace_polygon
 
-            outline = workspace_polygon(robot, SEGMENTS_PER_TURN, True)
-        else:
-            outline = spec.mechanism.polygon(robot, spec, SEGMENTS_PER_TURN, True)
-        length = float(outline.length)
+                outline = workspace_polygon(robot, SEGMENTS_PER_TURN, True)
+            else:
+                outline = spec.mechanism.polygon(robot, spec, SEGMENTS_PER_TURN, True)
+            length = float(outline.length)
     except GEOSException:  # GEOS cannot node it (lengths near 1e199 cm): the box's perimeter
         length = 2.0 * ((xhi - xlo) + (yhi - ylo))
     return length, (xlo, xhi, ylo, yhi)
@@ -99,7 +102,8 @@ def largest_tolerance_cm(spec: Any) -> tuple[float, str] | None:
 
 
 #: The most boxes an estimate names (far beyond any limit): a geometry whose outline is
-#: infinite (leg limits near 1e300 cm) is refused by the limits, not by an overflow.
+#: infinite or NaN (every leg limit near 1e200 cm) is refused by the limits, not by an
+#: overflow.
 MAX_ESTIMATED_BOXES = 1e18
 
 

@@ -31,9 +31,9 @@ MECHANISM = Mechanism(
 )
 
 
-#: Longest leg (cm), as the serial robots' lengths are bounded (``SCALE_MAX``): the
-#: geometry's outline and the estimate stay finite.
-MAX_LEG_CM = 1e50
+#: Longest leg (cm), as lengths are bounded: a leg limit far beyond the reach (1e199 cm,
+#: an unlimited stroke) is capped at the reach box; beyond this one the geometry overflows.
+MAX_LEG_CM = 1e200
 
 
 def _leg_limits(reader: TableReader, name, default, robot, values):
