@@ -17,6 +17,7 @@ from typing import Any
 
 from planar_tui.errors import PresetError
 from planar_tui.jobkind import Job
+from planar_tui.reader import read_bounded_text
 from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
 from planar_tui.schema import TableReader, suggest, type_name
 
@@ -42,11 +43,18 @@ class Preset:
         return tuple(job for job in self.jobs if job.kind == kind)
 
 
+#: Largest preset read (bytes): bundled presets are a few kB; TOML of 4 MiB parses into
+#: about 0.3 GiB of Python values (a preset of 100 MB took over 6 GiB).
+MAX_PRESET_BYTES = 4 * 2**20
+
+
 def read_toml(path: Path | str) -> dict[str, Any]:
-    """Parse a TOML file; unreadable files and syntax errors become :class:`PresetError`."""
+    """Parse a TOML file; unreadable files (anything but a regular file, a file larger
+    than :data:`MAX_PRESET_BYTES`: neither is read) and syntax errors become
+    :class:`PresetError`."""
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        text = read_bounded_text(path, MAX_PRESET_BYTES, "a preset")
     except FileNotFoundError:
         raise PresetError(
             path, "(file)", "no such file", "a preset path or a bundled preset name"

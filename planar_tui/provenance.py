@@ -31,8 +31,15 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from planar_tui.reader import read_bounded_text
+
 #: What a sidecar's name adds to its CSV's (``table3.csv`` -> ``table3.csv.json``).
 SUFFIX = ".json"
+
+#: Largest sidecar read back (bytes): a job's settings are a preset's table, and a preset
+#: is at most :data:`planar_tui.presets.MAX_PRESET_BYTES` (4 MiB) of TOML, which JSON's
+#: indented arrays make up to about 4 times longer.
+MAX_SIDECAR_BYTES = 16 * 2**20
 
 #: The sidecar format (bumped when a field changes meaning).
 FORMAT = 1
@@ -119,16 +126,107 @@ class Provenance:
     @classmethod
     def from_json(cls, text: str) -> Provenance:
         """Read a sidecar's text; unknown keys are ignored (a newer version's), missing
-        optional ones default; :class:`ValueError` if it is not a sidecar."""
-        data = json.loads(text)
+        optional ones default; :class:`ValueError` naming the key if it is not a sidecar:
+        every known key's type is checked (:data:`FIELD_TYPES`; ``point`` is ``{"sweep":
+        text, "number": integer, "values": {key path: value}}``, ``started_utc`` an ISO
+        time) and values nest at most :data:`MAX_DEPTH` levels."""
+        try:
+            data = json.loads(text)
+        except RecursionError:
+            raise ValueError(f"nested more than {MAX_DEPTH} levels deep") from None
         if not isinstance(data, dict) or not isinstance(data.get("kind"), str):
             raise ValueError("not a planar-tui provenance file (no 'kind')")
-        names = {f.name for f in dataclasses.fields(cls)}
-        known = {key: value for key, value in data.items() if key in names}
+        if _depth(data) > MAX_DEPTH:
+            raise ValueError(f"nested more than {MAX_DEPTH} levels deep")
+        known = {key: value for key, value in data.items() if key in FIELD_TYPES}
         for required in ("label", "preset_path", "settings"):
             known.setdefault(required, {} if required == "settings" else "")
         known.setdefault("preset_sha256", None)
+        for key, value in known.items():
+            allowed = FIELD_TYPES[key]
+            if isinstance(value, bool) or not isinstance(value, allowed):
+                names = " or ".join(_JSON_NAMES[t] for t in allowed)
+                raise ValueError(
+                    f"{key!r} is {_JSON_NAMES.get(type(value), 'a value')}, must be {names}"
+                )
+        _check_point(known.get("point"))
+        _check_time(known.get("started_utc"))
         return cls(**known)
+
+
+#: Deepest nesting of a sidecar's values (a preset's are a few levels deep).
+MAX_DEPTH = 32
+
+#: The JSON types each sidecar key may hold (``kind`` is checked first).
+FIELD_TYPES: dict[str, tuple[type, ...]] = {
+    "kind": (str,),
+    "label": (str,),
+    "preset_path": (str,),
+    "preset_sha256": (str, type(None)),
+    "settings": (dict,),
+    "robot": (dict,),
+    "seed": (int, type(None)),
+    "samples": (int, type(None)),
+    "form": (str, type(None)),
+    "precision_cm": (int, float, type(None)),
+    "version": (str,),
+    "command": (str,),
+    "started_utc": (str, type(None)),
+    "duration_s": (int, float, type(None)),
+    "point": (dict, type(None)),
+    "format": (int,),
+}
+
+_JSON_NAMES = {
+    str: "text",
+    dict: "an object",
+    int: "an integer",
+    float: "a number",
+    type(None): "null",
+    bool: "true or false",
+    list: "an array",
+}
+
+
+def _depth(value: Any) -> int:
+    """How deep ``value``'s arrays and objects nest (0 for a scalar), level by level
+    without recursion; counting stops past :data:`MAX_DEPTH`."""
+    level, frontier = 0, [value]
+    while level <= MAX_DEPTH:
+        containers = [item for item in frontier if isinstance(item, dict | list)]
+        if not containers:
+            break
+        level += 1
+        frontier = [
+            child
+            for item in containers
+            for child in (item.values() if isinstance(item, dict) else item)
+        ]
+    return level
+
+
+def _check_point(point: Any) -> None:
+    """A point's ``{"sweep": text, "number": integer, "values": object}``, or ``None``."""
+    if point is None:
+        return
+    for key, allowed, name in (
+        ("sweep", str, "text"),
+        ("number", int, "an integer"),
+        ("values", dict, "an object"),
+    ):
+        value = point.get(key)
+        if isinstance(value, bool) or not isinstance(value, allowed):
+            raise ValueError(f"'point.{key}' must be {name}")
+
+
+def _check_time(started: str | None) -> None:
+    """``started_utc`` is an ISO 8601 time (or ``None``)."""
+    if started is None:
+        return
+    try:
+        datetime.datetime.fromisoformat(started).astimezone()
+    except (ValueError, OverflowError):
+        raise ValueError(f"'started_utc' is {started[:40]!r}, not an ISO 8601 time") from None
 
 
 def _headline(settings: Mapping[str, Any]) -> dict[str, Any]:
@@ -209,10 +307,12 @@ def write_sidecar(csv_path: Path | str, record: Provenance) -> Path | None:
 
 def read_sidecar(csv_path: Path | str) -> Provenance | None:
     """The sidecar of ``csv_path``; ``None`` when there is none, :class:`ValueError` when
-    it exists but cannot be read as one."""
+    it exists but cannot be read as one: not a regular file, larger than
+    :data:`MAX_SIDECAR_BYTES` (neither is read), or not a sidecar
+    (:meth:`Provenance.from_json`)."""
     path = sidecar_path(csv_path)
     try:
-        text = path.read_text(encoding="utf-8")
+        text = read_bounded_text(path, MAX_SIDECAR_BYTES, "a provenance file")
     except FileNotFoundError:
         return None
     except (OSError, UnicodeDecodeError) as error:

@@ -11,9 +11,10 @@ from __future__ import annotations
 import difflib
 import math
 import os
+import stat
 from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import Any, BinaryIO
 
 from planar_tui.errors import PresetError
 
@@ -69,6 +70,52 @@ def file_name_problem(value: str) -> str | None:
                 f"({NAME_MAX_BYTES})"
             )
     return None
+
+
+class BoundedReadError(OSError):
+    """A file :func:`open_bounded` refuses: not a regular file, or larger than its bound
+    (the message says which, in words)."""
+
+
+def _size(n_bytes: int) -> str:
+    """``4 MiB``, ``512 KiB``: a bound for messages."""
+    return f"{n_bytes / 2**20:.3g} MiB" if n_bytes >= 2**20 else f"{n_bytes / 2**10:.3g} KiB"
+
+
+def open_bounded(path: Path | str, max_bytes: int, what: str) -> BinaryIO:
+    """A binary stream on the regular file ``path`` of at most ``max_bytes`` bytes.
+
+    The file is opened without blocking (a FIFO with no writer does not hang the open)
+    and checked on its descriptor before a byte is read: anything but a regular file (a
+    FIFO, ``/dev/zero``, a folder) or a file larger than ``max_bytes`` raises
+    :class:`BoundedReadError` (``is 4.1e+03 MiB, more than the 4 MiB a preset may have``:
+    ``what`` names the file's role). ``FileNotFoundError`` and other ``OSError`` pass.
+    """
+    descriptor = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
+    try:
+        status = os.fstat(descriptor)
+        if not stat.S_ISREG(status.st_mode):
+            raise BoundedReadError("is not a regular file (a device, FIFO or socket)")
+        if status.st_size > max_bytes:
+            raise BoundedReadError(
+                f"is {_size(status.st_size)}, more than the {_size(max_bytes)} {what} may have"
+            )
+        os.set_blocking(descriptor, True)
+        return os.fdopen(descriptor, "rb")
+    except BaseException:
+        os.close(descriptor)
+        raise
+
+
+def read_bounded_text(path: Path | str, max_bytes: int, what: str) -> str:
+    """The UTF-8 text of ``path`` (:func:`open_bounded`); at most ``max_bytes + 1`` bytes
+    are ever read, a file that grew past the bound meanwhile is refused too.
+    ``UnicodeDecodeError`` when the bytes are not UTF-8."""
+    with open_bounded(path, max_bytes, what) as stream:
+        data = stream.read(max_bytes + 1)
+    if len(data) > max_bytes:
+        raise BoundedReadError(f"grew past the {_size(max_bytes)} {what} may have")
+    return data.decode("utf-8")
 
 
 def suggest(name: str, allowed: Iterable[str]) -> str:

@@ -13,6 +13,7 @@ import os
 import pytest
 
 from planar_tui.presets import load_preset
+from planar_tui.sweep.checkpoint import record_digest
 from planar_tui.sweep.spec import parse_sweeps
 from tests.sweep_presets import TORQUES, TORQUES_BASE, WORKSPACE, WORKSPACE_BASE, write
 
@@ -120,6 +121,7 @@ def test_a_checkpoint_of_the_same_sweep_is_kept_without_resume(tmp_path, cli):
     figures = {"tau1_abs_max_Nm": 1.5, "tau2_abs_max_Nm": 2.5}  # the kind's own columns
     point = {"number": 1, "status": "ok", "message": "", "figures": figures,
              "seconds": 12.5, "tables": {}}  # fmt: skip
+    point["digest"] = record_digest(sweep.fingerprint(), point)  # as the run writes it
     text = json.dumps({"fingerprint": sweep.fingerprint(), "points": 2}) + "\n"
     text += json.dumps(point) + "\n"
     checkpoint.write_text(text)

@@ -12,7 +12,7 @@ import math
 
 import pytest
 
-from planar_tui.errors import ExitCode
+from planar_tui.errors import ExitCode, PresetError
 from planar_tui.presets import load_preset
 from planar_tui.progress import Progress
 from planar_tui.registry import JOB_KINDS
@@ -256,7 +256,11 @@ def test_a_run_reports_its_estimate_and_warns_over_the_box_budget(tmp_path, kind
     )
     path = tmp_path / "p.toml"
     path.write_text(text, encoding="utf-8")
-    (job,) = load_preset(path).jobs
+    with pytest.raises(PresetError, match=r"boxes, more than 4 × box_budget = 500"):
+        load_preset(path)  # estimated past 4 × its budget: refused when read
+    path.write_text(text.replace("box_budget = 500\n", ""), encoding="utf-8")
+    (job,) = load_preset(path).jobs  # the run's own stop, for an estimate that falls short:
+    job = dataclasses.replace(job, spec=dataclasses.replace(job.spec, box_budget=500))
     declared, progress = JOB_KINDS[kind], Progress()
     with pytest.raises(JobError, match="exceeded 500 boxes"):
         declared.run(declared.prepare_job(job), progress)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import sys
+from typing import Any
 
 
 def last_preset() -> str | None:
@@ -17,6 +18,24 @@ def last_preset() -> str | None:
     return path if path is not None and Path(path).is_file() else None
 
 
+def _open_bench(workbench: Any, preset_argument: str | None) -> Any:
+    """The app's workbench on ``preset_argument``, else on :func:`last_preset`; a
+    remembered preset that cannot be read says it came from the settings file."""
+    from planar_tui.app.settings import settings_path
+    from planar_tui.errors import PresetError
+
+    remembered = None if preset_argument else last_preset()
+    try:
+        return workbench.open_marked(preset_argument or remembered)
+    except PresetError as error:
+        if remembered is None:
+            raise
+        where = f"the last preset opened, remembered in {settings_path()}; pass a preset to open"
+        raise PresetError(
+            error.path, error.key, f"{error.problem} ({where})", error.expected
+        ) from None
+
+
 def run_app(preset_argument: str | None = None, opened: tuple[str, ...] = ()) -> None:
     """Open the workbench on a preset path or bundled name (default: the preset last
     opened or saved, see :func:`last_preset`, else a bundled preset).
@@ -24,7 +43,8 @@ def run_app(preset_argument: str | None = None, opened: tuple[str, ...] = ()) ->
     A preset whose values are wrong opens with its problems marked on the tabs (a table
     that is no table as an empty one, :meth:`Workbench.open_marked`); one that cannot be
     read or is no TOML raises the CLI's :class:`~planar_tui.errors.PresetError` before the
-    terminal is taken over, so the CLI prints its one-line error and exits with 2; so does
+    terminal is taken over, so the CLI prints its one-line error and exits with 2 (saying
+    so when the preset was the remembered one, :func:`_open_bench`); so does
     a result CSV of ``opened`` (``planar-tui tui --open``) that cannot be read. Those open
     into the run history, which the app shows first.
 
@@ -42,7 +62,7 @@ def run_app(preset_argument: str | None = None, opened: tuple[str, ...] = ()) ->
     from planar_tui.app.app import WorkbenchApp
     from planar_tui.app.workbench import Workbench
 
-    app = WorkbenchApp(Workbench.open_marked(preset_argument or last_preset()), warm_kernels=True)
+    app = WorkbenchApp(_open_bench(Workbench, preset_argument), warm_kernels=True)
     app.open_results(list(opened))
     app.run()
     code = app.return_code or 0

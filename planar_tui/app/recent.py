@@ -4,8 +4,10 @@
 tests do). Plain data, no Textual here.
 
 The file is written atomically (:func:`planar_tui.csvio.write_text_atomic`); a file that
-cannot be read or parsed counts as empty (it is rewritten on the next open), and a folder
-that cannot be written only loses the list, never an action.
+cannot be read or parsed, is not a regular file or is larger than
+:data:`~planar_tui.app.settings.MAX_STATE_BYTES` (neither is read) counts as empty (it is
+rewritten on the next open), and a folder that cannot be written only loses the list,
+never an action.
 """
 
 from __future__ import annotations
@@ -14,6 +16,9 @@ import contextlib
 import json
 import os
 from pathlib import Path
+
+from planar_tui.app.settings import MAX_STATE_BYTES
+from planar_tui.reader import read_bounded_text
 
 #: Entries kept per list.
 MAX_ENTRIES = 10
@@ -41,8 +46,8 @@ def recent_path() -> Path:
 def load() -> dict[str, list[str]]:
     """Every list (absolute paths, newest first); empty lists when there is no usable file."""
     try:
-        data = json.loads(recent_path().read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, ValueError):
+        data = json.loads(read_bounded_text(recent_path(), MAX_STATE_BYTES, "a state file"))
+    except (OSError, UnicodeDecodeError, ValueError, RecursionError):
         data = {}
     if not isinstance(data, dict):
         data = {}

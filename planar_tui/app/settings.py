@@ -6,8 +6,8 @@ file, :func:`settings_path`: ``settings.json`` in ``platformdirs.user_config_dir
 ("planar-tui")`` (``~/.config/planar-tui`` on Linux), or in the folder that the
 environment variable :data:`CONFIG_DIR_VARIABLE` names (the tests' own folder).
 
-A missing file gives the defaults; a file that cannot be read or holds something else
-than the keys below gives the defaults and a one-line warning (never a crash); the app
+A missing file gives the defaults; a file that cannot be read (not a regular file, larger
+than :data:`MAX_STATE_BYTES`: neither is read) or holds something else than the keys below gives the defaults and a one-line warning (never a crash); the app
 then leaves the file as it is (changed settings last for the session). The file is written atomically (a
 temporary file in the same folder, then a rename:
 :func:`planar_tui.csvio.write_text_atomic`), so a crash mid-write never leaves
@@ -23,12 +23,19 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from planar_tui.reader import read_bounded_text
+
 #: The environment variable naming the folder of the settings file (instead of the
 #: platform's configuration folder).
 CONFIG_DIR_VARIABLE = "PLANAR_TUI_CONFIG_DIR"
 
 #: The settings file's name in that folder.
 SETTINGS_FILE = "settings.json"
+
+#: Largest settings or state file read (bytes; they hold a few paths of at most 4 096
+#: bytes each, up to 3 times longer as JSON escapes): anything larger, and anything but a
+#: regular file (a FIFO, ``/dev/zero``), is not read and gives the defaults.
+MAX_STATE_BYTES = 512 * 1024
 
 
 @dataclass(frozen=True)
@@ -70,7 +77,7 @@ def load_settings(path: Path | None = None) -> tuple[Settings, str | None]:
     defaults and a one-line warning naming the file when it cannot be used."""
     path = settings_path() if path is None else path
     try:
-        text = path.read_text(encoding="utf-8")
+        text = read_bounded_text(path, MAX_STATE_BYTES, "a settings file")
     except FileNotFoundError:
         return Settings(), None
     except (OSError, UnicodeDecodeError) as error:

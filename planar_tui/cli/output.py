@@ -150,7 +150,32 @@ class Group(_FlagsWithoutMetavar, TyperGroup):
 
 
 class Command(_FlagsWithoutMetavar, TyperCommand):
-    """A ``planar-tui`` command."""
+    """A ``planar-tui`` command; an empty value of an option naming a file or folder is
+    refused before it is parsed (:func:`refuse_empty_paths`)."""
+
+    def parse_args(self, ctx, args):
+        with reported_errors():
+            refuse_empty_paths(self.params, args)
+        return super().parse_args(ctx, args)
+
+
+def refuse_empty_paths(params, args: Sequence[str]) -> None:
+    """:class:`PresetError` for ``--out ''`` or ``--copy=`` where the option takes a path
+    (``Path("")`` is ``.``: the current folder, which no one meant)."""
+    options = {
+        opt
+        for param in params
+        for opt in param.opts
+        if getattr(getattr(param, "type_descriptor", None), "annotation", None) is Path
+        and opt.startswith("-")
+    }
+    for at, arg in enumerate(args):
+        if arg == "--":
+            return
+        name, equals, value = arg.partition("=")
+        given = value if equals else (args[at + 1] if at + 1 < len(args) else None)
+        if name in options and given == "":
+            raise PresetError("command line", name, "is empty", "a file or folder path")
 
 
 stdout = Console(highlight=False)

@@ -219,6 +219,7 @@ def run_optimisations(plan: RunPlan, workers: int | None, scheduler: str | None)
                             client=client,
                             out_dir=plan.out_dir,
                             resume=plan.resume,
+                            announce=said,
                         )
                 except OutputFailed as error:
                     unwritten += 1

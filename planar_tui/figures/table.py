@@ -3,12 +3,13 @@
 from __future__ import annotations
 
 import csv
-import os
+import io
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
 from planar_tui.csvio import FORMULA_STARTS, CsvTable
+from planar_tui.reader import BoundedReadError, open_bounded
 
 #: Largest result CSV ``planar-tui plot`` reads (bytes): its cells take about ten times
 #: that in memory.
@@ -44,22 +45,12 @@ def open_regular(path: Path | str, limit_bytes: int | None = None):
     """A text stream on ``path`` if it is a regular file of at most ``limit_bytes`` (:data:`MAX_CSV_BYTES`)
     (opened without blocking, so a FIFO with no writer is refused, not waited on), else a
     ``ValueError`` saying why; ``OSError`` when it cannot be opened."""
-    import stat
-
     limit_bytes = MAX_CSV_BYTES if limit_bytes is None else limit_bytes
-    handle = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
     try:
-        mode, size = (info := os.fstat(handle)).st_mode, info.st_size
-        if not stat.S_ISREG(mode):
-            raise ValueError("is not a regular file (a device, FIFO or socket)")
-        if size > limit_bytes:
-            raise ValueError(f"is {size / 2**20:.3g} MiB, more than the {limit_bytes // 2**20} "
-                             "MiB a result CSV may have")  # fmt: skip
-        os.set_blocking(handle, True)
-        return os.fdopen(handle, encoding="utf-8", newline="")
-    except BaseException:
-        os.close(handle)
-        raise
+        binary = open_bounded(path, limit_bytes, "a result CSV")
+    except BoundedReadError as error:
+        raise ValueError(str(error)) from None
+    return io.TextIOWrapper(binary, encoding="utf-8", newline="")
 
 
 def read_csv(path: Path | str) -> CsvTable:

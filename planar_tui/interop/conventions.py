@@ -24,6 +24,8 @@ as the same double), so an export read back gives the preset's values exactly.
 
 from __future__ import annotations
 
+import re
+
 #: The axial moment of a link is this fraction of its I_zz (a slender rod's is ~0) ...
 AXIAL_INERTIA_FRACTION = 1e-6
 #: ... but at least MuJoCo's smallest accepted principal moment (``mjMINVAL``, kg m²).
@@ -50,8 +52,23 @@ def vector(*values: float) -> str:
     return " ".join(number(value) for value in values)
 
 
+#: What XML 1.0 cannot hold, even escaped: characters outside its ``Char`` production
+#: (``#x9 | #xA | #xD | [#x20-#xD7FF] | [#xE000-#xFFFD] | [#x10000-#x10FFFF]``): the C0
+#: controls but tab and newlines, lone surrogates, U+FFFE and U+FFFF.
+_NOT_XML_CHAR = re.compile("[^\t\n\r\x20-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]")
+
+
+def xml_chars(text: str) -> str:
+    """``text`` with every character XML cannot hold (:data:`_NOT_XML_CHAR`: NUL, ESC,
+    BEL …) replaced by U+FFFD, so that any XML parser (and planar-tui's own ``import``)
+    reads the file written."""
+    return _NOT_XML_CHAR.sub("\ufffd", text)
+
+
 def xml_comment(text: str) -> str:
-    """An XML comment of ``text`` (``--`` cannot appear inside one: it becomes ``- -``)."""
+    """An XML comment of ``text`` (``--`` cannot appear inside one: it becomes ``- -``;
+    characters XML cannot hold become U+FFFD, :func:`xml_chars`)."""
+    text = xml_chars(text)
     while "--" in text:
         text = text.replace("--", "- -")
     return f"<!--\n{text.rstrip()}\n-->"
@@ -59,5 +76,6 @@ def xml_comment(text: str) -> str:
 
 def robot_label(robot) -> str:
     """The model's name: the robot's ``name``, else its label ``nR`` (an importer reads
-    ``nR`` back as no name: :func:`planar_tui.interop.planar_chain.preset_name`)."""
-    return robot.name or robot.label
+    ``nR`` back as no name: :func:`planar_tui.interop.planar_chain.preset_name`), in
+    characters XML can hold (:func:`xml_chars`)."""
+    return xml_chars(robot.name or robot.label)

@@ -148,7 +148,7 @@ def sensitivity_runs(job: Any, result: Any) -> list[ModelRuns]:
     theta, alpha = np.array(result.posture.theta_rad), np.full(n, spec.alpha_rad_s2)
     names = sensitivity_output_names(n, spec.speeds_rad_s)
     runs = []
-    for method in spec.methods:
+    for method in design_methods(job):
         unit = unit_design(method, problem.num_vars, sizes[method], spec.seed)
         torques = [evaluate(problem, unit, robot, theta, np.full(n, speed), alpha)
                    for speed in spec.speeds_rad_s]  # fmt: skip
@@ -169,6 +169,8 @@ def motion_runs(job: Any, result: Any) -> list[ModelRuns]:
     names = motion_output_names(result.names, [step * spec.step_s for step in steps])
     runs = []
     for method, rows in result.design.rows.items():
+        if method not in DESIGNS:  # PCE's regression rows: no SALib design
+            continue
         outputs = np.concatenate([result.at_outputs[step][rows] for step in steps], axis=1)
         unit = result.design.unit[rows]
         runs.append(ModelRuns(method, spec.samples, spec.seed, problem, unit, outputs, names))
@@ -176,18 +178,32 @@ def motion_runs(job: Any, result: Any) -> list[ModelRuns]:
 
 
 def design_methods(job: Any) -> tuple[str, ...]:
-    """The designs a sensitivity or motion job runs (a motion job's eFAST alone adds N
-    Monte-Carlo robots for its band: :func:`planar_tui.motion.engine.design_methods`)."""
+    """The SALib designs (:data:`DESIGNS`) a sensitivity or motion job runs (a motion
+    job's eFAST alone adds N Monte-Carlo robots for its band:
+    :func:`planar_tui.motion.engine.design_methods`); PCE's regression rows are no SALib
+    design and are not exported."""
     if job.kind == "motion_uncertainty":
         from planar_tui.motion.engine import design_methods as motion_designs
 
-        return motion_designs(job.spec.methods)
-    return tuple(job.spec.methods)
+        return tuple(m for m in motion_designs(job.spec.methods) if m in DESIGNS)
+    return tuple(m for m in job.spec.methods if m in DESIGNS)
 
 
 def planned_files(job: Any, directory: Path) -> list[Path]:
-    """Every file :func:`export_job` will write for ``job`` (checked before it runs)."""
-    return [Path(directory) / method / name for method in design_methods(job) for name in FILES]
+    """Every file :func:`export_job` will write for ``job`` (checked before it runs);
+    :class:`~planar_tui.errors.PresetError` when the job runs no SALib design (PCE alone)."""
+    from planar_tui.errors import PresetError
+
+    methods = design_methods(job)
+    if not methods:
+        raise PresetError(
+            "command line",
+            OPTION,
+            f"job {job.label} runs only {', '.join(job.spec.methods)}, "
+            "which has no SALib design to export",
+            "a job whose methods include sobol or efast",
+        )
+    return [Path(directory) / method / name for method in methods for name in FILES]
 
 
 def export_job(job: Any, result: Any, directory: Path) -> list[Path]:

@@ -290,7 +290,13 @@ def run_optimisation(
     if output is not None:
         run.checkpoint = checkpoint_path(output)
         if resume:
-            finished = read_finished(run.checkpoint, opt.fingerprint(), total)
+            finished = read_finished(
+                run.checkpoint,
+                opt.fingerprint(),
+                total,
+                _columns_of(opt),
+                lambda text: announce(f"warning: {text}"),
+            )
         try:
             writer = CheckpointWriter(run.checkpoint, opt.fingerprint(), total, finished)
         except OSError as error:
@@ -378,6 +384,16 @@ def run_optimisation(
     if out_dir is not None:
         _write_outputs(run, out_dir, keep_checkpoint)
     return run
+
+
+def _columns_of(opt: Optimisation) -> Callable[[int], tuple[str, ...] | None]:
+    """The figures a resumed evaluation's record must hold: the job's columns, where its
+    kind names them without running (else ``None``: any)."""
+    from planar_tui.registry import JOB_KINDS
+
+    names = JOB_KINDS[opt.job.kind].figure_names
+    columns = None if names is None else tuple(names(opt.job))
+    return lambda number: columns
 
 
 def _write_outputs(run: OptimiseRun, out_dir: Path, keep_checkpoint: bool) -> None:

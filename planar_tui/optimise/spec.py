@@ -35,7 +35,7 @@ from planar_tui.schema import (
     string,
     type_name,
 )
-from planar_tui.sweep.paths import KeyPath
+from planar_tui.sweep.paths import KeyPath, overlap_problem
 from planar_tui.sweep.spec import (
     Sweep,
     job_context,
@@ -345,8 +345,9 @@ def parse_optimise_table(preset: Preset, table: Any, name: str, number: int = 1)
         key = f"{group}.{_quoted(text)}"
         parsed = read_key_path(reader, job, tables, defaults, key, text)
         place = (parsed.table, parsed.key, parsed.indices)
-        if place in seen:
-            raise reader.error(key, f"names the same value as {seen[place]}", "each key path once")
+        problem = overlap_problem(parsed, seen)
+        if problem is not None:
+            raise reader.error(key, problem, "each value once, by one key path")
         seen[place] = text
         return parsed
 
@@ -362,8 +363,9 @@ def parse_optimise_table(preset: Preset, table: Any, name: str, number: int = 1)
         for target, total in variable.fixed_sum:
             place = (target.table, target.key, target.indices)
             key = f"variables.{_quoted(variable.path.text)}.fixed_sum.{_quoted(target.text)}"
-            if place in seen:
-                raise reader.error(key, f"names the same value as {seen[place]}",
+            problem = overlap_problem(target, seen)
+            if problem is not None:
+                raise reader.error(key, problem,
                                    "a key path no variable or coarse setting names")  # fmt: skip
             if totals.setdefault(place, total) != total:
                 raise reader.error(key, f"is {shown(total)}, another total than "

@@ -75,12 +75,22 @@ _UPPER = {rows: np.triu_indices(rows) for rows in (2, 3)}
 def _isotropy_residual(variables, lengths_m, with_orientation):
     """:math:`JJ^T\\,m/\\mathrm{tr}(JJ^T) - I` (upper triangle): zero iff κ = 1."""
     theta = np.concatenate([[0.0], variables[: len(lengths_m) - 1]])
-    length = math.exp(variables[-1]) if with_orientation else None
+    length = _length_of(variables[-1]) if with_orientation else None
     j = jacobian(lengths_m, theta, length)
     gram = j @ j.T
     rows = gram.shape[0]
     scaled = gram * rows / max(np.trace(gram), 1e-300) - _EYE[rows]
     return scaled[_UPPER[rows]]
+
+
+#: Bound of the search's log characteristic length, ``|log L| <= 700`` (``exp(709.8)`` is
+#: the largest double): a search wandering off (a 1e30 m middle link) stays finite.
+MAX_LOG_LENGTH = 700.0
+
+
+def _length_of(log_length: float) -> float:
+    """The characteristic length :math:`L = e^{v}`, ``v`` clipped to ``±``:data:`MAX_LOG_LENGTH`."""
+    return math.exp(min(max(float(log_length), -MAX_LOG_LENGTH), MAX_LOG_LENGTH))
 
 
 def _wrap_deg(angle_rad: float) -> float:
@@ -92,7 +102,7 @@ def _wrap_deg(angle_rad: float) -> float:
 def _kappa_of(variables, lengths_m) -> float:
     """κ of the 3×n Jacobian at θ = (0, variables[:-1]), L = exp(variables[-1])."""
     theta = np.concatenate([[0.0], variables[:-1]])
-    return condition_number(jacobian(lengths_m, theta, math.exp(variables[-1])))
+    return condition_number(jacobian(lengths_m, theta, _length_of(variables[-1])))
 
 
 def _isotropic_2r(lengths):
@@ -147,7 +157,7 @@ def minimum_condition(lengths_m: tuple[float, ...]):
     polished = nelder_mead(lambda v: _kappa_of(v, lengths), x)
     if _kappa_of(polished, lengths) < kappa:
         x, kappa = polished, _kappa_of(polished, lengths)
-    return kappa, np.concatenate([[0.0], x[:-1]]), math.exp(x[-1])
+    return kappa, np.concatenate([[0.0], x[:-1]]), _length_of(x[-1])
 
 
 def isotropic_posture(lengths_m, tolerance: float = 0.01) -> Posture:

@@ -7,8 +7,9 @@ count, then one JSON line per finished point, appended and flushed to disk (``fs
 before the next is taken. JSON writes floats in their shortest round-trip form, so a
 resumed point's figures are the very numbers computed. A line cut short by a crash is
 ignored (that point runs again); any other record that is not a finished point of this
-sweep (:func:`record_problem`) is dropped with one warning line naming the file and line,
-and its point runs again; a checkpoint with another fingerprint (the preset
+sweep (:func:`record_problem`), or whose digest is not this run's (:func:`record_digest`:
+edited by hand, damaged), is dropped with one warning line naming the file and line, and
+its point runs again; a checkpoint with another fingerprint (the preset
 changed) is replaced, never resumed. The CLI removes the checkpoints of a run's sweeps
 once every sweep of the run is done and its CSV written, so ``--resume`` after an
 interrupt in a later sweep rebuilds the finished ones from their checkpoints; a run
@@ -18,6 +19,7 @@ without ``--resume`` refuses to start over a checkpoint of the same sweep
 
 from __future__ import annotations
 
+import hashlib
 import json
 import math
 import os
@@ -124,6 +126,23 @@ def shown_value(value: Any) -> str:
     return text if len(text) <= 40 else text[:37] + "..."
 
 
+def record_digest(fingerprint: str, record: dict[str, Any]) -> str:
+    """A record's digest: SHA-256 (hex) of the run's fingerprint, a newline and the
+    record's JSON without its ``digest``, keys sorted. It ties the record to this run:
+    one edited by hand, damaged, or copied from another run's checkpoint does not match."""
+    body = {key: value for key, value in record.items() if key != "digest"}
+    text = fingerprint + "\n" + json.dumps(body, sort_keys=True)
+    return hashlib.sha256(text.encode("utf-8", "surrogatepass")).hexdigest()
+
+
+def digest_problem(record: dict[str, Any], digest: Any, fingerprint: str) -> str | None:
+    """Why ``digest`` (read with ``record``, then taken out of it) is not
+    :func:`record_digest`'s, or ``None``."""
+    if digest != record_digest(fingerprint, record):
+        return "its digest is not this run's: edited, damaged or from another run"
+    return None
+
+
 def read_finished(
     path: Path,
     fingerprint: str,
@@ -158,7 +177,10 @@ def read_finished(
                 continue  # the last line, cut short by a crash: the point runs again
             record, problem = None, "not JSON"
         else:
-            problem = record_problem(record, total, set(finished), columns)
+            digest = record.pop("digest", None) if isinstance(record, dict) else None
+            problem = record_problem(record, total, set(finished), columns) or digest_problem(
+                record, digest, fingerprint
+            )
         if problem is not None:
             dropped += 1
             if dropped <= MAX_WARNINGS:
@@ -176,12 +198,13 @@ class CheckpointWriter:
 
     def __init__(self, path: Path, fingerprint: str, total: int, finished: dict):
         self.path = path
+        self.fingerprint = fingerprint
         if not finished:
             header = json.dumps({"fingerprint": fingerprint, "points": total})
             write_text_atomic(path, header)
         else:  # keep the finished points, drop a line a crash may have cut short
             records = [json.dumps({"fingerprint": fingerprint, "points": total})]
-            records += [_record(finished[n]) for n in sorted(finished)]
+            records += [_record(finished[n], fingerprint) for n in sorted(finished)]
             write_text_atomic(path, "\n".join(records))
         self._stream = open(path, "a", encoding="utf-8")  # noqa: SIM115 (closed by close())
 
@@ -189,7 +212,7 @@ class CheckpointWriter:
         """Save one finished point (its tables are not kept: they are written already):
         flushed to the system, and to disk unless ``sync`` is false (a caller that
         syncs a batch at once, :meth:`sync`: an optimisation's generation)."""
-        self._stream.write(_record(outcome) + "\n")
+        self._stream.write(_record(outcome, self.fingerprint) + "\n")
         self._stream.flush()
         if sync:
             self.sync()
@@ -202,7 +225,8 @@ class CheckpointWriter:
         self._stream.close()
 
 
-def _record(outcome: PointOutcome) -> str:
+def _record(outcome: PointOutcome, fingerprint: str) -> str:
     record = asdict(outcome)
     record["tables"] = {}
+    record["digest"] = record_digest(fingerprint, record)
     return json.dumps(record)

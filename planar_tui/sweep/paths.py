@@ -36,6 +36,20 @@ class KeyPath:
     indices: tuple[int, ...] = ()
 
 
+def overlap_problem(path: KeyPath, seen: Mapping[tuple[Any, ...], str]) -> str | None:
+    """Why ``path`` cannot be varied beside the key paths ``seen`` (by ``(table, key,
+    indices)``), or ``None``: one names the same value, or a value within the other's
+    list (``robot.masses_kg`` and ``robot.masses_kg[1]``: one index list a prefix of the
+    other), so a point's values would overwrite each other."""
+    for (table, key, indices), text in seen.items():
+        shared = min(len(indices), len(path.indices))
+        if (table, key) == (path.table, path.key) and indices[:shared] == path.indices[:shared]:
+            if indices == path.indices:
+                return f"names the same value as {text}"
+            return f"overlaps {text}: one names a value within the other"
+    return None
+
+
 def allowed_paths(job_keys: Sequence[str], robot_kind: str, robot_keys: Sequence[str]) -> list[str]:
     """Every key path a sweep of such a job may name (without indices)."""
     own = [key for key in job_keys if key not in NOT_VARIED]

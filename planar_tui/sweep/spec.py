@@ -24,7 +24,13 @@ from planar_tui.jobkind import Job
 from planar_tui.presets import Preset
 from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
 from planar_tui.schema import TableReader, figure_path, shown, suggest, type_name
-from planar_tui.sweep.paths import KeyPath, current_value, index_problem, parse_key_path
+from planar_tui.sweep.paths import (
+    KeyPath,
+    current_value,
+    index_problem,
+    overlap_problem,
+    parse_key_path,
+)
 
 #: Most points a sweep may have unless its ``max_points`` says more.
 DEFAULT_MAX_POINTS = 100_000
@@ -286,9 +292,10 @@ def parse_sweep_table(preset: Preset, table: Any, name: str, number: int = 1) ->
     for text, entry in entries.items():
         parsed = key_path(group, text)
         place = (parsed.table, parsed.key, parsed.indices)
-        if place in seen:
-            raise reader.error(f"{group}.{_quoted(text)}", f"names the same value as {seen[place]}",
-                               "each key path once")  # fmt: skip
+        problem = overlap_problem(parsed, seen)
+        if problem is not None:
+            raise reader.error(f"{group}.{_quoted(text)}", problem,
+                               "each value once, by one key path")  # fmt: skip
         seen[place] = text
         if has_values:
             lengths[parsed] = _values_count(reader, text, entry)

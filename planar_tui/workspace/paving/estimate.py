@@ -34,6 +34,7 @@ time :data:`SECONDS_PER_BOX` a box (measured 1.7 to 9.3 µs on a busy 2-core mac
 from __future__ import annotations
 
 import math
+import warnings
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
@@ -69,7 +70,9 @@ def _geometry(kind: str, robot: Any, spec: Any) -> tuple[float, tuple[float, ...
     box = spec.search_box_cm or square_about(reach, spec.precision_cm)
     xlo, xhi, ylo, yhi = box[0][0], box[0][1], box[1][0], box[1][1]
     try:
-        length = float(mechanism.polygon(robot, spec, SEGMENTS_PER_TURN, True).length)
+        with warnings.catch_warnings():  # infinite coordinates (legs near 1e200 cm): capped
+            warnings.simplefilter("ignore", RuntimeWarning)
+            length = float(mechanism.polygon(robot, spec, SEGMENTS_PER_TURN, True).length)
     except GEOSException:  # GEOS cannot node it (lengths near 1e199 cm): the box's perimeter
         length = 2.0 * ((xhi - xlo) + (yhi - ylo))
     return length, (xlo, xhi, ylo, yhi)
@@ -83,6 +86,12 @@ def largest_tolerance_cm(spec: Any) -> tuple[float, str] | None:
         return None
     widths = [uniform or 0.0, *(width for _, width in table or ())]
     return max(widths), getattr(spec, "tolerance_mode", None) or "all"
+
+
+#: The most boxes an estimate names (far beyond any limit): a geometry whose outline is
+#: infinite or NaN (every leg limit near 1e200 cm) is refused by the limits, not by an
+#: overflow.
+MAX_ESTIMATED_BOXES = 1e18
 
 
 def estimate_boxes(kind: str, robot: Any, spec: Any) -> int:
@@ -105,6 +114,8 @@ def estimate_boxes(kind: str, robot: Any, spec: Any) -> int:
         precision = spec.singularity_precision_cm or eps
         per_step = spec.mechanism.singular_boxes_per_step
         boxes += per_step * ((xhi - xlo) + (yhi - ylo)) / precision
+    if not boxes < MAX_ESTIMATED_BOXES:  # infinite or NaN (leg limits of 1e300 cm): capped
+        boxes = MAX_ESTIMATED_BOXES
     return math.ceil(boxes) + MIN_BOXES
 
 
@@ -143,7 +154,25 @@ def check_needs(kind: str, spec: Any, reader: TableReader, robot: Any) -> None:
     from planar_tui.limits import memory_problem, time_problem
 
     boxes, memory, seconds = needs(kind, robot, spec)
-    problem = memory_problem(memory) or time_problem(seconds)
+    problem = memory_problem(memory) or time_problem(seconds) or budget_problem(boxes, spec)
     if problem is not None:
         found = f"is {spec.precision_cm:g} cm: about {count_text(boxes)} boxes, {problem}"
         raise reader.error("precision_cm", found, COARSER)
+
+
+#: How many times ``box_budget`` an estimate may name before the job is refused up front:
+#: the estimate is within a factor 2 on the bundled designs, so a job estimated past 4
+#: times its budget would only stop at the budget, minutes later, with nothing written.
+BUDGET_FACTOR = 4
+
+
+def budget_problem(boxes: int, spec: Any) -> str | None:
+    """``more than 4 × box_budget = …: it would stop at its budget`` when the estimate
+    exceeds :data:`BUDGET_FACTOR` times the job's ``box_budget``, else ``None``."""
+    budget = spec.box_budget
+    if boxes <= BUDGET_FACTOR * budget:
+        return None
+    return (
+        f"more than {BUDGET_FACTOR} × box_budget = {count_text(budget)}: it would stop at "
+        "its budget with nothing written"
+    )

@@ -24,15 +24,21 @@ from planar_tui.workspace.paving.tolerance import check_tolerance, tolerance_fie
 from planar_tui.workspace.rpr.mechanism import MECHANISM
 from planar_tui.workspace.rpr.tolerance import TOLERANCE_KEYS_3RPR
 
+#: Longest leg (cm), as lengths are bounded: a leg limit far beyond the reach (1e199 cm,
+#: an unlimited stroke) is capped at the reach box; beyond this one the geometry overflows.
+MAX_LEG_CM = 1e200
+
 
 def _leg_limits(reader: TableReader, name, default, robot, values):
-    """Three ``[lo, hi]`` rows in cm with ``0 <= lo < hi``."""
+    """Three ``[lo, hi]`` rows in cm with ``0 <= lo < hi <=`` :data:`MAX_LEG_CM`."""
     rows = reader.number_rows(name, columns=2, row_doc="[lo, hi] in cm")
     if len(rows) != 3:
         raise reader.error(name, f"has {len(rows)} rows", "3 rows [lo, hi], one per leg")
     for leg, (lo, hi) in enumerate(rows, start=1):
-        if not 0.0 <= lo < hi:
-            raise reader.error(name, f"leg {leg} range [{lo:g}, {hi:g}]", "0 <= lo < hi")
+        if not 0.0 <= lo < hi <= MAX_LEG_CM:
+            raise reader.error(
+                name, f"leg {leg} range [{lo:g}, {hi:g}]", f"0 <= lo < hi <= {MAX_LEG_CM:g}"
+            )
     return rows
 
 
