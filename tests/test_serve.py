@@ -18,6 +18,7 @@ import pytest
 
 from planar_tui.cli.serve import public_url, server_command
 from tests.conftest import PRESETS, REPO
+from tests.processes import alive, descendants, wait_until_gone
 
 
 async def first_screen(url: str, timeout_s: float = 120.0) -> bytes:
@@ -144,40 +145,6 @@ def test_serve_refuses_a_bad_port_or_preset_in_one_line(cli):
     )
 
 
-def descendants(pid: int) -> set[int]:
-    """The live (not zombie) processes below ``pid``, from /proc."""
-    children: dict[int, list[int]] = {}
-    for entry in os.listdir("/proc"):
-        if not entry.isdigit():
-            continue
-        try:
-            with open(f"/proc/{entry}/stat") as stat:
-                fields = stat.read().rsplit(")", 1)[1].split()
-        except OSError:  # gone meanwhile
-            continue
-        if fields[0] != "Z":
-            children.setdefault(int(fields[1]), []).append(int(entry))
-    found, todo = set(), [pid]
-    while todo:
-        for child in children.get(todo.pop(), []):
-            found.add(child)
-            todo.append(child)
-    return found
-
-
-def alive(pids: set[int]) -> set[int]:
-    """Those of ``pids`` still running (a zombie counts as ended)."""
-    running = set()
-    for pid in pids:
-        try:
-            with open(f"/proc/{pid}/stat") as stat:
-                if stat.read().rsplit(")", 1)[1].split()[0] != "Z":
-                    running.add(pid)
-        except OSError:
-            pass
-    return running
-
-
 async def connect_and_leave(url: str, stay_s: float = 1.0) -> bytes:
     """A browser that opens the app's websocket and closes it after ``stay_s``, while the
     app is still starting: what the server sent meanwhile."""
@@ -217,13 +184,6 @@ def listening(pid: int) -> str:
             )
     except OSError:
         return ""
-
-
-def wait_until_gone(pids: set[int], timeout_s: float) -> set[int]:
-    deadline = time.monotonic() + timeout_s
-    while alive(pids) and time.monotonic() < deadline:
-        time.sleep(0.2)
-    return alive(pids)
 
 
 @pytest.mark.slow

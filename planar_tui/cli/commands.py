@@ -210,12 +210,13 @@ def run_studies(
 
 def warmup() -> None:
     """Compile every job kind's kernels into the cache (for batch machines: later runs
-    start without the first-run compilation)."""
+    start without the first-run compilation); one process per kind, as many at once as
+    there are cores."""
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
     from planar_tui import progress as core
     from planar_tui.registry import JOB_KINDS
-    from planar_tui.warmup import missing, warm_kernels
+    from planar_tui.warmup import missing, warm_kernels_in_processes
 
     columns = (TextColumn("{task.description}", markup=False), BarColumn(bar_width=24),
                MofNCompleteColumn())  # fmt: skip
@@ -226,7 +227,8 @@ def warmup() -> None:
         def update(state) -> None:
             bars.update(task, completed=state.completed, description=state.detail[:40])
 
-        done = warm_kernels(todo, core.Progress(on_update=update, should_stop=_INTERRUPTED.is_set))
+        progress = core.Progress(on_update=update, should_stop=_INTERRUPTED.is_set)
+        done = warm_kernels_in_processes(todo, progress)
         bars.update(task, completed=len(todo), description="kernels ready")
     stdout.print(f"compiled: {', '.join(done) or 'nothing (all cached)'}", markup=False)
 
