@@ -20,9 +20,13 @@ in the background, harmlessly filling the cache. After a kind's example ran, a m
 numba's version and where the kernel sources are with their stamps (numba's own cache is
 keyed by those: a fresh clone elsewhere compiles again, so it must warm up again).
 
-Callers: :func:`planar_tui.batch.run_job` (every job), ``planar-tui warmup`` (every kind,
-for batch machines) and the app at start, in a background thread:
-``warm_kernels(JOB_KINDS, Progress(on_update=..., should_stop=...))``.
+Callers: :func:`planar_tui.batch.run_job` (every job) and the app at start, in a
+background thread: ``warm_kernels(JOB_KINDS, Progress(on_update=..., should_stop=...))``.
+``planar-tui warmup`` (every kind, for batch machines) calls
+:func:`warm_kernels_in_processes`: one child process per kind (:func:`child_main`), as
+many at once as cores, each writing ``kernel NAME`` lines as its kernels start compiling;
+a cancel ends them by SIGTERM (a kernel compiling in this process's helper thread cannot
+be stopped, and an interpreter exiting under it printed an LLVM assertion).
 """
 
 from __future__ import annotations
