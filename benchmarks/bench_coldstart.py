@@ -74,6 +74,20 @@ def cold(command: list[str], env: dict[str, str], folder: Path) -> tuple[float, 
     return timed(command, dict(env, NUMBA_CACHE_DIR=str(cache)))
 
 
+def warm_byte_code(env: dict[str, str], checkout: Path) -> None:
+    """Write the byte-code of numba, llvmlite and ``checkout``'s sources into the run's
+    ``PYTHONPYCACHEPREFIX``: else the first row's first side compiles numba's ~0.5 k modules
+    (seconds of CPU) and the other side finds them done."""
+    import importlib.util
+
+    installed = [importlib.util.find_spec(name) for name in ("numba", "llvmlite")]
+    folders = [Path(spec.origin).parent for spec in installed if spec and spec.origin]
+    folders += [checkout / "planar_tui", checkout / "kernels"]
+    subprocess.run([PYTHON, "-m", "compileall", "-q", "-j", "0", *map(str, folders)],
+                   check=False, capture_output=True, env=env)  # fmt: skip
+    subprocess.run([*CLI, "--help"], check=True, capture_output=True, env=env)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--runs", type=int, default=1, help="processes per row (median)")
@@ -90,9 +104,9 @@ def main() -> None:
             other = stack.enter_context(checkout_of(arguments.against, folder / "other"))
         theirs_env = dict(env, PYTHONPATH=str(other)) if other else None
         chosen = {k: v for k, v in cases(folder / "out").items() if arguments.only in k}
-        for side in (env, theirs_env):  # byte-code written
-            if side is not None:
-                subprocess.run([*CLI, "--help"], check=True, capture_output=True, env=side)
+        warm_byte_code(env, REPO)  # byte-code written first, by neither side's row
+        if theirs_env is not None and other is not None:
+            warm_byte_code(theirs_env, other)
         print(f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}"
               f"; 1-min load before {load():.2f}"
               + (f"; paired against {arguments.against}" if other else ""), flush=True)  # fmt: skip
