@@ -4,7 +4,7 @@
 Every row is one fresh process (``--runs`` of them, median) whose Numba kernel cache is a
 new empty folder (``NUMBA_CACHE_DIR``) and whose Sobol'/eFAST design cache is off
 (``PLANAR_TUI_CACHE_DIR=""``), so it compiles every kernel it calls: what a user's first
-run after an install costs. Byte-code is warm (one unmeasured ``--help`` first). Rows:
+run after an install costs. Byte-code is warm (:func:`warm_byte_code`, as after an install). Rows:
 
 * ``warmup KIND``: one job kind's kernels alone (:func:`planar_tui.warmup.warm_kernels`
   on that kind in a process of its own: its cold cost);
@@ -75,14 +75,13 @@ def cold(command: list[str], env: dict[str, str], folder: Path) -> tuple[float, 
 
 
 def warm_byte_code(env: dict[str, str], checkout: Path) -> None:
-    """Write the byte-code of numba, llvmlite and ``checkout``'s sources into the run's
-    ``PYTHONPYCACHEPREFIX``: else the first row's first side compiles numba's ~0.5 k modules
-    (seconds of CPU) and the other side finds them done."""
-    import importlib.util
+    """Write the byte-code of every installed package and of ``checkout``'s sources where
+    Python keeps it (``__pycache__``; unchanged files are skipped, so only a first run
+    pays): else the first side of the first row compiles numba's, scipy's, rich's ...
+    modules (seconds of CPU) and the other side finds them done."""
+    import sysconfig
 
-    installed = [importlib.util.find_spec(name) for name in ("numba", "llvmlite")]
-    folders = [Path(spec.origin).parent for spec in installed if spec and spec.origin]
-    folders += [checkout / "planar_tui", checkout / "kernels"]
+    folders = [sysconfig.get_paths()["purelib"], checkout / "planar_tui", checkout / "kernels"]
     subprocess.run([PYTHON, "-m", "compileall", "-q", "-j", "0", *map(str, folders)],
                    check=False, capture_output=True, env=env)  # fmt: skip
     subprocess.run([*CLI, "--help"], check=True, capture_output=True, env=env)
@@ -98,7 +97,6 @@ def main() -> None:
     env["PLANAR_TUI_CACHE_DIR"] = ""
     with tempfile.TemporaryDirectory() as name, contextlib.ExitStack() as stack:
         folder = Path(name)
-        env["PYTHONPYCACHEPREFIX"] = str(folder / "pycache")
         other = None
         if arguments.against:
             other = stack.enter_context(checkout_of(arguments.against, folder / "other"))
