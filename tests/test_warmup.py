@@ -205,3 +205,49 @@ def test_a_cancelled_warm_up_ends_its_processes_at_once(monkeypatch):
         warmup.warm_kernels_in_processes(["simulate", "torques"], progress, processes=1)
     assert time.monotonic() - started < 10  # one poll and a SIGTERM
     assert len(spawned) == 1 and spawned[0].process.returncode is not None
+
+
+EXIT_WHILE_COMPILING = """
+import sys, threading, time
+from planar_tui.cli.output import exit_now_if_compiling
+from planar_tui.progress import WAIT_FOR_THREAD
+if sys.argv[1] == "compiling":
+    threading.Thread(target=time.sleep, args=(60,), name=WAIT_FOR_THREAD, daemon=True).start()
+print("the outcome", end="")
+exit_now_if_compiling(130)
+print(" and the usual exit", end="")
+"""
+
+
+@pytest.mark.parametrize(("state", "code", "out"), [
+    ("compiling", 130, "the outcome"),  # at once, its output flushed
+    ("idle", 0, "the outcome and the usual exit"),
+])  # fmt: skip
+def test_a_cli_exit_during_a_compile_leaves_at_once_with_its_output(state, code, out):
+    import subprocess
+    import sys
+
+    from tests.conftest import REPO
+
+    env = {**os.environ, "PYTHONPATH": str(REPO)}
+    result = subprocess.run([sys.executable, "-c", EXIT_WHILE_COMPILING, state], env=env,
+                            capture_output=True, text=True, timeout=120)  # fmt: skip
+    assert (result.returncode, result.stdout) == (code, out), result.stderr
+
+
+@pytest.mark.slow
+def test_a_real_warm_up_process_compiles_a_kind_and_marks_it(tmp_path, monkeypatch):
+    """:func:`warmup.child_main` in a child process, into an empty kernel cache."""
+    from planar_tui.progress import Progress
+
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))  # the child's cache
+    monkeypatch.setattr(warmup, "missing", lambda names: list(names))
+    details: list[str] = []
+    done = warmup.warm_kernels_in_processes(
+        ["torques"], Progress(on_update=lambda state: details.append(state.detail))
+    )
+    assert done == ["torques"]
+    child_cache = tmp_path / f"planar-tui-{runtime.kernel_source_digest()}"
+    assert (child_cache / warmup.marker("torques").name).exists()
+    assert any(child_cache.rglob("*.nbi"))  # numba's index files: kernels compiled there
+    assert details[-1] == "torques kernels ready"
