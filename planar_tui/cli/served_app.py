@@ -51,7 +51,7 @@ def main() -> None:
     if os.getppid() != parent_pid:  # the parent died before the request took effect
         os._exit(1)
     watch_parent(parent_pid)
-    from planar_tui.entry import main as cli_main
+    from planar_tui.cli import main as cli_main
 
     cli_main()
 
