@@ -328,9 +328,13 @@ def rk4_step_lanes(params, gravity_m_s2, tau_Nm, q, w, step_s, work, matrix, dq,
     n = q.shape[0]
     half = 0.5 * step_s
     sixth = step_s / 6.0
-    _forward_dynamics_lanes(params, gravity_m_s2, tau_Nm, q, w, work, matrix, dw, 0, acc,
-                            trig)  # fmt: skip
-    for stage in range(1, 4):
+    # The stage is always the loop's integer: a literal 0 at a call of its own made numba
+    # compile the forward dynamics (and everything below it) twice, once for Literal[int](0).
+    for stage in range(4):
+        if stage == 0:
+            _forward_dynamics_lanes(params, gravity_m_s2, tau_Nm, q, w, work, matrix, dw, stage,
+                                    acc, trig)  # fmt: skip
+            continue
         factor = step_s if stage == 3 else half
         for i in range(n):
             if stage == 1:

@@ -90,12 +90,13 @@ def _sample_sums(y, step, first, total):
 
 
 @kernel
-def _ratio(numerator, n, variance, half):
-    """``numerator / n / variance`` (``× ½`` for ST), 0 when the variance is <= eps."""
+def _ratio(numerator, n, variance, scale):
+    """``scale × numerator / n / variance`` (``scale`` 1 for S1, ½ for ST), 0 when the
+    variance is <= eps. ``scale`` is a float, not a bool: a literal ``True``/``False``
+    argument made numba compile this twice (``1.0 × x`` is ``x`` exactly)."""
     if variance <= _EPS:
         return 0.0
-    value = numerator / n / variance
-    return 0.5 * value if half else value
+    return scale * (numerator / n / variance)
 
 
 @kernel(parallel=True)
@@ -126,11 +127,12 @@ def sobol_point_and_terms(outputs, num_vars):
     total = np.empty((n_out, num_vars))
     point = np.zeros((2, n_out, num_vars))
     for t in prange(n_out):
-        _standardise_into(outputs, t, standard[t])
+        # int64 as in sobol_point (a prange index is uint64: a second compilation)
+        _standardise_into(outputs, np.int64(t), standard[t])
         variance = _sample_sums(standard[t], step, first[t], total[t])
         for j in range(num_vars):
-            point[0, t, j] = _ratio(first[t, j], n_base, variance, False)
-            point[1, t, j] = _ratio(total[t, j], n_base, variance, True)
+            point[0, t, j] = _ratio(first[t, j], n_base, variance, 1.0)
+            point[1, t, j] = _ratio(total[t, j], n_base, variance, 0.5)
     terms = np.empty((n_out, n_base, n_terms))  # per output: (N, 2D + 4), cache-sized
     for k in prange(n_base):
         base = k * step
@@ -165,8 +167,8 @@ def sobol_point(outputs, num_vars):
         _standardise_into(outputs, t, standard)
         variance = _sample_sums(standard, step, first, total)
         for j in range(num_vars):
-            point[0, t, j] = _ratio(first[j], n_base, variance, False)
-            point[1, t, j] = _ratio(total[j], n_base, variance, True)
+            point[0, t, j] = _ratio(first[j], n_base, variance, 1.0)
+            point[1, t, j] = _ratio(total[j], n_base, variance, 0.5)
     return point
 
 

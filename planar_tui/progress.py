@@ -27,6 +27,8 @@ if TYPE_CHECKING:
 CHECK_INTERVAL_S = 0.2
 #: How often :meth:`Progress.wait_for` checks for a cancel while a call runs (seconds).
 POLL_S = 0.05
+#: The name of :meth:`Progress.wait_for`'s helper thread.
+WAIT_FOR_THREAD = "planar-tui-wait-for"
 
 
 ArrayT = TypeVar("ArrayT", bound="np.ndarray")
@@ -181,7 +183,7 @@ class Progress:
             finally:
                 done.set()
 
-        threading.Thread(target=call, name="planar-tui-wait-for", daemon=True).start()
+        threading.Thread(target=call, name=WAIT_FOR_THREAD, daemon=True).start()
         while not done.wait(POLL_S):
             if on_poll is not None:
                 on_poll()

@@ -20,9 +20,13 @@ in the background, harmlessly filling the cache. After a kind's example ran, a m
 numba's version and where the kernel sources are with their stamps (numba's own cache is
 keyed by those: a fresh clone elsewhere compiles again, so it must warm up again).
 
-Callers: :func:`planar_tui.batch.run_job` (every job), ``planar-tui warmup`` (every kind,
-for batch machines) and the app at start, in a background thread:
-``warm_kernels(JOB_KINDS, Progress(on_update=..., should_stop=...))``.
+Callers: :func:`planar_tui.batch.run_job` (every job) and the app at start, in a
+background thread: ``warm_kernels(JOB_KINDS, Progress(on_update=..., should_stop=...))``.
+``planar-tui warmup`` (every kind, for batch machines) calls
+:func:`warm_kernels_in_processes`: one child process per kind (:func:`child_main`), as
+many at once as cores, each writing ``kernel NAME`` lines as its kernels start compiling;
+a cancel ends them by SIGTERM (a kernel compiling in this process's helper thread cannot
+be stopped, and an interpreter exiting under it printed an LLVM assertion).
 """
 
 from __future__ import annotations
@@ -33,7 +37,7 @@ import sys
 import tempfile
 import threading
 import time
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -141,9 +145,10 @@ def missing(kinds_or_units: Iterable[str]) -> list[str]:
 class _CompileWatcher:
     """Names the kernel numba is compiling (numba's ``numba:compile`` events)."""
 
-    def __init__(self):
+    def __init__(self, on_change: Callable[[str], None] | None = None):
         self.current = ""
         self.compiled = 0
+        self.on_change = on_change
 
     def __enter__(self):
         from numba.core import event
@@ -153,8 +158,10 @@ class _CompileWatcher:
         class Listener(event.Listener):
             def on_start(self, ev):
                 name = getattr(ev.data.get("dispatcher"), "__name__", "")
-                if name != "impl":  # numba's own overloads
+                if name not in ("impl", watcher.current):  # "impl": numba's own overloads
                     watcher.current = name
+                    if watcher.on_change is not None:
+                        watcher.on_change(name)
 
             def on_end(self, ev):
                 watcher.compiled += 1
@@ -227,3 +234,146 @@ def warm_kernels(kinds_or_units: Iterable[str], progress: Progress) -> list[str]
             progress.advance(1.0, f"{unit} kernels ready", kernels_compiled=watcher.compiled)
         progress.advance(0.0, compile_s=time.monotonic() - progress.stage_started_s)
     return todo
+
+
+def compile_processes() -> int:
+    """How many warm-up processes run at once: the cores this process may use."""
+    import os
+
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # not Linux
+        return max(1, os.cpu_count() or 1)
+
+
+def _child_command(kind_units: list[str]) -> list[str]:
+    """The command of a warm-up process: this Python running :func:`child_main`."""
+    code = "from planar_tui.warmup import child_main; child_main()"
+    return [sys.executable, "-c", code, *kind_units]
+
+
+def child_main() -> None:
+    """A warm-up process (``python -c ... UNIT...``): run the units' examples, writing
+    ``kernel NAME`` on stdout as each kernel starts compiling. Ctrl-C is the parent's to
+    handle (it ends this process); SIGTERM ends it at once, mid-compile included."""
+    import signal
+
+    from planar_tui.runtime import prepare_kernels
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    prepare_kernels()
+    with _CompileWatcher(on_change=lambda name: print(f"kernel {name}", flush=True)):
+        for unit in sys.argv[1:]:
+            _run_example(unit)
+
+
+def warm_kernels_in_processes(
+    kinds_or_units: Iterable[str], progress: Progress, processes: int | None = None
+) -> list[str]:
+    """:func:`warm_kernels` in child processes, one per job kind (its missing units in
+    turn), at most ``processes`` at once (default :func:`compile_processes`): the kinds'
+    compilations run side by side, and a cancel ends the children at once (SIGTERM: a
+    kernel compiling is cut, the cache keeps what was written whole) and raises
+    :class:`~planar_tui.errors.Cancelled` within :data:`~planar_tui.progress.POLL_S`.
+    Returns the units compiled; a child that fails raises :class:`RuntimeError` with the
+    last line it wrote on stderr."""
+    import time
+
+    from planar_tui.progress import POLL_S
+
+    todo = missing(kinds_or_units)
+    if not todo:
+        return []
+    by_kind: dict[str, list[str]] = {}
+    for unit in todo:
+        by_kind.setdefault(unit.partition(":")[0], []).append(unit)
+    waiting = list(by_kind.items())
+    running: dict[str, _Child] = {}
+    limit = processes or compile_processes()
+    progress.start(len(todo), STAGE, f"{', '.join(by_kind)} kernels")
+    try:
+        while waiting or running:
+            while waiting and len(running) < limit:
+                kind, kind_units = waiting.pop(0)
+                running[kind] = _Child(kind_units)
+            time.sleep(POLL_S)
+            for kind, child in list(running.items()):
+                detail = child.latest()
+                if child.process.poll() is None:
+                    if detail:
+                        progress.advance(0.0, f"{kind}: {detail}")
+                    continue
+                del running[kind]
+                child.finish()
+                progress.advance(len(child.units), f"{kind} kernels ready")
+            progress.check()
+    finally:
+        for child in running.values():
+            child.end()
+    return todo
+
+
+class _Child:
+    """One warm-up process, the kernel names it reports on stdout and the lines it writes
+    on stderr (each pipe read by a helper thread, so that neither fills up)."""
+
+    def __init__(self, kind_units: list[str]):
+        import subprocess
+
+        self.units = kind_units
+        self.names: list[str] = []
+        self.errors: list[str] = []
+        self.process = subprocess.Popen(
+            _child_command(kind_units),
+            stdin=subprocess.DEVNULL,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
+        self._readers = [
+            threading.Thread(target=self._read, args=(pipe, lines), daemon=True)
+            for pipe, lines in (
+                (self.process.stdout, self.names),
+                (self.process.stderr, self.errors),
+            )
+        ]
+        for reader in self._readers:
+            reader.start()
+
+    @staticmethod
+    def _read(pipe, lines: list[str]) -> None:
+        for line in pipe:
+            if line.strip():
+                lines.append(line.strip())
+
+    def latest(self) -> str:
+        """The kernel compiling now (the last one named), or ``""``."""
+        return self.names[-1].removeprefix("kernel ") if self.names else ""
+
+    def finish(self) -> None:
+        """Raise :class:`RuntimeError` if the process failed (its last stderr line)."""
+        self._close()
+        if self.process.returncode != 0:
+            last = self.errors[-1] if self.errors else f"exit status {self.process.returncode}"
+            raise RuntimeError(f"compiling the {', '.join(self.units)} kernels failed: {last}")
+
+    def end(self) -> None:
+        """End the process (SIGTERM, then SIGKILL) and reap it."""
+        import subprocess
+
+        self.process.terminate()
+        try:
+            self.process.wait(timeout=5)
+        except subprocess.TimeoutExpired:
+            self.process.kill()
+            self.process.wait()
+        self._close()
+
+    def _close(self) -> None:
+        """Read the pipes to their end (the process has exited) and close them."""
+        for reader in self._readers:
+            reader.join()
+        for pipe in (self.process.stdout, self.process.stderr):
+            if pipe is not None:
+                pipe.close()

@@ -186,3 +186,38 @@ def test_an_angle_beyond_sincos_range_takes_the_c_library(angle):
     rk4_batch(params, 9.81, TORQUES, ref_theta, ref_omega, 1e-4, 100)
     assert np.abs(omega - ref_omega).max() <= 1e-12 * np.abs(ref_omega).max()
     assert np.abs(theta[:, 1:] - ref_theta[:, 1:]).max() <= 1e-12
+
+
+#: Compiles the general lane step alone into an empty cache; prints the forward dynamics'
+#: compiled signatures (numba compiles a callee once per argument-type signature).
+STEP_SIGNATURES = """
+from planar_tui.runtime import prepare_kernels
+prepare_kernels()
+import numpy as np
+from planar_tui.kernels import motion_lanes as m
+n, lanes = 6, m.LANES
+p = np.full((3, n, lanes), 0.5)
+q, w = np.zeros((n, lanes)), np.zeros((n, lanes))
+m.rk4_step_lanes(p, 9.81, np.zeros(n), q, w, 1e-3, np.zeros(n * m._WORK_STRIDE),
+                 np.zeros((n, n, lanes)), np.empty((4, n, lanes)), np.empty((4, n, lanes)),
+                 np.empty((n, lanes)), np.empty(m._ACC_ROWS * lanes), np.empty(3 * lanes))
+print(len(m._forward_dynamics_lanes.signatures), len(m._noc_lanes.signatures),
+      len(m._aba_lanes.signatures))
+"""
+
+
+@pytest.mark.slow
+def test_the_general_lane_step_compiles_its_forward_dynamics_once(tmp_path):
+    """A literal stage 0 at a call of its own made numba compile the forward dynamics and
+    both algorithms below it a second time (for ``Literal[int](0)``): nearly 40 % of the step's
+    cold compilation."""
+    import os
+    import subprocess
+    import sys
+
+    from tests.conftest import REPO
+
+    env = {**os.environ, "PYTHONPATH": str(REPO), "NUMBA_CACHE_DIR": str(tmp_path)}
+    result = subprocess.run([sys.executable, "-c", STEP_SIGNATURES], env=env, timeout=1800,
+                            capture_output=True, text=True, check=True)  # fmt: skip
+    assert result.stdout.split() == ["1", "1", "1"]

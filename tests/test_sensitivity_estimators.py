@@ -84,3 +84,36 @@ def test_sobol_half_width_covers_the_error_against_a_large_run():
     b = sobol_indices(large, problem.num_vars, 5)
     covered = np.abs(a[[0, 2]] - b[[0, 2]]) <= a[[1, 3]] + b[[1, 3]] + 1e-12
     assert covered.mean() >= 0.9
+
+
+#: Compiles both Sobol' point estimators into an empty cache; prints how many signatures
+#: their shared helpers were compiled for, then the estimates' bytes' hash.
+HELPER_SIGNATURES = """
+from planar_tui.runtime import prepare_kernels
+prepare_kernels()
+import hashlib
+import numpy as np
+from planar_tui.kernels import sensitivity_estimators as e
+outputs = np.random.default_rng(3).normal(size=(5 * 64, 2))
+point, _ = e.sobol_point_and_terms(outputs, 3)
+serial = e.sobol_point(outputs, 3)
+assert np.array_equal(point, serial)
+print(len(e._ratio.signatures), len(e._standardise_into.signatures))
+"""
+
+
+@pytest.mark.slow
+def test_the_sobol_helpers_compile_once_for_both_estimators(tmp_path):
+    """A literal True/False argument and a prange (uint64) index against a range (int64)
+    one each made numba compile a helper twice."""
+    import os
+    import subprocess
+    import sys
+
+    from tests.conftest import REPO
+
+    env = {**os.environ, "PYTHONPATH": str(REPO), "NUMBA_CACHE_DIR": str(tmp_path)}
+    result = subprocess.run([sys.executable, "-c", HELPER_SIGNATURES], env=env, timeout=900,
+                            capture_output=True, text=True)  # fmt: skip
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.split() == ["1", "1"]

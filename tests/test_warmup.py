@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import os
 import shutil
+import time
 
 import pytest
 
@@ -103,3 +104,150 @@ def test_a_cold_run_compiles_only_the_kernels_of_its_jobs(tmp_path):
     assert "arc_level" in compiled  # the probe sees the kernels numba cached
     assert "bisect_chunk" not in compiled and "bisect_blocks" not in compiled
     assert "workspace_legwise" not in compiled
+
+
+@pytest.mark.slow
+def test_ctrl_c_during_a_cold_warmup_stops_in_one_line_and_leaves_no_compiler(tmp_path):
+    """SIGINT while ``planar-tui warmup`` compiles into an empty cache: one
+    ``interrupted:`` line, exit 130, nothing after it (an interpreter that exits while a
+    thread is inside LLVM printed an LLVM assertion there), no compiling process left."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    from tests.conftest import REPO
+    from tests.processes import descendants, wait_until_gone
+
+    env = {**os.environ, "PYTHONPATH": str(REPO), "NUMBA_CACHE_DIR": str(tmp_path / "cache")}
+    warming = subprocess.Popen(
+        [sys.executable, "-m", "planar_tui", "warmup"],
+        env=env,
+        cwd=tmp_path,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    time.sleep(15)  # the CLI loaded (a loaded machine: seconds), compiling begun
+    assert warming.poll() is None, warming.communicate()
+    compiling = descendants(warming.pid)
+    warming.send_signal(signal.SIGINT)
+    asked = time.monotonic()
+    try:
+        err = warming.communicate(timeout=60)[1]
+    finally:
+        warming.kill()
+    stopped_s = time.monotonic() - asked
+    assert warming.returncode == 130, err
+    lines = [line for line in err.splitlines() if line.strip()]
+    assert lines[-1].startswith("interrupted:"), err
+    assert "Assertion" not in err and "LLVM" not in err and "Traceback" not in err, err
+    assert stopped_s < 10  # 0.05 s polls and a SIGTERM to the compilers; a loaded machine
+    assert not wait_until_gone(compiling, timeout_s=10)
+
+
+def fake_children(monkeypatch, code: str) -> None:
+    """Warm-up processes that run ``code`` (Python) instead of compiling; every kind's
+    units missing."""
+    import sys
+
+    monkeypatch.setattr(warmup, "missing", lambda names: list(names))
+    monkeypatch.setattr(warmup, "_child_command", lambda units: [sys.executable, "-c", code])
+
+
+def test_the_warm_up_processes_run_side_by_side_and_report_their_kernels(monkeypatch, tmp_path):
+    """Each process says it runs, then waits (at most 60 s) to see the other running: one
+    after the other, the first would fail."""
+    from planar_tui.progress import Progress
+
+    code = (
+        "import os, sys, time; from pathlib import Path; "
+        f"folder = Path({str(tmp_path)!r}); (folder / str(os.getpid())).touch(); "
+        "print('kernel rk4_step', flush=True); deadline = time.monotonic() + 60\n"
+        "while len(list(folder.iterdir())) < 2:\n"
+        "    time.sleep(0.05)\n"
+        "    if time.monotonic() > deadline: sys.exit('alone')"
+    )
+    fake_children(monkeypatch, code)
+    details: list[str] = []
+    progress = Progress(on_update=lambda state: details.append(state.detail))
+    done = warmup.warm_kernels_in_processes(["simulate", "torques"], progress, processes=2)
+    assert done == ["simulate", "torques"]
+    assert "simulate: rk4_step" in details or "torques: rk4_step" in details
+    assert details[-1] in ("simulate kernels ready", "torques kernels ready")
+
+
+def test_a_failed_warm_up_process_is_one_error_naming_its_kernels(monkeypatch):
+    from planar_tui.progress import Progress
+
+    fake_children(monkeypatch, "import sys; sys.exit('numba: no such kernel')")
+    with pytest.raises(RuntimeError, match="compiling the simulate kernels failed: numba: no"):
+        warmup.warm_kernels_in_processes(["simulate"], Progress())
+
+
+def test_a_cancelled_warm_up_ends_its_processes_at_once(monkeypatch):
+    from planar_tui.errors import Cancelled
+    from planar_tui.progress import Progress
+
+    fake_children(monkeypatch, "import time; time.sleep(120)")
+    progress = Progress()
+    spawned: list[warmup._Child] = []
+    original = warmup._Child.__init__
+
+    def spawn(self, units):
+        original(self, units)
+        spawned.append(self)
+        progress.request_cancel()
+
+    monkeypatch.setattr(warmup._Child, "__init__", spawn)
+    started = time.monotonic()
+    with pytest.raises(Cancelled):
+        warmup.warm_kernels_in_processes(["simulate", "torques"], progress, processes=1)
+    assert time.monotonic() - started < 10  # one poll and a SIGTERM
+    assert len(spawned) == 1 and spawned[0].process.returncode is not None
+
+
+EXIT_WHILE_COMPILING = """
+import sys, threading, time
+from planar_tui.cli.output import exit_now_if_compiling
+from planar_tui.progress import WAIT_FOR_THREAD
+if sys.argv[1] == "compiling":
+    threading.Thread(target=time.sleep, args=(60,), name=WAIT_FOR_THREAD, daemon=True).start()
+print("the outcome", end="")
+exit_now_if_compiling(130)
+print(" and the usual exit", end="")
+"""
+
+
+@pytest.mark.parametrize(("state", "code", "out"), [
+    ("compiling", 130, "the outcome"),  # at once, its output flushed
+    ("idle", 0, "the outcome and the usual exit"),
+])  # fmt: skip
+def test_a_cli_exit_during_a_compile_leaves_at_once_with_its_output(state, code, out):
+    import subprocess
+    import sys
+
+    from tests.conftest import REPO
+
+    env = {**os.environ, "PYTHONPATH": str(REPO)}
+    result = subprocess.run([sys.executable, "-c", EXIT_WHILE_COMPILING, state], env=env,
+                            capture_output=True, text=True, timeout=120)  # fmt: skip
+    assert (result.returncode, result.stdout) == (code, out), result.stderr
+
+
+@pytest.mark.slow
+def test_a_real_warm_up_process_compiles_a_kind_and_marks_it(tmp_path, monkeypatch):
+    """:func:`warmup.child_main` in a child process, into an empty kernel cache."""
+    from planar_tui.progress import Progress
+
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))  # the child's cache
+    monkeypatch.setattr(warmup, "missing", lambda names: list(names))
+    details: list[str] = []
+    done = warmup.warm_kernels_in_processes(
+        ["torques"], Progress(on_update=lambda state: details.append(state.detail))
+    )
+    assert done == ["torques"]
+    child_cache = tmp_path / f"planar-tui-{runtime.kernel_source_digest()}"
+    assert (child_cache / warmup.marker("torques").name).exists()
+    assert any(child_cache.rglob("*.nbi"))  # numba's index files: kernels compiled there
+    assert details[-1] == "torques kernels ready"

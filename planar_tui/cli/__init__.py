@@ -142,12 +142,14 @@ def main() -> None:
             raise
         if not output._REPORTED:
             os.write(2, b"interrupted: nothing was written\n")
+        output.exit_now_if_compiling(ExitCode.INTERRUPTED)
         sys.exit(ExitCode.INTERRUPTED)
     except SystemExit as exit_:
         # Typer turns a Ctrl-C outside the commands' own handling (while a command's
         # modules load, say) into a silent exit 130: say it in one line too.
         if exit_.code == ExitCode.INTERRUPTED and not output._REPORTED:
             os.write(2, b"interrupted: nothing was written\n")
+        output.exit_now_if_compiling(exit_.code)
         raise
     finally:
         # Exit without the interpreter's last full garbage collection over every object of

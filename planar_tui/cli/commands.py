@@ -223,12 +223,12 @@ def warmup() -> None:
     """Compile every job kind's kernels into the cache (for batch machines: later runs
     start without the first-run compilation)."""
     from planar_tui.registry import JOB_KINDS
-    from planar_tui.warmup import missing, warm_kernels
+    from planar_tui.warmup import missing, warm_kernels_in_processes
 
     with reported_errors():
         todo = missing(JOB_KINDS)  # warm-up units: a kind, or a part of one
         with progress_display("warmup") as progress:
-            done = warm_kernels(todo, progress)
+            done = warm_kernels_in_processes(todo, progress)
     stdout.print(f"compiled: {', '.join(done) or 'nothing (all cached)'}", markup=False)
 
 

@@ -4,6 +4,8 @@ displays (one bar per job, one per sweep)."""
 
 from __future__ import annotations
 
+import contextlib
+import os
 import re
 import signal
 import sys
@@ -25,6 +27,7 @@ except ImportError:
 
 from planar_tui.errors import Cancelled, ExitCode, PresetError, Terminated
 from planar_tui.jobkind import resolve
+from planar_tui.progress import WAIT_FOR_THREAD
 
 if TYPE_CHECKING:
     from planar_tui.presets import Preset
@@ -193,6 +196,22 @@ _INTERRUPTED = threading.Event()
 def _interrupt(signum, frame) -> None:
     _INTERRUPTED.set()
     raise KeyboardInterrupt
+
+
+def exit_now_if_compiling(code: object) -> None:
+    """Exit at once (``os._exit(code)``, stdout and stderr flushed) while a cancelled
+    kernel compilation still runs in a helper thread (:meth:`Progress.wait_for
+    <planar_tui.progress.Progress.wait_for>`): the interpreter's shutdown under a thread
+    inside LLVM printed an LLVM assertion (``DAG root value is not a chain!``) after the
+    one-line outcome. Otherwise nothing: the usual exit follows."""
+    if not any(
+        thread.name == WAIT_FOR_THREAD and thread.is_alive() for thread in threading.enumerate()
+    ):
+        return
+    for stream in (sys.stdout, sys.stderr):
+        with contextlib.suppress(Exception):
+            stream.flush()
+    os._exit(code if isinstance(code, int) else 1)
 
 
 def caused_by_interrupt(error: BaseException) -> bool:

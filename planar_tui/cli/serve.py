@@ -7,6 +7,12 @@ a laptop, tunnel the port over SSH (``ssh -L 8000:localhost:8000 HOST``) and ope
 ``http://localhost:8000``. Bound to every interface (``--host 0.0.0.0``), the page must
 name an address the browser can reach for its websocket: ``--public-url`` (default
 ``http://HOSTNAME:PORT`` with this machine's name, :func:`public_url`).
+
+Nothing outlives the server or its browser session (:mod:`planar_tui.cli.served`): each
+app runs in a process group of its own, ended (``quit``, then SIGTERM, then SIGKILL) when
+its browser disconnects, even while the app is still starting, and when the server stops;
+the app itself exits when the server is gone. Until the app draws, the page says that it
+is starting and for how long.
 """
 
 from __future__ import annotations
@@ -22,14 +28,14 @@ from planar_tui.errors import ExitCode, PresetError
 
 
 def server_command(preset: str | None, opened: list[str]) -> str:
-    """The shell command the server runs per browser session: this Python, ``-m
-    planar_tui tui``, the preset (an absolute path, so the server's folder does not
+    """The command the server runs per browser session: this Python, ``-m
+    planar_tui.cli.served_app tui`` (the CLI with a watchdog), the preset (an absolute path, so the server's folder does not
     matter) and the ``--open`` results."""
     from pathlib import Path
 
     from planar_tui.resources import resolve_preset
 
-    words = [sys.executable, "-m", "planar_tui", "tui"]
+    words = [sys.executable, "-m", "planar_tui.cli.served_app", "tui"]
     if preset is not None:
         words.append(str(resolve_preset(preset).absolute()))
     for path in opened:
@@ -102,13 +108,13 @@ def serve(
         url = public_url(host, port, public)
         command = server_command(preset, list(open_results or ()))
     try:
-        from textual_serve.server import Server
+        from planar_tui.cli.served import SessionServer
     except ImportError:
         raise fail(
             'error: planar-tui serve needs textual-serve: pip install "planar-tui[serve]"',
             ExitCode.BAD_INPUT,
         ) from None
-    server = Server(command, host=host, port=port, title="planar-tui", public_url=url)
+    server = SessionServer(command, host=host, port=port, title="planar-tui", public_url=url)
     reached = "" if url == f"http://{host}:{port}" else f", browsers open {url}"
     stderr.print(
         f"planar-tui: serving on http://{host}:{port}{reached} (Ctrl-C stops)",
