@@ -56,7 +56,8 @@ REPO = Path(__file__).resolve().parent.parent
 #: Each module (a path from the repository root) with its own fast tests (paths or globs
 #: from the root, or pytest node ids) and extra environment variables for its test runs.
 MODULES: dict[str, dict] = {
-    "kernels/interval.py": {"tests": ["tests/test_interval.py", "tests/test_interval_oracle.py"]},
+    # the deterministic oracle first: with -x most mutants die in its first seconds
+    "kernels/interval.py": {"tests": ["tests/test_interval_oracle.py", "tests/test_interval.py"]},
     "planar_tui/workspace/estimate.py": {
         "tests": ["tests/test_limits_thresholds.py", "tests/test_workspace_estimate.py"]
     },
@@ -342,15 +343,16 @@ def run_tests(
     command = [sys.executable, "-m", "pytest", "-x", "-q", "-n", "0", "-m", "not slow"]
     command += ["-p", "no:cacheprovider", *tests]
     started = time.monotonic()
-    with tempfile.TemporaryDirectory(prefix="mutation-numba-") as fresh:
+    log_path = copy_root / ".mutation-pytest.log"
+    with tempfile.TemporaryDirectory(prefix="mutation-numba-") as fresh, log_path.open("wb") as log:
         run_env = {**os.environ, **env, "NUMBA_CACHE_DIR": str(numba_cache or fresh)}
         run_env["PYTHONPATH"] = str(copy_root)
         process = subprocess.Popen(
             command,
             cwd=copy_root,
             env=run_env,
-            stdout=subprocess.DEVNULL,
-            stderr=subprocess.DEVNULL,
+            stdout=log,
+            stderr=subprocess.STDOUT,
             start_new_session=True,
         )
         try:
@@ -425,7 +427,8 @@ def main(argv: list[str] | None = None) -> int:
         shared_cache = None if module.startswith("kernels/") else copy_root / ".numba-cache"
         outcome, baseline_s = run_tests(copy_root, tests, env, 1800.0, shared_cache)
         if outcome != "passed":
-            print(f"error: the unmutated module's tests did not pass ({outcome})", file=sys.stderr)
+            tail = (copy_root / ".mutation-pytest.log").read_text(errors="replace")[-3000:]
+            print(f"{tail}\nerror: the unmutated module's tests did not pass ({outcome})")
             return 2
         timeout_s = args.timeout or max(60.0, 5.0 * baseline_s)
         sample = f" (a sample, seed {args.seed})" if len(chosen) < len(mutants) else ""
