@@ -150,6 +150,8 @@ def isincos_ends(alo, ahi, s1, s2, c1, c2):
     ``s2 = sin(ahi)``, ``c1 = cos(alo)``, ``c2 = cos(ahi)``: the same result bit for bit,
     for callers that keep those values (a bisection computes each end once, at the split
     that makes it, for both halves)."""
+    # a full turn holds every extremum; the test also keeps the multiples counted below
+    # within int64 (a wider interval's would overflow), not only a shortcut
     if ahi - alo >= _TWO_PI:
         return -1.0, 1.0, -1.0, 1.0
     slo, shi = _clamp_unit(min(s1, s2), max(s1, s2))

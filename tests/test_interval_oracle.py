@@ -147,6 +147,9 @@ def test_isincos_of_intervals_near_a_full_turn_wide(start, short_by):
         (1e17, steps(1e17, 1)),  # 16 wide: more than a turn
         (-1e300, -1e300),
         (1e300, steps(1e300, 1)),
+        (-1e300, 1e300),  # the width test keeps the multiples' count (an int64) in range
+        (-1e20, 1e20),
+        (1e19, 3e19),
         (2.0**60, 2.0**60),
         (0.0, 0.0),
         (-5e-324, 5e-324),
