@@ -277,7 +277,9 @@ def test_arithmetic_is_enclosing_and_tight(function, args, exact):
         assert lo == 0.0  # the square of an interval across zero starts at zero exactly
 
 
-@pytest.mark.parametrize("x", [(0.3, 0.7), (2.0, 3.0), (-1.0, 2.0), (-2.0, 0.0), (0.0, 4.0)])
+@pytest.mark.parametrize(
+    "x", [(0.3, 0.7), (2.0, 3.0), (-1.0, 2.0), (-2.0, 0.0), (0.0, 4.0), (0.0, 0.01), (1e-6, 0.05)]
+)
 def test_square_root_is_enclosing_and_tight(x):
     """Up to four floats a side (two outward roundings of a correctly rounded sqrt); the
     negative part of the domain is dropped."""

@@ -5,7 +5,8 @@ estimates of :mod:`planar_tui.workspace.estimate` (3-RPR, 3-PRR, five-bar) and
 :mod:`planar_tui.workspace.compute` (3-RRR), and the box budget: each limit one byte, one
 box or a fraction of a second either side, each form, each tolerance mode, each robot.
 The expected estimates are the module docstrings' formulas written out with their
-constants as numbers (not read from the code under test); the boundary length, area and
+constants as numbers (not read from the code under test), in the same order of
+operations, so equal to the box; the boundary length, area and
 search box they rest on come from the geometry functions, tested against closed forms
 elsewhere (``tests/test_workspace_estimate.py``, ``tests/test_workspace_area.py``).
 """
@@ -171,7 +172,7 @@ def docstring_boxes(kind, job, *, refine=None, tolerance=None, band=0.0, singula
     if refine is not None:
         boxes += 10.0 * length / refine
     if tolerance is not None:
-        boxes = 3.0 * boxes + band * length * tolerance / eps**2
+        boxes = 3.0 * boxes + band * length * tolerance / (eps * eps)
     if singular is not None:
         per_step, precision = singular
         boxes += per_step * ((xhi - xlo) + (yhi - ylo)) / precision
@@ -181,9 +182,7 @@ def docstring_boxes(kind, job, *, refine=None, tolerance=None, band=0.0, singula
 @pytest.mark.parametrize("kind", KINDS)
 def test_the_estimate_of_a_plain_job_is_the_boundary_term(tmp_path, kind):
     job, _ = load_job(tmp_path, kind, precision=0.5)
-    assert estimate_boxes(kind, job.robot, job.spec) == pytest.approx(
-        docstring_boxes(kind, job), abs=1
-    )
+    assert estimate_boxes(kind, job.robot, job.spec) == docstring_boxes(kind, job)
 
 
 @pytest.mark.parametrize("kind", KINDS)
@@ -191,7 +190,7 @@ def test_the_estimate_adds_the_boundary_refinement(tmp_path, kind):
     job, _ = load_job(tmp_path, kind, precision=2.0)
     job = with_spec(job, refine_precision_cm=0.25)
     expected = docstring_boxes(kind, job, refine=0.25)
-    assert estimate_boxes(kind, job.robot, job.spec) == pytest.approx(expected, abs=1)
+    assert estimate_boxes(kind, job.robot, job.spec) == expected
 
 
 @pytest.mark.parametrize("kind", ["workspace3rpr", "workspace3prr"])
@@ -223,10 +222,10 @@ def test_a_tolerance_adds_both_modes_bands_at_the_widest_tolerance(tmp_path, kin
     table = (("a", 0.05), ("b", 0.3), ("c", 0.1))
     tabled = with_spec(job, tolerance_cm=None, tolerances_cm=table, tolerance_mode=mode)
     expected = docstring_boxes(kind, job, tolerance=0.3, band=BANDS[kind])
-    assert estimate_boxes(kind, tabled.robot, tabled.spec) == pytest.approx(expected, abs=1)
+    assert estimate_boxes(kind, tabled.robot, tabled.spec) == expected
     uniform = with_spec(job, tolerance_cm=0.4, tolerances_cm=table, tolerance_mode=mode)
     expected = docstring_boxes(kind, job, tolerance=0.4, band=BANDS[kind])
-    assert estimate_boxes(kind, uniform.robot, uniform.spec) == pytest.approx(expected, abs=1)
+    assert estimate_boxes(kind, uniform.robot, uniform.spec) == expected
 
 
 def test_a_tolerance_without_a_mode_counts_as_all(tmp_path):
@@ -234,7 +233,7 @@ def test_a_tolerance_without_a_mode_counts_as_all(tmp_path):
     job, _ = load_job(tmp_path, "workspace3prr", precision=0.5)
     job = with_spec(job, tolerance_cm=0.2, tolerance_mode=None)
     expected = docstring_boxes("workspace3prr", job, tolerance=0.2, band=21.0)
-    assert estimate_boxes(job.kind, job.robot, job.spec) == pytest.approx(expected, abs=1)
+    assert estimate_boxes(job.kind, job.robot, job.spec) == expected
 
 
 #: Singularity boxes per ε_s of the search box's width plus height.
@@ -246,10 +245,10 @@ def test_the_singularity_paving_adds_the_search_boxs_term(tmp_path, kind):
     job, _ = load_job(tmp_path, kind, precision=1.0)
     at_eps = with_spec(job, singularities=True, singularity_precision_cm=None)
     expected = docstring_boxes(kind, job, singular=(SINGULAR[kind], 1.0))
-    assert estimate_boxes(kind, at_eps.robot, at_eps.spec) == pytest.approx(expected, abs=1)
+    assert estimate_boxes(kind, at_eps.robot, at_eps.spec) == expected
     finer = with_spec(job, singularities=True, singularity_precision_cm=0.25)
     expected = docstring_boxes(kind, job, singular=(SINGULAR[kind], 0.25))
-    assert estimate_boxes(kind, finer.robot, finer.spec) == pytest.approx(expected, abs=1)
+    assert estimate_boxes(kind, finer.robot, finer.spec) == expected
 
 
 @pytest.mark.parametrize("kind", KINDS)
@@ -348,11 +347,11 @@ def test_the_3rrr_estimate_of_each_form(form, strategy, expanded, term, per, ref
         refine_precision_cm=refine,
     )
     area, length = area_length(job)
-    boxes = per * (area / eps**2 if term == "area" else length / eps)
+    boxes = per * area / (eps * eps) if term == "area" else per * length / eps
     if refine is not None:
         boxes += 8.0 * length / refine
     expected = math.ceil(boxes) + 1
-    assert compute.estimate_boxes(job.robot, job.spec) == pytest.approx(expected, abs=1)
+    assert compute.estimate_boxes(job.robot, job.spec) == expected
 
 
 def test_the_3rrr_geometric_form_processes_no_boxes():
