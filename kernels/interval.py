@@ -51,23 +51,21 @@ def down(value):
 
     :math:`v - (|v| 2^{-52} + 2^{-1074})` rounded to nearest: :math:`|v| 2^{-52} \\ge
     \\mathrm{ulp}(v)`, so the result is a float strictly below ``v``. Two multiply-adds
-    instead of a libm ``nextafter`` call per bound make the kernels twice as fast.
+    instead of a libm ``nextafter`` call per bound make the kernels twice as fast. At
+    ``-inf`` the same expression gives ``-inf - inf = -inf``: no branch needed.
     """
     if value > _MAX:  # +inf: a lower bound that overflowed; the real value is >= M
         return _MAX
-    if value < -_MAX:
-        return value
     return value - (abs(value) * _REL + _TINY)
 
 
 @kernel
 def up(value):
-    """A float above ``value``: at least ``np.nextafter(value, inf)``; ``+inf`` stays,
-    ``-inf`` (an overflowed upper bound) becomes minus the largest float (see :func:`down`)."""
+    """A float above ``value``: at least ``np.nextafter(value, inf)``; ``+inf`` stays
+    (``inf + inf``), ``-inf`` (an overflowed upper bound) becomes minus the largest float
+    (see :func:`down`)."""
     if value < -_MAX:  # -inf: an upper bound that overflowed; the real value is <= -M
         return -_MAX
-    if value > _MAX:
-        return value
     return value + (abs(value) * _REL + _TINY)
 
 

@@ -397,6 +397,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--list", action="store_true", help="list the mutants and stop")
     parser.add_argument("--markdown", type=Path, help="also write the table to this file")
     args = parser.parse_args(argv)
+    # a `kill` ends the run as Ctrl-C does: the tests' process group killed, the copy removed
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))
 
     module = args.module
     if module not in MODULES and not args.tests:
