@@ -25,7 +25,14 @@ from planar_tui.errors import JobError, PresetError
 from planar_tui.presets import load_preset
 from planar_tui.progress import Progress
 from planar_tui.workspace import compute
-from planar_tui.workspace.estimate import _geometry, estimate_boxes, needs
+from planar_tui.workspace.estimate import (
+    _geometry,
+    count_text,
+    estimate,
+    estimate_boxes,
+    needs,
+    report_box_estimate,
+)
 from planar_tui.workspace.geometry import outer_area_and_length
 from tests.conftest import PRESETS
 from tests.test_workspace_estimate import JOBS
@@ -258,6 +265,28 @@ def test_needs_are_112_bytes_and_5_microseconds_a_box_and_half_a_second(tmp_path
     assert boxes == estimate_boxes(kind, job.robot, job.spec)
     assert memory == 112.0 * boxes
     assert seconds == pytest.approx(0.5 + 5e-6 * boxes, rel=1e-12)
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_the_kinds_hooks_give_the_needs(tmp_path, kind):
+    """``estimate`` (memory and seconds, summed by sweeps) and ``report_box_estimate``
+    (the progress figure, warned of over ``box_budget``)."""
+    job, _ = load_job(tmp_path, kind, precision=0.5)
+    boxes, memory, seconds = needs(kind, job.robot, job.spec)
+    assert estimate(job) == (memory, seconds)
+    progress = Progress()
+    assert report_box_estimate(with_spec(job, box_budget=boxes), progress) == boxes
+    assert progress.figures["boxes_estimate"] == boxes and not progress.warning
+    report_box_estimate(with_spec(job, box_budget=boxes - 1), progress)
+    assert progress.warning.startswith(f"about {boxes:,} boxes expected")
+
+
+@pytest.mark.parametrize(
+    "count, text",
+    [(48_475, "48,475"), (10**12 - 1, "999,999,999,999"), (10**12, "1e+12"), (2.62e12, "2.62e+12")],
+)
+def test_box_counts_switch_to_exponents_from_a_trillion(count, text):
+    assert count_text(count) == text
 
 
 def set_limits(monkeypatch, memory_bytes=None, seconds=None):
