@@ -172,8 +172,9 @@ def with_spec(job, **changes):
 
 def docstring_boxes(kind, job, *, refine=None, tolerance=None, band=0.0, singular=None):
     """The module docstring's N: 10 L/ε (+ 10 L/ε_r), with a tolerance 3 times that plus
-    c_t L t / ε², plus c_s (w + h) / ε_s, rounded up, plus 64."""
-    length, (xlo, xhi, ylo, yhi) = _geometry(kind, job.robot, job.spec)
+    c_t L t / ε², plus c_s (w + h) / ε_s with ``singular = (c_s, ε_s, w + h)``, rounded
+    up, plus 64."""
+    length, _ = _geometry(kind, job.robot, job.spec)
     eps = job.spec.precision_cm
     boxes = 10.0 * length / eps
     if refine is not None:
@@ -181,8 +182,8 @@ def docstring_boxes(kind, job, *, refine=None, tolerance=None, band=0.0, singula
     if tolerance is not None:
         boxes = 3.0 * boxes + band * length * tolerance / (eps * eps)
     if singular is not None:
-        per_step, precision = singular
-        boxes += per_step * ((xhi - xlo) + (yhi - ylo)) / precision
+        per_step, precision, width_plus_height = singular
+        boxes += per_step * width_plus_height / precision
     return math.ceil(boxes) + 64
 
 
@@ -235,11 +236,12 @@ def test_a_tolerance_adds_both_modes_bands_at_the_widest_tolerance(tmp_path, kin
     assert estimate_boxes(kind, uniform.robot, uniform.spec) == expected
 
 
-def test_a_tolerance_without_a_mode_counts_as_all(tmp_path):
-    """The 3-PRR's bands differ by mode, so the default mode shows; both are counted."""
-    job, _ = load_job(tmp_path, "workspace3prr", precision=0.5)
+@pytest.mark.parametrize("kind", KINDS)
+def test_a_tolerance_without_a_mode_counts_as_all(tmp_path, kind):
+    """Unset, the mode is ``all``: both modes' bands, as when it is set."""
+    job, _ = load_job(tmp_path, kind, precision=0.5)
     job = with_spec(job, tolerance_cm=0.2, tolerance_mode=None)
-    expected = docstring_boxes("workspace3prr", job, tolerance=0.2, band=21.0)
+    expected = docstring_boxes(kind, job, tolerance=0.2, band=BANDS[kind])
     assert estimate_boxes(job.kind, job.robot, job.spec) == expected
 
 
@@ -249,12 +251,14 @@ SINGULAR = {"workspace3rpr": 10.0, "workspace3prr": 10.0, "workspace5r": 20.0}
 
 @pytest.mark.parametrize("kind", KINDS)
 def test_the_singularity_paving_adds_the_search_boxs_term(tmp_path, kind):
+    """The search box 320 cm wide and 280 cm high: w + h = 600 cm."""
     job, _ = load_job(tmp_path, kind, precision=1.0)
+    job = with_spec(job, search_box_cm=((-150.0, 170.0), (-120.0, 160.0)))
     at_eps = with_spec(job, singularities=True, singularity_precision_cm=None)
-    expected = docstring_boxes(kind, job, singular=(SINGULAR[kind], 1.0))
+    expected = docstring_boxes(kind, job, singular=(SINGULAR[kind], 1.0, 600.0))
     assert estimate_boxes(kind, at_eps.robot, at_eps.spec) == expected
     finer = with_spec(job, singularities=True, singularity_precision_cm=0.25)
-    expected = docstring_boxes(kind, job, singular=(SINGULAR[kind], 0.25))
+    expected = docstring_boxes(kind, job, singular=(SINGULAR[kind], 0.25, 600.0))
     assert estimate_boxes(kind, finer.robot, finer.spec) == expected
 
 
