@@ -136,6 +136,7 @@ def test_sizes_change_unit_at_each_power_of_1024(n_bytes, text):
     [
         (365.25 * 86_400, "1 years"),
         (365.25 * 86_400 - 86_400, "364 days"),
+        (365.25 * 86_400 - 1, "365 days"),
         (86_400, "1 days"),
         (86_399, "24 hours"),
         (3 * 86_400, "3 days"),
