@@ -92,8 +92,11 @@ def steps(value: float, n: int) -> float:
     return value
 
 
-#: Every multiple of pi/2 in [-4 pi, 4 pi], and huge ones (2**20 and 10**12 quarter turns).
-MULTIPLES = [*range(-8, 9), 2**20 + 1, -(2**20) - 2, 10**12 + 3, 10**12]
+#: Every multiple of pi/2 in [-4 pi, 4 pi], and huge ones (2**20 and 10**12 quarter turns;
+#: at 10**12 + 30 and + 85 the product (m - slack) * fl(2/pi) of the float m nearest the
+#: multiple rounds above j, so only the slack keeps the extremum: found by a search over
+#: 15 000 multiples at five scales, where the kernels missed none).
+MULTIPLES = [*range(-8, 9), 2**20 + 1, -(2**20) - 2, 10**12 + 3, 10**12, 10**12 + 30, 10**12 + 85]
 
 
 def straddling(j: int) -> list[tuple[float, float]]:
