@@ -23,9 +23,11 @@ result and is itself a non-empty set of reals: ``lo <= hi``, ``lo < +inf`` and
 :math:`M` (not ``+inf``, which would leave an interval holding no real number), an upper
 bound that overflows downwards :math:`-M`; so ``iadd(M, M, M, M) = (M, inf)`` and
 ``isqr(1.4e154, 1.5e154) = (M, inf)``. Inputs outside the domain are not checked: an empty
-input (``lo > hi``) gives an unspecified, possibly non-empty result (test
-:func:`iintersect`'s output before using it), and an unbounded input may give NaN bounds
-(``inf - inf``, ``0 * inf``) or results that are not enclosures.
+input (``lo > hi``) gives an unspecified, possibly non-empty result, and an unbounded input
+may give NaN bounds (``inf - inf``, ``0 * inf``) or results that are not enclosures.
+
+Only what the workspace kernels use is here: sine and cosine come together, of an interval
+(:func:`isincos`, :func:`isincos_ends`) or of a point (:func:`psincos`).
 """
 
 import math
@@ -49,23 +51,21 @@ def down(value):
 
     :math:`v - (|v| 2^{-52} + 2^{-1074})` rounded to nearest: :math:`|v| 2^{-52} \\ge
     \\mathrm{ulp}(v)`, so the result is a float strictly below ``v``. Two multiply-adds
-    instead of a libm ``nextafter`` call per bound make the kernels twice as fast.
+    instead of a libm ``nextafter`` call per bound make the kernels twice as fast. At
+    ``-inf`` the same expression gives ``-inf - inf = -inf``: no branch needed.
     """
     if value > _MAX:  # +inf: a lower bound that overflowed; the real value is >= M
         return _MAX
-    if value < -_MAX:
-        return value
     return value - (abs(value) * _REL + _TINY)
 
 
 @kernel
 def up(value):
-    """A float above ``value``: at least ``np.nextafter(value, inf)``; ``+inf`` stays,
-    ``-inf`` (an overflowed upper bound) becomes minus the largest float (see :func:`down`)."""
+    """A float above ``value``: at least ``np.nextafter(value, inf)``; ``+inf`` stays
+    (``inf + inf``), ``-inf`` (an overflowed upper bound) becomes minus the largest float
+    (see :func:`down`)."""
     if value < -_MAX:  # -inf: an upper bound that overflowed; the real value is <= -M
         return -_MAX
-    if value > _MAX:
-        return value
     return value + (abs(value) * _REL + _TINY)
 
 
@@ -127,48 +127,8 @@ def isqrt(alo, ahi):
 
 
 @kernel
-def _contains_phase(alo, ahi, phase):
-    """True if :math:`[a, b]` may contain a point ``phase + 2 k pi`` (errs towards True)."""
-    slack = 4.0 * (abs(alo) + abs(ahi) + 1.0) * 2.220446049250313e-16
-    k = math.ceil((alo - slack - phase) / _TWO_PI)
-    return phase + k * _TWO_PI <= ahi + slack
-
-
-@kernel
 def _clamp_unit(lo, hi):
     return max(-1.0, down(down(lo))), min(1.0, up(up(hi)))
-
-
-@kernel
-def isin(alo, ahi):
-    """:math:`\\sin X`: endpoint values, widened to 1 (-1) if :math:`\\pi/2` (:math:`-\\pi/2`)
-    modulo :math:`2\\pi` lies in X."""
-    if ahi - alo >= _TWO_PI:
-        return -1.0, 1.0
-    s1 = math.sin(alo)
-    s2 = math.sin(ahi)
-    lo, hi = _clamp_unit(min(s1, s2), max(s1, s2))
-    if _contains_phase(alo, ahi, 0.5 * math.pi):
-        hi = 1.0
-    if _contains_phase(alo, ahi, -0.5 * math.pi):
-        lo = -1.0
-    return lo, hi
-
-
-@kernel
-def icos(alo, ahi):
-    """:math:`\\cos X`: endpoint values, widened to 1 (-1) if 0 (:math:`\\pi`) modulo
-    :math:`2\\pi` lies in X."""
-    if ahi - alo >= _TWO_PI:
-        return -1.0, 1.0
-    c1 = math.cos(alo)
-    c2 = math.cos(ahi)
-    lo, hi = _clamp_unit(min(c1, c2), max(c1, c2))
-    if _contains_phase(alo, ahi, 0.0):
-        hi = 1.0
-    if _contains_phase(alo, ahi, math.pi):
-        lo = -1.0
-    return lo, hi
 
 
 @kernel
@@ -188,6 +148,8 @@ def isincos_ends(alo, ahi, s1, s2, c1, c2):
     ``s2 = sin(ahi)``, ``c1 = cos(alo)``, ``c2 = cos(ahi)``: the same result bit for bit,
     for callers that keep those values (a bisection computes each end once, at the split
     that makes it, for both halves)."""
+    # a full turn holds every extremum; the test also keeps the multiples counted below
+    # within int64 (a wider interval's would overflow), not only a shortcut
     if ahi - alo >= _TWO_PI:
         return -1.0, 1.0, -1.0, 1.0
     slo, shi = _clamp_unit(min(s1, s2), max(s1, s2))
@@ -216,34 +178,3 @@ def psincos(t):
     slo, shi = _clamp_unit(math.sin(t), math.sin(t))
     clo, chi = _clamp_unit(math.cos(t), math.cos(t))
     return slo, shi, clo, chi
-
-
-@kernel
-def ihull(alo, ahi, blo, bhi):
-    """Interval hull :math:`[\\min(\\underline{x}, \\underline{y}), \\max(\\overline{x}, \\overline{y})]`."""
-    return min(alo, blo), max(ahi, bhi)
-
-
-@kernel
-def iintersect(alo, ahi, blo, bhi):
-    """:math:`X \\cap Y`; empty when the returned ``lo > hi``."""
-    return max(alo, blo), min(ahi, bhi)
-
-
-@kernel
-def iwidth(alo, ahi):
-    """Width :math:`\\overline{x} - \\underline{x}` rounded up."""
-    return up(ahi - alo)
-
-
-@kernel
-def imid(alo, ahi):
-    """Midpoint, a float inside X (computed as ``lo + (hi - lo)/2`` without overflow)."""
-    m = 0.5 * alo + 0.5 * ahi
-    return min(max(m, alo), ahi)
-
-
-@kernel
-def icontains(alo, ahi, value):
-    """True if ``value`` lies in X."""
-    return alo <= value <= ahi
