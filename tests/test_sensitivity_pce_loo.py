@@ -91,3 +91,26 @@ def test_an_output_whose_loo_error_is_never_finite_refuses_the_fit():
     ):
         pce.omp_path(psi, huge)
     assert pce.omp_path(psi, y[:, :1]).term_counts[0] >= 1  # the other alone: fitted
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_fit_pce_keeps_the_degree_of_least_loo_and_stops_two_degrees_after_it(seed):
+    """Noise (no degree fits it): each degree's LOO error is its own OMP path's (checked
+    against direct refits above); the fit keeps the first degree of least error and tries
+    exactly two more after it (the rule of :func:`fit_pce`'s docstring)."""
+    unit = pce.pce_unit_design(2, 64, SEED)
+    y = np.random.default_rng(seed).normal(size=64)
+    tried: list[int] = []
+    fit = pce.fit_pce(unit, y, on_degree=tried.append)
+    errors = [
+        float(
+            pce.omp_path(
+                pce.basis_matrix(unit, pce.total_degree_indices(2, p)), y[:, None]
+            ).loo_error[0]
+        )
+        for p in tried
+    ]
+    best = int(np.argmin(errors))
+    assert tried == list(range(1, best + 4))
+    assert fit.degree == best + 1
+    assert fit.loo_error[0] == errors[best]
