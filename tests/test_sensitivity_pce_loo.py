@@ -70,7 +70,7 @@ def test_fit_pce_selects_the_degree_and_exactly_the_terms_of_a_sparse_cubic():
     wanted = {(0, 0, 0): 0.5, (3, 0, 0): 1.0, (1, 2, 0): -0.8, (0, 0, 1): 0.3}
     indices = np.array(list(wanted))
     y = pce.basis_matrix(unit, indices) @ np.array(list(wanted.values()))
-    degrees = []
+    degrees: list[int] = []
     fit = pce.fit_pce(unit, y, on_degree=degrees.append)
     assert degrees == [1, 2, 3] and fit.degree == 3
     got = dict(zip(map(tuple, fit.indices.tolist()), fit.coefficients[:, 0], strict=True))

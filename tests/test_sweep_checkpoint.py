@@ -81,8 +81,13 @@ def test_each_rule_of_a_record_names_its_problem(record, seen, words):
 
 def test_a_failed_point_is_not_checked_against_the_columns_of_an_ok_one():
     """A failed point has no figures, so none can be missing (``columns`` not consulted)."""
-    asked = []
-    found = cp.record_problem(good(status=FAILED), 3, set(), lambda n: asked.append(n) or COLUMNS)
+    asked: list[int] = []
+
+    def columns(number):
+        asked.append(number)
+        return COLUMNS
+
+    found = cp.record_problem(good(status=FAILED), 3, set(), columns)
     assert found is None and asked == []
 
 
@@ -121,7 +126,7 @@ def lines_of(*records, header=None):
 def test_read_finished_keeps_the_good_records_and_warns_once_per_bad_one(tmp_path):
     path = tmp_path / "c.jsonl"
     path.write_text(lines_of(good(1), good(1), good(number=0), good(3, FAILED)))
-    warnings = []
+    warnings: list[str] = []
     finished = cp.read_finished(path, "fp", 3, lambda n: COLUMNS, warnings.append)
     assert finished == {1: outcome(1), 3: outcome(3, FAILED)}
     assert warnings == [
@@ -134,7 +139,7 @@ def test_a_line_cut_short_by_a_crash_is_dropped_silently_only_when_it_is_the_las
     path = tmp_path / "c.jsonl"
     cut = line(good(2))[:-7]
     path.write_text(lines_of(good(1)) + cut)  # the crash: no newline, half a record
-    warnings = []
+    warnings: list[str] = []
     assert cp.read_finished(path, "fp", 3, warn=warnings.append) == {1: outcome(1)}
     assert warnings == []
     path.write_text(lines_of(good(1)) + cut + "\n" + line(good(3)) + "\n")
@@ -145,7 +150,7 @@ def test_a_line_cut_short_by_a_crash_is_dropped_silently_only_when_it_is_the_las
 def test_more_bad_records_than_the_warning_limit_give_one_count_line(tmp_path):
     path = tmp_path / "c.jsonl"
     path.write_text(lines_of(*[good(number=0)] * (cp.MAX_WARNINGS + 2), good(2)))
-    warnings = []
+    warnings: list[str] = []
     assert cp.read_finished(path, "fp", 3, warn=warnings.append) == {2: outcome(2)}
     assert len(warnings) == cp.MAX_WARNINGS + 1
     assert warnings[-1] == f"{path}: 2 more records dropped: their points run again"
@@ -158,7 +163,7 @@ def test_more_bad_records_than_the_warning_limit_give_one_count_line(tmp_path):
 def test_a_header_of_another_sweep_or_point_count_resumes_nothing(tmp_path, header):
     path = tmp_path / "c.jsonl"
     path.write_text(lines_of(good(1), header=header))
-    warnings = []
+    warnings: list[str] = []
     assert cp.read_finished(path, "fp", 3, warn=warnings.append) == {}
     assert warnings == []  # another sweep's checkpoint: replaced, no warning
 
@@ -167,7 +172,7 @@ def test_a_header_of_another_sweep_or_point_count_resumes_nothing(tmp_path, head
 def test_a_first_line_that_is_no_header_warns_and_resumes_nothing(tmp_path, first):
     path = tmp_path / "c.jsonl"
     path.write_text(first + "\n" + line(good(1)) + "\n")
-    warnings = []
+    warnings: list[str] = []
     assert cp.read_finished(path, "fp", 3, warn=warnings.append) == {}
     assert warnings == [f"{path}:1: not a checkpoint header: every point runs"]
 
@@ -227,9 +232,14 @@ def test_a_resumed_writer_keeps_every_finished_point_and_drops_a_cut_line(tmp_pa
 
 
 def test_each_added_point_is_synced_to_disk_unless_the_caller_syncs_a_batch(tmp_path, monkeypatch):
-    synced = []
+    synced: list[int] = []
     real_fsync = os.fsync
-    monkeypatch.setattr(os, "fsync", lambda fd: synced.append(fd) or real_fsync(fd))
+
+    def fsync(fd):
+        synced.append(fd)
+        real_fsync(fd)
+
+    monkeypatch.setattr(os, "fsync", fsync)
     writer = cp.CheckpointWriter(tmp_path / "c.jsonl", "fp", 3, {})
     synced.clear()  # (the atomic header write may sync too)
     writer.add(outcome(1))
