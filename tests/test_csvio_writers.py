@@ -7,6 +7,8 @@ from __future__ import annotations
 import os
 import time
 
+import pytest
+
 from planar_tui import csvio
 
 
@@ -54,3 +56,19 @@ def test_the_stale_sweep_removes_old_regular_files_only(tmp_path):
     assert not stale.exists() and busy.exists() and folder.is_dir()
     assert link.is_symlink() and fifo.exists() and elsewhere.read_text() == "keep me"
     assert len(notes) == 1 and "1 temporary file(s)" in notes[0] and stale.name in notes[0]
+
+
+def test_write_new_text_writes_a_new_file_and_never_replaces_one(tmp_path):
+    path = tmp_path / "new.txt"
+    assert csvio.write_new_text(path, "first") == path
+    assert path.read_text() == "first"
+    with pytest.raises(FileExistsError):
+        csvio.write_new_text(path, "second")
+    assert path.read_text() == "first"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["new.txt"]  # no temporary left
+
+
+def test_the_first_non_finite_column_of_plain_rows():
+    table = csvio.CsvTable(("a", "b", "c"), [[1.0, "x", 2], [3.0, "y", float("inf")]])
+    assert table.first_non_finite_column() == "c"
+    assert csvio.CsvTable(("a", "b"), [[1.0, "nan"], [2, None]]).first_non_finite_column() is None

@@ -147,6 +147,14 @@ def test_a_line_cut_short_by_a_crash_is_dropped_silently_only_when_it_is_the_las
     assert warnings == [f"{path}:3: record dropped (not JSON): its point runs again"]
 
 
+def test_as_many_bad_records_as_the_warning_limit_give_no_count_line(tmp_path):
+    path = tmp_path / "c.jsonl"
+    path.write_text(lines_of(*[good(number=0)] * cp.MAX_WARNINGS))
+    warnings: list[str] = []
+    assert cp.read_finished(path, "fp", 3, warn=warnings.append) == {}
+    assert len(warnings) == cp.MAX_WARNINGS and all("record dropped" in w for w in warnings)
+
+
 def test_more_bad_records_than_the_warning_limit_give_one_count_line(tmp_path):
     path = tmp_path / "c.jsonl"
     path.write_text(lines_of(*[good(number=0)] * (cp.MAX_WARNINGS + 2), good(2)))
