@@ -44,7 +44,11 @@ _GROUP = 10
 
 @kernel
 def _standardise_into(outputs, t, out):
-    """``out[q] = (y_q - mean y) / sd y`` of column t (population sd, two-pass, as SALib)."""
+    """``out[q] = (y_q - mean y) / sd y`` of column t (population sd, two-pass, as SALib).
+
+    Only the centring changes the indices: S1 and ST (and each resample's) are ratios of
+    sums homogeneous of degree 2 in y, so the scale cancels and the sd normalised by
+    N - 1 instead would change them by round-off only; N is kept to be SALib's."""
     rows_total = outputs.shape[0]
     mean = 0.0
     for q in range(rows_total):

@@ -118,3 +118,19 @@ def test_a_sidecar_path_that_cannot_be_written_refuses_the_run_before_anything_i
     assert result.exit_code == 2
     assert "table1-6r-torques.csv.json: (output): is a folder" in result.stderr
     assert sorted(p.name for p in out.iterdir()) == ["table1-6r-torques.csv.json"]
+
+
+@pytest.mark.parametrize("kind", [3, None, ["torques"], {"name": "torques"}, True])
+def test_a_sidecar_whose_kind_is_not_text_is_refused(tmp_path, kind):
+    """``kind`` names the job kind a sidecar describes: anything but text is no sidecar
+    (the same sidecar with its own text kind reads back)."""
+    csv = tmp_path / "r.csv"
+    record = job_provenance(load_preset(PRESETS / "paper-a-table4.toml").jobs[0])
+    data = json.loads(record.to_json())
+    sidecar_path(csv).write_text(json.dumps(data | {"kind": kind}))
+    with pytest.raises(ValueError, match=r"r\.csv\.json"):
+        read_sidecar(csv)
+    with pytest.raises(ValueError):
+        Provenance.from_json(json.dumps(data | {"kind": kind}))
+    sidecar_path(csv).write_text(json.dumps(data))
+    assert read_sidecar(csv) == record

@@ -211,8 +211,8 @@ def omp_path(psi: np.ndarray, y: np.ndarray, max_terms: int | None = None) -> Om
             else:
                 stale += 1
             weight = np.where(best_loo <= ENOUGH_LOO, 0.0, weight)  # fitted: serve the rest
-        if stale >= PATIENCE_STEPS or not weight.any():
-            break
+        if stale >= PATIENCE_STEPS or not weight.any():  # (every output fitted: a shortcut,
+            break  # _next_column returns -1 then too)
         column = _next_column(correlation, norms, usable, weight)
         if column < 0:
             break

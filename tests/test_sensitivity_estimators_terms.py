@@ -1,0 +1,49 @@
+"""The jitted Sobol' kernel (kernels/sensitivity_estimators.py) on outputs where each of
+its guards matters, against SALib (``tests/salib_reference.py``) on the same samples:
+an output whose A and B values are all equal (its half-widths are 0, as SALib's ``np.ptp``
+test makes them), and one whose A and B values differ only at a row that some bootstrap
+resample draws but the last one does not (the rows drawn by *any* resample count)."""
+
+import numpy as np
+import pytest
+
+from planar_tui.sensitivity.estimators import sobol_bootstrap_rows, sobol_indices
+from tests.salib_reference import salib_sobol_indices
+
+D = 2
+N = 8
+STEP = D + 2
+SEED = 5
+PROBLEM = {"num_vars": D, "names": ["a", "b"], "bounds": [[0.0, 1.0]] * D}
+
+
+def ab_rows_varying(rng):
+    """N (D + 2) outputs, 0 at every A and B row, 1000 + N(0, 1) at the A_B rows.
+
+    Standardised, the A and B values are all about -1: a resample's variance of them,
+    mean of squares less the squared mean, is then a rounding error of about 1e-15, above
+    the kernel's ``eps`` guard, so only the ``np.ptp`` test keeps the half-widths at 0."""
+    outputs = np.zeros((N * STEP, 1))
+    for k in range(N):
+        outputs[k * STEP + 1 : k * STEP + 1 + D, 0] = 1000.0 + rng.normal(size=D)
+    return outputs
+
+
+@pytest.mark.filterwarnings("ignore:Constant values encountered")  # SALib's, expected
+def test_equal_a_and_b_values_give_zero_half_widths_as_salib():
+    outputs = ab_rows_varying(np.random.default_rng(3))
+    ours = sobol_indices(outputs, D, SEED)
+    assert np.array_equal(ours, salib_sobol_indices(PROBLEM, outputs, SEED))
+    assert np.all(ours[[1, 3]] == 0.0)
+
+
+def test_a_row_drawn_by_an_earlier_resample_only_still_makes_the_output_vary():
+    rows = sobol_bootstrap_rows(N, SEED)
+    drawn_last = set(rows[-1].tolist())
+    (k, *_) = [k for k in range(N) if k not in drawn_last]
+    assert any(k in resample for resample in rows[:-1].tolist())
+    outputs = ab_rows_varying(np.random.default_rng(3))
+    outputs[k * STEP, 0] = 1.0  # A of row k: the only A or B value that differs
+    ours = sobol_indices(outputs, D, SEED)
+    np.testing.assert_allclose(ours, salib_sobol_indices(PROBLEM, outputs, SEED), atol=1e-12)
+    assert np.all(ours[[1, 3]] > 0.1)
