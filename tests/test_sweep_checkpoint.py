@@ -103,12 +103,11 @@ def outcome(number, status=OK):
 
 
 def line(record, fingerprint="fp"):
-    """A record's checkpoint line as the writer makes it (with its digest where records
-    carry one, :func:`record_digest`, issue 33)."""
-    digest = getattr(cp, "record_digest", None)
-    if digest is None or not isinstance(record, dict):
+    """A record's checkpoint line as the writer makes it, with its digest
+    (:func:`~planar_tui.sweep.checkpoint.record_digest`); a non-object record as it is."""
+    if not isinstance(record, dict):
         return json.dumps(record)
-    return json.dumps({**record, "digest": digest(fingerprint, record)})
+    return json.dumps({**record, "digest": cp.record_digest(fingerprint, record)})
 
 
 def read_back(text_line):
