@@ -36,6 +36,10 @@ STUDY_KEYS = {"sweep": "point", "optimise": "evaluation"}
 #: has fewer meaningful ones, and the eight columns then fit 80 columns.
 INDEX_DIGITS = 4
 
+#: A boxes table's status (the CSV's words, or their codes) as the code
+#: :func:`overlay_map` draws by.
+STATUS_CODES = {"inside": 2.0, "boundary": 1.0, "2": 2.0, "1": 1.0}
+
 #: Most rows a comparison lists (the tables themselves are exported whole).
 MAX_ROWS = 2000
 
@@ -180,11 +184,15 @@ def overlay_map(a: CsvTable, b: CsvTable, width: int = 60, height: int = 20) -> 
     outside both (a cell counts by its centre); ``y`` up."""
     import numpy as np
 
-    from planar_tui.figures.table import column
+    from planar_tui.figures.table import column, text_column
 
     def arrays(table: CsvTable) -> tuple[Any, ...]:
-        return tuple(
-            column(table, n) for n in ("x_lo_cm", "x_hi_cm", "y_lo_cm", "y_hi_cm", "status")
+        """The box bounds, and the status as its code (the CSV's ``"inside"`` 2,
+        ``"boundary"`` 1; a table of codes is read as it is)."""
+        status = [STATUS_CODES.get(s, math.nan) for s in text_column(table, "status")]
+        return (
+            *(column(table, n) for n in ("x_lo_cm", "x_hi_cm", "y_lo_cm", "y_hi_cm")),
+            np.array(status, dtype=float),
         )
 
     boxes = [arrays(a), arrays(b)]
