@@ -1,15 +1,22 @@
 """The workbench's rough edges a new user met in the first hour (issue 34): the
-comparison of two workspace runs' maps, ..."""
+comparison of two workspace runs' maps, the sweep dialog and screen's defaults, ..."""
 
 from __future__ import annotations
 
 import shutil
 from pathlib import Path
 
+import pytest
+from textual.widgets import Input, Select
+
+from planar_tui.app.app import WorkbenchApp
 from planar_tui.app.compare import compare_runs
 from planar_tui.app.runs import RunHistory
+from planar_tui.app.sweep_data import parse_values, values_text, varying_figures
 from planar_tui.app.workbench import Workbench
 from planar_tui.batch import run_job
+from planar_tui.csvio import CsvTable
+from tests.test_app import SIZE, async_test, finish, until
 
 DATA = Path(__file__).parent / "data" / "app"
 
@@ -31,3 +38,76 @@ def test_two_real_workspace_runs_overlay_their_maps(tmp_path):
     grid = compare_runs(a, b).overlay.splitlines()[:-1]
     glyphs = set("".join(grid))
     assert "#" in glyphs and "A" in glyphs and "B" not in glyphs, "\n".join(grid)
+
+
+# -- sweeps --------------------------------------------------------------------------------
+
+
+def test_values_text_reads_back_as_the_entry():
+    for entry in (
+        [20, 30.5],
+        [[20, 70], [25, 65]],
+        ["slope", "natural"],
+        {"from": 20, "to": 40, "count": 21},
+        {"from": -0.5, "to": 1e-05, "count": 3},
+    ):
+        assert parse_values(values_text(entry)) == entry, values_text(entry)
+
+
+def test_varying_figures_leave_out_what_no_point_changed():
+    header = ("point", "a", "precision_cm", "area_cm2", "status", "message", "seconds")
+    rows = [
+        [1, 1.0, 0.5, 10.0, "ok", "", 0.1],
+        [2, 2.0, 0.5, 12.0, "ok", "", 0.1],
+        [3, 3.0, 0.5, 99.0, "failed", "boom", 0.1],
+    ]
+    table = CsvTable(header, rows)
+    assert varying_figures(table, ["precision_cm", "area_cm2"]) == ["area_cm2"]
+
+
+ZIP_SWEEP = """
+[[sweep]]
+job = "workspace"
+combine = "zip"
+values."robot3rrr.proximal_cm" = [28, 30, 32]
+values."robot3rrr.distal_cm" = [32, 30, 28]
+output = "tiny-zip.csv"
+"""
+
+
+@pytest.mark.slow
+@async_test
+async def test_f8_offers_the_presets_own_sweep_and_plots_an_output(tmp_path):
+    from planar_tui.app.screens.sweep import NO_KEY, SweepDialog, SweepScreen
+
+    preset = tmp_path / "tiny.toml"
+    preset.write_text((DATA / "tiny.toml").read_text() + ZIP_SWEEP)
+    app = WorkbenchApp(Workbench.open(preset), output_dir=tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        app.action_show_tab("workspace")
+        await pilot.pause()
+        await pilot.press("f8")
+        await until(pilot, lambda: isinstance(app.screen, SweepDialog))
+        dialog = app.screen
+        typed = [
+            dialog.query_one(f"#sweep-{p}-{r}", Input).value
+            for r in (1, 2)
+            for p in ("key", "values")
+        ]
+        assert typed == ["robot3rrr.proximal_cm", "28, 30, 32", "robot3rrr.distal_cm", "32, 30, 28"]
+        assert dialog.query_one("#sweep-combine", Select).value == "zip"
+        assert "sweep[1]" in str(dialog.query_one("#sweep-problem").render())
+        # Enter on the grid/zip list runs (it does not reopen the list)
+        dialog.query_one("#sweep-combine", Select).focus()
+        await pilot.press("enter")
+        await until(pilot, lambda: not isinstance(app.screen, SweepDialog))
+        await finish(app, pilot)
+        await until(pilot, lambda: isinstance(app.screen, SweepScreen))
+        screen = app.screen
+        assert screen.run.sweep.output == "tiny-zip.csv"  # the preset's own sweep
+        # an output that changes, against the first key, as a line (the keys are zipped)
+        figure = screen.query_one("#sweep-figure", Select).value
+        assert figure != "precision_cm" and figure in varying_figures(screen.table, [figure])
+        assert screen.query_one("#sweep-across", Select).value == "robot3rrr.proximal_cm"
+        assert screen.query_one("#sweep-down", Select).value == NO_KEY
+        assert screen.query_one("#sweep-plot").display
