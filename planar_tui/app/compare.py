@@ -178,6 +178,29 @@ def simulation_figures(
     return ("column", "final A", "final B", "max |B−A|"), rows, series
 
 
+#: Plot glyphs of run A's curves and run B's, one per curve in order: distinct without
+#: colour (``NO_COLOR``), A's digits and B's letters (plotext draws the character).
+SERIES_GLYPHS = {"A": "123456789", "B": "abcdefghi"}
+
+
+def series_glyphs(names: Sequence[str]) -> list[str]:
+    """The glyph of each curve (named ``A …`` or ``B …``): the next of its run's
+    :data:`SERIES_GLYPHS`."""
+    used = {side: 0 for side in SERIES_GLYPHS}
+    glyphs = []
+    for name in names:
+        side = name[:1] if name[:1] in SERIES_GLYPHS else "A"
+        pool = SERIES_GLYPHS[side]
+        glyphs.append(pool[used[side] % len(pool)])
+        used[side] += 1
+    return glyphs
+
+
+def series_legend(names: Sequence[str]) -> str:
+    """One line naming each curve's glyph: ``1 A θ1  a B θ1  …`` (wrapped by the screen)."""
+    return "   ".join(f"{g} {name}" for g, name in zip(series_glyphs(names), names, strict=True))
+
+
 def overlay_map(a: CsvTable, b: CsvTable, width: int = 60, height: int = 20) -> str:
     """The inside boxes of two workspaces' boxes tables on one text grid over both:
     ``#`` inside both, ``A`` or ``B`` inside one only, ``.`` boundary of either, blank
