@@ -111,3 +111,46 @@ async def test_f8_offers_the_presets_own_sweep_and_plots_an_output(tmp_path):
         assert screen.query_one("#sweep-across", Select).value == "robot3rrr.proximal_cm"
         assert screen.query_one("#sweep-down", Select).value == NO_KEY
         assert screen.query_one("#sweep-plot").display
+
+
+# -- wrapped fields -----------------------------------------------------------------------
+
+
+def shown_in(app, field) -> str:
+    """The text a field shows on screen (its rows joined, spaces dropped)."""
+    region = field.content_region
+    rows = app.export_text().splitlines()[region.y : region.bottom]
+    return "".join(row[region.x : region.right] for row in rows).replace(" ", "")
+
+
+@pytest.mark.slow
+@async_test
+async def test_a_wrapped_field_is_cleared_whole_and_shown_whole(tmp_path):
+    shutil.copy(DATA / "tiny.toml", tmp_path / "tiny.toml")
+    app = WorkbenchApp(Workbench.open(tmp_path / "tiny.toml"), output_dir=tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        app.action_show_tab("workspace")
+        await pilot.pause()
+        field = app.query_one("#pane-workspace #field-joint_limits_deg")
+        field.focus()
+        await pilot.pause()
+        assert field.wrapped_document.height >= 2  # the value wraps at 80 columns
+        # End, ctrl+u: the whole value cleared (not its last row), then typed anew
+        await pilot.press("end", "ctrl+u", *"[[10,80],[100,170],[240,300]]")
+        await until(pilot, lambda: field.value == "[[10,80],[100,170],[240,300]]")
+        limits = [[10, 80], [100, 170], [240, 300]]
+        await until(
+            pilot, lambda: app.workbench.document["workspace"]["joint_limits_deg"] == limits
+        )
+        # home, ctrl+k: the same from the start
+        await pilot.press("home", "ctrl+k", *"[[20,70],[110,160],[245,295]]")
+        await until(pilot, lambda: field.value == "[[20,70],[110,160],[245,295]]")
+        # a value marked bad (its border drawn) is still shown whole, and after an undo
+        await pilot.press("end", "backspace", "backspace", "backspace", "backspace")
+        await until(pilot, lambda: field.has_class("-bad"))
+        await pilot.pause(0.2)
+        assert shown_in(app, field) == field.value.replace(" ", "")
+        await pilot.press("ctrl+z")
+        await pilot.pause(0.5)
+        field = app.query_one("#pane-workspace #field-joint_limits_deg")
+        assert shown_in(app, field) == field.value.replace(" ", ""), field.value
