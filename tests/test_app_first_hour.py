@@ -6,6 +6,7 @@ from __future__ import annotations
 import shutil
 from pathlib import Path
 
+import numpy as np
 import pytest
 from textual.widgets import Input, Select
 
@@ -16,7 +17,7 @@ from planar_tui.app.sweep_data import parse_values, values_text, varying_figures
 from planar_tui.app.workbench import Workbench
 from planar_tui.batch import run_job
 from planar_tui.csvio import CsvTable
-from tests.test_app import SIZE, async_test, finish, until
+from tests.test_app import SIZE, async_test, finish, run_tab, until
 
 DATA = Path(__file__).parent / "data" / "app"
 
@@ -154,3 +155,40 @@ async def test_a_wrapped_field_is_cleared_whole_and_shown_whole(tmp_path):
         await pilot.pause(0.5)
         field = app.query_one("#pane-workspace #field-joint_limits_deg")
         assert shown_in(app, field) == field.value.replace(" ", ""), field.value
+
+
+# -- the live preview ---------------------------------------------------------------------
+
+
+def map_rows(explorer) -> int:
+    """How many rows of the map show a kept box (inside or boundary)."""
+    from planar_tui.workspace.map import BOUNDARY_GLYPH, INSIDE_GLYPH
+
+    return sum(INSIDE_GLYPH in row or BOUNDARY_GLYPH in row for row in explorer.map_lines())
+
+
+@pytest.mark.slow
+@async_test
+async def test_the_preview_after_an_edit_keeps_the_maps_scale(tmp_path):
+    shutil.copy(DATA / "tiny.toml", tmp_path / "tiny.toml")
+    app = WorkbenchApp(Workbench.open(tmp_path / "tiny.toml"), output_dir=tmp_path)
+    async with app.run_test(size=(120, 40)) as pilot:
+        await run_tab(app, pilot, "workspace")
+        pane = app.query_one("#pane-workspace")
+        explorer = pane.query_one("#workspace-map")
+        await pilot.pause(0.2)
+        centre, cell_cm, rows = explorer.centre_cm, explorer.cell_cm, map_rows(explorer)
+        assert rows >= 6, explorer.map_lines()
+        field = pane.query_one("#field-joint_limits_deg")
+        field.focus()
+        field.value = "[[22, 68], [112, 158], [247, 293]]"  # a little narrower
+        await until(pilot, lambda: "preview" in explorer.note, 300)
+        # the same view (centre and scale; the legend's lines may take a row), paved at its
+        # own cells: every boundary box's longer side in (one cell, two cells]
+        assert explorer.centre_cm == centre and explorer.cell_cm == cell_cm
+        edge = explorer.boxes[explorer.status == 1]
+        sides = np.maximum(edge[:, 1] - edge[:, 0], edge[:, 3] - edge[:, 2])
+        assert len(sides) and np.max(sides) <= 2 * cell_cm * (1 + 1e-9)
+        assert np.min(sides) > cell_cm * (1 - 1e-9)
+        # nearly the job's map, not a block of a few rows
+        assert map_rows(explorer) >= 0.7 * rows, explorer.map_lines()
