@@ -4,6 +4,7 @@ comparison of two workspace runs' maps, the sweep dialog and screen's defaults, 
 from __future__ import annotations
 
 import shutil
+import time
 from pathlib import Path
 
 import numpy as np
@@ -192,3 +193,51 @@ async def test_the_preview_after_an_edit_keeps_the_maps_scale(tmp_path):
         assert np.min(sides) > cell_cm * (1 - 1e-9)
         # nearly the job's map, not a block of a few rows
         assert map_rows(explorer) >= 0.7 * rows, explorer.map_lines()
+
+
+# -- the background warm-up ---------------------------------------------------------------
+
+
+def test_the_compile_stage_says_compiling_first():
+    from planar_tui.app.widgets.job_controls import progress_text
+    from planar_tui.progress import ProgressState
+    from planar_tui.warmup import STAGE
+
+    text = progress_text(ProgressState(0, 2, STAGE, "workspace:joint kernels"), None)
+    assert text == "compiling kernels (first run only): workspace:joint kernels 0/2"
+
+
+@pytest.mark.slow
+@async_test
+async def test_the_presets_own_kernels_are_warmed_first_and_never_beside_a_job(
+    tmp_path, monkeypatch
+):
+    """Three kinds 'missing' (markers redirected to tmp_path; the real examples replaced
+    by a 0.3 s stand-in that marks them): the preset's sensitivity job (F5 pressed at once)
+    is warmed before the kinds the preset does not use (torques, the 5-bar), which come
+    in their own order and none while the job runs."""
+    from planar_tui import warmup
+
+    todo = ("sensitivity", "torques", "workspace5r")
+    present = tmp_path / "warm-others"
+    present.touch()
+    monkeypatch.setattr(
+        warmup, "marker", lambda unit: tmp_path / f"warm-{unit}" if unit in todo else present
+    )
+    app = WorkbenchApp(Workbench.open(DATA / "tiny.toml"), output_dir=tmp_path, warm_kernels=True)
+    started = []
+
+    def stand_in(unit):
+        started.append((unit, app.jobs.running))
+        time.sleep(0.3)
+        (tmp_path / f"warm-{unit}").touch()
+
+    monkeypatch.setattr(warmup, "_run_example", stand_in)
+    async with app.run_test(size=SIZE) as pilot:
+        app.action_show_tab("sensitivity")
+        await pilot.press("f5")
+        await finish(app, pilot)
+        await until(pilot, lambda: all((tmp_path / f"warm-{u}").exists() for u in todo))
+        await app.workers.wait_for_complete()
+    assert [unit for unit, _ in started] == list(todo)
+    assert not any(running for unit, running in started if unit != "sensitivity"), started

@@ -398,31 +398,21 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
         self.exit_if_quitting()
 
     def _warm_kernels(self) -> None:
-        """Worker thread: compile the kernels of every job kind not cached yet
-        (:func:`planar_tui.warmup.warm_kernels`), so the first F5 starts at once; says so
-        in two notifications, and stops within 0.05 s when the app closes."""
+        """Worker thread: compile the kernels not cached yet, the preset's kinds first and
+        never while a job runs (:func:`planar_tui.app.warming.warm_in_background`); says
+        so in two notifications, and stops within 0.05 s when the app closes."""
         from textual.worker import get_current_worker
 
-        from planar_tui.errors import Cancelled
-        from planar_tui.progress import Progress
-        from planar_tui.registry import JOB_KINDS
-        from planar_tui.runtime import prepare_kernels
-        from planar_tui.warmup import missing, warm_kernels
+        from planar_tui.app.warming import preset_kinds, warm_in_background
 
         worker = get_current_worker()
-        prepare_kernels()
-        todo = missing(JOB_KINDS)
-        if not todo:
-            return
-        self.call_from_thread(
-            self.notify,
-            f"Compiling the kernels of {', '.join(todo)} in the background (first run only).",
+        first = self.call_from_thread(preset_kinds, self)
+        warm_in_background(
+            lambda text: self.call_from_thread(self.notify, text),
+            first,
+            lambda: self.jobs.running,
+            lambda: worker.is_cancelled,
         )
-        try:
-            warm_kernels(todo, Progress(should_stop=lambda: worker.is_cancelled))
-        except Cancelled:
-            return
-        self.call_from_thread(self.notify, "Kernels compiled: jobs start at once.")
 
     def _refresh_progress(self) -> None:
         """The UI timer: show the running job's latest progress snapshot."""
