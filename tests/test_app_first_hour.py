@@ -241,3 +241,23 @@ async def test_the_presets_own_kernels_are_warmed_first_and_never_beside_a_job(
         await app.workers.wait_for_complete()
     assert [unit for unit, _ in started] == list(todo)
     assert not any(running for unit, running in started if unit != "sensitivity"), started
+
+
+# -- smaller edges -------------------------------------------------------------------------
+
+
+@pytest.mark.slow
+@async_test
+async def test_a_preset_opens_on_the_tab_of_its_first_job(tmp_path):
+    from textual.widgets import TabbedContent
+
+    presets = Path(__file__).resolve().parent.parent / "presets"
+    app = WorkbenchApp(
+        Workbench.open(presets / "paper-b-table3.toml"), output_dir=tmp_path, first_job_tab=True
+    )
+    async with app.run_test(size=SIZE) as pilot:
+        await pilot.pause()
+        assert app.query_one(TabbedContent).active == "tab-workspace"
+        assert await app.open_preset(str(presets / "paper-a-table1.toml"))
+        await pilot.pause()
+        assert app.query_one(TabbedContent).active == "tab-simulate"

@@ -42,7 +42,8 @@ def run_app(preset_argument: str | None = None, opened: tuple[str, ...] = ()) ->
     from planar_tui.app.app import WorkbenchApp
     from planar_tui.app.workbench import Workbench
 
-    app = WorkbenchApp(Workbench.open_marked(preset_argument or last_preset()), warm_kernels=True)
+    bench = Workbench.open_marked(preset_argument or last_preset())
+    app = WorkbenchApp(bench, warm_kernels=True, first_job_tab=True)
     app.open_results(list(opened))
     app.run()
     code = app.return_code or 0

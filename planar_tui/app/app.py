@@ -102,9 +102,13 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
         output_dir: Path | str | None = None,
         *,
         warm_kernels: bool = False,
+        first_job_tab: bool = False,
     ):
         super().__init__()
         self.workbench = workbench
+        #: Open on the tab of the preset's first job (``planar-tui tui``; tests start on
+        #: the Robot tab unless they ask).
+        self.first_job_tab = first_job_tab
         #: Compile the kernels not yet cached in a background thread at start (what
         #: ``planar-tui`` does; tests leave it off to keep their timings their own).
         self.warm_kernels_at_start = warm_kernels
@@ -174,6 +178,8 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
         if self.settings_warning:
             self.notify(self.settings_warning, title="Settings", severity="warning", timeout=20)
         self.show_document_state()
+        if self.first_job_tab:
+            self.show_first_job_tab()
         if self.warm_kernels_at_start:
             self.run_worker(
                 self._warm_kernels, name="warm-up", group="warm-up", thread=True,
