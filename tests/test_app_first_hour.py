@@ -261,3 +261,24 @@ async def test_a_preset_opens_on_the_tab_of_its_first_job(tmp_path):
         assert await app.open_preset(str(presets / "paper-a-table1.toml"))
         await pilot.pause()
         assert app.query_one(TabbedContent).active == "tab-simulate"
+
+
+@pytest.mark.slow
+@async_test
+async def test_the_history_keeps_the_digest_of_the_edited_document_that_ran(tmp_path):
+    import hashlib
+
+    preset = tmp_path / "tiny.toml"
+    shutil.copy(DATA / "tiny.toml", preset)
+    app = WorkbenchApp(Workbench.open(preset), output_dir=tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        await run_tab(app, pilot, "simulate")  # the file as it is
+        field = app.query_one("#pane-simulate #field-duration_s")
+        field.value = "0.1"
+        await until(pilot, lambda: app.workbench.document["simulate"]["duration_s"] == 0.1)
+        await pilot.press("f5")
+        await finish(app, pilot)
+        edited = app.workbench.to_toml()
+    first, second = (run.provenance.preset_sha256 for run in app.run_history)
+    assert first == hashlib.sha256(preset.read_bytes()).hexdigest()
+    assert second == hashlib.sha256(edited.encode()).hexdigest() != first

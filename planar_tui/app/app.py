@@ -311,7 +311,7 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
         pane.run_inputs = pane.inputs()
         pane.controls().set_running(True)
         pane.controls().status(f"starting {job.key}")
-        self.jobs.start(pane, job)
+        self.jobs.start(pane, job, self.workbench.digest())
         self.refresh_bindings()
 
     def action_run_all(self) -> None:
