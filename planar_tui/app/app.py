@@ -115,6 +115,7 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
         #: The settings that persist (:mod:`planar_tui.app.settings`) and the warning of a
         #: settings file that could not be used (shown once the app runs).
         self.settings, self.settings_warning = load_settings()
+        self.form_hidden = bool(self.settings.form_hidden)
         #: The folder ``ctrl+e``, ``ctrl+l`` and F9 use: the one given, else the one last
         #: exported or run into (the settings), else ``.`` (as ``planar-tui run``).
         self.output_dir = Path(output_dir or self.settings.output_dir or ".")
@@ -167,6 +168,8 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
                         pane_widget = JobPane(self.workbench, kind=name, id=f"pane-{name}")
                     else:
                         pane_widget = pane(self.workbench, id=f"pane-{name}")
+                    if isinstance(pane_widget, JobPane):  # styled once, when mounted
+                        pane_widget.set_class(self.form_hidden, "hide-form")
                     self.tab_panes[name] = pane_widget
                     yield pane_widget
         self.validation_line = Static("", id="validation", markup=False)
@@ -526,6 +529,7 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
         return True
 
     def on_tabbed_content_tab_activated(self) -> None:
+        self.sync_form(self.current_pane())
         self.refresh_bindings()
 
     async def action_pane_view(self, kind: str) -> None:
