@@ -308,3 +308,14 @@ async def test_hiding_the_form_restyles_the_shown_tab_and_the_others_when_shown(
         app.action_show_tab("simulate")
         await pilot.pause()
         assert form.display
+
+
+def test_two_instances_keep_each_others_saved_settings(tmp_path):
+    from planar_tui.app.settings import load_settings
+
+    first, second = (WorkbenchApp(Workbench.open(DATA / "tiny.toml")) for _ in range(2))
+    first.remember(output_dir=str(tmp_path / "first"))  # the first exports there
+    second.remember(theme="nord")  # the second, started before, changes its theme
+    saved, warning = load_settings()
+    assert warning is None
+    assert saved.output_dir == str(tmp_path / "first") and saved.theme == "nord"

@@ -18,7 +18,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from planar_tui.app.settings import Settings, save_settings, updated
+from planar_tui.app.settings import Settings, load_settings, save_settings, updated
 
 if TYPE_CHECKING:
     from planar_tui.app.workbench import Workbench
@@ -170,7 +170,9 @@ class ViewActions:
     def remember(self, **changes: Any) -> None:
         """Keep changed settings in the settings file (a failure to write is a warning);
         a settings file that could not be used at start is left as it is (the user's to
-        mend), the changes kept for this session only."""
+        mend), the changes kept for this session only. Only ``changes`` are written, over
+        the file as it is now: another instance's settings saved since this one started
+        (its output folder) are kept, not overwritten by this one's older copy."""
         new = updated(self.settings, **changes)
         if new == self.settings:
             return
@@ -178,7 +180,9 @@ class ViewActions:
         if self.settings_warning:
             return
         try:
-            save_settings(new)
+            on_disk, warning = load_settings()
+            if warning is None:
+                save_settings(updated(on_disk, **changes))
         except OSError as error:
             self.notify(f"Settings not saved: {error}", severity="warning")
 
