@@ -319,3 +319,26 @@ def test_two_instances_keep_each_others_saved_settings(tmp_path):
     saved, warning = load_settings()
     assert warning is None
     assert saved.output_dir == str(tmp_path / "first") and saved.theme == "nord"
+
+
+@pytest.mark.slow
+@async_test
+async def test_the_footer_shows_the_error_key_as_soon_as_a_value_is_wrong(tmp_path):
+    shutil.copy(DATA / "tiny.toml", tmp_path / "tiny.toml")
+    app = WorkbenchApp(Workbench.open(tmp_path / "tiny.toml"), output_dir=tmp_path)
+    async with app.run_test(size=(120, 40)) as pilot:
+        app.action_show_tab("simulate")
+        await pilot.pause()
+        field = app.query_one("#pane-simulate #field-duration_s")
+        field.focus()
+        await pilot.pause()
+        footer = lambda: app.export_text().splitlines()[-1]  # noqa: E731
+        assert "Error" not in footer()
+        await pilot.press("end", "ctrl+u", "minus", "1")
+        await until(pilot, lambda: bool(app.problems))
+        await pilot.pause()
+        assert "^g Error" in footer()
+        await pilot.press("backspace", "backspace", "1")
+        await until(pilot, lambda: not app.problems)
+        await pilot.pause()
+        assert "Error" not in footer()

@@ -220,7 +220,10 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
         bar = getattr(self, "validation_line", None)
         if bar is None or not bar.is_attached:  # closing, or between two compositions
             return False
+        had_problems = bool(self.problems)
         preset, self.problems = self.workbench.check()
+        if bool(self.problems) != had_problems:
+            self.refresh_bindings()  # the footer's ^g Error, at once
         self.mark_problems()
         for pane in self.job_panes():
             pane.update_stale()
