@@ -185,6 +185,11 @@ def print_screen_changes(seconds: dict[str, list[float]]) -> None:
 
 
 def main() -> None:
+    # the app's settings and recent files in a folder of their own: the benchmark's
+    # toggles and presets opened are not the user's
+    private = tempfile.mkdtemp(prefix="bench-app-")
+    for name in ("PLANAR_TUI_CONFIG_DIR", "PLANAR_TUI_STATE_DIR"):
+        os.environ[name] = private
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--edits", type=int, default=5)
     parser.add_argument("--rounds", type=int, default=3)
