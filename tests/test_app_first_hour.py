@@ -342,3 +342,27 @@ async def test_the_footer_shows_the_error_key_as_soon_as_a_value_is_wrong(tmp_pa
         await until(pilot, lambda: not app.problems)
         await pilot.pause()
         assert "Error" not in footer()
+
+
+@pytest.mark.slow
+@async_test
+async def test_the_history_footer_fits_80_columns_with_a_problem_in_the_form(tmp_path):
+    from planar_tui.app.screens.history import HistoryScreen
+
+    shutil.copy(DATA / "tiny.toml", tmp_path / "tiny.toml")
+    app = WorkbenchApp(Workbench.open(tmp_path / "tiny.toml"), output_dir=tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        app.query_one("#link-1-masses_kg").value = "0"  # a problem: ^g Error in the footer
+        await until(pilot, lambda: bool(app.problems))
+        await pilot.press("f10")
+        await until(pilot, lambda: isinstance(app.screen, HistoryScreen))
+        await pilot.pause(0.2)
+        footer = app.export_text().splitlines()[-1]
+        # every key shown whole, ending in the palette's: no key cut at the edge
+        assert "F1 Help" in footer and footer.rstrip().endswith("^p palette"), footer
+        assert "Save" not in footer and "Error" not in footer
+        await pilot.press("escape")
+        await until(pilot, lambda: not isinstance(app.screen, HistoryScreen))
+        await pilot.pause(0.2)
+        footer = app.export_text().splitlines()[-1]
+        assert "^s Save" in footer and "^g Error" in footer

@@ -511,7 +511,11 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
 
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
         """Show a tab's own bindings only on that tab (``ctrl+t`` labelled per tab), Cancel
-        only while a job runs, the digits only on the tab bar."""
+        only while a job runs, the digits only on the tab bar; on a screen of its own
+        (history, comparison, sweep) not Save nor the form's Error (its footer fits 80
+        columns)."""
+        if action in ("save", "goto_problem") and self.on_own_screen():
+            return False
         if action in ("pane_action", "pane_view", "toggle_form", "run", "sweep"):
             try:
                 pane = self.current_pane() if self.is_mounted else None
@@ -530,6 +534,12 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
         if action == "goto_problem":
             return bool(self.problems)
         return True
+
+    def on_own_screen(self) -> bool:
+        """Whether a full screen (not a dialog) is shown over the workbench."""
+        from textual.screen import ModalScreen
+
+        return len(self.screen_stack) > 1 and not isinstance(self.screen, ModalScreen)
 
     def on_tabbed_content_tab_activated(self) -> None:
         self.sync_form(self.current_pane())
