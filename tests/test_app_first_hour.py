@@ -366,3 +366,26 @@ async def test_the_history_footer_fits_80_columns_with_a_problem_in_the_form(tmp
         await pilot.pause(0.2)
         footer = app.export_text().splitlines()[-1]
         assert "^s Save" in footer and "^g Error" in footer
+
+
+@pytest.mark.slow
+@async_test
+async def test_every_tab_is_reachable_by_a_key_and_by_name(tmp_path):
+    """Issue 32: the app had keys for 6 tabs and there are 9: on the tab bar the digits
+    reach the first nine, and the palette names every tab, however many kinds."""
+    from textual.widgets import TabbedContent, Tabs
+
+    from planar_tui.app.palette import workbench_commands
+
+    shutil.copy(DATA / "tiny.toml", tmp_path / "tiny.toml")
+    app = WorkbenchApp(Workbench.open(tmp_path / "tiny.toml"), output_dir=tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        tabs = app.tabs()
+        titles = {command.title for command in workbench_commands(app)}
+        assert all(f"Show {title} tab" in titles for title, _ in tabs)
+        app.query_one(Tabs).focus()
+        for number, (_, name) in enumerate(tabs[:9], start=1):
+            await pilot.press(str(number))
+            await pilot.pause()
+            assert app.query_one(TabbedContent).active == f"tab-{name}"
+            app.query_one(Tabs).focus()

@@ -86,7 +86,7 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
         Binding("f8", "sweep", "Sweep", key_display="F8", show=False),
         *(
             Binding(str(number), f"digit_tab({number})", f"Tab {number}", show=False)
-            for number in range(1, 7)
+            for number in range(1, 10)
         ),
         *(
             Binding(key, f"show_tab_number({number})", f"Tab {number}", show=False, priority=True)

@@ -2,7 +2,7 @@
 and the settings that persist (mixed into :class:`~planar_tui.app.app.WorkbenchApp`).
 
 - Tabs: ``F2`` ``F3`` ``F4`` ``F6`` ``F7`` ``F12`` and ``ctrl+pageup`` / ``ctrl+pagedown``
-  anywhere; the digits ``1``…``6`` only while the focus is on the tab bar (never in a
+  anywhere; the digits ``1``…``9`` only while the focus is on the tab bar (never in a
   form: a digit there is a value, or a job selector's or a button's key).
 - ``ctrl+b`` maximises the focused plot or table, else the tab's results area
   (Textual's ``Screen.maximize``); ``ctrl+b`` or escape restores it.
