@@ -11,7 +11,15 @@ called directly (no app), wall and CPU seconds, on every core and on one thread 
 app paves it). The 1-min load (``os.getloadavg``) is
 printed before and after (the machine is shared).
 
-Options: ``--edits N`` (default 5).
+Screen changes (issue 34: each within 1 s at load 8): ``--screens`` times, headless at
+120×40 as the Pilot tests drive the app, from the key's action until the app is idle
+again (every message handled, the screen laid out and drawn: ``pilot.pause()``):
+opening a preset into the running app (``ctrl+o``'s :meth:`open_preset`, each bundled
+preset of :data:`SCREEN_PRESETS` in turn, twice round), hiding and showing the form
+(``ctrl+f``), and the first and a later visit of every tab. ``--preview`` runs the
+preview figures above alone; without either option both run.
+
+Options: ``--edits N`` (default 5), ``--rounds N`` (screen changes, default 3).
 """
 
 from __future__ import annotations
@@ -117,11 +125,86 @@ def row(name: str, values: list[float]) -> str:
     return f"{name:<40} {statistics.median(values):>9.3f} {max(values):>9.3f}"
 
 
+#: The presets opened in turn by ``--screens`` (a 3-RRR workspace job, a 6R's three
+#: kinds, a sweep preset).
+SCREEN_PRESETS = ("paper-b-table3.toml", "paper-a-table1.toml", "sweep-3rrr-design.toml")
+
+
+async def settled(pilot, action) -> float:
+    """Seconds from calling ``action()`` (awaited when it is a coroutine) until the app is
+    idle again (``pilot.pause()``: every pending message handled and the screen drawn)."""
+    start = time.perf_counter()
+    outcome = action()
+    if asyncio.iscoroutine(outcome):
+        await outcome
+    await pilot.pause()
+    return time.perf_counter() - start
+
+
+async def screen_changes(rounds: int) -> dict[str, list[float]]:
+    """Seconds of each screen change, by name (see the module's docstring)."""
+    from planar_tui.app.app import WorkbenchApp
+    from planar_tui.app.workbench import Workbench
+
+    seconds: dict[str, list[float]] = {}
+
+    def keep(name: str, value: float) -> None:
+        seconds.setdefault(name, []).append(value)
+
+    with tempfile.TemporaryDirectory() as folder:
+        app = WorkbenchApp(Workbench.open(PRESET), output_dir=Path(folder))
+        async with app.run_test(size=(120, 40)) as pilot:
+            await pilot.pause()
+            tabs = [name for _, name in app.tabs()]
+            for round_ in range(rounds):
+                for name in tabs:  # the first visit after (re)opening, then a later one
+                    keep(
+                        "first visit of a tab" if round_ == 0 else "later visit of a tab",
+                        await settled(pilot, lambda n=name: app.action_show_tab(n)),
+                    )
+                app.action_show_tab("workspace")
+                await pilot.pause()
+                keep("hide the form (ctrl+f)", await settled(pilot, app.action_toggle_form))
+                keep("show the form (ctrl+f)", await settled(pilot, app.action_toggle_form))
+                for preset in SCREEN_PRESETS:
+                    path = str(REPO / "presets" / preset)
+                    keep("open a preset", await settled(pilot, lambda p=path: app.open_preset(p)))
+                for name in tabs:
+                    keep(
+                        "first visit after opening",
+                        await settled(pilot, lambda n=name: app.action_show_tab(n)),
+                    )
+    return seconds
+
+
+def print_screen_changes(seconds: dict[str, list[float]]) -> None:
+    print("screen changes, headless at 120x40 (goal: each within 1 s at load 8)")
+    print(f"{'':<40} {'median s':>9} {'max s':>9}  n")
+    for name, values in seconds.items():
+        print(f"{row(name, values)}  {len(values)}")
+
+
 def main() -> None:
+    # the app's settings and recent files in a folder of their own: the benchmark's
+    # toggles and presets opened are not the user's
+    private = tempfile.mkdtemp(prefix="bench-app-")
+    for name in ("PLANAR_TUI_CONFIG_DIR", "PLANAR_TUI_STATE_DIR"):
+        os.environ[name] = private
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--edits", type=int, default=5)
+    parser.add_argument("--rounds", type=int, default=3)
+    parser.add_argument("--screens", action="store_true", help="the screen changes only")
+    parser.add_argument("--preview", action="store_true", help="the live preview only")
     args = parser.parse_args()
     load_before = os.getloadavg()[0]
+    if not args.preview:
+        print_screen_changes(asyncio.run(screen_changes(args.rounds)))
+    if args.screens:
+        load_after = os.getloadavg()[0]
+        print(
+            f"1-min load: {load_before:.2f} before, {load_after:.2f} after ({os.cpu_count()} CPUs)"
+        )
+        return
     every_wall, every_cpu, _ = paving_alone(args.edits, None)
     wall, cpu, boxes = paving_alone(args.edits, 1)
     seconds = asyncio.run(app_latencies(args.edits))

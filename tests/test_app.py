@@ -442,7 +442,14 @@ async def test_the_torques_tab_keeps_the_generic_view_of_summary_and_csv_rows(tm
         assert pane.result is not None
         screen = app.export_text()
         assert "2 states, max |tau| = [" in screen  # the runner's summary
-        assert "theta1_rad," in screen  # the CSV's header, then its rows
+        # a table, the torques first: both states' six torques on screen beside the form
+        # at 80 columns, as the CSV has them (4 significant digits)
+        lines = [line.split("▕")[-1].split() for line in screen.splitlines()]
+        assert ["#", "τ1", "τ2", "τ3", "τ4", "τ5", "τ6"] in [line[:7] for line in lines]
+        tau = [[float(v) for v in row[-6:]] for row in pane.result.table.rows]
+        for k, row in enumerate(tau, start=1):
+            assert [str(k), *(f"{v:.4g}" for v in row)] in [line[:7] for line in lines]
+        assert "theta1_rad," not in screen  # no raw CSV text
         assert "done in" in screen
         # at most 12 CSV lines (header included), whatever the table's length
         many = JobResult(table=CsvTable(("a_m", "b_m"), [[i, i] for i in range(40)]), summary="40")

@@ -373,7 +373,7 @@ async def test_settings_persist_between_sessions(tmp_path, isolated_settings):
     async with again.run_test(size=SIZE) as pilot:
         await pilot.pause()
         assert again.theme == "nord" and again.output_dir == folder.resolve()
-        assert again.query_one("#tabs").has_class("hide-form")
+        assert again.form_hidden and again.query_one("#pane-simulate").has_class("hide-form")
 
 
 @async_test

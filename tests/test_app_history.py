@@ -325,7 +325,8 @@ def test_tui_open_refuses_a_file_that_is_no_result_in_one_line(tmp_path, cli):
 
 @pytest.mark.slow
 @async_test
-async def test_runs_of_the_session_are_kept_and_two_simulations_overlaid(tmp_path):
+async def test_runs_of_the_session_are_kept_and_two_simulations_overlaid(tmp_path, monkeypatch):
+    monkeypatch.setenv("NO_COLOR", "1")  # the curves told apart by their glyphs alone
     app = make_app(tmp_path)
     async with app.run_test(size=(80, 24)) as pilot:
         app.action_show_tab("simulate")
@@ -341,6 +342,15 @@ async def test_runs_of_the_session_are_kept_and_two_simulations_overlaid(tmp_pat
         assert "same settings" in comparison.notes
         by_column = {row[0]: row for row in comparison.rows}
         assert by_column["theta1_rad"][3] == "0"  # one preset, one integrator: identical
+        # a glyph per curve and a legend naming each, on screen at 80x24
+        await pilot.pause(0.2)
+        screen = app.export_text()
+        legend = "1 A θ1   a B θ1   2 A θ2   b B θ2"
+        assert legend in screen, screen
+        plot = app.screen.query_one("#compare-plot").content_region
+        rows = screen.splitlines()[plot.y + 1 : plot.bottom]  # below the plot's title
+        drawn = "".join(line[plot.x : plot.right] for line in rows)
+        assert set("ab") <= set(drawn), drawn  # B's curves (digits: A's, and the ticks')
 
 
 # -- recent files, completion, the picker ---------------------------------------------------

@@ -62,7 +62,9 @@ def run_app(preset_argument: str | None = None, opened: tuple[str, ...] = ()) ->
     from planar_tui.app.app import WorkbenchApp
     from planar_tui.app.workbench import Workbench
 
-    app = WorkbenchApp(_open_bench(Workbench, preset_argument), warm_kernels=True)
+    app = WorkbenchApp(
+        _open_bench(Workbench, preset_argument), warm_kernels=True, first_job_tab=True
+    )
     app.open_results(list(opened))
     app.run()
     code = app.return_code or 0

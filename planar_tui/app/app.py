@@ -86,7 +86,7 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
         Binding("f8", "sweep", "Sweep", key_display="F8", show=False),
         *(
             Binding(str(number), f"digit_tab({number})", f"Tab {number}", show=False)
-            for number in range(1, 7)
+            for number in range(1, 10)
         ),
         *(
             Binding(key, f"show_tab_number({number})", f"Tab {number}", show=False, priority=True)
@@ -102,15 +102,20 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
         output_dir: Path | str | None = None,
         *,
         warm_kernels: bool = False,
+        first_job_tab: bool = False,
     ):
         super().__init__()
         self.workbench = workbench
+        #: Open on the tab of the preset's first job (``planar-tui tui``; tests start on
+        #: the Robot tab unless they ask).
+        self.first_job_tab = first_job_tab
         #: Compile the kernels not yet cached in a background thread at start (what
         #: ``planar-tui`` does; tests leave it off to keep their timings their own).
         self.warm_kernels_at_start = warm_kernels
         #: The settings that persist (:mod:`planar_tui.app.settings`) and the warning of a
         #: settings file that could not be used (shown once the app runs).
         self.settings, self.settings_warning = load_settings()
+        self.form_hidden = bool(self.settings.form_hidden)
         #: The folder ``ctrl+e``, ``ctrl+l`` and F9 use: the one given, else the one last
         #: exported or run into (the settings), else ``.`` (as ``planar-tui run``).
         self.output_dir = Path(output_dir or self.settings.output_dir or ".")
@@ -161,6 +166,8 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
                         pane_widget = JobPane(self.workbench, kind=name, id=f"pane-{name}")
                     else:
                         pane_widget = pane(self.workbench, id=f"pane-{name}")
+                    if isinstance(pane_widget, JobPane):  # styled once, when mounted
+                        pane_widget.set_class(self.form_hidden, "hide-form")
                     self.tab_panes[name] = pane_widget
                     yield pane_widget
         self.validation_line = Static("", id="validation", markup=False)
@@ -172,6 +179,8 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
         if self.settings_warning:
             self.notify(self.settings_warning, title="Settings", severity="warning", timeout=20)
         self.show_document_state()
+        if self.first_job_tab:
+            self.show_first_job_tab()
         if self.warm_kernels_at_start:
             self.run_worker(
                 self._warm_kernels, name="warm-up", group="warm-up", thread=True,
@@ -209,7 +218,10 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
         bar = getattr(self, "validation_line", None)
         if bar is None or not bar.is_attached:  # closing, or between two compositions
             return False
+        had_problems = bool(self.problems)
         preset, self.problems = self.workbench.check()
+        if bool(self.problems) != had_problems:
+            self.refresh_bindings()  # the footer's ^g Error, at once
         self.mark_problems()
         for pane in self.job_panes():
             pane.update_stale()
@@ -303,7 +315,7 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
         pane.run_inputs = pane.inputs()
         pane.controls().set_running(True)
         pane.controls().status(f"starting {job.key}")
-        self.jobs.start(pane, job)
+        self.jobs.start(pane, job, self.workbench.digest())
         self.refresh_bindings()
 
     def action_run_all(self) -> None:
@@ -396,31 +408,21 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
         self.exit_if_quitting()
 
     def _warm_kernels(self) -> None:
-        """Worker thread: compile the kernels of every job kind not cached yet
-        (:func:`planar_tui.warmup.warm_kernels`), so the first F5 starts at once; says so
-        in two notifications, and stops within 0.05 s when the app closes."""
+        """Worker thread: compile the kernels not cached yet, the preset's kinds first and
+        never while a job runs (:func:`planar_tui.app.warming.warm_in_background`); says
+        so in two notifications, and stops within 0.05 s when the app closes."""
         from textual.worker import get_current_worker
 
-        from planar_tui.errors import Cancelled
-        from planar_tui.progress import Progress
-        from planar_tui.registry import JOB_KINDS
-        from planar_tui.runtime import prepare_kernels
-        from planar_tui.warmup import missing, warm_kernels
+        from planar_tui.app.warming import preset_kinds, warm_in_background
 
         worker = get_current_worker()
-        prepare_kernels()
-        todo = missing(JOB_KINDS)
-        if not todo:
-            return
-        self.call_from_thread(
-            self.notify,
-            f"Compiling the kernels of {', '.join(todo)} in the background (first run only).",
+        first = self.call_from_thread(preset_kinds, self)
+        warm_in_background(
+            lambda text: self.call_from_thread(self.notify, text),
+            first,
+            lambda: self.jobs.running,
+            lambda: worker.is_cancelled,
         )
-        try:
-            warm_kernels(todo, Progress(should_stop=lambda: worker.is_cancelled))
-        except Cancelled:
-            return
-        self.call_from_thread(self.notify, "Kernels compiled: jobs start at once.")
 
     def _refresh_progress(self) -> None:
         """The UI timer: show the running job's latest progress snapshot."""
@@ -507,7 +509,11 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
 
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
         """Show a tab's own bindings only on that tab (``ctrl+t`` labelled per tab), Cancel
-        only while a job runs, the digits only on the tab bar."""
+        only while a job runs, the digits only on the tab bar; on a screen of its own
+        (history, comparison, sweep) not Save nor the form's Error (its footer fits 80
+        columns)."""
+        if action in ("save", "goto_problem") and self.on_own_screen():
+            return False
         if action in ("pane_action", "pane_view", "toggle_form", "run", "sweep"):
             try:
                 pane = self.current_pane() if self.is_mounted else None
@@ -527,7 +533,14 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
             return bool(self.problems)
         return True
 
+    def on_own_screen(self) -> bool:
+        """Whether a full screen (not a dialog) is shown over the workbench."""
+        from textual.screen import ModalScreen
+
+        return len(self.screen_stack) > 1 and not isinstance(self.screen, ModalScreen)
+
     def on_tabbed_content_tab_activated(self) -> None:
+        self.sync_form(self.current_pane())
         self.refresh_bindings()
 
     async def action_pane_view(self, kind: str) -> None:

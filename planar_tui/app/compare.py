@@ -36,6 +36,10 @@ STUDY_KEYS = {"sweep": "point", "optimise": "evaluation"}
 #: has fewer meaningful ones, and the eight columns then fit 80 columns.
 INDEX_DIGITS = 4
 
+#: A boxes table's status (the CSV's words, or their codes) as the code
+#: :func:`overlay_map` draws by.
+STATUS_CODES = {"inside": 2.0, "boundary": 1.0, "2": 2.0, "1": 1.0}
+
 #: Most rows a comparison lists (the tables themselves are exported whole).
 MAX_ROWS = 2000
 
@@ -174,17 +178,44 @@ def simulation_figures(
     return ("column", "final A", "final B", "max |B−A|"), rows, series
 
 
+#: Plot glyphs of run A's curves and run B's, one per curve in order: distinct without
+#: colour (``NO_COLOR``), A's digits and B's letters (plotext draws the character).
+SERIES_GLYPHS = {"A": "123456789", "B": "abcdefghi"}
+
+
+def series_glyphs(names: Sequence[str]) -> list[str]:
+    """The glyph of each curve (named ``A …`` or ``B …``): the next of its run's
+    :data:`SERIES_GLYPHS`."""
+    used = {side: 0 for side in SERIES_GLYPHS}
+    glyphs = []
+    for name in names:
+        side = name[:1] if name[:1] in SERIES_GLYPHS else "A"
+        pool = SERIES_GLYPHS[side]
+        glyphs.append(pool[used[side] % len(pool)])
+        used[side] += 1
+    return glyphs
+
+
+def series_legend(names: Sequence[str]) -> str:
+    """One line naming each curve's glyph: ``1 A θ1  a B θ1  …`` (wrapped by the screen)."""
+    return "   ".join(f"{g} {name}" for g, name in zip(series_glyphs(names), names, strict=True))
+
+
 def overlay_map(a: CsvTable, b: CsvTable, width: int = 60, height: int = 20) -> str:
     """The inside boxes of two workspaces' boxes tables on one text grid over both:
     ``#`` inside both, ``A`` or ``B`` inside one only, ``.`` boundary of either, blank
     outside both (a cell counts by its centre); ``y`` up."""
     import numpy as np
 
-    from planar_tui.figures.table import column
+    from planar_tui.figures.table import column, text_column
 
     def arrays(table: CsvTable) -> tuple[Any, ...]:
-        return tuple(
-            column(table, n) for n in ("x_lo_cm", "x_hi_cm", "y_lo_cm", "y_hi_cm", "status")
+        """The box bounds, and the status as its code (the CSV's ``"inside"`` 2,
+        ``"boundary"`` 1; a table of codes is read as it is)."""
+        status = [STATUS_CODES.get(s, math.nan) for s in text_column(table, "status")]
+        return (
+            *(column(table, n) for n in ("x_lo_cm", "x_hi_cm", "y_lo_cm", "y_hi_cm")),
+            np.array(status, dtype=float),
         )
 
     boxes = [arrays(a), arrays(b)]

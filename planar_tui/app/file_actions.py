@@ -191,11 +191,20 @@ class FileActions:
             return False
         self.workbench = bench
         await self.recompose()
+        self.show_first_job_tab()
         self.show_document_state()
         if not is_bundled(bench.path):
             recent.remember("presets", bench.path)
         self.report_opened()
         return True
+
+    def show_first_job_tab(self) -> None:
+        """Show the tab of the preset's first job (in the file's order; a preset of a
+        robot alone stays on the Robot tab)."""
+        names = {name for _, name in self.tabs()} - {"robot"}
+        first = next((key for key in self.workbench.document if key in names), None)
+        if first is not None:
+            self.action_show_tab(first)
 
     def report_opened(self, *, say_valid: bool = True) -> None:
         """Validate the document just opened and say so: opened (unless ``say_valid`` is

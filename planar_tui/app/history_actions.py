@@ -31,7 +31,10 @@ class HistoryActions:
         """A job of the current tab finished: keep it (not a cancelled or failed one)."""
         if message.error is None and not message.cancelled and message.result is not None:
             started = time.time() - message.seconds
-            self.run_history.add_result(message.job, message.result, (started, message.seconds))
+            timing = (started, message.seconds)
+            self.run_history.add_result(
+                message.job, message.result, timing, message.document_sha256
+            )
 
     def on_batch_job_done(self, message: Any) -> None:
         """A job of "run all" finished: keep it."""

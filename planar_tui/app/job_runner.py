@@ -42,12 +42,14 @@ class RunEnded(Message):
 
 
 class JobFinished(RunEnded):
-    """A job ended: ``result`` (a :class:`~planar_tui.jobkind.JobResult`) on success."""
+    """A job ended: ``result`` (a :class:`~planar_tui.jobkind.JobResult`) on success;
+    ``document_sha256``: the SHA-256 of the document it ran from (``None``: the file's)."""
 
-    def __init__(self, pane: Any, job: Job):
+    def __init__(self, pane: Any, job: Job, document_sha256: str | None = None):
         super().__init__(pane)
         self.job = job
         self.result: JobResult | None = None
+        self.document_sha256 = document_sha256
 
 
 class BatchJobDone(Message):
@@ -128,12 +130,13 @@ class JobRunner:
         """Whether a job thread is still working (until the runner has returned)."""
         return not self._done.is_set()
 
-    def start(self, pane: Any, job: Job) -> None:
+    def start(self, pane: Any, job: Job, document_sha256: str | None = None) -> None:
         """Run ``job`` for ``pane`` (:func:`planar_tui.batch.run_job`, as the CLI runs it);
-        posts :class:`JobFinished`."""
+        posts :class:`JobFinished` (carrying ``document_sha256``, the edited document's
+        digest when the job ran from one)."""
         from planar_tui.batch import run_job
 
-        finished = JobFinished(pane, job)
+        finished = JobFinished(pane, job, document_sha256)
 
         def compute(stopping: Callable[[], bool]) -> None:
             finished.result = run_job(job, Progress(on_update=self._store, should_stop=stopping))

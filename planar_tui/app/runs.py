@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import datetime
 from collections.abc import Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -159,11 +159,22 @@ class RunHistory:
         self.runs.append(run)
         return run
 
-    def add_result(self, job: Any, result: Any, timing: tuple[float, float] | None = None) -> Run:
-        """Keep a finished job of this session (``timing``: start epoch s, duration s)."""
+    def add_result(
+        self,
+        job: Any,
+        result: Any,
+        timing: tuple[float, float] | None = None,
+        document_sha256: str | None = None,
+    ) -> Run:
+        """Keep a finished job of this session (``timing``: start epoch s, duration s;
+        ``document_sha256``: the digest of the edited document it ran from, kept instead
+        of the file's, which no longer says what ran)."""
+        provenance = job_provenance(job, timing)
+        if document_sha256 is not None:
+            provenance = replace(provenance, preset_sha256=document_sha256)
         return self._add(
             kind=job.kind, label=job.label, table=result.table,
-            provenance=job_provenance(job, timing), summary=result.summary, result=result,
+            provenance=provenance, summary=result.summary, result=result,
             extra_tables=dict(result.extra_tables),
         )  # fmt: skip
 

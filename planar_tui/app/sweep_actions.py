@@ -23,7 +23,7 @@ class SweepActions:
         from planar_tui.app.screens.sweep import SweepDialog
         from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
         from planar_tui.sweep.paths import allowed_paths
-        from planar_tui.sweep.spec import build_sweep
+        from planar_tui.sweep.spec import build_sweep, parse_sweeps
 
         pane = self.idle_job_pane("A sweep")  # OptimiseActions'
         if pane is None:
@@ -53,7 +53,11 @@ class SweepActions:
             self.jobs.start_sweep(pane, sweep, workers, points)
             self.refresh_bindings()
 
-        self.push_screen(SweepDialog(job.key, paths, build), chosen)
+        try:  # the preset's own sweep of this job, if it has one
+            own = next((s for s in parse_sweeps(preset) if s.job.key == job.key), None)
+        except PresetError:  # shown by the CLI's checks; the dialog starts empty
+            own = None
+        self.push_screen(SweepDialog(job.key, paths, build, own), chosen)
 
     def on_sweep_finished(self, message: SweepFinished) -> None:
         """A sweep ended: open its screen (a dialog for an error)."""

@@ -3,7 +3,10 @@
 - :func:`parse_values`: the values a person types for one key path, as a sweep's
   ``values`` entry: ``-20, 0, 20`` (a list of TOML values) or ``25..35 x5`` (``from``,
   ``to``, ``count``: inclusive, evenly spaced).
-- :func:`numeric_figures`: the columns of a sweep table that can be plotted.
+- :func:`values_text`: a ``[[sweep]]`` table's ``values`` entry as the dialog shows it
+  (the inverse of :func:`parse_values`).
+- :func:`numeric_figures`: the columns of a sweep table that can be plotted;
+  :func:`varying_figures`: those whose value changes from point to point (the outputs).
 - :func:`line_series` and :func:`heat_grid`: a figure against one varied key (one series
   per combination of the other keys) or two (a grid, cells averaged when several points
   fall in one).
@@ -55,6 +58,17 @@ def parse_values(text: str) -> list[Any] | dict[str, Any]:
         raise ValuesError(f"{text.strip()!r} is not a list of values ({VALUES_HINT})") from error
 
 
+def values_text(entry: Any) -> str:
+    """A ``values`` entry as typed in the dialog: ``LO..HI xN`` for ``{from, to, count}``,
+    else its items as comma-separated TOML values (``20, 30`` or ``[20, 70], [25, 65]``);
+    :func:`parse_values` reads it back to the same entry."""
+    from planar_tui.preset_writer import format_value
+
+    if isinstance(entry, dict):
+        return f"{entry['from']}..{entry['to']} x{entry['count']}"
+    return ", ".join(format_value(item) for item in entry)
+
+
 def _number(cell: Any) -> float | None:
     """A cell as a float, ``None`` when it holds none (text, empty, a failed point)."""
     if isinstance(cell, bool):
@@ -80,6 +94,18 @@ def numeric_figures(table: CsvTable, paths: Sequence[str]) -> list[str]:
         if name not in skip and ok_rows
         and all(_number(row[column]) is not None for row in ok_rows)
     ]  # fmt: skip
+
+
+def varying_figures(table: CsvTable, figures: Sequence[str]) -> list[str]:
+    """The ``figures`` whose value differs between ``ok`` points (what the sweep changed:
+    its outputs), in table order; an input the sweep left alone (``precision_cm``) is
+    not among them."""
+    header = list(table.header)
+    status = header.index("status")
+    ok_rows = [row for row in table.rows if row[status] == "ok"]
+    return [
+        name for name in figures if len({_number(row[header.index(name)]) for row in ok_rows}) > 1
+    ]
 
 
 @dataclass(frozen=True)

@@ -362,6 +362,13 @@ class Workbench:
             for i, table in enumerate(self.tables(kind))
         ]
 
+    def digest(self) -> str | None:
+        """The SHA-256 (hex) of the edited document as it would be saved (``None`` when
+        unmodified: the file's own bytes say what runs)."""
+        import hashlib
+
+        return hashlib.sha256(self.to_toml().encode()).hexdigest() if self.modified else None
+
     def to_toml(self) -> str:
         """The validated document as TOML text: applied into the original file's text
         (comments, order and formatting kept, :func:`planar_tui.app.saving.merge_document`),

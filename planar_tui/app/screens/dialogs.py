@@ -170,7 +170,7 @@ HELP_DETAILS = {
     "maximise": "maximise the focused plot or table, else the results; again or escape restores",
     "run_all": "run all jobs in order into a folder, as planar-tui run",
     "sweep": "run the tab's job as a sweep over keys and values",
-    "digit_tab": "show tab 1…6, only with the focus on the tab bar",
+    "digit_tab": "show tab 1…9, only with the focus on the tab bar (any tab: ctrl+p, by name)",
     "show_tab_number": "show tab 1…6, anywhere (also in fields)",
     "step_tab(1)": "next tab",
     "step_tab(-1)": "previous tab",

@@ -18,7 +18,7 @@ from textual.containers import VerticalScroll
 from textual.screen import Screen
 from textual.widgets import DataTable, Footer, Static
 
-from planar_tui.app.compare import Comparison, compare_runs
+from planar_tui.app.compare import Comparison, compare_runs, series_glyphs, series_legend
 from planar_tui.app.runs import Run, RunHistory
 
 #: The history table's columns after the mark, number, kind and label.
@@ -171,6 +171,7 @@ class CompareScreen(Screen[None]):
     CompareScreen #compare-notes { height: auto; max-height: 6; }
     CompareScreen #compare-table { height: 1fr; min-height: 5; }
     CompareScreen #compare-overlay { height: auto; }
+    CompareScreen #compare-legend { height: auto; }
     CompareScreen #compare-plot { height: 1fr; min-height: 10; }
     """
 
@@ -189,6 +190,8 @@ class CompareScreen(Screen[None]):
         if c.series:
             from textual_plotext import PlotextPlot
 
+            names = [name for name, _, _ in c.series]
+            yield Static(series_legend(names), id="compare-legend", markup=False)
             yield PlotextPlot(id="compare-plot")
         yield Footer(compact=True)
 
@@ -201,14 +204,17 @@ class CompareScreen(Screen[None]):
             self.draw_series()
 
     def draw_series(self) -> None:
-        """Both runs' joint angles on one plot (A solid, B dotted)."""
+        """Both runs' joint angles on one plot, a glyph per curve (A's digits, B's letters:
+        told apart without colour; the legend line above names them)."""
         from textual_plotext import PlotextPlot
 
         plot: Any = self.query_one("#compare-plot", PlotextPlot)
         plt = plot.plt
         plt.clear_data()
-        for name, t, y in self.comparison.series:
-            plt.plot(t, y, label=name, marker="braille" if name.startswith("A") else "dot")
+        series = self.comparison.series
+        glyphs = series_glyphs([name for name, _, _ in series])
+        for (_, t, y), glyph in zip(series, glyphs, strict=True):
+            plt.plot(t, y, marker=glyph)
         plt.title("joint angles (deg) against t (s): A and B")
         plot.refresh()
 

@@ -30,6 +30,8 @@ from planar_tui.app.sweep_data import (
     line_series,
     numeric_figures,
     parse_values,
+    values_text,
+    varying_figures,
 )
 from planar_tui.app.widgets.heat_map import heat_map_lines
 from planar_tui.errors import PresetError
@@ -54,13 +56,21 @@ class SweepDialog(ModalScreen[tuple[Any, int, Any] | None]):
     the dialog shows; so does a point whose value is invalid for its key.
     """
 
-    BINDINGS: ClassVar = [Binding("escape", "dismiss_none", "Cancel")]
+    BINDINGS: ClassVar = [
+        Binding("escape", "dismiss_none", "Cancel"),
+        Binding("enter", "submit", "Run", show=False),  # on the grid/zip list too
+    ]
 
-    def __init__(self, job_key: str, paths: Sequence[str], build: Callable[..., Any]):
+    def __init__(self, job_key: str, paths: Sequence[str], build: Callable[..., Any],
+                 own: Any = None):  # fmt: skip
         super().__init__()
         self.job_key = job_key
         self.paths = list(paths)
         self.build = build
+        #: The preset's own ``[[sweep]]`` of this job (a checked sweep), or ``None``: the
+        #: dialog opens filled in with it, and runs it as written while left so.
+        self.own = own
+        self.filled: tuple = ()
 
     def compose(self) -> ComposeResult:
         suggester = SuggestFromList(self.paths, case_sensitive=True)
@@ -75,10 +85,10 @@ class SweepDialog(ModalScreen[tuple[Any, int, Any] | None]):
                     yield Input(placeholder="values", id=f"sweep-values-{row}",
                                 classes="sweep-values")  # fmt: skip
             with Horizontal(classes="sweep-row"):
-                yield Select([("grid: every combination", "grid"),
-                              ("zip: same-length lists", "zip")],
-                             value="grid", allow_blank=False, compact=True,
-                             id="sweep-combine")  # fmt: skip
+                yield CombineSelect([("grid: every combination", "grid"),
+                                     ("zip: same-length lists", "zip")],
+                                    value="grid", allow_blank=False, compact=True,
+                                    id="sweep-combine")  # fmt: skip
                 yield Label(" workers ", classes="sweep-label")
                 yield Input("1", id="sweep-workers", classes="sweep-workers")
             yield Static("", id="sweep-problem", markup=False)
@@ -95,6 +105,28 @@ class SweepDialog(ModalScreen[tuple[Any, int, Any] | None]):
 
     def on_mount(self) -> None:
         self.query_one("#sweep-key-1", Input).focus()
+        if self.own is not None:
+            self.fill(self.own)
+
+    def fill(self, sweep: Any) -> None:
+        """Show the preset's sweep ``sweep`` (up to two of its keys with their values, how
+        they combine; a sampled sweep's ranges are not typed here) and say so."""
+        entries = list(sweep.source.get("values", {}).items()) if sweep.sample is None else []
+        for row, (key, entry) in enumerate(entries[:2], start=1):
+            self.query_one(f"#sweep-key-{row}", Input).value = key
+            self.query_one(f"#sweep-values-{row}", Input).value = values_text(entry)
+        self.query_one("#sweep-combine", Select).value = sweep.combine
+        self.filled = self.typed()
+        line = self.query_one("#sweep-problem", Static)
+        line.update(f"the preset's {sweep.name}: {sweep.point_count} points, "
+                    f"{sweep.output}; Enter runs it as written (edit to change)")  # fmt: skip
+        line.add_class("-shown")
+
+    def typed(self) -> tuple:
+        """What the dialog's fields hold now (to tell the preset's sweep left as filled)."""
+        rows = [self.query_one(f"#sweep-{part}-{row}", Input).value
+                for row in (1, 2) for part in ("key", "values")]  # fmt: skip
+        return (*rows, self.query_one("#sweep-combine", Select).value)
 
     def problem(self, text: str) -> None:
         """Say why the sweep cannot run (the dialog stays open)."""
@@ -127,13 +159,15 @@ class SweepDialog(ModalScreen[tuple[Any, int, Any] | None]):
         from planar_tui.plan import plan_sweep
 
         try:
-            values = self.chosen_values()
             workers_text = self.query_one("#sweep-workers", Input).value.strip()
             # isdecimal: "²" is a digit int() does not read
             if not workers_text.isdecimal() or int(workers_text) < 1:
                 raise ValuesError(f"workers {workers_text!r} (expected a whole number ≥ 1)")
-            combine = str(self.query_one("#sweep-combine", Select).value)
-            sweep = self.build(values, combine)
+            if self.own is not None and self.typed() == self.filled:
+                sweep = self.own  # as the preset wrote it (its output, plot, sampling)
+            else:
+                combine = str(self.query_one("#sweep-combine", Select).value)
+                sweep = self.build(self.chosen_values(), combine)
             small = sweep.point_count <= DIALOG_CHECK_POINTS
             points = plan_sweep(sweep).points if small else None
         except ValuesError as error:
@@ -155,8 +189,18 @@ class SweepDialog(ModalScreen[tuple[Any, int, Any] | None]):
         else:
             self.dismiss(None)
 
+    def action_submit(self) -> None:
+        self.submit()
+
     def action_dismiss_none(self) -> None:
         self.dismiss(None)
+
+
+class CombineSelect(Select[str], inherit_bindings=False):
+    """The grid/zip list: opened with the arrows or space; Enter runs the sweep (the
+    dialog's binding) rather than reopening the list."""
+
+    BINDINGS: ClassVar = [Binding("down,space,up", "show_overlay", "Show menu", show=False)]
 
 
 class SweepScreen(Screen[None]):
@@ -185,6 +229,8 @@ class SweepScreen(Screen[None]):
         self.table = run.table
         self.paths = self.axes(run)
         self.figures = numeric_figures(self.table, self.paths)
+        #: The figure shown first: an output (one that varies), else the first.
+        self.figure = ([*varying_figures(self.table, self.figures), *self.figures] or [""])[0]
         #: The varied keys whose values are numbers: the axes here (a text or list-valued
         #: key is one series per value; the figure file, ctrl+l, puts it on an axis).
         self.plottable_paths = [path for path in self.paths if is_numeric(self.table, path)]
@@ -208,13 +254,15 @@ class SweepScreen(Screen[None]):
         with Horizontal(classes="sweep-pickers"):
             # no value given when there is no option (a sweep over text keys only)
             yield Select([(name, name) for name in self.figures], compact=True,
-                         **({"value": self.figures[0]} if self.figures else {}),
+                         **({"value": self.figure} if self.figures else {}),
                          prompt="figure", id="sweep-figure")  # fmt: skip
             yield Select([(path, path) for path in self.plottable_paths], compact=True,
                          **({"value": self.plottable_paths[0]} if self.plottable_paths else {}),
                          prompt="across", id="sweep-across")  # fmt: skip
             downs = [(NO_KEY, NO_KEY)] + [(p, p) for p in self.plottable_paths[1:]]
-            down = self.plottable_paths[1] if len(self.plottable_paths) > 1 else NO_KEY
+            # a heat map for a grid of two keys; zipped keys vary together: a line
+            grid = len(self.plottable_paths) > 1 and self.run.sweep.combine == "grid"
+            down = self.plottable_paths[1] if grid else NO_KEY
             yield Select(downs, compact=True, value=down, allow_blank=False,
                          id="sweep-down")  # fmt: skip
         yield PlotextPlot(id="sweep-plot")

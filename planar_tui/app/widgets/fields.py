@@ -73,19 +73,30 @@ class Field(KeysInOrder, TextArea):
     more lines instead of hiding their end; Enter moves to the next field.
 
     Enter is one of the field's own bindings, handled before the text area inserts a key
-    (:class:`KeysInOrder`), so no line break is ever inserted (a value is one line).
+    (:class:`KeysInOrder`), so no line break is ever inserted (a value is one line); the
+    keys that move and delete to a line's start or end act on the whole value, not on the
+    row it wraps onto. A field marked bad (``-bad``) keeps the width its text wraps in:
+    its right border takes the place of the padding (the text area re-wraps on a resize
+    only, not when a border changes its content width).
     """
 
     BINDINGS: ClassVar = [
         Binding("enter", "next_field", "Next field", show=False),
+        # the whole value, not the row it wraps onto (a value is one line of text)
+        Binding("home,ctrl+a", "value_start", "Start of the value", show=False),
+        Binding("end,ctrl+e", "value_end", "End of the value", show=False),
+        Binding("shift+home", "value_start(True)", "Select to the start", show=False),
+        Binding("shift+end", "value_end(True)", "Select to the end", show=False),
+        Binding("ctrl+u", "delete_to_value_start", "Delete to the start", show=False),
+        Binding("ctrl+k", "delete_to_value_end", "Delete to the end", show=False),
     ]
 
     DEFAULT_CSS = """
     Field { height: auto; max-height: 6; width: 1fr; padding: 0 1 0 0;
             border: none; border-left: blank; }
     Field:focus { background: $boost; border: none; border-left: thick $accent; }
-    Field.-bad { border: tall $error; border-left: thick $error; }
-    Field.-bad:focus { border: tall $error; border-left: thick $accent; }
+    Field.-bad { border: tall $error; border-left: thick $error; padding: 0; }
+    Field.-bad:focus { border: tall $error; border-left: thick $accent; padding: 0; }
     """
 
     def __init__(self, value: str = "", **kwargs: Any):
@@ -103,6 +114,23 @@ class Field(KeysInOrder, TextArea):
     def action_next_field(self) -> None:
         """Move the focus on, like Tab in a form."""
         self.screen.focus_next()
+
+    def action_value_start(self, select: bool = False) -> None:
+        """The cursor to the value's first character (TextArea's ``home`` stops at the
+        start of the wrapped row)."""
+        self.move_cursor((0, 0), select=select)
+
+    def action_value_end(self, select: bool = False) -> None:
+        """The cursor past the value's last character (not the wrapped row's)."""
+        self.move_cursor(self.document.end, select=select)
+
+    def action_delete_to_value_start(self) -> None:
+        """Delete from the cursor to the value's start (``ctrl+u``), every wrapped row."""
+        self.delete((0, 0), self.cursor_location)
+
+    def action_delete_to_value_end(self) -> None:
+        """Delete from the cursor to the value's end (``ctrl+k``), every wrapped row."""
+        self.delete(self.cursor_location, self.document.end)
 
 
 class TableForm(Widget):

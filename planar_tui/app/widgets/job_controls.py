@@ -14,6 +14,7 @@ from textual.containers import Horizontal
 from textual.widgets import Button, Label, ProgressBar
 
 from planar_tui.progress import ProgressState
+from planar_tui.warmup import STAGE
 
 
 def compact_count(value: float) -> str:
@@ -38,8 +39,13 @@ def format_duration(seconds: float) -> str:
 
 
 def progress_text(state: ProgressState, eta_s: float | None) -> str:
-    """``45% 9.0k/20k eta 3s stage detail`` (the figures first)."""
+    """``45% 9.0k/20k eta 3s stage detail`` (the figures first); while kernels compile,
+    ``compiling kernels (first run only): detail 0/2`` (the words first: no ETA can be
+    told, and the line says why nothing moves)."""
     total = max(state.total, 1e-300)
+    if state.stage == STAGE:
+        done = f"{compact_count(state.completed)}/{compact_count(state.total)}"
+        return f"{state.stage}: {state.detail} {done}"
     percent = 100.0 * state.completed / total
     eta = "eta …" if eta_s is None else f"eta {format_duration(eta_s)}"
     counts = f"{compact_count(state.completed)}/{compact_count(state.total)}"

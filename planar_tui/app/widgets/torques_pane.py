@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from typing import Any, ClassVar
 
+from rich.table import Table
 from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import ScrollableContainer
@@ -34,6 +35,40 @@ def state_scene(lengths_m: Any, theta_deg: Any, index: int = 0) -> Scene | None:
     row = theta_deg[index]
     theta = numbers_or_zeros(list(row) if isinstance(row, list | tuple) else None, len(lengths))
     return serial_scene(lengths, theta, caption=f"state {index + 1}/{len(theta_deg)}")
+
+
+#: Rows of the torques table shown (the CSV has them all).
+TABLE_ROWS = 200
+
+
+def torques_grid(spec: Any, tau_Nm: Any) -> Table:
+    """The states as a table, the joint torques τ_i (N m, 4 significant digits) first, then
+    the state the preset gave: angles θ_i (deg), rates ω_i (deg/s), accelerations α_i
+    (deg/s²); one row per state (``#``), at most :data:`TABLE_ROWS`; narrow columns (one
+    space between), so that a 6R's torques fit beside the form at 80 columns."""
+    n = len(tau_Nm[0]) if len(tau_Nm) else 0
+    table = Table(
+        title="τ (N m), θ (°), ω (°/s), α (°/s²)",
+        title_justify="left",
+        box=None,
+        padding=(0, 0, 0, 1),
+        pad_edge=False,
+        header_style="bold",
+    )
+    table.add_column("#", justify="right")
+    groups = (
+        ("τ", tau_Nm),
+        ("θ", spec.theta_deg),
+        ("ω", spec.omega_deg_s),
+        ("α", spec.alpha_deg_s2),
+    )
+    for symbol, _ in groups:
+        for i in range(1, n + 1):
+            table.add_column(f"{symbol}{i}", justify="right", no_wrap=True)
+    for k in range(min(len(tau_Nm), TABLE_ROWS)):
+        cells = [f"{float(rows[k][i]):.4g}" for _, rows in groups for i in range(n)]
+        table.add_row(str(k + 1), *cells)
+    return table
 
 
 class StateView(SceneView):
@@ -123,5 +158,8 @@ class TorquesPane(JobPane):
 
     def render_result(self, job: Job, result: JobResult) -> None:
         super().render_result(job, result)
+        tau = getattr(result, "tau_Nm", None)
+        if tau is not None:  # the kind's own result: a table, the torques first
+            self.query_one("#result-rows", Static).update(torques_grid(job.spec, tau))
         theta = [list(row) for row in job.spec.theta_deg]
         self.query_one("#torques-arm", StateView).set_states(list(job.robot.lengths_m), theta)

@@ -105,6 +105,20 @@ def preview_job(job, plot_cells: tuple[int, int] = PREVIEW_CELLS) -> Any:
     return fine_job(job, precision_cm=precision, form="arc-distance", search_box_cm=None)
 
 
+def view_preview_job(job, extent: tuple[float, float, float, float], cell_cm: float) -> Any:
+    """The live preview's job when a map is shown: ``job`` paved in the arc-distance form
+    over the view ``extent`` = (x_lo, x_hi, y_lo, y_hi) cm at ε = 2 ``cell_cm`` (the
+    view's cell width: no box finer than a character cell, none coarser than two), so an
+    edit redraws the map at the scale and resolution it was looked at."""
+    x_lo, x_hi, y_lo, y_hi = extent
+    return fine_job(
+        job,
+        precision_cm=2.0 * cell_cm,
+        form="arc-distance",
+        search_box_cm=((x_lo, x_hi), (y_lo, y_hi)),
+    )
+
+
 def preview_key(job) -> tuple:
     """What the preview depends on: the robot, the joint limits and the orientation."""
     return (job.robot, job.spec.joint_limits_deg, job.spec.orientation_deg)
@@ -136,6 +150,8 @@ class WorkspacePane(JobPane):
         super().__init__(*args, **kwargs)
         #: The inputs of the last preview (``None`` before the first edit).
         self._preview_key: Any = None
+        #: Whether the preview on its way paved the map's view (kept when drawn).
+        self._preview_in_view = False
         self._shown_job: Any = None
 
     def compose_results(self) -> ComposeResult:
@@ -399,9 +415,16 @@ class WorkspacePane(JobPane):
         self.start_preview(job)
 
     def start_preview(self, job) -> None:
+        """Pave the edited job coarsely in a worker: in the map's current view at its
+        scale (:func:`view_preview_job`) when a map is shown, else over the legs' reach
+        fitted to the pane (:func:`preview_job`)."""
         explorer = self.explorer()
         shown = explorer.content_region.width > 0 and explorer.content_region.height > 0
-        coarse = preview_job(job, explorer.plot_size() if shown else PREVIEW_CELLS)
+        self._preview_in_view = shown and explorer.fitted and len(explorer.boxes) > 0
+        if self._preview_in_view:
+            coarse = view_preview_job(job, explorer.extent(), explorer.cell_cm)
+        else:
+            coarse = preview_job(job, explorer.plot_size() if shown else PREVIEW_CELLS)
         if coarse is None:
             self.explorer().show_text("(preview: the legs' reach discs do not meet)")
             return
@@ -419,8 +442,8 @@ class WorkspacePane(JobPane):
         self._shown_job = job
         self.set_geometry(job, None)
         note = f"preview ε = {job.spec.precision_cm:.3g} cm (F5 runs the job)"
-        if len(outcome.boxes):
-            self.draw_map(outcome.boxes, outcome.status, note)
+        if len(outcome.boxes):  # the view kept when the preview paved it
+            self.draw_map(outcome.boxes, outcome.status, note, not self._preview_in_view)
         else:
             self.explorer().show_text(
                 f"(preview: empty workspace at ε = {job.spec.precision_cm:.3g} cm)"
