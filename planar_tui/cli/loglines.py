@@ -19,8 +19,20 @@ import threading
 import time
 from collections.abc import Callable
 
-from planar_tui.cli.output import clock_text, stage_title
 from planar_tui.progress import ProgressState
+
+
+def clock_text(seconds: float) -> str:
+    """``H:MM:SS`` of a duration (rounded to whole seconds)."""
+    whole = round(max(seconds, 0.0))
+    return f"{whole // 3600}:{whole % 3600 // 60:02d}:{whole % 60:02d}"
+
+
+def stage_title(label: str, stage: str) -> str:
+    """What a progress display calls a stage of ``label``'s run: ``LABEL STAGE``, or the
+    stage alone where it already names the run (a sweep's counting stage is its label)."""
+    return stage if stage.startswith(label) else f"{label} {stage}".strip()
+
 
 #: Longest time between two lines of a running stage (seconds).
 INTERVAL_S = 10.0

@@ -25,6 +25,7 @@ try:  # Typer's private coercion API, used only with the Typer releases it was c
 except ImportError:
     install_common_values = None
 
+from planar_tui.cli.loglines import ProgressLog, clock_text, rate_of, rate_text, stage_title
 from planar_tui.errors import Cancelled, ExitCode, PresetError, Terminated
 from planar_tui.jobkind import resolve
 from planar_tui.progress import WAIT_FOR_THREAD
@@ -298,12 +299,6 @@ def load_presets(arguments: Sequence[str]) -> list[Preset]:
     return [load_preset(resolve_preset(argument)) for argument in arguments]
 
 
-def clock_text(seconds: float) -> str:
-    """``H:MM:SS`` of a duration (rounded to whole seconds)."""
-    whole = round(max(seconds, 0.0))
-    return f"{whole // 3600}:{whole % 3600 // 60:02d}:{whole % 60:02d}"
-
-
 def progress_figures(
     completed: float,
     total: float,
@@ -377,12 +372,6 @@ def sigterm_as_interrupt() -> Iterator[None]:
         signal.signal(signal.SIGTERM, previous)
 
 
-def stage_title(label: str, stage: str) -> str:
-    """What a progress display calls a stage of ``label``'s run: ``LABEL STAGE``, or the
-    stage alone where it already names the run (a sweep's counting stage is its label)."""
-    return stage if stage.startswith(label) else f"{label} {stage}".strip()
-
-
 @contextmanager
 def progress_bar(bars, label: str, unit: str = ""):
     """One progress task for ``label``'s run (stage, figures and detail), as a
@@ -394,7 +383,6 @@ def progress_bar(bars, label: str, unit: str = ""):
     bracket)."""
     import time
 
-    from planar_tui.cli.loglines import rate_of, rate_text
     from planar_tui.progress import Progress
 
     started = time.monotonic()
@@ -440,7 +428,6 @@ def progress_display(label: str, unit: str = ""):
         return
     import time
 
-    from planar_tui.cli.loglines import ProgressLog
     from planar_tui.progress import Progress
 
     started = time.monotonic()
