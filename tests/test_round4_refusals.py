@@ -204,7 +204,7 @@ def test_3rpr_leg_limits_are_bounded_like_lengths(tmp_path, cli):
 def test_the_box_estimate_of_an_infinite_outline_is_capped_not_an_overflow(monkeypatch):
     from types import SimpleNamespace
 
-    from planar_tui.workspace import estimate
+    from planar_tui.workspace.paving import estimate
 
     spec = SimpleNamespace(
         form="natural", precision_cm=1.0, refine_precision_cm=None, singularities=False
@@ -266,7 +266,7 @@ def test_a_forged_optimisation_checkpoint_record_is_dropped_on_resume(tmp_path, 
 
 # -- box budgets refused up front --------------------------------------------------------------
 def test_a_job_estimated_far_past_its_box_budget_is_refused_up_front(tmp_path):
-    from planar_tui.workspace.estimate import BUDGET_FACTOR, needs
+    from planar_tui.workspace.paving.estimate import BUDGET_FACTOR, needs
 
     job = (
         "[robot3rpr]\n\n[[workspace3rpr]]\nleg_limits_cm = [[20, 80], [20, 80], [20, 80]]\n"
