@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from planar_tui.batch import run_job
-from planar_tui.errors import Cancelled
+from planar_tui.errors import Cancelled, PresetError
 from planar_tui.presets import load_preset
 from planar_tui.progress import Progress
 from planar_tui.workspace.paving.map import BOUNDARY_GLYPH, INSIDE_GLYPH, render_map
@@ -145,8 +145,6 @@ def test_a_job_estimated_past_4_times_its_box_budget_is_refused_when_read(cli, t
     ]
     assert list(tmp_path.glob("*.csv")) == []
     preset = write_preset(tmp_path, extra="box_budget = 3360\n")  # 4 × 3,360 = 13,440
-    from planar_tui.presets import load_preset
-
     (job,) = load_preset(preset).jobs
     assert job.spec.box_budget == 3360  # accepted when read
 
@@ -331,3 +329,16 @@ def test_ctrl_c_exits_130_quickly_and_writes_nothing(tmp_path):
     assert process.returncode == 130, stderr.decode()
     assert not (tmp_path / "ws.csv").exists() and not (tmp_path / "b.csv").exists()
     assert not list(tmp_path.glob(".*.tmp"))
+
+
+def test_a_range_of_orientations_is_not_estimated_so_not_refused_when_read(tmp_path):
+    """The 3-RRR's estimate models one orientation: a range is left to its run's budget."""
+    preset = write_preset(tmp_path, form="arc-distance", extra="box_budget = 1\n")
+    text = preset.read_text(encoding="utf-8")
+    preset.write_text(text.replace("orientation_deg = 0", 'orientation_deg = [-1, 1]\n'
+                                   'orientation_mode = "total"'), encoding="utf-8")  # fmt: skip
+    (job,) = load_preset(preset).jobs
+    assert job.spec.orientation_deg == (-1.0, 1.0) and job.spec.box_budget == 1
+    single = write_preset(tmp_path, form="arc-distance", extra="box_budget = 1\n")
+    with pytest.raises(PresetError, match="more than 4 × box_budget = 1: it would stop"):
+        load_preset(single)
