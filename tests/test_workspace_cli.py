@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from planar_tui.batch import run_job
-from planar_tui.errors import Cancelled
+from planar_tui.errors import Cancelled, PresetError
 from planar_tui.presets import load_preset
 from planar_tui.progress import Progress
 from planar_tui.workspace.paving.map import BOUNDARY_GLYPH, INSIDE_GLYPH, render_map
@@ -132,27 +132,45 @@ def test_bad_command_line_values_exit_2(cli, tmp_path, option, value):
     assert not (tmp_path / "ws.csv").exists()
 
 
+def test_a_job_estimated_past_4_times_its_box_budget_is_refused_when_read(cli, tmp_path):
+    """The estimate (13,440 boxes here; the run processes 4,997) past 4 × box_budget: bad
+    input, refused before anything runs, naming the budget that would be let through."""
+    preset = write_preset(tmp_path, extra="box_budget = 1000\n")
+    result = cli("workspace", preset, "--out-dir", tmp_path)
+    assert result.exit_code == 2
+    assert result.stderr.splitlines() == [
+        f"error: {preset}: workspace.precision_cm: is 0.0625 cm: about 13,440 boxes, more "
+        "than 4 × box_budget = 1,000: it would stop at its budget with nothing written "
+        "(expected a coarser one or box_budget ≥ 3,360)"
+    ]
+    assert list(tmp_path.glob("*.csv")) == []
+    preset = write_preset(tmp_path, extra="box_budget = 3360\n")  # 4 × 3,360 = 13,440
+    (job,) = load_preset(preset).jobs
+    assert job.spec.box_budget == 3360  # accepted when read
+
+
 def test_box_budget_stops_with_a_clear_message_and_writes_nothing(cli, tmp_path):
     """A budget exceeded mid-run is a failed job (exit code 1, as docs/cli.md says), not
-    bad input; it names the preset's box_budget and precision_cm."""
-    preset = write_preset(tmp_path, extra="box_budget = 1000\n")
+    bad input; it names the preset's box_budget and precision_cm. The budget is within 4
+    × the estimate (13,440 boxes), below the boxes the run processes (4,997)."""
+    preset = write_preset(tmp_path, extra="box_budget = 4000\n")
     result = cli("workspace", preset, "--out-dir", tmp_path, "--boxes", tmp_path / "b.csv")
     assert result.exit_code == 1
     assert result.stderr.splitlines()[-1] == (
         f"error: ws:workspace failed: {preset}: workspace.box_budget: the bisection exceeded "
-        "1,000 boxes; nothing was written (expected a larger box_budget or a coarser "
+        "4,000 boxes; nothing was written (expected a larger box_budget or a coarser "
         "precision_cm)"
     )
     assert not (tmp_path / "ws.csv").exists() and not (tmp_path / "b.csv").exists()
 
 
 def test_a_budget_exceeded_at_the_precision_an_option_set_names_the_option(cli, tmp_path):
-    preset = write_preset(tmp_path, precision=1.0, extra="box_budget = 1000\n")
+    preset = write_preset(tmp_path, precision=1.0, extra="box_budget = 4000\n")
     result = cli("workspace", preset, "--precision", "0.0625", "--out-dir", tmp_path)
     assert result.exit_code == 1
     assert result.stderr.splitlines()[-1] == (
         "error: ws:workspace failed: command line: --precision: the bisection exceeded "
-        "1,000 boxes; nothing was written (expected a coarser --precision or a larger "
+        "4,000 boxes; nothing was written (expected a coarser --precision or a larger "
         "box_budget)"
     )
     assert list(tmp_path.glob("*.csv")) == []
@@ -311,3 +329,16 @@ def test_ctrl_c_exits_130_quickly_and_writes_nothing(tmp_path):
     assert process.returncode == 130, stderr.decode()
     assert not (tmp_path / "ws.csv").exists() and not (tmp_path / "b.csv").exists()
     assert not list(tmp_path.glob(".*.tmp"))
+
+
+def test_a_range_of_orientations_is_not_estimated_so_not_refused_when_read(tmp_path):
+    """The 3-RRR's estimate models one orientation: a range is left to its run's budget."""
+    preset = write_preset(tmp_path, form="arc-distance", extra="box_budget = 1\n")
+    text = preset.read_text(encoding="utf-8")
+    preset.write_text(text.replace("orientation_deg = 0", 'orientation_deg = [-1, 1]\n'
+                                   'orientation_mode = "total"'), encoding="utf-8")  # fmt: skip
+    (job,) = load_preset(preset).jobs
+    assert job.spec.orientation_deg == (-1.0, 1.0) and job.spec.box_budget == 1
+    single = write_preset(tmp_path, form="arc-distance", extra="box_budget = 1\n")
+    with pytest.raises(PresetError, match="more than 4 × box_budget = 1: it would stop"):
+        load_preset(single)

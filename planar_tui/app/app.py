@@ -21,6 +21,7 @@ from textual.binding import Binding
 from textual.screen import Screen
 from textual.widgets import Footer, Static, TabbedContent, TabPane
 
+from planar_tui.app import recent
 from planar_tui.app.file_actions import FileActions
 from planar_tui.app.history_actions import HistoryActions
 from planar_tui.app.job_runner import (
@@ -116,6 +117,9 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
         #: settings file that could not be used (shown once the app runs).
         self.settings, self.settings_warning = load_settings()
         self.form_hidden = bool(self.settings.form_hidden)
+        #: The warning of a recent-files state that could not be used (shown once the app
+        #: runs; :mod:`planar_tui.app.recent`).
+        self.recent_warning = recent.load_checked()[1]
         #: The folder ``ctrl+e``, ``ctrl+l`` and F9 use: the one given, else the one last
         #: exported or run into (the settings), else ``.`` (as ``planar-tui run``).
         self.output_dir = Path(output_dir or self.settings.output_dir or ".")
@@ -178,6 +182,8 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
         self.apply_settings()
         if self.settings_warning:
             self.notify(self.settings_warning, title="Settings", severity="warning", timeout=20)
+        if self.recent_warning:
+            self.notify(self.recent_warning, title="Recent files", severity="warning", timeout=20)
         self.show_document_state()
         if self.first_job_tab:
             self.show_first_job_tab()

@@ -181,7 +181,6 @@ class FileActions:
         problems marked (the validation line, ``ctrl+g``); one that cannot be read or is
         no TOML is reported and the current one kept. A preset file opened goes first in
         the picker's recent list (:mod:`planar_tui.app.recent`)."""
-        from planar_tui.app import recent
         from planar_tui.app.workbench import Workbench
 
         try:
@@ -194,7 +193,7 @@ class FileActions:
         self.show_first_job_tab()
         self.show_document_state()
         if not is_bundled(bench.path):
-            recent.remember("presets", bench.path)
+            self.remember_recent("presets", bench.path)
         self.report_opened()
         return True
 
@@ -343,9 +342,7 @@ class FileActions:
             self.push_screen(MessageDialog("Not saved", str(error)))
             return None
         self.workbench.mark_saved(path, text)
-        from planar_tui.app import recent
-
-        recent.remember("presets", path)
+        self.remember_recent("presets", path)
         self.revalidate()
         self.show_document_state()
         self.notify(f"Saved {path}")

@@ -72,7 +72,9 @@ class HistoryActions:
             except ValueError as error:
                 raise PresetError(path, "(file)", str(error).removeprefix(f"{path}: "),
                                   "a result CSV planar-tui wrote") from None  # fmt: skip
-            recent.remember("results", path)
+            note = recent.remember("results", path)
+            if note is not None:  # the app does not run yet: shown when it does
+                self.recent_warning = note
         if paths:
             self.__dict__["_history_at_start"] = True
 

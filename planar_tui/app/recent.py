@@ -3,11 +3,13 @@
 ``user_state_dir("planar-tui")``; ``$PLANAR_TUI_STATE_DIR`` overrides the folder, as the
 tests do). Plain data, no Textual here.
 
-The file is written atomically (:func:`planar_tui.csvio.write_text_atomic`); a file that
-cannot be read or parsed, is not a regular file or is larger than
-:data:`~planar_tui.app.settings.MAX_STATE_BYTES` (neither is read) counts as empty (it is
-rewritten on the next open), and a folder that cannot be written only loses the list,
-never an action.
+The file is written atomically (:func:`planar_tui.csvio.write_text_atomic`). A file that
+cannot be used (not a regular file, larger than
+:data:`~planar_tui.app.settings.MAX_STATE_BYTES`: neither is read; no JSON; not an object
+of the lists below, each a list of text) gives empty lists and a one-line warning
+(:func:`load_checked`, shown once by the app); it is never overwritten: the next
+:func:`remember` first renames it to ``recent.json.damaged`` (``.damaged.2`` … when that
+exists) and says so. A folder that cannot be written only loses the list, never an action.
 """
 
 from __future__ import annotations
@@ -43,32 +45,84 @@ def recent_path() -> Path:
     return state_dir() / "recent.json"
 
 
+def _problem(path: Path) -> tuple[dict[str, list[str]], str | None]:
+    """The lists in ``path`` and ``None``, or empty lists and what is wrong with the file
+    (``None`` too when there is no file)."""
+    empty: dict[str, list[str]] = {name: [] for name in LISTS}
+    try:
+        text = read_bounded_text(path, MAX_STATE_BYTES, "a state file")
+    except FileNotFoundError:
+        return empty, None
+    except (OSError, UnicodeDecodeError) as error:
+        return empty, f"cannot be read ({error})"
+    try:
+        data = json.loads(text)
+    except (ValueError, RecursionError) as error:
+        return empty, f"not JSON ({error})"
+    allowed = f"an object of {' and '.join(LISTS)}, each a list of paths"
+    if not isinstance(data, dict) or not set(data) <= set(LISTS):
+        return empty, f"not {allowed}"
+    for name, entries in data.items():
+        if not isinstance(entries, list) or not all(isinstance(e, str) for e in entries):
+            return empty, f"{name} is not a list of paths (expected {allowed})"
+    return {name: data.get(name, [])[:MAX_ENTRIES] for name in LISTS}, None
+
+
+def load_checked() -> tuple[dict[str, list[str]], str | None]:
+    """Every list (absolute paths, newest first) and ``None``, or empty lists and a
+    one-line warning naming the file when it cannot be used (module docstring)."""
+    path = recent_path()
+    lists, problem = _problem(path)
+    if problem is None:
+        return lists, None
+    return lists, (
+        f"{path}: {problem}; the recent lists start empty, and the file is kept as "
+        f"{path.name}{DAMAGED_SUFFIX} when a file is next remembered"
+    )
+
+
 def load() -> dict[str, list[str]]:
     """Every list (absolute paths, newest first); empty lists when there is no usable file."""
-    try:
-        data = json.loads(read_bounded_text(recent_path(), MAX_STATE_BYTES, "a state file"))
-    except (OSError, UnicodeDecodeError, ValueError, RecursionError):
-        data = {}
-    if not isinstance(data, dict):
-        data = {}
-    lists = {}
-    for name in LISTS:
-        entries = data.get(name)
-        good = [e for e in entries if isinstance(e, str)] if isinstance(entries, list) else []
-        lists[name] = good[:MAX_ENTRIES]
-    return lists
+    return load_checked()[0]
 
 
-def remember(kind: str, path: Path | str) -> None:
+#: What a damaged state file's name is given when it is set aside (then ``.2``, ``.3`` …).
+DAMAGED_SUFFIX = ".damaged"
+
+
+def _set_aside(path: Path) -> Path:
+    """Rename ``path`` to the first free ``NAME.damaged``, ``NAME.damaged.2`` …"""
+    target = path.with_name(path.name + DAMAGED_SUFFIX)
+    number = 1
+    while target.exists() or target.is_symlink():
+        number += 1
+        target = path.with_name(f"{path.name}{DAMAGED_SUFFIX}.{number}")
+    os.rename(path, target)
+    return target
+
+
+def remember(kind: str, path: Path | str) -> str | None:
     """Put ``path`` first in the list ``kind`` (``"presets"`` or ``"results"``), once;
-    a state folder that cannot be written is ignored (the list is a convenience)."""
+    a state folder that cannot be written is ignored (the list is a convenience). A state
+    file that cannot be used is first renamed (:func:`_set_aside`), never overwritten:
+    the line saying so is returned (else ``None``); when it cannot be renamed, the list is
+    not written."""
     from planar_tui.csvio import write_text_atomic
 
-    lists = load()
+    state = recent_path()
+    lists, problem = _problem(state)
+    note = None
+    if problem is not None:
+        try:
+            aside = _set_aside(state)
+        except OSError:
+            return None
+        note = f"{state}: {problem}; kept as {aside}, a new recent list started"
     entry = str(Path(path).absolute())
     lists[kind] = [entry, *(e for e in lists[kind] if e != entry)][:MAX_ENTRIES]
     with contextlib.suppress(OSError):
-        write_text_atomic(recent_path(), json.dumps(lists, indent=2))
+        write_text_atomic(state, json.dumps(lists, indent=2))
+    return note
 
 
 def recent(kind: str) -> list[Path]:

@@ -186,6 +186,15 @@ class ViewActions:
         except OSError as error:
             self.notify(f"Settings not saved: {error}", severity="warning")
 
+    def remember_recent(self, kind: str, path: Path | str) -> None:
+        """Put ``path`` first in the recent list ``kind``; a damaged state file set aside
+        on the way is a warning (:func:`planar_tui.app.recent.remember`)."""
+        from planar_tui.app import recent
+
+        note = recent.remember(kind, path)
+        if note is not None:
+            self.notify(note, title="Recent files", severity="warning", timeout=20)
+
     def apply_settings(self) -> None:
         """At start: the theme and the form's state from the settings; later theme
         changes are kept."""

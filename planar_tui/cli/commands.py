@@ -130,7 +130,7 @@ def plot_csv(
             raise PresetError(result, "(file)", "is a folder", "a result CSV file")
         target = out if out is not None else result.with_suffix(".png")
         from planar_tui.figures import UnknownTable, figure_for_table, read_table
-        from planar_tui.figures.canvas import save
+        from planar_tui.figures.canvas import display_notes, save
         from planar_tui.figures.dispatch import is_same_file
 
         if is_same_file(result, target):
@@ -146,7 +146,10 @@ def plot_csv(
                 result, "(file)", f"cannot be read: {error}", "a result CSV"
             ) from None
         check_writable(target, "figure file")
-        if len(table.rows) > SLOW_FIGURE_ROWS:  # minutes to draw: say so before it starts
+        from planar_tui.figures.dispatch import BOUNDED_FIGURES, recognise
+
+        slow = recognise(table.header) not in BOUNDED_FIGURES
+        if slow and len(table.rows) > SLOW_FIGURE_ROWS:  # minutes to draw: say so first
             said(
                 f"drawing {len(table.rows):,} rows of {result.name}: a figure of this size can "
                 "take minutes"
@@ -157,6 +160,8 @@ def plot_csv(
             raise PresetError(result, "(header)", *error.args) from None
         except ValueError as error:  # no rows, or a recognised table the figure cannot show
             raise PresetError(result, "(content)", f"cannot be drawn: {error}") from None
+        for note in display_notes(figure):
+            said(f"{result.name}: {note}")
         try:
             written = save(figure, target)
         except OSError as error:

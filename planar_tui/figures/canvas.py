@@ -19,6 +19,16 @@ DPI = 120
 CMAP = "tab20"
 
 
+#: The gid of a text saying how a figure shows its data for display (boxes merged into an
+#: image ...): ``planar-tui plot`` repeats it on stderr (:func:`display_notes`).
+DISPLAY_NOTE = "display-note"
+
+
+def display_notes(figure: Any) -> list[str]:
+    """The texts of ``figure`` with the gid :data:`DISPLAY_NOTE`."""
+    return [t.get_text() for t in figure.findobj(lambda a: a.get_gid() == DISPLAY_NOTE)]
+
+
 def new_figure(width_in: float, height_in: float) -> Any:
     """A :class:`matplotlib.figure.Figure` of that size with constrained layout."""
     import matplotlib

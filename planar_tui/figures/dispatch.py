@@ -35,6 +35,11 @@ RECOGNISERS: tuple[tuple[str, str, str, str], ...] = (
 DRAWN_EMPTY = frozenset({"workspace boxes"})
 
 
+#: Kinds whose figure is drawn in seconds whatever its rows (past
+#: :data:`~planar_tui.figures.workspace.MAX_DRAWN_BOXES`, the boxes are one image).
+BOUNDED_FIGURES = frozenset({"workspace boxes"})
+
+
 class UnknownTable(ValueError):
     """A table whose header is no result CSV this project writes."""
 

@@ -151,7 +151,9 @@ class HistoryScreen(Screen[None]):
         except ValueError as error:
             self.notify(str(error), title="Not opened", severity="error")
             return None
-        recent.remember("results", path)
+        note = recent.remember("results", path)
+        if note is not None:
+            self.notify(note, title="Recent files", severity="warning", timeout=20)
         self.refill()
         if run.note:
             self.notify(run.note, title=f"Opened {run.label}", severity="warning")

@@ -198,7 +198,9 @@ class WorkspaceSpec:
             raise reader.error(
                 "expanded", "needs the paper's layout", "no base_joints_cm / platform_points_cm"
             )
-        return check_paving(values, reader)
+        values = check_paving(values, reader)
+        check_budget(WorkspaceSpec(**values), reader, robot)
+        return values
 
     @property
     def limits_rad(self) -> tuple[tuple[float, float], ...]:
@@ -211,6 +213,25 @@ class WorkspaceSpec:
         if isinstance(self.orientation_deg, tuple):
             raise ValueError("orientation_deg is a range: no single orientation")
         return math.radians(self.orientation_deg)
+
+
+def check_budget(spec: WorkspaceSpec, reader: TableReader, robot: Robot3RRR) -> None:
+    """Refuse a job whose box estimate
+    (:func:`~planar_tui.workspace.rrr.compute.estimate_boxes`) exceeds
+    :data:`~planar_tui.workspace.paving.estimate.BUDGET_FACTOR` × ``box_budget``: it would
+    only stop at its budget, minutes later. Single orientations only (a range of
+    orientations is not estimated); one line on ``precision_cm`` (or ``--precision``)."""
+    from planar_tui.workspace.paving.estimate import BUDGET_FACTOR, budget_problem, count_text
+    from planar_tui.workspace.rrr.compute import estimate_boxes
+
+    if isinstance(spec.orientation_deg, tuple):
+        return
+    boxes = estimate_boxes(robot, spec)
+    problem = budget_problem(boxes, spec)
+    if problem is not None:
+        found = f"is {spec.precision_cm:g} cm: about {count_text(boxes)} boxes, {problem}"
+        least = count_text(-(-boxes // BUDGET_FACTOR))
+        raise reader.error("precision_cm", found, f"a coarser one or box_budget ≥ {least}")
 
 
 def override_consequences(table: dict[str, Any], given: Mapping[str, Any]) -> dict[str, Any]:
