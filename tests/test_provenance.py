@@ -72,6 +72,14 @@ def test_a_sidecar_round_trips_through_its_file_and_ignores_unknown_keys(tmp_pat
         read_sidecar(csv)
 
 
+@pytest.mark.parametrize(
+    ("seconds", "shown"), [(1.23456789, 1.234568), (2.0000004, 2.0), (0.0000015, 0.000002)]
+)
+def test_the_sidecar_keeps_the_duration_to_the_microsecond(seconds, shown):
+    job = load_preset(PRESETS / "paper-a-table1.toml").jobs[0]
+    assert job_provenance(job, (0.0, seconds)).duration_s == shown
+
+
 def test_study_sidecars_name_the_study_and_its_job():
     from planar_tui.optimise.spec import parse_optimisations
     from planar_tui.sweep.spec import parse_sweeps
