@@ -148,3 +148,14 @@ def test_second_order_indices_of_several_outputs_by_hand():
     got = pce.second_order_indices(indices, coefficients)
     assert got.shape == (3, 3, 3)
     np.testing.assert_allclose(got, expected, rtol=1e-15, atol=0)
+
+
+def test_fit_pce_stops_at_degree_eight_while_the_error_still_falls():
+    """The same with a ψ_9 term: degree 8 still improves on 7 but leaves ψ_9; no degree
+    above ``MAX_DEGREE`` is tried."""
+    unit = pce.pce_unit_design(1, 64, SEED)
+    y = pce.basis_matrix(unit, np.arange(10)[:, None]) @ (1.0 / np.arange(1, 11))
+    tried: list[int] = []
+    fit = pce.fit_pce(unit, y, on_degree=tried.append)
+    assert tried == list(range(1, 9)) and fit.degree == 8
+    assert fit.loo_error[0] > pce.ENOUGH_LOO
