@@ -159,3 +159,20 @@ def test_fit_pce_stops_at_degree_eight_while_the_error_still_falls():
     fit = pce.fit_pce(unit, y, on_degree=tried.append)
     assert tried == list(range(1, 9)) and fit.degree == 8
     assert fit.loo_error[0] > pce.ENOUGH_LOO
+
+
+def test_the_path_stops_once_the_loo_error_is_below_enough_loo():
+    """y = 1 + ψ_(1,0) + 1e-5 ψ_(0,2): after the constant and ψ_(1,0) the relative LOO
+    error is about 1e-10 (the left-out term's share), below ``ENOUGH_LOO``: the output
+    counts as fitted and the path stops there, without the 1e-5 term."""
+    unit, _ = design()
+    indices = pce.total_degree_indices(2, 3)
+    psi = pce.basis_matrix(unit, indices)
+    position = {key: i for i, key in enumerate(map(tuple, indices.tolist()))}
+    y = 1.0 + psi[:, position[(1, 0)]] + 1e-5 * psi[:, position[(0, 2)]]
+    path = pce.omp_path(psi, y[:, None])
+    assert path.terms.tolist() == [position[(0, 0)], position[(1, 0)]]
+    assert path.term_counts.tolist() == [2]
+    loo = direct_loo(psi[:, path.terms], y)
+    assert 1e-12 < loo <= pce.ENOUGH_LOO
+    assert path.loo_error[0] == pytest.approx(loo, rel=1e-6)
