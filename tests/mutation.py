@@ -69,7 +69,9 @@ MODULES: dict[str, dict] = {
     "kernels/aba_planar.py": {"tests": ["tests/test_aba_planar*.py"]},
     "planar_tui/sweep/checkpoint.py": {"tests": ["tests/test_sweep_checkpoint*.py"]},
     "planar_tui/csvio.py": {"tests": ["tests/test_csvio*.py"]},
-    "planar_tui/provenance.py": {"tests": ["tests/test_provenance*.py"]},
+    "planar_tui/provenance.py": {
+        "tests": ["tests/test_provenance*.py", "tests/test_bounded_reads.py"]
+    },
 }
 
 #: Names swapped in a call (``min(a, b)`` -> ``max(a, b)``, ``math.floor`` -> ``math.ceil``).

@@ -8,9 +8,11 @@ import shlex
 
 import pytest
 
+from planar_tui import provenance
 from planar_tui.presets import load_preset
 from planar_tui.provenance import (
     Provenance,
+    has_sidecar,
     job_provenance,
     read_sidecar,
     sidecar_path,
@@ -70,6 +72,56 @@ def test_a_sidecar_round_trips_through_its_file_and_ignores_unknown_keys(tmp_pat
     sidecar_path(csv).write_text("[1, 2]")
     with pytest.raises(ValueError, match="not a planar-tui provenance file"):
         read_sidecar(csv)
+
+
+@pytest.mark.parametrize(
+    ("seconds", "shown"), [(1.23456789, 1.234568), (2.0000004, 2.0), (0.0000015, 0.000002)]
+)
+def test_the_sidecar_keeps_the_duration_to_the_microsecond(seconds, shown):
+    job = load_preset(PRESETS / "paper-a-table1.toml").jobs[0]
+    assert job_provenance(job, (0.0, seconds)).duration_s == shown
+
+
+@pytest.mark.parametrize(
+    ("stem", "fits"),
+    [("a" * 246, True), ("a" * 247, False), ("é" * 123, True), ("é" * 123 + "a", False)],
+)
+def test_a_sidecar_is_written_while_its_name_fits_in_255_bytes(tmp_path, stem, fits):
+    """``NAME.csv.json`` is 9 bytes longer than NAME: 246 ASCII letters give 255 bytes,
+    the limit of a file name (Linux NAME_MAX), 123 two-byte letters 255 too."""
+    assert has_sidecar(tmp_path / f"{stem}.csv") is fits
+
+
+@pytest.mark.parametrize(
+    ("argv", "shown"),
+    [
+        (["/usr/bin/planar-tui", "run", "a b.toml"], "planar-tui run 'a b.toml'"),
+        (["/x/planar_tui/__main__.py", "run", "a.toml"], "planar-tui run a.toml"),
+        (["-c", "list"], "planar-tui list"),
+        (["-m"], "planar-tui"),
+        ([], "planar-tui"),
+        (["./tool"], "tool"),
+    ],
+)
+def test_the_command_line_comes_from_argv_when_the_cli_did_not_record_it(monkeypatch, argv, shown):
+    monkeypatch.setattr(provenance, "invoked", None)
+    monkeypatch.setattr("sys.argv", argv)
+    assert provenance.command_line() == shown
+
+
+def test_a_sidecar_of_only_its_kind_reads_with_the_defaults_and_is_indented_by_two():
+    record = Provenance.from_json('{"kind": "simulate"}')
+    assert (record.label, record.preset_path, record.preset_sha256) == ("", "", None)
+    assert record.settings == {} and record.seed is None
+    assert record.to_json().startswith('{\n  "kind": "simulate",\n  "label": "",\n')
+
+
+@pytest.mark.parametrize("key", ["seed", "samples", "duration_s", "precision_cm"])
+def test_a_sidecar_number_that_is_true_is_refused(key):
+    """JSON true is a bool, which Python counts as an int: refused all the same."""
+    with pytest.raises(ValueError, match=f"'{key}' is true or false, must be"):
+        Provenance.from_json(json.dumps({"kind": "sweep", key: True}))
+    assert getattr(Provenance.from_json(json.dumps({"kind": "sweep", key: 3})), key) == 3
 
 
 def test_study_sidecars_name_the_study_and_its_job():

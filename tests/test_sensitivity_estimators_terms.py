@@ -47,3 +47,20 @@ def test_a_row_drawn_by_an_earlier_resample_only_still_makes_the_output_vary():
     ours = sobol_indices(outputs, D, SEED)
     np.testing.assert_allclose(ours, salib_sobol_indices(PROBLEM, outputs, SEED), atol=1e-12)
     assert np.all(ours[[1, 3]] > 0.1)
+
+
+def test_resamples_in_chunks_give_the_same_bytes_as_one_pass(monkeypatch):
+    """``sobol_indices``' promise: chunks of resamples (here 3 a kernel call, forced by a
+    small ``SUMS_PER_CALL``) change nothing but the ``on_chunk`` reports, which add to 1."""
+    from planar_tui.kernels import sensitivity_estimators as kernel
+
+    outputs = np.random.default_rng(4).normal(size=(N * STEP, 2))
+    one_pass = sobol_indices(outputs, D, SEED)
+    terms_per_resample = N * (2 * D + 4)  # one output column at a time
+    monkeypatch.setattr(kernel, "SUMS_PER_CALL", 3 * terms_per_resample)
+    fractions: list[float] = []
+    chunked = sobol_indices(outputs, D, SEED, on_chunk=fractions.append)
+    assert np.array_equal(chunked, one_pass)
+    resamples = len(sobol_bootstrap_rows(N, SEED))
+    assert len(fractions) == 2 * -(-resamples // 3)
+    assert sum(fractions) == pytest.approx(1.0, rel=1e-12)

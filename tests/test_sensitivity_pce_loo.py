@@ -114,3 +114,65 @@ def test_fit_pce_keeps_the_degree_of_least_loo_and_stops_two_degrees_after_it(se
     assert tried == list(range(1, best + 4))
     assert fit.degree == best + 1
     assert fit.loo_error[0] == errors[best]
+
+
+def test_fit_pce_reaches_degree_eight_when_every_degree_improves():
+    """One input, y = Σ_{p=0}^{8} ψ_p / (p + 1): each degree p < 8 leaves the terms above
+    it (the LOO error falls degree by degree), degree 8 (``MAX_DEGREE``) fits it exactly.
+    The fit tries every degree up to 8 and recovers the nine coefficients."""
+    assert pce.MAX_DEGREE == 8
+    unit = pce.pce_unit_design(1, 64, SEED)
+    indices = np.arange(9)[:, None]
+    wanted = 1.0 / np.arange(1, 10)
+    y = pce.basis_matrix(unit, indices) @ wanted
+    tried: list[int] = []
+    fit = pce.fit_pce(unit, y, on_degree=tried.append)
+    assert tried == list(range(1, 9)) and fit.degree == 8
+    got = dict(zip(fit.indices[:, 0].tolist(), fit.coefficients[:, 0], strict=True))
+    assert sorted(got) == list(range(9))
+    np.testing.assert_allclose([got[p] for p in range(9)], wanted, rtol=0, atol=1e-10)
+
+
+def test_second_order_indices_of_several_outputs_by_hand():
+    """Three outputs on six terms of three inputs: S_ij = c_ij² / Σ_{α≠0} c_α² (the
+    terms of exactly inputs {i, j}; a term of all three inputs counts in the variance
+    only), symmetric, zero diagonal; an output without variance gets zeros."""
+    indices = np.array([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 2, 1), (0, 0, 1), (1, 1, 1)])
+    coefficients = np.array(
+        [[5.0, 1.0, 2.0, 3.0, 1.0, 1.0], [0.0, 2.0, 0.0, 1.0, 0.0, 0.0], [7.0, 0, 0, 0, 0, 0]]
+    ).T
+    expected = np.zeros((3, 3, 3))
+    expected[0, 0, 1] = expected[0, 1, 0] = 4.0 / 16.0
+    expected[0, 1, 2] = expected[0, 2, 1] = 9.0 / 16.0
+    expected[1, 1, 2] = expected[1, 2, 1] = 1.0 / 5.0
+    got = pce.second_order_indices(indices, coefficients)
+    assert got.shape == (3, 3, 3)
+    np.testing.assert_allclose(got, expected, rtol=1e-15, atol=0)
+
+
+def test_fit_pce_stops_at_degree_eight_while_the_error_still_falls():
+    """The same with a ψ_9 term: degree 8 still improves on 7 but leaves ψ_9; no degree
+    above ``MAX_DEGREE`` is tried."""
+    unit = pce.pce_unit_design(1, 64, SEED)
+    y = pce.basis_matrix(unit, np.arange(10)[:, None]) @ (1.0 / np.arange(1, 11))
+    tried: list[int] = []
+    fit = pce.fit_pce(unit, y, on_degree=tried.append)
+    assert tried == list(range(1, 9)) and fit.degree == 8
+    assert fit.loo_error[0] > pce.ENOUGH_LOO
+
+
+def test_the_path_stops_once_the_loo_error_is_below_enough_loo():
+    """y = 1 + ψ_(1,0) + 1e-5 ψ_(0,2): after the constant and ψ_(1,0) the relative LOO
+    error is about 1e-10 (the left-out term's share), below ``ENOUGH_LOO``: the output
+    counts as fitted and the path stops there, without the 1e-5 term."""
+    unit, _ = design()
+    indices = pce.total_degree_indices(2, 3)
+    psi = pce.basis_matrix(unit, indices)
+    position = {key: i for i, key in enumerate(map(tuple, indices.tolist()))}
+    y = 1.0 + psi[:, position[(1, 0)]] + 1e-5 * psi[:, position[(0, 2)]]
+    path = pce.omp_path(psi, y[:, None])
+    assert path.terms.tolist() == [position[(0, 0)], position[(1, 0)]]
+    assert path.term_counts.tolist() == [2]
+    loo = direct_loo(psi[:, path.terms], y)
+    assert 1e-12 < loo <= pce.ENOUGH_LOO
+    assert path.loo_error[0] == pytest.approx(loo, rel=1e-6)
