@@ -230,10 +230,26 @@ def warm_kernels(kinds_or_units: Iterable[str], progress: Progress) -> list[str]
                     shown[0] = text
                     progress.advance(0.0, text)
 
-            progress.wait_for(_run_example, unit, on_poll=show_kernel)
+            progress.wait_for(_run_once, unit, on_poll=show_kernel)
             progress.advance(1.0, f"{unit} kernels ready", kernels_compiled=watcher.compiled)
         progress.advance(0.0, compile_s=time.monotonic() - progress.stage_started_s)
     return todo
+
+
+#: One lock per warm-up unit: two threads of a process (the app's background warm-up and a
+#: job's own compile stage) never compile the same unit side by side.
+_UNIT_LOCKS: dict[str, threading.Lock] = {}
+_UNIT_LOCKS_GUARD = threading.Lock()
+
+
+def _run_once(unit: str) -> None:
+    """:func:`_run_example` of ``unit`` unless it is compiled already: a thread finding
+    another compiling the unit waits for it, then finds its marker and returns."""
+    with _UNIT_LOCKS_GUARD:
+        lock = _UNIT_LOCKS.setdefault(unit, threading.Lock())
+    with lock:
+        if not marker(unit).exists():
+            _run_example(unit)
 
 
 def compile_processes() -> int:

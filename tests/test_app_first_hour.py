@@ -163,7 +163,7 @@ async def test_a_wrapped_field_is_cleared_whole_and_shown_whole(tmp_path):
 
 def map_rows(explorer) -> int:
     """How many rows of the map show a kept box (inside or boundary)."""
-    from planar_tui.workspace.map import BOUNDARY_GLYPH, INSIDE_GLYPH
+    from planar_tui.workspace.paving.map import BOUNDARY_GLYPH, INSIDE_GLYPH
 
     return sum(INSIDE_GLYPH in row or BOUNDARY_GLYPH in row for row in explorer.map_lines())
 

@@ -40,7 +40,7 @@ def _preset(tmp_path, duration_s=3600, budget=100, objective=ONE):
 def test_an_optimisation_of_long_evaluations_is_refused_with_its_estimate(tmp_path, cli):
     """100 evaluations of about an hour each (one design is well under a day; 101 runs,
     with the certified re-run, about four days) are refused before anything runs."""
-    from planar_tui.dynamics.simulate import rk4_step_seconds
+    from planar_tui.dynamics.robot import rk4_step_seconds
 
     one_s = 3600 / 1e-6 * rk4_step_seconds(2)
     assert one_s < 86_400 < 101 * one_s
@@ -56,7 +56,7 @@ def test_an_optimisation_of_long_evaluations_is_refused_with_its_estimate(tmp_pa
 def test_the_estimate_is_the_evaluations_and_the_certified_reruns(tmp_path, objective, reruns):
     """Every design of this simulation costs the same (the mass does not change the
     step count), so the estimate is (budget + re-runs) × steps × one RK4 step's cost."""
-    from planar_tui.dynamics.simulate import rk4_step_seconds
+    from planar_tui.dynamics.robot import rk4_step_seconds
     from planar_tui.optimise.budget import estimate_optimisation
     from planar_tui.optimise.spec import parse_optimisations
     from planar_tui.presets import load_preset

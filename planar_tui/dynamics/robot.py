@@ -88,3 +88,12 @@ class SerialRobot:
 ROBOT_KIND = RobotKind(
     "robot", SerialRobot, example="[robot]\nlengths_m = [0.3, 0.2]\nmasses_kg = [1.0, 0.8]\n"
 )
+
+
+def rk4_step_seconds(n_links: int) -> float:
+    """Rough time of one RK4 step (four forward dynamics) on this project's machine:
+    0.5 µs per link, plus 1 ns per link cubed for the NOC mass matrix + ``LDLᵀ`` of chains
+    shorter than ``kernels.aba_planar.ABA_MIN_LINKS`` (7; longer ones take the O(n)
+    articulated-body recursion). Measured: 4 µs at n = 6, 0.16 ms at n = 400, 0.4 ms at
+    n = 1000."""
+    return 5e-7 * n_links + (1e-9 * n_links**3 if n_links < 7 else 0.0)

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from planar_tui.csvio import CsvTable
-from planar_tui.dynamics.robot import SerialRobot
+from planar_tui.dynamics.robot import SerialRobot, rk4_step_seconds
 from planar_tui.jobkind import Command, Job, JobKind, JobResult, PreparedJob, Tab
 from planar_tui.limits import memory_problem, time_problem
 from planar_tui.progress import Progress
@@ -42,15 +42,6 @@ CHUNK_GROWTH = 8
 
 #: Memory per recorded value: the trajectory arrays, the CSV table and its row lists.
 BYTES_PER_CELL = 48
-
-
-def rk4_step_seconds(n_links: int) -> float:
-    """Rough time of one RK4 step (four forward dynamics) on this project's machine:
-    0.5 µs per link, plus 1 ns per link cubed for the NOC mass matrix + ``LDLᵀ`` of chains
-    shorter than ``kernels.aba_planar.ABA_MIN_LINKS`` (7; longer ones take the O(n)
-    articulated-body recursion). Measured: 4 µs at n = 6, 0.16 ms at n = 400, 0.4 ms at
-    n = 1000."""
-    return 5e-7 * n_links + (1e-9 * n_links**3 if n_links < 7 else 0.0)
 
 
 def next_chunk_steps(steps: int, seconds: float, left: int, most: int | None = None) -> int:

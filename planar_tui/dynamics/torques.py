@@ -6,8 +6,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from planar_tui.csvio import CsvTable
-from planar_tui.dynamics.robot import SerialRobot
-from planar_tui.dynamics.simulate import rk4_step_seconds
+from planar_tui.dynamics.robot import SerialRobot, rk4_step_seconds
 from planar_tui.jobkind import Command, Job, JobKind, JobResult, PreparedJob, Tab
 from planar_tui.limits import memory_problem, time_problem
 from planar_tui.progress import Progress
@@ -69,7 +68,7 @@ BYTES_PER_STATE_CELL = 320
 def torques_estimate(n_states: int, n_links: int) -> tuple[float, float]:
     """``(memory_bytes, seconds)`` of ``n_states`` states: ``4 n`` cells of
     :data:`BYTES_PER_STATE_CELL` each; one dynamics evaluation each, a quarter of an RK4
-    step (:func:`~planar_tui.dynamics.simulate.rk4_step_seconds`)."""
+    step (:func:`~planar_tui.dynamics.robot.rk4_step_seconds`)."""
     cells = n_states * 4 * n_links
     return cells * BYTES_PER_STATE_CELL, n_states * rk4_step_seconds(n_links) / 4
 

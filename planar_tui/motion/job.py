@@ -16,8 +16,8 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from planar_tui import uq
-from planar_tui.dynamics.robot import SerialRobot
-from planar_tui.dynamics.simulate import RunSettings, rk4_step_seconds
+from planar_tui.dynamics.robot import SerialRobot, rk4_step_seconds
+from planar_tui.dynamics.simulate import RunSettings
 from planar_tui.errors import PresetError
 from planar_tui.jobkind import (
     Command,
