@@ -7,6 +7,7 @@ their colours reduced to the 16 standard ones.
 
 from __future__ import annotations
 
+import csv
 import re
 import shutil
 import threading
@@ -337,7 +338,8 @@ async def test_torques_tab_and_run_all_write_what_planar_tui_run_writes(tmp_path
     async with app.run_test(size=SIZE) as pilot:
         assert "Torques" in app.export_text().splitlines()[0]
         await run_tab(app, pilot, "torques")
-        assert "theta1_rad," in app.export_text()
+        torques_screen = app.export_text()  # a table, the torques first: τ1 τ2 θ1 θ2 …
+        assert all(f" {column}" in torques_screen for column in ("τ1", "τ2", "θ1", "θ2"))
         await pilot.press("f9")
         await pilot.pause()
         assert "Runs 3 jobs in order" in app.export_text()
@@ -351,6 +353,12 @@ async def test_torques_tab_and_run_all_write_what_planar_tui_run_writes(tmp_path
     assert names == sorted(p.name for p in (tmp_path / "cli").iterdir())
     csvs = ["a-sim.csv", "b-sim.csv", "c-torques.csv"]
     assert names == sorted([*csvs, *(f"{name}.json" for name in csvs)])  # with provenance
+    with (tmp_path / "cli" / "c-torques.csv").open() as handle:
+        rows = list(csv.DictReader(line for line in handle if not line.startswith("#")))
+    assert len(rows) == 2
+    for state, row in enumerate(rows, start=1):  # the tab showed what `run` wrote (4 digits)
+        tau1, tau2 = (re.escape(f"{float(row[f'tau{i}_Nm']):.4g}") for i in (1, 2))
+        assert re.search(rf"\s{state}\s+{tau1}\s+{tau2}\s", torques_screen)
     from planar_tui.provenance import read_sidecar
 
     for name in csvs:

@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import Any, TypeVar
 
 from planar_tui.app.history import EditHistory, link_count, resize_per_link
-from planar_tui.app.saving import same_value
+from planar_tui.app.saving import draft_text, same_value
 from planar_tui.errors import PresetError
 from planar_tui.presets import Job, Preset, parse_job, parse_preset, read_toml
 from planar_tui.resources import preset_description, resolve_preset
@@ -364,10 +364,18 @@ class Workbench:
 
     def digest(self) -> str | None:
         """The SHA-256 (hex) of the edited document as it would be saved (``None`` when
-        unmodified: the file's own bytes say what runs)."""
+        unmodified: the file's own bytes say what runs). A document with a problem in
+        another job still runs its valid jobs: its digest is that of the draft text
+        (:func:`planar_tui.app.saving.draft_text`), what saving it anyway would write."""
         import hashlib
 
-        return hashlib.sha256(self.to_toml().encode()).hexdigest() if self.modified else None
+        if not self.modified:
+            return None
+        try:
+            text = self.to_toml()
+        except PresetError:
+            text = draft_text(self.document, self.original_text, self.description)
+        return hashlib.sha256(text.encode()).hexdigest()
 
     def to_toml(self) -> str:
         """The validated document as TOML text: applied into the original file's text
