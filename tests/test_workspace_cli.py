@@ -314,8 +314,10 @@ def test_ctrl_c_exits_130_quickly_and_writes_nothing(tmp_path):
     preset = write_preset(
         tmp_path,
         limits="[[20, 70], [110, 160], [245, 295]]",
-        precision=0.002,
-        extra='strategy = "joint"\n',  # the leg-wise paving ends before the signal
+        precision=0.005,
+        # the leg-wise paving ends before the signal; the budget admits the job's estimate
+        # (it runs about 20 s here before stopping at it): the signal comes long before
+        extra='strategy = "joint"\nbox_budget = 100_000_000\n',
     )
     command = [sys.executable, "-m", "planar_tui", "workspace", str(preset), "--out-dir",
                str(tmp_path), "--boxes", str(tmp_path / "b.csv")]  # fmt: skip
