@@ -59,6 +59,10 @@ def test_play_a_simulation_and_explore_the_map_at_80x24_in_16_colours():
         term.wait_for(lambda s: "explore.toml, 2 jobs valid" in s, 60, "the app")
         # the app opens on the tab of the preset's first job: Simulate
         term.wait_for(lambda s: "duration_s" in s, 20, "the Simulate tab")
+        # keys sent while the app still lays out its first screen can be split (a digit
+        # of F5's sequence selects a tab): wait for the tab bar's underline to settle
+        term.wait_for(lambda s: "╸" in s.splitlines()[1], 20, "the tab underline")
+        time.sleep(1.0)
         term.send(F5)
         term.wait_for(lambda s: "done in" in s and "t = 0 s / 1 s" in s, 120, "the simulation")
         focus(term, "(Tab to the arm", "the arm")
