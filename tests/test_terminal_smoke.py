@@ -64,8 +64,7 @@ def test_app_in_a_terminal_runs_a_workspace_job_and_quits(terminal):
         term.wait_for(
             lambda s: "Workspace" in s and "workspace-small.toml, 1 job" in s, 60, "the app"
         )
-        term.send(RIGHT)
-        term.send(RIGHT)
+        # the app opens on the tab of the preset's first (and only) job: Workspace
         term.wait_for(lambda s: "precision_cm" in s, 20, "the Workspace tab")
         term.send(F5)  # the first run in a fresh cache compiles the numba kernels
         screen = term.wait_for(lambda s: "done in" in s, 120, "the workspace job")
