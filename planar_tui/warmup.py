@@ -248,7 +248,7 @@ def _run_once(unit: str) -> None:
     with _UNIT_LOCKS_GUARD:
         lock = _UNIT_LOCKS.setdefault(unit, threading.Lock())
     with lock:
-        if not marker(unit).exists():
+        if missing([unit]):
             _run_example(unit)
 
 
