@@ -1,4 +1,4 @@
-"""Benchmark of the app's live workspace preview (issue 20): ``python benchmarks/bench_app.py``.
+"""Benchmark of the app's live workspace preview: ``python benchmarks/bench_app.py``.
 
 Goal: a coarse map redrawn within a second of each valid edit of a 3-RRR's geometry or
 joint limits. The app runs headless (``App.run_test``, as the Pilot tests do) on the
@@ -11,7 +11,7 @@ called directly (no app), wall and CPU seconds, on every core and on one thread 
 app paves it). The 1-min load (``os.getloadavg``) is
 printed before and after (the machine is shared).
 
-Screen changes (issue 34: each within 1 s at load 8): ``--screens`` times, headless at
+Screen changes (each within 1 s at load 8): ``--screens`` times, headless at
 120×40 as the Pilot tests drive the app, from the key's action until the app is idle
 again (every message handled, the screen laid out and drawn: ``pilot.pause()``):
 opening a preset into the running app (``ctrl+o``'s :meth:`open_preset`, each bundled

@@ -15,7 +15,7 @@ run after an install costs. Byte-code is warm (:func:`warm_byte_code`, as after 
 
 Each row gives the wall time, the CPU time of the process and its children
 (``RUSAGE_CHILDREN``: less inflated by other work than the wall time on a shared machine)
-and the 1-min load after it. Goals (issue 34, a quiet 2-core machine): ``planar-tui
+and the 1-min load after it. Goals (a quiet 2-core machine): ``planar-tui
 warmup`` ≤ 90 s, a bundled preset's first run ≤ 30 s, ``simulate paper-a-table1`` ≤ 10 s.
 
 ``--against COMMIT`` runs every row also with that commit (a ``git worktree``,

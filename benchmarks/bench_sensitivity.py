@@ -1,4 +1,4 @@
-"""Benchmark of the paper A Tables 4+5 reproduction (issue 3).
+"""Benchmark of the paper A Tables 4+5 reproduction.
 
 Prints, for every job of presets/paper-a-table4.toml and paper-a-table5.toml (2R, 3R, 6R;
 singular and isotropic; Sobol' and eFAST), in one process, split into sampling / model
@@ -15,7 +15,7 @@ evaluation / analysis:
    design cache (Numba cache warm), and the SALib + NumPy pipeline as its own process
    (imports included); medians, with the load average (the machine is shared).
 
-With ``--model``: only the model evaluation of issue 21, one thread, CPU time of the thread
+With ``--model``: only the model evaluation, one thread, CPU time of the thread
 (robust on the shared machine): the lane-batched ``design_torques`` (128 robots per SIMD
 block, scaling on the fly) against the scalar ``inverse_dynamics_batch`` on the pre-scaled
 columns (one robot at a time), ns per robot, 6R design of 200 000 rows, best of 5; both give

@@ -1,4 +1,4 @@
-"""Start-up of whole ``planar-tui`` processes (issue 21): ``python benchmarks/bench_startup.py``.
+"""Start-up of whole ``planar-tui`` processes: ``python benchmarks/bench_startup.py``.
 
 Every row is the median of ``--runs`` fresh processes (default 7; one unmeasured run of
 each first, so byte-code and the Numba kernel cache are warm), timed two ways: wall time
@@ -16,7 +16,7 @@ saved page (:mod:`planar_tui.helpcache`, in a temporary folder; the unmeasured f
 saves it), and a warm ``planar-tui run paper-b-table3 --out-dir TMP`` (its seven
 workspace pavings computed). The ratio column is each row's CPU time over the bare
 interpreter's. The 1-min load (``os.getloadavg()``) is printed before and after.
-Goals of issue 21 (quiet machine): ``--help`` ≤ 0.15 s, warm ``run paper-b-table3``
+Goals (quiet machine): ``--help`` ≤ 0.15 s, warm ``run paper-b-table3``
 ≤ 2.0 s.
 
 ``--against COMMIT`` pairs every row with the same command run by an earlier commit (a
@@ -25,7 +25,7 @@ package, imported through ``PYTHONPATH``; both sides run as ``python -m planar_t
 two sides' processes alternate, so both see the same load, and a ratio column (this
 checkout's median CPU and wall time over the commit's) is added. ``--only TEXT`` keeps the
 rows whose name contains TEXT; the row ``planar-tui run paper-b-table3 --job workspace[4]
-(warm)`` is Table 3's mean-value job alone (issue 34: 1.007 s against 0.841 s at 6fe5bdb).
+(warm)`` is Table 3's mean-value job alone (1.007 s against 0.841 s at 6fe5bdb).
 """
 
 from __future__ import annotations

@@ -5,24 +5,24 @@ precision, with seconds, boxes processed, the certified bracket [inside, kept], 
 paper's area and the ratio of the paper's MATLAB/INTLAB time to ours; then the
 arc-distance form with boundary-only refinement (bracket width in % of the exact area).
 
-Part 1b, the leg-wise paving (issue 12): issue 12's 120° case (joint limits
+Part 1b, the leg-wise paving: the 120° case (joint limits
 ``[[-30, 90], [90, 210], [210, 330]]``, φ = −20°, paper B's robot) and paper B's Tables 3-5,
 every interval form, leg-wise on one thread beside the paper's joint 5-D bisection (box
 counts side by side), with the exact area; then the parallel paving of a paving of about
 1 s on one thread, with 1, 2 (and every) thread(s), best of 3 interleaved runs each, with
 the load average before and after (the machine is shared).
 
-Part ``--part joint`` (issue 21): paper B's bisection (the joint strategy) on Table 3's four
+Part ``--part joint``: paper B's bisection (the joint strategy) on Table 3's four
 interval jobs on 1, 2 and every thread, best of 3 interleaved runs, identical boxes checked.
 
-Part 3 (``--part tolerance``, issue 25): a tolerance-certified workspace at ε = 0.05 cm
+Part 3 (``--part tolerance``): a tolerance-certified workspace at ε = 0.05 cm
 against the nominal one in the same process, printed as a ratio (goal <= 3).
 
 Part 2, whole processes through the CLI (median of 3 fresh processes, Numba cache warm):
 the issue's targets, beside the floor of any Numba process on this machine (Python +
 ``import numba`` + loading one cached kernel), measured in the same run.
 
-Part 3 (``--part kinds``), issue 25: the 3-RPR's and the 3-PRR's bundled designs at
+Part 3 (``--part kinds``): the 3-RPR's and the 3-PRR's bundled designs at
 ε = 0.05 cm, whole process beside the same floor, and in process the bracket against the
 exact area (width in %).
 """
@@ -415,7 +415,7 @@ def other_kinds() -> None:
     from planar_tui.resources import resolve_preset
     from planar_tui.workspace.paving.runner import compute_planar
 
-    print("\n## 3-RPR and 3-PRR (issue 25): bundled designs at ε = 0.05 cm\n")
+    print("\n## 3-RPR and 3-PRR: bundled designs at ε = 0.05 cm\n")
     print("| run | seconds | target |")
     print("|---|---|---|")
     print_floor()
@@ -482,7 +482,7 @@ def whole_process() -> None:
 def tolerance_goal(precision: float = 0.05, runs: int = 3) -> None:
     """Issue 25's goal: a tolerance-certified workspace at ε = 0.05 cm in <= 3x the nominal
     time, in this process (best of ``runs`` interleaved runs each, kernels loaded): paper
-    B's Table 3 and issue 12's 120° case, the arc-distance and the leg-wise mean-value
+    B's Table 3 and the 120° case, the arc-distance and the leg-wise mean-value
     forms, ±0.1 mm and ±1 mm, both modes. (A job with a tolerance also paves the nominal
     robot and the other mode for its map and figure: about three of these.)"""
     table3 = (CASES[3][0], CASES[3][1])
@@ -546,7 +546,7 @@ if __name__ == "__main__":
         whole_process()
     if args.part in ("all", "kinds"):
         other_kinds()
-    if args.part in ("all", "fivebar"):  # issue 25's five-bar goal: its own script
+    if args.part in ("all", "fivebar"):  # the five-bar goal: its own script
         subprocess.run(
             [sys.executable, str(REPO / "benchmarks" / "bench_workspace5r.py")],
             check=True,

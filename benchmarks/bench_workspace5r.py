@@ -1,4 +1,4 @@
-"""Benchmark of the five-bar's workspace (issue 25): ``python benchmarks/bench_workspace5r.py``
+"""Benchmark of the five-bar's workspace: ``python benchmarks/bench_workspace5r.py``
 (also part ``fivebar`` of ``benchmarks/bench_workspace.py``).
 
 In process (kernels compiled and loaded first): the bundled illustrative five-bar (about

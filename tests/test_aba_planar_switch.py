@@ -1,5 +1,5 @@
 """Both sides of the switch to the O(n) articulated-body algorithm (kernels/aba_planar.py,
-``ABA_MIN_LINKS = 7``), issue 37: chains of 6 and 7 links (and around) through
+``ABA_MIN_LINKS = 7``): chains of 6 and 7 links (and around) through
 :func:`forward_dynamics_rows_auto` with :func:`auto_work`'s arrays, as ``rk4_step`` calls
 it, against an independent solve (the NOC mass matrix of :mod:`kernels.noc_matrices` and
 the Newton-Euler bias, solved by ``numpy.linalg.solve``), and the promise of the docs

@@ -368,7 +368,7 @@ async def test_workspace_form_wraps_and_the_run_shows_map_area_and_boxes(tmp_pat
         assert "█" in screen and "▒" in screen  # inside and boundary cells of the map
         assert "x, y in cm" in screen and "┤" in screen  # legend, labelled y axis
         outcome = result.outcome
-        # the bracket holds the exact area of paper B's Table 3 (106.750 cm², issue 4)
+        # the bracket holds the exact area of paper B's Table 3 (106.750 cm²)
         assert outcome.area_inside_cm2 <= 106.75 <= outcome.area_kept_cm2
         await pilot.press("ctrl+e")
         await pilot.pause()

@@ -1,4 +1,4 @@
-"""The workbench's rough edges a new user met in the first hour (issue 34): the
+"""The workbench's rough edges a new user met in the first hour: the
 comparison of two workspace runs' maps, the sweep dialog and screen's defaults, ..."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""The defects of issue 20 found by driving the app in a real 80×24 terminal (each test
+"""The defects found by driving the app in a real 80×24 terminal (each test
 failed on the code before its fix), and the help, maximise and persistent settings.
 
 1-2. ``ctrl+z`` restores the value in place (same tab, field and job) within a fraction

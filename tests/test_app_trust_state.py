@@ -1,4 +1,4 @@
-"""Pilot tests of issue 14's "errors and state that tell the truth" (80×24, tiny presets).
+"""Pilot tests's "errors and state that tell the truth" (80×24, tiny presets).
 
 Each test drives the app with keys where it can and reads the screen as text
 (``app.export_text()``); focus styles are read from the widgets' rendered strips with

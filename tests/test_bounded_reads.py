@@ -1,4 +1,4 @@
-"""Every file the app reads is bounded and validated (issue 33): provenance sidecars field
+"""Every file the app reads is bounded and validated: provenance sidecars field
 by field, and sidecars, settings, the recent-files state and presets read only when they
 are regular files under their size bound (a FIFO is refused without waiting, ``/dev/zero``
 without reading). Refusals are one line (exit code 2 where the CLI reads the file); the

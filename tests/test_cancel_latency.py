@@ -1,4 +1,4 @@
-"""Cancel latency per stage (issue 14): every stage of every runner honours a cancel
+"""Cancel latency per stage: every stage of every runner honours a cancel
 within 2 s (10× the goal of 0.2 s, measured by ``benchmarks/bench_cancel.py``), and what a
 cancelled or failed run leaves behind."""
 

@@ -1,4 +1,4 @@
-"""The CLI as a new user meets it (issue 34): progress in batch logs, the compile stage
+"""The CLI as a new user meets it: progress in batch logs, the compile stage
 said, the summary's run and compile seconds, the help's and the summary's words, and an
 optimisation that tells infeasible designs from failed evaluations."""
 

@@ -1,6 +1,6 @@
 """The atomic writers' temporary files (planar_tui/csvio.py) at the level of the module:
 a temporary name already taken (another writer's file) is never opened, and the sweep of
-an earlier run's temporaries removes regular files only (issue 37)."""
+an earlier run's temporaries removes regular files only."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The CSVs and figures a new user reads (issue 34): the 3-RPR and 3-PRR summaries carry
+"""The CSVs and figures a new user reads: the 3-RPR and 3-PRR summaries carry
 the 3-RRR's orientation columns; the figures plot what varies, keep the exact-area marker
 in sight and name the simulate job's energy balance for what it is."""
 

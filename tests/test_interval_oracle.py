@@ -165,7 +165,7 @@ def test_isincos_of_huge_and_tiny_arguments(a, b):
 
 
 def test_isincos_exact_extrema_of_known_intervals():
-    """The interior extrema are exactly ±1; the other bounds the ends' values (issue 37's
+    """The interior extrema are exactly ±1; the other bounds the ends' values (the issue's
     mutants: sin([1.4, 1.7]) must reach 1, cos([-0.1, 0.1]) too)."""
     slo, shi, clo, chi = iv.isincos(1.4, 1.7)
     assert shi == 1.0 and clo < math.cos(1.7) and chi > math.cos(1.4) and chi < 0.2

@@ -1,5 +1,5 @@
 """``planar-tui plot`` of a boxes CSV past :data:`MAX_DRAWN_BOXES` draws the boxes as one
-image, says so in the figure and on stderr, and takes seconds (issue 33: 200 000 boxes
+image, says so in the figure and on stderr, and takes seconds (200 000 boxes
 took 43 s under load, minutes in the corpus)."""
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """A recent-files state (``recent.json``) that cannot be used is a warning and empty
 lists, and is set aside (``recent.json.damaged``), never overwritten, when the app next
-remembers a file (issue 33)."""
+remembers a file."""
 
 from __future__ import annotations
 

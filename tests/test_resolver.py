@@ -1,4 +1,4 @@
-"""One resolver for the ``"module:attr"`` strings (issue 32): every string a registered kind
+"""One resolver for the ``"module:attr"`` strings: every string a registered kind
 declares (its registry line, its tab's pane, its figure function) resolves to what it
 names, and ``import_module`` is called in at most two files of the package (the resolver,
 and the runtime's warm-up of numba's own modules)."""

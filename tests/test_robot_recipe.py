@@ -1,4 +1,4 @@
-"""The README's recipe for a new parallel robot names real files (issue 32): for every
+"""The README's recipe for a new parallel robot names real files: for every
 robot of the workspace, its subpackage (``__init__.py``, ``robot.py``, ``mechanism.py``,
 ``job.py``), its kernel in ``kernels/``, its registry lines, its entry in the packages list
 and in the import contract that keeps the robots independent, and its app pane; the core

@@ -1,4 +1,4 @@
-"""Hostile round 4 (issue 33): what the CLI reads is refused in one line with exit code 2
+"""Hostile round 4: what the CLI reads is refused in one line with exit code 2
 and no traceback, or computed right: a torques job's memory estimated from its rows,
 optimisation variables that overlap, empty paths, leg limits and lengths at the edge of
 the floats."""

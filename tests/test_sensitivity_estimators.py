@@ -62,7 +62,7 @@ def test_estimators_equal_salib(seed, method, samples, ours, salib):
     """Point estimates to 1e-12; with SALib's bootstrap draws the half-widths too. At
     awkward sizes too: at N = 512 a Sobol' design's A and B have nearly equal means, so
     a variance of A ∪ B about the mean of A alone differs by 1e-14 there, by 5e-6 at
-    N = 300 (issue 37); eFAST at odd N (its frequency ω and spectrum length change)."""
+    N = 300; eFAST at odd N (its frequency ω and spectrum length change)."""
     problem, torques = _torques(method, samples)
     np.testing.assert_allclose(
         ours(torques, problem.num_vars, seed),

@@ -1,7 +1,7 @@
 """The sweep checkpoint (planar_tui/sweep/checkpoint.py) at the level of its own functions:
 every rule of :func:`record_problem` on both sides of its limit, the header's fingerprint
 and point count, the line a crash cut short, the rewrite on resume keeping every finished
-point, ``fsync`` after each record, and a sweep interrupted twice (issue 37): the second
+point, ``fsync`` after each record, and a sweep interrupted twice: the second
 resume must not recompute what the first one finished."""
 
 from __future__ import annotations

@@ -23,7 +23,7 @@ from tests.conftest import PRESETS, on_one_and_two_threads
 
 PAPER = Robot3RRR()
 INTERVAL_FORMS = ("natural", "mean-value", "slope")
-# (joint limits deg, phi deg, eps cm, search box): paper B Tables 3-5 and issue 12's 120° case
+# (joint limits deg, phi deg, eps cm, search box): paper B Tables 3-5 and the 120° case
 CASES = {
     3: (((20, 70), (110, 160), (245, 295)), 0.0, 0.1171875, ((0, 120), (0, 120))),
     4: (((-15, 75), (105, 195), (225, 315)), 30.0, 0.3125, ((-40, 120), (-40, 120))),
@@ -71,7 +71,7 @@ def assert_brackets(out, g):
 
 
 def test_the_issues_120_degree_case_has_the_issues_exact_area(exact):
-    """768.72 cm² (issue 12) by the shapely bracket and by Monte Carlo of the exact test."""
+    """768.72 cm² by the shapely bracket and by Monte Carlo of the exact test."""
     g = exact[120]
     assert g.inner_cm2 <= 768.72 + 0.005 and g.outer_cm2 >= 768.72 - 0.005
     spec = spec_for(120, "mean-value", "legwise")

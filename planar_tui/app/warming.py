@@ -2,7 +2,7 @@
 a worker thread at start (:func:`warm_in_background`), so a later first F5 starts at once.
 
 A new user's first job must not wait behind other kinds' kernels (168 s at ``0% 0/2`` while
-kinds the preset does not use compiled, issue 34): the preset's own kinds are warmed
+kinds the preset does not use compiled): the preset's own kinds are warmed
 first, the current tab's kind first of all (:func:`warm_order`), one warm-up unit at a
 time, and no unit is started while a job runs (the job compiles its own kernels, in its
 own stage :data:`planar_tui.warmup.STAGE`; Numba compiles one function at a time, so a

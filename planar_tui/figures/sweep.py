@@ -1,4 +1,4 @@
-"""Figure of a sweep (issue 10's CSV: ``point``, one column per varied key named by its
+"""Figure of a sweep (CSV: ``point``, one column per varied key named by its
 path, the job kind's summary figures, ``status``, ``message``, ``seconds``).
 
 Varied keys are the leading columns after ``point`` named as preset key paths (a job key

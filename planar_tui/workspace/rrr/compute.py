@@ -99,7 +99,7 @@ BOXES_PER_BOUNDARY_STEP = 8.0
 
 
 #: Leg boxes (x, y, θ_i) the leg-wise paving evaluates per ε of the boundary length, per
-#: form: fitted on paper B's Tables 3-5 and the 120° case of issue 12 (observed 67-445
+#: form: fitted on paper B's Tables 3-5 and the 120° case (observed 67-445
 #: with mean-value and slope, 1.5-3x that with natural).
 LEG_BOXES_PER_BOUNDARY_STEP = {"natural": 400.0, "mean-value": 180.0, "slope": 180.0}
 
