@@ -161,8 +161,12 @@ def compile_latency(delay_s: float) -> tuple[float, str]:
         env["PYTHONPATH"] = str(REPO)
         out = subprocess.run(
             [sys.executable, "-c", COMPILE_PROBE, str(delay_s)],
-            capture_output=True, text=True, env=env, cwd=REPO, timeout=300,
-        )  # fmt: skip
+            capture_output=True,
+            text=True,
+            env=env,
+            cwd=REPO,
+            timeout=300,
+        )
         lines = out.stdout.strip().splitlines()
         if not lines:
             raise RuntimeError(out.stderr)

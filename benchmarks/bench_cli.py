@@ -91,17 +91,29 @@ def ab(other: Path, runs: int) -> None:
         for name, arguments in cases.items():
             times: dict[str, list[float]] = {key: [] for key in checkouts}
             for root in checkouts.values():  # warm the caches first
-                subprocess.run([str(root / ".venv/bin/python"), *arguments], check=True,
-                               capture_output=True, env=env, cwd=root)  # fmt: skip
+                subprocess.run(
+                    [str(root / ".venv/bin/python"), *arguments],
+                    check=True,
+                    capture_output=True,
+                    env=env,
+                    cwd=root,
+                )
             for _ in range(runs):
                 for key, root in checkouts.items():
                     start = time.perf_counter()
-                    subprocess.run([str(root / ".venv/bin/python"), *arguments], check=True,
-                                   capture_output=True, env=env, cwd=root)  # fmt: skip
+                    subprocess.run(
+                        [str(root / ".venv/bin/python"), *arguments],
+                        check=True,
+                        capture_output=True,
+                        env=env,
+                        cwd=root,
+                    )
                     times[key].append(time.perf_counter() - start)
             this, theirs = (statistics.median(times[key]) for key in checkouts)
-            print(f"{name:<28} this {this:7.3f} s  other {theirs:7.3f} s  "
-                  f"other/this {theirs / this:5.2f}  (load {load()})")  # fmt: skip
+            print(
+                f"{name:<28} this {this:7.3f} s  other {theirs:7.3f} s  "
+                f"other/this {theirs / this:5.2f}  (load {load()})"
+            )
 
 
 def main() -> None:

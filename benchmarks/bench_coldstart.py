@@ -59,12 +59,22 @@ def cases(out: Path) -> dict[str, list[str]]:
     rows = {f"warmup {kind}": [PYTHON, "-c", WARM_KIND, kind] for kind in JOB_KINDS}
     rows["planar-tui warmup"] = [*CLI, "warmup"]
     rows["planar-tui simulate paper-a-table1"] = [
-        *CLI, "simulate", "paper-a-table1", "--out-dir", str(out),
-    ]  # fmt: skip
+        *CLI,
+        "simulate",
+        "paper-a-table1",
+        "--out-dir",
+        str(out),
+    ]
     for path in bundled_presets():
         rows[f"planar-tui run {path.stem}"] = [
-            *CLI, "run", path.stem, "--out-dir", str(out / path.stem), "--workers", "1",
-        ]  # fmt: skip
+            *CLI,
+            "run",
+            path.stem,
+            "--out-dir",
+            str(out / path.stem),
+            "--workers",
+            "1",
+        ]
     return rows
 
 
@@ -82,8 +92,12 @@ def warm_byte_code(env: dict[str, str], checkout: Path) -> None:
     import sysconfig
 
     folders = [sysconfig.get_paths()["purelib"], checkout / "planar_tui", checkout / "kernels"]
-    subprocess.run([PYTHON, "-m", "compileall", "-q", "-j", "0", *map(str, folders)],
-                   check=False, capture_output=True, env=env)  # fmt: skip
+    subprocess.run(
+        [PYTHON, "-m", "compileall", "-q", "-j", "0", *map(str, folders)],
+        check=False,
+        capture_output=True,
+        env=env,
+    )
     subprocess.run([*CLI, "--help"], check=True, capture_output=True, env=env)
 
 
@@ -105,9 +119,12 @@ def main() -> None:
         warm_byte_code(env, REPO)  # byte-code written first, by neither side's row
         if theirs_env is not None and other is not None:
             warm_byte_code(theirs_env, other)
-        print(f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}"
-              f"; 1-min load before {load():.2f}"
-              + (f"; paired against {arguments.against}" if other else ""), flush=True)  # fmt: skip
+        print(
+            f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}"
+            f"; 1-min load before {load():.2f}"
+            + (f"; paired against {arguments.against}" if other else ""),
+            flush=True,
+        )
         width = max(len(name) for name in chosen)
         header = f"{'cold':<{width}}  {'wall s':>7}  {'CPU s':>7}"
         if other:

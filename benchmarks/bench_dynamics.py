@@ -199,8 +199,9 @@ def _repeat_forward_algorithm(count, aba, lengths, masses, inertias, theta, omeg
         if aba:
             aba_rows(lengths, masses, inertias, 9.81, theta, omega, tau, work, alpha, 0)
         else:
-            _forward_dynamics_rows(lengths, masses, inertias, 9.81, theta, omega, tau, work,
-                                   matrix, alpha, 0, True)  # fmt: skip
+            _forward_dynamics_rows(
+                lengths, masses, inertias, 9.81, theta, omega, tau, work, matrix, alpha, 0, True
+            )
         total += alpha[0, 0]
     return total
 
@@ -240,11 +241,14 @@ def forward_part(rng):
                 aba_forward_dynamics(*a[:3], G, *a[3:])
 
         ours_py = best_time(our_calls) / py_calls
-        times = (f"ABA jit {aba_jit * 1e9:.0f} | NOC jit {noc_jit * 1e9:.0f} | ABA from Python "
-                 f"{ours_py * 1e9:.0f}")  # fmt: skip
+        times = (
+            f"ABA jit {aba_jit * 1e9:.0f} | NOC jit {noc_jit * 1e9:.0f} | ABA from Python "
+            f"{ours_py * 1e9:.0f}"
+        )
         if n > PINOCCHIO_MAX_LINKS:
-            rows.append((f"n = {n}: forward dynamics per call (Pinocchio: see note)",
-                         times + " ns", ""))  # fmt: skip
+            rows.append(
+                (f"n = {n}: forward dynamics per call (Pinocchio: see note)", times + " ns", "")
+            )
             continue
         model, data = pinocchio_chain(lengths, masses, inertias, G)
 
@@ -258,15 +262,29 @@ def forward_part(rng):
         gap = np.abs(reference - ours).max() / np.abs(reference).max()
         del model, data
         print(f"  forward dynamics n = {n} done", file=sys.stderr, flush=True)
-        rows.append((f"n = {n}: forward dynamics per call (max |Δθ̈| / max |θ̈| vs Pinocchio {gap:.0e})",
-                     times + f" | Pinocchio aba from Python {pin_py * 1e9:.0f} ns",
-                     f"Pin/ours {pin_py / ours_py:.2f} (Python), {pin_py / aba_jit:.2f} (jit)"))  # fmt: skip
-    rows.append((f"note: Pinocchio {pin.__version__}'s Data grows as n³ (1.7 GB at n = 300, about "
-                 f"60 GB at n = 1000): not run above n = {PINOCCHIO_MAX_LINKS}", "", ""))  # fmt: skip
+        rows.append(
+            (
+                f"n = {n}: forward dynamics per call (max |Δθ̈| / max |θ̈| vs Pinocchio {gap:.0e})",
+                times + f" | Pinocchio aba from Python {pin_py * 1e9:.0f} ns",
+                f"Pin/ours {pin_py / ours_py:.2f} (Python), {pin_py / aba_jit:.2f} (jit)",
+            )
+        )
+    rows.append(
+        (
+            f"note: Pinocchio {pin.__version__}'s Data grows as n³ (1.7 GB at n = 300, about "
+            f"60 GB at n = 1000): not run above n = {PINOCCHIO_MAX_LINKS}",
+            "",
+            "",
+        )
+    )
     crossover = []
     for n in range(2, 17):
-        args = (*random_chain(rng, n)[:3], rng.uniform(-0.3, 0.3, n), rng.normal(0, 1, n),
-                rng.normal(0, 1, n))  # fmt: skip
+        args = (
+            *random_chain(rng, n)[:3],
+            rng.uniform(-0.3, 0.3, n),
+            rng.normal(0, 1, n),
+            rng.normal(0, 1, n),
+        )
         times = []
         for aba in (False, True):
             _repeat_forward_algorithm(1, aba, *args)
@@ -290,14 +308,25 @@ def forward_part(rng):
         mujoco.mj_getState(model, data, state, spec)
         control = tau[None, None, :]
         mj_steps = max(3, int(2e4 / n**1.5))  # MuJoCo's dense chain factorisation is O(n³)
-        run = partial(rollout.rollout, model, data, state[None], control,
-                      control_spec=mujoco.mjtState.mjSTATE_QFRC_APPLIED, nstep=mj_steps)  # fmt: skip
+        run = partial(
+            rollout.rollout,
+            model,
+            data,
+            state[None],
+            control,
+            control_spec=mujoco.mjtState.mjSTATE_QFRC_APPLIED,
+            nstep=mj_steps,
+        )
         run()
         mj_step_time = best_time(run, 3) / mj_steps
         print(f"  RK4 step n = {n} done", file=sys.stderr, flush=True)
-        rows.append((f"n = {n}: one RK4 step, rk4_integrate | MuJoCo rollout (RK4)",
-                     f"{ours_step * 1e6:.2f} | {mj_step_time * 1e6:.2f} µs",
-                     f"MuJoCo/ours {mj_step_time / ours_step:.2f}"))  # fmt: skip
+        rows.append(
+            (
+                f"n = {n}: one RK4 step, rk4_integrate | MuJoCo rollout (RK4)",
+                f"{ours_step * 1e6:.2f} | {mj_step_time * 1e6:.2f} µs",
+                f"MuJoCo/ours {mj_step_time / ours_step:.2f}",
+            )
+        )
     return rows
 
 

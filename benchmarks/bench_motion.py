@@ -89,8 +89,20 @@ def baseline_ms(robots: int = 8) -> float:
     for _ in range(robots):
         theta, omega = np.zeros(6), np.zeros(6)
         started = one_thread_clock()
-        rk4_integrate(LENGTHS, MASSES, INERTIAS, G, TORQUES, theta, omega, STEP_S, N_STEPS,
-                      N_STEPS, 0, *records)  # fmt: skip
+        rk4_integrate(
+            LENGTHS,
+            MASSES,
+            INERTIAS,
+            G,
+            TORQUES,
+            theta,
+            omega,
+            STEP_S,
+            N_STEPS,
+            N_STEPS,
+            0,
+            *records,
+        )
         best = min(best, one_thread_clock() - started)
     return best * 1e3
 
@@ -135,8 +147,14 @@ def mujoco_rollout_ms(robots: int, repeats: int = 1) -> tuple[float, np.ndarray]
     best, states = np.inf, None
     for _ in range(repeats):
         started = one_thread_clock()
-        states, _ = rollout.rollout(models, data, np.tile(state, (robots, 1)), control,
-                                    control_spec=control_spec, nstep=N_STEPS)  # fmt: skip
+        states, _ = rollout.rollout(
+            models,
+            data,
+            np.tile(state, (robots, 1)),
+            control,
+            control_spec=control_spec,
+            nstep=N_STEPS,
+        )
         best = min(best, one_thread_clock() - started)
     qpos = states[:, -1, 1 : 1 + 6]  # FULLPHYSICS: time, qpos, qvel, ...
     return best / robots * 1e3, qpos
@@ -151,8 +169,14 @@ def packed_instructions() -> str:
     from planar_tui.kernels import motion_lanes
 
     n, lanes = 6, LANES
-    common = (np.ones((3, n, lanes)), G, np.zeros(n), np.zeros((n, lanes)), np.zeros((n, lanes)),
-              np.zeros(9 * n * lanes))  # fmt: skip
+    common = (
+        np.ones((3, n, lanes)),
+        G,
+        np.zeros(n),
+        np.zeros((n, lanes)),
+        np.zeros((n, lanes)),
+        np.zeros(9 * n * lanes),
+    )
     cases = {
         "_noc_lanes": (
             *common,
@@ -218,8 +242,9 @@ def gpu_seconds(robots: int) -> float | str:
 
     unit, lower, upper = table1_design(robots)
     zeros = np.zeros((robots, 6))
-    warm = CudaBatch(unit[:256], lower, upper, INERTIAS, np.zeros(6, bool), zeros[:256],
-                     zeros[:256], G, TORQUES)  # fmt: skip
+    warm = CudaBatch(
+        unit[:256], lower, upper, INERTIAS, np.zeros(6, bool), zeros[:256], zeros[:256], G, TORQUES
+    )
     warm.advance(STEP_S, 2)
     started = time.perf_counter()
     batch = CudaBatch(unit, lower, upper, INERTIAS, np.zeros(6, bool), zeros, zeros, G, TORQUES)
@@ -232,8 +257,17 @@ def sobol_study_seconds(samples: int) -> float:
     """``planar-tui motion paper-a-table1-motion --samples N`` in a fresh process, 2 threads."""
     env = {**os.environ, "NUMBA_NUM_THREADS": "2"}
     with tempfile.TemporaryDirectory() as folder:
-        command = [sys.executable, "-m", "planar_tui", "motion", "paper-a-table1-motion",
-                   "--samples", str(samples), "--out-dir", folder]  # fmt: skip
+        command = [
+            sys.executable,
+            "-m",
+            "planar_tui",
+            "motion",
+            "paper-a-table1-motion",
+            "--samples",
+            str(samples),
+            "--out-dir",
+            folder,
+        ]
         started = time.perf_counter()
         subprocess.run(command, env=env, check=True, capture_output=True)
         return time.perf_counter() - started
@@ -254,8 +288,10 @@ def main() -> None:
     global one_thread_clock
     if arguments.cpu_time:
         one_thread_clock = time.thread_time
-    print(f"# {platform.machine()} {platform.processor() or ''}, {os.cpu_count()} CPUs, "
-          f"numba {numba.__version__}; load {loadavg()}")  # fmt: skip
+    print(
+        f"# {platform.machine()} {platform.processor() or ''}, {os.cpu_count()} CPUs, "
+        f"numba {numba.__version__}; load {loadavg()}"
+    )
     cpu_ms(LANES + 1, 1)  # compile / load the kernels
     cpu_ms(17, 1, rk4_batch)
     baseline = baseline_ms()
@@ -268,33 +304,47 @@ def main() -> None:
     gap = np.abs(lanes_theta[: arguments.scalar_robots] - scalar_theta).max()
     gap_mj = np.abs(lanes_theta[: arguments.mujoco_robots] - mujoco_theta).max()
     clock = "thread CPU time" if arguments.cpu_time else "wall time"
-    print(f"Table 1 robots (±1 mm, ±10 g), 1 s at 1e-4 s ({N_STEPS} RK4 steps); one-thread rows: "
-          f"{clock}, 2 threads: wall time; load {loadavg()}")  # fmt: skip
+    print(
+        f"Table 1 robots (±1 mm, ±10 g), 1 s at 1e-4 s ({N_STEPS} RK4 steps); one-thread rows: "
+        f"{clock}, 2 threads: wall time; load {loadavg()}"
+    )
     print("| case | ms per robot | ratio to rk4_lanes, 1 thread |")
     print("|---|---:|---:|")
     print(
         f"| rk4_integrate, one robot at a time, 1 thread | {baseline:.2f} | {baseline / one:.2f} |"
     )
-    print(f"| rk4_batch (scalar), {arguments.scalar_robots} robots, 1 thread | {scalar:.2f} | "
-          f"{scalar / one:.2f} |")  # fmt: skip
-    print(f"| rk4_lanes general (fused=False), {arguments.robots} robots, 1 thread | "
-          f"{general:.3f} | {general / one:.2f} |")  # fmt: skip
-    print(f"| **rk4_lanes** (fused 6-link step), {arguments.robots} robots, 1 thread | {one:.3f} "
-          f"| 1.00 |")  # fmt: skip
+    print(
+        f"| rk4_batch (scalar), {arguments.scalar_robots} robots, 1 thread | {scalar:.2f} | "
+        f"{scalar / one:.2f} |"
+    )
+    print(
+        f"| rk4_lanes general (fused=False), {arguments.robots} robots, 1 thread | "
+        f"{general:.3f} | {general / one:.2f} |"
+    )
+    print(
+        f"| **rk4_lanes** (fused 6-link step), {arguments.robots} robots, 1 thread | {one:.3f} "
+        f"| 1.00 |"
+    )
     print(f"| rk4_lanes, {arguments.robots} robots, 2 threads | {two:.3f} | {two / one:.2f} |")
-    print(f"| MuJoCo rollout, {arguments.mujoco_robots} robots (own models), 1 thread | "
-          f"{mujoco:.2f} | {mujoco / one:.1f} |")  # fmt: skip
+    print(
+        f"| MuJoCo rollout, {arguments.mujoco_robots} robots (own models), 1 thread | "
+        f"{mujoco:.2f} | {mujoco / one:.1f} |"
+    )
     gap_general = np.abs(lanes_theta - general_theta).max()
-    print(f"max |Δθ| lanes - scalar {gap:.1e} rad, lanes - general lanes {gap_general:.1e} rad, "
-          f"lanes - MuJoCo {gap_mj:.1e} rad")  # fmt: skip
+    print(
+        f"max |Δθ| lanes - scalar {gap:.1e} rad, lanes - general lanes {gap_general:.1e} rad, "
+        f"lanes - MuJoCo {gap_mj:.1e} rad"
+    )
     two_note = (
         "2 threads: wall time, no ratio to the CPU-time row"
         if arguments.cpu_time
         else f"2 threads: {one / two:.2f}× (goal ≥ 1.9×)"
     )
-    print(f"1 thread: {one:.2f} ms per robot (goal ≤ 2.0), {mujoco / one:.1f}× MuJoCo rollout "
-          f"(goal ≥ 40×), {scalar / one:.2f}× the scalar kernel, {general / one:.2f}× the general "
-          f"lane kernel; {two_note}")  # fmt: skip
+    print(
+        f"1 thread: {one:.2f} ms per robot (goal ≤ 2.0), {mujoco / one:.1f}× MuJoCo rollout "
+        f"(goal ≥ 40×), {scalar / one:.2f}× the scalar kernel, {general / one:.2f}× the general "
+        f"lane kernel; {two_note}"
+    )
     if arguments.asm:
         print(f"vector instructions: {packed_instructions()}")
     gpu = gpu_seconds(arguments.gpu_robots)
@@ -302,17 +352,21 @@ def main() -> None:
         print(f"GPU column skipped: {gpu}")
     else:
         per_robot = gpu / arguments.gpu_robots * 1e3
-        print(f"| GPU, {arguments.gpu_robots} robots | {per_robot:.4f} | "
-              f"{per_robot / one:.4f} |  total {gpu:.2f} s (goal ≤ 3 s on an H100); "
-              f"CPU 2 threads would take {two * arguments.gpu_robots / 1e3:.0f} s")  # fmt: skip
+        print(
+            f"| GPU, {arguments.gpu_robots} robots | {per_robot:.4f} | "
+            f"{per_robot / one:.4f} |  total {gpu:.2f} s (goal ≤ 3 s on an H100); "
+            f"CPU 2 threads would take {two * arguments.gpu_robots / 1e3:.0f} s"
+        )
     if arguments.sobol_samples <= 0:
         print("Sobol' study skipped (--sobol-samples 0)")
         return
     seconds = sobol_study_seconds(arguments.sobol_samples)
     robots = arguments.sobol_samples * 14
-    print(f"Sobol' study, 12 inputs, N = {arguments.sobol_samples} ({robots} robots) through "
-          f"the CLI on 2 threads: {seconds:.1f} s ({seconds / robots * 1e3:.2f} ms per robot); "
-          f"load {loadavg()}")  # fmt: skip
+    print(
+        f"Sobol' study, 12 inputs, N = {arguments.sobol_samples} ({robots} robots) through "
+        f"the CLI on 2 threads: {seconds:.1f} s ({seconds / robots * 1e3:.2f} ms per robot); "
+        f"load {loadavg()}"
+    )
 
 
 if __name__ == "__main__":

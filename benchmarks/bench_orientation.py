@@ -87,22 +87,41 @@ def main() -> None:
                     ROBOT, s, BoxBudget(_Job(s), Progress())
                 )
             )
-            rows.append((f"{mode} [-10, 10]°", eps, seconds, out.boxes_processed, out,
-                         seconds / base_s))  # fmt: skip
+            rows.append(
+                (f"{mode} [-10, 10]°", eps, seconds, out.boxes_processed, out, seconds / base_s)
+            )
         for precision in (eps, eps / 8):
-            job = prepare_workspace(Job(
-                kind="workspace", index=1, label="bench:workspace", robot=ROBOT,
-                spec=spec(precision_cm=eps, singularities=True, elbow=(1, -1, 1),
-                          singularity_precision_cm=precision),
-                output="bench.csv", preset_path=Path("bench"),
-            ))  # fmt: skip
+            job = prepare_workspace(
+                Job(
+                    kind="workspace",
+                    index=1,
+                    label="bench:workspace",
+                    robot=ROBOT,
+                    spec=spec(
+                        precision_cm=eps,
+                        singularities=True,
+                        elbow=(1, -1, 1),
+                        singularity_precision_cm=precision,
+                    ),
+                    output="bench.csv",
+                    preset_path=Path("bench"),
+                )
+            )
             seconds, out = median_time(
                 lambda j=job: compute_singularities(
                     ROBOT, j.spec, EXTENT, BoxBudget(j, Progress()), j
                 )
             )
-            rows.append((f"singularities, ε_s = {precision:g}", eps, seconds,
-                         out.boxes_processed, out, seconds / base_s))  # fmt: skip
+            rows.append(
+                (
+                    f"singularities, ε_s = {precision:g}",
+                    eps,
+                    seconds,
+                    out.boxes_processed,
+                    out,
+                    seconds / base_s,
+                )
+            )
     print("| case | ε (cm) | seconds | boxes | bracket | ratio to single φ |")
     print("|---|---:|---:|---:|---|---:|")
     for name, eps, seconds, boxes, out, ratio in rows:
@@ -116,8 +135,10 @@ def main() -> None:
         seconds, ref = median_time(
             lambda m=mode: reference_area(ROBOT, limits_rad, (-10.0, 10.0), m), repeats=1
         )
-        print(f"| sampled reference, {mode} (400 φ) | | {seconds:.3f} | | "
-              f"[{ref.inner_cm2:.2f}, {ref.outer_cm2:.2f}] cm² | |")  # fmt: skip
+        print(
+            f"| sampled reference, {mode} (400 φ) | | {seconds:.3f} | | "
+            f"[{ref.inner_cm2:.2f}, {ref.outer_cm2:.2f}] cm² | |"
+        )
 
 
 def parallel() -> None:
@@ -154,12 +175,17 @@ def parallel() -> None:
                     cpu[threads].append(time.process_time() - cpu_started)
             one, two = outs[1], outs[2]
             assert np.array_equal(one.boxes, two.boxes) and np.array_equal(one.status, two.status)
-            assert (one.area_inside_cm2, one.area_kept_cm2) == (two.area_inside_cm2,
-                                                               two.area_kept_cm2)  # fmt: skip
+            assert (one.area_inside_cm2, one.area_kept_cm2) == (
+                two.area_inside_cm2,
+                two.area_kept_cm2,
+            )
             w1, w2 = min(wall[1]), min(wall[2])
             c2 = cpu[2][wall[2].index(w2)]
-            print(f"| {name} | {len(one.boxes):,} | {w1:.3f} | {w2:.3f} ({c2:.2f}) | "
-                  f"{w1 / w2:.2f}× | {os.getloadavg()[0]:.1f} |", flush=True)  # fmt: skip
+            print(
+                f"| {name} | {len(one.boxes):,} | {w1:.3f} | {w2:.3f} ({c2:.2f}) | "
+                f"{w1 / w2:.2f}× | {os.getloadavg()[0]:.1f} |",
+                flush=True,
+            )
     finally:
         numba.set_num_threads(before)
 

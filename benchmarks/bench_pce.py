@@ -163,17 +163,24 @@ def motion_outputs(job, unit, steps):
 
     spec, robot = job.spec, job.robot
     problem = engine.build_problem(
-        robot, spec.tolerance_length_mm * 1e-3, spec.tolerance_mass_g * 1e-3,
+        robot,
+        spec.tolerance_length_mm * 1e-3,
+        spec.tolerance_mass_g * 1e-3,
         spec.tolerance_inertia_kgm2,
-    )  # fmt: skip
+    )
     lengths, masses, inertias = robot.arrays()
     rod = inertias == masses * lengths * lengths / 12.0
     design = motion.Design(np.ascontiguousarray(unit), {"sobol": slice(0, len(unit))})
     robots, params = motion.make_robots(
-        "cpu", problem, design, rod, robot, np.radians(np.array(spec.theta0_deg, dtype=float)),
+        "cpu",
+        problem,
+        design,
+        rod,
+        robot,
+        np.radians(np.array(spec.theta0_deg, dtype=float)),
         np.radians(np.array(spec.omega0_deg_s, dtype=float)),
         np.array(spec.torques_Nm, dtype=float),
-    )  # fmt: skip
+    )
     recorded = {}
 
     def on_stop(step, angles):
@@ -209,11 +216,15 @@ def motion_study(sobol_samples: int) -> None:
     print(f"\nmotion, paper-a-table1-motion (D = 12, times {[k * job.spec.step_s for k in steps]})")
     print("| method | robots | seconds | max |ST − Sobol'| | max Sobol' ST half-width | max LOO |")
     print("|---|---:|---:|---:|---:|---:|")
-    print(f"| Sobol' N = {sobol_samples} | {sobol_samples * (d + 2)} | {sobol_s:.1f} | — "
-          f"| {saltelli[3].max():.3f} | — |")  # fmt: skip
-    print(f"| PCE | {samples} ({sobol_samples * (d + 2) / samples:.0f}× fewer) "
-          f"| {pce_s:.1f} ({sobol_s / pce_s:.1f}×) | {error.max():.4f} | — "
-          f"| {result.loo_error.max():.1e} |")  # fmt: skip
+    print(
+        f"| Sobol' N = {sobol_samples} | {sobol_samples * (d + 2)} | {sobol_s:.1f} | — "
+        f"| {saltelli[3].max():.3f} | — |"
+    )
+    print(
+        f"| PCE | {samples} ({sobol_samples * (d + 2) / samples:.0f}× fewer) "
+        f"| {pce_s:.1f} ({sobol_s / pce_s:.1f}×) | {error.max():.4f} | — "
+        f"| {result.loo_error.max():.1e} |"
+    )
 
 
 def whole_process(methods: str, out: Path) -> float:
@@ -235,8 +246,13 @@ def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--no-libraries", action="store_true", help="skip Chaospy, OpenTURNS")
     parser.add_argument("--whole-process", action="store_true", help="time planar-tui run too")
-    parser.add_argument("--motion", type=int, default=0, metavar="N",
-                        help="also the Table 1 motion study against Sobol' at this N")  # fmt: skip
+    parser.add_argument(
+        "--motion",
+        type=int,
+        default=0,
+        metavar="N",
+        help="also the Table 1 motion study against Sobol' at this N",
+    )
     args = parser.parse_args()
     tallies = {name: Tally() for name in ("saltelli", "pce", "chaospy", "openturns")}
     print("| job | D | runs PCE | degree | terms | LOO | max |ST-exact| PCE | Saltelli |")
@@ -276,8 +292,10 @@ def main() -> None:
                 _, total = fitter(np.asarray(design), y)
                 tallies[name].add(samples, time.perf_counter() - t0, total, total_exact, saltelli)
     print()
-    print("| method | runs (max) | seconds (10 jobs) | import s | max |ST − exact| "
-          "| max |ST − Saltelli 8192| |")  # fmt: skip
+    print(
+        "| method | runs (max) | seconds (10 jobs) | import s | max |ST − exact| "
+        "| max |ST − Saltelli 8192| |"
+    )
     print("|---|---|---|---|---|---|")
     imports = {"chaospy": "chaospy", "openturns": "openturns"}
     base = tallies["saltelli"]
@@ -300,8 +318,10 @@ def main() -> None:
             whole_process('"pce"', out)
             sobol = min(whole_process('"sobol"', out) for _ in range(3))
             chaos = min(whole_process('"pce"', out) for _ in range(3))
-        print(f"\nwhole process, Tables 4+5: Sobol' {sobol:.2f} s, PCE {chaos:.2f} s, "
-              f"ratio {sobol / chaos:.1f}×")  # fmt: skip
+        print(
+            f"\nwhole process, Tables 4+5: Sobol' {sobol:.2f} s, PCE {chaos:.2f} s, "
+            f"ratio {sobol / chaos:.1f}×"
+        )
     print(f"load average: {Path('/proc/loadavg').read_text().split()[0]}")
 
 

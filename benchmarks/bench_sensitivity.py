@@ -246,8 +246,11 @@ def model_evaluation(rows: int = 200_000, n: int = 6) -> None:
     inertias = rng.uniform(1e-3, 1e-2, n)
     shared = (9.81, rng.normal(size=n), rng.normal(size=n), rng.normal(size=n))
     scaled = unit * (upper - lower) + lower
-    columns = (np.ascontiguousarray(scaled[:, :n]), np.ascontiguousarray(scaled[:, n:]),
-               np.tile(inertias, (rows, 1)))  # fmt: skip
+    columns = (
+        np.ascontiguousarray(scaled[:, :n]),
+        np.ascontiguousarray(scaled[:, n:]),
+        np.tile(inertias, (rows, 1)),
+    )
     best = {"lanes": np.inf, "scalar": np.inf}
     for _ in range(5):
         started = time.thread_time()
@@ -258,8 +261,10 @@ def model_evaluation(rows: int = 200_000, n: int = 6) -> None:
         best["scalar"] = min(best["scalar"], time.thread_time() - started)
     assert np.array_equal(lanes, scalar)
     lane_ns, scalar_ns = (best[k] / rows * 1e9 for k in ("lanes", "scalar"))
-    print(f"6R torques per robot, 1 thread, load {load()}: lanes {lane_ns:.1f} ns, scalar "
-          f"{scalar_ns:.1f} ns, ratio {scalar_ns / lane_ns:.2f} (identical doubles)")  # fmt: skip
+    print(
+        f"6R torques per robot, 1 thread, load {load()}: lanes {lane_ns:.1f} ns, scalar "
+        f"{scalar_ns:.1f} ns, ratio {scalar_ns / lane_ns:.2f} (identical doubles)"
+    )
 
 
 def main():

@@ -75,8 +75,11 @@ def checkout_of(commit: str, folder: Path) -> Iterator[Path]:
     """A detached ``git worktree`` of ``commit`` in ``folder`` whose ``package-dir`` folders
     (``kernels/``, ``presets/``) are linked where the package imports them, so that
     ``PYTHONPATH=folder`` imports that commit's planar-tui; removed after."""
-    subprocess.run(["git", "-C", str(REPO), "worktree", "add", "--detach", str(folder), commit],
-                   check=True, capture_output=True)  # fmt: skip
+    subprocess.run(
+        ["git", "-C", str(REPO), "worktree", "add", "--detach", str(folder), commit],
+        check=True,
+        capture_output=True,
+    )
     try:
         with (folder / "pyproject.toml").open("rb") as stream:
             mapped = tomllib.load(stream)["tool"]["setuptools"].get("package-dir", {})
@@ -84,8 +87,11 @@ def checkout_of(commit: str, folder: Path) -> Iterator[Path]:
             (folder / package.replace(".", "/")).symlink_to(folder / source)
         yield folder
     finally:
-        subprocess.run(["git", "-C", str(REPO), "worktree", "remove", "--force", str(folder)],
-                       check=False, capture_output=True)  # fmt: skip
+        subprocess.run(
+            ["git", "-C", str(REPO), "worktree", "remove", "--force", str(folder)],
+            check=False,
+            capture_output=True,
+        )
 
 
 def median_of(samples: list[tuple[float, float]]) -> tuple[float, float]:
@@ -117,18 +123,22 @@ def main() -> None:
         if not arguments.skip_run:
             out = str(Path(folder) / "out")
             cases["planar-tui run paper-b-table3 (warm)"] = (
-                [*cli, "run", "paper-b-table3", "--out-dir", out], env,
-            )  # fmt: skip
+                [*cli, "run", "paper-b-table3", "--out-dir", out],
+                env,
+            )
             cases["planar-tui run paper-b-table3 --job workspace[4] (warm)"] = (
-                [*cli, "run", "paper-b-table3", "--job", "workspace[4]", "--out-dir", out], env,
-            )  # fmt: skip
+                [*cli, "run", "paper-b-table3", "--job", "workspace[4]", "--out-dir", out],
+                env,
+            )
         cases = {name: case for name, case in cases.items() if arguments.only in name}
         other = None
         if arguments.against:
             other = stack.enter_context(checkout_of(arguments.against, Path(folder) / "other"))
-        print(f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}, "
-              f"{' '.join(cli)}; 1-min load before {load():.2f}"
-              + (f"; paired against {arguments.against}" if other else ""))  # fmt: skip
+        print(
+            f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}, "
+            f"{' '.join(cli)}; 1-min load before {load():.2f}"
+            + (f"; paired against {arguments.against}" if other else "")
+        )
         rows = []
         for name, (command, case_env) in cases.items():
             theirs_env = dict(case_env, PYTHONPATH=str(other)) if other else None
@@ -140,19 +150,30 @@ def main() -> None:
                 ours.append(timed(command, case_env))
                 if theirs_env is not None:
                     theirs.append(timed(command, theirs_env))
-            rows.append((name, *median_of(ours), *(median_of(theirs) if theirs else (0, 0)),
-                         load()))  # fmt: skip
+            rows.append(
+                (name, *median_of(ours), *(median_of(theirs) if theirs else (0, 0)), load())
+            )
     base_cpu = next((row[2] for row in rows if "(baseline)" in row[0]), float("nan"))
     width = max(len(name) for name, *_ in rows)
     paired = f"  {'their wall':>10}  {'their CPU':>9}  {'CPU ratio':>9}  {'wall ratio':>10}"
-    print(f"{'command':<{width}}  {'wall s':>7}  {'CPU s':>7}  {'CPU/baseline':>12}"
-          f"{paired if other else ''}  {'goal s':>6}  load")  # fmt: skip
+    print(
+        f"{'command':<{width}}  {'wall s':>7}  {'CPU s':>7}  {'CPU/baseline':>12}"
+        f"{paired if other else ''}  {'goal s':>6}  load"
+    )
     for name, wall, cpu, their_wall, their_cpu, after in rows:
         goal = GOALS_S.get(name)
-        ratios = (f"  {their_wall:10.3f}  {their_cpu:9.3f}  {cpu / their_cpu:9.3f}  "
-                  f"{wall / their_wall:10.3f}") if other else ""  # fmt: skip
-        print(f"{name:<{width}}  {wall:7.3f}  {cpu:7.3f}  {cpu / base_cpu:12.1f}{ratios}  "
-              f"{'' if goal is None else f'{goal:.2f}':>6}  {after:.2f}")  # fmt: skip
+        ratios = (
+            (
+                f"  {their_wall:10.3f}  {their_cpu:9.3f}  {cpu / their_cpu:9.3f}  "
+                f"{wall / their_wall:10.3f}"
+            )
+            if other
+            else ""
+        )
+        print(
+            f"{name:<{width}}  {wall:7.3f}  {cpu:7.3f}  {cpu / base_cpu:12.1f}{ratios}  "
+            f"{'' if goal is None else f'{goal:.2f}':>6}  {after:.2f}"
+        )
     print(f"(median of {arguments.runs} processes each; 1-min load after {load():.2f})")
 
 

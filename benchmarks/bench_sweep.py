@@ -105,19 +105,26 @@ def optimiser_overhead(folder: Path, text: str, client, sweep_overhead_ms: float
 
     optimisation = optimisation_from(folder, text)
     run_optimisation(optimisation, client=client)  # pymoo imported, the workers warm
-    print(f"\noptimiser loop, {optimisation.budget} trivial evaluations in generations of "
-          f"{optimisation.population} (goal <= 20 ms an evaluation)")  # fmt: skip
+    print(
+        f"\noptimiser loop, {optimisation.budget} trivial evaluations in generations of "
+        f"{optimisation.population} (goal <= 20 ms an evaluation)"
+    )
     print("| runner | wall s | compute ms/eval | overhead ms/eval | vs sweep per-task |")
     print("|---|---:|---:|---:|---:|")
     print(f"| sweep, 2 worker processes (baseline, above) | | | {sweep_overhead_ms:.3f} | 1.00x |")
-    for label, out_dir in (("2 worker processes", None), ("2 worker processes, checkpoint",
-                                                          folder / "out")):  # fmt: skip
-        wall_s, run = timed(lambda out_dir=out_dir: run_optimisation(
-            optimisation, client=client, out_dir=out_dir))  # fmt: skip
+    for label, out_dir in (
+        ("2 worker processes", None),
+        ("2 worker processes, checkpoint", folder / "out"),
+    ):
+        wall_s, run = timed(
+            lambda out_dir=out_dir: run_optimisation(optimisation, client=client, out_dir=out_dir)
+        )
         compute = statistics.mean(e.outcome.seconds for e in run.evaluations)
         overhead = 1e3 * (wall_s * 2 / len(run.evaluations) - compute)
-        print(f"| {label} | {wall_s:.3f} | {1e3 * compute:.3f} | {overhead:.3f} | "
-              f"{overhead / sweep_overhead_ms:.2f}x |")  # fmt: skip
+        print(
+            f"| {label} | {wall_s:.3f} | {1e3 * compute:.3f} | {overhead:.3f} | "
+            f"{overhead / sweep_overhead_ms:.2f}x |"
+        )
 
 
 def timed(function):
@@ -148,8 +155,9 @@ def main() -> None:
     parser.add_argument("--points", type=int, default=64)
     parser.add_argument("--precision", type=float, default=0.1)
     parser.add_argument("--trivial", type=int, default=400)
-    parser.add_argument("--optimise-only", action="store_true",
-                        help="the per-task and optimiser-loop tables only")  # fmt: skip
+    parser.add_argument(
+        "--optimise-only", action="store_true", help="the per-task and optimiser-loop tables only"
+    )
     args = parser.parse_args()
 
     from distributed import Client
@@ -183,8 +191,10 @@ def main() -> None:
                 f"| in-process (baseline) | {alone_s:.3f} | {1e3 * compute_s:.3f} | {overhead:.3f} |"
             )
             overhead = 1e3 * (spread_s * 2 / args.trivial - spread_compute)
-            print(f"| 2 worker processes | {spread_s:.3f} | {1e3 * spread_compute:.3f} | "
-                  f"{overhead:.3f} |")  # fmt: skip
+            print(
+                f"| 2 worker processes | {spread_s:.3f} | {1e3 * spread_compute:.3f} | "
+                f"{overhead:.3f} |"
+            )
             optimiser_overhead(folder, TRIVIAL.format(count=args.trivial), client, overhead)
             if args.optimise_only:
                 print(f"\nload after the runs: {load()}")
@@ -199,15 +209,21 @@ def main() -> None:
             two_cpu = (sum(client.run(time.process_time).values()) - workers_before) / two_s / 2
             assert without_seconds(two) == without_seconds(one)
             busy = sum(o.seconds for o in two.outcomes.values()) / two_s / 2
-        print(f"\n{args.points}-point workspace sweep, {per_point:.2f} s a point in-process "
-              "(goal >= 1.8x on 2 workers)")  # fmt: skip
+        print(
+            f"\n{args.points}-point workspace sweep, {per_point:.2f} s a point in-process "
+            "(goal >= 1.8x on 2 workers)"
+        )
         print("| workers | wall s | speed-up | CPU s per wall s, per process | busy |")
         print("|---|---:|---:|---:|---:|")
         print(f"| 1 (in-process, baseline) | {one_s:.2f} | 1.00x | {one_cpu:.2f} | |")
-        print(f"| 2, warm cluster | {two_s:.2f} | {one_s / two_s:.2f}x | {two_cpu:.2f} | "
-              f"{100 * busy:.0f} % |")  # fmt: skip
-        print(f"| 2, cluster start-up ({started_s:.2f} s) counted | {two_s + started_s:.2f} | "
-              f"{one_s / (two_s + started_s):.2f}x | | |")  # fmt: skip
+        print(
+            f"| 2, warm cluster | {two_s:.2f} | {one_s / two_s:.2f}x | {two_cpu:.2f} | "
+            f"{100 * busy:.0f} % |"
+        )
+        print(
+            f"| 2, cluster start-up ({started_s:.2f} s) counted | {two_s + started_s:.2f} | "
+            f"{one_s / (two_s + started_s):.2f}x | | |"
+        )
 
         print("\nworkers table (goal >= 12x on 16)")
         print("| workers | wall s | speed-up |")

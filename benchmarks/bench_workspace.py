@@ -172,9 +172,14 @@ INTERVAL_FORMS = ("natural", "mean-value", "slope")
 def wide_spec(form, precision, strategy, **extra):
     limits, phi = WIDE
     return WorkspaceSpec(
-        joint_limits_deg=limits, orientation_deg=phi, precision_cm=precision, form=form,
-        strategy=strategy, geometric_reference=False, **extra,
-    )  # fmt: skip
+        joint_limits_deg=limits,
+        orientation_deg=phi,
+        precision_cm=precision,
+        form=form,
+        strategy=strategy,
+        geometric_reference=False,
+        **extra,
+    )
 
 
 def timed_or_budget(s):
@@ -198,8 +203,9 @@ def legwise_vs_joint(joint_at_fine: bool) -> None:
             timed(wide_spec(form, 4.0, "legwise"))
             timed(wide_spec(form, 4.0, "joint"))
         phi = WIDE[1]
-        g = geometric_area(ROBOT, wide_spec("geometric", 1.0, "legwise").limits_rad,
-                           math.radians(phi))  # fmt: skip
+        g = geometric_area(
+            ROBOT, wide_spec("geometric", 1.0, "legwise").limits_rad, math.radians(phi)
+        )
         print(f"\n## Leg-wise vs joint, one thread (load before: {load()})\n")
         print(f"120° case: exact area {g.inner_cm2:.4f}-{g.outer_cm2:.4f} cm² (shapely bracket)\n")
         print(
@@ -216,14 +222,18 @@ def legwise_vs_joint(joint_at_fine: bool) -> None:
                 else:
                     j_s, j = timed_or_budget(wide_spec(form, eps, "joint"))
                 if j is None:
-                    joint = ("–", "–", "–", "–") if j_s is None else (
-                        f"{j_s:.1f} (stopped)", "> 50,000,000 (budget)", "–", "–")  # fmt: skip
+                    joint = (
+                        ("–", "–", "–", "–")
+                        if j_s is None
+                        else (f"{j_s:.1f} (stopped)", "> 50,000,000 (budget)", "–", "–")
+                    )
                 else:
                     joint = (
-                        f"{j_s:.2f}", f"{j.boxes_processed:,}",
+                        f"{j_s:.2f}",
+                        f"{j.boxes_processed:,}",
                         f"[{j.area_inside_cm2:.2f}, {j.area_kept_cm2:.2f}]",
                         f"{j.boxes_processed / lw.boxes_processed:,.0f}",
-                    )  # fmt: skip
+                    )
                 print(
                     f"| 120° | {form} | {eps:g} | {lw_s:.3f} | {lw.xy_boxes:,} "
                     f"| {lw.boxes_processed:,} | [{lw.area_inside_cm2:.2f}, {lw.area_kept_cm2:.2f}] "
@@ -297,9 +307,10 @@ def by_threads(s, counts, runs):
             outs[n] = out
     numba.set_num_threads(counts[-1])
     same = all(
-        np.array_equal(outs[n].boxes, outs[1].boxes) and np.array_equal(outs[n].status, outs[1].status)
+        np.array_equal(outs[n].boxes, outs[1].boxes)
+        and np.array_equal(outs[n].status, outs[1].status)
         for n in counts
-    )  # fmt: skip
+    )
     return best, outs, same
 
 
@@ -314,10 +325,14 @@ def parallel_paving(precision: float = 0.008, runs: int = 3) -> None:
     best, outs, same = by_threads(s, counts, runs)
     share = _kernel_share(s)
     print(f"\n## Parallel leg-wise paving (120° case, mean-value, ε = {precision:g} cm)\n")
-    print(f"{os.cpu_count()} CPUs; load average before {before}, after {load()}; "
-          f"same boxes and areas for every thread count: {same}\n")  # fmt: skip
-    print(f"CPU time in the parallel kernel on one thread: {100 * share:.1f} % (Amdahl bound "
-          f"on 2 threads: {1 / (1 - share + share / 2):.2f}x)\n")  # fmt: skip
+    print(
+        f"{os.cpu_count()} CPUs; load average before {before}, after {load()}; "
+        f"same boxes and areas for every thread count: {same}\n"
+    )
+    print(
+        f"CPU time in the parallel kernel on one thread: {100 * share:.1f} % (Amdahl bound "
+        f"on 2 threads: {1 / (1 - share + share / 2):.2f}x)\n"
+    )
     print("| threads | best of 3 (s) | speed-up | leg boxes | [inside, kept] cm² |")
     print("|---:|---:|---:|---:|---|")
     for n in counts:
@@ -340,15 +355,21 @@ def joint_threads(runs: int = 3) -> None:
     counts = thread_counts()
     before = load()
     print("\n## Paper B's bisection (joint strategy) on every thread: Table 3 at ε = 0.1172 cm\n")
-    print("| form | boxes | 1 thread, no memo s | "
-          + " | ".join(f"{n} thread(s) s" for n in counts)
-          + f" | memo speed-up | speed-up on {counts[-1]} | same boxes |")  # fmt: skip
+    print(
+        "| form | boxes | 1 thread, no memo s | "
+        + " | ".join(f"{n} thread(s) s" for n in counts)
+        + f" | memo speed-up | speed-up on {counts[-1]} | same boxes |"
+    )
     print("|---|---:|---:|" + "---:|" * len(counts) + "---:|---:|---|")
     totals = dict.fromkeys(counts, 0.0)
     total_plain = 0.0
     memo_slots = bisection3rrr.MEMO_SLOTS
-    for form, extra in (("natural", {}), ("natural", {"expanded": True}), ("slope", {}),
-                        ("mean-value", {})):  # fmt: skip
+    for form, extra in (
+        ("natural", {}),
+        ("natural", {"expanded": True}),
+        ("slope", {}),
+        ("mean-value", {}),
+    ):
         s = spec(3, form, refine_precision_cm=None, **extra)
         bisection3rrr.MEMO_SLOTS = 0
         try:
@@ -363,11 +384,15 @@ def joint_threads(runs: int = 3) -> None:
             totals[n] += best[n]
         name = form + (" (expanded)" if extra else "")
         cells = " | ".join(f"{best[n]:.3f}" for n in counts)
-        print(f"| {name} | {outs[1].boxes_processed:,} | {plain[1]:.3f} | {cells} | "
-              f"{plain[1] / best[1]:.2f}x | {best[1] / best[counts[-1]]:.2f}x | {same} |")  # fmt: skip
+        print(
+            f"| {name} | {outs[1].boxes_processed:,} | {plain[1]:.3f} | {cells} | "
+            f"{plain[1] / best[1]:.2f}x | {best[1] / best[counts[-1]]:.2f}x | {same} |"
+        )
     cells = " | ".join(f"{totals[n]:.3f}" for n in counts)
-    print(f"| all four | | {total_plain:.3f} | {cells} | {total_plain / totals[1]:.2f}x | "
-          f"{totals[1] / totals[counts[-1]]:.2f}x | |")  # fmt: skip
+    print(
+        f"| all four | | {total_plain:.3f} | {cells} | {total_plain / totals[1]:.2f}x | "
+        f"{totals[1] / totals[counts[-1]]:.2f}x | |"
+    )
     print(f"\nload average before {before}, after {load()}")
 
 
@@ -425,8 +450,18 @@ def other_kinds() -> None:
             text = text.replace('boxes_output = "', 'geometric_reference = false\n# "')
             path = Path(folder) / f"{preset}.toml"
             path.write_text(text, encoding="utf-8")
-            command = [sys.executable, "-m", "planar_tui", kind, str(path), "--job",
-                       f"{kind}[1]", "--no-map", "--out-dir", folder]  # fmt: skip
+            command = [
+                sys.executable,
+                "-m",
+                "planar_tui",
+                kind,
+                str(path),
+                "--job",
+                f"{kind}[1]",
+                "--no-map",
+                "--out-dir",
+                folder,
+            ]
             subprocess.run(command, check=True, capture_output=True, cwd=REPO)  # warm cache
             print(f"| {kind} whole process | {wall(command):.2f} | 1 |")
     print("\n| kind | paving s (in process) | boxes | bracket cm² | exact cm² | width % |")
@@ -441,9 +476,11 @@ def other_kinds() -> None:
         g = compute_planar(job.robot, job.spec, BoxBudget(job, Progress())).geometric
         held = o.area_inside_cm2 <= g.inner_cm2 and g.outer_cm2 <= o.area_kept_cm2
         width = 100.0 * (o.area_kept_cm2 - o.area_inside_cm2) / g.area_cm2
-        print(f"| {kind} | {seconds:.3f} | {o.boxes_processed:,} | [{o.area_inside_cm2:.1f}, "
-              f"{o.area_kept_cm2:.1f}]{'' if held else ' MISSES'} | {g.area_cm2:.2f} | "
-              f"{width:.2f} |")  # fmt: skip
+        print(
+            f"| {kind} | {seconds:.3f} | {o.boxes_processed:,} | [{o.area_inside_cm2:.1f}, "
+            f"{o.area_kept_cm2:.1f}]{'' if held else ' MISSES'} | {g.area_cm2:.2f} | "
+            f"{width:.2f} |"
+        )
 
 
 def whole_process() -> None:
@@ -458,23 +495,41 @@ def whole_process() -> None:
         ("Table 3 mean-value eps=0.1172, leg-wise", 3, "mean-value", None, "", "–"),
         ("Table 3 arc-distance eps=0.1172", 3, "arc-distance", None, "", "–"),
     ] + [
-        (f"Table {t} arc-distance + refinement", t, "arc-distance",
-         0.03125 if t == 5 else None, f"refine_precision_cm = {REFINE[t]}\n", "1")
+        (
+            f"Table {t} arc-distance + refinement",
+            t,
+            "arc-distance",
+            0.03125 if t == 5 else None,
+            f"refine_precision_cm = {REFINE[t]}\n",
+            "1",
+        )
         for t in CASES
-    ]  # fmt: skip
+    ]
     with tempfile.TemporaryDirectory() as folder:
         for label, table, form, eps, extra, target in runs:
             limits, phi, box, default_eps = CASES[table]
             path = Path(folder) / f"bench-{table}-{form}.toml"
             path.write_text(
                 PRESET.format(
-                    limits=[list(r) for r in limits], phi=phi, eps=eps or default_eps,
-                    box=[list(r) for r in box], form=form, extra=extra,
+                    limits=[list(r) for r in limits],
+                    phi=phi,
+                    eps=eps or default_eps,
+                    box=[list(r) for r in box],
+                    form=form,
+                    extra=extra,
                 ),
                 encoding="utf-8",
-            )  # fmt: skip
-            command = [sys.executable, "-m", "planar_tui", "workspace", str(path),
-                       "--no-map", "--out-dir", folder]  # fmt: skip
+            )
+            command = [
+                sys.executable,
+                "-m",
+                "planar_tui",
+                "workspace",
+                str(path),
+                "--no-map",
+                "--out-dir",
+                folder,
+            ]
             subprocess.run(command, check=True, capture_output=True, cwd=REPO)  # warm cache
             print(f"| {label} | {wall(command):.2f} | {target} |")
 
@@ -491,14 +546,20 @@ def tolerance_goal(precision: float = 0.05, runs: int = 3) -> None:
     def case_spec(limits_phi, form, **extra):
         limits, phi = limits_phi
         return WorkspaceSpec(
-            joint_limits_deg=limits, orientation_deg=phi, precision_cm=precision, form=form,
-            geometric_reference=False, **extra,
-        )  # fmt: skip
+            joint_limits_deg=limits,
+            orientation_deg=phi,
+            precision_cm=precision,
+            form=form,
+            geometric_reference=False,
+            **extra,
+        )
 
     print(f"\n## Tolerance-certified workspace at ε = {precision} cm (goal: <= 3x nominal)\n")
     print(f"load before: {load()}\n")
-    print("| case | form | tolerance | mode | nominal s | certified s | ratio | "
-          "nominal [inside, kept] cm² | certified [inside, kept] cm² |")  # fmt: skip
+    print(
+        "| case | form | tolerance | mode | nominal s | certified s | ratio | "
+        "nominal [inside, kept] cm² | certified [inside, kept] cm² |"
+    )
     print("|---|---|---|---|---|---|---|---|---|")
     worst = 0.0
     for name, limits_phi in cases.items():
@@ -526,8 +587,21 @@ if __name__ == "__main__":
     import argparse
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--part", choices=("all", "paper", "legwise", "parallel", "joint", "cli",
-                                            "kinds", "fivebar", "tolerance"), default="all")  # fmt: skip
+    parser.add_argument(
+        "--part",
+        choices=(
+            "all",
+            "paper",
+            "legwise",
+            "parallel",
+            "joint",
+            "cli",
+            "kinds",
+            "fivebar",
+            "tolerance",
+        ),
+        default="all",
+    )
     parser.add_argument(
         "--quick",
         action="store_true",

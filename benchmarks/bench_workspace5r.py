@@ -51,9 +51,12 @@ def baseline_seconds() -> float:
     from planar_tui.workspace.rrr.robot import Robot3RRR
 
     spec = WorkspaceSpec(
-        joint_limits_deg=((20, 70), (110, 160), (245, 295)), precision_cm=EPS,
-        form="arc-distance", search_box_cm=((0, 120), (0, 120)), geometric_reference=False,
-    )  # fmt: skip
+        joint_limits_deg=((20, 70), (110, 160), (245, 295)),
+        precision_cm=EPS,
+        form="arc-distance",
+        search_box_cm=((0, 120), (0, 120)),
+        geometric_reference=False,
+    )
 
     class Job:
         preset_path, label, key = "bench", "bench:workspace", "workspace"
@@ -81,9 +84,13 @@ def in_process() -> None:
     print("|---|---|---|---|---|---|---|")
     for job in load_preset(PRESET).jobs:
         spec = dataclasses.replace(
-            job.spec, precision_cm=EPS, geometric_reference=False, singularities=False,
-            singularity_free_circle=None, singularity_precision_cm=None,
-        )  # fmt: skip
+            job.spec,
+            precision_cm=EPS,
+            geometric_reference=False,
+            singularities=False,
+            singularity_free_circle=None,
+            singularity_precision_cm=None,
+        )
         job = dataclasses.replace(job, spec=spec)
 
         def run(job=job):
@@ -107,11 +114,15 @@ def in_process() -> None:
 #: same conditions (load 13.4-13.9): 1.72, 1.61, 1.88, 1.96 (any mode) and 2.20, 1.92, 2.63,
 #: 2.42 (mode ``+-``; boxes 1.01, 1.02, 1.18, 1.25).
 BEFORE = {
-    ("any", 0.01, "all"): (1.79, 0.99), ("any", 0.01, "some"): (1.60, 1.01),
-    ("any", 0.1, "all"): (1.92, 1.00), ("any", 0.1, "some"): (1.90, 1.22),
-    ("+-", 0.01, "all"): (2.36, 1.13), ("+-", 0.01, "some"): (2.34, 1.29),
-    ("+-", 0.1, "all"): (5.02, 2.37), ("+-", 0.1, "some"): (7.05, 3.91),
-}  # fmt: skip
+    ("any", 0.01, "all"): (1.79, 0.99),
+    ("any", 0.01, "some"): (1.60, 1.01),
+    ("any", 0.1, "all"): (1.92, 1.00),
+    ("any", 0.1, "some"): (1.90, 1.22),
+    ("+-", 0.01, "all"): (2.36, 1.13),
+    ("+-", 0.01, "some"): (2.34, 1.29),
+    ("+-", 0.1, "all"): (5.02, 2.37),
+    ("+-", 0.1, "some"): (7.05, 3.91),
+}
 
 
 def tolerance(runs: int = 5) -> None:
@@ -131,15 +142,21 @@ def tolerance(runs: int = 5) -> None:
 
     print(f"\n## Five-bar, tolerance-certified at ε = {EPS} cm (goal: <= 3x nominal)\n")
     print(f"load before: {load()}\n")
-    print("| mode | tolerance | tolerance_mode | nominal s | certified s | ratio | boxes ratio | "
-          "before: ratio, boxes ratio | certified [inside, kept] cm² |")  # fmt: skip
+    print(
+        "| mode | tolerance | tolerance_mode | nominal s | certified s | ratio | boxes ratio | "
+        "before: ratio, boxes ratio | certified [inside, kept] cm² |"
+    )
     print("|---|---|---|---|---|---|---|---|---|")
     worst = 0.0
     for job in load_preset(PRESET).jobs:
         nominal = dataclasses.replace(
-            job.spec, precision_cm=EPS, geometric_reference=False, singularities=False,
-            singularity_free_circle=None, singularity_precision_cm=None,
-        )  # fmt: skip
+            job.spec,
+            precision_cm=EPS,
+            geometric_reference=False,
+            singularities=False,
+            singularity_free_circle=None,
+            singularity_precision_cm=None,
+        )
         for width, mode in ((0.01, "all"), (0.01, "some"), (0.1, "all"), (0.1, "some")):
             certified = dataclasses.replace(nominal, tolerance_cm=width, tolerance_mode=mode)
             runners = []
@@ -187,8 +204,16 @@ def whole_process() -> None:
                 robot + "\n[[workspace5r]]\ngeometric_reference = false" + "\n".join(body),
                 encoding="utf-8",
             )
-            command = [sys.executable, "-m", "planar_tui", "workspace5r", str(path), "--no-map",
-                       "--out-dir", folder]  # fmt: skip
+            command = [
+                sys.executable,
+                "-m",
+                "planar_tui",
+                "workspace5r",
+                str(path),
+                "--no-map",
+                "--out-dir",
+                folder,
+            ]
             subprocess.run(command, check=True, capture_output=True, cwd=REPO)  # warm cache
             print(f"| five-bar {label}, ε = {EPS} cm | {wall(command):.2f} | 1 |")
 

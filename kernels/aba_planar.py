@@ -158,9 +158,17 @@ def aba_forward_dynamics(
     work = np.empty((ABA_WORK_ROWS, n))
     alpha = np.empty((1, n))
     aba_rows(
-        lengths_m, masses_kg, inertias_kgm2, gravity_m_s2, theta_rad, omega_rad_s, tau_Nm,
-        work, alpha, 0,
-    )  # fmt: skip
+        lengths_m,
+        masses_kg,
+        inertias_kgm2,
+        gravity_m_s2,
+        theta_rad,
+        omega_rad_s,
+        tau_Nm,
+        work,
+        alpha,
+        0,
+    )
     return alpha[0]
 
 
@@ -198,11 +206,29 @@ def forward_dynamics_rows_auto(
     arrays from :func:`auto_work`."""
     if lengths_m.shape[0] >= ABA_MIN_LINKS:
         aba_rows(
-            lengths_m, masses_kg, inertias_kgm2, gravity_m_s2, theta_rad, omega_rad_s, tau_Nm,
-            work, alpha_rad_s2, orow,
-        )  # fmt: skip
+            lengths_m,
+            masses_kg,
+            inertias_kgm2,
+            gravity_m_s2,
+            theta_rad,
+            omega_rad_s,
+            tau_Nm,
+            work,
+            alpha_rad_s2,
+            orow,
+        )
     else:
         _forward_dynamics_rows(
-            lengths_m, masses_kg, inertias_kgm2, gravity_m_s2, theta_rad, omega_rad_s, tau_Nm,
-            work, matrix, alpha_rad_s2, orow, True,
-        )  # fmt: skip
+            lengths_m,
+            masses_kg,
+            inertias_kgm2,
+            gravity_m_s2,
+            theta_rad,
+            omega_rad_s,
+            tau_Nm,
+            work,
+            matrix,
+            alpha_rad_s2,
+            orow,
+            True,
+        )

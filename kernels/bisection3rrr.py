@@ -60,9 +60,14 @@ def memo_slot(xlo, xhi, ylo, yhi, tlo, thi, slots):
     ``(x, y, θ)`` box: the fractional part of a mix of its bounds times the golden ratio's
     inverse (Knuth's multiplicative hashing). Any slot is correct, since a row is used
     only when all six bounds match; the mix only spreads the boxes."""
-    mix = (xlo * 0.7548776662466927 + xhi * 0.5698402909980532 + ylo * 0.3247179572447460
-           + yhi * 0.8191725133961645 + tlo * 97.41935483870968
-           + thi * 61.80339887498949)  # fmt: skip
+    mix = (
+        xlo * 0.7548776662466927
+        + xhi * 0.5698402909980532
+        + ylo * 0.3247179572447460
+        + yhi * 0.8191725133961645
+        + tlo * 97.41935483870968
+        + thi * 61.80339887498949
+    )
     f = mix * 0.6180339887498949
     return int((f - math.floor(f)) * slots) & (slots - 1)
 
@@ -90,9 +95,14 @@ def leg_excludes_zero(form, leg, stack, row, p, memo):
     slot = 0
     if slots > 0:
         slot = memo_slot(xlo, xhi, ylo, yhi, tlo, thi, slots)
-        if (memo[leg, slot, 0] == xlo and memo[leg, slot, 1] == xhi
-                and memo[leg, slot, 2] == ylo and memo[leg, slot, 3] == yhi
-                and memo[leg, slot, 4] == tlo and memo[leg, slot, 5] == thi):  # fmt: skip
+        if (
+            memo[leg, slot, 0] == xlo
+            and memo[leg, slot, 1] == xhi
+            and memo[leg, slot, 2] == ylo
+            and memo[leg, slot, 3] == yhi
+            and memo[leg, slot, 4] == tlo
+            and memo[leg, slot, 5] == thi
+        ):
             return memo[leg, slot, 6] != 0.0
     e = ENDS + 4 * leg  # the ends' libm values: no sin or cos computed here
     slo, shi, clo, chi = isincos_ends(
@@ -129,8 +139,12 @@ def kept_before(stack, row, memo):
     ylo = stack[row, 2]
     yhi = stack[row, 3]
     slot = memo_slot(xlo, xhi, ylo, yhi, 0.0, 0.0, slots)
-    if (memo[KEPT_PLANE, slot, 0] == xlo and memo[KEPT_PLANE, slot, 1] == xhi
-            and memo[KEPT_PLANE, slot, 2] == ylo and memo[KEPT_PLANE, slot, 3] == yhi):  # fmt: skip
+    if (
+        memo[KEPT_PLANE, slot, 0] == xlo
+        and memo[KEPT_PLANE, slot, 1] == xhi
+        and memo[KEPT_PLANE, slot, 2] == ylo
+        and memo[KEPT_PLANE, slot, 3] == yhi
+    ):
         return True
     memo[KEPT_PLANE, slot, 0] = xlo
     memo[KEPT_PLANE, slot, 1] = xhi
@@ -140,8 +154,7 @@ def kept_before(stack, row, memo):
 
 
 @kernel
-def bisect_chunk(form, p, precision, angle_scale, stack, n_stack, kept, n_kept, max_boxes,
-                 memo):  # fmt: skip
+def bisect_chunk(form, p, precision, angle_scale, stack, n_stack, kept, n_kept, max_boxes, memo):
     """Run at most ``max_boxes`` steps of Algorithm 1 on an explicit stack (no recursion).
 
     Pop a box; if :math:`0 \\notin F_i` for some leg, discard it (only the leg whose angle
@@ -263,8 +276,20 @@ def share_work(stacks, n_stack):
 
 
 @kernel(parallel=True)
-def bisect_round(form, p, precision, angle_scale, stacks, n_stack, kept, n_kept, max_boxes,
-                 processed, codes, memos):  # fmt: skip
+def bisect_round(
+    form,
+    p,
+    precision,
+    angle_scale,
+    stacks,
+    n_stack,
+    kept,
+    n_kept,
+    max_boxes,
+    processed,
+    codes,
+    memos,
+):
     """One round of :func:`bisect_blocks`: :func:`bisect_chunk` on every block ``b`` at
     once (``prange``), each on its own stack ``stacks[b, :n_stack[b]]`` and kept rows
     ``kept[b, n_kept[b]:]``, until it has processed ``max_boxes`` boxes in all
@@ -280,9 +305,17 @@ def bisect_round(form, p, precision, angle_scale, stacks, n_stack, kept, n_kept,
         code = DONE
         while done < max_boxes:
             ns, nk, step, code = bisect_chunk(
-                form, p, precision, angle_scale, stacks[b], ns, kept[b], nk,
-                min(SHARE_QUOTA, max_boxes - done), memos[b],
-            )  # fmt: skip
+                form,
+                p,
+                precision,
+                angle_scale,
+                stacks[b],
+                ns,
+                kept[b],
+                nk,
+                min(SHARE_QUOTA, max_boxes - done),
+                memos[b],
+            )
             done += step
             if code != CHUNK_LIMIT or hungry[0] != 0:
                 break
@@ -297,8 +330,20 @@ def bisect_round(form, p, precision, angle_scale, stacks, n_stack, kept, n_kept,
 
 
 @kernel
-def bisect_blocks(form, p, precision, angle_scale, stacks, n_stack, kept, n_kept, max_boxes,
-                  processed, codes, memos):  # fmt: skip
+def bisect_blocks(
+    form,
+    p,
+    precision,
+    angle_scale,
+    stacks,
+    n_stack,
+    kept,
+    n_kept,
+    max_boxes,
+    processed,
+    codes,
+    memos,
+):
     """Algorithm 1 on every block at once for at most ``max_boxes`` boxes a block: rounds
     of :func:`bisect_round`, the work shared out (:func:`share_work`) before each, until
     every stack is empty, a block has processed ``max_boxes`` boxes, or a block's kept
@@ -315,8 +360,20 @@ def bisect_blocks(form, p, precision, angle_scale, stacks, n_stack, kept, n_kept
         codes[b] = DONE
     while True:
         share_work(stacks, n_stack)
-        bisect_round(form, p, precision, angle_scale, stacks, n_stack, kept, n_kept,
-                     max_boxes, processed, codes, memos)  # fmt: skip
+        bisect_round(
+            form,
+            p,
+            precision,
+            angle_scale,
+            stacks,
+            n_stack,
+            kept,
+            n_kept,
+            max_boxes,
+            processed,
+            codes,
+            memos,
+        )
         if n_stack.sum() == 0:
             return
         for b in range(stacks.shape[0]):

@@ -51,8 +51,9 @@ def _make_parameters(unit, lower, upper, inertias_kgm2, rod_inertias, params):
 
 
 @cuda.jit
-def _advance(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n_steps, scratch,
-             matrix):  # fmt: skip
+def _advance(
+    params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n_steps, scratch, matrix
+):
     s = cuda.grid(1)
     if s < params.shape[0]:
         p = params[s]
@@ -63,9 +64,21 @@ def _advance(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n_
         omega = scratch[s, 18]
         for _ in range(n_steps):
             _rk4_step(
-                p[0], p[1], p[2], gravity_m_s2, torque_Nm, theta_rad[s], omega_rad_s[s],
-                step_s, work, matrix[s], d_theta, d_omega, theta, omega,
-            )  # fmt: skip
+                p[0],
+                p[1],
+                p[2],
+                gravity_m_s2,
+                torque_Nm,
+                theta_rad[s],
+                omega_rad_s[s],
+                step_s,
+                work,
+                matrix[s],
+                d_theta,
+                d_omega,
+                theta,
+                omega,
+            )
 
 
 #: Threads per block.
@@ -79,8 +92,18 @@ class CudaBatch:
     torque)``, then :meth:`advance` in chunks and :meth:`angles` to copy θ (S, n) back.
     """
 
-    def __init__(self, unit, lower, upper, inertias_kgm2, rod_inertias, theta_rad, omega_rad_s,
-                 gravity_m_s2, torque_Nm):  # fmt: skip
+    def __init__(
+        self,
+        unit,
+        lower,
+        upper,
+        inertias_kgm2,
+        rod_inertias,
+        theta_rad,
+        omega_rad_s,
+        gravity_m_s2,
+        torque_Nm,
+    ):
         import numpy as np
 
         samples = unit.shape[0]
@@ -109,9 +132,16 @@ class CudaBatch:
         """Take ``n_steps`` RK4 steps of every robot (waits for the GPU)."""
         if self.samples and n_steps:
             _advance[self.blocks, THREADS](
-                self.params, self.gravity_m_s2, self.torque, self.theta, self.omega,
-                float(step_s), int(n_steps), self.scratch, self.matrix,
-            )  # fmt: skip
+                self.params,
+                self.gravity_m_s2,
+                self.torque,
+                self.theta,
+                self.omega,
+                float(step_s),
+                int(n_steps),
+                self.scratch,
+                self.matrix,
+            )
             cuda.synchronize()
 
     def angles(self):

@@ -89,8 +89,7 @@ def _link_trig(theta, i, acc, row, trig):
 
 
 @kernel
-def _noc_lanes(params, gravity_m_s2, tau_Nm, theta, omega, work, matrix, alpha, stage, acc,
-               trig):  # fmt: skip
+def _noc_lanes(params, gravity_m_s2, tau_Nm, theta, omega, work, matrix, alpha, stage, acc, trig):
     r""":func:`kernels.dynamics._forward_dynamics_rows` (NOC mass matrix + ``LDLᵀ``) for
     every lane: ``params`` (3, n, L) lengths, masses, inertias, state ``theta``, ``omega``
     (n, L), shared torques (n,), result into ``alpha[stage]`` (n, L); flat scratch ``work``
@@ -303,19 +302,20 @@ def _aba_lanes(params, gravity_m_s2, tau_Nm, theta, omega, work, alpha, stage, a
 
 
 @kernel
-def _forward_dynamics_lanes(params, gravity_m_s2, tau_Nm, theta, omega, work, matrix, alpha,
-                            stage, acc, trig):  # fmt: skip
+def _forward_dynamics_lanes(
+    params, gravity_m_s2, tau_Nm, theta, omega, work, matrix, alpha, stage, acc, trig
+):
     """The scalar kernels' choice of algorithm (:func:`kernels.aba_planar.forward_dynamics_rows_auto`)."""
     if theta.shape[0] >= ABA_MIN_LINKS:
         _aba_lanes(params, gravity_m_s2, tau_Nm, theta, omega, work, alpha, stage, acc, trig)
     else:
-        _noc_lanes(params, gravity_m_s2, tau_Nm, theta, omega, work, matrix, alpha, stage, acc,
-                   trig)  # fmt: skip
+        _noc_lanes(
+            params, gravity_m_s2, tau_Nm, theta, omega, work, matrix, alpha, stage, acc, trig
+        )
 
 
 @kernel
-def rk4_step_lanes(params, gravity_m_s2, tau_Nm, q, w, step_s, work, matrix, dq, dw, qs,
-                   acc, trig):  # fmt: skip
+def rk4_step_lanes(params, gravity_m_s2, tau_Nm, q, w, step_s, work, matrix, dq, dw, qs, acc, trig):
     r""":func:`kernels.rk4.rk4_step` for every lane, in place on ``q``, ``w`` (n, L):
 
     .. math:: k_1 = f(x_k),\; k_2 = f(x_k + \tfrac h2 k_1),\; k_3 = f(x_k + \tfrac h2 k_2),\;
@@ -332,8 +332,9 @@ def rk4_step_lanes(params, gravity_m_s2, tau_Nm, q, w, step_s, work, matrix, dq,
     # compile the forward dynamics (and everything below it) twice, once for Literal[int](0).
     for stage in range(4):
         if stage == 0:
-            _forward_dynamics_lanes(params, gravity_m_s2, tau_Nm, q, w, work, matrix, dw, stage,
-                                    acc, trig)  # fmt: skip
+            _forward_dynamics_lanes(
+                params, gravity_m_s2, tau_Nm, q, w, work, matrix, dw, stage, acc, trig
+            )
             continue
         factor = step_s if stage == 3 else half
         for i in range(n):
@@ -345,8 +346,9 @@ def rk4_step_lanes(params, gravity_m_s2, tau_Nm, q, w, step_s, work, matrix, dq,
                 for lane in range(LANES):
                     qs[i, lane] = q[i, lane] + factor * dq[stage - 1, i, lane]
                     dq[stage, i, lane] = w[i, lane] + factor * dw[stage - 1, i, lane]
-        _forward_dynamics_lanes(params, gravity_m_s2, tau_Nm, qs, dq[stage], work, matrix, dw,
-                                stage, acc, trig)  # fmt: skip
+        _forward_dynamics_lanes(
+            params, gravity_m_s2, tau_Nm, qs, dq[stage], work, matrix, dw, stage, acc, trig
+        )
     for i in range(n):
         for lane in range(LANES):
             q[i, lane] += sixth * (
@@ -358,8 +360,7 @@ def rk4_step_lanes(params, gravity_m_s2, tau_Nm, q, w, step_s, work, matrix, dq,
 
 
 @kernel(parallel=True)
-def rk4_lanes(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n_steps,
-              fused=True):  # fmt: skip
+def rk4_lanes(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n_steps, fused=True):
     r"""Advance every robot s of ``params`` (S, 3, n) by ``n_steps`` RK4 steps in place, in
     blocks of :data:`LANES` robots (module docstring); same arguments and results (to
     round-off) as :func:`kernels.motion_rk4.rk4_batch`. Chunking in time changes no bit.
@@ -400,15 +401,17 @@ def rk4_lanes(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n
         next_w = np.empty(n * LANES)
         for _ in range(n_steps):
             if fused and n == FUSED_LINKS:
-                beyond = rk4_step_6(flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s,
-                                    next_q, next_w)  # fmt: skip
+                beyond = rk4_step_6(
+                    flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s, next_q, next_w
+                )
                 if beyond == 0:
                     for k in range(n * LANES):
                         flat_q[k] = next_q[k]
                         flat_w[k] = next_w[k]
                     continue
-            rk4_step_lanes(p, gravity_m_s2, torque_Nm, q, w, step_s, work, matrix, dq, dw, qs,
-                           acc, trig)  # fmt: skip
+            rk4_step_lanes(
+                p, gravity_m_s2, torque_Nm, q, w, step_s, work, matrix, dq, dw, qs, acc, trig
+            )
         for lane in range(count):
             for i in range(n):
                 theta_rad[first + lane, i] = q[i, lane]

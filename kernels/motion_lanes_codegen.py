@@ -27,8 +27,11 @@ order, link by link; only the names change.
 def _forward_dynamics(n: int) -> list[str]:
     """Body of ``_fd``: NOC mass matrix + ``LDLᵀ`` of :func:`kernels.motion_lanes._noc_lanes`."""
     lines = [
-        *(f"length{i}, mass{i}, inertia{i}, tau{i}, q{i}, w{i} = "
-          f"length[{i}], mass[{i}], inertia[{i}], tau[{i}], q[{i}], w[{i}]" for i in range(n)),
+        *(
+            f"length{i}, mass{i}, inertia{i}, tau{i}, q{i}, w{i} = "
+            f"length[{i}], mass[{i}], inertia[{i}], tau[{i}], q[{i}], w[{i}]"
+            for i in range(n)
+        ),
         "beyond = 0",
         "phi = 0.0",
         "rate = 0.0",
@@ -36,7 +39,7 @@ def _forward_dynamics(n: int) -> list[str]:
         "acc_y = gravity_m_s2",
         "px = 0.0",
         "py = 0.0",
-    ]  # fmt: skip
+    ]
     for i in range(n):
         lines += [
             f"phi = phi + q{i}",
@@ -55,8 +58,15 @@ def _forward_dynamics(n: int) -> list[str]:
             f"px += ax{i}",
             f"py += ay{i}",
         ]
-    lines += ["big_fx = 0.0", "big_fy = 0.0", "bias = 0.0", "outer_mass = 0.0", "hx = 0.0",
-              "hy = 0.0", "diagonal = 0.0"]  # fmt: skip
+    lines += [
+        "big_fx = 0.0",
+        "big_fy = 0.0",
+        "bias = 0.0",
+        "outer_mass = 0.0",
+        "hx = 0.0",
+        "hy = 0.0",
+        "diagonal = 0.0",
+    ]
     for k in range(n - 1, -1, -1):
         lines += [
             f"bias += 0.5 * (ax{k} * fy{k} - ay{k} * fx{k}) + ax{k} * big_fy - ay{k} * big_fx",
@@ -78,8 +88,12 @@ def _forward_dynamics(n: int) -> list[str]:
             lines += [f"m{i}_{j} -= m{i}_{k} * m{j}_{k}" for k in range(j)]
         lines += [f"d = m{i}_{i}", f"y = alpha{i}"]
         for k in range(i):
-            lines += [f"l_ik = m{i}_{k} * m{k}_{k}", f"d -= l_ik * m{i}_{k}",
-                      f"y -= m{i}_{k} * alpha{k}", f"m{i}_{k} = l_ik"]  # fmt: skip
+            lines += [
+                f"l_ik = m{i}_{k} * m{k}_{k}",
+                f"d -= l_ik * m{i}_{k}",
+                f"y -= m{i}_{k} * alpha{k}",
+                f"m{i}_{k} = l_ik",
+            ]
         lines += ["inv = 1.0 / d", f"m{i}_{i} = inv", f"alpha{i} = y * inv"]
     for i in range(n - 1, -1, -1):
         lines += [f"alpha{k} -= m{i}_{k} * alpha{i}" for k in range(i)]
@@ -106,12 +120,12 @@ def _step(n: int) -> list[str]:
         f"a2, b2 = _fd(length, mass, inertia, tau, gravity_m_s2, {_tuple(n, 'q[{i}] + half * v1[{i}]')}, v2)",
         f"v3 = {_tuple(n, 'w[{i}] + step_s * a2[{i}]')}",
         f"a3, b3 = _fd(length, mass, inertia, tau, gravity_m_s2, {_tuple(n, 'q[{i}] + step_s * v2[{i}]')}, v3)",
-    ]  # fmt: skip
+    ]
     for i in range(n):
         lines += [
             f"q_out[{i} * LANES + lane] = q[{i}] + sixth * (w[{i}] + 2.0 * v1[{i}] + 2.0 * v2[{i}] + v3[{i}])",
             f"w_out[{i} * LANES + lane] = w[{i}] + sixth * (a0[{i}] + 2.0 * a1[{i}] + 2.0 * a2[{i}] + a3[{i}])",
-        ]  # fmt: skip
+        ]
     return [*lines, "beyond += b0 + b1 + b2 + b3"]
 
 

@@ -81,6 +81,18 @@ def rk4_batch(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n
             w = omega_rad_s[s]
             for _ in range(n_steps):
                 rk4_step(
-                    lengths, masses, inertias, gravity_m_s2, torque_Nm, q, w, step_s,
-                    work, matrix, d_theta, d_omega, theta, omega,
-                )  # fmt: skip
+                    lengths,
+                    masses,
+                    inertias,
+                    gravity_m_s2,
+                    torque_Nm,
+                    q,
+                    w,
+                    step_s,
+                    work,
+                    matrix,
+                    d_theta,
+                    d_omega,
+                    theta,
+                    omega,
+                )

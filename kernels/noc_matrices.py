@@ -106,9 +106,19 @@ def mass_matrix(lengths_m, masses_kg, inertias_kgm2, theta_rad):
     work, out = forward_dynamics_work(n)
     zeros = np.zeros(n)
     _forward_dynamics_rows(
-        lengths_m, masses_kg, inertias_kgm2, 0.0, theta_rad, zeros, zeros, work, out,
-        _row(zeros), 0, False,
-    )  # fmt: skip
+        lengths_m,
+        masses_kg,
+        inertias_kgm2,
+        0.0,
+        theta_rad,
+        zeros,
+        zeros,
+        work,
+        out,
+        _row(zeros),
+        0,
+        False,
+    )
     for k in range(n):
         for j in range(k):
             out[j, k] = out[k, j]

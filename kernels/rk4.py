@@ -146,9 +146,21 @@ def rk4_integrate(
     for k in range(start_step, start_step + n_steps + 1):
         if k > start_step:  # one RK4 step from k-1 to k
             rk4_step(
-                lengths_m, masses_kg, inertias_kgm2, gravity_m_s2, torque_Nm,
-                theta_rad, omega_rad_s, step_s, work, matrix, d_theta, d_omega, theta, omega,
-            )  # fmt: skip
+                lengths_m,
+                masses_kg,
+                inertias_kgm2,
+                gravity_m_s2,
+                torque_Nm,
+                theta_rad,
+                omega_rad_s,
+                step_s,
+                work,
+                matrix,
+                d_theta,
+                d_omega,
+                theta,
+                omega,
+            )
         # the initial state of a chunk is the previous chunk's last step: record it only once
         if k % every == 0 and (k > start_step or k == 0):
             t_out[rows] = k * step_s

@@ -26,8 +26,9 @@ LANES = 128
 
 
 @kernel
-def _block_torques(unit, first, count, span, lower, inertias_kgm2, gravity_m_s2, kin, robot,
-                   force, out):  # fmt: skip
+def _block_torques(
+    unit, first, count, span, lower, inertias_kgm2, gravity_m_s2, kin, robot, force, out
+):
     r"""Torques of design rows ``first .. first + count`` into ``out`` (S, n).
 
     ``robot`` (D·L) receives the scaled rows (column c of lane j at ``c·L + j``), ``force``
@@ -79,13 +80,31 @@ def _block_torques(unit, first, count, span, lower, inertias_kgm2, gravity_m_s2,
         link_i = max(i, 0) * LANES
         if num_vars == 3 * n:
             for lane in range(LANES):
-                _torque_lane(robot[inertia_i + lane], robot[length_i + lane], ux, uy, accel,
-                             force, fx_base + link_i, fy_base + link_i, lane)  # fmt: skip
+                _torque_lane(
+                    robot[inertia_i + lane],
+                    robot[length_i + lane],
+                    ux,
+                    uy,
+                    accel,
+                    force,
+                    fx_base + link_i,
+                    fy_base + link_i,
+                    lane,
+                )
         else:
             inertia = inertias_kgm2[i]
             for lane in range(LANES):
-                _torque_lane(inertia, robot[length_i + lane], ux, uy, accel, force,
-                             fx_base + link_i, fy_base + link_i, lane)  # fmt: skip
+                _torque_lane(
+                    inertia,
+                    robot[length_i + lane],
+                    ux,
+                    uy,
+                    accel,
+                    force,
+                    fx_base + link_i,
+                    fy_base + link_i,
+                    lane,
+                )
         for lane in range(count):
             out[first + lane, i] = force[moment * LANES + lane]
 
@@ -134,6 +153,17 @@ def design_torques(
         first = block * LANES
         robot = np.empty(num_vars * LANES)
         force = np.empty((4 + 2 * n) * LANES)
-        _block_torques(unit, first, min(LANES, samples - first), span, lower, inertias_kgm2,
-                       gravity_m_s2, kin, robot, force, out)  # fmt: skip
+        _block_torques(
+            unit,
+            first,
+            min(LANES, samples - first),
+            span,
+            lower,
+            inertias_kgm2,
+            gravity_m_s2,
+            kin,
+            robot,
+            force,
+            out,
+        )
     return out

@@ -100,8 +100,18 @@ def _factors(xlo, xhi, ylo, yhi, p, offsets, c):
     """Enclosures of :math:`v_{x,0}, v_{y,0}, t_0, L_1, L_2` over the box."""
     u_lo, u_hi = iadd_scalar(xlo, xhi, -p[0, 0])
     v_lo, v_hi = iadd_scalar(ylo, yhi, -p[0, 1])
-    t_lo, t_hi = _linear(xlo, xhi, ylo, yhi, offsets[0, 1], offsets[0, 1], -offsets[0, 0],
-                         -offsets[0, 0], c[14], c[15])  # fmt: skip
+    t_lo, t_hi = _linear(
+        xlo,
+        xhi,
+        ylo,
+        yhi,
+        offsets[0, 1],
+        offsets[0, 1],
+        -offsets[0, 0],
+        -offsets[0, 0],
+        c[14],
+        c[15],
+    )
     m1_lo, m1_hi = _linear(xlo, xhi, ylo, yhi, c[0], c[1], c[2], c[3], c[4], c[5])
     m2_lo, m2_hi = _linear(xlo, xhi, ylo, yhi, c[6], c[7], c[8], c[9], c[10], c[11])
     return u_lo, u_hi, v_lo, v_hi, t_lo, t_hi, m1_lo, m1_hi, m2_lo, m2_hi

@@ -248,9 +248,23 @@ def leaf_verdict(xlo, xhi, ylo, yhi, g, r, elbow, limits, cx, cy, sign, n):
 
 @kernel
 def singular_bisect_chunk(
-    g, r, elbow, limits, precision, leaf_grid, cx, cy, sign, stack, n_stack, kept, status,
-    n_kept, max_work, bounds,
-):  # fmt: skip
+    g,
+    r,
+    elbow,
+    limits,
+    precision,
+    leaf_grid,
+    cx,
+    cy,
+    sign,
+    stack,
+    n_stack,
+    kept,
+    status,
+    n_kept,
+    max_work,
+    bounds,
+):
     """Steps of the bisection of the module docstring until ``max_work`` box tests were
     made (a box costs 1, a leaf's sub-grid ``2 leaf_grid²`` more).
 

@@ -148,9 +148,22 @@ def circle_box(rows, row, g, r, elbow, limits, cx, cy, sign, reach, precision, c
 
 @kernel(parallel=True)
 def circle_level(
-    g, r, elbow, limits, cx, cy, sign, reach, precision, rows, start, stop, children, outcome,
+    g,
+    r,
+    elbow,
+    limits,
+    cx,
+    cy,
+    sign,
+    reach,
+    precision,
+    rows,
+    start,
+    stop,
+    children,
+    outcome,
     witness,
-):  # fmt: skip
+):
     """One slice of the circle paving: ``outcome[i]`` and ``witness[i]`` (an upper bound of
     :math:`r^*`, ``inf`` without one) of row ``start + i``."""
     n = stop - start
@@ -158,6 +171,17 @@ def circle_level(
     for lane in numba.prange(lanes):
         for i in range(lane, n, lanes):
             outcome[i], witness[i] = circle_box(
-                rows, start + i, g, r, elbow, limits, cx, cy, sign, reach, precision,
-                children, 2 * i,
-            )  # fmt: skip
+                rows,
+                start + i,
+                g,
+                r,
+                elbow,
+                limits,
+                cx,
+                cy,
+                sign,
+                reach,
+                precision,
+                children,
+                2 * i,
+            )

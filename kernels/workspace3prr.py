@@ -102,9 +102,19 @@ def classify_prr_box(xlo, xhi, ylo, yhi, p):
     inside = True
     for leg in range(3):
         label = prr_leg_label(
-            xlo, xhi, ylo, yhi, p[leg, 0], p[leg, 1], p[leg, 2], p[leg, 3],
-            p[leg, 5], p[leg, 6], p[leg, 7], p[leg, 8],
-        )  # fmt: skip
+            xlo,
+            xhi,
+            ylo,
+            yhi,
+            p[leg, 0],
+            p[leg, 1],
+            p[leg, 2],
+            p[leg, 3],
+            p[leg, 5],
+            p[leg, 6],
+            p[leg, 7],
+            p[leg, 8],
+        )
         if label == OUTSIDE:
             return OUTSIDE
         inside = inside and label == INSIDE

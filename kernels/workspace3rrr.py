@@ -255,13 +255,31 @@ def natural_expanded(leg, xlo, xhi, ylo, yhi, tlo, thi, p):
     :math:`A_1 = (0,0), A_2 = (a,0), A_3 = (a/2, a\\sqrt3/2)`.
     """
     slo, shi, clo, chi = isincos(tlo, thi)
-    return natural_expanded_sc(leg, xlo, xhi, ylo, yhi, slo, shi, clo, chi, p[0], p[1], p[2],
-                               p[3], p[8], p[9], p[10], p[11])  # fmt: skip
+    return natural_expanded_sc(
+        leg,
+        xlo,
+        xhi,
+        ylo,
+        yhi,
+        slo,
+        shi,
+        clo,
+        chi,
+        p[0],
+        p[1],
+        p[2],
+        p[3],
+        p[8],
+        p[9],
+        p[10],
+        p[11],
+    )
 
 
 @kernel
-def natural_expanded_sc(leg, xlo, xhi, ylo, yhi, slo, shi, clo, chi, l1, l2, dx0, dy0, a, b,
-                        cf, sf):  # fmt: skip
+def natural_expanded_sc(
+    leg, xlo, xhi, ylo, yhi, slo, shi, clo, chi, l1, l2, dx0, dy0, a, b, cf, sf
+):
     """:func:`natural_expanded` given the enclosures of :math:`\\sin\\Theta` and
     :math:`\\cos\\Theta`, with ``p``'s entries as floats (no array crosses the call)."""
     if leg == 0:
@@ -325,13 +343,29 @@ def leg_enclosure_sc(form, leg, xlo, xhi, ylo, yhi, tlo, thi, slo, shi, clo, chi
     dx = p[2 + 2 * leg]
     dy = p[3 + 2 * leg]
     if form == MEAN_VALUE:
-        return mean_value_sc(xlo, xhi, ylo, yhi, tlo, thi, slo, shi, clo, chi, dx, dy,
-                             p[0], p[1])  # fmt: skip
+        return mean_value_sc(xlo, xhi, ylo, yhi, tlo, thi, slo, shi, clo, chi, dx, dy, p[0], p[1])
     if form == SLOPE:
         return slope_sc(xlo, xhi, ylo, yhi, tlo, thi, slo, shi, clo, chi, dx, dy, p[0], p[1])
     if form == NATURAL_EXPANDED:
-        return natural_expanded_sc(leg, xlo, xhi, ylo, yhi, slo, shi, clo, chi, p[0], p[1],
-                                   p[2], p[3], p[8], p[9], p[10], p[11])  # fmt: skip
+        return natural_expanded_sc(
+            leg,
+            xlo,
+            xhi,
+            ylo,
+            yhi,
+            slo,
+            shi,
+            clo,
+            chi,
+            p[0],
+            p[1],
+            p[2],
+            p[3],
+            p[8],
+            p[9],
+            p[10],
+            p[11],
+        )
     return _compact(xlo, xhi, ylo, yhi, slo, shi, clo, chi, dx, dy, p[0], p[1])
 
 

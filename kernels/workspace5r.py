@@ -135,9 +135,20 @@ def near_mode_boundary(px, py, rho, legs, leg, tlo, thi):
     """:func:`near_mode_arcs` of leg ``leg`` (``legs[leg, 5:9]`` are the elbows
     :math:`B(\\underline\\theta) - A`, :math:`B(\\overline\\theta) - A`)."""
     return near_mode_arcs(
-        px, py, rho, legs[leg, 2], legs[leg, 3], legs[leg, 4], legs[leg, 5], legs[leg, 6],
-        legs[leg, 7], legs[leg, 8], tlo, thi, (0.0, 0.0, 0.0),
-    )  # fmt: skip
+        px,
+        py,
+        rho,
+        legs[leg, 2],
+        legs[leg, 3],
+        legs[leg, 4],
+        legs[leg, 5],
+        legs[leg, 6],
+        legs[leg, 7],
+        legs[leg, 8],
+        tlo,
+        thi,
+        (0.0, 0.0, 0.0),
+    )
 
 
 @kernel

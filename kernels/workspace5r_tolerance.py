@@ -139,9 +139,20 @@ def robots_near_mode_boundary(px, py, rho, h, legs, leg, tlo, thi, tol):
     (:func:`kernels.workspace5r.circle_family_far`)."""
     family = (h, tol[T_BASE], tol[T_PROXIMAL] + tol[T_DISTAL])
     return near_mode_arcs(
-        px, py, rho, legs[leg, 2], legs[leg, 3], legs[leg, 4], legs[leg, 5], legs[leg, 6],
-        legs[leg, 7], legs[leg, 8], tlo, thi, family,
-    )  # fmt: skip
+        px,
+        py,
+        rho,
+        legs[leg, 2],
+        legs[leg, 3],
+        legs[leg, 4],
+        legs[leg, 5],
+        legs[leg, 6],
+        legs[leg, 7],
+        legs[leg, 8],
+        tlo,
+        thi,
+        family,
+    )
 
 
 @kernel

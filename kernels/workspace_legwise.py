@@ -168,9 +168,19 @@ def decide_box(form, p, precision, angle_scale, rows, r, children, c, limits, to
         if state == LEG_PROVED:
             continue
         outcome, tlo, thi, sign, n = leg_search(
-            form, leg, gxlo, gxhi, gylo, gyhi, rows[r, col], rows[r, col + 1], state,
-            min_width, p, spread,
-        )  # fmt: skip
+            form,
+            leg,
+            gxlo,
+            gxhi,
+            gylo,
+            gyhi,
+            rows[r, col],
+            rows[r, col + 1],
+            state,
+            min_width,
+            p,
+            spread,
+        )
         evaluations += n
         if outcome == OUT:
             return OUT, evaluations
@@ -193,9 +203,19 @@ def decide_box(form, p, precision, angle_scale, rows, r, children, c, limits, to
 
 @kernel(parallel=True)
 def pave_level(
-    form, p, precision, angle_scale, rows, start, stop, children, outcome, evaluations, limits,
+    form,
+    p,
+    precision,
+    angle_scale,
+    rows,
+    start,
+    stop,
+    children,
+    outcome,
+    evaluations,
+    limits,
     tol,
-):  # fmt: skip
+):
     """Decide rows ``start .. stop - 1`` of a frontier in parallel.
 
     Row ``start + i`` writes ``children[2 i]`` (the kept box or the first half) and

@@ -147,7 +147,7 @@ def box_piece_status(mechanism, xlo, xhi, ylo, yhi, phi_mid, phi_half, g, limits
 @kernel
 def classify_box_range(
     xlo, xhi, ylo, yhi, mode, phi_lo, phi_hi, phi_min, g, limits, pieces, mechanism
-):  # fmt: skip
+):
     """``(label, work)``: ``OUTSIDE``, ``BOUNDARY`` or ``INSIDE`` of the box for the maximal
     (``mode`` = ``MAXIMAL``) or total (``TOTAL``) orientation workspace over ``[phi_lo,
     phi_hi]`` (module docstring), and the orientation pieces looked at (the work done);
@@ -199,9 +199,21 @@ def classify_box_range(
 
 @kernel(parallel=True)
 def range_level(
-    mode, phi_lo, phi_hi, phi_min, g, limits, precision, rows, start, stop, children, outcome,
-    work, mechanism,
-):  # fmt: skip
+    mode,
+    phi_lo,
+    phi_hi,
+    phi_min,
+    g,
+    limits,
+    precision,
+    rows,
+    start,
+    stop,
+    children,
+    outcome,
+    work,
+    mechanism,
+):
     """Decide rows ``start .. stop - 1`` of a frontier of (x, y) boxes with
         :func:`classify_box_range`, in parallel, then
         :func:`~kernels.workspace_arc.settle_xy_box` (outside dropped, inside kept unsplit,
@@ -222,19 +234,40 @@ def range_level(
         for i in range(lane, n, lanes):
             r = start + i
             label, cost = classify_box_range(
-                rows[r, 0], rows[r, 1], rows[r, 2], rows[r, 3],
-                mode, phi_lo, phi_hi, phi_min, g, limits, pieces, mechanism,
-            )  # fmt: skip
+                rows[r, 0],
+                rows[r, 1],
+                rows[r, 2],
+                rows[r, 3],
+                mode,
+                phi_lo,
+                phi_hi,
+                phi_min,
+                g,
+                limits,
+                pieces,
+                mechanism,
+            )
             leaf = rows[r, 1] - rows[r, 0] <= precision and rows[r, 3] - rows[r, 2] <= precision
             if mechanism == PRR and leaf and label == BOUNDARY:  # the 3-PRR's leaf check
                 refuted = True
                 for k in range(LEAF_GRID * LEAF_GRID):
-                    x0, x1, y0, y1 = grid_cell(rows[r, 0], rows[r, 1], rows[r, 2], rows[r, 3],
-                                               LEAF_GRID, k)  # fmt: skip
+                    x0, x1, y0, y1 = grid_cell(
+                        rows[r, 0], rows[r, 1], rows[r, 2], rows[r, 3], LEAF_GRID, k
+                    )
                     cell, more = classify_box_range(
-                        x0, x1, y0, y1, mode, phi_lo, phi_hi, phi_min, g, limits, pieces,
+                        x0,
+                        x1,
+                        y0,
+                        y1,
+                        mode,
+                        phi_lo,
+                        phi_hi,
+                        phi_min,
+                        g,
+                        limits,
+                        pieces,
                         mechanism,
-                    )  # fmt: skip
+                    )
                     cost += more
                     if cell != OUTSIDE:
                         refuted = False

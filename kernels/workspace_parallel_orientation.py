@@ -78,9 +78,19 @@ def _prr_leg(xlo, xhi, ylo, yhi, ox, oy, limits, leg, delta):
     hi = limits[leg, 3]
     length = limits[leg, 4]
     return prr_leg_label(
-        xlo, xhi, ylo, yhi, ox + lo * ux, oy + lo * uy, ox + hi * ux, oy + hi * uy,
-        length + delta, length - delta, length - delta, length + delta,
-    )  # fmt: skip
+        xlo,
+        xhi,
+        ylo,
+        yhi,
+        ox + lo * ux,
+        oy + lo * uy,
+        ox + hi * ux,
+        oy + hi * uy,
+        length + delta,
+        length - delta,
+        length - delta,
+        length + delta,
+    )
 
 
 @kernel

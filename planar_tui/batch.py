@@ -61,8 +61,9 @@ class SummaryRow:
 class JobFailed(Exception):
     """A job raised an unexpected error (its cause is ``__cause__``)."""
 
-    def __init__(self, job: Job[object, object] | PreparedJob[object, object, object],
-                 error: BaseException):  # fmt: skip
+    def __init__(
+        self, job: Job[object, object] | PreparedJob[object, object, object], error: BaseException
+    ):
         why = error.message if isinstance(error, JobError) else f"{type(error).__name__}: {error}"
         super().__init__(f"{job.label} failed: {why}")
         self.job = job
@@ -161,9 +162,10 @@ def check_writable(path: Path, what: str = "CSV file") -> None:
     longest = max((len(os.fsencode(part)) for part in path.parts), default=0)
     if longest > name_max:
         raise _output_error(
-            path, f"has a name of {longest} bytes, longer than a file name may be ({name_max})",
+            path,
+            f"has a name of {longest} bytes, longer than a file name may be ({name_max})",
             "a file name the file system accepts",
-        )  # fmt: skip
+        )
     try:
         mode = os.stat(path).st_mode
     except (FileNotFoundError, NotADirectoryError):
@@ -176,20 +178,23 @@ def check_writable(path: Path, what: str = "CSV file") -> None:
         raise _output_error(path, "is a folder", f"a {what} path")
     if mode is not None and not stat.S_ISREG(mode):
         raise _output_error(
-            path, f"is {_file_kind(mode)}, not a regular file (it would be replaced)",
+            path,
+            f"is {_file_kind(mode)}, not a regular file (it would be replaced)",
             f"a regular {what} path",
-        )  # fmt: skip
+        )
     # no write permission bit at all is read-only even for root, whom os.access lets write
     if mode is not None and not (os.access(path, os.W_OK) and mode & 0o222):
         raise _output_error(
-            path, "is a read-only file (it would be replaced)",
+            path,
+            "is a read-only file (it would be replaced)",
             "a writable file, or a new path",
-        )  # fmt: skip
+        )
     if not ancestor.is_dir() or not os.access(ancestor, os.W_OK | os.X_OK):
         raise _output_error(
-            path, f"cannot be created: {ancestor} is not a writable folder",
+            path,
+            f"cannot be created: {ancestor} is not a writable folder",
             "a path inside a writable folder",
-        )  # fmt: skip
+        )
 
 
 def _file_kind(mode: int) -> str:
@@ -253,14 +258,16 @@ def check_planned(files: Sequence[PlannedFile], presets: Mapping[Path, str] | No
         identity = _identity(planned.path)
         if identity in preset_ids:
             raise _output_error(
-                planned.path, f"is the preset file of {preset_ids[identity]} (it would be replaced)",
+                planned.path,
+                f"is the preset file of {preset_ids[identity]} (it would be replaced)",
                 "an output path other than the preset",
-            )  # fmt: skip
+            )
         if identity in writers:
             raise _output_error(
-                planned.path, f"is written by both {writers[identity]} and {planned.writer}",
+                planned.path,
+                f"is written by both {writers[identity]} and {planned.writer}",
                 "one file per table (set distinct output paths)",
-            )  # fmt: skip
+            )
         writers[identity] = planned.writer
         if planned.folder:
             folders.append((identity, planned))
@@ -271,18 +278,21 @@ def check_planned(files: Sequence[PlannedFile], presets: Mapping[Path, str] | No
             holder = files_by_identity.get(parent)
             if holder is not None and not holder.folder:
                 raise _output_error(
-                    planned.path, f"lies inside {holder.path}, which {holder.writer} writes "
-                    "as a file", "a path that is not inside another planned file",
-                )  # fmt: skip
+                    planned.path,
+                    f"lies inside {holder.path}, which {holder.writer} writes as a file",
+                    "a path that is not inside another planned file",
+                )
             parent = os.path.dirname(parent)
     for folder, owner in folders:
         for identity, writer in writers.items():
             inside = identity.startswith(folder.rstrip(os.sep) + os.sep)
             if writer != owner.writer and inside:
                 raise _output_error(
-                    owner.path, f"is {owner.writer}'s folder of point files, and {writer} "
-                    f"writes {identity} inside it", "a folder of its own for the point files",
-                )  # fmt: skip
+                    owner.path,
+                    f"is {owner.writer}'s folder of point files, and {writer} "
+                    f"writes {identity} inside it",
+                    "a folder of its own for the point files",
+                )
 
 
 def job_names(job: Job) -> tuple[str, ...]:
@@ -302,9 +312,11 @@ def select_jobs(jobs: Sequence[Job], names: Sequence[str] | None) -> tuple[Job, 
             several = len({job.preset_path for job in jobs}) > 1
             valid = ", ".join(dict.fromkeys(job.label if several else job.key for job in jobs))
             raise PresetError(
-                "command line", "--job", f"is {name!r}, no such job",
+                "command line",
+                "--job",
+                f"is {name!r}, no such job",
                 f"one of {valid or '(no job)'}, or a job's output file name",
-            )  # fmt: skip
+            )
     return tuple(job for job in jobs if any(name in job_names(job) for name in names))
 
 
@@ -465,8 +477,10 @@ def write_result(
     record = job_provenance(plan.job, timing)
     written = []
     try:
-        for path, table in ((plan.main, result.table),
-                            *((p, result.extra_tables[n]) for n, p in plan.extras.items())):  # fmt: skip
+        for path, table in (
+            (plan.main, result.table),
+            *((p, result.extra_tables[n]) for n, p in plan.extras.items()),
+        ):
             written.append(write_csv_atomic(path, table))
             write_sidecar(path, record)
         if plan.figure is not None:

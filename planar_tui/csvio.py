@@ -154,8 +154,10 @@ def remove_stale_temporaries(path: Path) -> list[Path]:
     if removed:
         size = sum(n for _, n in removed)
         names = ", ".join(p.name for p, _ in removed[:3]) + (" ..." if len(removed) > 3 else "")
-        notice(f"note: removed {len(removed)} temporary file(s) of {path} left by an earlier, "
-               f"interrupted run ({names}; {size / 2**20:.3g} MiB)")  # fmt: skip
+        notice(
+            f"note: removed {len(removed)} temporary file(s) of {path} left by an earlier, "
+            f"interrupted run ({names}; {size / 2**20:.3g} MiB)"
+        )
     return [p for p, _ in removed]
 
 

@@ -46,12 +46,28 @@ FOLDER_ENV_VAR = "PLANAR_TUI_HELP_CACHE_DIR"
 #: Environment variables read by Rich, Click or Typer when they render help.
 ENVIRONMENT_NAMES = frozenset(
     {
-        "CLICOLOR", "CLICOLOR_FORCE", "COLORTERM", "COLUMNS", "DATABRICKS_RUNTIME_VERSION",
-        "FORCE_COLOR", "GITHUB_ACTIONS", "JUPYTER_COLUMNS", "JUPYTER_LINES", "LANG",
-        "LC_ALL", "LC_CTYPE", "LINES", "NO_COLOR", "PYTHONIOENCODING", "PY_COLORS", "TERM",
-        "TERMINAL_WIDTH", "TTY_COMPATIBLE", "TTY_INTERACTIVE",
+        "CLICOLOR",
+        "CLICOLOR_FORCE",
+        "COLORTERM",
+        "COLUMNS",
+        "DATABRICKS_RUNTIME_VERSION",
+        "FORCE_COLOR",
+        "GITHUB_ACTIONS",
+        "JUPYTER_COLUMNS",
+        "JUPYTER_LINES",
+        "LANG",
+        "LC_ALL",
+        "LC_CTYPE",
+        "LINES",
+        "NO_COLOR",
+        "PYTHONIOENCODING",
+        "PY_COLORS",
+        "TERM",
+        "TERMINAL_WIDTH",
+        "TTY_COMPATIBLE",
+        "TTY_INTERACTIVE",
     }
-)  # fmt: skip
+)
 #: Prefixes of further such variables (Typer's own, and planar-tui's).
 ENVIRONMENT_PREFIXES = ("TYPER", "_TYPER", "RICH", "PLANAR_TUI")
 #: The help requests that are cached: up to two command words, then ``--help``.
@@ -120,10 +136,16 @@ def help_key(arguments: Sequence[str]) -> str:
     )
     described = repr(
         (
-            list(arguments), __version__, sys.executable, sys.version,
-            sorted(_package_files()), list(_renderer_files()), _terminal(), environment,
+            list(arguments),
+            __version__,
+            sys.executable,
+            sys.version,
+            sorted(_package_files()),
+            list(_renderer_files()),
+            _terminal(),
+            environment,
         )
-    )  # fmt: skip
+    )
     return hashlib.sha256(described.encode("utf-8", "surrogateescape")).hexdigest()[:32]
 
 

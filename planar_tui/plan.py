@@ -84,8 +84,12 @@ def check_figures(jobs: Sequence[Job[Any, Any]], plot: Path | None) -> None:
         if problem is None:
             continue
         if plot is not None:
-            raise PresetError("command line", "--plot", f"{job.label}: {problem}",
-                              f"no --plot for a {job.kind} job")  # fmt: skip
+            raise PresetError(
+                "command line",
+                "--plot",
+                f"{job.label}: {problem}",
+                f"no --plot for a {job.kind} job",
+            )
         if getattr(job.spec, "plot", None):
             raise PresetError(job.preset_path, f"{job.key}.plot", problem, "no plot key")
 
@@ -124,9 +128,19 @@ def checkpoint_notes(sweeps: Sequence[SweepPlan], out_dir: Path, resume: bool) -
     earlier version of the sweep is replaced, and said in the note returned."""
     from planar_tui.sweep.service import output_path
 
-    return [note for entry in sweeps if (note := checkpoint_note(
-        entry.sweep.label, entry.sweep.fingerprint(), output_path(entry.sweep, out_dir),
-        resume)) is not None]  # fmt: skip
+    return [
+        note
+        for entry in sweeps
+        if (
+            note := checkpoint_note(
+                entry.sweep.label,
+                entry.sweep.fingerprint(),
+                output_path(entry.sweep, out_dir),
+                resume,
+            )
+        )
+        is not None
+    ]
 
 
 def checkpoint_note(label: str, fingerprint: str, output: Path, resume: bool) -> str | None:
@@ -140,15 +154,18 @@ def checkpoint_note(label: str, fingerprint: str, output: Path, resume: bool) ->
         return None
     if found == fingerprint:
         raise PresetError(
-            checkpoint, "(checkpoint)", f"holds finished points of {label}, an interrupted run",
+            checkpoint,
+            "(checkpoint)",
+            f"holds finished points of {label}, an interrupted run",
             "--resume to finish it, or delete the file to start over",
-        )  # fmt: skip
-    return (f"note: {checkpoint} belongs to an earlier version of {label} (the preset "
-            "changed): it is replaced")  # fmt: skip
+        )
+    return (
+        f"note: {checkpoint} belongs to an earlier version of {label} (the preset "
+        "changed): it is replaced"
+    )
 
 
-def plan_optimisations(presets: Sequence[Preset], plot: Path | None = None
-                       ) -> list[Optimisation]:  # fmt: skip
+def plan_optimisations(presets: Sequence[Preset], plot: Path | None = None) -> list[Optimisation]:
     """The presets' optimisations, checked; ``plot`` replaces their ``plot`` keys as
     :func:`plan_sweeps`' does."""
     from planar_tui.optimise.spec import parse_optimisations
@@ -156,8 +173,10 @@ def plan_optimisations(presets: Sequence[Preset], plot: Path | None = None
     found = [o for preset in presets for o in parse_optimisations(preset)]
     if plot is None:
         return found
-    return [dataclasses.replace(o, plot=str(numbered_path(plot, k, len(found)).absolute()))
-            for k, o in enumerate(found, start=1)]  # fmt: skip
+    return [
+        dataclasses.replace(o, plot=str(numbered_path(plot, k, len(found)).absolute()))
+        for k, o in enumerate(found, start=1)
+    ]
 
 
 def plan_run(

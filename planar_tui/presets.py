@@ -79,14 +79,18 @@ def parse_toml(path: Path | str, text: str) -> dict[str, Any]:
         raise PresetError(path, "(syntax)", f"invalid TOML: {exc}", "valid TOML") from None
     except RecursionError:
         raise PresetError(
-            path, "(syntax)", "arrays or tables nested too deeply to read",
+            path,
+            "(syntax)",
+            "arrays or tables nested too deeply to read",
             "at most a few levels of nesting",
-        ) from None  # fmt: skip
+        ) from None
     except ValueError as exc:  # an integer beyond int()'s digit limit
         raise PresetError(
-            path, "(syntax)", f"a value cannot be read: {str(exc).split(':')[0]}",
+            path,
+            "(syntax)",
+            f"a value cannot be read: {str(exc).split(':')[0]}",
             "integers of at most 4300 digits",
-        ) from None  # fmt: skip
+        ) from None
 
 
 def parse_preset(path: Path | str, document: Mapping[str, Any]) -> Preset:
@@ -204,8 +208,16 @@ def copy_bundled_preset(name: str, target: Path) -> Path:
     try:
         return write_new_text(target, text)
     except FileExistsError:
-        raise PresetError("command line", "--copy", f"{target} exists (it is never "
-                          "overwritten)", "a new file name") from None  # fmt: skip
+        raise PresetError(
+            "command line",
+            "--copy",
+            f"{target} exists (it is never overwritten)",
+            "a new file name",
+        ) from None
     except OSError as error:
-        raise PresetError("command line", "--copy", f"{target} cannot be written: "
-                          f"{error.strerror or error}", "a writable new file path") from None  # fmt: skip
+        raise PresetError(
+            "command line",
+            "--copy",
+            f"{target} cannot be written: {error.strerror or error}",
+            "a writable new file path",
+        ) from None

@@ -233,17 +233,30 @@ def _headline(settings: Mapping[str, Any]) -> dict[str, Any]:
     return {name: settings[key] for key, name in HEADLINE_KEYS.items() if key in settings}
 
 
-def _made(kind: str, label: str, preset: Path, settings: Mapping[str, Any],
-          robot: Mapping[str, Any], timing: tuple[float, float] | None) -> Provenance:  # fmt: skip
+def _made(
+    kind: str,
+    label: str,
+    preset: Path,
+    settings: Mapping[str, Any],
+    robot: Mapping[str, Any],
+    timing: tuple[float, float] | None,
+) -> Provenance:
     from planar_tui import __version__
 
     started, seconds = timing if timing is not None else (None, None)
     return Provenance(
-        kind=kind, label=label, preset_path=str(Path(preset).absolute()),
-        preset_sha256=preset_digest(preset), settings=dict(settings), robot=dict(robot),
-        version=__version__, command=command_line(), started_utc=_utc(started),
-        duration_s=None if seconds is None else round(seconds, 6), **_headline(settings),
-    )  # fmt: skip
+        kind=kind,
+        label=label,
+        preset_path=str(Path(preset).absolute()),
+        preset_sha256=preset_digest(preset),
+        settings=dict(settings),
+        robot=dict(robot),
+        version=__version__,
+        command=command_line(),
+        started_utc=_utc(started),
+        duration_s=None if seconds is None else round(seconds, 6),
+        **_headline(settings),
+    )
 
 
 def job_provenance(job: Any, timing: tuple[float, float] | None = None) -> Provenance:
@@ -261,8 +274,9 @@ def job_provenance(job: Any, timing: tuple[float, float] | None = None) -> Prove
     return _made(job.kind, job.label, job.preset_path, settings, robot, timing)
 
 
-def study_provenance(kind: str, study: Any, timing: tuple[float, float] | None = None
-                     ) -> Provenance:  # fmt: skip
+def study_provenance(
+    kind: str, study: Any, timing: tuple[float, float] | None = None
+) -> Provenance:
     """The provenance of a sweep's or an optimisation's table (``kind`` ``"sweep"`` or
     ``"optimise"``): its table as written in the preset, and its base job's kind and
     settings (under ``job_kind`` and ``job_settings``); the seed, N, form and ε are the
@@ -279,8 +293,9 @@ def study_provenance(kind: str, study: Any, timing: tuple[float, float] | None =
     )
 
 
-def point_provenance(sweep: Any, point: Any, timing: tuple[float, float] | None = None
-                     ) -> Provenance:  # fmt: skip
+def point_provenance(
+    sweep: Any, point: Any, timing: tuple[float, float] | None = None
+) -> Provenance:
     """The provenance of one point's CSV tables (``point_outputs``) of ``sweep`` (a
     :class:`~planar_tui.sweep.spec.Sweep`): the point's job (the sweep's base job with the
     point's values applied) as :func:`job_provenance` has it, and ``point`` = ``{"sweep":
@@ -329,7 +344,12 @@ def planned_sidecar(planned: Any) -> list[Any]:
     the CSV gets none (:func:`has_sidecar`)."""
     if not has_sidecar(planned.path):
         return []
-    return [dataclasses.replace(
-        planned, path=sidecar_path(planned.path), writer=f"{planned.writer} provenance",
-        what="provenance file", probe=None,
-    )]  # fmt: skip
+    return [
+        dataclasses.replace(
+            planned,
+            path=sidecar_path(planned.path),
+            writer=f"{planned.writer} provenance",
+            what="provenance file",
+            probe=None,
+        )
+    ]

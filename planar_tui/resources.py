@@ -62,5 +62,4 @@ def bundled_preset(name: str) -> Path:
         if path.stem == stem:
             return path
     names = ", ".join(p.stem for p in bundled_presets())
-    raise PresetError("command line", "NAME", f"is {name!r}, no bundled preset",
-                      f"one of {names}")  # fmt: skip
+    raise PresetError("command line", "NAME", f"is {name!r}, no bundled preset", f"one of {names}")

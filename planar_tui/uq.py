@@ -187,11 +187,16 @@ def sampling_options(methods: tuple[str, ...], samples_help: str) -> tuple[Optio
     (:func:`planar_tui.batch.override_job`)."""
     names = ", ".join(methods[:-1]) + f" or {methods[-1]}"
     return (
-        Option("--method", "methods", f"{names} (repeatable); overrides `methods`.",
-               many=True, short="-m"),
+        Option(
+            "--method",
+            "methods",
+            f"{names} (repeatable); overrides `methods`.",
+            many=True,
+            short="-m",
+        ),
         Option("--samples", "samples", f"{samples_help}; overrides `samples`.", int),
         Option("--seed", "seed", "Seed >= 1; overrides `seed`.", int),
-    )  # fmt: skip
+    )
 
 
 def pce_samples_setting(what: str) -> Any:
@@ -213,5 +218,6 @@ def pce_max_loo_setting(doc: str) -> Any:
 
 def allow_failed_runs_setting(doc: str) -> Any:
     """The ``allow_failed_runs`` key: the fraction of runs a PCE may drop."""
-    return setting(number(minimum=0.0, maximum=1.0), default=0.0, type_doc="0 ≤ number ≤ 1",
-                   doc=doc)  # fmt: skip
+    return setting(
+        number(minimum=0.0, maximum=1.0), default=0.0, type_doc="0 ≤ number ≤ 1", doc=doc
+    )

@@ -22,8 +22,12 @@ geometric_reference = false
 box_budget = {box_budget}
 output = "ws.csv"
 """
-WORKSPACE_BASE = {"distal_cm": 30, "precision_cm": 1.0, "orientation_deg": 0,
-                  "box_budget": 10_000_000}  # fmt: skip
+WORKSPACE_BASE = {
+    "distal_cm": 30,
+    "precision_cm": 1.0,
+    "orientation_deg": 0,
+    "box_budget": 10_000_000,
+}
 
 TORQUES = """# sweep test: 2R torques
 [robot]

@@ -83,9 +83,14 @@ def test_one_link_pendulum_by_hand():
     length, mass, inertia, theta, tau = 0.7, 1.3, 0.02, 0.4, 0.9
     expected = (tau - mass * G * 0.5 * length * np.cos(theta)) / (inertia + mass * length**2 / 4)
     alpha = aba_forward_dynamics(
-        np.array([length]), np.array([mass]), np.array([inertia]), G, np.array([theta]),
-        np.array([3.0]), np.array([tau]),
-    )  # fmt: skip
+        np.array([length]),
+        np.array([mass]),
+        np.array([inertia]),
+        G,
+        np.array([theta]),
+        np.array([3.0]),
+        np.array([tau]),
+    )
     assert alpha[0] == pytest.approx(expected, rel=1e-15)
 
 
@@ -99,8 +104,9 @@ def test_a_long_free_falling_chain_keeps_its_energy():
     steps = 2000
     records = [np.zeros(steps + 1), np.zeros((steps + 1, n)), np.zeros((steps + 1, n))]
     kinetic, potential = np.zeros(steps + 1), np.zeros(steps + 1)
-    rk4_integrate(*robot, G, np.zeros(n), theta, omega, 1e-4, steps, 1, 0, *records, kinetic,
-                  potential)  # fmt: skip
+    rk4_integrate(
+        *robot, G, np.zeros(n), theta, omega, 1e-4, steps, 1, 0, *records, kinetic, potential
+    )
     total = kinetic + potential
     assert kinetic[-1] > 1.0  # it fell
     assert np.abs(total - total[0]).max() <= 1e-8 * kinetic.max()
@@ -139,8 +145,11 @@ def test_the_cuda_kernel_takes_the_o_n_path_for_long_chains_on_the_simulator():
     env = {**os.environ, "NUMBA_ENABLE_CUDASIM": "1"}
     done = subprocess.run(
         [sys.executable, "-c", LONG_CHAIN_ON_THE_CUDA_SIMULATOR],
-        env=env, capture_output=True, text=True, check=True,
-    )  # fmt: skip
+        env=env,
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     report = json.loads(done.stdout.strip().splitlines()[-1])
     assert report["aba"]
     assert report["matrix"] == [3, 1, 1]

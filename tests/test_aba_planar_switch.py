@@ -65,9 +65,13 @@ def test_each_side_of_the_switch_equals_a_numpy_solve_and_its_own_algorithm(n):
 #: the NOC mass matrix + LDLᵀ (kernels.dynamics.forward_dynamics), before any change to
 #: the switch: the bits the bundled presets' simulations rest on.
 TABLE1_ALPHA_HEX = (
-    "0x1.5be723e4147fcp+2", "-0x1.3905096c23bb8p+5", "0x1.4af2f60d339e6p+3",
-    "0x1.1501a7ec5e331p+4", "0x1.85021850ecc61p+4", "-0x1.aa72a1449ab09p+4",
-)  # fmt: skip
+    "0x1.5be723e4147fcp+2",
+    "-0x1.3905096c23bb8p+5",
+    "0x1.4af2f60d339e6p+3",
+    "0x1.1501a7ec5e331p+4",
+    "0x1.85021850ecc61p+4",
+    "-0x1.aa72a1449ab09p+4",
+)
 
 
 def test_the_table1_six_link_robot_keeps_every_bit():

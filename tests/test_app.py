@@ -309,8 +309,17 @@ async def test_help_palette_and_quit(tmp_path):
         await pilot.press("escape")
         await pilot.pause()
         titles = {command.title for command in app.get_system_commands(app.screen)}
-        for title in ("Run job", "Cancel job", "Open preset", "Save preset", "Export CSV",
-                      "Help", "Add link", "Remove link", "Sensitivity view"):  # fmt: skip
+        for title in (
+            "Run job",
+            "Cancel job",
+            "Open preset",
+            "Save preset",
+            "Export CSV",
+            "Help",
+            "Add link",
+            "Remove link",
+            "Sensitivity view",
+        ):
             assert title in titles
         await pilot.press("q")  # no job runs: quits without asking
         await pilot.pause()
@@ -479,8 +488,11 @@ async def test_export_names_and_writes_files_as_planar_tui_run(tmp_path, cli):
     names = sorted(p.name for p in (tmp_path / "app").iterdir())
     assert names == sorted(p.name for p in (tmp_path / "cli").iterdir())
     assert names == [
-        "small-boxes.csv", "small-boxes.csv.json", "small-workspace.csv", "small-workspace.csv.json"
-    ]  # fmt: skip
+        "small-boxes.csv",
+        "small-boxes.csv.json",
+        "small-workspace.csv",
+        "small-workspace.csv.json",
+    ]
     boxes = (tmp_path / "app" / "small-boxes.csv").read_bytes()
     assert boxes == (tmp_path / "cli" / "small-boxes.csv").read_bytes()
     assert boxes.count(b"\n") > 100

@@ -108,8 +108,15 @@ def test_two_sensitivity_runs_compared_show_each_index_and_its_difference(two_se
     assert (a.provenance.seed, b.provenance.seed, a.provenance.samples) == (1, 2, 64)
     comparison = compare_runs(a, b)
     assert comparison.header == (
-        "torque", "parameter", "S1 A", "S1 B", "S1 B−A", "ST A", "ST B", "ST B−A",
-    )  # fmt: skip
+        "torque",
+        "parameter",
+        "S1 A",
+        "S1 B",
+        "S1 B−A",
+        "ST A",
+        "ST B",
+        "ST B−A",
+    )
     # the keys every row shares are said once
     assert "every row: posture singular, speed_rad_s 1, method sobol" in comparison.notes
     rows_a, rows_b = rows_of(a_path), rows_of(b_path)
@@ -207,8 +214,15 @@ async def test_the_compare_screen_shows_every_index_of_both_runs_and_their_diffe
             table = app.screen.query_one(DataTable)
             expected = expected_comparison_rows(*order)
             assert [str(c.label) for c in table.columns.values()] == [
-                "torque", "parameter", "S1 A", "S1 B", "S1 B−A", "ST A", "ST B", "ST B−A",
-            ]  # fmt: skip
+                "torque",
+                "parameter",
+                "S1 A",
+                "S1 B",
+                "S1 B−A",
+                "ST A",
+                "ST B",
+                "ST B−A",
+            ]
             assert table.row_count == len(expected) == 8
             shown = [[str(cell) for cell in table.get_row_at(k)] for k in range(8)]
             assert shown == expected
@@ -435,7 +449,7 @@ def test_tables_that_are_no_tables_become_empty_tables_with_one_line_each():
         "robot: is an integer (expected a table [robot]); opened as an empty table, saving writes it",
         "simulate[2]: is a text (expected a table [simulate[2]]); opened as an empty table, saving writes it",
         "torques.robot: is an array (expected a table [torques.robot]); opened as an empty table, saving writes it",
-    ]  # fmt: skip
+    ]
     assert document == {
         "robot": {},
         "simulate": [{"duration_s": 1.0}, {}],

@@ -77,8 +77,10 @@ def test_sweep_and_optimisation_csvs_open_into_the_history_with_their_settings(s
     comparison = compare_runs(sweep, again)
     header = rows_of(files[0])[0]
     assert comparison.header[0] == "point" and comparison.header[1:4] == (
-        f"{header[1]} A", f"{header[1]} B", f"{header[1]} B−A",
-    )  # fmt: skip
+        f"{header[1]} A",
+        f"{header[1]} B",
+        f"{header[1]} B−A",
+    )
     assert [row[0] for row in comparison.rows] == ["1", "2"]
     assert [row[1:4] for row in comparison.rows] == [("0.1", "0.1", "+0"), ("0.2", "0.2", "+0")]
 
@@ -95,8 +97,9 @@ async def test_tui_open_lists_sweeps_and_optimisations_in_the_history(tmp_path, 
         table = app.screen.query_one(DataTable)
         rows = [[str(cell) for cell in table.get_row_at(k)] for k in range(2)]
         assert [row[2:4] for row in rows] == [
-            ["sweep", "studies:sweep[1]"], ["optimise", "studies:optimise[1]"],
-        ]  # fmt: skip
+            ["sweep", "studies:sweep[1]"],
+            ["optimise", "studies:optimise[1]"],
+        ]
         assert rows[1][7:9] == ["arc-distance", "0.9375"]  # form and ε of its base job
         text = squeezed(app.export_text())
         assert squeezed("job_kind = 'workspace'") in text  # the highlighted (latest) run

@@ -22,9 +22,13 @@ def stub_result():
     for k in range(len(NAMES)):
         band[:, :, k] = base * (k + 1) / 3.0
     return SimpleNamespace(
-        t_s=np.array([0.0, 0.5]), band=band, names=NAMES, summary="stub study",
-        analyses=[], notes=[],
-    )  # fmt: skip
+        t_s=np.array([0.0, 0.5]),
+        band=band,
+        names=NAMES,
+        summary="stub study",
+        analyses=[],
+        notes=[],
+    )
 
 
 @async_test

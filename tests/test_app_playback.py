@@ -44,8 +44,14 @@ def make_app(tmp_path):
 
 def test_wrap_deg_maps_into_minus_180_exclusive_to_180_inclusive():
     assert wrap_deg([180.0, -180.0, 540.0, 190.0, -190.0, 0.0, 359.0]).tolist() == [
-        180.0, 180.0, 180.0, -170.0, 170.0, 0.0, -1.0,
-    ]  # fmt: skip
+        180.0,
+        180.0,
+        180.0,
+        -170.0,
+        170.0,
+        0.0,
+        -1.0,
+    ]
 
 
 async def run_simulation(app, pilot):
@@ -127,9 +133,13 @@ async def test_the_sensitivity_tab_draws_the_solved_isotropic_posture(tmp_path):
         posture = isotropic_posture([0.303, 0.214])
         analyses = load_6r()
         result = SensitivityResult(
-            table=csv_table("2R", analyses), summary="recorded", robot_label="2R",
-            posture=posture, analyses=analyses, samples={"sobol": 1024},
-        )  # fmt: skip
+            table=csv_table("2R", analyses),
+            summary="recorded",
+            robot_label="2R",
+            posture=posture,
+            analyses=analyses,
+            samples={"sobol": 1024},
+        )
         pane.show_result(pane.current_job(), result)
         await pilot.pause()
         assert arm.display

@@ -23,9 +23,15 @@ PRESET = Path("tests") / "data" / "app" / "tiny.toml"  # relative: no machine pa
 PRESET_6R = Path("presets") / "paper-a-table1.toml"  # its default sensitivity job: 6R
 SIZES = [(80, 24), (120, 40)]
 SCREENS = [
-    "robot", "sensitivity", "workspace", "simulate", "help", "invalid",
-    "sensitivity-6r", "sensitivity-6r-noform",
-]  # fmt: skip
+    "robot",
+    "sensitivity",
+    "workspace",
+    "simulate",
+    "help",
+    "invalid",
+    "sensitivity-6r",
+    "sensitivity-6r-noform",
+]
 
 
 def show_6r_result(app: WorkbenchApp) -> None:

@@ -39,9 +39,14 @@ def test_heat_map_shades_order_and_missing_cells():
     levels = [shade_level(v, lo, hi) for v in (2.0, 3.0, 4.5, 6.0, 7.0)]
     assert levels == sorted(levels) and levels[0] == 0 and levels[-1] == len(SHADES) - 1
     lines = heat_map_lines(
-        [1, 2], [10, 20], [[2.0, None], [7.0, float("nan")]],
-        across_name="a", down_name="b", figure_name="f", width=40,
-    )  # fmt: skip
+        [1, 2],
+        [10, 20],
+        [[2.0, None], [7.0, float("nan")]],
+        across_name="a",
+        down_name="b",
+        figure_name="f",
+        width=40,
+    )
     top, bottom = lines[2], lines[3]  # largest "down" value first
     assert top.startswith("20") and bottom.startswith("10")
     assert SHADES[-1] in top and MISSING in top

@@ -365,7 +365,10 @@ async def test_torques_tab_and_run_all_write_what_planar_tui_run_writes(tmp_path
         assert (tmp_path / "app" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
         app_record, cli_record = (read_sidecar(tmp_path / side / name) for side in ("app", "cli"))
         assert (app_record.kind, app_record.label, app_record.settings) == (
-            cli_record.kind, cli_record.label, cli_record.settings)  # fmt: skip
+            cli_record.kind,
+            cli_record.label,
+            cli_record.settings,
+        )
         assert app_record.preset_sha256 == cli_record.preset_sha256 is not None
 
 

@@ -29,10 +29,13 @@ async def test_the_map_of_the_boxes_kept_so_far_and_the_estimate_warning(tmp_pat
         boxes = np.array([[30.0 + i, 31.0 + i, 20.0, 21.0] for i in range(10)])
         boxes.flags.writeable = False  # the runner hands out read-only views
         state = ProgressState(
-            0.4, 1.0, "bisection", "1,234 boxes",
+            0.4,
+            1.0,
+            "bisection",
+            "1,234 boxes",
             warning="about 90,000 boxes expected, more than box_budget = 1,000",
             partial={"boxes_cm": boxes, "status": None},
-        )  # fmt: skip
+        )
         pane.show_progress(state)
         await pilot.pause()
         screen = app.export_text()
@@ -67,9 +70,10 @@ async def test_kernels_are_warmed_in_the_background_at_start(tmp_path, monkeypat
     present = tmp_path / "warm-others"
     present.touch()
     monkeypatch.setattr(
-        warmup, "marker", lambda kind: tmp_path / "warm-torques" if kind == "torques"
-        else present,
-    )  # fmt: skip
+        warmup,
+        "marker",
+        lambda kind: tmp_path / "warm-torques" if kind == "torques" else present,
+    )
     app = WorkbenchApp(Workbench.open(DATA / "tiny.toml"), warm_kernels=True)
     notes = []
     monkeypatch.setattr(app, "notify", lambda message, **kw: notes.append(message))

@@ -106,30 +106,40 @@ def refused_line(cli, tmp_path, text: str, key: str, problem: str) -> str:
     return lines[0]
 
 
-SWEPT_SIMULATE = TWO_LINKS + '[simulate]\nduration_s = 1\nstep_s = 0.01\n[[sweep]]\njob = "JOB"\n' \
-    'values."robot.masses_kg[2]" = [1.0]\n'  # fmt: skip
-CASES.update({
-    "a sweep's job index in superscript digits": (
-        SWEPT_SIMULATE.replace("JOB", "simulate[²]"), "sweep[1].job", "simulate[²]"
-    ),
-    "a sweep's job index of 5000 digits": (
-        SWEPT_SIMULATE.replace("JOB", "simulate[1" + "0" * 5000 + "]"), "sweep[1].job",
-        "characters",
-    ),
-    "a motion step of 5e-324 s": (
-        TWO_LINKS + "[motion_uncertainty]\nduration_s = 1\nstep_s = 5e-324\n",
-        "motion_uncertainty.step_s", "inf steps",
-    ),
-    "a simulation step of 1e-310 s": (
-        TWO_LINKS + "[simulate]\nduration_s = 1e10\nstep_s = 1e-310\n",
-        "simulate.step_s", "inf steps",
-    ),
-    "the isotropic posture of a 1e30 m link": (
-        "[robot]\nlengths_m = [1e30, 0.2, 0.3]\nmasses_kg = [2.0, 1.5, 1.0]\n[sensitivity]\n"
-        'posture = "isotropic"\ntolerance_length_mm = 1\ntolerance_mass_g = 10\n',
-        "sensitivity.posture", "no isotropic posture",
-    ),
-})  # fmt: skip
+SWEPT_SIMULATE = (
+    TWO_LINKS + '[simulate]\nduration_s = 1\nstep_s = 0.01\n[[sweep]]\njob = "JOB"\n'
+    'values."robot.masses_kg[2]" = [1.0]\n'
+)
+CASES.update(
+    {
+        "a sweep's job index in superscript digits": (
+            SWEPT_SIMULATE.replace("JOB", "simulate[²]"),
+            "sweep[1].job",
+            "simulate[²]",
+        ),
+        "a sweep's job index of 5000 digits": (
+            SWEPT_SIMULATE.replace("JOB", "simulate[1" + "0" * 5000 + "]"),
+            "sweep[1].job",
+            "characters",
+        ),
+        "a motion step of 5e-324 s": (
+            TWO_LINKS + "[motion_uncertainty]\nduration_s = 1\nstep_s = 5e-324\n",
+            "motion_uncertainty.step_s",
+            "inf steps",
+        ),
+        "a simulation step of 1e-310 s": (
+            TWO_LINKS + "[simulate]\nduration_s = 1e10\nstep_s = 1e-310\n",
+            "simulate.step_s",
+            "inf steps",
+        ),
+        "the isotropic posture of a 1e30 m link": (
+            "[robot]\nlengths_m = [1e30, 0.2, 0.3]\nmasses_kg = [2.0, 1.5, 1.0]\n[sensitivity]\n"
+            'posture = "isotropic"\ntolerance_length_mm = 1\ntolerance_mass_g = 10\n',
+            "sensitivity.posture",
+            "no isotropic posture",
+        ),
+    }
+)
 
 
 @pytest.mark.parametrize("case", list(CASES))

@@ -38,9 +38,15 @@ def test_compiling_kernels_stops_within_the_bound():
 
 @pytest.mark.parametrize(
     "method, num_vars, samples, seed",
-    [("sobol", 2, 64, 1), ("sobol", 12, 1024, 42), ("sobol", 3, 512, 7), ("efast", 12, 1194, 42),
-     ("efast", 2, 65, 3), ("efast", 5, 300, 9)],
-)  # fmt: skip
+    [
+        ("sobol", 2, 64, 1),
+        ("sobol", 12, 1024, 42),
+        ("sobol", 3, 512, 7),
+        ("efast", 12, 1194, 42),
+        ("efast", 2, 65, 3),
+        ("efast", 5, 300, 9),
+    ],
+)
 def test_chunked_sampling_is_byte_identical_to_salib(method, num_vars, samples, seed, monkeypatch):
     monkeypatch.setattr(engine, "SOBOL_CHUNK_POINTS", 8)  # many chunks
     fractions = []

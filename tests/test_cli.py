@@ -224,8 +224,10 @@ def test_presets_name_prints_a_bundled_preset_and_copy_writes_it_never_over_a_fi
     target.write_text("# my edits\n")
     result = cli("presets", "paper-a-table4", "--copy", target)
     assert result.exit_code == 2
-    assert result.stderr.strip() == (f"error: command line: --copy: {target} exists (it is "
-                                     "never overwritten) (expected a new file name)")  # fmt: skip
+    assert result.stderr.strip() == (
+        f"error: command line: --copy: {target} exists (it is "
+        "never overwritten) (expected a new file name)"
+    )
     assert target.read_text() == "# my edits\n"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["mine.toml"]
     unknown = cli("presets", "nope")

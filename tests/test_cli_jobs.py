@@ -58,8 +58,17 @@ def summary(path):
 
 def test_job_selects_by_table_key_and_by_output_name(cli, preset, tmp_path):
     out = tmp_path / "out"
-    result = cli("workspace", preset, "--job", "workspace[3]", "-j", "b-geometric.csv",
-                 "--out-dir", out, "--no-map")  # fmt: skip
+    result = cli(
+        "workspace",
+        preset,
+        "--job",
+        "workspace[3]",
+        "-j",
+        "b-geometric.csv",
+        "--out-dir",
+        out,
+        "--no-map",
+    )
     assert result.exit_code == 0, result.output
     assert written(out) == ["b-geometric.csv", "c-arc.csv"]
     assert "three:workspace[1]" not in result.stdout
@@ -67,8 +76,17 @@ def test_job_selects_by_table_key_and_by_output_name(cli, preset, tmp_path):
 
 def test_run_selects_jobs_across_presets_by_label(cli, preset, tmp_path):
     out = tmp_path / "out"
-    result = cli("run", preset, TINY, "--job", "three:workspace[2]", "--job", "tiny:simulate",
-                 "--out-dir", out)  # fmt: skip
+    result = cli(
+        "run",
+        preset,
+        TINY,
+        "--job",
+        "three:workspace[2]",
+        "--job",
+        "tiny:simulate",
+        "--out-dir",
+        out,
+    )
     assert result.exit_code == 0, result.output
     assert written(out) == ["b-geometric.csv", "tiny-simulate.csv"]
 
@@ -80,8 +98,7 @@ def test_run_selects_jobs_across_presets_by_label(cli, preset, tmp_path):
         ("run", "one of three:workspace[1], three:workspace[2], three:workspace[3], tiny:"),
     ],
 )
-def test_an_unknown_job_is_one_line_exit_2_listing_the_names(cli, preset, tmp_path, command,
-                                                             valid):  # fmt: skip
+def test_an_unknown_job_is_one_line_exit_2_listing_the_names(cli, preset, tmp_path, command, valid):
     extra = (TINY,) if command == "run" else ()
     result = cli(command, preset, *extra, "--job", "workspace[9]", "--out-dir", tmp_path)
     assert result.exit_code == ExitCode.BAD_INPUT
@@ -93,8 +110,20 @@ def test_an_unknown_job_is_one_line_exit_2_listing_the_names(cli, preset, tmp_pa
 
 def test_an_override_names_the_files_after_what_was_run(cli, preset, tmp_path):
     out = tmp_path / "out"
-    result = cli("workspace", preset, "--form", "mean-value", "--precision", "3.75",
-                 "--job", "workspace[1]", "--job", "workspace[3]", "--out-dir", out)  # fmt: skip
+    result = cli(
+        "workspace",
+        preset,
+        "--form",
+        "mean-value",
+        "--precision",
+        "3.75",
+        "--job",
+        "workspace[1]",
+        "--job",
+        "workspace[3]",
+        "--out-dir",
+        out,
+    )
     assert result.exit_code == 0, result.output
     assert written(out) == [
         "a-arc--form-mean-value--precision-3.75.csv",
@@ -108,15 +137,33 @@ def test_an_override_names_the_files_after_what_was_run(cli, preset, tmp_path):
 
 
 def test_an_override_equal_to_the_preset_keeps_its_names(cli, preset, tmp_path):
-    result = cli("workspace", preset, "--form", "arc-distance", "--job", "workspace[3]",
-                 "--out-dir", tmp_path, "--no-map")  # fmt: skip
+    result = cli(
+        "workspace",
+        preset,
+        "--form",
+        "arc-distance",
+        "--job",
+        "workspace[3]",
+        "--out-dir",
+        tmp_path,
+        "--no-map",
+    )
     assert result.exit_code == 0, result.output
     assert "c-arc.csv" in written(tmp_path)
 
 
 def test_out_names_are_kept_under_an_override(cli, preset, tmp_path):
-    result = cli("workspace", preset, "--form", "mean-value", "--job", "workspace[3]",
-                 "--out", tmp_path / "mine.csv", "--no-map")  # fmt: skip
+    result = cli(
+        "workspace",
+        preset,
+        "--form",
+        "mean-value",
+        "--job",
+        "workspace[3]",
+        "--out",
+        tmp_path / "mine.csv",
+        "--no-map",
+    )
     assert result.exit_code == 0, result.output
     assert written(tmp_path) == ["mine.csv"]
 

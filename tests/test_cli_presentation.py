@@ -177,10 +177,10 @@ def test_every_help_text_is_shown_as_written(cli):
 def test_a_sweep_label_with_brackets_is_shown_as_written(cli, tmp_path):
     preset = tmp_path / "[bold]p.toml"
     preset.write_text(
-        '[robot]\nlengths_m = [0.25, 0.2]\nmasses_kg = [2.0, 1.5]\n[[torques]]\n'
-        'theta_deg = [[30, 60]]\nomega_deg_s = [[10, -20]]\nalpha_deg_s2 = [[1, 2]]\n'
+        "[robot]\nlengths_m = [0.25, 0.2]\nmasses_kg = [2.0, 1.5]\n[[torques]]\n"
+        "theta_deg = [[30, 60]]\nomega_deg_s = [[10, -20]]\nalpha_deg_s2 = [[1, 2]]\n"
         'output = "tq.csv"\n[[sweep]]\njob = "torques"\nvalues."robot.masses_kg[2]" = [1.0]\n'
-    )  # fmt: skip
+    )
     result = cli("run", preset, "--out-dir", tmp_path, "--workers", "1")
     assert result.exit_code == 0, result.output
     assert "[bold]p:torques" in result.stdout and "[bold]p:sweep[1]" in result.stdout
@@ -195,8 +195,9 @@ def _coercions(annotation, **info):
     from planar_tui.cli.coercion import CommonValues
 
     descriptor = resolve_type_descriptor(annotation, OptionInfo(**info))
-    ours = CommonValues(parameter_info=descriptor.parameter_info, annotation=annotation,
-                         descriptor=descriptor)  # fmt: skip
+    ours = CommonValues(
+        parameter_info=descriptor.parameter_info, annotation=annotation, descriptor=descriptor
+    )
     return ours, build_runtime_param(descriptor)
 
 

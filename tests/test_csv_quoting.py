@@ -66,8 +66,14 @@ def test_every_csv_the_cli_writes_reads_back_with_one_field_count(tmp_path, cli,
     assert sorted(p.name for p in out.iterdir()) == sorted(
         [*written, *(f"{n}.json" for n in written)]
     )
-    assert written == ["tiny-sensitivity.csv", "tiny-simulate.csv", "tiny-torques.csv",
-                       "tiny-workspace.csv", "w2-boxes.csv", "w2.csv"]  # fmt: skip
+    assert written == [
+        "tiny-sensitivity.csv",
+        "tiny-simulate.csv",
+        "tiny-torques.csv",
+        "tiny-workspace.csv",
+        "w2-boxes.csv",
+        "w2.csv",
+    ]
     for path in out.glob("*.csv"):
         rows = read_back(path)
         widths = {len(row) for row in rows}

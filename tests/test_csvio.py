@@ -71,8 +71,12 @@ def test_a_later_run_removes_the_stale_temporary_files_of_its_output(tmp_path, c
     stale.write_bytes(b"x" * 1000)
     old = time.time() - 3600
     os.utime(stale, (old, old))
-    kept = [out / ".tq.csv.0123abcd.tmp.bak", out / ".other.csv.0123abcd.tmp",
-            out / ".tq.csv.0123ABCD.tmp", out / "tq.csv.0123abcd.tmp"]  # fmt: skip
+    kept = [
+        out / ".tq.csv.0123abcd.tmp.bak",
+        out / ".other.csv.0123abcd.tmp",
+        out / ".tq.csv.0123ABCD.tmp",
+        out / "tq.csv.0123abcd.tmp",
+    ]
     for path in kept:
         path.write_text("not ours")
         os.utime(path, (old, old))

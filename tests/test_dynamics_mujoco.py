@@ -64,9 +64,23 @@ def test_table1_torque_run_matches_mujoco_rk4():
     t_out, theta_out, omega_out = np.zeros(rows), np.zeros((rows, 6)), np.zeros((rows, 6))
     theta, omega = np.zeros(6), np.zeros(6)
     rk4_integrate(
-        lengths, masses, inertias, G, torque, theta, omega, 1e-4, steps, 1, 0,
-        t_out, theta_out, omega_out, np.zeros(rows), np.zeros(rows),
-    )  # fmt: skip
+        lengths,
+        masses,
+        inertias,
+        G,
+        torque,
+        theta,
+        omega,
+        1e-4,
+        steps,
+        1,
+        0,
+        t_out,
+        theta_out,
+        omega_out,
+        np.zeros(rows),
+        np.zeros(rows),
+    )
     assert np.abs(theta_out - reference).max() <= 1e-8
     np.testing.assert_allclose(omega, data.qvel, rtol=0, atol=1e-6)
     assert np.abs(theta_out[-1]).max() > 0.3  # the arm really moved

@@ -380,17 +380,29 @@ def test_sweep_figure_leaves_out_columns_that_echo_the_varied_key():
     from planar_tui.csvio import CsvTable
     from planar_tui.figures.sweep import split_columns
 
-    header = ("point", "orientation_deg", "area_kept_cm2", "orientation_lo_deg", "status",
-              "message", "seconds")  # fmt: skip
-    rows = [(1, -10.0, 90.5, -10.0, "ok", "", 0.1), (2, 0.0, 106.8, 0.0, "ok", "", 0.1),
-            (3, 10.0, 90.5, 10.0, "ok", "", 0.1)]  # fmt: skip
+    header = (
+        "point",
+        "orientation_deg",
+        "area_kept_cm2",
+        "orientation_lo_deg",
+        "status",
+        "message",
+        "seconds",
+    )
+    rows = [
+        (1, -10.0, 90.5, -10.0, "ok", "", 0.1),
+        (2, 0.0, 106.8, 0.0, "ok", "", 0.1),
+        (3, 10.0, 90.5, 10.0, "ok", "", 0.1),
+    ]
     assert split_columns(CsvTable(header, rows)) == (["orientation_deg"], ["area_kept_cm2"])
 
 
 # -- sweeps over text and list-valued keys --------------------------------------------
 
-FORMS_HEADER = ("point,form,strategy,precision_cm,boxes_processed,area_kept_cm2,"
-                "orientation_lo_deg,status,message,seconds")  # fmt: skip
+FORMS_HEADER = (
+    "point,form,strategy,precision_cm,boxes_processed,area_kept_cm2,"
+    "orientation_lo_deg,status,message,seconds"
+)
 
 
 def _table(tmp_path, header: str, rows: list[str]):
@@ -402,11 +414,15 @@ def _table(tmp_path, header: str, rows: list[str]):
 def test_a_sweep_over_a_text_key_puts_its_values_on_the_x_axis(tmp_path):
     from planar_tui.figures.sweep import split_columns
 
-    table = _table(tmp_path, FORMS_HEADER, [
-        "1,natural,legwise,0.9375,3907,137.1,0.0,ok,,0.3",
-        "2,slope,legwise,0.9375,4496,140.6,0.0,ok,,0.1",
-        "3,mean-value,legwise,0.9375,5628,145.9,0.0,failed,boom,0.1",
-    ])  # fmt: skip
+    table = _table(
+        tmp_path,
+        FORMS_HEADER,
+        [
+            "1,natural,legwise,0.9375,3907,137.1,0.0,ok,,0.3",
+            "2,slope,legwise,0.9375,4496,140.6,0.0,ok,,0.1",
+            "3,mean-value,legwise,0.9375,5628,145.9,0.0,failed,boom,0.1",
+        ],
+    )
     varied, shown = split_columns(table)
     assert varied == ["form"]  # not boxes_processed, the first output that varies
     assert shown[:2] == ["boxes_processed", "area_kept_cm2"]
@@ -423,10 +439,20 @@ def test_a_sweep_over_a_text_key_puts_its_values_on_the_x_axis(tmp_path):
 
 def test_a_text_key_with_a_numeric_key_draws_one_line_per_value(tmp_path):
     header = "point,form,orientation_deg,strategy,area_kept_cm2,status,message,seconds"
-    rows = [f"{k},{form},{phi},legwise,{area},ok,,0.1" for k, (form, phi, area) in enumerate(
-        [("natural", -10, 167.9), ("natural", 0, 137.1), ("natural", 10, 167.8),
-         ("mean-value", -10, 166.1), ("mean-value", 0, 145.9), ("mean-value", 10, 166.2)],
-        start=1)]  # fmt: skip
+    rows = [
+        f"{k},{form},{phi},legwise,{area},ok,,0.1"
+        for k, (form, phi, area) in enumerate(
+            [
+                ("natural", -10, 167.9),
+                ("natural", 0, 137.1),
+                ("natural", 10, 167.8),
+                ("mean-value", -10, 166.1),
+                ("mean-value", 0, 145.9),
+                ("mean-value", 10, 166.2),
+            ],
+            start=1,
+        )
+    ]
     fig = figures.figure_for_table(_table(tmp_path, header, rows))
     (ax,) = fig.axes
     lines = [line for line in ax.lines if line.get_gid() == "sweep"]
@@ -438,11 +464,18 @@ def test_a_text_key_with_a_numeric_key_draws_one_line_per_value(tmp_path):
 
 def test_two_text_keys_draw_a_heat_map_with_labelled_ticks(tmp_path):
     header = "point,form,strategy,area_kept_cm2,status,message,seconds"
-    cells = {("natural", "legwise"): 1.0, ("natural", "joint"): 2.0,
-             ("slope", "legwise"): 3.0, ("slope", "joint"): 4.0,
-             ("mean-value", "legwise"): 5.0, ("mean-value", "joint"): 6.0}  # fmt: skip
-    rows = [f"{k},{form},{strategy},{value},ok,,0.1"
-            for k, ((form, strategy), value) in enumerate(cells.items(), start=1)]  # fmt: skip
+    cells = {
+        ("natural", "legwise"): 1.0,
+        ("natural", "joint"): 2.0,
+        ("slope", "legwise"): 3.0,
+        ("slope", "joint"): 4.0,
+        ("mean-value", "legwise"): 5.0,
+        ("mean-value", "joint"): 6.0,
+    }
+    rows = [
+        f"{k},{form},{strategy},{value},ok,,0.1"
+        for k, ((form, strategy), value) in enumerate(cells.items(), start=1)
+    ]
     fig = figures.figure_for_table(_table(tmp_path, header, rows))
     (image,) = _by_gid(fig, "heat", "collections")
     ax = image.axes
@@ -467,10 +500,14 @@ def test_a_list_valued_key_is_categorical_in_memory_and_read_back(tmp_path):
 
 def test_an_output_column_is_never_an_axis(cli, tmp_path):
     # no key column varies (one form), only outputs do: refused, not drawn against one
-    table = _table(tmp_path, FORMS_HEADER, [
-        "1,natural,legwise,0.9375,3907,137.1,0.0,ok,,0.3",
-        "2,natural,legwise,0.9375,4496,140.6,0.0,ok,,0.1",
-    ])  # fmt: skip
+    table = _table(
+        tmp_path,
+        FORMS_HEADER,
+        [
+            "1,natural,legwise,0.9375,3907,137.1,0.0,ok,,0.3",
+            "2,natural,legwise,0.9375,4496,140.6,0.0,ok,,0.1",
+        ],
+    )
     with pytest.raises(ValueError, match="no varied key column"):
         figures.figure_for_table(table)
     result = cli("plot", tmp_path / "sweep.csv")
@@ -566,11 +603,15 @@ def test_bundled_orientation_sweep_figure_to_svg_and_png(tmp_path):
     from planar_tui.sweep.service import run_sweep
     from planar_tui.sweep.spec import parse_sweeps
 
-    path = _shrunk(tmp_path, "sweep-3rrr-orientation", {
-        "precision_cm = 0.46875 ": "precision_cm = 0.9375 ",
-        "refine_precision_cm = 0.029296875": "refine_precision_cm = 0.46875",
-        "count = 25": "count = 3",
-    })  # fmt: skip
+    path = _shrunk(
+        tmp_path,
+        "sweep-3rrr-orientation",
+        {
+            "precision_cm = 0.46875 ": "precision_cm = 0.9375 ",
+            "refine_precision_cm = 0.029296875": "refine_precision_cm = 0.46875",
+            "count = 25": "count = 3",
+        },
+    )
     (sweep,) = parse_sweeps(load_preset(path))
     run = run_sweep(sweep)
     fig = figures.figure_for_table(run.table, sweep.label)
@@ -590,11 +631,15 @@ def test_bundled_orientation_sweep_figure_to_svg_and_png(tmp_path):
 
 @pytest.mark.slow
 def test_bundled_motion_uncertainty_figures_to_svg_and_png(tmp_path):
-    path = _shrunk(tmp_path, "paper-a-table1-motion", {
-        "duration_s = 1.0": "duration_s = 0.02",
-        "samples = 256": "samples = 8",
-        "at_s = [0.25, 0.5, 1.0]": "at_s = [0.01, 0.02]",
-    })  # fmt: skip
+    path = _shrunk(
+        tmp_path,
+        "paper-a-table1-motion",
+        {
+            "duration_s = 1.0": "duration_s = 0.02",
+            "samples = 256": "samples = 8",
+            "at_s = [0.25, 0.5, 1.0]": "at_s = [0.01, 0.02]",
+        },
+    )
     (job,) = batch.prepare_jobs(load_preset(path).jobs)
     result = batch.run_job(job)
     band = figures.figure_for_result(job, result)
@@ -630,8 +675,10 @@ def test_simulate_energy_panel_is_the_drift_net_of_the_torques_work(tmp_path):
     (ax,) = [ax for ax in fig.axes if ax.get_ylabel() == "E − E(0) − W (J)"]
     (line,) = ax.lines
     energy = result.kinetic_J + result.potential_J
-    work = sum(tau * (result.theta_rad[:, i] - result.theta_rad[0, i])
-               for i, tau in enumerate(job.spec.torques_Nm))  # fmt: skip
+    work = sum(
+        tau * (result.theta_rad[:, i] - result.theta_rad[0, i])
+        for i, tau in enumerate(job.spec.torques_Nm)
+    )
     assert np.max(np.abs(energy - energy[0])) > 0.5  # the torques' work, not drift
     assert np.max(np.abs(line.get_ydata())) < 1e-9
     assert line.get_ydata() == pytest.approx(energy - energy[0] - work, abs=1e-12)
@@ -656,9 +703,20 @@ def test_simulate_figure_from_a_csv_alone_names_the_torques_work_not_a_drift(res
 
 def test_a_heat_map_over_uneven_values_centres_each_cell_on_its_values(tmp_path):
     orientations, precisions = [5, 10, 40], [0.5, 1, 2, 4]
-    values = {(5, 0.5): 11.0, (5, 1): 12.5, (5, 2): 13.0, (5, 4): 14.25,
-              (10, 0.5): 21.0, (10, 1): 22.0, (10, 2): 23.5, (10, 4): 24.0,
-              (40, 0.5): 31.5, (40, 1): 32.0, (40, 2): 33.0, (40, 4): 34.75}  # fmt: skip
+    values = {
+        (5, 0.5): 11.0,
+        (5, 1): 12.5,
+        (5, 2): 13.0,
+        (5, 4): 14.25,
+        (10, 0.5): 21.0,
+        (10, 1): 22.0,
+        (10, 2): 23.5,
+        (10, 4): 24.0,
+        (40, 0.5): 31.5,
+        (40, 1): 32.0,
+        (40, 2): 33.0,
+        (40, 4): 34.75,
+    }
     rows, number = [], 0
     for phi in orientations:
         for eps in precisions:
@@ -702,8 +760,10 @@ def test_a_sweep_where_every_point_failed_draws_the_failures_along_its_keys(cli,
     assert result.exit_code == 0, result.output
     # two keys, and figure columns left empty by the failures
     header = "point,orientation_deg,precision_cm,area_kept_cm2,status,message,seconds"
-    rows = [f"{k},{phi},{eps},,failed,boom,0.1" for k, (phi, eps) in enumerate(
-        [(5, 1), (5, 2), (10, 1), (10, 2)], start=1)]  # fmt: skip
+    rows = [
+        f"{k},{phi},{eps},,failed,boom,0.1"
+        for k, (phi, eps) in enumerate([(5, 1), (5, 2), (10, 1), (10, 2)], start=1)
+    ]
     fig = figures.figure_for_table(_table(tmp_path, header, rows))
     (ax,) = [ax for ax in fig.axes if ax.get_visible()]
     (failed,) = _by_gid(fig, "failed")

@@ -153,10 +153,21 @@ def test_random_geometries_bracket_the_exact_area(d, lengths, lo, span, mode):
 
 def test_a_boundary_refinement_narrows_the_bracket():
     job = jobs()[1]
-    coarse = run(job, precision_cm=0.8, singularities=False, singularity_free_circle=None,
-                 singularity_precision_cm=None).outcome  # fmt: skip
-    refined = run(job, precision_cm=0.8, refine_precision_cm=0.2, singularities=False,
-                  singularity_free_circle=None, singularity_precision_cm=None).outcome  # fmt: skip
+    coarse = run(
+        job,
+        precision_cm=0.8,
+        singularities=False,
+        singularity_free_circle=None,
+        singularity_precision_cm=None,
+    ).outcome
+    refined = run(
+        job,
+        precision_cm=0.8,
+        refine_precision_cm=0.2,
+        singularities=False,
+        singularity_free_circle=None,
+        singularity_precision_cm=None,
+    ).outcome
     assert coarse.area_inside_cm2 <= refined.area_inside_cm2
     assert refined.area_kept_cm2 <= coarse.area_kept_cm2
     check_bracket(job.robot, refined, 0.2)
@@ -221,8 +232,13 @@ def test_singular_boxes_hold_a_float_trace_of_both_types(index):
 
     job = jobs()[index]
     robot = job.robot
-    result = run(job, precision_cm=0.5, singularities=True, singularity_precision_cm=0.5,
-                 singularity_free_circle=None)  # fmt: skip
+    result = run(
+        job,
+        precision_cm=0.5,
+        singularities=True,
+        singularity_precision_cm=0.5,
+        singularity_free_circle=None,
+    )
     singular = result.singularity
     type2 = singular.boxes[(singular.kinds & TYPE_II) != 0]
     type1 = singular.boxes[(singular.kinds & TYPE_I) != 0]
@@ -275,31 +291,48 @@ BAD = {
     "base_separation_cm": (ROBOT + "base_separation_cm = -1\n" + JOB, "robot5r.base_separation_cm"),
     "proximal_cm": (ROBOT + "proximal_cm = [1]\n" + JOB, "robot5r.proximal_cm"),
     "distal_cm": (ROBOT + "distal_cm = [1, 0]\n" + JOB, "robot5r.distal_cm"),
-    "joint_limits_deg": (ROBOT + "joint_limits_deg = [[10, 5], [0, 1]]\n" + JOB,
-                         "robot5r.joint_limits_deg"),
-    "working_mode": ("[robot5r]\nworking_mode = \"+\"\n" + JOB, "robot5r.working_mode"),
+    "joint_limits_deg": (
+        ROBOT + "joint_limits_deg = [[10, 5], [0, 1]]\n" + JOB,
+        "robot5r.joint_limits_deg",
+    ),
+    "working_mode": ('[robot5r]\nworking_mode = "+"\n' + JOB, "robot5r.working_mode"),
     "precision_cm": (ROBOT + "[[workspace5r]]\nprecision_cm = 0\n", "workspace5r[1].precision_cm"),
     "form": (ROBOT + JOB + 'form = "slope"\n', "workspace5r[1].form"),
-    "refine_precision_cm": (ROBOT + JOB + "refine_precision_cm = 2\n",
-                            "workspace5r[1].refine_precision_cm"),
-    "search_box_cm": (ROBOT + JOB + "search_box_cm = [[-1, 1], [-1, 1]]\n",
-                      "workspace5r[1].search_box_cm"),
+    "refine_precision_cm": (
+        ROBOT + JOB + "refine_precision_cm = 2\n",
+        "workspace5r[1].refine_precision_cm",
+    ),
+    "search_box_cm": (
+        ROBOT + JOB + "search_box_cm = [[-1, 1], [-1, 1]]\n",
+        "workspace5r[1].search_box_cm",
+    ),
     "box_budget": (ROBOT + JOB + "box_budget = 0\n", "workspace5r[1].box_budget"),
     "singularities": (ROBOT + JOB + "singularities = 1\n", "workspace5r[1].singularities"),
-    "singularity_precision_cm": (ROBOT + JOB + "singularity_precision_cm = 0.5\n",
-                                 "workspace5r[1].singularity_precision_cm"),
-    "geometric_reference": (ROBOT + JOB + 'geometric_reference = "yes"\n',
-                            "workspace5r[1].geometric_reference"),
-    "boxes_output": (ROBOT + JOB + 'boxes_output = "/tmp/abs.csv"\n', "workspace5r[1].boxes_output"),
-    "circle without singularities": (ROBOT + JOB + "singularity_free_circle = [0, 60]\n",
-                                     "workspace5r[1].singularity_free_circle"),
-    "circle in any mode": ("[robot5r]\n" + JOB + "singularities = true\n"
-                           "singularity_free_circle = [0, 60]\n",
-                           "workspace5r[1].singularity_free_circle"),
-    "circle out of reach": (ROBOT + JOB + "singularities = true\n"
-                            "singularity_free_circle = [0, 500]\n",
-                            "workspace5r[1].singularity_free_circle"),
-}  # fmt: skip
+    "singularity_precision_cm": (
+        ROBOT + JOB + "singularity_precision_cm = 0.5\n",
+        "workspace5r[1].singularity_precision_cm",
+    ),
+    "geometric_reference": (
+        ROBOT + JOB + 'geometric_reference = "yes"\n',
+        "workspace5r[1].geometric_reference",
+    ),
+    "boxes_output": (
+        ROBOT + JOB + 'boxes_output = "/tmp/abs.csv"\n',
+        "workspace5r[1].boxes_output",
+    ),
+    "circle without singularities": (
+        ROBOT + JOB + "singularity_free_circle = [0, 60]\n",
+        "workspace5r[1].singularity_free_circle",
+    ),
+    "circle in any mode": (
+        "[robot5r]\n" + JOB + "singularities = true\nsingularity_free_circle = [0, 60]\n",
+        "workspace5r[1].singularity_free_circle",
+    ),
+    "circle out of reach": (
+        ROBOT + JOB + "singularities = true\nsingularity_free_circle = [0, 500]\n",
+        "workspace5r[1].singularity_free_circle",
+    ),
+}
 
 
 @pytest.mark.parametrize("case", sorted(BAD))
@@ -313,8 +346,17 @@ def test_bad_input_is_one_line_exit_2(case, cli, tmp_path):
 def test_the_command_writes_the_summary_and_boxes_csv(cli, tmp_path):
     import csv
 
-    result = cli("workspace5r", PRESET, "--precision", "1", "--boxes", tmp_path / "b.csv",
-                 "--out-dir", tmp_path, "--no-map")  # fmt: skip
+    result = cli(
+        "workspace5r",
+        PRESET,
+        "--precision",
+        "1",
+        "--boxes",
+        tmp_path / "b.csv",
+        "--out-dir",
+        tmp_path,
+        "--no-map",
+    )
     assert result.exit_code == 0, result.output
     summaries = sorted(tmp_path.glob("fivebar-*.csv"))
     assert len(summaries) == 2
@@ -358,8 +400,9 @@ def test_the_figure_draws_boxes_the_exact_boundary_a_pose_and_the_circle():
 
     job = jobs()[1]
     fig = from_result(job, run(job, precision_cm=1.0, singularity_precision_cm=1.0))
-    gids = {artist.get_gid() for ax in fig.axes for artist in [*ax.lines, *ax.collections,
-                                                                *ax.patches]}  # fmt: skip
+    gids = {
+        artist.get_gid() for ax in fig.axes for artist in [*ax.lines, *ax.collections, *ax.patches]
+    }
     assert {"exact", "leg", "inside", "singular", "circle"} <= gids
 
 

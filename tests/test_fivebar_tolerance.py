@@ -21,8 +21,11 @@ from planar_tui.workspace.paving.levels import INSIDE
 from tests.conftest import PRESETS, on_one_and_two_threads
 
 T_BASE_CM, T_PROXIMAL_CM, T_DISTAL_CM = 0.4, 0.3, 0.5
-TOLERANCES = (("base_joints_cm", T_BASE_CM), ("distal_cm", T_DISTAL_CM),
-              ("proximal_cm", T_PROXIMAL_CM))  # fmt: skip
+TOLERANCES = (
+    ("base_joints_cm", T_BASE_CM),
+    ("distal_cm", T_DISTAL_CM),
+    ("proximal_cm", T_PROXIMAL_CM),
+)
 #: The derived bound B = √2 t_A + t_1 + t_2 (planar_tui.workspace.fivebar.tolerance).
 BOUND_CM = math.sqrt(2.0) * T_BASE_CM + T_PROXIMAL_CM + T_DISTAL_CM
 PRECISION_CM = 0.5
@@ -212,8 +215,12 @@ def test_the_circle_family_bound_holds_for_every_sampled_circle():
     rng = np.random.default_rng(5)
     side = np.linspace(-1.0, 1.0, 256)
     ones = np.ones_like(side)
-    square = np.vstack([np.column_stack(pair) for pair in
-                        ((side, ones), (side, -ones), (ones, side), (-ones, side))])  # fmt: skip
+    square = np.vstack(
+        [
+            np.column_stack(pair)
+            for pair in ((side, ones), (side, -ones), (ones, side), (-ones, side))
+        ]
+    )
     square = np.vstack([square, rng.uniform(-1.0, 1.0, (64, 2))])
     proved = isotropic = 0
     for _ in range(4000):
@@ -226,8 +233,12 @@ def test_the_circle_family_bound_holds_for_every_sampled_circle():
         proved += 1
         centres = t_a * square
         to_centre = np.hypot(qx - centres[:, 0], qy - centres[:, 1])
-        radii = np.concatenate([[max(radius - spread, 0.0), radius + spread],
-                                rng.uniform(max(radius - spread, 0.0), radius + spread, 8)])  # fmt: skip
+        radii = np.concatenate(
+            [
+                [max(radius - spread, 0.0), radius + spread],
+                rng.uniform(max(radius - spread, 0.0), radius + spread, 8),
+            ]
+        )
         assert np.abs(to_centre[:, None] - radii[None, :]).min() > rho
     assert proved > isotropic > 1000
 
@@ -353,8 +364,10 @@ def test_the_bundled_study_reads_its_tolerances_and_loses_area_at_one_millimetre
     from planar_tui.workspace.paving.tolerance import tolerance_of
 
     jobs = load_preset(PRESETS / "fivebar-tolerance.toml").jobs
-    read = [(t.mode, *map(t.of, ("base_joints_cm", "proximal_cm", "distal_cm")))
-            for t in map(tolerance_of, [job.spec for job in jobs])]  # fmt: skip
+    read = [
+        (t.mode, *map(t.of, ("base_joints_cm", "proximal_cm", "distal_cm")))
+        for t in map(tolerance_of, [job.spec for job in jobs])
+    ]
     assert read == [("all", 0.01, 0.01, 0.01), ("all", 0.1, 0.1, 0.1)]
     fine, coarse = (
         compute_fivebar(job.robot, spec, BoxBudget(job, Progress()))

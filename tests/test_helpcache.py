@@ -41,8 +41,9 @@ def run_entry(arguments: list[str], pages: Path | str, **extra: str):
     """The entry point in a fresh process (stdout a pipe): (exit code, stdout bytes,
     renderers imported)."""
     env = dict(os.environ, PYTHONPATH=str(REPO), PLANAR_TUI_HELP_CACHE_DIR=str(pages), **extra)
-    done = subprocess.run([sys.executable, "-c", ENTRY, *arguments], capture_output=True,
-                          env=env, timeout=120)  # fmt: skip
+    done = subprocess.run(
+        [sys.executable, "-c", ENTRY, *arguments], capture_output=True, env=env, timeout=120
+    )
     last = done.stderr.decode().strip().splitlines()[-1]
     return done.returncode, done.stdout, json.loads(last[last.index("[") :])
 
@@ -69,9 +70,13 @@ def run_in_terminal(arguments: list[str], pages: Path, columns: int) -> bytes:
     env = {k: v for k, v in os.environ.items() if k not in ("NO_COLOR", "COLUMNS", "LINES")}
     env.update(PYTHONPATH=str(REPO), PLANAR_TUI_HELP_CACHE_DIR=str(pages), TERM="xterm-256color")
     process = subprocess.Popen(
-        [sys.executable, "-c", ENTRY, *arguments], stdin=follower, stdout=follower,
-        stderr=subprocess.DEVNULL, env=env, close_fds=True,
-    )  # fmt: skip
+        [sys.executable, "-c", ENTRY, *arguments],
+        stdin=follower,
+        stdout=follower,
+        stderr=subprocess.DEVNULL,
+        env=env,
+        close_fds=True,
+    )
     os.close(follower)
     output = bytearray()
     deadline = time.monotonic() + 120
@@ -141,8 +146,15 @@ def test_only_help_requests_are_cached():
     assert helpcache.is_help_request(["--help"])
     assert helpcache.is_help_request(["run", "--help"])
     assert helpcache.is_help_request(["sweep", "x-y", "--help"])
-    for arguments in ([], ["run"], ["--help", "run"], ["run", "a.toml", "--help"],
-                      ["--version", "--help"], ["a", "b", "c", "--help"], ["-h"]):  # fmt: skip
+    for arguments in (
+        [],
+        ["run"],
+        ["--help", "run"],
+        ["run", "a.toml", "--help"],
+        ["--version", "--help"],
+        ["a", "b", "c", "--help"],
+        ["-h"],
+    ):
         assert not helpcache.is_help_request(arguments), arguments
 
 
@@ -152,8 +164,13 @@ def test_the_key_changes_with_everything_the_page_depends_on(tmp_path, monkeypat
     key = helpcache.help_key(["--help"])
     assert helpcache.help_key(["--help"]) == key  # the same inputs, the same key
     assert helpcache.help_key(["run", "--help"]) != key
-    for name, value in [("COLUMNS", "100"), ("NO_COLOR", "1"), ("FORCE_COLOR", "1"),
-                        ("TERM", "dumb"), ("TYPER_USE_RICH", "0")]:  # fmt: skip
+    for name, value in [
+        ("COLUMNS", "100"),
+        ("NO_COLOR", "1"),
+        ("FORCE_COLOR", "1"),
+        ("TERM", "dumb"),
+        ("TYPER_USE_RICH", "0"),
+    ]:
         with monkeypatch.context() as environment:
             environment.setenv(name, value)
             assert helpcache.help_key(["--help"]) != key, name

@@ -228,17 +228,29 @@ print(json.dumps({"code": result.exit_code, "kinds": list(JOB_KINDS.loaded()),
 
 #: Every job kind's module (and the modules only those kinds use).
 KIND_MODULES = {
-    "planar_tui.dynamics.simulate", "planar_tui.dynamics.torques", "planar_tui.sensitivity.job",
-    "planar_tui.workspace.rrr.job", "planar_tui.workspace.fivebar.job", "planar_tui.motion.job",
-    "planar_tui.workspace.rpr.job", "planar_tui.workspace.prr.job",
-    "planar_tui.workspace.paving.orientation", "planar_tui.workspace.paving.tolerance",
-}  # fmt: skip
+    "planar_tui.dynamics.simulate",
+    "planar_tui.dynamics.torques",
+    "planar_tui.sensitivity.job",
+    "planar_tui.workspace.rrr.job",
+    "planar_tui.workspace.fivebar.job",
+    "planar_tui.motion.job",
+    "planar_tui.workspace.rpr.job",
+    "planar_tui.workspace.prr.job",
+    "planar_tui.workspace.paving.orientation",
+    "planar_tui.workspace.paving.tolerance",
+}
 
 
 def kinds_loaded_by(*args: str) -> dict:
     env = dict(os.environ, PYTHONPATH=str(REPO))
-    out = subprocess.run([sys.executable, "-c", KINDS_PROBE, *args], capture_output=True,
-                         text=True, env=env, check=True, cwd=REPO)  # fmt: skip
+    out = subprocess.run(
+        [sys.executable, "-c", KINDS_PROBE, *args],
+        capture_output=True,
+        text=True,
+        env=env,
+        check=True,
+        cwd=REPO,
+    )
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
@@ -246,8 +258,10 @@ def test_a_run_imports_only_the_kinds_of_its_jobs(tmp_path):
     """Issue 21: job kinds and their dependencies are imported only when a job of that
     kind runs (:class:`planar_tui.registry.Registry`, ``build_app("run")``)."""
     preset = tmp_path / "torques.toml"
-    preset.write_text("[robot]\nlengths_m = [0.3, 0.2]\nmasses_kg = [1.0, 0.8]\n\n"
-                      "[torques]\ntheta_deg = [[0, 10]]\n")  # fmt: skip
+    preset.write_text(
+        "[robot]\nlengths_m = [0.3, 0.2]\nmasses_kg = [1.0, 0.8]\n\n"
+        "[torques]\ntheta_deg = [[0, 10]]\n"
+    )
     probe = kinds_loaded_by("run", str(preset), "--out-dir", str(tmp_path))
     assert probe["code"] == 0 and (tmp_path / "torques-torques-1.csv").exists()
     assert probe["kinds"] == ["torques"]

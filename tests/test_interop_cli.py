@@ -37,14 +37,27 @@ def test_export_then_import_is_the_presets_robot(cli, tmp_path, format_name, suf
 
 def test_export_of_a_jobs_own_robot(cli, tmp_path):
     model = tmp_path / "t4.urdf"
-    assert cli("export", "paper-a-table4", "--robot", "sensitivity[2]", "--format", "urdf",
-               "--out", model).exit_code == 0  # fmt: skip
+    assert (
+        cli(
+            "export",
+            "paper-a-table4",
+            "--robot",
+            "sensitivity[2]",
+            "--format",
+            "urdf",
+            "--out",
+            model,
+        ).exit_code
+        == 0
+    )
     result = cli("import", model)  # to stdout
     assert result.exit_code == 0
     job = load_preset(PRESETS / "paper-a-table4.toml").jobs[1]
     written = tomllib.loads(result.stdout)["robot"]
-    assert SerialRobot(**{k: tuple(v) if isinstance(v, list) else v
-                          for k, v in written.items()}) == job.robot  # fmt: skip
+    assert (
+        SerialRobot(**{k: tuple(v) if isinstance(v, list) else v for k, v in written.items()})
+        == job.robot
+    )
 
 
 def test_import_notes_go_to_stderr_and_into_the_preset(cli, tmp_path):
@@ -59,8 +72,10 @@ def test_nothing_is_ever_overwritten(cli, tmp_path):
     model = tmp_path / "arm.xml"
     model.write_text("mine")
     line = one_error_line(cli("export", "paper-a-table1", "--format", "mjcf", "--out", model))
-    assert line == (f"error: {model}: --out: is a file that exists: nothing is overwritten "
-                    "(expected a new file name (delete or move the old one first))")  # fmt: skip
+    assert line == (
+        f"error: {model}: --out: is a file that exists: nothing is overwritten "
+        "(expected a new file name (delete or move the old one first))"
+    )
     assert model.read_text() == "mine"
     preset = tmp_path / "arm.toml"
     preset.write_text("mine")
@@ -74,20 +89,39 @@ def test_nothing_is_ever_overwritten(cli, tmp_path):
 @pytest.mark.parametrize(
     ("arguments", "expected"),
     [
-        (["export", "paper-a-table1", "--out", "x.xml"],
-         "error: command line: --format: missing (expected mjcf or urdf)"),
-        (["export", "paper-a-table1", "--format", "sdf", "--out", "x.sdf"],
-         "error: command line: --format: is 'sdf' (expected mjcf or urdf)"),
-        (["export", "paper-a-table1", "--format", "mjcf"],
-         "error: command line: --out: missing (expected the file to write)"),
-        (["export", "paper-a-table4", "--robot", "workspace", "--format", "mjcf", "--out", "x.xml"],
-         "error: command line: --robot: is 'workspace', no job on a serial robot in "),
-        (["export", "paper-b-table3", "--format", "mjcf", "--out", "x.xml"],
-         "--robot: no serial robot: a 3-RRR is not exported"),
+        (
+            ["export", "paper-a-table1", "--out", "x.xml"],
+            "error: command line: --format: missing (expected mjcf or urdf)",
+        ),
+        (
+            ["export", "paper-a-table1", "--format", "sdf", "--out", "x.sdf"],
+            "error: command line: --format: is 'sdf' (expected mjcf or urdf)",
+        ),
+        (
+            ["export", "paper-a-table1", "--format", "mjcf"],
+            "error: command line: --out: missing (expected the file to write)",
+        ),
+        (
+            [
+                "export",
+                "paper-a-table4",
+                "--robot",
+                "workspace",
+                "--format",
+                "mjcf",
+                "--out",
+                "x.xml",
+            ],
+            "error: command line: --robot: is 'workspace', no job on a serial robot in ",
+        ),
+        (
+            ["export", "paper-b-table3", "--format", "mjcf", "--out", "x.xml"],
+            "--robot: no serial robot: a 3-RRR is not exported",
+        ),
         (["import", "arm.step"], "error: arm.step: (file): has the suffix '.step'"),
         (["import", "arm.urdf"], "error: arm.urdf: (file): no such file"),
     ],
-)  # fmt: skip
+)
 def test_bad_options_are_one_line(cli, tmp_path, monkeypatch, arguments, expected):
     monkeypatch.chdir(tmp_path)
     assert expected in one_error_line(cli(*arguments))
@@ -126,16 +160,33 @@ output = "arm-motion.csv"
 def test_sensitivity_export_problem_writes_every_design(cli, tmp_path):
     preset = REPO / "tests" / "data" / "app" / "tiny.toml"
     runs = tmp_path / "runs"
-    result = cli("sensitivity", preset, "--samples", "16", "--method", "sobol", "--method",
-                 "efast", "--out-dir", tmp_path, "--export-problem", runs)  # fmt: skip
+    result = cli(
+        "sensitivity",
+        preset,
+        "--samples",
+        "16",
+        "--method",
+        "sobol",
+        "--method",
+        "efast",
+        "--out-dir",
+        tmp_path,
+        "--export-problem",
+        runs,
+    )
     assert result.exit_code == 0, result.output
     for method in ("sobol", "efast"):
         assert sorted(p.name for p in (runs / method).iterdir()) == [
-            "X.npy", "Y.npy", "problem.json", "run.json"]  # fmt: skip
+            "X.npy",
+            "Y.npy",
+            "problem.json",
+            "run.json",
+        ]
     # a second run would replace them: refused before the job runs, nothing written
     again = tmp_path / "again"
-    line = one_error_line(cli("sensitivity", preset, "--samples", "16", "--out-dir", again,
-                              "--export-problem", runs))  # fmt: skip
+    line = one_error_line(
+        cli("sensitivity", preset, "--samples", "16", "--out-dir", again, "--export-problem", runs)
+    )
     assert "--export-problem: is a file that exists: nothing is overwritten" in line
     assert not again.exists()
 
@@ -145,8 +196,16 @@ def test_motion_netcdf_and_export_problem(cli, tmp_path):
 
     preset = tmp_path / "arm.toml"
     preset.write_text(MOTION)
-    result = cli("motion", preset, "--out-dir", tmp_path, "--format", "netcdf",
-                 "--export-problem", tmp_path / "runs")  # fmt: skip
+    result = cli(
+        "motion",
+        preset,
+        "--out-dir",
+        tmp_path,
+        "--format",
+        "netcdf",
+        "--export-problem",
+        tmp_path / "runs",
+    )
     assert result.exit_code == 0, result.output
     assert (tmp_path / "arm-motion.csv").exists()  # CSV stays
     with xr.open_dataset(tmp_path / "arm-motion.nc", engine="h5netcdf") as data:

@@ -27,9 +27,11 @@ LINKS = range(1, 51)
 def random_serial_robot(rng, n: int) -> SerialRobot:
     lengths, masses, inertias = random_robot(rng, n)
     return SerialRobot(
-        lengths_m=tuple(lengths), masses_kg=tuple(masses), inertias_kgm2=tuple(inertias),
+        lengths_m=tuple(lengths),
+        masses_kg=tuple(masses),
+        inertias_kgm2=tuple(inertias),
         gravity_m_s2=float(rng.uniform(0.0, 20.0)),
-    )  # fmt: skip
+    )
 
 
 def planar_tui_torques(robot: SerialRobot, theta, omega, alpha) -> np.ndarray:
@@ -93,7 +95,8 @@ def test_exported_urdf_in_mujoco_matches_its_mjcf(n):
 def test_the_axial_moment_satisfies_mujoco_for_tiny_and_huge_inertias():
     """MuJoCo's triangle inequality and smallest moment hold from 1e-15 to 1e15 kg m²."""
     for inertia in (1e-15, 3e-12, 1.0, 1e15):
-        robot = SerialRobot(lengths_m=(1.0, 2.0), masses_kg=(1.0, 1.0),
-                            inertias_kgm2=(inertia, inertia))  # fmt: skip
+        robot = SerialRobot(
+            lengths_m=(1.0, 2.0), masses_kg=(1.0, 1.0), inertias_kgm2=(inertia, inertia)
+        )
         model = mujoco.MjModel.from_xml_string(robot_mjcf(robot))
         np.testing.assert_array_equal(model.body_inertia[1:, 2], [inertia, inertia])

@@ -33,16 +33,30 @@ def test_export_then_import_gives_back_the_robot_exactly(tmp_path, suffix):
     rng = np.random.default_rng(7)
     robots = [
         SerialRobot(lengths_m=(0.3, 0.7), masses_kg=(1.0, 2.5)),  # rod inertias, no name
-        SerialRobot(lengths_m=(0.1,), masses_kg=(3.0,), inertias_kgm2=(0.2,),
-                    gravity_m_s2=0.0, name='arm "A" & <b>'),
-        SerialRobot(lengths_m=(1e-3, 1e3, 0.1 + 0.2), masses_kg=(1e-4, 5e2, 1 / 3),
-                    inertias_kgm2=(1e-9, 1e5, math.pi), gravity_m_s2=3.71, name="3R"),
-    ]  # fmt: skip
+        SerialRobot(
+            lengths_m=(0.1,),
+            masses_kg=(3.0,),
+            inertias_kgm2=(0.2,),
+            gravity_m_s2=0.0,
+            name='arm "A" & <b>',
+        ),
+        SerialRobot(
+            lengths_m=(1e-3, 1e3, 0.1 + 0.2),
+            masses_kg=(1e-4, 5e2, 1 / 3),
+            inertias_kgm2=(1e-9, 1e5, math.pi),
+            gravity_m_s2=3.71,
+            name="3R",
+        ),
+    ]
     for n in (4, 17, 50, 1200):  # 1200: deeper than Python's recursion limit
-        robots.append(SerialRobot(
-            lengths_m=tuple(rng.uniform(0.01, 5.0, n)), masses_kg=tuple(rng.uniform(0.01, 9, n)),
-            inertias_kgm2=tuple(rng.uniform(1e-4, 3.0, n)), gravity_m_s2=float(rng.uniform(0, 20)),
-        ))  # fmt: skip
+        robots.append(
+            SerialRobot(
+                lengths_m=tuple(rng.uniform(0.01, 5.0, n)),
+                masses_kg=tuple(rng.uniform(0.01, 9, n)),
+                inertias_kgm2=tuple(rng.uniform(1e-4, 3.0, n)),
+                gravity_m_s2=float(rng.uniform(0, 20)),
+            )
+        )
     for robot in robots:
         imported = read_robot(written(tmp_path, EXPORTERS[suffix](robot), suffix))
         expected = robot if robot.name != "3R" else SerialRobot(**{**robot.__dict__, "name": ""})
@@ -73,9 +87,12 @@ def test_a_reacher_style_model_imports_as_a_horizontal_two_link_arm():
     path = DATA / "reacher.xml"
     imported = read_robot(path)
     assert imported.robot == SerialRobot(
-        lengths_m=(0.12, 0.1), masses_kg=(0.2, 0.15), inertias_kgm2=(2.5e-4, 1.25e-4),
-        gravity_m_s2=0.0, name="reacher",
-    )  # fmt: skip
+        lengths_m=(0.12, 0.1),
+        masses_kg=(0.2, 0.15),
+        inertias_kgm2=(2.5e-4, 1.25e-4),
+        gravity_m_s2=0.0,
+        name="reacher",
+    )
     assert imported.offsets_deg == (0.0, 0.0)
     notes = " | ".join(imported.notes)
     assert "horizontal plane" in notes and "range -160 160 is not kept" in notes
@@ -259,18 +276,25 @@ def test_each_refusal_is_one_line_naming_the_element(tmp_path, case):
 
 @pytest.mark.parametrize(
     ("orientation", "sequence"),
-    [('euler="20 -35 50"', "xyz"), ('euler="20 -35 50"', "XYZ"), ('euler="-70 15 110"', "zyx"),
-     ('axisangle="1 2 3 40"', "xyz"), ('xyaxes="0.3 1 0.2 -1 0.1 0.4"', "xyz"),
-     ('zaxis="0.2 -0.5 1"', "xyz"), ('quat="0.3 -0.4 0.5 0.6"', "xyz")],
-)  # fmt: skip
+    [
+        ('euler="20 -35 50"', "xyz"),
+        ('euler="20 -35 50"', "XYZ"),
+        ('euler="-70 15 110"', "zyx"),
+        ('axisangle="1 2 3 40"', "xyz"),
+        ('xyaxes="0.3 1 0.2 -1 0.1 0.4"', "xyz"),
+        ('zaxis="0.2 -0.5 1"', "xyz"),
+        ('quat="0.3 -0.4 0.5 0.6"', "xyz"),
+    ],
+)
 def test_an_arm_on_a_turned_mount_imports_with_gravitys_in_plane_part(
     tmp_path, orientation, sequence
 ):
     """The exported arm under a mount body turned every way MJCF can say it (MuJoCo's
     gravity along -z): the plane tilts, the preset keeps gravity's in-plane part and the
     angle offsets; MuJoCo's inverse dynamics of the file agree with the preset's."""
-    robot = SerialRobot(lengths_m=(0.5, 0.3, 0.4), masses_kg=(1.0, 0.7, 0.4),
-                        inertias_kgm2=(0.03, 0.01, 0.02))  # fmt: skip
+    robot = SerialRobot(
+        lengths_m=(0.5, 0.3, 0.4), masses_kg=(1.0, 0.7, 0.4), inertias_kgm2=(0.03, 0.01, 0.02)
+    )
     text = robot_mjcf(robot)
     text = edited(text, 'angle="radian"', f'angle="degree" eulerseq="{sequence}"')
     text = edited(text, '<option gravity="0.0 -9.81 0.0"/>', "")
@@ -295,8 +319,11 @@ def test_a_urdf_arm_on_a_turned_base_joint_matches_pinocchio(tmp_path):
     robot = SerialRobot(lengths_m=(0.5, 0.3), masses_kg=(1.0, 0.7), inertias_kgm2=(0.03, 0.01))
     text = robot_urdf(robot)
     text = edited(text, '  <planar_tui gravity_m_s2="9.81" direction="0 -1 0"/>\n', "")
-    text = edited(text, '<origin xyz="0.0 0.0 0.0" rpy="0 0 0"/>',
-                  '<origin xyz="0.1 0.0 0.2" rpy="0.4 -0.9 1.3"/>')  # fmt: skip
+    text = edited(
+        text,
+        '<origin xyz="0.0 0.0 0.0" rpy="0 0 0"/>',
+        '<origin xyz="0.1 0.0 0.2" rpy="0.4 -0.9 1.3"/>',
+    )
     imported = read_robot(written(tmp_path, text, "urdf"))
     assert "assumed: URDF has no gravity (ROS: z up)" in " ".join(imported.notes)
     model = pinocchio.buildModelFromXML(text)

@@ -24,11 +24,17 @@ def motion():
     document = {
         "robot": {"lengths_m": [0.4, 0.3], "masses_kg": [1.0, 0.8]},
         "motion_uncertainty": {
-            "duration_s": 0.2, "step_s": 0.02, "torques_Nm": [2.0, 0.5], "samples": 128,
-            "methods": ["montecarlo", "sobol", "efast"], "at_s": [0.1, 0.2], "seed": 5,
-            "tolerance_length_mm": 5.0, "tolerance_mass_g": 50.0,
+            "duration_s": 0.2,
+            "step_s": 0.02,
+            "torques_Nm": [2.0, 0.5],
+            "samples": 128,
+            "methods": ["montecarlo", "sobol", "efast"],
+            "at_s": [0.1, 0.2],
+            "seed": 5,
+            "tolerance_length_mm": 5.0,
+            "tolerance_mass_g": 50.0,
         },
-    }  # fmt: skip
+    }
     (job,) = parse_preset("motion.toml", document).jobs
     return job, run_job(job)
 
@@ -41,8 +47,14 @@ def csv_rows(table) -> list[dict]:
 
 def test_the_dataset_reads_back_with_the_csvs_values(motion, tmp_path):
     job, result = motion
-    attributes = {"preset": "motion.toml", "job": job.label, "planar_tui_version": __version__,
-                  "seed": 5, "samples": 128, "methods": ["montecarlo", "sobol", "efast"]}  # fmt: skip
+    attributes = {
+        "preset": "motion.toml",
+        "job": job.label,
+        "planar_tui_version": __version__,
+        "seed": 5,
+        "samples": 128,
+        "methods": ["montecarlo", "sobol", "efast"],
+    }
     path = write_motion_netcdf(tmp_path / "motion.nc", result, attributes)
     with xr.open_dataset(path, engine="h5netcdf") as data:
         data.load()
@@ -67,8 +79,12 @@ def test_the_dataset_reads_back_with_the_csvs_values(motion, tmp_path):
     rows = [r for r in csv_rows(result.extra_tables["indices"]) if r["t_s"] in ("0.1", "0.2")]
     assert len(rows) == 2 * 2 * 4 * 4  # methods × times of at_s × outputs × inputs
     for row in rows:
-        cell = {"method": row["method"], "index_time": float(row["t_s"]),
-                "output": row["output"], "input": row["parameter"]}  # fmt: skip
+        cell = {
+            "method": row["method"],
+            "index_time": float(row["t_s"]),
+            "output": row["output"],
+            "input": row["parameter"],
+        }
         for name in ("S1", "ST", "percent"):
             assert data[name].sel(cell).item() == pytest.approx(float(row[name]), abs=0, rel=0)
 

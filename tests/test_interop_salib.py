@@ -148,18 +148,29 @@ def test_a_motion_jobs_runs_are_its_robots_and_their_outputs(tmp_path):
     document = {
         "robot": {"lengths_m": [0.4, 0.3], "masses_kg": [1.0, 0.8]},
         "motion_uncertainty": {
-            "duration_s": 0.2, "step_s": 0.02, "torques_Nm": [2.0, 0.5], "samples": 64,
-            "methods": ["montecarlo", "sobol"], "at_s": [0.1, 0.2], "seed": 3,
-            "tolerance_length_mm": 5.0, "tolerance_mass_g": 50.0, "outputs": "tip",
+            "duration_s": 0.2,
+            "step_s": 0.02,
+            "torques_Nm": [2.0, 0.5],
+            "samples": 64,
+            "methods": ["montecarlo", "sobol"],
+            "at_s": [0.1, 0.2],
+            "seed": 3,
+            "tolerance_length_mm": 5.0,
+            "tolerance_mass_g": 50.0,
+            "outputs": "tip",
         },
-    }  # fmt: skip
+    }
     (job,) = parse_preset("motion.toml", document).jobs
     result = run_job(job)
     write_problem(tmp_path / "runs", motion_runs(job, result), {"job": job.label})
     runs = tmp_path / "runs"
     problem = json.loads((runs / "montecarlo" / "problem.json").read_text())
-    assert problem["outputs"] == ["tip_x_m_at_0.1_s", "tip_y_m_at_0.1_s",
-                                  "tip_x_m_at_0.2_s", "tip_y_m_at_0.2_s"]  # fmt: skip
+    assert problem["outputs"] == [
+        "tip_x_m_at_0.1_s",
+        "tip_y_m_at_0.1_s",
+        "tip_x_m_at_0.2_s",
+        "tip_y_m_at_0.2_s",
+    ]
     x, y = np.load(runs / "montecarlo" / "X.npy"), np.load(runs / "montecarlo" / "Y.npy")
     lower, upper = np.array(problem["bounds"]).T
     np.testing.assert_array_equal(x, montecarlo_design(4, 64, 3) * (upper - lower) + lower)

@@ -54,14 +54,22 @@ def test_an_unwritable_cache_folder_falls_back_to_a_temporary_one_said_once(tmp_
         for key, value in os.environ.items()
         if key not in ("NUMBA_CACHE_DIR", "PLANAR_TUI_CACHE_DIR")
     }
-    env |= {"HOME": str(blocker / "home"), "XDG_CACHE_HOME": str(blocker / "cache"),
-            "TMPDIR": str(temporary), "PYTHONPATH": str(REPO)}  # fmt: skip
+    env |= {
+        "HOME": str(blocker / "home"),
+        "XDG_CACHE_HOME": str(blocker / "cache"),
+        "TMPDIR": str(temporary),
+        "PYTHONPATH": str(REPO),
+    }
     sources = kernels_folder()
     before = {path for path in sources.rglob("*") if path.is_file()}
     finished = subprocess.run(
         [sys.executable, "-m", "planar_tui", "torques", "paper-a-table1", "--out-dir", tmp_path],
-        capture_output=True, text=True, env=env, cwd=tmp_path, timeout=300,
-    )  # fmt: skip
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=tmp_path,
+        timeout=300,
+    )
     assert finished.returncode == 0, finished.stderr
     warnings = [line for line in finished.stderr.splitlines() if line.startswith("warning:")]
     assert len(warnings) == 1 and "kernel cache" in warnings[0], finished.stderr

@@ -53,8 +53,18 @@ def test_motion_command_writes_band_and_indices(cli, tmp_path):
     assert band[0][:3] == ["t_s", "theta1_rad_mean", "theta1_rad_std"]
     assert [float(row[0]) for row in band[1:]] == [0.0, 0.005, 0.01]
     indices = read_csv(tmp_path / "tiny-indices.csv")
-    assert indices[0] == ["output", "t_s", "parameter", "method", "S1", "S1_conf", "ST",
-                          "ST_conf", "percent", "runs"]  # fmt: skip
+    assert indices[0] == [
+        "output",
+        "t_s",
+        "parameter",
+        "method",
+        "S1",
+        "S1_conf",
+        "ST",
+        "ST_conf",
+        "percent",
+        "runs",
+    ]
     # 3 recorded times (at_s among them) × 4 outputs × 4 parameters × 1 method
     assert len(indices) - 1 == 3 * 4 * 4
     assert {row[1] for row in indices[1:] if row[5] != ""} == {"0.005", "0.01"}  # at_s: CIs
@@ -100,12 +110,14 @@ def test_a_single_output_and_method_are_one_item_lists(cli, tmp_path):
     result = cli("motion", preset, "--out-dir", tmp_path)
     assert result.exit_code == 0, result.stderr
     band = read_csv(tmp_path / "tiny.csv")
-    assert band[0] == ["t_s", *(f"tip_{axis}_m_{stat}" for axis in "xy"
-                                for stat in ("mean", "std", "p5", "p50", "p95"))]  # fmt: skip
+    assert band[0] == [
+        "t_s",
+        *(f"tip_{axis}_m_{stat}" for axis in "xy" for stat in ("mean", "std", "p5", "p50", "p95")),
+    ]
     indices = read_csv(tmp_path / "tiny-indices.csv")
     assert {(row[0], row[1], row[3]) for row in indices[1:]} == {
         (output, t, "sobol") for output in ("tip_x_m", "tip_y_m") for t in ("0.0", "0.005", "0.01")
-    }  # fmt: skip
+    }
     assert "96 robots integrated on cpu\n" in result.stdout  # 16 × (4 + 2)
 
 
@@ -165,8 +177,16 @@ def read_rows(path):
 def run_cli(preset, out_dir, *options, **env):
     environment = {k: v for k, v in os.environ.items() if k != "NUMBA_ENABLE_CUDASIM"}
     environment.update(env)
-    command = [sys.executable, "-m", "planar_tui", "motion", str(preset), "--out-dir",
-               str(out_dir), *options]  # fmt: skip
+    command = [
+        sys.executable,
+        "-m",
+        "planar_tui",
+        "motion",
+        str(preset),
+        "--out-dir",
+        str(out_dir),
+        *options,
+    ]
     return subprocess.run(command, env=environment, capture_output=True, text=True)
 
 

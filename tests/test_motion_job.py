@@ -43,9 +43,14 @@ def job_of(robot: dict, motion: dict):
 
 def one_link_job(methods, samples, inertia=INERTIA, tolerance_inertia=None):
     settings = {
-        "duration_s": T, "step_s": 0.05, "torques_Nm": [TAU], "methods": methods,
-        "samples": samples, "tolerance_length_mm": DL * 1e3, "tolerance_mass_g": DM * 1e3,
-    }  # fmt: skip
+        "duration_s": T,
+        "step_s": 0.05,
+        "torques_Nm": [TAU],
+        "methods": methods,
+        "samples": samples,
+        "tolerance_length_mm": DL * 1e3,
+        "tolerance_mass_g": DM * 1e3,
+    }
     if tolerance_inertia is not None:
         settings["tolerance_inertia_kgm2"] = tolerance_inertia
     return job_of(
@@ -129,9 +134,16 @@ def test_pendulum_with_rod_inertia_does_not_depend_on_its_mass():
     """I = m l²/12 follows the sampled mass: θ̈ = -3g cos θ / (2l), free of m."""
     job = job_of(
         {"lengths_m": [0.4], "masses_kg": [1.0]},
-        {"duration_s": 0.3, "step_s": 1e-3, "theta0_deg": [20.0], "methods": ["sobol", "efast"],
-         "samples": 128, "tolerance_length_mm": 50, "tolerance_mass_g": 300},
-    )  # fmt: skip
+        {
+            "duration_s": 0.3,
+            "step_s": 1e-3,
+            "theta0_deg": [20.0],
+            "methods": ["sobol", "efast"],
+            "samples": 128,
+            "tolerance_length_mm": 50,
+            "tolerance_mass_g": 300,
+        },
+    )
     result = run_job(job)
     sobol, efast = result.analyses
     assert sobol.names == efast.names == ("l1", "m1")
@@ -151,9 +163,14 @@ def test_outputs_without_variance_have_no_indices_and_a_note_not_nan():
     variance to apportion, so no index (empty cells, not 0)."""
     job = job_of(
         {"lengths_m": [0.3, 0.2], "masses_kg": [1.0, 0.5], "gravity_m_s2": 0.0},
-        {"duration_s": 0.01, "step_s": 1e-3, "methods": ["montecarlo", "sobol", "efast"],
-         "samples": 128, "at_s": [0.005, 0.01]},
-    )  # fmt: skip
+        {
+            "duration_s": 0.01,
+            "step_s": 1e-3,
+            "methods": ["montecarlo", "sobol", "efast"],
+            "samples": 128,
+            "at_s": [0.005, 0.01],
+        },
+    )
     result = run_job(job)
     table = result.extra_tables["indices"]
     text = io.StringIO()
@@ -175,8 +192,13 @@ def test_one_robot_equals_the_simulate_jobs_csv():
     angles (the band of one robot is that robot): to 1e-13 relative, the lane kernel's
     ``sincos`` being within 1 ulp of the C library's."""
     robot = {"lengths_m": [0.25, 0.2, 0.15], "masses_kg": [0.484, 0.387, 0.29]}
-    settings = {"duration_s": 0.05, "step_s": 1e-4, "theta0_deg": [10.0, -20.0, 5.0],
-                "torques_Nm": [2.0, 0.3, 0.1], "every": 50}  # fmt: skip
+    settings = {
+        "duration_s": 0.05,
+        "step_s": 1e-4,
+        "theta0_deg": [10.0, -20.0, 5.0],
+        "torques_Nm": [2.0, 0.3, 0.1],
+        "every": 50,
+    }
     (sim,) = parse_preset("s.toml", {"robot": robot, "simulate": settings}).jobs
     simulated = run_job(sim).table
     rows = np.array([[float(v) for v in r] for r in list(simulated.records())[1:]])
@@ -189,8 +211,13 @@ def test_one_robot_equals_the_simulate_jobs_csv():
         params, theta0, np.zeros((1, 3)), 9.81, np.array(settings["torques_Nm"])
     )
     recorded = {}
-    engine.integrate(robots, 1e-4, motion.spec.record_steps(),
-                     lambda k, angles: recorded.setdefault(k, angles.copy()), Progress())  # fmt: skip
+    engine.integrate(
+        robots,
+        1e-4,
+        motion.spec.record_steps(),
+        lambda k, angles: recorded.setdefault(k, angles.copy()),
+        Progress(),
+    )
     assert motion.spec.record_steps() == (0, 50, 100, 150, 200, 250, 300, 350, 400, 450, 500)
     got = np.array([recorded[k][0] for k in motion.spec.record_steps()])
     assert np.abs(got - rows[:, 1:4]).max() <= 1e-13 * np.abs(rows[:, 1:4]).max()
@@ -282,9 +309,15 @@ def test_efast_alone_band_of_a_sum_of_two_lengths():
     tolerance_m = 1e-3
     job = job_of(
         {"lengths_m": [0.25, 0.25], "masses_kg": [0.5, 0.5], "gravity_m_s2": 0.0},
-        {"duration_s": 0.01, "step_s": 1e-3, "methods": ["efast"], "outputs": ["tip"],
-         "samples": EFAST_ALONE_SAMPLES, "tolerance_length_mm": tolerance_m * 1e3},
-    )  # fmt: skip
+        {
+            "duration_s": 0.01,
+            "step_s": 1e-3,
+            "methods": ["efast"],
+            "outputs": ["tip"],
+            "samples": EFAST_ALONE_SAMPLES,
+            "tolerance_length_mm": tolerance_m * 1e3,
+        },
+    )
     result = run_job(job)
     n = EFAST_ALONE_SAMPLES
     variance = 2 * tolerance_m**2 / 3
@@ -316,8 +349,9 @@ def test_the_resource_check_counts_the_band_robots_of_efast_alone():
 
     robot = {"lengths_m": [0.25, 0.25], "masses_kg": [0.5, 0.5]}
     with pytest.raises(PresetError) as refused:
-        job_of(robot, {"duration_s": 10.0, "step_s": 1e-3, "methods": ["efast"],
-                       "samples": 2_000_000})  # fmt: skip
+        job_of(
+            robot, {"duration_s": 10.0, "step_s": 1e-3, "methods": ["efast"], "samples": 2_000_000}
+        )
     assert refused.value.key == "motion_uncertainty.samples"
     assert refused.value.problem.startswith(
         "10000000 robots of 2 links × 10000 steps: needs about 1.17 days"

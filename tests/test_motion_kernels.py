@@ -131,8 +131,11 @@ def test_cuda_kernel_on_the_simulator_equals_the_cpu_kernel(num_vars):
     env = {**os.environ, "NUMBA_ENABLE_CUDASIM": "1"}
     done = subprocess.run(
         [sys.executable, "-c", SIMULATED, str(num_vars)],
-        env=env, capture_output=True, text=True, check=True,
-    )  # fmt: skip
+        env=env,
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     report = json.loads(done.stdout.strip().splitlines()[-1])
     assert report["usable"] is None
     assert report["params"]  # made on the "GPU" from the unit design: the same bits

@@ -40,14 +40,16 @@ def ulp_steps(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 def test_sincos_is_within_one_ulp_of_the_c_library():
     rng = np.random.default_rng(21)
-    angles = np.concatenate([
-        rng.uniform(-10.0, 10.0, 300_000),
-        rng.uniform(-1e5, 1e5, 300_000),
-        rng.uniform(-SINCOS_MAX_ABS, SINCOS_MAX_ABS, 300_000),
-        np.arange(-3000, 3000) * (np.pi / 2),  # next to multiples of pi/2 (cancellation)
-        np.nextafter(np.arange(-3000, 3000) * (np.pi / 2), np.inf),
-        [0.0, -0.0, 1e-300, 5e-324, 1e-8, np.pi / 4, -np.pi / 4],
-    ])  # fmt: skip
+    angles = np.concatenate(
+        [
+            rng.uniform(-10.0, 10.0, 300_000),
+            rng.uniform(-1e5, 1e5, 300_000),
+            rng.uniform(-SINCOS_MAX_ABS, SINCOS_MAX_ABS, 300_000),
+            np.arange(-3000, 3000) * (np.pi / 2),  # next to multiples of pi/2 (cancellation)
+            np.nextafter(np.arange(-3000, 3000) * (np.pi / 2), np.inf),
+            [0.0, -0.0, 1e-300, 5e-324, 1e-8, np.pi / 4, -np.pi / 4],
+        ]
+    )
     pairs = np.array([sincos(x) for x in angles[::97]])  # the compiled kernel, from Python
     assert ulp_steps(pairs[:, 0], np.sin(angles[::97])).max() <= 1
     from numba import njit
@@ -75,11 +77,13 @@ def test_sincos_with_fused_multiply_adds_is_within_one_ulp_of_the_c_library():
             s[i], c[i] = sincos(x[i])
 
     rng = np.random.default_rng(6)
-    angles = np.concatenate([
-        rng.uniform(-10.0, 10.0, 200_000),
-        rng.uniform(-SINCOS_MAX_ABS, SINCOS_MAX_ABS, 200_000),
-        np.nextafter(np.arange(-3000, 3000) * (np.pi / 2), np.inf),
-    ])  # fmt: skip
+    angles = np.concatenate(
+        [
+            rng.uniform(-10.0, 10.0, 200_000),
+            rng.uniform(-SINCOS_MAX_ABS, SINCOS_MAX_ABS, 200_000),
+            np.nextafter(np.arange(-3000, 3000) * (np.pi / 2), np.inf),
+        ]
+    )
     s, c = np.empty_like(angles), np.empty_like(angles)
     many(angles, s, c)
     assert ulp_steps(s, np.sin(angles)).max() <= 1
@@ -218,6 +222,12 @@ def test_the_general_lane_step_compiles_its_forward_dynamics_once(tmp_path):
     from tests.conftest import REPO
 
     env = {**os.environ, "PYTHONPATH": str(REPO), "NUMBA_CACHE_DIR": str(tmp_path)}
-    result = subprocess.run([sys.executable, "-c", STEP_SIGNATURES], env=env, timeout=1800,
-                            capture_output=True, text=True, check=True)  # fmt: skip
+    result = subprocess.run(
+        [sys.executable, "-c", STEP_SIGNATURES],
+        env=env,
+        timeout=1800,
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     assert result.stdout.split() == ["1", "1", "1"]

@@ -33,11 +33,23 @@ from tests.test_motion_job import exact_moments, job_of, one_link_job
 from tests.test_sensitivity_pce import aggregate_by_quadrature, aggregate_model
 
 SEED = 1
-ROBOT = {"lengths_m": [0.4, 0.3], "masses_kg": [2.0, 1.0], "inertias_kgm2": [0.03, 0.01],
-         "gravity_m_s2": 9.81}  # fmt: skip
-MOTION = {"duration_s": 0.2, "step_s": 0.01, "torques_Nm": [1.0, 0.5],
-          "methods": ["pce", "sobol", "efast"], "samples": 128, "tolerance_length_mm": 20.0,
-          "tolerance_mass_g": 200.0, "at_s": [0.05, 0.2], "every": 5}  # fmt: skip
+ROBOT = {
+    "lengths_m": [0.4, 0.3],
+    "masses_kg": [2.0, 1.0],
+    "inertias_kgm2": [0.03, 0.01],
+    "gravity_m_s2": 9.81,
+}
+MOTION = {
+    "duration_s": 0.2,
+    "step_s": 0.01,
+    "torques_Nm": [1.0, 0.5],
+    "methods": ["pce", "sobol", "efast"],
+    "samples": 128,
+    "tolerance_length_mm": 20.0,
+    "tolerance_mass_g": 200.0,
+    "at_s": [0.05, 0.2],
+    "every": 5,
+}
 STORED = Path(__file__).parent / "data" / "motion" / "at_s_indices.csv"
 
 
@@ -95,8 +107,9 @@ def test_the_rows_at_at_s_are_unchanged_and_every_recorded_time_has_rows():
             else:  # main's lane-batched RK4 moved them by 3.6e-14 here
                 assert float(new[column]) == pytest.approx(float(cell), rel=1e-10, abs=1e-12)
     times = {(row["t_s"], row["method"]) for row in rows}
-    assert times == {(t, m) for t in ("0.0", "0.05", "0.1", "0.15", "0.2")
-                     for m in ("pce", "sobol", "efast")}  # fmt: skip
+    assert times == {
+        (t, m) for t in ("0.0", "0.05", "0.1", "0.15", "0.2") for m in ("pce", "sobol", "efast")
+    }
     for row in rows:  # confidence intervals at at_s only; no index of an angle at t = 0
         at_rest = row["t_s"] == "0.0" and row["output"] in ("theta1_rad", "theta2_rad", "tip_y_m")
         if at_rest:  # θ = 0 and tip y = 0 for every robot: nothing varies
@@ -106,9 +119,10 @@ def test_the_rows_at_at_s_are_unchanged_and_every_recorded_time_has_rows():
         assert (row["ST_conf"] != "") == (at_s or row["method"] == "pce"), row
     aggregated = dict_rows(result.extra_tables["aggregated"])
     assert {(r["output"], r["method"]) for r in aggregated} == {
-        (o, m) for o in ("theta1_rad", "theta2_rad", "tip_x_m", "tip_y_m", "all outputs")
+        (o, m)
+        for o in ("theta1_rad", "theta2_rad", "tip_x_m", "tip_y_m", "all outputs")
         for m in ("pce", "sobol", "efast")
-    }  # fmt: skip
+    }
     assert {r["runs"] for r in aggregated if r["method"] == "sobol"} == {str(128 * 6)}
 
 

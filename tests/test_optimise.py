@@ -273,8 +273,12 @@ def test_one_worker_and_a_two_process_cluster_with_a_worker_killed_give_the_same
             if run.generations == 1:
                 threading.Timer(0.02, lambda: killed.append(os.kill(pids[0], 9))).start()
 
-        run = run_optimisation(optimisation, client=client, out_dir=tmp_path / "2",
-                               on_generation=kill_during_the_next_generation)  # fmt: skip
+        run = run_optimisation(
+            optimisation,
+            client=client,
+            out_dir=tmp_path / "2",
+            on_generation=kill_during_the_next_generation,
+        )
         assert killed and pids[0] not in client.run(os.getpid).values()
     assert time.monotonic() - started < 300
     assert len(run.evaluations) == 60
@@ -289,11 +293,23 @@ def test_ctrl_c_then_resume_gives_the_uninterrupted_csv(tmp_path, cli):
     out = tmp_path / "out"
     checkpoint = out / "opt.csv.checkpoint.jsonl"
     process = subprocess.Popen(
-        [sys.executable, "-c", CONSOLE_SCRIPT, "optimise", str(preset), "--workers", "1",
-         "--out-dir", str(out)],
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
+        [
+            sys.executable,
+            "-c",
+            CONSOLE_SCRIPT,
+            "optimise",
+            str(preset),
+            "--workers",
+            "1",
+            "--out-dir",
+            str(out),
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        start_new_session=True,
         env=dict(os.environ, PYTHONPATH=str(REPO)),
-    )  # fmt: skip
+    )
     deadline = time.monotonic() + 120
     while not (checkpoint.exists() and len(checkpoint.read_text().splitlines()) >= 30):
         assert process.poll() is None, process.communicate()
@@ -421,8 +437,10 @@ def test_a_bad_table_is_one_line_and_exit_2(tmp_path, cli, table, line):
 
 
 def test_a_column_the_job_does_not_report_is_refused(tmp_path, cli):
-    preset = write(tmp_path, BASE + 'variables."theta_deg[1][1]" = { from = 0, to = 90 }\n'
-                   'maximise = "tau9_Nm"\n')  # fmt: skip
+    preset = write(
+        tmp_path,
+        BASE + 'variables."theta_deg[1][1]" = { from = 0, to = 90 }\nmaximise = "tau9_Nm"\n',
+    )
     result = cli("optimise", preset, "--out-dir", tmp_path, "--workers", "1")
     assert result.exit_code == 2, result.output
     assert (

@@ -32,8 +32,9 @@ TWO = 'minimise = ["energy_drift_max_J", "t_end_s"]'
 
 def _preset(tmp_path, duration_s=3600, budget=100, objective=ONE):
     path = tmp_path / "opt.toml"
-    path.write_text(LONG_OPTIMISATION.format(duration_s=duration_s, budget=budget,
-                                             objective=objective))  # fmt: skip
+    path.write_text(
+        LONG_OPTIMISATION.format(duration_s=duration_s, budget=budget, objective=objective)
+    )
     return path
 
 

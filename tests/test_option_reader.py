@@ -10,18 +10,23 @@ import pytest
 @pytest.mark.parametrize(
     ("args", "line"),
     [
-        (("workspace", "paper-b-table3", "--form", "exact"),
-         "error: command line: --form: is 'exact' (expected one of natural, mean-value, slope, "
-         "arc-distance, geometric)\n"),
-        (("workspace", "paper-b-table3", "--precision", "0"),
-         "error: command line: --precision: is 0.0, must be > 0 (expected a positive number)\n"),
-        (("sensitivity", "paper-a-table4", "--samples", str(2**30)),
-         "error: command line: --samples: "),
+        (
+            ("workspace", "paper-b-table3", "--form", "exact"),
+            "error: command line: --form: is 'exact' (expected one of natural, mean-value, slope, "
+            "arc-distance, geometric)\n",
+        ),
+        (
+            ("workspace", "paper-b-table3", "--precision", "0"),
+            "error: command line: --precision: is 0.0, must be > 0 (expected a positive number)\n",
+        ),
+        (
+            ("sensitivity", "paper-a-table4", "--samples", str(2**30)),
+            "error: command line: --samples: ",
+        ),
         (("sensitivity", "paper-a-table4", "--seed", "0"), "error: command line: --seed: "),
-        (("motion", "paper-a-table1-motion", "--device", "gpu"),
-         "error: command line: --device: "),
+        (("motion", "paper-a-table1-motion", "--device", "gpu"), "error: command line: --device: "),
     ],
-)  # fmt: skip
+)
 def test_a_bad_option_is_one_line_naming_the_option(cli, tmp_path, args, line):
     result = cli(*args, "--out-dir", tmp_path)
     assert result.exit_code == 2

@@ -26,10 +26,22 @@ def wheel_names(tmp_path_factory) -> set[str]:
     shutil.copytree(REPO, source, ignore=ignore, dirs_exist_ok=True)
     wheels = tmp_path_factory.mktemp("wheels")
     subprocess.run(
-        [sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation",
-         "--quiet", "--wheel-dir", str(wheels), str(source)],
-        check=True, capture_output=True, timeout=300,
-    )  # fmt: skip
+        [
+            sys.executable,
+            "-m",
+            "pip",
+            "wheel",
+            "--no-deps",
+            "--no-build-isolation",
+            "--quiet",
+            "--wheel-dir",
+            str(wheels),
+            str(source),
+        ],
+        check=True,
+        capture_output=True,
+        timeout=300,
+    )
     (wheel,) = wheels.glob("planar_tui-*.whl")
     with zipfile.ZipFile(wheel) as archive:
         return set(archive.namelist())

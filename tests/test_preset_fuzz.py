@@ -101,18 +101,58 @@ def test_the_loader_raises_only_preset_errors(text):
 SWEEP_SOURCES = [text for text in SOURCES if "[[sweep]]" in text] + [
     (PRESETS / "paper-a-table1.toml").read_text(encoding="utf-8")
     + '\n[[sweep]]\njob = "simulate[2]"\nvalues."robot.lengths_m[3]" = [0.1, 0.2]\n'
-    'values.duration_s = { from = 0.1, to = 0.2, count = 3 }\nmax_points = 10\n'
+    "values.duration_s = { from = 0.1, to = 0.2, count = 3 }\nmax_points = 10\n"
     'point_outputs = "pts"\nplot = "s.png"\n'
     '\n[[sweep]]\njob = "torques"\nranges."robot.masses_kg[1]" = [0.5, 2.0]\n'
     'sample = { method = "sobol", count = 8, seed = 3 }\n',
-]  # fmt: skip
+]
 #: What a sweep table's keys and key paths become.
-SWEEP_WORDS = ["job", "values", "ranges", "sample", "combine", "output", "point_outputs",
-               "plot", "max_points", "method", "count", "seed", "from", "to", "grid", "zip",
-               "robot", "robot3rrr", "lengths_m", "masses_kg", "orientation_deg", "nope",
-               "sobol", "lhs", "uniform", "workspace", "simulate", "torques", "sensitivity"]  # fmt: skip
-INDICES = ["[0]", "[1]", "[99]", "[-1]", "[²]", "[1" + "0" * 5000 + "]", "[1][1]", "[", "]",
-           "[x]", "[18446744073709551616]", ".", ".."]  # fmt: skip
+SWEEP_WORDS = [
+    "job",
+    "values",
+    "ranges",
+    "sample",
+    "combine",
+    "output",
+    "point_outputs",
+    "plot",
+    "max_points",
+    "method",
+    "count",
+    "seed",
+    "from",
+    "to",
+    "grid",
+    "zip",
+    "robot",
+    "robot3rrr",
+    "lengths_m",
+    "masses_kg",
+    "orientation_deg",
+    "nope",
+    "sobol",
+    "lhs",
+    "uniform",
+    "workspace",
+    "simulate",
+    "torques",
+    "sensitivity",
+]
+INDICES = [
+    "[0]",
+    "[1]",
+    "[99]",
+    "[-1]",
+    "[²]",
+    "[1" + "0" * 5000 + "]",
+    "[1][1]",
+    "[",
+    "]",
+    "[x]",
+    "[18446744073709551616]",
+    ".",
+    "..",
+]
 
 
 @st.composite

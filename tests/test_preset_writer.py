@@ -26,8 +26,12 @@ def test_round_trip_gives_equal_jobs(path, tmp_path):
     assert len(again.jobs) == len(original.jobs)
     for new, old in zip(again.jobs, original.jobs, strict=True):
         assert (new.kind, new.index, new.robot, new.spec, new.output) == (
-            old.kind, old.index, old.robot, old.spec, old.output,
-        )  # fmt: skip
+            old.kind,
+            old.index,
+            old.robot,
+            old.spec,
+            old.output,
+        )
         assert new.label.split(":")[1] == old.label.split(":")[1]
     assert copy.read_text().startswith("# round trip\n")
 

@@ -48,8 +48,11 @@ def test_every_point_csv_has_a_sidecar_naming_its_point_and_its_settings(tmp_pat
         assert record is not None, csv_path
         number, mass_kg = int(row["point"]), float(row["robot.masses_kg[2]"])
         assert csv_path.name == f"point-{number}.csv"
-        assert record.point == {"sweep": study.label, "number": number,
-                                "values": {"robot.masses_kg[2]": mass_kg}}  # fmt: skip
+        assert record.point == {
+            "sweep": study.label,
+            "number": number,
+            "values": {"robot.masses_kg[2]": mass_kg},
+        }
         assert record.kind == "torques"
         assert record.robot["masses_kg"] == [2.0, mass_kg]  # the point's own job
         assert record.robot["lengths_m"] == [TORQUES_BASE["l1"], TORQUES_BASE["l2"]]
@@ -66,8 +69,9 @@ def test_a_fresh_run_deletes_the_sidecars_it_wrote_before(tmp_path, cli):
     out = tmp_path / "out"
     assert cli("sweep", preset, "--out-dir", out, "--workers", "1").exit_code == 0
     (out / "s.csv").unlink()  # afresh: its record's files go, sidecars included
-    one = write(tmp_path, "p.toml", TORQUES, POINTS.replace("[1.0, 2.0, 3.0]", "[4.0]"),
-                **TORQUES_BASE)  # fmt: skip
+    one = write(
+        tmp_path, "p.toml", TORQUES, POINTS.replace("[1.0, 2.0, 3.0]", "[4.0]"), **TORQUES_BASE
+    )
     assert cli("sweep", one, "--out-dir", out, "--workers", "1").exit_code == 0
     names = sorted(p.name for p in (out / "pts").iterdir())
     assert names == ["point-1.csv", "point-1.csv.json"]
@@ -90,8 +94,9 @@ def test_resume_runs_again_a_point_whose_sidecar_is_missing(tmp_path, monkeypatc
     sidecar_path(out / "pts" / "point-2.csv").unlink()
     computed = []
     real = execute.run_point
-    monkeypatch.setattr(execute, "run_point", lambda task, p=None: computed.append(task.number)
-                        or real(task, p))  # fmt: skip
+    monkeypatch.setattr(
+        execute, "run_point", lambda task, p=None: computed.append(task.number) or real(task, p)
+    )
     run = run_sweep(sweep, out_dir=out, resume=True)
     assert computed == [2] and (run.resumed, run.recomputed) == (2, 1)
     record = read_sidecar(out / "pts" / "point-2.csv")
@@ -133,14 +138,23 @@ def test_every_csv_planar_tui_run_writes_has_a_sidecar(tmp_path, cli):
     preset = tmp_path / "everything.toml"
     preset.write_text(EVERYTHING, encoding="utf-8")
     out = tmp_path / "out"
-    result = cli("run", "paper-a-table1", "paper-b-table3", preset, "--out-dir", out,
-                 "--workers", "1")  # fmt: skip
+    result = cli(
+        "run", "paper-a-table1", "paper-b-table3", preset, "--out-dir", out, "--workers", "1"
+    )
     assert result.exit_code == 0, result.output
     written = sorted(out.rglob("*.csv"))
     names = {p.relative_to(out).as_posix() for p in written}
-    for expected in ("tiny.csv", "tiny-indices.csv", "t.csv", "sweep.csv",
-                     "points/point-1.csv", "opt.csv", "opt-optimum.csv",
-                     "table1-6r-torques.csv", "table3-natural.csv"):  # fmt: skip
+    for expected in (
+        "tiny.csv",
+        "tiny-indices.csv",
+        "t.csv",
+        "sweep.csv",
+        "points/point-1.csv",
+        "opt.csv",
+        "opt-optimum.csv",
+        "table1-6r-torques.csv",
+        "table3-natural.csv",
+    ):
         assert expected in names, sorted(names)
     kinds = {}
     for path in written:

@@ -98,8 +98,9 @@ def test_csv_column_lists_match_the_files_the_commands_write(cli, tmp_path):
 def documented_band_columns(n_links: int) -> list[str]:
     """The motion band CSV's columns as docs/csv.md says: ``t_s``, then per output
     (``theta1_rad … thetan_rad, tip_x_m, tip_y_m``) ``NAME_mean, NAME_std …``."""
-    text = re.search(r"^- The \*\*motion_uncertainty band\*\* CSV.*?(?=^- )",
-                     doc("csv.md"), re.M | re.S).group(0)  # fmt: skip
+    text = re.search(
+        r"^- The \*\*motion_uncertainty band\*\* CSV.*?(?=^- )", doc("csv.md"), re.M | re.S
+    ).group(0)
     quoted = re.findall(r"`([^`]+)`", " ".join(text.split()))
     outputs = next(q for q in quoted if "…" in q)
     statistics = next(q for q in quoted if q.startswith("NAME_"))

@@ -134,8 +134,12 @@ def test_table1_arm_at_a_known_posture_cell_by_cell():
     points = [(0.0, 0.0)]
     for length, angle in zip(lengths, absolute, strict=True):
         x, y = points[-1]
-        points.append((x + length * round(math.cos(math.radians(angle))),
-                       y + length * round(math.sin(math.radians(angle)))))  # fmt: skip
+        points.append(
+            (
+                x + length * round(math.cos(math.radians(angle))),
+                y + length * round(math.sin(math.radians(angle))),
+            )
+        )
     assert points[-1] == pytest.approx((0.6, -0.1))
     reach = sum(lengths)
     width, height = 2 * columns, 4 * (rows - 1)  # the last row: the scale bar

@@ -43,8 +43,11 @@ def test_dump_then_parse_gives_the_same_settings(preset_path):
 
 def test_a_key_is_read_with_the_readers_message(tmp_path):
     path = tmp_path / "p.toml"
-    path.write_text('[robot]\nlengths_m = [1.0]\nmasses_kg = [1.0]\n[simulate]\n'
-                    'duration_s = 1.0\nstep_s = 0.1\nevery = 0\n', encoding="utf-8")  # fmt: skip
+    path.write_text(
+        "[robot]\nlengths_m = [1.0]\nmasses_kg = [1.0]\n[simulate]\n"
+        "duration_s = 1.0\nstep_s = 0.1\nevery = 0\n",
+        encoding="utf-8",
+    )
     with pytest.raises(PresetError) as error:
         load_preset(path)
     assert str(error.value) == f"error: {path}: simulate.every: is 0 (expected an integer >= 1)"

@@ -120,7 +120,12 @@ def test_the_sobol_helpers_compile_once_for_both_estimators(tmp_path):
     from tests.conftest import REPO
 
     env = {**os.environ, "PYTHONPATH": str(REPO), "NUMBA_CACHE_DIR": str(tmp_path)}
-    result = subprocess.run([sys.executable, "-c", HELPER_SIGNATURES], env=env, timeout=900,
-                            capture_output=True, text=True)  # fmt: skip
+    result = subprocess.run(
+        [sys.executable, "-c", HELPER_SIGNATURES],
+        env=env,
+        timeout=900,
+        capture_output=True,
+        text=True,
+    )
     assert result.returncode == 0, result.stderr
     assert result.stdout.split() == ["1", "1"]

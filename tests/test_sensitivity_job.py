@@ -47,9 +47,19 @@ def test_csv_columns_and_percent(tmp_path, cli):
     assert result.exit_code == 0, result.output
     rows = rows_of(tmp_path / "s.csv")
     assert list(rows[0]) == [
-        "robot", "posture", "speed_rad_s", "torque", "parameter", "method",
-        "S1", "S1_conf", "ST", "ST_conf", "percent", "runs",
-    ]  # fmt: skip
+        "robot",
+        "posture",
+        "speed_rad_s",
+        "torque",
+        "parameter",
+        "method",
+        "S1",
+        "S1_conf",
+        "ST",
+        "ST_conf",
+        "percent",
+        "runs",
+    ]
     assert len(rows) == 3 * 6 * 2  # torques × parameters × methods
     assert {r["parameter"] for r in rows} == {"l1", "l2", "l3", "m1", "m2", "m3"}
     assert {r["method"] for r in rows} == {"sobol", "efast"}

@@ -48,9 +48,14 @@ def test_path_torques_equal_the_inverse_dynamics_at_the_path_states():
     inertias = np.array(ROBOT.inertias_kgm2)
     for s, row in enumerate(values):
         expected = inverse_dynamics_batch_states(
-            row[:3].copy(), row[3:].copy(), inertias, 9.81,
-            path.theta_rad, path.omega_rad_s, path.alpha_rad_s2,
-        )  # fmt: skip
+            row[:3].copy(),
+            row[3:].copy(),
+            inertias,
+            9.81,
+            path.theta_rad,
+            path.omega_rad_s,
+            path.alpha_rad_s2,
+        )
         assert np.abs(torques[s] - expected).max() <= 1e-12 * np.abs(expected).max()
     peak, rms = peak_and_rms(torques, path.t_s)
     assert peak == pytest.approx(np.abs(torques).max(axis=1))

@@ -45,8 +45,9 @@ def rows_of(path: Path) -> list[dict]:
 
 
 def test_pce_matches_the_bilinear_closed_form_at_the_default_runs(tmp_path, cli):
-    preset = write_preset(tmp_path, WIDE + 'methods = ["pce", "sobol"]\nsamples = 64\n'
-                          'output = "p.csv"\n')  # fmt: skip
+    preset = write_preset(
+        tmp_path, WIDE + 'methods = ["pce", "sobol"]\nsamples = 64\noutput = "p.csv"\n'
+    )
     result = cli("run", preset, "--out-dir", tmp_path)
     assert result.exit_code == 0, result.output
     rows = rows_of(tmp_path / "p.csv")
@@ -76,9 +77,10 @@ def test_without_pce_the_csv_gains_only_the_runs_column(tmp_path, cli):
 
 def test_a_loo_error_above_the_bound_fails_with_one_line(tmp_path, cli):
     preset = write_preset(
-        tmp_path, 'methods = ["pce"]\nposture = [10, 20, 30, 40]\npce_samples = 24\n'
+        tmp_path,
+        'methods = ["pce"]\nposture = [10, 20, 30, 40]\npce_samples = 24\n'
         "pce_max_loo_error = 1e-12\nspeed_rad_s = 2\n",
-    )  # fmt: skip
+    )
     result = cli("run", preset, "--out-dir", tmp_path)
     assert result.exit_code == 2
     assert result.stderr.count("error:") == 1  # one line, after the progress display
@@ -140,8 +142,13 @@ def test_a_path_gives_peak_rms_and_every_step_against_the_closed_form_at_rest(tm
             assert abs(float(r["ST"]) - total[i, j]) <= 0.01
             assert abs(float(r["S1"]) - first[i, j]) <= 0.01
     aggregated = rows_of(tmp_path / "p-path-aggregated.csv")
-    assert {r["output"] for r in aggregated} == {"tau1_Nm", "tau2_Nm", "tau3_Nm", "tau4_Nm",
-                                                "all torques"}  # fmt: skip
+    assert {r["output"] for r in aggregated} == {
+        "tau1_Nm",
+        "tau2_Nm",
+        "tau3_Nm",
+        "tau4_Nm",
+        "all torques",
+    }
     for r in aggregated:  # every step's PCE indices lie in [0, 1], so does their weighted mean
         if r["method"] == "pce":
             assert 0.0 <= float(r["S1"]) <= float(r["ST"]) + 1e-9 <= 1.0 + 1e-9
@@ -168,11 +175,12 @@ def test_the_aggregated_path_indices_of_sobol_and_efast_agree_with_the_pce(tmp_p
     path = tmp_path / "job.toml"
     path.write_text(
         '[robot]\nname = "2R"\nlengths_m = [0.4, 0.3]\nmasses_kg = [2.0, 1.0]\n'
-        "inertias_kgm2 = [0.03, 0.01]\n\n[sensitivity]\n" + WIDE
+        "inertias_kgm2 = [0.03, 0.01]\n\n[sensitivity]\n"
+        + WIDE
         + 'methods = ["pce", "sobol", "efast"]\nsamples = 1024\nefast_samples = 1024\n'
         "path = { to_deg = [60, -30], duration_s = 0.8, steps = 6 }\n",
         encoding="utf-8",
-    )  # fmt: skip
+    )
     (job,) = load_preset(path).jobs_of("sensitivity")
     table = run_job(job).extra_tables["path_aggregated"]
     rows = [dict(zip(table.header, row, strict=True)) for row in table.rows]

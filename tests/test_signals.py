@@ -135,10 +135,20 @@ def test_a_ctrl_c_python_could_only_report_still_stops_the_run(tmp_path):
     out = tmp_path / "out"
     env = dict(os.environ, PYTHONPATH=str(REPO))
     done = subprocess.run(
-        [sys.executable, "-c", UNRAISABLE_CTRL_C, "simulate",
-         str(PRESETS / "paper-a-table1.toml"), "--out-dir", str(out)],
-        capture_output=True, text=True, env=env, timeout=120,
-    )  # fmt: skip
+        [
+            sys.executable,
+            "-c",
+            UNRAISABLE_CTRL_C,
+            "simulate",
+            str(PRESETS / "paper-a-table1.toml"),
+            "--out-dir",
+            str(out),
+        ],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=120,
+    )
     assert done.returncode == ExitCode.INTERRUPTED, done.stderr
     assert "Traceback" not in done.stderr and "Exception ignored" not in done.stderr
     assert done.stderr.strip().splitlines()[-1].startswith("interrupted"), done.stderr
@@ -192,10 +202,20 @@ def test_a_ctrl_c_python_wrapped_in_another_error_is_still_an_interrupt(tmp_path
         (WRAPPED_CTRL_C_WHILE_RUNNING, "interrupted: the running job's output was not written"),
     ]:
         done = subprocess.run(
-            [sys.executable, "-c", script, "simulate",
-             str(PRESETS / "paper-a-table1.toml"), "--out-dir", str(out)],
-            capture_output=True, text=True, env=env, timeout=120,
-        )  # fmt: skip
+            [
+                sys.executable,
+                "-c",
+                script,
+                "simulate",
+                str(PRESETS / "paper-a-table1.toml"),
+                "--out-dir",
+                str(out),
+            ],
+            capture_output=True,
+            text=True,
+            env=env,
+            timeout=120,
+        )
         assert "Traceback" not in done.stderr, done.stderr
         assert done.returncode == ExitCode.INTERRUPTED, done.stderr
         assert done.stderr.strip().splitlines()[-1] == last_line, done.stderr

@@ -65,8 +65,18 @@ def test_adaptively_chunked_run_is_bit_identical_to_one_kernel_call():
     theta = np.radians(np.array(spec.theta0_deg))
     omega = np.zeros(n)
     torque = np.array(spec.torques_Nm)
-    rk4_integrate(*robot.arrays(), robot.gravity_m_s2, torque, theta, omega,
-                  spec.step_s, spec.n_steps, 1, 0, *out)  # fmt: skip
+    rk4_integrate(
+        *robot.arrays(),
+        robot.gravity_m_s2,
+        torque,
+        theta,
+        omega,
+        spec.step_s,
+        spec.n_steps,
+        1,
+        0,
+        *out,
+    )
     assert result.t_s.tobytes() == out[0].tobytes()
     assert result.theta_rad.tobytes() == out[1].tobytes()
     assert result.omega_rad_s.tobytes() == out[2].tobytes()

@@ -71,8 +71,9 @@ def test_a_sweep_of_long_points_is_refused_with_its_estimate(tmp_path, cli):
 
 
 def test_max_points_is_bounded(tmp_path, cli):
-    preset = write(tmp_path, "p.toml", TORQUES, SWEEP + "max_points = 1000000000000\n",
-                   **TORQUES_BASE)  # fmt: skip
+    preset = write(
+        tmp_path, "p.toml", TORQUES, SWEEP + "max_points = 1000000000000\n", **TORQUES_BASE
+    )
     result = cli("sweep", preset, "--out-dir", tmp_path / "out", "--workers", "1")
     assert result.exit_code == ExitCode.BAD_INPUT
     assert "sweep[1].max_points" in one_line(result)

@@ -21,8 +21,14 @@ COLUMNS = ("tau1_abs_max_Nm", "tau2_abs_max_Nm")
 def good(number=1, status=OK, **changes):
     """A valid record of an ok (or failed, figures-free) point ``number`` of 3."""
     figures = {"tau1_abs_max_Nm": 1.5, "tau2_abs_max_Nm": 0.25} if status == OK else {}
-    record = {"number": number, "status": status, "message": "", "figures": figures,
-              "seconds": 0.5, "tables": {}}  # fmt: skip
+    record = {
+        "number": number,
+        "status": status,
+        "message": "",
+        "figures": figures,
+        "seconds": 0.5,
+        "tables": {},
+    }
     record.update(changes)
     return record
 
@@ -69,11 +75,14 @@ def test_a_valid_record_has_no_problem_at_every_edge_of_every_limit():
         (good(figures={"tau1_abs_max_Nm": float("nan"), "tau2_abs_max_Nm": 1}), (), "tau1_abs"),
         (good(figures={"tau1_abs_max_Nm": None, "tau2_abs_max_Nm": 1}), (), "= null is not"),
         (good(figures={"tau1_abs_max_Nm": "a\nb", "tau2_abs_max_Nm": 1}), (), "is not a finite"),
-        (good(figures={"tau1_abs_max_Nm": "t" * (cp.MAX_TEXT + 1), "tau2_abs_max_Nm": 1}), (),
-         "is not a finite number or text"),
+        (
+            good(figures={"tau1_abs_max_Nm": "t" * (cp.MAX_TEXT + 1), "tau2_abs_max_Nm": 1}),
+            (),
+            "is not a finite number or text",
+        ),
         (good(figures={"tau1_abs_max_Nm": 1.0}), (), "figure tau2_abs_max_Nm is missing"),
     ],
-)  # fmt: skip
+)
 def test_each_rule_of_a_record_names_its_problem(record, seen, words):
     found = problem(record, seen)
     assert found is not None and words in found, found
@@ -216,8 +225,9 @@ def test_a_fresh_writer_writes_the_header_and_each_added_point(tmp_path):
     path = tmp_path / "c.jsonl"
     path.write_text("an earlier sweep's checkpoint\n")
     writer = cp.CheckpointWriter(path, "fp", 3, {})
-    with_tables = PointOutcome(2, OK, "", {"tau1_abs_max_Nm": 1.5, "tau2_abs_max_Nm": 0.25},
-                               0.5, {"point-2.csv": "a,b\n"})  # fmt: skip
+    with_tables = PointOutcome(
+        2, OK, "", {"tau1_abs_max_Nm": 1.5, "tau2_abs_max_Nm": 0.25}, 0.5, {"point-2.csv": "a,b\n"}
+    )
     writer.add(with_tables)
     writer.close()
     lines = path.read_text().splitlines()

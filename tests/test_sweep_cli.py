@@ -33,20 +33,38 @@ def read_rows(path):
 
 
 def test_ctrl_c_then_resume_gives_the_whole_result_without_recomputing(tmp_path, cli):
-    preset = write(tmp_path, "p.toml", WORKSPACE, """[[sweep]]
+    preset = write(
+        tmp_path,
+        "p.toml",
+        WORKSPACE,
+        """[[sweep]]
 job = "workspace"
 values.orientation_deg = { from = -30, to = 30, count = 10 }
 values.precision_cm = [0.2]
 output = "interrupted.csv"
-""", **WORKSPACE_BASE)  # fmt: skip
+""",
+        **WORKSPACE_BASE,
+    )
     out = tmp_path / "out"
     checkpoint = out / "interrupted.csv.checkpoint.jsonl"
     process = subprocess.Popen(
-        [sys.executable, "-c", CONSOLE_SCRIPT, "sweep", str(preset), "--workers", "2",
-         "--out-dir", str(out)],
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
+        [
+            sys.executable,
+            "-c",
+            CONSOLE_SCRIPT,
+            "sweep",
+            str(preset),
+            "--workers",
+            "2",
+            "--out-dir",
+            str(out),
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        start_new_session=True,
         env=dict(os.environ, PYTHONPATH=str(REPO)),
-    )  # fmt: skip
+    )
     deadline = time.monotonic() + 90
     while not (checkpoint.exists() and len(checkpoint.read_text().splitlines()) >= 3):
         assert process.poll() is None, process.communicate()
@@ -79,11 +97,17 @@ output = "interrupted.csv"
 
 
 def test_run_runs_the_sweeps_after_the_jobs(tmp_path, cli):
-    preset = write(tmp_path, "p.toml", TORQUES, """[[sweep]]
+    preset = write(
+        tmp_path,
+        "p.toml",
+        TORQUES,
+        """[[sweep]]
 job = "torques"
 values."robot.masses_kg[2]" = [1.0, 2.0]
 output = "masses.csv"
-""", **TORQUES_BASE)  # fmt: skip
+""",
+        **TORQUES_BASE,
+    )
     result = cli("run", preset, "--out-dir", tmp_path, "--workers", "1")
     assert result.exit_code == 0, result.output
     assert (tmp_path / "tq.csv").exists()
@@ -99,13 +123,19 @@ def test_sweep_without_sweeps_and_an_unreachable_scheduler(tmp_path, cli, monkey
     plain = write(tmp_path, "plain.toml", TORQUES, **TORQUES_BASE)
     result = cli("sweep", plain, "--out-dir", tmp_path / "out")
     assert result.exit_code == 2
-    assert result.stderr.strip() == f"error: {plain}: sweep: no [[sweep]] table in this " \
-                                    "preset (expected a [[sweep]] table)"  # fmt: skip
-    preset = write(tmp_path, "p.toml", TORQUES, '[[sweep]]\njob = "torques"\n'
-                   'values."robot.masses_kg[2]" = [1.0]\n', **TORQUES_BASE)  # fmt: skip
+    assert (
+        result.stderr.strip() == f"error: {plain}: sweep: no [[sweep]] table in this "
+        "preset (expected a [[sweep]] table)"
+    )
+    preset = write(
+        tmp_path,
+        "p.toml",
+        TORQUES,
+        '[[sweep]]\njob = "torques"\nvalues."robot.masses_kg[2]" = [1.0]\n',
+        **TORQUES_BASE,
+    )
     monkeypatch.setenv("PLANAR_TUI_SCHEDULER_TIMEOUT_S", "1")
-    result = cli("sweep", preset, "--out-dir", tmp_path / "out", "--scheduler",
-                 "tcp://127.0.0.1:9")  # fmt: skip
+    result = cli("sweep", preset, "--out-dir", tmp_path / "out", "--scheduler", "tcp://127.0.0.1:9")
     assert result.exit_code == 2
     last = result.stderr.strip().splitlines()[-1]
     assert last.startswith("error: command line: --scheduler: cannot reach tcp://127.0.0.1:9")
@@ -122,8 +152,10 @@ def test_resume_after_ctrl_c_in_the_second_sweep_recomputes_none_of_the_first(tm
     written); ``--resume`` rebuilds the first from it (every point from the checkpoint,
     its timings kept) and runs only the second's unfinished points."""
     preset = tmp_path / "two.toml"
-    preset.write_text(TORQUES.format(**TORQUES_BASE) + WORKSPACE.split("\n", 1)[1].format(
-        **WORKSPACE_BASE) + """
+    preset.write_text(
+        TORQUES.format(**TORQUES_BASE)
+        + WORKSPACE.split("\n", 1)[1].format(**WORKSPACE_BASE)
+        + """
 [[sweep]]
 job = "torques"
 values."robot.masses_kg[2]" = [1.0, 2.0, 3.0]
@@ -134,15 +166,28 @@ job = "workspace"
 values.orientation_deg = { from = -30, to = 30, count = 10 }
 values.precision_cm = [0.2]
 output = "second.csv"
-""")  # fmt: skip
+"""
+    )
     out = tmp_path / "out"
     first, second = (out / f"{name}.csv.checkpoint.jsonl" for name in ("first", "second"))
     process = subprocess.Popen(
-        [sys.executable, "-c", CONSOLE_SCRIPT, "sweep", str(preset), "--workers", "1",
-         "--out-dir", str(out)],
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
+        [
+            sys.executable,
+            "-c",
+            CONSOLE_SCRIPT,
+            "sweep",
+            str(preset),
+            "--workers",
+            "1",
+            "--out-dir",
+            str(out),
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        start_new_session=True,
         env=dict(os.environ, PYTHONPATH=str(REPO)),
-    )  # fmt: skip
+    )
     deadline = time.monotonic() + 90
     while not (second.exists() and len(second.read_text().splitlines()) >= 3):
         assert process.poll() is None, process.communicate()
@@ -152,8 +197,10 @@ output = "second.csv"
     _, err = process.communicate(timeout=600)
     assert process.returncode == ExitCode.INTERRUPTED, err
     assert (out / "first.csv").exists() and not (out / "second.csv").exists()
-    kept = {json.loads(line)["number"]: json.loads(line)["seconds"]
-            for line in first.read_text().splitlines()[1:]}  # fmt: skip
+    kept = {
+        json.loads(line)["number"]: json.loads(line)["seconds"]
+        for line in first.read_text().splitlines()[1:]
+    }
     assert sorted(kept) == [1, 2, 3]
     done = len(second.read_text().splitlines()) - 1
     assert 2 <= done < 10
@@ -167,15 +214,19 @@ output = "second.csv"
     assert not first.exists() and not second.exists()
 
 
-def test_a_scheduler_that_never_answers_is_one_line_within_the_timeout(tmp_path, cli,
-                                                                       monkeypatch):  # fmt: skip
+def test_a_scheduler_that_never_answers_is_one_line_within_the_timeout(tmp_path, cli, monkeypatch):
     """A plain socket server on the loopback that accepts and never answers: refused
     after PLANAR_TUI_SCHEDULER_TIMEOUT_S (1 s here; bounded at 60 s, not hung)."""
     import socket
     import threading
 
-    preset = write(tmp_path, "p.toml", TORQUES, '[[sweep]]\njob = "torques"\n'
-                   'values."robot.masses_kg[2]" = [1.0]\n', **TORQUES_BASE)  # fmt: skip
+    preset = write(
+        tmp_path,
+        "p.toml",
+        TORQUES,
+        '[[sweep]]\njob = "torques"\nvalues."robot.masses_kg[2]" = [1.0]\n',
+        **TORQUES_BASE,
+    )
     server = socket.create_server(("127.0.0.1", 0))
     accepted = []
 
@@ -207,8 +258,13 @@ def test_a_scheduler_that_never_answers_is_one_line_within_the_timeout(tmp_path,
 
 @pytest.mark.parametrize("value", ["0", "soon", "nan", "1e400"])
 def test_a_bad_scheduler_timeout_is_one_line(tmp_path, cli, monkeypatch, value):
-    preset = write(tmp_path, "p.toml", TORQUES, '[[sweep]]\njob = "torques"\n'
-                   'values."robot.masses_kg[2]" = [1.0]\n', **TORQUES_BASE)  # fmt: skip
+    preset = write(
+        tmp_path,
+        "p.toml",
+        TORQUES,
+        '[[sweep]]\njob = "torques"\nvalues."robot.masses_kg[2]" = [1.0]\n',
+        **TORQUES_BASE,
+    )
     monkeypatch.setenv("PLANAR_TUI_SCHEDULER_TIMEOUT_S", value)
     result = cli("sweep", preset, "--out-dir", tmp_path / "out", "--scheduler", "tcp://127.0.0.1:9")
     assert result.exit_code == ExitCode.BAD_INPUT
@@ -217,8 +273,13 @@ def test_a_bad_scheduler_timeout_is_one_line(tmp_path, cli, monkeypatch, value):
 
 
 def test_the_scheduler_variable_does_not_override_workers_1(tmp_path, cli, monkeypatch):
-    preset = write(tmp_path, "p.toml", TORQUES, '[[sweep]]\njob = "torques"\n'
-                   'values."robot.masses_kg[2]" = [1.0]\n', **TORQUES_BASE)  # fmt: skip
+    preset = write(
+        tmp_path,
+        "p.toml",
+        TORQUES,
+        '[[sweep]]\njob = "torques"\nvalues."robot.masses_kg[2]" = [1.0]\n',
+        **TORQUES_BASE,
+    )
     monkeypatch.setenv("PLANAR_TUI_SCHEDULER", "tcp://127.0.0.1:9")  # nothing listens
     result = cli("sweep", preset, "--out-dir", tmp_path / "out", "--workers", "1")
     assert result.exit_code == 0, result.output

@@ -42,15 +42,25 @@ def sweep_of(tmp_path, template, body, **values):
 
 def test_two_worker_processes_give_the_in_process_result(tmp_path, cluster):
     local, _ = cluster
-    workspace = sweep_of(tmp_path, WORKSPACE, """[[sweep]]
+    workspace = sweep_of(
+        tmp_path,
+        WORKSPACE,
+        """[[sweep]]
 job = "workspace"
 values.orientation_deg = [-20, 0, 20]
 values.precision_cm = [1.0, 0.5]
-""", **WORKSPACE_BASE)  # fmt: skip
-    sensitivity = sweep_of(tmp_path, SENSITIVITY, """[[sweep]]
+""",
+        **WORKSPACE_BASE,
+    )
+    sensitivity = sweep_of(
+        tmp_path,
+        SENSITIVITY,
+        """[[sweep]]
 job = "sensitivity"
 values.tolerance_mass_g = [1, 10, 100]
-""", mass_g=1)  # fmt: skip
+""",
+        mass_g=1,
+    )
     for sweep in (workspace, sensitivity):
         alone = run_sweep(sweep, workers=1)
         spread = run_sweep(sweep, scheduler=local.scheduler_address)
@@ -63,11 +73,16 @@ values.tolerance_mass_g = [1, 10, 100]
 
 def test_a_worker_killed_mid_sweep_is_replaced_and_the_result_is_unchanged(tmp_path, cluster):
     local, client = cluster
-    sweep = sweep_of(tmp_path, WORKSPACE, """[[sweep]]
+    sweep = sweep_of(
+        tmp_path,
+        WORKSPACE,
+        """[[sweep]]
 job = "workspace"
 values.orientation_deg = [-15, -10, -5, 0, 5, 10, 15]
 values.precision_cm = [0.3, 0.25]
-""", **WORKSPACE_BASE)  # fmt: skip
+""",
+        **WORKSPACE_BASE,
+    )
     alone = run_sweep(sweep, workers=1)
     pids = client.run(os.getpid)  # worker address -> process id
     killed: list[tuple[int, int]] = []  # (pid, tasks it was processing)
@@ -171,8 +186,9 @@ def _running(pid: int) -> bool:
     return "\nState:\tZ" not in status and "\nState:\tX" not in status
 
 
-@pytest.mark.parametrize(("delay_s", "whole_group"),
-                         [(0.0, False), (0.3, False), (0.0, True), (0.5, True)])  # fmt: skip
+@pytest.mark.parametrize(
+    ("delay_s", "whole_group"), [(0.0, False), (0.3, False), (0.0, True), (0.5, True)]
+)
 def test_ctrl_c_while_the_local_cluster_starts_prints_one_line_and_leaves_no_process(
     tmp_path, delay_s, whole_group
 ):
@@ -185,13 +201,26 @@ def test_ctrl_c_while_the_local_cluster_starts_prints_one_line_and_leaves_no_pro
     from planar_tui.errors import ExitCode
     from tests.test_signals import start
 
-    preset = write(tmp_path, "p.toml", WORKSPACE, """[[sweep]]
+    preset = write(
+        tmp_path,
+        "p.toml",
+        WORKSPACE,
+        """[[sweep]]
 job = "workspace"
 values.orientation_deg = { from = -20, to = 20, count = 20 }
 output = "a.csv"
-""", **{**WORKSPACE_BASE, "precision_cm": 0.05})  # fmt: skip
-    process = start("sweep", str(preset), "--workers", "2", "--out-dir", str(tmp_path / "out"),
-                    own_group=whole_group)  # fmt: skip
+""",
+        **{**WORKSPACE_BASE, "precision_cm": 0.05},
+    )
+    process = start(
+        "sweep",
+        str(preset),
+        "--workers",
+        "2",
+        "--out-dir",
+        str(tmp_path / "out"),
+        own_group=whole_group,
+    )
     deadline = time.monotonic() + 600
     while not (started := _descendants(process.pid)):
         assert process.poll() is None, process.communicate()

@@ -73,8 +73,9 @@ def listing(folder):
         ),
     ],
 )
-def test_colliding_planned_files_are_refused_before_anything_runs(tmp_path, cli, keys,
-                                                                   command, parts):  # fmt: skip
+def test_colliding_planned_files_are_refused_before_anything_runs(
+    tmp_path, cli, keys, command, parts
+):
     out = tmp_path / "out"
     out.mkdir()
     body = TORQUES.format(**TORQUES_BASE)
@@ -99,18 +100,28 @@ def test_a_job_table_inside_its_own_csv_is_refused_before_anything_runs(tmp_path
     preset.write_text(body)
     out = tmp_path / "out"
     out.mkdir()
-    refused(cli("run", preset, "--out-dir", out), "ws.csv/boxes.csv", "lies inside",
-            "p:workspace[1] (output) writes as a file")  # fmt: skip
+    refused(
+        cli("run", preset, "--out-dir", out),
+        "ws.csv/boxes.csv",
+        "lies inside",
+        "p:workspace[1] (output) writes as a file",
+    )
     assert listing(out) == []
 
 
 def test_a_figure_that_cannot_be_drawn_is_refused_before_anything_runs(tmp_path, cli):
-    preset = write(tmp_path, "p.toml", TORQUES, '[[sweep]]\njob = "torques"\n'
-                   'values."robot.masses_kg[2]" = [1.0]\noutput = "one.csv"\nplot = "one.svg"\n'
-                   + SWEEP + 'output = "two.csv"\n', **TORQUES_BASE)  # fmt: skip
+    preset = write(
+        tmp_path,
+        "p.toml",
+        TORQUES,
+        '[[sweep]]\njob = "torques"\n'
+        'values."robot.masses_kg[2]" = [1.0]\noutput = "one.csv"\nplot = "one.svg"\n'
+        + SWEEP
+        + 'output = "two.csv"\n',
+        **TORQUES_BASE,
+    )
     out = tmp_path / "out"
-    refused(cli("sweep", preset, "--out-dir", out, "--workers", "1"),
-            "sweep[1].plot", "1 point")  # fmt: skip
+    refused(cli("sweep", preset, "--out-dir", out, "--workers", "1"), "sweep[1].plot", "1 point")
     assert not out.exists() or listing(out) == []
 
 
@@ -119,14 +130,24 @@ def test_a_checkpoint_of_the_same_sweep_is_kept_without_resume(tmp_path, cli):
     (sweep,) = parse_sweeps(load_preset(preset))
     checkpoint = tmp_path / "m.csv.checkpoint.jsonl"
     figures = {"tau1_abs_max_Nm": 1.5, "tau2_abs_max_Nm": 2.5}  # the kind's own columns
-    point = {"number": 1, "status": "ok", "message": "", "figures": figures,
-             "seconds": 12.5, "tables": {}}  # fmt: skip
+    point = {
+        "number": 1,
+        "status": "ok",
+        "message": "",
+        "figures": figures,
+        "seconds": 12.5,
+        "tables": {},
+    }
     point["digest"] = record_digest(sweep.fingerprint(), point)  # as the run writes it
     text = json.dumps({"fingerprint": sweep.fingerprint(), "points": 2}) + "\n"
     text += json.dumps(point) + "\n"
     checkpoint.write_text(text)
-    line = refused(cli("sweep", preset, "--out-dir", tmp_path, "--workers", "1"),
-                   str(checkpoint), "--resume", "delete the file")  # fmt: skip
+    line = refused(
+        cli("sweep", preset, "--out-dir", tmp_path, "--workers", "1"),
+        str(checkpoint),
+        "--resume",
+        "delete the file",
+    )
     assert "interrupted" in line
     assert checkpoint.read_text() == text and not (tmp_path / "m.csv").exists()
     # --resume finishes it: point 1 is not run again (its recorded seconds are kept)
@@ -151,30 +172,49 @@ def test_a_checkpoint_of_another_version_of_the_sweep_is_replaced_saying_so(tmp_
 def test_workers_below_one_is_one_line(tmp_path, cli):
     preset = write(tmp_path, "p.toml", TORQUES, SWEEP, **TORQUES_BASE)
     for command in ("sweep", "run"):
-        line = refused(cli(command, preset, "--out-dir", tmp_path, "--workers", "0"),
-                       "--workers", "is 0", "an integer from 1 to")  # fmt: skip
+        line = refused(
+            cli(command, preset, "--out-dir", tmp_path, "--workers", "0"),
+            "--workers",
+            "is 0",
+            "an integer from 1 to",
+        )
         assert line.startswith("error: command line: --workers")
     assert listing(tmp_path) == ["p.toml"]
 
 
-def test_a_count_beyond_max_points_is_refused_without_making_the_values(tmp_path, cli,
-                                                                       monkeypatch):  # fmt: skip
+def test_a_count_beyond_max_points_is_refused_without_making_the_values(tmp_path, cli, monkeypatch):
     from planar_tui.sweep import spec
 
     made = []
     real = spec._read_values
     monkeypatch.setattr(spec, "_read_values", lambda *a: made.append(a) or real(*a))
-    preset = write(tmp_path, "p.toml", TORQUES, '[[sweep]]\njob = "torques"\n'
-                   'values."robot.masses_kg[2]" = { from = 1, to = 2, count = 1000000000 }\n',
-                   **TORQUES_BASE)  # fmt: skip
-    refused(cli("sweep", preset, "--out-dir", tmp_path, "--workers", "1"),
-            "1,000,000,000 points", "max_points = 100,000")  # fmt: skip
-    grid = write(tmp_path, "g.toml", TORQUES, '[[sweep]]\njob = "torques"\nmax_points = 10\n'
-                 'values."robot.masses_kg[2]" = { from = 1, to = 2, count = 5 }\n'
-                 'values."robot.masses_kg[1]" = { from = 1, to = 2, count = 3 }\n',
-                 **TORQUES_BASE)  # fmt: skip
-    refused(cli("sweep", grid, "--out-dir", tmp_path, "--workers", "1"),
-            "sweep[1].max_points", "15 points")  # fmt: skip
+    preset = write(
+        tmp_path,
+        "p.toml",
+        TORQUES,
+        '[[sweep]]\njob = "torques"\n'
+        'values."robot.masses_kg[2]" = { from = 1, to = 2, count = 1000000000 }\n',
+        **TORQUES_BASE,
+    )
+    refused(
+        cli("sweep", preset, "--out-dir", tmp_path, "--workers", "1"),
+        "1,000,000,000 points",
+        "max_points = 100,000",
+    )
+    grid = write(
+        tmp_path,
+        "g.toml",
+        TORQUES,
+        '[[sweep]]\njob = "torques"\nmax_points = 10\n'
+        'values."robot.masses_kg[2]" = { from = 1, to = 2, count = 5 }\n'
+        'values."robot.masses_kg[1]" = { from = 1, to = 2, count = 3 }\n',
+        **TORQUES_BASE,
+    )
+    refused(
+        cli("sweep", grid, "--out-dir", tmp_path, "--workers", "1"),
+        "sweep[1].max_points",
+        "15 points",
+    )
     assert made == []
     assert listing(tmp_path) == ["g.toml", "p.toml"]
 
@@ -214,8 +254,7 @@ output = "devices.csv"
 """
 
 
-def test_a_motion_point_on_an_unusable_cuda_device_is_refused_up_front(tmp_path, cli,
-                                                                      monkeypatch):  # fmt: skip
+def test_a_motion_point_on_an_unusable_cuda_device_is_refused_up_front(tmp_path, cli, monkeypatch):
     monkeypatch.delenv("NUMBA_ENABLE_CUDASIM", raising=False)
     from planar_tui.motion.device import cuda_problem
 

@@ -39,20 +39,26 @@ def the_sweep(tmp_path, template, base, body):
 
 
 def test_grid_workspace_sweep_equals_separate_runs(tmp_path):
-    sweep = the_sweep(tmp_path, WORKSPACE, WORKSPACE_BASE, """job = "workspace"
+    sweep = the_sweep(
+        tmp_path,
+        WORKSPACE,
+        WORKSPACE_BASE,
+        """job = "workspace"
 values.orientation_deg = [-10, 10]
 values."robot3rrr.distal_cm" = { from = 28.0, to = 32.0, count = 2 }
 output = "grid.csv"
 point_outputs = "grid-points"
-""")  # fmt: skip
+""",
+    )
     out = tmp_path / "out"
     run = run_sweep(sweep, out_dir=out)
     rows = read_rows(out / "grid.csv")
     assert [r["point"] for r in rows] == ["1", "2", "3", "4"]
     assert list(rows[0])[:3] == ["point", "orientation_deg", "robot3rrr.distal_cm"]
     assert list(rows[0])[-3:] == ["status", "message", "seconds"]
-    for row, (orientation, distal) in zip(rows, [(-10, 28.0), (-10, 32.0), (10, 28.0),
-                                                 (10, 32.0)], strict=True):  # fmt: skip
+    for row, (orientation, distal) in zip(
+        rows, [(-10, 28.0), (-10, 32.0), (10, 28.0), (10, 32.0)], strict=True
+    ):
         assert (row["orientation_deg"], row["robot3rrr.distal_cm"]) == (
             str(orientation),
             str(distal),
@@ -79,11 +85,16 @@ def max_abs_torques(result) -> list[float]:
 
 
 def test_zip_torques_sweep_equals_separate_runs(tmp_path):
-    sweep = the_sweep(tmp_path, TORQUES, TORQUES_BASE, """job = "torques"
+    sweep = the_sweep(
+        tmp_path,
+        TORQUES,
+        TORQUES_BASE,
+        """job = "torques"
 combine = "zip"
 values."robot.lengths_m[2]" = [0.3, 0.4, 0.5]
 values."theta_deg[1][2]" = [10, 20, 30]
-""")  # fmt: skip
+""",
+    )
     run = run_sweep(sweep)
     rows = list(run.table.rows)
     assert run.table.header[:3] == ("point", "robot.lengths_m[2]", "theta_deg[1][2]")
@@ -94,11 +105,16 @@ values."theta_deg[1][2]" = [10, 20, 30]
 
 
 def test_sampled_sweep_equals_separate_runs(tmp_path):
-    sweep = the_sweep(tmp_path, TORQUES, TORQUES_BASE, """job = "torques"
+    sweep = the_sweep(
+        tmp_path,
+        TORQUES,
+        TORQUES_BASE,
+        """job = "torques"
 ranges."robot.lengths_m[1]" = [0.2, 0.3]
 ranges."robot.masses_kg[2]" = [1.0, 2.0]
 sample = { method = "sobol", count = 4, seed = 7 }
-""")  # fmt: skip
+""",
+    )
     run = run_sweep(sweep)
     for row, (l1, m2) in zip(run.table.rows, design(sweep), strict=True):
         assert list(row[1:3]) == [l1, m2]
@@ -109,11 +125,17 @@ sample = { method = "sobol", count = 4, seed = 7 }
 def test_a_failing_point_is_a_row_and_the_others_go_on(tmp_path, cli):
     # 0.25 cm: about 37,000 boxes estimated, within 4 × the budget, past it when run
     base = {**WORKSPACE_BASE, "box_budget": 9500}
-    path = write(tmp_path, "p.toml", WORKSPACE, """[[sweep]]
+    path = write(
+        tmp_path,
+        "p.toml",
+        WORKSPACE,
+        """[[sweep]]
 job = "workspace"
 values.precision_cm = [2.0, 0.25, 1.5]
 output = "budget.csv"
-""", **base)  # fmt: skip
+""",
+        **base,
+    )
     result = cli("sweep", path, "--out-dir", tmp_path / "out", "--workers", "1")
     assert result.exit_code == 1, result.output
     assert "1 sweep point(s) failed" in result.stderr
@@ -124,10 +146,15 @@ output = "budget.csv"
 
 
 def test_cancel_keeps_the_checkpoint_and_resume_recomputes_nothing_finished(tmp_path, monkeypatch):
-    sweep = the_sweep(tmp_path, TORQUES, TORQUES_BASE, """job = "torques"
+    sweep = the_sweep(
+        tmp_path,
+        TORQUES,
+        TORQUES_BASE,
+        """job = "torques"
 values."robot.masses_kg[2]" = [1.0, 1.5, 2.0, 2.5, 3.0]
 output = "resume.csv"
-""")  # fmt: skip
+""",
+    )
     out = tmp_path / "out"
     progress = Progress()
     seen = []
@@ -148,8 +175,9 @@ output = "resume.csv"
 
     computed = []
     real = execute.run_point
-    monkeypatch.setattr(execute, "run_point", lambda task, p=None: computed.append(task.number)
-                        or real(task, p))  # fmt: skip
+    monkeypatch.setattr(
+        execute, "run_point", lambda task, p=None: computed.append(task.number) or real(task, p)
+    )
     run = run_sweep(sweep, out_dir=out, resume=True)
     assert computed == [3, 4, 5] and run.resumed == 2
     assert not (out / "resume.csv.checkpoint.jsonl").exists()
@@ -196,22 +224,35 @@ def _interrupted_after(sweep, out, count):
 
 def test_a_sweep_started_afresh_removes_the_earlier_point_files(tmp_path):
     masses = ", ".join(str(1.0 + k / 10) for k in range(10))
-    ten = the_sweep(tmp_path, TORQUES, TORQUES_BASE, f"""job = "torques"
+    ten = the_sweep(
+        tmp_path,
+        TORQUES,
+        TORQUES_BASE,
+        f"""job = "torques"
 values."robot.masses_kg[2]" = [{masses}]
 output = "s.csv"
 point_outputs = "pts"
-""")  # fmt: skip
+""",
+    )
     out = tmp_path / "out"
     _interrupted_after(ten, out, 2)
     assert sorted(p.name for p in (out / "pts").iterdir()) == [
-        "point-01.csv", "point-01.csv.json", "point-02.csv", "point-02.csv.json"
-    ]  # fmt: skip
+        "point-01.csv",
+        "point-01.csv.json",
+        "point-02.csv",
+        "point-02.csv.json",
+    ]
     (out / "pts" / "notes.txt").write_text("mine")  # not a point file: kept
-    three = the_sweep(tmp_path, TORQUES, TORQUES_BASE, """job = "torques"
+    three = the_sweep(
+        tmp_path,
+        TORQUES,
+        TORQUES_BASE,
+        """job = "torques"
 values."robot.masses_kg[2]" = [1.0, 1.5, 2.0]
 output = "s.csv"
 point_outputs = "pts"
-""")  # fmt: skip
+""",
+    )
     run_sweep(three, out_dir=out, resume=True)  # another sweep's checkpoint: afresh
     names = sorted(p.name for p in (out / "pts").iterdir())
     assert names == ["notes.txt", *(f"point-{n}.csv{s}" for n in (1, 2, 3) for s in ("", ".json"))]
@@ -220,19 +261,25 @@ point_outputs = "pts"
 def test_resume_rewrites_the_missing_point_files_of_finished_points(tmp_path, monkeypatch):
     from planar_tui.sweep import execute
 
-    sweep = the_sweep(tmp_path, TORQUES, TORQUES_BASE, """job = "torques"
+    sweep = the_sweep(
+        tmp_path,
+        TORQUES,
+        TORQUES_BASE,
+        """job = "torques"
 values."robot.masses_kg[2]" = [1.0, 1.5, 2.0, 2.5, 3.0]
 output = "s.csv"
 point_outputs = "pts"
-""")  # fmt: skip
+""",
+    )
     out = tmp_path / "out"
     _interrupted_after(sweep, out, 3)
     for number in (1, 3):
         (out / "pts" / f"point-{number}.csv").unlink()
     computed = []
     real = execute.run_point
-    monkeypatch.setattr(execute, "run_point", lambda task, p=None: computed.append(task.number)
-                        or real(task, p))  # fmt: skip
+    monkeypatch.setattr(
+        execute, "run_point", lambda task, p=None: computed.append(task.number) or real(task, p)
+    )
     run = run_sweep(sweep, out_dir=out, resume=True)
     assert sorted(computed) == [1, 3, 4, 5]
     assert (run.resumed, run.recomputed) == (1, 2)
@@ -253,8 +300,11 @@ def test_the_sweep_service_imports_without_dask():
 
     from tests.conftest import REPO
 
-    code = ("import sys, planar_tui.sweep.service, planar_tui.sweep.execute; "
-            "print(sorted({'dask', 'distributed'} & set(sys.modules)))")  # fmt: skip
-    probe = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                           cwd=REPO, check=True)  # fmt: skip
+    code = (
+        "import sys, planar_tui.sweep.service, planar_tui.sweep.execute; "
+        "print(sorted({'dask', 'distributed'} & set(sys.modules)))"
+    )
+    probe = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, cwd=REPO, check=True
+    )
     assert probe.stdout.strip() == "[]", probe.stderr

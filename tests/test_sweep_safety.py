@@ -59,12 +59,13 @@ def test_a_fresh_run_deletes_only_the_point_files_its_record_names(tmp_path, cli
     assert record.read_text().split() == both  # each name recorded before its file
     (out / "pts" / "notes.txt").write_text("kept")  # no point file: not the sweep's business
     (out / "s.csv").unlink()
-    one = write(tmp_path, "p.toml", TORQUES, POINTS.replace("[1.0, 2.0]", "[3.0]"),
-                **TORQUES_BASE)  # fmt: skip
+    one = write(tmp_path, "p.toml", TORQUES, POINTS.replace("[1.0, 2.0]", "[3.0]"), **TORQUES_BASE)
     assert cli("sweep", one, "--out-dir", out, "--workers", "1").exit_code == 0
     assert sorted(p.name for p in (out / "pts").iterdir()) == [
-        "notes.txt", "point-1.csv", "point-1.csv.json"
-    ]  # fmt: skip
+        "notes.txt",
+        "point-1.csv",
+        "point-1.csv.json",
+    ]
     assert record.read_text().split() == ["point-1.csv", "point-1.csv.json"]
 
 
@@ -120,8 +121,15 @@ def test_a_bad_checkpoint_record_is_dropped_with_one_line_and_its_point_runs_aga
     assert f"{checkpoint}:2: record dropped" in warnings[0] and problem in warnings[0]
     assert "2 points, 0 failed, 1 from the checkpoint" in result.stdout
     rows = _rows(out / "s.csv")
-    assert list(rows[0]) == ["point", "robot.masses_kg[2]", "tau1_abs_max_Nm",
-                             "tau2_abs_max_Nm", "status", "message", "seconds"]  # fmt: skip
+    assert list(rows[0]) == [
+        "point",
+        "robot.masses_kg[2]",
+        "tau1_abs_max_Nm",
+        "tau2_abs_max_Nm",
+        "status",
+        "message",
+        "seconds",
+    ]
     expected = run.table.rows
     for row, want in zip(rows, expected, strict=True):
         assert [row["tau1_abs_max_Nm"], row["tau2_abs_max_Nm"]] == [str(want[2]), str(want[3])]
@@ -154,10 +162,14 @@ output = "sim.csv"
     [
         (SIMULATE, "simulate"),
         (TORQUES.format(**TORQUES_BASE), "torques"),
-        (SENSITIVITY.format(mass_g=10).replace("samples = 64", "samples = 64\n"
-         "speed_rad_s = [1.0, 2.0]"), "sensitivity"),
+        (
+            SENSITIVITY.format(mass_g=10).replace(
+                "samples = 64", "samples = 64\nspeed_rad_s = [1.0, 2.0]"
+            ),
+            "sensitivity",
+        ),
     ],
-)  # fmt: skip
+)
 def test_the_declared_figure_names_are_those_a_run_reports(tmp_path, text, kind):
     """The columns a checkpoint record is checked against are those a real run gives."""
     from planar_tui.batch import prepare_jobs, run_job

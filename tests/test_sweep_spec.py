@@ -19,11 +19,14 @@ def sweeps_of(tmp_path, sweep: str, template=WORKSPACE, base=WORKSPACE_BASE):
 
 
 def test_grid_runs_like_nested_loops_first_key_slowest(tmp_path):
-    (sweep,) = sweeps_of(tmp_path, """[[sweep]]
+    (sweep,) = sweeps_of(
+        tmp_path,
+        """[[sweep]]
 job = "workspace"
 values."orientation_deg" = [-10, 0, 10]
 values."robot3rrr.distal_cm" = { from = 28.0, to = 32.0, count = 3 }
-""")  # fmt: skip
+""",
+    )
     assert sweep.point_count == 9 and sweep.combine == "grid"
     assert list(design(sweep)) == [(o, d) for o in (-10, 0, 10) for d in (28.0, 30.0, 32.0)]
     points = make_points(sweep)
@@ -36,20 +39,28 @@ values."robot3rrr.distal_cm" = { from = 28.0, to = 32.0, count = 3 }
 
 
 def test_from_to_count_is_evenly_spaced_with_both_ends(tmp_path):
-    (sweep,) = sweeps_of(tmp_path, """[[sweep]]
+    (sweep,) = sweeps_of(
+        tmp_path,
+        """[[sweep]]
 job = "workspace[1]"
 values.orientation_deg = { from = -60, to = 60, count = 7 }
-""")  # fmt: skip
+""",
+    )
     assert [v for (v,) in design(sweep)] == [-60.0, -40.0, -20.0, 0.0, 20.0, 40.0, 60.0]
 
 
 def test_zip_takes_the_ith_value_of_every_list_and_list_items_are_1_based(tmp_path):
-    (sweep,) = sweeps_of(tmp_path, """[[sweep]]
+    (sweep,) = sweeps_of(
+        tmp_path,
+        """[[sweep]]
 job = "torques"
 combine = "zip"
 values."robot.lengths_m[2]" = [0.3, 0.4]
 values."theta_deg[1][2]" = [10, 20]
-""", TORQUES, TORQUES_BASE)  # fmt: skip
+""",
+        TORQUES,
+        TORQUES_BASE,
+    )
     points = make_points(sweep)
     assert [p.job.robot.lengths_m for p in points] == [(0.25, 0.3), (0.25, 0.4)]
     assert [p.job.spec.theta_deg[0] for p in points] == [(30.0, 10.0), (30.0, 20.0)]
@@ -58,12 +69,19 @@ values."theta_deg[1][2]" = [10, 20]
 
 def test_a_list_item_of_a_key_left_at_its_default(tmp_path):
     """``theta0_deg`` is not in the table (zeros by default): its item 2 is set."""
-    text = TORQUES.replace("[[torques]]", "[[simulate]]\nduration_s = 0.01\nstep_s = 0.001\n"
-                           "output = \"s.csv\"\n\n[[torques]]")  # fmt: skip
-    (sweep,) = sweeps_of(tmp_path, """[[sweep]]
+    text = TORQUES.replace(
+        "[[torques]]",
+        '[[simulate]]\nduration_s = 0.01\nstep_s = 0.001\noutput = "s.csv"\n\n[[torques]]',
+    )
+    (sweep,) = sweeps_of(
+        tmp_path,
+        """[[sweep]]
 job = "simulate"
 values."theta0_deg[2]" = [15]
-""", text, TORQUES_BASE)  # fmt: skip
+""",
+        text,
+        TORQUES_BASE,
+    )
     (point,) = make_points(sweep)
     assert point.job.spec.theta0_deg == (0.0, 15.0)
 
@@ -71,8 +89,10 @@ values."theta0_deg[2]" = [15]
 def test_sampled_designs_are_seeded_and_inside_their_ranges(tmp_path):
     from scipy.stats import qmc
 
-    ranges = '[[sweep]]\njob = "torques"\nranges."robot.lengths_m[1]" = [0.2, 0.3]\n' \
-             'ranges."robot.masses_kg[2]" = [1.0, 2.0]\n'  # fmt: skip
+    ranges = (
+        '[[sweep]]\njob = "torques"\nranges."robot.lengths_m[1]" = [0.2, 0.3]\n'
+        'ranges."robot.masses_kg[2]" = [1.0, 2.0]\n'
+    )
     designs = {}
     for method in ("sobol", "lhs", "uniform"):
         sample = f'sample = {{ method = "{method}", count = 8, seed = 5 }}\n'
@@ -178,11 +198,11 @@ BAD = [
 
 
 @pytest.mark.parametrize(("body", "key", "problem", "hint"), BAD)
-def test_a_bad_sweep_is_one_line_exit_2_and_nothing_is_written(tmp_path, cli, body, key,
-                                                               problem, hint):  # fmt: skip
+def test_a_bad_sweep_is_one_line_exit_2_and_nothing_is_written(
+    tmp_path, cli, body, key, problem, hint
+):
     job = 'job = "workspace"\n' if "job" not in body else ""
-    path = write(tmp_path, "p.toml", WORKSPACE, "[[sweep]]\n" + job + body + "\n",
-                 **WORKSPACE_BASE)  # fmt: skip
+    path = write(tmp_path, "p.toml", WORKSPACE, "[[sweep]]\n" + job + body + "\n", **WORKSPACE_BASE)
     out = tmp_path / "out"
     for command in ("sweep", "run"):
         result = cli(command, path, "--out-dir", out, "--workers", "1")
@@ -195,12 +215,19 @@ def test_a_bad_sweep_is_one_line_exit_2_and_nothing_is_written(tmp_path, cli, bo
 
 
 def test_a_bad_job_key(tmp_path, cli):
-    path = write(tmp_path, "p.toml", WORKSPACE, '[[sweep]]\njob = "workspace[2]"\n'
-                 'values.orientation_deg = [1]\n', **WORKSPACE_BASE)  # fmt: skip
+    path = write(
+        tmp_path,
+        "p.toml",
+        WORKSPACE,
+        '[[sweep]]\njob = "workspace[2]"\nvalues.orientation_deg = [1]\n',
+        **WORKSPACE_BASE,
+    )
     result = cli("sweep", path, "--out-dir", tmp_path / "out")
     assert result.exit_code == 2
-    assert "sweep[1].job: is 'workspace[2]', no such job (expected one of the preset's jobs: " \
-           "workspace[1]" in result.stderr  # fmt: skip
+    assert (
+        "sweep[1].job: is 'workspace[2]', no such job (expected one of the preset's jobs: "
+        "workspace[1]" in result.stderr
+    )
 
 
 def test_a_preset_with_sweeps_loads_edits_and_saves(tmp_path):
@@ -210,9 +237,14 @@ def test_a_preset_with_sweeps_loads_edits_and_saves(tmp_path):
     from planar_tui.preset_writer import dump_preset
     from planar_tui.presets import parse_toml
 
-    path = write(tmp_path, "p.toml", WORKSPACE, '[[sweep]]\njob = "workspace"\n'
-                 'values."robot3rrr.distal_cm" = { from = 28.0, to = 32.0, count = 3 }\n',
-                 **WORKSPACE_BASE)  # fmt: skip
+    path = write(
+        tmp_path,
+        "p.toml",
+        WORKSPACE,
+        '[[sweep]]\njob = "workspace"\n'
+        'values."robot3rrr.distal_cm" = { from = 28.0, to = 32.0, count = 3 }\n',
+        **WORKSPACE_BASE,
+    )
     preset = load_preset(path)
     assert [job.key for job in preset.jobs] == ["workspace[1]"]
     bench = Workbench.open(path)

@@ -19,20 +19,20 @@ from planar_tui.workspace.paving.levels import INSIDE
 PRESETS = {
     "workspace3rpr": (
         "[robot3rpr]\n[[workspace3rpr]]\nleg_limits_cm = [[30, 80], [25, 85], [35, 75]]\n"
-        "orientation_deg = 20\nprecision_cm = 2\n{tolerance}\noutput = \"o.csv\"\n",
+        'orientation_deg = 20\nprecision_cm = 2\n{tolerance}\noutput = "o.csv"\n',
         ("base_joints_cm", "platform_points_cm"),
     ),
     "workspace3prr": (
         "[robot3prr]\n[[workspace3prr]]\norientation_deg = 15\nprecision_cm = 2\n"
-        "{tolerance}\noutput = \"o.csv\"\n",
+        '{tolerance}\noutput = "o.csv"\n',
         ("slider_points_cm", "platform_points_cm", "distal_cm"),
     ),
     "workspace5r": (
-        "[robot5r]\nworking_mode = \"+-\"\n[[workspace5r]]\nprecision_cm = 2\n{tolerance}\n"
-        "output = \"o.csv\"\n",
+        '[robot5r]\nworking_mode = "+-"\n[[workspace5r]]\nprecision_cm = 2\n{tolerance}\n'
+        'output = "o.csv"\n',
         ("base_joints_cm", "proximal_cm", "distal_cm"),
     ),
-}  # fmt: skip
+}
 KINDS = sorted(PRESETS)
 TOLERANCE = 'tolerance_cm = 0.5\ntolerance_mode = "{mode}"'
 

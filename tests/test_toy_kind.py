@@ -48,8 +48,9 @@ def run_kinetic(job: Job, progress: Progress) -> KineticResult:
         energies.append(float(0.5 * rate @ matrix @ rate))
     rows = [[*theta, energy] for theta, energy in zip(job.spec.theta_deg, energies, strict=True)]
     header = (*(f"theta{i + 1}_deg" for i in range(job.robot.n_links)), "kinetic_J")
-    return KineticResult(table=CsvTable(header, rows), summary=f"{len(rows)} states",
-                         energies_J=tuple(energies))  # fmt: skip
+    return KineticResult(
+        table=CsvTable(header, rows), summary=f"{len(rows)} states", energies_J=tuple(energies)
+    )
 
 
 TOY = JobKind(

@@ -28,10 +28,22 @@ def check(expression: str, folder) -> tuple[str, int]:
     # In a child process: mypy's main raises the recursion limit (to 2**14) of the process
     # it runs in, which would let other tests of this worker parse what they must refuse.
     done = subprocess.run(
-        [sys.executable, "-m", "mypy", "--config-file", str(REPO / "pyproject.toml"),
-         "--cache-dir", str(folder / "cache"), "--no-error-summary", str(snippet)],
-        capture_output=True, text=True, timeout=600, check=False,
-    )  # fmt: skip
+        [
+            sys.executable,
+            "-m",
+            "mypy",
+            "--config-file",
+            str(REPO / "pyproject.toml"),
+            "--cache-dir",
+            str(folder / "cache"),
+            "--no-error-summary",
+            str(snippet),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+        check=False,
+    )
     return done.stdout + done.stderr, done.returncode
 
 

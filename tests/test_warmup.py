@@ -72,9 +72,12 @@ def test_a_workspace_job_warms_only_the_parts_its_run_calls(tmp_path):
     # a kind with one example is one unit; a bare kind stands for all of its parts
     assert warmup.units("torques") == ["torques"]
     assert set(warmup.units("workspace")) == {
-        "workspace:legwise", "workspace:joint", "workspace:arc-distance",
-        "workspace:singularities", "workspace:orientation",
-    }  # fmt: skip
+        "workspace:legwise",
+        "workspace:joint",
+        "workspace:arc-distance",
+        "workspace:singularities",
+        "workspace:orientation",
+    }
     whole = warmup.example("workspace")
     assert whole is not None and whole.count("[[workspace]]") == 5
     assert whole.count("[robot3rrr]") == 1
@@ -94,9 +97,21 @@ def test_a_cold_run_compiles_only_the_kernels_of_its_jobs(tmp_path):
     preset.write_text(WORKSPACE_ROBOT + f'[workspace]\n{LIMITS}form = "arc-distance"\n')
     cache = tmp_path / "cache"
     env = dict(os.environ, NUMBA_CACHE_DIR=str(cache), PYTHONPATH=str(REPO))
-    subprocess.run([sys.executable, "-m", "planar_tui", "run", str(preset), "--out-dir",
-                    str(tmp_path / "out")], check=True, capture_output=True, env=env,
-                   timeout=900)  # fmt: skip
+    subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "planar_tui",
+            "run",
+            str(preset),
+            "--out-dir",
+            str(tmp_path / "out"),
+        ],
+        check=True,
+        capture_output=True,
+        env=env,
+        timeout=900,
+    )
     (folder,) = cache.iterdir()
     markers = sorted(p.name.rsplit("-", 1)[0] for p in folder.glob("warm-*"))
     assert markers == ["warm-workspace-arc-distance"]
@@ -219,10 +234,13 @@ print(" and the usual exit", end="")
 """
 
 
-@pytest.mark.parametrize(("state", "code", "out"), [
-    ("compiling", 130, "the outcome"),  # at once, its output flushed
-    ("idle", 0, "the outcome and the usual exit"),
-])  # fmt: skip
+@pytest.mark.parametrize(
+    ("state", "code", "out"),
+    [
+        ("compiling", 130, "the outcome"),  # at once, its output flushed
+        ("idle", 0, "the outcome and the usual exit"),
+    ],
+)
 def test_a_cli_exit_during_a_compile_leaves_at_once_with_its_output(state, code, out):
     import subprocess
     import sys
@@ -230,8 +248,13 @@ def test_a_cli_exit_during_a_compile_leaves_at_once_with_its_output(state, code,
     from tests.conftest import REPO
 
     env = {**os.environ, "PYTHONPATH": str(REPO)}
-    result = subprocess.run([sys.executable, "-c", EXIT_WHILE_COMPILING, state], env=env,
-                            capture_output=True, text=True, timeout=120)  # fmt: skip
+    result = subprocess.run(
+        [sys.executable, "-c", EXIT_WHILE_COMPILING, state],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert (result.returncode, result.stdout) == (code, out), result.stderr
 
 

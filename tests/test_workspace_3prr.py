@@ -34,17 +34,32 @@ precision_cm = {precision}
 TRIANGLE = [[0, 0], [120, 0], [60, 103.9230485]]
 
 
-def job_of(tmp_path, *, points=TRIANGLE, angles=(0, 120, 240), strokes=((10, 110),) * 3,
-           distal=(40, 40, 40), platform=((0, 0), (40, 0), (20, 40)), phi=0.0, precision=0.5,
-           extra=""):  # fmt: skip
+def job_of(
+    tmp_path,
+    *,
+    points=TRIANGLE,
+    angles=(0, 120, 240),
+    strokes=((10, 110),) * 3,
+    distal=(40, 40, 40),
+    platform=((0, 0), (40, 0), (20, 40)),
+    phi=0.0,
+    precision=0.5,
+    extra="",
+):
     path = tmp_path / "prr.toml"
     path.write_text(
-        JOB.format(points=[list(p) for p in points], angles=list(angles),
-                   strokes=[list(s) for s in strokes], distal=list(distal),
-                   platform=[list(p) for p in platform], phi=phi, precision=precision,
-                   extra=extra),
+        JOB.format(
+            points=[list(p) for p in points],
+            angles=list(angles),
+            strokes=[list(s) for s in strokes],
+            distal=list(distal),
+            platform=[list(p) for p in platform],
+            phi=phi,
+            precision=precision,
+            extra=extra,
+        ),
         encoding="utf-8",
-    )  # fmt: skip
+    )
     return load_preset(path).jobs[0]
 
 
@@ -55,9 +70,13 @@ def legs(job):
     c, s = math.cos(phi), math.sin(phi)
     result = []
     for (bx, by), angle, (lo, hi), length, (qx, qy) in zip(
-        robot.slider_points_cm, robot.slider_angles_deg, robot.strokes_cm, robot.distal_cm,
-        robot.platform_points_cm, strict=True,
-    ):  # fmt: skip
+        robot.slider_points_cm,
+        robot.slider_angles_deg,
+        robot.strokes_cm,
+        robot.distal_cm,
+        robot.platform_points_cm,
+        strict=True,
+    ):
         u = np.array([math.cos(math.radians(angle)), math.sin(math.radians(angle))])
         origin = np.array([bx - (c * qx - s * qy), by - (s * qx + c * qy)])
         result.append((origin + lo * u, origin + hi * u, length))
@@ -123,9 +142,15 @@ def single_leg_area(length_cm, stroke_cm):
 
 @pytest.mark.parametrize(("length", "stroke"), [(40.0, 100.0), (40.0, 50.0), (30.0, 5.0)])
 def test_three_identical_legs_have_the_closed_form_area(tmp_path, length, stroke):
-    job = job_of(tmp_path, points=[[0, 0]] * 3, angles=(30, 30, 30),
-                 strokes=((0, stroke),) * 3, distal=(length,) * 3, platform=((0, 0),) * 3,
-                 precision=0.25)  # fmt: skip
+    job = job_of(
+        tmp_path,
+        points=[[0, 0]] * 3,
+        angles=(30, 30, 30),
+        strokes=((0, stroke),) * 3,
+        distal=(length,) * 3,
+        platform=((0, 0),) * 3,
+        precision=0.25,
+    )
     exact = single_leg_area(length, stroke)
     outcome = pave(job)
     g = outcome.geometric
@@ -154,9 +179,16 @@ def points():
 def test_random_geometries_bracket_the_polygon_and_grid_references(
     tmp_path_factory, base, angles, strokes, distal, platform, phi
 ):
-    job = job_of(tmp_path_factory.mktemp("prr"), points=[list(p) for p in base], angles=angles,
-                 strokes=[(lo, lo + w) for lo, w in strokes], distal=distal,
-                 platform=[list(p) for p in platform], phi=phi, precision=1.0)  # fmt: skip
+    job = job_of(
+        tmp_path_factory.mktemp("prr"),
+        points=[list(p) for p in base],
+        angles=angles,
+        strokes=[(lo, lo + w) for lo, w in strokes],
+        distal=distal,
+        platform=[list(p) for p in platform],
+        phi=phi,
+        precision=1.0,
+    )
     outcome = pave(job)
     g = outcome.geometric
     assert outcome.area_inside_cm2 <= g.outer_cm2 + 1e-6

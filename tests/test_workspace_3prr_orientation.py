@@ -48,8 +48,13 @@ def random_case(seed):
 
 
 def spec_of(phi, mode, precision=2.0, **changes):
-    return Spec3PRR(orientation_deg=phi, orientation_mode=mode, precision_cm=precision,
-                    geometric_reference=False, **changes)  # fmt: skip
+    return Spec3PRR(
+        orientation_deg=phi,
+        orientation_mode=mode,
+        precision_cm=precision,
+        geometric_reference=False,
+        **changes,
+    )
 
 
 def feasible(robot, angle, points, shift):
@@ -58,9 +63,13 @@ def feasible(robot, angle, points, shift):
     c, s = math.cos(angle), math.sin(angle)
     ok = np.ones(len(points), dtype=bool)
     for (bx, by), a, (lo, hi), length, (qx, qy) in zip(
-        robot.slider_points_cm, robot.slider_angles_deg, robot.strokes_cm, robot.distal_cm,
-        robot.platform_points_cm, strict=True,
-    ):  # fmt: skip
+        robot.slider_points_cm,
+        robot.slider_angles_deg,
+        robot.strokes_cm,
+        robot.distal_cm,
+        robot.platform_points_cm,
+        strict=True,
+    ):
         ux, uy = math.cos(math.radians(a)), math.sin(math.radians(a))
         px = points[:, 0] + c * qx - s * qy - bx
         py = points[:, 1] + s * qx + c * qy - by

@@ -49,8 +49,12 @@ def det(x, y, modes):
 
 def run(tmp_path, job=""):
     path = tmp_path / "s.toml"
-    path.write_text(preset_text(job="precision_cm = 0.5\nsingularities = true\n" + job)
-                    .replace("precision_cm = 1\n", ""), encoding="utf-8")  # fmt: skip
+    path.write_text(
+        preset_text(job="precision_cm = 0.5\nsingularities = true\n" + job).replace(
+            "precision_cm = 1\n", ""
+        ),
+        encoding="utf-8",
+    )
     (loaded,) = load_preset(path).jobs
     return run_job(loaded, Progress())
 
@@ -59,8 +63,9 @@ def test_every_root_of_a_float_trace_of_det_lies_in_a_kept_box(tmp_path):
     result = run(tmp_path)
     s = result.singularity
     modes = tuple(int(m) for m in s.elbow.split())
-    roots = trace_roots(lambda x, y: det(x, y, modes), np.linspace(-15.0, 45.0, 25),
-                        np.linspace(-5.03, 90.01, 1201))  # fmt: skip
+    roots = trace_roots(
+        lambda x, y: det(x, y, modes), np.linspace(-15.0, 45.0, 25), np.linspace(-5.03, 90.01, 1201)
+    )
     assert roots, "the trace found no singular pose: the test would prove nothing"
     assert_in_boxes(roots, s.boxes)
 

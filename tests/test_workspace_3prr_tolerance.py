@@ -55,8 +55,9 @@ def reached(job, points, shifts):
         rel = joint - start[:, None]  # (robots, points, 2)
         s = np.clip(rel @ u, 0.0, hi - lo)
         d_seg = np.hypot(*np.moveaxis(rel - s[..., None] * u, -1, 0))
-        d_end = np.maximum(np.hypot(*np.moveaxis(rel, -1, 0)),
-                           np.hypot(*np.moveaxis(rel - (hi - lo) * u, -1, 0)))  # fmt: skip
+        d_end = np.maximum(
+            np.hypot(*np.moveaxis(rel, -1, 0)), np.hypot(*np.moveaxis(rel - (hi - lo) * u, -1, 0))
+        )
         length = robot.distal_cm[leg] + kappa[:, None]
         ok &= (d_seg <= length) & (length <= d_end)
     return ok

@@ -34,12 +34,25 @@ BASE = [[0, 0], [120, 0], [60, 103.9230485]]
 PLATFORM = [[0, 0], [40, 0], [20, 40]]
 
 
-def job_of(tmp_path, *, base=BASE, platform=PLATFORM, limits=((20, 80),) * 3, phi=0.0,
-           precision=0.5, extra=""):  # fmt: skip
+def job_of(
+    tmp_path,
+    *,
+    base=BASE,
+    platform=PLATFORM,
+    limits=((20, 80),) * 3,
+    phi=0.0,
+    precision=0.5,
+    extra="",
+):
     path = tmp_path / "rpr.toml"
-    text = JOB.format(base=list(base), platform=list(platform),
-                      limits=[list(row) for row in limits], phi=phi, precision=precision,
-                      extra=extra)  # fmt: skip
+    text = JOB.format(
+        base=list(base),
+        platform=list(platform),
+        limits=[list(row) for row in limits],
+        phi=phi,
+        precision=precision,
+        extra=extra,
+    )
     path.write_text(text, encoding="utf-8")
     return load_preset(path).jobs[0]
 
@@ -56,15 +69,21 @@ def grid_bracket(job, cells=400):
     robot, spec = job.robot, job.spec
     phi = math.radians(spec.orientation_deg)
     c, s = math.cos(phi), math.sin(phi)
-    centres = [(ax - (c * qx - s * qy), ay - (s * qx + c * qy))
-               for (ax, ay), (qx, qy) in zip(robot.base_joints_cm, robot.platform_points_cm, strict=True)]  # fmt: skip
+    centres = [
+        (ax - (c * qx - s * qy), ay - (s * qx + c * qy))
+        for (ax, ay), (qx, qy) in zip(robot.base_joints_cm, robot.platform_points_cm, strict=True)
+    ]
     hi_max = max(hi for _, hi in spec.leg_limits_cm)
     x0, x1 = centres[0][0] - hi_max, centres[0][0] + hi_max
     y0 = centres[0][1] - hi_max
     h = (x1 - x0) / cells
     xs, ys = np.meshgrid(x0 + h * (np.arange(cells) + 0.5), y0 + h * (np.arange(cells) + 0.5))
-    margins = np.stack([np.minimum(np.hypot(xs - cx, ys - cy) - lo, hi - np.hypot(xs - cx, ys - cy))
-                        for (cx, cy), (lo, hi) in zip(centres, spec.leg_limits_cm, strict=True)])  # fmt: skip
+    margins = np.stack(
+        [
+            np.minimum(np.hypot(xs - cx, ys - cy) - lo, hi - np.hypot(xs - cx, ys - cy))
+            for (cx, cy), (lo, hi) in zip(centres, spec.leg_limits_cm, strict=True)
+        ]
+    )
     r = h / math.sqrt(2.0) + 1e-9
     inside = np.all(margins >= r, axis=0)
     not_outside = np.all(margins >= -r, axis=0)
@@ -128,8 +147,14 @@ def test_random_geometries_bracket_the_polygon_and_grid_references(
     tmp_path_factory, base, platform, limits, phi
 ):
     limits = [(lo, lo + width) for lo, width in limits]
-    job = job_of(tmp_path_factory.mktemp("rpr"), base=[list(p) for p in base],
-                 platform=[list(p) for p in platform], limits=limits, phi=phi, precision=1.0)  # fmt: skip
+    job = job_of(
+        tmp_path_factory.mktemp("rpr"),
+        base=[list(p) for p in base],
+        platform=[list(p) for p in platform],
+        limits=limits,
+        phi=phi,
+        precision=1.0,
+    )
     outcome = pave(job)
     g = outcome.geometric
     assert outcome.area_inside_cm2 <= g.outer_cm2 + 1e-6
@@ -248,8 +273,9 @@ def test_the_app_tab_runs_the_job_and_shows_its_map(tmp_path):
     from tests.test_app import run_tab
 
     preset = tmp_path / "rpr.toml"
-    preset.write_text(preset_text(job="orientation_deg = 30\nsingularities = true"),
-                      encoding="utf-8")  # fmt: skip
+    preset.write_text(
+        preset_text(job="orientation_deg = 30\nsingularities = true"), encoding="utf-8"
+    )
     app = WorkbenchApp(Workbench.open(preset), output_dir=tmp_path)
 
     async def drive():

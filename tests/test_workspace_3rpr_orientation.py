@@ -47,8 +47,14 @@ def random_case(seed):
 
 
 def spec_of(limits, phi, mode, precision=2.0, **changes):
-    return Spec3RPR(leg_limits_cm=limits, orientation_deg=phi, orientation_mode=mode,
-                    precision_cm=precision, geometric_reference=False, **changes)  # fmt: skip
+    return Spec3RPR(
+        leg_limits_cm=limits,
+        orientation_deg=phi,
+        orientation_mode=mode,
+        precision_cm=precision,
+        geometric_reference=False,
+        **changes,
+    )
 
 
 def sampled_phis(phi):
@@ -64,10 +70,14 @@ def at_samples(robot, limits, phi, shift, outward):
     polygons = []
     for angle in sampled_phis(phi):
         centres = robot.centres_cm(angle)
-        polygons.append(intersection_all([
-            annulus(c, max(0.0, lo - shift), hi + shift, 256, outward)
-            for c, (lo, hi) in zip(centres, limits, strict=True)
-        ]))  # fmt: skip
+        polygons.append(
+            intersection_all(
+                [
+                    annulus(c, max(0.0, lo - shift), hi + shift, 256, outward)
+                    for c, (lo, hi) in zip(centres, limits, strict=True)
+                ]
+            )
+        )
     return polygons
 
 

@@ -62,8 +62,9 @@ def test_the_symmetric_design_has_the_closed_form_circle(tmp_path):
 def test_every_root_of_a_float_trace_of_det_lies_in_a_kept_box(tmp_path, phi):
     result = run(tmp_path, phi)
     boxes = result.singularity.boxes
-    roots = trace_roots(lambda x, y: det(x, y, phi), np.linspace(-25.0, 55.0, 17),
-                        np.linspace(-10.03, 90.01, 801))  # off the axis x = 40  # fmt: skip
+    roots = trace_roots(
+        lambda x, y: det(x, y, phi), np.linspace(-25.0, 55.0, 17), np.linspace(-10.03, 90.01, 801)
+    )  # off the axis x = 40
     roots = [(x, y) for x, y in roots if inside(x, y, phi)]
     if phi == 0.0:
         assert len(roots) >= 4  # the symmetry axis crosses the workspace
@@ -95,8 +96,12 @@ def trace_roots(det_of, ys, xs):
 def assert_in_boxes(points, boxes, tol=1e-6):
     """Every point lies in one of the rows ``x_lo, x_hi, y_lo, y_hi`` (within ``tol``)."""
     for x, y in points:
-        hit = ((boxes[:, 0] - tol <= x) & (x <= boxes[:, 1] + tol)
-               & (boxes[:, 2] - tol <= y) & (y <= boxes[:, 3] + tol))  # fmt: skip
+        hit = (
+            (boxes[:, 0] - tol <= x)
+            & (x <= boxes[:, 1] + tol)
+            & (boxes[:, 2] - tol <= y)
+            & (y <= boxes[:, 3] + tol)
+        )
         assert hit.any(), (x, y)
 
 

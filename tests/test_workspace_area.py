@@ -220,8 +220,9 @@ def test_the_box_estimate_and_the_exact_reference_are_computed_once_per_geometry
     polygon = real(ROBOT, limits, orientation_rad, 64, True)
     assert (area, length) == (polygon.area, polygon.length)
     assert made == [(64, True)]
-    same = geometry.outer_area_and_length(ROBOT, [list(pair) for pair in limits],
-                                          np.float64(orientation_rad))  # fmt: skip
+    same = geometry.outer_area_and_length(
+        ROBOT, [list(pair) for pair in limits], np.float64(orientation_rad)
+    )
     bracket = geometry.geometric_area(ROBOT, limits, orientation_rad)
     polygons = len(made)
     assert same == (area, length) and polygons > 2

@@ -33,8 +33,15 @@ form = "{form}"
 """
 
 
-def write_preset(tmp_path, *, distal=30, limits="[[50, 70], [140, 160], [260, 280]]",
-                 precision=0.0625, form="mean-value", extra=""):  # fmt: skip
+def write_preset(
+    tmp_path,
+    *,
+    distal=30,
+    limits="[[50, 70], [140, 160], [260, 280]]",
+    precision=0.0625,
+    form="mean-value",
+    extra="",
+):
     path = tmp_path / "ws.toml"
     path.write_text(
         ROBOT.format(distal=distal)
@@ -265,8 +272,11 @@ def test_every_form_brackets_the_geometric_area(cli, tmp_path, form, extra):
 
 
 def test_progress_reports_boxes_and_a_bracket_containing_the_exact_area(tmp_path):
-    preset = load_preset(write_preset(tmp_path, form="arc-distance", precision=0.125,
-                                      extra="refine_precision_cm = 0.0005\n"))  # fmt: skip
+    preset = load_preset(
+        write_preset(
+            tmp_path, form="arc-distance", precision=0.125, extra="refine_precision_cm = 0.0005\n"
+        )
+    )
     (job,) = preset.jobs
     updates = []
     result = run_job(job, Progress(on_update=updates.append))
@@ -319,8 +329,17 @@ def test_ctrl_c_exits_130_quickly_and_writes_nothing(tmp_path):
         # (it runs about 20 s here before stopping at it): the signal comes long before
         extra='strategy = "joint"\nbox_budget = 100_000_000\n',
     )
-    command = [sys.executable, "-m", "planar_tui", "workspace", str(preset), "--out-dir",
-               str(tmp_path), "--boxes", str(tmp_path / "b.csv")]  # fmt: skip
+    command = [
+        sys.executable,
+        "-m",
+        "planar_tui",
+        "workspace",
+        str(preset),
+        "--out-dir",
+        str(tmp_path),
+        "--boxes",
+        str(tmp_path / "b.csv"),
+    ]
     process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     time.sleep(4.0)  # start-up (Numba) and well into the bisection
     assert process.poll() is None, "the job finished before it could be interrupted"
@@ -337,8 +356,12 @@ def test_a_range_of_orientations_is_not_estimated_so_not_refused_when_read(tmp_p
     """The 3-RRR's estimate models one orientation: a range is left to its run's budget."""
     preset = write_preset(tmp_path, form="arc-distance", extra="box_budget = 1\n")
     text = preset.read_text(encoding="utf-8")
-    preset.write_text(text.replace("orientation_deg = 0", 'orientation_deg = [-1, 1]\n'
-                                   'orientation_mode = "total"'), encoding="utf-8")  # fmt: skip
+    preset.write_text(
+        text.replace(
+            "orientation_deg = 0", 'orientation_deg = [-1, 1]\norientation_mode = "total"'
+        ),
+        encoding="utf-8",
+    )
     (job,) = load_preset(preset).jobs
     assert job.spec.orientation_deg == (-1.0, 1.0) and job.spec.box_budget == 1
     single = write_preset(tmp_path, form="arc-distance", extra="box_budget = 1\n")

@@ -19,15 +19,27 @@ from tests.test_workspace_estimate import JOBS, VARIED, preset
 
 #: Changes of each kind's small job (``JOBS``) a run's columns may depend on.
 VARIANTS = {
-    "workspace3rpr": [{}, {"singularities": True}, {"form": "geometric"},
-                      {"tolerance_cm": 0.05, "tolerance_mode": "all"},
-                      {"tolerance_cm": 0.05, "tolerance_mode": "some"}],
-    "workspace3prr": [{}, {"singularities": True}, {"form": "geometric"},
-                      {"tolerance_cm": 0.05, "tolerance_mode": "some"}],
-    "workspace5r": [{}, {"singularities": True}, {"form": "geometric"},
-                    {"singularities": True, "singularity_free_circle": (0.0, 60.0)},
-                    {"tolerance_cm": 0.05, "tolerance_mode": "all"}],
-}  # fmt: skip
+    "workspace3rpr": [
+        {},
+        {"singularities": True},
+        {"form": "geometric"},
+        {"tolerance_cm": 0.05, "tolerance_mode": "all"},
+        {"tolerance_cm": 0.05, "tolerance_mode": "some"},
+    ],
+    "workspace3prr": [
+        {},
+        {"singularities": True},
+        {"form": "geometric"},
+        {"tolerance_cm": 0.05, "tolerance_mode": "some"},
+    ],
+    "workspace5r": [
+        {},
+        {"singularities": True},
+        {"form": "geometric"},
+        {"singularities": True, "singularity_free_circle": (0.0, 60.0)},
+        {"tolerance_cm": 0.05, "tolerance_mode": "all"},
+    ],
+}
 CASES = [(kind, changes) for kind, variants in VARIANTS.items() for changes in variants]
 
 
@@ -43,8 +55,10 @@ def test_the_named_columns_are_the_runs(tmp_path, kind, changes):
 @pytest.mark.parametrize("kind", sorted(JOBS))
 def test_an_optimisation_naming_no_column_is_refused_before_it_runs(tmp_path, cli, kind):
     key, lo, hi = VARIED[kind]
-    text = (f'[[optimise]]\njob = "{kind}"\nvariables."{key}" = {{ from = {lo}, to = {hi} }}\n'
-            'maximise = "area_insde_cm2"\nbudget = 4\npopulation = 4\noutput = "o.csv"\n')  # fmt: skip
+    text = (
+        f'[[optimise]]\njob = "{kind}"\nvariables."{key}" = {{ from = {lo}, to = {hi} }}\n'
+        'maximise = "area_insde_cm2"\nbudget = 4\npopulation = 4\noutput = "o.csv"\n'
+    )
     result = cli("optimise", preset(tmp_path, kind, "2", text), "--out-dir", tmp_path / "out")
     assert result.exit_code == ExitCode.BAD_INPUT
     line = one_line(result)
@@ -67,8 +81,9 @@ def test_a_cancelled_sweep_resumes_its_finished_points(tmp_path, kind, monkeypat
         run_sweep(sweep, progress, out_dir=out, on_outcome=lambda o: progress.request_cancel())
     computed = []
     real = execute.run_point
-    monkeypatch.setattr(execute, "run_point",
-                        lambda task, p=None: computed.append(task.number) or real(task, p))  # fmt: skip
+    monkeypatch.setattr(
+        execute, "run_point", lambda task, p=None: computed.append(task.number) or real(task, p)
+    )
     run = run_sweep(sweep, out_dir=out, resume=True)
     assert run.resumed == 1 and computed == [2]
     assert len(run.table.rows) == 2

@@ -170,8 +170,9 @@ def rows(path):
 def test_a_sweep_of_each_kind_runs_end_to_end(tmp_path, cli, kind):
     key, lo, hi = VARIED[kind]
     sweep = f'[[sweep]]\njob = "{kind}"\nvalues."{key}" = [{lo}, {hi}]\noutput = "s.csv"\n'
-    result = cli("sweep", preset(tmp_path, kind, "2", sweep), "--out-dir", tmp_path / "out",
-                 "--workers", "1")  # fmt: skip
+    result = cli(
+        "sweep", preset(tmp_path, kind, "2", sweep), "--out-dir", tmp_path / "out", "--workers", "1"
+    )
     assert result.exit_code == 0, result.output
     found = rows(tmp_path / "out" / "s.csv")
     assert [row["status"] for row in found] == ["ok", "ok"]
@@ -186,10 +187,18 @@ def test_a_sweep_of_long_points_of_each_kind_is_refused_with_its_estimate(tmp_pa
     """10 000 points at ε = 0.0005 cm (each a few hundred MiB and tens of seconds, within
     the limits): days of computing on one worker, refused before anything runs."""
     key, lo, hi = VARIED[kind]
-    sweep = (f'[[sweep]]\njob = "{kind}"\n'
-             f'values."{key}" = {{ from = {lo}, to = {hi}, count = 10000 }}\noutput = "s.csv"\n')  # fmt: skip
-    result = cli("sweep", preset(tmp_path, kind, "0.0005", sweep), "--out-dir",
-                 tmp_path / "out", "--workers", "1")  # fmt: skip
+    sweep = (
+        f'[[sweep]]\njob = "{kind}"\n'
+        f'values."{key}" = {{ from = {lo}, to = {hi}, count = 10000 }}\noutput = "s.csv"\n'
+    )
+    result = cli(
+        "sweep",
+        preset(tmp_path, kind, "0.0005", sweep),
+        "--out-dir",
+        tmp_path / "out",
+        "--workers",
+        "1",
+    )
     assert result.exit_code == ExitCode.BAD_INPUT
     line = one_line(result)
     assert "sweep[1]: 10,000 points need about " in line and "days of computing" in line
@@ -225,8 +234,14 @@ def test_an_optimisation_over_a_3prr_link_runs_end_to_end(tmp_path, cli):
 
 def test_an_optimisation_of_long_evaluations_is_refused_with_its_estimate(tmp_path, cli):
     text = OPTIMISE.format(budget=20000).replace("coarse = { precision_cm = 4 }\n", "")
-    result = cli("optimise", preset(tmp_path, "workspace3prr", "0.0005", text), "--out-dir",
-                 tmp_path / "out", "--workers", "1")  # fmt: skip
+    result = cli(
+        "optimise",
+        preset(tmp_path, "workspace3prr", "0.0005", text),
+        "--out-dir",
+        tmp_path / "out",
+        "--workers",
+        "1",
+    )
     assert result.exit_code == ExitCode.BAD_INPUT
     line = one_line(result)
     assert "optimise[1]: 20,000 evaluations and 1 certified re-run(s) need about" in line
@@ -236,8 +251,14 @@ def test_an_optimisation_of_long_evaluations_is_refused_with_its_estimate(tmp_pa
 
 def test_the_five_bar_command_prints_its_map(tmp_path, cli):
     """The map view of a five-bar job (its result has no tolerance companions)."""
-    result = cli("workspace5r", PRESETS / "fivebar-illustrative.toml", "--precision", "2",
-                 "--out-dir", tmp_path)  # fmt: skip
+    result = cli(
+        "workspace5r",
+        PRESETS / "fivebar-illustrative.toml",
+        "--precision",
+        "2",
+        "--out-dir",
+        tmp_path,
+    )
     assert result.exit_code == 0, result.output
     assert "workspace5r[2]: arc-distance, ε = 2 cm" in result.stdout
     assert "singularity-free" in result.stdout

@@ -51,9 +51,13 @@ def parameters(phi_rad=0.0):
 
     robot = Robot3RRR()
     return parameter_vector(
-        robot.proximal_cm, robot.distal_cm, robot.leg_offsets_cm(phi_rad),
-        robot.base_side_cm, robot.platform_side_cm, phi_rad,
-    )  # fmt: skip
+        robot.proximal_cm,
+        robot.distal_cm,
+        robot.leg_offsets_cm(phi_rad),
+        robot.base_side_cm,
+        robot.platform_side_cm,
+        phi_rad,
+    )
 
 
 def sequential(form, p, precision_cm, memo_slots=None):
@@ -122,8 +126,10 @@ def test_the_kernel_keeps_the_boxes_of_algorithm_1_as_printed(form):
         kept, processed = sequential(form, p, precision, memo_slots)
         assert processed == expected_processed
         if memo_slots == 0:
-            np.testing.assert_array_equal(np.sort(kept.view("f8,f8,f8,f8"), axis=0),
-                                          np.sort(expected.view("f8,f8,f8,f8"), axis=0))  # fmt: skip
+            np.testing.assert_array_equal(
+                np.sort(kept.view("f8,f8,f8,f8"), axis=0),
+                np.sort(expected.view("f8,f8,f8,f8"), axis=0),
+            )
         else:
             np.testing.assert_array_equal(unique_rows(kept), unique_rows(expected))
             assert len(kept) <= len(expected)
@@ -201,8 +207,7 @@ def test_every_block_count_keeps_the_sequential_boxes(form):
         np.testing.assert_array_equal(unique_rows(kept), unique_rows(expected))
         # with the memo: the same distinct rows, about once a block (a cell whose slot
         # another cell took in between is written again)
-        remembered = joint_stage(form, p, precision, 10.0, LIMITS_RAD, BOX, Budget(), 5000,
-                                 blocks)  # fmt: skip
+        remembered = joint_stage(form, p, precision, 10.0, LIMITS_RAD, BOX, Budget(), 5000, blocks)
         cells = unique_rows(expected)
         np.testing.assert_array_equal(unique_rows(remembered), cells)
         assert len(remembered) <= min(len(expected), 2 * blocks * len(cells))

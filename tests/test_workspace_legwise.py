@@ -59,10 +59,11 @@ def spec_for(case, form, strategy, precision=None, **extra):
 def exact():
     """The geometric (shapely) bracket of each case: independent of the interval code."""
     return {
-        case: geometric_area(PAPER, spec_for(case, "geometric", "legwise").limits_rad,
-                             math.radians(c[1]))
+        case: geometric_area(
+            PAPER, spec_for(case, "geometric", "legwise").limits_rad, math.radians(c[1])
+        )
         for case, c in CASES.items()
-    }  # fmt: skip
+    }
 
 
 def assert_brackets(out, g):
@@ -160,14 +161,19 @@ def geometries(draw):
 def test_random_geometries_both_strategies_bracket_the_exact_area(geometry):
     robot, limits, phi, form = geometry
     eps = robot.proximal_cm / 16  # coarse, so that the joint bisection stays fast
-    g = geometric_area(robot, [(math.radians(lo), math.radians(hi)) for lo, hi in limits],
-                       math.radians(phi))  # fmt: skip
+    g = geometric_area(
+        robot, [(math.radians(lo), math.radians(hi)) for lo, hi in limits], math.radians(phi)
+    )
     outs = {}
     for strategy in ("legwise", "joint"):
         spec = WorkspaceSpec(
-            joint_limits_deg=limits, orientation_deg=phi, precision_cm=eps, form=form,
-            strategy=strategy, geometric_reference=False,
-        )  # fmt: skip
+            joint_limits_deg=limits,
+            orientation_deg=phi,
+            precision_cm=eps,
+            form=form,
+            strategy=strategy,
+            geometric_reference=False,
+        )
         outs[strategy] = out = run(spec, robot)
         assert_brackets(out, g)
     # per box, against the exact point test (independent of the interval forms): points of
@@ -208,7 +214,11 @@ def test_progress_shows_partial_boxes_with_status_and_the_estimate_is_near():
     partial = [s.partial for s in states if s.partial.get("boxes_cm") is not None]
     assert partial and all(not v["boxes_cm"].flags.writeable for v in partial)
     assert all(len(v["status"]) == len(v["boxes_cm"]) > 0 for v in partial)
-    brackets = [(s.figures["area_lower_cm2"], s.figures["area_upper_cm2"]) for s in states
-                if "area_upper_cm2" in s.figures]  # fmt: skip
-    assert all(lo <= out.area_inside_cm2 + 1e-9 and hi >= out.area_kept_cm2 - 1e-9
-               for lo, hi in brackets)  # fmt: skip
+    brackets = [
+        (s.figures["area_lower_cm2"], s.figures["area_upper_cm2"])
+        for s in states
+        if "area_upper_cm2" in s.figures
+    ]
+    assert all(
+        lo <= out.area_inside_cm2 + 1e-9 and hi >= out.area_kept_cm2 - 1e-9 for lo, hi in brackets
+    )

@@ -29,9 +29,13 @@ def test_the_overlay_legend_fits_the_width_and_explains_every_glyph(width):
     each explained in full on lines no wider than the map."""
     extent = (0.0, 10.0, 0.0, 10.0)
     lines = render_map(
-        np.array([extent]), np.array([2]), extent=extent, width=width,
-        singular=np.array([[1.0, 2.0, 1.0, 2.0]]), circle=(5.0, 5.0, 2.0),
-    )  # fmt: skip
+        np.array([extent]),
+        np.array([2]),
+        extent=extent,
+        width=width,
+        singular=np.array([[1.0, 2.0, 1.0, 2.0]]),
+        circle=(5.0, 5.0, 2.0),
+    )
     assert all(len(line) <= width for line in lines)
     legend = lines[lines.index(next(x for x in lines if "x (cm)" in x)) + 1 :]
     words = [line.strip() for line in legend]

@@ -177,15 +177,22 @@ def test_cli_writes_the_orientation_columns_and_the_reference(cli, tmp_path):
 @pytest.mark.parametrize(
     ("body", "stage"),
     [
-        ('orientation_deg = [-30, 30]\norientation_mode = "maximal"\nprecision_cm = 0.004\n'
-         "geometric_reference = false", "maximal orientation workspace"),
-        ('orientation_deg = [-30, 30]\norientation_mode = "total"\nprecision_cm = 1.0',
-         "sampled reference"),
-        ("precision_cm = 1.0\nsingularities = true\nelbow = [1, -1, 1]\n"
-         "singularity_precision_cm = 0.0005\ngeometric_reference = false",
-         "type II singularities"),
+        (
+            'orientation_deg = [-30, 30]\norientation_mode = "maximal"\nprecision_cm = 0.004\n'
+            "geometric_reference = false",
+            "maximal orientation workspace",
+        ),
+        (
+            'orientation_deg = [-30, 30]\norientation_mode = "total"\nprecision_cm = 1.0',
+            "sampled reference",
+        ),
+        (
+            "precision_cm = 1.0\nsingularities = true\nelbow = [1, -1, 1]\n"
+            "singularity_precision_cm = 0.0005\ngeometric_reference = false",
+            "type II singularities",
+        ),
     ],
-)  # fmt: skip
+)
 def test_cancel_stops_the_new_stages_within_a_fraction_of_a_second(body, stage):
     from benchmarks.bench_cancel import cancel_latency, robot_job
     from planar_tui import batch

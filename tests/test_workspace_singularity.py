@@ -114,8 +114,14 @@ def ray_radius(job, centre, reach, directions=720, step=0.004):
     direction = psi[:, 0]
     for _ in range(40):
         mid = 0.5 * (lo + hi)
-        v, d = legs(robot, phi, centre[0] + mid * np.cos(direction),
-                    centre[1] + mid * np.sin(direction), elbow, limits)  # fmt: skip
+        v, d = legs(
+            robot,
+            phi,
+            centre[0] + mid * np.cos(direction),
+            centre[1] + mid * np.sin(direction),
+            elbow,
+            limits,
+        )
         is_bad = ~v | (np.sign(d) != np.sign(det0))
         hi, lo = np.where(is_bad, mid, hi), np.where(is_bad, lo, mid)
     return float(hi.min())
@@ -250,8 +256,9 @@ def test_float_model_reproduces_the_kernels_det_at_points():
 
     class Spec:
         orientation_rad = 0.3
-        limits_rad = tuple((math.radians(a), math.radians(b)) for a, b in
-                           ((-15, 75), (105, 195), (225, 315)))  # fmt: skip
+        limits_rad = tuple(
+            (math.radians(a), math.radians(b)) for a, b in ((-15, 75), (105, 195), (225, 315))
+        )
 
     robot = Robot3RRR()
     g, r, elbow, limits = kernel_inputs(robot, Spec, Circle(0.0, 0.0, (1, 1, 1)))

@@ -38,9 +38,13 @@ class _Job:
 
 def spec_for(form="arc-distance", precision=0.25, phi=0.0, **extra) -> WorkspaceSpec:
     return WorkspaceSpec(
-        joint_limits_deg=LIMITS, orientation_deg=phi, precision_cm=precision, form=form,
-        geometric_reference=False, **extra,
-    )  # fmt: skip
+        joint_limits_deg=LIMITS,
+        orientation_deg=phi,
+        precision_cm=precision,
+        form=form,
+        geometric_reference=False,
+        **extra,
+    )
 
 
 def run(spec):
@@ -83,19 +87,28 @@ def sampled_robots(tolerance: Tolerance, rng, n_random=12, n_vertex=12):
     nominal robot."""
     t = tolerance.of
     nominal = list(zip(ROBOT.base_joints_cm(), ROBOT.platform_points_cm(), strict=True))
-    widths = [t("base_joints_cm")] * 2 + [t("platform_points_cm")] * 2 + [
-        t("proximal_cm"), t("distal_cm"),
-    ]  # fmt: skip
+    widths = (
+        [t("base_joints_cm")] * 2
+        + [t("platform_points_cm")] * 2
+        + [
+            t("proximal_cm"),
+            t("distal_cm"),
+        ]
+    )
     robots = [[(b, q, ROBOT.proximal_cm, ROBOT.distal_cm) for b, q in nominal]]
     for k in range(n_random + n_vertex):
         legs = []
         for base, q in nominal:
             u = rng.choice([-1.0, 1.0], 6) if k < n_vertex else rng.uniform(-1.0, 1.0, 6)
             d = u * np.array(widths)
-            legs.append((
-                (base[0] + d[0], base[1] + d[1]), (q[0] + d[2], q[1] + d[3]),
-                ROBOT.proximal_cm + d[4], ROBOT.distal_cm + d[5],
-            ))  # fmt: skip
+            legs.append(
+                (
+                    (base[0] + d[0], base[1] + d[1]),
+                    (q[0] + d[2], q[1] + d[3]),
+                    ROBOT.proximal_cm + d[4],
+                    ROBOT.distal_cm + d[5],
+                )
+            )
         robots.append(legs)
     return robots
 
@@ -343,9 +356,16 @@ def test_cli_writes_the_tolerance_columns_and_the_map_layers(cli, tmp_path):
 def test_cli_options_override_the_tolerance_keys(cli, tmp_path):
     preset = write(tmp_path, "tolerance_cm = 0.1\n")
     result = cli(
-        "workspace", preset, "--tolerance", "0.01", "--tolerance-mode", "some",
-        "--out-dir", tmp_path, "--no-map",
-    )  # fmt: skip
+        "workspace",
+        preset,
+        "--tolerance",
+        "0.01",
+        "--tolerance-mode",
+        "some",
+        "--out-dir",
+        tmp_path,
+        "--no-map",
+    )
     assert result.exit_code == 0, result.output
     (written,) = [p for p in tmp_path.glob("ws*.csv")]
     (row,) = read_rows(written)
@@ -380,10 +400,12 @@ def test_without_tolerance_keys_the_summary_is_unchanged(cli, tmp_path):
         ("tolerances_cm = { proximal_cm = 31 }\n", "tolerances_cm"),
         ('tolerance_cm = 0.1\nform = "geometric"\n', "form"),
         ('tolerance_cm = 0.1\nform = "mean-value"\nstrategy = "joint"\n', "strategy"),
-        ("tolerance_cm = 0.1\norientation_deg = [-1, 1]\n"
-         'orientation_mode = "total"\n', "orientation_deg"),
+        (
+            'tolerance_cm = 0.1\norientation_deg = [-1, 1]\norientation_mode = "total"\n',
+            "orientation_deg",
+        ),
     ],
-)  # fmt: skip
+)
 def test_bad_tolerance_input_is_one_line_exit_2_and_nothing_written(cli, tmp_path, extra, fragment):
     preset = write(tmp_path, extra)
     result = cli("workspace", preset, "--out-dir", tmp_path)
@@ -418,8 +440,9 @@ def test_the_figure_overlays_nominal_robust_and_some(tmp_path):
     from planar_tui.csvio import CsvTable
     from planar_tui.figures.workspace import from_result
 
-    result = WorkspaceResult(table=CsvTable(("a",), []), summary="s", outcome=outcome,
-                             companions=companions)  # fmt: skip
+    result = WorkspaceResult(
+        table=CsvTable(("a",), []), summary="s", outcome=outcome, companions=companions
+    )
     fig = from_result(job, result)
     gids = {c.get_gid() for c in fig.axes[0].collections}
     assert {"some-kept", "nominal-kept", "all-kept", "all-inside"} <= gids

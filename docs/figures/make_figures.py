@@ -62,16 +62,24 @@ def main(names: list[str]) -> None:
             stem = file_stem(path.stem, job.key)
             size = small_png(figure_for_result(job, result), HERE / f"{stem}.png")
             print(f"{stem}.png {size / 1024:.0f} KB", flush=True)
-            lines += [f"**{job.key}** (`{job.output}`): {result.summary}", "",
-                      f"![{path.stem} {job.key}](figures/{stem}.png)", ""]  # fmt: skip
+            lines += [
+                f"**{job.key}** (`{job.output}`): {result.summary}",
+                "",
+                f"![{path.stem} {job.key}](figures/{stem}.png)",
+                "",
+            ]
         for sweep in parse_sweeps(preset):
             run = run_sweep(sweep, workers=1)
             stem = file_stem(path.stem, sweep.name)
             size = small_png(figure_for_table(run.table, sweep.label), HERE / f"{stem}.png")
             print(f"{stem}.png {size / 1024:.0f} KB", flush=True)
-            lines += [f"**{sweep.name}** (`{sweep.output}`): {len(run.outcomes)} points of "
-                      f"{sweep.job.key}, {run.failed} failed", "",
-                      f"![{path.stem} {sweep.name}](figures/{stem}.png)", ""]  # fmt: skip
+            lines += [
+                f"**{sweep.name}** (`{sweep.output}`): {len(run.outcomes)} points of "
+                f"{sweep.job.key}, {run.failed} failed",
+                "",
+                f"![{path.stem} {sweep.name}](figures/{stem}.png)",
+                "",
+            ]
         sections.append("\n".join(lines))
     if names:
         return

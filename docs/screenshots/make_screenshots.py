@@ -48,8 +48,18 @@ SIZE = (80, 24)
 #: The captures asked for on the command line (none: all of them).
 SELECTED = set(sys.argv[1:])
 #: The captures other than the history's (they need the tabs' runs).
-OTHERS = ("robot", "sensitivity", "workspace", "simulate", "motion", "help", "sweep",
-          "sensitivity-6r", "playback", "explore")  # fmt: skip
+OTHERS = (
+    "robot",
+    "sensitivity",
+    "workspace",
+    "simulate",
+    "motion",
+    "help",
+    "sweep",
+    "sensitivity-6r",
+    "playback",
+    "explore",
+)
 
 
 def wanted(*names: str) -> bool:

@@ -189,9 +189,12 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
             self.show_first_job_tab()
         if self.warm_kernels_at_start:
             self.run_worker(
-                self._warm_kernels, name="warm-up", group="warm-up", thread=True,
+                self._warm_kernels,
+                name="warm-up",
+                group="warm-up",
+                thread=True,
                 exit_on_error=False,
-            )  # fmt: skip
+            )
         self.set_interval(REFRESH_S, self._refresh_progress)
         self.report_opened(say_valid=False)
 

@@ -80,12 +80,16 @@ def _columns(table: CsvTable) -> dict[str, int]:
 
 
 def _text_columns(table: CsvTable) -> list[str]:
-    return [name for k, name in enumerate(table.header)
-            if any(isinstance(row[k], str) for row in table.rows)]  # fmt: skip
+    return [
+        name
+        for k, name in enumerate(table.header)
+        if any(isinstance(row[k], str) for row in table.rows)
+    ]
 
 
-def matched_rows(a: CsvTable, b: CsvTable, keys: Sequence[str], values: Sequence[str],
-                 digits: int = 6) -> tuple[tuple[str, ...], list[tuple[str, ...]]]:  # fmt: skip
+def matched_rows(
+    a: CsvTable, b: CsvTable, keys: Sequence[str], values: Sequence[str], digits: int = 6
+) -> tuple[tuple[str, ...], list[tuple[str, ...]]]:
     """Rows of A and B matched by the ``keys`` columns (by position when there are none):
     the keys, then for each of ``values`` A, B (``digits`` significant digits) and
     B − A; rows of one run alone show ``-`` for the other."""
@@ -294,8 +298,10 @@ def _settings_differences(a: Run, b: Run) -> list[str]:
     if a.provenance is None or b.provenance is None:
         return []
     lines = []
-    for where, sa, sb in (("", a.settings, b.settings),
-                          ("robot.", dict(a.provenance.robot), dict(b.provenance.robot))):  # fmt: skip
+    for where, sa, sb in (
+        ("", a.settings, b.settings),
+        ("robot.", dict(a.provenance.robot), dict(b.provenance.robot)),
+    ):
         for key in dict.fromkeys([*sa, *sb]):
             if sa.get(key) != sb.get(key):
                 lines.append(f"setting {where}{key}: A {sa.get(key, '-')}, B {sb.get(key, '-')}")

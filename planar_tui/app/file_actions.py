@@ -218,8 +218,11 @@ class FileActions:
                 self.notify(f"Opened {path}")
         else:
             count = len(self.problems)
-            self.notify(f"Opened {path} with {count} problem{'s' if count > 1 else ''}: "
-                        "marked on the tabs (ctrl+g: go to the first)", severity="warning")  # fmt: skip
+            self.notify(
+                f"Opened {path} with {count} problem{'s' if count > 1 else ''}: "
+                "marked on the tabs (ctrl+g: go to the first)",
+                severity="warning",
+            )
 
     # -- save -------------------------------------------------------------------------
     def action_save(self) -> None:
@@ -487,8 +490,11 @@ class FileActions:
             except Exception as error:  # any drawing failure: a dialog, never a crash
                 from planar_tui.batch import OutputFailed
 
-                message = str(error) if isinstance(error, OutputFailed) else (
-                    f"{path}: cannot write: {error}")  # fmt: skip
+                message = (
+                    str(error)
+                    if isinstance(error, OutputFailed)
+                    else (f"{path}: cannot write: {error}")
+                )
                 self.call_from_thread(self.push_screen, MessageDialog("No figure written", message))
                 return
             self.call_from_thread(self.notify, f"Wrote {written}", title="Figure")

@@ -46,8 +46,13 @@ class HistoryActions:
         if message.error is None and not message.cancelled and run is not None:
             failed = f", {run.failed} failed" if run.failed else ""
             started = time.time() - message.seconds
-            self.run_history.add_study("sweep", run.sweep, run, f"{len(run.outcomes)} points"
-                                       f"{failed}", (started, message.seconds))  # fmt: skip
+            self.run_history.add_study(
+                "sweep",
+                run.sweep,
+                run,
+                f"{len(run.outcomes)} points{failed}",
+                (started, message.seconds),
+            )
 
     def on_optimise_finished(self, message: Any) -> None:
         """An optimisation ran to its end: keep it (its evaluations and its optimum)."""
@@ -70,8 +75,12 @@ class HistoryActions:
             try:
                 self.run_history.add_csv(path)
             except ValueError as error:
-                raise PresetError(path, "(file)", str(error).removeprefix(f"{path}: "),
-                                  "a result CSV planar-tui wrote") from None  # fmt: skip
+                raise PresetError(
+                    path,
+                    "(file)",
+                    str(error).removeprefix(f"{path}: "),
+                    "a result CSV planar-tui wrote",
+                ) from None
             note = recent.remember("results", path)
             if note is not None:  # the app does not run yet: shown when it does
                 self.recent_warning = note

@@ -194,8 +194,9 @@ class JobRunner:
                 done[outcome.number] = outcome
 
             try:
-                finished.run = run_sweep(sweep, progress, points=checked, workers=workers,
-                                         on_outcome=keep)  # fmt: skip
+                finished.run = run_sweep(
+                    sweep, progress, points=checked, workers=workers, on_outcome=keep
+                )
             except (Cancelled, KeyboardInterrupt):
                 finished.run = SweepRun(sweep, checked, done, cancelled=True)
                 raise
@@ -217,8 +218,9 @@ class JobRunner:
 
         def compute(stopping: Callable[[], bool]) -> None:
             progress = Progress(on_update=self._store, should_stop=stopping)
-            finished.run = run_optimisation(optimisation, progress, workers=workers,
-                                            on_generation=generation)  # fmt: skip
+            finished.run = run_optimisation(
+                optimisation, progress, workers=workers, on_generation=generation
+            )
 
         self._launch(optimisation.label, finished, compute)
 

@@ -42,14 +42,16 @@ class OptimiseActions:
             return
         try:
             job = pane.current_job()
-            found = [o for o in parse_optimisations(self.workbench.validate())
-                     if o.job.kind == job.kind]  # fmt: skip
+            found = [
+                o for o in parse_optimisations(self.workbench.validate()) if o.job.kind == job.kind
+            ]
         except PresetError as error:
             self.push_screen(MessageDialog("No optimisation", error.message))
             return
         if not found:
-            self.notify(f"The preset has no [[optimise]] table for a {job.kind} job.",
-                        severity="warning")  # fmt: skip
+            self.notify(
+                f"The preset has no [[optimise]] table for a {job.kind} job.", severity="warning"
+            )
             return
         optimisation = found[0]
         self.last_optimisation = None
@@ -84,13 +86,18 @@ class OptimiseActions:
                 pane.controls().status(f"optimisation not run: {message.error}")
             elif run is not None:
                 done = "cancelled" if message.cancelled else "done"
-                pane.controls().status(f"optimisation {done}: {len(run.evaluations)} "
-                                       f"evaluations, {run.infeasible} infeasible, "
-                                       f"{run.failed} failed")  # fmt: skip
+                pane.controls().status(
+                    f"optimisation {done}: {len(run.evaluations)} "
+                    f"evaluations, {run.infeasible} infeasible, "
+                    f"{run.failed} failed"
+                )
         if message.error is not None:
             error = message.error
-            text = error.message if isinstance(error, PresetError) else (
-                f"{type(error).__name__}: {error}")  # fmt: skip
+            text = (
+                error.message
+                if isinstance(error, PresetError)
+                else (f"{type(error).__name__}: {error}")
+            )
             self.push_screen(MessageDialog("Optimisation not run", text))
             return
         if run is not None:
@@ -114,17 +121,27 @@ class OptimiseActions:
         (``NAME-optimum.csv``)."""
 
         def tables(path: Path) -> list[tuple[Path, Any]]:
-            return [(path, run.table),
-                    (path.with_name(f"{path.stem}-optimum.csv"), run.optimum_table)]  # fmt: skip
+            return [
+                (path, run.table),
+                (path.with_name(f"{path.stem}-optimum.csv"), run.optimum_table),
+            ]
 
         from planar_tui.provenance import study_provenance
 
-        self.export_tables("Export the evaluations CSV to",
-                           self.output_dir / run.optimisation.output, tables,
-                           study_provenance("optimise", run.optimisation))  # fmt: skip
+        self.export_tables(
+            "Export the evaluations CSV to",
+            self.output_dir / run.optimisation.output,
+            tables,
+            study_provenance("optimise", run.optimisation),
+        )
 
-    def export_tables(self, title: str, default: Path,
-                      tables: Callable[[Path], list[tuple[Path, Any]]], record: Any) -> None:  # fmt: skip
+    def export_tables(
+        self,
+        title: str,
+        default: Path,
+        tables: Callable[[Path], list[tuple[Path, Any]]],
+        record: Any,
+    ) -> None:
         """Ask for a file (``title``, ``default``) and write ``tables(path)``, each
         ``(file, CsvTable)``, atomically, each with its provenance sidecar (``record``,
         :mod:`planar_tui.provenance`), every file checked first (a sweep's CSV, an

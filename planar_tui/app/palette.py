@@ -61,9 +61,10 @@ def workbench_commands(app: Any) -> Iterator[SystemCommand]:
         "Toggle form", "Hide/show the settings form (ctrl+f)", app.action_toggle_form
     )
     yield SystemCommand(
-        "Maximise", "Maximise the focused plot or table, or the results (ctrl+b)",
+        "Maximise",
+        "Maximise the focused plot or table, or the results (ctrl+b)",
         app.action_maximise,
-    )  # fmt: skip
+    )
     for title, name in app.tabs():
         yield SystemCommand(
             f"Show {title} tab",

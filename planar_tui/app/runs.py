@@ -96,8 +96,10 @@ class Run:
                 lines.append(self.note)
         if self.summary:
             lines.append(f"result: {self.summary}")
-        lines.append(f"table: {len(self.table.rows)} rows × {len(self.table.header)} columns"
-                     f" · source: {self.source}")  # fmt: skip
+        lines.append(
+            f"table: {len(self.table.rows)} rows × {len(self.table.header)} columns"
+            f" · source: {self.source}"
+        )
         if p is not None:
             lines += [
                 f"started: {p.started_utc or '-'}   duration: "
@@ -135,9 +137,15 @@ def table_kind(table: CsvTable) -> str | None:
     from planar_tui.figures.dispatch import recognise
 
     found = recognise(table.header)
-    if found is None and table.header[:1] == ("evaluation",) and table.header[-2:] == (
-        "status", "message",
-    ):  # fmt: skip
+    if (
+        found is None
+        and table.header[:1] == ("evaluation",)
+        and table.header[-2:]
+        == (
+            "status",
+            "message",
+        )
+    ):
         return "optimise"  # an optimisation's evaluations or optimum (drawn by its screen)
     return None if found is None else TABLE_KINDS.get(found, found)
 
@@ -173,23 +181,37 @@ class RunHistory:
         if document_sha256 is not None:
             provenance = replace(provenance, preset_sha256=document_sha256)
         return self._add(
-            kind=job.kind, label=job.label, table=result.table,
-            provenance=provenance, summary=result.summary, result=result,
+            kind=job.kind,
+            label=job.label,
+            table=result.table,
+            provenance=provenance,
+            summary=result.summary,
+            result=result,
             extra_tables=dict(result.extra_tables),
-        )  # fmt: skip
+        )
 
-    def add_study(self, kind: str, study: Any, result: Any, summary: str,
-                  timing: tuple[float, float] | None = None) -> Run:  # fmt: skip
+    def add_study(
+        self,
+        kind: str,
+        study: Any,
+        result: Any,
+        summary: str,
+        timing: tuple[float, float] | None = None,
+    ) -> Run:
         """Keep a finished sweep or optimisation of this session (``kind`` ``"sweep"`` or
         ``"optimise"``; ``study`` its :class:`~planar_tui.sweep.spec.Sweep` or
         :class:`~planar_tui.optimise.spec.Optimisation`, ``result`` its run: the table it
         writes, and an optimisation's optimum as the extra table ``optimum``)."""
         extra = {"optimum": result.optimum_table} if kind == "optimise" else {}
         return self._add(
-            kind=kind, label=study.label, table=result.table,
-            provenance=study_provenance(kind, study, timing), summary=summary, result=result,
+            kind=kind,
+            label=study.label,
+            table=result.table,
+            provenance=study_provenance(kind, study, timing),
+            summary=summary,
+            result=result,
             extra_tables=extra,
-        )  # fmt: skip
+        )
 
     def add_csv(self, path: Path | str) -> Run:
         """Open a result CSV into the history, with its sidecar if it has one (else the
@@ -218,8 +240,15 @@ class RunHistory:
         if record is not None and record.point:
             label = f"{record.point['sweep']} point {record.point['number']}"
         summary = f"{len(table.rows)} rows from {path.name}"
-        return self._add(kind=kind, label=label, table=table, provenance=record,
-                         source=str(path), summary=summary, note=note)  # fmt: skip
+        return self._add(
+            kind=kind,
+            label=label,
+            table=table,
+            provenance=record,
+            source=str(path),
+            summary=summary,
+            note=note,
+        )
 
     def of_kind(self, kind: str) -> list[Run]:
         return [run for run in self.runs if run.kind == kind]

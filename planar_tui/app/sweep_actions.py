@@ -71,8 +71,10 @@ class SweepActions:
             if message.cancelled:
                 kept = 0 if message.run is None else len(message.run.outcomes)
                 total = "?" if message.run is None else len(message.run.points)
-                controls.status(f"sweep cancelled after {message.seconds:.2f} s; {kept} of "
-                                f"{total} points finished (kept)")  # fmt: skip
+                controls.status(
+                    f"sweep cancelled after {message.seconds:.2f} s; {kept} of "
+                    f"{total} points finished (kept)"
+                )
             elif message.error is not None:
                 controls.status(f"sweep not run: {message.error}")
             else:
@@ -112,6 +114,9 @@ class SweepActions:
         """Ask for a file and write the sweep CSV there (atomically)."""
         from planar_tui.provenance import study_provenance
 
-        self.export_tables("Export the sweep CSV to", self.output_dir / run.sweep.output,
-                           lambda path: [(path, run.table)],  # OptimiseActions'
-                           study_provenance("sweep", run.sweep))  # fmt: skip
+        self.export_tables(
+            "Export the sweep CSV to",
+            self.output_dir / run.sweep.output,
+            lambda path: [(path, run.table)],  # OptimiseActions'
+            study_provenance("sweep", run.sweep),
+        )

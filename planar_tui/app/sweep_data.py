@@ -46,8 +46,11 @@ def parse_values(text: str) -> list[Any] | dict[str, Any]:
     match = _RANGE.match(text)
     if match is not None:
         try:
-            return {"from": float(match["lo"]), "to": float(match["hi"]),
-                    "count": int(match["count"])}  # fmt: skip
+            return {
+                "from": float(match["lo"]),
+                "to": float(match["hi"]),
+                "count": int(match["count"]),
+            }
         except ValueError as error:  # e.g. "1.2.3..4 x2"
             raise ValuesError(f"{text.strip()!r} is not a range ({VALUES_HINT})") from error
     if not text.strip():
@@ -90,10 +93,10 @@ def numeric_figures(table: CsvTable, paths: Sequence[str]) -> list[str]:
     skip = {"point", *paths, "status", "message", "seconds"}
     ok_rows = [row for row in table.rows if row[status] == "ok"]
     return [
-        name for column, name in enumerate(header)
-        if name not in skip and ok_rows
-        and all(_number(row[column]) is not None for row in ok_rows)
-    ]  # fmt: skip
+        name
+        for column, name in enumerate(header)
+        if name not in skip and ok_rows and all(_number(row[column]) is not None for row in ok_rows)
+    ]
 
 
 def varying_figures(table: CsvTable, figures: Sequence[str]) -> list[str]:
@@ -142,11 +145,17 @@ def line_series(
         good = [(x, y) for x, y in good if x is not None and y is not None]
         failed = [_number(row[key]) for row in rows if row[status] != "ok"]
         label = ", ".join(
-            f"{path}={cell}" for path, cell in zip(
-                [p for p in paths if p != across], combination, strict=True)
-        )  # fmt: skip
-        series.append(Series(label, [x for x, _ in good], [y for _, y in good],
-                             [x for x in failed if x is not None]))  # fmt: skip
+            f"{path}={cell}"
+            for path, cell in zip([p for p in paths if p != across], combination, strict=True)
+        )
+        series.append(
+            Series(
+                label,
+                [x for x, _ in good],
+                [y for _, y in good],
+                [x for x in failed if x is not None],
+            )
+        )
     return series
 
 
@@ -184,6 +193,8 @@ def heat_grid(
             i, j = _nearest(xs, x), _nearest(ys, y)
             sums[j][i] += cell
             counts[j][i] += 1
-    grid = [[s / c if c else None for s, c in zip(srow, crow, strict=True)]
-            for srow, crow in zip(sums, counts, strict=True)]  # fmt: skip
+    grid = [
+        [s / c if c else None for s, c in zip(srow, crow, strict=True)]
+        for srow, crow in zip(sums, counts, strict=True)
+    ]
     return xs, ys, grid

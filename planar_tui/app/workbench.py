@@ -461,8 +461,10 @@ def repair_tables(document: dict[str, Any]) -> list[str]:
     def made_table(value: Any, where: str) -> dict[str, Any]:
         if isinstance(value, dict):
             return value
-        lines.append(f"{where}: is {kind_of(value)} (expected a table [{where}]); opened as an "
-                     "empty table, saving writes it")  # fmt: skip
+        lines.append(
+            f"{where}: is {kind_of(value)} (expected a table [{where}]); opened as an "
+            "empty table, saving writes it"
+        )
         return {}
 
     for name in (*ROBOT_KINDS, *JOB_KINDS):

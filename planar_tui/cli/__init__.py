@@ -97,8 +97,14 @@ def build_app(command: str | None = None) -> typer.Typer:
     (the help lists them, a mistyped command is matched against them)."""
     from planar_tui.registry import JOB_KINDS
 
-    app = typer.Typer(name="planar-tui", cls=Group, help=HELP, add_completion=False,
-                      no_args_is_help=False, pretty_exceptions_enable=False)  # fmt: skip
+    app = typer.Typer(
+        name="planar-tui",
+        cls=Group,
+        help=HELP,
+        add_completion=False,
+        no_args_is_help=False,
+        pretty_exceptions_enable=False,
+    )
     app.callback(invoke_without_command=True)(root)
     (first, function), *others = COMMANDS  # tui, then the kinds' commands, then the rest
     app.command(first, cls=Command)(function)

@@ -58,8 +58,11 @@ class CommonValues(RuntimeParam):
         if info.parser is None:
             if annotation is str and type(value) is str:
                 return value
-            if (annotation == list[str] and isinstance(value, list | tuple)
-                    and all(type(item) is str for item in value)):  # fmt: skip
+            if (
+                annotation == list[str]
+                and isinstance(value, list | tuple)
+                and all(type(item) is str for item in value)
+            ):
                 return list(value)
             if annotation is Path and info.path_type is None and type(value) is str:
                 return coerce_cli_path(Path(value), info, path_type=Path, param=param, ctx=ctx)

@@ -96,8 +96,16 @@ def run(
             check_has_work(preset)
         jobs = select_jobs([job for preset in loaded for job in preset.jobs], job_name)
         studies = [] if job_name else loaded
-        plan = plan_run(jobs, out_dir, plot=plot, sweeps_of=studies, optimise_of=studies,
-                        resume=resume, workers=workers, scheduler=scheduler)  # fmt: skip
+        plan = plan_run(
+            jobs,
+            out_dir,
+            plot=plot,
+            sweeps_of=studies,
+            optimise_of=studies,
+            resume=resume,
+            workers=workers,
+            scheduler=scheduler,
+        )
         print_notes(plan)
         if plan.jobs:
             run_jobs(plan, "run")
@@ -134,8 +142,12 @@ def plot_csv(
         from planar_tui.figures.dispatch import is_same_file
 
         if is_same_file(result, target):
-            raise PresetError("command line", "--out", f"is the input {result} (it would be "
-                              "overwritten by its figure)", "another figure file")  # fmt: skip
+            raise PresetError(
+                "command line",
+                "--out",
+                f"is the input {result} (it would be overwritten by its figure)",
+                "another figure file",
+            )
 
         try:
             table = read_table(result)
@@ -195,9 +207,14 @@ def optimise_command(
 
 
 def run_studies(
-    table: str, preset: str, workers: int | None, scheduler: str | None, resume: bool,
-    out_dir: Path, plot: Path | None,
-) -> None:  # fmt: skip
+    table: str,
+    preset: str,
+    workers: int | None,
+    scheduler: str | None,
+    resume: bool,
+    out_dir: Path,
+    plot: Path | None,
+) -> None:
     """The ``sweep`` and ``optimise`` commands: the preset's ``[[table]]`` tables planned
     (refused, exit 2, when there is none) and run."""
     from planar_tui.cli.running import print_notes, run_optimisations, run_sweeps
@@ -211,15 +228,25 @@ def run_studies(
         scheduler = scheduler_address(scheduler, workers)
         (loaded,) = load_presets([preset])
         sweeps = table == "sweep"
-        plan = plan_run([], out_dir, sweeps_of=[loaded] if sweeps else [],
-                        sweep_plot=plot if sweeps else None,
-                        optimise_of=[] if sweeps else [loaded],
-                        optimise_plot=None if sweeps else plot, resume=resume,
-                        workers=workers, scheduler=scheduler)  # fmt: skip
+        plan = plan_run(
+            [],
+            out_dir,
+            sweeps_of=[loaded] if sweeps else [],
+            sweep_plot=plot if sweeps else None,
+            optimise_of=[] if sweeps else [loaded],
+            optimise_plot=None if sweeps else plot,
+            resume=resume,
+            workers=workers,
+            scheduler=scheduler,
+        )
         if not (plan.sweeps if sweeps else plan.optimisations):
             article = "a" if sweeps else "an"
-            raise PresetError(loaded.path, table, f"no [[{table}]] table in this preset",
-                              f"{article} [[{table}]] table")  # fmt: skip
+            raise PresetError(
+                loaded.path,
+                table,
+                f"no [[{table}]] table in this preset",
+                f"{article} [[{table}]] table",
+            )
         print_notes(plan)
         (run_sweeps if sweeps else run_optimisations)(plan, workers, scheduler)
 
@@ -258,8 +285,12 @@ def list_presets(
     with reported_errors():
         if name is None:
             if copy is not None:
-                raise PresetError("command line", "--copy", "is given without NAME",
-                                  "planar-tui presets NAME --copy PATH")  # fmt: skip
+                raise PresetError(
+                    "command line",
+                    "--copy",
+                    "is given without NAME",
+                    "planar-tui presets NAME --copy PATH",
+                )
             paths = bundled_presets()
             width = max((len(path.stem) for path in paths), default=0)
             for path in paths:

@@ -154,12 +154,17 @@ def job_exports(plan: RunPlan, given: Mapping[str, Any]) -> Callable[[Any, Any],
         try:
             if folder is not None:
                 written = salib_problem.export_job(job, result, folder)
-                stderr.print(f"{job.label}: SALib runs in {folder} ({len(written)} files)",
-                             markup=False, highlight=False, soft_wrap=True)  # fmt: skip
+                stderr.print(
+                    f"{job.label}: SALib runs in {folder} ({len(written)} files)",
+                    markup=False,
+                    highlight=False,
+                    soft_wrap=True,
+                )
             if path is not None:
                 nc.export_job(job, result, path)
-                stderr.print(f"{job.label}: NetCDF {path}", markup=False, highlight=False,
-                             soft_wrap=True)  # fmt: skip
+                stderr.print(
+                    f"{job.label}: NetCDF {path}", markup=False, highlight=False, soft_wrap=True
+                )
         except PresetError as error:  # after the job ran (a disk full): exit 1, CSVs kept
             raise OutputFailed(error.path, error.problem) from None
 

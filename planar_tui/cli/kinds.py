@@ -95,8 +95,9 @@ def run_kind(
 
 
 def _parameter(name: str, annotation: Any, default: Any) -> inspect.Parameter:
-    return inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, annotation=annotation,
-                             default=default)  # fmt: skip
+    return inspect.Parameter(
+        name, inspect.Parameter.KEYWORD_ONLY, annotation=annotation, default=default
+    )
 
 
 def kind_command(kind: JobKind) -> Callable[..., None]:
@@ -108,8 +109,9 @@ def kind_command(kind: JobKind) -> Callable[..., None]:
     assert declared is not None
     overrides = {f"option_{n}": option for n, option in enumerate(declared.options)}
     outputs = {f"output_{n}": output for n, output in enumerate(declared.outputs)}
-    parameters = [inspect.Parameter("preset", inspect.Parameter.POSITIONAL_OR_KEYWORD,
-                                    annotation=PresetArg)]  # fmt: skip
+    parameters = [
+        inspect.Parameter("preset", inspect.Parameter.POSITIONAL_OR_KEYWORD, annotation=PresetArg)
+    ]
     for parameter, option in overrides.items():
         names = (option.name, option.short) if option.short else (option.name,)
         value = list[option.type] if option.many else option.type
@@ -131,9 +133,18 @@ def kind_command(kind: JobKind) -> Callable[..., None]:
     def command(preset: str, **given: Any) -> None:
         options = {option.name: given[parameter] for parameter, option in overrides.items()}
         extra_out = {output.table: given[parameter] for parameter, output in outputs.items()}
-        run_kind(kind.name, preset, given["out"], given["out_dir"], options,
-                 names=given["job_name"], extra_out=extra_out, show=given.get("show", True),
-                 plot=given["plot"], exports={name: given[name] for name, _ in exports})  # fmt: skip
+        run_kind(
+            kind.name,
+            preset,
+            given["out"],
+            given["out_dir"],
+            options,
+            names=given["job_name"],
+            extra_out=extra_out,
+            show=given.get("show", True),
+            plot=given["plot"],
+            exports={name: given[name] for name, _ in exports},
+        )
 
     command.__name__ = declared.name
     command.__doc__ = declared.help

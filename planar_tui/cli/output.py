@@ -278,9 +278,11 @@ def check_figure_option(path: Path | None, option: str = "--plot") -> None:
     problem = None if path is None else figure_suffix_problem(str(path))
     if problem is not None:
         raise PresetError(
-            "command line", option, f"is {str(path)!r}: {problem}",
+            "command line",
+            option,
+            f"is {str(path)!r}: {problem}",
             "a file ending " + ", ".join(FIGURE_SUFFIXES),
-        )  # fmt: skip
+        )
 
 
 def check_workers(workers: int | None) -> None:

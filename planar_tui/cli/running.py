@@ -115,8 +115,7 @@ def shown_path(path: Path, out_dir: Path | None) -> str:
     return os.path.relpath(os.path.abspath(path), os.path.abspath(out_dir))
 
 
-def study_client(stack: ExitStack, wanted: bool, workers: int | None, scheduler: str | None
-                 ) -> Any:  # fmt: skip
+def study_client(stack: ExitStack, wanted: bool, workers: int | None, scheduler: str | None) -> Any:
     """The Dask client a run's sweeps (or optimisations) share, entered on ``stack``:
     ``None`` when there are none (``wanted`` false) or they run in this process (one
     worker, no scheduler); else a local cluster of ``workers`` processes (default: the
@@ -152,10 +151,15 @@ def run_sweeps(plan: RunPlan, workers: int | None, scheduler: str | None) -> Non
                 try:
                     with progress_display(sweep.label, "pt") as progress:
                         result = run_sweep(
-                            sweep, progress, points=points, out_dir=plan.out_dir,
-                            resume=plan.resume, client=client, keep_checkpoint=True,
+                            sweep,
+                            progress,
+                            points=points,
+                            out_dir=plan.out_dir,
+                            resume=plan.resume,
+                            client=client,
+                            keep_checkpoint=True,
                             announce=said,
-                        )  # fmt: skip
+                        )
                 except OutputFailed as error:
                     unwritten += 1
                     said(f"error: {sweep.label}: {error} (finished points are in its checkpoint)")
@@ -166,9 +170,11 @@ def run_sweeps(plan: RunPlan, workers: int | None, scheduler: str | None) -> Non
                 figure = "" if result.figure is None else f", figure {result.figure}"
                 stdout.print(
                     f"{sweep.label}: {len(points)} points, {result.failed} failed{resumed} "
-                    f"-> {result.output}{figure}", markup=False, highlight=False,
+                    f"-> {result.output}{figure}",
+                    markup=False,
+                    highlight=False,
                     soft_wrap=True,
-                )  # fmt: skip
+                )
                 if result.figure_error is not None:
                     unwritten += 1
                     said(f"error: {sweep.label}: {result.figure_error}")
@@ -229,9 +235,15 @@ def run_optimisations(plan: RunPlan, workers: int | None, scheduler: str | None)
                     continue
                 best = result.certified
                 failed += result.failed
-                found = "no feasible design" if not best else (
-                    f"optimum: evaluation {best[0][0].number}" if len(opt.objectives) == 1
-                    else f"Pareto set of {len(best)}")  # fmt: skip
+                found = (
+                    "no feasible design"
+                    if not best
+                    else (
+                        f"optimum: evaluation {best[0][0].number}"
+                        if len(opt.objectives) == 1
+                        else f"Pareto set of {len(best)}"
+                    )
+                )
                 figure = "" if result.figure is None else f", figure {result.figure}"
                 resumed = f", {result.resumed} from the checkpoint" if result.resumed else ""
                 stdout.print(
@@ -239,17 +251,25 @@ def run_optimisations(plan: RunPlan, workers: int | None, scheduler: str | None)
                     f"{result.generations} generations, {result.infeasible} infeasible, "
                     f"{result.failed} failed{resumed}; "
                     f"{found} -> {result.output}, {result.pareto}{figure}",
-                    markup=False, highlight=False, soft_wrap=True,
-                )  # fmt: skip
+                    markup=False,
+                    highlight=False,
+                    soft_wrap=True,
+                )
                 if result.figure_error is not None:
                     unwritten += 1
                     said(f"error: {opt.label}: {result.figure_error}")
     except Terminated:
-        raise fail("terminated: finished evaluations are in the optimisation's checkpoint "
-                   "(--resume finishes it)", ExitCode.TERMINATED) from None  # fmt: skip
+        raise fail(
+            "terminated: finished evaluations are in the optimisation's checkpoint "
+            "(--resume finishes it)",
+            ExitCode.TERMINATED,
+        ) from None
     except (KeyboardInterrupt, Cancelled):
-        raise fail("interrupted: finished evaluations are in the optimisation's checkpoint "
-                   "(--resume finishes it)", ExitCode.INTERRUPTED) from None  # fmt: skip
+        raise fail(
+            "interrupted: finished evaluations are in the optimisation's checkpoint "
+            "(--resume finishes it)",
+            ExitCode.INTERRUPTED,
+        ) from None
     if failed or unwritten:
         parts = [f"{failed} evaluation(s) failed (status failed in the CSV)"] if failed else []
         if unwritten:

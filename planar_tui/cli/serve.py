@@ -75,11 +75,12 @@ AppPresetArg = Annotated[
 OpenOption = Annotated[
     list[str] | None,
     typer.Option(
-        "--open", metavar="RESULT.csv",
+        "--open",
+        metavar="RESULT.csv",
         help="A result CSV to open into the run history (repeatable); its sidecar "
         "RESULT.csv.json gives its settings.",
     ),
-]  # fmt: skip
+]
 
 
 def serve(

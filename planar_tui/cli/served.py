@@ -50,8 +50,11 @@ async def end_group(process: Process, quit_grace_s: float = QUIT_GRACE_S) -> Non
     """Wait ``quit_grace_s`` for ``process`` (a process group leader) to exit, then
     SIGTERM its group, then after :data:`TERM_GRACE_S` SIGKILL it; returns once the
     process is reaped. Whatever the app started in its group goes with it."""
-    for signum, grace_s in ((None, quit_grace_s), (signal.SIGTERM, TERM_GRACE_S),
-                            (signal.SIGKILL, None)):  # fmt: skip
+    for signum, grace_s in (
+        (None, quit_grace_s),
+        (signal.SIGTERM, TERM_GRACE_S),
+        (signal.SIGKILL, None),
+    ):
         if signum is not None:
             with contextlib.suppress(ProcessLookupError, PermissionError):
                 os.killpg(process.pid, signum)

@@ -78,8 +78,9 @@ class RunSettings:
         type_doc="number > 0",
         doc="simulated time; the run takes `round(duration_s / step_s)` steps",
     )
-    step_s: float = setting(number(positive=True), type_doc="number > 0, ≤ `duration_s`",
-                            doc="RK4 step")  # fmt: skip
+    step_s: float = setting(
+        number(positive=True), type_doc="number > 0, ≤ `duration_s`", doc="RK4 step"
+    )
     theta0_deg: tuple[float, ...] = per_link_numbers("initial relative joint angles")
     omega0_deg_s: tuple[float, ...] = per_link_numbers("initial joint rates")
     torques_Nm: tuple[float, ...] = per_link_numbers("constant joint torques", "zeros (free fall)")
@@ -117,8 +118,9 @@ def simulate_estimate(n_steps: float, every: int, n_links: int) -> tuple[float, 
 
 def estimate(job: Job[SimulateSpec, SerialRobot]) -> tuple[float, float]:
     """``(memory_bytes, seconds)`` of ``job`` (:func:`simulate_estimate`)."""
-    return simulate_estimate(job.spec.duration_s / job.spec.step_s, job.spec.every,
-                             job.robot.n_links)  # fmt: skip
+    return simulate_estimate(
+        job.spec.duration_s / job.spec.step_s, job.spec.every, job.robot.n_links
+    )
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -208,10 +210,23 @@ def run_simulate(
     while done < n_steps:
         started = time.perf_counter()
         row += rk4_integrate(
-            lengths_m, masses_kg, inertias_kgm2, robot.gravity_m_s2, torque, theta, omega,
-            spec.step_s, chunk, spec.every, done,
-            t_s[row:], theta_rad[row:], omega_rad_s[row:], kinetic_J[row:], potential_J[row:],
-        )  # fmt: skip
+            lengths_m,
+            masses_kg,
+            inertias_kgm2,
+            robot.gravity_m_s2,
+            torque,
+            theta,
+            omega,
+            spec.step_s,
+            chunk,
+            spec.every,
+            done,
+            t_s[row:],
+            theta_rad[row:],
+            omega_rad_s[row:],
+            kinetic_J[row:],
+            potential_J[row:],
+        )
         done += chunk
         t_end_s = done * spec.step_s
         progress.advance(chunk, f"t = {t_end_s:.4g} s", t_s=t_end_s)
@@ -274,8 +289,9 @@ def point_figures(job: Job[SimulateSpec, SerialRobot], result: SimulateResult) -
     figures.update(
         {f"theta{i}_end_rad": float(result.theta_rad[-1, i - 1]) for i in range(1, n + 1)}
     )
-    figures.update({f"omega{i}_end_rad_s": float(result.omega_rad_s[-1, i - 1])
-                    for i in range(1, n + 1)})  # fmt: skip
+    figures.update(
+        {f"omega{i}_end_rad_s": float(result.omega_rad_s[-1, i - 1]) for i in range(1, n + 1)}
+    )
     drift_J = energy_drift_J(energy_J, result.theta_rad, job.spec.torques_Nm)
     figures["energy_drift_max_J"] = float(np.max(np.abs(drift_J)))
     return figures
@@ -284,8 +300,12 @@ def point_figures(job: Job[SimulateSpec, SerialRobot], result: SimulateResult) -
 def figure_names(job: Job[Any, Any]) -> tuple[str, ...]:
     """The columns :func:`point_figures` reports for ``job``, without running it."""
     n = job.robot.n_links
-    return ("t_end_s", *(f"theta{i}_end_rad" for i in range(1, n + 1)),
-            *(f"omega{i}_end_rad_s" for i in range(1, n + 1)), "energy_drift_max_J")  # fmt: skip
+    return (
+        "t_end_s",
+        *(f"theta{i}_end_rad" for i in range(1, n + 1)),
+        *(f"omega{i}_end_rad_s" for i in range(1, n + 1)),
+        "energy_drift_max_J",
+    )
 
 
 JOB_KIND = JobKind(

@@ -25,8 +25,9 @@ def _rows(doc: str, required: bool = False) -> Any:
     reader = number_rows(columns=PER_LINK)
     if required:
         return setting(reader, type_doc="rows of n numbers", doc=doc)
-    return setting(reader, type_doc="rows of n numbers", doc=doc, default=_zero_rows,
-                   default_doc="zeros")  # fmt: skip
+    return setting(
+        reader, type_doc="rows of n numbers", doc=doc, default=_zero_rows, default_doc="zeros"
+    )
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -26,6 +26,13 @@ def joint_points_m(lengths_m: Any, theta_rad: Any) -> Any:
 def draw_arm(ax: Any, points_m: Any, *, colour: Any, alpha: float = 1.0, label=None) -> None:
     """One pose of the arm: links as a line through the joints, joints as dots."""
     ax.plot(
-        points_m[:, 0], points_m[:, 1], "-o", color=colour, alpha=alpha, lw=1.6, ms=3,
-        label=label, gid="arm",
-    )  # fmt: skip
+        points_m[:, 0],
+        points_m[:, 1],
+        "-o",
+        color=colour,
+        alpha=alpha,
+        lw=1.6,
+        ms=3,
+        label=label,
+        gid="arm",
+    )

@@ -124,8 +124,9 @@ def save_result_figure(
     return _saved(figure_for_result(job, result), path, dpi)
 
 
-def save_table_figure(table: CsvTable, path: Path | str, title: str = "", *,
-                      dpi: float | None = None) -> Path:  # fmt: skip
+def save_table_figure(
+    table: CsvTable, path: Path | str, title: str = "", *, dpi: float | None = None
+) -> Path:
     """Draw a result table's figure and write it to ``path``."""
     return _saved(figure_for_table(table, title), path, dpi)
 

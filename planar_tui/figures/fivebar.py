@@ -17,9 +17,14 @@ def draw_fivebar(ax: Any, robot: Any, point: tuple[float, float]) -> bool:
     from planar_tui.workspace.fivebar.robot import leg_angles
 
     joints = []
-    for (a, l1, angles, sign, (lo, hi)) in zip(robot.base_joints_cm(), robot.proximal_cm,
-                                               leg_angles(robot, point), robot.elbows,
-                                               robot.limits_rad, strict=True):  # fmt: skip
+    for a, l1, angles, sign, (lo, hi) in zip(
+        robot.base_joints_cm(),
+        robot.proximal_cm,
+        leg_angles(robot, point),
+        robot.elbows,
+        robot.limits_rad,
+        strict=True,
+    ):
         if angles is None:
             return False
         inside = [s for s in (1, -1) if (angles[s] - lo) % (2 * math.pi) <= hi - lo + 1e-9]
@@ -28,8 +33,15 @@ def draw_fivebar(ax: Any, robot: Any, point: tuple[float, float]) -> bool:
         theta = angles[sign or inside[0]]
         joints.append((a, (a[0] + l1 * math.cos(theta), a[1] + l1 * math.sin(theta))))
     for a, b in joints:
-        ax.plot([a[0], b[0], point[0]], [a[1], b[1], point[1]], "-o", color="#3a5fcd",
-                lw=1.6, ms=3.5, gid="leg")  # fmt: skip
+        ax.plot(
+            [a[0], b[0], point[0]],
+            [a[1], b[1], point[1]],
+            "-o",
+            color="#3a5fcd",
+            lw=1.6,
+            ms=3.5,
+            gid="leg",
+        )
     ax.plot(*zip(*(a for a, _ in joints), strict=True), "s", color="0.3", gid="base")
     return True
 
@@ -50,17 +62,33 @@ def from_result(job: Any, result: Any) -> Any:
     singular = result.singularity
     if singular is not None and singular.centre_cm is None:
         singular = None  # draw() draws the circle with the singular boxes
-    fig = draw(boxes, np.asarray(outcome.status) == INSIDE, map_title(job, outcome),
-               summary=result.summary, singularity=singular)  # fmt: skip
+    fig = draw(
+        boxes,
+        np.asarray(outcome.status) == INSIDE,
+        map_title(job, outcome),
+        summary=result.summary,
+        singularity=singular,
+    )
     ax = fig.axes[0]
     if result.singularity is not None and singular is None:
         b = result.singularity.boxes
-        ax.plot(0.5 * (b[:, 0] + b[:, 1]), 0.5 * (b[:, 2] + b[:, 3]), ",", color="#c0392b",
-                gid="singular")  # fmt: skip
+        ax.plot(
+            0.5 * (b[:, 0] + b[:, 1]),
+            0.5 * (b[:, 2] + b[:, 3]),
+            ",",
+            color="#c0392b",
+            gid="singular",
+        )
     polygon = workspace_polygon(job.robot, BOUNDARY_SEGMENTS, False)
     for k, ring in enumerate(_polygon_rings(polygon)):
-        ax.plot(ring[:, 0], ring[:, 1], color="k", lw=1.0, gid="exact",
-                label="exact boundary" if k == 0 else None)  # fmt: skip
+        ax.plot(
+            ring[:, 0],
+            ring[:, 1],
+            color="k",
+            lw=1.0,
+            gid="exact",
+            label="exact boundary" if k == 0 else None,
+        )
     if not polygon.is_empty:
         inner = polygon.representative_point()
         draw_fivebar(ax, job.robot, (inner.x, inner.y))

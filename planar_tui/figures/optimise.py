@@ -17,18 +17,38 @@ def draw(data: dict[str, Any]) -> Any:
     ax = figure.add_subplot()
     names, points, best = data["names"], data["points"], data["best"]
     if len(names) == 1:
-        ax.plot(data["numbers"], [p[0] for p in points], ".", color=colour(0, 2),
-                label="feasible evaluations")  # fmt: skip
-        ax.plot(range(1, len(data["history"]) + 1), data["history"], "-", color=colour(1, 2),
-                label="best so far")  # fmt: skip
+        ax.plot(
+            data["numbers"],
+            [p[0] for p in points],
+            ".",
+            color=colour(0, 2),
+            label="feasible evaluations",
+        )
+        ax.plot(
+            range(1, len(data["history"]) + 1),
+            data["history"],
+            "-",
+            color=colour(1, 2),
+            label="best so far",
+        )
         ax.set_xlabel("evaluation")
         ax.set_ylabel(names[0])
     else:
-        ax.plot([p[0] for p in points], [p[1] for p in points], ".", color=colour(0, 2),
-                label="feasible evaluations")  # fmt: skip
+        ax.plot(
+            [p[0] for p in points],
+            [p[1] for p in points],
+            ".",
+            color=colour(0, 2),
+            label="feasible evaluations",
+        )
         front = sorted(best)
-        ax.plot([p[0] for p in front], [p[1] for p in front], "o-", color=colour(1, 2),
-                label="Pareto set")  # fmt: skip
+        ax.plot(
+            [p[0] for p in front],
+            [p[1] for p in front],
+            "o-",
+            color=colour(1, 2),
+            label="Pareto set",
+        )
         ax.set_xlabel(names[0])
         ax.set_ylabel(names[1])
     ax.grid(True, alpha=0.3)

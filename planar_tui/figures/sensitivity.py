@@ -71,21 +71,30 @@ def read_indices(table: CsvTable) -> Indices:
         cases = [
             " ".join(part for part in parts if part)
             for parts in zip(
-                *(text_column(table, c) if c in header else [""] * len(groups)
-                  for c in ("robot", "posture")),
+                *(
+                    text_column(table, c) if c in header else [""] * len(groups)
+                    for c in ("robot", "posture")
+                ),
                 strict=True,
             )
-        ]  # fmt: skip
+        ]
         if len(set(cases)) > 1:
             groups = [f"{case}: {g}" for case, g in zip(cases, groups, strict=True)]
         swept, label = column(table, "speed_rad_s"), "joint speed (rad/s)"
     else:
         groups, swept, label = text_column(table, "output"), column(table, "t_s"), "t (s)"
     return Indices(
-        groups, swept, label, text_column(table, "parameter"), text_column(table, "method"),
-        column(table, "S1"), column(table, "S1_conf"), column(table, "ST"),
-        column(table, "ST_conf"), column(table, "percent"),
-    )  # fmt: skip
+        groups,
+        swept,
+        label,
+        text_column(table, "parameter"),
+        text_column(table, "method"),
+        column(table, "S1"),
+        column(table, "S1_conf"),
+        column(table, "ST"),
+        column(table, "ST_conf"),
+        column(table, "percent"),
+    )
 
 
 def _conf_percent(ix: Indices, rows: list[int]) -> list[float]:
@@ -145,17 +154,32 @@ def draw(table: CsvTable, title: str) -> Any:
                     bottom += share
                     if math.isfinite(conf[r]) and conf[r] > 0:
                         tops.append((x, bottom, conf[r]))
-                ax.text(x, 101, METHOD_LABELS.get(method, method)[0].upper(), ha="center",
-                        va="bottom", fontsize="x-small")  # fmt: skip
+                ax.text(
+                    x,
+                    101,
+                    METHOD_LABELS.get(method, method)[0].upper(),
+                    ha="center",
+                    va="bottom",
+                    fontsize="x-small",
+                )
             for p, bars in enumerate(segments):
                 if bars:
                     xs, shares, bottoms = zip(*bars, strict=True)
-                    ax.bar(xs, shares, width * 0.9, bottom=bottoms, color=colour(p, len(params)),
-                           edgecolor="white", linewidth=0.3, hatch="//" if m else None)  # fmt: skip
+                    ax.bar(
+                        xs,
+                        shares,
+                        width * 0.9,
+                        bottom=bottoms,
+                        color=colour(p, len(params)),
+                        edgecolor="white",
+                        linewidth=0.3,
+                        hatch="//" if m else None,
+                    )
         if tops:
             xs, ys, half = zip(*tops, strict=True)
-            ax.errorbar(xs, ys, yerr=half, fmt="none", ecolor="k", elinewidth=0.6, capsize=1.5,
-                        gid="conf")  # fmt: skip
+            ax.errorbar(
+                xs, ys, yerr=half, fmt="none", ecolor="k", elinewidth=0.6, capsize=1.5, gid="conf"
+            )
         ax.set_xticks(range(len(swept)), [f"{v:g}" for v in swept])
         ax.set(ylim=(0, 108), title=group, xlabel=ix.swept_label)
         if g % cols == 0:
@@ -163,9 +187,15 @@ def draw(table: CsvTable, title: str) -> Any:
     from matplotlib.patches import Patch
 
     handles = [Patch(color=colour(p, len(params)), label=name) for p, name in enumerate(params)]
-    handles += [Patch(facecolor="white", edgecolor="k", hatch="//" if m else None,
-                      label=f"{METHOD_LABELS.get(name, name)} ({METHOD_LABELS.get(name, name)[0].upper()})")
-                for m, name in enumerate(methods)]  # fmt: skip
+    handles += [
+        Patch(
+            facecolor="white",
+            edgecolor="k",
+            hatch="//" if m else None,
+            label=f"{METHOD_LABELS.get(name, name)} ({METHOD_LABELS.get(name, name)[0].upper()})",
+        )
+        for m, name in enumerate(methods)
+    ]
     fig.legend(handles=handles, loc="outside right upper", fontsize="small")
     _matrix(fig.add_subplot(grid[rows_bars, :], gid="matrix"), ix, groups, params, methods, swept)
     fig.suptitle(title)
@@ -186,14 +216,25 @@ def _matrix(ax, ix: Indices, groups, params, methods, swept) -> None:
     ax.imshow(matrix, cmap="Blues", vmin=0, vmax=100, aspect="auto")
     for (i, j), v in np.ndenumerate(matrix):
         if math.isfinite(v):
-            ax.text(j, i, f"{v:.1f}", ha="center", va="center", fontsize="x-small",
-                    color="white" if v > 60 else "black", gid="cell")  # fmt: skip
+            ax.text(
+                j,
+                i,
+                f"{v:.1f}",
+                ha="center",
+                va="center",
+                fontsize="x-small",
+                color="white" if v > 60 else "black",
+                gid="cell",
+            )
     labels = [f"{g} {METHOD_LABELS.get(m, m)}" for g in groups for m in methods]
     ax.set_yticks(range(len(labels)), labels, fontsize="small")
     ax.set_xticks(range(len(params)), params, fontsize="small")
     ax.xaxis.tick_top()
-    ax.set_title(f"percent of the index at {ix.swept_label.split(' (')[0]} = {value:g}",
-                 fontsize="medium", loc="left")  # fmt: skip
+    ax.set_title(
+        f"percent of the index at {ix.swept_label.split(' (')[0]} = {value:g}",
+        fontsize="medium",
+        loc="left",
+    )
 
 
 def from_result(job: Any, result: Any) -> Any:
@@ -221,10 +262,19 @@ def draw_over_time(ix: Indices, title: str) -> Any:
         shares = np.zeros((len(params), len(times)))
         for r in chosen:
             shares[params.index(ix.parameters[r]), times.index(float(ix.swept[r]))] = ix.percent[r]
-        ax.stackplot(times, shares, colors=[colour(p, len(params)) for p in range(len(params))],
-                     linewidth=0.3, edgecolor="white")  # fmt: skip
-        ax.set(ylim=(0, 100), xlim=(times[0], times[-1]), xlabel=ix.swept_label,
-               title=f"{group} ({METHOD_LABELS.get(method, method)})")  # fmt: skip
+        ax.stackplot(
+            times,
+            shares,
+            colors=[colour(p, len(params)) for p in range(len(params))],
+            linewidth=0.3,
+            edgecolor="white",
+        )
+        ax.set(
+            ylim=(0, 100),
+            xlim=(times[0], times[-1]),
+            xlabel=ix.swept_label,
+            title=f"{group} ({METHOD_LABELS.get(method, method)})",
+        )
         if k % cols == 0:
             ax.set_ylabel("share of the index (%)")
     from matplotlib.patches import Patch

@@ -130,8 +130,11 @@ def split_columns(table: CsvTable) -> tuple[list[str], list[str]]:
         values = column(table, name)
         if np.isfinite(values).any():
             figures.append(name)
-    echoes = [name for name in figures
-              if any(_same(column(table, name), column(table, key)) for key in varied)]  # fmt: skip
+    echoes = [
+        name
+        for name in figures
+        if any(_same(column(table, name), column(table, key)) for key in varied)
+    ]
     return varied, [
         name for name in figures if name not in echoes and _varies_numerically(column(table, name))
     ]
@@ -224,8 +227,16 @@ def _failures_only(axes_keys: list[Axis], failed: Any, title: str) -> Any:
         ax.set_yticks([])
     else:
         down = axes_keys[1]
-        ax.plot(across.values[failed], down.values[failed], "x", color="red", ms=8, mew=2,
-                gid="failed", label="failed")  # fmt: skip
+        ax.plot(
+            across.values[failed],
+            down.values[failed],
+            "x",
+            color="red",
+            ms=8,
+            mew=2,
+            gid="failed",
+            label="failed",
+        )
         _ticks(ax, down, "y")
         ax.set(ylabel=down.name)
     for axis, set_limits in zip(axes_keys, (ax.set_xlim, ax.set_ylim), strict=False):
@@ -245,8 +256,18 @@ def _failed_on_axis(ax: Any, x: Any) -> None:
     import numpy as np
 
     if len(x):
-        ax.plot(x, np.zeros(len(x)), "x", color="red", ms=8, mew=2, clip_on=False,
-                transform=ax.get_xaxis_transform(), gid="failed", label="failed")  # fmt: skip
+        ax.plot(
+            x,
+            np.zeros(len(x)),
+            "x",
+            color="red",
+            ms=8,
+            mew=2,
+            clip_on=False,
+            transform=ax.get_xaxis_transform(),
+            gid="failed",
+            label="failed",
+        )
 
 
 def _ticks(ax: Any, axis: Axis, which: str) -> None:
@@ -264,8 +285,13 @@ def _line(ax: Any, across: Axis, y: Any, failed: Any) -> None:
     x = across.values
     order = np.argsort(x, kind="stable")
     ok = order[~failed[order]]
-    ax.plot(x[ok], y[ok], "o" if across.categorical else "-o", ms=5 if across.categorical
-            else 3.5, gid="sweep")  # fmt: skip
+    ax.plot(
+        x[ok],
+        y[ok],
+        "o" if across.categorical else "-o",
+        ms=5 if across.categorical else 3.5,
+        gid="sweep",
+    )
     _failed_on_axis(ax, x[failed])
     if failed.any():
         ax.legend(fontsize="small")
@@ -284,8 +310,15 @@ def _lines_per_category(ax: Any, across: Axis, by: Axis, y: Any, failed: Any) ->
     for k, category in enumerate(by.categories):
         rows = np.flatnonzero((by.values == k) & ~failed)
         rows = rows[np.argsort(across.values[rows], kind="stable")]
-        ax.plot(across.values[rows], y[rows], "-o", ms=3.5, color=colour(k, count),
-                label=f"{by.name} = {category}", gid="sweep")  # fmt: skip
+        ax.plot(
+            across.values[rows],
+            y[rows],
+            "-o",
+            ms=3.5,
+            color=colour(k, count),
+            label=f"{by.name} = {category}",
+            gid="sweep",
+        )
     _failed_on_axis(ax, across.values[failed])
     ax.legend(fontsize="x-small")
     ax.set(xlabel=across.name)
@@ -317,10 +350,16 @@ def _heat(fig, ax, across: Axis, down: Axis, value, failed, name) -> None:
         cx, cy = np.meshgrid(xs, ys)  # row-major: the cell of (ys[i], xs[j]) at i * nx + j
         wx, wy = np.meshgrid(hx, hy)
         x0, x1, y0, y1 = (cx - wx).ravel(), (cx + wx).ravel(), (cy - wy).ravel(), (cy + wy).ravel()
-        verts = np.stack([np.column_stack(corner) for corner in
-                          ((x0, y0), (x1, y0), (x1, y1), (x0, y1))], axis=1)  # fmt: skip
-        image = PolyCollection(verts, array=np.ma.masked_invalid(grid.ravel()),
-                               cmap="viridis", edgecolors="none", gid="heat")  # fmt: skip
+        verts = np.stack(
+            [np.column_stack(corner) for corner in ((x0, y0), (x1, y0), (x1, y1), (x0, y1))], axis=1
+        )
+        image = PolyCollection(
+            verts,
+            array=np.ma.masked_invalid(grid.ravel()),
+            cmap="viridis",
+            edgecolors="none",
+            gid="heat",
+        )
         ax.add_collection(image)
         ax.set(xlim=(x0.min(), x1.max()), ylim=(y0.min(), y1.max()))
     else:

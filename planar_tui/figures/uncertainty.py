@@ -18,8 +18,16 @@ from planar_tui.csvio import CsvTable
 from planar_tui.figures.canvas import colour, new_figure
 from planar_tui.figures.table import column
 
-TOKENS = {"mean": "mean", "std": "std", "sd": "std", "p5": "p5", "p05": "p5",
-          "p50": "p50", "median": "p50", "p95": "p95"}  # fmt: skip
+TOKENS = {
+    "mean": "mean",
+    "std": "std",
+    "sd": "std",
+    "p5": "p5",
+    "p05": "p5",
+    "p50": "p50",
+    "median": "p50",
+    "p95": "p95",
+}
 
 
 def outputs(header: tuple[str, ...]) -> dict[str, dict[str, str]]:
@@ -48,8 +56,15 @@ def draw(table: CsvTable, title: str) -> Any:
         ax = fig.add_subplot()
         for k, stats in enumerate(found.values()):
             mean, lo, hi = (column(table, stats[s])[0] for s in ("mean", "p5", "p95"))
-            ax.errorbar(k, mean, yerr=[[mean - lo], [hi - mean]], fmt="o", capsize=4,
-                        color=colour(k, len(found)), gid="band")  # fmt: skip
+            ax.errorbar(
+                k,
+                mean,
+                yerr=[[mean - lo], [hi - mean]],
+                fmt="o",
+                capsize=4,
+                color=colour(k, len(found)),
+                gid="band",
+            )
         ax.set_xticks(range(len(found)), list(found), rotation=30, ha="right")
         ax.set(title=f"mean and 5-95 % range at t = {t[0]:g} s" if len(t) else "")
         fig.suptitle(title)
@@ -60,8 +75,16 @@ def draw(table: CsvTable, title: str) -> Any:
     axes = fig.subplots(rows, cols, squeeze=False).ravel()
     for k, (ax, (output, stats)) in enumerate(zip(axes, found.items(), strict=False)):
         c = colour(k, len(found))
-        ax.fill_between(t, column(table, stats["p5"]), column(table, stats["p95"]),
-                        color=c, alpha=0.3, lw=0, label="5-95 %", gid="band")  # fmt: skip
+        ax.fill_between(
+            t,
+            column(table, stats["p5"]),
+            column(table, stats["p95"]),
+            color=c,
+            alpha=0.3,
+            lw=0,
+            label="5-95 %",
+            gid="band",
+        )
         ax.plot(t, column(table, stats["mean"]), color=c, lw=1.5, label="mean", gid="mean")
         if "p50" in stats:
             ax.plot(t, column(table, stats["p50"]), color="k", lw=0.8, ls="--", label="median")

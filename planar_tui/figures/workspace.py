@@ -78,12 +78,15 @@ def box_image(ax: Any, boxes: Any, inside: Any) -> str:
     scale = IMAGE_PIXELS / max(x1 - x0, y1 - y0, 1e-300)
     shape = (max(1, math.ceil((y1 - y0) * scale)), max(1, math.ceil((x1 - x0) * scale)))
     image = np.zeros((*shape, 4))
-    for mask, face, label in ((inside, INSIDE_COLOUR, "inside (proved)"),
-                              (~inside, BOUNDARY_COLOUR, "boundary (kept)")):  # fmt: skip
+    for mask, face, label in (
+        (inside, INSIDE_COLOUR, "inside (proved)"),
+        (~inside, BOUNDARY_COLOUR, "boundary (kept)"),
+    ):
         image[coverage(boxes[mask], (x0, y0), scale, shape)] = to_rgba(face)
         ax.add_patch(Rectangle((x0, y0), 0.0, 0.0, facecolor=face, label=label))  # legend
-    ax.imshow(image, origin="lower", extent=(x0, x1, y0, y1), interpolation="nearest",
-              gid="boxes-image")  # fmt: skip
+    ax.imshow(
+        image, origin="lower", extent=(x0, x1, y0, y1), interpolation="nearest", gid="boxes-image"
+    )
     ax.set_xlim(x0, x1)
     ax.set_ylim(y0, y1)
     return (
@@ -103,15 +106,26 @@ def draw_boxes(ax: Any, boxes: Any, inside: Any) -> None:
 
     if len(boxes) > MAX_DRAWN_BOXES:
         note = box_image(ax, boxes, inside)
-        ax.text(0.01, 0.01, note, transform=ax.transAxes, fontsize="small", gid=DISPLAY_NOTE,
-                bbox={"facecolor": "white", "alpha": 0.8, "edgecolor": "none"})  # fmt: skip
+        ax.text(
+            0.01,
+            0.01,
+            note,
+            transform=ax.transAxes,
+            fontsize="small",
+            gid=DISPLAY_NOTE,
+            bbox={"facecolor": "white", "alpha": 0.8, "edgecolor": "none"},
+        )
         return
-    for mask, face, label in ((inside, INSIDE_COLOUR, "inside (proved)"),
-                              (~inside, BOUNDARY_COLOUR, "boundary (kept)")):  # fmt: skip
+    for mask, face, label in (
+        (inside, INSIDE_COLOUR, "inside (proved)"),
+        (~inside, BOUNDARY_COLOUR, "boundary (kept)"),
+    ):
         b = boxes[mask]
-        verts = np.stack(
-            [b[:, [0, 2]], b[:, [1, 2]], b[:, [1, 3]], b[:, [0, 3]]], axis=1
-        ) if len(b) else np.zeros((0, 4, 2))  # fmt: skip
+        verts = (
+            np.stack([b[:, [0, 2]], b[:, [1, 2]], b[:, [1, 3]], b[:, [0, 3]]], axis=1)
+            if len(b)
+            else np.zeros((0, 4, 2))
+        )
         collection = PolyCollection(
             verts,
             facecolors=face,
@@ -161,18 +175,23 @@ def draw_robot(ax: Any, robot: Any, spec: Any, point: tuple[float, float]) -> bo
     phi = spec.orientation_rad
     c_, s_ = math.cos(phi), math.sin(phi)
     base = robot.base_joints_cm()
-    platform = [(point[0] + c_ * qx - s_ * qy, point[1] + s_ * qx + c_ * qy)
-                for qx, qy in robot.platform_points_cm()]  # fmt: skip
-    joints = [leg_pose(a, c, robot.proximal_cm, robot.distal_cm, lo, hi)
-              for a, c, (lo, hi) in zip(base, platform, spec.limits_rad, strict=True)]  # fmt: skip
+    platform = [
+        (point[0] + c_ * qx - s_ * qy, point[1] + s_ * qx + c_ * qy)
+        for qx, qy in robot.platform_points_cm()
+    ]
+    joints = [
+        leg_pose(a, c, robot.proximal_cm, robot.distal_cm, lo, hi)
+        for a, c, (lo, hi) in zip(base, platform, spec.limits_rad, strict=True)
+    ]
     if any(b is None for b in joints):
         return False
     closed = [*base, base[0]]
     ax.fill(*zip(*closed, strict=True), color="0.85", zorder=0, gid="base")
     ax.plot(*zip(*closed, strict=True), color="0.4", lw=1.0, gid="base")
     for a, b, c in zip(base, joints, platform, strict=True):
-        ax.plot([a[0], b[0], c[0]], [a[1], b[1], c[1]], "-o", color="#3a5fcd", lw=1.6,
-                ms=3.5, gid="leg")  # fmt: skip
+        ax.plot(
+            [a[0], b[0], c[0]], [a[1], b[1], c[1]], "-o", color="#3a5fcd", lw=1.6, ms=3.5, gid="leg"
+        )
     tri = [*platform, platform[0]]
     ax.fill(*zip(*tri, strict=True), color="#c0504d", alpha=0.5, gid="platform")
     ax.plot(*point, marker="+", color="k", ms=8, gid="point")
@@ -190,20 +209,44 @@ def draw_singularity(ax: Any, singularity: Any) -> None:
 
     b = np.asarray(singularity.singular_boxes).reshape(-1, 4)
     verts = np.stack([b[:, [0, 2]], b[:, [1, 2]], b[:, [1, 3]], b[:, [0, 3]]], axis=1)
-    ax.add_collection(PolyCollection(
-        verts, facecolors="#c0392b", edgecolors="#c0392b", linewidths=0.5, zorder=3,
-        gid="singular",
-        label="may be singular (type II)", rasterized=len(b) > RASTER_ABOVE,
-    ))  # fmt: skip
+    ax.add_collection(
+        PolyCollection(
+            verts,
+            facecolors="#c0392b",
+            edgecolors="#c0392b",
+            linewidths=0.5,
+            zorder=3,
+            gid="singular",
+            label="may be singular (type II)",
+            rasterized=len(b) > RASTER_ABOVE,
+        )
+    )
     x, y = singularity.centre_cm
-    ax.add_patch(Circle((x, y), singularity.radius_lo_cm, fill=False, color="#1f4e79",
-                        lw=1.5, gid="circle", zorder=4,
-                        label=f"singularity-free, r ≥ {singularity.radius_lo_cm:.4g} cm"))  # fmt: skip
+    ax.add_patch(
+        Circle(
+            (x, y),
+            singularity.radius_lo_cm,
+            fill=False,
+            color="#1f4e79",
+            lw=1.5,
+            gid="circle",
+            zorder=4,
+            label=f"singularity-free, r ≥ {singularity.radius_lo_cm:.4g} cm",
+        )
+    )
     ax.plot(x, y, marker="+", color="#1f4e79", ms=10, gid="circle-centre")
 
 
-def draw(boxes: Any, inside: Any, title: str, robot: Any = None, spec: Any = None,
-         summary: str = "", singularity: Any = None, exact: Any = None) -> Any:  # fmt: skip
+def draw(
+    boxes: Any,
+    inside: Any,
+    title: str,
+    robot: Any = None,
+    spec: Any = None,
+    summary: str = "",
+    singularity: Any = None,
+    exact: Any = None,
+) -> Any:
     """Boxes (rows ``x_lo, x_hi, y_lo, y_hi``; ``inside`` a boolean per box), with the
     exact boundary and the robot when ``robot`` and ``spec`` are given (a 3-RRR), the
     boundary of the polygon ``exact`` alone (another mechanism), and the type II
@@ -222,8 +265,14 @@ def draw(boxes: Any, inside: Any, title: str, robot: Any = None, spec: Any = Non
         polygon = spec.mechanism.polygon(robot, spec, BOUNDARY_SEGMENTS, False)
         for k, ring in enumerate(_polygon_rings(polygon)):
             for target in (ax, overview):
-                target.plot(ring[:, 0], ring[:, 1], color="k", lw=1.0, gid="exact",
-                            label="exact boundary" if k == 0 else None)  # fmt: skip
+                target.plot(
+                    ring[:, 0],
+                    ring[:, 1],
+                    color="k",
+                    lw=1.0,
+                    gid="exact",
+                    label="exact boundary" if k == 0 else None,
+                )
         if not polygon.is_empty:
             centre = polygon.centroid
             inner = centre if polygon.contains(centre) else polygon.representative_point()
@@ -233,17 +282,28 @@ def draw(boxes: Any, inside: Any, title: str, robot: Any = None, spec: Any = Non
                 x0, y0, x1, y1 = polygon.bounds
                 pad = 0.05 * max(x1 - x0, y1 - y0, 1e-9)
                 ax.set(xlim=(x0 - pad, x1 + pad), ylim=(y0 - pad, y1 + pad))
-        overview.set(xlabel="x (cm)", ylabel="y (cm)", aspect="equal",
-                     title="the robot at a pose inside")  # fmt: skip
+        overview.set(
+            xlabel="x (cm)", ylabel="y (cm)", aspect="equal", title="the robot at a pose inside"
+        )
         overview.grid(alpha=0.3)
     elif exact is not None:
         for k, ring in enumerate(_polygon_rings(exact)):
-            ax.plot(ring[:, 0], ring[:, 1], color="k", lw=1.0, gid="exact",
-                    label="exact boundary" if k == 0 else None)  # fmt: skip
+            ax.plot(
+                ring[:, 0],
+                ring[:, 1],
+                color="k",
+                lw=1.0,
+                gid="exact",
+                label="exact boundary" if k == 0 else None,
+            )
     import textwrap
 
-    ax.set(xlabel="x (cm)", ylabel="y (cm)", aspect="equal",
-           title=textwrap.fill(summary or "workspace", 64))  # fmt: skip
+    ax.set(
+        xlabel="x (cm)",
+        ylabel="y (cm)",
+        aspect="equal",
+        title=textwrap.fill(summary or "workspace", 64),
+    )
     ax.grid(alpha=0.3)
     ax.legend(loc="upper right", fontsize="small")
     fig.suptitle(title)
@@ -260,8 +320,9 @@ def from_boxes_table(table: CsvTable, title: str) -> Any:
         fig = draw(np.zeros((0, 4)), np.zeros(0, dtype=bool), title, summary="no boxes kept")
         ax = fig.axes[0]
         ax.get_legend().remove()
-        ax.text(0.5, 0.5, "no boxes kept", transform=ax.transAxes, ha="center", va="center",
-                gid="note")  # fmt: skip
+        ax.text(
+            0.5, 0.5, "no boxes kept", transform=ax.transAxes, ha="center", va="center", gid="note"
+        )
         return fig
     boxes = np.column_stack([column(table, name) for name in BOXES[:4]])
     inside = np.array([s == "inside" for s in text_column(table, "status")], dtype=bool)
@@ -307,8 +368,15 @@ def from_result(job: Any, result: Any) -> Any:
     inside = np.asarray(outcome.status) == INSIDE
     if isinstance(job.spec.orientation_deg, tuple):  # a range of φ: no single exact boundary
         return draw(boxes, inside, map_title(job, outcome), summary=result.summary)
-    return draw(boxes, inside, map_title(job, outcome), job.robot, job.spec, result.summary,
-                getattr(result, "singularity", None))  # fmt: skip
+    return draw(
+        boxes,
+        inside,
+        map_title(job, outcome),
+        job.robot,
+        job.spec,
+        result.summary,
+        getattr(result, "singularity", None),
+    )
 
 
 #: Tolerance figure layers, drawn bottom up: which outcome, which boxes, colour, label.
@@ -340,22 +408,35 @@ def draw_tolerance(job: Any, result: Any, exact: Any = None) -> Any:
         b = o.boxes[o.status == INSIDE] if which == "inside" else o.boxes
         verts = np.stack([b[:, [0, 2]], b[:, [1, 2]], b[:, [1, 3]], b[:, [0, 3]]], axis=1)
         area = o.area_inside_cm2 if which == "inside" else o.area_kept_cm2
-        ax.add_collection(PolyCollection(
-            verts, facecolors=colour, edgecolors="none", gid=f"{name}-{which}",
-            label=f"{label}: {area:.5g} cm2", rasterized=len(b) > RASTER_ABOVE,
-        ))  # fmt: skip
+        ax.add_collection(
+            PolyCollection(
+                verts,
+                facecolors=colour,
+                edgecolors="none",
+                gid=f"{name}-{which}",
+                label=f"{label}: {area:.5g} cm2",
+                rasterized=len(b) > RASTER_ABOVE,
+            )
+        )
     polygon = exact
     if polygon is None:  # the robot's own (a 3-RRR job passes none)
         polygon = job.spec.mechanism.polygon(job.robot, job.spec, BOUNDARY_SEGMENTS, False)
     for k, ring in enumerate(_polygon_rings(polygon)):
-        ax.plot(ring[:, 0], ring[:, 1], color="k", lw=0.8, gid="exact",
-                label="nominal exact boundary" if k == 0 else None)  # fmt: skip
+        ax.plot(
+            ring[:, 0],
+            ring[:, 1],
+            color="k",
+            lw=0.8,
+            gid="exact",
+            label="nominal exact boundary" if k == 0 else None,
+        )
     every = np.concatenate([o.boxes for o in outcomes.values()])
     if len(every):
         ax.set_xlim(every[:, 0].min(), every[:, 1].max())
         ax.set_ylim(every[:, 2].min(), every[:, 3].max())
-    ax.set(xlabel="x (cm)", ylabel="y (cm)", aspect="equal",
-           title=textwrap.fill(result.summary, 72))  # fmt: skip
+    ax.set(
+        xlabel="x (cm)", ylabel="y (cm)", aspect="equal", title=textwrap.fill(result.summary, 72)
+    )
     ax.title.set_fontsize("small")
     ax.grid(alpha=0.3)
     ax.legend(loc="upper right", fontsize="small")
@@ -381,5 +462,10 @@ def from_planar_result(job: Any, result: Any) -> Any:
     )
     if getattr(result, "companions", None):
         return draw_tolerance(job, result, exact)
-    return draw(boxes, np.asarray(outcome.status) == INSIDE, map_title(job, outcome),
-                summary=result.summary, exact=exact)  # fmt: skip
+    return draw(
+        boxes,
+        np.asarray(outcome.status) == INSIDE,
+        map_title(job, outcome),
+        summary=result.summary,
+        exact=exact,
+    )

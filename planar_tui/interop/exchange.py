@@ -43,22 +43,28 @@ def preset_robot(preset: Any, key: str | None) -> SerialRobot:
         robots = list(dict.fromkeys(job.robot for job in jobs))
         if key is None and len(robots) == 1:
             return robots[0]
-        problem = ("no serial robot: a 3-RRR is not exported" if not jobs else
-                   "no [robot] table, and its jobs' robots differ: name one")  # fmt: skip
+        problem = (
+            "no serial robot: a 3-RRR is not exported"
+            if not jobs
+            else "no [robot] table, and its jobs' robots differ: name one"
+        )
         raise PresetError(preset.path, "--robot", problem, expected)
     for job in jobs:
         if key in (job.key, job.label, job.output):
             return job.robot
-    raise PresetError("command line", "--robot", f"is {key!r}, no job on a serial robot "
-                      f"in {preset.path}", expected)  # fmt: skip
+    raise PresetError(
+        "command line",
+        "--robot",
+        f"is {key!r}, no job on a serial robot in {preset.path}",
+        expected,
+    )
 
 
 def export_robot(robot: SerialRobot, format_name: str, out: Path) -> Path:
     """Write ``robot`` as ``format_name`` (``mjcf``, ``urdf``) to the new file ``out``."""
     writer = FORMATS.get(format_name)
     if writer is None:
-        raise PresetError("command line", "--format", f"is {format_name!r}",
-                          " or ".join(FORMATS))  # fmt: skip
+        raise PresetError("command line", "--format", f"is {format_name!r}", " or ".join(FORMATS))
     return write_new_text(out, writer(robot), "--out")
 
 

@@ -21,8 +21,12 @@ from planar_tui.errors import PresetError
 def existing_problem(path: Path, option: str) -> PresetError:
     """The one-line refusal of an output that exists."""
     what = "a folder" if path.is_dir() else "a file"
-    return PresetError(path, option, f"is {what} that exists: nothing is overwritten",
-                       "a new file name (delete or move the old one first)")  # fmt: skip
+    return PresetError(
+        path,
+        option,
+        f"is {what} that exists: nothing is overwritten",
+        "a new file name (delete or move the old one first)",
+    )
 
 
 def refuse_existing(paths: Sequence[Path], option: str) -> None:
@@ -51,8 +55,12 @@ def write_new(path: Path, write: Callable[[Path], None], option: str = "(file)")
             refuse_existing([path], option)
             os.replace(temp, path)
     except OSError as error:
-        raise PresetError(path, option, f"cannot be written: {error.strerror or error}",
-                          "a path in a writable folder") from None  # fmt: skip
+        raise PresetError(
+            path,
+            option,
+            f"cannot be written: {error.strerror or error}",
+            "a path in a writable folder",
+        ) from None
     finally:
         temp.unlink(missing_ok=True)
     return path

@@ -113,8 +113,10 @@ def read_mjcf(path: Path | str) -> ImportedRobot:
     for tag in ("include", "equality", "frame", "replicate"):
         found = next(root.iter(tag), None)
         if found is not None:
-            why = {"include": "other files are not read", "equality": "closed loops or "
-                   "couplings are not a serial chain"}.get(tag, "not read")  # fmt: skip
+            why = {
+                "include": "other files are not read",
+                "equality": "closed loops or couplings are not a serial chain",
+            }.get(tag, "not read")
             raise reader.error(found, why, f"one file without <{tag}>")
     compiler = _Compiler()
     for element in root.iter("compiler"):
@@ -124,12 +126,18 @@ def read_mjcf(path: Path | str) -> ImportedRobot:
                 raise reader.error(element, f"angle is {angle!r}", '"degree" or "radian"')
             compiler.degrees = angle == "degree"
         if element.get("inertiafromgeom") == "true":
-            raise reader.error(element, "inertiafromgeom is \"true\": the masses are the "
-                               "geoms', which are not read", '"auto" or "false" with <inertial>')  # fmt: skip
+            raise reader.error(
+                element,
+                'inertiafromgeom is "true": the masses are the geoms\', which are not read',
+                '"auto" or "false" with <inertial>',
+            )
         for attribute in ("settotalmass", "boundmass", "boundinertia", "balanceinertia"):
             if element.get(attribute) not in (None, "-1", "0", "false"):
-                raise reader.error(element, f"{attribute} changes the masses MuJoCo uses: "
-                                   "not read", f"a <compiler> without {attribute}")  # fmt: skip
+                raise reader.error(
+                    element,
+                    f"{attribute} changes the masses MuJoCo uses: not read",
+                    f"a <compiler> without {attribute}",
+                )
         sequence = element.get("eulerseq")
         if sequence is not None:
             if len(sequence) != 3 or any(c not in "xyzXYZ" for c in sequence):
@@ -158,27 +166,35 @@ def read_mjcf(path: Path | str) -> ImportedRobot:
     def next_body(body: ET.Element) -> ET.Element | None:
         leading = [c for c in body.findall("body") if moving(c)]
         if len(leading) > 1:
-            raise reader.error(leading[1], f"is a second moving chain below {reader.named(body)}:"
-                               " a branched tree", "a serial chain")  # fmt: skip
+            raise reader.error(
+                leading[1],
+                f"is a second moving chain below {reader.named(body)}: a branched tree",
+                "a serial chain",
+            )
         return leading[0] if leading else None
 
     def frame_of(body: ET.Element) -> Frame:
-        return Frame(_mjcf_rotation(reader, body, compiler),
-                     reader.numbers(body, "pos", 3, (0.0, 0.0, 0.0)))  # fmt: skip
+        return Frame(
+            _mjcf_rotation(reader, body, compiler), reader.numbers(body, "pos", 3, (0.0, 0.0, 0.0))
+        )
 
     def check_welded(body: ET.Element, moving_body: ET.Element) -> None:
         for child in body.findall("body"):
             if not moving(child):
                 inertial = child.find("inertial")
                 if inertial is not None and reader.number(inertial, "mass", None) > 0:
-                    raise reader.error(child, f"has a mass welded to {reader.named(moving_body)}",
-                                       "massless fixed bodies only (merge the mass)")  # fmt: skip
+                    raise reader.error(
+                        child,
+                        f"has a mass welded to {reader.named(moving_body)}",
+                        "massless fixed bodies only (merge the mass)",
+                    )
                 check_welded(child, moving_body)
 
     tops = [body for world in worldbodies for body in world.findall("body") if moving(body)]
     if len(tops) > 1:
-        raise reader.error(tops[1], "is a second moving chain in the world: a branched tree",
-                           "one serial chain")  # fmt: skip
+        raise reader.error(
+            tops[1], "is a second moving chain in the world: a branched tree", "one serial chain"
+        )
 
     def classed(body: ET.Element, active: str) -> str:
         name = body.get("childclass", active)
@@ -222,9 +238,12 @@ def read_mjcf(path: Path | str) -> ImportedRobot:
         inertial = body.find("inertial")
         if inertial is None:
             has_geoms = body.find("geom") is not None
-            raise reader.error(body, "has no <inertial>" + (" (inertia from geoms is not "
-                               "computed)" if has_geoms else ""),
-                               "an <inertial> element with mass and inertia")  # fmt: skip
+            raise reader.error(
+                body,
+                "has no <inertial>"
+                + (" (inertia from geoms is not computed)" if has_geoms else ""),
+                "an <inertial> element with mass and inertia",
+            )
         mass = reader.number(inertial, "mass", None)
         rotation = _mjcf_rotation(reader, inertial, compiler)
         if "fullinertia" in inertial.attrib:
@@ -240,8 +259,11 @@ def read_mjcf(path: Path | str) -> ImportedRobot:
         while following is not None and not joints_of(following):
             inertial_w = following.find("inertial")
             if inertial_w is not None and reader.number(inertial_w, "mass", None) > 0:
-                raise reader.error(following, f"has a mass welded to {reader.named(body)}",
-                                   "massless fixed bodies only")  # fmt: skip
+                raise reader.error(
+                    following,
+                    f"has a mass welded to {reader.named(body)}",
+                    "massless fixed bodies only",
+                )
             relative = relative.then(frame_of(following))
             check_welded(following, body)
             following = next_body(following)
@@ -249,15 +271,26 @@ def read_mjcf(path: Path | str) -> ImportedRobot:
         if following is not None:
             child_frame = relative.then(frame_of(following))
             child_joints = joints_of(following)
-            child_point = (reader.numbers(child_joints[0], "pos", 3, (0.0, 0.0, 0.0))
-                           if len(child_joints) == 1 else np.zeros(3))  # fmt: skip
+            child_point = (
+                reader.numbers(child_joints[0], "pos", 3, (0.0, 0.0, 0.0))
+                if len(child_joints) == 1
+                else np.zeros(3)
+            )
             next_point = child_frame.point(child_point)
-        chain.append(Link(
-            joint=reader.where(joint), element=reader.where(body), joint_point=joint_point,
-            axis=axis, mass_kg=mass, com=reader.numbers(inertial, "pos", 3, None),
-            inertia=rotation @ tensor @ rotation.T, world=frame.R, next_point=next_point,
-            reference_rad=reference,
-        ))  # fmt: skip
+        chain.append(
+            Link(
+                joint=reader.where(joint),
+                element=reader.where(body),
+                joint_point=joint_point,
+                axis=axis,
+                mass_kg=mass,
+                com=reader.numbers(inertial, "pos", 3, None),
+                inertia=rotation @ tensor @ rotation.T,
+                world=frame.R,
+                next_point=next_point,
+                reference_rad=reference,
+            )
+        )
         world = frame.then(relative)
         body = following
     source = (

@@ -39,8 +39,9 @@ def require_netcdf() -> None:
         try:
             __import__(module)
         except ImportError:
-            raise PresetError("command line", OPTION, f"netcdf needs {module}, which is not "
-                              "installed", EXTRA) from None  # fmt: skip
+            raise PresetError(
+                "command line", OPTION, f"netcdf needs {module}, which is not installed", EXTRA
+            ) from None
 
 
 def _unit(name: str) -> str:
@@ -62,9 +63,12 @@ def motion_dataset(result: Any, attributes: Mapping[str, Any]):
     }
     band = np.asarray(result.band).transpose(0, 2, 1)  # (R, 5, n_out) -> (R, n_out, 5)
     variables: dict[str, Any] = {
-        "band": (("time", "output", "statistic"), band,
-                 {"long_name": "band of each output over the robots (rad or m, see output)"}),
-    }  # fmt: skip
+        "band": (
+            ("time", "output", "statistic"),
+            band,
+            {"long_name": "band of each output over the robots (rad or m, see output)"},
+        ),
+    }
     if result.analyses:
         methods = list(dict.fromkeys(a.method for a in result.analyses))
         times = sorted({float(a.speed_rad_s) for a in result.analyses})  # the time slot
@@ -77,14 +81,18 @@ def motion_dataset(result: Any, attributes: Mapping[str, Any]):
             indices[(slice(None), *at)] = analysis.indices
             percent[at] = analysis.percent
         dims = ("method", "index_time", "output", "input")
-        coords.update(method=("method", methods), input=("input", inputs),
-                      index_time=("index_time", times, {"units": "s"}))  # fmt: skip
+        coords.update(
+            method=("method", methods),
+            input=("input", inputs),
+            index_time=("index_time", times, {"units": "s"}),
+        )
         for k, name in enumerate(INDEX_VARIABLES):
             variables[name] = (dims, indices[k], {"units": "1"})
         variables["percent"] = (dims, percent, {"units": "%", "long_name": "percent of ST"})
     attrs = {key: _attribute(value) for key, value in attributes.items()}
-    attrs.update(robots=int(result.robots), device=str(result.device),
-                 notes="; ".join(result.notes))  # fmt: skip
+    attrs.update(
+        robots=int(result.robots), device=str(result.device), notes="; ".join(result.notes)
+    )
     return xr.Dataset(variables, coords=coords, attrs=attrs)
 
 
@@ -116,7 +124,12 @@ def export_job(job: Any, result: Any, path: Path) -> Path:
     version, the seed, N and the methods in its attributes."""
     from planar_tui import __version__
 
-    attributes = {"preset": str(job.preset_path), "job": job.label,
-                  "planar_tui_version": __version__, "seed": job.spec.seed,
-                  "samples": job.spec.samples, "methods": list(job.spec.methods)}  # fmt: skip
+    attributes = {
+        "preset": str(job.preset_path),
+        "job": job.label,
+        "planar_tui_version": __version__,
+        "seed": job.spec.seed,
+        "samples": job.spec.samples,
+        "methods": list(job.spec.methods),
+    }
     return write_motion_netcdf(path, result, attributes)

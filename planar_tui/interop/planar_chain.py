@@ -157,51 +157,66 @@ def planar_robot(chain: Chain, reader: XmlReader, source_format: str) -> Importe
             or np.dot(world_axis, normal) <= 0
         ):
             raise PresetError(
-                reader.path, link.joint,
+                reader.path,
+                link.joint,
                 f"axis {_shown(world_axis)} (world) is not parallel to the first joint's "
-                f"{_shown(normal)}", "every joint turning about the same direction",
-            )  # fmt: skip
+                f"{_shown(normal)}",
+                "every joint turning about the same direction",
+            )
         offset = _in_plane(link.com - link.joint_point, link.axis)
         if link.next_point is not None:
             along = _in_plane(link.next_point - link.joint_point, link.axis)
             length = vector_length(along)
             if length <= TOLERANCE * max(vector_length(link.next_point), 1e-300):
-                raise PresetError(reader.path, link.element,
-                                  "the next joint is on this joint's axis: the link has no "
-                                  "length", "a link of positive length")  # fmt: skip
+                raise PresetError(
+                    reader.path,
+                    link.element,
+                    "the next joint is on this joint's axis: the link has no length",
+                    "a link of positive length",
+                )
             direction = along / length
             off_line = vector_length(np.cross(offset, direction))
             if off_line > TOLERANCE * length:
                 raise PresetError(
-                    reader.path, link.element,
+                    reader.path,
+                    link.element,
                     f"centre of mass {off_line:.6g} m off the link line (the line from "
-                    "its joint to the next)", "the centre of mass on the link line, at mid-link",
-                )  # fmt: skip
+                    "its joint to the next)",
+                    "the centre of mass on the link line, at mid-link",
+                )
             fraction = float(np.dot(offset, direction)) / length
             if abs(fraction - 0.5) > TOLERANCE:
                 raise PresetError(
-                    reader.path, link.element,
+                    reader.path,
+                    link.element,
                     f"centre of mass at {100 * fraction:.6g} % of the link from its joint",
                     "the centre of mass at mid-link (50 %), as planar-tui's links have it",
-                )  # fmt: skip
+                )
         else:
             half = vector_length(offset)
             if half == 0.0:
-                raise PresetError(reader.path, link.element,
-                                  "centre of mass on the joint's axis: the last link's "
-                                  "length (twice its distance) would be 0",
-                                  "the centre of mass at mid-link")  # fmt: skip
+                raise PresetError(
+                    reader.path,
+                    link.element,
+                    "centre of mass on the joint's axis: the last link's "
+                    "length (twice its distance) would be 0",
+                    "the centre of mass at mid-link",
+                )
             length = 2.0 * half
             direction = offset / half
         if not link.mass_kg > 0:
-            raise PresetError(reader.path, link.element, f"mass is {link.mass_kg:g}",
-                              "a positive mass (kg)")  # fmt: skip
+            raise PresetError(
+                reader.path, link.element, f"mass is {link.mass_kg:g}", "a positive mass (kg)"
+            )
         unit_axis = link.axis / vector_length(link.axis)
         inertia = float(unit_axis @ link.inertia @ unit_axis)
         if not inertia > 0:
-            raise PresetError(reader.path, link.element,
-                              f"moment of inertia about the joint axis is {inertia:g}",
-                              "a positive moment of inertia (kg m²)")  # fmt: skip
+            raise PresetError(
+                reader.path,
+                link.element,
+                f"moment of inertia about the joint axis is {inertia:g}",
+                "a positive moment of inertia (kg m²)",
+            )
         lengths.append(length)
         masses.append(link.mass_kg)
         inertias.append(inertia)
@@ -221,9 +236,12 @@ def planar_robot(chain: Chain, reader: XmlReader, source_format: str) -> Importe
         )
     name = preset_name(chain.name, len(lengths))
     robot = SerialRobot(
-        lengths_m=tuple(lengths), masses_kg=tuple(masses), inertias_kgm2=tuple(inertias),
-        gravity_m_s2=gravity_m_s2, name=name,
-    )  # fmt: skip
+        lengths_m=tuple(lengths),
+        masses_kg=tuple(masses),
+        inertias_kgm2=tuple(inertias),
+        gravity_m_s2=gravity_m_s2,
+        name=name,
+    )
     return ImportedRobot(robot, tuple(notes), offsets_deg, source_format)
 
 
@@ -267,7 +285,9 @@ def preset_text(imported: ImportedRobot, source: Path | str) -> str:
     from planar_tui.dynamics.robot import ROBOT_KIND
     from planar_tui.preset_writer import dump_document
 
-    lines = [f"{imported.robot.label} imported from {Path(source).name} "
-             f"({imported.source_format}) by planar-tui {__version__}."]  # fmt: skip
+    lines = [
+        f"{imported.robot.label} imported from {Path(source).name} "
+        f"({imported.source_format}) by planar-tui {__version__}."
+    ]
     lines += [f"Note: {note}." for note in imported.notes]
     return dump_document({"robot": ROBOT_KIND.dump(imported.robot)}, "\n".join(lines))

@@ -103,5 +103,9 @@ def read_robot(path: Path | str) -> ImportedRobot:
         return read_urdf(path)
     if suffix in MJCF_SUFFIXES:
         return read_mjcf(path)
-    raise PresetError(path, "(file)", f"has the suffix {suffix or '(none)'!r}",
-                      "a .urdf (URDF) or .xml/.mjcf (MJCF) file")  # fmt: skip
+    raise PresetError(
+        path,
+        "(file)",
+        f"has the suffix {suffix or '(none)'!r}",
+        "a .urdf (URDF) or .xml/.mjcf (MJCF) file",
+    )

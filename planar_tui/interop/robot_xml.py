@@ -87,22 +87,32 @@ def read_xml(path: Path | str) -> tuple[ET.Element, XmlReader]:
     except OSError as error:
         raise PresetError(path, "(file)", f"cannot be read: {error.strerror or error}") from None
     if len(raw) > MAX_BYTES:
-        raise PresetError(path, "(file)", f"is larger than {MAX_BYTES >> 20} MiB",
-                          "a robot description (meshes are not read)")  # fmt: skip
+        raise PresetError(
+            path,
+            "(file)",
+            f"is larger than {MAX_BYTES >> 20} MiB",
+            "a robot description (meshes are not read)",
+        )
     try:
         text = raw.decode("utf-8-sig")
     except UnicodeDecodeError as error:
-        raise PresetError(path, "(file)", f"is not UTF-8 text ({error.reason} at byte "
-                          f"{error.start})", "a UTF-8 XML file") from None  # fmt: skip
+        raise PresetError(
+            path,
+            "(file)",
+            f"is not UTF-8 text ({error.reason} at byte {error.start})",
+            "a UTF-8 XML file",
+        ) from None
     upper = text.upper()
     for marker in _FORBIDDEN:
         at = upper.find(marker)
         if at >= 0:
             line = text.count("\n", 0, at) + 1
             raise PresetError(
-                path, f"line {line}", f"has a {marker[2:]} declaration: refused, entities "
-                "are never expanded", "plain URDF or MJCF without a DTD",
-            )  # fmt: skip
+                path,
+                f"line {line}",
+                f"has a {marker[2:]} declaration: refused, entities are never expanded",
+                "plain URDF or MJCF without a DTD",
+            )
     return _parse(path, text)
 
 
@@ -133,9 +143,14 @@ def _parse(path: Path, text: str) -> tuple[ET.Element, XmlReader]:
     try:
         parser.Parse(text.encode("utf-8"), True)
     except expat.ExpatError as error:
-        raise PresetError(path, f"line {error.lineno}", f"is not well-formed XML: "
-                          f"{expat.ErrorString(error.code)}", "a URDF or MJCF file") from None  # fmt: skip
+        raise PresetError(
+            path,
+            f"line {error.lineno}",
+            f"is not well-formed XML: {expat.ErrorString(error.code)}",
+            "a URDF or MJCF file",
+        ) from None
     except ValueError as error:
-        raise PresetError(path, "(file)", f"has {error}: refused",
-                          "plain URDF or MJCF without a DTD") from None  # fmt: skip
+        raise PresetError(
+            path, "(file)", f"has {error}: refused", "plain URDF or MJCF without a DTD"
+        ) from None
     return roots[0], XmlReader(path, lines)

@@ -93,8 +93,15 @@ def write_problem(
     for run in runs:
         folder = directory / run.method
         layout, analysis = DESIGNS[run.method]
-        record = {**about, "method": run.method, "samples_N": run.samples, "seed": run.seed,
-                  "rows": int(run.unit.shape[0]), "design": layout, "salib_analysis": analysis}  # fmt: skip
+        record = {
+            **about,
+            "method": run.method,
+            "samples_N": run.samples,
+            "seed": run.seed,
+            "rows": int(run.unit.shape[0]),
+            "design": layout,
+            "salib_analysis": analysis,
+        }
         written.append(write_new_text(folder / "problem.json", _json(run.salib_problem()), OPTION))
         written.append(_write_array(folder / "X.npy", run.inputs()))
         outputs = run.outputs[:, 0] if run.outputs.shape[1] == 1 else run.outputs
@@ -150,8 +157,10 @@ def sensitivity_runs(job: Any, result: Any) -> list[ModelRuns]:
     runs = []
     for method in design_methods(job):
         unit = unit_design(method, problem.num_vars, sizes[method], spec.seed)
-        torques = [evaluate(problem, unit, robot, theta, np.full(n, speed), alpha)
-                   for speed in spec.speeds_rad_s]  # fmt: skip
+        torques = [
+            evaluate(problem, unit, robot, theta, np.full(n, speed), alpha)
+            for speed in spec.speeds_rad_s
+        ]
         outputs = np.concatenate(torques, axis=1)
         runs.append(ModelRuns(method, sizes[method], spec.seed, problem, unit, outputs, names))
     return runs
@@ -163,8 +172,12 @@ def motion_runs(job: Any, result: Any) -> list[ModelRuns]:
     from planar_tui.sensitivity.engine import build_problem
 
     spec, robot = job.spec, job.robot
-    problem = build_problem(robot, spec.tolerance_length_mm * 1e-3, spec.tolerance_mass_g * 1e-3,
-                            spec.tolerance_inertia_kgm2)  # fmt: skip
+    problem = build_problem(
+        robot,
+        spec.tolerance_length_mm * 1e-3,
+        spec.tolerance_mass_g * 1e-3,
+        spec.tolerance_inertia_kgm2,
+    )
     steps = sorted(result.at_outputs)
     names = motion_output_names(result.names, [step * spec.step_s for step in steps])
     runs = []

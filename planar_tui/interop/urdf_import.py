@@ -95,12 +95,18 @@ def _urdf_joints(
         names = [None if end is None else end.get("link") for end in ends]
         kind = element.get("type", "")
         if kind not in (*URDF_REVOLUTE, "fixed"):
-            raise reader.error(element, f"is a {kind or 'typeless'} joint",
-                               "revolute, continuous (or fixed) joints only")  # fmt: skip
+            raise reader.error(
+                element,
+                f"is a {kind or 'typeless'} joint",
+                "revolute, continuous (or fixed) joints only",
+            )
         for name in names:
             if name is None or name not in links:
-                raise reader.error(element, f"names link {name!r}, which is not in the file",
-                                   "<parent link> and <child link> of the file's links")  # fmt: skip
+                raise reader.error(
+                    element,
+                    f"names link {name!r}, which is not in the file",
+                    "<parent link> and <child link> of the file's links",
+                )
         parent, child = str(names[0]), str(names[1])
         if child in children:
             raise reader.error(element, f"link {child!r} has two parents", "a tree")
@@ -140,8 +146,11 @@ def read_urdf(path: Path | str) -> ImportedRobot:
         (massless frames: tips, tools) are checked by :func:`welded`."""
         leading = [joint for joint in below.get(link_name, []) if leads(joint)]
         if len(leading) > 1:
-            raise reader.error(leading[1].element, f"is a second chain below link "
-                               f"{link_name!r}: a branched tree", "a serial chain")  # fmt: skip
+            raise reader.error(
+                leading[1].element,
+                f"is a second chain below link {link_name!r}: a branched tree",
+                "a serial chain",
+            )
         return leading[0] if leading else None
 
     def welded(link_name: str, moving_link: str) -> None:
@@ -149,9 +158,11 @@ def read_urdf(path: Path | str) -> ImportedRobot:
         for joint in below.get(link_name, []):
             if not leads(joint):
                 if _urdf_inertial(reader, links[joint.child])[0] > 0:
-                    raise reader.error(links[joint.child], f"has a mass welded to link "
-                                       f"{moving_link!r}", "massless fixed links only "
-                                       "(merge the mass into the link)")  # fmt: skip
+                    raise reader.error(
+                        links[joint.child],
+                        f"has a mass welded to link {moving_link!r}",
+                        "massless fixed links only (merge the mass into the link)",
+                    )
                 welded(joint.child, moving_link)
 
     # the base: fixed joints from the root to the first revolute joint (masses ignored)
@@ -174,8 +185,11 @@ def read_urdf(path: Path | str) -> ImportedRobot:
         label = joint.element.get("name")
         if joint.type == "revolute" and joint.element.find("limit") is not None:
             notes.append(f"joint {label!r}: its limits are not kept")
-        notes += [f"joint {label!r}: <{tag}> is not kept" for tag in ("dynamics", "mimic")
-                  if joint.element.find(tag) is not None]  # fmt: skip
+        notes += [
+            f"joint {label!r}: <{tag}> is not kept"
+            for tag in ("dynamics", "mimic")
+            if joint.element.find(tag) is not None
+        ]
         link_element = links[name]
         if link_element.find("inertial") is None:
             raise reader.error(link_element, "has no <inertial>", "the link's mass and inertia")
@@ -187,18 +201,29 @@ def read_urdf(path: Path | str) -> ImportedRobot:
         while following is not None and not following.revolute:
             relative = relative.then(_urdf_origin(reader, following.element))
             if _urdf_inertial(reader, links[following.child])[0] > 0:
-                raise reader.error(links[following.child], f"has a mass welded to link "
-                                   f"{name!r}", "massless fixed links only")  # fmt: skip
+                raise reader.error(
+                    links[following.child],
+                    f"has a mass welded to link {name!r}",
+                    "massless fixed links only",
+                )
             welded(following.child, name)
             following = chain_joint(following.child)
         next_point = None
         if following is not None:
             next_point = relative.then(_urdf_origin(reader, following.element)).p
-        chain.append(Link(
-            joint=reader.where(joint.element), element=reader.where(link_element),
-            joint_point=np.zeros(3), axis=axis, mass_kg=mass, com=com, inertia=inertia,
-            world=frame.R, next_point=next_point,
-        ))  # fmt: skip
+        chain.append(
+            Link(
+                joint=reader.where(joint.element),
+                element=reader.where(link_element),
+                joint_point=np.zeros(3),
+                axis=axis,
+                mass_kg=mass,
+                com=com,
+                inertia=inertia,
+                world=frame.R,
+                next_point=next_point,
+            )
+        )
         world = frame.then(relative)
         joint = following
     return planar_robot(Chain(root.get("name", ""), chain, gravity, source, notes), reader, "URDF")

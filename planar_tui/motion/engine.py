@@ -188,8 +188,15 @@ class CpuRobots:
         from planar_tui.kernels.motion_lanes import rk4_lanes
 
         a, b = block
-        rk4_lanes(self.params[a:b], self.gravity_m_s2, self.torque, self.theta[a:b],
-                  self.omega[a:b], step_s, n_steps)  # fmt: skip
+        rk4_lanes(
+            self.params[a:b],
+            self.gravity_m_s2,
+            self.torque,
+            self.theta[a:b],
+            self.omega[a:b],
+            step_s,
+            n_steps,
+        )
 
     def angles(self) -> np.ndarray:
         return self.theta
@@ -227,8 +234,17 @@ def make_robots(device, problem, design, rod_inertias, robot, theta0_rad, omega0
     if device == "cuda":
         from planar_tui.kernels.motion_cuda import CudaBatch
 
-        batch = CudaBatch(unit, problem.lower, problem.upper, inertias, rod_inertias, theta,
-                          omega, robot.gravity_m_s2, torque)  # fmt: skip
+        batch = CudaBatch(
+            unit,
+            problem.lower,
+            problem.upper,
+            inertias,
+            rod_inertias,
+            theta,
+            omega,
+            robot.gravity_m_s2,
+            torque,
+        )
         return CudaRobots(batch), params
     return CpuRobots(params, theta, omega, robot.gravity_m_s2, torque), params
 

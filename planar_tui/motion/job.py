@@ -165,8 +165,10 @@ class MotionSpec(RunSettings):
 
     def sample_keys(self) -> uq.SampleSizes:
         """Every method's sample count is ``samples``, the PCE's ``pce_samples``."""
-        return {**dict.fromkeys(METHODS, ("samples", self.samples)),
-                "pce": ("pce_samples", self.pce_samples)}  # fmt: skip
+        return {
+            **dict.fromkeys(METHODS, ("samples", self.samples)),
+            "pce": ("pce_samples", self.pce_samples),
+        }
 
     def pce_robots(self, num_vars: int) -> int:
         """The PCE's robots: ``pce_samples``, else ``max(128, 64 D)``."""
@@ -234,8 +236,9 @@ def check_failed(
     try:
         check_failed_runs(outputs, design.unit[rows], problem.names, 0.0, can_drop=False)
     except FailedRuns as error:
-        raise PresetError(job.preset_path, f"{job.key}.methods", error.problem,
-                          error.expected) from None  # fmt: skip
+        raise PresetError(
+            job.preset_path, f"{job.key}.methods", error.problem, error.expected
+        ) from None
 
 
 def analyse_trajectory(job, unit, trajectory, problem, labels, progress):
@@ -257,25 +260,38 @@ def analyse_trajectory(job, unit, trajectory, problem, labels, progress):
     outputs = np.stack([trajectory[step] for step in steps], axis=1)  # (S, K, M)
     times = [step * spec.step_s for step in steps]
     try:
-        keep, note = check_failed_runs(outputs, unit, problem.names, spec.allow_failed_runs,
-                                       can_drop=True)  # fmt: skip
+        keep, note = check_failed_runs(
+            outputs, unit, problem.names, spec.allow_failed_runs, can_drop=True
+        )
         result = progress.wait_for(trajectory_indices, unit[keep], outputs[keep], spec.seed)
         names = [f"{label} at t = {t:g} s" for t in times for label in labels]
         check_loo([result], names, spec.pce_max_loo_error, len(unit))
     except (PceError, FailedRuns) as error:
-        raise PresetError(job.preset_path, f"{job.key}.{error.key}", error.problem,
-                          error.expected) from None  # fmt: skip
+        raise PresetError(
+            job.preset_path, f"{job.key}.{error.key}", error.problem, error.expected
+        ) from None
     progress.advance(1.0, "pce")
     analyses = []
     for k, t_s in enumerate(times):
         indices = result.indices[:, k]
-        analyses.append(Analysis("pce", "", t_s, problem.names, indices,
-                                 sensitivity_percent(indices, "ST"), tuple(labels),
-                                 f"t = {t_s:g} s", runs=len(unit),
-                                 loo_error=result.loo_error[k],
-                                 defined=np.ptp(outputs[keep][:, k], axis=0) > 0))  # fmt: skip
-    rows = aggregate_rows(labels, problem.names, "pce", result.aggregated, result.overall,
-                          len(unit))  # fmt: skip
+        analyses.append(
+            Analysis(
+                "pce",
+                "",
+                t_s,
+                problem.names,
+                indices,
+                sensitivity_percent(indices, "ST"),
+                tuple(labels),
+                f"t = {t_s:g} s",
+                runs=len(unit),
+                loo_error=result.loo_error[k],
+                defined=np.ptp(outputs[keep][:, k], axis=0) > 0,
+            )
+        )
+    rows = aggregate_rows(
+        labels, problem.names, "pce", result.aggregated, result.overall, len(unit)
+    )
     return analyses, rows, ((note,) if note else ())
 
 
@@ -429,19 +445,30 @@ def run_motion(
     from planar_tui.sensitivity.engine import build_problem
 
     inertia_tol = spec.tolerance_inertia_kgm2
-    problem = build_problem(robot, spec.tolerance_length_mm * 1e-3, spec.tolerance_mass_g * 1e-3,
-                            inertia_tol)  # fmt: skip
+    problem = build_problem(
+        robot, spec.tolerance_length_mm * 1e-3, spec.tolerance_mass_g * 1e-3, inertia_tol
+    )
     lengths, masses, inertias = robot.arrays()
     rod = inertias == masses * lengths * lengths / 12.0
     progress.start(len(engine.design_methods(spec.methods)), "sampling")
-    design = engine.build_design(spec.methods, problem.num_vars, spec.samples, spec.seed, progress,
-                                 spec.pce_robots(problem.num_vars))  # fmt: skip
+    design = engine.build_design(
+        spec.methods,
+        problem.num_vars,
+        spec.samples,
+        spec.seed,
+        progress,
+        spec.pce_robots(problem.num_vars),
+    )
     robots, params = engine.make_robots(
-        device.device, problem, design, rod, robot,
+        device.device,
+        problem,
+        design,
+        rod,
+        robot,
         np.radians(np.array(spec.theta0_deg, dtype=np.float64)),
         np.radians(np.array(spec.omega0_deg_s, dtype=np.float64)),
         np.array(spec.torques_Nm, dtype=np.float64),
-    )  # fmt: skip
+    )
     lengths_s = params[:, 0, :]
     band_rows = design.band_rows()
     record_steps = spec.record_steps()
@@ -458,8 +485,9 @@ def run_motion(
     # over independent robots: Sobol's A and B rows, the band's robots for eFAST
     every: dict[str, dict[int, np.ndarray]] = {m: {} for m in index_methods}
     variances: dict[str, dict[int, np.ndarray]] = {m: {} for m in index_methods}
-    weight_rows = {m: design.independent_rows(m) if m == "sobol" else band_rows
-                   for m in index_methods}  # fmt: skip
+    weight_rows = {
+        m: design.independent_rows(m) if m == "sobol" else band_rows for m in index_methods
+    }
     failed = {}  # all robots' outputs at a stop where a Sobol'/eFAST robot failed
 
     def on_stop(step: int, angles) -> None:
@@ -473,15 +501,15 @@ def run_motion(
         for method in index_methods:
             if not np.isfinite(values[design.rows[method]]).all():
                 failed[step] = values
-            every[method][step] = point_indices(method, values[design.rows[method]],
-                                                problem.num_vars)  # fmt: skip
+            every[method][step] = point_indices(
+                method, values[design.rows[method]], problem.num_vars
+            )
             variances[method][step] = values[weight_rows[method]].var(axis=0)
 
     total = design.samples * spec.n_steps
     progress.start(total, "integrating", f"{design.samples} robots on {device.device_note}")
     engine.integrate(robots, spec.step_s, stops, on_stop, progress)
-    progress.start(max(1, len(index_methods) * len(at_steps) + (pce_rows is not None)),
-                   "analysis")  # fmt: skip
+    progress.start(max(1, len(index_methods) * len(at_steps) + (pce_rows is not None)), "analysis")
     labels = engine.output_labels(names)
     for method in index_methods:
         check_failed(job, {**failed, **at_outputs}, design, method, problem)
@@ -584,4 +612,4 @@ JOB_KIND = JobKind(
     warmup="[motion_uncertainty]\nduration_s = 0.002\nstep_s = 0.001\nsamples = 128\n"
     'methods = ["montecarlo", "sobol", "efast"]\n',
     estimate=lambda job: resource_estimate(job.spec, job.robot),
-)  # fmt: skip
+)

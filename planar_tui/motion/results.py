@@ -94,8 +94,11 @@ def aggregate_rows(
     from planar_tui.sensitivity.results import aggregated_rows
 
     summary = [*zip(labels, aggregated, strict=True), ("all outputs", overall)]
-    return [row for label, (first, total) in summary
-            for row in aggregated_rows(label, names, method, first, total, runs)]  # fmt: skip
+    return [
+        row
+        for label, (first, total) in summary
+        for row in aggregated_rows(label, names, method, first, total, runs)
+    ]
 
 
 def index_trajectories(design, every, variances, at_analyses, spec, problem, labels):
@@ -118,10 +121,18 @@ def index_trajectories(design, every, variances, at_analyses, spec, problem, lab
             analysis = at.get((method, t_s))
             if analysis is None:
                 indices = by_step[step]
-                analysis = Analysis(method, "", t_s, problem.names, indices,
-                                    sensitivity_percent(indices, "ST"), tuple(labels),
-                                    f"t = {t_s:g} s", runs=runs,
-                                    defined=variances[method][step] > 0)  # fmt: skip
+                analysis = Analysis(
+                    method,
+                    "",
+                    t_s,
+                    problem.names,
+                    indices,
+                    sensitivity_percent(indices, "ST"),
+                    tuple(labels),
+                    f"t = {t_s:g} s",
+                    runs=runs,
+                    defined=variances[method][step] > 0,
+                )
             analyses.append(analysis)
         indices = np.stack([a.indices[[0, 2]] for a in analyses[-len(steps) :]], axis=1)
         weights = np.stack([variances[method][step] for step in steps])
@@ -161,8 +172,12 @@ def render(job, result, console) -> None:
     from planar_tui.sensitivity.tables import VIEWS, fit_tables
 
     console.print(f"{result.robot_label}: {job.label}", style="bold", markup=False)
-    console.print(f"{result.robots} robots integrated on {result.device}", markup=False,
-                  highlight=False, soft_wrap=True)  # fmt: skip
+    console.print(
+        f"{result.robots} robots integrated on {result.device}",
+        markup=False,
+        highlight=False,
+        soft_wrap=True,
+    )
     console.print(
         Text(f"band over the robots at t = {result.t_s[-1]:g} s; angles rad, tip m", style="bold")
     )

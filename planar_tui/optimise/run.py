@@ -83,14 +83,29 @@ class OptimiseRun:
         """Every evaluation: number, generation, variables, the objectives' and
         constraints' columns, ``feasible``, ``status``, ``message``."""
         opt = self.optimisation
-        header = ("evaluation", "generation", *(v.path.text for v in opt.variables),
-                  *opt.columns, "feasible", "status", "message")  # fmt: skip
+        header = (
+            "evaluation",
+            "generation",
+            *(v.path.text for v in opt.variables),
+            *opt.columns,
+            "feasible",
+            "status",
+            "message",
+        )
         rows = []
         for e in self.evaluations:
             figures = [e.outcome.figures.get(c, "") for c in opt.columns]
-            rows.append([e.number, e.generation, *e.values, *figures,
-                         str(feasible(opt, e.outcome)).lower(), e.outcome.status,
-                         e.outcome.message])  # fmt: skip
+            rows.append(
+                [
+                    e.number,
+                    e.generation,
+                    *e.values,
+                    *figures,
+                    str(feasible(opt, e.outcome)).lower(),
+                    e.outcome.status,
+                    e.outcome.message,
+                ]
+            )
         return CsvTable(header, rows)
 
     def best(self) -> list[Evaluation]:
@@ -109,11 +124,25 @@ class OptimiseRun:
         for _, outcome in self.certified:
             columns.update(dict.fromkeys(outcome.figures))
         names = [n for n in columns if n not in {v.path.text for v in opt.variables}]
-        header = ("evaluation", *(v.path.text for v in opt.variables),
-                  *(f"coarse_{o.column}" for o in opt.objectives), *names, "status", "message")  # fmt: skip
-        rows = [[e.number, *e.values, *(e.outcome.figures[o.column] for o in opt.objectives),
-                 *(outcome.figures.get(n, "") for n in names), outcome.status, outcome.message]
-                for e, outcome in self.certified]  # fmt: skip
+        header = (
+            "evaluation",
+            *(v.path.text for v in opt.variables),
+            *(f"coarse_{o.column}" for o in opt.objectives),
+            *names,
+            "status",
+            "message",
+        )
+        rows = [
+            [
+                e.number,
+                *e.values,
+                *(e.outcome.figures[o.column] for o in opt.objectives),
+                *(outcome.figures.get(n, "") for n in names),
+                outcome.status,
+                outcome.message,
+            ]
+            for e, outcome in self.certified
+        ]
         return CsvTable(header, rows)
 
 
@@ -122,11 +151,19 @@ def number_of(opt: Optimisation, outcome: PointOutcome, column: str) -> float:
     one that is no number, is a :class:`PresetError` naming the table (exit 2)."""
     value = outcome.figures.get(column)
     if value is None:
-        raise PresetError(opt.preset_path, opt.name, f"names the column {column!r}, not one "
-                          "of the job's", "one of " + ", ".join(outcome.figures))  # fmt: skip
+        raise PresetError(
+            opt.preset_path,
+            opt.name,
+            f"names the column {column!r}, not one of the job's",
+            "one of " + ", ".join(outcome.figures),
+        )
     if isinstance(value, bool) or not isinstance(value, int | float):
-        raise PresetError(opt.preset_path, opt.name, f"names the column {column!r}, which is "
-                          f"not a number ({value!r})", "a numeric column")  # fmt: skip
+        raise PresetError(
+            opt.preset_path,
+            opt.name,
+            f"names the column {column!r}, which is not a number ({value!r})",
+            "a numeric column",
+        )
     return float(value)
 
 
@@ -179,8 +216,13 @@ def make_algorithm(opt: Optimisation) -> Any:
     from pymoo.core.termination import NoTermination
 
     bounds = np.array([v.bounds for v in opt.variables], dtype=float)
-    problem = Problem(n_var=len(opt.variables), n_obj=len(opt.objectives),
-                      n_ieq_constr=len(opt.constraints) + 1, xl=bounds[:, 0], xu=bounds[:, 1])  # fmt: skip
+    problem = Problem(
+        n_var=len(opt.variables),
+        n_obj=len(opt.objectives),
+        n_ieq_constr=len(opt.constraints) + 1,
+        xl=bounds[:, 0],
+        xu=bounds[:, 1],
+    )
     kind = opt.algorithm
     if kind == "auto":
         kind = "ga" if len(opt.objectives) == 1 else "nsga2"
@@ -210,9 +252,11 @@ def planned_files(opt: Optimisation, out_dir: Path) -> list[PlannedFile]:
     from planar_tui.sweep.checkpoint import checkpoint_path
 
     output = output_path(opt, out_dir)
-    files = [PlannedFile(output, f"{opt.label} (output)"),
-             PlannedFile(out_dir / opt.pareto_output, f"{opt.label} (pareto_output)"),
-             PlannedFile(checkpoint_path(output), f"{opt.label} (checkpoint)")]  # fmt: skip
+    files = [
+        PlannedFile(output, f"{opt.label} (output)"),
+        PlannedFile(out_dir / opt.pareto_output, f"{opt.label} (pareto_output)"),
+        PlannedFile(checkpoint_path(output), f"{opt.label} (checkpoint)"),
+    ]
     files += planned_sidecar(files[0]) + planned_sidecar(files[1])
     if opt.plot is not None:
         files.append(PlannedFile(out_dir / opt.plot, f"{opt.label} (plot)", "figure file"))
@@ -237,8 +281,9 @@ class _Runner:
             execute.run_on_dask(self.client, tasks, self.progress, on_outcome, prefix)
 
 
-def _task_or_failure(opt: Optimisation, number: int, values: tuple[Any, ...], coarse: bool
-                     ) -> PointTask | PointOutcome:  # fmt: skip
+def _task_or_failure(
+    opt: Optimisation, number: int, values: tuple[Any, ...], coarse: bool
+) -> PointTask | PointOutcome:
     """The task of one design, or its infeasible outcome when its job cannot be made (a
     value the job refuses: the evaluation is infeasible, the optimisation goes on; a job
     that refuses it only while running says so likewise, ``refused``)."""
@@ -311,8 +356,9 @@ def run_optimisation(
         outcomes[outcome.number] = outcome
         progress.advance(1, _detail(run, len(outcomes)), failed=run.failed)
 
-    def evaluate(numbered: list[tuple[int, tuple[Any, ...]]], coarse: bool,
-                 outcomes: dict[int, PointOutcome]) -> dict[int, PointOutcome]:  # fmt: skip
+    def evaluate(
+        numbered: list[tuple[int, tuple[Any, ...]]], coarse: bool, outcomes: dict[int, PointOutcome]
+    ) -> dict[int, PointOutcome]:
         outcomes.update({n: finished[n] for n, _ in numbered if n in finished})
         run.resumed += len(outcomes)
         if outcomes:
@@ -343,26 +389,38 @@ def run_optimisation(
                 population = population[: opt.budget - len(run.evaluations)]
                 run.generations += 1
                 start = len(run.evaluations)
-                designs = [(start + i + 1, tuple(v.decode(x) for v, x in
-                            zip(opt.variables, row, strict=True)))
-                           for i, row in enumerate(population.get("X"))]  # fmt: skip
+                designs = [
+                    (
+                        start + i + 1,
+                        tuple(v.decode(x) for v, x in zip(opt.variables, row, strict=True)),
+                    )
+                    for i, row in enumerate(population.get("X"))
+                ]
                 outcomes: dict[int, PointOutcome] = {}
                 try:
                     evaluate(designs, True, outcomes)
                 except BaseException:  # a cancel: the generation's finished ones are kept
                     run.cancelled = True
-                    run.evaluations += [Evaluation(n, run.generations, values, outcomes[n])
-                                        for n, values in designs if n in outcomes]  # fmt: skip
+                    run.evaluations += [
+                        Evaluation(n, run.generations, values, outcomes[n])
+                        for n, values in designs
+                        if n in outcomes
+                    ]
                     if on_generation is not None:
                         on_generation(run)
                     raise
-                generation = [Evaluation(n, run.generations, values, outcomes[n])
-                              for n, values in designs]  # fmt: skip
+                generation = [
+                    Evaluation(n, run.generations, values, outcomes[n]) for n, values in designs
+                ]
                 run.evaluations += generation
                 if writer is not None:
                     _sync(writer)
-                population.set("F", np.array([_f(opt, e.outcome) for e in generation]),
-                               "G", np.array([_g(opt, e.outcome) for e in generation]))  # fmt: skip
+                population.set(
+                    "F",
+                    np.array([_f(opt, e.outcome) for e in generation]),
+                    "G",
+                    np.array([_g(opt, e.outcome) for e in generation]),
+                )
                 algorithm.tell(infills=population)
                 if on_generation is not None:
                     on_generation(run)
@@ -472,6 +530,11 @@ def figure_data(run: OptimiseRun) -> dict[str, Any]:
     def values(evaluations: Sequence[Evaluation]) -> list[list[float]]:
         return [[number_of(opt, e.outcome, n) for n in names] for e in evaluations]
 
-    return {"title": opt.label, "names": names, "numbers": [e.number for e in ok],
-            "points": values(ok), "best": values(run.best()),
-            "history": convergence(opt, run.evaluations) if len(names) == 1 else []}  # fmt: skip
+    return {
+        "title": opt.label,
+        "names": names,
+        "numbers": [e.number for e in ok],
+        "points": values(ok),
+        "best": values(run.best()),
+        "history": convergence(opt, run.evaluations) if len(names) == 1 else [],
+    }

@@ -70,61 +70,96 @@ def _raw(expected: str):
 class OptimiseTable:
     """The keys of an ``[[optimise]]`` table, as written (before the cross-checks)."""
 
-    job: str = setting(_raw("a job of the preset, e.g. workspace[2]"), type_doc=
-                       '`"kind"` or `"kind[k]"`', doc="the job to optimise (`kind` alone: its "
-                       "first table)")  # fmt: skip
+    job: str = setting(
+        _raw("a job of the preset, e.g. workspace[2]"),
+        type_doc='`"kind"` or `"kind[k]"`',
+        doc="the job to optimise (`kind` alone: its first table)",
+    )
     variables: dict = setting(
-        _raw("a table of key paths"), type_doc=f"table of key path → `{_VARIABLE_DOC}`",
+        _raw("a table of key paths"),
+        type_doc=f"table of key path → `{_VARIABLE_DOC}`",
         doc="what varies: a number in [from, to], an integer in [from, to], or one of the "
         "choices (a form, an elbow mode); key paths as in `[[sweep]]`; `fixed_sum = { KEY = "
         "TOTAL }` sets another key path to `TOTAL −` the sum of the variables naming it "
         "(a fixed leg length or reach)",
-    )  # fmt: skip
+    )
     maximise: Any = setting(
-        _raw("a column name or a list of them"), default=None, default_doc="(or `minimise`)",
+        _raw("a column name or a list of them"),
+        default=None,
+        default_doc="(or `minimise`)",
         type_doc="column name or list of them",
         doc="the job's summary column(s) to maximise; with `minimise`, two or more "
         "objectives in all give a Pareto set (NSGA-II)",
-    )  # fmt: skip
+    )
     minimise: Any = setting(
-        _raw("a column name or a list of them"), default=None, default_doc="(or `maximise`)",
-        type_doc="column name or list of them", doc="the job's summary column(s) to minimise",
-    )  # fmt: skip
+        _raw("a column name or a list of them"),
+        default=None,
+        default_doc="(or `maximise`)",
+        type_doc="column name or list of them",
+        doc="the job's summary column(s) to minimise",
+    )
     constraints: Any = setting(
-        _raw('a list of "COLUMN >= NUMBER"'), default=(), type_doc='list of `"COLUMN OP NUMBER"`',
+        _raw('a list of "COLUMN >= NUMBER"'),
+        default=(),
+        type_doc='list of `"COLUMN OP NUMBER"`',
         doc="each held at every accepted design, `OP` one of `>=`, `<=`, `>`, `<` (as "
         "`G ≤ 0` for pymoo); a failed evaluation is infeasible",
-    )  # fmt: skip
-    budget: int = setting(integer(minimum=1, maximum=MAX_BUDGET), default=200,
-                          type_doc=f"integer 1 … {MAX_BUDGET:,}",
-                          doc="most evaluations (generations of `population`; the last one "
-                          "cut to fit)")  # fmt: skip
-    population: int = setting(integer(minimum=2, maximum=10_000), default=20,
-                              type_doc="integer ≥ 2", doc="designs per generation (submitted "
-                              "to the workers at once)")  # fmt: skip
-    algorithm: str = setting(string(choices=ALGORITHMS), default="auto",
-                             type_doc="`" + '"`, `"'.join(ALGORITHMS).join('""') + "`",
-                             doc='`"auto"`: a GA for one objective, NSGA-II for several; `"de"`: '
-                             "differential evolution (one objective)")  # fmt: skip
-    seed: int = setting(integer(minimum=0, maximum=2**32 - 1), default=1, type_doc="integer ≥ 0",
-                        doc="the optimiser's seed: the same seed gives the same CSV on any "
-                        "number of workers")  # fmt: skip
+    )
+    budget: int = setting(
+        integer(minimum=1, maximum=MAX_BUDGET),
+        default=200,
+        type_doc=f"integer 1 … {MAX_BUDGET:,}",
+        doc="most evaluations (generations of `population`; the last one cut to fit)",
+    )
+    population: int = setting(
+        integer(minimum=2, maximum=10_000),
+        default=20,
+        type_doc="integer ≥ 2",
+        doc="designs per generation (submitted to the workers at once)",
+    )
+    algorithm: str = setting(
+        string(choices=ALGORITHMS),
+        default="auto",
+        type_doc="`" + '"`, `"'.join(ALGORITHMS).join('""') + "`",
+        doc='`"auto"`: a GA for one objective, NSGA-II for several; `"de"`: '
+        "differential evolution (one objective)",
+    )
+    seed: int = setting(
+        integer(minimum=0, maximum=2**32 - 1),
+        default=1,
+        type_doc="integer ≥ 0",
+        doc="the optimiser's seed: the same seed gives the same CSV on any number of workers",
+    )
     coarse: dict = setting(
-        _raw("a table of key path = value"), default=None, default_doc="(none)",
+        _raw("a table of key path = value"),
+        default=None,
+        default_doc="(none)",
         type_doc="table of key path → value",
         doc="settings of the evaluations (e.g. `{ precision_cm = 1.875 }`); the optimum is "
         "re-run at the job's own settings",
-    )  # fmt: skip
-    output: str = setting(relative_path(), default=None, default_doc="`PRESET-optimise-K.csv`",
-                          type_doc="relative path", doc="CSV of every evaluation")  # fmt: skip
-    pareto_output: str = setting(relative_path(), default=None,
-                                 default_doc="`OUTPUT-optimum.csv`", type_doc="relative path",
-                                 doc="CSV of the optimum (or the Pareto set) re-run at the job's "
-                                 "own settings, with all its columns")  # fmt: skip
-    plot: str | None = setting(figure_path(), default=None, default_doc="(none)",
-                               type_doc="relative path ending `.svg`, `.png` or `.pdf`",
-                               doc="convergence (one objective) or front (two) figure; `--plot "
-                               "FILE` overrides it")  # fmt: skip
+    )
+    output: str = setting(
+        relative_path(),
+        default=None,
+        default_doc="`PRESET-optimise-K.csv`",
+        type_doc="relative path",
+        doc="CSV of every evaluation",
+    )
+    pareto_output: str = setting(
+        relative_path(),
+        default=None,
+        default_doc="`OUTPUT-optimum.csv`",
+        type_doc="relative path",
+        doc="CSV of the optimum (or the Pareto set) re-run at the job's "
+        "own settings, with all its columns",
+    )
+    plot: str | None = setting(
+        figure_path(),
+        default=None,
+        default_doc="(none)",
+        type_doc="relative path ending `.svg`, `.png` or `.pdf`",
+        doc="convergence (one objective) or front (two) figure; `--plot FILE` overrides it",
+    )
 
 
 @dataclass(frozen=True)
@@ -186,8 +221,12 @@ class Constraint:
         return self.bound - value if self.operator[0] == ">" else value - self.bound
 
     def holds(self, value: float) -> bool:
-        return {">=": value >= self.bound, "<=": value <= self.bound, ">": value > self.bound,
-                "<": value < self.bound}[self.operator]  # fmt: skip
+        return {
+            ">=": value >= self.bound,
+            "<=": value <= self.bound,
+            ">": value > self.bound,
+            "<": value < self.bound,
+        }[self.operator]
 
 
 @dataclass(frozen=True)
@@ -231,9 +270,15 @@ class Optimisation:
         the coarse settings): :func:`planar_tui.sweep.points.point_job` makes their jobs."""
         paths = [v.path for v in self.variables] + [p for p, _, _ in self.sums]
         paths += [p for p, _ in self.coarse if coarse]
-        return Sweep(preset_path=self.preset_path, name=self.name, job=self.job,
-                     document=self.document, tables=self.tables, defaults=self.defaults,
-                     values=tuple((path, (None,)) for path in paths))  # fmt: skip
+        return Sweep(
+            preset_path=self.preset_path,
+            name=self.name,
+            job=self.job,
+            document=self.document,
+            tables=self.tables,
+            defaults=self.defaults,
+            values=tuple((path, (None,)) for path in paths),
+        )
 
     def point_values(self, values: tuple[Any, ...], coarse: bool) -> tuple[Any, ...]:
         """A design's values for :meth:`sweep`'s points: the variables', the fixed sums'
@@ -263,12 +308,18 @@ def _quoted(path: str) -> str:
     return f'"{path}"' if any(c in path for c in ".[]") else path
 
 
-def _read_variable(reader: TableReader, key: str, path: KeyPath, entry: Any,
-                   key_path: Callable[[str, str], KeyPath]) -> Variable:  # fmt: skip
+def _read_variable(
+    reader: TableReader,
+    key: str,
+    path: KeyPath,
+    entry: Any,
+    key_path: Callable[[str, str], KeyPath],
+) -> Variable:
     if not isinstance(entry, dict):
         raise reader.error(key, f"is {type_name(entry)}", _VARIABLE_DOC)
-    spec = TableReader(reader.path, entry, reader.key(key),
-                       ("from", "to", "integer", "choices", "fixed_sum"))  # fmt: skip
+    spec = TableReader(
+        reader.path, entry, reader.key(key), ("from", "to", "integer", "choices", "fixed_sum")
+    )
     if spec.has("choices"):
         if spec.has("from") or spec.has("to") or spec.has("integer") or spec.has("fixed_sum"):
             raise spec.error("choices", "is given with from/to/integer/fixed_sum", _VARIABLE_DOC)
@@ -281,14 +332,18 @@ def _read_variable(reader: TableReader, key: str, path: KeyPath, entry: Any,
     read = spec.integer if whole else spec.number
     low, high = float(read("from")), float(read("to"))
     if low >= high:
-        raise spec.error("to", f"is {shown(entry['to'])}, not above from = {shown(entry['from'])}",
-                         "to > from")  # fmt: skip
+        raise spec.error(
+            "to", f"is {shown(entry['to'])}, not above from = {shown(entry['from'])}", "to > from"
+        )
     sums = spec.raw("fixed_sum", None)
     if sums is None:
         return Variable(path, float(low), float(high), whole)
     if not isinstance(sums, dict) or not sums:
-        raise spec.error("fixed_sum", f"is {'empty' if sums == {} else type_name(sums)}",
-                         "{ KEY = TOTAL }: the key path takes TOTAL − the variable")  # fmt: skip
+        raise spec.error(
+            "fixed_sum",
+            f"is {'empty' if sums == {} else type_name(sums)}",
+            "{ KEY = TOTAL }: the key path takes TOTAL − the variable",
+        )
     fixed = TableReader(spec.path, sums, spec.key("fixed_sum"), tuple(sums))
     fixed_sum = tuple((key_path(f"{key}.fixed_sum", text), fixed.number(text)) for text in sums)
     if len({(p.table, p.key, p.indices) for p, _ in fixed_sum}) < len(fixed_sum):
@@ -300,8 +355,11 @@ def _columns(reader: TableReader, name: str, value: Any) -> list[str]:
     expected = "a column name of the job's CSV, or a list of them"
     items = value if isinstance(value, list) else [value]
     if not items or not all(isinstance(item, str) and item for item in items):
-        raise reader.error(name, f"is {type_name(value)}" if not isinstance(value, list)
-                           else f"is {shown(value)}", expected)  # fmt: skip
+        raise reader.error(
+            name,
+            f"is {type_name(value)}" if not isinstance(value, list) else f"is {shown(value)}",
+            expected,
+        )
     return items
 
 
@@ -336,8 +394,11 @@ def parse_optimise_table(preset: Preset, table: Any, name: str, number: int = 1)
     job, tables, defaults = job_context(preset, reader)
     if keys.variables is REQUIRED or not isinstance(keys.variables, dict) or not keys.variables:
         what = "empty" if keys.variables == {} else type_name(keys.variables)
-        raise reader.error("variables", f"is {what}", "a table of key paths, e.g. "
-                           "{ orientation_deg = { from = -45, to = 45 } }")  # fmt: skip
+        raise reader.error(
+            "variables",
+            f"is {what}",
+            "a table of key paths, e.g. { orientation_deg = { from = -45, to = 45 } }",
+        )
     variables: list[Variable] = []
     seen: dict[tuple, str] = {}
 
@@ -356,8 +417,9 @@ def parse_optimise_table(preset: Preset, table: Any, name: str, number: int = 1)
 
     for text, entry in keys.variables.items():
         parsed = key_path("variables", text)
-        variables.append(_read_variable(reader, f"variables.{_quoted(text)}", parsed, entry,
-                                        sum_path))  # fmt: skip
+        variables.append(
+            _read_variable(reader, f"variables.{_quoted(text)}", parsed, entry, sum_path)
+        )
     totals: dict[tuple, float] = {}
     for variable in variables:
         for target, total in variable.fixed_sum:
@@ -365,18 +427,23 @@ def parse_optimise_table(preset: Preset, table: Any, name: str, number: int = 1)
             key = f"variables.{_quoted(variable.path.text)}.fixed_sum.{_quoted(target.text)}"
             problem = overlap_problem(target, seen)
             if problem is not None:
-                raise reader.error(key, problem,
-                                   "a key path no variable or coarse setting names")  # fmt: skip
+                raise reader.error(key, problem, "a key path no variable or coarse setting names")
             if totals.setdefault(place, total) != total:
-                raise reader.error(key, f"is {shown(total)}, another total than "
-                                   f"{shown(totals[place])}", "one total per key path")  # fmt: skip
+                raise reader.error(
+                    key,
+                    f"is {shown(total)}, another total than {shown(totals[place])}",
+                    "one total per key path",
+                )
     for variable in variables:  # a coarse setting may not name a fixed sum either
         seen.update({(p.table, p.key, p.indices): p.text for p, _ in variable.fixed_sum})
     coarse = []
     if keys.coarse is not None:
         if not isinstance(keys.coarse, dict):
-            raise reader.error("coarse", f"is {type_name(keys.coarse)}",
-                               "a table of key path = value, e.g. { precision_cm = 1.875 }")  # fmt: skip
+            raise reader.error(
+                "coarse",
+                f"is {type_name(keys.coarse)}",
+                "a table of key path = value, e.g. { precision_cm = 1.875 }",
+            )
         coarse = [(key_path("coarse", text), value) for text, value in keys.coarse.items()]
     objectives = []
     for verb, sense in (("maximise", -1), ("minimise", 1)):
@@ -384,34 +451,56 @@ def parse_optimise_table(preset: Preset, table: Any, name: str, number: int = 1)
         if value is not None:
             objectives += [Objective(c, sense) for c in _columns(reader, verb, value)]
     if not objectives:
-        raise reader.error("maximise", "missing key (and no minimise)",
-                           "maximise = COLUMN or minimise = COLUMN (a list: a Pareto set)")  # fmt: skip
-    repeated = [c for c in {o.column for o in objectives} if
-                sum(o.column == c for o in objectives) > 1]  # fmt: skip
+        raise reader.error(
+            "maximise",
+            "missing key (and no minimise)",
+            "maximise = COLUMN or minimise = COLUMN (a list: a Pareto set)",
+        )
+    repeated = [
+        c for c in {o.column for o in objectives} if sum(o.column == c for o in objectives) > 1
+    ]
     if repeated:
-        raise reader.error("minimise", f"repeats the objective {repeated[0]}",
-                           "each column once")  # fmt: skip
+        raise reader.error("minimise", f"repeats the objective {repeated[0]}", "each column once")
     if keys.algorithm == "de" and len(objectives) > 1:
-        raise reader.error("algorithm", f'is "de" with {len(objectives)} objectives',
-                           '"nsga2" or "auto" for several objectives')  # fmt: skip
+        raise reader.error(
+            "algorithm",
+            f'is "de" with {len(objectives)} objectives',
+            '"nsga2" or "auto" for several objectives',
+        )
     constraints = keys.constraints
     if not isinstance(constraints, list | tuple):
-        raise reader.error("constraints", f"is {type_name(constraints)}",
-                           'a list of "COLUMN OP NUMBER"')  # fmt: skip
-    parsed_constraints = tuple(parse_constraint(reader, k, text)
-                               for k, text in enumerate(constraints, start=1))  # fmt: skip
+        raise reader.error(
+            "constraints", f"is {type_name(constraints)}", 'a list of "COLUMN OP NUMBER"'
+        )
+    parsed_constraints = tuple(
+        parse_constraint(reader, k, text) for k, text in enumerate(constraints, start=1)
+    )
     output = keys.output or f"{path.stem}-optimise-{number}.csv"
     pareto_output = keys.pareto_output or f"{Path(output).with_suffix('')}-optimum.csv"
     if pareto_output == output:
-        raise reader.error("pareto_output", f"is {shown(pareto_output)}, the same as output",
-                           "another file")  # fmt: skip
+        raise reader.error(
+            "pareto_output", f"is {shown(pareto_output)}, the same as output", "another file"
+        )
     optimisation = Optimisation(
-        preset_path=path, name=name, job=job, document=preset.raw, tables=tables,
-        defaults=defaults, variables=tuple(variables), objectives=tuple(objectives),
-        constraints=parsed_constraints, coarse=tuple(coarse), algorithm=keys.algorithm,
-        population=keys.population, budget=keys.budget, seed=keys.seed, output=output,
-        pareto_output=pareto_output, plot=keys.plot, source=table,
-    )  # fmt: skip
+        preset_path=path,
+        name=name,
+        job=job,
+        document=preset.raw,
+        tables=tables,
+        defaults=defaults,
+        variables=tuple(variables),
+        objectives=tuple(objectives),
+        constraints=parsed_constraints,
+        coarse=tuple(coarse),
+        algorithm=keys.algorithm,
+        population=keys.population,
+        budget=keys.budget,
+        seed=keys.seed,
+        output=output,
+        pareto_output=pareto_output,
+        plot=keys.plot,
+        source=table,
+    )
     check_columns(optimisation)
     _check_corners(optimisation)
     return optimisation
@@ -443,8 +532,10 @@ def parse_optimisations(preset: Preset) -> tuple[Optimisation, ...]:
     if value is None:
         return ()
     if isinstance(value, list):
-        return tuple(parse_optimise_table(preset, table, f"{TABLE}[{k}]", k)
-                     for k, table in enumerate(value, start=1))  # fmt: skip
+        return tuple(
+            parse_optimise_table(preset, table, f"{TABLE}[{k}]", k)
+            for k, table in enumerate(value, start=1)
+        )
     return (parse_optimise_table(preset, value, TABLE, 1),)
 
 
@@ -457,6 +548,9 @@ def check_columns(optimisation: Optimisation) -> None:
     names = tuple(names_of(optimisation.job))
     for column in optimisation.columns:
         if column not in names:
-            raise PresetError(optimisation.preset_path, optimisation.name,
-                              f"names the column {column!r}, not one of the job's",
-                              "one of " + ", ".join(names))  # fmt: skip
+            raise PresetError(
+                optimisation.preset_path,
+                optimisation.name,
+                f"names the column {column!r}, not one of the job's",
+                "one of " + ", ".join(names),
+            )

@@ -11,12 +11,19 @@ from planar_tui.jobkind import Job
 
 def figure_names(job: Job[Any, Any]) -> tuple[str, ...]:
     """The columns :func:`planar_tui.sensitivity.job.point_figures` reports for ``job``."""
-    groups = ("dominant", "dominant_percent", "lengths_percent", "masses_percent",
-              "sobol_halfwidth_max", "variance_Nm2")  # fmt: skip
+    groups = (
+        "dominant",
+        "dominant_percent",
+        "lengths_percent",
+        "masses_percent",
+        "sobol_halfwidth_max",
+        "variance_Nm2",
+    )
     names: list[str] = []
     for k in range(1, len(job.spec.speeds_rad_s) + 1):
         suffix = "" if k == 1 else f"_w{k}"
-        names += [f"tau{i}_{group}{suffix}" for i in range(1, job.robot.n_links + 1)
-                  for group in groups]  # fmt: skip
+        names += [
+            f"tau{i}_{group}{suffix}" for i in range(1, job.robot.n_links + 1) for group in groups
+        ]
         names.append(f"tau_variance_max_Nm2{suffix}")
     return tuple(names)

@@ -401,17 +401,29 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
     outputs = {}
     for method, speed in states:
         if spec.path is not None:
-            outputs[method, speed] = path_outputs(problem, designs[method], robot, theta,
-                                                  spec.path, progress)  # fmt: skip
+            outputs[method, speed] = path_outputs(
+                problem, designs[method], robot, theta, spec.path, progress
+            )
             continue
         omega = np.full(n, speed)
         outputs[method, speed] = evaluate(
-            problem, designs[method], robot, theta, omega, alpha, progress,
+            problem,
+            designs[method],
+            robot,
+            theta,
+            omega,
+            alpha,
+            progress,
             f"{method} {speed:g} rad/s",
-        )  # fmt: skip
-    speed_variances = {} if spec.path is not None else {
-        speed: tuple(float(v) for v in outputs[spec.methods[0], speed].var(axis=0, ddof=1))
-        for speed in spec.speeds_rad_s}  # fmt: skip
+        )
+    speed_variances = (
+        {}
+        if spec.path is not None
+        else {
+            speed: tuple(float(v) for v in outputs[spec.methods[0], speed].var(axis=0, ddof=1))
+            for speed in spec.speeds_rad_s
+        }
+    )
     progress.start(len(states), "analysis")
     analyses = []
     notes = []
@@ -423,23 +435,47 @@ def run_sensitivity(job: SensitivityJob, progress: Progress) -> SensitivityResul
             extra = variance_outputs.get(method)
             variances[method] = path_variances(method, values, extra, designs[method], n)
         indices, loo, note = analyse_outputs(
-            job, problem, method, designs[method], values, progress,
+            job,
+            problem,
+            method,
+            designs[method],
+            values,
+            progress,
             f"{method} {speed:g} rad/s",
-        )  # fmt: skip
+        )
         notes += [f"{method} {speed:g} rad/s: {note}"] if note else []
         runs = len(designs[method])
         if spec.path is not None:
-            along.append(Analysis(method, posture.label, 0.0, problem.names, indices,
-                                  sensitivity_percent(indices, "ST"), runs=runs,
-                                  loo_error=loo))  # fmt: skip
+            along.append(
+                Analysis(
+                    method,
+                    posture.label,
+                    0.0,
+                    problem.names,
+                    indices,
+                    sensitivity_percent(indices, "ST"),
+                    runs=runs,
+                    loo_error=loo,
+                )
+            )
             indices, loo = indices[:, : 2 * n], None if loo is None else loo[: 2 * n]
         percent = sensitivity_percent(indices, spec.percent_of)
         labels = path_labels(n) if spec.path is not None else ()
         context = "" if spec.path is None else path_context(posture.label, spec.path)
         analyses.append(
-            Analysis(method, posture.label, speed, problem.names, indices, percent,
-                     labels, context, runs=runs, loo_error=loo)
-        )  # fmt: skip
+            Analysis(
+                method,
+                posture.label,
+                speed,
+                problem.names,
+                indices,
+                percent,
+                labels,
+                context,
+                runs=runs,
+                loo_error=loo,
+            )
+        )
     label = robot.label
     kappa = posture.condition_number
     sobol_conf = [float(a.indices[[1, 3]].max()) for a in analyses if a.method == "sobol"]
@@ -503,9 +539,15 @@ def analyse_outputs(
             indices = analyse(method, outputs, problem.num_vars, spec.seed, progress, detail)
             return indices, None, ""
         indices, loo, note = progress.wait_for(
-            job_indices, unit, outputs, spec.seed, problem.names, torques,
-            spec.pce_max_loo_error, spec.allow_failed_runs,
-        )  # fmt: skip
+            job_indices,
+            unit,
+            outputs,
+            spec.seed,
+            problem.names,
+            torques,
+            spec.pce_max_loo_error,
+            spec.allow_failed_runs,
+        )
         progress.advance(1.0, detail)
         return indices, loo, note
     except (PceError, FailedRuns) as error:
@@ -554,8 +596,11 @@ def point_figures(
             figures[f"{out}_dominant{suffix}"] = names[top]
             figures[f"{out}_dominant_percent{suffix}"] = float(percent[top])
             for group, prefix in (("lengths", "l"), ("masses", "m")):
-                share = sum(float(p) for p, name in zip(percent, names, strict=True)
-                            if name.startswith(prefix))  # fmt: skip
+                share = sum(
+                    float(p)
+                    for p, name in zip(percent, names, strict=True)
+                    if name.startswith(prefix)
+                )
                 figures[f"{out}_{group}_percent{suffix}"] = share
             halfwidth = "" if sobol is None else float(sobol.indices[[1, 3], i - 1].max())
             figures[f"{out}_sobol_halfwidth_max{suffix}"] = halfwidth
@@ -588,4 +633,4 @@ JOB_KIND = JobKind(
     warmup="[sensitivity]\nsamples = 8\nefast_samples = 65\n",
     figure_names=figure_names,
     estimate=lambda job: resource_estimate(job.spec, job.robot),
-)  # fmt: skip
+)

@@ -170,14 +170,25 @@ def path_tables(
         loo = None if a.loo_error is None else a.loo_error[2 * n :].reshape(steps, n)
         for k in range(steps):
             indices = trajectory[:, k]
-            per_time.append(Analysis(a.method, a.posture, float(t_s[k]), a.names, indices,
-                                     sensitivity_percent(indices, "ST"), names, runs=a.runs,
-                                     loo_error=None if loo is None else loo[k]))  # fmt: skip
+            per_time.append(
+                Analysis(
+                    a.method,
+                    a.posture,
+                    float(t_s[k]),
+                    a.names,
+                    indices,
+                    sensitivity_percent(indices, "ST"),
+                    names,
+                    runs=a.runs,
+                    loo_error=None if loo is None else loo[k],
+                )
+            )
         variance, runs = variances[a.method]
         weights = variance.reshape(steps, n)
         groups = [(name, trajectory[[0, 2], :, j], weights[:, j]) for j, name in enumerate(names)]
-        groups.append(("all torques", trajectory[[0, 2]].reshape(2, steps * n, -1),
-                       weights.reshape(-1)))  # fmt: skip
+        groups.append(
+            ("all torques", trajectory[[0, 2]].reshape(2, steps * n, -1), weights.reshape(-1))
+        )
         for label, indices, weight in groups:
             first, total = aggregated_indices(indices, weight)
             rows += aggregated_rows(label, a.names, a.method, first, total, runs)

@@ -224,9 +224,13 @@ def omp_path(psi: np.ndarray, y: np.ndarray, max_terms: int | None = None) -> Om
         k = best_terms[t]
         coefficients[:k, t] = r_inv[:k, :k] @ projections[:k, t]
     return OmpPath(
-        np.array(chosen[:terms]), coefficients, best_terms, best_loo,
-        q[:, :terms].copy(), r_inv[:terms, :terms].copy(),
-    )  # fmt: skip
+        np.array(chosen[:terms]),
+        coefficients,
+        best_terms,
+        best_loo,
+        q[:, :terms].copy(),
+        r_inv[:terms, :terms].copy(),
+    )
 
 
 def _next_column(correlation, norms, usable, weight) -> int:

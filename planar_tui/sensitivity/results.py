@@ -87,8 +87,18 @@ def index_rows(group: Sequence[Analysis]) -> Iterator[tuple[int, tuple]]:
                     yield k, (name, a.method, "", "", "", "", "")
                     continue
                 s1, s1_conf, st, st_conf = (float(v) for v in a.indices[:, k, j])
-                yield k, (name, a.method, s1, _conf_cell(s1_conf), st, _conf_cell(st_conf),
-                          float(a.percent[k, j]))  # fmt: skip
+                yield (
+                    k,
+                    (
+                        name,
+                        a.method,
+                        s1,
+                        _conf_cell(s1_conf),
+                        st,
+                        _conf_cell(st_conf),
+                        float(a.percent[k, j]),
+                    ),
+                )
 
 
 def _conf_cell(half_width: float) -> float | str:
@@ -124,8 +134,9 @@ def csv_table(robot_label: str, analyses: list[Analysis]) -> CsvTable:
     for (posture, speed), group in grouped(analyses, _posture_speed).items():
         extra = run_cells(group)
         for torque, cells in index_rows(group):
-            rows.append((robot_label, posture, float(speed), torque + 1, *cells,
-                         *extra(cells[1], torque)))  # fmt: skip
+            rows.append(
+                (robot_label, posture, float(speed), torque + 1, *cells, *extra(cells[1], torque))
+            )
     return CsvTable(CSV_HEADER + run_columns(analyses), rows)
 
 
@@ -157,5 +168,7 @@ def aggregated_rows(label: str, names: Sequence[str], method: str, first, total,
     aggregated S1 and ST of output ``label``), one per input; ``percent`` of ST as in
     :func:`sensitivity_percent`."""
     share = sensitivity_percent(np.stack([first, first, total, total])[:, None], "ST")[0]
-    return [(label, name, method, float(first[j]), float(total[j]), float(share[j]), runs)
-            for j, name in enumerate(names)]  # fmt: skip
+    return [
+        (label, name, method, float(first[j]), float(total[j]), float(share[j]), runs)
+        for j, name in enumerate(names)
+    ]

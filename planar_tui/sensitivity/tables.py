@@ -217,14 +217,19 @@ def fit_tables(analyses: Sequence, view: View, width: int, percent_of: str = "ST
         notes.append(f"bold: largest of each {row}")
     shown = {a.method for a in next(iter(groups.values()))}
     if short and len(shown) > 1:
-        notes.append(", ".join(f"{METHOD_LABELS[m][1]} = {METHOD_LABELS[m][0]}"
-                               for m in METHOD_LABELS if m in shown))  # fmt: skip
+        notes.append(
+            ", ".join(
+                f"{METHOD_LABELS[m][1]} = {METHOD_LABELS[m][0]}"
+                for m in METHOD_LABELS
+                if m in shown
+            )
+        )
     runs = {a.method: a.runs for a in next(iter(groups.values())) if a.runs}
     if runs:
-        notes.append("runs: " + ", ".join(f"{METHOD_LABELS.get(m, (m,))[0]} {r}"
-                                          for m, r in runs.items()))  # fmt: skip
-    loo = [a.loo_error.max() for group in groups.values() for a in group
-           if a.loo_error is not None]  # fmt: skip
+        notes.append(
+            "runs: " + ", ".join(f"{METHOD_LABELS.get(m, (m,))[0]} {r}" for m, r in runs.items())
+        )
+    loo = [a.loo_error.max() for group in groups.values() for a in group if a.loo_error is not None]
     if loo:
         notes.append(f"PCE leave-one-out error ≤ {max(loo):.2g}")
     if notes:

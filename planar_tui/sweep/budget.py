@@ -62,8 +62,12 @@ def check_workers(workers: int | None) -> None:
         problem = f"is {shown}, more than {WORKERS_PER_CORE} per usable core ({usable_cores()})"
     else:
         return
-    raise PresetError("command line", "--workers", problem,
-                      f"an integer from 1 to {most} (1 runs the points in this process)")  # fmt: skip
+    raise PresetError(
+        "command line",
+        "--workers",
+        problem,
+        f"an integer from 1 to {most} (1 runs the points in this process)",
+    )
 
 
 @dataclass(frozen=True)
@@ -113,8 +117,15 @@ def check_sweep_budget(
 
         scheduler_timeout_s()  # a bad PLANAR_TUI_SCHEDULER_TIMEOUT_S refused now
     for sweep, points in prepared:
-        check_needs(sweep.preset_path, sweep.name, sweep.label, f"{len(points):,} points",
-                    estimate_sweep(sweep, points), workers, scheduler)  # fmt: skip
+        check_needs(
+            sweep.preset_path,
+            sweep.name,
+            sweep.label,
+            f"{len(points):,} points",
+            estimate_sweep(sweep, points),
+            workers,
+            scheduler,
+        )
 
 
 def check_needs(
@@ -138,18 +149,20 @@ def check_needs(
         needed = count * (WORKER_FOOTPRINT_BYTES + point_memory)
         if needed > memory_limit_bytes():
             raise PresetError(
-                "command line", "--workers",
+                "command line",
+                "--workers",
                 f"{count} local workers for {label} need about {size_text(needed)} "
                 f"of memory (limit {size_text(memory_limit_bytes())})",
                 "fewer workers",
-            )  # fmt: skip
+            )
     if found is None:
         return
     wall = found.seconds / count
     if wall > MAX_JOB_SECONDS:
         raise PresetError(
-            preset_path, name,
+            preset_path,
+            name,
             f"{counted} need about {duration_text(found.seconds)} of "
             f"computing, about {duration_text(wall)} on {count} worker(s) (limit 1 day)",
             "fewer points, shorter points or more workers",
-        )  # fmt: skip
+        )

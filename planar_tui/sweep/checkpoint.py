@@ -66,8 +66,7 @@ MAX_TEXT = 10_000
 
 
 def _finite(value: Any) -> bool:
-    return (isinstance(value, int | float) and not isinstance(value, bool)
-            and math.isfinite(value))  # fmt: skip
+    return isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
 
 
 def record_problem(
@@ -112,8 +111,10 @@ def record_problem(
     for name, value in figures.items():
         if known is not None and name not in known:
             return f"figure {shown_value(name)} is not a column of this job"
-        if not (_finite(value) or (isinstance(value, str) and "\n" not in value
-                                   and len(value) <= MAX_TEXT)):  # fmt: skip
+        if not (
+            _finite(value)
+            or (isinstance(value, str) and "\n" not in value and len(value) <= MAX_TEXT)
+        ):
             return f"figure {name} = {shown_value(value)} is not a finite number or text"
     if known is not None and record["status"] == OK and set(known) - set(figures):
         return f"figure {sorted(set(known) - set(figures))[0]} is missing"

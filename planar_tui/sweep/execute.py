@@ -73,8 +73,12 @@ def scheduler_timeout_s() -> float:
     except ValueError:
         value = math.nan
     if not 0 < value <= 86_400:
-        raise PresetError("environment", SCHEDULER_TIMEOUT_ENV_VAR, f"is {text[:40]!r}",
-                          "a number of seconds > 0 and at most 86400")  # fmt: skip
+        raise PresetError(
+            "environment",
+            SCHEDULER_TIMEOUT_ENV_VAR,
+            f"is {text[:40]!r}",
+            "a number of seconds > 0 and at most 86400",
+        )
     return value
 
 
@@ -158,9 +162,15 @@ def local_cluster(workers: int, **options: Any) -> Any:
         # nested settings ``dask.config.set`` restores in place on leaving this block,
         # and a worker it starts again (after a crash) would get Dask's defaults back
         config = copy.deepcopy(dask.config.config)
-        return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                            dashboard_address=":0", env=env, config=config,
-                            **options)  # fmt: skip
+        return LocalCluster(
+            n_workers=workers,
+            threads_per_worker=1,
+            processes=True,
+            dashboard_address=":0",
+            env=env,
+            config=config,
+            **options,
+        )
 
 
 @contextmanager
@@ -234,12 +244,15 @@ def dask_client(target: DaskTarget, announce: Callable[[str], None]) -> Iterator
             probe_scheduler(target.address, timeout_s)
             client = Client(target.address, timeout=timeout_s)
         except (OSError, TimeoutError, ValueError) as error:
-            problem = str(error) or (f"no answer within {timeout_s:g} s "
-                                     f"({SCHEDULER_TIMEOUT_ENV_VAR})")  # fmt: skip
+            problem = str(error) or (
+                f"no answer within {timeout_s:g} s ({SCHEDULER_TIMEOUT_ENV_VAR})"
+            )
             raise PresetError(
-                "command line", "--scheduler", f"cannot reach {target.address}: {problem}",
+                "command line",
+                "--scheduler",
+                f"cannot reach {target.address}: {problem}",
                 "the address of a running Dask scheduler (tcp://host:8786)",
-            ) from None  # fmt: skip
+            ) from None
         try:
             announce(f"dask: scheduler {target.address}, dashboard {client.dashboard_link}")
             yield client
@@ -320,8 +333,7 @@ def run_on_dask(
             if isinstance(task, PointOutcome):
                 on_outcome(task)
                 continue
-            future = client.submit(run_point, task, key=f"{key_prefix}-{task.number}",
-                                   pure=False)  # fmt: skip
+            future = client.submit(run_point, task, key=f"{key_prefix}-{task.number}", pure=False)
             futures[future] = task
             completed.add(future)
             return True

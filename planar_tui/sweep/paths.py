@@ -19,8 +19,10 @@ from typing import Any
 from planar_tui.errors import PresetError
 from planar_tui.schema import suggest
 
-_PATH = re.compile(r"^(?:(?P<table>[A-Za-z_][A-Za-z0-9_]*)\.)?(?P<key>[A-Za-z_][A-Za-z0-9_]*)"
-                   r"(?P<indices>(?:\[\d+\])*)$")  # fmt: skip
+_PATH = re.compile(
+    r"^(?:(?P<table>[A-Za-z_][A-Za-z0-9_]*)\.)?(?P<key>[A-Za-z_][A-Za-z0-9_]*)"
+    r"(?P<indices>(?:\[\d+\])*)$"
+)
 #: Keys a sweep may not vary: the job's output is the sweep's own business.
 NOT_VARIED = ("output",)
 
@@ -78,9 +80,9 @@ def parse_key_path(
     if plain not in allowed:
         raise error(
             "unknown key path",
-            f"a key of the job or of its {robot_kind}" + (suggest(plain, allowed) or
-                                                        f" (one of {', '.join(allowed)})"),
-        )  # fmt: skip
+            f"a key of the job or of its {robot_kind}"
+            + (suggest(plain, allowed) or f" (one of {', '.join(allowed)})"),
+        )
     if any(k < 1 for k in indices):
         raise error("has an index below 1", "list indices [k] counted from 1")
     return KeyPath(text, table, key, indices)

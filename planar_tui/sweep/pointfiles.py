@@ -87,17 +87,21 @@ def check_point_folder(
     link = symlink_in(folder, out_dir)
     if link is not None:
         raise PresetError(
-            preset_path, key, f"{link} is a symbolic link (point files would be written and "
-            "deleted where it points)", "a real folder inside the output folder",
-        )  # fmt: skip
+            preset_path,
+            key,
+            f"{link} is a symbolic link (point files would be written and deleted where it points)",
+            "a real folder inside the output folder",
+        )
     foreign = foreign_files(folder, manifest)
     if foreign:
         more = f" and {len(foreign) - 1} more" if len(foreign) > 1 else ""
         raise PresetError(
-            preset_path, key, f"{folder} holds {foreign[0].name}{more}, which this sweep did "
+            preset_path,
+            key,
+            f"{folder} holds {foreign[0].name}{more}, which this sweep did "
             f"not write (not in {manifest.name})",
             "a folder of its own for the sweep's point files (move those files away)",
-        )  # fmt: skip
+        )
 
 
 class PointFileRecord:
@@ -121,8 +125,9 @@ class PointFileRecord:
                 if path.is_file() and not path.is_symlink():
                     path.unlink()
             except OSError as error:
-                raise OutputFailed(path, f"cannot delete the earlier point file: "
-                                   f"{error.strerror or error}") from None  # fmt: skip
+                raise OutputFailed(
+                    path, f"cannot delete the earlier point file: {error.strerror or error}"
+                ) from None
         self._known = set()
         if self.manifest.exists():
             self.manifest.write_text("", encoding="utf-8")
@@ -142,12 +147,16 @@ class PointFileRecord:
 def with_sidecars(names: list[str]) -> list[str]:
     """``names`` (point CSVs), each followed by its sidecar's name when it gets one
     (:func:`planar_tui.provenance.has_sidecar`): the files a finished point leaves."""
-    return [made for name in names
-            for made in [name, *([sidecar_path(name).name] if has_sidecar(name) else [])]]  # fmt: skip
+    return [
+        made
+        for name in names
+        for made in [name, *([sidecar_path(name).name] if has_sidecar(name) else [])]
+    ]
 
 
-def write_point_file(path: Path, text: str, record: PointFileRecord | None, provenance: Any
-                     ) -> None:  # fmt: skip
+def write_point_file(
+    path: Path, text: str, record: PointFileRecord | None, provenance: Any
+) -> None:
     """Write one point CSV ``text`` at ``path`` and its sidecar ``provenance`` (a
     :class:`~planar_tui.provenance.Provenance`), each atomically and recorded first; a
     file that cannot be written is :class:`~planar_tui.batch.OutputFailed`."""

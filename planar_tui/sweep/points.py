@@ -87,8 +87,10 @@ class SweepPoints(Sequence[Point]):
             if self._unit is None:
                 self._unit = unit_sample(sweep.sample, len(sweep.ranges))
             row = self._unit[index]
-            return tuple(low + float(u) * (high - low)
-                         for u, (_, low, high) in zip(row, sweep.ranges, strict=True))  # fmt: skip
+            return tuple(
+                low + float(u) * (high - low)
+                for u, (_, low, high) in zip(row, sweep.ranges, strict=True)
+            )
         if sweep.combine == "zip":
             return tuple(values[index] for values in self._lists)
         picked = []
@@ -123,8 +125,9 @@ def design(sweep: Sweep) -> Iterator[tuple[Any, ...]]:
 
 def values_text(sweep: Sweep, values: tuple[Any, ...]) -> str:
     """``orientation_deg = 10, robot3rrr.distal_cm = 25.0`` for messages."""
-    return ", ".join(f"{path.text} = {shown(value)}" for path, value in
-                     zip(sweep.paths, values, strict=True))  # fmt: skip
+    return ", ".join(
+        f"{path.text} = {shown(value)}" for path, value in zip(sweep.paths, values, strict=True)
+    )
 
 
 def point_job(sweep: Sweep, values: tuple[Any, ...]) -> Job:
@@ -133,8 +136,7 @@ def point_job(sweep: Sweep, values: tuple[Any, ...]) -> Job:
     loader's :class:`PresetError`."""
     job = sweep.job
     robot_kind = JOB_KINDS[job.kind].robot_kind
-    tables = apply_values(sweep.tables, sweep.defaults,
-                          list(zip(sweep.paths, values, strict=True)))  # fmt: skip
+    tables = apply_values(sweep.tables, sweep.defaults, list(zip(sweep.paths, values, strict=True)))
     table, robot = tables[""], tables[robot_kind]
     original = sweep.document[job.kind]
     entry = original[job.index - 1] if isinstance(original, list) else original

@@ -82,8 +82,10 @@ class SweepRun:
         outcomes = dict(self.outcomes)
         if self.cancelled:
             for number in range(1, len(self.points) + 1):
-                outcomes.setdefault(number, PointOutcome(
-                    number, CANCELLED, "not run: the sweep was cancelled", {}, 0.0))  # fmt: skip
+                outcomes.setdefault(
+                    number,
+                    PointOutcome(number, CANCELLED, "not run: the sweep was cancelled", {}, 0.0),
+                )
         values = {number: point_values(self.points, number) for number in outcomes}
         return sweep_table([path.text for path in self.sweep.paths], values, outcomes)
 
@@ -123,17 +125,27 @@ def planned_files(sweep: Sweep, out_dir: Path) -> list[PlannedFile]:
     from planar_tui.batch import PlannedFile
 
     output = output_path(sweep, out_dir)
-    files = [PlannedFile(output, f"{sweep.label} (output)"),
-             PlannedFile(checkpoint_path(output), f"{sweep.label} (checkpoint)")]  # fmt: skip
+    files = [
+        PlannedFile(output, f"{sweep.label} (output)"),
+        PlannedFile(checkpoint_path(output), f"{sweep.label} (checkpoint)"),
+    ]
     files += planned_sidecar(files[0])
     if sweep.plot is not None:
         files.append(PlannedFile(out_dir / sweep.plot, f"{sweep.label} (plot)", "figure file"))
     if sweep.point_outputs is not None:
         folder = out_dir / sweep.point_outputs
-        files.append(PlannedFile(folder, f"{sweep.label} (point_outputs)", "point file",
-                                 folder=True, probe=folder / "point-1.csv"))  # fmt: skip
-        files.append(PlannedFile(manifest_path(output), f"{sweep.label} (point-file record)",
-                                 "record file"))  # fmt: skip
+        files.append(
+            PlannedFile(
+                folder,
+                f"{sweep.label} (point_outputs)",
+                "point file",
+                folder=True,
+                probe=folder / "point-1.csv",
+            )
+        )
+        files.append(
+            PlannedFile(manifest_path(output), f"{sweep.label} (point-file record)", "record file")
+        )
     return files
 
 
@@ -142,8 +154,13 @@ def check_point_outputs(sweep: Sweep, out_dir: Path) -> None:
     point files this sweep did not write (:func:`pointfiles.check_point_folder`)."""
     if sweep.point_outputs is not None:
         output = output_path(sweep, out_dir)
-        check_point_folder(sweep.preset_path, f"{sweep.name}.point_outputs",
-                           out_dir / sweep.point_outputs, out_dir, manifest_path(output))  # fmt: skip
+        check_point_folder(
+            sweep.preset_path,
+            f"{sweep.name}.point_outputs",
+            out_dir / sweep.point_outputs,
+            out_dir,
+            manifest_path(output),
+        )
 
 
 def figure_problem(sweep: Sweep, points: Sequence[Point]) -> str | None:
@@ -153,8 +170,10 @@ def figure_problem(sweep: Sweep, points: Sequence[Point]) -> str | None:
     from planar_tui.figures.sweep import split_columns
 
     paths = [path.text for path in sweep.paths]
-    keys = CsvTable(("point", *paths, "status"),
-                    [[n, *point_values(points, n), "ok"] for n in range(1, len(points) + 1)])  # fmt: skip
+    keys = CsvTable(
+        ("point", *paths, "status"),
+        [[n, *point_values(points, n), "ok"] for n in range(1, len(points) + 1)],
+    )
     try:
         varied, _ = split_columns(keys)
     except (TypeError, ValueError):  # a key whose values are no numbers
@@ -173,8 +192,12 @@ def check_figure(sweep: Sweep, points: Sequence[Point]) -> None:
 
     problem = None if sweep.plot is None else figure_problem(sweep, points)
     if problem is not None:
-        raise PresetError(sweep.preset_path, f"{sweep.name}.plot", problem,
-                          "a plot only for a sweep with a varied numeric key")  # fmt: skip
+        raise PresetError(
+            sweep.preset_path,
+            f"{sweep.name}.plot",
+            problem,
+            "a plot only for a sweep with a varied numeric key",
+        )
 
 
 def run_sweep(
@@ -247,8 +270,13 @@ def run_sweep(
                 job = job_of(number)
                 return () if job is None else None if names is None else names(job)
 
-            finished = read_finished(checkpoint, sweep.fingerprint(), total, columns,
-                                     lambda text: announce(f"warning: {text}"))  # fmt: skip
+            finished = read_finished(
+                checkpoint,
+                sweep.fingerprint(),
+                total,
+                columns,
+                lambda text: announce(f"warning: {text}"),
+            )
         if folder is not None:
 
             def files_missing(number: int) -> bool:
@@ -258,13 +286,21 @@ def run_sweep(
                 names = with_sidecars(point_file_names(stem(number), job))
                 return not all((folder / name).is_file() for name in names)
 
-            missing = [number for number, outcome in finished.items()
-                       if outcome.status == OK and files_missing(number)]  # fmt: skip
+            missing = [
+                number
+                for number, outcome in finished.items()
+                if outcome.status == OK and files_missing(number)
+            ]
             for number in missing:
                 del finished[number]
             run.recomputed = len(missing)
-            check_point_folder(sweep.preset_path, f"{sweep.name}.point_outputs", folder,
-                               out_dir, manifest_path(output))  # fmt: skip
+            check_point_folder(
+                sweep.preset_path,
+                f"{sweep.name}.point_outputs",
+                folder,
+                out_dir,
+                manifest_path(output),
+            )
             record = PointFileRecord(manifest_path(output), folder)
             if not finished:  # afresh: the files this sweep wrote before go, and only those
                 record.start_afresh()

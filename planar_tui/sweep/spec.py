@@ -38,8 +38,17 @@ DEFAULT_MAX_POINTS = 100_000
 MAX_POINTS = 1_000_000
 COMBINE = ("grid", "zip")
 SAMPLE_METHODS = ("sobol", "lhs", "uniform")
-SWEEP_KEYS = ("job", "values", "combine", "ranges", "sample", "output", "point_outputs", "plot",
-              "max_points")  # fmt: skip
+SWEEP_KEYS = (
+    "job",
+    "values",
+    "combine",
+    "ranges",
+    "sample",
+    "output",
+    "point_outputs",
+    "plot",
+    "max_points",
+)
 #: The preset's top-level table of sweeps.
 TABLE = "sweep"
 
@@ -107,16 +116,23 @@ class Sweep:
         return study_fingerprint(self.job, self.tables, TABLE, self.source)
 
 
-def study_fingerprint(job: Job, tables: Mapping[str, Any], table: str,
-                      source: Mapping[str, Any]) -> str:  # fmt: skip
+def study_fingerprint(
+    job: Job, tables: Mapping[str, Any], table: str, source: Mapping[str, Any]
+) -> str:
     """A SHA-256 of what the points of a study (a ``table``, e.g. ``sweep``, written as
     ``source``) over ``job`` depend on: the job's and robot's raw ``tables``, the study's
     table but its ``plot`` and planar-tui's version."""
     text = json.dumps(
-        {"version": __version__, "kind": job.kind, "key": job.key, "tables": tables,
-         table: {k: v for k, v in source.items() if k != "plot"}},
-        sort_keys=True, default=repr,
-    )  # fmt: skip
+        {
+            "version": __version__,
+            "kind": job.kind,
+            "key": job.key,
+            "tables": tables,
+            table: {k: v for k, v in source.items() if k != "plot"},
+        },
+        sort_keys=True,
+        default=repr,
+    )
     return hashlib.sha256(text.encode()).hexdigest()
 
 
@@ -170,8 +186,9 @@ def job_context(preset: Preset, reader: TableReader) -> tuple[Job, dict, dict]:
     """The job a table's ``job`` key names, the raw TOML tables its points start from
     (``""``: the job's own; the robot kind's name: its robot's) and their parsed values
     as TOML (see :class:`Sweep`): what a sweep, or an optimisation, varies."""
-    job = find_job(preset, reader.raw("job", expected="a job of the preset, e.g. workspace[2]"),
-                   reader)  # fmt: skip
+    job = find_job(
+        preset, reader.raw("job", expected="a job of the preset, e.g. workspace[2]"), reader
+    )
     kind = JOB_KINDS[job.kind]
     robot_kind = kind.robot_kind
     own, robot = _job_tables(preset, job)
@@ -232,8 +249,9 @@ def _read_values(reader: TableReader, name: str, entry: Any) -> tuple[Any, ...]:
     (``from + (to − from)·i/(count − 1)``)."""
     if isinstance(entry, list):
         return tuple(entry)
-    spaced = TableReader(reader.path, entry, reader.key(f"values.{_quoted(name)}"),
-                         ("from", "to", "count"))  # fmt: skip
+    spaced = TableReader(
+        reader.path, entry, reader.key(f"values.{_quoted(name)}"), ("from", "to", "count")
+    )
     start, stop, count = spaced.number("from"), spaced.number("to"), spaced.integer("count")
     if count == 1:
         return (start,)
@@ -294,8 +312,9 @@ def parse_sweep_table(preset: Preset, table: Any, name: str, number: int = 1) ->
         place = (parsed.table, parsed.key, parsed.indices)
         problem = overlap_problem(parsed, seen)
         if problem is not None:
-            raise reader.error(f"{group}.{_quoted(text)}", problem,
-                               "each value once, by one key path")  # fmt: skip
+            raise reader.error(
+                f"{group}.{_quoted(text)}", problem, "each value once, by one key path"
+            )
         seen[place] = text
         if has_values:
             lengths[parsed] = _values_count(reader, text, entry)
@@ -307,8 +326,11 @@ def parse_sweep_table(preset: Preset, table: Any, name: str, number: int = 1) ->
         combine = reader.string("combine", "grid", choices=COMBINE)
         if combine == "zip" and len(set(lengths.values())) > 1:
             listed = ", ".join(f"{p.text}: {n}" for p, n in lengths.items())
-            raise reader.error("combine", f'is "zip" but the lists differ in length ({listed})',
-                               'lists of one length, or combine = "grid"')  # fmt: skip
+            raise reader.error(
+                "combine",
+                f'is "zip" but the lists differ in length ({listed})',
+                'lists of one length, or combine = "grid"',
+            )
         counts = list(lengths.values())
         count = math.prod(counts) if combine == "grid" else counts[0]
     else:
@@ -328,19 +350,34 @@ def parse_sweep_table(preset: Preset, table: Any, name: str, number: int = 1) ->
     point_outputs = reader.relative_path("point_outputs", None)
     plot = figure_path()(reader, "plot", None, None, {})
     return Sweep(
-        preset_path=path, name=name, job=job, document=preset.raw, tables=tables,
-        defaults=defaults, values=tuple(values), ranges=tuple(ranges), sample=sample,
-        combine=combine, output=output, point_outputs=point_outputs, plot=plot,
-        max_points=max_points, source=table,
-    )  # fmt: skip
+        preset_path=path,
+        name=name,
+        job=job,
+        document=preset.raw,
+        tables=tables,
+        defaults=defaults,
+        values=tuple(values),
+        ranges=tuple(ranges),
+        sample=sample,
+        combine=combine,
+        output=output,
+        point_outputs=point_outputs,
+        plot=plot,
+        max_points=max_points,
+        source=table,
+    )
 
 
 def _read_range(reader: TableReader, text: str, entry: Any) -> tuple[float, float]:
     key = f"ranges.{_quoted(text)}"
     expected = "[low, high] with low <= high"
     if not isinstance(entry, list) or len(entry) != 2:
-        raise reader.error(key, f"is {type_name(entry)}" + (f" of {len(entry)} items"
-                           if isinstance(entry, list) else ""), expected)  # fmt: skip
+        raise reader.error(
+            key,
+            f"is {type_name(entry)}"
+            + (f" of {len(entry)} items" if isinstance(entry, list) else ""),
+            expected,
+        )
     low, high = _two_numbers(reader, key, entry)
     if low > high:
         raise reader.error(key, f"is [{low:g}, {high:g}], low above high", expected)
@@ -349,10 +386,11 @@ def _read_range(reader: TableReader, text: str, entry: Any) -> tuple[float, floa
 
 def _two_numbers(reader: TableReader, key: str, entry: list) -> tuple[float, float]:
     low, high = (
-        reader._check_number(key, item, positive=False, minimum=None, maximum=None,
-                             where=f"item {i} ")
+        reader._check_number(
+            key, item, positive=False, minimum=None, maximum=None, where=f"item {i} "
+        )
         for i, item in enumerate(entry, start=1)
-    )  # fmt: skip
+    )
     return low, high
 
 
@@ -361,8 +399,12 @@ def check_has_work(preset: Preset) -> None:
     :class:`PresetError`, exit code 2, rather than a silent success)."""
     if not preset.jobs and preset.raw.get(TABLE) is None:
         kinds = ", ".join(f"[{name}]" for name in JOB_KINDS)
-        raise PresetError(preset.path, "(file)", "has no job and no [[sweep]] table: nothing "
-                          "to run", f"a job table ({kinds}) or a [[sweep]] table")  # fmt: skip
+        raise PresetError(
+            preset.path,
+            "(file)",
+            "has no job and no [[sweep]] table: nothing to run",
+            f"a job table ({kinds}) or a [[sweep]] table",
+        )
 
 
 def parse_sweeps(preset: Preset) -> tuple[Sweep, ...]:
@@ -395,8 +437,9 @@ def build_sweep(
     ``[[sweep]]`` table with these keys (:class:`PresetError` otherwise)."""
     table: dict[str, Any] = {"job": job}
     if values is not None:
-        table["values"] = {k: (dict(v) if isinstance(v, Mapping) else list(v))
-                           for k, v in values.items()}  # fmt: skip
+        table["values"] = {
+            k: (dict(v) if isinstance(v, Mapping) else list(v)) for k, v in values.items()
+        }
         table["combine"] = combine
     if ranges is not None:
         table["ranges"] = {k: list(v) for k, v in ranges.items()}

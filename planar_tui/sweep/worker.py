@@ -114,8 +114,9 @@ def run_point(task: PointTask, progress: Progress | None = None) -> PointOutcome
     except Exception as error:  # a figure that cannot be computed, say
         text = f"{job.label} failed: {type(error).__name__}: {error}"
         status, message, figures, tables = FAILED, _one_line(text), {}, {}
-    return PointOutcome(task.number, status, message, figures,
-                        time.perf_counter() - started, tables)  # fmt: skip
+    return PointOutcome(
+        task.number, status, message, figures, time.perf_counter() - started, tables
+    )
 
 
 def warm_worker(kind: str) -> None:

@@ -66,9 +66,15 @@ class HistoryScreen(Screen[None]):
         for run in self.history:
             mark = "A" if self.marked[:1] == [run] else "B" if self.marked[1:2] == [run] else ""
             cells = run.headline()
-            table.add_row(mark, str(run.number), run.kind, run.label,
-                          *(cells[name] for name in HEADLINE), run.summary,
-                          key=str(run.number))  # fmt: skip
+            table.add_row(
+                mark,
+                str(run.number),
+                run.kind,
+                run.label,
+                *(cells[name] for name in HEADLINE),
+                run.summary,
+                key=str(run.number),
+            )
         if len(self.history):
             table.move_cursor(row=len(self.history) - 1)
         count = len(self.history)

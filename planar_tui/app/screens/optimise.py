@@ -48,9 +48,11 @@ class OptimiseScreen(SweepScreen):
             found = f"best {opt.objectives[0].column} = {best_value(run):.6g}"
         else:
             found = f"Pareto set of {len(best)}"
-        return (f"{opt.label} ({state}): generation {run.generations}, "
-                f"{len(run.evaluations)}/{opt.budget} evaluations{failed}; {found}  "
-                "(escape closes; ctrl+e: CSVs)")  # fmt: skip
+        return (
+            f"{opt.label} ({state}): generation {run.generations}, "
+            f"{len(run.evaluations)}/{opt.budget} evaluations{failed}; {found}  "
+            "(escape closes; ctrl+e: CSVs)"
+        )
 
     def action_cancel_run(self) -> None:
         self.app.action_cancel()
@@ -78,20 +80,21 @@ class OptimiseScreen(SweepScreen):
         names, points = data["names"], data["points"]
         if len(names) == 1:
             if points:
-                plt.scatter(data["numbers"], [p[0] for p in points], marker="•",
-                            label="feasible")  # fmt: skip
+                plt.scatter(data["numbers"], [p[0] for p in points], marker="•", label="feasible")
             history = [(k, v) for k, v in enumerate(data["history"], 1) if not math.isnan(v)]
             if history:
                 plt.plot([k for k, _ in history], [v for _, v in history], label="best so far")
             plt.title(f"{names[0]} by evaluation")
         else:
             if points:
-                plt.scatter([p[0] for p in points], [p[1] for p in points], marker="•",
-                            label="feasible")  # fmt: skip
+                plt.scatter(
+                    [p[0] for p in points], [p[1] for p in points], marker="•", label="feasible"
+                )
             front = sorted(data["best"])
             if front:
-                plt.plot([p[0] for p in front], [p[1] for p in front], marker="o",
-                         label="Pareto set")  # fmt: skip
+                plt.plot(
+                    [p[0] for p in front], [p[1] for p in front], marker="o", label="Pareto set"
+                )
             plt.title(f"{names[1]} against {names[0]}")
         plot.refresh()
 
@@ -100,5 +103,4 @@ def best_value(run: Any) -> float:
     """The single objective's best value so far (as the column's value)."""
     from planar_tui.optimise.run import number_of
 
-    return number_of(run.optimisation, run.best()[0].outcome,
-                     run.optimisation.objectives[0].column)  # fmt: skip
+    return number_of(run.optimisation, run.best()[0].outcome, run.optimisation.objectives[0].column)

@@ -80,8 +80,14 @@ class FilePicker(ModalScreen[str | None]):
     FilePicker OptionList { height: 1fr; }
     """
 
-    def __init__(self, title: str, value: str, sections: list[tuple[str, list[tuple[str, str]]]],
-                 suffixes: tuple[str, ...], hint: str = ""):  # fmt: skip
+    def __init__(
+        self,
+        title: str,
+        value: str,
+        sections: list[tuple[str, list[tuple[str, str]]]],
+        suffixes: tuple[str, ...],
+        hint: str = "",
+    ):
         super().__init__()
         self.title_text, self.value, self.sections = title, value, sections
         self.suffixes, self.hint = suffixes, hint
@@ -99,8 +105,11 @@ class FilePicker(ModalScreen[str | None]):
             yield Label(self.title_text, classes="dialog-title")
             yield Input(self.value, id="path-input", suggester=PathSuggester(self.suffixes))
             yield OptionList(*options, id="picker-list")
-            yield Static(self.hint or "Enter: open   ↓: the list   →: complete   Escape: cancel",
-                         classes="dialog-hint", markup=False)  # fmt: skip
+            yield Static(
+                self.hint or "Enter: open   ↓: the list   →: complete   Escape: cancel",
+                classes="dialog-hint",
+                markup=False,
+            )
 
     def on_input_submitted(self, event: Input.Submitted) -> None:
         self.dismiss(event.value.strip() or None)
@@ -125,9 +134,11 @@ def preset_picker(current: Path) -> FilePicker:
     recent_entries = [(str(p), str(p)) for p in recent("presets")]
     bundled = [(f"{p.stem} — {preset_description(p)}", p.stem) for p in bundled_presets()]
     return FilePicker(
-        "Open preset (a path, or pick one)", str(current),
-        [("Recent", recent_entries), ("Bundled presets", bundled)], (".toml",),
-    )  # fmt: skip
+        "Open preset (a path, or pick one)",
+        str(current),
+        [("Recent", recent_entries), ("Bundled presets", bundled)],
+        (".toml",),
+    )
 
 
 def result_picker(folder: Path) -> FilePicker:
@@ -136,7 +147,9 @@ def result_picker(folder: Path) -> FilePicker:
 
     entries = [(str(p), str(p)) for p in recent("results")]
     return FilePicker(
-        "Open a result CSV into the history", f"{folder}{os.sep}",
-        [("Recent results", entries)], (".csv",),
+        "Open a result CSV into the history",
+        f"{folder}{os.sep}",
+        [("Recent results", entries)],
+        (".csv",),
         "Its sidecar (NAME.csv.json) gives its settings.   Enter: open   Escape: cancel",
-    )  # fmt: skip
+    )

@@ -61,8 +61,9 @@ class SweepDialog(ModalScreen[tuple[Any, int, Any] | None]):
         Binding("enter", "submit", "Run", show=False),  # on the grid/zip list too
     ]
 
-    def __init__(self, job_key: str, paths: Sequence[str], build: Callable[..., Any],
-                 own: Any = None):  # fmt: skip
+    def __init__(
+        self, job_key: str, paths: Sequence[str], build: Callable[..., Any], own: Any = None
+    ):
         super().__init__()
         self.job_key = job_key
         self.paths = list(paths)
@@ -80,15 +81,21 @@ class SweepDialog(ModalScreen[tuple[Any, int, Any] | None]):
                 with Horizontal(classes="sweep-row"):
                     yield Input(
                         placeholder="key path" if row == 1 else "second key path (optional)",
-                        suggester=suggester, id=f"sweep-key-{row}", classes="sweep-key",
-                    )  # fmt: skip
-                    yield Input(placeholder="values", id=f"sweep-values-{row}",
-                                classes="sweep-values")  # fmt: skip
+                        suggester=suggester,
+                        id=f"sweep-key-{row}",
+                        classes="sweep-key",
+                    )
+                    yield Input(
+                        placeholder="values", id=f"sweep-values-{row}", classes="sweep-values"
+                    )
             with Horizontal(classes="sweep-row"):
-                yield CombineSelect([("grid: every combination", "grid"),
-                                     ("zip: same-length lists", "zip")],
-                                    value="grid", allow_blank=False, compact=True,
-                                    id="sweep-combine")  # fmt: skip
+                yield CombineSelect(
+                    [("grid: every combination", "grid"), ("zip: same-length lists", "zip")],
+                    value="grid",
+                    allow_blank=False,
+                    compact=True,
+                    id="sweep-combine",
+                )
                 yield Label(" workers ", classes="sweep-label")
                 yield Input("1", id="sweep-workers", classes="sweep-workers")
             yield Static("", id="sweep-problem", markup=False)
@@ -96,8 +103,9 @@ class SweepDialog(ModalScreen[tuple[Any, int, Any] | None]):
                 f"keys: {', '.join(self.paths)}; list items as KEY[k]\n{VALUES_HINT}\n"
                 "workers: 1 runs here; more start a local Dask cluster of processes\n"
                 "Enter: run   Escape: cancel",
-                classes="dialog-hint", markup=False,
-            )  # fmt: skip
+                classes="dialog-hint",
+                markup=False,
+            )
             with Horizontal(classes="dialog-buttons"):
                 # one row each: with an error shown the help still fits 80×24
                 yield Button("Run sweep (Enter)", id="sweep-run", variant="success", compact=True)
@@ -118,14 +126,19 @@ class SweepDialog(ModalScreen[tuple[Any, int, Any] | None]):
         self.query_one("#sweep-combine", Select).value = sweep.combine
         self.filled = self.typed()
         line = self.query_one("#sweep-problem", Static)
-        line.update(f"the preset's {sweep.name}: {sweep.point_count} points, "
-                    f"{sweep.output}; Enter runs it as written (edit to change)")  # fmt: skip
+        line.update(
+            f"the preset's {sweep.name}: {sweep.point_count} points, "
+            f"{sweep.output}; Enter runs it as written (edit to change)"
+        )
         line.add_class("-shown")
 
     def typed(self) -> tuple:
         """What the dialog's fields hold now (to tell the preset's sweep left as filled)."""
-        rows = [self.query_one(f"#sweep-{part}-{row}", Input).value
-                for row in (1, 2) for part in ("key", "values")]  # fmt: skip
+        rows = [
+            self.query_one(f"#sweep-{part}-{row}", Input).value
+            for row in (1, 2)
+            for part in ("key", "values")
+        ]
         return (*rows, self.query_one("#sweep-combine", Select).value)
 
     def problem(self, text: str) -> None:
@@ -253,18 +266,25 @@ class SweepScreen(Screen[None]):
         yield DataTable(id="sweep-table", zebra_stripes=True)
         with Horizontal(classes="sweep-pickers"):
             # no value given when there is no option (a sweep over text keys only)
-            yield Select([(name, name) for name in self.figures], compact=True,
-                         **({"value": self.figure} if self.figures else {}),
-                         prompt="figure", id="sweep-figure")  # fmt: skip
-            yield Select([(path, path) for path in self.plottable_paths], compact=True,
-                         **({"value": self.plottable_paths[0]} if self.plottable_paths else {}),
-                         prompt="across", id="sweep-across")  # fmt: skip
+            yield Select(
+                [(name, name) for name in self.figures],
+                compact=True,
+                **({"value": self.figure} if self.figures else {}),
+                prompt="figure",
+                id="sweep-figure",
+            )
+            yield Select(
+                [(path, path) for path in self.plottable_paths],
+                compact=True,
+                **({"value": self.plottable_paths[0]} if self.plottable_paths else {}),
+                prompt="across",
+                id="sweep-across",
+            )
             downs = [(NO_KEY, NO_KEY)] + [(p, p) for p in self.plottable_paths[1:]]
             # a heat map for a grid of two keys; zipped keys vary together: a line
             grid = len(self.plottable_paths) > 1 and self.run.sweep.combine == "grid"
             down = self.plottable_paths[1] if grid else NO_KEY
-            yield Select(downs, compact=True, value=down, allow_blank=False,
-                         id="sweep-down")  # fmt: skip
+            yield Select(downs, compact=True, value=down, allow_blank=False, id="sweep-down")
         yield PlotextPlot(id="sweep-plot")
         yield Static("", id="sweep-heat", markup=False)
 
@@ -278,8 +298,9 @@ class SweepScreen(Screen[None]):
         table = self.query_one(DataTable)
         table.clear()
         for row in list(self.table.rows)[:MAX_TABLE_ROWS]:
-            table.add_row(*(f"{cell:.6g}" if isinstance(cell, float) else str(cell)
-                            for cell in row))  # fmt: skip
+            table.add_row(
+                *(f"{cell:.6g}" if isinstance(cell, float) else str(cell) for cell in row)
+            )
 
     def on_select_changed(self, event: Select.Changed) -> None:
         event.stop()
@@ -292,23 +313,39 @@ class SweepScreen(Screen[None]):
 
     def draw(self) -> None:
         """Plot the chosen figure: a line against one key, a heat map against two."""
-        figure, across, down = (self.choice(s) for s in
-                                ("#sweep-figure", "#sweep-across", "#sweep-down"))  # fmt: skip
+        figure, across, down = (
+            self.choice(s) for s in ("#sweep-figure", "#sweep-across", "#sweep-down")
+        )
         plot, heat = self.query_one("#sweep-plot", PlotextPlot), self.query_one("#sweep-heat")
         two = down is not None and down != across
         plot.display, heat.display = not two, two
         if figure is None or across is None:
-            heat.update("No numeric figure or key to plot here"
-                        + ("; ctrl+l writes the figure, the keys' values on its axes."
-                           if figure is not None else "."))  # fmt: skip
+            heat.update(
+                "No numeric figure or key to plot here"
+                + (
+                    "; ctrl+l writes the figure, the keys' values on its axes."
+                    if figure is not None
+                    else "."
+                )
+            )
             plot.display, heat.display = False, True
             return
         if two:
             xs, ys, grid = heat_grid(self.table, across, down, figure)
             width = max(40, self.size.width - 2)
-            heat.update("\n".join(heat_map_lines(xs, ys, grid, across_name=across,
-                                                 down_name=down, figure_name=figure,
-                                                 width=width)))  # fmt: skip
+            heat.update(
+                "\n".join(
+                    heat_map_lines(
+                        xs,
+                        ys,
+                        grid,
+                        across_name=across,
+                        down_name=down,
+                        figure_name=figure,
+                        width=width,
+                    )
+                )
+            )
             return
         self.draw_line(plot, figure, across)
 
@@ -321,8 +358,12 @@ class SweepScreen(Screen[None]):
         markers = "123456789"
         for number, line in enumerate(series):
             if line.x:
-                plt.plot(line.x, line.y, marker=markers[number % 9] if len(series) > 1 else "•",
-                         label=line.label or None)  # fmt: skip
+                plt.plot(
+                    line.x,
+                    line.y,
+                    marker=markers[number % 9] if len(series) > 1 else "•",
+                    label=line.label or None,
+                )
         failed = [x for line in series for x in line.failed_x]
         if failed:
             low = min((y for line in series for y in line.y), default=0.0)

@@ -72,9 +72,10 @@ class RobotPane(VerticalScroll):
         self.editors: list[LinkEditor] = []
         if len(targets) > 1:
             current = next(
-                i for i, (_, kind, index) in enumerate(targets)
+                i
+                for i, (_, kind, index) in enumerate(targets)
                 if (None if index is None else (kind, index)) == self.target
-            )  # fmt: skip
+            )
             yield Select(
                 [(label, i) for i, (label, _, _) in enumerate(targets)],
                 value=current,

@@ -179,8 +179,10 @@ def rrr_scene(
     for (ax, ay), tip, leg in zip(base, platform, legs, strict=True):
         if leg is None:
             continue
-        elbow = (ax + robot.proximal_cm * to_m * math.cos(leg[0]),
-                 ay + robot.proximal_cm * to_m * math.sin(leg[0]))  # fmt: skip
+        elbow = (
+            ax + robot.proximal_cm * to_m * math.cos(leg[0]),
+            ay + robot.proximal_cm * to_m * math.sin(leg[0]),
+        )
         scene.links.append(([(ax, ay), elbow], LINK_STYLE))
         scene.links.append(([elbow, tip], DISTAL_STYLE))
         elbows.append(elbow)

@@ -155,9 +155,11 @@ class SimulatePane(JobPane):
         for joint in range(theta_deg.shape[1]):
             if joint + 1 not in self.hidden:
                 plt.plot(
-                    t_s, theta_deg[:, joint].tolist(), marker=MARKERS[joint % len(MARKERS)],
+                    t_s,
+                    theta_deg[:, joint].tolist(),
+                    marker=MARKERS[joint % len(MARKERS)],
                     label=f"θ{joint + 1}",
-                )  # fmt: skip
+                )
         plt.vline(cursor, CURSOR_COLOUR)
         wrapped = ", wrapped" if self.wrap else ""
         plt.title(f"θi (deg{wrapped}) vs t (s)")

@@ -80,17 +80,21 @@ class MapExplorer(Widget):
     MapExplorer:focus { background: $boost; }
     """
     BINDINGS: ClassVar = [
-        *(Binding(key, f"move({dx}, {dy})", show=False)
-          for key, dx, dy in (("left", -1, 0), ("right", 1, 0), ("up", 0, 1), ("down", 0, -1))),
-        *(Binding(f"shift+{key}", f"pan({dx}, {dy})", show=False)
-          for key, dx, dy in (("left", -1, 0), ("right", 1, 0), ("up", 0, 1), ("down", 0, -1))),
+        *(
+            Binding(key, f"move({dx}, {dy})", show=False)
+            for key, dx, dy in (("left", -1, 0), ("right", 1, 0), ("up", 0, 1), ("down", 0, -1))
+        ),
+        *(
+            Binding(f"shift+{key}", f"pan({dx}, {dy})", show=False)
+            for key, dx, dy in (("left", -1, 0), ("right", 1, 0), ("up", 0, 1), ("down", 0, -1))
+        ),
         Binding("plus,equals_sign", "zoom(0.5)", "Zoom in", key_display="+", show=False),
         Binding("minus", "zoom(2)", "Zoom -", key_display="-", show=False),
         Binding("0", "fit", "Fit", show=False),
         Binding("b", "toggle('exact')", "Exact", show=False),
         Binding("m", "toggle('mode')", "Mode", show=False),
         Binding("r", "repave", "Re-pave"),
-    ]  # fmt: skip
+    ]
 
     class Moved(Message):
         """The cursor or the view changed (the pane redraws the read-out and drawing)."""
@@ -157,8 +161,9 @@ class MapExplorer(Widget):
         if not len(self.boxes):
             return
         layers = [np.reshape(b, (-1, 4)) for b, _, _ in self.overlays.get("layers", ())]
-        x_lo, x_hi, y_lo, y_hi = fit_extent(np.concatenate([self.boxes, *layers]),
-                                            (0.0, 1.0, 0.0, 1.0))  # fmt: skip
+        x_lo, x_hi, y_lo, y_hi = fit_extent(
+            np.concatenate([self.boxes, *layers]), (0.0, 1.0, 0.0, 1.0)
+        )
         columns, rows = self.plot_size()
         self.cell_cm = max((x_hi - x_lo) / columns, (y_hi - y_lo) / (2 * rows), 1e-9)
         self.centre_cm = (0.5 * (x_lo + x_hi), 0.5 * (y_lo + y_hi))
@@ -257,9 +262,12 @@ class MapExplorer(Widget):
                     steps = max(1, int(math.hypot(xb - xa, yb - ya) / (0.5 * self.cell_cm)))
                     for k in range(steps + 1):
                         x, y = xa + (xb - xa) * k / steps, ya + (yb - ya) * k / steps
-                        mark(math.floor((x - x_lo) / self.cell_cm),
-                             math.floor((y_hi - y) / (2 * self.cell_cm)),
-                             EXACT_GLYPH, (OUTSIDE_GLYPH, BOUNDARY_GLYPH))  # fmt: skip
+                        mark(
+                            math.floor((x - x_lo) / self.cell_cm),
+                            math.floor((y_hi - y) / (2 * self.cell_cm)),
+                            EXACT_GLYPH,
+                            (OUTSIDE_GLYPH, BOUNDARY_GLYPH),
+                        )
         return ["".join(row) for row in grid] + lines[rows:]
 
     def render(self):

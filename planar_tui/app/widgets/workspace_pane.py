@@ -64,9 +64,12 @@ def fitted_map(boxes, status, width: int, height: int, **overlays) -> list[str]:
 def fine_job(job, **changes) -> Any:
     """``job`` with its spec changed (no refinement, no reference area, no singularities)."""
     spec = dataclasses.replace(
-        job.spec, refine_precision_cm=None, geometric_reference=False, singularities=False,
+        job.spec,
+        refine_precision_cm=None,
+        geometric_reference=False,
+        singularities=False,
         **changes,
-    )  # fmt: skip
+    )
     return dataclasses.replace(job, spec=spec)
 
 
@@ -276,8 +279,13 @@ class WorkspacePane(JobPane):
         if not self.constant_orientation_3rrr(job):
             drawing.show(None)
             return
-        legs = leg_modes(job.robot, job.spec.orientation_rad, explorer.cursor_cm,
-                         job.spec.limits_rad, self._elbow())  # fmt: skip
+        legs = leg_modes(
+            job.robot,
+            job.spec.orientation_rad,
+            explorer.cursor_cm,
+            job.spec.limits_rad,
+            self._elbow(),
+        )
         drawing.show(rrr_scene(job.robot, explorer.cursor_cm, job.spec.orientation_rad, legs))
 
     def _elbow(self):
@@ -294,8 +302,9 @@ class WorkspacePane(JobPane):
         job = self._shown_job or self._valid_job()
         if status == "outside" or not self.constant_orientation_3rrr(job):
             return text
-        legs = leg_modes(job.robot, job.spec.orientation_rad, (x, y), job.spec.limits_rad,
-                         self._elbow())  # fmt: skip
+        legs = leg_modes(
+            job.robot, job.spec.orientation_rad, (x, y), job.spec.limits_rad, self._elbow()
+        )
         if any(leg is None for leg in legs):
             closed = ", ".join(str(i + 1) for i, leg in enumerate(legs) if leg is None)
             return f"{text}  leg {closed} cannot close within its limits here"
@@ -336,9 +345,12 @@ class WorkspacePane(JobPane):
             f"re-paving the view at ε = {precision:.3g} cm … (r cancels)"
         )
         self.run_worker(
-            lambda: self._pave_in_worker(fine, "repave"), group="repave", thread=True,
-            exclusive=True, exit_on_error=False,
-        )  # fmt: skip
+            lambda: self._pave_in_worker(fine, "repave"),
+            group="repave",
+            thread=True,
+            exclusive=True,
+            exit_on_error=False,
+        )
 
     def _pave_in_worker(self, job, purpose: str) -> None:
         """Pave in this worker thread, then post the outcome (or the error) back."""
@@ -373,9 +385,11 @@ class WorkspacePane(JobPane):
         (x_lo, x_hi), (y_lo, y_hi) = job.spec.search_box_cm
         coarse = self.result.outcome
         outside = ~(
-            (coarse.boxes[:, 1] > x_lo) & (coarse.boxes[:, 0] < x_hi)
-            & (coarse.boxes[:, 3] > y_lo) & (coarse.boxes[:, 2] < y_hi)
-        )  # fmt: skip
+            (coarse.boxes[:, 1] > x_lo)
+            & (coarse.boxes[:, 0] < x_hi)
+            & (coarse.boxes[:, 3] > y_lo)
+            & (coarse.boxes[:, 2] < y_hi)
+        )
         boxes = np.vstack([coarse.boxes[outside, :4], outcome.boxes[:, :4]])
         status = np.concatenate([coarse.status[outside], outcome.status])
         explorer = self.explorer()
@@ -429,9 +443,12 @@ class WorkspacePane(JobPane):
             self.explorer().show_text("(preview: the legs' reach discs do not meet)")
             return
         self.run_worker(
-            lambda: self._pave_in_worker(coarse, "preview"), group="preview",
-            thread=True, exclusive=True, exit_on_error=False,
-        )  # fmt: skip
+            lambda: self._pave_in_worker(coarse, "preview"),
+            group="preview",
+            thread=True,
+            exclusive=True,
+            exit_on_error=False,
+        )
 
     def _previewed(self, job, outcome) -> None:
         """Show the preview unless a current result or a newer edit came meanwhile."""

@@ -173,8 +173,9 @@ def compute_range(robot: Any, spec: Any, budget: Any, g: Any, limits: Any, mecha
     from planar_tui.workspace.paving.orientation import paved_range, range_stage
 
     started = time.perf_counter()
-    box = spec.search_box_cm or square_about(spec.mechanism.reach_box(robot, spec),
-                                             spec.precision_cm)  # fmt: skip
+    box = spec.search_box_cm or square_about(
+        spec.mechanism.reach_box(robot, spec), spec.precision_cm
+    )
     extent = (box[0][0], box[0][1], box[1][0], box[1][1])
     points = robot.platform_points_cm
 
@@ -236,11 +237,18 @@ def compute_planar(robot: Any, spec: PlanarSpec, budget: Any) -> Any:
         assert geometric is not None
         nothing = np.zeros((0, 4))
         return WorkspaceOutcome(
-            form="geometric", precision_cm=spec.precision_cm, refine_precision_cm=None,
-            boxes=nothing, status=np.zeros(0, np.int64), boxes_processed=0,
-            area_kept_cm2=geometric.outer_cm2, area_inside_cm2=geometric.inner_cm2,
-            geometric=geometric, seconds=time.perf_counter() - started, extent_cm=extent,
-        )  # fmt: skip
+            form="geometric",
+            precision_cm=spec.precision_cm,
+            refine_precision_cm=None,
+            boxes=nothing,
+            status=np.zeros(0, np.int64),
+            boxes_processed=0,
+            area_kept_cm2=geometric.outer_cm2,
+            area_inside_cm2=geometric.inner_cm2,
+            geometric=geometric,
+            seconds=time.perf_counter() - started,
+            extent_cm=extent,
+        )
 
     def decider(precision: float) -> Callable[..., None]:
         return mechanism.decider(robot, spec, precision)
@@ -253,9 +261,17 @@ def compute_planar(robot: Any, spec: PlanarSpec, budget: Any) -> Any:
         return pave_in_levels(seeds, budget, decider(spec.refine_precision_cm), inside_cm2)
 
     return finished_outcome(
-        spec, boxes, status, refine, budget, geometric, started, extent, form=spec.form,
+        spec,
+        boxes,
+        status,
+        refine,
+        budget,
+        geometric,
+        started,
+        extent,
+        form=spec.form,
         disjoint=True,
-    )  # fmt: skip
+    )
 
 
 def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> WorkspaceResult:
@@ -346,11 +362,18 @@ def planar_job_kind(
             f"{mechanism_name} workspace of every {name} job: summary CSV, boxes CSV (--boxes "
             "or the preset's boxes_output) and a map titled with the job and precision.",
             options=(
-                Option("--precision", "precision_cm",
-                       "Precision epsilon in cm; overrides `precision_cm`.", float),
+                Option(
+                    "--precision",
+                    "precision_cm",
+                    "Precision epsilon in cm; overrides `precision_cm`.",
+                    float,
+                ),
             ),
-            outputs=(OutputOption("--boxes", "boxes",
-                                  "CSV of the kept boxes (with several jobs: FILE-1.csv ...)."),),
+            outputs=(
+                OutputOption(
+                    "--boxes", "boxes", "CSV of the kept boxes (with several jobs: FILE-1.csv ...)."
+                ),
+            ),
             view=("--map/--no-map", "Print the character-cell map."),
         ),
         tab=tab,
@@ -358,7 +381,7 @@ def planar_job_kind(
         warmup=warmup,
         estimate=estimate,
         figure_names=planar_figure_names,
-    )  # fmt: skip
+    )
 
 
 __all__ = [
