@@ -116,7 +116,7 @@ def test_nothing_is_ever_overwritten(cli, tmp_path):
         ),
         (
             ["export", "paper-b-table3", "--format", "mjcf", "--out", "x.xml"],
-            "--robot: no serial robot: a 3-RRR is not exported",
+            "--robot: no serial robot: name a parallel one (a closed chain, MJCF only)",
         ),
         (["import", "arm.step"], "error: arm.step: (file): has the suffix '.step'"),
         (["import", "arm.urdf"], "error: arm.urdf: (file): no such file"),

@@ -22,6 +22,9 @@ if TYPE_CHECKING:
 #: ``export --format``'s values (:data:`planar_tui.interop.exchange.FORMATS`, kept here
 #: so that ``--help`` imports nothing of the core).
 EXPORT_FORMATS = ("mjcf", "urdf")
+#: ``export --robot``'s parallel robots, written as closed chains (MJCF only):
+#: :data:`planar_tui.interop.exchange.CLOSED_CHAINS`.
+CLOSED_CHAIN_TABLES = ("robot3rrr", "robot5r")
 
 
 def export_command(
@@ -35,7 +38,8 @@ def export_command(
             "--robot",
             metavar="KEY",
             help="The robot of this job (sensitivity[2], "
-            "its label or output name) instead of the preset's [robot] table.",
+            "its label or output name) instead of the preset's [robot] table; robot3rrr or "
+            "robot5r: that parallel robot as a closed chain (MJCF only).",
         ),
     ] = None,
     format_name: Annotated[
@@ -45,20 +49,28 @@ def export_command(
         Path | None, typer.Option("--out", "-o", help="The file to write (never replaced).")
     ] = None,
 ) -> None:
-    """Write a preset's serial robot as an MJCF (MuJoCo) or URDF model (docs/interop.md)."""
+    """Write a preset's serial robot as an MJCF (MuJoCo) or URDF model, or its 3-RRR or
+    five-bar as a closed-chain MJCF (docs/interop.md, docs/closed-chain-export.md)."""
     with reported_errors():
-        if format_name not in EXPORT_FORMATS:
-            problem = "missing" if format_name is None else f"is {format_name!r}"
-            raise PresetError("command line", "--format", problem, " or ".join(EXPORT_FORMATS))
+        if format_name is None:
+            raise PresetError("command line", "--format", "missing", " or ".join(EXPORT_FORMATS))
         if out is None:
             raise PresetError("command line", "--out", "missing", "the file to write")
         from planar_tui.batch import check_writable
-        from planar_tui.interop.exchange import export_robot, preset_robot
+        from planar_tui.interop import exchange
 
+        closed = robot if robot in CLOSED_CHAIN_TABLES else None
+        exchange.check_format(format_name, closed)
         (loaded,) = load_presets([preset])
-        robot_model = preset_robot(loaded, robot)
+        if closed is None:
+            model: Any = exchange.preset_robot(loaded, robot)
+        else:
+            model = exchange.preset_chain(loaded, closed)
         check_writable(out, "model file")
-        written = export_robot(robot_model, format_name, out)
+        if closed is None:
+            written = exchange.export_robot(model, format_name, out)
+        else:
+            written = exchange.export_chain(model, out)
     stdout.print(f"wrote {written}", markup=False, highlight=False, soft_wrap=True)
 
 
