@@ -20,9 +20,11 @@ the five-bar's end mass a point at :math:`P`; gravity along −y.
 The home pose: the 3-RRR's platform with its points' centroid over the base joints'
 centroid at :math:`\varphi = 0`, the five-bar's :math:`P` on the base's perpendicular
 bisector (at :math:`x` midway between the base joints) at the height where the first leg
-is at its middle reach :math:`\sqrt{l_1^2 + l_2^2}`; the elbows in the robot's working mode
-(``+`` where the robot has none: :math:`\theta_i = \alpha_i + \beta_i`, as in
-:func:`planar_tui.workspace.paving.legs.branch_angles`).
+is at its middle reach :math:`\sqrt{l_1^2 + l_2^2}`. The working modes (the elbow signs
+:math:`\sigma_i`, :math:`\theta_i = \alpha_i + \sigma_i\beta_i` as in
+:func:`planar_tui.workspace.paving.legs.branch_angles`): the 3-RRR's ``(1, -1, 1)`` (the
+bundled presets' mode), the five-bar's ``working_mode`` (``+-``, both elbows outwards,
+where it is ``any``).
 """
 
 from __future__ import annotations
@@ -35,6 +37,9 @@ from planar_tui.workspace.paving.legs import branch_angles
 
 #: cm per metre: presets give lengths in cm, the exported model is in SI.
 CM_PER_M = 100.0
+#: The home pose's working modes (module docstring).
+HOME_ELBOWS_3RRR = (1, -1, 1)
+HOME_ELBOWS_5R = (1, -1)
 
 
 @dataclass(frozen=True)
@@ -140,8 +145,8 @@ def rrr_chain(robot, source) -> ClosedChain:
     named = _Named(source, "robot3rrr", f"(x, y, phi) = ({x:g} cm, {y:g} cm, 0 deg)")
     masses = _leg_masses(robot, 3)
     legs = tuple(
-        _leg(named, a, robot.proximal_cm, robot.distal_cm, (x + q[0], y + q[1]), 1, i, masses)
-        for i, (a, q) in enumerate(zip(bases, points, strict=True))
+        _leg(named, a, robot.proximal_cm, robot.distal_cm, (x + q[0], y + q[1]), elbow, i, masses)
+        for i, (a, q, elbow) in enumerate(zip(bases, points, HOME_ELBOWS_3RRR, strict=True))
     )
     return ClosedChain(
         robot.name or "3-RRR",
@@ -163,7 +168,7 @@ def fivebar_chain(robot, source) -> ClosedChain:
     half = x - bases[0][0]
     y = math.sqrt(max(reach * reach - half * half, 0.0))
     named = _Named(source, "robot5r", f"(x, y) = ({x:g} cm, {y:g} cm)")
-    elbows = tuple(sign or 1 for sign in robot.elbows)
+    elbows = HOME_ELBOWS_5R if robot.working_mode == "any" else robot.elbows
     masses = _leg_masses(robot, 2)
     legs = tuple(
         _leg(named, a, l1, l2, (x, y), elbow, i, masses)

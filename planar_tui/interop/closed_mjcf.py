@@ -68,7 +68,9 @@ def _inertial(indent: str, com: tuple[float, float], mass: float, moments) -> st
 
 def _rod(indent: str, name: str, length: float, mass: float, inertia: float, radius: float):
     return [
-        _inertial(indent, (0.5 * length, 0.0), mass, (axial_inertia_kgm2(inertia),) + (inertia,) * 2),
+        _inertial(
+            indent, (0.5 * length, 0.0), mass, (axial_inertia_kgm2(inertia),) + (inertia,) * 2
+        ),
         f'{indent}<geom name="{name}" type="capsule" fromto="0 0 0 {number(length)} 0 0"'
         f' size="{number(radius)}" contype="0" conaffinity="0"/>',
     ]
@@ -90,12 +92,24 @@ def chain_mjcf(chain: ClosedChain) -> str:
         lines += [
             f'    <body name="proximal{i}" pos="{vector(*leg.base_m, 0.0)}">',
             f'      <joint name="theta{i}" type="hinge" axis="0 0 1"/>',
-            *_rod("      ", f"proximal{i}", leg.proximal_m, leg.proximal_mass_kg,
-                  leg.proximal_inertia_kgm2, radius),
+            *_rod(
+                "      ",
+                f"proximal{i}",
+                leg.proximal_m,
+                leg.proximal_mass_kg,
+                leg.proximal_inertia_kgm2,
+                radius,
+            ),
             f'      <body name="distal{i}" pos="{vector(leg.proximal_m, 0.0, 0.0)}">',
             f'        <joint name="psi{i}" type="hinge" axis="0 0 1"/>',
-            *_rod("        ", f"distal{i}", leg.distal_m, leg.distal_mass_kg,
-                  leg.distal_inertia_kgm2, radius),
+            *_rod(
+                "        ",
+                f"distal{i}",
+                leg.distal_m,
+                leg.distal_mass_kg,
+                leg.distal_inertia_kgm2,
+                radius,
+            ),
             f'        <site name="tip{i}" pos="{vector(leg.distal_m, 0.0, 0.0)}"/>',
             "      </body>",
             "    </body>",
