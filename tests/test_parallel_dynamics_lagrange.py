@@ -8,8 +8,8 @@ import math
 
 import numpy as np
 import pytest
-
 from planar_tui.kernels.dynamics import inverse_dynamics as serial_inverse_dynamics
+
 from planar_tui.workspace.fivebar.mechanism import MECHANISM as FIVEBAR
 from planar_tui.workspace.fivebar.path import Path5RSpec
 from planar_tui.workspace.fivebar.robot import Robot5R
