@@ -17,12 +17,17 @@ body coordinates, the KKT system in numpy, its own inverse kinematics).
 from __future__ import annotations
 
 import math
+from types import SimpleNamespace
 
 import mujoco
 import numpy as np
 import pinocchio
 import pytest
 
+from planar_tui.workspace.fivebar import dynamics as fivebar_dynamics
+from planar_tui.workspace.fivebar.robot import Robot5R
+from planar_tui.workspace.rrr import dynamics as rrr_dynamics
+from planar_tui.workspace.rrr.robot import Robot3RRR
 from tests.closed_chain_reference import Machine, quintic
 from tests.test_interop_cli import one_error_line
 
@@ -106,17 +111,35 @@ def home_pose(table: str) -> np.ndarray:
     return np.array([0.0, math.sqrt(0.45**2 + 0.55**2 - 0.2**2), 0.0])
 
 
+def planar_tui_robot(table: str, gravity: float):
+    """The preset's robot as planar-tui parses it (the defaults are the test's layout)."""
+    if table == "robot3rrr":
+        return Robot3RRR(**MASSES_3RRR, gravity_m_s2=gravity)
+    return Robot5R(**MASSES_5R, gravity_m_s2=gravity)
+
+
 class Path:
-    """The reference along the quintic from home: tree coordinates and torques at t."""
+    """The quintic from home: the reference's tree coordinates and torques at t, and
+    planar-tui's efforts (its path inverse dynamics) at t."""
 
     def __init__(self, table: str, gravity: float):
         self.machine = machine(table, gravity)
         self.start = home_pose(table)
         self.stop = self.start + np.array(MOVES[table])
+        self.robot = planar_tui_robot(table, gravity)
+        self.dynamics = rrr_dynamics if table == "robot3rrr" else fivebar_dynamics
+        self.mode = SimpleNamespace(elbow=self.machine.elbows, limits_rad=None)
 
     def at(self, t: float):
         z, zd, zdd = self.machine.state(*quintic(self.start, self.stop, DURATION_S, t))
         return self.machine.tree(z, zd, zdd), self.machine.torques(z, zd, zdd)
+
+    def efforts(self, t: float) -> np.ndarray:
+        used = 3 if self.machine.rotates else 2
+        states = (value[None, :used] for value in quintic(self.start, self.stop, DURATION_S, t))
+        solution = self.dynamics.solve_path(self.robot, self.mode, *states)
+        assert solution.status[0] == 0
+        return solution.effort[0]
 
 
 @pytest.fixture
@@ -154,6 +177,17 @@ def test_home_keyframe_closes_the_loops(exported, table, masses):
 
 
 @pytest.mark.parametrize("table", ["robot3rrr", "robot5r"])
+def test_planar_tui_efforts_are_the_reference(table):
+    """planar-tui's path inverse dynamics (NOC kernels) against the Lagrange reference."""
+    path = Path(table, 9.81)
+    for t in np.linspace(0.0, DURATION_S, 11):
+        reference = path.at(t)[1]
+        np.testing.assert_allclose(
+            path.efforts(t), reference, rtol=0, atol=1e-8 * np.abs(reference).max()
+        )
+
+
+@pytest.mark.parametrize("table", ["robot3rrr", "robot5r"])
 def test_mujoco_rigid_dynamics_are_the_reference(exported, table):
     """With gravity: the reference's torques make ``M q'' + c`` a loop reaction."""
     model = mujoco.MjModel.from_xml_path(str(exported(table, 9.81)))
@@ -178,7 +212,7 @@ def test_mujoco_rigid_dynamics_are_the_reference(exported, table):
 
 
 def follow(model, path: Path) -> tuple[float, float]:
-    """Drive the model from the path's start with the reference's torques (held over each
+    """Drive the model from the path's start with planar-tui's efforts (held over each
     step); the largest platform position error (m) and loop residual (m) at the steps."""
     data = mujoco.MjData(model)
     (data.qpos[:], _, _), _ = path.at(0.0)
@@ -186,13 +220,13 @@ def follow(model, path: Path) -> tuple[float, float]:
     position, loop = 0.0, 0.0
     steps = round(DURATION_S / model.opt.timestep)
     for step in range(steps + 1):
-        (q, _, _), tau = path.at(min(data.time, DURATION_S))
+        (q, _, _), _ = path.at(min(data.time, DURATION_S))
         mujoco.mj_forward(model, data)
         error = np.abs(data.qpos[legs : legs + 2] - q[legs : legs + 2]).max()
         position = max(position, float(error))
         loop = max(loop, float(np.abs(data.efc_pos[: data.ne]).max()))
         if step < steps:
-            data.ctrl[:] = tau
+            data.ctrl[:] = path.efforts(data.time)
             mujoco.mj_step(model, data)
     return position, loop
 
@@ -240,9 +274,9 @@ def test_pinocchio_constraint_dynamics_returns_the_path(exported, table):
     path = Path(table, 9.81)
     actuated = np.arange(0, 2 * len(constraints), 2)
     for t in np.linspace(0.0, DURATION_S, 11):
-        (q, v, a), tau = path.at(t)
+        (q, v, a), _ = path.at(t)
         efforts = np.zeros(model.nv)
-        efforts[actuated] = tau
+        efforts[actuated] = path.efforts(t)
         pinocchio.initConstraintDynamics(model, data, constraints, datas)
         result = pinocchio.constraintDynamics(
             model, data, q, v, efforts, constraints, datas, settings
