@@ -17,6 +17,7 @@ body coordinates, the KKT system in numpy, its own inverse kinematics).
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from types import SimpleNamespace
 
 import mujoco
@@ -327,3 +328,18 @@ def test_importing_a_closed_chain_is_refused(cli, exported, table):
     model = exported(table, 9.81)
     line = one_error_line(cli("import", model))
     assert "<equality>: closed loops or couplings are not a serial chain" in line
+
+
+def test_the_home_keyframe_is_the_path_jobs_start(cli, tmp_path):
+    """A preset with a path job exports its start: ``from_pose`` in the job's ``elbow``."""
+    out = tmp_path / "path.xml"
+    result = cli("export", "path-3rrr", "--robot", "robot3rrr", "--format", "mjcf", "--out", out)
+    assert result.exit_code == 0, result.output
+    model = mujoco.MjModel.from_xml_path(str(out))
+    data = mujoco.MjData(model)
+    mujoco.mj_resetDataKeyframe(model, data, model.key("home").id)
+    assert loop_residual_m(model, data) < 1e-14
+    start = np.array([0.36, 0.05, math.radians(-2.0)])  # the preset's from_pose = [36, 5, -2]
+    reference = replace(machine("robot3rrr", 9.81), elbows=(1, -1, -1))
+    (q, _, _) = reference.tree(*reference.state(start, np.zeros(3), np.zeros(3)))
+    np.testing.assert_allclose(data.qpos, q, rtol=0, atol=1e-12)

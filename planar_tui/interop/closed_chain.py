@@ -17,8 +17,10 @@ Masses follow the robot tables: each link's centre of mass at mid-link with its 
 about the centre of mass, the platform's centre of mass at the platform frame's origin,
 the five-bar's end mass a point at :math:`P`; gravity along −y.
 
-The home pose: the 3-RRR's platform with its points' centroid over the base joints'
-centroid at :math:`\varphi = 0`, the five-bar's :math:`P` on the base's perpendicular
+The home pose: the start of the preset's first path job on that robot (``from_pose`` in
+its working mode ``elbow``, as the job resolves it), so that the job's efforts replay from
+the keyframe; without one, the 3-RRR's platform with its points' centroid over the base
+joints' centroid at :math:`\varphi = 0`, the five-bar's :math:`P` on the base's perpendicular
 bisector (at :math:`x` midway between the base joints) at the height where the first leg
 is at its middle reach :math:`\sqrt{l_1^2 + l_2^2}`. The working modes (the elbow signs
 :math:`\sigma_i`, :math:`\theta_i = \alpha_i + \sigma_i\beta_i` as in
@@ -92,7 +94,7 @@ def _leg(robot, base_cm, l1_cm, l2_cm, point_cm, elbow: int, index: int, masses)
     if angles is None:
         raise PresetError(
             robot.source,
-            f"[{robot.table}]",
+            robot.table,
             f"leg {index + 1} cannot reach the home pose {robot.home_text}",
             "a robot whose legs reach the home pose (module planar_tui.interop.closed_chain)",
         )
@@ -116,8 +118,18 @@ def _leg(robot, base_cm, l1_cm, l2_cm, point_cm, elbow: int, index: int, masses)
 
 
 @dataclass(frozen=True)
+class Home:
+    """A home pose given by a path job: ``pose`` ``(x_cm, y_cm[, phi_deg])``, the working
+    mode ``elbow`` and ``where`` (the job's key) for a refusal."""
+
+    pose: tuple[float, ...]
+    elbow: tuple[int, ...]
+    where: str
+
+
+@dataclass(frozen=True)
 class _Named:
-    """Where a refusal points: the preset and the robot's table."""
+    """Where a refusal points: the preset and the robot's table (or path job)."""
 
     source: object
     table: str
@@ -136,17 +148,30 @@ def _leg_masses(robot, count: int):
     )
 
 
-def rrr_chain(robot, source) -> ClosedChain:
+def rrr_chain(robot, source, home: Home | None = None) -> ClosedChain:
     """The 3-RRR (``[robot3rrr]``) at its home pose (module docstring)."""
     bases = robot.base_joints_cm()
     points = robot.platform_points_cm()
-    x = sum(a[0] for a in bases) / 3.0 - sum(q[0] for q in points) / 3.0
-    y = sum(a[1] for a in bases) / 3.0 - sum(q[1] for q in points) / 3.0
-    named = _Named(source, "robot3rrr", f"(x, y, phi) = ({x:g} cm, {y:g} cm, 0 deg)")
+    if home is None:
+        x = sum(a[0] for a in bases) / 3.0 - sum(q[0] for q in points) / 3.0
+        y = sum(a[1] for a in bases) / 3.0 - sum(q[1] for q in points) / 3.0
+        home = Home((x, y, 0.0), HOME_ELBOWS_3RRR, "[robot3rrr]")
+    x, y, phi_deg = home.pose
+    named = _Named(source, home.where, f"(x, y, phi) = ({x:g} cm, {y:g} cm, {phi_deg:g} deg)")
     masses = _leg_masses(robot, 3)
+    c, s = math.cos(math.radians(phi_deg)), math.sin(math.radians(phi_deg))
     legs = tuple(
-        _leg(named, a, robot.proximal_cm, robot.distal_cm, (x + q[0], y + q[1]), elbow, i, masses)
-        for i, (a, q, elbow) in enumerate(zip(bases, points, HOME_ELBOWS_3RRR, strict=True))
+        _leg(
+            named,
+            a,
+            robot.proximal_cm,
+            robot.distal_cm,
+            (x + c * qx - s * qy, y + s * qx + c * qy),
+            elbow,
+            i,
+            masses,
+        )
+        for i, (a, (qx, qy), elbow) in enumerate(zip(bases, points, home.elbow, strict=True))
     )
     return ClosedChain(
         robot.name or "3-RRR",
@@ -155,20 +180,24 @@ def rrr_chain(robot, source) -> ClosedChain:
         float(robot.platform_mass_kg),
         float(robot.platform_inertia_kgm2),
         True,
-        (x / CM_PER_M, y / CM_PER_M, 0.0),
+        (x / CM_PER_M, y / CM_PER_M, math.radians(phi_deg)),
         float(robot.gravity_m_s2),
     )
 
 
-def fivebar_chain(robot, source) -> ClosedChain:
+def fivebar_chain(robot, source, home: Home | None = None) -> ClosedChain:
     """The five-bar (``[robot5r]``) at its home pose (module docstring)."""
     bases = robot.base_joints_cm()
-    x = 0.5 * (bases[0][0] + bases[1][0])
-    reach = math.hypot(robot.proximal_cm[0], robot.distal_cm[0])
-    half = x - bases[0][0]
-    y = math.sqrt(max(reach * reach - half * half, 0.0))
-    named = _Named(source, "robot5r", f"(x, y) = ({x:g} cm, {y:g} cm)")
-    elbows = HOME_ELBOWS_5R if robot.working_mode == "any" else robot.elbows
+    if home is None:
+        x = 0.5 * (bases[0][0] + bases[1][0])
+        reach = math.hypot(robot.proximal_cm[0], robot.distal_cm[0])
+        half = x - bases[0][0]
+        y = math.sqrt(max(reach * reach - half * half, 0.0))
+        elbow = HOME_ELBOWS_5R if robot.working_mode == "any" else robot.elbows
+        home = Home((x, y), elbow, "[robot5r]")
+    x, y = home.pose
+    named = _Named(source, home.where, f"(x, y) = ({x:g} cm, {y:g} cm)")
+    elbows = home.elbow
     masses = _leg_masses(robot, 2)
     legs = tuple(
         _leg(named, a, l1, l2, (x, y), elbow, i, masses)

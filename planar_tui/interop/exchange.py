@@ -14,20 +14,22 @@ from typing import Any
 
 from planar_tui.dynamics.robot import SerialRobot
 from planar_tui.errors import PresetError
-from planar_tui.interop.closed_chain import ClosedChain, fivebar_chain, rrr_chain
+from planar_tui.interop.closed_chain import ClosedChain, Home, fivebar_chain, rrr_chain
 from planar_tui.interop.closed_mjcf import chain_mjcf
 from planar_tui.interop.files import write_new_text
 from planar_tui.interop.mjcf import robot_mjcf
 from planar_tui.interop.robot_import import ImportedRobot, preset_text, read_robot
 from planar_tui.interop.urdf import robot_urdf
-from planar_tui.registry import ROBOT_KINDS
+from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
 
 #: ``--format`` of ``export``: the writer of each format.
 FORMATS: dict[str, Callable[[SerialRobot], str]] = {"mjcf": robot_mjcf, "urdf": robot_urdf}
 #: The table a preset's serial robot is in (``--robot robot``).
 ROBOT_TABLE = "robot"
+#: Each closed chain's path job kind, whose first job gives the exported home pose.
+PATH_KINDS = {"robot3rrr": "path3rrr", "robot5r": "path5r"}
 #: The parallel robots exported as closed chains: their table, and what builds the chain.
-CLOSED_CHAINS: dict[str, Callable[[Any, Any], ClosedChain]] = {
+CLOSED_CHAINS: dict[str, Callable[[Any, Any, Home | None], ClosedChain]] = {
     "robot3rrr": rrr_chain,
     "robot5r": fivebar_chain,
 }
@@ -84,7 +86,17 @@ def preset_chain(preset: Any, key: str) -> ClosedChain:
                 preset.path, f"[{key}]", "missing", f"a [{key}] table (or a job on one robot)"
             )
         robot = robots[0]
-    return CLOSED_CHAINS[key](robot, preset.path)
+    return CLOSED_CHAINS[key](robot, preset.path, path_home(preset, key, robot))
+
+
+def path_home(preset: Any, key: str, robot: Any) -> Home | None:
+    """The start of the preset's first path job on ``robot`` (its ``from_pose`` in the
+    working mode its kind's ``prepare`` resolves), or ``None``."""
+    for job in preset.jobs:
+        if job.kind == PATH_KINDS[key] and job.robot == robot:
+            spec = JOB_KINDS[job.kind].prepare(job)
+            return Home(tuple(spec.from_pose), tuple(spec.elbow), f"{job.key}.from_pose")
+    return None
 
 
 def check_format(format_name: str, table: str | None) -> None:
