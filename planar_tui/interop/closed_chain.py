@@ -81,75 +81,53 @@ class ClosedChain:
         return legs + (self.pose if self.rotates else self.pose[:2])
 
 
-def _per_leg(value, count: int) -> tuple[float, ...]:
-    """A table value given once for all legs or once per leg, as one float per leg."""
-    values = tuple(value) if isinstance(value, (tuple, list)) else (value,) * count
-    return tuple(float(item) for item in values)
-
-
-def _leg(robot, base_cm, l1_cm, l2_cm, point_cm, elbow: int, index: int, masses) -> Leg:
-    """Leg ``index`` (0-based) reaching ``point_cm`` in the working mode ``elbow``."""
-    vx, vy = point_cm[0] - base_cm[0], point_cm[1] - base_cm[1]
-    angles = branch_angles(vx, vy, l1_cm, l2_cm)
-    if angles is None:
-        raise PresetError(
-            robot.source,
-            robot.table,
-            f"leg {index + 1} cannot reach the home pose {robot.home_text}",
-            "a robot whose legs reach the home pose (module planar_tui.interop.closed_chain)",
-        )
-    theta = angles[elbow]
-    elbow_x = base_cm[0] + l1_cm * math.cos(theta)
-    elbow_y = base_cm[1] + l1_cm * math.sin(theta)
-    distal = math.atan2(point_cm[1] - elbow_y, point_cm[0] - elbow_x)
-    psi = math.remainder(distal - theta, 2.0 * math.pi)
-    m1, i1, m2, i2 = (values[index] for values in masses)
-    return Leg(
-        (base_cm[0] / CM_PER_M, base_cm[1] / CM_PER_M),
-        l1_cm / CM_PER_M,
-        l2_cm / CM_PER_M,
-        m1,
-        i1,
-        m2,
-        i2,
-        theta,
-        psi,
-    )
-
-
 @dataclass(frozen=True)
 class Home:
-    """A home pose given by a path job: ``pose`` ``(x_cm, y_cm[, phi_deg])``, the working
-    mode ``elbow`` and ``where`` (the job's key) for a refusal."""
+    """A home pose: ``pose`` ``(x_cm, y_cm[, phi_deg])``, the working mode ``elbow``, and
+    ``where`` it comes from (the table, or the path job's ``from_pose``) for a refusal."""
 
     pose: tuple[float, ...]
     elbow: tuple[int, ...]
     where: str
 
 
-@dataclass(frozen=True)
-class _Named:
-    """Where a refusal points: the preset and the robot's table (or path job)."""
+#: The leg masses' keys (one value for every leg), in :class:`Leg`'s order.
+LEG_MASS_KEYS = (
+    "proximal_mass_kg",
+    "proximal_inertia_kgm2",
+    "distal_mass_kg",
+    "distal_inertia_kgm2",
+)
 
-    source: object
-    table: str
-    home_text: str
 
-
-def _leg_masses(robot, count: int):
-    return tuple(
-        _per_leg(getattr(robot, key), count)
-        for key in (
-            "proximal_mass_kg",
-            "proximal_inertia_kgm2",
-            "distal_mass_kg",
-            "distal_inertia_kgm2",
-        )
-    )
+def _legs(robot, source, home: Home, lengths_cm, targets_cm) -> tuple[Leg, ...]:
+    """The legs ``(l1, l2)`` from the robot's base joints to their points ``targets_cm``
+    at the home pose, in its working modes; a leg that cannot reach is refused."""
+    masses = tuple(float(getattr(robot, key)) for key in LEG_MASS_KEYS)
+    legs = []
+    for index, (base, (l1, l2), target, elbow) in enumerate(
+        zip(robot.base_joints_cm(), lengths_cm, targets_cm, home.elbow, strict=True), start=1
+    ):
+        angles = branch_angles(target[0] - base[0], target[1] - base[1], l1, l2)
+        if angles is None:
+            pose = ", ".join(f"{value:g}" for value in home.pose)
+            raise PresetError(
+                source,
+                home.where,
+                f"leg {index} cannot reach the home pose ({pose})",
+                "a pose all legs reach (docs/closed-chain-export.md)",
+            )
+        theta = angles[elbow]
+        elbow_x, elbow_y = base[0] + l1 * math.cos(theta), base[1] + l1 * math.sin(theta)
+        distal = math.atan2(target[1] - elbow_y, target[0] - elbow_x)
+        base_m = (base[0] / CM_PER_M, base[1] / CM_PER_M)
+        psi = math.remainder(distal - theta, 2.0 * math.pi)
+        legs.append(Leg(base_m, l1 / CM_PER_M, l2 / CM_PER_M, *masses, theta, psi))
+    return tuple(legs)
 
 
 def rrr_chain(robot, source, home: Home | None = None) -> ClosedChain:
-    """The 3-RRR (``[robot3rrr]``) at its home pose (module docstring)."""
+    """The 3-RRR (``[robot3rrr]``) at ``home`` (default: the module docstring's)."""
     bases = robot.base_joints_cm()
     points = robot.platform_points_cm()
     if home is None:
@@ -157,25 +135,12 @@ def rrr_chain(robot, source, home: Home | None = None) -> ClosedChain:
         y = sum(a[1] for a in bases) / 3.0 - sum(q[1] for q in points) / 3.0
         home = Home((x, y, 0.0), HOME_ELBOWS_3RRR, "[robot3rrr]")
     x, y, phi_deg = home.pose
-    named = _Named(source, home.where, f"(x, y, phi) = ({x:g} cm, {y:g} cm, {phi_deg:g} deg)")
-    masses = _leg_masses(robot, 3)
     c, s = math.cos(math.radians(phi_deg)), math.sin(math.radians(phi_deg))
-    legs = tuple(
-        _leg(
-            named,
-            a,
-            robot.proximal_cm,
-            robot.distal_cm,
-            (x + c * qx - s * qy, y + s * qx + c * qy),
-            elbow,
-            i,
-            masses,
-        )
-        for i, (a, (qx, qy), elbow) in enumerate(zip(bases, points, home.elbow, strict=True))
-    )
+    targets = [(x + c * qx - s * qy, y + s * qx + c * qy) for qx, qy in points]
+    lengths = [(robot.proximal_cm, robot.distal_cm)] * 3
     return ClosedChain(
         robot.name or "3-RRR",
-        legs,
+        _legs(robot, source, home, lengths, targets),
         tuple((qx / CM_PER_M, qy / CM_PER_M) for qx, qy in points),
         float(robot.platform_mass_kg),
         float(robot.platform_inertia_kgm2),
@@ -186,9 +151,9 @@ def rrr_chain(robot, source, home: Home | None = None) -> ClosedChain:
 
 
 def fivebar_chain(robot, source, home: Home | None = None) -> ClosedChain:
-    """The five-bar (``[robot5r]``) at its home pose (module docstring)."""
-    bases = robot.base_joints_cm()
+    """The five-bar (``[robot5r]``) at ``home`` (default: the module docstring's)."""
     if home is None:
+        bases = robot.base_joints_cm()
         x = 0.5 * (bases[0][0] + bases[1][0])
         reach = math.hypot(robot.proximal_cm[0], robot.distal_cm[0])
         half = x - bases[0][0]
@@ -196,18 +161,10 @@ def fivebar_chain(robot, source, home: Home | None = None) -> ClosedChain:
         elbow = HOME_ELBOWS_5R if robot.working_mode == "any" else robot.elbows
         home = Home((x, y), elbow, "[robot5r]")
     x, y = home.pose
-    named = _Named(source, home.where, f"(x, y) = ({x:g} cm, {y:g} cm)")
-    elbows = home.elbow
-    masses = _leg_masses(robot, 2)
-    legs = tuple(
-        _leg(named, a, l1, l2, (x, y), elbow, i, masses)
-        for i, (a, l1, l2, elbow) in enumerate(
-            zip(bases, robot.proximal_cm, robot.distal_cm, elbows, strict=True)
-        )
-    )
+    lengths = list(zip(robot.proximal_cm, robot.distal_cm, strict=True))
     return ClosedChain(
         robot.name or "five-bar",
-        legs,
+        _legs(robot, source, home, lengths, [(x, y)] * 2),
         ((0.0, 0.0), (0.0, 0.0)),
         float(robot.end_mass_kg),
         0.0,
