@@ -103,7 +103,7 @@ LEG_MASS_KEYS = (
 def _legs(robot, source, home: Home, lengths_cm, targets_cm) -> tuple[Leg, ...]:
     """The legs ``(l1, l2)`` from the robot's base joints to their points ``targets_cm``
     at the home pose, in its working modes; a leg that cannot reach is refused."""
-    masses = tuple(float(getattr(robot, key)) for key in LEG_MASS_KEYS)
+    m1, i1, m2, i2 = (float(getattr(robot, key)) for key in LEG_MASS_KEYS)
     legs = []
     for index, (base, (l1, l2), target, elbow) in enumerate(
         zip(robot.base_joints_cm(), lengths_cm, targets_cm, home.elbow, strict=True), start=1
@@ -122,7 +122,7 @@ def _legs(robot, source, home: Home, lengths_cm, targets_cm) -> tuple[Leg, ...]:
         distal = math.atan2(target[1] - elbow_y, target[0] - elbow_x)
         base_m = (base[0] / CM_PER_M, base[1] / CM_PER_M)
         psi = math.remainder(distal - theta, 2.0 * math.pi)
-        legs.append(Leg(base_m, l1 / CM_PER_M, l2 / CM_PER_M, *masses, theta, psi))
+        legs.append(Leg(base_m, l1 / CM_PER_M, l2 / CM_PER_M, m1, i1, m2, i2, theta, psi))
     return tuple(legs)
 
 

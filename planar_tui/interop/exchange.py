@@ -94,7 +94,8 @@ def path_home(preset: Any, key: str, robot: Any) -> Home | None:
     working mode its kind's ``prepare`` resolves), or ``None``."""
     for job in preset.jobs:
         if job.kind == PATH_KINDS[key] and job.robot == robot:
-            spec = JOB_KINDS[job.kind].prepare(job)
+            kind = JOB_KINDS[job.kind]
+            spec: Any = job.spec if kind.prepare is None else kind.prepare(job)
             return Home(tuple(spec.from_pose), tuple(spec.elbow), f"{job.key}.from_pose")
     return None
 
