@@ -72,6 +72,8 @@ class ClosedChain:
     rotates: bool
     pose: tuple[float, float, float]
     gravity_m_s2: float
+    #: Where the home pose comes from: a path job's ``from_pose``, or the robot's table.
+    home_source: str
 
     @property
     def home_qpos(self) -> tuple[float, ...]:
@@ -147,6 +149,7 @@ def rrr_chain(robot, source, home: Home | None = None) -> ClosedChain:
         True,
         (x / CM_PER_M, y / CM_PER_M, math.radians(phi_deg)),
         float(robot.gravity_m_s2),
+        home.where,
     )
 
 
@@ -171,4 +174,5 @@ def fivebar_chain(robot, source, home: Home | None = None) -> ClosedChain:
         False,
         (x / CM_PER_M, y / CM_PER_M, 0.0),
         float(robot.gravity_m_s2),
+        home.where,
     )
