@@ -343,3 +343,18 @@ def test_the_home_keyframe_is_the_path_jobs_start(cli, tmp_path):
     reference = replace(machine("robot3rrr", 9.81), elbows=(1, -1, -1))
     (q, _, _) = reference.tree(*reference.state(start, np.zeros(3), np.zeros(3)))
     np.testing.assert_allclose(data.qpos, q, rtol=0, atol=1e-12)
+
+
+def test_a_five_bar_exports_in_its_working_mode(tmp_path, cli):
+    preset = tmp_path / "mode.toml"
+    preset.write_text(preset_text("robot5r", 0.0) + 'working_mode = "-+"\n')
+    out = tmp_path / "mode.xml"
+    result = cli("export", preset, "--robot", "robot5r", "--format", "mjcf", "--out", out)
+    assert result.exit_code == 0, result.output
+    model = mujoco.MjModel.from_xml_path(str(out))
+    data = mujoco.MjData(model)
+    mujoco.mj_resetDataKeyframe(model, data, model.key("home").id)
+    assert loop_residual_m(model, data) < 1e-14
+    reference = replace(machine("robot5r", 0.0), elbows=(-1, 1))
+    (q, _, _) = reference.tree(*reference.state(home_pose("robot5r"), np.zeros(3), np.zeros(3)))
+    np.testing.assert_allclose(data.qpos, q, rtol=0, atol=1e-12)

@@ -1,10 +1,11 @@
 """A parallel robot (:class:`~.closed_chain.ClosedChain`) as MJCF, the ``export --robot
 robot3rrr|robot5r --format mjcf`` file.
 
-The spanning tree: per leg a body ``proximal{i}`` on the world at the base joint with the
+The spanning tree, under one fixed body ``base`` (Pinocchio's MJCF reader follows only
+the first body of ``<worldbody>``): per leg a body ``proximal{i}`` at the base joint with the
 actuated hinge ``theta{i}`` (absolute angle from x), its child ``distal{i}`` at the
 proximal link's end with the hinge ``psi{i}`` (relative angle), a site ``tip{i}`` at the
-distal link's end; the end body ``platform`` (3-RRR) or ``end`` (five-bar) on the world
+distal link's end; the end body ``platform`` (3-RRR) or ``end`` (five-bar) on the base
 with the slides ``x``, ``y`` and (platform) the hinge ``phi``, a site ``point{i}`` at each
 point :math:`q_i` where leg i is pinned. The loops close by ``<connect site1="tip{i}"
 site2="point{i}">`` equality constraints (a 3-D point constraint: its z row is satisfied
@@ -89,8 +90,9 @@ def chain_mjcf(chain: ClosedChain) -> str:
         '    <body name="base">',
         '      <inertial pos="0 0 0" mass="0" diaginertia="0 0 0"/>',
     ]
+    bodies: list[str] = []  # the base's children, indented below
     for i, leg in enumerate(chain.legs, start=1):
-        lines += [
+        bodies += [
             f'    <body name="proximal{i}" pos="{vector(*leg.base_m, 0.0)}">',
             f'      <joint name="theta{i}" type="hinge" axis="0 0 1"/>',
             *_rod(
@@ -117,21 +119,23 @@ def chain_mjcf(chain: ClosedChain) -> str:
         ]
     end = "platform" if chain.rotates else "end"
     inertia = chain.end_inertia_kgm2
-    lines += [
+    bodies += [
         f'    <body name="{end}">',
         '      <joint name="x" type="slide" axis="1 0 0"/>',
         '      <joint name="y" type="slide" axis="0 1 0"/>',
     ]
     if chain.rotates:
-        lines.append('      <joint name="phi" type="hinge" axis="0 0 1"/>')
-    lines.append(
+        bodies.append('      <joint name="phi" type="hinge" axis="0 0 1"/>')
+    bodies.append(
         _inertial("      ", (0.0, 0.0), chain.end_mass_kg, (0.5 * inertia, 0.5 * inertia, inertia))
     )
-    lines += [
+    bodies += [
         f'      <site name="point{i}" pos="{vector(*point, 0.0)}"/>'
         for i, point in enumerate(chain.end_points_m, start=1)
     ]
-    lines += ["    </body>", "    </body>", "  </worldbody>", "  <equality>"]
+    bodies.append("    </body>")
+    lines += ["  " + line for line in bodies]
+    lines += ["    </body>", "  </worldbody>", "  <equality>"]
     lines += [
         f'    <connect name="loop{i}" site1="tip{i}" site2="point{i}"/>'
         for i in range(1, len(chain.legs) + 1)
