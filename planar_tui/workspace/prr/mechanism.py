@@ -49,5 +49,13 @@ class Mechanism3PRR(Mechanism):
     def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:
         return orientation.compute_range(robot, spec, budget)
 
+    def direct_kinematics(self, robot: Any, actuators: Any) -> Any:
+        """The poses at strokes ``actuators`` = :math:`s_i` (cm): the three-distance problem
+        with bases the sliders' joints :math:`B_i + s_i u_i` and distances :math:`l_i`."""
+        from planar_tui.kernels.direct_kinematics import three_distance_poses  # numpy
+
+        bases = prr.slider_joints_cm(robot, actuators)
+        return three_distance_poses(bases, robot.platform_points_cm, robot.distal_cm)
+
 
 MECHANISM = Mechanism3PRR()

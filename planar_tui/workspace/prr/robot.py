@@ -94,6 +94,16 @@ class Robot3PRR:
         return tuple(ends)
 
 
+def slider_joints_cm(robot: Robot3PRR, strokes_cm) -> tuple[tuple[float, float], ...]:
+    """The sliders' revolute joints :math:`B_i + s_i u_i` at the strokes :math:`s_i` (cm)."""
+    return tuple(
+        (bx + s * math.cos(math.radians(angle)), by + s * math.sin(math.radians(angle)))
+        for (bx, by), angle, s in zip(
+            robot.slider_points_cm, robot.slider_angles_deg, strokes_cm, strict=True
+        )
+    )
+
+
 def leg_parameters(robot: Robot3PRR, spec) -> object:
     """The kernel's (3, 9) array: per leg ``E'0x, E'0y, E'1x, E'1y, l`` (cm) and the
     labels' thresholds (:func:`~planar_tui.workspace.prr.tolerance.spec_thresholds`:

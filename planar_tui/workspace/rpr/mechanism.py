@@ -49,5 +49,12 @@ class Mechanism3RPR(Mechanism):
     def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:
         return orientation.compute_range(robot, spec, budget)
 
+    def direct_kinematics(self, robot: Any, actuators: Any) -> Any:
+        """The poses at leg lengths ``actuators`` = :math:`\\rho_i` (cm): the three-distance
+        problem with bases :math:`A_i` and distances :math:`\\rho_i`."""
+        from planar_tui.kernels.direct_kinematics import three_distance_poses  # numpy
+
+        return three_distance_poses(robot.base_joints_cm, robot.platform_points_cm, actuators)
+
 
 MECHANISM = Mechanism3RPR()
