@@ -185,6 +185,12 @@ def number(*, positive: bool = False, minimum: float | None = None, maximum=None
     return read
 
 
+def mass_setting(doc: str) -> Any:
+    """A parallel robot's mass, inertia or gravity key (SI units, the dynamics of its path
+    jobs): a number >= 0, default 0 (a massless robot, a horizontal machine)."""
+    return setting(number(minimum=0.0), default=0.0, type_doc="number >= 0", doc=doc)
+
+
 def integer(*, minimum: int | None = None, maximum: int = INT64_MAX):
     """A TOML integer, optionally >= ``minimum``, at most ``maximum``."""
 
