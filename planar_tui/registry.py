@@ -99,6 +99,8 @@ JOB_KINDS: Registry[JobKind] = Registry(
         "motion_uncertainty": "planar_tui.motion.job",
         "workspace3rpr": "planar_tui.workspace.rpr.job",
         "workspace3prr": "planar_tui.workspace.prr.job",
+        "path3rrr": "planar_tui.workspace.rrr.path",
+        "path5r": "planar_tui.workspace.fivebar.path",
     },
 )
 

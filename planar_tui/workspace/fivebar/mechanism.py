@@ -10,6 +10,7 @@ from typing import Any
 
 from planar_tui.workspace.fivebar.robot import workspace_polygon
 from planar_tui.workspace.fivebar.tolerance import TOLERANCE_KEYS_5R, tolerant_level_kernel
+from planar_tui.workspace.path.model import PathModel, PathSolution
 from planar_tui.workspace.paving.mechanism import Mechanism
 
 
@@ -64,6 +65,16 @@ class MechanismFiveBar(Mechanism):
             )
         )
         return circle_intersections(b1, robot.distal_cm[0], b2, robot.distal_cm[1])
+
+    def path_model(self, robot: Any) -> PathModel:
+        return PathModel(pose_dimension=2, actuators=2)
+
+    def inverse_dynamics(
+        self, robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any
+    ) -> PathSolution:
+        from planar_tui.workspace.fivebar.dynamics import solve_path  # numba
+
+        return solve_path(robot, spec, pose, rate, acceleration)
 
 
 MECHANISM = MechanismFiveBar()

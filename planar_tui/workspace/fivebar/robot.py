@@ -45,7 +45,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 from planar_tui.jobkind import RobotKind
-from planar_tui.schema import number, setting, string
+from planar_tui.schema import mass_setting, number, setting, string
 
 #: The working modes: both legs' elbow signs, or any branch.
 WORKING_MODES = ("any", "++", "+-", "-+", "--")
@@ -105,6 +105,16 @@ class Robot5R:
         type_doc=", ".join(f"`{m}`" for m in WORKING_MODES),
         doc="elbow signs σ1σ2 (θi = αi + σi βi), or `any` branch",
     )
+    proximal_mass_kg: float = mass_setting("mass of each proximal link (centre of mass mid-link)")
+    distal_mass_kg: float = mass_setting("mass of each distal link (centre of mass mid-link)")
+    proximal_inertia_kgm2: float = mass_setting(
+        "inertia of each proximal link about its centre of mass"
+    )
+    distal_inertia_kgm2: float = mass_setting(
+        "inertia of each distal link about its centre of mass"
+    )
+    end_mass_kg: float = mass_setting("a point mass at the end-effector joint P")
+    gravity_m_s2: float = mass_setting("gravity along -y in the plane (0: a horizontal machine)")
 
     def base_joints_cm(self) -> tuple[tuple[float, float], tuple[float, float]]:
         """:math:`A_1, A_2`."""

@@ -117,5 +117,21 @@ class Mechanism(Protocol):
         (:mod:`planar_tui.kernels.direct_kinematics`)."""
         raise NotImplementedError(f"{self.name} has no direct kinematics")
 
+    def path_model(self, robot: Any) -> Any:
+        """The path columns' shape: a :class:`~planar_tui.workspace.path.model.PathModel`
+        (pose dimension, actuators, revolute or prismatic)."""
+        problem = f"{self.name} has no path dynamics"
+        raise NotImplementedError(problem)
+
+    def inverse_dynamics(
+        self, robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any
+    ) -> Any:
+        """Path kinematics and inverse dynamics at sampled platform states ((n, d) arrays
+        in SI units: m, rad) in the working mode of ``spec``: a
+        :class:`~planar_tui.workspace.path.model.PathSolution` (actuator coordinates,
+        rates, accelerations, efforts, status and closure residual per time)."""
+        problem = f"{self.name} has no path dynamics"
+        raise NotImplementedError(problem)
+
 
 __all__ = ["Mechanism"]

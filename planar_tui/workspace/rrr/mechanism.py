@@ -15,6 +15,7 @@ from collections.abc import Callable
 from types import MappingProxyType
 from typing import Any
 
+from planar_tui.workspace.path.model import PathModel, PathSolution
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.rrr.orientation import compute_orientation_workspace, reach_box_for
 from planar_tui.workspace.rrr.robot import TOLERANCE_KEYS_3RRR
@@ -86,6 +87,16 @@ class Mechanism3RRR(Mechanism):
             for (ax, ay), theta in zip(robot.base_joints_cm(), actuators, strict=True)
         ]
         return three_distance_poses(elbows, robot.platform_points_cm(), (l2, l2, l2))
+
+    def path_model(self, robot: Any) -> PathModel:
+        return PathModel(pose_dimension=3, actuators=3)
+
+    def inverse_dynamics(
+        self, robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any
+    ) -> PathSolution:
+        from planar_tui.workspace.rrr.dynamics import solve_path  # numba
+
+        return solve_path(robot, spec, pose, rate, acceleration)
 
 
 MECHANISM = Mechanism3RRR()

@@ -13,7 +13,7 @@ import math
 from dataclasses import dataclass
 
 from planar_tui.jobkind import RobotKind
-from planar_tui.schema import number, setting, string
+from planar_tui.schema import mass_setting, number, setting, string
 from planar_tui.workspace.paving.layout import three_points
 
 
@@ -47,6 +47,19 @@ class Robot3RRR:
         type_doc="3 points `[x, y]`",
         doc="explicit platform points `q1, q2, q3` in the platform frame",
     )
+    proximal_mass_kg: float = mass_setting("mass of each proximal link (centre of mass mid-link)")
+    distal_mass_kg: float = mass_setting("mass of each distal link (centre of mass mid-link)")
+    platform_mass_kg: float = mass_setting(
+        "mass of the platform (centre of mass at the platform frame's origin)"
+    )
+    proximal_inertia_kgm2: float = mass_setting(
+        "inertia of each proximal link about its centre of mass"
+    )
+    distal_inertia_kgm2: float = mass_setting(
+        "inertia of each distal link about its centre of mass"
+    )
+    platform_inertia_kgm2: float = mass_setting("inertia of the platform about its centre of mass")
+    gravity_m_s2: float = mass_setting("gravity along -y in the plane (0: a horizontal machine)")
 
     @property
     def paper_layout(self) -> bool:

@@ -1,0 +1,231 @@
+"""The path jobs' shared part: their common keys, the runner, the CSV columns, the summary
+and the :class:`~planar_tui.jobkind.JobKind` a robot's ``path.py`` declares with
+:func:`path_job_kind`.
+
+A path job samples a quintic rest-to-rest platform path (:mod:`.quintic`) at ``steps + 1``
+times, asks the robot's mechanism for its actuators' coordinates and efforts there
+(``inverse_dynamics``) and writes one CSV row per time: ``t_s, x_cm, y_cm[, phi_deg]``,
+per actuator its coordinate, rate and acceleration, then the efforts and the powers. A
+time where a leg cannot close, leaves its joint limits or meets a singularity fails the
+job (exit code 1, one line naming the first such time). With ``feed_forward = true`` the
+platform's forward dynamics (:mod:`.forward`) is integrated under the path's own efforts
+and its largest deviation from the path and the loop-closure drift are reported.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from planar_tui.csvio import CsvTable
+from planar_tui.errors import JobError
+from planar_tui.jobkind import Command, Job, JobKind, JobResult, PreparedJob
+from planar_tui.progress import Progress
+from planar_tui.schema import boolean, integer, number, numbers, setting
+from planar_tui.workspace.path.model import OK, PathModel, PathSolution, problem_text
+
+#: Most steps of one path (its CSV rows minus one).
+MAX_STEPS = 1_000_000
+
+POSE_DOCS = {3: "`[x_cm, y_cm, phi_deg]`", 2: "`[x_cm, y_cm]`"}
+
+
+def pose_setting(dimension: int, doc: str) -> Any:
+    """``from_pose`` / ``to_pose``: the platform's pose, cm and degrees."""
+    return setting(numbers(length=dimension), type_doc=POSE_DOCS[dimension], doc=doc)
+
+
+def duration_setting() -> Any:
+    return setting(
+        number(positive=True), default=1.0, type_doc="number > 0", doc="the path's duration"
+    )
+
+
+def steps_setting() -> Any:
+    return setting(
+        integer(minimum=1, maximum=MAX_STEPS),
+        default=100,
+        type_doc=f"integer in [1, {MAX_STEPS:,}]",
+        doc="time steps: the path is sampled at `steps + 1` times `t = k T / steps`",
+    )
+
+
+def feed_forward_setting() -> Any:
+    return setting(
+        boolean(),
+        default=False,
+        type_doc="boolean",
+        doc="also integrate the forward dynamics (RK4, same steps) under the path's own "
+        "efforts and report the largest deviation from the path and the closure drift",
+    )
+
+
+def pose_si(pose: tuple[float, ...]) -> tuple[float, ...]:
+    """A preset's pose (cm, cm[, deg]) in SI units (m, m[, rad])."""
+    return (pose[0] / 100.0, pose[1] / 100.0, *(math.radians(p) for p in pose[2:]))
+
+
+@dataclass(frozen=True, kw_only=True)
+class PathResult(JobResult):
+    """A path job's samples: times (s), the mechanism's solution, and with
+    ``feed_forward`` the forward dynamics' largest pose deviation (m or rad) and drift."""
+
+    times_s: Any
+    solution: PathSolution
+    model: PathModel
+    deviation: float | None = None
+    drift_m: float | None = None
+
+
+def path_header(model: PathModel) -> tuple[str, ...]:
+    """The CSV columns (module docstring)."""
+    pose = ("x_cm", "y_cm", "phi_deg")[: model.pose_dimension]
+    unit = "cm" if model.prismatic else "rad"
+    actuators = range(1, model.actuators + 1)
+    name = model.coordinate
+    return (
+        "t_s",
+        *pose,
+        *(f"{name}{i}_{unit}{suffix}" for i in actuators for suffix in ("", "_s", "_s2")),
+        *(f"{model.effort}{i}_{model.effort_unit}" for i in actuators),
+        *(f"power{i}_W" for i in actuators),
+    )
+
+
+def figures(model: PathModel, solution: PathSolution) -> dict[str, float]:
+    """Per actuator: peak |effort|, RMS effort and peak |power| over the samples."""
+    import numpy as np
+
+    effort, power = solution.effort, solution.effort * solution.rate
+    out: dict[str, float] = {}
+    for i in range(model.actuators):
+        name, unit = f"{model.effort}{i + 1}", model.effort_unit
+        out[f"{name}_abs_max_{unit}"] = float(np.abs(effort[:, i]).max())
+        out[f"{name}_rms_{unit}"] = float(np.sqrt(np.mean(effort[:, i] ** 2)))
+        out[f"power{i + 1}_abs_max_W"] = float(np.abs(power[:, i]).max())
+    return out
+
+
+def figure_names(job: Job[Any, Any]) -> tuple[str, ...]:
+    """The columns :func:`point_figures` reports, without running the job."""
+    model = job.spec.mechanism.path_model(job.robot)
+    names = []
+    for i in range(1, model.actuators + 1):
+        name, unit = f"{model.effort}{i}", model.effort_unit
+        names += [f"{name}_abs_max_{unit}", f"{name}_rms_{unit}", f"power{i}_abs_max_W"]
+    return tuple(names)
+
+
+def point_figures(job: Job[Any, Any], result: PathResult) -> dict[str, float]:
+    """A sweep row's figures (:func:`figures`)."""
+    return figures(result.model, result.solution)
+
+
+def _listed(values: Any) -> str:
+    return "[" + ", ".join(f"{v:.4g}" for v in values) + "]"
+
+
+def run_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathResult:
+    """Sample the path, solve the mechanism at every time, fail at the first bad time."""
+    import numpy as np
+
+    from planar_tui.workspace.path.quintic import quintic, sample_times
+
+    job, spec, robot = ready.job, ready.prepared, ready.robot
+    mechanism = spec.mechanism
+    model = mechanism.path_model(robot)
+    times = sample_times(spec.duration_s, spec.steps)
+    start, stop = pose_si(spec.from_pose), pose_si(spec.to_pose)
+    progress.start(len(times), "inverse dynamics")
+    pose, rate, acceleration = quintic(start, stop, spec.duration_s, times)
+    solution = mechanism.inverse_dynamics(robot, spec, pose, rate, acceleration)
+    progress.advance(len(times))
+    bad = np.flatnonzero(solution.status != OK)
+    if len(bad):
+        k = int(bad[0])
+        raise JobError(
+            job.preset_path,
+            job.key,
+            f"the path fails at t = {times[k]:.6g} s (step {k}): "
+            f"{problem_text(int(solution.status[k]))}",
+            "a path inside the workspace, off its singularities",
+        )
+    pose_columns = np.column_stack([pose[:, :2] * 100.0, np.degrees(pose[:, 2:])])
+    scale = 100.0 if model.prismatic else 1.0
+    coordinates = np.stack(
+        [solution.coordinate * scale, solution.rate * scale, solution.acceleration * scale], axis=2
+    ).reshape(len(times), -1)
+    power = solution.effort * solution.rate
+    rows = np.column_stack([times, pose_columns, coordinates, solution.effort, power])
+    found = figures(model, solution)
+    unit = model.effort_unit.replace("Nm", "N m")
+    summary = (
+        f"{len(times)} poses over {spec.duration_s:g} s, peak |{model.effort}| = "
+        f"{_listed(found[k] for k in found if '_abs_max_N' in k)} {unit}, RMS = "
+        f"{_listed(found[k] for k in found if '_rms_' in k)} {unit}, peak power = "
+        f"{_listed(found[k] for k in found if k.startswith('power'))} W"
+    )
+    deviation = drift = None
+    if spec.feed_forward:
+        deviation, drift = feed_forward(mechanism, robot, spec, start, stop, times)
+        summary += f"; feed-forward: deviation {deviation:.3g}, closure drift {drift:.3g} m"
+    return PathResult(
+        table=CsvTable(path_header(model), rows),
+        summary=summary,
+        times_s=times,
+        solution=solution,
+        model=model,
+        deviation=deviation,
+        drift_m=drift,
+    )
+
+
+def feed_forward(
+    mechanism: Any, robot: Any, spec: Any, start: Any, stop: Any, times: Any
+) -> tuple[float, float]:
+    """Integrate the forward dynamics from rest at ``start`` under the path's own efforts
+    (the inverse dynamics of the quintic at every RK4 stage's time): the largest deviation
+    of the pose from the path (m and rad mixed, max-norm) and the closure drift (m)."""
+    import numpy as np
+
+    from planar_tui.workspace.path.forward import simulate
+    from planar_tui.workspace.path.quintic import quintic
+
+    def effort(t: float) -> Any:
+        state = quintic(start, stop, spec.duration_s, np.array([t]))
+        return mechanism.inverse_dynamics(robot, spec, *state).effort[0]
+
+    zero = np.zeros(len(start))
+    motion = simulate(mechanism, robot, spec, start, zero, effort, spec.duration_s, spec.steps)
+    path = quintic(start, stop, spec.duration_s, times)[0]
+    return float(np.abs(motion.pose - path).max()), motion.drift_m
+
+
+def path_job_kind(
+    name: str,
+    robot_kind: str,
+    settings: type,
+    robot_words: str,
+    prepare: Callable[[Job[Any, Any]], Any],
+    warmup: str,
+) -> JobKind:
+    """The :class:`JobKind` of a robot's path job: ``prepare(job)`` returns the spec the
+    mechanism is given (its working mode resolved; :class:`PresetError` where it cannot)."""
+    return JobKind(
+        name=name,
+        robot_kind=robot_kind,
+        settings=settings,
+        run=run_path,
+        summary=f"{robot_words} actuator efforts along a quintic platform path",
+        prepare=prepare,
+        point_figures=point_figures,
+        figure_names=figure_names,
+        command=Command(
+            name,
+            f"Actuator efforts of the {robot_words} along the quintic path of every {name} "
+            "job: one CSV per job (pose, actuator coordinates, efforts, powers by time).",
+        ),
+        warmup=warmup,
+    )
