@@ -139,3 +139,64 @@ class Chain:
         q = np.array(self.q)
         heights = q[1::3]
         return 0.5 * qd @ self.mass_matrix() @ qd + gravity * np.dot(self.masses, heights)
+
+
+def rpr_chain(bases, points, pose, body) -> tuple[Chain, object]:
+    """The 3-RPR in full coordinates: platform (body 0), per leg a cylinder turning about
+    ``A_i`` (centre ``c`` from it) and a piston (centre ``c_p`` back from ``B_i``) sharing
+    its angle, its centre on the cylinder's axis, its end at the platform joint."""
+    mc, ic, cc, mp, ip, cp, m, inertia = body[:8]
+    chain = Chain()
+    platform = chain.body(m, inertia, pose[:2], pose[2])
+    pistons = []
+    for a, q in zip(np.asarray(bases), np.asarray(points), strict=True):
+        v = np.array(pose[:2]) + rotate(pose[2], q) - a
+        e, psi = v / np.linalg.norm(v), np.arctan2(v[1], v[0])
+        cylinder = chain.body(mc, ic, a + cc * e, psi)
+        piston = chain.body(mp, ip, a + v - cp * e, psi)
+        chain.coincide(cylinder, (-cc, 0.0), fixed=a)
+        chain.same_angle(piston, cylinder)
+        chain.on_line(piston, (0.0, 0.0), cylinder, (-cc, 0.0))
+        chain.coincide(piston, (cp, 0.0), platform, q)
+        pistons.append((piston, a))
+
+    def actuators(qs):
+        rows = []
+        for piston, a in pistons:
+            point, jac, _ = chain.point(qs, piston, (cp, 0.0))
+            rows.append((point - a) / np.linalg.norm(point - a) @ jac)
+        return np.array(rows)
+
+    return chain, actuators
+
+
+def prr_chain(bases, angles, points, links, modes, pose, body) -> tuple[Chain, object]:
+    """The 3-PRR in full coordinates: platform (body 0), per leg a slider on its rail
+    (angle fixed at 0) and a link from the slider to the platform joint."""
+    ms, ml, il, m, inertia = body[:5]
+    chain = Chain()
+    platform = chain.body(m, inertia, pose[:2], pose[2])
+    sliders = []
+    for b, t, q, link, sigma in zip(
+        np.asarray(bases), angles, np.asarray(points), links, modes, strict=True
+    ):
+        u = np.array([np.cos(t), np.sin(t)])
+        c = np.array(pose[:2]) + rotate(pose[2], q)
+        g = c - b
+        stroke = g @ u + sigma * np.sqrt(link**2 - (g[0] * u[1] - g[1] * u[0]) ** 2)
+        s = b + stroke * u
+        slider = chain.body(ms, 0.0, s, 0.0)
+        rod = chain.body(ml, il, 0.5 * (s + c), np.arctan2(c[1] - s[1], c[0] - s[0]))
+        chain.same_angle(slider, angle=0.0)
+        chain.on_line(slider, (0.0, 0.0), fixed=b, direction=u)
+        chain.coincide(rod, (-0.5 * link, 0.0), slider, (0.0, 0.0))
+        chain.coincide(rod, (0.5 * link, 0.0), platform, q)
+        sliders.append((slider, u))
+
+    def actuators(qs):
+        rows = np.zeros((3, chain.size))
+        for row, (slider, u) in enumerate(sliders):
+            rows[row, 3 * slider : 3 * slider + 2] = u
+        return rows
+
+    return chain, actuators

@@ -7,6 +7,7 @@ from collections.abc import Callable
 from types import MappingProxyType
 from typing import Any
 
+from planar_tui.workspace.path.model import PathModel, PathSolution
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.prr import orientation, singularity
 from planar_tui.workspace.prr import robot as prr
@@ -48,6 +49,16 @@ class Mechanism3PRR(Mechanism):
 
     def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:
         return orientation.compute_range(robot, spec, budget)
+
+    def path_model(self, robot: Any) -> PathModel:
+        return PathModel(pose_dimension=3, actuators=3, prismatic=True)
+
+    def inverse_dynamics(
+        self, robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any
+    ) -> PathSolution:
+        from planar_tui.workspace.prr.dynamics import solve_path  # numba
+
+        return solve_path(robot, spec, pose, rate, acceleration)
 
     def direct_kinematics(self, robot: Any, actuators: Any) -> Any:
         """The poses at strokes ``actuators`` = :math:`s_i` (cm): the three-distance problem
