@@ -12,10 +12,12 @@ from __future__ import annotations
 
 import csv
 import math
+import re
 
 import numpy as np
 import pytest
 
+from planar_tui import batch
 from planar_tui.presets import load_preset
 from tests import closed_chain
 from tests.conftest import PRESETS
@@ -212,3 +214,18 @@ def test_3prr_mode_asked_where_both_reach(cli, tmp_path):
     result, lines = run_failing(cli, tmp_path, text)
     assert result.exit_code == 2, result.output
     assert len(lines) == 1 and "slider_modes" in lines[0] and "leg 3 closes in both" in lines[0]
+
+
+@pytest.mark.parametrize("robot", ["3-RPR", "3-PRR"])
+def test_feed_forward_follows_the_path(robot, tmp_path):
+    """The platform's forward dynamics (RK4, the path's steps) under the path's own forces
+    stays on the path to the integrator's accuracy; the legs close exactly."""
+    if robot == "3-RPR":
+        text = BUNDLED.read_text(encoding="utf-8").replace("steps = 200", "steps = 100")
+    else:
+        text = PRR_PRESET
+    (job,) = load_preset(write(tmp_path / "ff.toml", text + "feed_forward = true\n")).jobs
+    summary = batch.run_job(job).summary
+    found = re.search(r"deviation ([0-9.e+-]+), closure drift ([0-9.e+-]+) m", summary)
+    assert found, summary
+    assert float(found[1]) < 1e-4 and float(found[2]) < 1e-12
