@@ -32,6 +32,7 @@ steps = 20
 elbow = [1, -1, -1]
 joint_limits_deg = [[20, 70], [110, 160], [245, 295]]
 output = "p.csv"
+plot = "p.png"
 """
 
 
@@ -60,6 +61,7 @@ def test_the_csv_has_a_row_per_time_and_the_columns_of_the_spec(cli, tmp_path):
     assert np.all((degrees >= limits[:, 0]) & (degrees <= limits[:, 1]))
     np.testing.assert_allclose(values[:, -3:], values[:, -6:-3] * values[:, [5, 8, 11]])
     assert "peak |tau| = [" in result.output
+    assert (tmp_path / "out" / "p.png").read_bytes().startswith(b"\x89PNG")
 
 
 def test_the_bundled_preset_runs_inside_its_workspace(cli, tmp_path):
