@@ -202,3 +202,16 @@ def test_constant_efforts_trade_work_for_energy():
     work = push @ (theta[1] - theta[0])
     assert abs(work) > 1e-5
     assert work == pytest.approx(energies[1] - energies[0], rel=1e-6)
+
+
+def test_the_declared_figure_names_are_those_a_run_reports(tmp_path):
+    from planar_tui.batch import prepare_jobs, run_job
+    from planar_tui.presets import load_preset
+    from planar_tui.registry import JOB_KINDS
+
+    path = tmp_path / "p.toml"
+    path.write_text(ROBOT + JOB)
+    (job,) = prepare_jobs(load_preset(path).jobs_of("path3rrr"))
+    figures = JOB_KINDS["path3rrr"].point_figures(job, run_job(job))
+    assert JOB_KINDS["path3rrr"].figure_names(job) == tuple(figures)
+    assert len(figures) == 9 and figures["tau3_abs_max_Nm"] > 0
