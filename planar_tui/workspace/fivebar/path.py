@@ -9,7 +9,7 @@ from typing import ClassVar
 
 from planar_tui.errors import PresetError
 from planar_tui.jobkind import Job
-from planar_tui.schema import TableReader, setting
+from planar_tui.schema import TableReader, plot_setting, setting
 from planar_tui.workspace.fivebar.mechanism import MECHANISM
 from planar_tui.workspace.fivebar.robot import Robot5R, leg_angles
 from planar_tui.workspace.path.job import (
@@ -51,6 +51,7 @@ class Path5RSpec:
         doc="working mode per leg: θ = α + β (`1`) or α − β (`-1`)",
     )
     feed_forward: bool = feed_forward_setting()
+    plot: str | None = plot_setting()
 
     mechanism: ClassVar[Mechanism] = MECHANISM
 

@@ -227,5 +227,6 @@ def path_job_kind(
             f"Actuator efforts of the {robot_words} along the quintic path of every {name} "
             "job: one CSV per job (pose, actuator coordinates, efforts, powers by time).",
         ),
+        figure="planar_tui.figures.path:from_result",
         warmup=warmup,
     )

@@ -12,6 +12,7 @@ from typing import ClassVar
 
 from planar_tui.errors import PresetError
 from planar_tui.jobkind import Job
+from planar_tui.schema import plot_setting
 from planar_tui.workspace.path.job import (
     duration_setting,
     feed_forward_setting,
@@ -40,6 +41,7 @@ class Path3PRRSpec:
         "(`-1`) the foot of the perpendicular from the platform joint to its line",
     )
     feed_forward: bool = feed_forward_setting()
+    plot: str | None = plot_setting()
 
     mechanism: ClassVar[Mechanism] = MECHANISM
 

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 from planar_tui.jobkind import Job
-from planar_tui.schema import TableReader, setting
+from planar_tui.schema import TableReader, plot_setting, setting
 from planar_tui.workspace.path.job import (
     duration_setting,
     feed_forward_setting,
@@ -43,6 +43,7 @@ class Path3RPRSpec:
         doc="actuated leg lengths ρ1, ρ2, ρ3, as the workspace job's",
     )
     feed_forward: bool = feed_forward_setting()
+    plot: str | None = plot_setting()
 
     mechanism: ClassVar[Mechanism] = MECHANISM
 

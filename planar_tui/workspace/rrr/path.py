@@ -10,7 +10,7 @@ from typing import ClassVar
 
 from planar_tui.errors import PresetError
 from planar_tui.jobkind import Job
-from planar_tui.schema import TableReader, setting
+from planar_tui.schema import TableReader, plot_setting, setting
 from planar_tui.workspace.path.job import (
     duration_setting,
     feed_forward_setting,
@@ -51,6 +51,7 @@ class Path3RRRSpec:
         doc="active-joint limits θ1, θ2, θ3, as the workspace job's",
     )
     feed_forward: bool = feed_forward_setting()
+    plot: str | None = plot_setting()
 
     mechanism: ClassVar[Mechanism] = MECHANISM
 

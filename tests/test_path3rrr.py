@@ -1,0 +1,217 @@
+"""The ``[[path3rrr]]`` job: its CSV, summary and figures from the command line, the
+bundled preset, a path that leaves the workspace (exit 1, the time named), bad input
+(exit 2, one line), and the forward dynamics driven by the path's own efforts."""
+
+from __future__ import annotations
+
+import csv
+
+import numpy as np
+import pytest
+
+from planar_tui.workspace.path.forward import simulate
+from planar_tui.workspace.path.job import pose_si
+from planar_tui.workspace.path.quintic import quintic, sample_times
+from planar_tui.workspace.rrr.mechanism import MECHANISM
+from planar_tui.workspace.rrr.path import Path3RRRSpec
+from planar_tui.workspace.rrr.robot import Robot3RRR
+from tests.conftest import PRESETS
+
+ROBOT = """[robot3rrr]
+proximal_mass_kg = 0.6
+distal_mass_kg = 0.4
+platform_mass_kg = 1.5
+platform_inertia_kgm2 = 0.025
+gravity_m_s2 = 9.81
+"""
+JOB = """[[path3rrr]]
+from_pose = [36, 5, -2]
+to_pose = [44, 9, 2]
+duration_s = 0.5
+steps = 20
+elbow = [1, -1, -1]
+joint_limits_deg = [[20, 70], [110, 160], [245, 295]]
+output = "p.csv"
+plot = "p.png"
+"""
+
+
+def run(cli, tmp_path, text):
+    preset = tmp_path / "p.toml"
+    preset.write_text(text, encoding="utf-8")
+    return preset, cli("run", preset, "--out-dir", tmp_path / "out")
+
+
+def test_the_csv_has_a_row_per_time_and_the_columns_of_the_spec(cli, tmp_path):
+    _, result = run(cli, tmp_path, ROBOT + JOB)
+    assert result.exit_code == 0, result.output
+    with open(tmp_path / "out" / "p.csv", newline="") as handle:
+        rows = list(csv.reader(handle))
+    header = rows[0]
+    assert header[:4] == ["t_s", "x_cm", "y_cm", "phi_deg"]
+    assert header[4:7] == ["theta1_rad", "theta1_rad_s", "theta1_rad_s2"]
+    assert header[-6:] == ["tau1_Nm", "tau2_Nm", "tau3_Nm", "power1_W", "power2_W", "power3_W"]
+    values = np.array(rows[1:], dtype=float)
+    assert len(values) == 21
+    np.testing.assert_allclose(values[:, 0], np.arange(21) * 0.025, atol=1e-15)
+    np.testing.assert_allclose(values[[0, -1], 1:4], [[36, 5, -2], [44, 9, 2]], atol=1e-12)
+    # the Table-3 limits hold the angles, the power is effort times rate
+    limits = np.array([[20, 70], [110, 160], [245, 295]])
+    degrees = np.degrees(values[:, [4, 7, 10]])
+    assert np.all((degrees >= limits[:, 0]) & (degrees <= limits[:, 1]))
+    np.testing.assert_allclose(values[:, -3:], values[:, -6:-3] * values[:, [5, 8, 11]])
+    assert "peak |tau| = [" in result.output
+    assert (tmp_path / "out" / "p.png").read_bytes().startswith(b"\x89PNG")
+
+
+def test_the_bundled_preset_runs_inside_its_workspace(cli, tmp_path):
+    result = cli("run", PRESETS / "path-3rrr.toml", "--out-dir", tmp_path)
+    assert result.exit_code == 0, result.output
+    values = np.loadtxt(tmp_path / "path-3rrr.csv", delimiter=",", skiprows=1)
+    assert values.shape == (1001, 19)
+    assert np.all(np.isfinite(values))
+    # rest to rest: the efforts at both ends hold the robot against gravity alone
+    assert np.abs(values[[0, -1], 5:13:3]).max() < 1e-12
+
+
+def test_a_path_leaving_the_joint_limits_fails_naming_the_first_time(cli, tmp_path):
+    text = ROBOT + JOB.replace("[36, 5, -2]", "[34, 5, 0]").replace("[44, 9, 2]", "[46, 9, 0]")
+    text = text.replace("[1, -1, -1]", "[1, -1, 1]")
+    preset, result = run(cli, tmp_path, text)
+    assert result.exit_code == 1, result.output
+    lines = [line for line in result.stderr.splitlines() if line.startswith("error:")]
+    assert len(lines) == 1, result.stderr
+    assert f"{preset}: path3rrr[1]: the path fails at t = " in lines[0]
+    assert "leg 3 leaves its joint limits" in lines[0]
+    assert not (tmp_path / "out" / "p.csv").exists()
+    # the time named is the first sampled time out of the limits
+    t = float(lines[0].split("t = ")[1].split(" s")[0])
+    spec = Path3RRRSpec(
+        from_pose=(34, 5, 0),
+        to_pose=(46, 9, 0),
+        duration_s=0.5,
+        steps=20,
+        elbow=(1, -1, 1),
+        joint_limits_deg=((20, 70), (110, 160), (245, 295)),
+    )
+    times = sample_times(0.5, 20)
+    states = quintic(pose_si(spec.from_pose), pose_si(spec.to_pose), 0.5, times)
+    status = MECHANISM.inverse_dynamics(Robot3RRR(), spec, *states).status
+    assert t == pytest.approx(times[np.flatnonzero(status)[0]])
+    assert status[np.flatnonzero(status)[0] - 1] == 0
+
+
+def test_a_singular_pose_fails(cli, tmp_path):
+    """Leg 1 stretched straight (|C1 - A1| = l1 + l2 at t = 0): a serial singularity."""
+    text = ROBOT + JOB.replace("[36, 5, -2]", "[60, 0, 0]").replace("[44, 9, 2]", "[55, 5, 0]")
+    text = text.replace("joint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n", "")
+    _, result = run(cli, tmp_path, text)
+    assert result.exit_code == 1, result.output
+    assert "at t = 0 s (step 0): leg 1 meets a serial (type I) singularity" in result.stderr
+
+
+BAD = {
+    "a pose of two numbers": (JOB.replace("[36, 5, -2]", "[36, 5]"), "path3rrr[1].from_pose"),
+    "zero steps": (JOB.replace("steps = 20", "steps = 0"), "path3rrr[1].steps"),
+    "a negative duration": (
+        JOB.replace("duration_s = 0.5", "duration_s = -1"),
+        "path3rrr[1].duration_s",
+    ),
+    "an elbow of 2": (JOB.replace("[1, -1, -1]", "[1, 2, -1]"), "path3rrr[1].elbow"),
+    "reversed limits": (JOB.replace("[20, 70]", "[70, 20]"), "path3rrr[1].joint_limits_deg"),
+    "a negative mass": (JOB, "robot3rrr.distal_mass_kg"),
+    "both modes at the start": (
+        JOB.replace("elbow = [1, -1, -1]\n", "").replace(
+            "joint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n", ""
+        ),
+        "path3rrr[1].elbow",
+    ),
+}
+
+
+@pytest.mark.parametrize("case", BAD)
+def test_bad_input_is_one_line_exit_2_nothing_written(cli, tmp_path, case):
+    job, key = BAD[case]
+    robot = (
+        ROBOT.replace("distal_mass_kg = 0.4", "distal_mass_kg = -0.4") if "mass" in case else ROBOT
+    )
+    preset, result = run(cli, tmp_path, robot + job)
+    assert result.exit_code == 2, result.output
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1, result.stderr
+    assert lines[0].startswith(f"error: {preset}: {key}: "), lines[0]
+    assert not (tmp_path / "out").exists()
+
+
+ROBOT_MODEL = Robot3RRR(
+    proximal_mass_kg=0.6,
+    distal_mass_kg=0.4,
+    platform_mass_kg=1.5,
+    proximal_inertia_kgm2=0.0045,
+    distal_inertia_kgm2=0.003,
+    platform_inertia_kgm2=0.025,
+    gravity_m_s2=9.81,
+)
+SPEC = Path3RRRSpec(from_pose=(36, 5, -2), to_pose=(44, 9, 2), duration_s=0.5, elbow=(1, -1, -1))
+
+
+def feed_forward_deviation(steps):
+    start, stop = pose_si(SPEC.from_pose), pose_si(SPEC.to_pose)
+
+    def effort(t):
+        states = quintic(start, stop, SPEC.duration_s, np.array([t]))
+        return MECHANISM.inverse_dynamics(ROBOT_MODEL, SPEC, *states).effort[0]
+
+    motion = simulate(MECHANISM, ROBOT_MODEL, SPEC, start, np.zeros(3), effort, 0.5, steps)
+    path = quintic(start, stop, SPEC.duration_s, motion.times_s)[0]
+    return np.abs(motion.pose - path).max(), motion.drift_m
+
+
+def test_feeding_the_paths_efforts_forward_reproduces_the_path_to_rk4_accuracy():
+    coarse, drift = feed_forward_deviation(80)
+    fine, _ = feed_forward_deviation(160)
+    assert fine < 1e-6
+    assert 10.0 < coarse / fine < 24.0  # fourth order: 16
+    assert drift < 1e-14
+
+
+def test_constant_efforts_trade_work_for_energy():
+    """Holding torques at rest keep the platform still; other constant torques do the
+    work tau . (theta(T) - theta(0)) = change of kinetic plus potential energy (the
+    energy from the Lagrange reference's full coordinates)."""
+    from tests.lagrange_planar import Leg, rr_coordinates, rr_system
+    from tests.test_parallel_dynamics_lagrange import rrr_legs
+
+    start = np.array(pose_si(SPEC.from_pose))
+    zero = np.zeros(3)
+    rest = quintic(start, start, 1.0, np.zeros(1))
+    hold = MECHANISM.inverse_dynamics(ROBOT_MODEL, SPEC, *rest).effort[0]
+    still = simulate(MECHANISM, ROBOT_MODEL, SPEC, start, zero, lambda t: hold, 0.1, 10)
+    assert np.abs(still.pose - start).max() < 1e-12
+    push = hold + np.array([0.2, -0.15, 0.1])
+    motion = simulate(MECHANISM, ROBOT_MODEL, SPEC, start, zero, lambda t: push, 0.1, 200)
+    legs: list[Leg] = rrr_legs(ROBOT_MODEL, SPEC.elbow)
+    system = rr_system(legs, (0.6, 0.4), (0.0045, 0.003), (1.5, 0.025), ROBOT_MODEL.gravity_m_s2)
+    energies = []
+    for pose, rate in ((motion.pose[0], motion.rate[0]), (motion.pose[-1], motion.rate[-1])):
+        q = rr_coordinates(legs, pose)
+        energies.append(system.energy(q, system.velocities(q, rate)))
+    ends = motion.pose[[0, -1]]
+    zeros = np.zeros((2, 3))
+    theta = MECHANISM.inverse_dynamics(ROBOT_MODEL, SPEC, ends, zeros, zeros).coordinate
+    work = push @ (theta[1] - theta[0])
+    assert abs(work) > 1e-5
+    assert work == pytest.approx(energies[1] - energies[0], rel=1e-6)
+
+
+def test_the_declared_figure_names_are_those_a_run_reports(tmp_path):
+    from planar_tui.batch import prepare_jobs, run_job
+    from planar_tui.presets import load_preset
+    from planar_tui.registry import JOB_KINDS
+
+    path = tmp_path / "p.toml"
+    path.write_text(ROBOT + JOB)
+    (job,) = prepare_jobs(load_preset(path).jobs_of("path3rrr"))
+    figures = JOB_KINDS["path3rrr"].point_figures(job, run_job(job))
+    assert JOB_KINDS["path3rrr"].figure_names(job) == tuple(figures)
+    assert len(figures) == 9 and figures["tau3_abs_max_Nm"] > 0
