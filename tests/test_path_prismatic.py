@@ -39,6 +39,7 @@ duration_s = 0.4
 steps = 20
 slider_modes = [1, 1, 1]
 output = "prr.csv"
+plot = "prr.svg"
 """
 
 
@@ -129,6 +130,7 @@ def test_3prr_path(cli, tmp_path):
     robot, spec = job.robot, job.spec
     out = tmp_path / "prr.csv"
     assert header(out) == columns()
+    assert "force (N)" in (tmp_path / "prr.svg").read_text(encoding="utf-8")
     rows = read(out)
     assert len(rows) == 21
     from planar_tui.workspace.prr.dynamics import body_array
