@@ -32,7 +32,8 @@ identically (the spurious factor :math:`1 + t^2` of the classic elimination in
 modes remain: the classic sextic. All eight roots come from the companion matrix
 (``numpy.roots``), so no real root is missed by a search; each root near the unit circle
 gives candidates for :math:`u` (Cramer's rule, and both intersections of circles 1 and 2,
-which also covers :math:`\\det M = 0`), polished by Newton's method on the three equations
+which also covers :math:`\\det M = 0`; those that nearly close all three legs, at least the
+best one, :data:`START_MISFIT`), polished by Newton's method on the three equations
 and kept when their residual is below ``tolerance`` times the problem's scale. Duplicates
 (one pose reached from several candidates) are merged.
 
@@ -45,6 +46,9 @@ import numpy as np
 
 #: Samples of :math:`F` for its Fourier coefficients (harmonics 0..4, exactly).
 SAMPLES = 16
+#: Largest leg misfit :math:`||v_i|^2 - d_i^2|` (unit scale) of a start Newton polishes,
+#: beyond the best one at a root.
+START_MISFIT = 1e-3
 
 
 def _cross(a, b):
@@ -99,16 +103,15 @@ def _residuals(pose, bases, points, distances):
 
 
 def _polish(pose, bases, points, distances, iterations=30):
-    """Newton's method on the three leg equations (least squares where singular)."""
+    """Newton's method on the three leg equations (least squares where singular), at unit
+    scale: stops once a step is below 1e-14 (quadratic convergence: the next one would be
+    below rounding)."""
     pose = np.array(pose, dtype=np.float64)
     for _ in range(iterations):
         f, jac = _residuals(pose, bases, points, distances)
         step = np.linalg.lstsq(jac, -f, rcond=None)[0]
         pose += step
-        if (
-            np.max(np.abs(step[:2])) <= 1e-15 * (1.0 + np.max(np.abs(pose[:2])))
-            and abs(step[2]) <= 1e-15
-        ):
+        if np.max(np.abs(step)) <= 1e-14:
             break
     return pose
 
@@ -189,4 +192,14 @@ def _candidates(angle, bases, points, distances):
         starts.append(np.linalg.solve(m[0], r[0]))
     p2 = bases[1] - _rotate(phi, points[1] - points[0])[0]
     starts.extend(circle_intersections(bases[0], distances[0], p2, distances[1]))
-    return [np.array([u[0] - rq1[0], u[1] - rq1[1], angle]) for u in starts]
+    poses = [np.array([u[0] - rq1[0], u[1] - rq1[1], angle]) for u in starts]
+    # Keep the starts that nearly close leg 3 too (the far circle intersection does not),
+    # at least the best one, each once: Newton then polishes few.
+    misfit = [np.max(np.abs(_residuals(p, bases, points, distances)[0])) for p in poses]
+    kept: list = []
+    for k in np.argsort(misfit):
+        if kept and misfit[k] > START_MISFIT:
+            break
+        if all(np.max(np.abs(poses[k] - other)) > 1e-9 for other in kept):
+            kept.append(poses[k])
+    return kept
