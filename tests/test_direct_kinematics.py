@@ -240,3 +240,17 @@ def test_circle_intersections_tangent_and_apart():
     np.testing.assert_allclose(
         circle_intersections((0, 0), 5.0, (6, 0), 5.0), [[3.0, 4.0], [3.0, -4.0]]
     )
+
+
+def test_the_eliminant_has_degree_three_so_at_most_six_modes():
+    """F(phi) sampled at 64 angles has no harmonic above 3: the degree-4 terms cancel
+    (the spurious roots z = 0, infinity), leaving Gosselin's sextic."""
+    from planar_tui.kernels.direct_kinematics import _eliminant
+
+    rng = np.random.default_rng(11)
+    for _ in range(5):
+        bases, points = rng.uniform(-1, 1, (3, 2)), rng.uniform(-1, 1, (3, 2))
+        values = _eliminant(2 * np.pi * np.arange(64) / 64, bases, points, rng.uniform(0.5, 1.5, 3))
+        harmonics = np.abs(np.fft.rfft(values)) / 64
+        assert harmonics[3] > 1e-6 * harmonics.max()
+        assert harmonics[4:].max() < 1e-12 * harmonics.max()
