@@ -109,8 +109,7 @@ def test_the_working_mode_comes_from_elbow_or_the_robot(cli, tmp_path):
     )
     assert result.exit_code == 0, result.output
     chosen = (tmp_path / "out" / "f.csv").read_text()
-    _, result = (
-        run(cli, tmp_path / "robot", ROBOT + JOB) if (tmp_path / "robot").mkdir() is None else None
-    )
+    (tmp_path / "robot").mkdir()
+    _, result = run(cli, tmp_path / "robot", ROBOT + JOB)
     assert result.exit_code == 0, result.output
     assert (tmp_path / "robot" / "out" / "f.csv").read_text() == chosen
