@@ -215,3 +215,18 @@ def test_the_declared_figure_names_are_those_a_run_reports(tmp_path):
     figures = JOB_KINDS["path3rrr"].point_figures(job, run_job(job))
     assert JOB_KINDS["path3rrr"].figure_names(job) == tuple(figures)
     assert len(figures) == 9 and figures["tau3_abs_max_Nm"] > 0
+
+
+def test_a_path_beyond_the_time_limit_is_refused_on_steps(cli, tmp_path, monkeypatch):
+    """1 000 feed-forward steps are estimated at 2 s: over a limit of 1 s, refused up
+    front (exit 2, one line on ``steps``); without feed-forward they fit."""
+    import planar_tui.limits
+
+    monkeypatch.setattr(planar_tui.limits, "MAX_JOB_SECONDS", 1.0)
+    text = ROBOT + JOB.replace("steps = 20", "steps = 1000\nfeed_forward = true")
+    preset, result = run(cli, tmp_path, text)
+    assert result.exit_code == 2, result.output
+    assert result.stderr.startswith(f"error: {preset}: path3rrr[1].steps: is 1,000: the path ")
+    assert "(expected fewer steps)" in result.stderr
+    _, result = run(cli, tmp_path, ROBOT + JOB.replace("steps = 20", "steps = 1000"))
+    assert result.exit_code == 0, result.output
