@@ -231,3 +231,16 @@ def test_feed_forward_follows_the_path(robot, tmp_path):
     found = re.search(r"deviation ([0-9.e+-]+), closure drift ([0-9.e+-]+) m", summary)
     assert found, summary
     assert float(found[1]) < 1e-4 and float(found[2]) < 1e-12
+
+
+def test_a_path_beyond_the_time_limit_is_refused_on_steps(cli, tmp_path, monkeypatch):
+    """The shared estimate holds for these jobs too: 1 000 feed-forward steps over a limit
+    of 1 s are refused up front (exit 2, one line on ``steps``)."""
+    import planar_tui.limits
+
+    monkeypatch.setattr(planar_tui.limits, "MAX_JOB_SECONDS", 1.0)
+    for text in (BUNDLED.read_text(encoding="utf-8"), PRR_PRESET):
+        text = re.sub(r"steps = \d+", "steps = 1000\nfeed_forward = true", text)
+        result, lines = run_failing(cli, tmp_path, text)
+        assert result.exit_code == 2, result.output
+        assert len(lines) == 1 and ".steps: is 1,000: the path " in lines[0], lines

@@ -8,12 +8,13 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 from types import SimpleNamespace
-from typing import ClassVar
+from typing import Any, ClassVar
 
 from planar_tui.errors import PresetError
 from planar_tui.jobkind import Job
-from planar_tui.schema import plot_setting
+from planar_tui.schema import TableReader, plot_setting
 from planar_tui.workspace.path.job import (
+    check_path,
     duration_setting,
     feed_forward_setting,
     path_job_kind,
@@ -44,6 +45,11 @@ class Path3PRRSpec:
     plot: str | None = plot_setting()
 
     mechanism: ClassVar[Mechanism] = MECHANISM
+
+    @staticmethod
+    def check(values: dict[str, Any], reader: TableReader, robot: Robot3PRR) -> dict[str, Any]:
+        """The job fits the time and memory limits (:func:`check_path`)."""
+        return check_path(values, reader, robot, MECHANISM)
 
 
 def prepare_path(job: Job[Path3PRRSpec, Robot3PRR]) -> Path3PRRSpec:

@@ -5,11 +5,12 @@ its masses from ``[robot3rpr]``. The legs' lengths follow from the pose: no work
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import Any, ClassVar
 
 from planar_tui.jobkind import Job
 from planar_tui.schema import TableReader, plot_setting, setting
 from planar_tui.workspace.path.job import (
+    check_path,
     duration_setting,
     feed_forward_setting,
     path_job_kind,
@@ -46,6 +47,11 @@ class Path3RPRSpec:
     plot: str | None = plot_setting()
 
     mechanism: ClassVar[Mechanism] = MECHANISM
+
+    @staticmethod
+    def check(values: dict[str, Any], reader: TableReader, robot: Robot3RPR) -> dict[str, Any]:
+        """The job fits the time and memory limits (:func:`check_path`)."""
+        return check_path(values, reader, robot, MECHANISM)
 
 
 def prepare_path(job: Job[Path3RPRSpec, Robot3RPR]) -> Path3RPRSpec:
