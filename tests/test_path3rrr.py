@@ -5,6 +5,7 @@ bundled preset, a path that leaves the workspace (exit 1, the time named), bad i
 from __future__ import annotations
 
 import csv
+import dataclasses
 
 import numpy as np
 import pytest
@@ -230,3 +231,28 @@ def test_a_path_beyond_the_time_limit_is_refused_on_steps(cli, tmp_path, monkeyp
     assert "(expected fewer steps)" in result.stderr
     _, result = run(cli, tmp_path, ROBOT + JOB.replace("steps = 20", "steps = 1000"))
     assert result.exit_code == 0, result.output
+
+
+def test_the_torques_are_affine_in_the_platform_mass():
+    """The dynamics is linear in the inertial parameters: the torques at 1.5 kg are the
+    mean of those at 0 and 3 kg (what a sweep over the mass reports, point by point)."""
+    masses = [dataclasses.replace(ROBOT_MODEL, platform_mass_kg=m) for m in (0.0, 1.5, 3.0)]
+    states = quintic(pose_si(SPEC.from_pose), pose_si(SPEC.to_pose), 0.5, sample_times(0.5, 20))
+    efforts = [MECHANISM.inverse_dynamics(robot, SPEC, *states).effort for robot in masses]
+    assert np.abs(efforts[2] - efforts[0]).max() > 1.0
+    np.testing.assert_allclose(efforts[1], (efforts[0] + efforts[2]) / 2, atol=1e-12)
+
+
+@pytest.mark.slow
+def test_a_sweep_over_the_platform_mass_reports_the_torque_figures(cli, tmp_path):
+    """A sweep of a path job (worker processes: slow on a loaded machine): one row per
+    platform mass with each actuator's figures, growing with the mass."""
+    sweep = '[[sweep]]\njob = "path3rrr"\nvalues."robot3rrr.platform_mass_kg" = [0.0, 1.5, 3.0]\n'
+    sweep += 'output = "sweep.csv"\n'
+    _, result = run(cli, tmp_path, ROBOT + JOB + sweep)
+    assert result.exit_code == 0, result.output
+    with open(tmp_path / "out" / "sweep.csv", newline="") as handle:
+        rows = list(csv.DictReader(handle))
+    assert [row["status"] for row in rows] == ["ok"] * 3
+    peaks = [float(row["tau1_abs_max_Nm"]) for row in rows]
+    assert peaks[0] < peaks[1] < peaks[2]
