@@ -5,6 +5,7 @@ bundled preset, a path that leaves the workspace (exit 1, the time named), bad i
 from __future__ import annotations
 
 import csv
+import dataclasses
 
 import numpy as np
 import pytest
@@ -32,6 +33,7 @@ steps = 20
 elbow = [1, -1, -1]
 joint_limits_deg = [[20, 70], [110, 160], [245, 295]]
 output = "p.csv"
+plot = "p.png"
 """
 
 
@@ -60,6 +62,7 @@ def test_the_csv_has_a_row_per_time_and_the_columns_of_the_spec(cli, tmp_path):
     assert np.all((degrees >= limits[:, 0]) & (degrees <= limits[:, 1]))
     np.testing.assert_allclose(values[:, -3:], values[:, -6:-3] * values[:, [5, 8, 11]])
     assert "peak |tau| = [" in result.output
+    assert (tmp_path / "out" / "p.png").read_bytes().startswith(b"\x89PNG")
 
 
 def test_the_bundled_preset_runs_inside_its_workspace(cli, tmp_path):
@@ -200,3 +203,56 @@ def test_constant_efforts_trade_work_for_energy():
     work = push @ (theta[1] - theta[0])
     assert abs(work) > 1e-5
     assert work == pytest.approx(energies[1] - energies[0], rel=1e-6)
+
+
+def test_the_declared_figure_names_are_those_a_run_reports(tmp_path):
+    from planar_tui.batch import prepare_jobs, run_job
+    from planar_tui.presets import load_preset
+    from planar_tui.registry import JOB_KINDS
+
+    path = tmp_path / "p.toml"
+    path.write_text(ROBOT + JOB)
+    (job,) = prepare_jobs(load_preset(path).jobs_of("path3rrr"))
+    figures = JOB_KINDS["path3rrr"].point_figures(job, run_job(job))
+    assert JOB_KINDS["path3rrr"].figure_names(job) == tuple(figures)
+    assert len(figures) == 9 and figures["tau3_abs_max_Nm"] > 0
+
+
+def test_a_path_beyond_the_time_limit_is_refused_on_steps(cli, tmp_path, monkeypatch):
+    """1 000 feed-forward steps are estimated at 2 s: over a limit of 1 s, refused up
+    front (exit 2, one line on ``steps``); without feed-forward they fit."""
+    import planar_tui.limits
+
+    monkeypatch.setattr(planar_tui.limits, "MAX_JOB_SECONDS", 1.0)
+    text = ROBOT + JOB.replace("steps = 20", "steps = 1000\nfeed_forward = true")
+    preset, result = run(cli, tmp_path, text)
+    assert result.exit_code == 2, result.output
+    assert result.stderr.startswith(f"error: {preset}: path3rrr[1].steps: is 1,000: the path ")
+    assert "(expected fewer steps)" in result.stderr
+    _, result = run(cli, tmp_path, ROBOT + JOB.replace("steps = 20", "steps = 1000"))
+    assert result.exit_code == 0, result.output
+
+
+def test_the_torques_are_affine_in_the_platform_mass():
+    """The dynamics is linear in the inertial parameters: the torques at 1.5 kg are the
+    mean of those at 0 and 3 kg (what a sweep over the mass reports, point by point)."""
+    masses = [dataclasses.replace(ROBOT_MODEL, platform_mass_kg=m) for m in (0.0, 1.5, 3.0)]
+    states = quintic(pose_si(SPEC.from_pose), pose_si(SPEC.to_pose), 0.5, sample_times(0.5, 20))
+    efforts = [MECHANISM.inverse_dynamics(robot, SPEC, *states).effort for robot in masses]
+    assert np.abs(efforts[2] - efforts[0]).max() > 1.0
+    np.testing.assert_allclose(efforts[1], (efforts[0] + efforts[2]) / 2, atol=1e-12)
+
+
+@pytest.mark.slow
+def test_a_sweep_over_the_platform_mass_reports_the_torque_figures(cli, tmp_path):
+    """A sweep of a path job (worker processes: slow on a loaded machine): one row per
+    platform mass with each actuator's figures, growing with the mass."""
+    sweep = '[[sweep]]\njob = "path3rrr"\nvalues."robot3rrr.platform_mass_kg" = [0.0, 1.5, 3.0]\n'
+    sweep += 'output = "sweep.csv"\n'
+    _, result = run(cli, tmp_path, ROBOT + JOB + sweep)
+    assert result.exit_code == 0, result.output
+    with open(tmp_path / "out" / "sweep.csv", newline="") as handle:
+        rows = list(csv.DictReader(handle))
+    assert [row["status"] for row in rows] == ["ok"] * 3
+    peaks = [float(row["tau1_abs_max_Nm"]) for row in rows]
+    assert peaks[0] < peaks[1] < peaks[2]
