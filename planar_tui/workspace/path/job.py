@@ -24,6 +24,7 @@ from planar_tui.errors import JobError
 from planar_tui.jobkind import Command, Job, JobKind, JobResult, PreparedJob
 from planar_tui.progress import Progress
 from planar_tui.schema import boolean, integer, number, numbers, setting
+from planar_tui.workspace.path.forward import PathFailure
 from planar_tui.workspace.path.model import OK, PathModel, PathSolution, problem_text
 
 #: Most steps of one path (its CSV rows minus one).
@@ -205,7 +206,13 @@ def run_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathResul
     deviation = drift = None
     if spec.feed_forward:
         progress.start(spec.steps, "forward dynamics")
-        deviation, drift = feed_forward(mechanism, robot, spec, start, stop, times, progress)
+        try:
+            deviation, drift = feed_forward(mechanism, robot, spec, start, stop, times, progress)
+        except PathFailure as failure:  # the simulated platform strays out of the workspace
+            where = f"{job.key}.feed_forward"
+            raise JobError(
+                job.preset_path, where, f"the forward dynamics fails {failure}"
+            ) from None
         summary += f"; feed-forward: deviation {deviation:.3g}, closure drift {drift:.3g} m"
     return PathResult(
         table=CsvTable(path_header(model), rows),
