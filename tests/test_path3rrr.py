@@ -280,3 +280,19 @@ def test_a_forward_dynamics_leaving_the_workspace_fails_the_job(cli, tmp_path, m
     )
     assert "leg 1 cannot close" in lines[0]
     assert not (tmp_path / "out" / "p.csv").exists()
+
+
+def test_an_angle_crossing_a_half_turn_is_continuous_in_the_csv(cli, tmp_path):
+    """Without joint limits an angle is reported in [-pi, pi) by the mechanism; along the
+    path the CSV's angles are unwrapped: no jump of a turn between two times, and the
+    rates agree with the angles' differences."""
+    job = JOB.replace("[36, 5, -2]", "[40, 21, 0]").replace("[44, 9, 2]", "[45, 35, 0]")
+    job = job.replace("[1, -1, -1]", "[1, 1, 1]").replace("steps = 20", "steps = 200")
+    job = job.replace("joint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n", "")
+    _, result = run(cli, tmp_path, ROBOT + job)
+    assert result.exit_code == 0, result.output
+    values = np.loadtxt(tmp_path / "out" / "p.csv", delimiter=",", skiprows=1)
+    theta, rate = values[:, [4, 7, 10]], values[:, [5, 8, 11]]
+    assert np.abs(theta).max() > np.pi  # it did cross
+    midpoint = (rate[1:] + rate[:-1]) / 2 * np.diff(values[:, 0])[:, None]
+    np.testing.assert_allclose(np.diff(theta, axis=0), midpoint, atol=1e-4)

@@ -189,9 +189,13 @@ def run_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathResul
             "a path inside the workspace, off its singularities",
         )
     pose_columns = np.column_stack([pose[:, :2] * 100.0, np.degrees(pose[:, 2:])])
+    # prismatic legs in cm; revolute angles continuous along the path (unwrapped)
     scale = 100.0 if model.prismatic else 1.0
+    coordinate = solution.coordinate * scale
+    if not model.prismatic:
+        coordinate = np.unwrap(coordinate, axis=0)
     coordinates = np.stack(
-        [solution.coordinate * scale, solution.rate * scale, solution.acceleration * scale], axis=2
+        [coordinate, solution.rate * scale, solution.acceleration * scale], axis=2
     ).reshape(len(times), -1)
     power = solution.effort * solution.rate
     rows = np.column_stack([times, pose_columns, coordinates, solution.effort, power])
