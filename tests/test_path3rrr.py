@@ -256,3 +256,43 @@ def test_a_sweep_over_the_platform_mass_reports_the_torque_figures(cli, tmp_path
     assert [row["status"] for row in rows] == ["ok"] * 3
     peaks = [float(row["tau1_abs_max_Nm"]) for row in rows]
     assert peaks[0] < peaks[1] < peaks[2]
+
+
+def test_a_forward_dynamics_leaving_the_workspace_fails_the_job(cli, tmp_path, monkeypatch):
+    """The feed-forward simulation straying out of reach is a failed job naming the time
+    (forced here: a real path's simulation stays within RK4's error of it)."""
+    import planar_tui.workspace.path.job as path_job
+    from planar_tui.workspace.path.forward import PathFailure
+
+    def strays(*args):
+        raise PathFailure(0.25, 11)
+
+    monkeypatch.setattr(path_job, "feed_forward", strays)
+    preset, result = run(
+        cli, tmp_path, ROBOT + JOB.replace("steps = 20", "steps = 20\nfeed_forward = true")
+    )
+    assert result.exit_code == 1, result.output
+    lines = [line for line in result.stderr.splitlines() if line.startswith("error:")]
+    assert len(lines) == 1, result.stderr
+    assert (
+        f"{preset}: path3rrr[1].feed_forward: the forward dynamics fails at t = 0.25 s: leg 1"
+        in lines[0]
+    )
+    assert "leg 1 cannot close" in lines[0]
+    assert not (tmp_path / "out" / "p.csv").exists()
+
+
+def test_an_angle_crossing_a_half_turn_is_continuous_in_the_csv(cli, tmp_path):
+    """Without joint limits an angle is reported in [-pi, pi) by the mechanism; along the
+    path the CSV's angles are unwrapped: no jump of a turn between two times, and the
+    rates agree with the angles' differences."""
+    job = JOB.replace("[36, 5, -2]", "[40, 21, 0]").replace("[44, 9, 2]", "[45, 35, 0]")
+    job = job.replace("[1, -1, -1]", "[1, 1, 1]").replace("steps = 20", "steps = 200")
+    job = job.replace("joint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n", "")
+    _, result = run(cli, tmp_path, ROBOT + job)
+    assert result.exit_code == 0, result.output
+    values = np.loadtxt(tmp_path / "out" / "p.csv", delimiter=",", skiprows=1)
+    theta, rate = values[:, [4, 7, 10]], values[:, [5, 8, 11]]
+    assert np.abs(theta).max() > np.pi  # it did cross
+    midpoint = (rate[1:] + rate[:-1]) / 2 * np.diff(values[:, 0])[:, None]
+    np.testing.assert_allclose(np.diff(theta, axis=0), midpoint, atol=1e-4)

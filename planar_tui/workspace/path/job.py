@@ -24,6 +24,7 @@ from planar_tui.errors import JobError
 from planar_tui.jobkind import Command, Job, JobKind, JobResult, PreparedJob
 from planar_tui.progress import Progress
 from planar_tui.schema import boolean, integer, number, numbers, setting
+from planar_tui.workspace.path.forward import PathFailure
 from planar_tui.workspace.path.model import OK, PathModel, PathSolution, problem_text
 
 #: Most steps of one path (its CSV rows minus one).
@@ -188,9 +189,13 @@ def run_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathResul
             "a path inside the workspace, off its singularities",
         )
     pose_columns = np.column_stack([pose[:, :2] * 100.0, np.degrees(pose[:, 2:])])
+    # prismatic legs in cm; revolute angles continuous along the path (unwrapped)
     scale = 100.0 if model.prismatic else 1.0
+    coordinate = solution.coordinate * scale
+    if not model.prismatic:
+        coordinate = np.unwrap(coordinate, axis=0)
     coordinates = np.stack(
-        [solution.coordinate * scale, solution.rate * scale, solution.acceleration * scale], axis=2
+        [coordinate, solution.rate * scale, solution.acceleration * scale], axis=2
     ).reshape(len(times), -1)
     power = solution.effort * solution.rate
     rows = np.column_stack([times, pose_columns, coordinates, solution.effort, power])
@@ -205,7 +210,13 @@ def run_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathResul
     deviation = drift = None
     if spec.feed_forward:
         progress.start(spec.steps, "forward dynamics")
-        deviation, drift = feed_forward(mechanism, robot, spec, start, stop, times, progress)
+        try:
+            deviation, drift = feed_forward(mechanism, robot, spec, start, stop, times, progress)
+        except PathFailure as failure:  # the simulated platform strays out of the workspace
+            where = f"{job.key}.feed_forward"
+            raise JobError(
+                job.preset_path, where, f"the forward dynamics fails {failure}"
+            ) from None
         summary += f"; feed-forward: deviation {deviation:.3g}, closure drift {drift:.3g} m"
     return PathResult(
         table=CsvTable(path_header(model), rows),
