@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from planar_tui.csvio import write_csv_atomic
-from planar_tui.errors import JobError, PresetError
+from planar_tui.errors import JobError, OutputFailed, PresetError, writing
 from planar_tui.jobkind import Job, JobResult, Option, PreparedJob
 from planar_tui.progress import Progress
 from planar_tui.provenance import job_provenance, planned_sidecar, write_sidecar
@@ -67,14 +67,6 @@ class JobFailed(Exception):
         why = error.message if isinstance(error, JobError) else f"{type(error).__name__}: {error}"
         super().__init__(f"{job.label} failed: {why}")
         self.job = job
-
-
-class OutputFailed(Exception):
-    """A finished job's result could not be written."""
-
-    def __init__(self, path: Path | str, reason: str):
-        super().__init__(f"{path}: cannot write: {reason}")
-        self.path = path
 
 
 class NonFiniteResult(Exception):
@@ -476,7 +468,7 @@ def write_result(
     check_finite(plan.job, result)
     record = job_provenance(plan.job, timing)
     written = []
-    try:
+    with writing(plan.main, filename_first=True):
         for path, table in (
             (plan.main, result.table),
             *((p, result.extra_tables[n]) for n, p in plan.extras.items()),
@@ -485,8 +477,6 @@ def write_result(
             write_sidecar(path, record)
         if plan.figure is not None:
             written.append(_write_figure(plan, result))
-    except OSError as error:
-        raise OutputFailed(error.filename or plan.main, error.strerror or str(error)) from None
     return written
 
 

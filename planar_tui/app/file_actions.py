@@ -29,7 +29,7 @@ from planar_tui.app.saving import (
     write_preset,
 )
 from planar_tui.app.screens.dialogs import ConfirmDialog, MessageDialog, PathDialog, UnsavedDialog
-from planar_tui.errors import PresetError
+from planar_tui.errors import OutputFailed, PresetError
 
 if TYPE_CHECKING:
     from planar_tui.app.widgets.panes import JobPane
@@ -488,8 +488,6 @@ class FileActions:
             try:
                 written = save(path)
             except Exception as error:  # any drawing failure: a dialog, never a crash
-                from planar_tui.batch import OutputFailed
-
                 message = (
                     str(error)
                     if isinstance(error, OutputFailed)
@@ -515,7 +513,7 @@ class FileActions:
         try:
             (plan,) = plan_run([pane.job], Path(out_dir), prepare=False).jobs
             written = batch.write_result(plan, pane.result)
-        except (PresetError, batch.OutputFailed, OSError, ValueError) as error:
+        except (PresetError, OutputFailed, OSError, ValueError) as error:
             self.push_screen(MessageDialog("Not exported", str(error)))
             return []
         self.notify("Wrote " + ", ".join(map(str, written)))

@@ -25,7 +25,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from planar_tui.csvio import CsvTable, write_csv_atomic
-from planar_tui.errors import PresetError
+from planar_tui.errors import OutputFailed, PresetError, writing
 from planar_tui.optimise.spec import Optimisation
 from planar_tui.progress import Progress
 from planar_tui.provenance import planned_sidecar, study_provenance, write_sidecar
@@ -321,7 +321,6 @@ def run_optimisation(
     cancelled run is handed to it once more, ``cancelled``, before the cancel propagates."""
     import numpy as np
 
-    from planar_tui.batch import OutputFailed
     from planar_tui.sweep import execute
     from planar_tui.sweep.checkpoint import CheckpointWriter, checkpoint_path, read_finished
     from planar_tui.warmup import warm_kernels
@@ -342,17 +341,13 @@ def run_optimisation(
                 _columns_of(opt),
                 lambda text: announce(f"warning: {text}"),
             )
-        try:
+        with writing(run.checkpoint):
             writer = CheckpointWriter(run.checkpoint, opt.fingerprint(), total, finished)
-        except OSError as error:
-            raise OutputFailed(run.checkpoint, error.strerror or str(error)) from None
 
     def keep(outcome: PointOutcome, outcomes: dict[int, PointOutcome]) -> None:
         if writer is not None:
-            try:
+            with writing(writer.path):
                 writer.add(outcome, sync=False)  # synced once a generation
-            except OSError as error:
-                raise OutputFailed(writer.path, error.strerror or str(error)) from None
         outcomes[outcome.number] = outcome
         progress.advance(1, _detail(run, len(outcomes)), failed=run.failed)
 
@@ -455,20 +450,16 @@ def _columns_of(opt: Optimisation) -> Callable[[int], tuple[str, ...] | None]:
 
 
 def _write_outputs(run: OptimiseRun, out_dir: Path, keep_checkpoint: bool) -> None:
-    """The evaluations' and the optimum's CSVs (:class:`~planar_tui.batch.OutputFailed`
+    """The evaluations' and the optimum's CSVs (:class:`~planar_tui.errors.OutputFailed`
     if one cannot be written: the checkpoint stays), then the checkpoint goes (unless
     ``keep_checkpoint``) and the figure is drawn (its failure: ``run.figure_error``)."""
-    from planar_tui.batch import OutputFailed
-
     opt = run.optimisation
     run.output, run.pareto = output_path(opt, out_dir), out_dir / opt.pareto_output
     record = study_provenance("optimise", opt, (run.started_s, time.time() - run.started_s))
     for path, table in ((run.output, run.table), (run.pareto, run.optimum_table)):
-        try:
+        with writing(path):
             write_csv_atomic(path, table)
             write_sidecar(path, record)
-        except OSError as error:
-            raise OutputFailed(path, error.strerror or str(error)) from None
     if run.checkpoint is not None and not keep_checkpoint:
         run.checkpoint.unlink(missing_ok=True)
         run.checkpoint = None
@@ -482,12 +473,8 @@ def _write_outputs(run: OptimiseRun, out_dir: Path, keep_checkpoint: bool) -> No
 def _sync(writer: Any) -> None:
     """A generation's evaluations to disk (one ``fsync``: a machine crash loses at most
     the generation running; Ctrl-C or a killed process loses none, each is flushed)."""
-    from planar_tui.batch import OutputFailed
-
-    try:
+    with writing(writer.path):
         writer.sync()
-    except OSError as error:
-        raise OutputFailed(writer.path, error.strerror or str(error)) from None
 
 
 def _f(opt: Optimisation, outcome: PointOutcome) -> tuple[float, ...]:
@@ -510,14 +497,11 @@ def _detail(run: OptimiseRun, done: int) -> str:
 def write_figure(run: OptimiseRun, path: Path) -> Path:
     """The convergence (one objective) or front (two or more: the first two) figure
     (:mod:`planar_tui.figures.optimise`), written atomically."""
-    from planar_tui.batch import OutputFailed
     from planar_tui.figures.canvas import save
     from planar_tui.figures.optimise import draw
 
-    try:
+    with writing(path):
         return save(draw(figure_data(run)), path)
-    except OSError as error:
-        raise OutputFailed(path, error.strerror or str(error)) from None
 
 
 def figure_data(run: OptimiseRun) -> dict[str, Any]:

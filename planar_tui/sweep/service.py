@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from planar_tui.csvio import CsvTable, write_csv_atomic
-from planar_tui.errors import PresetError
+from planar_tui.errors import OutputFailed, PresetError, writing
 from planar_tui.progress import Progress
 from planar_tui.provenance import (
     planned_sidecar,
@@ -101,16 +101,16 @@ def point_values(points: Sequence[Point], number: int) -> tuple[Any, ...]:
 def write_figure(run: SweepRun, path: Path) -> Path:
     """Draw the sweep's figure (:mod:`planar_tui.figures.sweep`: a line against one
     varied key, a heat map against two) into ``path``, atomically; a sweep the figure
-    cannot show (no varied key) is :class:`~planar_tui.batch.OutputFailed`."""
-    from planar_tui.batch import OutputFailed
+    cannot show (no varied key) is :class:`~planar_tui.errors.OutputFailed`."""
     from planar_tui.figures.dispatch import save_table_figure
 
-    try:
-        return save_table_figure(run.table, path, title=run.sweep.label)
-    except OSError as error:
-        raise OutputFailed(path, error.strerror or str(error)) from None
-    except Exception as error:
-        raise OutputFailed(path, f"cannot draw the figure: {error}") from None
+    with writing(path):
+        try:
+            return save_table_figure(run.table, path, title=run.sweep.label)
+        except OSError:
+            raise
+        except Exception as error:
+            raise OutputFailed(path, f"cannot draw the figure: {error}") from None
 
 
 def output_path(sweep: Sweep, out_dir: Path) -> Path:
@@ -230,10 +230,9 @@ def run_sweep(
         every point as it finishes (resumed ones first, in order). The checkpoint is deleted
         once the CSV is written, unless ``keep_checkpoint`` (the CLI deletes a run's
         checkpoints once all its sweeps are done: ``run.checkpoint``). A CSV or point file that
-        cannot be written is :class:`~planar_tui.batch.OutputFailed` (the checkpoint stays);
+        cannot be written is :class:`~planar_tui.errors.OutputFailed` (the checkpoint stays);
         a figure that cannot be written is ``run.figure_error`` (the CSV is written).
     """
-    from planar_tui.batch import OutputFailed
     from planar_tui.registry import JOB_KINDS
     from planar_tui.sweep import execute
     from planar_tui.warmup import warm_kernels
@@ -304,10 +303,8 @@ def run_sweep(
             record = PointFileRecord(manifest_path(output), folder)
             if not finished:  # afresh: the files this sweep wrote before go, and only those
                 record.start_afresh()
-        try:
+        with writing(checkpoint):
             writer = CheckpointWriter(checkpoint, sweep.fingerprint(), total, finished)
-        except OSError as error:
-            raise OutputFailed(checkpoint, error.strerror or str(error)) from None
         run.checkpoint = checkpoint
         run.outcomes.update(finished)
         run.resumed = len(finished)
@@ -342,10 +339,8 @@ def run_sweep(
                 for name, text in outcome.tables.items():
                     write_point_file(folder / name, text, record, provenance)
             if writer is not None:
-                try:
+                with writing(writer.path):
                     writer.add(outcome)
-                except OSError as error:
-                    raise OutputFailed(writer.path, error.strerror or str(error)) from None
             run.outcomes[outcome.number] = outcome
             progress.advance(1, _detail(run), failed=run.failed)
             if on_outcome is not None:
@@ -361,12 +356,10 @@ def run_sweep(
             with execute.dask_client(target, announce) as client:
                 execute.run_on_dask(client, tasks(), progress, finished_point, prefix)
         if output is not None:
-            try:
+            with writing(output):
                 write_csv_atomic(output, run.table)
                 timing = (started_s, time.time() - started_s)
                 write_sidecar(output, study_provenance("sweep", sweep, timing))
-            except OSError as error:
-                raise OutputFailed(output, error.strerror or str(error)) from None
             run.output = output
     finally:
         if writer is not None:
