@@ -51,7 +51,7 @@ from planar_tui.batch import prepare_jobs  # noqa: E402
 from planar_tui.presets import load_preset  # noqa: E402
 from planar_tui.sensitivity import engine  # noqa: E402
 from planar_tui.sensitivity.design_cache import ENV_VAR  # noqa: E402
-from planar_tui.sensitivity.job import sample_sizes  # noqa: E402
+from planar_tui.sensitivity.spec import sample_sizes  # noqa: E402
 
 PRESETS = [REPO / "presets" / "paper-a-table4.toml", REPO / "presets" / "paper-a-table5.toml"]
 

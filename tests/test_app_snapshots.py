@@ -12,7 +12,7 @@ import pytest
 
 from planar_tui.app.app import WorkbenchApp
 from planar_tui.app.workbench import Workbench
-from planar_tui.sensitivity.job import SensitivityResult
+from planar_tui.sensitivity.runner import SensitivityResult
 from planar_tui.sensitivity.results import csv_table
 from tests.test_app_layout import load_6r
 
