@@ -332,14 +332,15 @@ def analyse_trajectory(job, unit, trajectory, problem, labels, progress):
     """``(analyses, aggregated table, notes)`` of the PCE robots' outputs at every stop
     (``trajectory``: {step: (S, M)}): failed robots checked (dropped when
     ``allow_failed_runs`` allows), one expansion per output over its times
-    (:func:`~planar_tui.sensitivity.pce.trajectory_indices`), its LOO error checked; an
+    (:func:`~planar_tui.sensitivity.pce_analysis.trajectory_indices`), its LOO error checked; an
     :class:`~planar_tui.sensitivity.results.Analysis` per time and the aggregated indices
     (Gamboa et al. 2014) of each output and of all of them."""
     import numpy as np
 
     from planar_tui.motion.results import aggregate_rows
     from planar_tui.sensitivity.failed_runs import FailedRuns, check_failed_runs
-    from planar_tui.sensitivity.pce import PceError, check_loo, trajectory_indices
+    from planar_tui.sensitivity.pce import PceError
+    from planar_tui.sensitivity.pce_analysis import check_loo, trajectory_indices
     from planar_tui.sensitivity.results import Analysis, sensitivity_percent
 
     spec = job.spec

@@ -330,7 +330,8 @@ def analyse_outputs(
     ``pce_max_loo_error`` are a :class:`PresetError` naming the key to change."""
     from planar_tui.sensitivity.engine import analyse
     from planar_tui.sensitivity.failed_runs import FailedRuns, check_failed_runs
-    from planar_tui.sensitivity.pce import PceError, job_indices
+    from planar_tui.sensitivity.pce import PceError
+    from planar_tui.sensitivity.pce_analysis import job_indices
 
     spec = job.spec
     torques = [f"tau{i + 1}" for i in range(outputs.shape[1])]
