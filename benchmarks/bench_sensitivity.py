@@ -235,7 +235,7 @@ def whole_process(cache_root: Path, runs: int):
 def model_evaluation(rows: int = 200_000, n: int = 6) -> None:
     """``--model``: lane-batched against scalar torques per robot (module docstring)."""
     import numba
-    from planar_tui.kernels.dynamics import inverse_dynamics_batch
+    from planar_tui.kernels.dynamics_batch import inverse_dynamics_batch
     from planar_tui.kernels.sensitivity_model import design_torques
 
     numba.set_num_threads(1)
