@@ -22,6 +22,7 @@ from textual.screen import Screen
 from textual.widgets import Footer, Static, TabbedContent, TabPane
 
 from planar_tui.app import recent
+from planar_tui.app.export_actions import ExportActions
 from planar_tui.app.file_actions import FileActions
 from planar_tui.app.history_actions import HistoryActions
 from planar_tui.app.job_runner import JobFinished, JobRunner
@@ -47,11 +48,19 @@ VIEW_LABELS = {"sensitivity": "S1/ST/%", "motion_uncertainty": "Output"}
 
 
 class WorkbenchApp(
-    ViewActions, RunActions, SweepActions, OptimiseActions, FileActions, HistoryActions, App
+    ViewActions,
+    RunActions,
+    SweepActions,
+    OptimiseActions,
+    ExportActions,
+    FileActions,
+    HistoryActions,
+    App,
 ):
     """planar-tui's terminal workbench (running jobs in
-    :class:`~planar_tui.app.run_actions.RunActions`; open, save, export, undo and quit in
-    :class:`~planar_tui.app.file_actions.FileActions`; tabs, help, maximising, undo in
+    :class:`~planar_tui.app.run_actions.RunActions`; open, save, undo and quit in
+    :class:`~planar_tui.app.file_actions.FileActions`, exports in
+    :class:`~planar_tui.app.export_actions.ExportActions`; tabs, help, maximising, undo in
     place and the settings in :class:`~planar_tui.app.view_actions.ViewActions`; sweeps in
     :class:`~planar_tui.app.sweep_actions.SweepActions`, optimisations in
     :class:`~planar_tui.app.optimise_actions.OptimiseActions`)."""
@@ -320,7 +329,7 @@ class WorkbenchApp(
         return self.quitting
 
     def export_csv(self, pane: Any, out_dir: str | Path) -> list[Path]:
-        """Export (:class:`FileActions`), then offer that folder next time: the figure of
+        """Export (:class:`~planar_tui.app.export_actions.ExportActions`), then offer that folder next time: the figure of
         ``ctrl+l`` goes beside the CSV just exported."""
         written = super().export_csv(pane, out_dir)
         if written:
