@@ -32,7 +32,8 @@ from planar_tui.app.run_actions import RunActions
 from planar_tui.app.settings import load_settings
 from planar_tui.app.sweep_actions import SweepActions
 from planar_tui.app.view_actions import ViewActions
-from planar_tui.app.widgets.panes import JobPane, RobotPane
+from planar_tui.app.widgets.panes import JobPane
+from planar_tui.app.widgets.robot_pane import RobotPane
 from planar_tui.app.workbench import Workbench
 from planar_tui.errors import PresetError
 

@@ -77,7 +77,8 @@ class FileActions:
     async def reload_panes(self, robot: bool = True) -> None:
         """Rebuild the tabs' forms from the document (results kept and drawn again; the
         focus stays on the field it was on)."""
-        from planar_tui.app.widgets.panes import JobPane, RobotPane
+        from planar_tui.app.widgets.panes import JobPane
+        from planar_tui.app.widgets.robot_pane import RobotPane
 
         focused = self.focused
         where = [(p.id, focused.id) for p in focused.ancestors if p.id] if focused else []
