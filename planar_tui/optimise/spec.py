@@ -45,7 +45,6 @@ from planar_tui.sweep.spec import (
 ALGORITHMS = ("auto", "ga", "de", "nsga2")
 #: Most evaluations an optimisation may have.
 MAX_BUDGET = 100_000
-OPERATORS = (">=", "<=", ">", "<")
 _CONSTRAINT = re.compile(r"^\s*([A-Za-z_][A-Za-z0-9_]*)\s*(>=|<=|>|<)\s*(\S+)\s*$")
 _VARIABLE_DOC = (
     "{ from = A, to = B }, { from = A, to = B, integer = true } or { choices = [...] }; "
@@ -218,7 +217,8 @@ def _columns(reader: TableReader, name: str, value: Any) -> list[str]:
 
 
 def parse_constraint(reader: TableReader, index: int, text: Any) -> Constraint:
-    """``"column OP number"``: a column name, one of :data:`OPERATORS`, a finite number."""
+    """``"column OP number"``: a column name, one of ``>=``, ``<=``, ``>``, ``<``, a finite
+    number."""
     name = f"constraints[{index}]"
     expected = '"COLUMN OP NUMBER" with OP one of >=, <=, >, < (e.g. "circle_radius_lo_cm >= 3")'
     if not isinstance(text, str):
