@@ -56,7 +56,8 @@ def read_csv(path: Path | str) -> CsvTable:
     lines skipped); ``OSError`` or ``UnicodeDecodeError`` when it cannot be read,
     ``ValueError`` when it holds no header, is no regular file, is larger than
     :data:`MAX_CSV_BYTES`, has a cell over the :mod:`csv` module's own limit (128 KiB) or a
-    number that is not finite or beyond :data:`MAX_ABS_VALUE` (the message names the line and column)."""
+    number that is not finite or beyond :data:`MAX_ABS_VALUE` (the message names the line
+    and column)."""
     with open_regular(path) as stream:
         reader = csv.reader(stream)
         try:
