@@ -15,10 +15,8 @@ constraints are ``G ≤ 0`` (:class:`~planar_tui.optimise.problem.Constraint`) p
 
 from __future__ import annotations
 
-import secrets
 import time
 from collections.abc import Callable
-from contextlib import ExitStack
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -95,24 +93,6 @@ def planned_files(opt: Optimisation, out_dir: Path) -> list[PlannedFile]:
     return files
 
 
-class _Runner:
-    """Runs point tasks in this process or on a Dask client, keeping their outcomes."""
-
-    def __init__(self, client: Any, progress: Progress, prefix: str):
-        self.client, self.progress, self.prefix = client, progress, prefix
-
-    def run(self, tasks: list[PointTask], on_outcome: Callable[[PointOutcome], None]) -> None:
-        from planar_tui.sweep import execute
-
-        if not tasks:
-            return
-        if self.client is None:
-            execute.run_in_process(tasks, self.progress, on_outcome)
-        else:
-            prefix = f"{self.prefix}-{secrets.token_hex(3)}"
-            execute.run_on_dask(self.client, tasks, self.progress, on_outcome, prefix)
-
-
 def _task_or_failure(
     opt: Optimisation, number: int, values: tuple[Any, ...], coarse: bool
 ) -> PointTask | PointOutcome:
@@ -173,13 +153,11 @@ def run_optimisation(
                 _columns_of(opt),
                 lambda text: announce(f"warning: {text}"),
             )
-        with writing(run.checkpoint):
-            writer = CheckpointWriter(run.checkpoint, opt.fingerprint(), total, finished)
+        writer = CheckpointWriter(run.checkpoint, opt.fingerprint(), total, finished)
 
     def keep(outcome: PointOutcome, outcomes: dict[int, PointOutcome]) -> None:
         if writer is not None:
-            with writing(writer.path):
-                writer.add(outcome, sync=False)  # synced once a generation
+            writer.add(outcome, sync=False)  # synced once a generation
         outcomes[outcome.number] = outcome
         progress.advance(1, _detail(run, len(outcomes)), failed=run.failed)
 
@@ -199,16 +177,14 @@ def run_optimisation(
                 keep(task, outcomes)
             else:
                 tasks.append(task)
-        runner.run(tasks, lambda outcome: keep(outcome, outcomes))
+        if tasks:
+            runner.run(tasks, lambda outcome: keep(outcome, outcomes))
         return outcomes
 
     algorithm = make_algorithm(opt)
     try:
-        with ExitStack() as stack:
-            if client is None and (workers > 1 or scheduler is not None):
-                target = execute.DaskTarget(workers, scheduler)
-                client = stack.enter_context(execute.dask_client(target, announce))
-            runner = _Runner(client, progress, f"planar-tui-opt-{opt.fingerprint()[:8]}")
+        prefix = f"planar-tui-opt-{opt.fingerprint()[:8]}"
+        with execute.point_runner(client, workers, scheduler, announce, progress, prefix) as runner:
             warm_kernels([opt.job.kind], progress)
             progress.start(opt.budget, opt.label, "starting")
             while len(run.evaluations) < opt.budget:
@@ -240,8 +216,8 @@ def run_optimisation(
                     Evaluation(n, run.generations, values, outcomes[n]) for n, values in designs
                 ]
                 run.evaluations += generation
-                if writer is not None:
-                    _sync(writer)
+                if writer is not None:  # one fsync a generation: a machine crash loses at
+                    writer.sync()  # most the generation running (each evaluation is flushed)
                 population.set(
                     "F",
                     np.array([_f(opt, e.outcome) for e in generation]),
@@ -256,7 +232,7 @@ def run_optimisation(
             numbered = [(opt.budget + k, e.values) for k, e in enumerate(best, start=1)]
             outcomes = evaluate(numbered, False, {})
             if writer is not None:
-                _sync(writer)
+                writer.sync()
             run.certified = [(e, outcomes[opt.budget + k]) for k, e in enumerate(best, start=1)]
     except PresetError:  # the table names a column the job lacks: nothing to resume
         if writer is not None:
@@ -300,13 +276,6 @@ def _write_outputs(run: OptimiseRun, out_dir: Path, keep_checkpoint: bool) -> No
             run.figure = write_figure(run, out_dir / opt.plot)
         except OutputFailed as error:
             run.figure_error = str(error)
-
-
-def _sync(writer: Any) -> None:
-    """A generation's evaluations to disk (one ``fsync``: a machine crash loses at most
-    the generation running; Ctrl-C or a killed process loses none, each is flushed)."""
-    with writing(writer.path):
-        writer.sync()
 
 
 def _f(opt: Optimisation, outcome: PointOutcome) -> tuple[float, ...]:

@@ -9,7 +9,6 @@ through it) and ``on_outcome`` for rows as they finish; the CLI adds ``out_dir``
 
 from __future__ import annotations
 
-import secrets
 import time
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
@@ -303,8 +302,7 @@ def run_sweep(
             record = PointFileRecord(manifest_path(output), folder)
             if not finished:  # afresh: the files this sweep wrote before go, and only those
                 record.start_afresh()
-        with writing(checkpoint):
-            writer = CheckpointWriter(checkpoint, sweep.fingerprint(), total, finished)
+        writer = CheckpointWriter(checkpoint, sweep.fingerprint(), total, finished)
         run.checkpoint = checkpoint
         run.outcomes.update(finished)
         run.resumed = len(finished)
@@ -339,22 +337,18 @@ def run_sweep(
                 for name, text in outcome.tables.items():
                     write_point_file(folder / name, text, record, provenance)
             if writer is not None:
-                with writing(writer.path):
-                    writer.add(outcome)
+                writer.add(outcome)
             run.outcomes[outcome.number] = outcome
             progress.advance(1, _detail(run), failed=run.failed)
             if on_outcome is not None:
                 on_outcome(outcome)
 
-        prefix = f"planar-tui-{sweep.fingerprint()[:8]}-{secrets.token_hex(4)}"
-        if client is not None:
-            execute.run_on_dask(client, tasks(), progress, finished_point, prefix)
-        elif workers <= 1 and scheduler is None:
-            execute.run_in_process(tasks(), progress, finished_point)
-        elif total > len(resumed):
-            target = execute.DaskTarget(workers, scheduler)
-            with execute.dask_client(target, announce) as client:
-                execute.run_on_dask(client, tasks(), progress, finished_point, prefix)
+        prefix = f"planar-tui-{sweep.fingerprint()[:8]}"
+        needed = total > len(resumed)
+        with execute.point_runner(
+            client, workers, scheduler, announce, progress, prefix, needed=needed
+        ) as runner:
+            runner.run(tasks(), finished_point)
         if output is not None:
             with writing(output):
                 write_csv_atomic(output, run.table)
