@@ -215,24 +215,24 @@ def run_sweep(
 ) -> SweepRun:
     """Run every point of ``sweep`` and return them (see :class:`SweepRun`).
 
-        ``points`` are :func:`make_points`'s (made and validated here when not given: a
-        :class:`~planar_tui.errors.PresetError` before anything runs). ``workers == 1`` without
-        a ``scheduler`` runs in this process (no Dask import); otherwise a local Dask cluster
-        of ``workers`` processes, or the scheduler at ``scheduler``; or the Dask ``client``
-        given (e.g. one local cluster for several sweeps, :func:`execute.dask_client`). With ``out_dir`` the CSV,
-        the checkpoint and the point CSVs are written there; ``resume`` continues from the
-        checkpoint of the same sweep. ``progress`` counts points (figure ``failed``); its
-        cancel, or Ctrl-C, stops the run with :class:`~planar_tui.errors.Cancelled` /
-        ``KeyboardInterrupt``: the checkpoint stays, no CSV is written. A checkpoint record that
-    is not a finished point of this sweep is dropped with one ``announce`` line (warning),
-    and its point runs again. ``on_outcome`` sees
-        every point as it finishes (resumed ones first, in order). The checkpoint is deleted
-        once the CSV is written, unless ``keep_checkpoint`` (the CLI deletes a run's
-        checkpoints once all its sweeps are done: ``run.checkpoint``). A CSV or point file that
-        cannot be written is :class:`~planar_tui.errors.OutputFailed` (the checkpoint stays);
-        a figure that cannot be written is ``run.figure_error`` (the CSV is written).
+    ``points`` are :func:`make_points`'s (made and validated here when not given: a
+    :class:`~planar_tui.errors.PresetError` before anything runs). The points run on a
+    :func:`~planar_tui.sweep.execute.point_runner`: the Dask ``client`` given (e.g. one
+    local cluster for several sweeps), else this process for ``workers == 1`` without a
+    ``scheduler`` (no Dask import), else a local Dask cluster of ``workers`` processes or
+    the scheduler at ``scheduler``. With ``out_dir`` the CSV, the checkpoint and the point
+    CSVs are written there; ``resume`` continues from the checkpoint of the same sweep
+    (:func:`_open_checkpoint`). ``progress`` counts points (figure ``failed``); its cancel,
+    or Ctrl-C, stops the run with :class:`~planar_tui.errors.Cancelled` /
+    ``KeyboardInterrupt``: the checkpoint stays, no CSV is written. A checkpoint record
+    that is not a finished point of this sweep is dropped with one ``announce`` line
+    (warning), and its point runs again. ``on_outcome`` sees every point as it finishes
+    (resumed ones first, in order). The checkpoint is deleted once the CSV is written,
+    unless ``keep_checkpoint`` (the CLI deletes a run's checkpoints once all its sweeps are
+    done: ``run.checkpoint``). A CSV or point file that cannot be written is
+    :class:`~planar_tui.errors.OutputFailed` (the checkpoint stays); a figure that cannot be
+    written is ``run.figure_error`` (the CSV is written).
     """
-    from planar_tui.registry import JOB_KINDS
     from planar_tui.sweep import execute
     from planar_tui.warmup import warm_kernels
 
@@ -242,71 +242,12 @@ def run_sweep(
     total = len(points)
     run = SweepRun(sweep, points)
     output = None if out_dir is None else output_path(sweep, out_dir)
-    width = len(str(total))
     folder = (
         None if out_dir is None or sweep.point_outputs is None else out_dir / sweep.point_outputs
     )
-
-    def stem(number: int) -> str | None:
-        return None if sweep.point_outputs is None else f"point-{number:0{width}d}"
-
-    def job_of(number: int) -> Job | None:
-        try:
-            return points[number - 1].job
-        except PresetError:  # not valid now (a device gone): its record is not resumed
-            return None
-
-    writer = None
-    record = None
+    writer, record = None, None
     if output is not None:
-        checkpoint = checkpoint_path(output)
-        finished = {}
-        if resume:
-            names = JOB_KINDS[sweep.job.kind].figure_names
-
-            def columns(number: int) -> tuple[str, ...] | None:
-                job = job_of(number)
-                return () if job is None else None if names is None else names(job)
-
-            finished = read_finished(
-                checkpoint,
-                sweep.fingerprint(),
-                total,
-                columns,
-                lambda text: announce(f"warning: {text}"),
-            )
-        if folder is not None:
-
-            def files_missing(number: int) -> bool:
-                job = job_of(number)
-                if job is None:
-                    return True
-                names = with_sidecars(point_file_names(stem(number), job))
-                return not all((folder / name).is_file() for name in names)
-
-            missing = [
-                number
-                for number, outcome in finished.items()
-                if outcome.status == OK and files_missing(number)
-            ]
-            for number in missing:
-                del finished[number]
-            run.recomputed = len(missing)
-            check_point_folder(
-                sweep.preset_path,
-                f"{sweep.name}.point_outputs",
-                folder,
-                out_dir,
-                manifest_path(output),
-            )
-            record = PointFileRecord(manifest_path(output), folder)
-            if not finished:  # afresh: the files this sweep wrote before go, and only those
-                record.start_afresh()
-        writer = CheckpointWriter(checkpoint, sweep.fingerprint(), total, finished)
-        run.checkpoint = checkpoint
-        run.outcomes.update(finished)
-        run.resumed = len(finished)
-
+        writer, record = _open_checkpoint(run, out_dir, output, folder, resume, announce)
     resumed = set(run.outcomes)
 
     def tasks() -> Iterator[PointTask | PointOutcome]:
@@ -320,7 +261,7 @@ def run_sweep(
             except PresetError as error:
                 yield PointOutcome(number, FAILED, error.message, {}, 0.0)
                 continue
-            yield PointTask(number, point.job, stem(number))
+            yield PointTask(number, point.job, _point_stem(sweep, total, number))
 
     try:
         warm_kernels([sweep.job.kind], progress)
@@ -367,6 +308,86 @@ def run_sweep(
         except OutputFailed as error:
             run.figure_error = str(error)
     return run
+
+
+def _point_stem(sweep: Sweep, total: int, number: int) -> str | None:
+    """The stem of point ``number``'s files (``point-007``), ``None`` without point files."""
+    return None if sweep.point_outputs is None else f"point-{number:0{len(str(total))}d}"
+
+
+def _job_of(points: Sequence[Point], number: int) -> Job | None:
+    """Point ``number``'s job; ``None`` when it is not valid now (a device gone)."""
+    try:
+        return points[number - 1].job
+    except PresetError:
+        return None
+
+
+def _open_checkpoint(
+    run: SweepRun,
+    out_dir: Path,
+    output: Path,
+    folder: Path | None,
+    resume: bool,
+    announce: Callable[[str], None],
+) -> tuple[CheckpointWriter, PointFileRecord | None]:
+    """The sweep's checkpoint beside ``output`` (in ``out_dir``), started afresh or, with ``resume``, with
+    its finished points kept (into ``run.outcomes``; a point whose job is not valid now
+    is not resumed, nor one whose point files in ``folder`` are missing: it runs again),
+    and the record of the point files (``folder`` checked; afresh: the files this sweep
+    wrote before go, and only those)."""
+    from planar_tui.registry import JOB_KINDS
+
+    sweep, points, total = run.sweep, run.points, len(run.points)
+    checkpoint = checkpoint_path(output)
+    finished = {}
+    if resume:
+        names = JOB_KINDS[sweep.job.kind].figure_names
+
+        def columns(number: int) -> tuple[str, ...] | None:
+            job = _job_of(points, number)
+            return () if job is None else None if names is None else names(job)
+
+        finished = read_finished(
+            checkpoint,
+            sweep.fingerprint(),
+            total,
+            columns,
+            lambda text: announce(f"warning: {text}"),
+        )
+    record = None
+    if folder is not None:
+
+        def files_missing(number: int) -> bool:
+            job = _job_of(points, number)
+            if job is None:
+                return True
+            names = with_sidecars(point_file_names(_point_stem(sweep, total, number), job))
+            return not all((folder / name).is_file() for name in names)
+
+        missing = [
+            number
+            for number, outcome in finished.items()
+            if outcome.status == OK and files_missing(number)
+        ]
+        for number in missing:
+            del finished[number]
+        run.recomputed = len(missing)
+        check_point_folder(
+            sweep.preset_path,
+            f"{sweep.name}.point_outputs",
+            folder,
+            out_dir,
+            manifest_path(output),
+        )
+        record = PointFileRecord(manifest_path(output), folder)
+        if not finished:  # afresh: the files this sweep wrote before go, and only those
+            record.start_afresh()
+    writer = CheckpointWriter(checkpoint, sweep.fingerprint(), total, finished)
+    run.checkpoint = checkpoint
+    run.outcomes.update(finished)
+    run.resumed = len(finished)
+    return writer, record
 
 
 def _detail(run: SweepRun) -> str:
