@@ -36,6 +36,7 @@ from planar_tui.sweep.worker import INFEASIBLE, OK, PointOutcome, PointTask
 
 if TYPE_CHECKING:
     from planar_tui.batch import PlannedFile
+    from planar_tui.sweep.checkpoint import CheckpointWriter
 
 
 def make_algorithm(opt: Optimisation) -> Any:
@@ -131,10 +132,7 @@ def run_optimisation(
     (:class:`~planar_tui.errors.Cancelled`, ``KeyboardInterrupt``) with the checkpoint
     kept. ``on_generation`` sees the run after each generation (the app's screen); a
     cancelled run is handed to it once more, ``cancelled``, before the cancel propagates."""
-    import numpy as np
-
     from planar_tui.sweep import execute
-    from planar_tui.sweep.checkpoint import CheckpointWriter, checkpoint_path, read_finished
     from planar_tui.warmup import warm_kernels
 
     progress = progress or Progress()
@@ -144,16 +142,7 @@ def run_optimisation(
     finished: dict[int, PointOutcome] = {}
     writer = None
     if output is not None:
-        run.checkpoint = checkpoint_path(output)
-        if resume:
-            finished = read_finished(
-                run.checkpoint,
-                opt.fingerprint(),
-                total,
-                _columns_of(opt),
-                lambda text: announce(f"warning: {text}"),
-            )
-        writer = CheckpointWriter(run.checkpoint, opt.fingerprint(), total, finished)
+        finished, writer = _open_checkpoint(run, output, total, resume, announce)
 
     def keep(outcome: PointOutcome, outcomes: dict[int, PointOutcome]) -> None:
         if writer is not None:
@@ -188,17 +177,7 @@ def run_optimisation(
             warm_kernels([opt.job.kind], progress)
             progress.start(opt.budget, opt.label, "starting")
             while len(run.evaluations) < opt.budget:
-                population = algorithm.ask()
-                population = population[: opt.budget - len(run.evaluations)]
-                run.generations += 1
-                start = len(run.evaluations)
-                designs = [
-                    (
-                        start + i + 1,
-                        tuple(v.decode(x) for v, x in zip(opt.variables, row, strict=True)),
-                    )
-                    for i, row in enumerate(population.get("X"))
-                ]
+                population, designs = _ask(run, algorithm)
                 outcomes: dict[int, PointOutcome] = {}
                 try:
                     evaluate(designs, True, outcomes)
@@ -218,13 +197,7 @@ def run_optimisation(
                 run.evaluations += generation
                 if writer is not None:  # one fsync a generation: a machine crash loses at
                     writer.sync()  # most the generation running (each evaluation is flushed)
-                population.set(
-                    "F",
-                    np.array([_f(opt, e.outcome) for e in generation]),
-                    "G",
-                    np.array([_g(opt, e.outcome) for e in generation]),
-                )
-                algorithm.tell(infills=population)
+                _tell(opt, algorithm, population, generation)
                 if on_generation is not None:
                     on_generation(run)
             best = run.best()
@@ -245,6 +218,58 @@ def run_optimisation(
     if out_dir is not None:
         _write_outputs(run, out_dir, keep_checkpoint)
     return run
+
+
+def _open_checkpoint(
+    run: OptimiseRun, output: Path, total: int, resume: bool, announce: Callable[[str], None]
+) -> tuple[dict[int, PointOutcome], CheckpointWriter]:
+    """The optimisation's checkpoint beside ``output`` (``run.checkpoint``), started afresh
+    or, with ``resume``, with its finished evaluations kept (returned by number; a record
+    that is not one is dropped with one ``announce`` warning)."""
+    from planar_tui.sweep.checkpoint import CheckpointWriter, checkpoint_path, read_finished
+
+    opt = run.optimisation
+    run.checkpoint = checkpoint_path(output)
+    finished: dict[int, PointOutcome] = {}
+    if resume:
+        finished = read_finished(
+            run.checkpoint,
+            opt.fingerprint(),
+            total,
+            _columns_of(opt),
+            lambda text: announce(f"warning: {text}"),
+        )
+    return finished, CheckpointWriter(run.checkpoint, opt.fingerprint(), total, finished)
+
+
+def _ask(run: OptimiseRun, algorithm: Any) -> tuple[Any, list[tuple[int, tuple[Any, ...]]]]:
+    """The next generation (``run.generations`` counts it): pymoo's population, cut to the
+    budget left, and its designs numbered on from the evaluations so far, each decoded to
+    the variables' TOML values."""
+    opt = run.optimisation
+    population = algorithm.ask()
+    population = population[: opt.budget - len(run.evaluations)]
+    run.generations += 1
+    start = len(run.evaluations)
+    designs = [
+        (start + i + 1, tuple(v.decode(x) for v, x in zip(opt.variables, row, strict=True)))
+        for i, row in enumerate(population.get("X"))
+    ]
+    return population, designs
+
+
+def _tell(opt: Optimisation, algorithm: Any, population: Any, generation: list[Evaluation]) -> None:
+    """Tell pymoo a generation's ``F`` (``sense · value``) and ``G`` (constraints, then 1
+    for an evaluation that is not ``ok``)."""
+    import numpy as np
+
+    population.set(
+        "F",
+        np.array([_f(opt, e.outcome) for e in generation]),
+        "G",
+        np.array([_g(opt, e.outcome) for e in generation]),
+    )
+    algorithm.tell(infills=population)
 
 
 def _columns_of(opt: Optimisation) -> Callable[[int], tuple[str, ...] | None]:
