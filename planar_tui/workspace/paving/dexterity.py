@@ -262,6 +262,11 @@ def compute_dexterity(
     )
 
 
+def dexterity_names(job: Any) -> tuple[str, ...]:
+    """A job's dexterity columns: :data:`HEADER` with ``kappa_max``, none without."""
+    return HEADER if getattr(job.spec, "kappa_max", None) is not None else ()
+
+
 def dexterity_columns(outcome: DexterityOutcome | None) -> list:
     """The summary's :data:`HEADER` cells (empty without ``kappa_max``)."""
     return [""] * len(HEADER) if outcome is None else outcome.columns()

@@ -1,5 +1,5 @@
 """The κ map of a dexterous region as terminal text: each cell shows the worst certified
-upper bound of κ over the dexterity boxes whose centre lies in it, in four bands of
+upper bound of κ over the dexterity boxes that touch it, in four bands of
 :math:`[1, \\kappa_{max}]`, ``?`` where a box's bound exceeds ``kappa_max`` (a boundary box)
 and a blank where no box is kept; the dexterous region's own map (proved and boundary boxes)
 is :func:`~planar_tui.workspace.paving.map.render_map` of its boxes."""
@@ -19,15 +19,20 @@ UNPROVED_GLYPH = "?"
 
 def kappa_cells(outcome: Any, extent, columns: int, rows: int) -> np.ndarray:
     """Per cell (``rows`` x ``columns``, row 0 at the bottom) the largest ``kappa_hi`` of
-    the boxes centred in it (``nan`` where none)."""
+    the boxes that touch it (``nan`` where none)."""
     xlo, xhi, ylo, yhi = extent
     boxes = np.asarray(outcome.boxes).reshape(-1, 4)
     worst = np.full(rows * columns, -np.inf)
-    if len(boxes):
-        i = ((0.5 * (boxes[:, 0] + boxes[:, 1]) - xlo) / (xhi - xlo) * columns).astype(int)
-        j = ((0.5 * (boxes[:, 2] + boxes[:, 3]) - ylo) / (yhi - ylo) * rows).astype(int)
-        ok = (i >= 0) & (i < columns) & (j >= 0) & (j < rows)
-        np.maximum.at(worst, j[ok] * columns + i[ok], outcome.kappa[ok, 1])
+    cw, ch = (xhi - xlo) / columns, (yhi - ylo) / rows
+    i0 = np.clip(np.floor((boxes[:, 0] - xlo) / cw), 0, columns - 1).astype(int)
+    i1 = np.clip(np.ceil((boxes[:, 1] - xlo) / cw) - 1, i0, columns - 1).astype(int)
+    j0 = np.clip(np.floor((boxes[:, 2] - ylo) / ch), 0, rows - 1).astype(int)
+    j1 = np.clip(np.ceil((boxes[:, 3] - ylo) / ch) - 1, j0, rows - 1).astype(int)
+    small = (i0 == i1) & (j0 == j1)
+    np.maximum.at(worst, j0[small] * columns + i0[small], outcome.kappa[small, 1])
+    for k in np.flatnonzero(~small):  # a box over several cells (few: inside boxes)
+        block = worst.reshape(rows, columns)[j0[k] : j1[k] + 1, i0[k] : i1[k] + 1]
+        np.maximum(block, outcome.kappa[k, 1], out=block)
     worst[worst == -np.inf] = np.nan
     return worst.reshape(rows, columns)
 
