@@ -368,13 +368,14 @@ WARMUP_PARTS = {
     "singularities": _WARMUP_TABLE + 'form = "arc-distance"\nsingularities = true\n'
     "elbow = [1, -1, 1]\n",
     "orientation": _WARMUP_TABLE + 'orientation_deg = [-1, 1]\norientation_mode = "total"\n',
+    "dexterity": _WARMUP_TABLE + 'form = "arc-distance"\nkappa_max = 4\nelbow = [1, -1, 1]\n',
 }
 
 
 def warmup_parts(job: Job[WorkspaceSpec, Robot3RRR]) -> tuple[str, ...]:
     """The parts of :data:`WARMUP_PARTS` whose kernels a run of ``job`` calls: a range of
     orientations, the arc-distance form or an interval form's strategy (none for the
-    exact geometric area alone), and the singularities where asked."""
+    exact geometric area alone), and the singularities and dexterity where asked."""
     spec = job.spec
     if isinstance(spec.orientation_deg, tuple):
         parts = ["orientation"]
@@ -384,7 +385,9 @@ def warmup_parts(job: Job[WorkspaceSpec, Robot3RRR]) -> tuple[str, ...]:
         parts = ["arc-distance"]
     else:
         parts = [spec.strategy]
-    return (*parts, "singularities") if spec.singularities else tuple(parts)
+    if spec.singularities:
+        parts.append("singularities")
+    return (*parts, "dexterity") if spec.kappa_max is not None else tuple(parts)
 
 
 JOB_KIND = JobKind(
