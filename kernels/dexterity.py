@@ -34,7 +34,7 @@ import math
 import numpy as np
 
 from ._jit import kernel
-from .interval import down, up
+from .interval import down, iadd, imul, isub, up
 
 #: Relative slack on the midpoint matrix's computed eigenvalues (times its Frobenius norm).
 EIG_RELATIVE = 1e-12
@@ -132,6 +132,22 @@ def extreme_singular_values(a, n):
         sigma_max = max(sigma_max, math.sqrt(norm))
         sigma_min = min(sigma_min, math.sqrt(norm))
     return sigma_max, sigma_min
+
+
+@kernel
+def mean_value(m_lo, m_hi, row, k, c_lo, c_hi, b_lo, b_hi, da_x, da_y, db_x, db_y, dx, dy):
+    """Meet entry ``(row, k)`` of :math:`M` (natural: ``m_lo, m_hi``) with its mean-value
+    form :math:`m(c) + \\partial_x m(X)\\,(X - c_x) + \\partial_y m(X)\\,(Y - c_y)`,
+    :math:`\\partial m = (\\partial a - m\\,\\partial b) / b`; ``c`` the entry at the
+    centre, ``dx``, ``dy`` the box's half-widths."""
+    n_lo = m_lo[row, k]
+    n_hi = m_hi[row, k]
+    gx_lo, gx_hi = idiv(*isub(*da_x, *imul(n_lo, n_hi, *db_x)), b_lo, b_hi)
+    gy_lo, gy_hi = idiv(*isub(*da_y, *imul(n_lo, n_hi, *db_y)), b_lo, b_hi)
+    v_lo, v_hi = iadd(*imul(gx_lo, gx_hi, -dx, dx), *imul(gy_lo, gy_hi, -dy, dy))
+    lo, hi = meet(n_lo, n_hi, *iadd(c_lo, c_hi, v_lo, v_hi))
+    m_lo[row, k] = lo
+    m_hi[row, k] = hi
 
 
 @kernel

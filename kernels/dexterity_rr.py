@@ -23,7 +23,7 @@ import numba
 import numpy as np
 
 from ._jit import kernel
-from .dexterity import IN, OUT, UNSURE, combine, idiv, kappa_bounds, meet, set_norm, set_row
+from .dexterity import IN, OUT, UNSURE, combine, idiv, kappa_bounds, mean_value, set_norm, set_row
 from .interval import iadd, iadd_scalar, imul, iscale, isqr, isub, up
 from .singularity3rrr import LEG_IN, LEG_OUT, LEG_UNDEFINED, TOLERANCE_CM, leg_status
 
@@ -46,22 +46,6 @@ def rr_point(x, y, leg, g, r, elbow, limits, length_cm):
     b_lo, b_hi = isub(*imul(vx_lo, vx_hi, uy_lo, uy_hi), *imul(vy_lo, vy_hi, ux_lo, ux_hi))
     t_lo, t_hi = iscale(mm_lo, mm_hi, 1.0 / length_cm) if length_cm > 0.0 else (0.0, 0.0)
     return verdict == LEG_IN, ux_lo, ux_hi, uy_lo, uy_hi, t_lo, t_hi, b_lo, b_hi
-
-
-@kernel
-def mean_value(m_lo, m_hi, row, k, c_lo, c_hi, b_lo, b_hi, da_x, da_y, db_x, db_y, dx, dy):
-    """Meet entry ``(row, k)`` of :math:`M` (natural: ``m_lo, m_hi``) with its mean-value
-    form :math:`m(c) + \\partial_x m(X)\\,(X - c_x) + \\partial_y m(X)\\,(Y - c_y)`,
-    :math:`\\partial m = (\\partial a - m\\,\\partial b) / b`; ``c`` the entry at the
-    centre, ``dx``, ``dy`` the box's half-widths."""
-    n_lo = m_lo[row, k]
-    n_hi = m_hi[row, k]
-    gx_lo, gx_hi = idiv(*isub(*da_x, *imul(n_lo, n_hi, *db_x)), b_lo, b_hi)
-    gy_lo, gy_hi = idiv(*isub(*da_y, *imul(n_lo, n_hi, *db_y)), b_lo, b_hi)
-    v_lo, v_hi = iadd(*imul(gx_lo, gx_hi, -dx, dx), *imul(gy_lo, gy_hi, -dy, dy))
-    lo, hi = meet(n_lo, n_hi, *iadd(c_lo, c_hi, v_lo, v_hi))
-    m_lo[row, k] = lo
-    m_hi[row, k] = hi
 
 
 @kernel

@@ -15,12 +15,12 @@ def evaluator(robot: Any) -> Callable[[Any], tuple[Any, Any]]:
     """Boxes (k, 4) to ``(verdict, kappa)`` in the robot's working mode (not ``any``)."""
     import numpy as np
 
-    from planar_tui.kernels.dexterity_rr import rr_dexterity
-
     g, r, _, limits, _ = kernel_inputs(robot)
     elbow = np.array(robot.elbows, dtype=float)
 
     def evaluate(boxes: Any) -> tuple[Any, Any]:
+        from planar_tui.kernels.dexterity_rr import rr_dexterity  # numba: after prepare_kernels
+
         verdict = np.empty(len(boxes), dtype=np.int64)
         kappa = np.empty((len(boxes), 2))
         rr_dexterity(boxes, g, r, elbow, limits, 0.0, verdict, kappa)

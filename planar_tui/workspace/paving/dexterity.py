@@ -143,9 +143,10 @@ class DexterityOutcome:
     def describe(self) -> str:
         """``dexterous (κ ≤ 4, L = 25 cm): area in [lo, hi] cm2, elbow [+1 -1 +1]``."""
         length = "" if self.length_cm is None else f", L = {self.length_cm:.4g} cm"
+        mode = f", elbow [{self.elbow}]" if self.elbow else ""
         return (
             f"dexterous (κ ≤ {self.kappa_max:g}{length}): area in "
-            f"[{self.area_inside_cm2:.5g}, {self.area_kept_cm2:.5g}] cm2, elbow [{self.elbow}]"
+            f"[{self.area_inside_cm2:.5g}, {self.area_kept_cm2:.5g}] cm2{mode}"
         )
 
 
@@ -259,6 +260,18 @@ def compute_dexterity(
         elbow=elbow,
         boxes_processed=budget.processed - processed,
         seconds=time.perf_counter() - started,
+    )
+
+
+def planar_dexterity(job: Any, prepared: Any, extent, budget: BoxBudget) -> DexterityOutcome:
+    """The dexterous region of a 3-RPR or 3-PRR job with ``kappa_max`` (its Mechanism's
+    evaluator, :math:`L` as the evaluator takes it: the job's or the circumradius)."""
+    spec = job.spec
+    points = job.robot.platform_points_cm
+    length = spec.characteristic_length_cm or circumradius_cm(points)
+    evaluate = spec.mechanism.dexterity(job, prepared)
+    return compute_dexterity(
+        evaluate, extent, spec.precision_cm, spec.kappa_max, length, "", budget
     )
 
 

@@ -23,13 +23,13 @@ def evaluator(robot: Any, spec: Any, circle: Circle) -> Callable[[Any], tuple[An
     """Boxes (k, 4) to ``(verdict, kappa)`` in the working mode ``circle.elbow``."""
     import numpy as np
 
-    from planar_tui.kernels.dexterity_rr import rr_dexterity
-
     g, r, elbow, limits = kernel_inputs(robot, spec, circle)
     rows = np.tile(g, (3, 1))  # one geometry row per leg
     length = length_cm(robot, spec)
 
     def evaluate(boxes: Any) -> tuple[Any, Any]:
+        from planar_tui.kernels.dexterity_rr import rr_dexterity  # numba: after prepare_kernels
+
         verdict = np.empty(len(boxes), dtype=np.int64)
         kappa = np.empty((len(boxes), 2))
         rr_dexterity(boxes, rows, r, elbow, limits, length, verdict, kappa)
