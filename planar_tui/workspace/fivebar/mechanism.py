@@ -11,6 +11,7 @@ from typing import Any
 from planar_tui.workspace.fivebar.robot import workspace_polygon
 from planar_tui.workspace.fivebar.tolerance import TOLERANCE_KEYS_5R, tolerant_level_kernel
 from planar_tui.workspace.path.model import PathModel, PathSolution
+from planar_tui.workspace.paving.linkage import Linkage, rotated
 from planar_tui.workspace.paving.mechanism import Mechanism
 
 
@@ -81,6 +82,17 @@ class MechanismFiveBar(Mechanism):
         from planar_tui.workspace.fivebar.dynamics import solve_path  # numba
 
         return solve_path(robot, spec, pose, rate, acceleration)
+
+    def linkage(self, robot: Any, pose: Any, actuators: Any) -> Linkage:
+        """Legs :math:`A_i \\to B_i = A_i + l_{1,i}(\\cos\\theta_i, \\sin\\theta_i) \\to P`,
+        the base link :math:`A_1A_2` as the frame, no platform."""
+        base = robot.base_joints_cm()
+        end = (float(pose[0]), float(pose[1]))
+        legs = tuple(
+            (a, rotated(a, l1, theta), end)
+            for a, l1, theta in zip(base, robot.proximal_cm, actuators, strict=True)
+        )
+        return Linkage(frame=(base,), legs=legs)
 
 
 MECHANISM = MechanismFiveBar()

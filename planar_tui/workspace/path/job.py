@@ -21,7 +21,7 @@ from typing import Any
 
 from planar_tui.csvio import CsvTable
 from planar_tui.errors import JobError
-from planar_tui.jobkind import Command, Job, JobKind, JobResult, PreparedJob
+from planar_tui.jobkind import Command, Job, JobKind, JobResult, PreparedJob, Tab
 from planar_tui.progress import Progress
 from planar_tui.schema import boolean, integer, number, numbers, setting
 from planar_tui.workspace.path.forward import PathFailure
@@ -279,4 +279,14 @@ def path_job_kind(
         ),
         figure="planar_tui.figures.path:from_result",
         warmup=warmup,
+        tab=Tab(f"{robot_words} path", PATH_TAB_ORDER, path_pane(name)),
     )
+
+
+#: The path tabs' place, after the workspace tabs (among them by title).
+PATH_TAB_ORDER = 9
+
+
+def path_pane(name: str) -> str:
+    """The app's pane of the path kind ``name`` (``path3rrr`` → ``Path3RRRPane``)."""
+    return f"planar_tui.app.widgets.path_pane:Path{name.removeprefix('path').upper()}Pane"

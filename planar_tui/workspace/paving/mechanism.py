@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 
 if TYPE_CHECKING:
     from planar_tui.workspace.paving.geometry import GeometricArea
+    from planar_tui.workspace.paving.linkage import Linkage
 
 
 @runtime_checkable
@@ -142,6 +143,14 @@ class Mechanism(Protocol):
         rates, accelerations, efforts, status and closure residual per time)."""
         problem = f"{self.name} has no path dynamics"
         raise NotImplementedError(problem)
+
+    def linkage(self, robot: Any, pose: Any, actuators: Any) -> Linkage:
+        """The robot's bodies for a drawing (a
+        :class:`~planar_tui.workspace.paving.linkage.Linkage`, cm) with the platform at
+        ``pose`` (``x_cm, y_cm, phi_rad``; a platform-less robot: ``x_cm, y_cm``) and the
+        actuators at ``actuators`` (rad or cm, as :meth:`direct_kinematics` takes them)
+        that assemble it there: what the app's path tabs play back."""
+        raise NotImplementedError(f"{self.name} draws no linkage")
 
 
 __all__ = ["Mechanism"]

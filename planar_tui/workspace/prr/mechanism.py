@@ -3,11 +3,13 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from types import MappingProxyType
 from typing import Any
 
 from planar_tui.workspace.path.model import PathModel, PathSolution
+from planar_tui.workspace.paving.linkage import Linkage, platform_joints, rotated
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.prr import orientation, singularity
 from planar_tui.workspace.prr import robot as prr
@@ -73,6 +75,19 @@ class Mechanism3PRR(Mechanism):
 
         bases = prr.slider_joints_cm(robot, actuators)
         return three_distance_poses(bases, robot.platform_points_cm, robot.distal_cm)
+
+    def linkage(self, robot: Any, pose: Any, actuators: Any) -> Linkage:
+        """Legs from the sliders' joints :math:`B_i + s_i u_i` to :math:`C_i`, the rails
+        (each stroke's ends) as the frame."""
+        rails = tuple(
+            (rotated(b, lo, math.radians(angle)), rotated(b, hi, math.radians(angle)))
+            for b, angle, (lo, hi) in zip(
+                robot.slider_points_cm, robot.slider_angles_deg, robot.strokes_cm, strict=True
+            )
+        )
+        platform = platform_joints(pose, robot.platform_points_cm)
+        legs = tuple(zip(prr.slider_joints_cm(robot, actuators), platform, strict=True))
+        return Linkage(frame=rails, legs=legs, platform=platform)
 
 
 MECHANISM = Mechanism3PRR()

@@ -8,6 +8,7 @@ from types import MappingProxyType
 from typing import Any
 
 from planar_tui.workspace.path.model import PathModel, PathSolution
+from planar_tui.workspace.paving.linkage import Linkage, platform_joints
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.rpr import orientation, singularity
 from planar_tui.workspace.rpr import robot as rpr
@@ -72,6 +73,14 @@ class Mechanism3RPR(Mechanism):
         from planar_tui.kernels.direct_kinematics import three_distance_poses  # numpy
 
         return three_distance_poses(robot.base_joints_cm, robot.platform_points_cm, actuators)
+
+    def linkage(self, robot: Any, pose: Any, actuators: Any) -> Linkage:
+        """Legs :math:`A_i \\to C_i` (their lengths the actuators' :math:`\\rho_i`), the
+        base triangle as the frame."""
+        base = tuple(robot.base_joints_cm)
+        platform = platform_joints(pose, robot.platform_points_cm)
+        legs = tuple(zip(base, platform, strict=True))
+        return Linkage(frame=((*base, base[0]),), legs=legs, platform=platform)
 
 
 MECHANISM = Mechanism3RPR()

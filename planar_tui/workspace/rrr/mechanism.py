@@ -16,6 +16,7 @@ from types import MappingProxyType
 from typing import Any
 
 from planar_tui.workspace.path.model import PathModel, PathSolution
+from planar_tui.workspace.paving.linkage import Linkage, platform_joints, rotated
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.rrr.orientation import compute_orientation_workspace, reach_box_for
 from planar_tui.workspace.rrr.robot import TOLERANCE_KEYS_3RRR
@@ -103,6 +104,17 @@ class Mechanism3RRR(Mechanism):
         from planar_tui.workspace.rrr.dynamics import solve_path  # numba
 
         return solve_path(robot, spec, pose, rate, acceleration)
+
+    def linkage(self, robot: Any, pose: Any, actuators: Any) -> Linkage:
+        """Legs :math:`A_i \\to A_i + l_1(\\cos\\theta_i, \\sin\\theta_i) \\to C_i`, the base
+        triangle as the frame."""
+        base = robot.base_joints_cm()
+        platform = platform_joints(pose, robot.platform_points_cm())
+        legs = tuple(
+            (a, rotated(a, robot.proximal_cm, theta), c)
+            for a, theta, c in zip(base, actuators, platform, strict=True)
+        )
+        return Linkage(frame=((*base, base[0]),), legs=legs, platform=platform)
 
 
 MECHANISM = Mechanism3RRR()
