@@ -1,6 +1,8 @@
 """Baselines shared by the benchmarks: the same inverse dynamics without Numba, and the
 planar chain as a Pinocchio model (the ``bench`` extra)."""
 
+import math
+
 import numpy as np
 
 
@@ -69,3 +71,86 @@ def pinocchio_chain(lengths_m, masses_kg, inertias_kgm2, gravity_m_s2):
         parent = joint
     model.gravity.linear = np.array([0.0, -float(gravity_m_s2), 0.0])
     return model, model.createData()
+
+
+#: Pinocchio's velocity indices of the 3-RRR's actuated joints (:func:`pinocchio_3rrr`).
+ACTUATED_3RRR = [0, 3, 5]
+
+
+def pinocchio_3rrr(robot):
+    """``(pin, model, data, constraint models, constraint datas)``: three RR legs, leg 1's
+    distal link carrying the platform (a revolute joint at C1), legs 2 and 3 closed at C2,
+    C3 by point constraints; gravity (0, -g, 0). Joints are added depth first (the
+    platform right after leg 1), as Pinocchio's algorithms need every subtree's velocity
+    indices contiguous; ``q`` is ``(theta_1, psi_1 - theta_1, phi - psi_1, theta_2,
+    psi_2 - theta_2, theta_3, psi_3 - theta_3)``."""
+    pin = import_pinocchio()
+    model = pin.Model()
+    l1, l2 = robot.proximal_cm / 100, robot.distal_cm / 100
+
+    def link(parent, placement, mass, inertia, length):
+        joint = model.addJoint(parent, pin.JointModelRZ(), placement, f"joint{model.njoints}")
+        body = pin.Inertia(mass, np.array([length / 2, 0, 0]), np.diag([1e-10, inertia, inertia]))
+        model.appendBodyToJoint(joint, body, pin.SE3.Identity())
+        return joint
+
+    distal = []
+    platform = 0
+    for leg, (ax, ay) in enumerate(robot.base_joints_cm()):
+        base = pin.SE3(np.eye(3), np.array([ax / 100, ay / 100, 0.0]))
+        proximal = link(0, base, robot.proximal_mass_kg, robot.proximal_inertia_kgm2, l1)
+        elbow = pin.SE3(np.eye(3), np.array([l1, 0, 0]))
+        distal.append(link(proximal, elbow, robot.distal_mass_kg, robot.distal_inertia_kgm2, l2))
+        if leg == 0:
+            tip = pin.SE3(np.eye(3), np.array([l2, 0, 0]))
+            mass, inertia = robot.platform_mass_kg, robot.platform_inertia_kgm2
+            platform = link(distal[0], tip, mass, inertia, 0.0)
+    model.gravity.linear = np.array([0.0, -robot.gravity_m_s2, 0.0])
+    data = model.createData()
+    constraints = pin.StdVec_RigidConstraintModel()
+    for leg in (1, 2):
+        qx, qy = robot.platform_points_cm()[leg]
+        constraints.append(
+            pin.RigidConstraintModel(
+                pin.ContactType.CONTACT_3D,
+                model,
+                distal[leg],
+                pin.SE3(np.eye(3), np.array([l2, 0, 0])),
+                platform,
+                pin.SE3(np.eye(3), np.array([qx / 100, qy / 100, 0])),
+                pin.ReferenceFrame.LOCAL,
+            )
+        )
+    datas = pin.StdVec_RigidConstraintData()
+    for c in constraints:
+        datas.append(c.createData())
+    pin.initConstraintDynamics(model, data, constraints, datas)
+    return pin, model, data, constraints, datas
+
+
+def joint_state_3rrr(robot, pose, rate, theta, theta_rate):
+    """Pinocchio's ``(q, v)``: relative angles (theta_i, psi_i - theta_i) per leg and the
+    platform's phi - psi_1, psi and its rate from the leg's geometry."""
+    l1, l2 = robot.proximal_cm / 100, robot.distal_cm / 100
+    x, y, phi = pose
+    xd, yd, phid = rate
+    c, s = math.cos(phi), math.sin(phi)
+    q, v, psis = [], [], []
+    for i, ((ax, ay), (qx, qy)) in enumerate(
+        zip(robot.base_joints_cm(), robot.platform_points_cm(), strict=True)
+    ):
+        rx, ry = (c * qx - s * qy) / 100, (s * qx + c * qy) / 100
+        th, thd = theta[i], theta_rate[i]
+        ux = x + rx - ax / 100 - l1 * math.cos(th)
+        uy = y + ry - ay / 100 - l1 * math.sin(th)
+        psi = math.atan2(uy, ux)
+        # C' - l1 thd e_perp(th) = l2 psid e_perp(psi)
+        wx = xd - phid * ry + l1 * thd * math.sin(th)
+        wy = yd + phid * rx - l1 * thd * math.cos(th)
+        psid = (-wx * math.sin(psi) + wy * math.cos(psi)) / l2
+        q += [th, psi - th]
+        v += [thd, psid - thd]
+        psis.append((psi, psid))
+    q.insert(2, phi - psis[0][0])
+    v.insert(2, phid - psis[0][1])
+    return np.array(q), np.array(v)

@@ -32,6 +32,7 @@ steps = 20
 elbow = [1, -1, -1]
 joint_limits_deg = [[20, 70], [110, 160], [245, 295]]
 output = "p.csv"
+plot = "p.png"
 """
 
 
@@ -60,6 +61,7 @@ def test_the_csv_has_a_row_per_time_and_the_columns_of_the_spec(cli, tmp_path):
     assert np.all((degrees >= limits[:, 0]) & (degrees <= limits[:, 1]))
     np.testing.assert_allclose(values[:, -3:], values[:, -6:-3] * values[:, [5, 8, 11]])
     assert "peak |tau| = [" in result.output
+    assert (tmp_path / "out" / "p.png").read_bytes().startswith(b"\x89PNG")
 
 
 def test_the_bundled_preset_runs_inside_its_workspace(cli, tmp_path):
@@ -200,3 +202,31 @@ def test_constant_efforts_trade_work_for_energy():
     work = push @ (theta[1] - theta[0])
     assert abs(work) > 1e-5
     assert work == pytest.approx(energies[1] - energies[0], rel=1e-6)
+
+
+def test_the_declared_figure_names_are_those_a_run_reports(tmp_path):
+    from planar_tui.batch import prepare_jobs, run_job
+    from planar_tui.presets import load_preset
+    from planar_tui.registry import JOB_KINDS
+
+    path = tmp_path / "p.toml"
+    path.write_text(ROBOT + JOB)
+    (job,) = prepare_jobs(load_preset(path).jobs_of("path3rrr"))
+    figures = JOB_KINDS["path3rrr"].point_figures(job, run_job(job))
+    assert JOB_KINDS["path3rrr"].figure_names(job) == tuple(figures)
+    assert len(figures) == 9 and figures["tau3_abs_max_Nm"] > 0
+
+
+def test_a_path_beyond_the_time_limit_is_refused_on_steps(cli, tmp_path, monkeypatch):
+    """1 000 feed-forward steps are estimated at 2 s: over a limit of 1 s, refused up
+    front (exit 2, one line on ``steps``); without feed-forward they fit."""
+    import planar_tui.limits
+
+    monkeypatch.setattr(planar_tui.limits, "MAX_JOB_SECONDS", 1.0)
+    text = ROBOT + JOB.replace("steps = 20", "steps = 1000\nfeed_forward = true")
+    preset, result = run(cli, tmp_path, text)
+    assert result.exit_code == 2, result.output
+    assert result.stderr.startswith(f"error: {preset}: path3rrr[1].steps: is 1,000: the path ")
+    assert "(expected fewer steps)" in result.stderr
+    _, result = run(cli, tmp_path, ROBOT + JOB.replace("steps = 20", "steps = 1000"))
+    assert result.exit_code == 0, result.output

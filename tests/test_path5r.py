@@ -95,3 +95,21 @@ def test_a_negative_end_mass_is_refused(cli, tmp_path):
     )
     assert result.exit_code == 2
     assert result.stderr.startswith(f"error: {preset}: robot5r.end_mass_kg: ")
+
+
+def test_the_working_mode_comes_from_elbow_or_the_robot(cli, tmp_path):
+    """With `working_mode = "any"` and both modes within the limits at from_pose the job
+    asks for `elbow` (exit 2); `elbow = [1, -1]` gives the robot's "+-" run's torques."""
+    any_mode = ROBOT.replace('working_mode = "+-"', 'working_mode = "any"')
+    preset, result = run(cli, tmp_path, any_mode + JOB)
+    assert result.exit_code == 2, result.output
+    assert result.stderr.startswith(f"error: {preset}: path5r[1].elbow: is not given and leg 1")
+    _, result = run(
+        cli, tmp_path, any_mode + JOB.replace("steps = 200", "steps = 200\nelbow = [1, -1]")
+    )
+    assert result.exit_code == 0, result.output
+    chosen = (tmp_path / "out" / "f.csv").read_text()
+    (tmp_path / "robot").mkdir()
+    _, result = run(cli, tmp_path / "robot", ROBOT + JOB)
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "robot" / "out" / "f.csv").read_text() == chosen

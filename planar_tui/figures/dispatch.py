@@ -28,6 +28,7 @@ RECOGNISERS: tuple[tuple[str, str, str, str], ...] = (
     ("motion uncertainty band", "uncertainty", "matches", "draw"),
     ("simulate", "simulate", "matches", "draw"),
     ("torques", "torques", "matches", "draw"),
+    ("path", "path", "matches", "draw"),
 )
 #: Kinds whose header-only CSV the project writes in normal use, drawn rather than refused:
 #: the boxes of a geometric-form workspace job (that form keeps no boxes) or of an empty

@@ -5,14 +5,15 @@ end-effector joint ``P`` (:mod:`planar_tui.workspace.path.job`, the equations in
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import ClassVar
+from typing import Any, ClassVar
 
 from planar_tui.errors import PresetError
 from planar_tui.jobkind import Job
-from planar_tui.schema import TableReader, setting
+from planar_tui.schema import TableReader, plot_setting, setting
 from planar_tui.workspace.fivebar.mechanism import MECHANISM
 from planar_tui.workspace.fivebar.robot import Robot5R, leg_angles
 from planar_tui.workspace.path.job import (
+    check_path,
     duration_setting,
     feed_forward_setting,
     path_job_kind,
@@ -51,8 +52,14 @@ class Path5RSpec:
         doc="working mode per leg: θ = α + β (`1`) or α − β (`-1`)",
     )
     feed_forward: bool = feed_forward_setting()
+    plot: str | None = plot_setting()
 
     mechanism: ClassVar[Mechanism] = MECHANISM
+
+    @staticmethod
+    def check(values: dict[str, Any], reader: TableReader, robot: Robot5R) -> dict[str, Any]:
+        """The job fits the time and memory limits (:func:`check_path`)."""
+        return check_path(values, reader, robot, MECHANISM)
 
 
 def prepare_path(job: Job[Path5RSpec, Robot5R]) -> Path5RSpec:

@@ -75,11 +75,13 @@ def simulate(
     effort: Callable[[float], Any],
     duration_s: float,
     steps: int,
+    on_step: Callable[[int], None] | None = None,
 ) -> Motion:
     """RK4 from the state ``(pose, rate)`` over ``duration_s`` in ``steps`` steps, the
     actuators exerting ``effort(t)`` (constant efforts: a function returning them;
-    feed-forward: a path's efforts at ``t``). :class:`PathFailure` names the time a stage
-    fails at."""
+    feed-forward: a path's efforts at ``t``); ``on_step(1)`` after each step (a progress
+    bar's ``advance``, which may raise :class:`~planar_tui.errors.Cancelled`).
+    :class:`PathFailure` names the time a stage fails at."""
     import numpy as np
 
     h = duration_s / steps
@@ -106,4 +108,6 @@ def simulate(
         k4x, k4v = derivative(t + h, x + h * k3x, v + h * k3v)
         poses[k + 1] = x + h / 6.0 * (k1x + 2.0 * k2x + 2.0 * k3x + k4x)
         rates[k + 1] = v + h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v)
+        if on_step is not None:
+            on_step(1)
     return Motion(times, poses, rates, drift)

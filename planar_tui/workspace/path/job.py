@@ -28,6 +28,13 @@ from planar_tui.workspace.path.model import OK, PathModel, PathSolution, problem
 
 #: Most steps of one path (its CSV rows minus one).
 MAX_STEPS = 1_000_000
+#: Memory per CSV cell (the arrays and the CSV's text), as the torques job's.
+BYTES_PER_CELL = 320
+#: Seconds per sampled pose of the inverse dynamics (with its Python wrapper), and per
+#: forward-dynamics step (four stages of five inverse dynamics each, from Python); measured
+#: on a loaded 2-core machine, rounded up.
+POSE_SECONDS = 2e-6
+FEED_FORWARD_STEP_SECONDS = 2e-3
 
 POSE_DOCS = {3: "`[x_cm, y_cm, phi_deg]`", 2: "`[x_cm, y_cm]`"}
 
@@ -60,6 +67,34 @@ def feed_forward_setting() -> Any:
         doc="also integrate the forward dynamics (RK4, same steps) under the path's own "
         "efforts and report the largest deviation from the path and the closure drift",
     )
+
+
+def path_needs(steps: int, feed_forward: bool, model: PathModel) -> tuple[float, float]:
+    """``(memory_bytes, seconds)`` of a path of ``steps`` steps: its CSV's cells, its poses
+    and, with ``feed_forward``, its forward-dynamics steps."""
+    seconds = (steps + 1) * POSE_SECONDS + (
+        steps * FEED_FORWARD_STEP_SECONDS if feed_forward else 0
+    )
+    return (steps + 1) * len(path_header(model)) * BYTES_PER_CELL, seconds
+
+
+def estimate(job: Job[Any, Any]) -> tuple[float, float]:
+    """``(memory_bytes, seconds)`` of a path job (:func:`path_needs`)."""
+    spec = job.spec
+    return path_needs(spec.steps, spec.feed_forward, spec.mechanism.path_model(job.robot))
+
+
+def check_path(values: dict[str, Any], reader: Any, robot: Any, mechanism: Any) -> dict[str, Any]:
+    """A path job fits the time and memory limits (:func:`path_needs`,
+    :mod:`planar_tui.limits`): one line on ``steps`` otherwise."""
+    from planar_tui.limits import memory_problem, time_problem
+
+    steps = values["steps"]
+    memory, seconds = path_needs(steps, values["feed_forward"], mechanism.path_model(robot))
+    problem = time_problem(seconds) or memory_problem(memory)
+    if problem is not None:
+        raise reader.error("steps", f"is {steps:,}: the path {problem}", "fewer steps")
+    return values
 
 
 def pose_si(pose: tuple[float, ...]) -> tuple[float, ...]:
@@ -169,7 +204,8 @@ def run_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathResul
     )
     deviation = drift = None
     if spec.feed_forward:
-        deviation, drift = feed_forward(mechanism, robot, spec, start, stop, times)
+        progress.start(spec.steps, "forward dynamics")
+        deviation, drift = feed_forward(mechanism, robot, spec, start, stop, times, progress)
         summary += f"; feed-forward: deviation {deviation:.3g}, closure drift {drift:.3g} m"
     return PathResult(
         table=CsvTable(path_header(model), rows),
@@ -183,7 +219,7 @@ def run_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathResul
 
 
 def feed_forward(
-    mechanism: Any, robot: Any, spec: Any, start: Any, stop: Any, times: Any
+    mechanism: Any, robot: Any, spec: Any, start: Any, stop: Any, times: Any, progress: Progress
 ) -> tuple[float, float]:
     """Integrate the forward dynamics from rest at ``start`` under the path's own efforts
     (the inverse dynamics of the quintic at every RK4 stage's time): the largest deviation
@@ -198,7 +234,9 @@ def feed_forward(
         return mechanism.inverse_dynamics(robot, spec, *state).effort[0]
 
     zero = np.zeros(len(start))
-    motion = simulate(mechanism, robot, spec, start, zero, effort, spec.duration_s, spec.steps)
+    motion = simulate(
+        mechanism, robot, spec, start, zero, effort, spec.duration_s, spec.steps, progress.advance
+    )
     path = quintic(start, stop, spec.duration_s, times)[0]
     return float(np.abs(motion.pose - path).max()), motion.drift_m
 
@@ -222,10 +260,12 @@ def path_job_kind(
         prepare=prepare,
         point_figures=point_figures,
         figure_names=figure_names,
+        estimate=estimate,
         command=Command(
             name,
             f"Actuator efforts of the {robot_words} along the quintic path of every {name} "
             "job: one CSV per job (pose, actuator coordinates, efforts, powers by time).",
         ),
+        figure="planar_tui.figures.path:from_result",
         warmup=warmup,
     )

@@ -6,12 +6,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import ClassVar
+from typing import Any, ClassVar
 
 from planar_tui.errors import PresetError
 from planar_tui.jobkind import Job
-from planar_tui.schema import TableReader, setting
+from planar_tui.schema import TableReader, plot_setting, setting
 from planar_tui.workspace.path.job import (
+    check_path,
     duration_setting,
     feed_forward_setting,
     path_job_kind,
@@ -51,8 +52,14 @@ class Path3RRRSpec:
         doc="active-joint limits θ1, θ2, θ3, as the workspace job's",
     )
     feed_forward: bool = feed_forward_setting()
+    plot: str | None = plot_setting()
 
     mechanism: ClassVar[Mechanism] = MECHANISM
+
+    @staticmethod
+    def check(values: dict[str, Any], reader: TableReader, robot: Robot3RRR) -> dict[str, Any]:
+        """The job fits the time and memory limits (:func:`check_path`)."""
+        return check_path(values, reader, robot, MECHANISM)
 
     @property
     def limits_rad(self) -> tuple[tuple[float, float], ...] | None:
