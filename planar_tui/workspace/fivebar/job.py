@@ -39,6 +39,7 @@ from planar_tui.workspace.fivebar.tolerance import (
 )
 from planar_tui.workspace.paving.circle import read_centre, refuse_without_singularities
 from planar_tui.workspace.paving.columns import tolerance_names
+from planar_tui.workspace.paving.dexterity import check_dexterity, kappa_setting
 from planar_tui.workspace.paving.estimate import check_needs, estimate, report_box_estimate
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.paving.result import (
@@ -66,6 +67,7 @@ from planar_tui.workspace.paving.tolerance import (
 
 if TYPE_CHECKING:
     from planar_tui.workspace.fivebar.singularity import FiveBarSingularities
+    from planar_tui.workspace.paving.dexterity import DexterityOutcome
     from planar_tui.workspace.paving.levels import BoxBudget, WorkspaceOutcome
 
 #: The forms: the exact leg-wise paving, or the exact area only.
@@ -126,6 +128,7 @@ class FiveBarSpec:
         doc="centre of the largest singularity-free circle to certify (needs "
         "`singularities = true` and a working mode)",
     )
+    kappa_max: float | None = kappa_setting()
     tolerance_cm: float | None = TOLERANCE_FIELDS_5R[0]
     tolerances_cm: tuple[tuple[str, float], ...] | None = TOLERANCE_FIELDS_5R[1]
     tolerance_mode: str | None = TOLERANCE_FIELDS_5R[2]
@@ -170,6 +173,13 @@ class FiveBarSpec:
                     problem,
                     "a centre inside the workspace, off its singularities",
                 )
+        check_dexterity(values, reader)
+        if values["kappa_max"] is not None and robot.working_mode == "any":
+            raise reader.error(
+                "kappa_max",
+                "needs a working mode (the robot's working_mode is any)",
+                'working_mode = "++", "+-", "-+" or "--" in [robot5r]',
+            )
         values = check_paving(values, reader)
         check_needs("workspace5r", FiveBarSpec(**values), reader, robot)  # memory and time
         return values
@@ -183,6 +193,8 @@ class FiveBarResult(JobResult):
     singularity: FiveBarSingularities | None = None
     #: With a tolerance: the nominal and the other mode's outcomes (map and figure).
     companions: dict[str, WorkspaceOutcome] | None = None
+    #: The certified dexterous region, with ``kappa_max``.
+    dexterity: DexterityOutcome | None = None
 
 
 def compute_fivebar(robot: Robot5R, spec: FiveBarSpec, budget: BoxBudget) -> WorkspaceOutcome:
@@ -255,6 +267,9 @@ def run_fivebar(
         compute_singularities,
         singularity_columns,
     )
+    from planar_tui.workspace.paving.dexterity import HEADER as DEXTERITY_HEADER
+    from planar_tui.workspace.paving.dexterity import boxes_table as dexterity_boxes
+    from planar_tui.workspace.paving.dexterity import compute_dexterity
     from planar_tui.workspace.paving.levels import (
         SUMMARY_HEADER,
         BoxBudget,
@@ -276,15 +291,29 @@ def run_fivebar(
         summary += f"; {singular.describe()}"
     # the 3-RRR's columns, the working mode in place of the strategy
     header: tuple[str, ...] = (SUMMARY_HEADER[0], "working_mode", *SUMMARY_HEADER[2:-1], *HEADER)
+    dexterous = None
+    if job.spec.kappa_max is not None:
+        dexterous = compute_dexterity(
+            MECHANISM.dexterity(job, None),
+            outcome.extent_cm,
+            job.spec.precision_cm,
+            job.spec.kappa_max,
+            None,
+            " ".join(str(s) for s in job.robot.elbows),
+            budget,
+        )
+        header, row = header + DEXTERITY_HEADER, row + dexterous.columns()
+        summary += f"; {dexterous.describe()}"
     report = tolerance_report(job, lambda: BoxBudget(job, progress), compute_fivebar)
     if report is not None:
         header, row, summary = header + report.header, row + report.cells, summary + report.text
     return FiveBarResult(
         table=CsvTable((*header, "seconds"), [[*row, base[11]]]),
         summary=summary,
-        extra_tables={"boxes": boxes_table(outcome)},
+        extra_tables={"boxes": dexterity_boxes(boxes_table(outcome), dexterous)},
         outcome=outcome,
         singularity=singular,
+        dexterity=dexterous,
         companions=None if report is None else report.companions,
     )
 
@@ -292,6 +321,7 @@ def run_fivebar(
 def fivebar_figure_names(job: Any) -> tuple[str, ...]:
     """The columns of a five-bar job (:func:`planar_tui.workspace.fivebar.job.run_fivebar`)."""
     from planar_tui.workspace.fivebar.singularity import HEADER
+    from planar_tui.workspace.paving.dexterity import dexterity_names
     from planar_tui.workspace.paving.levels import SUMMARY_HEADER
 
     return (
@@ -299,6 +329,7 @@ def fivebar_figure_names(job: Any) -> tuple[str, ...]:
         "working_mode",
         *SUMMARY_HEADER[2:-1],
         *HEADER,
+        *dexterity_names(job),
         *tolerance_names(job),
     )
 

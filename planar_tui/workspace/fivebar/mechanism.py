@@ -26,6 +26,7 @@ class MechanismFiveBar(Mechanism):
     tolerance_boxes = MappingProxyType({"all": 1.0, "some": 1.0})
     has_singularities = False  # its runner, not the generic one, certifies them
     has_orientation_ranges = False
+    has_dexterity = True
 
     def parameters(self, robot: Any, spec: Any) -> Any:
         return robot.leg_arrays()
@@ -43,6 +44,11 @@ class MechanismFiveBar(Mechanism):
             level(legs, limits, precision_cm, rows, start, stop, children, outcome)
 
         return decide
+
+    def dexterity(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
+        from planar_tui.workspace.fivebar.dexterity import evaluator
+
+        return evaluator(job.robot)
 
     def reach_box(self, robot: Any, spec: Any) -> tuple[float, float, float, float]:
         return robot.reach_box_cm()

@@ -33,7 +33,7 @@ class Mechanism(Protocol):
     outside or split) and its halves. A box it proves inside or outside is never split.
 
     Later capabilities are methods of this protocol, each written once per robot and never
-    inside the core: dexterity (the condition number over a box), certified paths
+    inside the core: dexterity (:meth:`dexterity`: the condition number over a box), certified paths
     (a segment inside the singularity-free workspace), dynamics (the platform's inverse
     dynamics) and direct kinematics (the assembly modes at given actuator values).
     """
@@ -53,6 +53,8 @@ class Mechanism(Protocol):
     #: :meth:`compute_singularities`) and paves orientation ranges (:meth:`compute_range`).
     has_singularities: bool
     has_orientation_ranges: bool
+    #: Whether it certifies dexterous regions (``kappa_max``, :meth:`dexterity`).
+    has_dexterity: bool = False
 
     def parameters(self, robot: Any, spec: Any) -> Any:
         """The leg test kernel's parameter array (its tolerance bounds included)."""
@@ -101,6 +103,14 @@ class Mechanism(Protocol):
         """The singular boxes and the certified circle (a
         :class:`~planar_tui.workspace.paving.result.SingularOverlay` with ``columns()``)."""
         problem = f"{self.name} certifies no singularities (has_singularities is false)"
+        raise NotImplementedError(problem)
+
+    def dexterity(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
+        """The κ evaluator of a job with ``kappa_max`` in its working mode (resolved by
+        ``prepare``): (k, 4) boxes ``x_lo, x_hi, y_lo, y_hi`` to each box's verdict (0 some
+        leg out, 1 unsure, 2 every leg in) and its certified κ enclosure (k, 2)
+        (:mod:`planar_tui.workspace.paving.dexterity`)."""
+        problem = f"{self.name} certifies no dexterous region (has_dexterity is false)"
         raise NotImplementedError(problem)
 
     def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:

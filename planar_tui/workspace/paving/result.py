@@ -13,6 +13,7 @@ from planar_tui.workspace.paving.tolerance import describe as describe_tolerance
 from planar_tui.workspace.paving.tolerance import map_layers, tolerance_of
 
 if TYPE_CHECKING:
+    from planar_tui.workspace.paving.dexterity import DexterityOutcome
     from planar_tui.workspace.paving.levels import WorkspaceOutcome
 
 
@@ -43,6 +44,8 @@ class WorkspaceResult(JobResult):
     singularity: SingularOverlay | None = None
     #: With a tolerance: the nominal and the other mode's outcomes (map and figure).
     companions: dict[str, WorkspaceOutcome] | None = None
+    #: The certified dexterous region, with ``kappa_max``.
+    dexterity: DexterityOutcome | None = None
 
 
 def map_title(job: Job[Any, Any], outcome: WorkspaceOutcome) -> str:
@@ -76,6 +79,12 @@ def render_workspace(job: Job[Any, Any], result: WorkspaceResult, console: Any) 
         console.print(singular.describe(), markup=False, highlight=False)
     boxes, status, drawn = map_content(job, result)
     lines = render_map(boxes, status, width=width, **drawn)
+    dexterous = getattr(result, "dexterity", None)
+    if dexterous is not None:  # its region (proved, boundary) and its κ map below
+        from planar_tui.workspace.paving.kappa_map import render_kappa_map
+
+        lines += [dexterous.describe(), *render_map(dexterous.boxes, dexterous.status, width=width)]
+        lines += render_kappa_map(dexterous, width)
     for line in lines:
         console.print(line, markup=False, highlight=False, crop=True, soft_wrap=False)
 

@@ -28,6 +28,7 @@ from planar_tui.jobkind import Command, Job, JobKind, Option, OutputOption, Prep
 from planar_tui.progress import Progress
 from planar_tui.schema import TableReader, number, plot_setting, setting, string
 from planar_tui.workspace.paving.columns import planar_figure_names
+from planar_tui.workspace.paving.dexterity import check_dexterity, kappa_setting, length_setting
 from planar_tui.workspace.paving.estimate import check_needs, estimate, report_box_estimate
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.paving.result import (
@@ -83,6 +84,8 @@ class PlanarSpec:
     )
     circle_centre_cm: tuple[float, float] | None = centre_setting()
     singularity_precision_cm: float | None = singularity_precision_setting()
+    kappa_max: float | None = kappa_setting()
+    characteristic_length_cm: float | None = length_setting()
 
     #: The kind's :class:`Mechanism` and job kind's name (set by each subclass; not keys).
     mechanism: ClassVar[Mechanism]
@@ -92,6 +95,8 @@ class PlanarSpec:
     tolerance_keys: ClassVar[tuple[str, ...]] = ()
     #: The keys that go with ``singularities = true`` (:func:`check_circle_keys`).
     circle_keys: ClassVar[tuple[str, ...]] = ("circle_centre_cm", "singularity_precision_cm")
+    #: The circle keys that ``kappa_max`` takes too (its working mode; ``()``: none).
+    mode_keys: ClassVar[tuple[str, ...]] = ()
 
     @property
     def orientation_rad(self) -> float:
@@ -107,7 +112,10 @@ class PlanarSpec:
         must fit the memory limit; the circle's keys go with ``singularities``
         (:func:`check_circle_keys`); the job's estimated memory and time must fit the limits
         (:func:`~planar_tui.workspace.paving.estimate.check_needs`)."""
-        check_circle_keys(values, reader, cls.circle_keys)
+        dexterous = values["kappa_max"] is not None
+        names = tuple(n for n in cls.circle_keys if not (dexterous and n in cls.mode_keys))
+        check_circle_keys(values, reader, names)
+        check_dexterity(values, reader)
         refine = values["refine_precision_cm"]
         if refine is not None and refine > values["precision_cm"]:
             raise reader.error(
@@ -311,6 +319,16 @@ def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> 
             summary += f"; {singular.describe()}"
         cells = [""] * len(HEADER) if singular is None else singular.columns()
         header, row = (*header[:-1], *HEADER, header[-1]), [*row[:-1], *cells, row[-1]]
+    dexterous = None
+    if job.spec.kappa_max is not None:  # its columns before the wall time
+        from planar_tui.workspace.paving.dexterity import HEADER as DEXTERITY_HEADER
+        from planar_tui.workspace.paving.dexterity import planar_dexterity
+
+        dexterous = planar_dexterity(job, ready.prepared, outcome.extent_cm, budget)
+        header = (*header[:-1], *DEXTERITY_HEADER, header[-1])
+        row = [*row[:-1], *dexterous.columns(), row[-1]]
+        summary += f"; {dexterous.describe()}"
+    from planar_tui.workspace.paving.dexterity import boxes_table as dexterity_boxes
     from planar_tui.workspace.paving.tolerance import tolerance_report
 
     report = tolerance_report(job, lambda: BoxBudget(job, progress), compute_planar)
@@ -323,18 +341,23 @@ def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> 
     return WorkspaceResult(
         table=CsvTable(header, [row]),
         summary=summary,
-        extra_tables={"boxes": boxes_table(outcome)},
+        extra_tables={"boxes": dexterity_boxes(boxes_table(outcome), dexterous)},
         outcome=outcome,
         singularity=singular,
+        dexterity=dexterous,
         companions=None if report is None else report.companions,
     )
 
 
 def prepare_planar(job: Job[PlanarSpec, Any]) -> object:
     """The kind's ``prepare``: the singularity-free circle's centre, checked (``None``
-    without singularities)."""
+    without singularities); with ``kappa_max`` the κ evaluator is built once here, so a
+    working mode it cannot resolve is refused before anything runs."""
     mechanism: Mechanism = job.spec.mechanism
-    return mechanism.resolve_centre(job) if mechanism.has_singularities else None
+    prepared = mechanism.resolve_centre(job) if mechanism.has_singularities else None
+    if job.spec.kappa_max is not None:
+        mechanism.dexterity(job, prepared)
+    return prepared
 
 
 def planar_job_kind(

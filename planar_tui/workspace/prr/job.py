@@ -62,6 +62,8 @@ class Spec3PRR(PlanarSpec):
         "circle_centre_cm",
         "singularity_precision_cm",
     )
+    #: The circle key that ``kappa_max`` takes too (its working mode).
+    mode_keys: ClassVar[tuple[str, ...]] = ("slider_modes",)
 
     @classmethod
     def check(cls, values: dict[str, Any], reader: TableReader, robot: Any) -> dict[str, Any]:

@@ -25,6 +25,7 @@ class Mechanism3RPR(Mechanism):
     tolerance_boxes = MappingProxyType({"all": 5.0, "some": 5.0})
     has_singularities = True
     has_orientation_ranges = True
+    has_dexterity = True
 
     def parameters(self, robot: Any, spec: Any) -> Any:
         return rpr.leg_parameters(robot, spec)
@@ -45,6 +46,11 @@ class Mechanism3RPR(Mechanism):
 
     def compute_singularities(self, job: Any, prepared: Any, extent: Any, budget: Any) -> Any:
         return singularity.compute_singularities(job, prepared, extent, budget)
+
+    def dexterity(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
+        from planar_tui.workspace.rpr.dexterity import evaluator
+
+        return evaluator(job.robot, job.spec)
 
     def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:
         return orientation.compute_range(robot, spec, budget)

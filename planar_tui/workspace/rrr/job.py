@@ -30,6 +30,7 @@ from planar_tui.schema import (
     setting,
     string,
 )
+from planar_tui.workspace.paving.dexterity import check_dexterity, kappa_setting, length_setting
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.paving.orientation import check_orientation
 from planar_tui.workspace.paving.result import (
@@ -172,6 +173,8 @@ class WorkspaceSpec:
     elbow: tuple[int, int, int] | None = modes_setting()
     circle_centre_cm: tuple[float, float] | None = centre_setting()
     singularity_precision_cm: float | None = singularity_precision_setting()
+    kappa_max: float | None = kappa_setting()
+    characteristic_length_cm: float | None = length_setting()
     tolerance_cm: float | None
     tolerances_cm: tuple[tuple[str, float], ...] | None
     tolerance_mode: str | None
@@ -189,6 +192,7 @@ class WorkspaceSpec:
         precision cannot exceed the precision."""
         check_orientation(values, reader)
         check_singularity(values, reader)
+        check_dexterity(values, reader)
         lengths = {"proximal_cm": robot.proximal_cm, "distal_cm": robot.distal_cm}
         check_tolerance(values, reader, TOLERANCE_KEYS_3RRR, lengths)
         form = values["form"]
@@ -254,17 +258,34 @@ WorkspaceJob = Job[WorkspaceSpec, Robot3RRR]
 @dataclass(frozen=True)
 class WorkspacePrepared:
     """What :func:`prepare_workspace` resolves: the singularity-free circle's centre and
-    working mode (``None`` without ``singularities``)."""
+    working mode (``None`` without ``singularities`` or ``kappa_max``)."""
 
     circle: Circle | None
 
 
 def prepare_workspace(job: WorkspaceJob) -> WorkspacePrepared:
-    """Resolve the circle of a job with ``singularities`` (:func:`resolve_circle`),
-    refusing an unreachable or singular centre (:class:`PresetError`, exit code 2)."""
-    if not job.spec.singularities:
+    """Resolve the circle of a job with ``singularities`` or ``kappa_max`` (its working
+    mode: :func:`resolve_circle`), refusing an unreachable or singular centre
+    (:class:`PresetError`, exit code 2)."""
+    if not job.spec.singularities and job.spec.kappa_max is None:
         return WorkspacePrepared(None)
     return WorkspacePrepared(resolve_circle(job))
+
+
+def rrr_dexterity(job: WorkspaceJob, prepared: WorkspacePrepared, extent, budget) -> Any:
+    """The dexterous region of a job with ``kappa_max``
+    (:func:`~planar_tui.workspace.paving.dexterity.compute_dexterity`) in the prepared mode."""
+    from planar_tui.workspace.paving.dexterity import compute_dexterity
+    from planar_tui.workspace.rrr.dexterity import length_cm
+
+    assert prepared.circle is not None
+    spec, elbow = job.spec, " ".join(str(s) for s in prepared.circle.elbow)
+    evaluate = MECHANISM.dexterity(job, prepared)
+    length = length_cm(job.robot, spec)
+    assert spec.kappa_max is not None
+    return compute_dexterity(
+        evaluate, extent, spec.precision_cm, spec.kappa_max, length, elbow, budget
+    )
 
 
 def run_workspace(
@@ -273,6 +294,9 @@ def run_workspace(
     """Compute one ``[workspace]`` job."""
     from planar_tui.csvio import CsvTable
     from planar_tui.workspace.paving.circle import HEADER
+    from planar_tui.workspace.paving.dexterity import HEADER as DEXTERITY_HEADER
+    from planar_tui.workspace.paving.dexterity import boxes_table as dexterity_boxes
+    from planar_tui.workspace.paving.dexterity import dexterity_columns
     from planar_tui.workspace.paving.levels import (
         SUMMARY_HEADER,
         BoxBudget,
@@ -296,7 +320,7 @@ def run_workspace(
         outcome = compute_orientation_workspace(job.robot, job.spec, budget)
     else:
         outcome = compute_workspace(job.robot, job.spec, budget)
-        if circle is not None:
+        if circle is not None and job.spec.singularities:
             singular = compute_singularities(job, circle, outcome.extent_cm, budget)
     # the new columns go before the last one, the (not reproducible) wall time
     base = outcome.summary_row()
@@ -307,6 +331,12 @@ def run_workspace(
         summary = summary_text(job.spec, outcome)
     if singular is not None:
         summary += f"; {singular.describe()}"
+    dexterous = None
+    if job.spec.kappa_max is not None:
+        assert circle is not None  # prepared with the mode
+        dexterous = rrr_dexterity(job, ready.prepared, outcome.extent_cm, budget)
+        row, header = row + dexterity_columns(dexterous), header + DEXTERITY_HEADER
+        summary += f"; {dexterous.describe()}"
     report = tolerance_report(job, lambda: BoxBudget(job, progress), compute_workspace)
     if report is not None:
         row, header, summary = row + report.cells, header + report.header, summary + report.text
@@ -315,9 +345,10 @@ def run_workspace(
     return WorkspaceResult(
         table=CsvTable(header, [row]),
         summary=summary,
-        extra_tables={"boxes": boxes_table(outcome)},
+        extra_tables={"boxes": dexterity_boxes(boxes_table(outcome), dexterous)},
         outcome=outcome,
         singularity=singular,
+        dexterity=dexterous,
         companions=None if report is None else report.companions,
     )
 
@@ -337,13 +368,14 @@ WARMUP_PARTS = {
     "singularities": _WARMUP_TABLE + 'form = "arc-distance"\nsingularities = true\n'
     "elbow = [1, -1, 1]\n",
     "orientation": _WARMUP_TABLE + 'orientation_deg = [-1, 1]\norientation_mode = "total"\n',
+    "dexterity": _WARMUP_TABLE + 'form = "arc-distance"\nkappa_max = 4\nelbow = [1, -1, 1]\n',
 }
 
 
 def warmup_parts(job: Job[WorkspaceSpec, Robot3RRR]) -> tuple[str, ...]:
     """The parts of :data:`WARMUP_PARTS` whose kernels a run of ``job`` calls: a range of
     orientations, the arc-distance form or an interval form's strategy (none for the
-    exact geometric area alone), and the singularities where asked."""
+    exact geometric area alone), and the singularities and dexterity where asked."""
     spec = job.spec
     if isinstance(spec.orientation_deg, tuple):
         parts = ["orientation"]
@@ -353,7 +385,9 @@ def warmup_parts(job: Job[WorkspaceSpec, Robot3RRR]) -> tuple[str, ...]:
         parts = ["arc-distance"]
     else:
         parts = [spec.strategy]
-    return (*parts, "singularities") if spec.singularities else tuple(parts)
+    if spec.singularities:
+        parts.append("singularities")
+    return (*parts, "dexterity") if spec.kappa_max is not None else tuple(parts)
 
 
 JOB_KIND = JobKind(

@@ -32,6 +32,7 @@ class Mechanism3RRR(Mechanism):
     tolerance_boxes = MappingProxyType({})
     has_singularities = True
     has_orientation_ranges = True
+    has_dexterity = True
 
     def parameters(self, robot: Any, spec: Any) -> Any:
         from planar_tui.workspace.rrr.compute import kernel_parameters  # numpy
@@ -70,6 +71,11 @@ class Mechanism3RRR(Mechanism):
 
     def compute_singularities(self, job: Any, prepared: Any, extent: Any, budget: Any) -> Any:
         return compute_singularities(job, prepared, extent, budget)
+
+    def dexterity(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
+        from planar_tui.workspace.rrr.dexterity import evaluator
+
+        return evaluator(job.robot, job.spec, prepared.circle)
 
     def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:
         return compute_orientation_workspace(robot, spec, budget)

@@ -44,10 +44,12 @@ LEAF_GRID = 4
 
 def check_singularity(values: dict, reader) -> None:
     """``elbow``, ``circle_centre_cm`` and ``singularity_precision_cm`` go with
-    ``singularities = true``, which needs a single orientation and a form with boxes."""
+    ``singularities = true`` (``elbow`` with ``kappa_max`` too), which needs a single
+    orientation and a form with boxes."""
     if not values["singularities"]:
+        mode = () if values.get("kappa_max") is not None else ("elbow",)  # kappa_max's mode
         refuse_without_singularities(
-            values, reader, ("elbow", "circle_centre_cm", "singularity_precision_cm")
+            values, reader, (*mode, "circle_centre_cm", "singularity_precision_cm")
         )
         return
     if isinstance(values["orientation_deg"], tuple):

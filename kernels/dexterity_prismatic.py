@@ -1,0 +1,213 @@
+"""κ enclosures over (x, y) boxes of the robots with an actuated prismatic joint: the 3-RPR
+(the leg's length) and the 3-PRR (the slider on its base line).
+
+**3-RPR** (:mod:`kernels.singularity3rpr`'s model): leg ``i`` runs from its base joint to
+:math:`C_i = p + r_i`; with :math:`v_i = p - c_i` (:math:`c_i = A_i - r_i`) its length is
+:math:`\\rho_i = |v_i|` and :math:`\\rho_i \\dot\\rho_i = v_i \\cdot (\\dot p + \\dot\\varphi
+E r_i)`: the row of :math:`M = J^{-1}` is :math:`(v_{ix}, v_{iy}, \\mp(v_i \\times r_i)/L) /
+\\rho_i` (a column's sign leaves κ unchanged). Derivatives for the mean-value form:
+:math:`\\partial_x a = (1, 0, r_y / L)`, :math:`\\partial_y a = (0, 1, -r_x / L)`,
+:math:`\\partial b = v / \\rho`; smooth wherever :math:`\\rho > 0`. A leg is *in* where
+:math:`\\rho` lies in its limits, *out* where it misses them.
+
+**3-PRR** (:mod:`kernels.singularity3prr`'s model): :math:`w = p - B'`, :math:`h = w \\cdot
+n`, :math:`q = l^2 - h^2`, the slider :math:`s = w \\cdot u + \\sigma\\sqrt q` and the
+distal link :math:`d = h n - \\sigma \\sqrt q\\, u`. Differentiating :math:`|d|^2 = l^2`:
+:math:`d \\cdot (\\dot p + \\dot\\varphi E r) = \\dot s\\,(d \\cdot u)` with :math:`d \\cdot u =
+-\\sigma\\sqrt q`: the row is :math:`(d_x, d_y, \\mp(d \\times r)/L) / (-\\sigma\\sqrt q)`
+(type I where :math:`q = 0`). With :math:`k = \\sigma h / \\sqrt q`: :math:`\\partial_x d =
+n_x (n + k u)`, :math:`\\partial_x b = k n_x` (and :math:`y` with :math:`n_y`), smooth
+wherever :math:`q > 0`.
+"""
+
+import numba
+import numpy as np
+
+from ._jit import kernel
+from .dexterity import IN, OUT, UNSURE, combine, idiv, kappa_bounds, mean_value, set_norm, set_row
+from .interval import iadd, iadd_scalar, iscale, isqr, isqrt, isub, up
+
+#: Round-off allowance of the float offsets (cm), as :mod:`kernels.singularity3rrr`'s.
+TOLERANCE_CM = 1e-10
+
+
+@kernel
+def rows_and_norm(m_lo, m_hi, norms, row, ax, ay, t, b, length_cm):
+    """Row ``row`` of :math:`M`, ``(ax, ay, t) / b`` (``t`` only with a length), and its
+    norm bounds (each argument a ``(lo, hi)`` pair)."""
+    sq_lo, sq_hi = iadd(*isqr(*ax), *isqr(*ay))
+    if length_cm > 0.0:
+        sq_lo, sq_hi = iadd(sq_lo, sq_hi, *isqr(*t))
+        set_row(m_lo, m_hi, row, 2, *t, *b)
+    set_norm(norms, row, sq_lo, sq_hi, *b)
+    set_row(m_lo, m_hi, row, 0, *ax, *b)
+    set_row(m_lo, m_hi, row, 1, *ay, *b)
+
+
+@kernel
+def rpr_parts(xlo, xhi, ylo, yhi, leg, centres, r, length_cm):
+    """``(vx, vy, t, rho)`` enclosures over the box (module docstring)."""
+    vx_lo, vx_hi = iadd_scalar(xlo, xhi, -centres[leg, 0])
+    vy_lo, vy_hi = iadd_scalar(ylo, yhi, -centres[leg, 1])
+    vx = (vx_lo - TOLERANCE_CM, vx_hi + TOLERANCE_CM)
+    vy = (vy_lo - TOLERANCE_CM, vy_hi + TOLERANCE_CM)
+    rho = isqrt(*iadd(*isqr(*vx), *isqr(*vy)))
+    t = (0.0, 0.0)
+    if length_cm > 0.0:
+        cross = isub(*iscale(*vx, r[leg, 1]), *iscale(*vy, r[leg, 0]))
+        t = iscale(cross[0] - TOLERANCE_CM, cross[1] + TOLERANCE_CM, 1.0 / length_cm)
+    return vx, vy, t, rho
+
+
+@kernel
+def rpr_leg(xlo, xhi, ylo, yhi, leg, centres, r, limits, m_lo, m_hi, norms, length_cm):
+    """Leg ``leg``'s verdict over the box, writing its row of :math:`M` (the natural
+    enclosure met with the mean-value form where :math:`\\rho > 0` over the box)."""
+    vx, vy, t, rho = rpr_parts(xlo, xhi, ylo, yhi, leg, centres, r, length_cm)
+    lo = limits[leg, 0]
+    hi = limits[leg, 1]
+    if rho[1] < lo or rho[0] > hi:
+        return OUT
+    result = IN if lo <= rho[0] and rho[1] <= hi else UNSURE
+    rows_and_norm(m_lo, m_hi, norms, leg, vx, vy, t, rho, length_cm)
+    if rho[0] <= 0.0:
+        return result
+    cx = 0.5 * (xlo + xhi)
+    cy = 0.5 * (ylo + yhi)
+    cvx, cvy, ct, crho = rpr_parts(cx, cx, cy, cy, leg, centres, r, length_cm)
+    dx = up(0.5 * (xhi - xlo))
+    dy = up(0.5 * (yhi - ylo))
+    db_x = idiv(*vx, *rho)
+    db_y = idiv(*vy, *rho)
+    one = (1.0, 1.0)
+    zero = (0.0, 0.0)
+    mean_value(m_lo, m_hi, leg, 0, *idiv(*cvx, *crho), *rho, one, zero, db_x, db_y, dx, dy)
+    mean_value(m_lo, m_hi, leg, 1, *idiv(*cvy, *crho), *rho, zero, one, db_x, db_y, dx, dy)
+    if length_cm > 0.0:
+        ta_x = iscale(r[leg, 1] - TOLERANCE_CM, r[leg, 1] + TOLERANCE_CM, 1.0 / length_cm)
+        ta_y = iscale(-r[leg, 0] - TOLERANCE_CM, -r[leg, 0] + TOLERANCE_CM, 1.0 / length_cm)
+        c2 = idiv(*ct, *crho)
+        mean_value(m_lo, m_hi, leg, 2, *c2, *rho, ta_x, ta_y, db_x, db_y, dx, dy)
+    return result
+
+
+@kernel(parallel=True)
+def rpr_dexterity(boxes, centres, r, limits, length_cm, verdict, kappa):
+    """Per row ``x_lo, x_hi, y_lo, y_hi`` of ``boxes``: the 3-RPR's verdict and κ
+    enclosure (``centres`` (3, 2) :math:`c_i`, ``r`` (3, 2) :math:`r_i`, ``limits`` (3, 2)
+    leg lengths, cm; :math:`L` = ``length_cm``)."""
+    for i in numba.prange(len(boxes)):
+        m_lo = np.empty((3, 3))
+        m_hi = np.empty((3, 3))
+        norms = np.empty((3, 2))
+        state = IN
+        for leg in range(3):
+            xlo, xhi, ylo, yhi = boxes[i, 0], boxes[i, 1], boxes[i, 2], boxes[i, 3]
+            v = rpr_leg(xlo, xhi, ylo, yhi, leg, centres, r, limits, m_lo, m_hi, norms, length_cm)
+            state = combine(state, v)
+        verdict[i] = state
+        kappa[i, 0] = 1.0
+        kappa[i, 1] = np.inf
+        if state != OUT:
+            kappa[i, 0], kappa[i, 1] = kappa_bounds(m_lo, m_hi, 3, norms)
+
+
+@kernel
+def prr_parts(xlo, xhi, ylo, yhi, leg, g, sigma, r, length_cm):
+    """``(reach, s, h, root, dx, dy, t, b)`` over the box (module docstring): ``reach``
+    false where :math:`q < 0` everywhere, else enclosures (``root`` of :math:`q \\cap [0,
+    \\infty)`)."""
+    ux = g[leg, 2]
+    uy = g[leg, 3]
+    wx_lo, wx_hi = iadd_scalar(xlo, xhi, -g[leg, 0])
+    wy_lo, wy_hi = iadd_scalar(ylo, yhi, -g[leg, 1])
+    wx = (wx_lo - TOLERANCE_CM, wx_hi + TOLERANCE_CM)
+    wy = (wy_lo - TOLERANCE_CM, wy_hi + TOLERANCE_CM)
+    a = iadd(*iscale(*wx, ux), *iscale(*wy, uy))
+    h = iadd(*iscale(*wx, -uy), *iscale(*wy, ux))
+    q = isub(*isqr(g[leg, 6], g[leg, 6]), *isqr(*h))
+    zero = (0.0, 0.0)
+    if q[1] < 0.0:
+        return False, zero, zero, zero, zero, zero, zero, zero, zero
+    root = isqrt(*q)
+    s = iadd(*a, *iscale(*root, sigma))
+    dx = isub(*iscale(*h, -uy), *iscale(*root, sigma * ux))
+    dy = isub(*iscale(*h, ux), *iscale(*root, sigma * uy))
+    t = zero
+    if length_cm > 0.0:
+        cross = isub(*iscale(*dx, r[leg, 1]), *iscale(*dy, r[leg, 0]))
+        t = iscale(cross[0] - TOLERANCE_CM, cross[1] + TOLERANCE_CM, 1.0 / length_cm)
+    b = iscale(*root, -sigma)
+    return True, s, h, root, dx, dy, t, b
+
+
+@kernel
+def prr_leg(xlo, xhi, ylo, yhi, leg, g, modes, r, m_lo, m_hi, norms, length_cm):
+    """Leg ``leg``'s verdict over the box in its mode, writing its row of :math:`M` (the
+    mean-value form where :math:`q > 0` over the box)."""
+    sigma = modes[leg]
+    reach, s, h, root, dx, dy, t, b = prr_parts(xlo, xhi, ylo, yhi, leg, g, sigma, r, length_cm)
+    if not reach or s[1] < g[leg, 4] or s[0] > g[leg, 5]:
+        return OUT
+    q_in = root[0] > 0.0
+    result = IN if (q_in and g[leg, 4] <= s[0] and s[1] <= g[leg, 5]) else UNSURE
+    rows_and_norm(m_lo, m_hi, norms, leg, dx, dy, t, b, length_cm)
+    if not q_in:
+        return result
+    cx = 0.5 * (xlo + xhi)
+    cy = 0.5 * (ylo + yhi)
+    ok, _, _, _, cdx, cdy, ct, cb = prr_parts(cx, cx, cy, cy, leg, g, sigma, r, length_cm)
+    if not ok or cb[0] <= 0.0 <= cb[1]:
+        return result
+    ux = g[leg, 2]
+    uy = g[leg, 3]
+    nx = -uy
+    ny = ux
+    k = iscale(*idiv(*h, *root), sigma)
+    dd_x = (
+        iscale(*iadd_scalar(*iscale(*k, ux), nx), nx),
+        iscale(*iadd_scalar(*iscale(*k, uy), ny), nx),
+    )
+    dd_y = (
+        iscale(*iadd_scalar(*iscale(*k, ux), nx), ny),
+        iscale(*iadd_scalar(*iscale(*k, uy), ny), ny),
+    )
+    db_x = iscale(*k, nx)
+    db_y = iscale(*k, ny)
+    step_x = up(0.5 * (xhi - xlo))
+    step_y = up(0.5 * (yhi - ylo))
+    for col in range(2):
+        centre = idiv(*(cdx if col == 0 else cdy), *cb)
+        mean_value(
+            m_lo, m_hi, leg, col, *centre, *b, dd_x[col], dd_y[col], db_x, db_y, step_x, step_y
+        )
+    if length_cm > 0.0:
+        tx = iscale(
+            *isub(*iscale(*dd_x[0], r[leg, 1]), *iscale(*dd_x[1], r[leg, 0])), 1.0 / length_cm
+        )
+        ty = iscale(
+            *isub(*iscale(*dd_y[0], r[leg, 1]), *iscale(*dd_y[1], r[leg, 0])), 1.0 / length_cm
+        )
+        centre = idiv(*ct, *cb)
+        mean_value(m_lo, m_hi, leg, 2, *centre, *b, tx, ty, db_x, db_y, step_x, step_y)
+    return result
+
+
+@kernel(parallel=True)
+def prr_dexterity(boxes, g, modes, r, length_cm, verdict, kappa):
+    """Per row of ``boxes``: the 3-PRR's verdict in the mode ``modes`` and κ enclosure
+    (``g`` (3, 7) as :mod:`kernels.singularity3prr`'s, ``r`` (3, 2) :math:`r_i`)."""
+    for i in numba.prange(len(boxes)):
+        m_lo = np.empty((3, 3))
+        m_hi = np.empty((3, 3))
+        norms = np.empty((3, 2))
+        state = IN
+        for leg in range(3):
+            xlo, xhi, ylo, yhi = boxes[i, 0], boxes[i, 1], boxes[i, 2], boxes[i, 3]
+            v = prr_leg(xlo, xhi, ylo, yhi, leg, g, modes, r, m_lo, m_hi, norms, length_cm)
+            state = combine(state, v)
+        verdict[i] = state
+        kappa[i, 0] = 1.0
+        kappa[i, 1] = np.inf
+        if state != OUT:
+            kappa[i, 0], kappa[i, 1] = kappa_bounds(m_lo, m_hi, 3, norms)
