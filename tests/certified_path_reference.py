@@ -1,73 +1,110 @@
 """An independent reference for the certified-path tests: the legs' inverse kinematics in
-closed form, κ by central finite differences of it, and a smooth failure margin per time
-(positive: valid) whose first root is found with scipy's ``brentq``."""
+closed form (vectorised over times), κ by central finite differences of it, a continuous
+failure margin (>= 0: valid) and its first root by scipy's ``brentq``."""
 
 from __future__ import annotations
 
-import math
+from dataclasses import dataclass
 
 import numpy as np
 
-from planar_tui.workspace.path.quintic import quintic
+
+@dataclass(frozen=True)
+class Legs:
+    """A robot with RR legs: base joints, platform points (platform frame; zeros for the
+    five-bar), link lengths, elbow signs, joint limits (rad) and L (cm; 0: no orientation)."""
+
+    bases: np.ndarray
+    points: np.ndarray
+    l1: np.ndarray
+    l2: np.ndarray
+    elbow: np.ndarray
+    limits: np.ndarray
+    length_cm: float
+
+    def angles(self, pose):
+        """``(theta, cos_beta)`` (n, legs) at poses (n, 2 or 3): theta = alpha + s beta
+        (NaN where the leg cannot close)."""
+        pose = np.atleast_2d(pose)
+        phi = pose[:, 2:3] if pose.shape[1] == 3 else np.zeros((len(pose), 1))
+        c, s = np.cos(phi), np.sin(phi)
+        qx, qy = self.points[:, 0], self.points[:, 1]
+        vx = pose[:, :1] + c * qx - s * qy - self.bases[:, 0]
+        vy = pose[:, 1:2] + s * qx + c * qy - self.bases[:, 1]
+        rho = np.hypot(vx, vy)
+        cos_beta = (rho**2 + self.l1**2 - self.l2**2) / (2.0 * self.l1 * rho)
+        with np.errstate(invalid="ignore"):
+            beta = np.arccos(cos_beta)
+        return np.arctan2(vy, vx) + self.elbow * beta, cos_beta
+
+    def kappa(self, pose, h=1e-6):
+        """κ of d theta / d(x, y, L phi) by central differences, (n,)."""
+        pose = np.atleast_2d(pose)
+        d = pose.shape[1]
+        columns = []
+        for j in range(d):
+            step = np.zeros(d)
+            step[j] = h
+            plus, minus = self.angles(pose + step)[0], self.angles(pose - step)[0]
+            diff = np.angle(np.exp(1j * (plus - minus))) / (2.0 * h)
+            columns.append(diff / self.length_cm if j == 2 else diff)
+        matrices = np.stack(columns, axis=2)
+        kappa = np.full(len(pose), np.inf)  # a step past a leg's reach: singular there
+        finite = np.isfinite(matrices).all(axis=(1, 2))
+        sigma = np.linalg.svd(matrices[finite], compute_uv=False)
+        with np.errstate(divide="ignore"):
+            kappa[finite] = np.where(sigma[:, -1] > 0, sigma[:, 0] / sigma[:, -1], np.inf)
+        return kappa
+
+    def margins(self, pose, kappa_max):
+        """``{"leg", "joint_limit", "kappa"}`` margins (n,), each >= 0 where that test
+        holds: reach 1 - |cos beta|, the least joint's angle inside its limits (rad),
+        (kappa_max - κ) / kappa_max."""
+        theta, cos_beta = self.angles(pose)
+        reach = (1.0 - np.abs(cos_beta)).min(axis=1)
+        lo, hi = self.limits[:, 0], self.limits[:, 1]
+        t = lo + np.mod(theta - lo, 2.0 * np.pi)
+        inside = np.minimum(t - lo, hi - t)
+        outside = -np.minimum(t - hi, lo + 2.0 * np.pi - t)
+        joint = np.where(t <= hi, inside, outside).min(axis=1)
+        joint = np.where(reach >= 0.0, joint, np.inf)
+        valid = (reach >= 0.0) & (joint >= 0.0)
+        kappa = np.zeros(len(valid))
+        if valid.any():
+            kappa[valid] = self.kappa(np.atleast_2d(pose)[valid])
+        return {"leg": reach, "joint_limit": joint, "kappa": (kappa_max - kappa) / kappa_max}
 
 
-def leg_angles(bases, points, l1, l2, elbow, pose):
-    """Per leg ``(theta, cos_beta)`` at ``pose`` (x, y cm, phi rad): theta = alpha + s beta
-    (``cos_beta`` outside [-1, 1]: the leg cannot close; theta is then NaN)."""
-    x, y, phi = (*pose, 0.0)[:3]
-    c, s = math.cos(phi), math.sin(phi)
-    out = []
-    for (ax, ay), (qx, qy), la, lb, sign in zip(bases, points, l1, l2, elbow, strict=True):
-        vx, vy = x + c * qx - s * qy - ax, y + s * qx + c * qy - ay
-        rho = math.hypot(vx, vy)
-        cos_beta = (rho * rho + la * la - lb * lb) / (2.0 * la * rho)
-        beta = math.acos(cos_beta) if abs(cos_beta) <= 1.0 else math.nan
-        out.append((math.atan2(vy, vx) + sign * beta, cos_beta))
-    return out
+def path_poses(start, stop, duration_s, times):
+    """The quintic's poses (cm, cm[, rad]) at ``times``: s = 10 tau^3 - 15 tau^4 + 6 tau^5,
+    written here again (not the package's)."""
+    tau = np.asarray(times, dtype=float)[:, None] / duration_s
+    s = 10.0 * tau**3 - 15.0 * tau**4 + 6.0 * tau**5
+    start = np.asarray(start, dtype=float)
+    return start + (np.asarray(stop, dtype=float) - start) * s
 
 
-def kappa_fd(bases, points, l1, l2, elbow, pose, length_cm, h=1e-6):
-    """κ of the matrix of d theta / d(x, y, L phi) by central differences (2 x 2 without
-    an orientation)."""
-    d = len(pose)
-    columns = []
-    for j in range(d):
-        step = np.zeros(d)
-        step[j] = h
-        plus = [t for t, _ in leg_angles(bases, points, l1, l2, elbow, np.add(pose, step))]
-        minus = [t for t, _ in leg_angles(bases, points, l1, l2, elbow, np.subtract(pose, step))]
-        diff = (np.unwrap(np.array([minus, plus]), axis=0)[1] - minus) / (2.0 * h)
-        columns.append(diff / length_cm if j == 2 else diff)
-    sigma = np.linalg.svd(np.array(columns).T, compute_uv=False)
-    return sigma[0] / sigma[-1] if sigma[-1] > 0 else math.inf
+def first_failure(legs, start, stop, duration_s, kappa_max, samples=20_000):
+    """``(t_star, reason)``: the first root of the least margin after the dense samples'
+    first failing one (brentq between it and the sample before), or ``(None, "")`` when
+    every sample is valid."""
+    from scipy.optimize import brentq
 
+    times = np.linspace(0.0, duration_s, samples + 1)
 
-def angle_margin(theta, lo, hi):
-    """The signed angular distance of ``theta`` inside the arc ``[lo, hi]`` (negative
-    outside), the arc taken modulo a turn."""
-    t = lo + (theta - lo) % (2.0 * math.pi)
-    if t <= hi:
-        return min(t - lo, hi - t)
-    return -min(t - hi, lo + 2.0 * math.pi - t)
+    def least(t):
+        m = legs.margins(path_poses(start, stop, duration_s, np.atleast_1d(t)), kappa_max)
+        return np.minimum(np.minimum(m["leg"], m["joint_limit"]), m["kappa"])
 
-
-def margin(robot, t, start, stop, duration_s, kappa_max, length_cm):
-    """A continuous failure margin at time ``t``: the least of each leg's reach margin
-    (1 - |cos beta|), each joint's margin inside its limits (rad) and kappa_max - κ; the
-    path is valid at ``t`` iff it is >= 0. ``robot``: ``(bases, points, l1, l2, elbow,
-    limits)``."""
-    bases, points, l1, l2, elbow, limits = robot
-    pose = quintic(start, stop, duration_s, np.array([t]))[0][0]
-    worst = math.inf
-    for (theta, cos_beta), (lo, hi) in zip(
-        leg_angles(bases, points, l1, l2, elbow, pose), limits, strict=True
-    ):
-        reach = 1.0 - abs(cos_beta)
-        if reach < 0.0:
-            return reach
-        worst = min(worst, reach, angle_margin(theta, lo, hi))
-    if worst < 0.0:
-        return worst
-    return min(
-        worst, (kappa_max - kappa_fd(bases, points, l1, l2, elbow, pose, length_cm)) / kappa_max
-    )
+    worst = least(times)
+    bad = np.flatnonzero(worst < 0.0)
+    if not len(bad):
+        return None, ""
+    k = int(bad[0])
+    if k == 0:
+        t_star = 0.0
+    else:
+        t_star = brentq(lambda t: float(least(t)[0]), times[k - 1], times[k], xtol=1e-12)
+    after = min(duration_s, t_star + 1e-9 * duration_s)
+    m = legs.margins(path_poses(start, stop, duration_s, np.array([after])), kappa_max)
+    return t_star, min(m, key=lambda name: float(m[name][0]))
