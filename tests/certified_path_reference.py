@@ -4,6 +4,7 @@ failure margin (>= 0: valid) and its first root by scipy's ``brentq``."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -108,3 +109,29 @@ def first_failure(legs, start, stop, duration_s, kappa_max, samples=20_000):
     after = min(duration_s, t_star + 1e-9 * duration_s)
     m = legs.margins(path_poses(start, stop, duration_s, np.array([after])), kappa_max)
     return t_star, min(m, key=lambda name: float(m[name][0]))
+
+
+def check_certificate(certificate, legs, start, stop, kappa_max, verdict, reason, samples):
+    """A 1-s path's certificate against the reference: the verdict; a ``yes`` path has every
+    dense sample valid; a ``no`` path's bracket holds the first crossing (brentq), is at
+    most T/1000 wide and names its ``reason``; the largest κ over the certified part, sampled
+    densely, lies in the peak's bracket (within 1e-7 for the finite differences), which is
+    at most 1 % wide."""
+    t_star, found = first_failure(legs, start, stop, 1.0, kappa_max, samples)
+    assert certificate.certified == verdict
+    if verdict == "yes":
+        assert t_star is None
+        until = 1.0
+    else:
+        assert certificate.failure_lo_s - 1e-9 <= t_star <= certificate.failure_hi_s + 1e-9
+        assert certificate.failure_hi_s - certificate.failure_lo_s <= 1e-3
+        assert certificate.reason == found == reason
+        until = certificate.failure_lo_s
+    if until == 0.0:  # failing at the start: no certified part, no peak
+        assert math.isnan(certificate.kappa_peak_lo) and math.isnan(certificate.kappa_peak_hi)
+        return
+    times = np.linspace(0.0, until, samples + 1)
+    sampled = legs.kappa(path_poses(start, stop, 1.0, times)).max()
+    assert certificate.kappa_peak_lo <= sampled * (1.0 + 1e-7)
+    assert certificate.kappa_peak_hi >= sampled * (1.0 - 1e-7)
+    assert certificate.kappa_peak_hi <= certificate.kappa_peak_lo * 1.01

@@ -18,7 +18,7 @@ from planar_tui.workspace.paving.dexterity import circumradius_cm
 from planar_tui.workspace.rrr.mechanism import MECHANISM
 from planar_tui.workspace.rrr.path import Path3RRRSpec
 from planar_tui.workspace.rrr.robot import Robot3RRR
-from tests.certified_path_reference import Legs, first_failure, path_poses
+from tests.certified_path_reference import Legs, check_certificate, path_poses
 
 ROBOT = Robot3RRR()
 TABLE3 = ((20.0, 70.0), (110.0, 160.0), (245.0, 295.0))
@@ -67,27 +67,10 @@ def si(pose):
 
 
 def check(name, certificate, start, stop, samples=20_000):
-    """The certificate against the reference (module docstring)."""
+    """The certificate against the reference (:func:`check_certificate`)."""
     _, _, elbow, limits, kappa_max, verdict = PATHS[name]
     legs = legs_of(elbow, limits)
-    t_star, reason = first_failure(legs, start, stop, 1.0, kappa_max, samples)
-    assert certificate.certified == verdict
-    if verdict == "yes":
-        assert t_star is None
-        until = 1.0
-    else:
-        assert certificate.failure_lo_s - 1e-9 <= t_star <= certificate.failure_hi_s + 1e-9
-        assert certificate.failure_hi_s - certificate.failure_lo_s <= 1e-3
-        assert certificate.reason == reason == name
-        until = certificate.failure_lo_s
-    if until == 0.0:  # failing at the start: no certified part, no peak
-        assert math.isnan(certificate.kappa_peak_lo) and math.isnan(certificate.kappa_peak_hi)
-        return
-    times = np.linspace(0.0, until, samples + 1)
-    sampled = legs.kappa(path_poses(start, stop, 1.0, times)).max()
-    assert certificate.kappa_peak_lo <= sampled * (1.0 + 1e-7)
-    assert certificate.kappa_peak_hi >= sampled * (1.0 - 1e-7)
-    assert certificate.kappa_peak_hi <= certificate.kappa_peak_lo * 1.01
+    check_certificate(certificate, legs, start, stop, kappa_max, verdict, name, samples)
 
 
 @pytest.mark.parametrize("name", ["certified", "kappa"])
