@@ -97,5 +97,5 @@ JOB_KIND = path_job_kind(
     Path5RSpec,
     "five-bar",
     prepare_path,
-    "[[path5r]]\nfrom_pose = [0, 60]\nto_pose = [5, 65]\nsteps = 4\n",
+    "[[path5r]]\nfrom_pose = [0, 60]\nto_pose = [5, 65]\nsteps = 4\nkappa_max = 1000\n",
 )

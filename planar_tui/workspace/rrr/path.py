@@ -106,5 +106,6 @@ JOB_KIND = path_job_kind(
     Path3RRRSpec,
     "3-RRR",
     prepare_path,
-    "[[path3rrr]]\nfrom_pose = [40, 21, 0]\nto_pose = [42, 23, 5]\nsteps = 4\nelbow = [1, 1, 1]\n",
+    "[[path3rrr]]\nfrom_pose = [40, 21, 0]\nto_pose = [42, 23, 5]\nsteps = 4\nelbow = [1, 1, 1]\n"
+    "kappa_max = 1000\n",
 )
