@@ -128,7 +128,7 @@ def prr_parts(xlo, xhi, ylo, yhi, leg, g, sigma, r, length_cm):
     q = isub(*isqr(g[leg, 6], g[leg, 6]), *isqr(*h))
     zero = (0.0, 0.0)
     if q[1] < 0.0:
-        return False, zero, zero, zero, zero, zero, zero, zero, zero
+        return False, zero, zero, zero, zero, zero, zero, zero
     root = isqrt(*q)
     s = iadd(*a, *iscale(*root, sigma))
     dx = isub(*iscale(*h, -uy), *iscale(*root, sigma * ux))
@@ -176,11 +176,10 @@ def prr_leg(xlo, xhi, ylo, yhi, leg, g, modes, r, m_lo, m_hi, norms, length_cm):
     db_y = iscale(*k, ny)
     step_x = up(0.5 * (xhi - xlo))
     step_y = up(0.5 * (yhi - ylo))
-    for col in range(2):
-        centre = idiv(*(cdx if col == 0 else cdy), *cb)
-        mean_value(
-            m_lo, m_hi, leg, col, *centre, *b, dd_x[col], dd_y[col], db_x, db_y, step_x, step_y
-        )
+    c0 = idiv(*cdx, *cb)
+    c1 = idiv(*cdy, *cb)
+    mean_value(m_lo, m_hi, leg, 0, *c0, *b, dd_x[0], dd_y[0], db_x, db_y, step_x, step_y)
+    mean_value(m_lo, m_hi, leg, 1, *c1, *b, dd_x[1], dd_y[1], db_x, db_y, step_x, step_y)
     if length_cm > 0.0:
         tx = iscale(
             *isub(*iscale(*dd_x[0], r[leg, 1]), *iscale(*dd_x[1], r[leg, 0])), 1.0 / length_cm
