@@ -203,8 +203,7 @@ def rr_path_dynamics(
 
 def solve_rr_path(legs, body, pose, rate, acceleration, singular_relative):
     """:func:`rr_path_dynamics` with its outputs allocated: ``(theta, theta_rate,
-    theta_acceleration, effort, status, closure)``; the angles unwrapped along the rows
-    (consecutive times) where every row is solved."""
+    theta_acceleration, effort, status, closure)``."""
     pose = np.ascontiguousarray(pose, dtype=np.float64)
     n, d = pose.shape
     theta, theta_rate, theta_acceleration, effort = (np.empty((n, d)) for _ in range(4))
@@ -224,6 +223,4 @@ def solve_rr_path(legs, body, pose, rate, acceleration, singular_relative):
         status,
         closure,
     )
-    if not status.any():
-        theta = np.unwrap(theta, axis=0)
     return theta, theta_rate, theta_acceleration, effort, status, closure

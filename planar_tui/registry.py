@@ -101,6 +101,8 @@ JOB_KINDS: Registry[JobKind] = Registry(
         "workspace3prr": "planar_tui.workspace.prr.job",
         "path3rrr": "planar_tui.workspace.rrr.path",
         "path5r": "planar_tui.workspace.fivebar.path",
+        "path3rpr": "planar_tui.workspace.rpr.path",
+        "path3prr": "planar_tui.workspace.prr.path",
     },
 )
 

@@ -5,6 +5,7 @@ bundled preset, a path that leaves the workspace (exit 1, the time named), bad i
 from __future__ import annotations
 
 import csv
+import dataclasses
 
 import numpy as np
 import pytest
@@ -230,3 +231,68 @@ def test_a_path_beyond_the_time_limit_is_refused_on_steps(cli, tmp_path, monkeyp
     assert "(expected fewer steps)" in result.stderr
     _, result = run(cli, tmp_path, ROBOT + JOB.replace("steps = 20", "steps = 1000"))
     assert result.exit_code == 0, result.output
+
+
+def test_the_torques_are_affine_in_the_platform_mass():
+    """The dynamics is linear in the inertial parameters: the torques at 1.5 kg are the
+    mean of those at 0 and 3 kg (what a sweep over the mass reports, point by point)."""
+    masses = [dataclasses.replace(ROBOT_MODEL, platform_mass_kg=m) for m in (0.0, 1.5, 3.0)]
+    states = quintic(pose_si(SPEC.from_pose), pose_si(SPEC.to_pose), 0.5, sample_times(0.5, 20))
+    efforts = [MECHANISM.inverse_dynamics(robot, SPEC, *states).effort for robot in masses]
+    assert np.abs(efforts[2] - efforts[0]).max() > 1.0
+    np.testing.assert_allclose(efforts[1], (efforts[0] + efforts[2]) / 2, atol=1e-12)
+
+
+@pytest.mark.slow
+def test_a_sweep_over_the_platform_mass_reports_the_torque_figures(cli, tmp_path):
+    """A sweep of a path job (worker processes: slow on a loaded machine): one row per
+    platform mass with each actuator's figures, growing with the mass."""
+    sweep = '[[sweep]]\njob = "path3rrr"\nvalues."robot3rrr.platform_mass_kg" = [0.0, 1.5, 3.0]\n'
+    sweep += 'output = "sweep.csv"\n'
+    _, result = run(cli, tmp_path, ROBOT + JOB + sweep)
+    assert result.exit_code == 0, result.output
+    with open(tmp_path / "out" / "sweep.csv", newline="") as handle:
+        rows = list(csv.DictReader(handle))
+    assert [row["status"] for row in rows] == ["ok"] * 3
+    peaks = [float(row["tau1_abs_max_Nm"]) for row in rows]
+    assert peaks[0] < peaks[1] < peaks[2]
+
+
+def test_a_forward_dynamics_leaving_the_workspace_fails_the_job(cli, tmp_path, monkeypatch):
+    """The feed-forward simulation straying out of reach is a failed job naming the time
+    (forced here: a real path's simulation stays within RK4's error of it)."""
+    import planar_tui.workspace.path.job as path_job
+    from planar_tui.workspace.path.forward import PathFailure
+
+    def strays(*args):
+        raise PathFailure(0.25, 11)
+
+    monkeypatch.setattr(path_job, "feed_forward", strays)
+    preset, result = run(
+        cli, tmp_path, ROBOT + JOB.replace("steps = 20", "steps = 20\nfeed_forward = true")
+    )
+    assert result.exit_code == 1, result.output
+    lines = [line for line in result.stderr.splitlines() if line.startswith("error:")]
+    assert len(lines) == 1, result.stderr
+    assert (
+        f"{preset}: path3rrr[1].feed_forward: the forward dynamics fails at t = 0.25 s: leg 1"
+        in lines[0]
+    )
+    assert "leg 1 cannot close" in lines[0]
+    assert not (tmp_path / "out" / "p.csv").exists()
+
+
+def test_an_angle_crossing_a_half_turn_is_continuous_in_the_csv(cli, tmp_path):
+    """Without joint limits an angle is reported in [-pi, pi) by the mechanism; along the
+    path the CSV's angles are unwrapped: no jump of a turn between two times, and the
+    rates agree with the angles' differences."""
+    job = JOB.replace("[36, 5, -2]", "[40, 21, 0]").replace("[44, 9, 2]", "[45, 35, 0]")
+    job = job.replace("[1, -1, -1]", "[1, 1, 1]").replace("steps = 20", "steps = 200")
+    job = job.replace("joint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n", "")
+    _, result = run(cli, tmp_path, ROBOT + job)
+    assert result.exit_code == 0, result.output
+    values = np.loadtxt(tmp_path / "out" / "p.csv", delimiter=",", skiprows=1)
+    theta, rate = values[:, [4, 7, 10]], values[:, [5, 8, 11]]
+    assert np.abs(theta).max() > np.pi  # it did cross
+    midpoint = (rate[1:] + rate[:-1]) / 2 * np.diff(values[:, 0])[:, None]
+    np.testing.assert_allclose(np.diff(theta, axis=0), midpoint, atol=1e-4)

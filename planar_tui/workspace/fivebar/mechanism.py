@@ -3,6 +3,7 @@ its reach box and polygon for the estimate, its leg test for the paving."""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from types import MappingProxyType
 from typing import Any
@@ -66,6 +67,21 @@ class MechanismFiveBar(Mechanism):
         g, q, _, limits, _ = kernel_inputs(robot)  # q: the point platform's zero offsets
         elbow = np.array(spec.elbow, dtype=np.float64)
         return box_test(rr_pose_boxes, g, q, elbow, open_limits(limits), 0.0)
+
+    def direct_kinematics(self, robot: Any, actuators: Any) -> Any:
+        """The end points at joint angles ``actuators`` = :math:`\\theta_1, \\theta_2` (rad):
+        the circles of radii :math:`l_{2,i}` about the elbows
+        :math:`B_i = A_i + l_{1,i}(\\cos\\theta_i, \\sin\\theta_i)` intersected, an array
+        (m, 2), ``m <= 2`` (left of :math:`B_1 \\to B_2` first)."""
+        from planar_tui.kernels.direct_kinematics import circle_intersections  # numpy
+
+        (b1, b2) = (
+            (ax + l1 * math.cos(theta), ay + l1 * math.sin(theta))
+            for (ax, ay), l1, theta in zip(
+                robot.base_joints_cm(), robot.proximal_cm, actuators, strict=True
+            )
+        )
+        return circle_intersections(b1, robot.distal_cm[0], b2, robot.distal_cm[1])
 
     def path_model(self, robot: Any) -> PathModel:
         return PathModel(pose_dimension=2, actuators=2)

@@ -31,7 +31,7 @@ class PathFailure(ValueError):
     def __init__(self, time_s: float, status: int):
         self.time_s = time_s
         self.status = status
-        super().__init__(f"at t = {time_s:.6g} s {problem_text(status)}")
+        super().__init__(f"at t = {time_s:.6g} s: {problem_text(status)}")
 
 
 @dataclass(frozen=True)

@@ -25,6 +25,7 @@ from planar_tui.jobkind import Command, Job, JobKind, JobResult, PreparedJob
 from planar_tui.progress import Progress
 from planar_tui.schema import boolean, integer, number, numbers, setting
 from planar_tui.workspace.path.certify import Certificate, certificate_outputs, certify
+from planar_tui.workspace.path.forward import PathFailure
 from planar_tui.workspace.path.model import OK, PathModel, PathSolution, problem_text
 
 #: Most steps of one path (its CSV rows minus one).
@@ -198,13 +199,17 @@ def run_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathResul
             "a path inside the workspace, off its singularities",
         )
     pose_columns = np.column_stack([pose[:, :2] * 100.0, np.degrees(pose[:, 2:])])
+    # prismatic legs in cm; revolute angles continuous along the path (unwrapped)
     scale = 100.0 if model.prismatic else 1.0
+    coordinate = solution.coordinate * scale
+    closed = solution.status == OK
+    if not model.prismatic:  # over the closed rows only (a failing row's angle is no angle)
+        coordinate[closed] = np.unwrap(coordinate[closed], axis=0)
     coordinates = np.stack(
-        [solution.coordinate * scale, solution.rate * scale, solution.acceleration * scale], axis=2
+        [coordinate, solution.rate * scale, solution.acceleration * scale], axis=2
     ).reshape(len(times), -1)
     power = solution.effort * solution.rate
     rows: Any = np.column_stack([times, pose_columns, coordinates, solution.effort, power])
-    closed = solution.status == OK
     if len(bad):
         solution = _rows_of(solution, closed)
         rows = _blank_failures(rows, closed, 1 + model.pose_dimension)
@@ -221,7 +226,13 @@ def run_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathResul
     deviation = drift = None
     if spec.feed_forward and not len(bad):
         progress.start(spec.steps, "forward dynamics")
-        deviation, drift = feed_forward(mechanism, robot, spec, start, stop, times, progress)
+        try:
+            deviation, drift = feed_forward(mechanism, robot, spec, start, stop, times, progress)
+        except PathFailure as failure:  # the simulated platform strays out of the workspace
+            where = f"{job.key}.feed_forward"
+            raise JobError(
+                job.preset_path, where, f"the forward dynamics fails {failure}"
+            ) from None
         summary += f"; feed-forward: deviation {deviation:.3g}, closure drift {drift:.3g} m"
     extra = {}
     if certificate is not None:

@@ -50,8 +50,8 @@ class PathModel:
 
 @dataclass(frozen=True)
 class PathSolution:
-    """Per sampled time (rows): actuator coordinates, rates and accelerations (SI: rad or
-    m), efforts (N m or N), status (:data:`OK` or ``code * 10 + leg``) and the loop
+    """Per sampled time (rows): actuator coordinates (an angle within its joint limit's
+    turn, or in [-pi, pi) without one), rates and accelerations (SI: rad or m), efforts (N m or N), status (:data:`OK` or ``code * 10 + leg``) and the loop
     closure's residual (m; the largest over the legs)."""
 
     coordinate: Any

@@ -128,6 +128,14 @@ class Mechanism(Protocol):
         problem = f"{self.name} certifies no path"
         raise NotImplementedError(problem)
 
+    def direct_kinematics(self, robot: Any, actuators: Any) -> Any:
+        """Every real assembly mode at the actuator values ``actuators`` (revolute joints in
+        rad, prismatic ones in cm, one per actuator): an array (m, 3) of platform poses
+        ``x_cm, y_cm, phi_rad`` sorted by ``phi_rad`` (a platform-less robot: (m, 2) of
+        ``x_cm, y_cm``); m = 0 when the robot cannot be assembled there
+        (:mod:`planar_tui.kernels.direct_kinematics`)."""
+        raise NotImplementedError(f"{self.name} has no direct kinematics")
+
     def path_model(self, robot: Any) -> Any:
         """The path columns' shape: a :class:`~planar_tui.workspace.path.model.PathModel`
         (pose dimension, actuators, revolute or prismatic)."""

@@ -7,6 +7,7 @@ from collections.abc import Callable
 from types import MappingProxyType
 from typing import Any
 
+from planar_tui.workspace.path.model import PathModel, PathSolution
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.prr import orientation, singularity
 from planar_tui.workspace.prr import robot as prr
@@ -54,6 +55,24 @@ class Mechanism3PRR(Mechanism):
 
     def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:
         return orientation.compute_range(robot, spec, budget)
+
+    def path_model(self, robot: Any) -> PathModel:
+        return PathModel(pose_dimension=3, actuators=3, prismatic=True)
+
+    def inverse_dynamics(
+        self, robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any
+    ) -> PathSolution:
+        from planar_tui.workspace.prr.dynamics import solve_path  # numba
+
+        return solve_path(robot, spec, pose, rate, acceleration)
+
+    def direct_kinematics(self, robot: Any, actuators: Any) -> Any:
+        """The poses at strokes ``actuators`` = :math:`s_i` (cm): the three-distance problem
+        with bases the sliders' joints :math:`B_i + s_i u_i` and distances :math:`l_i`."""
+        from planar_tui.kernels.direct_kinematics import three_distance_poses  # numpy
+
+        bases = prr.slider_joints_cm(robot, actuators)
+        return three_distance_poses(bases, robot.platform_points_cm, robot.distal_cm)
 
 
 MECHANISM = Mechanism3PRR()

@@ -28,7 +28,7 @@ import math
 from dataclasses import dataclass
 
 from planar_tui.jobkind import RobotKind
-from planar_tui.schema import numbers, setting, string
+from planar_tui.schema import mass_setting, numbers, setting, string
 from planar_tui.workspace.paving.layout import PAPER_B_BASE_CM, paper_b_points, platform_points
 
 
@@ -75,6 +75,14 @@ class Robot3PRR:
         doc="distal link lengths `l_i`",
     )
     platform_points_cm: tuple[tuple[float, float], ...] = platform_points()
+    slider_mass_kg: float = mass_setting("mass of each slider (translates along its rail)")
+    link_mass_kg: float = mass_setting("mass of each distal link (centre of mass mid-link)")
+    link_inertia_kgm2: float = mass_setting("inertia of each distal link about its centre of mass")
+    platform_mass_kg: float = mass_setting(
+        "mass of the platform (centre of mass at the platform frame's origin)"
+    )
+    platform_inertia_kgm2: float = mass_setting("inertia of the platform about its centre of mass")
+    gravity_m_s2: float = mass_setting("gravity along -y in the plane (0: a horizontal machine)")
 
     def shifted_ends_cm(self, orientation_rad: float) -> tuple[tuple[float, ...], ...]:
         """Per leg the stroke's ends shifted by :math:`-R(\\varphi) q_i`:
@@ -92,6 +100,16 @@ class Robot3PRR:
             ox, oy = bx - (c * qx - s * qy), by - (s * qx + c * qy)
             ends.append((ox + lo * ux, oy + lo * uy, ox + hi * ux, oy + hi * uy))
         return tuple(ends)
+
+
+def slider_joints_cm(robot: Robot3PRR, strokes_cm) -> tuple[tuple[float, float], ...]:
+    """The sliders' revolute joints :math:`B_i + s_i u_i` at the strokes :math:`s_i` (cm)."""
+    return tuple(
+        (bx + s * math.cos(math.radians(angle)), by + s * math.sin(math.radians(angle)))
+        for (bx, by), angle, s in zip(
+            robot.slider_points_cm, robot.slider_angles_deg, strokes_cm, strict=True
+        )
+    )
 
 
 def leg_parameters(robot: Robot3PRR, spec) -> object:

@@ -7,6 +7,7 @@ from collections.abc import Callable
 from types import MappingProxyType
 from typing import Any
 
+from planar_tui.workspace.path.model import PathModel, PathSolution
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.rpr import orientation, singularity
 from planar_tui.workspace.rpr import robot as rpr
@@ -54,6 +55,23 @@ class Mechanism3RPR(Mechanism):
 
     def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:
         return orientation.compute_range(robot, spec, budget)
+
+    def path_model(self, robot: Any) -> PathModel:
+        return PathModel(pose_dimension=3, actuators=3, prismatic=True)
+
+    def inverse_dynamics(
+        self, robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any
+    ) -> PathSolution:
+        from planar_tui.workspace.rpr.dynamics import solve_path  # numba
+
+        return solve_path(robot, spec, pose, rate, acceleration)
+
+    def direct_kinematics(self, robot: Any, actuators: Any) -> Any:
+        """The poses at leg lengths ``actuators`` = :math:`\\rho_i` (cm): the three-distance
+        problem with bases :math:`A_i` and distances :math:`\\rho_i`."""
+        from planar_tui.kernels.direct_kinematics import three_distance_poses  # numpy
+
+        return three_distance_poses(robot.base_joints_cm, robot.platform_points_cm, actuators)
 
 
 MECHANISM = Mechanism3RPR()

@@ -27,7 +27,7 @@ import math
 from dataclasses import dataclass
 
 from planar_tui.jobkind import RobotKind
-from planar_tui.schema import setting, string
+from planar_tui.schema import mass_setting, number, setting, string
 from planar_tui.workspace.paving.layout import PAPER_B_BASE_CM, paper_b_points, platform_points
 
 
@@ -41,6 +41,29 @@ class Robot3RPR:
         PAPER_B_BASE_CM, "paper B's base triangle (side 120)", "base joints `A1, A2, A3`"
     )
     platform_points_cm: tuple[tuple[float, float], ...] = platform_points()
+    cylinder_mass_kg: float = mass_setting("mass of each leg's cylinder (turns about `A_i`)")
+    cylinder_inertia_kgm2: float = mass_setting("inertia of each cylinder about its centre of mass")
+    cylinder_com_cm: float = setting(
+        number(minimum=0.0),
+        default=0.0,
+        type_doc="number >= 0",
+        doc="distance of each cylinder's centre of mass from `A_i` along the leg",
+    )
+    piston_mass_kg: float = mass_setting(
+        "mass of each leg's piston (turns with its cylinder and slides in it)"
+    )
+    piston_inertia_kgm2: float = mass_setting("inertia of each piston about its centre of mass")
+    piston_com_cm: float = setting(
+        number(minimum=0.0),
+        default=0.0,
+        type_doc="number >= 0",
+        doc="distance of each piston's centre of mass from `B_i` back along the leg",
+    )
+    platform_mass_kg: float = mass_setting(
+        "mass of the platform (centre of mass at the platform frame's origin)"
+    )
+    platform_inertia_kgm2: float = mass_setting("inertia of the platform about its centre of mass")
+    gravity_m_s2: float = mass_setting("gravity along -y in the plane (0: a horizontal machine)")
 
     def centres_cm(self, orientation_rad: float) -> tuple[tuple[float, float], ...]:
         """The annuli's centres :math:`c_i = A_i - R(\\varphi) q_i`."""

@@ -10,6 +10,7 @@ stages, ahead of that test. Its ``[workspace]`` job runs its own stages
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from types import MappingProxyType
 from typing import Any
@@ -93,6 +94,19 @@ class Mechanism3RRR(Mechanism):
         limits = open_limits(spec.limits_rad or ((-np.pi, np.pi),) * 3)
         elbow = np.array(spec.elbow, dtype=np.float64)
         return box_test(rr_pose_boxes, rows, q, elbow, limits, length_cm(robot, spec))
+
+    def direct_kinematics(self, robot: Any, actuators: Any) -> Any:
+        """The poses at active joint angles ``actuators`` = :math:`\\theta_i` (rad): the
+        three-distance problem with bases the elbows
+        :math:`A_i + l_1(\\cos\\theta_i, \\sin\\theta_i)` and distances :math:`l_2`."""
+        from planar_tui.kernels.direct_kinematics import three_distance_poses  # numpy
+
+        l1, l2 = robot.proximal_cm, robot.distal_cm
+        elbows = [
+            (ax + l1 * math.cos(theta), ay + l1 * math.sin(theta))
+            for (ax, ay), theta in zip(robot.base_joints_cm(), actuators, strict=True)
+        ]
+        return three_distance_poses(elbows, robot.platform_points_cm(), (l2, l2, l2))
 
     def path_model(self, robot: Any) -> PathModel:
         return PathModel(pose_dimension=3, actuators=3)
