@@ -135,3 +135,51 @@ def check_certificate(certificate, legs, start, stop, kappa_max, verdict, reason
     assert certificate.kappa_peak_lo <= sampled * (1.0 + 1e-7)
     assert certificate.kappa_peak_hi >= sampled * (1.0 - 1e-7)
     assert certificate.kappa_peak_hi <= certificate.kappa_peak_lo * 1.01
+
+
+@dataclass(frozen=True)
+class PrismaticLegs:
+    """A 3-RPR: base joints, platform points (platform frame), leg-length limits (cm) and
+    L (cm); its actuated coordinates are the legs' lengths."""
+
+    bases: np.ndarray
+    points: np.ndarray
+    limits: np.ndarray
+    length_cm: float
+
+    def lengths(self, pose):
+        """The legs' lengths (n, 3) at poses (n, 3)."""
+        pose = np.atleast_2d(pose)
+        c, s = np.cos(pose[:, 2:3]), np.sin(pose[:, 2:3])
+        qx, qy = self.points[:, 0], self.points[:, 1]
+        vx = pose[:, :1] + c * qx - s * qy - self.bases[:, 0]
+        vy = pose[:, 1:2] + s * qx + c * qy - self.bases[:, 1]
+        return np.hypot(vx, vy)
+
+    def kappa(self, pose, h=1e-6):
+        """κ of d rho / d(x, y, L phi) by central differences, (n,)."""
+        pose = np.atleast_2d(pose)
+        columns = []
+        for j in range(3):
+            step = np.zeros(3)
+            step[j] = h
+            diff = (self.lengths(pose + step) - self.lengths(pose - step)) / (2.0 * h)
+            columns.append(diff / self.length_cm if j == 2 else diff)
+        sigma = np.linalg.svd(np.stack(columns, axis=2), compute_uv=False)
+        with np.errstate(divide="ignore"):
+            return np.where(sigma[:, -1] > 0, sigma[:, 0] / sigma[:, -1], np.inf)
+
+    def margins(self, pose, kappa_max):
+        """As :meth:`Legs.margins`: every leg closes (``leg`` always 1), its length inside
+        its limits (cm), (kappa_max - κ) / kappa_max."""
+        rho = self.lengths(pose)
+        joint = np.minimum(rho - self.limits[:, 0], self.limits[:, 1] - rho).min(axis=1)
+        kappa = np.zeros(len(joint))
+        valid = joint >= 0.0
+        if valid.any():
+            kappa[valid] = self.kappa(np.atleast_2d(pose)[valid])
+        return {
+            "leg": np.ones(len(joint)),
+            "joint_limit": joint,
+            "kappa": (kappa_max - kappa) / kappa_max,
+        }
