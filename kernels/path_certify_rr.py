@@ -51,7 +51,7 @@ def platform_offset(qx, qy, s_lo, s_hi, c_lo, c_hi):
 def rr_pose_boxes(boxes, g, q, elbow, limits, length_cm, verdict, reason, kappa):
     """Per row ``x_lo, x_hi, y_lo, y_hi, phi_lo, phi_hi`` of ``boxes`` (cm, rad): the
     verdict (:mod:`kernels.dexterity`'s ``OUT``, ``UNSURE``, ``IN``), with ``OUT`` its
-    ``reason`` (``LEG`` or ``JOINT_LIMIT``, of the first leg out) and ``kappa[i] = (lo,
+    ``reason`` (``LEG`` where some leg cannot close, else ``JOINT_LIMIT``) and ``kappa[i] = (lo,
     hi)`` enclosing κ over the box's poses where every leg closes within its limits
     (``(1, inf)`` where not bounded). ``g`` has one geometry row per leg (the 3-RRR's
     layout of :mod:`kernels.singularity3rrr`), ``q`` (legs, 2) the platform points in the
@@ -76,7 +76,7 @@ def rr_pose_boxes(boxes, g, q, elbow, limits, length_cm, verdict, reason, kappa)
                 cx_lo, cx_hi, cy_lo, cy_hi, leg, g[leg], zero, elbow, limits
             )
             if v == LEG_OUT:
-                if why == NO_REASON:
+                if why != LEG:  # a leg that cannot close outranks a joint limit
                     free = leg_status(cx_lo, cx_hi, cy_lo, cy_hi, leg, g[leg], zero, elbow, FREE)
                     why = LEG if free[0] == LEG_OUT else JOINT_LIMIT
                 state = OUT

@@ -183,3 +183,61 @@ class PrismaticLegs:
             "joint_limit": joint,
             "kappa": (kappa_max - kappa) / kappa_max,
         }
+
+
+@dataclass(frozen=True)
+class SliderLegs:
+    """A 3-PRR: slider lines (origins, unit directions), strokes (cm), distal lengths,
+    slider modes, platform points (platform frame) and L (cm); its actuated coordinates are
+    the sliders' strokes s = w.u + sigma sqrt(l^2 - (w.n)^2), w = C - B."""
+
+    origins: np.ndarray
+    directions: np.ndarray
+    strokes: np.ndarray
+    distal: np.ndarray
+    modes: np.ndarray
+    points: np.ndarray
+    length_cm: float
+
+    def parts(self, pose):
+        """``(s, q)`` (n, 3): the strokes (NaN where q < 0) and q = l^2 - h^2."""
+        pose = np.atleast_2d(pose)
+        c, s = np.cos(pose[:, 2:3]), np.sin(pose[:, 2:3])
+        qx, qy = self.points[:, 0], self.points[:, 1]
+        wx = pose[:, :1] + c * qx - s * qy - self.origins[:, 0]
+        wy = pose[:, 1:2] + s * qx + c * qy - self.origins[:, 1]
+        ux, uy = self.directions[:, 0], self.directions[:, 1]
+        h = -uy * wx + ux * wy
+        q = self.distal**2 - h**2
+        with np.errstate(invalid="ignore"):
+            return wx * ux + wy * uy + self.modes * np.sqrt(q), q
+
+    def kappa(self, pose, h=1e-6):
+        """κ of d s / d(x, y, L phi) by central differences, (n,)."""
+        pose = np.atleast_2d(pose)
+        columns = []
+        for j in range(3):
+            step = np.zeros(3)
+            step[j] = h
+            diff = (self.parts(pose + step)[0] - self.parts(pose - step)[0]) / (2.0 * h)
+            columns.append(diff / self.length_cm if j == 2 else diff)
+        matrices = np.stack(columns, axis=2)
+        kappa = np.full(len(pose), np.inf)
+        finite = np.isfinite(matrices).all(axis=(1, 2))
+        sigma = np.linalg.svd(matrices[finite], compute_uv=False)
+        with np.errstate(divide="ignore"):
+            kappa[finite] = np.where(sigma[:, -1] > 0, sigma[:, 0] / sigma[:, -1], np.inf)
+        return kappa
+
+    def margins(self, pose, kappa_max):
+        """As :meth:`Legs.margins`: q / l^2 (the leg closes), the least slider's stroke
+        margin (cm), (kappa_max - κ) / kappa_max."""
+        stroke, q = self.parts(pose)
+        reach = (q / self.distal**2).min(axis=1)
+        joint = np.minimum(stroke - self.strokes[:, 0], self.strokes[:, 1] - stroke)
+        joint = np.where(reach >= 0.0, joint.min(axis=1), np.inf)
+        valid = (reach >= 0.0) & (joint >= 0.0)
+        kappa = np.zeros(len(valid))
+        if valid.any():
+            kappa[valid] = self.kappa(np.atleast_2d(pose)[valid])
+        return {"leg": reach, "joint_limit": joint, "kappa": (kappa_max - kappa) / kappa_max}

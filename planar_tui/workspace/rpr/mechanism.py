@@ -60,7 +60,7 @@ class Mechanism3RPR(Mechanism):
     def path_box_test(self, robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any, Any]]:
         import numpy as np
 
-        from planar_tui.kernels.path_certify_rpr import rpr_pose_boxes  # numba
+        from planar_tui.kernels.path_certify_prismatic import rpr_pose_boxes  # numba
         from planar_tui.workspace.path.certify import box_test
         from planar_tui.workspace.paving.dexterity import circumradius_cm
 
