@@ -50,8 +50,8 @@ from planar_tui.kernels.dynamics import (
     forward_dynamics_into,
     forward_dynamics_work,
     inverse_dynamics,
-    inverse_dynamics_batch,
 )
+from planar_tui.kernels.dynamics_batch import inverse_dynamics_batch
 from planar_tui.kernels.rk4 import rk4_integrate, rk4_record_count
 
 from benchmarks.baselines import import_pinocchio, numpy_newton_euler, pinocchio_chain

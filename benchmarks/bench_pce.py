@@ -41,7 +41,7 @@ prepare_kernels()
 
 from planar_tui.batch import prepare_jobs  # noqa: E402
 from planar_tui.presets import load_preset  # noqa: E402
-from planar_tui.sensitivity import engine, pce  # noqa: E402
+from planar_tui.sensitivity import engine, pce, pce_analysis  # noqa: E402
 
 PRESETS = [REPO / "presets" / "paper-a-table4.toml", REPO / "presets" / "paper-a-table5.toml"]
 SALTELLI_N = 8192
@@ -209,7 +209,7 @@ def motion_study(sobol_samples: int) -> None:
     t0 = time.perf_counter()
     design = pce.pce_unit_design(d, samples, job.spec.seed)
     y, _ = motion_outputs(job, design, steps)
-    result = pce.trajectory_indices(np.asarray(design), y, job.spec.seed)
+    result = pce_analysis.trajectory_indices(np.asarray(design), y, job.spec.seed)
     pce_s = time.perf_counter() - t0
     chaos = result.indices[2].reshape(-1, d)  # (K M, D) in the order of flat's columns
     error = np.abs(chaos - saltelli[2])

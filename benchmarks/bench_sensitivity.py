@@ -51,7 +51,7 @@ from planar_tui.batch import prepare_jobs  # noqa: E402
 from planar_tui.presets import load_preset  # noqa: E402
 from planar_tui.sensitivity import engine  # noqa: E402
 from planar_tui.sensitivity.design_cache import ENV_VAR  # noqa: E402
-from planar_tui.sensitivity.job import sample_sizes  # noqa: E402
+from planar_tui.sensitivity.spec import sample_sizes  # noqa: E402
 
 PRESETS = [REPO / "presets" / "paper-a-table4.toml", REPO / "presets" / "paper-a-table5.toml"]
 
@@ -235,7 +235,7 @@ def whole_process(cache_root: Path, runs: int):
 def model_evaluation(rows: int = 200_000, n: int = 6) -> None:
     """``--model``: lane-batched against scalar torques per robot (module docstring)."""
     import numba
-    from planar_tui.kernels.dynamics import inverse_dynamics_batch
+    from planar_tui.kernels.dynamics_batch import inverse_dynamics_batch
     from planar_tui.kernels.sensitivity_model import design_torques
 
     numba.set_num_threads(1)

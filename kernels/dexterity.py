@@ -139,7 +139,7 @@ def mean_value(m_lo, m_hi, row, k, c_lo, c_hi, b_lo, b_hi, da_x, da_y, db_x, db_
     """Meet entry ``(row, k)`` of :math:`M` (natural: ``m_lo, m_hi``) with its mean-value
     form :math:`m(c) + \\partial_x m(X)\\,(X - c_x) + \\partial_y m(X)\\,(Y - c_y)`,
     :math:`\\partial m = (\\partial a - m\\,\\partial b) / b`; ``c`` the entry at the
-    centre, ``dx``, ``dy`` the box's half-widths."""
+    centre, ``dx``, ``dy`` bounds of :math:`|X - c_x|`, :math:`|Y - c_y|`."""
     n_lo = m_lo[row, k]
     n_hi = m_hi[row, k]
     gx_lo, gx_hi = idiv(*isub(*da_x, *imul(n_lo, n_hi, *db_x)), b_lo, b_hi)
@@ -181,7 +181,7 @@ def kappa_bounds(m_lo, m_hi, n, norms):
             row[i] = up(row[i] + d)
             col[j] = up(col[j] + d)
             frobenius = up(frobenius + up(d * d))
-    spread = min(math.sqrt(frobenius), math.sqrt(row.max() * col.max()))
+    spread = up(min(math.sqrt(frobenius), math.sqrt(up(row.max() * col.max()))))
     norm = 0.0
     for i in range(n):
         for j in range(n):

@@ -108,8 +108,8 @@ def rr_leg(xlo, xhi, ylo, yhi, leg, g, r, elbow, limits, m_lo, m_hi, norms, row,
     ey_lo, ey_hi = iscale(*isub(vy_lo, vy_hi, uy_lo, uy_hi), 1.0 / l1)
     ex_lo, ex_hi = iadd(ex_lo, ex_hi, -1e-15, 1e-15)  # 1 / l1 rounded
     ey_lo, ey_hi = iadd(ey_lo, ey_hi, -1e-15, 1e-15)
-    dx = up(0.5 * (xhi - xlo))
-    dy = up(0.5 * (yhi - ylo))
+    dx = up(max(cx - xlo, xhi - cx))
+    dy = up(max(cy - ylo, yhi - cy))
     ux_x = iadd_scalar(*iscale(*imul(ey_lo, ey_hi, m_lo[row, 0], m_hi[row, 0]), l1), 1.0)
     uy_x = iscale(*imul(ex_lo, ex_hi, m_lo[row, 0], m_hi[row, 0]), -l1)
     ux_y = iscale(*imul(ey_lo, ey_hi, m_lo[row, 1], m_hi[row, 1]), l1)

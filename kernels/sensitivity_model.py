@@ -3,7 +3,7 @@ r"""Joint torques of every row of a unit-hypercube sensitivity design, scaled on
 The sensitivity engine's model (issue 3): row s of SALib's unit design u is the robot
 :math:`x_s = u_s\,(x_{ub} - x_{lb}) + x_{lb}` (link lengths, masses, optionally inertias),
 scaled with exactly the floating-point operations of ``SALib.util.scale_samples``, so the
-torques are bit-identical to :func:`kernels.dynamics.inverse_dynamics_batch` on the scaled
+torques are bit-identical to :func:`kernels.dynamics_batch.inverse_dynamics_batch` on the scaled
 matrix (tested) without materialising it or its column copies.
 
 Robots are evaluated :data:`LANES` at a time as structure of arrays (issue 21, as the motion
@@ -19,7 +19,8 @@ import numpy as np
 from numba import prange
 
 from ._jit import kernel
-from .dynamics import _ACCEL, _RATE, _UX, _UY, shared_link_kinematics
+from .dynamics import _ACCEL, _RATE, _UX, _UY
+from .dynamics_batch import shared_link_kinematics
 
 #: Robots per block (the lanes of the innermost loops).
 LANES = 128
@@ -136,7 +137,7 @@ def design_torques(
     ``unit`` (S, D) float64 is the design, columns l1…ln, m1…mn and, when D = 3n, I1…In;
     ``lower``, ``upper`` (D,) its bounds (m, kg, kg m²); ``inertias_kgm2`` (n,) the
     inertias used when D = 2n; gravity and the shared state (θ, θ̇, θ̈, each (n,)) as in
-    :func:`kernels.dynamics.inverse_dynamics_batch`. Returns the (S, n) torques, N m.
+    :func:`kernels.dynamics_batch.inverse_dynamics_batch`. Returns the (S, n) torques, N m.
     Blocks of :data:`LANES` rows run in parallel (``prange``), each with its own scratch.
     """
     samples, num_vars = unit.shape

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from contextlib import contextmanager
 from enum import IntEnum
 from pathlib import Path
 
@@ -59,3 +61,24 @@ class Terminated(KeyboardInterrupt):
     """SIGTERM (``kill``, ``timeout``, systemd, SLURM) during a batch run, raised like
     Ctrl-C's ``KeyboardInterrupt`` so every clean-up that handles it (temporary files)
     applies; the CLI then exits with 143 (128 + 15)."""
+
+
+class OutputFailed(Exception):
+    """A finished job's (or study's) result could not be written."""
+
+    def __init__(self, path: Path | str, reason: str):
+        super().__init__(f"{path}: cannot write: {reason}")
+        self.path = path
+
+
+@contextmanager
+def writing(path: Path | str, doing: str = "", *, filename_first: bool = False) -> Iterator[None]:
+    """Turn an :class:`OSError` raised inside into :class:`OutputFailed` on ``path`` (on
+    the error's own file name first when ``filename_first``), the reason being the error's
+    ``strerror`` (its text when it has none), after ``doing: `` when given."""
+    try:
+        yield
+    except OSError as error:
+        reason = error.strerror or str(error)
+        where = (error.filename if filename_first else None) or path
+        raise OutputFailed(where, f"{doing}: {reason}" if doing else reason) from None

@@ -60,7 +60,7 @@ class Job(Generic[SpecT, RobotT]):
     and summaries (``preset:key``), ``key`` the job's table in the preset (``simulate``,
     ``simulate[2]``); ``variant`` is what command-line overrides changed
     (``--form-mean-value``), appended to the stem of every output file the preset names
-    (see :func:`planar_tui.batch.apply_overrides`); ``overridden`` maps the settings a
+    (see :func:`planar_tui.overrides.apply_overrides`); ``overridden`` maps the settings a
     command-line option set to that option (``{"samples": "--samples"}``), so that a
     problem they cause names the option (``command line: --samples``), not the preset.
     """
@@ -166,7 +166,7 @@ class Option:
 
     ``name`` is the option (``--precision``), ``key`` the settings key it sets
     (``precision_cm``); the value is read with the key's own reader, so it is checked
-    exactly as the preset's value is (:func:`planar_tui.batch.apply_overrides`). ``type``
+    exactly as the preset's value is (:func:`planar_tui.overrides.apply_overrides`). ``type``
     is what Typer converts the text to (``str``, ``int``, ``float``); ``many`` makes it
     repeatable (a list); ``short`` is a one-letter alias (``-m``). In the names of the
     files it changes the option appears without its dashes (``--precision-0.5``).
@@ -261,7 +261,7 @@ class JobKind:
     naming the parts a job's run needs, so that a cold run compiles only their kernels).
     ``overrides(table, given)`` adjusts the keys that follow an overridden one in the TOML
     table the command-line options are applied to (e.g. a workspace's refinement
-    precision capped by a new precision): see :func:`planar_tui.batch.apply_overrides`.
+    precision capped by a new precision): see :func:`planar_tui.overrides.apply_overrides`.
     """
 
     name: str

@@ -32,7 +32,7 @@ from planar_tui.errors import PresetError
 
 if TYPE_CHECKING:
     from planar_tui.jobkind import Job
-    from planar_tui.optimise.spec import Optimisation
+    from planar_tui.optimise.problem import Optimisation
     from planar_tui.presets import Preset
     from planar_tui.sweep.points import Point
     from planar_tui.sweep.spec import Sweep

@@ -184,7 +184,7 @@ def check_samples(error: ErrorFactory, methods: Collection[str], sizes: SampleSi
 def sampling_options(methods: tuple[str, ...], samples_help: str) -> tuple[Option, ...]:
     """The command-line options that override the sampling keys (``--method``,
     ``--samples``, ``--seed``), read and checked as the keys are
-    (:func:`planar_tui.batch.override_job`)."""
+    (:func:`planar_tui.overrides.override_job`)."""
     names = ", ".join(methods[:-1]) + f" or {methods[-1]}"
     return (
         Option(

@@ -118,9 +118,9 @@ async def test_the_frame_at_half_a_second_is_the_csv_state(tmp_path):
 
 @async_test
 async def test_the_sensitivity_tab_draws_the_solved_isotropic_posture(tmp_path):
-    from planar_tui.sensitivity.job import SensitivityResult
     from planar_tui.sensitivity.postures import isotropic_posture
     from planar_tui.sensitivity.results import csv_table
+    from planar_tui.sensitivity.runner import SensitivityResult
     from tests.test_app_layout import load_6r
 
     app = WorkbenchApp(Workbench.open(Path(__file__).parent / "data" / "app" / "tiny.toml"))

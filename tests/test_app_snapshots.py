@@ -12,8 +12,8 @@ import pytest
 
 from planar_tui.app.app import WorkbenchApp
 from planar_tui.app.workbench import Workbench
-from planar_tui.sensitivity.job import SensitivityResult
 from planar_tui.sensitivity.results import csv_table
+from planar_tui.sensitivity.runner import SensitivityResult
 from tests.test_app_layout import load_6r
 
 pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)

@@ -201,7 +201,7 @@ def test_a_failing_job_is_one_line_exit_1_and_no_file(tmp_path, cli, monkeypatch
         raise FloatingPointError("the kernel diverged")
 
     # the runner imports the kernel when it runs, so patching the kernel module reaches it
-    monkeypatch.setattr("planar_tui.kernels.dynamics.inverse_dynamics_batch_states", broken)
+    monkeypatch.setattr("planar_tui.kernels.dynamics_batch.inverse_dynamics_batch_states", broken)
     result = cli("torques", TABLE1, "--out-dir", tmp_path)
     assert result.exit_code == ExitCode.RUN_FAILED
     assert result.stderr.strip().splitlines()[-1] == (

@@ -15,9 +15,8 @@ from planar_tui.kernels.dynamics import (
     energies,
     forward_dynamics,
     inverse_dynamics,
-    inverse_dynamics_batch,
-    inverse_dynamics_batch_states,
 )
+from planar_tui.kernels.dynamics_batch import inverse_dynamics_batch, inverse_dynamics_batch_states
 from planar_tui.kernels.noc_matrices import (
     gravity_vector,
     mass_matrix,

@@ -1,13 +1,13 @@
-"""No module of the package is over 600 lines (issue 18: "no module of the package over
-600 lines"), the package being ``planar_tui/`` and the kernels (``kernels/``, installed
-as ``planar_tui.kernels``)."""
+"""No module of the package is over 500 lines, the package being ``planar_tui/`` and the
+kernels (``kernels/``, installed as ``planar_tui.kernels``): a module that grows past it
+is split by responsibility."""
 
 from __future__ import annotations
 
 from tests.conftest import REPO
 
 #: The rule's bound, in lines.
-MAX_LINES = 600
+MAX_LINES = 500
 
 
 def module_lines() -> dict[str, int]:
@@ -25,6 +25,6 @@ def test_the_package_and_the_kernels_have_modules_to_count():
     assert "kernels/dynamics.py" in lines
 
 
-def test_no_module_is_over_600_lines():
+def test_no_module_is_over_500_lines():
     over = {path: count for path, count in module_lines().items() if count > MAX_LINES}
     assert not over, f"modules over {MAX_LINES} lines (split them by responsibility): {over}"

@@ -23,7 +23,7 @@ import pytest
 
 from planar_tui.batch import run_job
 from planar_tui.motion import engine
-from planar_tui.motion.job import prepare_motion
+from planar_tui.motion.runner import prepare_motion
 from planar_tui.presets import parse_preset
 from planar_tui.progress import Progress
 from planar_tui.registry import JOB_KINDS

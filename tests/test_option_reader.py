@@ -1,4 +1,4 @@
-"""Every kind's command-line options go through one reader (``batch.override_job``): a bad
+"""Every kind's command-line options go through one reader (``overrides.override_job``): a bad
 value is one line ``error: command line: --OPTION: ...`` naming the option, never the
 preset's key, and nothing is written."""
 
@@ -36,7 +36,7 @@ def test_a_bad_option_is_one_line_naming_the_option(cli, tmp_path, args, line):
 
 def test_an_option_equal_to_the_presets_value_changes_no_file_name(cli, tmp_path):
     """The variant suffix names only what an option changed (the preset says natural)."""
-    from planar_tui.batch import override_job
+    from planar_tui.overrides import override_job
     from planar_tui.presets import load_preset
     from planar_tui.resources import resolve_preset
 

@@ -33,7 +33,7 @@ def test_scaled_design_is_salib_sampling_the_real_problem():
 @pytest.mark.parametrize("inertia_tolerance", [None, 1e-3])
 def test_design_torques_equal_the_batch_kernel_on_the_scaled_design(inertia_tolerance):
     """Scaling inside the kernel is bit-identical to scaling first (SALib's arithmetic)."""
-    from planar_tui.kernels.dynamics import inverse_dynamics_batch
+    from planar_tui.kernels.dynamics_batch import inverse_dynamics_batch
 
     problem = build_problem(ROBOT, 1e-3, 1e-2, inertia_tolerance)
     scaled = scaled_design(problem, "sobol", 64, 3)

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from planar_tui.kernels.dynamics import inverse_dynamics_batch
+from planar_tui.kernels.dynamics_batch import inverse_dynamics_batch
 from planar_tui.kernels.sensitivity_model import LANES, design_torques
 
 

@@ -2,7 +2,7 @@
 
 The path against its defining conditions (ends, rest, derivatives by finite differences);
 the torques of sampled robots against the one-robot many-states inverse dynamics
-(``kernels.dynamics.inverse_dynamics_batch_states``, another kernel than the design's) at
+(``kernels.dynamics_batch.inverse_dynamics_batch_states``, another kernel than the design's) at
 the path's states; peak and RMS against direct NumPy sums; the PCE indices of the peak and
 RMS torques against Saltelli's estimate on the same robots' model.
 """
@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from planar_tui.kernels.dynamics import inverse_dynamics_batch_states
+from planar_tui.kernels.dynamics_batch import inverse_dynamics_batch_states
 
 from planar_tui.dynamics.robot import SerialRobot
 from planar_tui.sensitivity import pce

@@ -22,7 +22,7 @@ import numpy as np
 import pytest
 
 from planar_tui.dynamics.robot import SerialRobot
-from planar_tui.sensitivity import pce
+from planar_tui.sensitivity import pce, pce_analysis
 from planar_tui.sensitivity.aggregate import aggregated_indices
 from planar_tui.sensitivity.engine import build_problem, evaluate
 from planar_tui.sensitivity.failed_runs import FailedRuns, check_failed_runs, failure_corner
@@ -172,14 +172,14 @@ def test_a_discontinuous_model_fails_the_loo_check_with_one_line():
     _, fits = pce.pce_indices(unit, y, SEED, num_resamples=0)
     assert fits[0].loo_error[0] > 0.01
     with pytest.raises(pce.PceError) as raised:
-        pce.check_loo(fits, ["tau1"], 0.01, 64)
+        pce_analysis.check_loo(fits, ["tau1"], 0.01, 64)
     message = str(raised.value)
     assert "\n" not in message
     assert (
         "leave-one-out error" in message and "of tau1 exceeds pce_max_loo_error = 0.01" in message
     )
     assert "raise pce_samples (now 64) or pce_max_loo_error" in message
-    pce.check_loo(fits, ["tau1"], 1.0, 64)  # a looser bound accepts it
+    pce_analysis.check_loo(fits, ["tau1"], 1.0, 64)  # a looser bound accepts it
 
 
 def test_an_output_without_variance_has_zero_indices():
@@ -282,7 +282,7 @@ def test_trajectory_indices_of_the_one_link_motion_match_quadrature_at_every_tim
     times = np.linspace(0.0, 1.0, 11)
     theta = theta_end[:, None] * times[None, :] ** 2
     outputs = np.stack([theta, 2.0 * theta], axis=2)  # (S, K, M)
-    result = pce.trajectory_indices(unit, outputs, SEED, num_resamples=10)
+    result = pce_analysis.trajectory_indices(unit, outputs, SEED, num_resamples=10)
     _, variance, _, first, total = exact_moments(*CASES["l-m"])
     exact = np.array([first, total]) / variance  # (2, D)
     assert np.all(result.indices[:, 0] == 0.0) and np.all(result.variance[0] == 0.0)
@@ -297,17 +297,19 @@ def test_trajectory_indices_of_the_one_link_motion_match_quadrature_at_every_tim
 def test_job_indices_check_failed_runs_and_the_loo_error():
     unit = pce.pce_unit_design(2, 128, SEED)
     y = np.stack([unit[:, 0] + 2 * unit[:, 1], unit[:, 0] * unit[:, 1]], axis=1)
-    indices, loo, note = pce.job_indices(unit, y, SEED, ("l1", "m1"), ("tau1", "tau2"), 0.01)
+    indices, loo, note = pce_analysis.job_indices(
+        unit, y, SEED, ("l1", "m1"), ("tau1", "tau2"), 0.01
+    )
     assert note == "" and loo.max() < 1e-20
     assert indices[2, 0] == pytest.approx([0.2, 0.8], abs=1e-12)
     y[:3] = np.inf
     with pytest.raises(FailedRuns) as raised:
-        pce.job_indices(unit, y, SEED, ("l1", "m1"), ("tau1", "tau2"), 0.01)
+        pce_analysis.job_indices(unit, y, SEED, ("l1", "m1"), ("tau1", "tau2"), 0.01)
     assert raised.value.key == "allow_failed_runs"
-    _, _, note = pce.job_indices(unit, y, SEED, ("l1", "m1"), ("tau1", "tau2"), 0.01, 0.05)
+    _, _, note = pce_analysis.job_indices(unit, y, SEED, ("l1", "m1"), ("tau1", "tau2"), 0.01, 0.05)
     assert note.startswith("3 of 128 model runs failed")
     y[:, 0] = unit[:, 0] + 2 * unit[:, 1]
     y[:, 1] = np.where(unit[:, 0] > 0.5, 1.0, 0.0)  # a step: no polynomial fits it
     with pytest.raises(pce.PceError) as raised:
-        pce.job_indices(unit, y, SEED, ("l1", "m1"), ("tau1", "tau2"), 0.01)
+        pce_analysis.job_indices(unit, y, SEED, ("l1", "m1"), ("tau1", "tau2"), 0.01)
     assert raised.value.key == "pce_samples" and "of tau2 exceeds" in raised.value.problem

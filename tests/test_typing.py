@@ -12,7 +12,8 @@ from tests.conftest import REPO
 
 SNIPPET = """
 from planar_tui.jobkind import Job, PreparedJob
-from planar_tui.motion.job import MotionPrepared, MotionSpec
+from planar_tui.motion.runner import MotionPrepared
+from planar_tui.motion.spec import MotionSpec
 from planar_tui.dynamics.robot import SerialRobot
 
 def runs(job: PreparedJob[MotionSpec, SerialRobot, MotionPrepared]) -> None:

@@ -84,7 +84,7 @@ class SweepFinished(RunEnded):
 
 
 class OptimiseFinished(RunEnded):
-    """An optimisation ended: ``run`` (a :class:`~planar_tui.optimise.run.OptimiseRun`),
+    """An optimisation ended: ``run`` (a :class:`~planar_tui.optimise.evaluations.OptimiseRun`),
     ``cancelled`` (its finished evaluations kept) or not; ``error`` when it could not run."""
 
     def __init__(self, pane: Any, optimisation: Any):

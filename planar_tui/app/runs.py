@@ -200,7 +200,7 @@ class RunHistory:
     ) -> Run:
         """Keep a finished sweep or optimisation of this session (``kind`` ``"sweep"`` or
         ``"optimise"``; ``study`` its :class:`~planar_tui.sweep.spec.Sweep` or
-        :class:`~planar_tui.optimise.spec.Optimisation`, ``result`` its run: the table it
+        :class:`~planar_tui.optimise.problem.Optimisation`, ``result`` its run: the table it
         writes, and an optimisation's optimum as the extra table ``optimum``)."""
         extra = {"optimum": result.optimum_table} if kind == "optimise" else {}
         return self._add(

@@ -83,7 +83,7 @@ def run(
     from planar_tui.cli.running import print_notes, run_jobs, run_optimisations, run_sweeps
 
     with reported_errors():
-        from planar_tui.batch import select_jobs
+        from planar_tui.overrides import select_jobs
         from planar_tui.plan import plan_run
         from planar_tui.sweep.execute import scheduler_address
         from planar_tui.sweep.spec import check_has_work

@@ -160,7 +160,7 @@ def job_exports(plan: RunPlan, given: Mapping[str, Any]) -> Callable[[Any, Any],
         targets[id(output.job)] = (folder, path)
 
     def write(job: Any, result: Any) -> None:
-        from planar_tui.batch import OutputFailed
+        from planar_tui.errors import OutputFailed
 
         folder, path = targets[id(job)]
         try:

@@ -64,12 +64,12 @@ def run_kind(
 ) -> None:
     """Run the jobs of one kind in a preset: all of them, or those ``names`` selects
     (``--job``); ``options`` are the command-line overrides by option name, applied and
-    checked by :func:`planar_tui.batch.apply_overrides`; ``exports`` the kind's
+    checked by :func:`planar_tui.overrides.apply_overrides`; ``exports`` the kind's
     interoperability options (:data:`planar_tui.cli.interop.KIND_OPTIONS`)."""
     from planar_tui.cli.running import run_jobs
 
     with reported_errors():
-        from planar_tui.batch import apply_overrides, select_jobs
+        from planar_tui.overrides import apply_overrides, select_jobs
         from planar_tui.plan import plan_run
 
         check_figure_option(plot)

@@ -17,7 +17,7 @@ from planar_tui.cli.output import (
     sigterm_as_interrupt,
     stdout,
 )
-from planar_tui.errors import Cancelled, ExitCode, Terminated
+from planar_tui.errors import Cancelled, ExitCode, OutputFailed, Terminated
 
 if TYPE_CHECKING:
     from planar_tui.jobkind import Job
@@ -81,7 +81,7 @@ def run_jobs(
         if debug:
             raise error.__cause__ from None
         raise fail(f"error: {error}", ExitCode.RUN_FAILED) from None
-    except (batch.OutputFailed, batch.NonFiniteResult) as error:
+    except (OutputFailed, batch.NonFiniteResult) as error:
         raise fail(f"error: {error}", ExitCode.RUN_FAILED) from None
 
     summary = Table(title=summary_title(command, plan), title_justify="left", show_lines=True)
@@ -137,7 +137,6 @@ def run_sweeps(plan: RunPlan, workers: int | None, scheduler: str | None) -> Non
     checkpoint is kept until all of them are done, then those of the sweeps whose CSV was
     written are deleted: Ctrl-C keeps them all, so ``--resume`` rebuilds the finished
     sweeps from theirs and computes only what is left."""
-    from planar_tui.batch import OutputFailed
     from planar_tui.sweep.service import resume_note, run_sweep
 
     failed = 0
@@ -208,7 +207,6 @@ def run_optimisations(plan: RunPlan, workers: int | None, scheduler: str | None)
     a failed one (the job broke) is counted too, the run goes on and its files are written,
     and the exit code is 1, as for a failed sweep point. Ctrl-C exits 130 with every
     finished evaluation in the checkpoint (``--resume``)."""
-    from planar_tui.batch import OutputFailed
     from planar_tui.optimise.run import run_optimisation
 
     unwritten = 0

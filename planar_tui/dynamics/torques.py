@@ -104,7 +104,7 @@ def run_torques(
     """Evaluate the inverse dynamics at every listed state (one batched kernel call)."""
     import numpy as np
 
-    from planar_tui.kernels.dynamics import inverse_dynamics_batch_states
+    from planar_tui.kernels.dynamics_batch import inverse_dynamics_batch_states
 
     spec, robot = job.spec, job.robot
     theta = np.radians(np.array(spec.theta_deg, dtype=np.float64))

@@ -1,7 +1,7 @@
 """An optimisation's figure: the convergence of one objective (every feasible evaluation's
 value and the best so far, against the evaluation number) or the front of two (every
 feasible evaluation, the non-dominated ones joined), from
-:func:`planar_tui.optimise.run.figure_data`'s plain data."""
+:func:`planar_tui.optimise.evaluations.figure_data`'s plain data."""
 
 from __future__ import annotations
 

@@ -14,8 +14,6 @@ from planar_tui.reader import BoundedReadError, open_bounded
 #: Largest result CSV ``planar-tui plot`` reads (bytes): its cells take about ten times
 #: that in memory.
 MAX_CSV_BYTES = 64 * 2**20
-#: Largest cell (bytes; the :mod:`csv` module's own limit, 128 KiB).
-MAX_FIELD_BYTES = 128 * 2**10
 #: Largest magnitude of a number drawn (a figure's axis ranges overflow near 1e308).
 MAX_ABS_VALUE = 1e100
 
@@ -57,8 +55,9 @@ def read_csv(path: Path | str) -> CsvTable:
     """The table in a CSV file (header, then rows of numbers, text and ``None``; blank
     lines skipped); ``OSError`` or ``UnicodeDecodeError`` when it cannot be read,
     ``ValueError`` when it holds no header, is no regular file, is larger than
-    :data:`MAX_CSV_BYTES`, has a cell over :data:`MAX_FIELD_BYTES` or a number that is not
-    finite or beyond :data:`MAX_ABS_VALUE` (the message names the line and column)."""
+    :data:`MAX_CSV_BYTES`, has a cell over the :mod:`csv` module's own limit (128 KiB) or a
+    number that is not finite or beyond :data:`MAX_ABS_VALUE` (the message names the line
+    and column)."""
     with open_regular(path) as stream:
         reader = csv.reader(stream)
         try:

@@ -49,7 +49,7 @@ def _unit(name: str) -> str:
 
 
 def motion_dataset(result: Any, attributes: Mapping[str, Any]):
-    """The Dataset of a :class:`~planar_tui.motion.job.MotionResult`; ``attributes``
+    """The Dataset of a :class:`~planar_tui.motion.runner.MotionResult`; ``attributes``
     (preset, job, version, seed ...) become the Dataset's attributes."""
     import xarray as xr
 

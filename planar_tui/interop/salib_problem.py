@@ -144,7 +144,7 @@ def sensitivity_runs(job: Any, result: Any) -> list[ModelRuns]:
     evaluate`: rows are independent, so the values are the job's, bit for bit); cheap next
     to the job's analysis."""
     from planar_tui.sensitivity.engine import build_problem, evaluate, unit_design
-    from planar_tui.sensitivity.job import sample_sizes
+    from planar_tui.sensitivity.spec import sample_sizes
 
     spec, robot = job.spec, job.robot
     problem = build_problem(

@@ -16,7 +16,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from planar_tui.errors import PresetError
-from planar_tui.optimise.spec import Optimisation, corner_designs
+from planar_tui.optimise.problem import Optimisation
+from planar_tui.optimise.spec import corner_designs
 from planar_tui.registry import JOB_KINDS
 from planar_tui.sweep.budget import SweepEstimate, check_needs, check_workers
 

@@ -8,204 +8,35 @@ the CSV does not depend on which worker finished first; pymoo is seeded. ``--res
 replays the optimiser: a number already in the checkpoint is not run again.
 
 The objective of pymoo is ``F = sense · value`` (``sense`` −1 to maximise); the
-constraints are ``G ≤ 0`` (:class:`~planar_tui.optimise.spec.Constraint`) plus one more,
+constraints are ``G ≤ 0`` (:class:`~planar_tui.optimise.problem.Constraint`) plus one more,
 ``G = 1`` for an evaluation that is not ``ok`` (``0`` otherwise): a design its job refuses
 (status ``infeasible``) or one whose job broke (``failed``).
 """
 
 from __future__ import annotations
 
-import math
-import secrets
 import time
-from collections.abc import Callable, Sequence
-from contextlib import ExitStack
-from dataclasses import dataclass, field
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from planar_tui.csvio import CsvTable, write_csv_atomic
-from planar_tui.errors import PresetError
-from planar_tui.optimise.spec import Optimisation
+from planar_tui.csvio import write_csv_atomic
+from planar_tui.errors import OutputFailed, PresetError, writing
+from planar_tui.optimise.evaluations import (
+    Evaluation,
+    OptimiseRun,
+    figure_data,
+    number_of,
+    objectives_of,
+)
+from planar_tui.optimise.problem import Optimisation
 from planar_tui.progress import Progress
 from planar_tui.provenance import planned_sidecar, study_provenance, write_sidecar
-from planar_tui.sweep.worker import FAILED, INFEASIBLE, OK, PointOutcome, PointTask
+from planar_tui.sweep.worker import INFEASIBLE, OK, PointOutcome, PointTask
 
 if TYPE_CHECKING:
     from planar_tui.batch import PlannedFile
-
-
-@dataclass(frozen=True)
-class Evaluation:
-    """Evaluation ``number`` (1-based, in the order asked) of ``generation``: the design's
-    ``values`` (one per variable) and its outcome."""
-
-    number: int
-    generation: int
-    values: tuple[Any, ...]
-    outcome: PointOutcome
-
-
-@dataclass
-class OptimiseRun:
-    """The evaluations so far (``resumed`` of them from the checkpoint), the certified
-    re-runs of the optimum or Pareto set (evaluation, outcome at the job's own settings)
-    and where the files went. A ``cancelled`` run (stopped part-way) keeps every finished
-    evaluation, those of its last generation included."""
-
-    optimisation: Optimisation
-    evaluations: list[Evaluation] = field(default_factory=list)
-    certified: list[tuple[Evaluation, PointOutcome]] = field(default_factory=list)
-    resumed: int = 0
-    generations: int = 0
-    output: Path | None = None
-    pareto: Path | None = None
-    figure: Path | None = None
-    figure_error: str | None = None
-    checkpoint: Path | None = None
-    cancelled: bool = False
-    #: When the run started (epoch s), for the CSVs' provenance sidecars.
-    started_s: float = field(default_factory=time.time)
-
-    @property
-    def failed(self) -> int:
-        """Evaluations whose job broke (status ``failed``)."""
-        return sum(1 for e in self.evaluations if e.outcome.status == FAILED)
-
-    @property
-    def infeasible(self) -> int:
-        """Evaluations whose design the job refuses (status ``infeasible``: a centre its
-        working mode cannot reach)."""
-        return sum(1 for e in self.evaluations if e.outcome.status == INFEASIBLE)
-
-    @property
-    def table(self) -> CsvTable:
-        """Every evaluation: number, generation, variables, the objectives' and
-        constraints' columns, ``feasible``, ``status``, ``message``."""
-        opt = self.optimisation
-        header = (
-            "evaluation",
-            "generation",
-            *(v.path.text for v in opt.variables),
-            *opt.columns,
-            "feasible",
-            "status",
-            "message",
-        )
-        rows = []
-        for e in self.evaluations:
-            figures = [e.outcome.figures.get(c, "") for c in opt.columns]
-            rows.append(
-                [
-                    e.number,
-                    e.generation,
-                    *e.values,
-                    *figures,
-                    str(feasible(opt, e.outcome)).lower(),
-                    e.outcome.status,
-                    e.outcome.message,
-                ]
-            )
-        return CsvTable(header, rows)
-
-    def best(self) -> list[Evaluation]:
-        """The optimum (one objective: the feasible evaluation of least ``F``, the first
-        one on a tie) or the Pareto set (several: the feasible evaluations no other
-        dominates, one per distinct design), in evaluation order."""
-        return best_of(self.optimisation, self.evaluations)
-
-    @property
-    def optimum_table(self) -> CsvTable:
-        """The certified optimum or Pareto set: evaluation, variables, the objectives as
-        evaluated (``coarse_COLUMN``), then every column of the job's summary at its own
-        settings (the certified bracket among them), ``status``, ``message``."""
-        opt = self.optimisation
-        columns: dict[str, None] = {}
-        for _, outcome in self.certified:
-            columns.update(dict.fromkeys(outcome.figures))
-        names = [n for n in columns if n not in {v.path.text for v in opt.variables}]
-        header = (
-            "evaluation",
-            *(v.path.text for v in opt.variables),
-            *(f"coarse_{o.column}" for o in opt.objectives),
-            *names,
-            "status",
-            "message",
-        )
-        rows = [
-            [
-                e.number,
-                *e.values,
-                *(e.outcome.figures[o.column] for o in opt.objectives),
-                *(outcome.figures.get(n, "") for n in names),
-                outcome.status,
-                outcome.message,
-            ]
-            for e, outcome in self.certified
-        ]
-        return CsvTable(header, rows)
-
-
-def number_of(opt: Optimisation, outcome: PointOutcome, column: str) -> float:
-    """An evaluation's figure ``column`` as a float; a column the job does not report, or
-    one that is no number, is a :class:`PresetError` naming the table (exit 2)."""
-    value = outcome.figures.get(column)
-    if value is None:
-        raise PresetError(
-            opt.preset_path,
-            opt.name,
-            f"names the column {column!r}, not one of the job's",
-            "one of " + ", ".join(outcome.figures),
-        )
-    if isinstance(value, bool) or not isinstance(value, int | float):
-        raise PresetError(
-            opt.preset_path,
-            opt.name,
-            f"names the column {column!r}, which is not a number ({value!r})",
-            "a numeric column",
-        )
-    return float(value)
-
-
-def feasible(opt: Optimisation, outcome: PointOutcome) -> bool:
-    """Whether an evaluation succeeded and holds every constraint (its own operator)."""
-    return outcome.status == OK and all(
-        c.holds(number_of(opt, outcome, c.column)) for c in opt.constraints
-    )
-
-
-def objectives_of(opt: Optimisation, outcome: PointOutcome) -> tuple[float, ...]:
-    """pymoo's ``F``: ``sense · value`` per objective."""
-    return tuple(o.sense * number_of(opt, outcome, o.column) for o in opt.objectives)
-
-
-def best_of(opt: Optimisation, evaluations: Sequence[Evaluation]) -> list[Evaluation]:
-    """See :meth:`OptimiseRun.best`. ``a`` dominates ``b`` when ``F(a) ≤ F(b)`` in every
-    objective and ``<`` in one."""
-    candidates: dict[str, Evaluation] = {}
-    for e in evaluations:
-        if feasible(opt, e.outcome):
-            candidates.setdefault(repr(e.values), e)  # choices may be lists
-    scored = [(objectives_of(opt, e.outcome), e) for e in candidates.values()]
-    if len(opt.objectives) == 1:
-        return [min(scored, key=lambda s: (s[0], s[1].number))[1]] if scored else []
-
-    def dominates(a: tuple[float, ...], b: tuple[float, ...]) -> bool:
-        return all(x <= y for x, y in zip(a, b, strict=True)) and a != b
-
-    front = [e for f, e in scored if not any(dominates(g, f) for g, _ in scored)]
-    return sorted(front, key=lambda e: e.number)
-
-
-def convergence(opt: Optimisation, evaluations: Sequence[Evaluation]) -> list[float]:
-    """The best objective value (as the column's value) after each evaluation, ``nan``
-    before the first feasible one (one objective)."""
-    best, sense, history = math.inf, opt.objectives[0].sense, []
-    for e in evaluations:
-        if feasible(opt, e.outcome):
-            best = min(best, sense * number_of(opt, e.outcome, opt.objectives[0].column))
-        history.append(sense * best if math.isfinite(best) else math.nan)
-    return history
+    from planar_tui.sweep.checkpoint import CheckpointWriter
 
 
 def make_algorithm(opt: Optimisation) -> Any:
@@ -263,24 +94,6 @@ def planned_files(opt: Optimisation, out_dir: Path) -> list[PlannedFile]:
     return files
 
 
-class _Runner:
-    """Runs point tasks in this process or on a Dask client, keeping their outcomes."""
-
-    def __init__(self, client: Any, progress: Progress, prefix: str):
-        self.client, self.progress, self.prefix = client, progress, prefix
-
-    def run(self, tasks: list[PointTask], on_outcome: Callable[[PointOutcome], None]) -> None:
-        from planar_tui.sweep import execute
-
-        if not tasks:
-            return
-        if self.client is None:
-            execute.run_in_process(tasks, self.progress, on_outcome)
-        else:
-            prefix = f"{self.prefix}-{secrets.token_hex(3)}"
-            execute.run_on_dask(self.client, tasks, self.progress, on_outcome, prefix)
-
-
 def _task_or_failure(
     opt: Optimisation, number: int, values: tuple[Any, ...], coarse: bool
 ) -> PointTask | PointOutcome:
@@ -319,11 +132,7 @@ def run_optimisation(
     (:class:`~planar_tui.errors.Cancelled`, ``KeyboardInterrupt``) with the checkpoint
     kept. ``on_generation`` sees the run after each generation (the app's screen); a
     cancelled run is handed to it once more, ``cancelled``, before the cancel propagates."""
-    import numpy as np
-
-    from planar_tui.batch import OutputFailed
     from planar_tui.sweep import execute
-    from planar_tui.sweep.checkpoint import CheckpointWriter, checkpoint_path, read_finished
     from planar_tui.warmup import warm_kernels
 
     progress = progress or Progress()
@@ -333,26 +142,11 @@ def run_optimisation(
     finished: dict[int, PointOutcome] = {}
     writer = None
     if output is not None:
-        run.checkpoint = checkpoint_path(output)
-        if resume:
-            finished = read_finished(
-                run.checkpoint,
-                opt.fingerprint(),
-                total,
-                _columns_of(opt),
-                lambda text: announce(f"warning: {text}"),
-            )
-        try:
-            writer = CheckpointWriter(run.checkpoint, opt.fingerprint(), total, finished)
-        except OSError as error:
-            raise OutputFailed(run.checkpoint, error.strerror or str(error)) from None
+        finished, writer = _open_checkpoint(run, output, total, resume, announce)
 
     def keep(outcome: PointOutcome, outcomes: dict[int, PointOutcome]) -> None:
         if writer is not None:
-            try:
-                writer.add(outcome, sync=False)  # synced once a generation
-            except OSError as error:
-                raise OutputFailed(writer.path, error.strerror or str(error)) from None
+            writer.add(outcome, sync=False)  # synced once a generation
         outcomes[outcome.number] = outcome
         progress.advance(1, _detail(run, len(outcomes)), failed=run.failed)
 
@@ -372,30 +166,18 @@ def run_optimisation(
                 keep(task, outcomes)
             else:
                 tasks.append(task)
-        runner.run(tasks, lambda outcome: keep(outcome, outcomes))
+        if tasks:
+            runner.run(tasks, lambda outcome: keep(outcome, outcomes))
         return outcomes
 
     algorithm = make_algorithm(opt)
     try:
-        with ExitStack() as stack:
-            if client is None and (workers > 1 or scheduler is not None):
-                target = execute.DaskTarget(workers, scheduler)
-                client = stack.enter_context(execute.dask_client(target, announce))
-            runner = _Runner(client, progress, f"planar-tui-opt-{opt.fingerprint()[:8]}")
+        prefix = f"planar-tui-opt-{opt.fingerprint()[:8]}"
+        with execute.point_runner(client, workers, scheduler, announce, progress, prefix) as runner:
             warm_kernels([opt.job.kind], progress)
             progress.start(opt.budget, opt.label, "starting")
             while len(run.evaluations) < opt.budget:
-                population = algorithm.ask()
-                population = population[: opt.budget - len(run.evaluations)]
-                run.generations += 1
-                start = len(run.evaluations)
-                designs = [
-                    (
-                        start + i + 1,
-                        tuple(v.decode(x) for v, x in zip(opt.variables, row, strict=True)),
-                    )
-                    for i, row in enumerate(population.get("X"))
-                ]
+                population, designs = _ask(run, algorithm)
                 outcomes: dict[int, PointOutcome] = {}
                 try:
                     evaluate(designs, True, outcomes)
@@ -413,15 +195,9 @@ def run_optimisation(
                     Evaluation(n, run.generations, values, outcomes[n]) for n, values in designs
                 ]
                 run.evaluations += generation
-                if writer is not None:
-                    _sync(writer)
-                population.set(
-                    "F",
-                    np.array([_f(opt, e.outcome) for e in generation]),
-                    "G",
-                    np.array([_g(opt, e.outcome) for e in generation]),
-                )
-                algorithm.tell(infills=population)
+                if writer is not None:  # one fsync a generation: a machine crash loses at
+                    writer.sync()  # most the generation running (each evaluation is flushed)
+                _tell(opt, algorithm, population, generation)
                 if on_generation is not None:
                     on_generation(run)
             best = run.best()
@@ -429,7 +205,7 @@ def run_optimisation(
             numbered = [(opt.budget + k, e.values) for k, e in enumerate(best, start=1)]
             outcomes = evaluate(numbered, False, {})
             if writer is not None:
-                _sync(writer)
+                writer.sync()
             run.certified = [(e, outcomes[opt.budget + k]) for k, e in enumerate(best, start=1)]
     except PresetError:  # the table names a column the job lacks: nothing to resume
         if writer is not None:
@@ -444,6 +220,58 @@ def run_optimisation(
     return run
 
 
+def _open_checkpoint(
+    run: OptimiseRun, output: Path, total: int, resume: bool, announce: Callable[[str], None]
+) -> tuple[dict[int, PointOutcome], CheckpointWriter]:
+    """The optimisation's checkpoint beside ``output`` (``run.checkpoint``), started afresh
+    or, with ``resume``, with its finished evaluations kept (returned by number; a record
+    that is not one is dropped with one ``announce`` warning)."""
+    from planar_tui.sweep.checkpoint import CheckpointWriter, checkpoint_path, read_finished
+
+    opt = run.optimisation
+    run.checkpoint = checkpoint_path(output)
+    finished: dict[int, PointOutcome] = {}
+    if resume:
+        finished = read_finished(
+            run.checkpoint,
+            opt.fingerprint(),
+            total,
+            _columns_of(opt),
+            lambda text: announce(f"warning: {text}"),
+        )
+    return finished, CheckpointWriter(run.checkpoint, opt.fingerprint(), total, finished)
+
+
+def _ask(run: OptimiseRun, algorithm: Any) -> tuple[Any, list[tuple[int, tuple[Any, ...]]]]:
+    """The next generation (``run.generations`` counts it): pymoo's population, cut to the
+    budget left, and its designs numbered on from the evaluations so far, each decoded to
+    the variables' TOML values."""
+    opt = run.optimisation
+    population = algorithm.ask()
+    population = population[: opt.budget - len(run.evaluations)]
+    run.generations += 1
+    start = len(run.evaluations)
+    designs = [
+        (start + i + 1, tuple(v.decode(x) for v, x in zip(opt.variables, row, strict=True)))
+        for i, row in enumerate(population.get("X"))
+    ]
+    return population, designs
+
+
+def _tell(opt: Optimisation, algorithm: Any, population: Any, generation: list[Evaluation]) -> None:
+    """Tell pymoo a generation's ``F`` (``sense · value``) and ``G`` (constraints, then 1
+    for an evaluation that is not ``ok``)."""
+    import numpy as np
+
+    population.set(
+        "F",
+        np.array([_f(opt, e.outcome) for e in generation]),
+        "G",
+        np.array([_g(opt, e.outcome) for e in generation]),
+    )
+    algorithm.tell(infills=population)
+
+
 def _columns_of(opt: Optimisation) -> Callable[[int], tuple[str, ...] | None]:
     """The figures a resumed evaluation's record must hold: the job's columns, where its
     kind names them without running (else ``None``: any)."""
@@ -455,20 +283,16 @@ def _columns_of(opt: Optimisation) -> Callable[[int], tuple[str, ...] | None]:
 
 
 def _write_outputs(run: OptimiseRun, out_dir: Path, keep_checkpoint: bool) -> None:
-    """The evaluations' and the optimum's CSVs (:class:`~planar_tui.batch.OutputFailed`
+    """The evaluations' and the optimum's CSVs (:class:`~planar_tui.errors.OutputFailed`
     if one cannot be written: the checkpoint stays), then the checkpoint goes (unless
     ``keep_checkpoint``) and the figure is drawn (its failure: ``run.figure_error``)."""
-    from planar_tui.batch import OutputFailed
-
     opt = run.optimisation
     run.output, run.pareto = output_path(opt, out_dir), out_dir / opt.pareto_output
     record = study_provenance("optimise", opt, (run.started_s, time.time() - run.started_s))
     for path, table in ((run.output, run.table), (run.pareto, run.optimum_table)):
-        try:
+        with writing(path):
             write_csv_atomic(path, table)
             write_sidecar(path, record)
-        except OSError as error:
-            raise OutputFailed(path, error.strerror or str(error)) from None
     if run.checkpoint is not None and not keep_checkpoint:
         run.checkpoint.unlink(missing_ok=True)
         run.checkpoint = None
@@ -477,17 +301,6 @@ def _write_outputs(run: OptimiseRun, out_dir: Path, keep_checkpoint: bool) -> No
             run.figure = write_figure(run, out_dir / opt.plot)
         except OutputFailed as error:
             run.figure_error = str(error)
-
-
-def _sync(writer: Any) -> None:
-    """A generation's evaluations to disk (one ``fsync``: a machine crash loses at most
-    the generation running; Ctrl-C or a killed process loses none, each is flushed)."""
-    from planar_tui.batch import OutputFailed
-
-    try:
-        writer.sync()
-    except OSError as error:
-        raise OutputFailed(writer.path, error.strerror or str(error)) from None
 
 
 def _f(opt: Optimisation, outcome: PointOutcome) -> tuple[float, ...]:
@@ -510,31 +323,8 @@ def _detail(run: OptimiseRun, done: int) -> str:
 def write_figure(run: OptimiseRun, path: Path) -> Path:
     """The convergence (one objective) or front (two or more: the first two) figure
     (:mod:`planar_tui.figures.optimise`), written atomically."""
-    from planar_tui.batch import OutputFailed
     from planar_tui.figures.canvas import save
     from planar_tui.figures.optimise import draw
 
-    try:
+    with writing(path):
         return save(draw(figure_data(run)), path)
-    except OSError as error:
-        raise OutputFailed(path, error.strerror or str(error)) from None
-
-
-def figure_data(run: OptimiseRun) -> dict[str, Any]:
-    """What the figure draws: the objectives' names, every feasible evaluation's
-    objective values, the best-so-far (one objective) and the optimum or front."""
-    opt = run.optimisation
-    ok = [e for e in run.evaluations if feasible(opt, e.outcome)]
-    names = [o.column for o in opt.objectives]
-
-    def values(evaluations: Sequence[Evaluation]) -> list[list[float]]:
-        return [[number_of(opt, e.outcome, n) for n in names] for e in evaluations]
-
-    return {
-        "title": opt.label,
-        "names": names,
-        "numbers": [e.number for e in ok],
-        "points": values(ok),
-        "best": values(run.best()),
-        "history": convergence(opt, run.evaluations) if len(names) == 1 else [],
-    }

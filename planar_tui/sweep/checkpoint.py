@@ -29,6 +29,7 @@ from pathlib import Path
 from typing import Any
 
 from planar_tui.csvio import write_text_atomic
+from planar_tui.errors import writing
 from planar_tui.sweep.worker import FAILED, INFEASIBLE, OK, PointOutcome
 
 SUFFIX = ".checkpoint.jsonl"
@@ -195,32 +196,36 @@ def read_finished(
 
 
 class CheckpointWriter:
-    """Appends finished points to a checkpoint (started afresh, or continued on resume)."""
+    """Appends finished points to a checkpoint (started afresh, or continued on resume); a
+    write that fails is :class:`~planar_tui.errors.OutputFailed` on the checkpoint."""
 
     def __init__(self, path: Path, fingerprint: str, total: int, finished: dict):
         self.path = path
         self.fingerprint = fingerprint
-        if not finished:
-            header = json.dumps({"fingerprint": fingerprint, "points": total})
-            write_text_atomic(path, header)
-        else:  # keep the finished points, drop a line a crash may have cut short
-            records = [json.dumps({"fingerprint": fingerprint, "points": total})]
-            records += [_record(finished[n], fingerprint) for n in sorted(finished)]
-            write_text_atomic(path, "\n".join(records))
-        self._stream = open(path, "a", encoding="utf-8")  # noqa: SIM115 (closed by close())
+        with writing(path):
+            if not finished:
+                header = json.dumps({"fingerprint": fingerprint, "points": total})
+                write_text_atomic(path, header)
+            else:  # keep the finished points, drop a line a crash may have cut short
+                records = [json.dumps({"fingerprint": fingerprint, "points": total})]
+                records += [_record(finished[n], fingerprint) for n in sorted(finished)]
+                write_text_atomic(path, "\n".join(records))
+            self._stream = open(path, "a", encoding="utf-8")  # noqa: SIM115 (closed by close())
 
     def add(self, outcome: PointOutcome, sync: bool = True) -> None:
         """Save one finished point (its tables are not kept: they are written already):
         flushed to the system, and to disk unless ``sync`` is false (a caller that
         syncs a batch at once, :meth:`sync`: an optimisation's generation)."""
-        self._stream.write(_record(outcome, self.fingerprint) + "\n")
-        self._stream.flush()
-        if sync:
-            self.sync()
+        with writing(self.path):
+            self._stream.write(_record(outcome, self.fingerprint) + "\n")
+            self._stream.flush()
+            if sync:
+                os.fsync(self._stream.fileno())
 
     def sync(self) -> None:
         """Write what was added to disk (``fsync``)."""
-        os.fsync(self._stream.fileno())
+        with writing(self.path):
+            os.fsync(self._stream.fileno())
 
     def close(self) -> None:
         self._stream.close()

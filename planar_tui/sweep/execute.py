@@ -15,6 +15,7 @@ Outcomes are handed over as they arrive (``on_outcome``); the caller's
 from __future__ import annotations
 
 import os
+import secrets
 import signal
 import threading
 import time
@@ -366,3 +367,46 @@ def _outcome(future: Any, task: PointTask) -> PointOutcome:
     except Exception as error:
         message = f"{task.job.label} failed on Dask: {type(error).__name__}: {error}"
         return PointOutcome(task.number, "failed", " ".join(message.split()), {}, 0.0)
+
+
+class PointRunner:
+    """Runs point tasks for a study (a sweep, an optimisation): on ``client`` when there is
+    one (each batch's keys start ``prefix-TOKEN``, unique per call), else in this process;
+    outcomes are handed over as they arrive."""
+
+    def __init__(self, client: Any, progress: Progress, prefix: str):
+        self.client, self.progress, self.prefix = client, progress, prefix
+
+    def run(
+        self,
+        tasks: Iterable[PointTask | PointOutcome],
+        on_outcome: Callable[[PointOutcome], None],
+    ) -> None:
+        """Run ``tasks`` (:func:`run_on_dask` or :func:`run_in_process`)."""
+        if self.client is None:
+            run_in_process(tasks, self.progress, on_outcome)
+        else:
+            prefix = f"{self.prefix}-{secrets.token_hex(4)}"
+            run_on_dask(self.client, tasks, self.progress, on_outcome, prefix)
+
+
+@contextmanager
+def point_runner(
+    client: Any,
+    workers: int,
+    scheduler: str | None,
+    announce: Callable[[str], None],
+    progress: Progress,
+    prefix: str,
+    *,
+    needed: bool = True,
+) -> Iterator[PointRunner]:
+    """The study's :class:`PointRunner`: on ``client`` when given; else in this process for
+    one worker without a scheduler; else on a Dask client (:func:`dask_client`: a local
+    cluster of ``workers`` or the ``scheduler``) opened here and closed on leaving, when
+    points are ``needed`` (none left to run: no cluster is started)."""
+    if client is not None or (workers <= 1 and scheduler is None) or not needed:
+        yield PointRunner(client, progress, prefix)
+        return
+    with dask_client(DaskTarget(workers, scheduler), announce) as opened:
+        yield PointRunner(opened, progress, prefix)

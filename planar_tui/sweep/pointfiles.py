@@ -26,7 +26,7 @@ import re
 from pathlib import Path
 from typing import Any
 
-from planar_tui.errors import PresetError
+from planar_tui.errors import PresetError, writing
 from planar_tui.provenance import has_sidecar, sidecar_path, write_sidecar
 
 #: The record's suffix, after the sweep CSV's name.
@@ -116,18 +116,12 @@ class PointFileRecord:
     def start_afresh(self) -> None:
         """Delete the point files the record names (regular files in the folder only;
         a link put there in their place is left alone), then empty the record. A file
-        that cannot be deleted is :class:`~planar_tui.batch.OutputFailed`."""
-        from planar_tui.batch import OutputFailed
-
+        that cannot be deleted is :class:`~planar_tui.errors.OutputFailed`."""
         for name in sorted(self._known):
             path = self.folder / name
-            try:
+            with writing(path, "cannot delete the earlier point file"):
                 if path.is_file() and not path.is_symlink():
                     path.unlink()
-            except OSError as error:
-                raise OutputFailed(
-                    path, f"cannot delete the earlier point file: {error.strerror or error}"
-                ) from None
         self._known = set()
         if self.manifest.exists():
             self.manifest.write_text("", encoding="utf-8")
@@ -159,17 +153,13 @@ def write_point_file(
 ) -> None:
     """Write one point CSV ``text`` at ``path`` and its sidecar ``provenance`` (a
     :class:`~planar_tui.provenance.Provenance`), each atomically and recorded first; a
-    file that cannot be written is :class:`~planar_tui.batch.OutputFailed`."""
-    from planar_tui.batch import OutputFailed
+    file that cannot be written is :class:`~planar_tui.errors.OutputFailed`."""
     from planar_tui.csvio import write_atomic
 
-    target = path
-    try:
+    with writing(path):
         if record is not None:
             for name in with_sidecars([path.name]):
                 record.add(name)
         write_atomic(path, lambda stream: stream.write(text))
-        target = sidecar_path(path)
+    with writing(sidecar_path(path)):
         write_sidecar(path, provenance)
-    except OSError as error:
-        raise OutputFailed(target, error.strerror or str(error)) from None

@@ -9,7 +9,6 @@ through it) and ``on_outcome`` for rows as they finish; the CLI adds ``out_dir``
 
 from __future__ import annotations
 
-import secrets
 import time
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
@@ -17,7 +16,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from planar_tui.csvio import CsvTable, write_csv_atomic
-from planar_tui.errors import PresetError
+from planar_tui.errors import OutputFailed, PresetError, writing
 from planar_tui.progress import Progress
 from planar_tui.provenance import (
     planned_sidecar,
@@ -101,16 +100,16 @@ def point_values(points: Sequence[Point], number: int) -> tuple[Any, ...]:
 def write_figure(run: SweepRun, path: Path) -> Path:
     """Draw the sweep's figure (:mod:`planar_tui.figures.sweep`: a line against one
     varied key, a heat map against two) into ``path``, atomically; a sweep the figure
-    cannot show (no varied key) is :class:`~planar_tui.batch.OutputFailed`."""
-    from planar_tui.batch import OutputFailed
+    cannot show (no varied key) is :class:`~planar_tui.errors.OutputFailed`."""
     from planar_tui.figures.dispatch import save_table_figure
 
-    try:
-        return save_table_figure(run.table, path, title=run.sweep.label)
-    except OSError as error:
-        raise OutputFailed(path, error.strerror or str(error)) from None
-    except Exception as error:
-        raise OutputFailed(path, f"cannot draw the figure: {error}") from None
+    with writing(path):
+        try:
+            return save_table_figure(run.table, path, title=run.sweep.label)
+        except OSError:
+            raise
+        except Exception as error:
+            raise OutputFailed(path, f"cannot draw the figure: {error}") from None
 
 
 def output_path(sweep: Sweep, out_dir: Path) -> Path:
@@ -216,25 +215,24 @@ def run_sweep(
 ) -> SweepRun:
     """Run every point of ``sweep`` and return them (see :class:`SweepRun`).
 
-        ``points`` are :func:`make_points`'s (made and validated here when not given: a
-        :class:`~planar_tui.errors.PresetError` before anything runs). ``workers == 1`` without
-        a ``scheduler`` runs in this process (no Dask import); otherwise a local Dask cluster
-        of ``workers`` processes, or the scheduler at ``scheduler``; or the Dask ``client``
-        given (e.g. one local cluster for several sweeps, :func:`execute.dask_client`). With ``out_dir`` the CSV,
-        the checkpoint and the point CSVs are written there; ``resume`` continues from the
-        checkpoint of the same sweep. ``progress`` counts points (figure ``failed``); its
-        cancel, or Ctrl-C, stops the run with :class:`~planar_tui.errors.Cancelled` /
-        ``KeyboardInterrupt``: the checkpoint stays, no CSV is written. A checkpoint record that
-    is not a finished point of this sweep is dropped with one ``announce`` line (warning),
-    and its point runs again. ``on_outcome`` sees
-        every point as it finishes (resumed ones first, in order). The checkpoint is deleted
-        once the CSV is written, unless ``keep_checkpoint`` (the CLI deletes a run's
-        checkpoints once all its sweeps are done: ``run.checkpoint``). A CSV or point file that
-        cannot be written is :class:`~planar_tui.batch.OutputFailed` (the checkpoint stays);
-        a figure that cannot be written is ``run.figure_error`` (the CSV is written).
+    ``points`` are :func:`make_points`'s (made and validated here when not given: a
+    :class:`~planar_tui.errors.PresetError` before anything runs). The points run on a
+    :func:`~planar_tui.sweep.execute.point_runner`: the Dask ``client`` given (e.g. one
+    local cluster for several sweeps), else this process for ``workers == 1`` without a
+    ``scheduler`` (no Dask import), else a local Dask cluster of ``workers`` processes or
+    the scheduler at ``scheduler``. With ``out_dir`` the CSV, the checkpoint and the point
+    CSVs are written there; ``resume`` continues from the checkpoint of the same sweep
+    (:func:`_open_checkpoint`). ``progress`` counts points (figure ``failed``); its cancel,
+    or Ctrl-C, stops the run with :class:`~planar_tui.errors.Cancelled` /
+    ``KeyboardInterrupt``: the checkpoint stays, no CSV is written. A checkpoint record
+    that is not a finished point of this sweep is dropped with one ``announce`` line
+    (warning), and its point runs again. ``on_outcome`` sees every point as it finishes
+    (resumed ones first, in order). The checkpoint is deleted once the CSV is written,
+    unless ``keep_checkpoint`` (the CLI deletes a run's checkpoints once all its sweeps are
+    done: ``run.checkpoint``). A CSV or point file that cannot be written is
+    :class:`~planar_tui.errors.OutputFailed` (the checkpoint stays); a figure that cannot be
+    written is ``run.figure_error`` (the CSV is written).
     """
-    from planar_tui.batch import OutputFailed
-    from planar_tui.registry import JOB_KINDS
     from planar_tui.sweep import execute
     from planar_tui.warmup import warm_kernels
 
@@ -244,74 +242,12 @@ def run_sweep(
     total = len(points)
     run = SweepRun(sweep, points)
     output = None if out_dir is None else output_path(sweep, out_dir)
-    width = len(str(total))
     folder = (
         None if out_dir is None or sweep.point_outputs is None else out_dir / sweep.point_outputs
     )
-
-    def stem(number: int) -> str | None:
-        return None if sweep.point_outputs is None else f"point-{number:0{width}d}"
-
-    def job_of(number: int) -> Job | None:
-        try:
-            return points[number - 1].job
-        except PresetError:  # not valid now (a device gone): its record is not resumed
-            return None
-
-    writer = None
-    record = None
+    writer, record = None, None
     if output is not None:
-        checkpoint = checkpoint_path(output)
-        finished = {}
-        if resume:
-            names = JOB_KINDS[sweep.job.kind].figure_names
-
-            def columns(number: int) -> tuple[str, ...] | None:
-                job = job_of(number)
-                return () if job is None else None if names is None else names(job)
-
-            finished = read_finished(
-                checkpoint,
-                sweep.fingerprint(),
-                total,
-                columns,
-                lambda text: announce(f"warning: {text}"),
-            )
-        if folder is not None:
-
-            def files_missing(number: int) -> bool:
-                job = job_of(number)
-                if job is None:
-                    return True
-                names = with_sidecars(point_file_names(stem(number), job))
-                return not all((folder / name).is_file() for name in names)
-
-            missing = [
-                number
-                for number, outcome in finished.items()
-                if outcome.status == OK and files_missing(number)
-            ]
-            for number in missing:
-                del finished[number]
-            run.recomputed = len(missing)
-            check_point_folder(
-                sweep.preset_path,
-                f"{sweep.name}.point_outputs",
-                folder,
-                out_dir,
-                manifest_path(output),
-            )
-            record = PointFileRecord(manifest_path(output), folder)
-            if not finished:  # afresh: the files this sweep wrote before go, and only those
-                record.start_afresh()
-        try:
-            writer = CheckpointWriter(checkpoint, sweep.fingerprint(), total, finished)
-        except OSError as error:
-            raise OutputFailed(checkpoint, error.strerror or str(error)) from None
-        run.checkpoint = checkpoint
-        run.outcomes.update(finished)
-        run.resumed = len(finished)
-
+        writer, record = _open_checkpoint(run, out_dir, output, folder, resume, announce)
     resumed = set(run.outcomes)
 
     def tasks() -> Iterator[PointTask | PointOutcome]:
@@ -325,7 +261,7 @@ def run_sweep(
             except PresetError as error:
                 yield PointOutcome(number, FAILED, error.message, {}, 0.0)
                 continue
-            yield PointTask(number, point.job, stem(number))
+            yield PointTask(number, point.job, _point_stem(sweep, total, number))
 
     try:
         warm_kernels([sweep.job.kind], progress)
@@ -342,31 +278,23 @@ def run_sweep(
                 for name, text in outcome.tables.items():
                     write_point_file(folder / name, text, record, provenance)
             if writer is not None:
-                try:
-                    writer.add(outcome)
-                except OSError as error:
-                    raise OutputFailed(writer.path, error.strerror or str(error)) from None
+                writer.add(outcome)
             run.outcomes[outcome.number] = outcome
             progress.advance(1, _detail(run), failed=run.failed)
             if on_outcome is not None:
                 on_outcome(outcome)
 
-        prefix = f"planar-tui-{sweep.fingerprint()[:8]}-{secrets.token_hex(4)}"
-        if client is not None:
-            execute.run_on_dask(client, tasks(), progress, finished_point, prefix)
-        elif workers <= 1 and scheduler is None:
-            execute.run_in_process(tasks(), progress, finished_point)
-        elif total > len(resumed):
-            target = execute.DaskTarget(workers, scheduler)
-            with execute.dask_client(target, announce) as client:
-                execute.run_on_dask(client, tasks(), progress, finished_point, prefix)
+        prefix = f"planar-tui-{sweep.fingerprint()[:8]}"
+        needed = total > len(resumed)
+        with execute.point_runner(
+            client, workers, scheduler, announce, progress, prefix, needed=needed
+        ) as runner:
+            runner.run(tasks(), finished_point)
         if output is not None:
-            try:
+            with writing(output):
                 write_csv_atomic(output, run.table)
                 timing = (started_s, time.time() - started_s)
                 write_sidecar(output, study_provenance("sweep", sweep, timing))
-            except OSError as error:
-                raise OutputFailed(output, error.strerror or str(error)) from None
             run.output = output
     finally:
         if writer is not None:
@@ -380,6 +308,86 @@ def run_sweep(
         except OutputFailed as error:
             run.figure_error = str(error)
     return run
+
+
+def _point_stem(sweep: Sweep, total: int, number: int) -> str | None:
+    """The stem of point ``number``'s files (``point-007``), ``None`` without point files."""
+    return None if sweep.point_outputs is None else f"point-{number:0{len(str(total))}d}"
+
+
+def _job_of(points: Sequence[Point], number: int) -> Job | None:
+    """Point ``number``'s job; ``None`` when it is not valid now (a device gone)."""
+    try:
+        return points[number - 1].job
+    except PresetError:
+        return None
+
+
+def _open_checkpoint(
+    run: SweepRun,
+    out_dir: Path,
+    output: Path,
+    folder: Path | None,
+    resume: bool,
+    announce: Callable[[str], None],
+) -> tuple[CheckpointWriter, PointFileRecord | None]:
+    """The sweep's checkpoint beside ``output`` (in ``out_dir``), started afresh or, with ``resume``, with
+    its finished points kept (into ``run.outcomes``; a point whose job is not valid now
+    is not resumed, nor one whose point files in ``folder`` are missing: it runs again),
+    and the record of the point files (``folder`` checked; afresh: the files this sweep
+    wrote before go, and only those)."""
+    from planar_tui.registry import JOB_KINDS
+
+    sweep, points, total = run.sweep, run.points, len(run.points)
+    checkpoint = checkpoint_path(output)
+    finished = {}
+    if resume:
+        names = JOB_KINDS[sweep.job.kind].figure_names
+
+        def columns(number: int) -> tuple[str, ...] | None:
+            job = _job_of(points, number)
+            return () if job is None else None if names is None else names(job)
+
+        finished = read_finished(
+            checkpoint,
+            sweep.fingerprint(),
+            total,
+            columns,
+            lambda text: announce(f"warning: {text}"),
+        )
+    record = None
+    if folder is not None:
+
+        def files_missing(number: int) -> bool:
+            job = _job_of(points, number)
+            if job is None:
+                return True
+            names = with_sidecars(point_file_names(_point_stem(sweep, total, number), job))
+            return not all((folder / name).is_file() for name in names)
+
+        missing = [
+            number
+            for number, outcome in finished.items()
+            if outcome.status == OK and files_missing(number)
+        ]
+        for number in missing:
+            del finished[number]
+        run.recomputed = len(missing)
+        check_point_folder(
+            sweep.preset_path,
+            f"{sweep.name}.point_outputs",
+            folder,
+            out_dir,
+            manifest_path(output),
+        )
+        record = PointFileRecord(manifest_path(output), folder)
+        if not finished:  # afresh: the files this sweep wrote before go, and only those
+            record.start_afresh()
+    writer = CheckpointWriter(checkpoint, sweep.fingerprint(), total, finished)
+    run.checkpoint = checkpoint
+    run.outcomes.update(finished)
+    run.resumed = len(finished)
+    return writer, record
 
 
 def _detail(run: SweepRun) -> str:

@@ -4,8 +4,8 @@ finished one, with the convergence (one objective) or the front (two) plotted.
 
 :class:`OptimiseScreen` is the sweep screen (:class:`~planar_tui.app.screens.sweep.SweepScreen`:
 its table, its plot, its export key) over the evaluations' CSV
-(:attr:`planar_tui.optimise.run.OptimiseRun.table`), drawing the optimiser's figure data
-(:func:`planar_tui.optimise.run.figure_data`) instead of a figure against a key.
+(:attr:`planar_tui.optimise.evaluations.OptimiseRun.table`), drawing the optimiser's figure data
+(:func:`planar_tui.optimise.evaluations.figure_data`) instead of a figure against a key.
 """
 
 from __future__ import annotations
@@ -69,7 +69,7 @@ class OptimiseScreen(SweepScreen):
     def draw(self) -> None:
         """The convergence (every feasible evaluation and the best so far) or the front
         (the first two objectives: every feasible evaluation, the non-dominated ones)."""
-        from planar_tui.optimise.run import figure_data
+        from planar_tui.optimise.evaluations import figure_data
 
         plot = self.query_one("#sweep-plot", PlotextPlot)
         plot.display, self.query_one("#sweep-heat").display = True, False
@@ -101,6 +101,6 @@ class OptimiseScreen(SweepScreen):
 
 def best_value(run: Any) -> float:
     """The single objective's best value so far (as the column's value)."""
-    from planar_tui.optimise.run import number_of
+    from planar_tui.optimise.evaluations import number_of
 
     return number_of(run.optimisation, run.best()[0].outcome, run.optimisation.objectives[0].column)

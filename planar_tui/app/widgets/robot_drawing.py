@@ -15,6 +15,7 @@ import itertools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 from textual.widget import Widget
 
@@ -214,3 +215,12 @@ class SceneView(Widget):
             return Text(self.placeholder)
         size = self.content_region.size
         return render_scene(self.scene, size.width, size.height).to_text()
+
+
+def numbers_or_zeros(value: Any, n: int) -> list[float]:
+    """``value`` as n floats when it is a list of numbers, else n zeros (for drawings)."""
+    if isinstance(value, list) and all(
+        isinstance(v, int | float) and not isinstance(v, bool) for v in value
+    ):
+        return [float(v) for v in value[:n]] + [0.0] * max(0, n - len(value))
+    return [0.0] * n

@@ -19,9 +19,9 @@ from textual.containers import Horizontal, Vertical
 from textual.widgets import Static
 from textual_plotext import PlotextPlot
 
-from planar_tui.app.widgets.panes import JobPane, numbers_or_zeros
+from planar_tui.app.widgets.panes import JobPane
 from planar_tui.app.widgets.playback import PlaybackView, wrap_deg
-from planar_tui.app.widgets.robot_drawing import serial_scene
+from planar_tui.app.widgets.robot_drawing import numbers_or_zeros, serial_scene
 from planar_tui.jobkind import JobResult
 from planar_tui.presets import Job
 

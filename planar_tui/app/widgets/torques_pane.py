@@ -14,8 +14,8 @@ from textual.binding import Binding
 from textual.containers import ScrollableContainer
 from textual.widgets import Static
 
-from planar_tui.app.widgets.panes import JobPane, numbers_or_zeros
-from planar_tui.app.widgets.robot_drawing import Scene, SceneView, serial_scene
+from planar_tui.app.widgets.panes import JobPane
+from planar_tui.app.widgets.robot_drawing import Scene, SceneView, numbers_or_zeros, serial_scene
 from planar_tui.jobkind import JobResult
 from planar_tui.presets import Job
 

@@ -55,7 +55,7 @@ OUT, UNSURE, IN = 0, 1, 2
 #: A boundary leaf is replaced by its LEAF_GRID x LEAF_GRID sub-boxes not proved outside.
 LEAF_GRID = 4
 #: Boundary leaves refined per evaluator call.
-CHUNK_LEAVES = 2048
+CHUNK_LEAVES = 512
 
 Evaluator = Callable[["np.ndarray"], tuple["np.ndarray", "np.ndarray"]]
 
