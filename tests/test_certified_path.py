@@ -227,3 +227,19 @@ def test_bad_certificate_keys_exit_2_with_one_line(cli, tmp_path, line, words):
     assert result.exit_code == 2, result.output
     assert words in result.output
     assert not (tmp_path / "out" / "p.csv").exists()
+
+
+def test_a_path_never_decided_is_unknown(monkeypatch):
+    """A box test that never decides (every box unsure, κ unbounded): ε in time runs out,
+    nothing is certified and no failure is proved."""
+    monkeypatch.setattr(certify_module, "MIN_WIDTH_FRACTION", 2.0**-8)
+
+    def undecided(boxes):
+        n = len(boxes)
+        return np.ones(n, dtype=int), np.zeros(n, dtype=int), np.tile([1.0, np.inf], (n, 1))
+
+    certificate = certify(undecided, (0.0, 0.0, 0.0), (1.0, 1.0, 0.0), 1.0, 10.0, Quiet())
+    assert certificate.certified == "unknown"
+    assert certificate.failure_lo_s == 0.0 and certificate.failure_hi_s is None
+    assert certificate.reason == ""
+    assert "no certified part" in certificate.describe()

@@ -147,6 +147,8 @@ class Certificate:
     def describe(self) -> str:
         """``certified yes, max κ in [2.1, 2.11]`` or the failure's bracket and reason."""
         peak = f"max κ in [{self.kappa_peak_lo:.4g}, {self.kappa_peak_hi:.4g}]"
+        if math.isnan(self.kappa_peak_hi):
+            peak = "no certified part"
         if self.certified == "yes":
             return f"certified yes (κ ≤ {self.kappa_max:g}), {peak}"
         hi = "?" if self.failure_hi_s is None else f"{self.failure_hi_s:.6g}"
