@@ -58,6 +58,17 @@ class MechanismFiveBar(Mechanism):
     def polygon(self, robot: Any, spec: Any, segments_per_turn: int, outward: bool) -> Any:
         return workspace_polygon(robot, segments_per_turn, outward)
 
+    def path_box_test(self, robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any, Any]]:
+        import numpy as np
+
+        from planar_tui.kernels.path_certify_rr import rr_pose_boxes  # numba
+        from planar_tui.workspace.fivebar.singularity import kernel_inputs
+        from planar_tui.workspace.path.certify import box_test, open_limits
+
+        g, q, _, limits, _ = kernel_inputs(robot)  # q: the point platform's zero offsets
+        elbow = np.array(spec.elbow, dtype=np.float64)
+        return box_test(rr_pose_boxes, g, q, elbow, open_limits(limits), 0.0)
+
     def direct_kinematics(self, robot: Any, actuators: Any) -> Any:
         """The end points at joint angles ``actuators`` = :math:`\\theta_1, \\theta_2` (rad):
         the circles of radii :math:`l_{2,i}` about the elbows

@@ -12,6 +12,7 @@ from planar_tui.jobkind import Job
 from planar_tui.schema import TableReader, plot_setting, setting
 from planar_tui.workspace.fivebar.mechanism import MECHANISM
 from planar_tui.workspace.fivebar.robot import Robot5R, leg_angles
+from planar_tui.workspace.path.certify import check_certificate, kappa_setting
 from planar_tui.workspace.path.job import (
     check_path,
     duration_setting,
@@ -52,13 +53,16 @@ class Path5RSpec:
         doc="working mode per leg: θ = α + β (`1`) or α − β (`-1`)",
     )
     feed_forward: bool = feed_forward_setting()
+    kappa_max: float | None = kappa_setting()
     plot: str | None = plot_setting()
 
     mechanism: ClassVar[Mechanism] = MECHANISM
 
     @staticmethod
     def check(values: dict[str, Any], reader: TableReader, robot: Robot5R) -> dict[str, Any]:
-        """The job fits the time and memory limits (:func:`check_path`)."""
+        """``kappa_max`` above 1 (:func:`check_certificate`); the job fits the time and
+        memory limits (:func:`check_path`)."""
+        check_certificate(values, reader)
         return check_path(values, reader, robot, MECHANISM)
 
 
@@ -93,5 +97,5 @@ JOB_KIND = path_job_kind(
     Path5RSpec,
     "five-bar",
     prepare_path,
-    "[[path5r]]\nfrom_pose = [0, 60]\nto_pose = [5, 65]\nsteps = 4\n",
+    "[[path5r]]\nfrom_pose = [0, 60]\nto_pose = [5, 65]\nsteps = 4\nkappa_max = 1000\n",
 )

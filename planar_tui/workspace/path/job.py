@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from typing import Any
 
 from planar_tui.csvio import CsvTable
@@ -24,6 +24,7 @@ from planar_tui.errors import JobError
 from planar_tui.jobkind import Command, Job, JobKind, JobResult, PreparedJob, Tab
 from planar_tui.progress import Progress
 from planar_tui.schema import boolean, integer, number, numbers, setting
+from planar_tui.workspace.path.certify import Certificate, certificate_outputs, certify
 from planar_tui.workspace.path.forward import PathFailure
 from planar_tui.workspace.path.model import OK, PathModel, PathSolution, problem_text
 
@@ -113,6 +114,7 @@ class PathResult(JobResult):
     model: PathModel
     deviation: float | None = None
     drift_m: float | None = None
+    certificate: Certificate | None = None
 
 
 def path_header(model: PathModel) -> tuple[str, ...]:
@@ -131,13 +133,18 @@ def path_header(model: PathModel) -> tuple[str, ...]:
 
 
 def figures(model: PathModel, solution: PathSolution) -> dict[str, float]:
-    """Per actuator: peak |effort|, RMS effort and peak |power| over the samples."""
+    """Per actuator: peak |effort|, RMS effort and peak |power| over the samples (NaN
+    where there are none)."""
     import numpy as np
 
     effort, power = solution.effort, solution.effort * solution.rate
     out: dict[str, float] = {}
     for i in range(model.actuators):
         name, unit = f"{model.effort}{i + 1}", model.effort_unit
+        if not len(effort):
+            out.update(dict.fromkeys((f"{name}_abs_max_{unit}", f"{name}_rms_{unit}"), math.nan))
+            out[f"power{i + 1}_abs_max_W"] = math.nan
+            continue
         out[f"{name}_abs_max_{unit}"] = float(np.abs(effort[:, i]).max())
         out[f"{name}_rms_{unit}"] = float(np.sqrt(np.mean(effort[:, i] ** 2)))
         out[f"power{i + 1}_abs_max_W"] = float(np.abs(power[:, i]).max())
@@ -164,7 +171,9 @@ def _listed(values: Any) -> str:
 
 
 def run_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathResult:
-    """Sample the path, solve the mechanism at every time, fail at the first bad time."""
+    """Sample the path and solve the mechanism at every time; without ``kappa_max`` fail at
+    the first bad time, with it certify the path (:mod:`.certify`) and write the efforts
+    where the legs close."""
     import numpy as np
 
     from planar_tui.workspace.path.quintic import quintic, sample_times
@@ -174,12 +183,13 @@ def run_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathResul
     model = mechanism.path_model(robot)
     times = sample_times(spec.duration_s, spec.steps)
     start, stop = pose_si(spec.from_pose), pose_si(spec.to_pose)
+    certificate = _certificate(spec, robot, progress)
     progress.start(len(times), "inverse dynamics")
     pose, rate, acceleration = quintic(start, stop, spec.duration_s, times)
     solution = mechanism.inverse_dynamics(robot, spec, pose, rate, acceleration)
     progress.advance(len(times))
     bad = np.flatnonzero(solution.status != OK)
-    if len(bad):
+    if len(bad) and certificate is None:
         k = int(bad[0])
         raise JobError(
             job.preset_path,
@@ -192,23 +202,29 @@ def run_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathResul
     # prismatic legs in cm; revolute angles continuous along the path (unwrapped)
     scale = 100.0 if model.prismatic else 1.0
     coordinate = solution.coordinate * scale
-    if not model.prismatic:
-        coordinate = np.unwrap(coordinate, axis=0)
+    closed = solution.status == OK
+    if not model.prismatic:  # over the closed rows only (a failing row's angle is no angle)
+        coordinate[closed] = np.unwrap(coordinate[closed], axis=0)
     coordinates = np.stack(
         [coordinate, solution.rate * scale, solution.acceleration * scale], axis=2
     ).reshape(len(times), -1)
     power = solution.effort * solution.rate
-    rows = np.column_stack([times, pose_columns, coordinates, solution.effort, power])
+    rows: Any = np.column_stack([times, pose_columns, coordinates, solution.effort, power])
+    if len(bad):
+        solution = _rows_of(solution, closed)
+        rows = _blank_failures(rows, closed, 1 + model.pose_dimension)
     found = figures(model, solution)
     unit = model.effort_unit.replace("Nm", "N m")
     summary = (
-        f"{len(times)} poses over {spec.duration_s:g} s, peak |{model.effort}| = "
+        f"{int(closed.sum())} poses over {spec.duration_s:g} s, peak |{model.effort}| = "
         f"{_listed(found[k] for k in found if '_abs_max_N' in k)} {unit}, RMS = "
         f"{_listed(found[k] for k in found if '_rms_' in k)} {unit}, peak power = "
         f"{_listed(found[k] for k in found if k.startswith('power'))} W"
     )
+    if len(bad):
+        summary += f" ({len(bad)} of {len(times)} sampled poses fail: no efforts there)"
     deviation = drift = None
-    if spec.feed_forward:
+    if spec.feed_forward and not len(bad):
         progress.start(spec.steps, "forward dynamics")
         try:
             deviation, drift = feed_forward(mechanism, robot, spec, start, stop, times, progress)
@@ -218,15 +234,47 @@ def run_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathResul
                 job.preset_path, where, f"the forward dynamics fails {failure}"
             ) from None
         summary += f"; feed-forward: deviation {deviation:.3g}, closure drift {drift:.3g} m"
+    extra = {}
+    if certificate is not None:
+        summary += f"; {certificate.describe()}"
+        extra["certificate"] = certificate.table()
     return PathResult(
         table=CsvTable(path_header(model), rows),
         summary=summary,
-        times_s=times,
+        extra_tables=extra,
+        times_s=times[closed],
         solution=solution,
         model=model,
         deviation=deviation,
         drift_m=drift,
+        certificate=certificate,
     )
+
+
+def _certificate(spec: Any, robot: Any, progress: Progress) -> Certificate | None:
+    """The path's certificate with ``kappa_max`` (cm, cm[, rad] poses), else ``None``."""
+    kappa_max = getattr(spec, "kappa_max", None)
+    if kappa_max is None:
+        return None
+    test = spec.mechanism.path_box_test(robot, spec)
+    start = (*spec.from_pose[:2], *(math.radians(p) for p in spec.from_pose[2:]))
+    stop = (*spec.to_pose[:2], *(math.radians(p) for p in spec.to_pose[2:]))
+    return certify(test, start, stop, spec.duration_s, kappa_max, progress)
+
+
+def _rows_of(solution: PathSolution, keep: Any) -> PathSolution:
+    """The solution's rows ``keep`` (a mask)."""
+    return PathSolution(*(getattr(solution, f.name)[keep] for f in fields(PathSolution)))
+
+
+def _blank_failures(rows: Any, closed: Any, kept_columns: int) -> list[list[Any]]:
+    """The CSV rows with every cell after the time and pose empty where the legs do not
+    close (``closed`` false)."""
+    blank = [None] * (rows.shape[1] - kept_columns)
+    return [
+        row.tolist() if ok else [*row[:kept_columns].tolist(), *blank]
+        for row, ok in zip(rows, closed, strict=True)
+    ]
 
 
 def feed_forward(
@@ -278,6 +326,7 @@ def path_job_kind(
             "job: one CSV per job (pose, actuator coordinates, efforts, powers by time).",
         ),
         figure="planar_tui.figures.path:from_result",
+        extra_outputs=certificate_outputs,
         warmup=warmup,
         tab=Tab(f"{robot_words} path", PATH_TAB_ORDER, path_pane(name)),
     )

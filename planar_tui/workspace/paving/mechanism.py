@@ -120,6 +120,15 @@ class Mechanism(Protocol):
         problem = f"{self.name} paves no orientation range (has_orientation_ranges is false)"
         raise NotImplementedError(problem)
 
+    def path_box_test(self, robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any, Any]]:
+        """The certified box test of a path job with ``kappa_max`` in its working mode
+        (resolved by ``prepare``): (k, 6) pose boxes ``x_lo, x_hi, y_lo, y_hi, phi_lo,
+        phi_hi`` (cm, rad) to each box's verdict (0 some leg out, 1 unsure, 2 every leg
+        in), the reason of an out box (1 leg, 2 joint or leg limit, 3 interference) and a
+        κ enclosure (k, 2) (:mod:`planar_tui.workspace.path.certify`)."""
+        problem = f"{self.name} certifies no path"
+        raise NotImplementedError(problem)
+
     def direct_kinematics(self, robot: Any, actuators: Any) -> Any:
         """Every real assembly mode at the actuator values ``actuators`` (revolute joints in
         rad, prismatic ones in cm, one per actuator): an array (m, 3) of platform poses

@@ -58,6 +58,29 @@ class Mechanism3PRR(Mechanism):
     def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:
         return orientation.compute_range(robot, spec, budget)
 
+    def path_box_test(self, robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any, Any]]:
+        import numpy as np
+
+        from planar_tui.kernels.path_certify_prismatic import prr_pose_boxes  # numba
+        from planar_tui.workspace.path.certify import box_test
+        from planar_tui.workspace.paving.dexterity import circumradius_cm
+
+        rows = [
+            [bx, by, math.cos(math.radians(a)), math.sin(math.radians(a)), lo, hi, length]
+            for (bx, by), a, (lo, hi), length in zip(
+                robot.slider_points_cm,
+                robot.slider_angles_deg,
+                robot.strokes_cm,
+                robot.distal_cm,
+                strict=True,
+            )
+        ]
+        g = np.array(rows, dtype=np.float64)
+        q = np.array(robot.platform_points_cm, dtype=np.float64)
+        modes = np.array(spec.slider_modes, dtype=np.float64)
+        length = spec.characteristic_length_cm or circumradius_cm(robot.platform_points_cm)
+        return box_test(prr_pose_boxes, g, modes, q, length)
+
     def path_model(self, robot: Any) -> PathModel:
         return PathModel(pose_dimension=3, actuators=3, prismatic=True)
 

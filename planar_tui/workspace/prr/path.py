@@ -13,6 +13,7 @@ from typing import Any, ClassVar
 from planar_tui.errors import PresetError
 from planar_tui.jobkind import Job
 from planar_tui.schema import TableReader, plot_setting
+from planar_tui.workspace.path.certify import check_certificate, kappa_setting
 from planar_tui.workspace.path.job import (
     check_path,
     duration_setting,
@@ -21,6 +22,7 @@ from planar_tui.workspace.path.job import (
     pose_setting,
     steps_setting,
 )
+from planar_tui.workspace.paving.dexterity import length_setting
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.paving.settings import modes_setting
 from planar_tui.workspace.prr.mechanism import MECHANISM
@@ -42,13 +44,17 @@ class Path3PRRSpec:
         "(`-1`) the foot of the perpendicular from the platform joint to its line",
     )
     feed_forward: bool = feed_forward_setting()
+    kappa_max: float | None = kappa_setting()
+    characteristic_length_cm: float | None = length_setting()
     plot: str | None = plot_setting()
 
     mechanism: ClassVar[Mechanism] = MECHANISM
 
     @staticmethod
     def check(values: dict[str, Any], reader: TableReader, robot: Robot3PRR) -> dict[str, Any]:
-        """The job fits the time and memory limits (:func:`check_path`)."""
+        """``kappa_max`` above 1 (:func:`check_certificate`); the job fits the time and
+        memory limits (:func:`check_path`)."""
+        check_certificate(values, reader)
         return check_path(values, reader, robot, MECHANISM)
 
 
@@ -83,5 +89,5 @@ JOB_KIND = path_job_kind(
     Path3PRRSpec,
     "3-PRR",
     prepare_path,
-    "[[path3prr]]\nfrom_pose = [40, 25, 0]\nto_pose = [42, 27, 5]\nsteps = 4\n",
+    "[[path3prr]]\nfrom_pose = [40, 25, 0]\nto_pose = [42, 27, 5]\nsteps = 4\nkappa_max = 1000\n",
 )

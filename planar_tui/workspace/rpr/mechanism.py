@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from types import MappingProxyType
 from typing import Any
@@ -56,6 +57,19 @@ class Mechanism3RPR(Mechanism):
 
     def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:
         return orientation.compute_range(robot, spec, budget)
+
+    def path_box_test(self, robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any, Any]]:
+        import numpy as np
+
+        from planar_tui.kernels.path_certify_prismatic import rpr_pose_boxes  # numba
+        from planar_tui.workspace.path.certify import box_test
+        from planar_tui.workspace.paving.dexterity import circumradius_cm
+
+        bases = np.array(robot.base_joints_cm, dtype=np.float64)
+        q = np.array(robot.platform_points_cm, dtype=np.float64)
+        limits = np.array(spec.leg_limits_cm or ((0.0, math.inf),) * 3, dtype=np.float64)
+        length = spec.characteristic_length_cm or circumradius_cm(robot.platform_points_cm)
+        return box_test(rpr_pose_boxes, bases, q, limits, length)
 
     def path_model(self, robot: Any) -> PathModel:
         return PathModel(pose_dimension=3, actuators=3, prismatic=True)

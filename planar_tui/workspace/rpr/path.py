@@ -9,6 +9,7 @@ from typing import Any, ClassVar
 
 from planar_tui.jobkind import Job
 from planar_tui.schema import TableReader, plot_setting, setting
+from planar_tui.workspace.path.certify import check_certificate, kappa_setting
 from planar_tui.workspace.path.job import (
     check_path,
     duration_setting,
@@ -17,6 +18,7 @@ from planar_tui.workspace.path.job import (
     pose_setting,
     steps_setting,
 )
+from planar_tui.workspace.paving.dexterity import length_setting
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.rpr.job import _leg_limits
 from planar_tui.workspace.rpr.mechanism import MECHANISM
@@ -44,13 +46,17 @@ class Path3RPRSpec:
         doc="actuated leg lengths ρ1, ρ2, ρ3, as the workspace job's",
     )
     feed_forward: bool = feed_forward_setting()
+    kappa_max: float | None = kappa_setting()
+    characteristic_length_cm: float | None = length_setting()
     plot: str | None = plot_setting()
 
     mechanism: ClassVar[Mechanism] = MECHANISM
 
     @staticmethod
     def check(values: dict[str, Any], reader: TableReader, robot: Robot3RPR) -> dict[str, Any]:
-        """The job fits the time and memory limits (:func:`check_path`)."""
+        """``kappa_max`` above 1 (:func:`check_certificate`); the job fits the time and
+        memory limits (:func:`check_path`)."""
+        check_certificate(values, reader)
         return check_path(values, reader, robot, MECHANISM)
 
 
@@ -65,5 +71,5 @@ JOB_KIND = path_job_kind(
     Path3RPRSpec,
     "3-RPR",
     prepare_path,
-    "[[path3rpr]]\nfrom_pose = [35, 15, 0]\nto_pose = [37, 17, 5]\nsteps = 4\n",
+    "[[path3rpr]]\nfrom_pose = [35, 15, 0]\nto_pose = [37, 17, 5]\nsteps = 4\nkappa_max = 1000\n",
 )

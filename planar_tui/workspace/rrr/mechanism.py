@@ -82,6 +82,20 @@ class Mechanism3RRR(Mechanism):
     def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:
         return compute_orientation_workspace(robot, spec, budget)
 
+    def path_box_test(self, robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any, Any]]:
+        import numpy as np
+
+        from planar_tui.kernels.path_certify_rr import rr_pose_boxes  # numba
+        from planar_tui.workspace.path.certify import box_test, open_limits
+        from planar_tui.workspace.rrr.dexterity import length_cm
+        from planar_tui.workspace.rrr.orientation import geometry_vector
+
+        rows = np.tile(geometry_vector(robot), (3, 1))  # one geometry row per leg
+        q = np.array(robot.platform_points_cm(), dtype=np.float64)
+        limits = open_limits(spec.limits_rad or ((-np.pi, np.pi),) * 3)
+        elbow = np.array(spec.elbow, dtype=np.float64)
+        return box_test(rr_pose_boxes, rows, q, elbow, limits, length_cm(robot, spec))
+
     def direct_kinematics(self, robot: Any, actuators: Any) -> Any:
         """The poses at active joint angles ``actuators`` = :math:`\\theta_i` (rad): the
         three-distance problem with bases the elbows

@@ -11,6 +11,7 @@ from typing import Any, ClassVar
 from planar_tui.errors import PresetError
 from planar_tui.jobkind import Job
 from planar_tui.schema import TableReader, plot_setting, setting
+from planar_tui.workspace.path.certify import check_certificate, kappa_setting
 from planar_tui.workspace.path.job import (
     check_path,
     duration_setting,
@@ -19,6 +20,7 @@ from planar_tui.workspace.path.job import (
     pose_setting,
     steps_setting,
 )
+from planar_tui.workspace.paving.dexterity import length_setting
 from planar_tui.workspace.paving.legs import on_arc
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.paving.settings import modes_setting
@@ -52,13 +54,17 @@ class Path3RRRSpec:
         doc="active-joint limits θ1, θ2, θ3, as the workspace job's",
     )
     feed_forward: bool = feed_forward_setting()
+    kappa_max: float | None = kappa_setting()
+    characteristic_length_cm: float | None = length_setting()
     plot: str | None = plot_setting()
 
     mechanism: ClassVar[Mechanism] = MECHANISM
 
     @staticmethod
     def check(values: dict[str, Any], reader: TableReader, robot: Robot3RRR) -> dict[str, Any]:
-        """The job fits the time and memory limits (:func:`check_path`)."""
+        """``kappa_max`` above 1 (:func:`check_certificate`); the job fits the time and
+        memory limits (:func:`check_path`)."""
+        check_certificate(values, reader)
         return check_path(values, reader, robot, MECHANISM)
 
     @property
@@ -100,5 +106,6 @@ JOB_KIND = path_job_kind(
     Path3RRRSpec,
     "3-RRR",
     prepare_path,
-    "[[path3rrr]]\nfrom_pose = [40, 21, 0]\nto_pose = [42, 23, 5]\nsteps = 4\nelbow = [1, 1, 1]\n",
+    "[[path3rrr]]\nfrom_pose = [40, 21, 0]\nto_pose = [42, 23, 5]\nsteps = 4\nelbow = [1, 1, 1]\n"
+    "kappa_max = 1000\n",
 )
