@@ -109,7 +109,9 @@ def analyse_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathS
         notes += [f"{method}: {note}"] if note else []
         runs = len(designs[method])
         percent = sensitivity_percent(indices, "ST")
-        along.append(Analysis(method, "path", 0.0, names, indices, percent, runs=runs, loo_error=loo))
+        along.append(
+            Analysis(method, "path", 0.0, names, indices, percent, runs=runs, loo_error=loo)
+        )
         head = indices[:, : 2 * actuators]
         analyses.append(
             Analysis(

@@ -165,9 +165,7 @@ def check_sensitivity(
             )
     sizes = sample_sizes(spec, len(inputs))
     keys = {"sobol": "samples", "efast": "efast_samples", "pce": "pce_samples"}
-    uq.check_samples(
-        reader.error, spec.methods, {m: (keys[m], sizes[m]) for m in METHODS}
-    )
+    uq.check_samples(reader.error, spec.methods, {m: (keys[m], sizes[m]) for m in METHODS})
     memory, seconds = resource_estimate(spec, robot)
     problem = time_problem(seconds) or memory_problem(memory)
     if problem is not None:
