@@ -21,7 +21,7 @@ from planar_tui.errors import PresetError
 from planar_tui.jobkind import Command, Job, JobKind, JobResult, PreparedJob
 from planar_tui.pathsensitivity.inputs import INERTIA, LENGTH, MASS, Input, robot_inputs
 from planar_tui.progress import Progress
-from planar_tui.schema import TableReader, integer, number, setting
+from planar_tui.schema import TableReader, boolean, integer, number, setting
 
 METHODS = ("sobol", "efast", "pce")
 #: Seconds per sampled pose of one design row (kernel and Python wrapper, per row), as the
@@ -32,7 +32,16 @@ BYTES_PER_EFFORT = 48
 
 @dataclass(frozen=True, kw_only=True)
 class SensitivityKeys:
-    """The sampling keys of a path-sensitivity job (``docs/path-sensitivity.md``)."""
+    """The sampling keys of a path-sensitivity job (``docs/path-sensitivity.md``); and the
+    path job's ``feed_forward``, kept false."""
+
+    feed_forward: bool = setting(
+        boolean(),
+        default=False,
+        type_doc="boolean",
+        doc="the path job's key, refused here when true (a sensitivity runs no forward "
+        "dynamics)",
+    )
 
     tolerance_length_mm: float = uq.tolerance_setting(
         "mm", "half-width of every length's range (link lengths, platform and base geometry)"
