@@ -242,3 +242,41 @@ def test_a_path_the_nominal_robot_cannot_follow_fails_naming_the_first_time(cli,
     assert f"{preset}: path3rrr_sensitivity[1]: the nominal robot's path fails at t = " in lines[0]
     assert "leg 3 leaves its joint limits" in lines[0]
     assert not (tmp_path / "out" / "s.csv").exists()
+
+
+def test_the_five_bar_job_spreads_each_legs_lengths_and_its_end_mass(cli, tmp_path):
+    """The five-bar's inputs are its base separation, each leg's own two lengths and its
+    positive masses (a massless distal link is no input): the tables have a row per
+    output, input and method, and per step."""
+    text = """[robot5r]
+working_mode = "+-"
+proximal_mass_kg = 0.5
+end_mass_kg = 1.0
+gravity_m_s2 = 9.81
+
+[[path5r_sensitivity]]
+from_pose = [0, 60]
+to_pose = [5, 65]
+steps = 20
+tolerance_length_mm = 0.1
+tolerance_mass_g = 20
+methods = ["sobol", "pce"]
+samples = 64
+output = "f.csv"
+"""
+    _, result = run(cli, tmp_path, text)
+    assert result.exit_code == 0, result.output
+    rows = read(tmp_path / "out" / "f.csv")
+    names = [
+        "base_separation_cm",
+        "proximal_cm[1]",
+        "proximal_cm[2]",
+        "distal_cm[1]",
+        "distal_cm[2]",
+        "proximal_mass_kg",
+        "end_mass_kg",
+    ]
+    assert list(dict.fromkeys(r["parameter"] for r in rows)) == names
+    # 2 actuators: peak and RMS of each, 7 inputs, 2 methods
+    assert len(rows) == 4 * 7 * 2
+    assert len(read(tmp_path / "out" / "f-path.csv")) == 21 * 2 * 7 * 2

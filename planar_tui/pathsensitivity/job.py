@@ -39,8 +39,7 @@ class SensitivityKeys:
         boolean(),
         default=False,
         type_doc="boolean",
-        doc="the path job's key, refused here when true (a sensitivity runs no forward "
-        "dynamics)",
+        doc="the path job's key, refused here when true (a sensitivity runs no forward dynamics)",
     )
 
     tolerance_length_mm: float = uq.tolerance_setting(
