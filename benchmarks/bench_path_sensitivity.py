@@ -1,4 +1,3 @@
-# ruff: noqa: E402  (the repository root goes on sys.path first)
 """Benchmark of a parallel robot's torque sensitivity along a path (``python
 benchmarks/bench_path_sensitivity.py``): the bundled preset
 ``presets/path-3rrr-sensitivity.toml`` (3-RRR, 1 000 steps, ten inputs) with Sobol' (N = 256,
