@@ -71,9 +71,10 @@ class SensitivityKeys:
     efast_samples: int | None = setting(
         integer(minimum=1),
         default=None,
-        default_doc="same cost as Sobol'",
+        default_doc="same cost as Sobol', at least 4 M² (D − 1) + 1",
         type_doc="integer > 64",
-        doc="eFAST N per input (M = 4)",
+        doc="eFAST N per input (M = 4); below 4 M² (D − 1) + 1 its search frequencies repeat "
+        "and small indices come out too large",
     )
     pce_samples: int | None = uq.pce_samples_setting("robots")
     pce_max_loo_error: float = uq.pce_max_loo_setting(
@@ -107,14 +108,17 @@ def inputs_of(spec: Any, robot: Any) -> tuple[Input, ...]:
 
 
 def sample_sizes(spec: Any, num_vars: int) -> dict[str, int]:
-    """N per method: the Sobol' base N, eFAST's (given, or matching the Sobol' cost), the
+    """N per method: the Sobol' base N, eFAST's (given, or matching the Sobol' cost but at
+    least ``4 M² (D − 1) + 1``, where its D − 1 complementary frequencies are distinct), the
     PCE's robots (given, or ``max(128, 64 D)``)."""
     from planar_tui.sensitivity.engine import default_efast_samples
     from planar_tui.sensitivity.pce import default_pce_samples
 
+    distinct = 4 * uq.EFAST_HARMONICS**2 * (num_vars - 1) + 1
+
     return {
         "sobol": spec.samples,
-        "efast": spec.efast_samples or default_efast_samples(spec.samples, num_vars),
+        "efast": spec.efast_samples or max(default_efast_samples(spec.samples, num_vars), distinct),
         "pce": spec.pce_samples or default_pce_samples(num_vars),
     }
 
