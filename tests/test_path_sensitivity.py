@@ -280,3 +280,37 @@ output = "f.csv"
     # 2 actuators: peak and RMS of each, 7 inputs, 2 methods
     assert len(rows) == 4 * 7 * 2
     assert len(read(tmp_path / "out" / "f-path.csv")) == 21 * 2 * 7 * 2
+
+
+def test_the_pce_bootstrap_equals_refitting_every_resample_by_least_squares():
+    """The wild bootstrap's half-widths (one product per term, as a 1 000-step path needs)
+    against their definition: every resample y + e ⊙ v_b refitted on each output's own
+    terms by least squares, S1 and ST from the refits, z times their standard deviation."""
+    from statistics import NormalDist
+
+    from planar_tui.sensitivity.pce import (
+        bootstrap_halfwidths,
+        fit_pce,
+        indices_from_coefficients,
+        pce_unit_design,
+    )
+
+    unit = np.asarray(pce_unit_design(3, 64, 5))
+    x = 2.0 * unit - 1.0
+    noise = np.random.default_rng(2).normal(size=(64, 2)) * 0.05
+    y = np.column_stack([x[:, 0] + 0.3 * x[:, 1] ** 2, x[:, 2] * x[:, 0] + x[:, 1]]) + noise
+    fit = fit_pce(unit, y)
+    first, total = bootstrap_halfwidths(fit, y, 9, 50)
+    signs = np.random.default_rng(9).integers(0, 2, size=(64, 50)) * 2.0 - 1.0
+    residuals = y - fit.basis @ fit.coefficients
+    refits = np.zeros((50, *fit.coefficients.shape))
+    for b in range(50):
+        for t in range(y.shape[1]):
+            terms = fit.basis[:, : fit.term_counts[t]]
+            target = fit.basis @ fit.coefficients[:, t] + residuals[:, t] * signs[:, b]
+            refits[b, : fit.term_counts[t], t] = np.linalg.lstsq(terms, target, rcond=None)[0]
+    s1, st = indices_from_coefficients(fit.indices, refits)
+    z = NormalDist().inv_cdf(0.975)
+    np.testing.assert_allclose(first, z * s1.std(axis=0, ddof=1), rtol=1e-9, atol=1e-12)
+    np.testing.assert_allclose(total, z * st.std(axis=0, ddof=1), rtol=1e-9, atol=1e-12)
+    assert first.max() > 1e-4  # a noisy fit: the half-widths are not trivially 0
