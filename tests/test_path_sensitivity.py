@@ -314,3 +314,23 @@ def test_the_pce_bootstrap_equals_refitting_every_resample_by_least_squares():
     np.testing.assert_allclose(first, z * s1.std(axis=0, ddof=1), rtol=1e-9, atol=1e-12)
     np.testing.assert_allclose(total, z * st.std(axis=0, ddof=1), rtol=1e-9, atol=1e-12)
     assert first.max() > 1e-4  # a noisy fit: the half-widths are not trivially 0
+
+
+@pytest.mark.parametrize("kind", ["path3rrr_sensitivity", "path5r_sensitivity"])
+def test_a_horizontal_machine_at_rest_has_zero_indices_and_the_warm_up_example_runs(
+    cli, tmp_path, kind
+):
+    """The kinds' warm-up examples (no gravity): at both ends of a rest-to-rest path every
+    robot's torques are exactly 0, outputs without variance, whose indices are 0 (not
+    NaN); in between the torques vary and the indices do not all vanish."""
+    from planar_tui.warmup import example
+
+    preset = tmp_path / "w.toml"
+    preset.write_text(example(kind), encoding="utf-8")
+    result = cli("run", preset, "--out-dir", tmp_path / "out")
+    assert result.exit_code == 0, result.output
+    (per_step,) = (tmp_path / "out").glob("*-path.csv")
+    rows = read(per_step)
+    ends = [r for r in rows if float(r["t_s"]) in (0.0, 1.0)]  # duration_s = 1 s
+    assert ends and all(float(r["S1"]) == 0.0 == float(r["ST"]) for r in ends)
+    assert max(float(r["ST"]) for r in rows) > 0.1

@@ -50,6 +50,37 @@ def nominal_efforts(ready: PreparedJob[Any, Any, Any], states: Any) -> Any:
     return solution.effort
 
 
+def analyse_varying(
+    ready: PreparedJob[Any, Any, Any],
+    problem: Any,
+    method: str,
+    unit: Any,
+    values: Any,
+    progress: Progress,
+) -> tuple[Any, Any, str]:
+    """:func:`~planar_tui.sensitivity.job.analyse_outputs` of the outputs that vary over the
+    robots; one that does not (a torque at rest on a horizontal machine: 0 for every robot)
+    has no variance to apportion and gets indices 0, as the motion job's point indices (a
+    failed run's NaN counts as varying, so it is still caught)."""
+    import numpy as np
+
+    from planar_tui.sensitivity.job import analyse_outputs
+
+    varying = ~(values == values[:1]).all(axis=0)
+    indices = np.zeros((4, values.shape[1], problem.num_vars))
+    loo = np.zeros(values.shape[1]) if method == "pce" else None
+    if not varying.any():
+        progress.advance(1.0, method)
+        return indices, loo, ""
+    found, found_loo, note = analyse_outputs(
+        ready, problem, method, unit, values[:, varying], progress, method
+    )
+    indices[:, varying] = found
+    if loo is not None:
+        loo[varying] = found_loo
+    return indices, loo, note
+
+
 def analyse_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathSensitivityResult:
     """Indices of the peak, RMS and per-step efforts for every method of one job."""
     import numpy as np
@@ -61,7 +92,6 @@ def analyse_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathS
         scaled,
     )
     from planar_tui.sensitivity.engine import Problem, montecarlo_design, unit_design
-    from planar_tui.sensitivity.job import analyse_outputs
     from planar_tui.sensitivity.path import path_labels, path_tables, path_variances
     from planar_tui.sensitivity.pce import pce_unit_design
     from planar_tui.sensitivity.results import Analysis, csv_table, sensitivity_percent
@@ -103,8 +133,8 @@ def analyse_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathS
         variances[method] = path_variances(
             method, values, extra.get(method), designs[method], actuators
         )
-        indices, loo, note = analyse_outputs(
-            ready, problem, method, designs[method], values, progress, method
+        indices, loo, note = analyse_varying(
+            ready, problem, method, designs[method], values, progress
         )
         notes += [f"{method}: {note}"] if note else []
         runs = len(designs[method])
