@@ -11,8 +11,9 @@ mechanism's ``inverse_dynamics``; the estimators are the serial arm's
 robot.
 
 Modules: :mod:`.inputs` (the uncertain inputs of a robot, a design row as a robot),
-:mod:`.engine` (the efforts of every design row, the peak, RMS and per-step outputs),
-:mod:`.job` (settings, runner, result: the kinds' factory), :mod:`.rrr`,
+:mod:`.sizes` (a job's inputs and sample sizes), :mod:`.engine` (the efforts of every
+design row, the peak, RMS and per-step outputs), :mod:`.analysis` (the runner and its
+result), :mod:`.job` (settings, checks, view: the kinds' factory), :mod:`.rrr`,
 :mod:`.fivebar` (one job kind per robot). Nothing here imports numba, SALib or scipy at
 module level.
 """

@@ -9,17 +9,36 @@ robots: ``path_aggregated``).
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
 from typing import Any
 
 from planar_tui.errors import JobError
-from planar_tui.jobkind import PreparedJob
-from planar_tui.pathsensitivity.job import (
-    PathSensitivityResult,
-    inputs_of,
-    path_context,
-    sample_sizes,
-)
+from planar_tui.jobkind import JobResult, PreparedJob
+from planar_tui.pathsensitivity.sizes import inputs_of, sample_sizes
 from planar_tui.progress import Progress
+
+
+def path_context(spec: Any) -> str:
+    """A table's title: the path from, to, in how long."""
+
+    def pose(values: tuple[float, ...]) -> str:
+        return "[" + ", ".join(f"{v:g}" for v in values) + "]"
+
+    return f"path {pose(spec.from_pose)} → {pose(spec.to_pose)} in {spec.duration_s:g} s"
+
+
+@dataclass(frozen=True, kw_only=True)
+class PathSensitivityResult(JobResult):
+    """Indices of one job: per method an
+    :class:`~planar_tui.sensitivity.results.Analysis` of the peak and RMS efforts
+    (``analyses``), the inputs' names, N per method, and each robot's efforts' nominal
+    peak and RMS (``nominal``: (2, k))."""
+
+    robot_label: str
+    analyses: list[Any]
+    names: tuple[str, ...]
+    samples: dict[str, int] = field(default_factory=dict)
+    nominal: Any = None
 
 
 def _listed(values: Any) -> str:

@@ -13,14 +13,15 @@ table; the per-robot kinds share everything here and differ by one module of a f
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any, ClassVar
 
 from planar_tui import uq
 from planar_tui.errors import PresetError
-from planar_tui.jobkind import Command, Job, JobKind, JobResult, PreparedJob
-from planar_tui.pathsensitivity.inputs import INERTIA, LENGTH, MASS, Input, robot_inputs
-from planar_tui.progress import Progress
+from planar_tui.jobkind import Command, Job, JobKind
+from planar_tui.pathsensitivity.analysis import PathSensitivityResult, analyse_path
+from planar_tui.pathsensitivity.inputs import INERTIA, LENGTH, MASS
+from planar_tui.pathsensitivity.sizes import inputs_of, sample_sizes
 from planar_tui.schema import TableReader, boolean, integer, number, setting
 
 METHODS = ("sobol", "efast", "pce")
@@ -93,34 +94,6 @@ class SensitivityKeys:
     def length_fields(robot: Any) -> tuple[str, ...]:
         """The robot's length fields that are inputs (a robot's spec says which)."""
         raise NotImplementedError
-
-
-def inputs_of(spec: Any, robot: Any) -> tuple[Input, ...]:
-    """The job's uncertain inputs (:func:`~planar_tui.pathsensitivity.inputs.robot_inputs`)."""
-    return robot_inputs(
-        robot,
-        spec.length_fields(robot),
-        spec.tolerance_length_mm / 10.0,
-        spec.tolerance_mass_g / 1000.0,
-        spec.tolerance_inertia_kgm2,
-        spec.key_names,
-    )
-
-
-def sample_sizes(spec: Any, num_vars: int) -> dict[str, int]:
-    """N per method: the Sobol' base N, eFAST's (given, or matching the Sobol' cost but at
-    least ``4 M² (D − 1) + 1``, where its D − 1 complementary frequencies are distinct), the
-    PCE's robots (given, or ``max(128, 64 D)``)."""
-    from planar_tui.sensitivity.engine import default_efast_samples
-    from planar_tui.sensitivity.pce import default_pce_samples
-
-    distinct = 4 * uq.EFAST_HARMONICS**2 * (num_vars - 1) + 1
-
-    return {
-        "sobol": spec.samples,
-        "efast": spec.efast_samples or max(default_efast_samples(spec.samples, num_vars), distinct),
-        "pce": spec.pce_samples or default_pce_samples(num_vars),
-    }
 
 
 def robot_count(spec: Any, num_vars: int) -> int:
@@ -197,36 +170,6 @@ def extra_outputs(job: Job[Any, Any]) -> dict[str, str]:
     return {"path": f"{stem}-path.csv", "path_aggregated": f"{stem}-path-aggregated.csv"}
 
 
-def path_context(spec: Any) -> str:
-    """A table's title: the path from, to, in how long."""
-
-    def pose(values: tuple[float, ...]) -> str:
-        return "[" + ", ".join(f"{v:g}" for v in values) + "]"
-
-    return f"path {pose(spec.from_pose)} → {pose(spec.to_pose)} in {spec.duration_s:g} s"
-
-
-@dataclass(frozen=True, kw_only=True)
-class PathSensitivityResult(JobResult):
-    """Indices of one job: per method an
-    :class:`~planar_tui.sensitivity.results.Analysis` of the peak and RMS efforts
-    (``analyses``), the inputs' names, N per method, and each robot's efforts' nominal
-    peak and RMS (``nominal``: (2, k))."""
-
-    robot_label: str
-    analyses: list[Any]
-    names: tuple[str, ...]
-    samples: dict[str, int] = field(default_factory=dict)
-    nominal: Any = None
-
-
-def run_path_sensitivity(ready: PreparedJob[Any, Any, Any], progress: Progress) -> Any:
-    """Sample, run every robot along the path, analyse (three progress stages)."""
-    from planar_tui.pathsensitivity.analysis import analyse_path
-
-    return analyse_path(ready, progress)
-
-
 def render(job: Job[Any, Any], result: PathSensitivityResult, console: Any) -> None:
     """The CLI view: the peak and RMS indices' table, fitted to the terminal width."""
     from planar_tui.sensitivity.tables import VIEWS, fit_tables
@@ -292,7 +235,7 @@ def path_sensitivity_kind(
         name=name,
         robot_kind=robot_kind,
         settings=settings,
-        run=run_path_sensitivity,
+        run=analyse_path,
         summary=f"Sobol'/eFAST/PCE sensitivity of the {robot_words}'s actuator efforts "
         "along a path",
         render=render,
