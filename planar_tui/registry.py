@@ -103,6 +103,8 @@ JOB_KINDS: Registry[JobKind] = Registry(
         "path5r": "planar_tui.workspace.fivebar.path",
         "path3rpr": "planar_tui.workspace.rpr.path",
         "path3prr": "planar_tui.workspace.prr.path",
+        "path3rrr_sensitivity": "planar_tui.pathsensitivity.rrr",
+        "path5r_sensitivity": "planar_tui.pathsensitivity.fivebar",
     },
 )
 

@@ -381,11 +381,13 @@ def bootstrap_halfwidths(
     q = fit.q
     residuals = y - fit.basis @ fit.coefficients  # (S, T)
     t_out = y.shape[1]
-    # Q^T (e_t ⊙ v_b) for every output and resample in one product, rows past k_t zeroed;
-    # then R⁻¹ (upper triangular: on a zero-padded column it acts as its k_t × k_t block)
-    shift = q.T @ (residuals[:, :, None] * signs[:, None, :]).reshape(s_rows, -1)
-    shift = shift.reshape(-1, t_out, num_resamples)
+    # Q^T (e_t ⊙ v_b) for every output and resample, one product per term j
+    # ((q_j ⊙ e)^T v: no S × T × B array), rows past k_t zeroed; then R⁻¹ (upper
+    # triangular: on a zero-padded column it acts as its k_t × k_t block)
     k = len(fit.r_inv)
+    shift = np.empty((k, t_out, num_resamples))
+    for j in range(k):
+        shift[j] = (q[:, j, None] * residuals).T @ signs
     shift[np.arange(k)[:, None] >= fit.term_counts[None, :]] = 0.0
     shift = (fit.r_inv @ shift.reshape(k, -1)).reshape(k, t_out, num_resamples)
     coefficients = fit.coefficients[None] + np.moveaxis(shift, 2, 0)  # (B, k, T)
