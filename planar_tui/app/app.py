@@ -39,6 +39,8 @@ from planar_tui.app.view_actions import ViewActions
 from planar_tui.app.widgets.panes import JobPane, RobotPane
 from planar_tui.app.workbench import Workbench
 from planar_tui.errors import PresetError
+from planar_tui.jobkind import resolve
+from planar_tui.registry import JOB_KINDS
 
 __all__ = ["REFRESH_S", "JobFinished", "WorkbenchApp"]
 
@@ -46,9 +48,21 @@ __all__ = ["REFRESH_S", "JobFinished", "WorkbenchApp"]
 REFRESH_S = 0.1
 
 
-#: The label of ``ctrl+t`` on each tab that has a view to step through (its pane's
-#: ``action_toggle_view``).
-VIEW_LABELS = {"sensitivity": "S1/ST/%", "motion_uncertainty": "Output"}
+def view_bindings() -> list[Binding]:
+    """``ctrl+t`` on each tab whose pane steps through views (its kind's
+    :attr:`~planar_tui.jobkind.Tab.view`, the footer's label; its ``view_help`` the help's
+    line), shown on that tab alone (:meth:`WorkbenchApp.check_action`)."""
+    return [
+        Binding(
+            "ctrl+t",
+            f"pane_view('{name}')",
+            kind.tab.view,
+            priority=True,
+            tooltip=f"{kind.tab.title} tab: {kind.tab.view_help}",
+        )
+        for name, kind in JOB_KINDS.items()
+        if kind.tab is not None and kind.tab.view
+    ]
 
 
 class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, HistoryActions, App):
@@ -76,10 +90,7 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
         Binding("ctrl+n", "pane_action('add_link')", "Add link", priority=True, show=False),
         Binding("ctrl+r", "pane_action('remove_link')", "Del link", priority=True, show=False),
         Binding("f10", "history", "History", key_display="F10", show=False),
-        *(
-            Binding("ctrl+t", f"pane_view('{kind}')", label, priority=True)
-            for kind, label in VIEW_LABELS.items()
-        ),
+        *view_bindings(),
         Binding("ctrl+g", "goto_problem", "Error", priority=True),
         Binding("ctrl+l", "figure", "Figure", priority=True, show=False),
         Binding("ctrl+b", "maximise", "Maximise", priority=True, show=False),
@@ -136,8 +147,6 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
     def tabs() -> tuple[tuple[str, str], ...]:
         """(title, name) of every tab: Robot, then each job kind's declared
         :class:`~planar_tui.jobkind.Tab` in its order (read from the registry now)."""
-        from planar_tui.registry import JOB_KINDS
-
         kinds = sorted(
             (kind.tab.order, kind.tab.title, name)
             for name, kind in JOB_KINDS.items()
@@ -149,9 +158,6 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
     def pane_classes() -> dict[str, type]:
         """The dedicated pane of each tab (a job kind's ``Tab.pane``, ``module:Class``); a
         job kind without one gets :class:`JobPane`."""
-        from planar_tui.jobkind import resolve
-        from planar_tui.registry import JOB_KINDS
-
         panes: dict[str, type] = {"robot": RobotPane}
         for name, kind in JOB_KINDS.items():
             if kind.tab is not None and kind.tab.pane is not None:
@@ -553,7 +559,7 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
         self.refresh_bindings()
 
     async def action_pane_view(self, kind: str) -> None:
-        """``ctrl+t``: step the current tab's view (labelled per tab, :data:`VIEW_LABELS`)."""
+        """``ctrl+t``: step the current tab's view (labelled per tab, :func:`view_bindings`)."""
         await self.action_pane_action("toggle_view")
 
     async def action_pane_action(self, method: str) -> None:

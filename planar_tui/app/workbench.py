@@ -3,8 +3,9 @@
 The app never validates values itself: every edit lands in :attr:`Workbench.document`
 (plain TOML values) and :meth:`Workbench.validate` runs the whole document through
 :func:`planar_tui.presets.parse_preset`, the parser the CLI uses, so the messages are the
-CLI's. A tab whose kind the preset lacks shows :data:`DEFAULT_TABLES`; the table joins the
-document (and so the saved preset) only once it is edited or run.
+CLI's. A tab whose kind the preset lacks shows the table its kind declares
+(:func:`default_table`); the table joins the document (and so the saved preset) only once
+it is edited or run.
 """
 
 from __future__ import annotations
@@ -18,73 +19,32 @@ from planar_tui.app.history import EditHistory, link_count, resize_per_link
 from planar_tui.app.saving import draft_text, same_value
 from planar_tui.errors import PresetError
 from planar_tui.presets import Job, Preset, parse_job, parse_preset, read_toml
+from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
 from planar_tui.resources import preset_description, resolve_preset
+from planar_tui.schema import per_link_keys
 
 T = TypeVar("T")
 
 #: The preset opened by ``planar-tui`` without an argument.
 DEFAULT_PRESET = "paper-a-table1"
 
-#: Tables shown by a tab when the open preset has none of its kind (small, quick jobs).
-DEFAULT_TABLES: dict[str, dict[str, Any]] = {
-    "robot": {
-        "name": "2R, paper A Table 3",
-        "gravity_m_s2": 9.81,
-        "lengths_m": [0.303, 0.214],
-        "masses_kg": [1.126, 0.796],
-        "inertias_kgm2": [0.129, 0.045],
-    },
-    "simulate": {
-        "duration_s": 1.0,
-        "step_s": 0.001,
-        "torques_Nm": [],
-        "every": 10,
-        "output": "app-simulate.csv",
-    },
-    "sensitivity": {
-        "posture": "singular",
-        "speed_rad_s": 1.0,
-        "tolerance_length_mm": 1.0,
-        "tolerance_mass_g": 1.0,
-        "methods": ["sobol", "efast"],
-        "samples": 1024,
-        "seed": 42,
-        "output": "app-sensitivity.csv",
-    },
-    "motion_uncertainty": {
-        "duration_s": 0.5,
-        "step_s": 0.001,
-        "tolerance_length_mm": 1.0,
-        "tolerance_mass_g": 10.0,
-        "methods": ["montecarlo", "sobol"],
-        "samples": 128,
-        "seed": 42,
-        "output": "app-motion.csv",
-    },
-    "robot3rrr": {
-        "base_side_cm": 120.0,
-        "platform_side_cm": 40.0,
-        "proximal_cm": 30.0,
-        "distal_cm": 30.0,
-    },
-    "workspace": {
-        "joint_limits_deg": [[20.0, 70.0], [110.0, 160.0], [245.0, 295.0]],
-        "orientation_deg": 0.0,
-        "precision_cm": 0.9375,
-        "form": "arc-distance",
-        "output": "app-workspace.csv",
-    },
-}
-
 
 def default_table(kind: str, n_links: int | None = None) -> dict[str, Any]:
-    """A copy of the default table of ``kind``; per-link arrays sized for ``n_links``."""
-    table = copy.deepcopy(DEFAULT_TABLES.get(kind, {}))
-    if kind == "simulate" and n_links is not None:
-        table["torques_Nm"] = [0.0] * n_links
-    if kind == "simulate" and not table.get("torques_Nm"):
-        table.pop("torques_Nm", None)
-    return table
+    """A copy of the table the kind declares for a tab when the preset has none of it
+    (:attr:`~planar_tui.jobkind.JobKind.app_default`,
+    :attr:`~planar_tui.jobkind.RobotKind.app_default`; empty for an unknown name), its
+    per-link arrays sized for ``n_links`` links and an empty one left out."""
+    if kind in JOB_KINDS:
+        table = copy.deepcopy(dict(JOB_KINDS[kind].app_default))
+        if n_links is not None:
+            resize_per_link(table, kind, n_links)
+        for key in per_link_keys(JOB_KINDS[kind].settings):
+            if table.get(key) == []:
+                del table[key]
+        return table
+    if kind in ROBOT_KINDS:
+        return copy.deepcopy(dict(ROBOT_KINDS[kind].app_default))
+    return {}
 
 
 class Workbench:
