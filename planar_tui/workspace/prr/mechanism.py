@@ -1,53 +1,36 @@
-"""The 3-PRR's separator (:class:`~planar_tui.workspace.paving.mechanism.Mechanism`), the
-:class:`~planar_tui.workspace.paving.runner.PlanarSpec` of its job names."""
+"""The 3-PRR's separator (:class:`~planar_tui.workspace.paving.mechanism.LegMechanism`):
+the slider test of :mod:`planar_tui.kernels.workspace3prr`, its singularities
+(:mod:`.singularity`) and orientation ranges (:mod:`.orientation`); the
+:class:`~planar_tui.workspace.paving.runner.PlanarSpec` of its job names it."""
 
 from __future__ import annotations
 
 from collections.abc import Callable
 from types import MappingProxyType
-from typing import Any
 
-from planar_tui.workspace.paving.mechanism import Mechanism
+from planar_tui.workspace.paving.mechanism import LegMechanism
 from planar_tui.workspace.prr import orientation, singularity
 from planar_tui.workspace.prr import robot as prr
 from planar_tui.workspace.prr.tolerance import TOLERANCE_KEYS_3PRR
 
 
-class Mechanism3PRR(Mechanism):
-    """The 3-PRR's separator (:class:`~planar_tui.workspace.paving.mechanism.Mechanism`):
-    the slider test of :mod:`planar_tui.kernels.workspace3prr`, its singularities
-    (:mod:`.singularity`) and orientation ranges (:mod:`.orientation`)."""
+def level_kernel() -> Callable[..., None]:
+    """The leg test kernel (:func:`planar_tui.kernels.workspace3prr.prr_level`; numba)."""
+    from planar_tui.kernels.workspace3prr import prr_level
 
-    name = "3-PRR"
-    explores = False
-    tolerance_keys = TOLERANCE_KEYS_3PRR
-    singular_boxes_per_step = 10.0
-    tolerance_boxes = MappingProxyType({"all": 5.0, "some": 16.0})
-    has_singularities = True
-    has_orientation_ranges = True
-
-    def parameters(self, robot: Any, spec: Any) -> Any:
-        return prr.leg_parameters(robot, spec)
-
-    def level_kernel(self) -> Callable[..., None]:
-        from planar_tui.kernels.workspace3prr import prr_level
-
-        return prr_level
-
-    def reach_box(self, robot: Any, spec: Any) -> tuple[float, float, float, float]:
-        return prr.reach_box(robot, spec)
-
-    def polygon(self, robot: Any, spec: Any, segments_per_turn: int, outward: bool) -> Any:
-        return prr.workspace_polygon(robot, spec, segments_per_turn, outward)
-
-    def resolve_centre(self, job: Any) -> object:
-        return singularity.resolve_circle(job)
-
-    def compute_singularities(self, job: Any, prepared: Any, extent: Any, budget: Any) -> Any:
-        return singularity.compute_singularities(job, prepared, extent, budget)
-
-    def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:
-        return orientation.compute_range(robot, spec, budget)
+    return prr_level
 
 
-MECHANISM = Mechanism3PRR()
+MECHANISM = LegMechanism(
+    name="3-PRR",
+    tolerance_keys=TOLERANCE_KEYS_3PRR,
+    singular_boxes_per_step=10.0,
+    tolerance_boxes=MappingProxyType({"all": 5.0, "some": 16.0}),
+    leg_parameters=prr.leg_parameters,
+    kernel=level_kernel,
+    reach=prr.reach_box,
+    outline=prr.workspace_polygon,
+    centre=singularity.resolve_circle,
+    singular=singularity.compute_singularities,
+    orientation_range=orientation.compute_range,
+)
