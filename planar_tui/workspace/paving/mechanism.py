@@ -110,6 +110,23 @@ class Mechanism(Protocol):
         problem = f"{self.name} paves no orientation range (has_orientation_ranges is false)"
         raise NotImplementedError(problem)
 
+    def pave(self, robot: Any, spec: Any, budget: Any) -> Any:
+        """The paving at the spec's one orientation in its own form and search box (a
+        :class:`~planar_tui.workspace.paving.levels.WorkspaceOutcome`): what the app's
+        live preview of a map it ``explores`` runs."""
+        problem = f"{self.name} has no live preview (explores is false)"
+        raise NotImplementedError(problem)
+
+    def leg_poses(
+        self, robot: Any, spec: Any, point_cm: tuple[float, float], modes: Any = None
+    ) -> list[tuple[float, int] | None]:
+        """Per leg, the active joint's angle (rad) and its working mode with the platform at
+        ``point_cm``, within the joint limits (the mode ``modes[i]`` where given; else as
+        the robot chooses), or ``None`` where the leg cannot close there: the robot a
+        figure or the app draws at a point."""
+        problem = f"{self.name} draws no legs"
+        raise NotImplementedError(problem)
+
 
 @dataclass(frozen=True, eq=False)  # compared and hashed as itself, as a class's instance
 class LegMechanism(Mechanism):
