@@ -21,6 +21,7 @@ from textual.binding import Binding
 from textual.screen import Screen
 from textual.widgets import Footer, Static, TabbedContent, TabPane
 
+from planar_tui import batch
 from planar_tui.app import recent
 from planar_tui.app.file_actions import FileActions
 from planar_tui.app.history_actions import HistoryActions
@@ -32,14 +33,19 @@ from planar_tui.app.job_runner import (
 )
 from planar_tui.app.messages import CancelRequested, DocumentEdited, RunRequested
 from planar_tui.app.optimise_actions import OptimiseActions
+from planar_tui.app.palette import workbench_commands
+from planar_tui.app.problems import locate, reason, status_line
+from planar_tui.app.screen_text import svg_screen_text
 from planar_tui.app.screens.dialogs import MessageDialog, PathDialog
 from planar_tui.app.settings import load_settings
 from planar_tui.app.sweep_actions import SweepActions
 from planar_tui.app.view_actions import ViewActions
+from planar_tui.app.warming import preset_kinds, warm_in_background
 from planar_tui.app.widgets.panes import JobPane, RobotPane
 from planar_tui.app.workbench import Workbench
 from planar_tui.errors import PresetError
 from planar_tui.jobkind import resolve
+from planar_tui.plan import plan_run
 from planar_tui.registry import JOB_KINDS
 
 __all__ = ["REFRESH_S", "JobFinished", "WorkbenchApp"]
@@ -228,8 +234,6 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
         """Check every job and robot with the CLI's parser, each job on its own; show the
         first problem (reason first) on the validation line, mark each bad field on its
         tab, and dim the results whose inputs changed."""
-        from planar_tui.app.problems import status_line
-
         bar = getattr(self, "validation_line", None)
         if bar is None or not bar.is_attached:  # closing, or between two compositions
             return False
@@ -251,8 +255,6 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
 
     def mark_problems(self) -> None:
         """Mark the fields the problems name, on every tab (each tab marks its own)."""
-        from planar_tui.app.problems import locate, reason
-
         located = [
             (where, reason(error))
             for error in self.problems
@@ -270,8 +272,6 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
 
     async def goto_problem(self, error: PresetError) -> None:
         """Show the tab (and the job or robot) of ``error`` and focus its marked field."""
-        from planar_tui.app.problems import locate, reason
-
         where = locate(error, self.workbench.robot_kinds())
         pane = self.problem_pane(where) if where is not None else None
         if pane is None:
@@ -320,8 +320,6 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
         try:
             job = pane.current_job()  # this job alone: others' problems do not stop it
         except PresetError as error:
-            from planar_tui.app.problems import reason
-
             self.revalidate()
             self.notify(reason(error), title="Not run", severity="error")
             self.call_later(self.goto_problem, error)
@@ -335,16 +333,12 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
 
     def action_run_all(self) -> None:
         """Run every job of the preset in order into a folder, as ``planar-tui run``."""
-        from planar_tui import batch
-
         if self.job_running:
             self.notify("A job is already running (escape cancels it).", severity="warning")
             return
         try:
             jobs = self.workbench.validate().jobs
         except PresetError as error:
-            from planar_tui.app.problems import reason
-
             self.notify(reason(error), title="Not run", severity="error")
             self.call_later(self.goto_problem, error)
             return
@@ -364,8 +358,6 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
         """Run every job of the preset through the batch service into ``out_dir`` (files
         checked before the first job, each written when its job ends); ``False`` when the
         preset or a path is refused (a dialog says why)."""
-        from planar_tui.plan import plan_run
-
         try:
             jobs = self.workbench.validate().jobs
             plan = plan_run(jobs, Path(out_dir), prepare=False)  # each prepared as it runs
@@ -427,8 +419,6 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
         never while a job runs (:func:`planar_tui.app.warming.warm_in_background`); says
         so in two notifications, and stops within 0.05 s when the app closes."""
         from textual.worker import get_current_worker
-
-        from planar_tui.app.warming import preset_kinds, warm_in_background
 
         worker = get_current_worker()
         first = self.call_from_thread(preset_kinds, self)
@@ -510,8 +500,6 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
     def export_text(self) -> str:
         """The screen as plain text (for tests, docs and text screenshots), read back from
         Textual's public SVG screenshot (see :mod:`planar_tui.app.screen_text`)."""
-        from planar_tui.app.screen_text import svg_screen_text
-
         width, height = self.size
         return svg_screen_text(self.export_screenshot(), width, height)
 
@@ -570,7 +558,5 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
 
     def get_system_commands(self, screen: Screen) -> Iterable[SystemCommand]:
         """Textual's commands, then every action of the workbench by name (ctrl+p)."""
-        from planar_tui.app.palette import workbench_commands
-
         yield from super().get_system_commands(screen)
         yield from workbench_commands(self)

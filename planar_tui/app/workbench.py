@@ -16,12 +16,14 @@ from pathlib import Path
 from typing import Any, TypeVar
 
 from planar_tui.app.history import EditHistory, link_count, resize_per_link
-from planar_tui.app.saving import draft_text, same_value
+from planar_tui.app.saving import draft_text, merge_document, same_value
 from planar_tui.errors import PresetError
+from planar_tui.preset_writer import dump_preset
 from planar_tui.presets import Job, Preset, parse_job, parse_preset, read_toml
 from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
-from planar_tui.resources import preset_description, resolve_preset
+from planar_tui.resources import bundled_presets, preset_description, resolve_preset
 from planar_tui.schema import per_link_keys
+from planar_tui.sweep.service import check_preset_sweeps
 
 T = TypeVar("T")
 
@@ -160,8 +162,6 @@ class Workbench:
         the document before is kept for undo. When the edit changes a serial robot's link
         count, the per-link arrays of the jobs using that robot are resized (see
         :meth:`resize_jobs`)."""
-        from planar_tui.registry import JOB_KINDS
-
         tables = self.tables(kind)
         before = tables[index] if index < len(tables) else None
         if before is None or not same_value(before, table):
@@ -200,8 +200,6 @@ class Workbench:
         """Resize the per-link arrays (``theta0_deg``, ``torques_Nm`` rows, a posture's
         angles …) of every job on the preset's ``[robot]`` to ``n_links`` (new links get
         zeros), noting which."""
-        from planar_tui.registry import JOB_KINDS
-
         changed = []
         for kind in JOB_KINDS:
             if JOB_KINDS[kind].robot_kind != "robot":
@@ -218,8 +216,6 @@ class Workbench:
 
     @staticmethod
     def robot_kinds() -> tuple[str, ...]:
-        from planar_tui.registry import ROBOT_KINDS
-
         return tuple(ROBOT_KINDS)
 
     # -- validation and jobs ----------------------------------------------------------
@@ -241,9 +237,6 @@ class Workbench:
         on its own, see :meth:`job`); a document whose jobs are valid has its sweeps checked
         as the CLI checks them (:func:`~planar_tui.sweep.service.check_preset_sweeps`). A
         valid document is parsed once."""
-        from planar_tui.registry import JOB_KINDS
-        from planar_tui.sweep.service import check_preset_sweeps
-
         try:
             preset = self.validate()
         except PresetError as error:
@@ -276,8 +269,6 @@ class Workbench:
     def display_name(self) -> str:
         """The preset as a person names it: a bundled preset by its name, a file under the
         current folder by its relative path, any other by its file name."""
-        from planar_tui.resources import bundled_presets
-
         if self.path.resolve() in {p.resolve() for p in bundled_presets()}:
             return self.path.stem
         try:
@@ -289,8 +280,6 @@ class Workbench:
     def robot_targets(self) -> list[tuple[str, str, int | None]]:
         """The robots the Robot tab can edit: ``(label, robot kind, None)`` for the preset's
         robots, then ``(label, kind, index)`` for each job that carries its own robot."""
-        from planar_tui.registry import JOB_KINDS
-
         targets: list[tuple[str, str, int | None]] = [("preset robots", "", None)]
         for kind in self.document:
             if kind not in JOB_KINDS:
@@ -305,14 +294,10 @@ class Workbench:
 
     def job_robot(self, kind: str, index: int) -> dict[str, Any]:
         """The own robot table of job ``index`` of ``kind`` (edited in place)."""
-        from planar_tui.registry import JOB_KINDS
-
         return self.tables(kind)[index][JOB_KINDS[kind].robot_kind]
 
     def set_job_robot(self, kind: str, index: int, robot: dict[str, Any]) -> None:
         """Replace the own robot table of job ``index`` of ``kind``."""
-        from planar_tui.registry import JOB_KINDS
-
         self.tables(kind)[index][JOB_KINDS[kind].robot_kind] = robot
 
     def job_labels(self, kind: str) -> list[str]:
@@ -341,9 +326,6 @@ class Workbench:
         """The validated document as TOML text: applied into the original file's text
         (comments, order and formatting kept, :func:`planar_tui.app.saving.merge_document`),
         or printed by :mod:`planar_tui.preset_writer` when there is none."""
-        from planar_tui.app.saving import merge_document
-        from planar_tui.preset_writer import dump_preset
-
         preset = self.validate()
         if self.original_text is None:
             return dump_preset(preset, self.description)
@@ -410,7 +392,6 @@ def repair_tables(document: dict[str, Any]) -> list[str]:
     table, an entry of an array of job tables, or a job's own robot table that is no table
     is replaced by an empty table. Returns one line per replacement, in the loader's words
     (``robot: is an integer (expected a table [robot])``)."""
-    from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
 
     def kind_of(value: Any) -> str:
         name = {bool: "a boolean", int: "an integer", float: "a number", str: "a text"}

@@ -9,6 +9,7 @@ import math
 from typing import Any
 
 from planar_tui.figures.workspace import BOUNDARY_SEGMENTS, _polygon_rings, draw, draw_tolerance
+from planar_tui.workspace.paving.result import map_title
 
 
 def draw_fivebar(ax: Any, job: Any, point: tuple[float, float]) -> bool:
@@ -48,7 +49,6 @@ def from_result(job: Any, result: Any) -> Any:
     import numpy as np
 
     from planar_tui.workspace.paving.levels import INSIDE
-    from planar_tui.workspace.paving.result import map_title
 
     outcome = result.outcome
     if getattr(result, "companions", None):

@@ -19,6 +19,7 @@ from planar_tui.errors import PresetError
 from planar_tui.optimise.spec import Optimisation, corner_designs
 from planar_tui.registry import JOB_KINDS
 from planar_tui.sweep.budget import SweepEstimate, check_needs, check_workers
+from planar_tui.sweep.points import make_point
 
 
 def reruns(opt: Optimisation) -> int:
@@ -29,8 +30,6 @@ def reruns(opt: Optimisation) -> int:
 def estimate_optimisation(opt: Optimisation) -> SweepEstimate | None:
     """The optimisation's rough needs (module docstring), or ``None`` when its job kind
     gives no estimate."""
-    from planar_tui.sweep.points import make_point
-
     estimate = JOB_KINDS[opt.job.kind].estimate
     if estimate is None:
         return None

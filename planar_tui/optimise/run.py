@@ -24,11 +24,18 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from planar_tui.batch import OutputFailed
 from planar_tui.csvio import CsvTable, write_csv_atomic
 from planar_tui.errors import PresetError
+from planar_tui.figures.canvas import save
+from planar_tui.figures.optimise import draw
 from planar_tui.optimise.spec import Optimisation
 from planar_tui.progress import Progress
 from planar_tui.provenance import planned_sidecar, study_provenance, write_sidecar
+from planar_tui.registry import JOB_KINDS
+from planar_tui.sweep import execute
+from planar_tui.sweep.checkpoint import CheckpointWriter, checkpoint_path, read_finished
+from planar_tui.sweep.points import make_point
 from planar_tui.sweep.worker import FAILED, INFEASIBLE, OK, PointOutcome, PointTask
 
 if TYPE_CHECKING:
@@ -249,7 +256,6 @@ def output_path(opt: Optimisation, out_dir: Path) -> Path:
 def planned_files(opt: Optimisation, out_dir: Path) -> list[PlannedFile]:
     """Every file the optimisation writes (for :func:`planar_tui.batch.check_planned`)."""
     from planar_tui.batch import PlannedFile
-    from planar_tui.sweep.checkpoint import checkpoint_path
 
     output = output_path(opt, out_dir)
     files = [
@@ -270,8 +276,6 @@ class _Runner:
         self.client, self.progress, self.prefix = client, progress, prefix
 
     def run(self, tasks: list[PointTask], on_outcome: Callable[[PointOutcome], None]) -> None:
-        from planar_tui.sweep import execute
-
         if not tasks:
             return
         if self.client is None:
@@ -287,8 +291,6 @@ def _task_or_failure(
     """The task of one design, or its infeasible outcome when its job cannot be made (a
     value the job refuses: the evaluation is infeasible, the optimisation goes on; a job
     that refuses it only while running says so likewise, ``refused``)."""
-    from planar_tui.sweep.points import make_point
-
     try:
         point = make_point(opt.sweep(coarse), number, opt.point_values(values, coarse))
     except PresetError as error:
@@ -321,9 +323,6 @@ def run_optimisation(
     cancelled run is handed to it once more, ``cancelled``, before the cancel propagates."""
     import numpy as np
 
-    from planar_tui.batch import OutputFailed
-    from planar_tui.sweep import execute
-    from planar_tui.sweep.checkpoint import CheckpointWriter, checkpoint_path, read_finished
     from planar_tui.warmup import warm_kernels
 
     progress = progress or Progress()
@@ -447,8 +446,6 @@ def run_optimisation(
 def _columns_of(opt: Optimisation) -> Callable[[int], tuple[str, ...] | None]:
     """The figures a resumed evaluation's record must hold: the job's columns, where its
     kind names them without running (else ``None``: any)."""
-    from planar_tui.registry import JOB_KINDS
-
     names = JOB_KINDS[opt.job.kind].figure_names
     columns = None if names is None else tuple(names(opt.job))
     return lambda number: columns
@@ -458,8 +455,6 @@ def _write_outputs(run: OptimiseRun, out_dir: Path, keep_checkpoint: bool) -> No
     """The evaluations' and the optimum's CSVs (:class:`~planar_tui.batch.OutputFailed`
     if one cannot be written: the checkpoint stays), then the checkpoint goes (unless
     ``keep_checkpoint``) and the figure is drawn (its failure: ``run.figure_error``)."""
-    from planar_tui.batch import OutputFailed
-
     opt = run.optimisation
     run.output, run.pareto = output_path(opt, out_dir), out_dir / opt.pareto_output
     record = study_provenance("optimise", opt, (run.started_s, time.time() - run.started_s))
@@ -482,8 +477,6 @@ def _write_outputs(run: OptimiseRun, out_dir: Path, keep_checkpoint: bool) -> No
 def _sync(writer: Any) -> None:
     """A generation's evaluations to disk (one ``fsync``: a machine crash loses at most
     the generation running; Ctrl-C or a killed process loses none, each is flushed)."""
-    from planar_tui.batch import OutputFailed
-
     try:
         writer.sync()
     except OSError as error:
@@ -510,10 +503,6 @@ def _detail(run: OptimiseRun, done: int) -> str:
 def write_figure(run: OptimiseRun, path: Path) -> Path:
     """The convergence (one objective) or front (two or more: the first two) figure
     (:mod:`planar_tui.figures.optimise`), written atomically."""
-    from planar_tui.batch import OutputFailed
-    from planar_tui.figures.canvas import save
-    from planar_tui.figures.optimise import draw
-
     try:
         return save(draw(figure_data(run)), path)
     except OSError as error:

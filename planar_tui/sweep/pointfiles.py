@@ -26,6 +26,8 @@ import re
 from pathlib import Path
 from typing import Any
 
+from planar_tui.batch import OutputFailed
+from planar_tui.csvio import write_atomic
 from planar_tui.errors import PresetError
 from planar_tui.provenance import has_sidecar, sidecar_path, write_sidecar
 
@@ -117,8 +119,6 @@ class PointFileRecord:
         """Delete the point files the record names (regular files in the folder only;
         a link put there in their place is left alone), then empty the record. A file
         that cannot be deleted is :class:`~planar_tui.batch.OutputFailed`."""
-        from planar_tui.batch import OutputFailed
-
         for name in sorted(self._known):
             path = self.folder / name
             try:
@@ -160,9 +160,6 @@ def write_point_file(
     """Write one point CSV ``text`` at ``path`` and its sidecar ``provenance`` (a
     :class:`~planar_tui.provenance.Provenance`), each atomically and recorded first; a
     file that cannot be written is :class:`~planar_tui.batch.OutputFailed`."""
-    from planar_tui.batch import OutputFailed
-    from planar_tui.csvio import write_atomic
-
     target = path
     try:
         if record is not None:

@@ -21,8 +21,11 @@ from planar_tui.app.widgets.robot_drawing import SceneView, rrr_scene
 from planar_tui.app.widgets.workspace_explorer import MapExplorer, cell_status
 from planar_tui.jobkind import JobResult
 from planar_tui.presets import Job
-from planar_tui.progress import ProgressState
+from planar_tui.progress import Progress, ProgressState
 from planar_tui.registry import JOB_KINDS
+from planar_tui.workspace.paving.levels import BoxBudget
+from planar_tui.workspace.paving.map import render_map
+from planar_tui.workspace.paving.result import map_content
 
 #: Lines of :func:`planar_tui.workspace.paving.map.render_map` below the plot rows.
 MAP_FOOTER_LINES = 3
@@ -43,8 +46,6 @@ def fitted_map(boxes, status, width: int, height: int, **overlays) -> list[str]:
     others show the plain axis ``│``), so each label points at its row. ``overlays`` are
     ``render_map``'s ``singular`` and ``circle``.
     """
-    from planar_tui.workspace.paving.map import render_map
-
     lines = render_map(boxes, status, width=width, **overlays)
     while len(lines) > height and width > 20:
         width = max(20, min(width - 1, width * height // len(lines)))
@@ -79,9 +80,6 @@ def pave(job, should_stop, threads: int | None = None) -> Any:
     its parallel kernels on ``threads`` threads when given (Numba's count is per calling
     thread: the other threads keep theirs)."""
     import numba
-
-    from planar_tui.progress import Progress
-    from planar_tui.workspace.paving.levels import BoxBudget
 
     progress = Progress(should_stop=should_stop)
     before = numba.get_num_threads()
@@ -201,7 +199,6 @@ class WorkspacePane(JobPane):
             explorer.show_text("(no box kept: the workspace is empty at this precision)")
             self.query_one("#workspace-legend", Static).update("")
             return
-        from planar_tui.workspace.paving.result import map_content
 
         refit = self._shown_job is not job
         self._shown_job = job
