@@ -312,7 +312,9 @@ class WorkbenchApp(ViewActions, SweepActions, OptimiseActions, FileActions, Hist
     def run_pane_job(self, pane: Any) -> None:
         """Run the job of ``pane`` (a job tab) in the job runner."""
         if not isinstance(pane, JobPane) or not pane.available():
-            self.notify("This tab has no job to run: choose Sensitivity, Workspace or Simulate.")
+            first = [title for title, name in self.tabs() if name in JOB_KINDS][:3]
+            named = " or ".join((", ".join(first[:-1]), first[-1])) if len(first) > 1 else first[0]
+            self.notify(f"This tab has no job to run: choose {named}.")
             return
         if self.job_running:
             self.notify("A job is already running (escape cancels it).", severity="warning")
