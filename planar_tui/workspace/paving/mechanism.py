@@ -15,7 +15,6 @@ its kernels (``kernels/``) and its registry lines (:mod:`planar_tui.registry`);
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 
 if TYPE_CHECKING:
@@ -128,53 +127,39 @@ class Mechanism(Protocol):
         raise NotImplementedError(problem)
 
 
-@dataclass(frozen=True, eq=False)  # compared and hashed as itself, as a class's instance
 class LegMechanism(Mechanism):
-    """A separator made of its robot subpackage's functions: every method of
-    :class:`Mechanism` calls the function given for it (the 3-RPR's and the 3-PRR's, whose
-    leg test kernels share the signature of
-    :func:`~planar_tui.kernels.workspace3rpr.rpr_level`)."""
+    """A separator whose parts are its robot subpackage's functions (the 3-RPR's and the
+    3-PRR's, whose leg test kernels share the signature of
+    :func:`~planar_tui.kernels.workspace3rpr.rpr_level`). A subclass sets its constants
+    (:class:`Mechanism`'s), its kernel (:meth:`level_kernel`), its singularity-free
+    circle's check (:meth:`resolve_centre`) and three modules of its subpackage:
+    ``robot_module`` (``leg_parameters(robot, spec)``, ``reach_box(robot, spec)``,
+    ``workspace_polygon(robot, spec, segments_per_turn, outward)``),
+    ``singularity_module`` (``compute_singularities(job, prepared, extent, budget)``) and
+    ``orientation_module`` (``compute_range(robot, spec, budget)``)."""
 
-    name: str
-    tolerance_keys: tuple[str, ...]
-    singular_boxes_per_step: float
-    tolerance_boxes: Mapping[str, float]
-    #: ``parameters(robot, spec)``: the leg test kernel's parameter array.
-    leg_parameters: Callable[[Any, Any], Any]
-    #: ``kernel()``: the leg test kernel (imported when called: kernels load numba).
-    kernel: Callable[[], Callable[..., None]]
-    #: ``reach(robot, spec)``, ``outline(robot, spec, segments_per_turn, outward)``.
-    reach: Callable[[Any, Any], tuple[float, float, float, float]]
-    outline: Callable[[Any, Any, int, bool], Any]
-    #: ``centre(job)``, ``singular(job, prepared, extent, budget)``.
-    centre: Callable[[Any], object]
-    singular: Callable[[Any, Any, Any, Any], Any]
-    #: ``orientation_range(robot, spec, budget)``.
-    orientation_range: Callable[[Any, Any, Any], Any]
-    explores: bool = False
-    has_singularities: bool = True
-    has_orientation_ranges: bool = True
+    explores = False
+    has_singularities = True
+    has_orientation_ranges = True
+    robot_module: Any
+    singularity_module: Any
+    orientation_module: Any
 
     def parameters(self, robot: Any, spec: Any) -> Any:
-        return self.leg_parameters(robot, spec)
-
-    def level_kernel(self) -> Callable[..., None]:
-        return self.kernel()
+        return self.robot_module.leg_parameters(robot, spec)
 
     def reach_box(self, robot: Any, spec: Any) -> tuple[float, float, float, float]:
-        return self.reach(robot, spec)
+        box: tuple[float, float, float, float] = self.robot_module.reach_box(robot, spec)
+        return box
 
     def polygon(self, robot: Any, spec: Any, segments_per_turn: int, outward: bool) -> Any:
-        return self.outline(robot, spec, segments_per_turn, outward)
-
-    def resolve_centre(self, job: Any) -> object:
-        return self.centre(job)
+        return self.robot_module.workspace_polygon(robot, spec, segments_per_turn, outward)
 
     def compute_singularities(self, job: Any, prepared: Any, extent: Any, budget: Any) -> Any:
-        return self.singular(job, prepared, extent, budget)
+        return self.singularity_module.compute_singularities(job, prepared, extent, budget)
 
     def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:
-        return self.orientation_range(robot, spec, budget)
+        return self.orientation_module.compute_range(robot, spec, budget)
 
 
 __all__ = ["LegMechanism", "Mechanism"]
