@@ -18,6 +18,7 @@ from typing import Any
 from planar_tui.workspace.path.model import PathModel, PathSolution
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.rrr.orientation import compute_orientation_workspace, reach_box_for
+from planar_tui.workspace.rrr.pose import leg_modes
 from planar_tui.workspace.rrr.robot import TOLERANCE_KEYS_3RRR
 from planar_tui.workspace.rrr.singularity import compute_singularities, resolve_circle
 
@@ -103,6 +104,18 @@ class Mechanism3RRR(Mechanism):
         from planar_tui.workspace.rrr.dynamics import solve_path  # numba
 
         return solve_path(robot, spec, pose, rate, acceleration)
+
+    def pave(self, robot: Any, spec: Any, budget: Any) -> Any:
+        from planar_tui.workspace.rrr.compute import compute_workspace  # numpy
+
+        return compute_workspace(robot, spec, budget)
+
+    def leg_poses(
+        self, robot: Any, spec: Any, point_cm: tuple[float, float], modes: Any = None
+    ) -> list[tuple[float, int] | None]:
+        """:func:`~planar_tui.workspace.rrr.pose.leg_modes` at the spec's orientation and
+        joint limits (``modes``: the working mode to prefer, the singularity-free circle's)."""
+        return leg_modes(robot, spec.orientation_rad, point_cm, spec.limits_rad, modes)
 
 
 MECHANISM = Mechanism3RRR()
