@@ -32,6 +32,9 @@ class RobotKind:
     #: A small robot table in TOML (``[robot]`` and its keys) for the job kinds' warm-up
     #: examples (:data:`JobKind.warmup`).
     example: str = ""
+    #: The table the app shows when the open preset has none of this kind (its keys and
+    #: values; empty: the app shows the keys' defaults).
+    app_default: Mapping[str, Any] = field(default_factory=dict)
 
     @property
     def keys(self) -> tuple[str, ...]:
@@ -216,11 +219,16 @@ class Command:
 class Tab:
     """A job kind's tab in the app: its title, its place (tabs sorted by ``order``; the
     Robot tab is first) and its pane as an import path (``module:Class``), so that the core
-    never imports Textual; without one the app's generic job pane shows the kind."""
+    never imports Textual; without one the app's generic job pane shows the kind. A pane
+    that steps through views (its ``action_toggle_view``, key ``ctrl+t``) declares the
+    key's label in the footer (``view``, ``"S1/ST/%"``) and what it steps through, for the
+    help and the palette (``view_help``)."""
 
     title: str
     order: int = 100
     pane: str | None = None
+    view: str | None = None
+    view_help: str = ""
 
 
 @dataclass(frozen=True)
@@ -259,6 +267,9 @@ class JobKind:
     kind's ``example`` to compile the kind's kernels, :mod:`planar_tui.warmup`; or such
     examples by part, ``{"joint": ..., "orientation": ...}``, with ``warmup_parts(job)``
     naming the parts a job's run needs, so that a cold run compiles only their kernels).
+    ``app_default`` is the table the app's tab shows when the open preset has none of
+    this kind (small and quick; its per-link arrays sized to the preset's robot, an empty
+    one left out).
     ``overrides(table, given)`` adjusts the keys that follow an overridden one in the TOML
     table the command-line options are applied to (e.g. a workspace's refinement
     precision capped by a new precision): see :func:`planar_tui.overrides.apply_overrides`.
@@ -282,6 +293,7 @@ class JobKind:
     warmup_parts: Callable[[Job[Any, Any]], tuple[str, ...]] | None = None
     figure_names: Callable[[Job[Any, Any]], tuple[str, ...]] | None = None
     estimate: Callable[[Job[Any, Any]], tuple[float, float]] | None = None
+    app_default: Mapping[str, Any] = field(default_factory=dict)
 
     @property
     def keys(self) -> tuple[str, ...]:

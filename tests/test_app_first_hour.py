@@ -389,3 +389,46 @@ async def test_every_tab_is_reachable_by_a_key_and_by_name(tmp_path):
             await pilot.pause()
             assert app.query_one(TabbedContent).active == f"tab-{name}"
             app.query_one(Tabs).focus()
+
+
+@pytest.mark.slow
+@async_test
+async def test_every_tab_is_reachable_however_many_kinds(tmp_path):
+    """Six more kinds registered (15 tabs, past the digits and the function keys): the
+    palette shows each by name and ctrl+pagedown steps through all of them in order."""
+    from contextlib import ExitStack
+    from dataclasses import dataclass
+
+    from textual.widgets import TabbedContent
+
+    from planar_tui.app.palette import workbench_commands
+    from planar_tui.jobkind import JobKind, JobResult, Tab
+    from planar_tui.registry import registered
+    from planar_tui.schema import integer, setting
+
+    @dataclass(frozen=True, kw_only=True)
+    class ExtraSpec:
+        count: int = setting(integer(minimum=1), type_doc="integer", doc="rows", default=1)
+
+    def run_extra(job, progress):
+        return JobResult(table=CsvTable(("i",), [[0]]), summary="one row")
+
+    shutil.copy(DATA / "tiny.toml", tmp_path / "tiny.toml")
+    with ExitStack() as stack:
+        for number in range(1, 7):
+            extra = JobKind(
+                f"extra{number}", "robot", ExtraSpec, run_extra, "x", tab=Tab(f"X{number}", 50)
+            )
+            stack.enter_context(registered(extra))
+        app = WorkbenchApp(Workbench.open(tmp_path / "tiny.toml"), output_dir=tmp_path)
+        async with app.run_test(size=SIZE) as pilot:
+            names = [name for _, name in app.tabs()]
+            assert len(names) >= 15 and {f"extra{n}" for n in range(1, 7)} <= set(names)
+            titles = {command.title for command in workbench_commands(app)}
+            assert all(f"Show {title} tab" in titles for title, _ in app.tabs())
+            seen = []
+            for _ in names:
+                await pilot.press("ctrl+pagedown")
+                await pilot.pause()
+                seen.append(app.query_one(TabbedContent).active.removeprefix("tab-"))
+            assert seen == [*names[1:], names[0]]

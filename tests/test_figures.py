@@ -13,8 +13,12 @@ import numpy as np
 import pytest
 
 from planar_tui import batch, figures
+from planar_tui.csvio import CsvTable
 from planar_tui.figures.canvas import DPI
+from planar_tui.jobkind import JobKind, JobResult
 from planar_tui.presets import load_preset
+from planar_tui.registry import registered
+from planar_tui.schema import integer, setting
 from tests.conftest import PRESETS, REPO
 
 FIXTURES = REPO / "tests" / "data" / "figures"
@@ -321,12 +325,40 @@ def test_plot_key_of_a_job_table_writes_its_figure_and_is_checked(cli, tmp_path)
     assert not (tmp_path / "bad").exists()
 
 
-def test_every_job_table_has_the_plot_key():
+def test_every_job_table_with_a_figure_has_the_plot_key():
+    """A kind that draws a figure takes a ``plot`` key; one whose ``figure`` is ``None``
+    needs none (the next test)."""
     from planar_tui.presets import JOB_KINDS
 
-    for name, kind in JOB_KINDS.items():
+    drawn = [(name, kind) for name, kind in JOB_KINDS.items() if kind.figure is not None]
+    assert len(drawn) >= 8  # every bundled kind draws one
+    for name, kind in drawn:
         names = {field.name for field in dataclasses.fields(kind.settings)}
         assert "plot" in names, f"[{name}] has no plot key"
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class _CountSpec:
+    count: int = setting(integer(minimum=1), type_doc="integer", doc="rows", default=2)
+
+
+def _run_count(job, progress):
+    rows = [[i] for i in range(job.spec.count)]
+    return JobResult(table=CsvTable(("i",), rows), summary=f"{job.spec.count} rows")
+
+
+def test_a_kind_without_a_figure_needs_no_plot_key(cli, tmp_path):
+    """A kind declaring no figure and no ``plot`` key is read, run and written as any."""
+    kind = JobKind("counting", "robot", _CountSpec, _run_count, "rows counted")
+    assert kind.figure is None and "plot" not in kind.keys
+    preset = tmp_path / "count.toml"
+    preset.write_text(
+        '[robot]\nlengths_m = [0.3]\nmasses_kg = [1.0]\n\n[counting]\ncount = 3\noutput = "c.csv"\n'
+    )
+    with registered(kind):
+        result = cli("run", preset, "--out-dir", tmp_path)
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "c.csv").read_text().split() == ["i", "0", "1", "2"]
 
 
 def test_a_sweep_without_a_varied_column_and_a_folder_as_figure_are_one_line_exit_2(cli, tmp_path):

@@ -16,11 +16,11 @@ import pytest
 from planar_tui.app.widgets.canvas import Canvas, Viewport, bresenham, nice_length
 from planar_tui.app.widgets.robot_drawing import (
     draw_serial_robot,
-    leg_modes,
     render_scene,
     rrr_scene,
     serial_scene,
 )
+from planar_tui.workspace.rrr.pose import leg_modes
 
 REPO = Path(__file__).resolve().parent.parent
 #: Unicode's braille dot number of the dot at (x, y) within a cell.

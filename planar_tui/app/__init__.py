@@ -6,6 +6,9 @@ import os
 import sys
 from typing import Any
 
+from planar_tui.errors import PresetError
+from planar_tui.runtime import configure_process
+
 
 def last_preset() -> str | None:
     """The preset last opened or saved in the app (:mod:`planar_tui.app.settings`) when
@@ -22,7 +25,6 @@ def _open_bench(workbench: Any, preset_argument: str | None) -> Any:
     """The app's workbench on ``preset_argument``, else on :func:`last_preset`; a
     remembered preset that cannot be read says it came from the settings file."""
     from planar_tui.app.settings import settings_path
-    from planar_tui.errors import PresetError
 
     remembered = None if preset_argument else last_preset()
     try:
@@ -56,8 +58,6 @@ def run_app(preset_argument: str | None = None, opened: tuple[str, ...] = ()) ->
     which made ``q`` feel slow. Nothing is pending by then (files are written atomically
     when a job or a save finishes).
     """
-    from planar_tui.runtime import configure_process
-
     configure_process()
     from planar_tui.app.app import WorkbenchApp
     from planar_tui.app.workbench import Workbench

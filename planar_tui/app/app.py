@@ -28,14 +28,20 @@ from planar_tui.app.history_actions import HistoryActions
 from planar_tui.app.job_runner import JobFinished, JobRunner
 from planar_tui.app.messages import DocumentEdited
 from planar_tui.app.optimise_actions import OptimiseActions
+from planar_tui.app.palette import workbench_commands
+from planar_tui.app.problems import locate, reason, status_line
 from planar_tui.app.run_actions import RunActions
+from planar_tui.app.screen_text import svg_screen_text
 from planar_tui.app.settings import load_settings
 from planar_tui.app.sweep_actions import SweepActions
 from planar_tui.app.view_actions import ViewActions
+from planar_tui.app.warming import preset_kinds, warm_in_background
 from planar_tui.app.widgets.panes import JobPane
 from planar_tui.app.widgets.robot_pane import RobotPane
 from planar_tui.app.workbench import Workbench
 from planar_tui.errors import PresetError
+from planar_tui.jobkind import resolve
+from planar_tui.registry import JOB_KINDS
 
 __all__ = ["REFRESH_S", "JobFinished", "WorkbenchApp"]
 
@@ -43,9 +49,21 @@ __all__ = ["REFRESH_S", "JobFinished", "WorkbenchApp"]
 REFRESH_S = 0.1
 
 
-#: The label of ``ctrl+t`` on each tab that has a view to step through (its pane's
-#: ``action_toggle_view``).
-VIEW_LABELS = {"sensitivity": "S1/ST/%", "motion_uncertainty": "Output"}
+def view_bindings() -> list[Binding]:
+    """``ctrl+t`` on each tab whose pane steps through views (its kind's
+    :attr:`~planar_tui.jobkind.Tab.view`, the footer's label; its ``view_help`` the help's
+    line), shown on that tab alone (:meth:`WorkbenchApp.check_action`)."""
+    return [
+        Binding(
+            "ctrl+t",
+            f"pane_view('{name}')",
+            kind.tab.view,
+            priority=True,
+            tooltip=f"{kind.tab.title} tab: {kind.tab.view_help}",
+        )
+        for name, kind in JOB_KINDS.items()
+        if kind.tab is not None and kind.tab.view
+    ]
 
 
 class WorkbenchApp(
@@ -84,10 +102,7 @@ class WorkbenchApp(
         Binding("ctrl+n", "pane_action('add_link')", "Add link", priority=True, show=False),
         Binding("ctrl+r", "pane_action('remove_link')", "Del link", priority=True, show=False),
         Binding("f10", "history", "History", key_display="F10", show=False),
-        *(
-            Binding("ctrl+t", f"pane_view('{kind}')", label, priority=True)
-            for kind, label in VIEW_LABELS.items()
-        ),
+        *view_bindings(),
         Binding("ctrl+g", "goto_problem", "Error", priority=True),
         Binding("ctrl+l", "figure", "Figure", priority=True, show=False),
         Binding("ctrl+b", "maximise", "Maximise", priority=True, show=False),
@@ -144,8 +159,6 @@ class WorkbenchApp(
     def tabs() -> tuple[tuple[str, str], ...]:
         """(title, name) of every tab: Robot, then each job kind's declared
         :class:`~planar_tui.jobkind.Tab` in its order (read from the registry now)."""
-        from planar_tui.registry import JOB_KINDS
-
         kinds = sorted(
             (kind.tab.order, kind.tab.title, name)
             for name, kind in JOB_KINDS.items()
@@ -157,9 +170,6 @@ class WorkbenchApp(
     def pane_classes() -> dict[str, type]:
         """The dedicated pane of each tab (a job kind's ``Tab.pane``, ``module:Class``); a
         job kind without one gets :class:`JobPane`."""
-        from planar_tui.jobkind import resolve
-        from planar_tui.registry import JOB_KINDS
-
         panes: dict[str, type] = {"robot": RobotPane}
         for name, kind in JOB_KINDS.items():
             if kind.tab is not None and kind.tab.pane is not None:
@@ -230,8 +240,6 @@ class WorkbenchApp(
         """Check every job and robot with the CLI's parser, each job on its own; show the
         first problem (reason first) on the validation line, mark each bad field on its
         tab, and dim the results whose inputs changed."""
-        from planar_tui.app.problems import status_line
-
         bar = getattr(self, "validation_line", None)
         if bar is None or not bar.is_attached:  # closing, or between two compositions
             return False
@@ -253,8 +261,6 @@ class WorkbenchApp(
 
     def mark_problems(self) -> None:
         """Mark the fields the problems name, on every tab (each tab marks its own)."""
-        from planar_tui.app.problems import locate, reason
-
         located = [
             (where, reason(error))
             for error in self.problems
@@ -272,8 +278,6 @@ class WorkbenchApp(
 
     async def goto_problem(self, error: PresetError) -> None:
         """Show the tab (and the job or robot) of ``error`` and focus its marked field."""
-        from planar_tui.app.problems import locate, reason
-
         where = locate(error, self.workbench.robot_kinds())
         pane = self.problem_pane(where) if where is not None else None
         if pane is None:
@@ -307,8 +311,6 @@ class WorkbenchApp(
         never while a job runs (:func:`planar_tui.app.warming.warm_in_background`); says
         so in two notifications, and stops within 0.05 s when the app closes."""
         from textual.worker import get_current_worker
-
-        from planar_tui.app.warming import preset_kinds, warm_in_background
 
         worker = get_current_worker()
         first = self.call_from_thread(preset_kinds, self)
@@ -347,8 +349,6 @@ class WorkbenchApp(
     def export_text(self) -> str:
         """The screen as plain text (for tests, docs and text screenshots), read back from
         Textual's public SVG screenshot (see :mod:`planar_tui.app.screen_text`)."""
-        from planar_tui.app.screen_text import svg_screen_text
-
         width, height = self.size
         return svg_screen_text(self.export_screenshot(), width, height)
 
@@ -396,7 +396,7 @@ class WorkbenchApp(
         self.refresh_bindings()
 
     async def action_pane_view(self, kind: str) -> None:
-        """``ctrl+t``: step the current tab's view (labelled per tab, :data:`VIEW_LABELS`)."""
+        """``ctrl+t``: step the current tab's view (labelled per tab, :func:`view_bindings`)."""
         await self.action_pane_action("toggle_view")
 
     async def action_pane_action(self, method: str) -> None:
@@ -407,7 +407,5 @@ class WorkbenchApp(
 
     def get_system_commands(self, screen: Screen) -> Iterable[SystemCommand]:
         """Textual's commands, then every action of the workbench by name (ctrl+p)."""
-        from planar_tui.app.palette import workbench_commands
-
         yield from super().get_system_commands(screen)
         yield from workbench_commands(self)

@@ -24,6 +24,7 @@ from typing import Any
 
 from planar_tui.app.runs import Run
 from planar_tui.csvio import CsvTable
+from planar_tui.figures.table import column, text_column
 
 #: Sensitivity rows are matched by these columns and compared on these.
 SENSITIVITY_KEYS = ("posture", "speed_rad_s", "torque", "parameter", "method")
@@ -160,8 +161,6 @@ def simulation_figures(
     both as curves (degrees)."""
     import numpy as np
 
-    from planar_tui.figures.table import column
-
     ta, tb = column(a, "t_s"), column(b, "t_s")
     common = (ta >= tb[0]) & (ta <= tb[-1]) if len(tb) else np.zeros_like(ta, dtype=bool)
     rows, series = [], []
@@ -210,8 +209,6 @@ def overlay_map(a: CsvTable, b: CsvTable, width: int = 60, height: int = 20) -> 
     ``#`` inside both, ``A`` or ``B`` inside one only, ``.`` boundary of either, blank
     outside both (a cell counts by its centre); ``y`` up."""
     import numpy as np
-
-    from planar_tui.figures.table import column, text_column
 
     def arrays(table: CsvTable) -> tuple[Any, ...]:
         """The box bounds, and the status as its code (the CSV's ``"inside"`` 2,

@@ -8,9 +8,16 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from planar_tui import batch
 from planar_tui.app.saving import existing_files
 from planar_tui.app.screens.dialogs import ConfirmDialog, MessageDialog, PathDialog
+from planar_tui.app.screens.sweep import SweepScreen
+from planar_tui.batch import plan_outputs
 from planar_tui.errors import OutputFailed, PresetError
+from planar_tui.figures import save_result_figure
+from planar_tui.plan import plan_run
+from planar_tui.provenance import sidecar_path
+from planar_tui.sweep.service import output_path, write_figure
 
 if TYPE_CHECKING:
     from planar_tui.app.widgets.panes import JobPane
@@ -28,15 +35,12 @@ class ExportActions:
     def action_export(self) -> None:
         """Write the result on screen into a folder, named as the CLI names it (on the
         sweep screen: the sweep CSV into a file)."""
-        from planar_tui.app.screens.sweep import SweepScreen
-
         if isinstance(self.screen, SweepScreen):
             self.screen.action_export()
             return
         if self.dialog_open():
             return
         from planar_tui.app.widgets.panes import JobPane
-        from planar_tui.batch import plan_outputs
 
         pane = self.current_pane()
         if not isinstance(pane, JobPane) or pane.result is None or pane.job is None:
@@ -54,8 +58,6 @@ class ExportActions:
 
     def confirm_export(self, pane: JobPane, out_dir: str | Path) -> None:
         """Export into ``out_dir``, asking first when files there would be overwritten."""
-        from planar_tui.plan import plan_run
-
         if pane.job is None:
             return
         try:
@@ -63,7 +65,6 @@ class ExportActions:
         except (PresetError, OSError, ValueError) as error:
             self.push_screen(MessageDialog("Not exported", str(error)))
             return
-        from planar_tui.provenance import sidecar_path
 
         tables = (plan.main, *plan.extras.values())
         existing = existing_files([*plan.paths(), *map(sidecar_path, tables)])
@@ -86,8 +87,6 @@ class ExportActions:
     def figure_path(self, pane: JobPane) -> Path:
         """Where the pane's figure goes: the job's ``plot`` key, else the CSV that Export
         would write into the output folder with the suffix ``.png`` (beside it)."""
-        from planar_tui.batch import plan_outputs
-
         (plan,) = plan_outputs([pane.job], self.output_dir)
         return plan.figure or plan.main.with_suffix(".png")
 
@@ -95,8 +94,6 @@ class ExportActions:
         """Where a sweep's figure goes: its ``plot`` key in the output folder (as
         ``planar-tui sweep --out-dir`` puts it), else the CSV the sweep screen exports by
         default with the suffix ``.png`` (beside it)."""
-        from planar_tui.sweep.service import output_path
-
         if run.sweep.plot is not None:
             return self.output_dir / run.sweep.plot
         return output_path(run.sweep, self.output_dir).with_suffix(".png")
@@ -105,11 +102,7 @@ class ExportActions:
         """Write the figure of the result on screen beside its CSV (``ctrl+l``; on the
         sweep screen, the sweep's figure), asking before it replaces a file; drawn in a
         thread (matplotlib, about a second)."""
-        from planar_tui.app.screens.sweep import SweepScreen
-
         if isinstance(self.screen, SweepScreen):
-            from planar_tui.sweep.service import write_figure
-
             run = self.screen.run
             self.confirm_figure(self.sweep_figure_path(run), lambda path: write_figure(run, path))
             return
@@ -124,8 +117,6 @@ class ExportActions:
         job, result = pane.job, pane.result
 
         def save(path: Path) -> Path:
-            from planar_tui.figures import save_result_figure
-
             return save_result_figure(job, result, path)
 
         self.confirm_figure(self.figure_path(pane), save)
@@ -149,8 +140,6 @@ class ExportActions:
     def write_figure(self, path: Path, save: Callable[[Path], Path]) -> None:
         """Draw and write a figure (``save(path)``) in a worker thread; notify the path,
         or show why it failed in a dialog (nothing written)."""
-        from planar_tui import batch
-
         try:
             batch.check_writable(path, "figure file")
         except PresetError as error:
@@ -177,11 +166,8 @@ class ExportActions:
         """Write the pane's result into ``out_dir`` exactly as ``planar-tui run --out-dir``
         does: the job's ``output`` CSV and the extra tables its preset names (a workspace's
         ``boxes_output``), through the batch service; nothing on an error (a dialog)."""
-        from planar_tui import batch
-
         if pane.job is None or pane.result is None:
             return []
-        from planar_tui.plan import plan_run
 
         try:
             (plan,) = plan_run([pane.job], Path(out_dir), prepare=False).jobs

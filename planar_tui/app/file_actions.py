@@ -25,11 +25,15 @@ from planar_tui.app.saving import (
     SaveFailed,
     check_target,
     default_save_path,
+    draft_text,
     existing_files,
     is_bundled,
     write_preset,
 )
 from planar_tui.app.screens.dialogs import ConfirmDialog, MessageDialog, PathDialog, UnsavedDialog
+from planar_tui.app.screens.picker import preset_picker
+from planar_tui.app.widgets.panes import JobPane
+from planar_tui.app.widgets.robot_pane import RobotPane
 from planar_tui.errors import PresetError
 
 if TYPE_CHECKING:
@@ -77,9 +81,6 @@ class FileActions:
     async def reload_panes(self, robot: bool = True) -> None:
         """Rebuild the tabs' forms from the document (results kept and drawn again; the
         focus stays on the field it was on)."""
-        from planar_tui.app.widgets.panes import JobPane
-        from planar_tui.app.widgets.robot_pane import RobotPane
-
         focused = self.focused
         where = [(p.id, focused.id) for p in focused.ancestors if p.id] if focused else []
         panes = list(self.query(JobPane)) + (list(self.query(RobotPane)) if robot else [])
@@ -171,8 +172,6 @@ class FileActions:
                 self.call_later(self.open_preset, answer)
 
         def ask_path() -> None:
-            from planar_tui.app.screens.picker import preset_picker
-
             self.push_screen(preset_picker(self.workbench.path), opened)
 
         self.unless_unsaved("opening another preset", ask_path)
@@ -257,7 +256,6 @@ class FileActions:
         """The preset is invalid: ask whether to save it as a draft anyway (the reason
         shown), then ``save(text)`` with the unvalidated text
         (:func:`~planar_tui.app.saving.draft_text`)."""
-        from planar_tui.app.saving import draft_text
 
         def answered(yes: bool | None) -> None:
             if not yes:

@@ -7,6 +7,9 @@ import time
 from collections.abc import Hashable, Mapping
 from typing import Any
 
+from planar_tui.registry import JOB_KINDS
+from planar_tui.schema import per_link_keys
+
 #: Edits of the same table within this many seconds of the last are one undo step
 #: (typing a number into a field is one step, not one per key).
 COALESCE_S = 1.5
@@ -61,9 +64,6 @@ def resize_per_link(table: dict[str, Any], kind: str, n: int) -> list[str]:
     """Resize the per-link arrays of a ``kind`` job table (the keys its settings declare
     per link, :func:`planar_tui.schema.per_link_keys`) to ``n`` links in place (new links
     get zeros); the keys changed."""
-    from planar_tui.registry import JOB_KINDS
-    from planar_tui.schema import per_link_keys
-
     changed = []
     for key, shape in per_link_keys(JOB_KINDS[kind].settings).items():
         value = table.get(key)

@@ -9,6 +9,7 @@ import time
 from pathlib import Path
 from typing import Any
 
+from planar_tui.app import recent
 from planar_tui.app.runs import RunHistory
 from planar_tui.errors import PresetError
 
@@ -69,8 +70,6 @@ class HistoryActions:
         """Open result CSVs into the history (``planar-tui tui --open``); the first that
         cannot be read is a :class:`PresetError` (one line, exit code 2, before the
         terminal is taken over)."""
-        from planar_tui.app import recent
-
         for path in paths:
             try:
                 self.run_history.add_csv(path)

@@ -19,8 +19,12 @@ from typing import TYPE_CHECKING, Any
 from textual.message import Message
 from textual.worker import get_current_worker
 
+from planar_tui.batch import JobFailed, run_plans
 from planar_tui.errors import Cancelled
+from planar_tui.optimise.run import run_optimisation
+from planar_tui.plan import plan_sweep
 from planar_tui.progress import Progress, ProgressState
+from planar_tui.sweep.service import SweepRun, run_sweep
 
 if TYPE_CHECKING:
     from textual.app import App
@@ -151,8 +155,6 @@ class JobRunner:
         import contextlib
         import dataclasses
 
-        from planar_tui.batch import run_plans
-
         finished = BatchFinished(pane, len(plans))
         numbers = {id(plan.job): n for n, plan in enumerate(plans, start=1)}
 
@@ -180,9 +182,6 @@ class JobRunner:
         are the sweep's validated points (made and checked in the thread when ``None``).
         Nothing is written (the sweep screen exports the CSV). A cancelled sweep's
         finished points are kept: ``finished.run`` is the partial run (``cancelled``)."""
-        from planar_tui.plan import plan_sweep
-        from planar_tui.sweep.service import SweepRun, run_sweep
-
         finished = SweepFinished(pane, sweep)
 
         def compute(stopping: Callable[[], bool]) -> None:
@@ -208,8 +207,6 @@ class JobRunner:
         process or on a local cluster of ``workers`` processes), posting
         :class:`GenerationDone` after each generation and :class:`OptimiseFinished` at the
         end. Nothing is written (the optimise screen exports the CSVs)."""
-        from planar_tui.optimise.run import run_optimisation
-
         finished = OptimiseFinished(pane, optimisation)
 
         def generation(run: Any) -> None:
@@ -240,8 +237,6 @@ class JobRunner:
         self._done.clear()
 
         def work() -> None:
-            from planar_tui.batch import JobFailed
-
             worker = get_current_worker()  # cancelled by Textual when the app closes
             started = time.perf_counter()
             try:

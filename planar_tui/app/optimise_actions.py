@@ -11,8 +11,12 @@ from typing import Any
 
 from planar_tui.app.job_runner import GenerationDone, OptimiseFinished
 from planar_tui.app.screens.dialogs import MessageDialog, PathDialog
+from planar_tui.app.screens.optimise import OptimiseScreen
 from planar_tui.app.widgets.panes import JobPane
+from planar_tui.batch import check_writable
 from planar_tui.errors import PresetError
+from planar_tui.optimise.spec import parse_optimisations
+from planar_tui.provenance import has_sidecar, sidecar_path, study_provenance, write_sidecar
 
 
 class OptimiseActions:
@@ -35,8 +39,6 @@ class OptimiseActions:
 
     def action_optimise(self) -> None:
         """Run the preset's optimisation of the current tab's job."""
-        from planar_tui.optimise.spec import parse_optimisations
-
         pane = self.idle_job_pane("An optimisation")
         if pane is None:
             return
@@ -62,8 +64,6 @@ class OptimiseActions:
 
     def on_generation_done(self, message: GenerationDone) -> None:
         """A generation is back: open the optimise screen on the first, update it after."""
-        from planar_tui.app.screens.optimise import OptimiseScreen
-
         first = self.last_optimisation is None
         self.last_optimisation = message.run
         if isinstance(self.screen, OptimiseScreen):
@@ -73,8 +73,6 @@ class OptimiseActions:
 
     def on_optimise_finished(self, message: OptimiseFinished) -> None:
         """The optimisation ended (or was cancelled, its evaluations kept): say so."""
-        from planar_tui.app.screens.optimise import OptimiseScreen
-
         self.refresh_bindings()
         if self.exit_if_quitting():
             return
@@ -109,8 +107,6 @@ class OptimiseActions:
 
     def action_show_optimisation(self) -> None:
         """Show the latest optimisation's evaluations and plot."""
-        from planar_tui.app.screens.optimise import OptimiseScreen
-
         if self.last_optimisation is None:
             self.notify("No optimisation has run yet (the palette's Run optimisation).")
             return
@@ -125,8 +121,6 @@ class OptimiseActions:
                 (path, run.table),
                 (path.with_name(f"{path.stem}-optimum.csv"), run.optimum_table),
             ]
-
-        from planar_tui.provenance import study_provenance
 
         self.export_tables(
             "Export the evaluations CSV to",
@@ -146,9 +140,7 @@ class OptimiseActions:
         ``(file, CsvTable)``, atomically, each with its provenance sidecar (``record``,
         :mod:`planar_tui.provenance`), every file checked first (a sweep's CSV, an
         optimisation's two)."""
-        from planar_tui.batch import check_writable
         from planar_tui.csvio import write_csv_atomic
-        from planar_tui.provenance import has_sidecar, sidecar_path, write_sidecar
 
         def chosen(answer: str | None) -> None:
             if not answer:

@@ -8,6 +8,8 @@ from typing import Any
 
 from textual.app import SystemCommand
 
+from planar_tui.registry import JOB_KINDS
+
 
 def workbench_commands(app: Any) -> Iterator[SystemCommand]:
     """The workbench's commands (after Textual's own: theme, keys, quit …)."""
@@ -79,8 +81,11 @@ def workbench_commands(app: Any) -> Iterator[SystemCommand]:
         "Robot tab: remove the last link (ctrl+r)",
         lambda: app.action_pane("robot.remove_link"),
     )
-    yield SystemCommand(
-        "Sensitivity view",
-        "Sensitivity tab: S1 / ST / percent / confidence (ctrl+t)",
-        lambda: app.action_pane("sensitivity.toggle_view"),
-    )
+    for title, name in app.tabs():
+        tab = JOB_KINDS[name].tab if name in JOB_KINDS else None
+        if tab is not None and tab.view:
+            yield SystemCommand(
+                f"{title} view",
+                f"{title} tab: {tab.view_help} (ctrl+t)",
+                lambda n=name: app.action_pane(f"{n}.toggle_view"),
+            )

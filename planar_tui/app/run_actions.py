@@ -7,11 +7,15 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from planar_tui import batch
 from planar_tui.app.job_runner import BatchFinished, BatchJobDone, JobFinished
 from planar_tui.app.messages import CancelRequested, RunRequested
+from planar_tui.app.problems import reason
 from planar_tui.app.screens.dialogs import MessageDialog, PathDialog
 from planar_tui.app.widgets.panes import JobPane
 from planar_tui.errors import PresetError
+from planar_tui.plan import plan_run
+from planar_tui.registry import JOB_KINDS
 
 
 class RunActions:
@@ -29,7 +33,9 @@ class RunActions:
     def run_pane_job(self, pane: Any) -> None:
         """Run the job of ``pane`` (a job tab) in the job runner."""
         if not isinstance(pane, JobPane) or not pane.available():
-            self.notify("This tab has no job to run: choose Sensitivity, Workspace or Simulate.")
+            first = [title for title, name in self.tabs() if name in JOB_KINDS][:3]
+            named = " or ".join((", ".join(first[:-1]), first[-1])) if len(first) > 1 else first[0]
+            self.notify(f"This tab has no job to run: choose {named}.")
             return
         if self.job_running:
             self.notify("A job is already running (escape cancels it).", severity="warning")
@@ -37,8 +43,6 @@ class RunActions:
         try:
             job = pane.current_job()  # this job alone: others' problems do not stop it
         except PresetError as error:
-            from planar_tui.app.problems import reason
-
             self.revalidate()
             self.notify(reason(error), title="Not run", severity="error")
             self.call_later(self.goto_problem, error)
@@ -52,16 +56,12 @@ class RunActions:
 
     def action_run_all(self) -> None:
         """Run every job of the preset in order into a folder, as ``planar-tui run``."""
-        from planar_tui import batch
-
         if self.job_running:
             self.notify("A job is already running (escape cancels it).", severity="warning")
             return
         try:
             jobs = self.workbench.validate().jobs
         except PresetError as error:
-            from planar_tui.app.problems import reason
-
             self.notify(reason(error), title="Not run", severity="error")
             self.call_later(self.goto_problem, error)
             return
@@ -81,8 +81,6 @@ class RunActions:
         """Run every job of the preset through the batch service into ``out_dir`` (files
         checked before the first job, each written when its job ends); ``False`` when the
         preset or a path is refused (a dialog says why)."""
-        from planar_tui.plan import plan_run
-
         try:
             jobs = self.workbench.validate().jobs
             plan = plan_run(jobs, Path(out_dir), prepare=False)  # each prepared as it runs

@@ -19,6 +19,8 @@ from pathlib import Path
 from typing import Any
 
 from planar_tui.csvio import CsvTable
+from planar_tui.figures.dispatch import recognise
+from planar_tui.figures.table import read_csv
 from planar_tui.provenance import Provenance, job_provenance, read_sidecar, study_provenance
 
 #: The job kind of each table kind :func:`planar_tui.figures.dispatch.recognise` names.
@@ -134,8 +136,6 @@ def table_kind(table: CsvTable) -> str | None:
     """The kind of a result table by its header (:func:`planar_tui.figures.dispatch.
     recognise`), as a job kind (:data:`TABLE_KINDS`), or ``"optimise"`` (``evaluation``
     first, ``status, message`` last); ``None`` if not recognised."""
-    from planar_tui.figures.dispatch import recognise
-
     found = recognise(table.header)
     if (
         found is None
@@ -218,8 +218,6 @@ class RunHistory:
         kind inferred from the header, and :data:`NO_SIDECAR` as its note);
         :class:`ValueError` (the message names the file) when it cannot be read or is no
         result planar-tui writes."""
-        from planar_tui.figures.table import read_csv
-
         path = Path(path)
         try:
             table = read_csv(path)

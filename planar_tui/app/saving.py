@@ -15,7 +15,10 @@ from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
+from planar_tui.batch import check_writable
 from planar_tui.errors import PresetError
+from planar_tui.preset_writer import dump_document
+from planar_tui.resources import bundled_presets_folder
 
 
 class SaveFailed(Exception):
@@ -24,8 +27,6 @@ class SaveFailed(Exception):
 
 def is_bundled(path: Path | str) -> bool:
     """Whether ``path`` is one of the presets bundled with planar-tui (read-only)."""
-    from planar_tui.resources import bundled_presets_folder
-
     folder = bundled_presets_folder().resolve()
     return Path(path).resolve().is_relative_to(folder)
 
@@ -105,7 +106,6 @@ def draft_text(document: Mapping[str, Any], original_text: str | None, descripti
     same one-line error the app showed."""
     if original_text is not None:
         return merge_document(original_text, document)
-    from planar_tui.preset_writer import dump_document
 
     return dump_document(document, description)
 
@@ -118,8 +118,6 @@ def existing_files(paths: Iterable[Path]) -> list[Path]:
 def check_target(path: Path) -> None:
     """Refuse a save target that cannot be written (:class:`SaveFailed`): a bundled
     preset, a folder, a path inside no writable folder."""
-    from planar_tui.batch import check_writable
-
     if is_bundled(path):
         raise SaveFailed(f"{path}: bundled presets are read-only (choose another path)")
     if path.is_dir():

@@ -7,8 +7,14 @@ from __future__ import annotations
 from typing import Any
 
 from planar_tui.app.job_runner import SweepFinished
+from planar_tui.app.problems import reason
 from planar_tui.app.screens.dialogs import MessageDialog
+from planar_tui.app.screens.sweep import SweepDialog, SweepScreen
 from planar_tui.errors import PresetError
+from planar_tui.provenance import study_provenance
+from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
+from planar_tui.sweep.paths import allowed_paths
+from planar_tui.sweep.spec import build_sweep, parse_sweeps
 
 
 class SweepActions:
@@ -20,11 +26,6 @@ class SweepActions:
     # -- sweeps ----------------------------------------------------------------------
     def action_sweep(self) -> None:
         """Run the current tab's job as a sweep: a dialog asks for the keys and values."""
-        from planar_tui.app.screens.sweep import SweepDialog
-        from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
-        from planar_tui.sweep.paths import allowed_paths
-        from planar_tui.sweep.spec import build_sweep, parse_sweeps
-
         pane = self.idle_job_pane("A sweep")  # OptimiseActions'
         if pane is None:
             return
@@ -32,8 +33,6 @@ class SweepActions:
             job = pane.current_job()
             preset = self.workbench.validate()
         except PresetError as error:
-            from planar_tui.app.problems import reason
-
             self.revalidate()
             self.notify(reason(error), title="No sweep: fix the preset first", severity="error")
             self.call_later(self.goto_problem, error)
@@ -103,8 +102,6 @@ class SweepActions:
 
     def action_show_sweep(self) -> None:
         """Show the latest sweep's table and plot."""
-        from planar_tui.app.screens.sweep import SweepScreen
-
         if self.last_sweep is None:
             self.notify("No sweep has run yet (F8 on a job tab starts one).")
             return
@@ -112,8 +109,6 @@ class SweepActions:
 
     def export_sweep(self, run: Any) -> None:
         """Ask for a file and write the sweep CSV there (atomically)."""
-        from planar_tui.provenance import study_provenance
-
         self.export_tables(
             "Export the sweep CSV to",
             self.output_dir / run.sweep.output,

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from planar_tui.csvio import CsvTable
+from planar_tui.preset_writer import format_value
 
 _RANGE = re.compile(
     r"^\s*(?P<lo>[-+]?[\d.]+(?:e[-+]?\d+)?)\s*\.\.\s*(?P<hi>[-+]?[\d.]+(?:e[-+]?\d+)?)"
@@ -65,8 +66,6 @@ def values_text(entry: Any) -> str:
     """A ``values`` entry as typed in the dialog: ``LO..HI xN`` for ``{from, to, count}``,
     else its items as comma-separated TOML values (``20, 30`` or ``[20, 70], [25, 65]``);
     :func:`parse_values` reads it back to the same entry."""
-    from planar_tui.preset_writer import format_value
-
     if isinstance(entry, dict):
         return f"{entry['from']}..{entry['to']} x{entry['count']}"
     return ", ".join(format_value(item) for item in entry)

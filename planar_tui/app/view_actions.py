@@ -18,6 +18,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from planar_tui.app import recent
 from planar_tui.app.settings import Settings, load_settings, save_settings, updated
 
 if TYPE_CHECKING:
@@ -189,8 +190,6 @@ class ViewActions:
     def remember_recent(self, kind: str, path: Path | str) -> None:
         """Put ``path`` first in the recent list ``kind``; a damaged state file set aside
         on the way is a warning (:func:`planar_tui.app.recent.remember`)."""
-        from planar_tui.app import recent
-
         note = recent.remember(kind, path)
         if note is not None:
             self.notify(note, title="Recent files", severity="warning", timeout=20)

@@ -16,6 +16,12 @@ import time
 from collections.abc import Callable, Sequence
 from typing import Any
 
+from planar_tui import warmup
+from planar_tui.errors import Cancelled
+from planar_tui.progress import Progress
+from planar_tui.registry import JOB_KINDS
+from planar_tui.runtime import prepare_kernels
+
 #: Seconds between two looks at whether the job that paused the warm-up has ended.
 PAUSE_POLL_S = 0.05
 
@@ -37,12 +43,6 @@ def warm_in_background(
     by unit in :func:`warm_order` of ``first_kinds``, waiting while ``job_running()``;
     ``notify`` says so at the start and at the end; returns within 0.05 s of
     ``cancelled()``."""
-    from planar_tui import warmup
-    from planar_tui.errors import Cancelled
-    from planar_tui.progress import Progress
-    from planar_tui.registry import JOB_KINDS
-    from planar_tui.runtime import prepare_kernels
-
     prepare_kernels()
     todo = warmup.missing(JOB_KINDS)
     if not todo:

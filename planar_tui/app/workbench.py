@@ -3,8 +3,9 @@
 The app never validates values itself: every edit lands in :attr:`Workbench.document`
 (plain TOML values) and :meth:`Workbench.validate` runs the whole document through
 :func:`planar_tui.presets.parse_preset`, the parser the CLI uses, so the messages are the
-CLI's. A tab whose kind the preset lacks shows :data:`DEFAULT_TABLES`; the table joins the
-document (and so the saved preset) only once it is edited or run.
+CLI's. A tab whose kind the preset lacks shows the table its kind declares
+(:func:`default_table`); the table joins the document (and so the saved preset) only once
+it is edited or run.
 """
 
 from __future__ import annotations
@@ -15,76 +16,37 @@ from pathlib import Path
 from typing import Any, TypeVar
 
 from planar_tui.app.history import EditHistory, link_count, resize_per_link
-from planar_tui.app.saving import draft_text, same_value
+from planar_tui.app.saving import draft_text, merge_document, same_value
 from planar_tui.errors import PresetError
+from planar_tui.preset_writer import dump_preset
 from planar_tui.presets import Job, Preset, parse_job, parse_preset, read_toml
-from planar_tui.resources import preset_description, resolve_preset
+from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
+from planar_tui.resources import bundled_presets, preset_description, resolve_preset
+from planar_tui.schema import per_link_keys
+from planar_tui.sweep.service import check_preset_sweeps
 
 T = TypeVar("T")
 
 #: The preset opened by ``planar-tui`` without an argument.
 DEFAULT_PRESET = "paper-a-table1"
 
-#: Tables shown by a tab when the open preset has none of its kind (small, quick jobs).
-DEFAULT_TABLES: dict[str, dict[str, Any]] = {
-    "robot": {
-        "name": "2R, paper A Table 3",
-        "gravity_m_s2": 9.81,
-        "lengths_m": [0.303, 0.214],
-        "masses_kg": [1.126, 0.796],
-        "inertias_kgm2": [0.129, 0.045],
-    },
-    "simulate": {
-        "duration_s": 1.0,
-        "step_s": 0.001,
-        "torques_Nm": [],
-        "every": 10,
-        "output": "app-simulate.csv",
-    },
-    "sensitivity": {
-        "posture": "singular",
-        "speed_rad_s": 1.0,
-        "tolerance_length_mm": 1.0,
-        "tolerance_mass_g": 1.0,
-        "methods": ["sobol", "efast"],
-        "samples": 1024,
-        "seed": 42,
-        "output": "app-sensitivity.csv",
-    },
-    "motion_uncertainty": {
-        "duration_s": 0.5,
-        "step_s": 0.001,
-        "tolerance_length_mm": 1.0,
-        "tolerance_mass_g": 10.0,
-        "methods": ["montecarlo", "sobol"],
-        "samples": 128,
-        "seed": 42,
-        "output": "app-motion.csv",
-    },
-    "robot3rrr": {
-        "base_side_cm": 120.0,
-        "platform_side_cm": 40.0,
-        "proximal_cm": 30.0,
-        "distal_cm": 30.0,
-    },
-    "workspace": {
-        "joint_limits_deg": [[20.0, 70.0], [110.0, 160.0], [245.0, 295.0]],
-        "orientation_deg": 0.0,
-        "precision_cm": 0.9375,
-        "form": "arc-distance",
-        "output": "app-workspace.csv",
-    },
-}
-
 
 def default_table(kind: str, n_links: int | None = None) -> dict[str, Any]:
-    """A copy of the default table of ``kind``; per-link arrays sized for ``n_links``."""
-    table = copy.deepcopy(DEFAULT_TABLES.get(kind, {}))
-    if kind == "simulate" and n_links is not None:
-        table["torques_Nm"] = [0.0] * n_links
-    if kind == "simulate" and not table.get("torques_Nm"):
-        table.pop("torques_Nm", None)
-    return table
+    """A copy of the table the kind declares for a tab when the preset has none of it
+    (:attr:`~planar_tui.jobkind.JobKind.app_default`,
+    :attr:`~planar_tui.jobkind.RobotKind.app_default`; empty for an unknown name), its
+    per-link arrays sized for ``n_links`` links and an empty one left out."""
+    if kind in JOB_KINDS:
+        table = copy.deepcopy(dict(JOB_KINDS[kind].app_default))
+        if n_links is not None:
+            resize_per_link(table, kind, n_links)
+        for key in per_link_keys(JOB_KINDS[kind].settings):
+            if table.get(key) == []:
+                del table[key]
+        return table
+    if kind in ROBOT_KINDS:
+        return copy.deepcopy(dict(ROBOT_KINDS[kind].app_default))
+    return {}
 
 
 class Workbench:
@@ -200,8 +162,6 @@ class Workbench:
         the document before is kept for undo. When the edit changes a serial robot's link
         count, the per-link arrays of the jobs using that robot are resized (see
         :meth:`resize_jobs`)."""
-        from planar_tui.registry import JOB_KINDS
-
         tables = self.tables(kind)
         before = tables[index] if index < len(tables) else None
         if before is None or not same_value(before, table):
@@ -240,8 +200,6 @@ class Workbench:
         """Resize the per-link arrays (``theta0_deg``, ``torques_Nm`` rows, a posture's
         angles …) of every job on the preset's ``[robot]`` to ``n_links`` (new links get
         zeros), noting which."""
-        from planar_tui.registry import JOB_KINDS
-
         changed = []
         for kind in JOB_KINDS:
             if JOB_KINDS[kind].robot_kind != "robot":
@@ -258,8 +216,6 @@ class Workbench:
 
     @staticmethod
     def robot_kinds() -> tuple[str, ...]:
-        from planar_tui.registry import ROBOT_KINDS
-
         return tuple(ROBOT_KINDS)
 
     # -- validation and jobs ----------------------------------------------------------
@@ -281,9 +237,6 @@ class Workbench:
         on its own, see :meth:`job`); a document whose jobs are valid has its sweeps checked
         as the CLI checks them (:func:`~planar_tui.sweep.service.check_preset_sweeps`). A
         valid document is parsed once."""
-        from planar_tui.registry import JOB_KINDS
-        from planar_tui.sweep.service import check_preset_sweeps
-
         try:
             preset = self.validate()
         except PresetError as error:
@@ -316,8 +269,6 @@ class Workbench:
     def display_name(self) -> str:
         """The preset as a person names it: a bundled preset by its name, a file under the
         current folder by its relative path, any other by its file name."""
-        from planar_tui.resources import bundled_presets
-
         if self.path.resolve() in {p.resolve() for p in bundled_presets()}:
             return self.path.stem
         try:
@@ -329,8 +280,6 @@ class Workbench:
     def robot_targets(self) -> list[tuple[str, str, int | None]]:
         """The robots the Robot tab can edit: ``(label, robot kind, None)`` for the preset's
         robots, then ``(label, kind, index)`` for each job that carries its own robot."""
-        from planar_tui.registry import JOB_KINDS
-
         targets: list[tuple[str, str, int | None]] = [("preset robots", "", None)]
         for kind in self.document:
             if kind not in JOB_KINDS:
@@ -345,14 +294,10 @@ class Workbench:
 
     def job_robot(self, kind: str, index: int) -> dict[str, Any]:
         """The own robot table of job ``index`` of ``kind`` (edited in place)."""
-        from planar_tui.registry import JOB_KINDS
-
         return self.tables(kind)[index][JOB_KINDS[kind].robot_kind]
 
     def set_job_robot(self, kind: str, index: int, robot: dict[str, Any]) -> None:
         """Replace the own robot table of job ``index`` of ``kind``."""
-        from planar_tui.registry import JOB_KINDS
-
         self.tables(kind)[index][JOB_KINDS[kind].robot_kind] = robot
 
     def job_labels(self, kind: str) -> list[str]:
@@ -381,9 +326,6 @@ class Workbench:
         """The validated document as TOML text: applied into the original file's text
         (comments, order and formatting kept, :func:`planar_tui.app.saving.merge_document`),
         or printed by :mod:`planar_tui.preset_writer` when there is none."""
-        from planar_tui.app.saving import merge_document
-        from planar_tui.preset_writer import dump_preset
-
         preset = self.validate()
         if self.original_text is None:
             return dump_preset(preset, self.description)
@@ -450,7 +392,6 @@ def repair_tables(document: dict[str, Any]) -> list[str]:
     table, an entry of an array of job tables, or a job's own robot table that is no table
     is replaced by an empty table. Returns one line per replacement, in the loader's words
     (``robot: is an integer (expected a table [robot])``)."""
-    from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
 
     def kind_of(value: Any) -> str:
         name = {bool: "a boolean", int: "an integer", float: "a number", str: "a text"}

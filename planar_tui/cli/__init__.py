@@ -41,6 +41,8 @@ from planar_tui.cli.output import (
     stdout,
 )
 from planar_tui.errors import ExitCode
+from planar_tui.registry import JOB_KINDS
+from planar_tui.runtime import configure_process
 
 __all__ = ["app", "build_app", "job_progress_display", "main", "progress_bar"]
 
@@ -95,8 +97,6 @@ def build_app(command: str | None = None) -> typer.Typer:
     own commands are left out, so that no job kind's module is imported for it (``run``
     loads only the kinds of the jobs it runs); any other value, or none, builds them all
     (the help lists them, a mistyped command is matched against them)."""
-    from planar_tui.registry import JOB_KINDS
-
     app = typer.Typer(
         name="planar-tui",
         cls=Group,
@@ -130,8 +130,6 @@ def main() -> None:
     """Run the CLI (called by :func:`planar_tui.entry.main`, the console script): Ctrl-C
     raises ``KeyboardInterrupt`` again (and is remembered, :data:`_INTERRUPTED`) and
     SIGTERM has its default action, except while jobs run (:func:`sigterm_as_interrupt`)."""
-    from planar_tui.runtime import configure_process
-
     try:
         sys.unraisablehook = output._unraisable
         signal.signal(signal.SIGINT, output._interrupt)

@@ -13,6 +13,7 @@ from typing import Annotated
 
 import typer
 
+from planar_tui.batch import check_writable
 from planar_tui.cli import interop
 from planar_tui.cli.kinds import JobOption, OutDirOption, PlotOption, PresetArg
 from planar_tui.cli.output import (
@@ -25,9 +26,19 @@ from planar_tui.cli.output import (
     said,
     stdout,
 )
+from planar_tui.cli.running import print_notes, run_jobs, run_optimisations, run_sweeps
 from planar_tui.cli.serve import AppPresetArg, OpenOption, serve
 from planar_tui.errors import PresetError
-from planar_tui.resources import bundled_presets, preset_description
+from planar_tui.figures import UnknownTable, figure_for_table, read_table
+from planar_tui.figures.canvas import display_notes, save
+from planar_tui.figures.dispatch import BOUNDED_FIGURES, is_same_file, recognise
+from planar_tui.overrides import select_jobs
+from planar_tui.plan import plan_run
+from planar_tui.presets import copy_bundled_preset
+from planar_tui.registry import JOB_KINDS
+from planar_tui.resources import bundled_preset, bundled_presets, preset_description
+from planar_tui.sweep.execute import scheduler_address
+from planar_tui.sweep.spec import check_has_work
 
 
 def open_app(preset_argument: str | None, opened: tuple[str, ...] = ()) -> None:
@@ -80,14 +91,7 @@ def run(
 ) -> None:
     """Run every job of every preset (or those --job names), files named as the presets
     say, then the presets' sweeps and optimisations (not with --job)."""
-    from planar_tui.cli.running import print_notes, run_jobs, run_optimisations, run_sweeps
-
     with reported_errors():
-        from planar_tui.overrides import select_jobs
-        from planar_tui.plan import plan_run
-        from planar_tui.sweep.execute import scheduler_address
-        from planar_tui.sweep.spec import check_has_work
-
         check_figure_option(plot)
         check_workers(workers)
         scheduler = scheduler_address(scheduler, workers)
@@ -131,15 +135,10 @@ def plot_csv(
     """Draw the figure of a result CSV (its kind recognised from its header), e.g. a
     cluster run's result, later, on a laptop."""
     with reported_errors():
-        from planar_tui.batch import check_writable
-
         check_figure_option(out, "--out")
         if result.is_dir():
             raise PresetError(result, "(file)", "is a folder", "a result CSV file")
         target = out if out is not None else result.with_suffix(".png")
-        from planar_tui.figures import UnknownTable, figure_for_table, read_table
-        from planar_tui.figures.canvas import display_notes, save
-        from planar_tui.figures.dispatch import is_same_file
 
         if is_same_file(result, target):
             raise PresetError(
@@ -158,7 +157,6 @@ def plot_csv(
                 result, "(file)", f"cannot be read: {error}", "a result CSV"
             ) from None
         check_writable(target, "figure file")
-        from planar_tui.figures.dispatch import BOUNDED_FIGURES, recognise
 
         slow = recognise(table.header) not in BOUNDED_FIGURES
         if slow and len(table.rows) > SLOW_FIGURE_ROWS:  # minutes to draw: say so first
@@ -217,12 +215,7 @@ def run_studies(
 ) -> None:
     """The ``sweep`` and ``optimise`` commands: the preset's ``[[table]]`` tables planned
     (refused, exit 2, when there is none) and run."""
-    from planar_tui.cli.running import print_notes, run_optimisations, run_sweeps
-
     with reported_errors():
-        from planar_tui.plan import plan_run
-        from planar_tui.sweep.execute import scheduler_address
-
         check_figure_option(plot)
         check_workers(workers)
         scheduler = scheduler_address(scheduler, workers)
@@ -254,7 +247,6 @@ def run_studies(
 def warmup() -> None:
     """Compile every job kind's kernels into the cache (for batch machines: later runs
     start without the first-run compilation)."""
-    from planar_tui.registry import JOB_KINDS
     from planar_tui.warmup import missing, warm_kernels_in_processes
 
     with reported_errors():
@@ -279,9 +271,6 @@ def list_presets(
     ] = None,
 ) -> None:
     """List the bundled presets, one line each; with NAME, print that preset."""
-    from planar_tui.presets import copy_bundled_preset
-    from planar_tui.resources import bundled_preset
-
     with reported_errors():
         if name is None:
             if copy is not None:

@@ -13,8 +13,9 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
+from planar_tui.batch import check_writable, numbered_path
 from planar_tui.cli.output import load_presets, reported_errors, stderr, stdout
-from planar_tui.errors import PresetError
+from planar_tui.errors import OutputFailed, PresetError
 
 if TYPE_CHECKING:
     from planar_tui.plan import RunPlan
@@ -56,7 +57,6 @@ def export_command(
             raise PresetError("command line", "--format", "missing", " or ".join(EXPORT_FORMATS))
         if out is None:
             raise PresetError("command line", "--out", "missing", "the file to write")
-        from planar_tui.batch import check_writable
         from planar_tui.interop import exchange
 
         closed = robot if robot in CLOSED_CHAIN_TABLES else None
@@ -83,7 +83,6 @@ def import_command(
 ) -> None:
     """Read a serial arm of revolute joints (URDF or MJCF) as a preset's robot table."""
     with reported_errors():
-        from planar_tui.batch import check_writable
         from planar_tui.interop.exchange import import_robot, write_preset
 
         imported, text = import_robot(source)
@@ -132,8 +131,6 @@ def job_exports(plan: RunPlan, given: Mapping[str, Any]) -> Callable[[Any, Any],
     """Check the export options against ``plan`` before anything runs (a file that would
     be replaced, an unknown format, a missing extra: :class:`PresetError`) and return what
     writes them after each job (``None`` when none was asked)."""
-    from planar_tui.batch import check_writable, numbered_path
-
     directory, format_name = given.get("export_problem"), given.get("format")
     if format_name is not None and format_name not in FORMATS:
         raise PresetError("command line", "--format", f"is {format_name!r}", " or ".join(FORMATS))
@@ -160,8 +157,6 @@ def job_exports(plan: RunPlan, given: Mapping[str, Any]) -> Callable[[Any, Any],
         targets[id(output.job)] = (folder, path)
 
     def write(job: Any, result: Any) -> None:
-        from planar_tui.errors import OutputFailed
-
         folder, path = targets[id(job)]
         try:
             if folder is not None:

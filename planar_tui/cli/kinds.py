@@ -13,8 +13,12 @@ import typer
 
 from planar_tui.cli.interop import KIND_OPTIONS, job_exports
 from planar_tui.cli.output import check_figure_option, load_presets, reported_errors
+from planar_tui.cli.running import run_jobs
 from planar_tui.errors import PresetError
 from planar_tui.jobkind import JobKind
+from planar_tui.overrides import apply_overrides, select_jobs
+from planar_tui.plan import plan_run
+from planar_tui.registry import JOB_KINDS
 
 PresetArg = Annotated[
     str, typer.Argument(help="Preset file, or a bundled preset name (see `planar-tui presets`).")
@@ -66,12 +70,7 @@ def run_kind(
     (``--job``); ``options`` are the command-line overrides by option name, applied and
     checked by :func:`planar_tui.overrides.apply_overrides`; ``exports`` the kind's
     interoperability options (:data:`planar_tui.cli.interop.KIND_OPTIONS`)."""
-    from planar_tui.cli.running import run_jobs
-
     with reported_errors():
-        from planar_tui.overrides import apply_overrides, select_jobs
-        from planar_tui.plan import plan_run
-
         check_figure_option(plot)
         (preset,) = load_presets([preset_argument])
         jobs = preset.jobs_of(kind)
@@ -83,7 +82,6 @@ def run_kind(
         if options:
             jobs = apply_overrides(jobs, options)
         plan = plan_run(jobs, out_dir, out=out, extra_out=extra_out, plot=plot)
-        from planar_tui.registry import JOB_KINDS
 
         command = JOB_KINDS[kind].command
         run_jobs(

@@ -25,10 +25,15 @@ try:  # Typer's private coercion API, used only with the Typer releases it was c
 except ImportError:
     install_common_values = None
 
+from planar_tui import provenance
 from planar_tui.cli.loglines import ProgressLog, clock_text, rate_of, rate_text, stage_title
 from planar_tui.errors import Cancelled, ExitCode, PresetError, Terminated
 from planar_tui.jobkind import resolve
-from planar_tui.progress import WAIT_FOR_THREAD
+from planar_tui.presets import load_preset
+from planar_tui.progress import WAIT_FOR_THREAD, Progress
+from planar_tui.resources import resolve_preset
+from planar_tui.schema import FIGURE_SUFFIXES, figure_suffix_problem
+from planar_tui.sweep.budget import check_workers as check
 
 if TYPE_CHECKING:
     from planar_tui.presets import Preset
@@ -147,8 +152,6 @@ class Group(_FlagsWithoutMetavar, TyperGroup):
     provenance sidecars (:data:`planar_tui.provenance.invoked`)."""
 
     def parse_args(self, ctx, args):
-        from planar_tui import provenance
-
         provenance.invoked = ["planar-tui", *args]
         return super().parse_args(ctx, args)
 
@@ -273,8 +276,6 @@ def reported_errors() -> Iterator[None]:
 
 def check_figure_option(path: Path | None, option: str = "--plot") -> None:
     """Refuse a figure path whose suffix names no format (:class:`PresetError`, exit 2)."""
-    from planar_tui.schema import FIGURE_SUFFIXES, figure_suffix_problem
-
     problem = None if path is None else figure_suffix_problem(str(path))
     if problem is not None:
         raise PresetError(
@@ -288,16 +289,11 @@ def check_figure_option(path: Path | None, option: str = "--plot") -> None:
 def check_workers(workers: int | None) -> None:
     """Refuse ``--workers`` out of range (:class:`PresetError`, exit 2), in one line as the
     job options' ranges are (checked here, not by Typer, whose usage box takes many lines)."""
-    from planar_tui.sweep.budget import check_workers as check
-
     check(workers)
 
 
 def load_presets(arguments: Sequence[str]) -> list[Preset]:
     """Resolve and validate every preset before anything runs."""
-    from planar_tui.presets import load_preset
-    from planar_tui.resources import resolve_preset
-
     return [load_preset(resolve_preset(argument)) for argument in arguments]
 
 
@@ -385,8 +381,6 @@ def progress_bar(bars, label: str, unit: str = ""):
     bracket)."""
     import time
 
-    from planar_tui.progress import Progress
-
     started = time.monotonic()
     task = bars.add_task(label, total=1.0, detail="", done_s=None, rate="", eta_s=None)
     warned = set()
@@ -429,8 +423,6 @@ def progress_display(label: str, unit: str = ""):
             yield progress
         return
     import time
-
-    from planar_tui.progress import Progress
 
     started = time.monotonic()
     with ProgressLog(label, said, unit) as log:

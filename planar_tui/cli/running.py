@@ -10,6 +10,7 @@ from contextlib import AbstractContextManager, ExitStack
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from planar_tui import batch
 from planar_tui.cli.output import (
     fail,
     progress_display,
@@ -18,6 +19,10 @@ from planar_tui.cli.output import (
     stdout,
 )
 from planar_tui.errors import Cancelled, ExitCode, OutputFailed, Terminated
+from planar_tui.optimise.run import run_optimisation
+from planar_tui.registry import JOB_KINDS
+from planar_tui.sweep.execute import DaskTarget, dask_client, default_workers
+from planar_tui.sweep.service import resume_note, run_sweep
 
 if TYPE_CHECKING:
     from planar_tui.jobkind import Job
@@ -59,9 +64,6 @@ def run_jobs(
     job_exports`)."""
     from rich.table import Table
     from rich.text import Text
-
-    from planar_tui import batch
-    from planar_tui.registry import JOB_KINDS
 
     def progress_for(job: Job) -> AbstractContextManager[Progress]:
         return progress_display(job.label)
@@ -120,12 +122,9 @@ def study_client(stack: ExitStack, wanted: bool, workers: int | None, scheduler:
     ``None`` when there are none (``wanted`` false) or they run in this process (one
     worker, no scheduler); else a local cluster of ``workers`` processes (default: the
     cores) or the scheduler at ``scheduler``."""
-    from planar_tui.sweep.execute import default_workers
-
     count = workers or default_workers()
     if not wanted or (scheduler is None and count <= 1):
         return None
-    from planar_tui.sweep.execute import DaskTarget, dask_client
 
     return stack.enter_context(dask_client(DaskTarget(count, scheduler), said))
 
@@ -137,8 +136,6 @@ def run_sweeps(plan: RunPlan, workers: int | None, scheduler: str | None) -> Non
     checkpoint is kept until all of them are done, then those of the sweeps whose CSV was
     written are deleted: Ctrl-C keeps them all, so ``--resume`` rebuilds the finished
     sweeps from theirs and computes only what is left."""
-    from planar_tui.sweep.service import resume_note, run_sweep
-
     failed = 0
     unwritten = 0
     done = []
@@ -207,8 +204,6 @@ def run_optimisations(plan: RunPlan, workers: int | None, scheduler: str | None)
     a failed one (the job broke) is counted too, the run goes on and its files are written,
     and the exit code is 1, as for a failed sweep point. Ctrl-C exits 130 with every
     finished evaluation in the checkpoint (``--resume``)."""
-    from planar_tui.optimise.run import run_optimisation
-
     unwritten = 0
     failed = 0
     try:

@@ -25,6 +25,7 @@ import typer
 
 from planar_tui.cli.output import fail, reported_errors, stderr
 from planar_tui.errors import ExitCode, PresetError
+from planar_tui.resources import resolve_preset
 
 
 def server_command(preset: str | None, opened: list[str]) -> str:
@@ -32,8 +33,6 @@ def server_command(preset: str | None, opened: list[str]) -> str:
     planar_tui.cli.served_app tui`` (the CLI with a watchdog), the preset (an absolute path, so the server's folder does not
     matter) and the ``--open`` results."""
     from pathlib import Path
-
-    from planar_tui.resources import resolve_preset
 
     words = [sys.executable, "-m", "planar_tui.cli.served_app", "tui"]
     if preset is not None:

@@ -16,6 +16,8 @@ import sys
 import threading
 import time
 
+from planar_tui.cli import main as cli_main
+
 #: Seconds between the checks of the parent process.
 WATCH_EVERY_S = 0.5
 
@@ -51,7 +53,6 @@ def main() -> None:
     if os.getppid() != parent_pid:  # the parent died before the request took effect
         os._exit(1)
     watch_parent(parent_pid)
-    from planar_tui.cli import main as cli_main
 
     cli_main()
 

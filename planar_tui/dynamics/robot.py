@@ -86,7 +86,16 @@ class SerialRobot:
 
 
 ROBOT_KIND = RobotKind(
-    "robot", SerialRobot, example="[robot]\nlengths_m = [0.3, 0.2]\nmasses_kg = [1.0, 0.8]\n"
+    "robot",
+    SerialRobot,
+    example="[robot]\nlengths_m = [0.3, 0.2]\nmasses_kg = [1.0, 0.8]\n",
+    app_default={
+        "name": "2R, paper A Table 3",
+        "gravity_m_s2": 9.81,
+        "lengths_m": [0.303, 0.214],
+        "masses_kg": [1.126, 0.796],
+        "inertias_kgm2": [0.129, 0.045],
+    },
 )
 
 

@@ -324,4 +324,11 @@ JOB_KIND = JobKind(
     warmup="[simulate]\nduration_s = 0.002\nstep_s = 0.001\n",
     figure_names=figure_names,
     estimate=estimate,
+    app_default={
+        "duration_s": 1.0,
+        "step_s": 0.001,
+        "torques_Nm": [],
+        "every": 10,
+        "output": "app-simulate.csv",
+    },
 )

@@ -15,7 +15,10 @@ from pathlib import Path
 from typing import Any
 
 from planar_tui.csvio import CsvTable
+from planar_tui.figures.canvas import DPI, save
+from planar_tui.figures.table import read_csv
 from planar_tui.jobkind import resolve
+from planar_tui.registry import JOB_KINDS
 
 #: (kind, module, recogniser, drawing function), tried in order: a sweep's table also holds
 #: its kind's summary columns, so it comes first.
@@ -84,8 +87,6 @@ def figure_for_table(table: CsvTable, title: str = "") -> Any:
 def figure_problem(kind: str) -> str | None:
     """Why a job of ``kind`` cannot have a figure (its kind names no figure function), or
     ``None``. Imports no matplotlib."""
-    from planar_tui.registry import JOB_KINDS
-
     declared = JOB_KINDS.get(kind)
     if declared is not None and declared.figure is not None:
         return None
@@ -95,8 +96,6 @@ def figure_problem(kind: str) -> str | None:
 def figure_for_result(job: Any, result: Any) -> Any:
     """The figure of a finished job, drawn by the function its job kind names
     (:attr:`~planar_tui.jobkind.JobKind.figure`); ``ValueError`` for a kind without one."""
-    from planar_tui.registry import JOB_KINDS
-
     problem = figure_problem(job.kind)
     if problem is not None:
         raise ValueError(problem)
@@ -110,8 +109,6 @@ def from_main_table(job: Any, result: Any) -> Any:
 
 
 def _saved(figure: Any, path: Path | str, dpi: float | None) -> Path:
-    from planar_tui.figures.canvas import DPI, save
-
     try:
         return save(figure, path, dpi=dpi or DPI)
     finally:
@@ -145,8 +142,6 @@ def is_same_file(first: Path | str, second: Path | str) -> bool:
 
 def read_table(path: Path | str) -> CsvTable:
     """A result CSV read back (see :func:`planar_tui.figures.table.read_csv`)."""
-    from planar_tui.figures.table import read_csv
-
     return read_csv(path)
 
 

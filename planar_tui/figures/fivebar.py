@@ -1,8 +1,7 @@
 """Figure of a five-bar workspace: the kept boxes (inside / boundary), the singular leaves
 and the singularity-free circle (:func:`planar_tui.figures.workspace.draw`), the exact
-boundary (:func:`planar_tui.workspace.fivebar.robot.workspace_polygon`, inner polygon) and the
-robot at a pose inside (legs ``A_i B_i P`` in the working mode, or the first branch
-within the limits)."""
+boundary (its mechanism's inner polygon) and the robot at a pose inside (legs
+``A_i B_i P`` in the working mode, or the first branch within the limits)."""
 
 from __future__ import annotations
 
@@ -10,27 +9,19 @@ import math
 from typing import Any
 
 from planar_tui.figures.workspace import BOUNDARY_SEGMENTS, _polygon_rings, draw, draw_tolerance
+from planar_tui.workspace.paving.result import map_title
 
 
-def draw_fivebar(ax: Any, robot: Any, point: tuple[float, float]) -> bool:
-    """The legs ``A_i, B_i, P`` at ``point`` (False, nothing drawn, if out of reach)."""
-    from planar_tui.workspace.fivebar.robot import leg_angles
-
+def draw_fivebar(ax: Any, job: Any, point: tuple[float, float]) -> bool:
+    """The legs ``A_i, B_i, P`` at ``point`` in the robot's working mode (its mechanism's
+    :meth:`~planar_tui.workspace.paving.mechanism.Mechanism.leg_poses`; False, nothing
+    drawn, if a leg is out of reach or limits)."""
+    robot = job.robot
+    legs = job.spec.mechanism.leg_poses(robot, job.spec, point)
+    if any(leg is None for leg in legs):
+        return False
     joints = []
-    for a, l1, angles, sign, (lo, hi) in zip(
-        robot.base_joints_cm(),
-        robot.proximal_cm,
-        leg_angles(robot, point),
-        robot.elbows,
-        robot.limits_rad,
-        strict=True,
-    ):
-        if angles is None:
-            return False
-        inside = [s for s in (1, -1) if (angles[s] - lo) % (2 * math.pi) <= hi - lo + 1e-9]
-        if not inside or (sign and sign not in inside):
-            return False
-        theta = angles[sign or inside[0]]
+    for a, l1, (theta, _) in zip(robot.base_joints_cm(), robot.proximal_cm, legs, strict=True):
         joints.append((a, (a[0] + l1 * math.cos(theta), a[1] + l1 * math.sin(theta))))
     for a, b in joints:
         ax.plot(
@@ -46,18 +37,22 @@ def draw_fivebar(ax: Any, robot: Any, point: tuple[float, float]) -> bool:
     return True
 
 
+def exact_polygon(job: Any) -> Any:
+    """The exact workspace's inner polygon (its mechanism's
+    :meth:`~planar_tui.workspace.paving.mechanism.Mechanism.polygon`)."""
+    return job.spec.mechanism.polygon(job.robot, job.spec, BOUNDARY_SEGMENTS, False)
+
+
 def from_result(job: Any, result: Any) -> Any:
     """The figure of a finished ``[[workspace5r]]`` job (with a tolerance, the overlaid
     workspaces of :func:`~planar_tui.figures.workspace.draw_tolerance`)."""
     import numpy as np
 
-    from planar_tui.workspace.fivebar.robot import workspace_polygon
     from planar_tui.workspace.paving.levels import INSIDE
-    from planar_tui.workspace.paving.result import map_title
 
     outcome = result.outcome
     if getattr(result, "companions", None):
-        return draw_tolerance(job, result, workspace_polygon(job.robot, BOUNDARY_SEGMENTS, False))
+        return draw_tolerance(job, result, exact_polygon(job))
     boxes = np.asarray(outcome.boxes)[:, :4] if len(outcome.boxes) else np.zeros((0, 4))
     singular = result.singularity
     if singular is not None and singular.centre_cm is None:
@@ -79,7 +74,7 @@ def from_result(job: Any, result: Any) -> Any:
             color="#c0392b",
             gid="singular",
         )
-    polygon = workspace_polygon(job.robot, BOUNDARY_SEGMENTS, False)
+    polygon = exact_polygon(job)
     for k, ring in enumerate(_polygon_rings(polygon)):
         ax.plot(
             ring[:, 0],
@@ -91,5 +86,5 @@ def from_result(job: Any, result: Any) -> Any:
         )
     if not polygon.is_empty:
         inner = polygon.representative_point()
-        draw_fivebar(ax, job.robot, (inner.x, inner.y))
+        draw_fivebar(ax, job, (inner.x, inner.y))
     return fig

@@ -20,6 +20,7 @@ from typing import Any
 
 from planar_tui.csvio import CsvTable
 from planar_tui.dynamics.simulate import energy_drift_J
+from planar_tui.figures.arm import draw_arm, joint_points_m
 from planar_tui.figures.canvas import colour, new_figure
 from planar_tui.figures.table import column, has_columns, numbered
 
@@ -82,8 +83,6 @@ def draw(table: CsvTable, title: str, lengths_m: Any = None, torques_Nm: Any = N
 def _tip_panel(ax: Any, lengths_m: Any, t: Any, theta: Any) -> None:
     """The tip's path in the plane and the arm at :data:`ARM_POSES` evenly spaced rows."""
     import numpy as np
-
-    from planar_tui.figures.arm import draw_arm, joint_points_m
 
     points = joint_points_m(lengths_m, theta)
     ax.plot(points[:, -1, 0], points[:, -1, 1], color="k", lw=1.2, label="tip path", gid="tip")

@@ -43,6 +43,7 @@ from typing import Any
 from planar_tui.csvio import CsvTable
 from planar_tui.figures.canvas import colour, new_figure
 from planar_tui.figures.table import column, text_column
+from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
 
 #: Most figures drawn (the first ones in column order).
 MOST_PANELS = 9
@@ -54,8 +55,6 @@ def matches(header: tuple[str, ...]) -> bool:
 
 
 def _key_names() -> set[str]:
-    from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
-
     names = {key for kind in JOB_KINDS.values() for key in kind.keys}
     return names | {f"{r}.{key}" for r, kind in ROBOT_KINDS.items() for key in kind.keys}
 

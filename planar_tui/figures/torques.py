@@ -8,6 +8,7 @@ from __future__ import annotations
 from typing import Any
 
 from planar_tui.csvio import CsvTable
+from planar_tui.figures.arm import draw_arm, joint_points_m
 from planar_tui.figures.canvas import colour, new_figure
 from planar_tui.figures.table import column, has_columns, numbered
 
@@ -43,8 +44,6 @@ def draw(table: CsvTable, title: str, lengths_m: Any = None) -> Any:
     ax.legend(fontsize="small", ncols=2 if n > 3 else 1)
     ax.grid(axis="y", alpha=0.3)
     if with_arm:
-        from planar_tui.figures.arm import draw_arm, joint_points_m
-
         arm = fig.add_subplot(grid[0, 1])
         theta = np.column_stack([column(table, name) for name in numbered(header, "theta", "_rad")])
         points = joint_points_m(np.asarray(lengths_m), theta)

@@ -19,8 +19,9 @@ import math
 from typing import Any
 
 from planar_tui.csvio import CsvTable
-from planar_tui.figures.canvas import new_figure
+from planar_tui.figures.canvas import DISPLAY_NOTE, new_figure
 from planar_tui.figures.table import column, has_columns, text_column
+from planar_tui.workspace.paving.result import map_title
 
 BOXES = ("x_lo_cm", "x_hi_cm", "y_lo_cm", "y_hi_cm", "status")
 SUMMARY = ("form", "precision_cm", "area_kept_cm2", "area_inside_cm2")
@@ -101,8 +102,6 @@ def draw_boxes(ax: Any, boxes: Any, inside: Any) -> None:
     (:data:`~planar_tui.figures.canvas.DISPLAY_NOTE`)."""
     import numpy as np
     from matplotlib.collections import PolyCollection
-
-    from planar_tui.figures.canvas import DISPLAY_NOTE
 
     if len(boxes) > MAX_DRAWN_BOXES:
         note = box_image(ax, boxes, inside)
@@ -357,7 +356,6 @@ def from_result(job: Any, result: Any) -> Any:
     import numpy as np
 
     from planar_tui.workspace.paving.levels import INSIDE
-    from planar_tui.workspace.paving.result import map_title
 
     outcome = result.outcome
     if outcome is None:
@@ -398,7 +396,6 @@ def draw_tolerance(job: Any, result: Any, exact: Any = None) -> Any:
     from matplotlib.collections import PolyCollection
 
     from planar_tui.workspace.paving.levels import INSIDE
-    from planar_tui.workspace.paving.result import map_title
 
     outcomes = {job.spec.tolerance_mode: result.outcome, **result.companions}
     fig = new_figure(9.0, 5.5)
@@ -451,7 +448,6 @@ def from_planar_result(job: Any, result: Any) -> Any:
     import numpy as np
 
     from planar_tui.workspace.paving.levels import INSIDE
-    from planar_tui.workspace.paving.result import map_title
 
     outcome = result.outcome
     boxes = np.asarray(outcome.boxes)[:, :4] if len(outcome.boxes) else np.zeros((0, 4))

@@ -88,9 +88,25 @@ JOB_KIND = JobKind(
             Option("--device", "device", "cpu, cuda or auto; overrides `device`."),
         ),
     ),
-    tab=Tab("Motion", 5, "planar_tui.app.widgets.motion_pane:MotionPane"),
+    tab=Tab(
+        "Motion",
+        5,
+        "planar_tui.app.widgets.motion_pane:MotionPane",
+        view="Output",
+        view_help="the next output (θ1…θn, tip x, tip y)",
+    ),
     figure="planar_tui.figures.dispatch:from_main_table",
     warmup="[motion_uncertainty]\nduration_s = 0.002\nstep_s = 0.001\nsamples = 128\n"
     'methods = ["montecarlo", "sobol", "efast"]\n',
     estimate=lambda job: resource_estimate(job.spec, job.robot),
+    app_default={
+        "duration_s": 0.5,
+        "step_s": 0.001,
+        "tolerance_length_mm": 1.0,
+        "tolerance_mass_g": 10.0,
+        "methods": ["montecarlo", "sobol"],
+        "samples": 128,
+        "seed": 42,
+        "output": "app-motion.csv",
+    },
 )

@@ -20,6 +20,7 @@ from planar_tui.optimise.problem import Optimisation
 from planar_tui.optimise.spec import corner_designs
 from planar_tui.registry import JOB_KINDS
 from planar_tui.sweep.budget import SweepEstimate, check_needs, check_workers
+from planar_tui.sweep.points import make_point
 
 
 def reruns(opt: Optimisation) -> int:
@@ -30,8 +31,6 @@ def reruns(opt: Optimisation) -> int:
 def estimate_optimisation(opt: Optimisation) -> SweepEstimate | None:
     """The optimisation's rough needs (module docstring), or ``None`` when its job kind
     gives no estimate."""
-    from planar_tui.sweep.points import make_point
-
     estimate = JOB_KINDS[opt.job.kind].estimate
     if estimate is None:
         return None

@@ -22,6 +22,8 @@ from typing import TYPE_CHECKING, Any
 
 from planar_tui.csvio import write_csv_atomic
 from planar_tui.errors import OutputFailed, PresetError, writing
+from planar_tui.figures.canvas import save
+from planar_tui.figures.optimise import draw
 from planar_tui.optimise.evaluations import (
     Evaluation,
     OptimiseRun,
@@ -32,6 +34,10 @@ from planar_tui.optimise.evaluations import (
 from planar_tui.optimise.problem import Optimisation
 from planar_tui.progress import Progress
 from planar_tui.provenance import planned_sidecar, study_provenance, write_sidecar
+from planar_tui.registry import JOB_KINDS
+from planar_tui.sweep import execute
+from planar_tui.sweep.checkpoint import checkpoint_path
+from planar_tui.sweep.points import make_point
 from planar_tui.sweep.worker import INFEASIBLE, OK, PointOutcome, PointTask
 
 if TYPE_CHECKING:
@@ -80,7 +86,6 @@ def output_path(opt: Optimisation, out_dir: Path) -> Path:
 def planned_files(opt: Optimisation, out_dir: Path) -> list[PlannedFile]:
     """Every file the optimisation writes (for :func:`planar_tui.batch.check_planned`)."""
     from planar_tui.batch import PlannedFile
-    from planar_tui.sweep.checkpoint import checkpoint_path
 
     output = output_path(opt, out_dir)
     files = [
@@ -100,8 +105,6 @@ def _task_or_failure(
     """The task of one design, or its infeasible outcome when its job cannot be made (a
     value the job refuses: the evaluation is infeasible, the optimisation goes on; a job
     that refuses it only while running says so likewise, ``refused``)."""
-    from planar_tui.sweep.points import make_point
-
     try:
         point = make_point(opt.sweep(coarse), number, opt.point_values(values, coarse))
     except PresetError as error:
@@ -132,7 +135,6 @@ def run_optimisation(
     (:class:`~planar_tui.errors.Cancelled`, ``KeyboardInterrupt``) with the checkpoint
     kept. ``on_generation`` sees the run after each generation (the app's screen); a
     cancelled run is handed to it once more, ``cancelled``, before the cancel propagates."""
-    from planar_tui.sweep import execute
     from planar_tui.warmup import warm_kernels
 
     progress = progress or Progress()
@@ -275,8 +277,6 @@ def _tell(opt: Optimisation, algorithm: Any, population: Any, generation: list[E
 def _columns_of(opt: Optimisation) -> Callable[[int], tuple[str, ...] | None]:
     """The figures a resumed evaluation's record must hold: the job's columns, where its
     kind names them without running (else ``None``: any)."""
-    from planar_tui.registry import JOB_KINDS
-
     names = JOB_KINDS[opt.job.kind].figure_names
     columns = None if names is None else tuple(names(opt.job))
     return lambda number: columns
@@ -323,8 +323,5 @@ def _detail(run: OptimiseRun, done: int) -> str:
 def write_figure(run: OptimiseRun, path: Path) -> Path:
     """The convergence (one objective) or front (two or more: the first two) figure
     (:mod:`planar_tui.figures.optimise`), written atomically."""
-    from planar_tui.figures.canvas import save
-    from planar_tui.figures.optimise import draw
-
     with writing(path):
         return save(draw(figure_data(run)), path)

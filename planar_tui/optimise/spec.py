@@ -36,6 +36,7 @@ from planar_tui.schema import (
     type_name,
 )
 from planar_tui.sweep.paths import KeyPath, overlap_problem
+from planar_tui.sweep.points import make_point
 from planar_tui.sweep.spec import (
     job_context,
     plain_toml,
@@ -364,8 +365,6 @@ def _check_corners(optimisation: Optimisation) -> None:
     """Refuse, before anything runs, variables or coarse settings no design could take:
     the designs at the variables' lower ends, upper ends and middles are parsed like
     preset jobs (with the coarse settings, and without: the certified re-run)."""
-    from planar_tui.sweep.points import make_point
-
     for coarse in (True, False):
         sweep = optimisation.sweep(coarse)
         for number, values in enumerate(corner_designs(optimisation), start=1):

@@ -29,6 +29,7 @@ from planar_tui.limits import (
     size_text,
 )
 from planar_tui.registry import JOB_KINDS
+from planar_tui.sweep.execute import default_workers, scheduler_timeout_s
 from planar_tui.sweep.points import Point
 from planar_tui.sweep.spec import Sweep
 
@@ -44,8 +45,6 @@ ESTIMATE_POINTS = 64
 
 def usable_cores() -> int:
     """The machine's cores available to this process."""
-    from planar_tui.sweep.execute import default_workers
-
     return default_workers()
 
 
@@ -113,8 +112,6 @@ def check_sweep_budget(
     (:class:`PresetError`, exit code 2, one line with the estimate)."""
     check_workers(workers)
     if scheduler is not None:
-        from planar_tui.sweep.execute import scheduler_timeout_s
-
         scheduler_timeout_s()  # a bad PLANAR_TUI_SCHEDULER_TIMEOUT_S refused now
     for sweep, points in prepared:
         check_needs(

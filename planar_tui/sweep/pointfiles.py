@@ -26,6 +26,7 @@ import re
 from pathlib import Path
 from typing import Any
 
+from planar_tui.csvio import write_atomic
 from planar_tui.errors import PresetError, writing
 from planar_tui.provenance import has_sidecar, sidecar_path, write_sidecar
 
@@ -154,8 +155,6 @@ def write_point_file(
     """Write one point CSV ``text`` at ``path`` and its sidecar ``provenance`` (a
     :class:`~planar_tui.provenance.Provenance`), each atomically and recorded first; a
     file that cannot be written is :class:`~planar_tui.errors.OutputFailed`."""
-    from planar_tui.csvio import write_atomic
-
     with writing(path):
         if record is not None:
             for name in with_sidecars([path.name]):

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any
 
 from planar_tui.csvio import CsvTable, write_csv_atomic
 from planar_tui.errors import OutputFailed, PresetError, writing
+from planar_tui.figures.sweep import split_columns
 from planar_tui.progress import Progress
 from planar_tui.provenance import (
     planned_sidecar,
@@ -24,6 +25,9 @@ from planar_tui.provenance import (
     study_provenance,
     write_sidecar,
 )
+from planar_tui.registry import JOB_KINDS
+from planar_tui.sweep import execute
+from planar_tui.sweep.budget import check_sweep_budget
 from planar_tui.sweep.checkpoint import CheckpointWriter, checkpoint_path, read_finished
 from planar_tui.sweep.pointfiles import (
     PointFileRecord,
@@ -33,7 +37,7 @@ from planar_tui.sweep.pointfiles import (
     write_point_file,
 )
 from planar_tui.sweep.points import Point, SweepPoints, make_points
-from planar_tui.sweep.spec import Sweep
+from planar_tui.sweep.spec import Sweep, parse_sweeps
 from planar_tui.sweep.table import sweep_table
 from planar_tui.sweep.worker import (
     CANCELLED,
@@ -166,8 +170,6 @@ def figure_problem(sweep: Sweep, points: Sequence[Point]) -> str | None:
     """Why the sweep's figure cannot be drawn whatever the points compute (no varied key
     column, by :func:`planar_tui.figures.sweep.split_columns` on the key columns), or
     ``None``."""
-    from planar_tui.figures.sweep import split_columns
-
     paths = [path.text for path in sweep.paths]
     keys = CsvTable(
         ("point", *paths, "status"),
@@ -187,8 +189,6 @@ def figure_problem(sweep: Sweep, points: Sequence[Point]) -> str | None:
 def check_figure(sweep: Sweep, points: Sequence[Point]) -> None:
     """Refuse, before anything runs, a ``plot`` the sweep's figure cannot draw
     (:func:`figure_problem`; :class:`~planar_tui.errors.PresetError`, exit code 2)."""
-    from planar_tui.errors import PresetError
-
     problem = None if sweep.plot is None else figure_problem(sweep, points)
     if problem is not None:
         raise PresetError(
@@ -233,7 +233,6 @@ def run_sweep(
     :class:`~planar_tui.errors.OutputFailed` (the checkpoint stays); a figure that cannot be
     written is ``run.figure_error`` (the CSV is written).
     """
-    from planar_tui.sweep import execute
     from planar_tui.warmup import warm_kernels
 
     started_s = time.time()
@@ -336,8 +335,6 @@ def _open_checkpoint(
     is not resumed, nor one whose point files in ``folder`` are missing: it runs again),
     and the record of the point files (``folder`` checked; afresh: the files this sweep
     wrote before go, and only those)."""
-    from planar_tui.registry import JOB_KINDS
-
     sweep, points, total = run.sweep, run.points, len(run.points)
     checkpoint = checkpoint_path(output)
     finished = {}
@@ -412,9 +409,6 @@ def check_preset_sweeps(preset: Any) -> None:
     sweeps' workers, memory and time within the limits with the default workers
     (:func:`~planar_tui.sweep.budget.check_sweep_budget`); :class:`PresetError` otherwise.
     The app checks a document with it, so it says "ok" only for what the CLI runs."""
-    from planar_tui.sweep.budget import check_sweep_budget
-    from planar_tui.sweep.spec import parse_sweeps
-
     prepared = [(sweep, make_points(sweep)) for sweep in parse_sweeps(preset)]
     for sweep, points in prepared:
         check_figure(sweep, points)

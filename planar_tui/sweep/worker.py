@@ -13,8 +13,12 @@ import time
 from dataclasses import dataclass, field
 from typing import Any
 
+from planar_tui import batch
+from planar_tui.errors import Cancelled, PresetError
 from planar_tui.jobkind import Job
 from planar_tui.progress import Progress
+from planar_tui.registry import JOB_KINDS
+from planar_tui.runtime import configure_process, prepare_kernels
 
 OK = "ok"
 FAILED = "failed"
@@ -73,8 +77,6 @@ def _csv_text(table) -> str:
 def point_file_names(stem: str, job: Job) -> list[str]:
     """The CSV files a finished ``ok`` point of ``job`` writes with ``point_outputs``:
     ``stem.csv``, then ``stem-TABLE.csv`` for each of its kind's extra tables."""
-    from planar_tui.registry import JOB_KINDS
-
     extras = JOB_KINDS[job.kind].extra_outputs(job)
     return [f"{stem}.csv", *(f"{stem}-{name}.csv" for name in extras)]
 
@@ -84,11 +86,6 @@ def run_point(task: PointTask, progress: Progress | None = None) -> PointOutcome
     no isotropic posture, a diverged result, an unexpected error) becomes a ``failed``
     outcome with a one-line message (values the job refuses: ``task.refused``). Only a
     cancel (:class:`Cancelled`, Ctrl-C) escapes."""
-    from planar_tui import batch
-    from planar_tui.errors import Cancelled, PresetError
-    from planar_tui.registry import JOB_KINDS
-    from planar_tui.runtime import configure_process
-
     configure_process()
     started = time.perf_counter()
     job = task.job
@@ -123,7 +120,6 @@ def warm_worker(kind: str) -> None:
     """Load what a point of job kind ``kind`` needs in a worker process (the package, the
     kernels from the shared cache, by a tiny example job) before the first point: a
     start-up cost a benchmark keeps out of the points' timings."""
-    from planar_tui.runtime import configure_process, prepare_kernels
     from planar_tui.warmup import _run_example
 
     configure_process()

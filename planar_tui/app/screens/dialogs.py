@@ -139,7 +139,8 @@ Every action is also in the palette (ctrl+p). Fields take TOML values
 gets a red border and its reason under it (▲). Arrows and page keys
 scroll the focused area; Tab and shift+Tab move the focus."""
 
-#: A longer line for some actions (the others show their binding's description).
+#: A longer line for some actions (the others show their binding's tooltip, else its
+#: description).
 HELP_DETAILS = {
     "quit": "quit (asks about unsaved edits or a running job; q outside fields)",
     "help": "this help (? outside fields)",
@@ -163,8 +164,6 @@ HELP_DETAILS = {
     "toggle_form": "hide / show the settings form (room for the results; remembered)",
     "pane_action('add_link')": "Robot tab: add a link (a copy of the last one)",
     "pane_action('remove_link')": "Robot tab: remove the last link",
-    "pane_view('sensitivity')": "Sensitivity tab: percent / S1 / ST / ± half-width",
-    "pane_view('motion_uncertainty')": "Motion tab: the next output (θ1…θn, tip x, tip y)",
     "goto_problem": "go to the first error (switches tab, job and robot)",
     "figure": "write the result's figure (PNG, or its plot key) beside the CSV export wrote last",
     "maximise": "maximise the focused plot or table, else the results; again or escape restores",
@@ -221,7 +220,9 @@ def help_text(sources: list[tuple[str, list[Binding]]]) -> str:
             base = action.split("(", 1)[0]
             group = base if base in ("digit_tab", "show_tab_number") else action
             rows.setdefault(group, []).extend(key_label(k) for k in binding.key.split(","))
-            described.setdefault(group, HELP_DETAILS.get(group, binding.description))
+            described.setdefault(
+                group, HELP_DETAILS.get(group, binding.tooltip or binding.description)
+            )
         if where:
             lines.append(f"{where}:")
         for group, keys in rows.items():

@@ -18,8 +18,10 @@ from textual.containers import VerticalScroll
 from textual.screen import Screen
 from textual.widgets import DataTable, Footer, Static
 
+from planar_tui.app import recent
 from planar_tui.app.compare import Comparison, compare_runs, series_glyphs, series_legend
 from planar_tui.app.runs import Run, RunHistory
+from planar_tui.app.screens.picker import result_picker
 
 #: The history table's columns after the mark, number, kind and label.
 HEADLINE = ("time", "seed", "N", "form", "ε (cm)", "preset")
@@ -139,8 +141,6 @@ class HistoryScreen(Screen[None]):
         self.app.push_screen(CompareScreen(comparison))
 
     def action_open_result(self) -> None:
-        from planar_tui.app.screens.picker import result_picker
-
         def chosen(path: str | None) -> None:
             if path:
                 self.open_result(path)
@@ -150,8 +150,6 @@ class HistoryScreen(Screen[None]):
     def open_result(self, path: str) -> Run | None:
         """Open a result CSV into the history (its sidecar's settings, or what its header
         says); a file that cannot be opened is a notification, nothing else changes."""
-        from planar_tui.app import recent
-
         try:
             run = self.history.add_csv(path)
         except ValueError as error:

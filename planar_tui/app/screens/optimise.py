@@ -17,6 +17,7 @@ from textual.binding import Binding
 from textual_plotext import PlotextPlot
 
 from planar_tui.app.screens.sweep import SweepScreen
+from planar_tui.optimise.evaluations import figure_data, number_of
 
 
 class OptimiseScreen(SweepScreen):
@@ -69,8 +70,6 @@ class OptimiseScreen(SweepScreen):
     def draw(self) -> None:
         """The convergence (every feasible evaluation and the best so far) or the front
         (the first two objectives: every feasible evaluation, the non-dominated ones)."""
-        from planar_tui.optimise.evaluations import figure_data
-
         plot = self.query_one("#sweep-plot", PlotextPlot)
         plot.display, self.query_one("#sweep-heat").display = True, False
         data = figure_data(self.run)
@@ -101,6 +100,4 @@ class OptimiseScreen(SweepScreen):
 
 def best_value(run: Any) -> float:
     """The single objective's best value so far (as the column's value)."""
-    from planar_tui.optimise.evaluations import number_of
-
     return number_of(run.optimisation, run.best()[0].outcome, run.optimisation.objectives[0].column)

@@ -19,6 +19,9 @@ from textual.suggester import Suggester
 from textual.widgets import Input, Label, OptionList, Static
 from textual.widgets.option_list import Option
 
+from planar_tui.app.recent import recent
+from planar_tui.resources import bundled_presets, preset_description
+
 #: Most directory entries one completion looks at (a huge folder stays quick).
 MAX_SCANNED = 2000
 
@@ -128,9 +131,6 @@ class FilePicker(ModalScreen[str | None]):
 
 def preset_picker(current: Path) -> FilePicker:
     """The ``ctrl+o`` picker: recent presets, then the bundled ones (name — description)."""
-    from planar_tui.app.recent import recent
-    from planar_tui.resources import bundled_presets, preset_description
-
     recent_entries = [(str(p), str(p)) for p in recent("presets")]
     bundled = [(f"{p.stem} — {preset_description(p)}", p.stem) for p in bundled_presets()]
     return FilePicker(
@@ -143,8 +143,6 @@ def preset_picker(current: Path) -> FilePicker:
 
 def result_picker(folder: Path) -> FilePicker:
     """The history's ``o``: a result CSV (recent ones listed)."""
-    from planar_tui.app.recent import recent
-
     entries = [(str(p), str(p)) for p in recent("results")]
     return FilePicker(
         "Open a result CSV into the history",

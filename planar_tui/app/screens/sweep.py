@@ -36,6 +36,7 @@ from planar_tui.app.sweep_data import (
 from planar_tui.app.widgets.heat_map import heat_map_lines
 from planar_tui.errors import PresetError
 from planar_tui.figures.sweep import is_numeric
+from planar_tui.plan import plan_sweep
 
 #: Most rows the sweep screen's table shows (the CSV export has them all).
 MAX_TABLE_ROWS = 2000
@@ -169,8 +170,6 @@ class SweepDialog(ModalScreen[tuple[Any, int, Any] | None]):
 
     def submit(self) -> None:
         """Build the sweep and check its points; dismiss with it, or show the problem."""
-        from planar_tui.plan import plan_sweep
-
         try:
             workers_text = self.query_one("#sweep-workers", Input).value.strip()
             # isdecimal: "²" is a digit int() does not read

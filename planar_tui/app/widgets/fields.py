@@ -20,6 +20,7 @@ from textual.widget import Widget
 from textual.widgets import Input, Label, Static, TextArea
 
 from planar_tui.preset_writer import format_value
+from planar_tui.schema import REQUIRED, declared_keys
 
 
 def parse_field(text: str) -> Any:
@@ -250,8 +251,6 @@ class LinkCell(KeysInOrder, Input):
 
 def required_keys(settings_class: type) -> frozenset[str]:
     """The keys of a settings dataclass that have no default (a job's must-give keys)."""
-    from planar_tui.schema import REQUIRED, declared_keys
-
     return frozenset(
         key.name for _, key in declared_keys(settings_class) if key.default is REQUIRED
     )

@@ -21,7 +21,10 @@ from planar_tui.app.widgets.playback import PlaybackView
 from planar_tui.app.widgets.robot_drawing import serial_scene
 from planar_tui.app.widgets.simulate_pane import thin
 from planar_tui.jobkind import JobResult
+from planar_tui.motion.engine import output_labels
+from planar_tui.motion.results import BAND_STATISTICS, band_grid
 from planar_tui.presets import Job
+from planar_tui.sensitivity.tables import VIEWS, fit_tables
 
 
 def band_series(result, output: int) -> dict[str, list[float]]:
@@ -63,9 +66,6 @@ def wrapped_band_grids(result, width: int, row: int = -1) -> tuple[list, int]:
     returns the tables and their widest width."""
     from rich import box
     from rich.table import Table
-
-    from planar_tui.motion.engine import output_labels
-    from planar_tui.motion.results import BAND_STATISTICS
 
     labels = output_labels(result.names)
     cells = [[f"{v:.5g}" for v in result.band[row, :, k]] for k in range(len(labels))]
@@ -136,9 +136,6 @@ class MotionPane(JobPane):
             self.query_one("#motion-top").styles.height = PLOT_LINES
 
     def render_result(self, job: Job, result: JobResult) -> None:
-        from planar_tui.motion.results import band_grid
-        from planar_tui.sensitivity.tables import VIEWS, fit_tables
-
         lengths = list(job.robot.lengths_m)
         view = self.query_one("#band-arms", PlaybackView)
         same_run = view.frame_scene is not None and len(view.times) == len(result.t_s)
@@ -191,8 +188,6 @@ class MotionPane(JobPane):
 
     def draw_plot(self) -> None:
         """The band plot of the output shown, with the cursor at the scrubbed time."""
-        from planar_tui.motion.engine import output_labels
-
         result = self.result
         if result is None or not self.is_attached:
             return

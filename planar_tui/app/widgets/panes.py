@@ -21,6 +21,7 @@ from planar_tui.app.messages import CancelRequested, DocumentEdited, RunRequeste
 from planar_tui.app.widgets.fields import TableForm, required_keys
 from planar_tui.app.widgets.job_controls import JobControls
 from planar_tui.progress import ProgressState
+from planar_tui.registry import JOB_KINDS
 
 if TYPE_CHECKING:
     from planar_tui.app.workbench import Workbench
@@ -71,25 +72,17 @@ class JobPane(Vertical):
         self.last_outcome: str | None = None
 
     def available(self) -> bool:
-        from planar_tui.registry import JOB_KINDS
-
         return self.kind in JOB_KINDS
 
     def form_keys(self) -> tuple[str, ...]:
         """The job table's keys; a job's own robot is edited on the Robot tab."""
-        from planar_tui.registry import JOB_KINDS
-
         return (*JOB_KINDS[self.kind].keys, "output")
 
     def required(self) -> frozenset[str]:
         """The job table's keys without a default (their empty field says so)."""
-        from planar_tui.registry import JOB_KINDS
-
         return required_keys(JOB_KINDS[self.kind].settings)
 
     def robot_kind(self) -> str:
-        from planar_tui.registry import JOB_KINDS
-
         return JOB_KINDS[self.kind].robot_kind
 
     def compose(self) -> ComposeResult:

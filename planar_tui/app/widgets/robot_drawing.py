@@ -120,35 +120,6 @@ def draw_serial_robot(
 
 
 # -- the 3-RRR --------------------------------------------------------------------------
-def on_arc(angle_rad: float, lo_rad: float, hi_rad: float) -> bool:
-    """Whether ``angle`` lies on the arc from ``lo`` to ``hi`` (counter-clockwise)."""
-    return (angle_rad - lo_rad) % (2.0 * math.pi) <= hi_rad - lo_rad + 1e-12
-
-
-def leg_modes(
-    robot,
-    orientation_rad: float,
-    point_cm: tuple[float, float],
-    limits_rad: Sequence[tuple[float, float]],
-    elbow: Sequence[int] | None = None,
-) -> list[tuple[float, int] | None]:
-    """Per leg, the active angle θ_i (rad) and its working mode ``s`` (``θ = α + sβ``,
-    :func:`planar_tui.workspace.rrr.singularity.leg_angles`) within the joint limits at
-    ``point_cm``: the mode ``elbow[i]`` when given and within the limits, else the first of
-    ``+1, -1`` within them; ``None`` where the leg cannot close within its limits."""
-    from planar_tui.workspace.rrr.singularity import leg_angles
-
-    legs: list[tuple[float, int] | None] = []
-    for leg, (angles, (lo, hi)) in enumerate(
-        zip(leg_angles(robot, orientation_rad, point_cm), limits_rad, strict=True)
-    ):
-        modes = [] if angles is None else [s for s in (1, -1) if on_arc(angles[s], lo, hi)]
-        if elbow is not None and elbow[leg] in modes:
-            modes = [elbow[leg]]
-        legs.append((angles[modes[0]], modes[0]) if angles is not None and modes else None)
-    return legs
-
-
 def rrr_scene(
     robot,
     point_cm: tuple[float, float],

@@ -14,6 +14,7 @@ from textual.widgets import Button, Label, Select, Static
 from planar_tui.app.messages import DocumentEdited
 from planar_tui.app.widgets.fields import LinkEditor, TableForm, required_keys
 from planar_tui.app.widgets.robot_drawing import draw_serial_robot, numbers_or_zeros
+from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
 
 if TYPE_CHECKING:
     from planar_tui.app.workbench import Workbench
@@ -37,13 +38,9 @@ class RobotPane(VerticalScroll):
 
     def robot_kind(self) -> str:
         """The robot kind edited: ``robot`` for the preset, the job's kind's robot else."""
-        from planar_tui.registry import JOB_KINDS
-
         return "robot" if self.target is None else JOB_KINDS[self.target[0]].robot_kind
 
     def compose(self) -> ComposeResult:
-        from planar_tui.registry import ROBOT_KINDS
-
         targets = self.bench.robot_targets()
         self.shown_targets = targets
         #: The forms and link editor shown (kept: each edit's check marks them).

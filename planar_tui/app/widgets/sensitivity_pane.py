@@ -15,6 +15,7 @@ from planar_tui.app.widgets.panes import JobPane
 from planar_tui.app.widgets.robot_drawing import SceneView, serial_scene
 from planar_tui.jobkind import JobResult
 from planar_tui.presets import Job
+from planar_tui.sensitivity.bars import sensitivity_bars
 from planar_tui.sensitivity.tables import VIEWS, fit_tables
 
 #: Cells taken by a bar's label (``τ1 1.00 rad/s ``) and a margin.
@@ -59,8 +60,6 @@ class SensitivityPane(JobPane):
         return max(20, self.query_one("#sensitivity-results").scrollable_content_region.width)
 
     def render_result(self, job: Job, result: JobResult) -> None:
-        from planar_tui.sensitivity.bars import sensitivity_bars
-
         analyses = result.analyses
         width = self.available_width()
         self.query_one("#result-text", Static).update(Text(result.summary))

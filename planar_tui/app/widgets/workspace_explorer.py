@@ -22,6 +22,14 @@ from textual.binding import Binding
 from textual.message import Message
 from textual.widget import Widget
 
+from planar_tui.workspace.paving.map import (
+    BOUNDARY_GLYPH,
+    OUTSIDE_GLYPH,
+    SINGULAR_LEGEND_ITEMS,
+    fit_extent,
+    render_map,
+)
+
 #: Cells of ``render_map``'s y labels and axis before the first map column.
 LABEL_CELLS = 9
 #: Lines of ``render_map`` below the map rows kept (the x axis and its labels).
@@ -156,8 +164,6 @@ class MapExplorer(Widget):
         return max(10, size.width - LABEL_CELLS), max(3, size.height - AXIS_LINES)
 
     def fit(self) -> None:
-        from planar_tui.workspace.paving.map import fit_extent
-
         if not len(self.boxes):
             return
         layers = [np.reshape(b, (-1, 4)) for b, _, _ in self.overlays.get("layers", ())]
@@ -236,8 +242,6 @@ class MapExplorer(Widget):
     # -- drawing --------------------------------------------------------------------------
     def map_lines(self) -> list[str]:
         """The map rows and the x axis (``render_map``) with the overlays asked for."""
-        from planar_tui.workspace.paving.map import BOUNDARY_GLYPH, OUTSIDE_GLYPH, render_map
-
         columns, rows = self.plot_size()
         width, height = columns + LABEL_CELLS, rows + 3
         lines = render_map(self.boxes, self.status, self.extent(), width, height, **self.overlays)
@@ -296,8 +300,6 @@ class MapExplorer(Widget):
         if self.show_mode and self.in_mode is not None:
             items.append(MODE_ITEM)
         if "singular" in self.overlays or "circle" in self.overlays:
-            from planar_tui.workspace.paving.map import SINGULAR_LEGEND_ITEMS
-
             items += SINGULAR_LEGEND_ITEMS
         items += [f"{glyph} {text}" for _, glyph, text in self.overlays.get("layers", ())]
         if self.note:

@@ -17,12 +17,15 @@ from textual.message import Message
 from textual.widgets import Static
 
 from planar_tui.app.widgets.panes import JobPane
-from planar_tui.app.widgets.robot_drawing import SceneView, leg_modes, rrr_scene
+from planar_tui.app.widgets.robot_drawing import SceneView, rrr_scene
 from planar_tui.app.widgets.workspace_explorer import MapExplorer, cell_status
 from planar_tui.jobkind import JobResult
 from planar_tui.presets import Job
-from planar_tui.progress import ProgressState
+from planar_tui.progress import Progress, ProgressState
 from planar_tui.registry import JOB_KINDS
+from planar_tui.workspace.paving.levels import BoxBudget
+from planar_tui.workspace.paving.map import render_map
+from planar_tui.workspace.paving.result import map_content
 
 #: Lines of :func:`planar_tui.workspace.paving.map.render_map` below the plot rows.
 MAP_FOOTER_LINES = 3
@@ -43,8 +46,6 @@ def fitted_map(boxes, status, width: int, height: int, **overlays) -> list[str]:
     others show the plain axis ``│``), so each label points at its row. ``overlays`` are
     ``render_map``'s ``singular`` and ``circle``.
     """
-    from planar_tui.workspace.paving.map import render_map
-
     lines = render_map(boxes, status, width=width, **overlays)
     while len(lines) > height and width > 20:
         width = max(20, min(width - 1, width * height // len(lines)))
@@ -74,21 +75,18 @@ def fine_job(job, **changes) -> Any:
 
 
 def pave(job, should_stop, threads: int | None = None) -> Any:
-    """Pave ``job``'s workspace (:func:`planar_tui.workspace.rrr.compute.compute_workspace`),
+    """Pave ``job``'s workspace (its mechanism's
+    :meth:`~planar_tui.workspace.paving.mechanism.Mechanism.pave`),
     its parallel kernels on ``threads`` threads when given (Numba's count is per calling
     thread: the other threads keep theirs)."""
     import numba
-
-    from planar_tui.progress import Progress
-    from planar_tui.workspace.paving.levels import BoxBudget
-    from planar_tui.workspace.rrr.compute import compute_workspace
 
     progress = Progress(should_stop=should_stop)
     before = numba.get_num_threads()
     if threads is not None:
         numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
     try:
-        return compute_workspace(job.robot, job.spec, BoxBudget(job, progress))
+        return job.spec.mechanism.pave(job.robot, job.spec, BoxBudget(job, progress))
     finally:
         numba.set_num_threads(before)
 
@@ -201,7 +199,6 @@ class WorkspacePane(JobPane):
             explorer.show_text("(no box kept: the workspace is empty at this precision)")
             self.query_one("#workspace-legend", Static).update("")
             return
-        from planar_tui.workspace.paving.result import map_content
 
         refit = self._shown_job is not job
         self._shown_job = job
@@ -237,9 +234,7 @@ class WorkspacePane(JobPane):
         robot, spec = job.robot, job.spec
 
         def rings() -> list[list[tuple[float, float]]]:
-            from planar_tui.workspace.rrr.geometry import workspace_polygon
-
-            polygon = workspace_polygon(robot, spec.limits_rad, spec.orientation_rad, 256, False)
+            polygon = spec.mechanism.polygon(robot, spec, 256, False)
             parts = getattr(polygon, "geoms", [polygon])
             found = []
             for part in parts:
@@ -260,7 +255,7 @@ class WorkspacePane(JobPane):
             elbow = singular.elbow
 
             def in_mode(point) -> bool:
-                legs = leg_modes(robot, spec.orientation_rad, point, spec.limits_rad, elbow)
+                legs = spec.mechanism.leg_poses(robot, spec, point, elbow)
                 return all(
                     leg is not None and leg[1] == s for leg, s in zip(legs, elbow, strict=True)
                 )
@@ -279,13 +274,7 @@ class WorkspacePane(JobPane):
         if not self.constant_orientation_3rrr(job):
             drawing.show(None)
             return
-        legs = leg_modes(
-            job.robot,
-            job.spec.orientation_rad,
-            explorer.cursor_cm,
-            job.spec.limits_rad,
-            self._elbow(),
-        )
+        legs = job.spec.mechanism.leg_poses(job.robot, job.spec, explorer.cursor_cm, self._elbow())
         drawing.show(rrr_scene(job.robot, explorer.cursor_cm, job.spec.orientation_rad, legs))
 
     def _elbow(self):
@@ -302,9 +291,7 @@ class WorkspacePane(JobPane):
         job = self._shown_job or self._valid_job()
         if status == "outside" or not self.constant_orientation_3rrr(job):
             return text
-        legs = leg_modes(
-            job.robot, job.spec.orientation_rad, (x, y), job.spec.limits_rad, self._elbow()
-        )
+        legs = job.spec.mechanism.leg_poses(job.robot, job.spec, (x, y), self._elbow())
         if any(leg is None for leg in legs):
             closed = ", ".join(str(i + 1) for i, leg in enumerate(legs) if leg is None)
             return f"{text}  leg {closed} cannot close within its limits here"

@@ -8,7 +8,7 @@ from collections.abc import Callable
 from types import MappingProxyType
 from typing import Any
 
-from planar_tui.workspace.fivebar.robot import workspace_polygon
+from planar_tui.workspace.fivebar.robot import leg_angles, workspace_polygon
 from planar_tui.workspace.fivebar.tolerance import TOLERANCE_KEYS_5R, tolerant_level_kernel
 from planar_tui.workspace.path.model import PathModel, PathSolution
 from planar_tui.workspace.paving.linkage import Linkage, rotated
@@ -104,6 +104,24 @@ class MechanismFiveBar(Mechanism):
             for a, l1, theta in zip(base, robot.proximal_cm, actuators, strict=True)
         )
         return Linkage(frame=(base,), legs=legs)
+
+    def leg_poses(
+        self, robot: Any, spec: Any, point_cm: tuple[float, float], modes: Any = None
+    ) -> list[tuple[float, int] | None]:
+        """Per leg (``θ = α + sβ``, :func:`~planar_tui.workspace.fivebar.robot.leg_angles`)
+        the robot's working mode (``modes``, else its ``elbows``; ``0``: the first of
+        ``+1, -1``) within the joint limits; ``None`` where it is not within them."""
+        legs: list[tuple[float, int] | None] = []
+        for angles, sign, (lo, hi) in zip(
+            leg_angles(robot, point_cm), modes or robot.elbows, robot.limits_rad, strict=True
+        ):
+            if angles is None:
+                legs.append(None)
+                continue
+            inside = [s for s in (1, -1) if (angles[s] - lo) % (2 * math.pi) <= hi - lo + 1e-9]
+            mode = sign or (inside[0] if inside else 0)
+            legs.append((angles[mode], mode) if mode in inside else None)
+        return legs
 
 
 MECHANISM = MechanismFiveBar()

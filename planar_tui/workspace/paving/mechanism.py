@@ -161,5 +161,57 @@ class Mechanism(Protocol):
         that assemble it there: what the app's path tabs play back."""
         raise NotImplementedError(f"{self.name} draws no linkage")
 
+    def pave(self, robot: Any, spec: Any, budget: Any) -> Any:
+        """The paving at the spec's one orientation in its own form and search box (a
+        :class:`~planar_tui.workspace.paving.levels.WorkspaceOutcome`): what the app's
+        live preview of a map it ``explores`` runs."""
+        problem = f"{self.name} has no live preview (explores is false)"
+        raise NotImplementedError(problem)
 
-__all__ = ["Mechanism"]
+    def leg_poses(
+        self, robot: Any, spec: Any, point_cm: tuple[float, float], modes: Any = None
+    ) -> list[tuple[float, int] | None]:
+        """Per leg, the active joint's angle (rad) and its working mode with the platform at
+        ``point_cm``, within the joint limits (the mode ``modes[i]`` where given; else as
+        the robot chooses), or ``None`` where the leg cannot close there: the robot a
+        figure or the app draws at a point."""
+        problem = f"{self.name} draws no legs"
+        raise NotImplementedError(problem)
+
+
+class LegMechanism(Mechanism):
+    """A separator whose parts are its robot subpackage's functions (the 3-RPR's and the
+    3-PRR's, whose leg test kernels share the signature of
+    :func:`~planar_tui.kernels.workspace3rpr.rpr_level`). A subclass sets its constants
+    (:class:`Mechanism`'s), its kernel (:meth:`level_kernel`), its singularity-free
+    circle's check (:meth:`resolve_centre`) and three modules of its subpackage:
+    ``robot_module`` (``leg_parameters(robot, spec)``, ``reach_box(robot, spec)``,
+    ``workspace_polygon(robot, spec, segments_per_turn, outward)``),
+    ``singularity_module`` (``compute_singularities(job, prepared, extent, budget)``) and
+    ``orientation_module`` (``compute_range(robot, spec, budget)``)."""
+
+    explores = False
+    has_singularities = True
+    has_orientation_ranges = True
+    robot_module: Any
+    singularity_module: Any
+    orientation_module: Any
+
+    def parameters(self, robot: Any, spec: Any) -> Any:
+        return self.robot_module.leg_parameters(robot, spec)
+
+    def reach_box(self, robot: Any, spec: Any) -> tuple[float, float, float, float]:
+        box: tuple[float, float, float, float] = self.robot_module.reach_box(robot, spec)
+        return box
+
+    def polygon(self, robot: Any, spec: Any, segments_per_turn: int, outward: bool) -> Any:
+        return self.robot_module.workspace_polygon(robot, spec, segments_per_turn, outward)
+
+    def compute_singularities(self, job: Any, prepared: Any, extent: Any, budget: Any) -> Any:
+        return self.singularity_module.compute_singularities(job, prepared, extent, budget)
+
+    def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:
+        return self.orientation_module.compute_range(robot, spec, budget)
+
+
+__all__ = ["LegMechanism", "Mechanism"]

@@ -9,30 +9,24 @@ from dataclasses import dataclass
 from typing import Any, ClassVar
 
 from planar_tui.jobkind import Tab
-from planar_tui.schema import TableReader, setting, string
+from planar_tui.schema import setting, string
 from planar_tui.workspace.paving.mechanism import Mechanism
-from planar_tui.workspace.paving.runner import (
-    PlanarSpec,
-    check_range_and_reference,
-    planar_job_kind,
-)
-from planar_tui.workspace.paving.settings import (
-    modes_setting,
-    orientation_mode_setting,
-    orientation_setting,
-)
-from planar_tui.workspace.paving.tolerance import check_tolerance, tolerance_fields
+from planar_tui.workspace.paving.ranged import RangedSpec
+from planar_tui.workspace.paving.runner import planar_job_kind
+from planar_tui.workspace.paving.settings import modes_setting
+from planar_tui.workspace.paving.tolerance import tolerance_fields
 from planar_tui.workspace.prr.mechanism import MECHANISM
 from planar_tui.workspace.prr.tolerance import TOLERANCE_KEYS_3PRR
 
 
 @dataclass(frozen=True, kw_only=True)
-class Spec3PRR(PlanarSpec):
+class Spec3PRR(RangedSpec):
     """Settings of one 3-PRR workspace job (lengths in cm, the orientation in degrees); the
-    strokes and links are the robot's (``[robot3prr]``)."""
+    strokes and links are the robot's (``[robot3prr]``). A tolerance
+    (:mod:`planar_tui.workspace.prr.tolerance`) stays below the shortest distal; with it or
+    an orientation range (:mod:`planar_tui.workspace.prr.orientation`) the job takes the
+    ``distance`` form (:class:`~planar_tui.workspace.paving.ranged.RangedSpec`)."""
 
-    orientation_deg: float | tuple[float, float] = orientation_setting()
-    orientation_mode: str | None = orientation_mode_setting()
     form: str = setting(
         string(choices=("distance", "geometric")),
         default="distance",
@@ -64,17 +58,11 @@ class Spec3PRR(PlanarSpec):
     )
     #: The circle key that ``kappa_max`` takes too (its working mode).
     mode_keys: ClassVar[tuple[str, ...]] = ("slider_modes",)
+    box_form: ClassVar[str] = "distance"
 
     @classmethod
-    def check(cls, values: dict[str, Any], reader: TableReader, robot: Any) -> dict[str, Any]:
-        """A tolerance (:mod:`planar_tui.workspace.prr.tolerance`) is below the shortest
-        distal, takes the distance form, no singularities and no geometric reference (as
-        the 3-RPR's); an orientation range (:mod:`planar_tui.workspace.prr.orientation`)
-        as the 3-RPR's (:func:`~planar_tui.workspace.paving.runner.check_range_and_reference`);
-        then the shared checks."""
-        check_tolerance(values, reader, TOLERANCE_KEYS_3PRR, {"distal_cm": min(robot.distal_cm)})
-        check_range_and_reference(values, reader, "distance")
-        return super().check(values, reader, robot)
+    def tolerance_bounds(cls, robot: Any) -> dict[str, float]:
+        return {"distal_cm": min(robot.distal_cm)}
 
 
 JOB_KIND = planar_job_kind(

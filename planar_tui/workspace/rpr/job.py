@@ -6,21 +6,14 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, ClassVar
+from typing import ClassVar
 
 from planar_tui.jobkind import Tab
 from planar_tui.schema import TableReader, setting
 from planar_tui.workspace.paving.mechanism import Mechanism
-from planar_tui.workspace.paving.runner import (
-    PlanarSpec,
-    check_range_and_reference,
-    planar_job_kind,
-)
-from planar_tui.workspace.paving.settings import (
-    orientation_mode_setting,
-    orientation_setting,
-)
-from planar_tui.workspace.paving.tolerance import check_tolerance, tolerance_fields
+from planar_tui.workspace.paving.ranged import RangedSpec
+from planar_tui.workspace.paving.runner import planar_job_kind
+from planar_tui.workspace.paving.tolerance import tolerance_fields
 from planar_tui.workspace.rpr.mechanism import MECHANISM
 from planar_tui.workspace.rpr.tolerance import TOLERANCE_KEYS_3RPR
 
@@ -43,11 +36,12 @@ def _leg_limits(reader: TableReader, name, default, robot, values):
 
 
 @dataclass(frozen=True, kw_only=True)
-class Spec3RPR(PlanarSpec):
-    """Settings of one 3-RPR workspace job (lengths in cm, the orientation in degrees)."""
+class Spec3RPR(RangedSpec):
+    """Settings of one 3-RPR workspace job (lengths in cm, the orientation in degrees); a
+    tolerance (:mod:`planar_tui.workspace.rpr.tolerance`; the leg limits are exact) or an
+    orientation range (:mod:`planar_tui.workspace.rpr.orientation`) takes the ``natural``
+    form (:class:`~planar_tui.workspace.paving.ranged.RangedSpec`)."""
 
-    orientation_deg: float | tuple[float, float] = orientation_setting()
-    orientation_mode: str | None = orientation_mode_setting()
     leg_limits_cm: tuple[tuple[float, float], ...] = setting(
         _leg_limits,
         type_doc="3 rows `[lo, hi]`, 0 ≤ lo < hi",
@@ -64,18 +58,6 @@ class Spec3RPR(PlanarSpec):
     mechanism: ClassVar[Mechanism] = MECHANISM
     kind: ClassVar[str] = "workspace3rpr"
     tolerance_keys: ClassVar[tuple[str, ...]] = TOLERANCE_KEYS_3RPR
-
-    @classmethod
-    def check(cls, values: dict[str, Any], reader: TableReader, robot: Any) -> dict[str, Any]:
-        """A tolerance (:mod:`planar_tui.workspace.rpr.tolerance`; the leg limits are exact)
-        takes a box form, no singularities and no geometric reference (the nominal robot's
-        exact area is not the tolerance-certified one's: off by default, refused if asked
-        for); an orientation range (:mod:`planar_tui.workspace.rpr.orientation`) the 3-RRR's
-        ``orientation_mode`` checks, the ``natural`` form, no singularities and no geometric
-        reference either; then the shared checks."""
-        check_tolerance(values, reader, TOLERANCE_KEYS_3RPR, {})
-        check_range_and_reference(values, reader, "natural")
-        return super().check(values, reader, robot)
 
 
 JOB_KIND = planar_job_kind(

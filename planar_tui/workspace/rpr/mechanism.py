@@ -1,4 +1,4 @@
-"""The 3-RPR's separator (:class:`~planar_tui.workspace.paving.mechanism.Mechanism`), the
+"""The 3-RPR's separator (:class:`~planar_tui.workspace.paving.mechanism.LegMechanism`), the
 :class:`~planar_tui.workspace.paving.runner.PlanarSpec` of its job names."""
 
 from __future__ import annotations
@@ -10,53 +10,37 @@ from typing import Any
 
 from planar_tui.workspace.path.model import PathModel, PathSolution
 from planar_tui.workspace.paving.linkage import Linkage, platform_joints
-from planar_tui.workspace.paving.mechanism import Mechanism
+from planar_tui.workspace.paving.mechanism import LegMechanism
 from planar_tui.workspace.rpr import orientation, singularity
 from planar_tui.workspace.rpr import robot as rpr
 from planar_tui.workspace.rpr.tolerance import TOLERANCE_KEYS_3RPR
 
 
-class Mechanism3RPR(Mechanism):
-    """The 3-RPR's separator (:class:`~planar_tui.workspace.paving.mechanism.Mechanism`):
-    the annulus test of :mod:`planar_tui.kernels.workspace3rpr`, its singularities
-    (:mod:`.singularity`) and orientation ranges (:mod:`.orientation`)."""
+class Mechanism3RPR(LegMechanism):
+    """The 3-RPR's separator: the annulus test of :mod:`planar_tui.kernels.workspace3rpr`, its
+    singularities (:mod:`.singularity`) and orientation ranges (:mod:`.orientation`)."""
 
     name = "3-RPR"
-    explores = False
     tolerance_keys = TOLERANCE_KEYS_3RPR
     singular_boxes_per_step = 10.0
     tolerance_boxes = MappingProxyType({"all": 5.0, "some": 5.0})
-    has_singularities = True
-    has_orientation_ranges = True
     has_dexterity = True
-
-    def parameters(self, robot: Any, spec: Any) -> Any:
-        return rpr.leg_parameters(robot, spec)
+    robot_module = rpr
+    singularity_module = singularity
+    orientation_module = orientation
 
     def level_kernel(self) -> Callable[..., None]:
         from planar_tui.kernels.workspace3rpr import rpr_level
 
         return rpr_level
 
-    def reach_box(self, robot: Any, spec: Any) -> tuple[float, float, float, float]:
-        return rpr.reach_box(robot, spec)
-
-    def polygon(self, robot: Any, spec: Any, segments_per_turn: int, outward: bool) -> Any:
-        return rpr.workspace_polygon(robot, spec, segments_per_turn, outward)
-
     def resolve_centre(self, job: Any) -> object:
         return singularity.resolve_centre(job)
-
-    def compute_singularities(self, job: Any, prepared: Any, extent: Any, budget: Any) -> Any:
-        return singularity.compute_singularities(job, prepared, extent, budget)
 
     def dexterity(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
         from planar_tui.workspace.rpr.dexterity import evaluator
 
         return evaluator(job.robot, job.spec)
-
-    def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:
-        return orientation.compute_range(robot, spec, budget)
 
     def path_box_test(self, robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any, Any]]:
         import numpy as np

@@ -437,4 +437,11 @@ JOB_KIND = JobKind(
     figure="planar_tui.figures.workspace:from_result",
     warmup=WARMUP_PARTS,
     warmup_parts=warmup_parts,
+    app_default={
+        "joint_limits_deg": [[20.0, 70.0], [110.0, 160.0], [245.0, 295.0]],
+        "orientation_deg": 0.0,
+        "precision_cm": 0.9375,
+        "form": "arc-distance",
+        "output": "app-workspace.csv",
+    },
 )

@@ -19,6 +19,7 @@ from planar_tui.workspace.path.model import PathModel, PathSolution
 from planar_tui.workspace.paving.linkage import Linkage, platform_joints, rotated
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.rrr.orientation import compute_orientation_workspace, reach_box_for
+from planar_tui.workspace.rrr.pose import leg_modes
 from planar_tui.workspace.rrr.robot import TOLERANCE_KEYS_3RRR
 from planar_tui.workspace.rrr.singularity import compute_singularities, resolve_circle
 
@@ -129,6 +130,18 @@ class Mechanism3RRR(Mechanism):
             for a, theta, c in zip(base, actuators, platform, strict=True)
         )
         return Linkage(frame=((*base, base[0]),), legs=legs, platform=platform)
+
+    def pave(self, robot: Any, spec: Any, budget: Any) -> Any:
+        from planar_tui.workspace.rrr.compute import compute_workspace  # numpy
+
+        return compute_workspace(robot, spec, budget)
+
+    def leg_poses(
+        self, robot: Any, spec: Any, point_cm: tuple[float, float], modes: Any = None
+    ) -> list[tuple[float, int] | None]:
+        """:func:`~planar_tui.workspace.rrr.pose.leg_modes` at the spec's orientation and
+        joint limits (``modes``: the working mode to prefer, the singularity-free circle's)."""
+        return leg_modes(robot, spec.orientation_rad, point_cm, spec.limits_rad, modes)
 
 
 MECHANISM = Mechanism3RRR()

@@ -103,7 +103,17 @@ class Robot3RRR:
         )
 
 
-ROBOT_KIND = RobotKind("robot3rrr", Robot3RRR, example="[robot3rrr]\n")
+ROBOT_KIND = RobotKind(
+    "robot3rrr",
+    Robot3RRR,
+    example="[robot3rrr]\n",
+    app_default={
+        "base_side_cm": 120.0,
+        "platform_side_cm": 40.0,
+        "proximal_cm": 30.0,
+        "distal_cm": 30.0,
+    },
+)
 
 
 #: The 3-RRR's toleranced quantities (keys of ``tolerances_cm``).
