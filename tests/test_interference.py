@@ -14,6 +14,7 @@ Each check fails when the gap enclosure is shrunk by 1 % (:func:`shrunk`).
 from __future__ import annotations
 
 import csv
+import math
 
 import numpy as np
 import pytest
@@ -81,20 +82,39 @@ def inside_triangle(p, a, b, c):
     return ((s1 >= 0) & (s2 >= 0) & (s3 >= 0)) | ((s1 <= 0) & (s2 <= 0) & (s3 <= 0))
 
 
-def reference(job, x, y):
-    """Validity (every leg closes in its mode within its limits) and the gap
-    min(d - d_req) over the checked pairs at the points (x, y) (φ = 0)."""
-    robot, spec = job.robot, job.spec
+def legs_of(job):
+    """Per leg ``(A, q, l1, l2, sign, (lo, hi))`` and whether the robot has a platform
+    triangle (the 3-RRR) or its distal links meet at one point (the five-bar)."""
+    robot = job.robot
+    if hasattr(robot, "elbows"):  # the five-bar
+        limits = [(math.radians(lo), math.radians(hi)) for lo, hi in robot.joint_limits_deg]
+        legs = zip(
+            robot.base_joints_cm(),
+            robot.proximal_cm,
+            robot.distal_cm,
+            robot.elbows,
+            limits,
+            strict=True,
+        )
+        return [(a, (0.0, 0.0), l1, l2, s, lim) for a, l1, l2, s, lim in legs], False
     l1, l2 = robot.proximal_cm, robot.distal_cm
-    valid = np.ones(np.shape(x), dtype=bool)
-    a_, b_, c_ = [], [], []
-    for (ax, ay), (qx, qy), sign, (lo, hi) in zip(
+    legs = zip(
         robot.base_joints_cm(),
         robot.platform_points_cm(),
         job.prepared.circle.elbow,
-        spec.limits_rad,
+        job.spec.limits_rad,
         strict=True,
-    ):
+    )
+    return [(a, q, l1, l2, sign, lim) for a, q, sign, lim in legs], True
+
+
+def reference(job, x, y):
+    """Validity (every leg closes in its mode within its limits) and the gap
+    min(d - d_req) over the checked pairs at the points (x, y) (φ = 0)."""
+    legs, triangle = legs_of(job)
+    valid = np.ones(np.shape(x), dtype=bool)
+    a_, b_, c_ = [], [], []
+    for (ax, ay), (qx, qy), l1, l2, sign, (lo, hi) in legs:
         cx, cy = x + qx, y + qy
         dx, dy = cx - ax, cy - ay
         d = np.hypot(dx, dy)
@@ -107,12 +127,17 @@ def reference(job, x, y):
         a_.append(np.stack([np.full(np.shape(x), ax), np.full(np.shape(x), ay)], axis=-1))
         b_.append(np.stack([bx, by], axis=-1))
         c_.append(np.stack([cx, cy], axis=-1))
-    links = [(i, a_[i], b_[i], None) for i in range(3)] + [(i, b_[i], c_[i], i) for i in range(3)]
+    n = len(legs)
+    joints = range(n) if triangle else [0] * n  # the five-bar's distal links share one
+    links = [(i, a_[i], b_[i], None) for i in range(n)]
+    links += [(i, b_[i], c_[i], j) for i, j in zip(range(n), joints, strict=True)]
     gap = np.full(np.shape(x), np.inf)
     for k, (chain, p0, p1, joint) in enumerate(links):
-        for other, q0, q1, _ in links[k + 1 :]:
-            if other != chain:
+        for other, q0, q1, shared in links[k + 1 :]:
+            if other != chain and (joint is None or shared != joint):
                 gap = np.minimum(gap, segment_distance(p0, p1, q0, q1) - WIDTH_CM)
+        if not triangle:
+            continue
         edges = [(v, (v + 1) % 3) for v in range(3) if joint not in (v, (v + 1) % 3)]
         to_platform = np.where(inside_triangle(p0, *c_), 0.0, np.inf)
         for v, w in edges:
@@ -194,6 +219,18 @@ def shrunk(monkeypatch, fraction):
 
 
 EXTRA = f"leg_width_cm = {WIDTH_CM}\n"
+FIVEBAR = """
+[robot5r]
+base_separation_cm = 40
+proximal_cm = [45, 45]
+distal_cm = [55, 55]
+joint_limits_deg = [[-180, 180], [-180, 180]]
+working_mode = "{mode}"
+[[workspace5r]]
+precision_cm = {precision}
+geometric_reference = false
+{extra}output = "fb.csv"
+"""
 
 
 @pytest.fixture(scope="module")
@@ -275,6 +312,19 @@ def test_a_shrunk_enclosure_fails_the_checks(coarse, monkeypatch):
         check_inside_boxes(job, outcome)
     with pytest.raises(AssertionError, match="in no kept box"):
         check_free_points_kept(job, outcome, PATCH, 0.01)
+
+
+@pytest.mark.parametrize("mode", ["+-", pytest.param("-+", marks=pytest.mark.slow)])
+def test_the_five_bar_region_against_the_reference(tmp_path, mode):
+    job, result = run(tmp_path, FIVEBAR.format(mode=mode, precision=1.0, extra=EXTRA))
+    outcome, extent = result.interference, result.outcome.extent_cm
+    check_inside_boxes(job, outcome)
+    check_free_points_kept(job, outcome, extent, 0.25)
+    estimate = check_bracket(job, outcome, extent, 0.25)
+    assert outcome.area_inside_cm2 > 0.5 * estimate > 0
+    assert outcome.area_kept_cm2 < 0.9 * result.outcome.area_inside_cm2  # legs do collide
+    header, (row,) = result.table.header, result.table.rows
+    assert dict(zip(header, row, strict=True))["leg_width_cm"] == WIDTH_CM
 
 
 def test_the_cli_writes_the_columns_labels_the_boxes_and_draws_the_map(cli, tmp_path):
