@@ -386,3 +386,24 @@ def test_bad_width_exits_2_with_one_line(cli, tmp_path, text, message):
     assert result.exit_code == 2, result.output
     assert result.output.startswith("error: ") and result.output.count("\n") == 1
     assert message in result.output
+
+
+@pytest.mark.parametrize(
+    ("kind", "table", "name"),
+    [
+        ("workspace3rpr", "leg_limits_cm = [[5, 25], [5, 25], [5, 25]]", "3-RPR"),
+        ("workspace3prr", "", "3-PRR"),
+    ],
+)
+def test_the_prismatic_robots_refuse_the_width_in_one_line(cli, tmp_path, kind, table, name):
+    path = tmp_path / "p.toml"
+    robot = kind.replace("workspace", "robot")
+    path.write_text(
+        f'[{robot}]\n[[{kind}]]\n{table}\nprecision_cm = 1\nleg_width_cm = 2\noutput = "a.csv"\n',
+        encoding="utf-8",
+    )
+    result = cli(kind, path, "--out-dir", tmp_path)
+    assert result.exit_code == 2, result.output
+    assert result.output.startswith("error: ") and result.output.count("\n") == 1
+    assert f"leg_width_cm: is set: the {name}'s leg interference is not certified" in result.output
+    assert not (tmp_path / "a.csv").exists()

@@ -30,6 +30,7 @@ from planar_tui.schema import TableReader, number, plot_setting, setting, string
 from planar_tui.workspace.paving.columns import planar_figure_names
 from planar_tui.workspace.paving.dexterity import check_dexterity, kappa_setting, length_setting
 from planar_tui.workspace.paving.estimate import check_needs, estimate, report_box_estimate
+from planar_tui.workspace.paving.interference import width_setting
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.paving.result import (
     WorkspaceResult,
@@ -86,6 +87,7 @@ class PlanarSpec:
     singularity_precision_cm: float | None = singularity_precision_setting()
     kappa_max: float | None = kappa_setting()
     characteristic_length_cm: float | None = length_setting()
+    leg_width_cm: float | None = width_setting()
 
     #: The kind's :class:`Mechanism` and job kind's name (set by each subclass; not keys).
     mechanism: ClassVar[Mechanism]
@@ -116,6 +118,9 @@ class PlanarSpec:
         names = tuple(n for n in cls.circle_keys if not (dexterous and n in cls.mode_keys))
         check_circle_keys(values, reader, names)
         check_dexterity(values, reader)
+        if values["leg_width_cm"] is not None and not cls.mechanism.has_interference:
+            found = f"is set: the {cls.mechanism.name}'s leg interference is not certified yet"
+            raise reader.error("leg_width_cm", found, "no leg_width_cm")
         refine = values["refine_precision_cm"]
         if refine is not None and refine > values["precision_cm"]:
             raise reader.error(
