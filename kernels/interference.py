@@ -10,9 +10,14 @@ five-bar's end point; ``-1``: none), its end 0 is the other one.
 
 - two links of different chains that do not share a joint: :math:`d_{req} = w` (their
   capsules do not overlap); links of one chain share a joint in turn and are not checked;
-- every link and the platform polygon: :math:`d_{req} = w / 2`; a link ending at a vertex
-  is checked against the edges not incident to that vertex and through its end 0 (inside
-  the polygon: distance 0); any other link against every edge and its end 0.
+- every link and the platform polygon: :math:`d_{req} = w / 2`. A link with no joint on the
+  platform: its distance to the polygon (0 when its end 0 lies inside). A link jointed at
+  vertex :math:`v`: the least of its distance to the edges not incident to :math:`v` and
+  the distance of its end 0 to the polygon (the link itself touches the platform at
+  :math:`v`; its other end must keep clear of it).
+
+Every quantity is 1-Lipschitz in the ends and vertices (a segment's distance to a segment,
+a point's to a polygon), which the enclosure below needs.
 
 The *gap* of a pose is :math:`\\min_{pairs} (d - d_{req})`; the pose is interference-free
 iff the gap is :math:`\\ge 0`.
@@ -167,11 +172,11 @@ def clearance_gap(ends, chain, joint, platform, width_cm, centre):
         d = 0.0 if inside_polygon(ax, ay, polygon, vertices) else math.inf
         for v in range(vertices):
             w = (v + 1) % vertices
-            if joint[k] == v or joint[k] == w:
-                continue
-            edge = segment_distance(
-                ax, ay, bx, by, polygon[v, 0], polygon[v, 1], polygon[w, 0], polygon[w, 1], scale
-            )
+            vx, vy, wx, wy = polygon[v, 0], polygon[v, 1], polygon[w, 0], polygon[w, 1]
+            if joint[k] == v or joint[k] == w:  # an edge at its joint: from its end 0 only
+                edge = point_segment(ax, ay, vx, vy, wx, wy)
+            else:
+                edge = segment_distance(ax, ay, bx, by, vx, vy, wx, wy, scale)
             d = min(d, edge)
         spread = up(spread_k + platform_radius)
         gap_lo, gap_hi = pair_bounds(d, spread, 0.5 * width_cm, scale, gap_lo, gap_hi)

@@ -5,7 +5,8 @@ The reference builds each 3-RRR leg's elbow as the intersection of the circles a
 (docs/interference.md) with its own closed-form segment-segment distance (the clamped
 closest points of Ericson's *Real-Time Collision Detection*, 5.1.9), not the kernel's
 end-to-segment form: links of different chains at least ``w`` apart, each link at least
-``w / 2`` from the platform triangle (the distal link: from the edge opposite its joint).
+``w / 2`` from the platform triangle (a link jointed to it: the edge opposite its joint,
+and its free end from the whole triangle).
 Checks: every sample of a box said interference-free holds the clearance; every grid point
 with clearance to spare lies in a kept box; the area bracket holds a fine grid's estimate.
 Each check fails when the gap enclosure is shrunk by 1 % (:func:`shrunk`).
@@ -70,6 +71,14 @@ def segment_distance(p0, p1, q0, q1):
     return np.hypot(gap[..., 0], gap[..., 1])
 
 
+def point_distance(p, q0, q1):
+    """The exact distance from the point p to the segment q0q1 (non-zero length)."""
+    d = q1 - q0
+    t = np.clip(dot(p - q0, d) / dot(d, d), 0.0, 1.0)
+    gap = p - q0 - t[..., None] * d
+    return np.hypot(gap[..., 0], gap[..., 1])
+
+
 def inside_triangle(p, a, b, c):
     """Whether p lies in the triangle abc (either orientation)."""
 
@@ -108,9 +117,29 @@ def legs_of(job):
     return [(a, q, l1, l2, sign, lim) for a, q, sign, lim in legs], True
 
 
+def rpr_links(job, x, y):
+    """A 3-RPR's validity (every leg's length within its limits) and links A_i C_i."""
+    robot = job.robot
+    valid = np.ones(np.shape(x), dtype=bool)
+    links, c_ = [], []
+    for i, ((ax, ay), (qx, qy), (lo, hi)) in enumerate(
+        zip(robot.base_joints_cm, robot.platform_points_cm, job.spec.leg_limits_cm, strict=True)
+    ):
+        cx, cy = x + qx, y + qy
+        rho = np.hypot(cx - ax, cy - ay)
+        valid &= (lo <= rho) & (rho <= hi)
+        a = np.stack([np.full(np.shape(x), ax), np.full(np.shape(x), ay)], axis=-1)
+        c_.append(np.stack([cx, cy], axis=-1))
+        links.append((i, a, c_[i], i))
+    return valid, links, c_
+
+
 def reference(job, x, y):
     """Validity (every leg closes in its mode within its limits) and the gap
     min(d - d_req) over the checked pairs at the points (x, y) (φ = 0)."""
+    if hasattr(job.robot, "centres_cm"):  # the 3-RPR
+        valid, links, c_ = rpr_links(job, x, y)
+        return valid, link_gap(links, c_, True)
     legs, triangle = legs_of(job)
     valid = np.ones(np.shape(x), dtype=bool)
     a_, b_, c_ = [], [], []
@@ -131,19 +160,28 @@ def reference(job, x, y):
     joints = range(n) if triangle else [0] * n  # the five-bar's distal links share one
     links = [(i, a_[i], b_[i], None) for i in range(n)]
     links += [(i, b_[i], c_[i], j) for i, j in zip(range(n), joints, strict=True)]
-    gap = np.full(np.shape(x), np.inf)
+    return valid, link_gap(links, c_, triangle)
+
+
+def link_gap(links, c_, triangle):
+    """The gap over the checked pairs of ``links`` (chain, end 0, end 1, joint or None),
+    the platform triangle ``c_`` when ``triangle``."""
+    gap = np.full(np.shape(c_[0])[:-1], np.inf)
     for k, (chain, p0, p1, joint) in enumerate(links):
         for other, q0, q1, shared in links[k + 1 :]:
             if other != chain and (joint is None or shared != joint):
                 gap = np.minimum(gap, segment_distance(p0, p1, q0, q1) - WIDTH_CM)
         if not triangle:
             continue
-        edges = [(v, (v + 1) % 3) for v in range(3) if joint not in (v, (v + 1) % 3)]
         to_platform = np.where(inside_triangle(p0, *c_), 0.0, np.inf)
-        for v, w in edges:
-            to_platform = np.minimum(to_platform, segment_distance(p0, p1, c_[v], c_[w]))
+        for v, w in [(0, 1), (1, 2), (2, 0)]:
+            if joint in (v, w):  # an edge at the link's joint: from its free end p0 only
+                d = point_distance(p0, c_[v], c_[w])
+            else:
+                d = segment_distance(p0, p1, c_[v], c_[w])
+            to_platform = np.minimum(to_platform, d)
         gap = np.minimum(gap, to_platform - 0.5 * WIDTH_CM)
-    return valid, gap
+    return gap
 
 
 def samples(boxes, n=3):
@@ -388,22 +426,36 @@ def test_bad_width_exits_2_with_one_line(cli, tmp_path, text, message):
     assert message in result.output
 
 
-@pytest.mark.parametrize(
-    ("kind", "table", "name"),
-    [
-        ("workspace3rpr", "leg_limits_cm = [[5, 25], [5, 25], [5, 25]]", "3-RPR"),
-        ("workspace3prr", "", "3-PRR"),
-    ],
-)
-def test_the_prismatic_robots_refuse_the_width_in_one_line(cli, tmp_path, kind, table, name):
+RPR = """
+[robot3rpr]
+[[workspace3rpr]]
+leg_limits_cm = [[5, 100], [5, 100], [5, 100]]
+precision_cm = {precision}
+{extra}output = "a.csv"
+"""
+
+
+def test_the_3rpr_region_against_the_reference(tmp_path):
+    job, result = run(tmp_path, RPR.format(precision=2.0, extra=EXTRA))
+    outcome, extent = result.interference, result.outcome.extent_cm
+    check_inside_boxes(job, outcome)
+    check_free_points_kept(job, outcome, extent, 0.25)
+    estimate = check_bracket(job, outcome, extent, 0.25)
+    assert outcome.area_inside_cm2 > 0.9 * estimate > 0
+    _, gap = reference(job, *samples(result.outcome.boxes, 2))
+    assert (gap < 0).mean() > 0.02  # the legs do collide
+    assert list(result.table.header)[-4:] == [*interference.HEADER, "seconds"]
+
+
+def test_the_prismatic_3prr_refuses_the_width_in_one_line(cli, tmp_path):
     path = tmp_path / "p.toml"
-    robot = kind.replace("workspace", "robot")
     path.write_text(
-        f'[{robot}]\n[[{kind}]]\n{table}\nprecision_cm = 1\nleg_width_cm = 2\noutput = "a.csv"\n',
+        '[robot3prr]\n[[workspace3prr]]\nprecision_cm = 1\nleg_width_cm = 2\noutput = "a.csv"\n',
         encoding="utf-8",
     )
-    result = cli(kind, path, "--out-dir", tmp_path)
+    result = cli("workspace3prr", path, "--out-dir", tmp_path)
     assert result.exit_code == 2, result.output
     assert result.output.startswith("error: ") and result.output.count("\n") == 1
-    assert f"leg_width_cm: is set: the {name}'s leg interference is not certified" in result.output
+    message = "leg_width_cm: is set: the 3-PRR's leg interference is not certified"
+    assert message in result.output
     assert not (tmp_path / "a.csv").exists()

@@ -30,7 +30,7 @@ from planar_tui.schema import TableReader, number, plot_setting, setting, string
 from planar_tui.workspace.paving.columns import planar_figure_names
 from planar_tui.workspace.paving.dexterity import check_dexterity, kappa_setting, length_setting
 from planar_tui.workspace.paving.estimate import check_needs, estimate, report_box_estimate
-from planar_tui.workspace.paving.interference import width_setting
+from planar_tui.workspace.paving.interference import check_interference, width_setting
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.paving.result import (
     WorkspaceResult,
@@ -121,6 +121,7 @@ class PlanarSpec:
         if values["leg_width_cm"] is not None and not cls.mechanism.has_interference:
             found = f"is set: the {cls.mechanism.name}'s leg interference is not certified yet"
             raise reader.error("leg_width_cm", found, "no leg_width_cm")
+        check_interference(values, reader)
         refine = values["refine_precision_cm"]
         if refine is not None and refine > values["precision_cm"]:
             raise reader.error(
@@ -333,7 +334,17 @@ def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> 
         header = (*header[:-1], *DEXTERITY_HEADER, header[-1])
         row = [*row[:-1], *dexterous.columns(), row[-1]]
         summary += f"; {dexterous.describe()}"
+    clear = None
+    if job.spec.leg_width_cm is not None:  # its columns before the wall time too
+        from planar_tui.workspace.paving.interference import HEADER as INTERFERENCE_HEADER
+        from planar_tui.workspace.paving.interference import job_interference
+
+        clear = job_interference(job, ready.prepared, outcome.extent_cm, budget)
+        header = (*header[:-1], *INTERFERENCE_HEADER, header[-1])
+        row = [*row[:-1], *clear.columns(), row[-1]]
+        summary += f"; {clear.describe()}"
     from planar_tui.workspace.paving.dexterity import boxes_table as dexterity_boxes
+    from planar_tui.workspace.paving.interference import boxes_table as interference_boxes
     from planar_tui.workspace.paving.tolerance import tolerance_report
 
     report = tolerance_report(job, lambda: BoxBudget(job, progress), compute_planar)
@@ -346,10 +357,13 @@ def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> 
     return WorkspaceResult(
         table=CsvTable(header, [row]),
         summary=summary,
-        extra_tables={"boxes": dexterity_boxes(boxes_table(outcome), dexterous)},
+        extra_tables={
+            "boxes": interference_boxes(dexterity_boxes(boxes_table(outcome), dexterous), clear)
+        },
         outcome=outcome,
         singularity=singular,
         dexterity=dexterous,
+        interference=clear,
         companions=None if report is None else report.companions,
     )
 

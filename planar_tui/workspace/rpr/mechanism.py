@@ -27,6 +27,7 @@ class Mechanism3RPR(Mechanism):
     has_singularities = True
     has_orientation_ranges = True
     has_dexterity = True
+    has_interference = True
 
     def parameters(self, robot: Any, spec: Any) -> Any:
         return rpr.leg_parameters(robot, spec)
@@ -47,6 +48,11 @@ class Mechanism3RPR(Mechanism):
 
     def compute_singularities(self, job: Any, prepared: Any, extent: Any, budget: Any) -> Any:
         return singularity.compute_singularities(job, prepared, extent, budget)
+
+    def interference(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
+        from planar_tui.workspace.rpr.interference import evaluator
+
+        return evaluator(job.robot, job.spec)
 
     def dexterity(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
         from planar_tui.workspace.rpr.dexterity import evaluator
