@@ -134,11 +134,43 @@ def rpr_links(job, x, y):
     return valid, links, c_
 
 
+def prr_links(job, x, y):
+    """A 3-PRR's validity (every slider in its mode within its stroke) and moving links
+    S_i C_i: the slider S_i = b_i + s u_i on its line at distance l from C_i, ahead of
+    (sign 1) or behind the foot of the perpendicular from C_i."""
+    robot = job.robot
+    valid = np.ones(np.shape(x), dtype=bool)
+    links, c_ = [], []
+    legs = zip(
+        robot.slider_points_cm,
+        robot.slider_angles_deg,
+        robot.strokes_cm,
+        robot.distal_cm,
+        robot.platform_points_cm,
+        job.spec.slider_modes,
+        strict=True,
+    )
+    for i, ((bx, by), angle, (lo, hi), length, (qx, qy), sign) in enumerate(legs):
+        ux, uy = math.cos(math.radians(angle)), math.sin(math.radians(angle))
+        cx, cy = x + qx, y + qy
+        foot = (cx - bx) * ux + (cy - by) * uy
+        off = -(cx - bx) * uy + (cy - by) * ux
+        valid &= off * off <= length * length
+        s = foot + sign * np.sqrt(np.maximum(length * length - off * off, 0.0))
+        valid &= (lo <= s) & (s <= hi)
+        c_.append(np.stack([cx, cy], axis=-1))
+        links.append((i, np.stack([bx + s * ux, by + s * uy], axis=-1), c_[i], i))
+    return valid, links, c_
+
+
 def reference(job, x, y):
     """Validity (every leg closes in its mode within its limits) and the gap
     min(d - d_req) over the checked pairs at the points (x, y) (φ = 0)."""
     if hasattr(job.robot, "centres_cm"):  # the 3-RPR
         valid, links, c_ = rpr_links(job, x, y)
+        return valid, link_gap(links, c_, True)
+    if hasattr(job.robot, "slider_points_cm"):  # the 3-PRR
+        valid, links, c_ = prr_links(job, x, y)
         return valid, link_gap(links, c_, True)
     legs, triangle = legs_of(job)
     valid = np.ones(np.shape(x), dtype=bool)
@@ -447,15 +479,21 @@ def test_the_3rpr_region_against_the_reference(tmp_path):
     assert list(result.table.header)[-4:] == [*interference.HEADER, "seconds"]
 
 
-def test_the_prismatic_3prr_refuses_the_width_in_one_line(cli, tmp_path):
-    path = tmp_path / "p.toml"
-    path.write_text(
-        '[robot3prr]\n[[workspace3prr]]\nprecision_cm = 1\nleg_width_cm = 2\noutput = "a.csv"\n',
-        encoding="utf-8",
-    )
-    result = cli("workspace3prr", path, "--out-dir", tmp_path)
-    assert result.exit_code == 2, result.output
-    assert result.output.startswith("error: ") and result.output.count("\n") == 1
-    message = "leg_width_cm: is set: the 3-PRR's leg interference is not certified"
-    assert message in result.output
-    assert not (tmp_path / "a.csv").exists()
+PRR = """
+[robot3prr]
+[[workspace3prr]]
+precision_cm = {precision}
+slider_modes = [1, 1, 1]
+{extra}output = "a.csv"
+"""
+
+
+def test_the_3prr_region_against_the_reference(tmp_path):
+    job, result = run(tmp_path, PRR.format(precision=2.0, extra=EXTRA))
+    outcome, extent = result.interference, result.outcome.extent_cm
+    check_inside_boxes(job, outcome)
+    check_free_points_kept(job, outcome, extent, 0.25)
+    estimate = check_bracket(job, outcome, extent, 0.25)
+    assert outcome.area_inside_cm2 > 0.8 * estimate > 0
+    assert outcome.area_kept_cm2 < 0.9 * result.outcome.area_inside_cm2  # legs do collide
+    assert list(result.table.header)[-4:] == [*interference.HEADER, "seconds"]

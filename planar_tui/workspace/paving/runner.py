@@ -97,7 +97,8 @@ class PlanarSpec:
     tolerance_keys: ClassVar[tuple[str, ...]] = ()
     #: The keys that go with ``singularities = true`` (:func:`check_circle_keys`).
     circle_keys: ClassVar[tuple[str, ...]] = ("circle_centre_cm", "singularity_precision_cm")
-    #: The circle keys that ``kappa_max`` takes too (its working mode; ``()``: none).
+    #: The circle keys that ``kappa_max`` and ``leg_width_cm`` take too (their working
+    #: mode; ``()``: none).
     mode_keys: ClassVar[tuple[str, ...]] = ()
 
     @property
@@ -114,8 +115,8 @@ class PlanarSpec:
         must fit the memory limit; the circle's keys go with ``singularities``
         (:func:`check_circle_keys`); the job's estimated memory and time must fit the limits
         (:func:`~planar_tui.workspace.paving.estimate.check_needs`)."""
-        dexterous = values["kappa_max"] is not None
-        names = tuple(n for n in cls.circle_keys if not (dexterous and n in cls.mode_keys))
+        moded = values["kappa_max"] is not None or values["leg_width_cm"] is not None
+        names = tuple(n for n in cls.circle_keys if not (moded and n in cls.mode_keys))
         check_circle_keys(values, reader, names)
         check_dexterity(values, reader)
         if values["leg_width_cm"] is not None and not cls.mechanism.has_interference:
@@ -370,12 +371,15 @@ def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> 
 
 def prepare_planar(job: Job[PlanarSpec, Any]) -> object:
     """The kind's ``prepare``: the singularity-free circle's centre, checked (``None``
-    without singularities); with ``kappa_max`` the κ evaluator is built once here, so a
-    working mode it cannot resolve is refused before anything runs."""
+    without singularities); with ``kappa_max`` (``leg_width_cm``) the κ (clearance)
+    evaluator is built once here, so a working mode it cannot resolve is refused before
+    anything runs."""
     mechanism: Mechanism = job.spec.mechanism
     prepared = mechanism.resolve_centre(job) if mechanism.has_singularities else None
     if job.spec.kappa_max is not None:
         mechanism.dexterity(job, prepared)
+    if job.spec.leg_width_cm is not None:
+        mechanism.interference(job, prepared)
     return prepared
 
 

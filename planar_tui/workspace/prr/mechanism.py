@@ -27,6 +27,7 @@ class Mechanism3PRR(Mechanism):
     has_singularities = True
     has_orientation_ranges = True
     has_dexterity = True
+    has_interference = True
 
     def parameters(self, robot: Any, spec: Any) -> Any:
         return prr.leg_parameters(robot, spec)
@@ -50,6 +51,12 @@ class Mechanism3PRR(Mechanism):
 
     def dexterity(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
         from planar_tui.workspace.prr.dexterity import evaluator, working_modes
+
+        return evaluator(job, working_modes(job, prepared))
+
+    def interference(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
+        from planar_tui.workspace.prr.dexterity import working_modes
+        from planar_tui.workspace.prr.interference import evaluator
 
         return evaluator(job, working_modes(job, prepared))
 

@@ -1,5 +1,5 @@
 """The 3-RPR's clearance evaluator (:meth:`~planar_tui.workspace.paving.mechanism.Mechanism.
-interference`): :func:`kernels.interference_rpr.rpr_interference` with the job's base
+interference`): :func:`kernels.interference_prismatic.rpr_interference` with the job's base
 joints, annuli centres, platform offsets, leg limits and ``leg_width_cm``: each leg one
 link :math:`A_i C_i`, the platform the triangle :math:`C_1 C_2 C_3`. Its legs have one
 branch: no working mode."""
@@ -23,7 +23,7 @@ def evaluator(robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any]]:
     width = float(spec.leg_width_cm)
 
     def evaluate(boxes: Any) -> tuple[Any, Any]:
-        from planar_tui.kernels.interference_rpr import rpr_interference  # numba
+        from planar_tui.kernels.interference_prismatic import rpr_interference  # numba
 
         verdict = np.empty(len(boxes), dtype=np.int64)
         gap = np.empty((len(boxes), 2))
