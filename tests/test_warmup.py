@@ -77,9 +77,11 @@ def test_a_workspace_job_warms_only_the_parts_its_run_calls(tmp_path):
         "workspace:arc-distance",
         "workspace:singularities",
         "workspace:orientation",
+        "workspace:dexterity",
+        "workspace:interference",
     }
     whole = warmup.example("workspace")
-    assert whole is not None and whole.count("[[workspace]]") == 5
+    assert whole is not None and whole.count("[[workspace]]") == 7
     assert whole.count("[robot3rrr]") == 1
 
 
