@@ -59,6 +59,7 @@ def test_a_workspace_job_warms_only_the_parts_its_run_calls(tmp_path):
         'orientation_deg = [-5, 5]\norientation_mode = "total"',
         'form = "arc-distance"\nsingularities = true\nelbow = [1, -1, 1]',
         'form = "arc-distance"\nkappa_max = 4\nelbow = [1, -1, 1]',
+        'form = "arc-distance"\nleg_width_cm = 4\nelbow = [1, -1, 1]',
     ]
     preset = tmp_path / "p.toml"
     preset.write_text(WORKSPACE_ROBOT + "".join(f"[[workspace]]\n{LIMITS}{t}\n" for t in tables))
@@ -70,6 +71,7 @@ def test_a_workspace_job_warms_only_the_parts_its_run_calls(tmp_path):
         ["workspace:orientation"],
         ["workspace:arc-distance", "workspace:singularities"],
         ["workspace:arc-distance", "workspace:dexterity"],
+        ["workspace:arc-distance", "workspace:interference"],
     ]
     # a kind with one example is one unit; a bare kind stands for all of its parts
     assert warmup.units("torques") == ["torques"]
@@ -80,9 +82,10 @@ def test_a_workspace_job_warms_only_the_parts_its_run_calls(tmp_path):
         "workspace:singularities",
         "workspace:orientation",
         "workspace:dexterity",
+        "workspace:interference",
     }
     whole = warmup.example("workspace")
-    assert whole is not None and whole.count("[[workspace]]") == 6
+    assert whole is not None and whole.count("[[workspace]]") == 7
     assert whole.count("[robot3rrr]") == 1
 
 

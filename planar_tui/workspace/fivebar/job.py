@@ -41,6 +41,7 @@ from planar_tui.workspace.paving.circle import read_centre, refuse_without_singu
 from planar_tui.workspace.paving.columns import tolerance_names
 from planar_tui.workspace.paving.dexterity import check_dexterity, kappa_setting
 from planar_tui.workspace.paving.estimate import check_needs, estimate, report_box_estimate
+from planar_tui.workspace.paving.interference import check_interference, width_setting
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.paving.result import (
     BOXES_OPTION,
@@ -68,6 +69,7 @@ from planar_tui.workspace.paving.tolerance import (
 if TYPE_CHECKING:
     from planar_tui.workspace.fivebar.singularity import FiveBarSingularities
     from planar_tui.workspace.paving.dexterity import DexterityOutcome
+    from planar_tui.workspace.paving.interference import InterferenceOutcome
     from planar_tui.workspace.paving.levels import BoxBudget, WorkspaceOutcome
 
 #: The forms: the exact leg-wise paving, or the exact area only.
@@ -129,6 +131,7 @@ class FiveBarSpec:
         "`singularities = true` and a working mode)",
     )
     kappa_max: float | None = kappa_setting()
+    leg_width_cm: float | None = width_setting()
     tolerance_cm: float | None = TOLERANCE_FIELDS_5R[0]
     tolerances_cm: tuple[tuple[str, float], ...] | None = TOLERANCE_FIELDS_5R[1]
     tolerance_mode: str | None = TOLERANCE_FIELDS_5R[2]
@@ -174,12 +177,14 @@ class FiveBarSpec:
                     "a centre inside the workspace, off its singularities",
                 )
         check_dexterity(values, reader)
-        if values["kappa_max"] is not None and robot.working_mode == "any":
-            raise reader.error(
-                "kappa_max",
-                "needs a working mode (the robot's working_mode is any)",
-                'working_mode = "++", "+-", "-+" or "--" in [robot5r]',
-            )
+        check_interference(values, reader)
+        for key in ("kappa_max", "leg_width_cm"):
+            if values[key] is not None and robot.working_mode == "any":
+                raise reader.error(
+                    key,
+                    "needs a working mode (the robot's working_mode is any)",
+                    'working_mode = "++", "+-", "-+" or "--" in [robot5r]',
+                )
         values = check_paving(values, reader)
         check_needs("workspace5r", FiveBarSpec(**values), reader, robot)  # memory and time
         return values
@@ -195,6 +200,8 @@ class FiveBarResult(JobResult):
     companions: dict[str, WorkspaceOutcome] | None = None
     #: The certified dexterous region, with ``kappa_max``.
     dexterity: DexterityOutcome | None = None
+    #: The certified interference-free region, with ``leg_width_cm``.
+    interference: InterferenceOutcome | None = None
 
 
 def compute_fivebar(robot: Robot5R, spec: FiveBarSpec, budget: BoxBudget) -> WorkspaceOutcome:
@@ -270,6 +277,9 @@ def run_fivebar(
     from planar_tui.workspace.paving.dexterity import HEADER as DEXTERITY_HEADER
     from planar_tui.workspace.paving.dexterity import boxes_table as dexterity_boxes
     from planar_tui.workspace.paving.dexterity import compute_dexterity
+    from planar_tui.workspace.paving.interference import HEADER as INTERFERENCE_HEADER
+    from planar_tui.workspace.paving.interference import boxes_table as interference_boxes
+    from planar_tui.workspace.paving.interference import job_interference
     from planar_tui.workspace.paving.levels import (
         SUMMARY_HEADER,
         BoxBudget,
@@ -304,16 +314,25 @@ def run_fivebar(
         )
         header, row = header + DEXTERITY_HEADER, row + dexterous.columns()
         summary += f"; {dexterous.describe()}"
+    clear = None
+    if job.spec.leg_width_cm is not None:
+        elbow = " ".join(str(s) for s in job.robot.elbows)
+        clear = job_interference(job, None, outcome.extent_cm, budget, elbow)
+        header, row = header + INTERFERENCE_HEADER, row + clear.columns()
+        summary += f"; {clear.describe()}"
     report = tolerance_report(job, lambda: BoxBudget(job, progress), compute_fivebar)
     if report is not None:
         header, row, summary = header + report.header, row + report.cells, summary + report.text
     return FiveBarResult(
         table=CsvTable((*header, "seconds"), [[*row, base[11]]]),
         summary=summary,
-        extra_tables={"boxes": dexterity_boxes(boxes_table(outcome), dexterous)},
+        extra_tables={
+            "boxes": interference_boxes(dexterity_boxes(boxes_table(outcome), dexterous), clear)
+        },
         outcome=outcome,
         singularity=singular,
         dexterity=dexterous,
+        interference=clear,
         companions=None if report is None else report.companions,
     )
 
@@ -322,6 +341,7 @@ def fivebar_figure_names(job: Any) -> tuple[str, ...]:
     """The columns of a five-bar job (:func:`planar_tui.workspace.fivebar.job.run_fivebar`)."""
     from planar_tui.workspace.fivebar.singularity import HEADER
     from planar_tui.workspace.paving.dexterity import dexterity_names
+    from planar_tui.workspace.paving.interference import interference_names
     from planar_tui.workspace.paving.levels import SUMMARY_HEADER
 
     return (
@@ -330,6 +350,7 @@ def fivebar_figure_names(job: Any) -> tuple[str, ...]:
         *SUMMARY_HEADER[2:-1],
         *HEADER,
         *dexterity_names(job),
+        *interference_names(job),
         *tolerance_names(job),
     )
 

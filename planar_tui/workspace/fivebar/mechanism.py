@@ -29,6 +29,7 @@ class MechanismFiveBar(Mechanism):
     has_singularities = False  # its runner, not the generic one, certifies them
     has_orientation_ranges = False
     has_dexterity = True
+    has_interference = True
 
     def parameters(self, robot: Any, spec: Any) -> Any:
         return robot.leg_arrays()
@@ -51,6 +52,11 @@ class MechanismFiveBar(Mechanism):
         from planar_tui.workspace.fivebar.dexterity import evaluator
 
         return evaluator(job.robot)
+
+    def interference(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
+        from planar_tui.workspace.fivebar.interference import evaluator
+
+        return evaluator(job.robot, job.spec)
 
     def reach_box(self, robot: Any, spec: Any) -> tuple[float, float, float, float]:
         return robot.reach_box_cm()

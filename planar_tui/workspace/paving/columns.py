@@ -23,11 +23,12 @@ def planar_figure_names(job: Any) -> tuple[str, ...]:
     """The columns of a 3-RPR or 3-PRR job (:func:`planar_tui.workspace.paving.runner.run_planar`)."""
     from planar_tui.workspace.paving.circle import HEADER
     from planar_tui.workspace.paving.dexterity import dexterity_names
+    from planar_tui.workspace.paving.interference import interference_names
     from planar_tui.workspace.paving.levels import SUMMARY_HEADER
     from planar_tui.workspace.paving.orientation import ORIENTATION_HEADER
 
     circle = HEADER if job.spec.mechanism.has_singularities else ()
-    dexterous = dexterity_names(job)
+    dexterous = (*dexterity_names(job), *interference_names(job))
     return (*SUMMARY_HEADER[:-1], *ORIENTATION_HEADER, *circle, *dexterous, *tolerance_names(job))
 
 

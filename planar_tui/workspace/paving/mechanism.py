@@ -56,6 +56,8 @@ class Mechanism(Protocol):
     has_orientation_ranges: bool
     #: Whether it certifies dexterous regions (``kappa_max``, :meth:`dexterity`).
     has_dexterity: bool = False
+    #: Whether it certifies interference-free regions (``leg_width_cm``, :meth:`interference`).
+    has_interference: bool = False
 
     def parameters(self, robot: Any, spec: Any) -> Any:
         """The leg test kernel's parameter array (its tolerance bounds included)."""
@@ -112,6 +114,14 @@ class Mechanism(Protocol):
         leg out, 1 unsure, 2 every leg in) and its certified κ enclosure (k, 2)
         (:mod:`planar_tui.workspace.paving.dexterity`)."""
         problem = f"{self.name} certifies no dexterous region (has_dexterity is false)"
+        raise NotImplementedError(problem)
+
+    def interference(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
+        """The clearance evaluator of a job with ``leg_width_cm`` in its working mode
+        (resolved by ``prepare``): (k, 4) boxes to each box's verdict (as
+        :meth:`dexterity`'s) and its certified gap enclosure (k, 2), cm
+        (:mod:`planar_tui.workspace.paving.interference`)."""
+        problem = f"{self.name} certifies no interference (has_interference is false)"
         raise NotImplementedError(problem)
 
     def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:

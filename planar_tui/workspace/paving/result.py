@@ -14,6 +14,7 @@ from planar_tui.workspace.paving.tolerance import map_layers, tolerance_of
 
 if TYPE_CHECKING:
     from planar_tui.workspace.paving.dexterity import DexterityOutcome
+    from planar_tui.workspace.paving.interference import InterferenceOutcome
     from planar_tui.workspace.paving.levels import WorkspaceOutcome
 
 
@@ -46,6 +47,8 @@ class WorkspaceResult(JobResult):
     companions: dict[str, WorkspaceOutcome] | None = None
     #: The certified dexterous region, with ``kappa_max``.
     dexterity: DexterityOutcome | None = None
+    #: The certified interference-free region, with ``leg_width_cm``.
+    interference: InterferenceOutcome | None = None
 
 
 def map_title(job: Job[Any, Any], outcome: WorkspaceOutcome) -> str:
@@ -85,6 +88,9 @@ def render_workspace(job: Job[Any, Any], result: WorkspaceResult, console: Any) 
 
         lines += [dexterous.describe(), *render_map(dexterous.boxes, dexterous.status, width=width)]
         lines += render_kappa_map(dexterous, width)
+    clear = getattr(result, "interference", None)
+    if clear is not None:  # its region: proved interference-free, boundary
+        lines += [clear.describe(), *render_map(clear.boxes, clear.status, width=width)]
     for line in lines:
         console.print(line, markup=False, highlight=False, crop=True, soft_wrap=False)
 

@@ -30,6 +30,7 @@ from planar_tui.schema import TableReader, number, plot_setting, setting, string
 from planar_tui.workspace.paving.columns import planar_figure_names
 from planar_tui.workspace.paving.dexterity import check_dexterity, kappa_setting, length_setting
 from planar_tui.workspace.paving.estimate import check_needs, estimate, report_box_estimate
+from planar_tui.workspace.paving.interference import check_interference, width_setting
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.paving.result import (
     WorkspaceResult,
@@ -86,6 +87,7 @@ class PlanarSpec:
     singularity_precision_cm: float | None = singularity_precision_setting()
     kappa_max: float | None = kappa_setting()
     characteristic_length_cm: float | None = length_setting()
+    leg_width_cm: float | None = width_setting()
 
     #: The kind's :class:`Mechanism` and job kind's name (set by each subclass; not keys).
     mechanism: ClassVar[Mechanism]
@@ -95,7 +97,8 @@ class PlanarSpec:
     tolerance_keys: ClassVar[tuple[str, ...]] = ()
     #: The keys that go with ``singularities = true`` (:func:`check_circle_keys`).
     circle_keys: ClassVar[tuple[str, ...]] = ("circle_centre_cm", "singularity_precision_cm")
-    #: The circle keys that ``kappa_max`` takes too (its working mode; ``()``: none).
+    #: The circle keys that ``kappa_max`` and ``leg_width_cm`` take too (their working
+    #: mode; ``()``: none).
     mode_keys: ClassVar[tuple[str, ...]] = ()
 
     @property
@@ -112,10 +115,14 @@ class PlanarSpec:
         must fit the memory limit; the circle's keys go with ``singularities``
         (:func:`check_circle_keys`); the job's estimated memory and time must fit the limits
         (:func:`~planar_tui.workspace.paving.estimate.check_needs`)."""
-        dexterous = values["kappa_max"] is not None
-        names = tuple(n for n in cls.circle_keys if not (dexterous and n in cls.mode_keys))
+        moded = values["kappa_max"] is not None or values["leg_width_cm"] is not None
+        names = tuple(n for n in cls.circle_keys if not (moded and n in cls.mode_keys))
         check_circle_keys(values, reader, names)
         check_dexterity(values, reader)
+        if values["leg_width_cm"] is not None and not cls.mechanism.has_interference:
+            found = f"is set: the {cls.mechanism.name}'s leg interference is not certified yet"
+            raise reader.error("leg_width_cm", found, "no leg_width_cm")
+        check_interference(values, reader)
         refine = values["refine_precision_cm"]
         if refine is not None and refine > values["precision_cm"]:
             raise reader.error(
@@ -328,7 +335,17 @@ def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> 
         header = (*header[:-1], *DEXTERITY_HEADER, header[-1])
         row = [*row[:-1], *dexterous.columns(), row[-1]]
         summary += f"; {dexterous.describe()}"
+    clear = None
+    if job.spec.leg_width_cm is not None:  # its columns before the wall time too
+        from planar_tui.workspace.paving.interference import HEADER as INTERFERENCE_HEADER
+        from planar_tui.workspace.paving.interference import job_interference
+
+        clear = job_interference(job, ready.prepared, outcome.extent_cm, budget)
+        header = (*header[:-1], *INTERFERENCE_HEADER, header[-1])
+        row = [*row[:-1], *clear.columns(), row[-1]]
+        summary += f"; {clear.describe()}"
     from planar_tui.workspace.paving.dexterity import boxes_table as dexterity_boxes
+    from planar_tui.workspace.paving.interference import boxes_table as interference_boxes
     from planar_tui.workspace.paving.tolerance import tolerance_report
 
     report = tolerance_report(job, lambda: BoxBudget(job, progress), compute_planar)
@@ -341,22 +358,28 @@ def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> 
     return WorkspaceResult(
         table=CsvTable(header, [row]),
         summary=summary,
-        extra_tables={"boxes": dexterity_boxes(boxes_table(outcome), dexterous)},
+        extra_tables={
+            "boxes": interference_boxes(dexterity_boxes(boxes_table(outcome), dexterous), clear)
+        },
         outcome=outcome,
         singularity=singular,
         dexterity=dexterous,
+        interference=clear,
         companions=None if report is None else report.companions,
     )
 
 
 def prepare_planar(job: Job[PlanarSpec, Any]) -> object:
     """The kind's ``prepare``: the singularity-free circle's centre, checked (``None``
-    without singularities); with ``kappa_max`` the κ evaluator is built once here, so a
-    working mode it cannot resolve is refused before anything runs."""
+    without singularities); with ``kappa_max`` (``leg_width_cm``) the κ (clearance)
+    evaluator is built once here, so a working mode it cannot resolve is refused before
+    anything runs."""
     mechanism: Mechanism = job.spec.mechanism
     prepared = mechanism.resolve_centre(job) if mechanism.has_singularities else None
     if job.spec.kappa_max is not None:
         mechanism.dexterity(job, prepared)
+    if job.spec.leg_width_cm is not None:
+        mechanism.interference(job, prepared)
     return prepared
 
 

@@ -29,6 +29,8 @@ class Mechanism3PRR(LegMechanism):
     singularity_module = singularity
     orientation_module = orientation
 
+    has_interference = True
+
     def level_kernel(self) -> Callable[..., None]:
         from planar_tui.kernels.workspace3prr import prr_level
 
@@ -64,6 +66,12 @@ class Mechanism3PRR(LegMechanism):
         modes = np.array(spec.slider_modes, dtype=np.float64)
         length = spec.characteristic_length_cm or circumradius_cm(robot.platform_points_cm)
         return box_test(prr_pose_boxes, g, modes, q, length)
+
+    def interference(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
+        from planar_tui.workspace.prr.dexterity import working_modes
+        from planar_tui.workspace.prr.interference import evaluator
+
+        return evaluator(job, working_modes(job, prepared))
 
     def path_model(self, robot: Any) -> PathModel:
         return PathModel(pose_dimension=3, actuators=3, prismatic=True)

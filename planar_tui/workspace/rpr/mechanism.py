@@ -29,6 +29,8 @@ class Mechanism3RPR(LegMechanism):
     singularity_module = singularity
     orientation_module = orientation
 
+    has_interference = True
+
     def level_kernel(self) -> Callable[..., None]:
         from planar_tui.kernels.workspace3rpr import rpr_level
 
@@ -36,6 +38,11 @@ class Mechanism3RPR(LegMechanism):
 
     def resolve_centre(self, job: Any) -> object:
         return singularity.resolve_centre(job)
+
+    def interference(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
+        from planar_tui.workspace.rpr.interference import evaluator
+
+        return evaluator(job.robot, job.spec)
 
     def dexterity(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
         from planar_tui.workspace.rpr.dexterity import evaluator

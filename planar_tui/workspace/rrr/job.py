@@ -31,6 +31,7 @@ from planar_tui.schema import (
     string,
 )
 from planar_tui.workspace.paving.dexterity import check_dexterity, kappa_setting, length_setting
+from planar_tui.workspace.paving.interference import check_interference, width_setting
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.paving.orientation import check_orientation
 from planar_tui.workspace.paving.result import (
@@ -175,6 +176,7 @@ class WorkspaceSpec:
     singularity_precision_cm: float | None = singularity_precision_setting()
     kappa_max: float | None = kappa_setting()
     characteristic_length_cm: float | None = length_setting()
+    leg_width_cm: float | None = width_setting()
     tolerance_cm: float | None
     tolerances_cm: tuple[tuple[str, float], ...] | None
     tolerance_mode: str | None
@@ -193,6 +195,7 @@ class WorkspaceSpec:
         check_orientation(values, reader)
         check_singularity(values, reader)
         check_dexterity(values, reader)
+        check_interference(values, reader)
         lengths = {"proximal_cm": robot.proximal_cm, "distal_cm": robot.distal_cm}
         check_tolerance(values, reader, TOLERANCE_KEYS_3RRR, lengths)
         form = values["form"]
@@ -258,16 +261,17 @@ WorkspaceJob = Job[WorkspaceSpec, Robot3RRR]
 @dataclass(frozen=True)
 class WorkspacePrepared:
     """What :func:`prepare_workspace` resolves: the singularity-free circle's centre and
-    working mode (``None`` without ``singularities`` or ``kappa_max``)."""
+    working mode (``None`` without ``singularities``, ``kappa_max`` or ``leg_width_cm``)."""
 
     circle: Circle | None
 
 
 def prepare_workspace(job: WorkspaceJob) -> WorkspacePrepared:
-    """Resolve the circle of a job with ``singularities`` or ``kappa_max`` (its working
-    mode: :func:`resolve_circle`), refusing an unreachable or singular centre
+    """Resolve the circle of a job with ``singularities``, ``kappa_max`` or ``leg_width_cm``
+    (its working mode: :func:`resolve_circle`), refusing an unreachable or singular centre
     (:class:`PresetError`, exit code 2)."""
-    if not job.spec.singularities and job.spec.kappa_max is None:
+    spec = job.spec
+    if not spec.singularities and spec.kappa_max is None and spec.leg_width_cm is None:
         return WorkspacePrepared(None)
     return WorkspacePrepared(resolve_circle(job))
 
@@ -297,6 +301,9 @@ def run_workspace(
     from planar_tui.workspace.paving.dexterity import HEADER as DEXTERITY_HEADER
     from planar_tui.workspace.paving.dexterity import boxes_table as dexterity_boxes
     from planar_tui.workspace.paving.dexterity import dexterity_columns
+    from planar_tui.workspace.paving.interference import HEADER as INTERFERENCE_HEADER
+    from planar_tui.workspace.paving.interference import boxes_table as interference_boxes
+    from planar_tui.workspace.paving.interference import job_interference
     from planar_tui.workspace.paving.levels import (
         SUMMARY_HEADER,
         BoxBudget,
@@ -337,18 +344,27 @@ def run_workspace(
         dexterous = rrr_dexterity(job, ready.prepared, outcome.extent_cm, budget)
         row, header = row + dexterity_columns(dexterous), header + DEXTERITY_HEADER
         summary += f"; {dexterous.describe()}"
+    interference = None
+    if job.spec.leg_width_cm is not None:
+        assert circle is not None  # prepared with the mode
+        elbow = " ".join(str(s) for s in circle.elbow)
+        interference = job_interference(job, ready.prepared, outcome.extent_cm, budget, elbow)
+        row, header = row + interference.columns(), header + INTERFERENCE_HEADER
+        summary += f"; {interference.describe()}"
     report = tolerance_report(job, lambda: BoxBudget(job, progress), compute_workspace)
     if report is not None:
         row, header, summary = row + report.cells, header + report.header, summary + report.text
     row.append(base[-1])
     header += (SUMMARY_HEADER[-1],)
+    table = boxes_table(outcome)
     return WorkspaceResult(
         table=CsvTable(header, [row]),
         summary=summary,
-        extra_tables={"boxes": dexterity_boxes(boxes_table(outcome), dexterous)},
+        extra_tables={"boxes": interference_boxes(dexterity_boxes(table, dexterous), interference)},
         outcome=outcome,
         singularity=singular,
         dexterity=dexterous,
+        interference=interference,
         companions=None if report is None else report.companions,
     )
 
@@ -369,6 +385,7 @@ WARMUP_PARTS = {
     "elbow = [1, -1, 1]\n",
     "orientation": _WARMUP_TABLE + 'orientation_deg = [-1, 1]\norientation_mode = "total"\n',
     "dexterity": _WARMUP_TABLE + 'form = "arc-distance"\nkappa_max = 4\nelbow = [1, -1, 1]\n',
+    "interference": _WARMUP_TABLE + 'form = "arc-distance"\nleg_width_cm = 2\nelbow = [1, -1, 1]\n',
 }
 
 
@@ -387,7 +404,8 @@ def warmup_parts(job: Job[WorkspaceSpec, Robot3RRR]) -> tuple[str, ...]:
         parts = [spec.strategy]
     if spec.singularities:
         parts.append("singularities")
-    return (*parts, "dexterity") if spec.kappa_max is not None else tuple(parts)
+    parts += ["dexterity"] if spec.kappa_max is not None else []
+    return (*parts, "interference") if spec.leg_width_cm is not None else tuple(parts)
 
 
 JOB_KIND = JobKind(

@@ -36,6 +36,7 @@ class Mechanism3RRR(Mechanism):
     has_singularities = True
     has_orientation_ranges = True
     has_dexterity = True
+    has_interference = True
 
     def parameters(self, robot: Any, spec: Any) -> Any:
         from planar_tui.workspace.rrr.compute import kernel_parameters  # numpy
@@ -77,6 +78,11 @@ class Mechanism3RRR(Mechanism):
 
     def dexterity(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
         from planar_tui.workspace.rrr.dexterity import evaluator
+
+        return evaluator(job.robot, job.spec, prepared.circle)
+
+    def interference(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
+        from planar_tui.workspace.rrr.interference import evaluator
 
         return evaluator(job.robot, job.spec, prepared.circle)
 

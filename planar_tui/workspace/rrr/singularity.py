@@ -44,10 +44,11 @@ LEAF_GRID = 4
 
 def check_singularity(values: dict, reader) -> None:
     """``elbow``, ``circle_centre_cm`` and ``singularity_precision_cm`` go with
-    ``singularities = true`` (``elbow`` with ``kappa_max`` too), which needs a single
+    ``singularities = true`` (``elbow`` with ``kappa_max`` or ``leg_width_cm`` too), which needs a single
     orientation and a form with boxes."""
     if not values["singularities"]:
-        mode = () if values.get("kappa_max") is not None else ("elbow",)  # kappa_max's mode
+        moded = values.get("kappa_max") is not None or values.get("leg_width_cm") is not None
+        mode = () if moded else ("elbow",)  # the mode of kappa_max and leg_width_cm
         refuse_without_singularities(
             values, reader, (*mode, "circle_centre_cm", "singularity_precision_cm")
         )
