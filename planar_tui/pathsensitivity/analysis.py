@@ -76,11 +76,13 @@ def analyse_varying(
     unit: Any,
     values: Any,
     progress: Progress,
-) -> tuple[Any, Any, str]:
-    """:func:`~planar_tui.sensitivity.runner.analyse_outputs` of the outputs that vary over the
+) -> tuple[Any, Any, Any, str]:
+    """``(indices, loo, varying, note)``:
+    :func:`~planar_tui.sensitivity.runner.analyse_outputs` of the outputs that vary over the
     robots; one that does not (a torque at rest on a horizontal machine: 0 for every robot)
-    has no variance to apportion and gets indices 0, as the motion job's point indices (a
-    failed run's NaN counts as varying, so it is still caught)."""
+    has no variance to apportion and no indices (``varying`` false: empty cells in the CSV,
+    zeros in the arrays), as the motion job's (a failed run's NaN counts as varying, so it
+    is still caught)."""
     import numpy as np
 
     from planar_tui.sensitivity.runner import analyse_outputs
@@ -90,14 +92,14 @@ def analyse_varying(
     loo = np.zeros(values.shape[1]) if method == "pce" else None
     if not varying.any():
         progress.advance(1.0, method)
-        return indices, loo, ""
+        return indices, loo, varying, ""
     found, found_loo, note = analyse_outputs(
         ready, problem, method, unit, values[:, varying], progress, method
     )
     indices[:, varying] = found
     if loo is not None:
         loo[varying] = found_loo
-    return indices, loo, note
+    return indices, loo, varying, note
 
 
 def analyse_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathSensitivityResult:
@@ -152,14 +154,24 @@ def analyse_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathS
         variances[method] = path_variances(
             method, values, extra.get(method), designs[method], actuators
         )
-        indices, loo, note = analyse_varying(
+        indices, loo, varying, note = analyse_varying(
             ready, problem, method, designs[method], values, progress
         )
         notes += [f"{method}: {note}"] if note else []
         runs = len(designs[method])
         percent = sensitivity_percent(indices, "ST")
         along.append(
-            Analysis(method, "path", 0.0, names, indices, percent, runs=runs, loo_error=loo)
+            Analysis(
+                method,
+                "path",
+                0.0,
+                names,
+                indices,
+                percent,
+                runs=runs,
+                loo_error=loo,
+                defined=varying,
+            )
         )
         head = indices[:, : 2 * actuators]
         analyses.append(
@@ -174,6 +186,7 @@ def analyse_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathS
                 context,
                 runs=runs,
                 loo_error=None if loo is None else loo[: 2 * actuators],
+                defined=varying[: 2 * actuators],
             )
         )
     nominal_outputs = path_outputs(efforts[None], states.times_s)[0]

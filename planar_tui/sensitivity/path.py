@@ -168,6 +168,7 @@ def path_tables(
     for a in along:
         trajectory = a.indices[:, 2 * n :].reshape(4, steps, n, -1)
         loo = None if a.loo_error is None else a.loo_error[2 * n :].reshape(steps, n)
+        defined = None if a.defined is None else a.defined[2 * n :].reshape(steps, n)
         for k in range(steps):
             indices = trajectory[:, k]
             per_time.append(
@@ -181,6 +182,7 @@ def path_tables(
                     names,
                     runs=a.runs,
                     loo_error=None if loo is None else loo[k],
+                    defined=None if defined is None else defined[k],
                 )
             )
         variance, runs = variances[a.method]
