@@ -113,14 +113,20 @@ def analyse_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathS
         scaled,
     )
     from planar_tui.sensitivity.engine import Problem, montecarlo_design, unit_design
-    from planar_tui.sensitivity.path import path_labels, path_tables, path_variances
+    from planar_tui.sensitivity.path import (
+        effort_names,
+        path_labels,
+        path_tables,
+        path_variances,
+    )
     from planar_tui.sensitivity.pce import pce_unit_design
     from planar_tui.sensitivity.results import Analysis, csv_table, sensitivity_percent
 
     spec, robot = ready.prepared, ready.robot
     inputs = inputs_of(spec, robot)
     names = tuple(i.name for i in inputs)
-    actuators = spec.mechanism.path_model(robot).actuators
+    model = spec.mechanism.path_model(robot)
+    actuators = model.actuators
     nominal = np.array([i.nominal for i in inputs])
     half = np.array([i.half_width for i in inputs])
     problem = Problem(names, nominal - half, nominal + half, actuators)
@@ -182,7 +188,7 @@ def analyse_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathS
                 names,
                 head,
                 sensitivity_percent(head, "ST"),
-                path_labels(actuators),
+                path_labels(actuators, "F" if model.prismatic else "τ"),
                 context,
                 runs=runs,
                 loo_error=None if loo is None else loo[: 2 * actuators],
@@ -205,7 +211,13 @@ def analyse_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathS
     )
     return PathSensitivityResult(
         table=csv_table(label, analyses),
-        extra_tables=path_tables(along, spec, actuators, variances),
+        extra_tables=path_tables(
+            along,
+            spec,
+            actuators,
+            variances,
+            effort_names(actuators, model.effort, model.effort_unit),
+        ),
         summary=summary,
         robot_label=label,
         analyses=analyses,
