@@ -31,7 +31,8 @@ N\,\|R^{-1}\|_F^2`). The indices follow from the coefficients (Sudret 2008):
 those whose non-zero entries are exactly i and j. Confidence half-widths: ``z σ`` (as
 SALib reports its own) over a wild bootstrap of the regression (:func:`bootstrap_halfwidths`).
 Several outputs share one OMP path and each keeps the prefix of it with its own least LOO
-error (:func:`omp_path`).
+error (:func:`omp_path`). Many outputs (a path's every effort at every step) are fitted on their
+principal components (:mod:`.pce_compress`): the same fit, output by output.
 
 Pure NumPy (the basis by the three-term recurrence, the regression by Gram-Schmidt): no
 import beyond NumPy, and SciPy's ``qmc.Sobol`` only to draw a design the first time (then
