@@ -117,8 +117,9 @@ def run_cells(analyses: Sequence[Analysis]) -> Callable[[str, int], tuple]:
         if not with_loo:
             return (analysis.runs,)
         loo = analysis.loo_error
-        undefined = loo is None or not analysis.is_defined(k)
-        return analysis.runs, "" if undefined else float(loo[k])
+        if loo is None or not analysis.is_defined(k):
+            return analysis.runs, ""
+        return analysis.runs, float(loo[k])
 
     return cells
 
