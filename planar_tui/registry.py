@@ -105,6 +105,8 @@ JOB_KINDS: Registry[JobKind] = Registry(
         "path3prr": "planar_tui.workspace.prr.path",
         "path3rrr_sensitivity": "planar_tui.pathsensitivity.rrr",
         "path5r_sensitivity": "planar_tui.pathsensitivity.fivebar",
+        "path3rpr_sensitivity": "planar_tui.pathsensitivity.rpr",
+        "path3prr_sensitivity": "planar_tui.pathsensitivity.prr",
     },
 )
 

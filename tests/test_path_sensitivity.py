@@ -317,12 +317,15 @@ def test_the_pce_bootstrap_equals_refitting_every_resample_by_least_squares():
 
 
 @pytest.mark.parametrize("kind", ["path3rrr_sensitivity", "path5r_sensitivity"])
-def test_a_horizontal_machine_at_rest_has_zero_indices_and_the_warm_up_example_runs(
+def test_a_horizontal_machine_at_rest_has_undefined_indices_and_the_warm_up_example_runs(
     cli, tmp_path, kind
 ):
     """The kinds' warm-up examples (no gravity): at both ends of a rest-to-rest path every
-    robot's torques are exactly 0, outputs without variance, whose indices are 0 (not
-    NaN); in between the torques vary and the indices do not all vanish."""
+    robot's torques are exactly 0, outputs without variance, whose indices are undefined:
+    empty cells (not 0, not NaN); so are those at mid-path, where the platform's
+    acceleration vanishes on the straight path and the massless legs carry no load; at the
+    other steps the torques vary and the indices do not all vanish; the aggregated indices
+    stay numbers (those outputs weigh 0)."""
     from planar_tui.warmup import example
 
     preset = tmp_path / "w.toml"
@@ -332,5 +335,40 @@ def test_a_horizontal_machine_at_rest_has_zero_indices_and_the_warm_up_example_r
     (per_step,) = (tmp_path / "out").glob("*-path.csv")
     rows = read(per_step)
     ends = [r for r in rows if float(r["t_s"]) in (0.0, 1.0)]  # duration_s = 1 s
-    assert ends and all(float(r["S1"]) == 0.0 == float(r["ST"]) for r in ends)
-    assert max(float(r["ST"]) for r in rows) > 0.1
+    cells = ("S1", "S1_conf", "ST", "ST_conf", "percent")
+    assert ends and all(r[c] == "" for r in ends for c in cells)
+    inner = [r for r in rows if float(r["t_s"]) not in (0.0, 0.5, 1.0)]
+    assert all(r["S1"] != "" and r["ST"] != "" for r in inner)
+    assert max(float(r["ST"]) for r in inner) > 0.1
+    (aggregated,) = (tmp_path / "out").glob("*-path-aggregated.csv")
+    assert all(np.isfinite(float(r["ST"])) for r in read(aggregated))
+
+
+def test_an_output_without_indices_is_a_dash_in_the_table_and_no_loo_cell():
+    """The terminal table shows an undefined output's indices as dashes, a defined one's
+    as numbers; the CSV leaves its indices and its PCE LOO error empty."""
+    from rich.console import Console
+
+    from planar_tui.sensitivity.results import Analysis, csv_table, sensitivity_percent
+    from planar_tui.sensitivity.tables import VIEWS, fit_tables
+
+    indices = np.zeros((4, 2, 2))
+    indices[:, 0] = [[0.7, 0.3], [0.01, 0.01], [0.75, 0.35], [0.01, 0.01]]
+    analysis = Analysis(
+        "pce",
+        "path",
+        0.0,
+        ("a_cm", "b_kg"),
+        indices,
+        sensitivity_percent(indices),
+        ("peak", "rest"),
+        loo_error=np.array([1e-4, 0.0]),
+        defined=np.array([True, False]),
+    )
+    console = Console(width=120, record=True)
+    console.print(fit_tables([analysis], VIEWS[0], 120).renderable)
+    lines = {line.split()[0]: line for line in console.export_text().splitlines() if line.split()}
+    assert "—" in lines["rest"] and "—" not in lines["peak"]
+    rows = csv_table("r", [analysis]).rows
+    assert [r[6] for r in rows] == [0.7, 0.3, "", ""]  # S1
+    assert [r[-1] for r in rows] == [1e-4, 1e-4, "", ""]  # loo_error

@@ -150,6 +150,8 @@ def draw(table: CsvTable, title: str) -> Any:
                     if r is None:
                         continue
                     share = float(ix.percent[r])
+                    if math.isnan(share):  # an output without indices: no segment
+                        continue
                     segments[p].append((x, share, bottom))
                     bottom += share
                     if math.isfinite(conf[r]) and conf[r] > 0:

@@ -1,5 +1,6 @@
 """How tolerances move a parallel robot's actuator efforts along a path: the
-``[[path3rrr_sensitivity]]`` and ``[[path5r_sensitivity]]`` jobs.
+``[[path3rrr_sensitivity]]``, ``[[path5r_sensitivity]]``, ``[[path3rpr_sensitivity]]``
+and ``[[path3prr_sensitivity]]`` jobs.
 
 Every uncertain input (a length or platform dimension of the robot table, a body's mass,
 optionally its inertia) is uniform on ``nominal ± tolerance``; each design row is a robot
@@ -14,6 +15,6 @@ Modules: :mod:`.inputs` (the uncertain inputs of a robot, a design row as a robo
 :mod:`.sizes` (a job's inputs and sample sizes), :mod:`.engine` (the efforts of every
 design row, the peak, RMS and per-step outputs), :mod:`.analysis` (the runner and its
 result), :mod:`.job` (settings, checks, view: the kinds' factory), :mod:`.rrr`,
-:mod:`.fivebar` (one job kind per robot). Nothing here imports numba, SALib or scipy at
+:mod:`.fivebar`, :mod:`.rpr`, :mod:`.prr` (one job kind per robot). Nothing here imports numba, SALib or scipy at
 module level.
 """

@@ -76,11 +76,13 @@ def analyse_varying(
     unit: Any,
     values: Any,
     progress: Progress,
-) -> tuple[Any, Any, str]:
-    """:func:`~planar_tui.sensitivity.runner.analyse_outputs` of the outputs that vary over the
+) -> tuple[Any, Any, Any, str]:
+    """``(indices, loo, varying, note)``:
+    :func:`~planar_tui.sensitivity.runner.analyse_outputs` of the outputs that vary over the
     robots; one that does not (a torque at rest on a horizontal machine: 0 for every robot)
-    has no variance to apportion and gets indices 0, as the motion job's point indices (a
-    failed run's NaN counts as varying, so it is still caught)."""
+    has no variance to apportion and no indices (``varying`` false: empty cells in the CSV,
+    zeros in the arrays), as the motion job's (a failed run's NaN counts as varying, so it
+    is still caught)."""
     import numpy as np
 
     from planar_tui.sensitivity.runner import analyse_outputs
@@ -90,14 +92,14 @@ def analyse_varying(
     loo = np.zeros(values.shape[1]) if method == "pce" else None
     if not varying.any():
         progress.advance(1.0, method)
-        return indices, loo, ""
+        return indices, loo, varying, ""
     found, found_loo, note = analyse_outputs(
         ready, problem, method, unit, values[:, varying], progress, method
     )
     indices[:, varying] = found
     if loo is not None:
         loo[varying] = found_loo
-    return indices, loo, note
+    return indices, loo, varying, note
 
 
 def analyse_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathSensitivityResult:
@@ -111,14 +113,20 @@ def analyse_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathS
         scaled,
     )
     from planar_tui.sensitivity.engine import Problem, montecarlo_design, unit_design
-    from planar_tui.sensitivity.path import path_labels, path_tables, path_variances
+    from planar_tui.sensitivity.path import (
+        effort_names,
+        path_labels,
+        path_tables,
+        path_variances,
+    )
     from planar_tui.sensitivity.pce import pce_unit_design
     from planar_tui.sensitivity.results import Analysis, csv_table, sensitivity_percent
 
     spec, robot = ready.prepared, ready.robot
     inputs = inputs_of(spec, robot)
     names = tuple(i.name for i in inputs)
-    actuators = spec.mechanism.path_model(robot).actuators
+    model = spec.mechanism.path_model(robot)
+    actuators = model.actuators
     nominal = np.array([i.nominal for i in inputs])
     half = np.array([i.half_width for i in inputs])
     problem = Problem(names, nominal - half, nominal + half, actuators)
@@ -152,14 +160,24 @@ def analyse_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathS
         variances[method] = path_variances(
             method, values, extra.get(method), designs[method], actuators
         )
-        indices, loo, note = analyse_varying(
+        indices, loo, varying, note = analyse_varying(
             ready, problem, method, designs[method], values, progress
         )
         notes += [f"{method}: {note}"] if note else []
         runs = len(designs[method])
         percent = sensitivity_percent(indices, "ST")
         along.append(
-            Analysis(method, "path", 0.0, names, indices, percent, runs=runs, loo_error=loo)
+            Analysis(
+                method,
+                "path",
+                0.0,
+                names,
+                indices,
+                percent,
+                runs=runs,
+                loo_error=loo,
+                defined=varying,
+            )
         )
         head = indices[:, : 2 * actuators]
         analyses.append(
@@ -170,10 +188,11 @@ def analyse_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathS
                 names,
                 head,
                 sensitivity_percent(head, "ST"),
-                path_labels(actuators),
+                path_labels(actuators, "F" if model.prismatic else "τ"),
                 context,
                 runs=runs,
                 loo_error=None if loo is None else loo[: 2 * actuators],
+                defined=varying[: 2 * actuators],
             )
         )
     nominal_outputs = path_outputs(efforts[None], states.times_s)[0]
@@ -192,7 +211,13 @@ def analyse_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathS
     )
     return PathSensitivityResult(
         table=csv_table(label, analyses),
-        extra_tables=path_tables(along, spec, actuators, variances),
+        extra_tables=path_tables(
+            along,
+            spec,
+            actuators,
+            variances,
+            effort_names(actuators, model.effort, model.effort_unit),
+        ),
         summary=summary,
         robot_label=label,
         analyses=analyses,

@@ -18,7 +18,7 @@ and its ``path`` and ``path_aggregated`` tables live here too (:func:`path_table
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -129,9 +129,19 @@ def path_variances(method: str, values, extra, unit, n: int):
     return values[rows, 2 * n :].var(axis=0), runs
 
 
-def path_labels(n: int) -> tuple[str, ...]:
-    """Row labels of the peak and RMS outputs: ``peak|τ1|`` … ``RMS τn``."""
-    return (*(f"peak|τ{j}|" for j in range(1, n + 1)), *(f"RMS τ{j}" for j in range(1, n + 1)))
+def path_labels(n: int, symbol: str = "τ") -> tuple[str, ...]:
+    """Row labels of the peak and RMS outputs: ``peak|τ1|`` … ``RMS τn`` (``symbol``: the
+    effort's, ``F`` for prismatic actuators' forces)."""
+    return (
+        *(f"peak|{symbol}{j}|" for j in range(1, n + 1)),
+        *(f"RMS {symbol}{j}" for j in range(1, n + 1)),
+    )
+
+
+def effort_names(n: int, effort: str = "tau", unit: str = "Nm") -> tuple[str, ...]:
+    """The per-step efforts' column names: ``tau1_Nm`` … (``force1_N`` … for prismatic
+    actuators: ``effort = "force"``, ``unit = "N"``), as the path jobs' CSV."""
+    return tuple(f"{effort}{j}_{unit}" for j in range(1, n + 1))
 
 
 def path_context(posture: str, path: PathSpec) -> str:
@@ -141,12 +151,17 @@ def path_context(posture: str, path: PathSpec) -> str:
 
 
 def path_tables(
-    along: list[Analysis], path: PathSpec, n: int, variances: Mapping[str, Any]
+    along: list[Analysis],
+    path: PathSpec,
+    n: int,
+    variances: Mapping[str, Any],
+    names: Sequence[str] | None = None,
 ) -> dict[str, Any]:
-    """The ``path`` table: the indices of every torque at every step of the path, shaped
-    like the motion indices CSV (``output, t_s, parameter, method, …``); the
-    ``path_aggregated`` table: each joint's torque over the path and all torques together
-    (Gamboa et al. 2014), weighted by the torques' variances over independent uniform runs
+    """The ``path`` table: the indices of every effort at every step of the path, shaped
+    like the motion indices CSV (``output, t_s, parameter, method, …``; ``names``: the n
+    efforts' names, :func:`effort_names`, the torques by default); the ``path_aggregated``
+    table: each actuator's effort over the path and all efforts together (Gamboa et al.
+    2014), weighted by the efforts' variances over independent uniform runs
     (``variances``: method -> (((K+1) n,) step-major, runs): :func:`path_variances`)."""
     import numpy as np
 
@@ -162,12 +177,14 @@ def path_tables(
 
     steps = path.steps + 1
     t_s = np.linspace(0.0, path.duration_s, steps)
-    names = tuple(f"tau{j}_Nm" for j in range(1, n + 1))
+    names = tuple(names or effort_names(n))
+    everything = "all torques" if names[0].startswith("tau") else "all forces"
     per_time = []
     rows = []
     for a in along:
         trajectory = a.indices[:, 2 * n :].reshape(4, steps, n, -1)
         loo = None if a.loo_error is None else a.loo_error[2 * n :].reshape(steps, n)
+        defined = None if a.defined is None else a.defined[2 * n :].reshape(steps, n)
         for k in range(steps):
             indices = trajectory[:, k]
             per_time.append(
@@ -181,13 +198,14 @@ def path_tables(
                     names,
                     runs=a.runs,
                     loo_error=None if loo is None else loo[k],
+                    defined=None if defined is None else defined[k],
                 )
             )
         variance, runs = variances[a.method]
         weights = variance.reshape(steps, n)
         groups = [(name, trajectory[[0, 2], :, j], weights[:, j]) for j, name in enumerate(names)]
         groups.append(
-            ("all torques", trajectory[[0, 2]].reshape(2, steps * n, -1), weights.reshape(-1))
+            (everything, trajectory[[0, 2]].reshape(2, steps * n, -1), weights.reshape(-1))
         )
         for label, indices, weight in groups:
             first, total = aggregated_indices(indices, weight)

@@ -31,7 +31,8 @@ N\,\|R^{-1}\|_F^2`). The indices follow from the coefficients (Sudret 2008):
 those whose non-zero entries are exactly i and j. Confidence half-widths: ``z σ`` (as
 SALib reports its own) over a wild bootstrap of the regression (:func:`bootstrap_halfwidths`).
 Several outputs share one OMP path and each keeps the prefix of it with its own least LOO
-error (:func:`omp_path`).
+error (:func:`omp_path`). Many outputs (a path's every effort at every step) are fitted on their
+principal components (:mod:`.pce_compress`): the same fit, output by output.
 
 Pure NumPy (the basis by the three-term recurrence, the regression by Gram-Schmidt): no
 import beyond NumPy, and SciPy's ``qmc.Sobol`` only to draw a design the first time (then
@@ -46,6 +47,14 @@ from dataclasses import dataclass
 from statistics import NormalDist
 
 import numpy as np
+
+from planar_tui.sensitivity.pce_compress import (
+    Compressed,
+    bootstrap_compressed,
+    compress,
+    leave_out_sums,
+    mixing,
+)
 
 #: Bootstrap resamples and confidence level (SALib's defaults, as for Sobol').
 NUM_RESAMPLES = 100
@@ -138,9 +147,11 @@ class OmpPath:
     r_inv: np.ndarray
 
 
-def omp_path(psi: np.ndarray, y: np.ndarray, max_terms: int | None = None) -> OmpPath:
+def omp_path(psi: np.ndarray, y: np.ndarray | Compressed, max_terms: int | None = None) -> OmpPath:
     """Simultaneous OMP over the columns of ``psi`` (S, P; column 0 the constant) for the
-    outputs ``y`` (S, T), stopped at ``max_terms`` (default N / 2), after
+    outputs ``y`` (S, T; or their principal components,
+    :class:`~planar_tui.sensitivity.pce_compress.Compressed`: the same path, output by
+    output, on r columns), stopped at ``max_terms`` (default N / 2), after
     ``PATIENCE_STEPS`` steps without progress (``PROGRESS``) of the mean of the outputs'
     best LOO errors, or once every
     output's is below ``ENOUGH_LOO``. Each output keeps the prefix of the path with its
@@ -153,18 +164,24 @@ def omp_path(psi: np.ndarray, y: np.ndarray, max_terms: int | None = None) -> Om
     re-orthogonalised once); residuals, hat diagonal, :math:`R^{-1}` and correlations are
     updated in O(S P) per step."""
     s_rows, p_cols = psi.shape
-    t_out = y.shape[1]
     limit = min(p_cols, max(2, s_rows // 2)) if max_terms is None else min(max_terms, p_cols)
-    centred = y - y.mean(axis=0)
-    spread = np.einsum("st,st->t", centred, centred)
+    if isinstance(y, Compressed):  # the residuals of the scores, mapped by the loadings
+        mean, residual, loadings = y.mean, y.scores.copy(), y.loadings
+        spread = y.spread
+    else:
+        mean, loadings = y.mean(axis=0), None
+        residual = y - mean
+        spread = np.einsum("st,st->t", residual, residual)
+    t_out = len(mean)
     varies = spread > 0.0
     weight = np.where(varies, 1.0 / np.where(varies, spread, 1.0), 0.0)
+    scoring = weight if loadings is None else mixing(loadings, weight)
     norms = np.sqrt(np.einsum("sp,sp->p", psi, psi))
     usable = norms > 0.0
     q = np.empty((s_rows, limit))
     r_inv = np.zeros((limit, limit))
-    projections = np.empty((limit, t_out))  # Q^T y
-    residual = y.astype(np.float64, copy=True)
+    projections = np.empty((limit, residual.shape[1]))  # Q^T (y − 1 μ^T), or Q^T Z
+    sums = np.empty(limit)  # Q^T 1
     correlation = psi.T @ residual  # ψ_j^T r_t, kept up to date
     hat = np.zeros(s_rows)
     r_inv_norm2 = 0.0
@@ -185,7 +202,7 @@ def omp_path(psi: np.ndarray, y: np.ndarray, max_terms: int | None = None) -> Om
         rho = math.sqrt(float(v @ v))
         usable[column] = False
         if rho <= 1e-10 * norms[column]:  # dependent on the chosen terms: never again
-            column = _next_column(correlation, norms, usable, weight)
+            column = _next_column(correlation, norms, usable, scoring)
             if column < 0:
                 break
             continue
@@ -195,13 +212,13 @@ def omp_path(psi: np.ndarray, y: np.ndarray, max_terms: int | None = None) -> Om
         r_inv[:k, k] = -(r_inv[:k, :k] @ coefficients_r) / rho
         r_inv[k, k] = 1.0 / rho
         r_inv_norm2 += float(r_inv[: k + 1, k] @ r_inv[: k + 1, k])
-        projections[k] = v @ y
+        projections[k], sums[k] = v @ residual, v.sum()
         residual -= np.outer(v, projections[k])
         correlation -= np.outer(psi.T @ v, projections[k])
         hat += v * v
         chosen.append(column)
         if s_rows > k + 1:
-            loo = _corrected_loo(residual, hat, spread, s_rows, k + 1, r_inv_norm2)
+            loo = _corrected_loo(residual, hat, spread, s_rows, k + 1, r_inv_norm2, loadings)
             better = loo < best_loo
             best_loo = np.where(better, loo, best_loo)
             best_terms = np.where(better, k + 1, best_terms)
@@ -210,19 +227,23 @@ def omp_path(psi: np.ndarray, y: np.ndarray, max_terms: int | None = None) -> Om
                 reference, stale = score, 0
             else:
                 stale += 1
-            weight = np.where(best_loo <= ENOUGH_LOO, 0.0, weight)  # fitted: serve the rest
+            fitted = (best_loo <= ENOUGH_LOO) & (weight > 0.0)  # fitted: serve the rest
+            if fitted.any():
+                weight = np.where(fitted, 0.0, weight)
+                scoring = weight if loadings is None else mixing(loadings, weight)
         if stale >= PATIENCE_STEPS or not weight.any():  # (every output fitted: a shortcut,
             break  # _next_column returns -1 then too)
-        column = _next_column(correlation, norms, usable, weight)
+        column = _next_column(correlation, norms, usable, scoring)
         if column < 0:
             break
     if not chosen or best_terms.min() == 0:
         raise PceError(f"{s_rows} runs cannot fit even the constant term", "more runs")
     terms = int(best_terms.max())
-    coefficients = np.zeros((terms, t_out))
-    for t in range(t_out):
-        k = best_terms[t]
-        coefficients[:k, t] = r_inv[:k, :k] @ projections[:k, t]
+    # Q^T y_t, zero past output t's terms (R⁻¹ upper triangular: its k_t-block acts alone)
+    on_outputs = projections[:terms] if loadings is None else projections[:terms] @ loadings.T
+    on_outputs += np.outer(sums[:terms], mean)
+    on_outputs[np.arange(terms)[:, None] >= best_terms[None, :]] = 0.0
+    coefficients = r_inv[:terms, :terms] @ on_outputs
     return OmpPath(
         np.array(chosen[:terms]),
         coefficients,
@@ -234,20 +255,29 @@ def omp_path(psi: np.ndarray, y: np.ndarray, max_terms: int | None = None) -> Om
 
 
 def _next_column(correlation, norms, usable, weight) -> int:
-    """The usable column most correlated with the residuals, or -1."""
+    """The usable column most correlated with the residuals, or -1. ``weight``: 1 / spread
+    of the outputs still to fit, or, where the correlations are the scores', its
+    :func:`~.pce_compress.mixing` matrix."""
     if not usable.any():
         return -1
-    score = (correlation**2) @ weight  # weight: 1 / spread of the outputs still to fit
+    if weight.ndim == 1:
+        score = (correlation**2) @ weight
+    else:
+        score = ((correlation @ weight) * correlation).sum(axis=1)
     score = np.where(usable, score / np.where(usable, norms, 1.0) ** 2, -1.0)
     column = int(score.argmax())
     return column if score[column] > 0.0 else -1
 
 
-def _corrected_loo(residual, hat, spread, s_rows: int, terms: int, r_inv_norm2: float):
-    """Corrected relative LOO error of every output (0 for one that does not vary)."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        leave_out = residual / (1.0 - hat)[:, None]
-    sum_squares = np.einsum("st,st->t", leave_out, leave_out)
+def _corrected_loo(residual, hat, spread, s_rows: int, terms: int, r_inv_norm2, loadings=None):
+    """Corrected relative LOO error of every output (0 for one that does not vary;
+    ``loadings``: the residuals are the scores', :func:`~.pce_compress.leave_out_sums`)."""
+    if loadings is not None:
+        sum_squares = leave_out_sums(residual, hat, loadings)
+    else:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            leave_out = residual / (1.0 - hat)[:, None]
+        sum_squares = np.einsum("st,st->t", leave_out, leave_out)
     correction = s_rows / (s_rows - terms) * (1.0 + r_inv_norm2)
     safe = np.where(spread > 0.0, spread, 1.0)
     loo = np.where(spread > 0.0, correction * sum_squares / safe, 0.0)
@@ -260,7 +290,8 @@ class PceFit:
     coefficients (k, T) on the orthonormal basis (output t uses the first
     ``term_counts[t]`` terms, zeros after), corrected LOO error per output (T,), and the
     design rows' basis values of the terms (S, k) and their QR factors Q (S, k), R⁻¹ (k, k),
-    kept for the bootstrap."""
+    kept for the bootstrap, with the outputs' principal components where they were fitted
+    on them (``compressed``)."""
 
     degree: int
     indices: np.ndarray
@@ -270,6 +301,7 @@ class PceFit:
     basis: np.ndarray
     q: np.ndarray
     r_inv: np.ndarray
+    compressed: Compressed | None = None
 
     @property
     def mean(self) -> np.ndarray:
@@ -289,14 +321,19 @@ def fit_pce(
     y: np.ndarray,
     max_degree: int = MAX_DEGREE,
     on_degree: Callable[[int], None] | None = None,
+    compressed: bool = True,
 ) -> PceFit:
     """The sparse expansion of the outputs ``y`` (S, T) on the unit design ``unit`` (S, D)
     with the least mean corrected LOO error over degrees 1, 2, …: a degree is tried while
     its candidate basis stays under ``MAX_CANDIDATES`` terms and the error keeps falling
     (it stops after two degrees without improvement, or once it is below ``ENOUGH_LOO``);
-    ``on_degree(p)`` runs after each degree (it may raise to cancel)."""
+    ``on_degree(p)`` runs after each degree (it may raise to cancel). With ``compressed``
+    many outputs are fitted on their principal components
+    (:func:`~planar_tui.sensitivity.pce_compress.compress`: the same fit up to the variance
+    it drops, 1e-12 of each output's)."""
     unit = np.asarray(unit, dtype=np.float64)
     y = np.asarray(y, dtype=np.float64).reshape(unit.shape[0], -1)
+    components = compress(y) if compressed else None
     num_vars = unit.shape[1]
     best: tuple[float, PceFit] | None = None
     worse = 0
@@ -305,7 +342,7 @@ def fit_pce(
         if degree > 1 and len(indices) > MAX_CANDIDATES:
             break
         psi = basis_matrix(unit, indices)
-        path = omp_path(psi, y)
+        path = omp_path(psi, y if components is None else components)
         varies = np.ptp(y, axis=0) > 0.0
         score = float(path.loo_error[varies].mean()) if varies.any() else 0.0
         fit = PceFit(
@@ -317,6 +354,7 @@ def fit_pce(
             psi[:, path.terms],
             path.q,
             path.r_inv,
+            components,
         )
         if on_degree is not None:
             on_degree(degree)
@@ -374,7 +412,10 @@ def bootstrap_halfwidths(
     :math:`\Psi = QR` (the terms' basis values, factored by the OMP; the QR of a prefix of
     columns is the prefix of the QR) the refit is :math:`c_b = c + R^{-1}Q^T(e \odot v_b)`,
     two matrix products for all outputs and resamples instead of R T least-squares fits;
-    exact models get zero half-widths, as they should."""
+    exact models get zero half-widths, as they should. A fit on principal components:
+    :func:`~planar_tui.sensitivity.pce_compress.bootstrap_compressed`."""
+    if fit.compressed is not None:
+        return bootstrap_compressed(fit, fit.compressed, seed, num_resamples, conf_level)
     y = np.asarray(y, dtype=np.float64).reshape(fit.basis.shape[0], -1)
     s_rows = fit.basis.shape[0]
     signs = np.random.default_rng(seed).integers(0, 2, size=(s_rows, num_resamples)) * 2.0 - 1.0

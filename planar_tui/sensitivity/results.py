@@ -107,7 +107,8 @@ def _conf_cell(half_width: float) -> float | str:
 
 def run_cells(analyses: Sequence[Analysis]) -> Callable[[str, int], tuple]:
     """The cells after the index columns of (method, output k): ``runs``, and ``loo_error``
-    when a PCE is among ``analyses`` (empty for the other methods)."""
+    when a PCE is among ``analyses`` (empty for the other methods and for an output without
+    indices)."""
     by_method = {a.method: a for a in analyses}
     with_loo = any(a.loo_error is not None for a in analyses)
 
@@ -116,7 +117,9 @@ def run_cells(analyses: Sequence[Analysis]) -> Callable[[str, int], tuple]:
         if not with_loo:
             return (analysis.runs,)
         loo = analysis.loo_error
-        return analysis.runs, "" if loo is None else float(loo[k])
+        if loo is None or not analysis.is_defined(k):
+            return analysis.runs, ""
+        return analysis.runs, float(loo[k])
 
     return cells
 

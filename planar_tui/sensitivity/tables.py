@@ -130,6 +130,8 @@ def build_grid(chosen: Sequence, view: View, transposed: bool, short: bool) -> G
     outputs = chosen[0].output_labels()
 
     def cell(k: int, torque: int, parameter: int) -> Text:
+        if not chosen[k].is_defined(torque):  # no variance, no index
+            return Text("—", style="dim")
         value = float(values[k][torque, parameter])
         style = heat_style(value / view.heat_scale) if view.heat_scale else ""
         top = dominant[k]
