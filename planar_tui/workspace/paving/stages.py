@@ -11,7 +11,7 @@ stage after the paving appends its columns and its part of the one-line summary 
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from planar_tui.csvio import CsvTable
@@ -37,7 +37,7 @@ class SummaryRow:
     header: tuple[str, ...]
     cells: list
     text: str
-    seconds: Any = field(default=None)
+    seconds: Any = None
 
     def extend(self, header: tuple[str, ...], cells: list, text: str = "") -> None:
         """Append a stage's columns and its part of the summary line."""
