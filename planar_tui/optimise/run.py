@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -135,8 +136,6 @@ def run_optimisation(
     (:class:`~planar_tui.errors.Cancelled`, ``KeyboardInterrupt``) with the checkpoint
     kept. ``on_generation`` sees the run after each generation (the app's screen); a
     cancelled run is handed to it once more, ``cancelled``, before the cancel propagates."""
-    from planar_tui.warmup import warm_kernels
-
     progress = progress or Progress()
     run = OptimiseRun(opt)
     output = None if out_dir is None else output_path(opt, out_dir)
@@ -145,70 +144,14 @@ def run_optimisation(
     writer = None
     if output is not None:
         finished, writer = _open_checkpoint(run, output, total, resume, announce)
-
-    def keep(outcome: PointOutcome, outcomes: dict[int, PointOutcome]) -> None:
-        if writer is not None:
-            writer.add(outcome, sync=False)  # synced once a generation
-        outcomes[outcome.number] = outcome
-        progress.advance(1, _detail(run, len(outcomes)), failed=run.failed)
-
-    def evaluate(
-        numbered: list[tuple[int, tuple[Any, ...]]], coarse: bool, outcomes: dict[int, PointOutcome]
-    ) -> dict[int, PointOutcome]:
-        outcomes.update({n: finished[n] for n, _ in numbered if n in finished})
-        run.resumed += len(outcomes)
-        if outcomes:
-            progress.advance(len(outcomes), _detail(run, len(outcomes)), failed=run.failed)
-        tasks = []
-        for number, values in numbered:
-            if number in outcomes:
-                continue
-            task = _task_or_failure(opt, number, values, coarse)
-            if isinstance(task, PointOutcome):
-                keep(task, outcomes)
-            else:
-                tasks.append(task)
-        if tasks:
-            runner.run(tasks, lambda outcome: keep(outcome, outcomes))
-        return outcomes
-
+    evaluator = _Evaluator(run, progress, finished, writer)
     algorithm = make_algorithm(opt)
     try:
         prefix = f"planar-tui-opt-{opt.fingerprint()[:8]}"
         with execute.point_runner(client, workers, scheduler, announce, progress, prefix) as runner:
-            warm_kernels([opt.job.kind], progress)
-            progress.start(opt.budget, opt.label, "starting")
-            while len(run.evaluations) < opt.budget:
-                population, designs = _ask(run, algorithm)
-                outcomes: dict[int, PointOutcome] = {}
-                try:
-                    evaluate(designs, True, outcomes)
-                except BaseException:  # a cancel: the generation's finished ones are kept
-                    run.cancelled = True
-                    run.evaluations += [
-                        Evaluation(n, run.generations, values, outcomes[n])
-                        for n, values in designs
-                        if n in outcomes
-                    ]
-                    if on_generation is not None:
-                        on_generation(run)
-                    raise
-                generation = [
-                    Evaluation(n, run.generations, values, outcomes[n]) for n, values in designs
-                ]
-                run.evaluations += generation
-                if writer is not None:  # one fsync a generation: a machine crash loses at
-                    writer.sync()  # most the generation running (each evaluation is flushed)
-                _tell(opt, algorithm, population, generation)
-                if on_generation is not None:
-                    on_generation(run)
-            best = run.best()
-            progress.start(len(best), f"{opt.label} (certified)", "re-running the optimum")
-            numbered = [(opt.budget + k, e.values) for k, e in enumerate(best, start=1)]
-            outcomes = evaluate(numbered, False, {})
-            if writer is not None:
-                writer.sync()
-            run.certified = [(e, outcomes[opt.budget + k]) for k, e in enumerate(best, start=1)]
+            evaluator.runner = runner
+            _evolve(evaluator, algorithm, on_generation)
+            _certify(evaluator)
     except PresetError:  # the table names a column the job lacks: nothing to resume
         if writer is not None:
             writer.close()
@@ -220,6 +163,109 @@ def run_optimisation(
     if out_dir is not None:
         _write_outputs(run, out_dir, keep_checkpoint)
     return run
+
+
+@dataclass
+class _Evaluator:
+    """The evaluate stage: designs run on the point ``runner``, those the checkpoint
+    finished (``finished``) taken from it; each outcome kept (checkpointed by ``writer``,
+    synced once a generation, and counted by ``progress``)."""
+
+    run: OptimiseRun
+    progress: Progress
+    finished: dict[int, PointOutcome]
+    writer: CheckpointWriter | None
+    runner: Any = None
+
+    def keep(self, outcome: PointOutcome, outcomes: dict[int, PointOutcome]) -> None:
+        """One outcome checkpointed, kept in ``outcomes`` and counted."""
+        if self.writer is not None:
+            self.writer.add(outcome, sync=False)  # synced once a generation
+        outcomes[outcome.number] = outcome
+        self.progress.advance(1, _detail(self.run, len(outcomes)), failed=self.run.failed)
+
+    def evaluate(
+        self,
+        numbered: list[tuple[int, tuple[Any, ...]]],
+        coarse: bool,
+        outcomes: dict[int, PointOutcome],
+    ) -> dict[int, PointOutcome]:
+        """The outcomes of the ``numbered`` designs (into ``outcomes``): resumed ones first,
+        a design whose job cannot be made infeasible, the others run."""
+        run, progress = self.run, self.progress
+        outcomes.update({n: self.finished[n] for n, _ in numbered if n in self.finished})
+        run.resumed += len(outcomes)
+        if outcomes:
+            progress.advance(len(outcomes), _detail(run, len(outcomes)), failed=run.failed)
+        tasks = []
+        for number, values in numbered:
+            if number in outcomes:
+                continue
+            task = _task_or_failure(run.optimisation, number, values, coarse)
+            if isinstance(task, PointOutcome):
+                self.keep(task, outcomes)
+            else:
+                tasks.append(task)
+        if tasks:
+            self.runner.run(tasks, lambda outcome: self.keep(outcome, outcomes))
+        return outcomes
+
+
+def _evolve(
+    evaluator: _Evaluator, algorithm: Any, on_generation: Callable[[OptimiseRun], None] | None
+) -> None:
+    """The kernels warmed, then generations (:func:`_generation`) until the budget of
+    evaluations is spent."""
+    from planar_tui.warmup import warm_kernels
+
+    run, opt = evaluator.run, evaluator.run.optimisation
+    warm_kernels([opt.job.kind], evaluator.progress)
+    evaluator.progress.start(opt.budget, opt.label, "starting")
+    while len(run.evaluations) < opt.budget:
+        _generation(evaluator, algorithm, on_generation)
+
+
+def _generation(
+    evaluator: _Evaluator, algorithm: Any, on_generation: Callable[[OptimiseRun], None] | None
+) -> None:
+    """One generation: ask pymoo, evaluate (coarse), tell; ``on_generation`` sees the run
+    after it, and once more, ``cancelled``, when a cancel stops it (the generation's
+    finished evaluations are kept)."""
+    run = evaluator.run
+    population, designs = _ask(run, algorithm)
+    outcomes: dict[int, PointOutcome] = {}
+    try:
+        evaluator.evaluate(designs, True, outcomes)
+    except BaseException:  # a cancel: the generation's finished ones are kept
+        run.cancelled = True
+        run.evaluations += [
+            Evaluation(n, run.generations, values, outcomes[n])
+            for n, values in designs
+            if n in outcomes
+        ]
+        if on_generation is not None:
+            on_generation(run)
+        raise
+    generation = [Evaluation(n, run.generations, values, outcomes[n]) for n, values in designs]
+    run.evaluations += generation
+    if evaluator.writer is not None:  # one fsync a generation: a machine crash loses at
+        evaluator.writer.sync()  # most the generation running (each evaluation is flushed)
+    _tell(run.optimisation, algorithm, population, generation)
+    if on_generation is not None:
+        on_generation(run)
+
+
+def _certify(evaluator: _Evaluator) -> None:
+    """The certify stage: the optimum's evaluations re-run at the job's own precision
+    (numbered after the budget), into ``run.certified``."""
+    run, opt = evaluator.run, evaluator.run.optimisation
+    best = run.best()
+    evaluator.progress.start(len(best), f"{opt.label} (certified)", "re-running the optimum")
+    numbered = [(opt.budget + k, e.values) for k, e in enumerate(best, start=1)]
+    outcomes = evaluator.evaluate(numbered, False, {})
+    if evaluator.writer is not None:
+        evaluator.writer.sync()
+    run.certified = [(e, outcomes[opt.budget + k]) for k, e in enumerate(best, start=1)]
 
 
 def _open_checkpoint(

@@ -233,80 +233,130 @@ def run_sweep(
     :class:`~planar_tui.errors.OutputFailed` (the checkpoint stays); a figure that cannot be
     written is ``run.figure_error`` (the CSV is written).
     """
-    from planar_tui.warmup import warm_kernels
-
     started_s = time.time()
     progress = progress or Progress()
-    points = make_points(sweep) if points is None else points
-    total = len(points)
-    run = SweepRun(sweep, points)
-    output = None if out_dir is None else output_path(sweep, out_dir)
-    folder = (
-        None if out_dir is None or sweep.point_outputs is None else out_dir / sweep.point_outputs
-    )
-    writer, record = None, None
-    if output is not None:
-        writer, record = _open_checkpoint(run, out_dir, output, folder, resume, announce)
-    resumed = set(run.outcomes)
-
-    def tasks() -> Iterator[PointTask | PointOutcome]:
-        """The points left, each made as it is reached; one found invalid only now (not
-        among those checked up front) is a failed point."""
-        for number in range(1, total + 1):
-            if number in resumed:
-                continue
-            try:
-                point = points[number - 1]
-            except PresetError as error:
-                yield PointOutcome(number, FAILED, error.message, {}, 0.0)
-                continue
-            yield PointTask(number, point.job, _point_stem(sweep, total, number))
-
+    run = SweepRun(sweep, make_points(sweep) if points is None else points)
+    files = _open_files(run, out_dir, resume, announce)
     try:
-        warm_kernels([sweep.job.kind], progress)
-        progress.start(total, sweep.label, _detail(run))
-        progress.advance(run.resumed, _detail(run), failed=run.failed)
-        if on_outcome is not None:
-            for number in sorted(run.outcomes):
-                on_outcome(run.outcomes[number])
-
-        def finished_point(outcome: PointOutcome) -> None:
-            if folder is not None and outcome.tables:
-                timing = (time.time() - outcome.seconds, outcome.seconds)
-                provenance = point_provenance(sweep, points[outcome.number - 1], timing)
-                for name, text in outcome.tables.items():
-                    write_point_file(folder / name, text, record, provenance)
-            if writer is not None:
-                writer.add(outcome)
-            run.outcomes[outcome.number] = outcome
-            progress.advance(1, _detail(run), failed=run.failed)
-            if on_outcome is not None:
-                on_outcome(outcome)
-
+        resumed = set(run.outcomes)
+        _start_progress(run, progress, on_outcome)
+        finished = _finished_point(run, files, progress, on_outcome)
         prefix = f"planar-tui-{sweep.fingerprint()[:8]}"
-        needed = total > len(resumed)
+        needed = len(run.points) > len(resumed)
         with execute.point_runner(
             client, workers, scheduler, announce, progress, prefix, needed=needed
         ) as runner:
-            runner.run(tasks(), finished_point)
-        if output is not None:
-            with writing(output):
-                write_csv_atomic(output, run.table)
-                timing = (started_s, time.time() - started_s)
-                write_sidecar(output, study_provenance("sweep", sweep, timing))
-            run.output = output
+            runner.run(_tasks(run, resumed), finished)
+        if files.output is not None:
+            _write_table(run, files.output, started_s)
     finally:
-        if writer is not None:
-            writer.close()
+        if files.writer is not None:
+            files.writer.close()
+    _finish(run, out_dir, keep_checkpoint)
+    return run
+
+
+@dataclass(frozen=True)
+class _SweepFiles:
+    """Where a sweep writes: its CSV, its point files' folder, its checkpoint writer and
+    the record of its point files (each ``None`` where it writes none)."""
+
+    output: Path | None
+    folder: Path | None
+    writer: CheckpointWriter | None
+    record: PointFileRecord | None
+
+
+def _open_files(
+    run: SweepRun, out_dir: Path | None, resume: bool, announce: Callable[[str], None]
+) -> _SweepFiles:
+    """The open stage: the sweep's files in ``out_dir`` and its checkpoint, started afresh
+    or resumed (:func:`_open_checkpoint`); nothing without ``out_dir``."""
+    if out_dir is None:
+        return _SweepFiles(None, None, None, None)
+    sweep = run.sweep
+    output = output_path(sweep, out_dir)
+    folder = None if sweep.point_outputs is None else out_dir / sweep.point_outputs
+    writer, record = _open_checkpoint(run, out_dir, output, folder, resume, announce)
+    return _SweepFiles(output, folder, writer, record)
+
+
+def _start_progress(
+    run: SweepRun, progress: Progress, on_outcome: Callable[[PointOutcome], None] | None
+) -> None:
+    """The kernels warmed, the progress started at the points resumed, and those points
+    shown to ``on_outcome`` first, in order."""
+    from planar_tui.warmup import warm_kernels
+
+    warm_kernels([run.sweep.job.kind], progress)
+    progress.start(len(run.points), run.sweep.label, _detail(run))
+    progress.advance(run.resumed, _detail(run), failed=run.failed)
+    if on_outcome is not None:
+        for number in sorted(run.outcomes):
+            on_outcome(run.outcomes[number])
+
+
+def _tasks(run: SweepRun, resumed: set[int]) -> Iterator[PointTask | PointOutcome]:
+    """The points left, each made as it is reached; one found invalid only now (not
+    among those checked up front) is a failed point."""
+    sweep, points, total = run.sweep, run.points, len(run.points)
+    for number in range(1, total + 1):
+        if number in resumed:
+            continue
+        try:
+            point = points[number - 1]
+        except PresetError as error:
+            yield PointOutcome(number, FAILED, error.message, {}, 0.0)
+            continue
+        yield PointTask(number, point.job, _point_stem(sweep, total, number))
+
+
+def _finished_point(
+    run: SweepRun,
+    files: _SweepFiles,
+    progress: Progress,
+    on_outcome: Callable[[PointOutcome], None] | None,
+) -> Callable[[PointOutcome], None]:
+    """What each finished point does: its point files written, checkpointed, counted and
+    shown to ``on_outcome``."""
+
+    def finished(outcome: PointOutcome) -> None:
+        if files.folder is not None and outcome.tables:
+            timing = (time.time() - outcome.seconds, outcome.seconds)
+            provenance = point_provenance(run.sweep, run.points[outcome.number - 1], timing)
+            for name, text in outcome.tables.items():
+                write_point_file(files.folder / name, text, files.record, provenance)
+        if files.writer is not None:
+            files.writer.add(outcome)
+        run.outcomes[outcome.number] = outcome
+        progress.advance(1, _detail(run), failed=run.failed)
+        if on_outcome is not None:
+            on_outcome(outcome)
+
+    return finished
+
+
+def _write_table(run: SweepRun, output: Path, started_s: float) -> None:
+    """The write stage: the sweep CSV and its provenance sidecar, atomically
+    (:class:`~planar_tui.errors.OutputFailed` where it cannot be written)."""
+    with writing(output):
+        write_csv_atomic(output, run.table)
+        timing = (started_s, time.time() - started_s)
+        write_sidecar(output, study_provenance("sweep", run.sweep, timing))
+    run.output = output
+
+
+def _finish(run: SweepRun, out_dir: Path | None, keep_checkpoint: bool) -> None:
+    """The checkpoint deleted (unless kept) and the figure drawn where the CSV was written
+    (a figure that cannot be written is ``run.figure_error``)."""
     if run.checkpoint is not None and not keep_checkpoint:
         run.checkpoint.unlink(missing_ok=True)
         run.checkpoint = None
-    if output is not None and sweep.plot is not None:
+    if run.output is not None and out_dir is not None and run.sweep.plot is not None:
         try:
-            run.figure = write_figure(run, out_dir / sweep.plot)
+            run.figure = write_figure(run, out_dir / run.sweep.plot)
         except OutputFailed as error:
             run.figure_error = str(error)
-    return run
 
 
 def _point_stem(sweep: Sweep, total: int, number: int) -> str | None:

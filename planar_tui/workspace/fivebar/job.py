@@ -60,10 +60,10 @@ from planar_tui.workspace.paving.settings import (
     search_box_setting,
     singularity_precision_setting,
 )
+from planar_tui.workspace.paving.stages import Stages, SummaryRow, run_stages
 from planar_tui.workspace.paving.tolerance import (
     check_tolerance,
     refuse_reference,
-    tolerance_report,
 )
 
 if TYPE_CHECKING:
@@ -264,77 +264,67 @@ def compute_fivebar(robot: Robot5R, spec: FiveBarSpec, budget: BoxBudget) -> Wor
     )
 
 
+def pave_fivebar(job: Any, budget: BoxBudget) -> WorkspaceOutcome:
+    """The pave stage: the box estimate reported (warned of over the box budget), then
+    :func:`compute_fivebar`."""
+    report_box_estimate(job, budget.progress)
+    return compute_fivebar(job.robot, job.spec, budget)
+
+
+def fivebar_head(job: Any, outcome: WorkspaceOutcome) -> SummaryRow:
+    """The summary row of the paving: the 3-RRR's columns, the working mode in place of the
+    strategy."""
+    from planar_tui.workspace.paving.levels import SUMMARY_HEADER, summary_line
+
+    base, mode = outcome.summary_row(), job.robot.working_mode
+    header = (SUMMARY_HEADER[0], "working_mode", *SUMMARY_HEADER[2:-1])
+    summary = f"{summary_line(outcome)}, working mode {mode}"
+    return SummaryRow(header, [base[0], mode, *base[2:-1]], summary, base[-1])
+
+
+def fivebar_singularities(ready: Any, outcome: WorkspaceOutcome, budget: BoxBudget) -> Any:
+    """The type I and II singularities' columns, computed with ``singularities``."""
+    from planar_tui.workspace.fivebar.singularity import HEADER, compute_singularities
+
+    if not ready.job.spec.singularities:
+        return HEADER, None
+    return HEADER, compute_singularities(ready.job, outcome.extent_cm, budget)
+
+
+def fivebar_elbow(ready: Any) -> str:
+    """The robot's working mode, ``1 -1``."""
+    return " ".join(str(s) for s in ready.job.robot.elbows)
+
+
+def fivebar_dexterity(ready: Any, extent: Any, budget: BoxBudget) -> Any:
+    """The dexterous region of a job with ``kappa_max`` (no characteristic length)."""
+    from planar_tui.workspace.paving.dexterity import compute_dexterity
+
+    spec = ready.job.spec
+    evaluate = MECHANISM.dexterity(ready.job, None)
+    elbow = fivebar_elbow(ready)
+    return compute_dexterity(
+        evaluate, extent, spec.precision_cm, spec.kappa_max, None, elbow, budget
+    )
+
+
+#: The stages of a five-bar job (:func:`~planar_tui.workspace.paving.stages.run_stages`).
+STAGES = Stages(
+    pave=pave_fivebar,
+    compute=compute_fivebar,
+    head=fivebar_head,
+    singularities=fivebar_singularities,
+    dexterity=fivebar_dexterity,
+    elbow=fivebar_elbow,
+    result=FiveBarResult,
+)
+
+
 def run_fivebar(
     ready: PreparedJob[FiveBarSpec, Robot5R, object], progress: Progress
 ) -> FiveBarResult:
-    """Compute one ``[[workspace5r]]`` job."""
-    from planar_tui.csvio import CsvTable
-    from planar_tui.workspace.fivebar.singularity import (
-        HEADER,
-        compute_singularities,
-        singularity_columns,
-    )
-    from planar_tui.workspace.paving.dexterity import HEADER as DEXTERITY_HEADER
-    from planar_tui.workspace.paving.dexterity import boxes_table as dexterity_boxes
-    from planar_tui.workspace.paving.dexterity import compute_dexterity
-    from planar_tui.workspace.paving.interference import HEADER as INTERFERENCE_HEADER
-    from planar_tui.workspace.paving.interference import boxes_table as interference_boxes
-    from planar_tui.workspace.paving.interference import job_interference
-    from planar_tui.workspace.paving.levels import (
-        SUMMARY_HEADER,
-        BoxBudget,
-        boxes_table,
-        summary_line,
-    )
-
-    job = ready.job
-    budget = BoxBudget(job, progress)
-    report_box_estimate(job, progress)  # warned of over the box budget
-    outcome = compute_fivebar(job.robot, job.spec, budget)
-    singular = None
-    if job.spec.singularities:
-        singular = compute_singularities(job, outcome.extent_cm, budget)
-    base = outcome.summary_row()
-    row = [base[0], job.robot.working_mode, *base[2:11], *singularity_columns(singular)]
-    summary = f"{summary_line(outcome)}, working mode {job.robot.working_mode}"
-    if singular is not None:
-        summary += f"; {singular.describe()}"
-    # the 3-RRR's columns, the working mode in place of the strategy
-    header: tuple[str, ...] = (SUMMARY_HEADER[0], "working_mode", *SUMMARY_HEADER[2:-1], *HEADER)
-    dexterous = None
-    if job.spec.kappa_max is not None:
-        dexterous = compute_dexterity(
-            MECHANISM.dexterity(job, None),
-            outcome.extent_cm,
-            job.spec.precision_cm,
-            job.spec.kappa_max,
-            None,
-            " ".join(str(s) for s in job.robot.elbows),
-            budget,
-        )
-        header, row = header + DEXTERITY_HEADER, row + dexterous.columns()
-        summary += f"; {dexterous.describe()}"
-    clear = None
-    if job.spec.leg_width_cm is not None:
-        elbow = " ".join(str(s) for s in job.robot.elbows)
-        clear = job_interference(job, None, outcome.extent_cm, budget, elbow)
-        header, row = header + INTERFERENCE_HEADER, row + clear.columns()
-        summary += f"; {clear.describe()}"
-    report = tolerance_report(job, lambda: BoxBudget(job, progress), compute_fivebar)
-    if report is not None:
-        header, row, summary = header + report.header, row + report.cells, summary + report.text
-    return FiveBarResult(
-        table=CsvTable((*header, "seconds"), [[*row, base[11]]]),
-        summary=summary,
-        extra_tables={
-            "boxes": interference_boxes(dexterity_boxes(boxes_table(outcome), dexterous), clear)
-        },
-        outcome=outcome,
-        singularity=singular,
-        dexterity=dexterous,
-        interference=clear,
-        companions=None if report is None else report.companions,
-    )
+    """Compute one ``[[workspace5r]]`` job (:data:`STAGES`)."""
+    return run_stages(STAGES, ready, progress)
 
 
 def fivebar_figure_names(job: Any) -> tuple[str, ...]:

@@ -28,10 +28,16 @@ from planar_tui.jobkind import Command, Job, JobKind, Option, OutputOption, Prep
 from planar_tui.progress import Progress
 from planar_tui.schema import TableReader, number, plot_setting, setting, string
 from planar_tui.workspace.paving.columns import planar_figure_names
-from planar_tui.workspace.paving.dexterity import check_dexterity, kappa_setting, length_setting
+from planar_tui.workspace.paving.dexterity import (
+    check_dexterity,
+    kappa_setting,
+    length_setting,
+    planar_dexterity,
+)
 from planar_tui.workspace.paving.estimate import check_needs, estimate, report_box_estimate
 from planar_tui.workspace.paving.interference import check_interference, width_setting
 from planar_tui.workspace.paving.mechanism import Mechanism
+from planar_tui.workspace.paving.orientation import ORIENTATION_HEADER, orientation_columns
 from planar_tui.workspace.paving.result import (
     WorkspaceResult,
     extra_outputs,
@@ -51,6 +57,7 @@ from planar_tui.workspace.paving.settings import (
     singularities_setting,
     singularity_precision_setting,
 )
+from planar_tui.workspace.paving.stages import Stages, SummaryRow, run_stages
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -289,84 +296,62 @@ def compute_planar(robot: Any, spec: PlanarSpec, budget: Any) -> Any:
     )
 
 
-def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> WorkspaceResult:
-    """Run one workspace job of a parallel kind: the summary CSV (the 3-RRR's columns, its
-    orientation's among them), the boxes and the one-line summary."""
-    from planar_tui.csvio import CsvTable
-    from planar_tui.workspace.paving.levels import (
-        SUMMARY_HEADER,
-        BoxBudget,
-        boxes_table,
-        summary_line,
-    )
+def pave_planar(job: Any, budget: Any) -> Any:
+    """The pave stage of a parallel kind: its box estimate reported (warned of over the box
+    budget), then :func:`compute_planar`."""
+    report_box_estimate(job, budget.progress)
+    return compute_planar(job.robot, job.spec, budget)
 
-    job = ready.job
-    budget = BoxBudget(job, progress)
-    report_box_estimate(job, progress)  # warned of over the box budget
-    outcome = compute_planar(job.robot, job.spec, budget)
-    from planar_tui.workspace.paving.orientation import ORIENTATION_HEADER, orientation_columns
+
+def planar_head(job: Any, outcome: Any) -> SummaryRow:
+    """The summary row of the paving: the 3-RRR's columns, its orientation's among them,
+    and the range described where the orientation is one."""
+    from planar_tui.workspace.paving.levels import SUMMARY_HEADER, summary_line  # numpy
+    from planar_tui.workspace.paving.orientation import describe as describe_range
 
     base, summary = outcome.summary_row(), summary_line(outcome)
-    # the orientation's columns where the 3-RRR has them, before the wall time
-    header: tuple[str, ...] = (*SUMMARY_HEADER[:-1], *ORIENTATION_HEADER, SUMMARY_HEADER[-1])
-    row = [*base[:-1], *orientation_columns(job.spec), base[-1]]
     if isinstance(job.spec.orientation_deg, tuple):
-        from planar_tui.workspace.paving.orientation import describe as describe_range
-
         summary += f"; {describe_range(job.spec)}"
-    singular = None
-    mechanism: Mechanism = job.spec.mechanism
-    if mechanism.has_singularities:  # the circle's columns before the last one, the wall time
-        from planar_tui.workspace.paving.circle import HEADER
+    header = (*SUMMARY_HEADER[:-1], *ORIENTATION_HEADER)
+    return SummaryRow(header, [*base[:-1], *orientation_columns(job.spec)], summary, base[-1])
 
-        if ready.prepared is not None:
-            singular = mechanism.compute_singularities(
-                job, ready.prepared, outcome.extent_cm, budget
-            )
-            summary += f"; {singular.describe()}"
-        cells = [""] * len(HEADER) if singular is None else singular.columns()
-        header, row = (*header[:-1], *HEADER, header[-1]), [*row[:-1], *cells, row[-1]]
-    dexterous = None
-    if job.spec.kappa_max is not None:  # its columns before the wall time
-        from planar_tui.workspace.paving.dexterity import HEADER as DEXTERITY_HEADER
-        from planar_tui.workspace.paving.dexterity import planar_dexterity
 
-        dexterous = planar_dexterity(job, ready.prepared, outcome.extent_cm, budget)
-        header = (*header[:-1], *DEXTERITY_HEADER, header[-1])
-        row = [*row[:-1], *dexterous.columns(), row[-1]]
-        summary += f"; {dexterous.describe()}"
-    clear = None
-    if job.spec.leg_width_cm is not None:  # its columns before the wall time too
-        from planar_tui.workspace.paving.interference import HEADER as INTERFERENCE_HEADER
-        from planar_tui.workspace.paving.interference import job_interference
+def planar_singularities(ready: Any, outcome: Any, budget: Any) -> Any:
+    """The circle's columns where the Mechanism certifies singularities (computed where
+    ``prepare`` resolved a centre); none where it does not."""
+    from planar_tui.workspace.paving.circle import HEADER
 
-        clear = job_interference(job, ready.prepared, outcome.extent_cm, budget)
-        header = (*header[:-1], *INTERFERENCE_HEADER, header[-1])
-        row = [*row[:-1], *clear.columns(), row[-1]]
-        summary += f"; {clear.describe()}"
-    from planar_tui.workspace.paving.dexterity import boxes_table as dexterity_boxes
-    from planar_tui.workspace.paving.interference import boxes_table as interference_boxes
-    from planar_tui.workspace.paving.tolerance import tolerance_report
-
-    report = tolerance_report(job, lambda: BoxBudget(job, progress), compute_planar)
-    if report is not None:  # its columns before the wall time too
-        header, row = (
-            (*header[:-1], *report.header, header[-1]),
-            [*row[:-1], *report.cells, row[-1]],
-        )
-        summary += report.text
-    return WorkspaceResult(
-        table=CsvTable(header, [row]),
-        summary=summary,
-        extra_tables={
-            "boxes": interference_boxes(dexterity_boxes(boxes_table(outcome), dexterous), clear)
-        },
-        outcome=outcome,
-        singularity=singular,
-        dexterity=dexterous,
-        interference=clear,
-        companions=None if report is None else report.companions,
+    mechanism: Mechanism = ready.job.spec.mechanism
+    if not mechanism.has_singularities:
+        return None
+    if ready.prepared is None:
+        return HEADER, None
+    return HEADER, mechanism.compute_singularities(
+        ready.job, ready.prepared, outcome.extent_cm, budget
     )
+
+
+def planar_dexterity_stage(ready: Any, extent: Any, budget: Any) -> Any:
+    """:func:`~planar_tui.workspace.paving.dexterity.planar_dexterity` of the prepared job."""
+    return planar_dexterity(ready.job, ready.prepared, extent, budget)
+
+
+#: The stages of a 3-RPR or 3-PRR job (:func:`~planar_tui.workspace.paving.stages.run_stages`).
+PLANAR_STAGES = Stages(
+    pave=pave_planar,
+    compute=compute_planar,
+    head=planar_head,
+    singularities=planar_singularities,
+    dexterity=planar_dexterity_stage,
+    elbow=lambda ready: "",
+)
+
+
+def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> WorkspaceResult:
+    """Run one workspace job of a parallel kind (:data:`PLANAR_STAGES`): the summary CSV
+    (the 3-RRR's columns, its orientation's among them), the boxes and the one-line
+    summary."""
+    return run_stages(PLANAR_STAGES, ready, progress)
 
 
 def prepare_planar(job: Job[PlanarSpec, Any]) -> object:

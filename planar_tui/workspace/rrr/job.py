@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, ClassVar
+from typing import Any, ClassVar
 
 from planar_tui.jobkind import (
     Command,
@@ -30,10 +30,16 @@ from planar_tui.schema import (
     setting,
     string,
 )
+from planar_tui.workspace.paving.circle import HEADER as CIRCLE_HEADER
 from planar_tui.workspace.paving.dexterity import check_dexterity, kappa_setting, length_setting
 from planar_tui.workspace.paving.interference import check_interference, width_setting
 from planar_tui.workspace.paving.mechanism import Mechanism
-from planar_tui.workspace.paving.orientation import check_orientation
+from planar_tui.workspace.paving.orientation import (
+    ORIENTATION_HEADER,
+    check_orientation,
+    orientation_columns,
+    summary_text,
+)
 from planar_tui.workspace.paving.result import (
     BOXES_OPTION,
     MAP_VIEW,
@@ -59,6 +65,7 @@ from planar_tui.workspace.paving.settings import (
     singularities_setting,
     singularity_precision_setting,
 )
+from planar_tui.workspace.paving.stages import Stages, SummaryRow, run_stages
 from planar_tui.workspace.paving.tolerance import check_tolerance, tolerance_fields
 from planar_tui.workspace.rrr.forms import FORMS
 from planar_tui.workspace.rrr.mechanism import MECHANISM
@@ -70,8 +77,6 @@ from planar_tui.workspace.rrr.singularity import (
     resolve_circle,
 )
 
-if TYPE_CHECKING:
-    pass
 #: How the interval forms pave: per (x, y) box a 1-D θ search per leg, or the paper's
 #: bisection of (x, y, θ1, θ2, θ3) boxes.
 STRATEGIES = ("legwise", "joint")
@@ -276,15 +281,16 @@ def prepare_workspace(job: WorkspaceJob) -> WorkspacePrepared:
     return WorkspacePrepared(resolve_circle(job))
 
 
-def rrr_dexterity(job: WorkspaceJob, prepared: WorkspacePrepared, extent, budget) -> Any:
+def rrr_dexterity(ready: PreparedJob[WorkspaceSpec, Robot3RRR, WorkspacePrepared], extent, budget):
     """The dexterous region of a job with ``kappa_max``
     (:func:`~planar_tui.workspace.paving.dexterity.compute_dexterity`) in the prepared mode."""
     from planar_tui.workspace.paving.dexterity import compute_dexterity
     from planar_tui.workspace.rrr.dexterity import length_cm
 
-    assert prepared.circle is not None
-    spec, elbow = job.spec, " ".join(str(s) for s in prepared.circle.elbow)
-    evaluate = MECHANISM.dexterity(job, prepared)
+    job, circle = ready.job, ready.prepared.circle
+    assert circle is not None  # prepared with the mode
+    spec, elbow = job.spec, " ".join(str(s) for s in circle.elbow)
+    evaluate = MECHANISM.dexterity(job, ready.prepared)
     length = length_cm(job.robot, spec)
     assert spec.kappa_max is not None
     return compute_dexterity(
@@ -292,81 +298,69 @@ def rrr_dexterity(job: WorkspaceJob, prepared: WorkspacePrepared, extent, budget
     )
 
 
+def pave_rrr(job: WorkspaceJob, budget: Any) -> Any:
+    """The pave stage: one orientation (:func:`~planar_tui.workspace.rrr.compute.compute_workspace`)
+    or a range of them."""
+    from planar_tui.workspace.rrr.compute import compute_workspace
+    from planar_tui.workspace.rrr.orientation import compute_orientation_workspace
+
+    if isinstance(job.spec.orientation_deg, tuple):
+        return compute_orientation_workspace(job.robot, job.spec, budget)
+    return compute_workspace(job.robot, job.spec, budget)
+
+
+def compute_rrr(robot: Robot3RRR, spec: WorkspaceSpec, budget: Any) -> Any:
+    """One paving at one orientation, what the tolerance stage runs."""
+    from planar_tui.workspace.rrr.compute import compute_workspace
+
+    return compute_workspace(robot, spec, budget)
+
+
+def rrr_head(job: WorkspaceJob, outcome: Any) -> SummaryRow:
+    """The summary row of the paving: its columns with the orientation's, the one-line
+    summary (a range's own line)."""
+    from planar_tui.workspace.paving.levels import SUMMARY_HEADER, summary_line
+
+    base, spec = outcome.summary_row(), job.spec
+    ranged = isinstance(spec.orientation_deg, tuple)
+    summary = summary_text(spec, outcome) if ranged else summary_line(outcome)
+    header = (*SUMMARY_HEADER[:-1], *ORIENTATION_HEADER)
+    return SummaryRow(header, [*base[:-1], *orientation_columns(spec)], summary, base[-1])
+
+
+def rrr_singularities(ready: Any, outcome: Any, budget: Any) -> tuple[tuple[str, ...], Any]:
+    """The circle's columns, computed with ``singularities`` at one orientation."""
+    from planar_tui.workspace.rrr.singularity import compute_singularities
+
+    job, circle = ready.job, ready.prepared.circle
+    if circle is None or not job.spec.singularities or isinstance(job.spec.orientation_deg, tuple):
+        return CIRCLE_HEADER, None
+    return CIRCLE_HEADER, compute_singularities(job, circle, outcome.extent_cm, budget)
+
+
+def rrr_elbow(ready: Any) -> str:
+    """The prepared working mode, ``1 -1 1``."""
+    circle = ready.prepared.circle
+    assert circle is not None  # prepared with the mode
+    return " ".join(str(s) for s in circle.elbow)
+
+
+#: The stages of a ``[workspace]`` job (:func:`~planar_tui.workspace.paving.stages.run_stages`).
+STAGES = Stages(
+    pave=pave_rrr,
+    compute=compute_rrr,
+    head=rrr_head,
+    singularities=rrr_singularities,
+    dexterity=rrr_dexterity,
+    elbow=rrr_elbow,
+)
+
+
 def run_workspace(
     ready: PreparedJob[WorkspaceSpec, Robot3RRR, WorkspacePrepared], progress: Progress
 ) -> WorkspaceResult:
-    """Compute one ``[workspace]`` job."""
-    from planar_tui.csvio import CsvTable
-    from planar_tui.workspace.paving.circle import HEADER
-    from planar_tui.workspace.paving.dexterity import HEADER as DEXTERITY_HEADER
-    from planar_tui.workspace.paving.dexterity import boxes_table as dexterity_boxes
-    from planar_tui.workspace.paving.dexterity import dexterity_columns
-    from planar_tui.workspace.paving.interference import HEADER as INTERFERENCE_HEADER
-    from planar_tui.workspace.paving.interference import boxes_table as interference_boxes
-    from planar_tui.workspace.paving.interference import job_interference
-    from planar_tui.workspace.paving.levels import (
-        SUMMARY_HEADER,
-        BoxBudget,
-        boxes_table,
-        summary_line,
-    )
-    from planar_tui.workspace.paving.orientation import (
-        ORIENTATION_HEADER,
-        orientation_columns,
-        summary_text,
-    )
-    from planar_tui.workspace.paving.tolerance import tolerance_report
-    from planar_tui.workspace.rrr.compute import compute_workspace
-    from planar_tui.workspace.rrr.orientation import compute_orientation_workspace
-    from planar_tui.workspace.rrr.singularity import compute_singularities, singularity_columns
-
-    job, circle = ready.job, ready.prepared.circle
-    budget = BoxBudget(job, progress)
-    singular = None
-    if isinstance(job.spec.orientation_deg, tuple):
-        outcome = compute_orientation_workspace(job.robot, job.spec, budget)
-    else:
-        outcome = compute_workspace(job.robot, job.spec, budget)
-        if circle is not None and job.spec.singularities:
-            singular = compute_singularities(job, circle, outcome.extent_cm, budget)
-    # the new columns go before the last one, the (not reproducible) wall time
-    base = outcome.summary_row()
-    row = [*base[:-1], *orientation_columns(job.spec), *singularity_columns(singular)]
-    header: tuple[str, ...] = (*SUMMARY_HEADER[:-1], *ORIENTATION_HEADER, *HEADER)
-    summary = summary_line(outcome)
-    if isinstance(job.spec.orientation_deg, tuple):
-        summary = summary_text(job.spec, outcome)
-    if singular is not None:
-        summary += f"; {singular.describe()}"
-    dexterous = None
-    if job.spec.kappa_max is not None:
-        assert circle is not None  # prepared with the mode
-        dexterous = rrr_dexterity(job, ready.prepared, outcome.extent_cm, budget)
-        row, header = row + dexterity_columns(dexterous), header + DEXTERITY_HEADER
-        summary += f"; {dexterous.describe()}"
-    interference = None
-    if job.spec.leg_width_cm is not None:
-        assert circle is not None  # prepared with the mode
-        elbow = " ".join(str(s) for s in circle.elbow)
-        interference = job_interference(job, ready.prepared, outcome.extent_cm, budget, elbow)
-        row, header = row + interference.columns(), header + INTERFERENCE_HEADER
-        summary += f"; {interference.describe()}"
-    report = tolerance_report(job, lambda: BoxBudget(job, progress), compute_workspace)
-    if report is not None:
-        row, header, summary = row + report.cells, header + report.header, summary + report.text
-    row.append(base[-1])
-    header += (SUMMARY_HEADER[-1],)
-    table = boxes_table(outcome)
-    return WorkspaceResult(
-        table=CsvTable(header, [row]),
-        summary=summary,
-        extra_tables={"boxes": interference_boxes(dexterity_boxes(table, dexterous), interference)},
-        outcome=outcome,
-        singularity=singular,
-        dexterity=dexterous,
-        interference=interference,
-        companions=None if report is None else report.companions,
-    )
+    """Compute one ``[workspace]`` job (:data:`STAGES`)."""
+    return run_stages(STAGES, ready, progress)
 
 
 #: The warm-up examples by part (:mod:`planar_tui.warmup`): a cold run compiles the
