@@ -22,7 +22,7 @@ import numpy as np
 import pytest
 
 from planar_tui.dynamics.robot import SerialRobot
-from planar_tui.sensitivity import pce, pce_analysis
+from planar_tui.sensitivity import pce, pce_analysis, pce_indices
 from planar_tui.sensitivity.aggregate import aggregated_indices
 from planar_tui.sensitivity.engine import build_problem, evaluate
 from planar_tui.sensitivity.failed_runs import FailedRuns, check_failed_runs, failure_corner
@@ -157,7 +157,7 @@ def test_bootstrap_equals_refits_of_the_wild_resamples():
         coefficients = np.zeros_like(fit.coefficients)
         for t, k in enumerate(fit.term_counts):
             coefficients[:k, t] = np.linalg.lstsq(fit.basis[:, :k], resampled[:, t], rcond=None)[0]
-        first, total = pce.indices_from_coefficients(fit.indices, coefficients)
+        first, total = pce_indices.indices_from_coefficients(fit.indices, coefficients)
         firsts.append(first)
         totals.append(total)
     z = 1.959963984540054

@@ -10,7 +10,7 @@ import numpy as np
 
 from planar_tui.pathsensitivity.engine import design_efforts, path_outputs, path_states, scaled
 from planar_tui.pathsensitivity.inputs import robot_inputs
-from planar_tui.sensitivity import pce
+from planar_tui.sensitivity import pce, pce_indices
 from planar_tui.sensitivity.pce_compress import TOLERANCE, compress
 from planar_tui.workspace.rrr.path import Path3RRRSpec
 from planar_tui.workspace.rrr.robot import Robot3RRR
@@ -61,7 +61,7 @@ def test_the_compressed_fit_is_the_uncompressed_fit_output_by_output():
     np.testing.assert_allclose(fits[0].loo_error, fits[1].loo_error, rtol=1e-8, atol=1e-12)
     results = []
     for fit in fits:
-        first, total = pce.indices_from_coefficients(fit.indices, fit.coefficients)
+        first, total = pce_indices.indices_from_coefficients(fit.indices, fit.coefficients)
         results.append((first, total, *pce.bootstrap_halfwidths(fit, y, 5, 30)))
     assert results[1][3].max() > 1e-4  # the half-widths are not trivially 0
     for compressed, plain in zip(*results, strict=True):

@@ -55,6 +55,7 @@ from planar_tui.sensitivity.pce_compress import (
     leave_out_sums,
     mixing,
 )
+from planar_tui.sensitivity.pce_indices import indices_from_coefficients
 
 #: Bootstrap resamples and confidence level (SALib's defaults, as for Sobol').
 NUM_RESAMPLES = 100
@@ -366,20 +367,6 @@ def fit_pce(
             break
     assert best is not None
     return best[1]
-
-
-def indices_from_coefficients(indices: np.ndarray, coefficients: np.ndarray):
-    """S1 and ST (..., T, D) from the multi-indices (k, D) and coefficients (..., k, T)
-    (zeros for an output without variance)."""
-    active = indices > 0
-    order = active.sum(axis=1)
-    energy = coefficients**2  # (..., k, T)
-    energy[..., order == 0, :] = 0.0
-    variance = energy.sum(axis=-2)[..., None]  # (..., T, 1)
-    total = np.swapaxes(energy, -1, -2) @ active  # (..., T, D)
-    first = np.swapaxes(energy, -1, -2) @ (active & (order == 1)[:, None])
-    safe = np.where(variance > 0.0, variance, 1.0)
-    return first / safe, total / safe
 
 
 def second_order_indices(indices: np.ndarray, coefficients: np.ndarray) -> np.ndarray:

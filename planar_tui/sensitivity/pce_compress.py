@@ -28,6 +28,8 @@ from statistics import NormalDist
 
 import numpy as np
 
+from planar_tui.sensitivity.pce_indices import indices_from_coefficients
+
 #: Variance an output may lose to the compression, relative to its own: an amplitude of
 #: 1e-10, which moves a LOO error ε by about 2 (ε 1e-20)^½ (a torque's rounding is ~1e-13).
 TOLERANCE = 1e-20
@@ -115,7 +117,6 @@ def bootstrap_compressed(fit, compressed: Compressed, seed: int, num_resamples: 
     :math:`\Delta^{(k)} = R_k^{-1}W^{(k)}`, where
     :math:`W^{(k)}_{jib} = \sum_s Q_{sj}E^{(k)}_{si}v_{sb}` is updated term by term
     (:math:`E^{(k)} = E^{(k-1)} - q_k (q_k^T Z)`)."""
-    from planar_tui.sensitivity.pce import indices_from_coefficients
 
     q, scores, loadings = fit.q, compressed.scores, compressed.loadings
     s_rows, k_terms = q.shape
