@@ -150,3 +150,22 @@ def test_the_five_bar_takes_two_efforts(cli, tmp_path):
     assert result.exit_code == 2, result.output
     assert result.stderr.startswith(f"error: {preset}: path5r[1].constant_efforts: ")
     assert "(expected 2 efforts in N m, one per actuator)" in result.stderr
+
+
+def test_the_constant_efforts_run_counts_in_the_time_estimate(cli, tmp_path, monkeypatch):
+    """1 000 forward-dynamics steps are estimated at 2 s: over a limit of 1 s the job is
+    refused up front (exit 2, one line on ``steps``); without ``constant_efforts`` it is
+    not."""
+    import planar_tui.limits
+
+    monkeypatch.setattr(planar_tui.limits, "MAX_JOB_SECONDS", 1.0)
+    preset, result = run(cli, tmp_path, weightless(RRR_ROBOT + RRR_JOB, "[0, 0, 0]", 1000))
+    assert result.exit_code == 2, result.output
+    assert result.stderr.startswith(f"error: {preset}: path3rrr[1].steps: is 1,000: the path ")
+    from planar_tui.batch import prepare_jobs
+    from planar_tui.presets import load_preset
+    from planar_tui.registry import JOB_KINDS
+
+    preset.write_text(RRR_ROBOT + RRR_JOB.replace("steps = 20", "steps = 1000"))
+    (job,) = prepare_jobs(load_preset(preset).jobs_of("path3rrr"))
+    assert JOB_KINDS["path3rrr"].estimate(job)[1] < 1.0
