@@ -15,6 +15,7 @@ from planar_tui.workspace.fivebar.robot import Robot5R, leg_angles
 from planar_tui.workspace.path.certify import check_certificate, kappa_setting
 from planar_tui.workspace.path.job import (
     check_path,
+    constant_efforts_setting,
     duration_setting,
     feed_forward_setting,
     path_job_kind,
@@ -53,6 +54,7 @@ class Path5RSpec:
         doc="working mode per leg: θ = α + β (`1`) or α − β (`-1`)",
     )
     feed_forward: bool = feed_forward_setting()
+    constant_efforts: tuple[float, ...] | None = constant_efforts_setting(2, "N m")
     kappa_max: float | None = kappa_setting()
     plot: str | None = plot_setting()
 

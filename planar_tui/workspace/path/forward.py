@@ -12,7 +12,8 @@ inverse dynamics :math:`\tau_{ID}(X, \dot X, \ddot X) = A^{-T}(M_X\ddot X + h)`,
 
 integrated by classical RK4. The legs are solved exactly from the pose at every
 evaluation, so the loop closure holds to machine precision: the largest closure residual
-met is reported as the drift.
+met is reported as the drift. :func:`constant_motion` is a path job's ``constant_efforts``
+run: from rest under constant efforts, its poses and rates as a CSV table.
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+from planar_tui.csvio import CsvTable
 from planar_tui.workspace.path.model import OK, problem_text
 
 
@@ -36,13 +38,15 @@ class PathFailure(ValueError):
 
 @dataclass(frozen=True)
 class Motion:
-    """A forward-dynamics run: times (n,), poses and rates (n, d), SI, and the largest
-    loop-closure residual met (m)."""
+    """A forward-dynamics run: times (n,), poses and rates (n, d), SI, the largest
+    loop-closure residual met (m) and, for a run kept up to a failure, that failure (the
+    rows end at the last step before it)."""
 
     times_s: Any
     pose: Any
     rate: Any
     drift_m: float
+    failure: PathFailure | None = None
 
 
 def acceleration(mechanism: Any, robot: Any, spec: Any, pose: Any, rate: Any, effort: Any) -> Any:
@@ -76,12 +80,14 @@ def simulate(
     duration_s: float,
     steps: int,
     on_step: Callable[[int], None] | None = None,
+    keep_partial: bool = False,
 ) -> Motion:
     """RK4 from the state ``(pose, rate)`` over ``duration_s`` in ``steps`` steps, the
     actuators exerting ``effort(t)`` (constant efforts: a function returning them;
     feed-forward: a path's efforts at ``t``); ``on_step(1)`` after each step (a progress
     bar's ``advance``, which may raise :class:`~planar_tui.errors.Cancelled`).
-    :class:`PathFailure` names the time a stage fails at."""
+    :class:`PathFailure` names the time a stage fails at; with ``keep_partial`` the
+    steps done until then are returned with it (:attr:`Motion.failure`)."""
     import numpy as np
 
     h = duration_s / steps
@@ -102,12 +108,64 @@ def simulate(
 
     for k in range(steps):
         t, x, v = times[k], poses[k], rates[k]
-        k1x, k1v = derivative(t, x, v)
-        k2x, k2v = derivative(t + 0.5 * h, x + 0.5 * h * k1x, v + 0.5 * h * k1v)
-        k3x, k3v = derivative(t + 0.5 * h, x + 0.5 * h * k2x, v + 0.5 * h * k2v)
-        k4x, k4v = derivative(t + h, x + h * k3x, v + h * k3v)
+        try:
+            k1x, k1v = derivative(t, x, v)
+            k2x, k2v = derivative(t + 0.5 * h, x + 0.5 * h * k1x, v + 0.5 * h * k1v)
+            k3x, k3v = derivative(t + 0.5 * h, x + 0.5 * h * k2x, v + 0.5 * h * k2v)
+            k4x, k4v = derivative(t + h, x + h * k3x, v + h * k3v)
+        except PathFailure as failure:
+            if not keep_partial:
+                raise
+            n = k + 1
+            return Motion(times[:n], poses[:n], rates[:n], drift, failure)
         poses[k + 1] = x + h / 6.0 * (k1x + 2.0 * k2x + 2.0 * k3x + k4x)
         rates[k + 1] = v + h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v)
         if on_step is not None:
             on_step(1)
     return Motion(times, poses, rates, drift)
+
+
+def forward_header(pose_dimension: int) -> tuple[str, ...]:
+    """The ``OUTPUT-forward.csv`` columns: time, pose (cm[, deg]) and its rates."""
+    pose = ("x_cm", "y_cm", "phi_deg")[:pose_dimension]
+    return ("t_s", *pose, *(f"{name}_s" for name in pose))
+
+
+def constant_motion(
+    mechanism: Any,
+    robot: Any,
+    spec: Any,
+    start: Any,
+    on_step: Callable[[int], None] | None = None,
+) -> tuple[Any, str]:
+    """A path job's ``constant_efforts`` run: :func:`simulate` from rest at ``start`` (SI)
+    under ``spec.constant_efforts`` (N m or N) for ``spec.duration_s`` in ``spec.steps``
+    steps, kept up to where the platform leaves the workspace. Returns the CSV table
+    (:func:`forward_header`, cm and degrees) and the summary's words (the end time and the
+    closure drift)."""
+    import numpy as np
+
+    efforts = np.asarray(spec.constant_efforts, dtype=np.float64)
+    motion = simulate(
+        mechanism,
+        robot,
+        spec,
+        np.asarray(start, dtype=np.float64),
+        np.zeros(len(start)),
+        lambda t: efforts,
+        spec.duration_s,
+        spec.steps,
+        on_step,
+        keep_partial=True,
+    )
+    scale = np.array([100.0, 100.0, 180.0 / np.pi][: len(start)])
+    rows = np.column_stack([motion.times_s, motion.pose * scale, motion.rate * scale])
+    if motion.failure is None:
+        words = f"to t = {motion.times_s[-1]:.6g} s"
+    else:
+        words = (
+            f"the platform leaves the workspace {motion.failure} (the forward CSV stops at "
+            f"t = {motion.times_s[-1]:.6g} s)"
+        )
+    words += f", closure drift {motion.drift_m:.3g} m"
+    return CsvTable(forward_header(len(start)), rows), words

@@ -9,7 +9,9 @@ per actuator its coordinate, rate and acceleration, then the efforts and the pow
 time where a leg cannot close, leaves its joint limits or meets a singularity fails the
 job (exit code 1, one line naming the first such time). With ``feed_forward = true`` the
 platform's forward dynamics (:mod:`.forward`) is integrated under the path's own efforts
-and its largest deviation from the path and the loop-closure drift are reported.
+and its largest deviation from the path and the loop-closure drift are reported; with
+``constant_efforts`` it is integrated from rest at ``from_pose`` under those efforts and
+written beside the CSV (:func:`~.forward.constant_motion`, ``OUTPUT-forward.csv``).
 """
 
 from __future__ import annotations
@@ -25,7 +27,7 @@ from planar_tui.jobkind import Command, Job, JobKind, JobResult, PreparedJob, Ta
 from planar_tui.progress import Progress
 from planar_tui.schema import boolean, integer, number, numbers, setting
 from planar_tui.workspace.path.certify import Certificate, certificate_outputs, certify
-from planar_tui.workspace.path.forward import PathFailure
+from planar_tui.workspace.path.forward import PathFailure, constant_motion
 from planar_tui.workspace.path.model import OK, PathModel, PathSolution, problem_text
 
 #: Most steps of one path (its CSV rows minus one).
@@ -71,19 +73,43 @@ def feed_forward_setting() -> Any:
     )
 
 
-def path_needs(steps: int, feed_forward: bool, model: PathModel) -> tuple[float, float]:
-    """``(memory_bytes, seconds)`` of a path of ``steps`` steps: its CSV's cells, its poses
-    and, with ``feed_forward``, its forward-dynamics steps."""
-    seconds = (steps + 1) * POSE_SECONDS + (
-        steps * FEED_FORWARD_STEP_SECONDS if feed_forward else 0
+def constant_efforts_setting(actuators: int, unit: str) -> Any:
+    """``constant_efforts``: one effort per actuator (N m revolute, N prismatic), held from
+    rest at ``from_pose`` (:func:`~.forward.constant_motion`)."""
+    names = ", ".join(f"e{i}" for i in range(1, actuators + 1))
+
+    def read(reader: Any, name: str, default: Any, context: Any, values: Any) -> Any:
+        expected = f"{actuators} efforts in {unit}, one per actuator"
+        return reader.numbers(name, default, length=actuators, items_doc=expected)
+
+    return setting(
+        read,
+        default=None,
+        default_doc="(none)",
+        type_doc=f"`[{names}]`, {unit}",
+        doc="also integrate the forward dynamics (RK4, same steps and duration) from rest "
+        "at from_pose under these constant efforts; writes OUTPUT-forward.csv (the poses "
+        "and their rates until the platform leaves the workspace)",
     )
+
+
+def forward_runs(spec: Any) -> int:
+    """How many forward-dynamics integrations the spec (or its values) asks for."""
+    get = spec.get if isinstance(spec, dict) else lambda name: getattr(spec, name, None)
+    return int(bool(get("feed_forward"))) + int(get("constant_efforts") is not None)
+
+
+def path_needs(steps: int, runs: int, model: PathModel) -> tuple[float, float]:
+    """``(memory_bytes, seconds)`` of a path of ``steps`` steps: its CSV's cells, its poses
+    and the ``runs`` forward-dynamics integrations' steps (:func:`forward_runs`)."""
+    seconds = (steps + 1) * POSE_SECONDS + runs * steps * FEED_FORWARD_STEP_SECONDS
     return (steps + 1) * len(path_header(model)) * BYTES_PER_CELL, seconds
 
 
 def estimate(job: Job[Any, Any]) -> tuple[float, float]:
     """``(memory_bytes, seconds)`` of a path job (:func:`path_needs`)."""
     spec = job.spec
-    return path_needs(spec.steps, spec.feed_forward, spec.mechanism.path_model(job.robot))
+    return path_needs(spec.steps, forward_runs(spec), spec.mechanism.path_model(job.robot))
 
 
 def check_path(values: dict[str, Any], reader: Any, robot: Any, mechanism: Any) -> dict[str, Any]:
@@ -92,7 +118,7 @@ def check_path(values: dict[str, Any], reader: Any, robot: Any, mechanism: Any) 
     from planar_tui.limits import memory_problem, time_problem
 
     steps = values["steps"]
-    memory, seconds = path_needs(steps, values["feed_forward"], mechanism.path_model(robot))
+    memory, seconds = path_needs(steps, forward_runs(values), mechanism.path_model(robot))
     problem = time_problem(seconds) or memory_problem(memory)
     if problem is not None:
         raise reader.error("steps", f"is {steps:,}: the path {problem}", "fewer steps")
@@ -235,6 +261,10 @@ def run_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathResul
             ) from None
         summary += f"; feed-forward: deviation {deviation:.3g}, closure drift {drift:.3g} m"
     extra = {}
+    if spec.constant_efforts is not None:
+        progress.start(spec.steps, "forward dynamics (constant efforts)")
+        extra["forward"], words = constant_motion(mechanism, robot, spec, start, progress.advance)
+        summary += f"; constant efforts: {words}"
     if certificate is not None:
         summary += f"; {certificate.describe()}"
         extra["certificate"] = certificate.table()
@@ -326,10 +356,20 @@ def path_job_kind(
             "job: one CSV per job (pose, actuator coordinates, efforts, powers by time).",
         ),
         figure="planar_tui.figures.path:from_result",
-        extra_outputs=certificate_outputs,
+        extra_outputs=path_outputs,
         warmup=warmup,
         tab=Tab(f"{robot_words} path", PATH_TAB_ORDER, path_pane(name)),
     )
+
+
+def path_outputs(job: Job[Any, Any]) -> dict[str, str]:
+    """The extra CSVs beside the job's: the certificate (:func:`certificate_outputs`) and,
+    with ``constant_efforts``, the forward motion (``-forward.csv``)."""
+    outputs = certificate_outputs(job)
+    if getattr(job.spec, "constant_efforts", None) is not None:
+        stem = job.output[:-4] if job.output.lower().endswith(".csv") else job.output
+        outputs["forward"] = f"{stem}-forward.csv"
+    return outputs
 
 
 #: The path tabs' place, after the workspace tabs (among them by title).

@@ -16,6 +16,7 @@ from planar_tui.schema import TableReader, plot_setting
 from planar_tui.workspace.path.certify import check_certificate, kappa_setting
 from planar_tui.workspace.path.job import (
     check_path,
+    constant_efforts_setting,
     duration_setting,
     feed_forward_setting,
     path_job_kind,
@@ -44,6 +45,7 @@ class Path3PRRSpec:
         "(`-1`) the foot of the perpendicular from the platform joint to its line",
     )
     feed_forward: bool = feed_forward_setting()
+    constant_efforts: tuple[float, ...] | None = constant_efforts_setting(3, "N")
     kappa_max: float | None = kappa_setting()
     characteristic_length_cm: float | None = length_setting()
     plot: str | None = plot_setting()

@@ -12,6 +12,7 @@ from planar_tui.schema import TableReader, plot_setting, setting
 from planar_tui.workspace.path.certify import check_certificate, kappa_setting
 from planar_tui.workspace.path.job import (
     check_path,
+    constant_efforts_setting,
     duration_setting,
     feed_forward_setting,
     path_job_kind,
@@ -46,6 +47,7 @@ class Path3RPRSpec:
         doc="actuated leg lengths ρ1, ρ2, ρ3, as the workspace job's",
     )
     feed_forward: bool = feed_forward_setting()
+    constant_efforts: tuple[float, ...] | None = constant_efforts_setting(3, "N")
     kappa_max: float | None = kappa_setting()
     characteristic_length_cm: float | None = length_setting()
     plot: str | None = plot_setting()

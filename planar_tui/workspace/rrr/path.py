@@ -14,6 +14,7 @@ from planar_tui.schema import TableReader, plot_setting, setting
 from planar_tui.workspace.path.certify import check_certificate, kappa_setting
 from planar_tui.workspace.path.job import (
     check_path,
+    constant_efforts_setting,
     duration_setting,
     feed_forward_setting,
     path_job_kind,
@@ -54,6 +55,7 @@ class Path3RRRSpec:
         doc="active-joint limits θ1, θ2, θ3, as the workspace job's",
     )
     feed_forward: bool = feed_forward_setting()
+    constant_efforts: tuple[float, ...] | None = constant_efforts_setting(3, "N m")
     kappa_max: float | None = kappa_setting()
     characteristic_length_cm: float | None = length_setting()
     plot: str | None = plot_setting()
