@@ -155,7 +155,10 @@ async def test_a_wrapped_field_is_cleared_whole_and_shown_whole(tmp_path):
         await pilot.press("ctrl+z")
         await pilot.pause(0.5)
         field = app.query_one("#pane-workspace #field-joint_limits_deg")
-        assert shown_in(app, field) == field.value.replace(" ", ""), field.value
+        # which edits one undo takes back depends on the keys' timing (edits less than
+        # COALESCE_S apart are one step): an emptied field shows its placeholder
+        value = field.value.replace(" ", "")
+        assert shown_in(app, field) == (value or "(required)"), field.value
 
 
 # -- the live preview ---------------------------------------------------------------------
