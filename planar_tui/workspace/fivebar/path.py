@@ -5,24 +5,24 @@ end-effector joint ``P`` (:mod:`planar_tui.workspace.path.job`, the equations in
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import Any, ClassVar
+from typing import ClassVar
 
-from planar_tui.errors import PresetError
 from planar_tui.jobkind import Job
 from planar_tui.schema import TableReader, plot_setting, setting
 from planar_tui.workspace.fivebar.mechanism import MECHANISM
 from planar_tui.workspace.fivebar.robot import Robot5R, leg_angles
-from planar_tui.workspace.path.certify import check_certificate, kappa_setting
+from planar_tui.workspace.path.certify import kappa_setting
 from planar_tui.workspace.path.job import (
-    check_path,
     constant_efforts_setting,
     duration_setting,
     feed_forward_setting,
+    path_check,
     path_job_kind,
     pose_setting,
+    resolved_modes,
     steps_setting,
 )
-from planar_tui.workspace.paving.legs import on_arc
+from planar_tui.workspace.paving.legs import closing_modes
 from planar_tui.workspace.paving.mechanism import Mechanism
 
 ELBOW_DOC = "2 signs, each 1 or -1"
@@ -60,12 +60,7 @@ class Path5RSpec:
 
     mechanism: ClassVar[Mechanism] = MECHANISM
 
-    @staticmethod
-    def check(values: dict[str, Any], reader: TableReader, robot: Robot5R) -> dict[str, Any]:
-        """``kappa_max`` above 1 (:func:`check_certificate`); the job fits the time and
-        memory limits (:func:`check_path`)."""
-        check_certificate(values, reader)
-        return check_path(values, reader, robot, MECHANISM)
+    check = path_check(MECHANISM)
 
 
 def prepare_path(job: Job[Path5RSpec, Robot5R]) -> Path5RSpec:
@@ -77,19 +72,14 @@ def prepare_path(job: Job[Path5RSpec, Robot5R]) -> Path5RSpec:
         return spec
     if robot.working_mode != "any":
         return replace(spec, elbow=robot.elbows)
-    elbow = []
-    for leg, (angles, (lo, hi)) in enumerate(
-        zip(leg_angles(robot, spec.from_pose), robot.limits_rad, strict=True), start=1
-    ):
-        modes = [] if angles is None else [s for s in (1, -1) if on_arc(angles[s], lo, hi)]
-        if len(modes) == 2 and angles is not None and angles[1] != angles[-1]:
-            raise PresetError(
-                job.preset_path,
-                f"{job.key}.elbow",
-                f"is not given and leg {leg} closes in both working modes at from_pose",
-                "elbow = [s1, s2], each 1 or -1 (or the robot's working_mode)",
-            )
-        elbow.append(modes[0] if modes else 1)
+    per_leg = [
+        closing_modes(angles, lo, hi)
+        for angles, (lo, hi) in zip(
+            leg_angles(robot, spec.from_pose), robot.limits_rad, strict=True
+        )
+    ]
+    example = "elbow = [s1, s2], each 1 or -1 (or the robot's working_mode)"
+    elbow = resolved_modes(job, "elbow", per_leg, example)
     return replace(spec, elbow=(elbow[0], elbow[1]))
 
 

@@ -22,11 +22,16 @@ from dataclasses import dataclass, fields
 from typing import Any
 
 from planar_tui.csvio import CsvTable
-from planar_tui.errors import JobError
+from planar_tui.errors import JobError, PresetError
 from planar_tui.jobkind import Command, Job, JobKind, JobResult, PreparedJob, Tab
 from planar_tui.progress import Progress
 from planar_tui.schema import boolean, integer, number, numbers, setting
-from planar_tui.workspace.path.certify import Certificate, certificate_outputs, certify
+from planar_tui.workspace.path.certify import (
+    Certificate,
+    certificate_outputs,
+    certify,
+    check_certificate,
+)
 from planar_tui.workspace.path.forward import PathFailure, constant_motion
 from planar_tui.workspace.path.model import OK, PathModel, PathSolution, problem_text
 
@@ -123,6 +128,37 @@ def check_path(values: dict[str, Any], reader: Any, robot: Any, mechanism: Any) 
     if problem is not None:
         raise reader.error("steps", f"is {steps:,}: the path {problem}", "fewer steps")
     return values
+
+
+def path_check(mechanism: Any) -> Any:
+    """A path spec's ``check(values, reader, robot)`` (a staticmethod): ``kappa_max`` above 1
+    (:func:`~planar_tui.workspace.path.certify.check_certificate`) and the job within the
+    time and memory limits (:func:`check_path`) for ``mechanism``."""
+
+    def check(values: dict[str, Any], reader: Any, robot: Any) -> dict[str, Any]:
+        check_certificate(values, reader)
+        return check_path(values, reader, robot, mechanism)
+
+    return staticmethod(check)
+
+
+def resolved_modes(job: Any, key: str, per_leg: Any, example: str) -> tuple[int, ...]:
+    """A working mode per leg, where ``per_leg`` gives each leg's modes (``1``, ``-1``) that
+    close it at ``from_pose`` within its limits, two only where they are distinct
+    solutions: the one mode where there is one; ``1`` where there is none (the run then
+    fails at t = 0); a :class:`PresetError` on ``key`` (``example``: the key written out)
+    where a leg closes both ways."""
+    modes = []
+    for leg, allowed in enumerate(per_leg, start=1):
+        if len(allowed) == 2:
+            raise PresetError(
+                job.preset_path,
+                f"{job.key}.{key}",
+                f"is not given and leg {leg} closes in both working modes at from_pose",
+                example,
+            )
+        modes.append(allowed[0] if allowed else 1)
+    return tuple(modes)
 
 
 def pose_si(pose: tuple[float, ...]) -> tuple[float, ...]:

@@ -8,19 +8,19 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 from types import SimpleNamespace
-from typing import Any, ClassVar
+from typing import ClassVar
 
-from planar_tui.errors import PresetError
 from planar_tui.jobkind import Job
-from planar_tui.schema import TableReader, plot_setting
-from planar_tui.workspace.path.certify import check_certificate, kappa_setting
+from planar_tui.schema import plot_setting
+from planar_tui.workspace.path.certify import kappa_setting
 from planar_tui.workspace.path.job import (
-    check_path,
     constant_efforts_setting,
     duration_setting,
     feed_forward_setting,
+    path_check,
     path_job_kind,
     pose_setting,
+    resolved_modes,
     steps_setting,
 )
 from planar_tui.workspace.paving.dexterity import length_setting
@@ -52,12 +52,7 @@ class Path3PRRSpec:
 
     mechanism: ClassVar[Mechanism] = MECHANISM
 
-    @staticmethod
-    def check(values: dict[str, Any], reader: TableReader, robot: Robot3PRR) -> dict[str, Any]:
-        """``kappa_max`` above 1 (:func:`check_certificate`); the job fits the time and
-        memory limits (:func:`check_path`)."""
-        check_certificate(values, reader)
-        return check_path(values, reader, robot, MECHANISM)
+    check = path_check(MECHANISM)
 
 
 def prepare_path(job: Job[Path3PRRSpec, Robot3PRR]) -> Path3PRRSpec:
@@ -71,17 +66,14 @@ def prepare_path(job: Job[Path3PRRSpec, Robot3PRR]) -> Path3PRRSpec:
         return spec
     x, y, phi = spec.from_pose
     at = SimpleNamespace(orientation_rad=math.radians(phi))
-    modes = []
-    for leg, per_mode in enumerate(float_links(job.robot, at, (x, y)), start=1):
-        reach = [s for s, link in zip((1, -1), per_mode, strict=True) if link is not None]
-        if len(reach) == 2 and per_mode[0] != per_mode[1]:
-            raise PresetError(
-                job.preset_path,
-                f"{job.key}.slider_modes",
-                f"is not given and leg {leg} closes in both working modes at from_pose",
-                "slider_modes = [s1, s2, s3], each 1 or -1",
-            )
-        modes.append(reach[0] if reach else 1)
+    per_leg = [
+        [s for s, link in zip((1, -1), per_mode, strict=True) if link is not None][
+            : 1 if per_mode[0] == per_mode[1] else 2
+        ]
+        for per_mode in float_links(job.robot, at, (x, y))
+    ]
+    example = "slider_modes = [s1, s2, s3], each 1 or -1"
+    modes = resolved_modes(job, "slider_modes", per_leg, example)
     return replace(spec, slider_modes=(modes[0], modes[1], modes[2]))
 
 

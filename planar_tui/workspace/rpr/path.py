@@ -5,16 +5,16 @@ its masses from ``[robot3rpr]``. The legs' lengths follow from the pose: no work
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, ClassVar
+from typing import ClassVar
 
 from planar_tui.jobkind import Job
 from planar_tui.schema import TableReader, plot_setting, setting
-from planar_tui.workspace.path.certify import check_certificate, kappa_setting
+from planar_tui.workspace.path.certify import kappa_setting
 from planar_tui.workspace.path.job import (
-    check_path,
     constant_efforts_setting,
     duration_setting,
     feed_forward_setting,
+    path_check,
     path_job_kind,
     pose_setting,
     steps_setting,
@@ -54,12 +54,7 @@ class Path3RPRSpec:
 
     mechanism: ClassVar[Mechanism] = MECHANISM
 
-    @staticmethod
-    def check(values: dict[str, Any], reader: TableReader, robot: Robot3RPR) -> dict[str, Any]:
-        """``kappa_max`` above 1 (:func:`check_certificate`); the job fits the time and
-        memory limits (:func:`check_path`)."""
-        check_certificate(values, reader)
-        return check_path(values, reader, robot, MECHANISM)
+    check = path_check(MECHANISM)
 
 
 def prepare_path(job: Job[Path3RPRSpec, Robot3RPR]) -> Path3RPRSpec:

@@ -6,23 +6,23 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import Any, ClassVar
+from typing import ClassVar
 
-from planar_tui.errors import PresetError
 from planar_tui.jobkind import Job
 from planar_tui.schema import TableReader, plot_setting, setting
-from planar_tui.workspace.path.certify import check_certificate, kappa_setting
+from planar_tui.workspace.path.certify import kappa_setting
 from planar_tui.workspace.path.job import (
-    check_path,
     constant_efforts_setting,
     duration_setting,
     feed_forward_setting,
+    path_check,
     path_job_kind,
     pose_setting,
+    resolved_modes,
     steps_setting,
 )
 from planar_tui.workspace.paving.dexterity import length_setting
-from planar_tui.workspace.paving.legs import on_arc
+from planar_tui.workspace.paving.legs import closing_modes
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.paving.settings import modes_setting
 from planar_tui.workspace.rrr.job import _joint_limits
@@ -62,12 +62,7 @@ class Path3RRRSpec:
 
     mechanism: ClassVar[Mechanism] = MECHANISM
 
-    @staticmethod
-    def check(values: dict[str, Any], reader: TableReader, robot: Robot3RRR) -> dict[str, Any]:
-        """``kappa_max`` above 1 (:func:`check_certificate`); the job fits the time and
-        memory limits (:func:`check_path`)."""
-        check_certificate(values, reader)
-        return check_path(values, reader, robot, MECHANISM)
+    check = path_check(MECHANISM)
 
     @property
     def limits_rad(self) -> tuple[tuple[float, float], ...] | None:
@@ -86,19 +81,13 @@ def prepare_path(job: Job[Path3RRRSpec, Robot3RRR]) -> Path3RRRSpec:
     if spec.elbow is not None:
         return spec
     limits = spec.limits_rad or ((0.0, 2.0 * math.pi),) * 3
-    elbow = []
-    for leg, (angles, (lo, hi)) in enumerate(
-        zip(leg_angles(job.robot, math.radians(phi), (x, y)), limits, strict=True), start=1
-    ):
-        modes = [] if angles is None else [s for s in (1, -1) if on_arc(angles[s], lo, hi)]
-        if len(modes) == 2 and angles is not None and angles[1] != angles[-1]:
-            raise PresetError(
-                job.preset_path,
-                f"{job.key}.elbow",
-                f"is not given and leg {leg} closes in both working modes at from_pose",
-                "elbow = [s1, s2, s3], each 1 or -1",
-            )
-        elbow.append(modes[0] if modes else 1)
+    per_leg = [
+        closing_modes(angles, lo, hi)
+        for angles, (lo, hi) in zip(
+            leg_angles(job.robot, math.radians(phi), (x, y)), limits, strict=True
+        )
+    ]
+    elbow = resolved_modes(job, "elbow", per_leg, "elbow = [s1, s2, s3], each 1 or -1")
     return replace(spec, elbow=(elbow[0], elbow[1], elbow[2]))
 
 
