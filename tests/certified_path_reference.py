@@ -241,3 +241,20 @@ class SliderLegs:
         if valid.any():
             kappa[valid] = self.kappa(np.atleast_2d(pose)[valid])
         return {"leg": reach, "joint_limit": joint, "kappa": (kappa_max - kappa) / kappa_max}
+
+
+def shrink_kappa(monkeypatch, mechanism):
+    """The mutation: ``mechanism``'s path box test with its κ enclosure shrunk by 1 % (the
+    lower end raised, the upper end lowered)."""
+    original = type(mechanism).path_box_test
+
+    def shrunk(self, robot, spec):
+        test = original(self, robot, spec)
+
+        def shrunk_test(boxes):
+            verdict, reason, kappa = test(boxes)
+            return verdict, reason, kappa * [1.01, 1.0 / 1.01]
+
+        return shrunk_test
+
+    monkeypatch.setattr(type(mechanism), "path_box_test", shrunk)

@@ -18,7 +18,7 @@ from planar_tui.workspace.paving.dexterity import circumradius_cm
 from planar_tui.workspace.rrr.mechanism import MECHANISM
 from planar_tui.workspace.rrr.path import Path3RRRSpec
 from planar_tui.workspace.rrr.robot import Robot3RRR
-from tests.certified_path_reference import Legs, check_certificate, path_poses
+from tests.certified_path_reference import Legs, check_certificate, path_poses, shrink_kappa
 
 ROBOT = Robot3RRR()
 TABLE3 = ((20.0, 70.0), (110.0, 160.0), (245.0, 295.0))
@@ -84,25 +84,9 @@ def test_the_failures_at_a_joint_limit_and_out_of_reach(name):
     check(name, *certificate_of(name))
 
 
-def shrink_kappa(monkeypatch):
-    """The κ enclosure shrunk by 1 % (its lower end raised, its upper end lowered)."""
-    original = MECHANISM.path_box_test
-
-    def shrunk(robot, spec):
-        test = original(robot, spec)
-
-        def shrunk_test(boxes):
-            verdict, reason, kappa = test(boxes)
-            return verdict, reason, kappa * [1.01, 1.0 / 1.01]
-
-        return shrunk_test
-
-    monkeypatch.setattr(type(MECHANISM), "path_box_test", lambda self, r, s: shrunk(r, s))
-
-
 @pytest.mark.parametrize("name", ["certified", "kappa"])
 def test_a_kappa_enclosure_shrunk_by_one_percent_is_caught(monkeypatch, name):
-    shrink_kappa(monkeypatch)
+    shrink_kappa(monkeypatch, MECHANISM)
     with pytest.raises(AssertionError):
         check(name, *certificate_of(name), samples=2000)
 
@@ -172,7 +156,7 @@ def test_pose_boxes_shrunk_by_one_percent_are_caught(monkeypatch):
 
 
 def test_a_box_test_shrunk_by_one_percent_is_caught(monkeypatch):
-    shrink_kappa(monkeypatch)
+    shrink_kappa(monkeypatch, MECHANISM)
     with pytest.raises(AssertionError):
         check_box_test(1e-3)
 

@@ -16,7 +16,7 @@ from planar_tui.workspace.paving.dexterity import circumradius_cm
 from planar_tui.workspace.prr.mechanism import MECHANISM
 from planar_tui.workspace.prr.path import Path3PRRSpec
 from planar_tui.workspace.prr.robot import Robot3PRR
-from tests.certified_path_reference import SliderLegs, check_certificate
+from tests.certified_path_reference import SliderLegs, check_certificate, shrink_kappa
 
 ROBOT = Robot3PRR()
 MODES = (1, 1, 1)
@@ -64,18 +64,7 @@ def test_the_verdict_brackets_and_peak_match_dense_sampling(name):
 
 @pytest.mark.parametrize("name", ["certified", "kappa"])
 def test_a_kappa_enclosure_shrunk_by_one_percent_is_caught(monkeypatch, name):
-    original = type(MECHANISM).path_box_test
-
-    def shrunk(self, robot, spec):
-        test = original(self, robot, spec)
-
-        def shrunk_test(boxes):
-            verdict, reason, kappa = test(boxes)
-            return verdict, reason, kappa * [1.01, 1.0 / 1.01]
-
-        return shrunk_test
-
-    monkeypatch.setattr(type(MECHANISM), "path_box_test", shrunk)
+    shrink_kappa(monkeypatch, MECHANISM)
     with pytest.raises(AssertionError):
         check(name, samples=2000)
 

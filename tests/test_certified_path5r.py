@@ -14,7 +14,7 @@ from planar_tui.workspace.fivebar.mechanism import MECHANISM
 from planar_tui.workspace.fivebar.path import Path5RSpec
 from planar_tui.workspace.fivebar.robot import Robot5R
 from planar_tui.workspace.path.certify import certify
-from tests.certified_path_reference import Legs, check_certificate
+from tests.certified_path_reference import Legs, check_certificate, shrink_kappa
 
 ROBOT = Robot5R(working_mode="+-")
 #: name: from_pose, to_pose (cm), kappa_max, verdict
@@ -64,18 +64,7 @@ def test_the_failures_at_a_joint_limit_and_out_of_reach(name):
 
 @pytest.mark.parametrize("name", ["certified", "kappa"])
 def test_a_kappa_enclosure_shrunk_by_one_percent_is_caught(monkeypatch, name):
-    original = type(MECHANISM).path_box_test
-
-    def shrunk(self, robot, spec):
-        test = original(self, robot, spec)
-
-        def shrunk_test(boxes):
-            verdict, reason, kappa = test(boxes)
-            return verdict, reason, kappa * [1.01, 1.0 / 1.01]
-
-        return shrunk_test
-
-    monkeypatch.setattr(type(MECHANISM), "path_box_test", shrunk)
+    shrink_kappa(monkeypatch, MECHANISM)
     with pytest.raises(AssertionError):
         check(name, samples=2000)
 
