@@ -60,6 +60,7 @@ def test_a_workspace_job_warms_only_the_parts_its_run_calls(tmp_path):
         'form = "arc-distance"\nsingularities = true\nelbow = [1, -1, 1]',
         'form = "arc-distance"\nkappa_max = 4\nelbow = [1, -1, 1]',
         'form = "arc-distance"\nleg_width_cm = 4\nelbow = [1, -1, 1]',
+        'form = "arc-distance"\naccuracy = { actuator_deg = 0.1 }\nelbow = [1, -1, 1]',
     ]
     preset = tmp_path / "p.toml"
     preset.write_text(WORKSPACE_ROBOT + "".join(f"[[workspace]]\n{LIMITS}{t}\n" for t in tables))
@@ -72,6 +73,7 @@ def test_a_workspace_job_warms_only_the_parts_its_run_calls(tmp_path):
         ["workspace:arc-distance", "workspace:singularities"],
         ["workspace:arc-distance", "workspace:dexterity"],
         ["workspace:arc-distance", "workspace:interference"],
+        ["workspace:arc-distance", "workspace:accuracy"],
     ]
     # a kind with one example is one unit; a bare kind stands for all of its parts
     assert warmup.units("torques") == ["torques"]
@@ -83,9 +85,10 @@ def test_a_workspace_job_warms_only_the_parts_its_run_calls(tmp_path):
         "workspace:orientation",
         "workspace:dexterity",
         "workspace:interference",
+        "workspace:accuracy",
     }
     whole = warmup.example("workspace")
-    assert whole is not None and whole.count("[[workspace]]") == 7
+    assert whole is not None and whole.count("[[workspace]]") == 8
     assert whole.count("[robot3rrr]") == 1
 
 

@@ -58,6 +58,9 @@ class Mechanism(Protocol):
     has_dexterity: bool = False
     #: Whether it certifies interference-free regions (``leg_width_cm``, :meth:`interference`).
     has_interference: bool = False
+    #: Its actuators' unit where it certifies its worst-case accuracy (``accuracy``,
+    #: :meth:`accuracy`): ``"deg"`` revolute, ``"cm"`` prismatic; ``""``: none.
+    accuracy_unit: str = ""
 
     def parameters(self, robot: Any, spec: Any) -> Any:
         """The leg test kernel's parameter array (its tolerance bounds included)."""
@@ -122,6 +125,16 @@ class Mechanism(Protocol):
         :meth:`dexterity`'s) and its certified gap enclosure (k, 2), cm
         (:mod:`planar_tui.workspace.paving.interference`)."""
         problem = f"{self.name} certifies no interference (has_interference is false)"
+        raise NotImplementedError(problem)
+
+    def accuracy(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
+        """The pose error evaluator of a job with ``accuracy`` in its working mode
+        (resolved by ``prepare``): (k, 4) boxes to each box's verdict (as
+        :meth:`dexterity`'s) and its certified bounds (k, 3) of :math:`|\\Delta x|`,
+        :math:`|\\Delta y|` (cm), :math:`|\\Delta\\varphi|` (rad) ((k, 2) without
+        orientation; ``inf`` not certified) over the box's poses and every robot within the
+        errors (:mod:`planar_tui.workspace.paving.accuracy`)."""
+        problem = f"{self.name} certifies no accuracy (accuracy_unit is empty)"
         raise NotImplementedError(problem)
 
     def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:

@@ -13,6 +13,7 @@ from planar_tui.workspace.paving.tolerance import describe as describe_tolerance
 from planar_tui.workspace.paving.tolerance import map_layers, tolerance_of
 
 if TYPE_CHECKING:
+    from planar_tui.workspace.paving.accuracy import AccuracyOutcome
     from planar_tui.workspace.paving.dexterity import DexterityOutcome
     from planar_tui.workspace.paving.interference import InterferenceOutcome
     from planar_tui.workspace.paving.levels import WorkspaceOutcome
@@ -49,6 +50,8 @@ class WorkspaceResult(JobResult):
     dexterity: DexterityOutcome | None = None
     #: The certified interference-free region, with ``leg_width_cm``.
     interference: InterferenceOutcome | None = None
+    #: The certified worst-case accuracy, with ``accuracy``.
+    accuracy: AccuracyOutcome | None = None
 
 
 def map_title(job: Job[Any, Any], outcome: WorkspaceOutcome) -> str:

@@ -1,5 +1,5 @@
 """A parallel robot's workspace job in stages: ``pave → singularities → dexterity →
-interference → tolerance → result``, each stage a named function and :func:`run_stages`
+interference → accuracy → tolerance → result``, each stage a named function and :func:`run_stages`
 their composition.
 
 The core names no robot: a kind supplies its differences as :class:`Stages` (how it paves,
@@ -17,6 +17,9 @@ from typing import TYPE_CHECKING, Any
 from planar_tui.csvio import CsvTable
 from planar_tui.jobkind import PreparedJob
 from planar_tui.progress import Progress
+from planar_tui.workspace.paving.accuracy import HEADER as ACCURACY_HEADER
+from planar_tui.workspace.paving.accuracy import boxes_table as accuracy_boxes
+from planar_tui.workspace.paving.accuracy import job_accuracy
 from planar_tui.workspace.paving.dexterity import HEADER as DEXTERITY_HEADER
 from planar_tui.workspace.paving.dexterity import boxes_table as dexterity_boxes
 from planar_tui.workspace.paving.interference import HEADER as INTERFERENCE_HEADER
@@ -110,6 +113,16 @@ def interference_stage(stages: Stages, ready: Any, extent: Any, budget: Any, row
     return clear
 
 
+def accuracy_stage(stages: Stages, ready: Any, extent: Any, budget: Any, row: SummaryRow):
+    """The certified worst-case accuracy of a job with ``accuracy`` and its columns
+    (``None``, no columns, without)."""
+    if getattr(ready.job.spec, "accuracy", None) is None:
+        return None
+    errors = job_accuracy(ready.job, ready.prepared, extent, budget, stages.elbow(ready))
+    row.extend(ACCURACY_HEADER, errors.columns(), f"; {errors.describe()}")
+    return errors
+
+
 def tolerance_stage(stages: Stages, job: Any, progress: Progress, row: SummaryRow):
     """The toleranced workspaces of a job with a tolerance
     (:func:`~planar_tui.workspace.paving.tolerance.tolerance_report`, each paving on a
@@ -123,9 +136,10 @@ def tolerance_stage(stages: Stages, job: Any, progress: Progress, row: SummaryRo
 
 
 def run_stages(stages: Stages, ready: PreparedJob[Any, Any, Any], progress: Progress) -> Any:
-    """One workspace job: ``pave → singularities → dexterity → interference → tolerance``,
-    then the kind's result (``stages.result``: the summary CSV, the boxes CSV with the dexterity and interference
-    boxes, the outcomes the map and figure draw)."""
+    """One workspace job: ``pave → singularities → dexterity → interference → accuracy →
+    tolerance``, then the kind's result (``stages.result``: the summary CSV, the boxes CSV
+    with the dexterity, interference and accuracy boxes, the outcomes the map and figure
+    draw)."""
     from planar_tui.workspace.paving.levels import BoxBudget, boxes_table  # numpy
 
     job = ready.job
@@ -135,8 +149,10 @@ def run_stages(stages: Stages, ready: PreparedJob[Any, Any, Any], progress: Prog
     singular = singularity_stage(stages, ready, outcome, budget, row)
     dexterous = dexterity_stage(stages, ready, outcome.extent_cm, budget, row)
     clear = interference_stage(stages, ready, outcome.extent_cm, budget, row)
+    errors = accuracy_stage(stages, ready, outcome.extent_cm, budget, row)
     report = tolerance_stage(stages, job, progress, row)
     boxes = interference_boxes(dexterity_boxes(boxes_table(outcome), dexterous), clear)
+    boxes = accuracy_boxes(boxes, errors)
     return stages.result(
         table=row.table(),
         summary=row.text,
@@ -145,6 +161,7 @@ def run_stages(stages: Stages, ready: PreparedJob[Any, Any, Any], progress: Prog
         singularity=singular,
         dexterity=dexterous,
         interference=clear,
+        accuracy=errors,
         companions=None if report is None else report.companions,
     )
 

@@ -30,6 +30,7 @@ from planar_tui.schema import (
     setting,
     string,
 )
+from planar_tui.workspace.paving.accuracy import accuracy_setting, check_accuracy
 from planar_tui.workspace.paving.circle import HEADER as CIRCLE_HEADER
 from planar_tui.workspace.paving.dexterity import check_dexterity, kappa_setting, length_setting
 from planar_tui.workspace.paving.interference import check_interference, width_setting
@@ -72,6 +73,7 @@ from planar_tui.workspace.rrr.mechanism import MECHANISM
 from planar_tui.workspace.rrr.orientation import default_form, reach_box_for
 from planar_tui.workspace.rrr.robot import TOLERANCE_KEYS_3RRR, Robot3RRR
 from planar_tui.workspace.rrr.singularity import (
+    MODED_KEYS,
     Circle,
     check_singularity,
     resolve_circle,
@@ -182,6 +184,7 @@ class WorkspaceSpec:
     kappa_max: float | None = kappa_setting()
     characteristic_length_cm: float | None = length_setting()
     leg_width_cm: float | None = width_setting()
+    accuracy: tuple[tuple[str, float], ...] | None = accuracy_setting()
     tolerance_cm: float | None
     tolerances_cm: tuple[tuple[str, float], ...] | None
     tolerance_mode: str | None
@@ -201,6 +204,7 @@ class WorkspaceSpec:
         check_singularity(values, reader)
         check_dexterity(values, reader)
         check_interference(values, reader)
+        check_accuracy(values, reader, MECHANISM.accuracy_unit)
         lengths = {"proximal_cm": robot.proximal_cm, "distal_cm": robot.distal_cm}
         check_tolerance(values, reader, TOLERANCE_KEYS_3RRR, lengths)
         form = values["form"]
@@ -266,17 +270,17 @@ WorkspaceJob = Job[WorkspaceSpec, Robot3RRR]
 @dataclass(frozen=True)
 class WorkspacePrepared:
     """What :func:`prepare_workspace` resolves: the singularity-free circle's centre and
-    working mode (``None`` without ``singularities``, ``kappa_max`` or ``leg_width_cm``)."""
+    working mode (``None`` without ``singularities`` or a key of ``MODED_KEYS``)."""
 
     circle: Circle | None
 
 
 def prepare_workspace(job: WorkspaceJob) -> WorkspacePrepared:
-    """Resolve the circle of a job with ``singularities``, ``kappa_max`` or ``leg_width_cm``
+    """Resolve the circle of a job with ``singularities`` or a key of ``MODED_KEYS``
     (its working mode: :func:`resolve_circle`), refusing an unreachable or singular centre
     (:class:`PresetError`, exit code 2)."""
     spec = job.spec
-    if not spec.singularities and spec.kappa_max is None and spec.leg_width_cm is None:
+    if not spec.singularities and all(getattr(spec, k) is None for k in MODED_KEYS):
         return WorkspacePrepared(None)
     return WorkspacePrepared(resolve_circle(job))
 
@@ -380,6 +384,8 @@ WARMUP_PARTS = {
     "orientation": _WARMUP_TABLE + 'orientation_deg = [-1, 1]\norientation_mode = "total"\n',
     "dexterity": _WARMUP_TABLE + 'form = "arc-distance"\nkappa_max = 4\nelbow = [1, -1, 1]\n',
     "interference": _WARMUP_TABLE + 'form = "arc-distance"\nleg_width_cm = 2\nelbow = [1, -1, 1]\n',
+    "accuracy": _WARMUP_TABLE
+    + 'form = "arc-distance"\naccuracy = { actuator_deg = 0.1 }\nelbow = [1, -1, 1]\n',
 }
 
 
@@ -399,7 +405,8 @@ def warmup_parts(job: Job[WorkspaceSpec, Robot3RRR]) -> tuple[str, ...]:
     if spec.singularities:
         parts.append("singularities")
     parts += ["dexterity"] if spec.kappa_max is not None else []
-    return (*parts, "interference") if spec.leg_width_cm is not None else tuple(parts)
+    parts += ["interference"] if spec.leg_width_cm is not None else []
+    return (*parts, "accuracy") if spec.accuracy is not None else tuple(parts)
 
 
 JOB_KIND = JobKind(

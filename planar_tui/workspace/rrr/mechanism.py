@@ -37,6 +37,7 @@ class Mechanism3RRR(Mechanism):
     has_orientation_ranges = True
     has_dexterity = True
     has_interference = True
+    accuracy_unit = "deg"
 
     def parameters(self, robot: Any, spec: Any) -> Any:
         from planar_tui.workspace.rrr.compute import kernel_parameters  # numpy
@@ -83,6 +84,11 @@ class Mechanism3RRR(Mechanism):
 
     def interference(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
         from planar_tui.workspace.rrr.interference import evaluator
+
+        return evaluator(job.robot, job.spec, prepared.circle)
+
+    def accuracy(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
+        from planar_tui.workspace.rrr.accuracy import evaluator
 
         return evaluator(job.robot, job.spec, prepared.circle)
 

@@ -41,14 +41,17 @@ CHUNK_S = 0.05
 #: Leaves are looked at on a LEAF_GRID x LEAF_GRID grid of sub-boxes (sharper locus, r_in).
 LEAF_GRID = 4
 
+#: The keys that take the working mode ``elbow`` without ``singularities``.
+MODED_KEYS = ("kappa_max", "leg_width_cm", "accuracy")
+
 
 def check_singularity(values: dict, reader) -> None:
     """``elbow``, ``circle_centre_cm`` and ``singularity_precision_cm`` go with
-    ``singularities = true`` (``elbow`` with ``kappa_max`` or ``leg_width_cm`` too), which needs a single
-    orientation and a form with boxes."""
+    ``singularities = true`` (``elbow`` with ``kappa_max``, ``leg_width_cm`` or ``accuracy``
+    too), which needs a single orientation and a form with boxes."""
     if not values["singularities"]:
-        moded = values.get("kappa_max") is not None or values.get("leg_width_cm") is not None
-        mode = () if moded else ("elbow",)  # the mode of kappa_max and leg_width_cm
+        moded = any(values.get(k) is not None for k in MODED_KEYS)
+        mode = () if moded else ("elbow",)  # the mode of the MODED_KEYS
         refuse_without_singularities(
             values, reader, (*mode, "circle_centre_cm", "singularity_precision_cm")
         )

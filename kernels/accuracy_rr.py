@@ -1,0 +1,134 @@
+"""Pose error enclosures over (x, y) boxes of the robots with RR legs: the 3-RRR and the
+five-bar (:mod:`kernels.accuracy`).
+
+Leg ``i`` (the model of :mod:`kernels.singularity3rrr`): the elbow :math:`B_i = A_i + l_1
+e_i`, :math:`e_i = (\\cos\\theta_i, \\sin\\theta_i)`, the distal link :math:`d_i = C_i -
+B_i` of length :math:`l_2`, :math:`C_i = p + R(\\varphi) c_i`. The errors: the active angle
+:math:`\\theta_i` within :math:`\\pm\\delta_\\theta` (``actuator_deg``); each coordinate
+of :math:`A_i` and of :math:`c_i` (platform frame) and each leg's :math:`l_1`, :math:`l_2`
+within :math:`\\pm t` (``tolerance_cm``), each leg's own. :math:`e_i` over the box in the
+mode is :math:`(v_i - u_i) / l_1` (:math:`v_i = C_i - A_i`, :math:`u_i` enclosed by
+:func:`kernels.singularity3rrr.leg_status`), turned by :math:`[-\\delta_\\theta,
+\\delta_\\theta]`. With :math:`f_i = \\frac12(|d_i|^2 - l_2^2)` the residual bound is
+
+.. math:: \\rho_i = |l_1|\\,|d_i \\cdot E e_i|\\,\\delta_\\theta
+          + t\\,(|d_{ix}| + |d_{iy}|) + t\\,|R(\\varphi)^T d_i|_1
+          + t\\,|d_i \\cdot e_i| + t\\,|l_2|
+
+(the terms of :math:`\\theta_i, A_i, c_i, l_1, l_2`; every magnitude the largest over the
+hull of the box and the perturbed robots).
+"""
+
+import math
+
+import numba
+import numpy as np
+
+from ._jit import kernel
+from .accuracy import krawczyk
+from .dexterity import IN, OUT, UNSURE, combine
+from .interval import iadd, iadd_scalar, imul, iscale, isincos, isub, up
+from .singularity3rrr import LEG_IN, LEG_OUT, TOLERANCE_CM, leg_status
+
+
+@kernel
+def mag(lo, hi):
+    """:math:`\\max |X|`."""
+    return max(abs(lo), abs(hi))
+
+
+@kernel
+def widen(lo, hi, t):
+    """:math:`X + [-t, t]`."""
+    return iadd(lo, hi, -t, t)
+
+
+@kernel
+def rr_leg_terms(xlo, xhi, ylo, yhi, leg, g, r, elbow, limits, errors, w_lo, w_hi, r_lo, r_hi, rho):
+    """Leg ``leg``'s verdict over the box (``OUT``, ``UNSURE``, ``IN``), writing, where
+    ``IN``, its rows of ``w`` (:math:`p - B_i`), ``r`` (:math:`R(\\varphi) c_i`) and
+    ``rho`` (module docstring). ``errors`` = ``(delta_theta_rad, t_cm, platform_cm,
+    cos_phi, sin_phi)``, ``platform_cm`` the platform joints' tolerance (0: the five-bar)."""
+    status, ux_lo, ux_hi, uy_lo, uy_hi, _, _ = leg_status(
+        xlo, xhi, ylo, yhi, leg, g, r, elbow, limits
+    )
+    if status == LEG_OUT:
+        return OUT
+    if status != LEG_IN:
+        return UNSURE
+    delta, t, tc, cos_phi, sin_phi = errors[0], errors[1], errors[2], errors[3], errors[4]
+    l1 = g[0]
+    l2 = g[1]
+    ax = g[8 + 2 * leg]
+    ay = g[9 + 2 * leg]
+    vx = widen(*iadd_scalar(xlo, xhi, r[leg, 0] - ax), TOLERANCE_CM)
+    vy = widen(*iadd_scalar(ylo, yhi, r[leg, 1] - ay), TOLERANCE_CM)
+    ex_lo, ex_hi = widen(*iscale(*isub(*vx, ux_lo, ux_hi), 1.0 / l1), 1e-15)
+    ey_lo, ey_hi = widen(*iscale(*isub(*vy, uy_lo, uy_hi), 1.0 / l1), 1e-15)
+    ex_lo, ex_hi = max(ex_lo, -1.0), min(ex_hi, 1.0)
+    ey_lo, ey_hi = max(ey_lo, -1.0), min(ey_hi, 1.0)
+    s_lo, s_hi, c_lo, c_hi = isincos(-delta, delta)
+    px = isub(*imul(c_lo, c_hi, ex_lo, ex_hi), *imul(s_lo, s_hi, ey_lo, ey_hi))
+    py = iadd(*imul(s_lo, s_hi, ex_lo, ex_hi), *imul(c_lo, c_hi, ey_lo, ey_hi))
+    proximal = widen(l1, l1, t)
+    bx = iadd(*widen(ax, ax, t), *imul(*proximal, *px))
+    by = iadd(*widen(ay, ay, t), *imul(*proximal, *py))
+    spread = up(tc * (abs(cos_phi) + abs(sin_phi)))
+    r_lo[leg, 0], r_hi[leg, 0] = widen(r[leg, 0], r[leg, 0], spread + TOLERANCE_CM)
+    r_lo[leg, 1], r_hi[leg, 1] = widen(r[leg, 1], r[leg, 1], spread + TOLERANCE_CM)
+    w_lo[leg, 0], w_hi[leg, 0] = isub(xlo, xhi, *bx)
+    w_lo[leg, 1], w_hi[leg, 1] = isub(ylo, yhi, *by)
+    dx = iadd(w_lo[leg, 0], w_hi[leg, 0], r_lo[leg, 0], r_hi[leg, 0])
+    dy = iadd(w_lo[leg, 1], w_hi[leg, 1], r_lo[leg, 1], r_hi[leg, 1])
+    turn = isub(*imul(*dy, *px), *imul(*dx, *py))  # d . E e
+    along = iadd(*imul(*dx, *px), *imul(*dy, *py))  # d . e
+    local_x = iadd(*iscale(*dx, cos_phi), *iscale(*dy, sin_phi))  # R^T d
+    local_y = isub(*iscale(*dy, cos_phi), *iscale(*dx, sin_phi))
+    total = up(up(mag(*proximal) * mag(*turn)) * delta)
+    total = up(total + up(t * up(mag(*dx) + mag(*dy))))
+    rounding = 1e-15 * (mag(*dx) + mag(*dy))  # cos_phi, sin_phi rounded
+    total = up(total + up(tc * up(up(mag(*local_x) + mag(*local_y)) + rounding)))
+    total = up(total + up(t * mag(*along)))
+    rho[leg] = up(total + up(t * (l2 + t)))
+    return IN
+
+
+@kernel(parallel=True)
+def rr_accuracy(boxes, g, r, elbow, limits, errors, verdict, bound):
+    """Per row ``x_lo, x_hi, y_lo, y_hi`` of ``boxes``: the verdict in the mode ``elbow``
+    (:mod:`kernels.dexterity`) and, where every leg closes (``IN``) and the Krawczyk test
+    holds, the bounds of :math:`|\\Delta x|, |\\Delta y|` (cm) and, three legs,
+    :math:`|\\Delta\\varphi|` (rad) in ``bound`` (k, n); ``inf`` elsewhere. ``g``, ``r``,
+    ``limits`` as :func:`kernels.dexterity_rr.rr_dexterity` takes them, ``errors`` as
+    :func:`rr_leg_terms`."""
+    n = len(g)
+    for i in numba.prange(len(boxes)):
+        w_lo = np.zeros((n, 2))
+        w_hi = np.zeros((n, 2))
+        r_lo = np.zeros((n, 2))
+        r_hi = np.zeros((n, 2))
+        rho = np.zeros(n)
+        state = IN
+        for leg in range(n):
+            v = rr_leg_terms(
+                boxes[i, 0],
+                boxes[i, 1],
+                boxes[i, 2],
+                boxes[i, 3],
+                leg,
+                g[leg],
+                r,
+                elbow,
+                limits,
+                errors,
+                w_lo,
+                w_hi,
+                r_lo,
+                r_hi,
+                rho,
+            )
+            state = combine(state, v)
+        verdict[i] = state
+        bound[i, :] = math.inf
+        if state == IN:
+            krawczyk(w_lo, w_hi, r_lo, r_hi, rho, n, bound[i])

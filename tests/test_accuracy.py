@@ -1,0 +1,203 @@
+"""Certified worst-case accuracy (``accuracy``) of the 3-RRR against Monte-Carlo robots.
+
+Each robot (errors within the bounds: uniform, random vertices and the linearised worst
+vertices) is solved by the independent Newton method of :mod:`accuracy_reference` from the
+nominal pose, its actuators at the nominal pose's inverse kinematics (the elbow built here
+as the intersection of two circles, not the kernels' θ = α ± β). Checks: every sample's
+pose error lies inside the enclosure of its box; at a regular point with small errors the
+enclosure is at most 1.5 times the sampled extremes; the enclosure shrunk by 1 % fails
+(some sample outside it).
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+
+import numpy as np
+import pytest
+
+from planar_tui.batch import prepare_jobs
+from planar_tui.presets import load_preset
+from planar_tui.workspace.paving.accuracy import AccuracySpec
+from tests.accuracy_reference import Model, box_points, pose_errors
+
+TABLE3 = """
+[robot3rrr]
+base_side_cm = 120
+platform_side_cm = 40
+proximal_cm = 30
+distal_cm = 30
+[workspace]
+joint_limits_deg = [[20, 70], [110, 160], [245, 295]]
+precision_cm = {precision}
+form = "arc-distance"
+geometric_reference = false
+elbow = [1, -1, 1]
+accuracy = {{ actuator_deg = {actuator}, tolerance_cm = {tolerance} }}
+{extra}output = "ws.csv"
+"""
+CENTROID = (40.0, 7.15292951566201)
+
+
+def prepared(tmp_path, actuator=0.1, tolerance=0.01, precision=4.0, extra=""):
+    path = tmp_path / "a.toml"
+    text = TABLE3.format(precision=precision, actuator=actuator, tolerance=tolerance, extra=extra)
+    path.write_text(text, encoding="utf-8")
+    (job,) = prepare_jobs(load_preset(path).jobs)
+    return job
+
+
+def rr_model(job, pose):
+    """The 3-RRR's :class:`Model` at ``pose`` (x, y, phi): per leg ``theta, A, c, l1, l2``
+    with the nominal theta of the job's elbow signs."""
+    robot, spec = job.robot, job.spec
+    acc, signs = AccuracySpec.of(spec.accuracy, "deg"), job.prepared.circle.elbow
+    l1, l2 = robot.proximal_cm, robot.distal_cm
+    nominal, widths = [], []
+    x, y, phi = pose
+    for a, c, sign in zip(robot.base_joints_cm(), robot.platform_points_cm(), signs, strict=True):
+        cx = x + math.cos(phi) * c[0] - math.sin(phi) * c[1]
+        cy = y + math.sin(phi) * c[0] + math.cos(phi) * c[1]
+        dx, dy = cx - a[0], cy - a[1]
+        d = math.hypot(dx, dy)
+        along = (l1 * l1 - l2 * l2 + d * d) / (2 * d)
+        h = math.sqrt(l1 * l1 - along * along)
+        bx = a[0] + along * dx / d - sign * h * dy / d
+        by = a[1] + along * dy / d + sign * h * dx / d
+        nominal += [math.atan2(by - a[1], bx - a[0]), *a, *c, l1, l2]
+        t = acc.tolerance_cm
+        widths += [math.radians(acc.actuator), t, t, t, t, t, t]
+    return Model(rr_residual, np.array(nominal, dtype=float), np.array(widths))
+
+
+def rr_residual(pose, params):
+    x, y, phi = pose[:, 0], pose[:, 1], pose[:, 2]
+    out = np.empty_like(pose)
+    for i in range(3):
+        theta, ax, ay, qx, qy, l1, l2 = params[:, 7 * i : 7 * i + 7].T
+        cx = x + np.cos(phi) * qx - np.sin(phi) * qy
+        cy = y + np.sin(phi) * qx + np.cos(phi) * qy
+        ux = cx - ax - l1 * np.cos(theta)
+        uy = cy - ay - l1 * np.sin(theta)
+        out[:, i] = ux * ux + uy * uy - l2 * l2
+    return out
+
+
+def enclosure(job, box):
+    """The evaluator's bounds over ``box`` (|Δx| cm, |Δy| cm, |Δφ| rad)."""
+    verdict, bound = job.spec.mechanism.accuracy(job, job.prepared)(np.array([box]))
+    assert verdict[0] == 2
+    return bound[0]
+
+
+def sampled(job, box, count, extra_points, seed=1):
+    rng = np.random.default_rng(seed)
+    points = box_points(box, extra_points, rng, orientation=job.spec.orientation_rad)
+    return pose_errors(lambda p: rr_model(job, p), points, count, rng).max(axis=0)
+
+
+def shrink(bound, factor=0.99):
+    """The enclosure narrowed by 1 % (a mutation the checks must catch)."""
+    return bound * factor
+
+
+SMALL_BOX = (CENTROID[0] - 0.1, CENTROID[0] + 0.1, CENTROID[1] - 0.1, CENTROID[1] + 0.1)
+POINT = (CENTROID[0], CENTROID[0], CENTROID[1], CENTROID[1])
+
+
+def test_every_robot_of_a_box_lies_inside_its_enclosure(tmp_path):
+    job = prepared(tmp_path)
+    bound = enclosure(job, SMALL_BOX)
+    assert np.all(np.isfinite(bound))
+    worst = sampled(job, SMALL_BOX, 400, 3)
+    assert np.all(worst <= bound), (worst, bound)
+
+
+def test_the_enclosure_is_sharp_at_a_regular_point_and_fails_shrunk(tmp_path):
+    job = prepared(tmp_path, actuator=0.005, tolerance=0.0005)
+    bound = enclosure(job, POINT)
+    worst = sampled(job, POINT, 200, 0)
+    assert np.all(worst <= bound)
+    assert np.all(bound <= 1.5 * worst), (bound, worst)
+    assert np.any(worst > shrink(bound))
+
+
+def test_a_box_near_a_singularity_is_not_certified(tmp_path):
+    """At the edge of a leg's reach (a type I singularity) no finite enclosure holds."""
+    job = prepared(tmp_path)
+    robot = job.robot
+    a, c = robot.base_joints_cm()[0], robot.platform_points_cm()[0]
+    reach = robot.proximal_cm + robot.distal_cm - 1e-3  # leg 1 nearly stretched
+    angle = math.radians(45.0)
+    x = a[0] + reach * math.cos(angle) - c[0]
+    y = a[1] + reach * math.sin(angle) - c[1]
+    _, bound = job.spec.mechanism.accuracy(job, job.prepared)(np.array([[x, x, y, y]]))
+    assert not np.all(np.isfinite(bound[0]))
+
+
+def test_the_job_writes_columns_and_labels_boxes_inside_their_enclosures(tmp_path, cli):
+    path = tmp_path / "a.toml"
+    extra = 'search_box_cm = [[0, 120], [0, 120]]\nboxes_output = "b.csv"\n'
+    text = TABLE3.format(precision=1.875, actuator=0.05, tolerance=0.005, extra=extra)
+    path.write_text(text, encoding="utf-8")
+    result = cli("workspace", path, "--out-dir", tmp_path, "--no-map")
+    assert result.exit_code == 0, result.output
+    assert "accuracy: |Δx| ≤" in result.output
+    with open(tmp_path / "ws.csv", encoding="utf-8") as f:
+        (row,) = list(csv.DictReader(f))
+    assert float(row["accuracy_actuator_deg"]) == 0.05 and row["accuracy_actuator_cm"] == ""
+    assert float(row["accuracy_certified_area_cm2"]) > 0
+    assert float(row["accuracy_uncertified_area_cm2"]) > 0
+    with open(tmp_path / "b.csv", encoding="utf-8") as f:
+        rows = [r for r in csv.DictReader(f) if r["status"] == "accuracy-certified"]
+    assert rows and {"dx_max_cm", "dy_max_cm", "dphi_max_deg"} <= set(rows[0])
+    dx_max = max(float(r["dx_max_cm"]) for r in rows)
+    assert dx_max == pytest.approx(float(row["accuracy_dx_max_cm"]))
+    job = prepared(tmp_path, actuator=0.05, tolerance=0.005)
+    worst = max(rows, key=lambda r: float(r["dphi_max_deg"]))
+    box = tuple(float(worst[k]) for k in ("x_lo_cm", "x_hi_cm", "y_lo_cm", "y_hi_cm"))
+    bound = [float(worst[k]) for k in ("dx_max_cm", "dy_max_cm", "dphi_max_deg")]
+    errors = sampled(job, box, 300, 2)
+    assert np.all(errors <= [bound[0], bound[1], math.radians(bound[2])])
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        (
+            "accuracy = { actuator_cm = 0.1 }\n",
+            "workspace.accuracy.actuator_cm: is set: this robot's actuators are revolute",
+        ),
+        ("accuracy = { actuator_deg = -1 }\n", "workspace.accuracy.actuator_deg: is -1"),
+        ("accuracy = {}\n", "workspace.accuracy: is not a non-empty table"),
+        ("accuracy = 0.1\n", "workspace.accuracy: is not a non-empty table"),
+        ("accuracy = { backlash_deg = 1 }\n", "workspace.accuracy.backlash_deg: unknown key"),
+        (
+            'accuracy = { tolerance_cm = 0.1 }\nform = "geometric"\n',
+            'accuracy: is set with form = "geometric"',
+        ),
+    ],
+)
+def test_bad_accuracy_exits_2_with_one_line(cli, tmp_path, text, message):
+    path = tmp_path / "a.toml"
+    path.write_text(
+        "[robot3rrr]\n[workspace]\njoint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n"
+        f'precision_cm = 1.0\nelbow = [1, -1, 1]\noutput = "ws.csv"\n{text}',
+        encoding="utf-8",
+    )
+    result = cli("workspace", path, "--out-dir", tmp_path)
+    assert result.exit_code == 2, result.output
+    assert result.output.startswith("error: ") and result.output.count("\n") == 1
+    assert message in result.output
+    assert not (tmp_path / "ws.csv").exists()
+
+
+@pytest.mark.slow
+def test_100000_robots_lie_inside_the_enclosure(tmp_path):
+    job = prepared(tmp_path)
+    bound = enclosure(job, SMALL_BOX)
+    assert np.all(np.isfinite(bound))
+    worst = sampled(job, SMALL_BOX, 5000, 15, seed=7)  # 20 poses x 5000 robots
+    assert np.all(worst <= bound), (worst, bound)
+    assert np.all(bound <= 2.0 * worst), (worst, bound)  # over a 2 mm box: not vacuous
