@@ -201,3 +201,103 @@ def test_100000_robots_lie_inside_the_enclosure(tmp_path):
     worst = sampled(job, SMALL_BOX, 5000, 15, seed=7)  # 20 poses x 5000 robots
     assert np.all(worst <= bound), (worst, bound)
     assert np.all(bound <= 2.0 * worst), (worst, bound)  # over a 2 mm box: not vacuous
+
+
+FIVEBAR = """
+[robot5r]
+base_separation_cm = 40
+proximal_cm = [45, 45]
+distal_cm = [55, 55]
+joint_limits_deg = [[-60, 180], [0, 240]]
+working_mode = "+-"
+[[workspace5r]]
+precision_cm = {precision}
+geometric_reference = false
+accuracy = {{ actuator_deg = {actuator}, tolerance_cm = {tolerance} }}
+{extra}output = "fb.csv"
+"""
+FIVEBAR_POINT = (0.0, 60.0)
+
+
+def fivebar_job(tmp_path, actuator=0.1, tolerance=0.01, precision=8.0, extra=""):
+    path = tmp_path / "f.toml"
+    text = FIVEBAR.format(precision=precision, actuator=actuator, tolerance=tolerance, extra=extra)
+    path.write_text(text, encoding="utf-8")
+    (job,) = prepare_jobs(load_preset(path).jobs)
+    return job
+
+
+def fivebar_model(job, pose):
+    """The five-bar's :class:`Model` at ``pose`` (x, y): per leg ``theta, A, l1, l2``, the
+    nominal theta on the side of the robot's working mode (its ``elbows``)."""
+    robot = job.robot
+    acc = AccuracySpec.of(job.spec.accuracy, "deg")
+    nominal, widths = [], []
+    x, y = pose
+    for a, l1, l2, sign in zip(
+        robot.base_joints_cm(), robot.proximal_cm, robot.distal_cm, robot.elbows, strict=True
+    ):
+        dx, dy = x - a[0], y - a[1]
+        d = math.hypot(dx, dy)
+        along = (l1 * l1 - l2 * l2 + d * d) / (2 * d)
+        h = math.sqrt(l1 * l1 - along * along)
+        bx = a[0] + along * dx / d - sign * h * dy / d
+        by = a[1] + along * dy / d + sign * h * dx / d
+        nominal += [math.atan2(by - a[1], bx - a[0]), *a, l1, l2]
+        t = acc.tolerance_cm
+        widths += [math.radians(acc.actuator), t, t, t, t]
+    return Model(fivebar_residual, np.array(nominal, dtype=float), np.array(widths))
+
+
+def fivebar_residual(pose, params):
+    out = np.empty_like(pose)
+    for i in range(2):
+        theta, ax, ay, l1, l2 = params[:, 5 * i : 5 * i + 5].T
+        ux = pose[:, 0] - ax - l1 * np.cos(theta)
+        uy = pose[:, 1] - ay - l1 * np.sin(theta)
+        out[:, i] = ux * ux + uy * uy - l2 * l2
+    return out
+
+
+def fivebar_sampled(job, box, count, extra_points, seed=3):
+    rng = np.random.default_rng(seed)
+    points = box_points(box, extra_points, rng)
+    return pose_errors(lambda p: fivebar_model(job, p), points, count, rng).max(axis=0)
+
+
+def test_the_five_bar_box_point_and_shrunk_enclosure(tmp_path):
+    x, y = FIVEBAR_POINT
+    job = fivebar_job(tmp_path)
+    box = (x - 0.2, x + 0.2, y - 0.2, y + 0.2)
+    bound = enclosure(job, box)
+    assert bound.shape == (2,) and np.all(np.isfinite(bound))
+    assert np.all(fivebar_sampled(job, box, 400, 3) <= bound)
+    job = fivebar_job(tmp_path, actuator=0.005, tolerance=0.0005)
+    bound = enclosure(job, (x, x, y, y))
+    worst = fivebar_sampled(job, (x, x, y, y), 200, 0)
+    assert np.all(worst <= bound)
+    assert np.all(bound <= 1.5 * worst), (bound, worst)
+    assert np.any(worst > shrink(bound))
+
+
+def test_the_five_bar_job_writes_its_columns(cli, tmp_path):
+    path = tmp_path / "f.toml"
+    text = FIVEBAR.format(precision=4.0, actuator=0.05, tolerance=0.005, extra="")
+    path.write_text(text, encoding="utf-8")
+    result = cli("workspace5r", path, "--out-dir", tmp_path, "--no-map")
+    assert result.exit_code == 0, result.output
+    with open(tmp_path / "fb.csv", encoding="utf-8") as f:
+        (row,) = list(csv.DictReader(f))
+    assert float(row["accuracy_dx_max_cm"]) > 0 and row["accuracy_dphi_max_deg"] == ""
+    assert float(row["accuracy_certified_area_cm2"]) > 0
+
+
+@pytest.mark.slow
+def test_100000_five_bar_robots_lie_inside_the_enclosure(tmp_path):
+    x, y = FIVEBAR_POINT
+    job = fivebar_job(tmp_path)
+    box = (x - 0.2, x + 0.2, y - 0.2, y + 0.2)
+    bound = enclosure(job, box)
+    assert np.all(np.isfinite(bound))
+    worst = fivebar_sampled(job, box, 5000, 15, seed=11)  # 20 poses x 5000 robots
+    assert np.all(worst <= bound), (worst, bound)

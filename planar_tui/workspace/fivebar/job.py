@@ -37,6 +37,7 @@ from planar_tui.workspace.fivebar.tolerance import (
     TOLERANCE_KEYS_5R,
     tolerant_level_kernel,
 )
+from planar_tui.workspace.paving.accuracy import accuracy_setting, check_accuracy
 from planar_tui.workspace.paving.circle import read_centre, refuse_without_singularities
 from planar_tui.workspace.paving.columns import tolerance_names
 from planar_tui.workspace.paving.dexterity import check_dexterity, kappa_setting
@@ -68,6 +69,7 @@ from planar_tui.workspace.paving.tolerance import (
 
 if TYPE_CHECKING:
     from planar_tui.workspace.fivebar.singularity import FiveBarSingularities
+    from planar_tui.workspace.paving.accuracy import AccuracyOutcome
     from planar_tui.workspace.paving.dexterity import DexterityOutcome
     from planar_tui.workspace.paving.interference import InterferenceOutcome
     from planar_tui.workspace.paving.levels import BoxBudget, WorkspaceOutcome
@@ -132,6 +134,7 @@ class FiveBarSpec:
     )
     kappa_max: float | None = kappa_setting()
     leg_width_cm: float | None = width_setting()
+    accuracy: tuple[tuple[str, float], ...] | None = accuracy_setting()
     tolerance_cm: float | None = TOLERANCE_FIELDS_5R[0]
     tolerances_cm: tuple[tuple[str, float], ...] | None = TOLERANCE_FIELDS_5R[1]
     tolerance_mode: str | None = TOLERANCE_FIELDS_5R[2]
@@ -178,7 +181,8 @@ class FiveBarSpec:
                 )
         check_dexterity(values, reader)
         check_interference(values, reader)
-        for key in ("kappa_max", "leg_width_cm"):
+        check_accuracy(values, reader, MECHANISM.accuracy_unit)
+        for key in ("kappa_max", "leg_width_cm", "accuracy"):
             if values[key] is not None and robot.working_mode == "any":
                 raise reader.error(
                     key,
@@ -202,6 +206,8 @@ class FiveBarResult(JobResult):
     dexterity: DexterityOutcome | None = None
     #: The certified interference-free region, with ``leg_width_cm``.
     interference: InterferenceOutcome | None = None
+    #: The certified worst-case accuracy, with ``accuracy``.
+    accuracy: AccuracyOutcome | None = None
 
 
 def compute_fivebar(robot: Robot5R, spec: FiveBarSpec, budget: BoxBudget) -> WorkspaceOutcome:
@@ -330,6 +336,7 @@ def run_fivebar(
 def fivebar_figure_names(job: Any) -> tuple[str, ...]:
     """The columns of a five-bar job (:func:`planar_tui.workspace.fivebar.job.run_fivebar`)."""
     from planar_tui.workspace.fivebar.singularity import HEADER
+    from planar_tui.workspace.paving.accuracy import accuracy_names
     from planar_tui.workspace.paving.dexterity import dexterity_names
     from planar_tui.workspace.paving.interference import interference_names
     from planar_tui.workspace.paving.levels import SUMMARY_HEADER
@@ -341,6 +348,7 @@ def fivebar_figure_names(job: Any) -> tuple[str, ...]:
         *HEADER,
         *dexterity_names(job),
         *interference_names(job),
+        *accuracy_names(job),
         *tolerance_names(job),
     )
 

@@ -30,6 +30,7 @@ class MechanismFiveBar(Mechanism):
     has_orientation_ranges = False
     has_dexterity = True
     has_interference = True
+    accuracy_unit = "deg"
 
     def parameters(self, robot: Any, spec: Any) -> Any:
         return robot.leg_arrays()
@@ -55,6 +56,11 @@ class MechanismFiveBar(Mechanism):
 
     def interference(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
         from planar_tui.workspace.fivebar.interference import evaluator
+
+        return evaluator(job.robot, job.spec)
+
+    def accuracy(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
+        from planar_tui.workspace.fivebar.accuracy import evaluator
 
         return evaluator(job.robot, job.spec)
 

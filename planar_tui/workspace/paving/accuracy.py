@@ -236,6 +236,11 @@ def job_accuracy(job: Any, prepared: Any, extent, budget: BoxBudget, elbow: str 
     return compute_accuracy(evaluate, extent, spec.precision_cm, errors, elbow, budget)
 
 
+def accuracy_names(job: Any) -> tuple[str, ...]:
+    """A job's accuracy columns: :data:`HEADER` with ``accuracy``, none without."""
+    return HEADER if getattr(job.spec, "accuracy", None) is not None else ()
+
+
 class AccuracyRows(Sequence):
     """The boxes CSV's rows with ``accuracy``: the table's rows with empty bound cells, then
     the accuracy boxes labelled ``accuracy-certified`` (with their bounds: cm, cm, deg) or

@@ -21,6 +21,7 @@ from typing import Any
 
 def planar_figure_names(job: Any) -> tuple[str, ...]:
     """The columns of a 3-RPR or 3-PRR job (:func:`planar_tui.workspace.paving.runner.run_planar`)."""
+    from planar_tui.workspace.paving.accuracy import accuracy_names
     from planar_tui.workspace.paving.circle import HEADER
     from planar_tui.workspace.paving.dexterity import dexterity_names
     from planar_tui.workspace.paving.interference import interference_names
@@ -28,7 +29,7 @@ def planar_figure_names(job: Any) -> tuple[str, ...]:
     from planar_tui.workspace.paving.orientation import ORIENTATION_HEADER
 
     circle = HEADER if job.spec.mechanism.has_singularities else ()
-    dexterous = (*dexterity_names(job), *interference_names(job))
+    dexterous = (*dexterity_names(job), *interference_names(job), *accuracy_names(job))
     return (*SUMMARY_HEADER[:-1], *ORIENTATION_HEADER, *circle, *dexterous, *tolerance_names(job))
 
 
