@@ -68,6 +68,42 @@ WIDEST = 1e3
 
 
 @kernel
+def mag(lo, hi):
+    """:math:`\\max |X|`."""
+    return max(abs(lo), abs(hi))
+
+
+@kernel
+def widen(lo, hi, t):
+    """:math:`X + [-t, t]`."""
+    return iadd(lo, hi, -t, t)
+
+
+@kernel
+def joint_terms(leg, r, errors, w_lo, w_hi, r_lo, r_hi):
+    """Leg ``leg``'s platform offset :math:`s_i = R(\\varphi)(c_i + \\Delta c_i)` written
+    to ``r_lo, r_hi`` (each coordinate of :math:`\\Delta c_i` in the platform's frame within
+    ``errors[2]``), and, with its row of ``w`` (:math:`p - B_i`) written before,
+    ``(dx, dy, joints)``: the enclosure of :math:`d_i = w_i + s_i` and the joints' share of
+    :math:`\\rho_i`, :math:`t\\,(|d_{ix}| + |d_{iy}|) + t_c\\,|R(\\varphi)^T d_i|_1` (the
+    base joint's coordinates within :math:`t` = ``errors[1]``, the platform joint's within
+    :math:`t_c` = ``errors[2]``). ``errors`` = ``(actuator, t, t_c, cos_phi, sin_phi)``."""
+    t, tc, cos_phi, sin_phi = errors[1], errors[2], errors[3], errors[4]
+    spread = up(up(tc * (abs(cos_phi) + abs(sin_phi))) + 1e-10)  # and the offsets' round-off
+    r_lo[leg, 0], r_hi[leg, 0] = widen(r[leg, 0], r[leg, 0], spread)
+    r_lo[leg, 1], r_hi[leg, 1] = widen(r[leg, 1], r[leg, 1], spread)
+    dx = iadd(w_lo[leg, 0], w_hi[leg, 0], r_lo[leg, 0], r_hi[leg, 0])
+    dy = iadd(w_lo[leg, 1], w_hi[leg, 1], r_lo[leg, 1], r_hi[leg, 1])
+    local_x = iadd(*imul(cos_phi, cos_phi, *dx), *imul(sin_phi, sin_phi, *dy))  # R^T d
+    local_y = isub(*imul(cos_phi, cos_phi, *dy), *imul(sin_phi, sin_phi, *dx))
+    size = up(mag(*dx) + mag(*dy))
+    rounding = up(1e-15 * size)  # cos_phi, sin_phi rounded
+    joints = up(t * size)
+    joints = up(joints + up(tc * up(up(mag(*local_x) + mag(*local_y)) + rounding)))
+    return dx, dy, joints
+
+
+@kernel
 def jacobian(w_lo, w_hi, r_lo, r_hi, n, j_lo, j_hi):
     """:math:`J_0` (module docstring): leg ``i``'s row :math:`(d_{ix}, d_{iy}, d_i \\cdot E
     s_i)`, :math:`d_i = w_i + s_i`, ``w`` the enclosure of :math:`p - B_i` and ``r`` of

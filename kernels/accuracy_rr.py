@@ -25,22 +25,10 @@ import numba
 import numpy as np
 
 from ._jit import kernel
-from .accuracy import krawczyk
+from .accuracy import joint_terms, krawczyk, mag, widen
 from .dexterity import IN, OUT, UNSURE, combine
 from .interval import iadd, iadd_scalar, imul, iscale, isincos, isub, up
 from .singularity3rrr import LEG_IN, LEG_OUT, TOLERANCE_CM, leg_status
-
-
-@kernel
-def mag(lo, hi):
-    """:math:`\\max |X|`."""
-    return max(abs(lo), abs(hi))
-
-
-@kernel
-def widen(lo, hi, t):
-    """:math:`X + [-t, t]`."""
-    return iadd(lo, hi, -t, t)
 
 
 @kernel
@@ -56,7 +44,7 @@ def rr_leg_terms(xlo, xhi, ylo, yhi, leg, g, r, elbow, limits, errors, w_lo, w_h
         return OUT
     if status != LEG_IN:
         return UNSURE
-    delta, t, tc, cos_phi, sin_phi = errors[0], errors[1], errors[2], errors[3], errors[4]
+    delta, t = errors[0], errors[1]
     l1 = g[0]
     l2 = g[1]
     ax = g[8 + 2 * leg]
@@ -73,21 +61,12 @@ def rr_leg_terms(xlo, xhi, ylo, yhi, leg, g, r, elbow, limits, errors, w_lo, w_h
     proximal = widen(l1, l1, t)
     bx = iadd(*widen(ax, ax, t), *imul(*proximal, *px))
     by = iadd(*widen(ay, ay, t), *imul(*proximal, *py))
-    spread = up(tc * (abs(cos_phi) + abs(sin_phi)))
-    r_lo[leg, 0], r_hi[leg, 0] = widen(r[leg, 0], r[leg, 0], spread + TOLERANCE_CM)
-    r_lo[leg, 1], r_hi[leg, 1] = widen(r[leg, 1], r[leg, 1], spread + TOLERANCE_CM)
     w_lo[leg, 0], w_hi[leg, 0] = isub(xlo, xhi, *bx)
     w_lo[leg, 1], w_hi[leg, 1] = isub(ylo, yhi, *by)
-    dx = iadd(w_lo[leg, 0], w_hi[leg, 0], r_lo[leg, 0], r_hi[leg, 0])
-    dy = iadd(w_lo[leg, 1], w_hi[leg, 1], r_lo[leg, 1], r_hi[leg, 1])
+    dx, dy, joints = joint_terms(leg, r, errors, w_lo, w_hi, r_lo, r_hi)
     turn = isub(*imul(*dy, *px), *imul(*dx, *py))  # d . E e
     along = iadd(*imul(*dx, *px), *imul(*dy, *py))  # d . e
-    local_x = iadd(*iscale(*dx, cos_phi), *iscale(*dy, sin_phi))  # R^T d
-    local_y = isub(*iscale(*dy, cos_phi), *iscale(*dx, sin_phi))
-    total = up(up(mag(*proximal) * mag(*turn)) * delta)
-    total = up(total + up(t * up(mag(*dx) + mag(*dy))))
-    rounding = 1e-15 * (mag(*dx) + mag(*dy))  # cos_phi, sin_phi rounded
-    total = up(total + up(tc * up(up(mag(*local_x) + mag(*local_y)) + rounding)))
+    total = up(joints + up(up(mag(*proximal) * mag(*turn)) * delta))
     total = up(total + up(t * mag(*along)))
     rho[leg] = up(total + up(t * (l2 + t)))
     return IN

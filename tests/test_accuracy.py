@@ -301,3 +301,160 @@ def test_100000_five_bar_robots_lie_inside_the_enclosure(tmp_path):
     assert np.all(np.isfinite(bound))
     worst = fivebar_sampled(job, box, 5000, 15, seed=11)  # 20 poses x 5000 robots
     assert np.all(worst <= bound), (worst, bound)
+
+
+PRISMATIC = {
+    "rpr": "[robot3rpr]\n[[workspace3rpr]]\nleg_limits_cm = [[5, 100], [5, 100], [5, 100]]\n",
+    "prr": "[robot3prr]\n[[workspace3prr]]\n",
+}
+#: A regular point of each one's workspace at phi = 0 (the default 3-RPR is poorly
+#: conditioned, κ ≈ 14 there: smaller errors).
+PRISMATIC_POINT = {"rpr": (10.0, 40.0), "prr": (40.0, 20.0)}
+PRISMATIC_ERROR_CM = {"rpr": 0.002, "prr": 0.01}
+
+
+def prismatic_job(tmp_path, kind, actuator=0.01, tolerance=0.01, precision=8.0, extra=""):
+    path = tmp_path / f"{kind}.toml"
+    text = PRISMATIC[kind] + (
+        f"orientation_deg = 0\nprecision_cm = {precision}\ngeometric_reference = false\n"
+        f"accuracy = {{ actuator_cm = {actuator}, tolerance_cm = {tolerance} }}\n"
+        f'{extra}output = "{kind}.csv"\n'
+    )
+    path.write_text(text, encoding="utf-8")
+    (job,) = prepare_jobs(load_preset(path).jobs)
+    return job
+
+
+def platform_points(x, y, phi, points):
+    return [
+        (x + math.cos(phi) * qx - math.sin(phi) * qy, y + math.sin(phi) * qx + math.cos(phi) * qy)
+        for qx, qy in points
+    ]
+
+
+def rpr_model(job, pose):
+    """The 3-RPR's :class:`Model`: per leg ``rho, A, c`` (rho its length at ``pose``)."""
+    robot, acc = job.robot, AccuracySpec.of(job.spec.accuracy, "cm")
+    nominal, widths = [], []
+    corners = platform_points(*pose, robot.platform_points_cm)
+    for a, c, (cx, cy) in zip(robot.base_joints_cm, robot.platform_points_cm, corners, strict=True):
+        nominal += [math.hypot(cx - a[0], cy - a[1]), *a, *c]
+        t = acc.tolerance_cm
+        widths += [acc.actuator, t, t, t, t]
+    return Model(rpr_residual, np.array(nominal, dtype=float), np.array(widths))
+
+
+def rpr_residual(pose, params):
+    x, y, phi = pose.T
+    out = np.empty_like(pose)
+    for i in range(3):
+        rho, ax, ay, qx, qy = params[:, 5 * i : 5 * i + 5].T
+        cx = x + np.cos(phi) * qx - np.sin(phi) * qy
+        cy = y + np.sin(phi) * qx + np.cos(phi) * qy
+        out[:, i] = (cx - ax) ** 2 + (cy - ay) ** 2 - rho * rho
+    return out
+
+
+def prr_model(job, pose, modes):
+    """The 3-PRR's :class:`Model`: per leg ``s, P, c, l`` with the slider ``s`` where the
+    circle of radius ``l`` about ``C_i`` meets the line ``P + s u`` on the mode's side."""
+    robot, acc = job.robot, AccuracySpec.of(job.spec.accuracy, "cm")
+    nominal, widths = [], []
+    corners = platform_points(*pose, robot.platform_points_cm)
+    legs = zip(
+        robot.slider_points_cm,
+        robot.slider_angles_deg,
+        robot.platform_points_cm,
+        robot.distal_cm,
+        corners,
+        modes,
+        strict=True,
+    )
+    directions = []
+    for p, angle, c, length, (cx, cy), sign in legs:
+        u = (math.cos(math.radians(angle)), math.sin(math.radians(angle)))
+        wx, wy = cx - p[0], cy - p[1]
+        off_line = wx * u[1] - wy * u[0]
+        s = wx * u[0] + wy * u[1] + sign * math.sqrt(length * length - off_line * off_line)
+        nominal += [s, *p, *c, length]
+        directions.append(u)
+        t = acc.tolerance_cm
+        widths += [acc.actuator, t, t, t, t, t]
+    rails = np.array(directions)
+
+    def residual(pose, params):
+        x, y, phi = pose.T
+        out = np.empty_like(pose)
+        for i in range(3):
+            s, px, py, qx, qy, length = params[:, 6 * i : 6 * i + 6].T
+            cx = x + np.cos(phi) * qx - np.sin(phi) * qy
+            cy = y + np.sin(phi) * qx + np.cos(phi) * qy
+            dx = cx - px - s * rails[i, 0]
+            dy = cy - py - s * rails[i, 1]
+            out[:, i] = dx * dx + dy * dy - length * length
+        return out
+
+    return Model(residual, np.array(nominal, dtype=float), np.array(widths))
+
+
+def prismatic_check(kind, job, box, count, extra_points, seed=5):
+    """The evaluator's bounds over ``box`` and the sampled extremes there."""
+    from planar_tui.workspace.prr.dexterity import working_modes
+
+    verdict, bound = job.spec.mechanism.accuracy(job.job, job.prepared)(np.array([box]))
+    assert verdict[0] == 2
+    if kind == "rpr":
+        model_at = lambda pose: rpr_model(job, pose)  # noqa: E731
+    else:
+        modes = working_modes(job.job, job.prepared)
+        model_at = lambda pose: prr_model(job, pose, modes)  # noqa: E731
+    rng = np.random.default_rng(seed)
+    points = box_points(box, extra_points, rng, orientation=0.0)
+    return bound[0], pose_errors(model_at, points, count, rng).max(axis=0)
+
+
+@pytest.mark.parametrize("kind", ["rpr", "prr"])
+def test_the_prismatic_robots_box_point_and_shrunk_enclosure(tmp_path, kind):
+    x, y = PRISMATIC_POINT[kind]
+    box = (x - 0.1, x + 0.1, y - 0.1, y + 0.1)
+    error = PRISMATIC_ERROR_CM[kind]
+    job = prismatic_job(tmp_path, kind, actuator=error, tolerance=error)
+    bound, worst = prismatic_check(kind, job, box, 400, 3)
+    assert np.all(np.isfinite(bound)) and np.all(worst <= bound), (worst, bound)
+    job = prismatic_job(tmp_path, kind, actuator=0.0005, tolerance=0.0005)
+    bound, worst = prismatic_check(kind, job, (x, x, y, y), 200, 0)
+    assert np.all(worst <= bound)
+    assert np.all(bound <= 1.5 * worst), (bound, worst)
+    assert np.any(worst > shrink(bound))
+
+
+@pytest.mark.parametrize("kind", ["rpr", "prr"])
+def test_the_prismatic_jobs_write_their_columns_and_refuse_degrees(cli, tmp_path, kind):
+    error = PRISMATIC_ERROR_CM[kind]
+    job = prismatic_job(tmp_path, kind, actuator=error, tolerance=error, precision=4.0)
+    result = cli(f"workspace3{kind}", tmp_path / f"{kind}.toml", "--out-dir", tmp_path, "--no-map")
+    assert result.exit_code == 0, result.output
+    with open(tmp_path / f"{kind}.csv", encoding="utf-8") as f:
+        (row,) = list(csv.DictReader(f))
+    assert float(row["accuracy_actuator_cm"]) == error and row["accuracy_actuator_deg"] == ""
+    assert float(row["accuracy_certified_area_cm2"]) > 0
+    assert float(row["accuracy_dphi_max_deg"]) > 0
+    assert job.spec.accuracy is not None
+    path = tmp_path / f"{kind}.toml"
+    text = path.read_text(encoding="utf-8").replace("actuator_cm", "actuator_deg")
+    path.write_text(text, encoding="utf-8")
+    result = cli(f"workspace3{kind}", path, "--out-dir", tmp_path / "bad")
+    assert result.exit_code == 2, result.output
+    assert "accuracy.actuator_deg: is set: this robot's actuators are prismatic" in result.output
+    assert result.output.count("\n") == 1
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("kind", ["rpr", "prr"])
+def test_100000_prismatic_robots_lie_inside_the_enclosure(tmp_path, kind):
+    x, y = PRISMATIC_POINT[kind]
+    box = (x - 0.1, x + 0.1, y - 0.1, y + 0.1)
+    error = PRISMATIC_ERROR_CM[kind]
+    job = prismatic_job(tmp_path, kind, actuator=error, tolerance=error)
+    bound, worst = prismatic_check(kind, job, box, 5000, 15, seed=13)  # 20 x 5000 robots
+    assert np.all(np.isfinite(bound)) and np.all(worst <= bound), (worst, bound)

@@ -27,6 +27,7 @@ from typing import Any, ClassVar
 from planar_tui.jobkind import Command, Job, JobKind, Option, OutputOption, PreparedJob, Tab
 from planar_tui.progress import Progress
 from planar_tui.schema import TableReader, number, plot_setting, setting, string
+from planar_tui.workspace.paving.accuracy import accuracy_setting, check_accuracy
 from planar_tui.workspace.paving.columns import planar_figure_names
 from planar_tui.workspace.paving.dexterity import (
     check_dexterity,
@@ -95,6 +96,7 @@ class PlanarSpec:
     kappa_max: float | None = kappa_setting()
     characteristic_length_cm: float | None = length_setting()
     leg_width_cm: float | None = width_setting()
+    accuracy: tuple[tuple[str, float], ...] | None = accuracy_setting()
 
     #: The kind's :class:`Mechanism` and job kind's name (set by each subclass; not keys).
     mechanism: ClassVar[Mechanism]
@@ -122,7 +124,7 @@ class PlanarSpec:
         must fit the memory limit; the circle's keys go with ``singularities``
         (:func:`check_circle_keys`); the job's estimated memory and time must fit the limits
         (:func:`~planar_tui.workspace.paving.estimate.check_needs`)."""
-        moded = values["kappa_max"] is not None or values["leg_width_cm"] is not None
+        moded = any(values[k] is not None for k in ("kappa_max", "leg_width_cm", "accuracy"))
         names = tuple(n for n in cls.circle_keys if not (moded and n in cls.mode_keys))
         check_circle_keys(values, reader, names)
         check_dexterity(values, reader)
@@ -130,6 +132,11 @@ class PlanarSpec:
             found = f"is set: the {cls.mechanism.name}'s leg interference is not certified yet"
             raise reader.error("leg_width_cm", found, "no leg_width_cm")
         check_interference(values, reader)
+        if values["accuracy"] is not None and not cls.mechanism.accuracy_unit:
+            found = f"is set: the {cls.mechanism.name}'s accuracy is not certified yet"
+            raise reader.error("accuracy", found, "no accuracy")
+        if values["accuracy"] is not None:
+            check_accuracy(values, reader, cls.mechanism.accuracy_unit)
         refine = values["refine_precision_cm"]
         if refine is not None and refine > values["precision_cm"]:
             raise reader.error(
@@ -356,8 +363,8 @@ def run_planar(ready: PreparedJob[PlanarSpec, Any, Any], progress: Progress) -> 
 
 def prepare_planar(job: Job[PlanarSpec, Any]) -> object:
     """The kind's ``prepare``: the singularity-free circle's centre, checked (``None``
-    without singularities); with ``kappa_max`` (``leg_width_cm``) the κ (clearance)
-    evaluator is built once here, so a working mode it cannot resolve is refused before
+    without singularities); with ``kappa_max`` (``leg_width_cm``, ``accuracy``) the κ
+    (clearance, pose error) evaluator is built once here, so a working mode it cannot resolve is refused before
     anything runs."""
     mechanism: Mechanism = job.spec.mechanism
     prepared = mechanism.resolve_centre(job) if mechanism.has_singularities else None
@@ -365,6 +372,8 @@ def prepare_planar(job: Job[PlanarSpec, Any]) -> object:
         mechanism.dexterity(job, prepared)
     if job.spec.leg_width_cm is not None:
         mechanism.interference(job, prepared)
+    if job.spec.accuracy is not None:
+        mechanism.accuracy(job, prepared)
     return prepared
 
 

@@ -30,6 +30,7 @@ class Mechanism3PRR(LegMechanism):
     orientation_module = orientation
 
     has_interference = True
+    accuracy_unit = "cm"
 
     def level_kernel(self) -> Callable[..., None]:
         from planar_tui.kernels.workspace3prr import prr_level
@@ -41,6 +42,12 @@ class Mechanism3PRR(LegMechanism):
 
     def dexterity(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
         from planar_tui.workspace.prr.dexterity import evaluator, working_modes
+
+        return evaluator(job, working_modes(job, prepared))
+
+    def accuracy(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
+        from planar_tui.workspace.prr.accuracy import evaluator
+        from planar_tui.workspace.prr.dexterity import working_modes
 
         return evaluator(job, working_modes(job, prepared))
 

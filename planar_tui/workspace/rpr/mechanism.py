@@ -30,6 +30,7 @@ class Mechanism3RPR(LegMechanism):
     orientation_module = orientation
 
     has_interference = True
+    accuracy_unit = "cm"
 
     def level_kernel(self) -> Callable[..., None]:
         from planar_tui.kernels.workspace3rpr import rpr_level
@@ -46,6 +47,11 @@ class Mechanism3RPR(LegMechanism):
 
     def dexterity(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
         from planar_tui.workspace.rpr.dexterity import evaluator
+
+        return evaluator(job.robot, job.spec)
+
+    def accuracy(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
+        from planar_tui.workspace.rpr.accuracy import evaluator
 
         return evaluator(job.robot, job.spec)
 

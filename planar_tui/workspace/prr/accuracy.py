@@ -1,0 +1,37 @@
+"""The 3-PRR's pose error evaluator (:meth:`~planar_tui.workspace.paving.mechanism.Mechanism.
+accuracy`): :func:`kernels.accuracy_prismatic.prr_accuracy` with the job's slider lines,
+strokes, links, working mode (``slider_modes``, resolved as for ``kappa_max``) and errors:
+the sliders' positions within ``actuator_cm``; each slider line's point (each coordinate;
+its direction exact), the platform joints :math:`c_i` (each coordinate, in the platform's
+frame) and each distal length within ``tolerance_cm``."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+from planar_tui.workspace.paving.accuracy import AccuracySpec
+from planar_tui.workspace.prr.singularity import kernel_inputs
+
+
+def evaluator(job: Any, modes: tuple[int, int, int]) -> Callable[[Any], tuple[Any, Any]]:
+    """Boxes (k, 4) to ``(verdict, bound)`` in the slider ``modes``."""
+    import numpy as np
+
+    spec = job.spec
+    g, offsets = kernel_inputs(job.robot, spec)
+    sigma = np.array(modes, dtype=float)
+    accuracy = AccuracySpec.of(spec.accuracy, "cm")
+    t, phi = accuracy.tolerance_cm, spec.orientation_rad
+    errors = np.array([accuracy.actuator, t, t, math.cos(phi), math.sin(phi)])
+
+    def evaluate(boxes: Any) -> tuple[Any, Any]:
+        from planar_tui.kernels.accuracy_prismatic import prr_accuracy  # numba
+
+        verdict = np.empty(len(boxes), dtype=np.int64)
+        bound = np.empty((len(boxes), 3))
+        prr_accuracy(np.ascontiguousarray(boxes), g, sigma, offsets, errors, verdict, bound)
+        return verdict, bound
+
+    return evaluate
