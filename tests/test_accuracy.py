@@ -1,4 +1,5 @@
-"""Certified worst-case accuracy (``accuracy``) of the 3-RRR against Monte-Carlo robots.
+"""Certified worst-case accuracy (``accuracy``) of the 3-RRR, five-bar, 3-RPR and 3-PRR against
+Monte-Carlo robots.
 
 Each robot (errors within the bounds: uniform, random vertices and the linearised worst
 vertices) is solved by the independent Newton method of :mod:`accuracy_reference` from the
@@ -6,7 +7,8 @@ nominal pose, its actuators at the nominal pose's inverse kinematics (the elbow 
 as the intersection of two circles, not the kernels' θ = α ± β). Checks: every sample's
 pose error lies inside the enclosure of its box; at a regular point with small errors the
 enclosure is at most 1.5 times the sampled extremes; the enclosure shrunk by 1 % fails
-(some sample outside it).
+(some sample outside it). The 100 000-robot checks take a few seconds each (numpy), so
+they run in the fast loop.
 """
 
 from __future__ import annotations
@@ -193,7 +195,6 @@ def test_bad_accuracy_exits_2_with_one_line(cli, tmp_path, text, message):
     assert not (tmp_path / "ws.csv").exists()
 
 
-@pytest.mark.slow
 def test_100000_robots_lie_inside_the_enclosure(tmp_path):
     job = prepared(tmp_path)
     bound = enclosure(job, SMALL_BOX)
@@ -292,7 +293,6 @@ def test_the_five_bar_job_writes_its_columns(cli, tmp_path):
     assert float(row["accuracy_certified_area_cm2"]) > 0
 
 
-@pytest.mark.slow
 def test_100000_five_bar_robots_lie_inside_the_enclosure(tmp_path):
     x, y = FIVEBAR_POINT
     job = fivebar_job(tmp_path)
@@ -449,7 +449,6 @@ def test_the_prismatic_jobs_write_their_columns_and_refuse_degrees(cli, tmp_path
     assert result.output.count("\n") == 1
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("kind", ["rpr", "prr"])
 def test_100000_prismatic_robots_lie_inside_the_enclosure(tmp_path, kind):
     x, y = PRISMATIC_POINT[kind]
