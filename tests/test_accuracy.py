@@ -143,9 +143,10 @@ def test_the_job_writes_columns_and_labels_boxes_inside_their_enclosures(tmp_pat
     extra = 'search_box_cm = [[0, 120], [0, 120]]\nboxes_output = "b.csv"\n'
     text = TABLE3.format(precision=1.875, actuator=0.05, tolerance=0.005, extra=extra)
     path.write_text(text, encoding="utf-8")
-    result = cli("workspace", path, "--out-dir", tmp_path, "--no-map")
+    result = cli("workspace", path, "--out-dir", tmp_path)
     assert result.exit_code == 0, result.output
     assert "accuracy: |Δx| ≤" in result.output
+    assert result.output.count("accuracy: |Δx| ≤") == 2  # the summary and the map's title
     with open(tmp_path / "ws.csv", encoding="utf-8") as f:
         (row,) = list(csv.DictReader(f))
     assert float(row["accuracy_actuator_deg"]) == 0.05 and row["accuracy_actuator_cm"] == ""
@@ -279,6 +280,16 @@ def test_the_five_bar_box_point_and_shrunk_enclosure(tmp_path):
     assert np.all(worst <= bound)
     assert np.all(bound <= 1.5 * worst), (bound, worst)
     assert np.any(worst > shrink(bound))
+
+
+def test_the_five_bar_needs_a_working_mode(cli, tmp_path):
+    path = tmp_path / "f.toml"
+    text = FIVEBAR.format(precision=4.0, actuator=0.05, tolerance=0.005, extra="")
+    path.write_text(text.replace('working_mode = "+-"', 'working_mode = "any"'), encoding="utf-8")
+    result = cli("workspace5r", path, "--out-dir", tmp_path)
+    assert result.exit_code == 2, result.output
+    assert "workspace5r[1].accuracy: needs a working mode" in result.output
+    assert result.output.count("\n") == 1 and not (tmp_path / "fb.csv").exists()
 
 
 def test_the_five_bar_job_writes_its_columns(cli, tmp_path):

@@ -94,6 +94,9 @@ def render_workspace(job: Job[Any, Any], result: WorkspaceResult, console: Any) 
     clear = getattr(result, "interference", None)
     if clear is not None:  # its region: proved interference-free, boundary
         lines += [clear.describe(), *render_map(clear.boxes, clear.status, width=width)]
+    errors = getattr(result, "accuracy", None)
+    if errors is not None:  # its boxes: error certified, not certified
+        lines += [errors.describe(), *render_map(errors.boxes, errors.status, width=width)]
     for line in lines:
         console.print(line, markup=False, highlight=False, crop=True, soft_wrap=False)
 
