@@ -147,6 +147,7 @@ def test_the_job_writes_columns_and_labels_boxes_inside_their_enclosures(tmp_pat
     assert result.exit_code == 0, result.output
     assert "accuracy: |Δx| ≤" in result.output
     assert result.output.count("accuracy: |Δx| ≤") == 2  # the summary and the map's title
+    assert "error map, x in [" in result.output and "? not certified" in result.output
     with open(tmp_path / "ws.csv", encoding="utf-8") as f:
         (row,) = list(csv.DictReader(f))
     assert float(row["accuracy_actuator_deg"]) == 0.05 and row["accuracy_actuator_cm"] == ""
@@ -163,6 +164,21 @@ def test_the_job_writes_columns_and_labels_boxes_inside_their_enclosures(tmp_pat
     bound = [float(worst[k]) for k in ("dx_max_cm", "dy_max_cm", "dphi_max_deg")]
     errors = sampled(job, box, 300, 2)
     assert np.all(errors <= [bound[0], bound[1], math.radians(bound[2])])
+
+
+def test_the_error_map_bands_each_cell_by_its_worst_box():
+    from planar_tui.workspace.paving.accuracy import AccuracyOutcome, render_error_map
+
+    boxes = np.array([[0.0, 1.0, 0.0, 1.0], [1.0, 2.0, 0.0, 1.0], [2.0, 3.0, 0.0, 1.0]])
+    bound = np.array([[0.1, 0.05, 0.01], [0.4, 0.2, 0.01], [np.inf, np.inf, np.inf]])
+    spec = AccuracySpec(0.1, "deg", 0.01)
+    outcome = AccuracyOutcome(boxes, np.array([2, 2, 1]), bound, spec, "", 0.0)
+    lines = render_error_map(outcome, width=32)
+    row = max((line[1:].strip() for line in lines[1:-1]), key=len)
+    assert set(row) == {"1", "4", "?"}  # 0.1 in the first quarter of 0.4, 0.4 the last
+    assert row[0] == "1" and row[-1] == "?" and row.index("4") > row.rindex("1")
+    assert lines[-1].startswith("1 ≤ 0.1 cm")
+    assert outcome.worst == (0.4, 0.2, pytest.approx(math.degrees(0.01)))
 
 
 @pytest.mark.parametrize(

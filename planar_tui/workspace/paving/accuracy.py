@@ -236,6 +236,44 @@ def job_accuracy(job: Any, prepared: Any, extent, budget: BoxBudget, elbow: str 
     return compute_accuracy(evaluate, extent, spec.precision_cm, errors, elbow, budget)
 
 
+def render_error_map(outcome: AccuracyOutcome, width: int = 80) -> list[str]:
+    """The position error map as lines of at most ``width`` columns: each cell the worst
+    certified bound of :math:`\\max(|\\Delta x|, |\\Delta y|)` over the accuracy boxes
+    that touch it, in four bands of [0, the largest certified], ``?`` where a box touching
+    it is not certified, blank where none is kept."""
+    import numpy as np
+
+    from planar_tui.workspace.paving.kappa_map import BAND_GLYPHS, UNPROVED_GLYPH, worst_cells
+    from planar_tui.workspace.paving.map import CELL_ASPECT, fit_extent
+
+    boxes = np.asarray(outcome.boxes).reshape(-1, 4)
+    extent = fit_extent(boxes, (0.0, 1.0, 0.0, 1.0))
+    xlo, xhi, ylo, yhi = extent
+    columns = max(10, width - 2)
+    rows = int(min(40, max(5, round(columns * (yhi - ylo) / (xhi - xlo) / CELL_ASPECT))))
+    error = outcome.bound[:, :2].max(axis=1)
+    worst = worst_cells(boxes, error, extent, columns, rows)
+    finite = error[np.isfinite(error)]
+    edges = (finite.max() if len(finite) else 1.0) * np.arange(1, 5) / 4
+    lines = [
+        f"error map, x in [{xlo:.4g}, {xhi:.4g}] cm, y in [{ylo:.4g}, {yhi:.4g}] cm "
+        "(worst certified max(|Δx|, |Δy|) per cell)"[:width]
+    ]
+    for j in range(rows - 1, -1, -1):
+        cells = [
+            " "
+            if np.isnan(v)
+            else UNPROVED_GLYPH
+            if np.isinf(v)
+            else BAND_GLYPHS[min(3, int(np.searchsorted(edges, v)))]
+            for v in worst[j]
+        ]
+        lines.append("│" + "".join(cells))
+    bands = [f"{g} ≤ {e:.3g} cm" for g, e in zip(BAND_GLYPHS, edges, strict=True)]
+    legend = "  ".join([*bands, f"{UNPROVED_GLYPH} not certified"])
+    return [*lines, legend[:width]]
+
+
 def accuracy_names(job: Any) -> tuple[str, ...]:
     """A job's accuracy columns: :data:`HEADER` with ``accuracy``, none without."""
     return HEADER if getattr(job.spec, "accuracy", None) is not None else ()

@@ -20,8 +20,14 @@ UNPROVED_GLYPH = "?"
 def kappa_cells(outcome: Any, extent, columns: int, rows: int) -> np.ndarray:
     """Per cell (``rows`` x ``columns``, row 0 at the bottom) the largest ``kappa_hi`` of
     the boxes that touch it (``nan`` where none)."""
+    return worst_cells(outcome.boxes, outcome.kappa[:, 1], extent, columns, rows)
+
+
+def worst_cells(boxes: Any, values: Any, extent, columns: int, rows: int) -> np.ndarray:
+    """Per cell (``rows`` x ``columns``, row 0 at the bottom) the largest of ``values`` (one
+    per box) over the boxes that touch it (``nan`` where none)."""
     xlo, xhi, ylo, yhi = extent
-    boxes = np.asarray(outcome.boxes).reshape(-1, 4)
+    boxes = np.asarray(boxes).reshape(-1, 4)
     worst = np.full(rows * columns, -np.inf)
     cw, ch = (xhi - xlo) / columns, (yhi - ylo) / rows
     i0 = np.clip(np.floor((boxes[:, 0] - xlo) / cw), 0, columns - 1).astype(int)
@@ -29,10 +35,10 @@ def kappa_cells(outcome: Any, extent, columns: int, rows: int) -> np.ndarray:
     j0 = np.clip(np.floor((boxes[:, 2] - ylo) / ch), 0, rows - 1).astype(int)
     j1 = np.clip(np.ceil((boxes[:, 3] - ylo) / ch) - 1, j0, rows - 1).astype(int)
     small = (i0 == i1) & (j0 == j1)
-    np.maximum.at(worst, j0[small] * columns + i0[small], outcome.kappa[small, 1])
+    np.maximum.at(worst, j0[small] * columns + i0[small], values[small])
     for k in np.flatnonzero(~small):  # a box over several cells (few: inside boxes)
         block = worst.reshape(rows, columns)[j0[k] : j1[k] + 1, i0[k] : i1[k] + 1]
-        np.maximum(block, outcome.kappa[k, 1], out=block)
+        np.maximum(block, values[k], out=block)
     worst[worst == -np.inf] = np.nan
     return worst.reshape(rows, columns)
 

@@ -95,8 +95,11 @@ def render_workspace(job: Job[Any, Any], result: WorkspaceResult, console: Any) 
     if clear is not None:  # its region: proved interference-free, boundary
         lines += [clear.describe(), *render_map(clear.boxes, clear.status, width=width)]
     errors = getattr(result, "accuracy", None)
-    if errors is not None:  # its boxes: error certified, not certified
+    if errors is not None:  # its boxes (certified, not) and its error map below
+        from planar_tui.workspace.paving.accuracy import render_error_map
+
         lines += [errors.describe(), *render_map(errors.boxes, errors.status, width=width)]
+        lines += render_error_map(errors, width)
     for line in lines:
         console.print(line, markup=False, highlight=False, crop=True, soft_wrap=False)
 
