@@ -44,14 +44,14 @@ LEAF_GRID = 4
 
 def check_singularity(values: dict, reader) -> None:
     """``elbow``, ``circle_centre_cm`` and ``singularity_precision_cm`` go with
-    ``singularities = true`` (``elbow`` with ``kappa_max`` or ``leg_width_cm`` too), which needs a single
-    orientation and a form with boxes."""
+    ``singularities = true`` (``elbow`` with ``kappa_max`` or ``leg_width_cm`` too,
+    ``circle_centre_cm`` with ``kappa_max``: the dexterous disc's centre), which needs a
+    single orientation and a form with boxes."""
     if not values["singularities"]:
         moded = values.get("kappa_max") is not None or values.get("leg_width_cm") is not None
         mode = () if moded else ("elbow",)  # the mode of kappa_max and leg_width_cm
-        refuse_without_singularities(
-            values, reader, (*mode, "circle_centre_cm", "singularity_precision_cm")
-        )
+        centre = () if values.get("kappa_max") is not None else ("circle_centre_cm",)
+        refuse_without_singularities(values, reader, (*mode, *centre, "singularity_precision_cm"))
         return
     if isinstance(values["orientation_deg"], tuple):
         raise reader.error(
