@@ -15,14 +15,16 @@ import numpy as np
 import pytest
 from scipy.spatial import cKDTree
 
+import tests.test_dexterity as base
 from planar_tui.workspace.paving import dexterity, disc
-from tests.test_dexterity import (
-    FIVEBAR,
-    TABLE3,
-    fivebar_legs,
-    kappa_reference,
-    rrr_legs,
-    run,
+from tests.test_dexterity import FIVEBAR, TABLE3, fivebar_legs, rrr_legs, run
+from tests.test_dexterity_prismatic import (
+    PRR,
+    RPR,
+    patched,
+    prr_actuators,
+    prr_modes,
+    rpr_actuators,
 )
 
 #: A centre of the Table-3 robot's dexterous region (κ ≤ 4, elbow 1 -1 1).
@@ -40,7 +42,7 @@ def grid_points(centre, radius, step_cm):
 
 
 def dexterous_at(legs, length_cm, kappa_max, x, y):
-    valid, kappa = kappa_reference(legs, x, y, length_cm)
+    valid, kappa = base.kappa_reference(legs, x, y, length_cm)  # patched for a prismatic
     return valid & (kappa <= kappa_max)
 
 
@@ -193,3 +195,15 @@ def test_boxes_distance_is_exact():
     dy = np.maximum(boxes[None, :, 2] - points[:, None, 1], points[:, None, 1] - boxes[None, :, 3])
     brute = np.hypot(dx, np.maximum(dy, 0.0)).min(axis=1)
     assert np.array_equal(disc.boxes_distance(points, boxes), brute)
+
+
+@pytest.mark.parametrize("robot", ["rpr", "prr"])
+def test_the_prismatic_robots_discs_against_the_grid(tmp_path, monkeypatch, robot):
+    job, result = run(tmp_path, (RPR if robot == "rpr" else PRR).format(precision=0.5))
+    actuators = rpr_actuators(job) if robot == "rpr" else prr_actuators(job, prr_modes(job))
+    patched(monkeypatch, actuators)
+    outcome, kappa_max = result.dexterity, result.dexterity.kappa_max
+    found = outcome.disc
+    assert found.best_lo_cm > 0.0
+    check_lower(None, 25.0, kappa_max, found.best_centre_cm, found.best_lo_cm, 0.05)
+    check_discs_about_a_grid(outcome, result.outcome.extent_cm, None, 25.0, 0.25)
