@@ -303,8 +303,11 @@ def planar_dexterity(job: Any, prepared: Any, extent, budget: BoxBudget) -> Dext
 
 
 def dexterity_names(job: Any) -> tuple[str, ...]:
-    """A job's dexterity columns: :data:`HEADER` with ``kappa_max``, none without."""
-    return HEADER if getattr(job.spec, "kappa_max", None) is not None else ()
+    """A job's dexterity columns: :data:`HEADER` and the dexterous disc's
+    (:data:`planar_tui.workspace.paving.disc.HEADER`) with ``kappa_max``, none without."""
+    from planar_tui.workspace.paving.disc import HEADER as DISC_HEADER
+
+    return (*HEADER, *DISC_HEADER) if getattr(job.spec, "kappa_max", None) is not None else ()
 
 
 def dexterity_columns(outcome: DexterityOutcome | None) -> list:

@@ -43,6 +43,8 @@ HEADER = (
     "dexterous_disc_radius_lo_cm",
     "dexterous_disc_radius_hi_cm",
 )
+#: Nearest box centres measured per point and size group before any wider search.
+NEAREST = 8
 #: Rounds of quartering the cells whose upper bound exceeds the lower bound.
 ROUNDS = 6
 #: Cells quartered per round at most (those with the largest upper bounds).
@@ -103,37 +105,97 @@ def exterior_distance(points: Any, extent: tuple[float, float, float, float]) ->
     return np.maximum(inner, 0.0)
 
 
+def point_box_distance(px: Any, py: Any, boxes: Any) -> Any:
+    """The distance from each point ``(px, py)`` to the closed box in the same row of
+    ``boxes`` (rows ``x_lo, x_hi, y_lo, y_hi``; 0 inside)."""
+    import numpy as np
+
+    dx = np.maximum(np.maximum(boxes[..., 0] - px, px - boxes[..., 1]), 0.0)
+    dy = np.maximum(np.maximum(boxes[..., 2] - py, py - boxes[..., 3]), 0.0)
+    return np.hypot(dx, dy)
+
+
+class NearestBox:
+    """The distance from points to the nearest of the closed boxes (rows ``x_lo, x_hi,
+    y_lo, y_hi``), exactly. The boxes are grouped by their half diagonal :math:`h` (within
+    a factor 2), a k-d tree of centres per group; a box of a group is at least its centre's
+    distance less :math:`h_{max}` away, so once the :data:`NEAREST` nearest centres are
+    measured, a point whose last centre lies at least :math:`h_{max}` beyond the nearest
+    box measured is done, and the others measure every box within that reach."""
+
+    def __init__(self, boxes: Any):
+        import numpy as np
+        from scipy.spatial import cKDTree
+
+        self.boxes = boxes
+        centres = np.column_stack(
+            [0.5 * (boxes[:, 0] + boxes[:, 1]), 0.5 * (boxes[:, 2] + boxes[:, 3])]
+        )
+        half = 0.5 * np.hypot(boxes[:, 1] - boxes[:, 0], boxes[:, 3] - boxes[:, 2])
+        group = np.floor(np.log2(np.maximum(half, 1e-300))).astype(np.int64)
+        self.groups = []
+        for g in np.unique(group):
+            members = np.flatnonzero(group == g)
+            reach = float(half[members].max()) + MARGIN_CM
+            self.groups.append((members, reach, cKDTree(centres[members])))
+
+    def distance(self, points: Any) -> Any:
+        """The distance from each point (rows ``x, y``) to the nearest box (``inf``
+        without boxes)."""
+        import numpy as np
+
+        best = np.full(len(points), np.inf)
+        px, py = points[:, 0], points[:, 1]
+        for members, reach, tree in self.groups if len(points) else ():
+            k = min(NEAREST, len(members))
+            far, index = tree.query(points, k=k)
+            far, index = far.reshape(len(points), k), index.reshape(len(points), k)
+            boxes = self.boxes[members[index]]
+            near = point_box_distance(px[:, None], py[:, None], boxes).min(axis=1)
+            best = np.minimum(best, near)
+            unsure = np.flatnonzero((far[:, -1] - reach < near) & (k < len(members)))
+            if len(unsure) == 0:
+                continue
+            found = tree.query_ball_point(points[unsure], near[unsure] + reach)
+            counts = np.fromiter((len(f) for f in found), dtype=np.int64, count=len(unsure))
+            rows = np.repeat(unsure, counts)
+            ball = members[np.concatenate([np.asarray(f, dtype=np.int64) for f in found])]
+            distance = point_box_distance(px[rows], py[rows], self.boxes[ball])
+            np.minimum.at(best, rows, distance)
+        return best
+
+
 def boxes_distance(points: Any, boxes: Any) -> Any:
     """The distance from each point (rows ``x, y``) to the nearest of the closed boxes
-    (rows ``x_lo, x_hi, y_lo, y_hi``; ``inf`` without boxes), exactly: the boxes grouped by
-    their half diagonal :math:`h` (within a factor 2), a box of a group whose centre lies
-    farther than :math:`d_0 + h_{max}` from the point (:math:`d_0` the nearest centre's
-    distance) is farther than that centre's box, so only the boxes within that ball are
-    measured."""
-    import numpy as np
-    from scipy.spatial import cKDTree
+    (:class:`NearestBox`)."""
+    return NearestBox(boxes).distance(points)
 
-    best = np.full(len(points), np.inf)
-    if len(boxes) == 0 or len(points) == 0:
-        return best
-    centres = np.column_stack(
-        [0.5 * (boxes[:, 0] + boxes[:, 1]), 0.5 * (boxes[:, 2] + boxes[:, 3])]
-    )
-    half = 0.5 * np.hypot(boxes[:, 1] - boxes[:, 0], boxes[:, 3] - boxes[:, 2])
-    group = np.floor(np.log2(np.maximum(half, 1e-300))).astype(np.int64)
-    for g in np.unique(group):
-        members = np.flatnonzero(group == g)
-        tree = cKDTree(centres[members])
-        nearest, _ = tree.query(points)
-        found = tree.query_ball_point(points, nearest + half[members].max() + MARGIN_CM)
-        counts = np.fromiter((len(f) for f in found), dtype=np.int64, count=len(points))
-        rows = np.repeat(np.arange(len(points)), counts)
-        near = members[np.concatenate([np.asarray(f, dtype=np.int64) for f in found])]
-        px, py = points[rows, 0], points[rows, 1]
-        dx = np.maximum(np.maximum(boxes[near, 0] - px, px - boxes[near, 1]), 0.0)
-        dy = np.maximum(np.maximum(boxes[near, 2] - py, py - boxes[near, 3]), 0.0)
-        np.minimum.at(best, rows, np.hypot(dx, dy))
-    return best
+
+class DiscBounds:
+    """The certified bracket :math:`d(c, B) \\le r^*(c) \\le d(c, N)` (module docstring)
+    of the dexterity paving ``outcome`` over ``extent``, about any centres."""
+
+    def __init__(self, outcome: Any, extent: tuple[float, float, float, float]):
+        self.extent = extent
+        self.outside = NearestBox(outcome.outside)
+        self.boundary = NearestBox(outcome.boxes[outcome.status != 2])
+
+    def bounds(self, points: Any) -> tuple[Any, Any]:
+        """The bracket about each centre of ``points`` (rows ``x, y``), each bound given
+        :data:`MARGIN_CM` of round-off."""
+        import numpy as np
+
+        points = np.asarray(points, dtype=float).reshape(-1, 2)
+        upper = np.minimum(self.outside.distance(points), exterior_distance(points, self.extent))
+        lower = np.minimum(upper, self.boundary.distance(points))
+        return np.maximum(lower - MARGIN_CM, 0.0), upper + MARGIN_CM
+
+
+def radius_bounds(
+    outcome: Any, extent: tuple[float, float, float, float], points: Any
+) -> tuple[Any, Any]:
+    """:meth:`DiscBounds.bounds` of the paving ``outcome`` over ``extent`` about ``points``."""
+    return DiscBounds(outcome, extent).bounds(points)
 
 
 def quarters(cells: Any) -> Any:
@@ -150,22 +212,6 @@ def centres_of(cells: Any) -> Any:
     return np.column_stack([0.5 * (cells[:, 0] + cells[:, 1]), 0.5 * (cells[:, 2] + cells[:, 3])])
 
 
-def radius_bounds(
-    outcome: Any, extent: tuple[float, float, float, float], points: Any
-) -> tuple[Any, Any]:
-    """The certified bracket :math:`d(c, B) \\le r^*(c) \\le d(c, N)` (module docstring)
-    about each centre of ``points`` (rows ``x, y``) of the dexterity paving ``outcome`` over
-    ``extent``, each bound given :data:`MARGIN_CM` of round-off."""
-    import numpy as np
-
-    outside, kept = outcome.outside, outcome.boxes
-    points = np.asarray(points, dtype=float).reshape(-1, 2)
-    exterior = exterior_distance(points, extent)
-    upper = np.minimum(boxes_distance(points, outside), exterior)
-    lower = np.minimum(upper, boxes_distance(points, kept[outcome.status != 2]))
-    return np.maximum(lower - MARGIN_CM, 0.0), upper + MARGIN_CM
-
-
 def certified_disc(
     outcome: Any, extent: tuple[float, float, float, float], centre: tuple[float, float] | None
 ) -> DexterousDisc:
@@ -173,9 +219,10 @@ def certified_disc(
     dexterity paving ``outcome`` over ``extent``."""
     import numpy as np
 
+    radii = DiscBounds(outcome, extent)
     about = (0.0, 0.0)
     if centre is not None:
-        lo, hi = radius_bounds(outcome, extent, [centre])
+        lo, hi = radii.bounds([centre])
         about = (float(lo[0]), float(hi[0]))
     best_centre, best_lo, best_hi = None, 0.0, 0.0
     cells = outcome.boxes
@@ -183,7 +230,7 @@ def certified_disc(
         if len(cells) == 0:
             break
         middle = centres_of(cells)
-        lo, hi = radius_bounds(outcome, extent, middle)
+        lo, hi = radii.bounds(middle)
         if lo.max() > best_lo:
             best_lo = float(lo.max())
             best_centre = (float(middle[lo.argmax(), 0]), float(middle[lo.argmax(), 1]))
