@@ -207,3 +207,24 @@ def test_the_prismatic_robots_discs_against_the_grid(tmp_path, monkeypatch, robo
     assert found.best_lo_cm > 0.0
     check_lower(None, 25.0, kappa_max, found.best_centre_cm, found.best_lo_cm, 0.05)
     check_discs_about_a_grid(outcome, result.outcome.extent_cm, None, 25.0, 0.25)
+
+
+def test_an_unreachable_centre_is_refused_in_one_line(cli, tmp_path):
+    path = tmp_path / "d.toml"
+    extra = "circle_centre_cm = [0, 0]\n"
+    path.write_text(TABLE3.format(precision=0.5, kappa=4, extra=extra), encoding="utf-8")
+    result = cli("workspace", path, "--out-dir", tmp_path)
+    assert result.exit_code == 2, result.output
+    assert result.output.startswith("error: ") and result.output.count("\n") == 1
+    assert "workspace.circle_centre_cm: (0, 0) cm is not reachable" in result.output
+    assert not (tmp_path / "ws.csv").exists()
+
+
+def test_a_centre_without_kappa_max_or_singularities_is_still_refused(cli, tmp_path):
+    path = tmp_path / "d.toml"
+    text = TABLE3.format(precision=0.5, kappa=4, extra="circle_centre_cm = [36, 9.5]\n")
+    text = text.replace("kappa_max = 4\n", "").replace("elbow = [1, -1, 1]\n", "")
+    path.write_text(text, encoding="utf-8")
+    result = cli("workspace", path, "--out-dir", tmp_path)
+    assert result.exit_code == 2, result.output
+    assert "circle_centre_cm: is set without singularities = true" in result.output
