@@ -21,7 +21,7 @@ TABLE1 = PRESETS / "paper-a-table1.toml"
 def read_csv(path):
     with open(path, newline="") as stream:
         rows = list(csv.reader(stream))
-    return rows[0], [[float(x) for x in row] for row in rows[1:]]
+    return rows[0], [[float(x) if x else math.inf for x in row] for row in rows[1:]]
 
 
 def test_version_and_presets_list(cli):
@@ -40,17 +40,17 @@ def test_simulate_writes_both_runs_with_exact_header(tmp_path, cli):
         ["t_s"]
         + [f"theta{i}_rad" for i in range(1, 7)]
         + [f"omega{i}_rad_s" for i in range(1, 7)]
-        + ["kinetic_J", "potential_J", "energy_J"]
+        + ["kinetic_J", "potential_J", "energy_J", "kappa"]
     )
     assert len(rows) == 10_000 // 10 + 1
     assert rows[0][0] == 0.0 and math.isclose(rows[-1][0], 1.0)
     assert rows[1][0] == pytest.approx(10 * 1e-4)
     # energy column is the sum of the other two
-    assert all(abs(r[-1] - r[-2] - r[-3]) <= 1e-12 for r in rows)
+    assert all(abs(r[-2] - r[-3] - r[-4]) <= 1e-12 for r in rows)
     # free fall from the horizontal: starts at rest at zero energy and keeps it
     _, fall = read_csv(tmp_path / "table1-6r-free-fall.csv")
     assert fall[0][1:13] == [0.0] * 12
-    assert max(abs(r[-1]) for r in fall) <= 1e-9
+    assert max(abs(r[-2]) for r in fall) <= 1e-9
     assert fall[-1][1] < -0.5  # the arm has fallen (the first joint turned well below horizontal)
     assert "simulate paper-a-table1: 2 jobs" in result.stdout
 

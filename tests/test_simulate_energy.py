@@ -19,9 +19,8 @@ def test_a_torque_runs_sweep_figure_is_its_energy_drift_net_of_the_torques_work(
     job = dataclasses.replace(job, spec=dataclasses.replace(job.spec, duration_s=0.3))
     (job,) = batch.prepare_jobs([job])
     result = batch.run_job(job)
-    table = np.array(result.table.rows, dtype=float)
-    header = list(result.table.header)
-    energy = table[:, header.index("energy_J")]
+    column = list(result.table.header).index("energy_J")
+    energy = np.array([row[column] for row in result.table.rows])
     assert np.max(np.abs(energy - energy[0])) > 0.5  # the torques do joules of work
     figures = JOB_KINDS["simulate"].point_figures(job, result)
     assert 0.0 <= figures["energy_drift_max_J"] < 1e-9

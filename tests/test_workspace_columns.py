@@ -25,6 +25,7 @@ VARIANTS = {
         {"form": "geometric"},
         {"tolerance_cm": 0.05, "tolerance_mode": "all"},
         {"tolerance_cm": 0.05, "tolerance_mode": "some"},
+        {"kappa_max": 4.0},
     ],
     "workspace3prr": [
         {},

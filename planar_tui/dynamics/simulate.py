@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -110,10 +111,10 @@ class RunSettings:
 
 
 def simulate_estimate(n_steps: float, every: int, n_links: int) -> tuple[float, float]:
-    """``(memory_bytes, seconds)`` of a run: ``n_steps / every + 1`` rows of ``2n + 4``
+    """``(memory_bytes, seconds)`` of a run: ``n_steps / every + 1`` rows of ``2n + 6``
     cells, ``n_steps`` RK4 steps (:func:`rk4_step_seconds`)."""
     rows = n_steps / every + 1
-    return rows * (2 * n_links + 4) * BYTES_PER_CELL, n_steps * rk4_step_seconds(n_links)
+    return rows * (2 * n_links + 6) * BYTES_PER_CELL, n_steps * rk4_step_seconds(n_links)
 
 
 def estimate(job: Job[SimulateSpec, SerialRobot]) -> tuple[float, float]:
@@ -133,6 +134,14 @@ class SimulateSpec(RunSettings):
         default=1,
         type_doc="integer ≥ 1",
         doc="write every k-th step (t = 0 always)",
+    )
+    characteristic_length_cm: float | None = setting(
+        number(positive=True),
+        default=None,
+        type_doc="number > 0",
+        default_doc="(no `kappa_pose` column)",
+        doc="length L weighting the tip's rotation in the pose's κ (`kappa_pose`, "
+        "docs/dexterity.md)",
     )
     plot: str | None = plot_setting()
 
@@ -164,8 +173,9 @@ class SimulateResult(JobResult):
     potential_J: np.ndarray
 
 
-def simulate_header(n_links: int) -> tuple[str, ...]:
-    """CSV columns of a simulation: time, relative angles, rates, energies (SI units)."""
+def simulate_header(n_links: int, pose: bool = False) -> tuple[str, ...]:
+    """CSV columns of a simulation: time, relative angles, rates, energies (SI units), the
+    tip Jacobian's κ (positions; with ``pose``, the pose's too)."""
     return (
         "t_s",
         *(f"theta{i}_rad" for i in range(1, n_links + 1)),
@@ -173,7 +183,52 @@ def simulate_header(n_links: int) -> tuple[str, ...]:
         "kinetic_J",
         "potential_J",
         "energy_J",
+        "kappa",
+        *(("kappa_pose",) if pose else ()),
     )
+
+
+class UnboundedBlank(Sequence[list[Any]]):
+    """The rows of a float array ``values`` whose infinite cells from column ``first`` on
+    (κ at a singular pose) are written empty, as the dexterity boxes' unbounded κ; the
+    other columns must be finite (:meth:`non_finite_column`)."""
+
+    def __init__(self, values: np.ndarray, first: int):
+        self._values, self._first = values, first
+
+    def __len__(self) -> int:
+        return len(self._values)
+
+    def __getitem__(self, index: Any) -> Any:
+        if isinstance(index, slice):
+            return [self[i] for i in range(*index.indices(len(self)))]
+        row = self._values[index].tolist()
+        return [*row[: self._first], *("" if c == math.inf else c for c in row[self._first :])]
+
+    def non_finite_column(self) -> int | None:
+        """The first column holding a NaN, or an infinity before column ``first``."""
+        import numpy as np
+
+        bad = ~np.isfinite(self._values)
+        bad[:, self._first :] &= ~np.isposinf(self._values[:, self._first :])
+        columns = np.flatnonzero(bad.any(axis=0))
+        return int(columns[0]) if len(columns) else None
+
+
+def kappa_columns(lengths_m: Any, theta_rad: Any, length_cm: float | None) -> list[Any]:
+    """The κ of the tip Jacobian at each row of ``theta_rad`` (:mod:`kernels.serial_kappa`):
+    of the positions, then of the pose with :math:`L` = ``length_cm`` where given."""
+    import numpy as np
+
+    from planar_tui.kernels.serial_kappa import tip_kappa
+
+    lengths = [0.0] if length_cm is None else [0.0, length_cm / 100.0]
+    columns = []
+    for length_m in lengths:
+        kappa = np.empty(len(theta_rad))
+        tip_kappa(lengths_m, np.ascontiguousarray(theta_rad), length_m, kappa)
+        columns.append(kappa)
+    return columns
 
 
 def run_simulate(
@@ -236,7 +291,11 @@ def run_simulate(
         raise RuntimeError(f"RK4 wrote {row} records, expected {rows}")
 
     energy_J = kinetic_J + potential_J
-    table = np.column_stack([t_s, theta_rad, omega_rad_s, kinetic_J, potential_J, energy_J])
+    kappa = kappa_columns(lengths_m, theta_rad, spec.characteristic_length_cm)
+    values = np.column_stack(
+        [t_s, theta_rad, omega_rad_s, kinetic_J, potential_J, energy_J, *kappa]
+    )
+    table = UnboundedBlank(values, values.shape[1] - len(kappa))
     summary = f"{n_steps} RK4 steps, {rows} rows, t_end = {t_s[-1]:.6g} s"
     drift_J = float(np.max(np.abs(energy_drift_J(energy_J, theta_rad, torque))))
     summary += (
@@ -245,7 +304,7 @@ def run_simulate(
         else f", max |E - E0| = {drift_J:.2e} J"
     )
     return SimulateResult(
-        table=CsvTable(simulate_header(n), table),
+        table=CsvTable(simulate_header(n, spec.characteristic_length_cm is not None), table),
         summary=summary,
         t_s=t_s,
         theta_rad=theta_rad,

@@ -130,7 +130,7 @@ class FiveBarSpec:
         type_doc="`[x, y]`",
         default_doc="(no circle)",
         doc="centre of the largest singularity-free circle to certify (needs "
-        "`singularities = true` and a working mode)",
+        "`singularities = true` and a working mode), and of the dexterous disc (with kappa_max)",
     )
     kappa_max: float | None = kappa_setting()
     leg_width_cm: float | None = width_setting()
@@ -160,9 +160,8 @@ class FiveBarSpec:
 
             check_search_box(values, reader, robot)
         if not values["singularities"]:
-            refuse_without_singularities(
-                values, reader, ("singularity_free_circle", "singularity_precision_cm")
-            )
+            centre = () if values["kappa_max"] is not None else ("singularity_free_circle",)
+            refuse_without_singularities(values, reader, (*centre, "singularity_precision_cm"))
         elif values["singularity_free_circle"] is not None and robot.working_mode == "any":
             raise reader.error(
                 "singularity_free_circle",

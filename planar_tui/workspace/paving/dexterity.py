@@ -133,6 +133,11 @@ class DexterityOutcome:
     elbow: str
     boxes_processed: int
     seconds: float
+    #: The boxes proved outside (rows as ``boxes``): with the kept ones they partition the
+    #: extent (:mod:`planar_tui.workspace.paving.disc`).
+    outside: np.ndarray | None = None
+    #: The largest certified dexterous disc (set by the dexterity stage).
+    disc: Any = None
 
     def columns(self) -> list:
         """The summary's :data:`HEADER` cells (``characteristic_length_cm`` empty for a
@@ -158,8 +163,13 @@ def label_boxes(evaluate: Evaluator, boxes: np.ndarray, kappa_max: float) -> np.
     verdict, kappa = evaluate(np.ascontiguousarray(boxes))
     label = np.ones(len(boxes), dtype=np.int64)
     label[(verdict == IN) & (kappa[:, 1] <= kappa_max)] = 2
-    label[(verdict == OUT) | (kappa[:, 0] > kappa_max)] = 0
+    label[proved_outside(verdict, kappa, kappa_max)] = 0
     return label
+
+
+def proved_outside(verdict: np.ndarray, kappa: np.ndarray, kappa_max: float) -> np.ndarray:
+    """The boxes with no dexterous point: ``OUT`` or ``kappa_lo > kappa_max``."""
+    return (verdict == OUT) | (kappa[:, 0] > kappa_max)
 
 
 def sub_grid(boxes: np.ndarray, n: int) -> np.ndarray:
@@ -244,9 +254,11 @@ def compute_dexterity(
     started = time.perf_counter()
     processed = budget.processed
     budget.progress.start(1.0, f"dexterous region (κ ≤ {kappa_max:g})")
-    decide = decider(evaluate, kappa_max, precision_cm)
+    outside: list[np.ndarray] = []
+    recorded = recording_outside(evaluate, kappa_max, outside)
+    decide = decider(recorded, kappa_max, precision_cm)
     boxes, status = pave_in_levels(np.array([extent], dtype=float), budget, decide)
-    boxes, status = refine_leaves(evaluate, boxes, status, kappa_max, budget)
+    boxes, status = refine_leaves(recorded, boxes, status, kappa_max, budget)
     _, kappa = evaluate(boxes)
     inside = xy_area(boxes[status == 2])
     return DexterityOutcome(
@@ -260,7 +272,22 @@ def compute_dexterity(
         elbow=elbow,
         boxes_processed=budget.processed - processed,
         seconds=time.perf_counter() - started,
+        outside=np.concatenate(outside) if outside else np.empty((0, 4)),
     )
+
+
+def recording_outside(evaluate: Evaluator, kappa_max: float, outside: list) -> Evaluator:
+    """``evaluate``, appending to ``outside`` the boxes it proves outside (``OUT`` or
+    ``kappa_lo > kappa_max``, :func:`proved_outside`): the paving drops them."""
+
+    def recorded(boxes: Any) -> tuple[Any, Any]:
+        verdict, kappa = evaluate(boxes)
+        out = proved_outside(verdict, kappa, kappa_max)
+        if out.any():
+            outside.append(boxes[out].copy())
+        return verdict, kappa
+
+    return recorded
 
 
 def planar_dexterity(job: Any, prepared: Any, extent, budget: BoxBudget) -> DexterityOutcome:
@@ -276,8 +303,11 @@ def planar_dexterity(job: Any, prepared: Any, extent, budget: BoxBudget) -> Dext
 
 
 def dexterity_names(job: Any) -> tuple[str, ...]:
-    """A job's dexterity columns: :data:`HEADER` with ``kappa_max``, none without."""
-    return HEADER if getattr(job.spec, "kappa_max", None) is not None else ()
+    """A job's dexterity columns: :data:`HEADER` and the dexterous disc's
+    (:data:`planar_tui.workspace.paving.disc.HEADER`) with ``kappa_max``, none without."""
+    from planar_tui.workspace.paving.disc import HEADER as DISC_HEADER
+
+    return (*HEADER, *DISC_HEADER) if getattr(job.spec, "kappa_max", None) is not None else ()
 
 
 def dexterity_columns(outcome: DexterityOutcome | None) -> list:

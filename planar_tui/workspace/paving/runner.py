@@ -126,6 +126,8 @@ class PlanarSpec:
         (:func:`~planar_tui.workspace.paving.estimate.check_needs`)."""
         moded = any(values[k] is not None for k in ("kappa_max", "leg_width_cm", "accuracy"))
         names = tuple(n for n in cls.circle_keys if not (moded and n in cls.mode_keys))
+        if values["kappa_max"] is not None:  # the dexterous disc's centre
+            names = tuple(n for n in names if n != "circle_centre_cm")
         check_circle_keys(values, reader, names)
         check_dexterity(values, reader)
         if values["leg_width_cm"] is not None and not cls.mechanism.has_interference:

@@ -180,7 +180,8 @@ def centre_setting() -> Any:
         default=None,
         type_doc="`[x, y]`",
         default_doc="(the workspace's centroid)",
-        doc="centre of the singularity-free circle (must be reachable)",
+        doc="centre of the singularity-free circle (must be reachable) and of the dexterous "
+        "disc (with kappa_max)",
     )
 
 

@@ -22,6 +22,8 @@ from planar_tui.workspace.paving.accuracy import boxes_table as accuracy_boxes
 from planar_tui.workspace.paving.accuracy import job_accuracy
 from planar_tui.workspace.paving.dexterity import HEADER as DEXTERITY_HEADER
 from planar_tui.workspace.paving.dexterity import boxes_table as dexterity_boxes
+from planar_tui.workspace.paving.disc import HEADER as DISC_HEADER
+from planar_tui.workspace.paving.disc import certified_disc, job_centre
 from planar_tui.workspace.paving.interference import HEADER as INTERFERENCE_HEADER
 from planar_tui.workspace.paving.interference import boxes_table as interference_boxes
 from planar_tui.workspace.paving.interference import job_interference
@@ -100,6 +102,8 @@ def dexterity_stage(stages: Stages, ready: Any, extent: Any, budget: Any, row: S
         return None
     dexterous = stages.dexterity(ready, extent, budget)
     row.extend(DEXTERITY_HEADER, dexterous.columns(), f"; {dexterous.describe()}")
+    dexterous.disc = certified_disc(dexterous, extent, job_centre(ready.job.spec))
+    row.extend(DISC_HEADER, dexterous.disc.columns(), dexterous.disc.describe())
     return dexterous
 
 

@@ -48,13 +48,13 @@ MODED_KEYS = ("kappa_max", "leg_width_cm", "accuracy")
 def check_singularity(values: dict, reader) -> None:
     """``elbow``, ``circle_centre_cm`` and ``singularity_precision_cm`` go with
     ``singularities = true`` (``elbow`` with ``kappa_max``, ``leg_width_cm`` or ``accuracy``
-    too), which needs a single orientation and a form with boxes."""
+    too, ``circle_centre_cm`` with ``kappa_max``: the dexterous disc's centre), which needs
+    a single orientation and a form with boxes."""
     if not values["singularities"]:
         moded = any(values.get(k) is not None for k in MODED_KEYS)
         mode = () if moded else ("elbow",)  # the mode of the MODED_KEYS
-        refuse_without_singularities(
-            values, reader, (*mode, "circle_centre_cm", "singularity_precision_cm")
-        )
+        centre = () if values.get("kappa_max") is not None else ("circle_centre_cm",)
+        refuse_without_singularities(values, reader, (*mode, *centre, "singularity_precision_cm"))
         return
     if isinstance(values["orientation_deg"], tuple):
         raise reader.error(
