@@ -85,3 +85,17 @@ def append_rows(array: np.ndarray, count: int, rows: np.ndarray) -> tuple[np.nda
         array = grown
     array[count:needed] = rows
     return array, needed
+
+
+def sub_grid(boxes: np.ndarray, n: int) -> np.ndarray:
+    """Each box's ``n`` x ``n`` sub-boxes, ``n²`` consecutive rows per box."""
+    steps = np.arange(n + 1) / n
+    x = boxes[:, :1] + (boxes[:, 1:2] - boxes[:, :1]) * steps
+    y = boxes[:, 2:3] + (boxes[:, 3:4] - boxes[:, 2:3]) * steps
+    x[:, -1], y[:, -1] = boxes[:, 1], boxes[:, 3]
+    out = np.empty((len(boxes), n, n, 4))
+    out[..., 0] = x[:, :-1, None]
+    out[..., 1] = x[:, 1:, None]
+    out[..., 2] = y[:, None, :-1]
+    out[..., 3] = y[:, None, 1:]
+    return out.reshape(-1, 4)

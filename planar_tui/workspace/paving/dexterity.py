@@ -172,22 +172,6 @@ def proved_outside(verdict: np.ndarray, kappa: np.ndarray, kappa_max: float) -> 
     return (verdict == OUT) | (kappa[:, 0] > kappa_max)
 
 
-def sub_grid(boxes: np.ndarray, n: int) -> np.ndarray:
-    """Each box's ``n`` x ``n`` sub-boxes, ``n²`` consecutive rows per box."""
-    import numpy as np
-
-    steps = np.arange(n + 1) / n
-    x = boxes[:, :1] + (boxes[:, 1:2] - boxes[:, :1]) * steps
-    y = boxes[:, 2:3] + (boxes[:, 3:4] - boxes[:, 2:3]) * steps
-    x[:, -1], y[:, -1] = boxes[:, 1], boxes[:, 3]
-    out = np.empty((len(boxes), n, n, 4))
-    out[..., 0] = x[:, :-1, None]
-    out[..., 1] = x[:, 1:, None]
-    out[..., 2] = y[:, None, :-1]
-    out[..., 3] = y[:, None, 1:]
-    return out.reshape(-1, 4)
-
-
 def decider(evaluate: Evaluator, kappa_max: float, precision_cm: float) -> Callable[..., None]:
     """One level's decision of the dexterity paving (module docstring), with the signature
     :func:`~planar_tui.workspace.paving.levels.pave_in_levels` drives."""
@@ -221,6 +205,8 @@ def refine_leaves(
     not proved outside, each with its own label (:func:`label_boxes`), in chunks of
     ``CHUNK_LEAVES`` leaves (progress and Cancel between them)."""
     import numpy as np
+
+    from planar_tui.workspace.paving.boxes import sub_grid
 
     boundary = status == 1
     leaves = boxes[boundary]

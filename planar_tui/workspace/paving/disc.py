@@ -200,7 +200,7 @@ def radius_bounds(
 
 def quarters(cells: Any) -> Any:
     """Each cell's four quarters (rows ``x_lo, x_hi, y_lo, y_hi``)."""
-    from planar_tui.workspace.paving.dexterity import sub_grid
+    from planar_tui.workspace.paving.boxes import sub_grid
 
     return sub_grid(cells, 2)
 
