@@ -26,13 +26,15 @@ import argparse
 import contextlib
 import os
 import platform
+import subprocess
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from benchmarks.bench_startup import checkout_of, median_of, timed
+from benchmarks.bench_startup import checkout_of, children_cpu_s, median_of
 
 ROOT = Path(__file__).resolve().parent.parent
 PRESET = ROOT / "presets" / "path-3rrr-sensitivity.toml"
@@ -54,6 +56,15 @@ def command(out: Path) -> list[str]:
         "--out-dir",
         str(out),
     ]
+
+
+def timed(command: list[str], env: dict[str, str], folder: Path) -> tuple[float, float]:
+    """(wall s, CPU s) of one process running ``command`` in ``folder``: not in a checkout,
+    whose ``planar_tui`` folder ``python -m`` would import before ``PYTHONPATH``'s."""
+    cpu_before = children_cpu_s()
+    started = time.perf_counter()
+    subprocess.run(command, check=True, capture_output=True, env=env, cwd=folder)
+    return time.perf_counter() - started, children_cpu_s() - cpu_before
 
 
 def load() -> str:
@@ -79,12 +90,12 @@ def main() -> None:
         )
         out = Path(folder) / "out"
         for name, side_env in sides.items():
-            wall, cpu = timed(command(out), side_env)
+            wall, cpu = timed(command(out), side_env, Path(folder))
             print(f"{name}: first run (compiles, caches) {wall:.1f} s wall, {cpu:.1f} s CPU")
         samples: dict[str, list[tuple[float, float]]] = {name: [] for name in sides}
         for run in range(arguments.runs):  # the sides alternate: the same load
             for name, side_env in sides.items():
-                samples[name].append(timed(command(out), side_env))
+                samples[name].append(timed(command(out), side_env, Path(folder)))
                 wall, cpu = samples[name][-1]
                 print(f"{name} run {run + 1}: {wall:.1f} s wall, {cpu:.1f} s CPU, load {load()}")
     medians = {name: median_of(found) for name, found in samples.items()}
