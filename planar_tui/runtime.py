@@ -7,7 +7,12 @@ CLI's ``main``, the app, the batch service before it runs a job, the test suite)
   ``OMP_WAIT_POLICY=PASSIVE`` unless the user set it: numba's OpenMP workers otherwise spin
   after every parallel region, taking a busy 2-core machine's CPU from the next region,
   the eFAST FFT threads and other processes (``planar-tui run`` Tables 4+5: 2.5 → 1.8 s
-  median at load 2).
+  median at load 2). Sets ``OPENBLAS_NUM_THREADS=1`` unless the user set it (read by
+  numpy's OpenBLAS when numpy is first imported, so before that): the kernels run their
+  own parallel loops, and OpenBLAS's second thread on a busy 2-core machine waits for a
+  core between every one of the many small products of a PCE fit (a path study's PCE
+  analysis, 3 009 outputs: 66 s wall, 20 s CPU with two threads against 10 s and 2.8 s
+  with one, at load 11).
 * :func:`prepare_kernels` before the first kernel module is imported: points numba's
   cache at :func:`kernel_cache_folder` (or, when that cannot be written, a private
   temporary folder, said once on stderr) and loads ``numba.np.arraymath`` without its
@@ -42,6 +47,7 @@ _kernel_cache: Path | None = None
 def configure_process() -> None:
     """Environment every planar-tui process runs with (a value the user set wins)."""
     os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 
 def user_cache_folder() -> Path:

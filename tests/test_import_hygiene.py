@@ -160,6 +160,29 @@ def test_importing_the_package_and_its_kernels_changes_nothing_in_the_process():
     assert json.loads(out.stdout) == [True, False]
 
 
+@pytest.mark.parametrize("user_value", [None, "2"])
+def test_a_front_end_runs_blas_on_one_thread_unless_the_user_said(user_value):
+    """``configure_process`` sets ``OPENBLAS_NUM_THREADS=1`` before numpy is imported (a
+    value the user set wins), and the CLI's ``main`` calls it before any numerical
+    import."""
+    code = (
+        "import os, sys, json\n"
+        "from planar_tui.runtime import configure_process\n"
+        "import planar_tui.cli\n"
+        "loaded = 'numpy' in sys.modules\n"
+        "configure_process()\n"
+        "print(json.dumps([loaded, os.environ['OPENBLAS_NUM_THREADS']]))\n"
+    )
+    env = {k: v for k, v in os.environ.items() if k != "OPENBLAS_NUM_THREADS"}
+    if user_value is not None:
+        env["OPENBLAS_NUM_THREADS"] = user_value
+    env["PYTHONPATH"] = str(REPO)
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True
+    )
+    assert json.loads(out.stdout) == [False, user_value or "1"]
+
+
 def test_prepare_kernels_refuses_to_run_after_a_kernel_was_imported():
     code = (
         "import planar_tui.kernels.rk4\n"

@@ -71,21 +71,30 @@ def sobol_indices(
     """S1, ST and bootstrap half-widths of every column of ``outputs`` (Saltelli design,
     no second order, N (D + 2) rows). ``seed`` > 0, as SALib's ``analyze`` treats 0 as none.
 
-    Output columns one at a time, resamples in chunks (columns and resamples are
-    independent, so the result is the same bytes as one pass over all of them);
-    ``on_chunk(fraction)`` runs after each chunk."""
-    from planar_tui.kernels.sensitivity_estimators import sobol_first_total
+    Output columns in blocks, each one kernel call of all its resamples' bootstrap sums
+    (``counts`` (R, N) @ terms (N, 2D + 4) for every column at once) within about
+    ``SUMS_PER_CALL`` multiply-adds (one column a call when a column alone is more, its
+    resamples then in chunks). Columns and resamples are independent, so the estimates are
+    those of one pass over all of them; ``on_chunk(fraction)`` runs after each call."""
+    from planar_tui.kernels import sensitivity_estimators as estimators
 
     outputs = np.asarray(outputs, dtype=np.float64)
     n_base = outputs.shape[0] // (num_vars + 2)
     n_out = outputs.shape[1]
     counts = sobol_bootstrap_counts(n_base, seed, num_resamples)
-    column_chunk = None if on_chunk is None else (lambda fraction: on_chunk(fraction / n_out))
+    per_column = n_base * (2 * num_vars + 4) * counts.shape[0]
+    width = max(1, estimators.SUMS_PER_CALL // max(1, per_column))
     result = np.empty((4, n_out, num_vars))
-    for t in range(n_out):
-        column = np.ascontiguousarray(outputs[:, t : t + 1])
-        result[:, t : t + 1] = sobol_first_total(
-            column, num_vars, counts, _z_value(conf_level), column_chunk
+    for start in range(0, n_out, width):
+        stop = min(n_out, start + width)
+        share = (stop - start) / n_out
+        block_chunk = None if on_chunk is None else (lambda f, s=share: on_chunk(f * s))
+        result[:, start:stop] = estimators.sobol_first_total(
+            np.ascontiguousarray(outputs[:, start:stop]),
+            num_vars,
+            counts,
+            _z_value(conf_level),
+            block_chunk,
         )
     return result
 

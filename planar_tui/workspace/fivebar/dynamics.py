@@ -44,12 +44,21 @@ def body_array(robot: Any) -> Any:
     )
 
 
+def path_arrays(robot: Any, spec: Any) -> tuple[int, Any, Any]:
+    """The leg family of :func:`~planar_tui.kernels.dynamics_robots.robots_path_efforts`
+    (RR_LEGS), the leg rows and the body entries of ``robot`` in the working mode of
+    ``spec``: what :func:`solve_path` solves with."""
+    from planar_tui.kernels.dynamics_robots import RR_LEGS
+
+    return RR_LEGS, leg_rows(robot, spec.elbow), body_array(robot)
+
+
 def solve_path(robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any) -> PathSolution:
     """The legs' angles, rates, accelerations and the torques at every end-effector state
     ``(x, y)`` (SI) in the working mode ``spec.elbow``, within the robot's joint limits."""
     from planar_tui.kernels.dynamics5r import solve_fivebar_path
 
-    legs = leg_rows(robot, spec.elbow)
+    _, legs, body = path_arrays(robot, spec)
     return PathSolution(
-        *solve_fivebar_path(legs, body_array(robot), pose, rate, acceleration, SINGULAR_RELATIVE)
+        *solve_fivebar_path(legs, body, pose, rate, acceleration, SINGULAR_RELATIVE)
     )

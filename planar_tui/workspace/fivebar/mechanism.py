@@ -106,6 +106,11 @@ class MechanismFiveBar(Mechanism):
 
         return solve_path(robot, spec, pose, rate, acceleration)
 
+    def path_arrays(self, robot: Any, spec: Any) -> tuple[int, Any, Any]:
+        from planar_tui.workspace.fivebar.dynamics import path_arrays  # numpy
+
+        return path_arrays(robot, spec)
+
     def linkage(self, robot: Any, pose: Any, actuators: Any) -> Linkage:
         """Legs :math:`A_i \\to B_i = A_i + l_{1,i}(\\cos\\theta_i, \\sin\\theta_i) \\to P`,
         the base link :math:`A_1A_2` as the frame, no platform."""

@@ -176,6 +176,13 @@ class Mechanism(Protocol):
         problem = f"{self.name} has no path dynamics"
         raise NotImplementedError(problem)
 
+    def path_arrays(self, robot: Any, spec: Any) -> tuple[int, Any, Any]:
+        """What :meth:`inverse_dynamics` solves with, for many robots at once
+        (:func:`~planar_tui.kernels.dynamics_robots.robots_path_efforts`): the leg family,
+        the leg rows and the body entries of ``robot`` in the working mode of ``spec``."""
+        problem = f"{self.name} has no path dynamics"
+        raise NotImplementedError(problem)
+
     def linkage(self, robot: Any, pose: Any, actuators: Any) -> Linkage:
         """The robot's bodies for a drawing (a
         :class:`~planar_tui.workspace.paving.linkage.Linkage`, cm) with the platform at

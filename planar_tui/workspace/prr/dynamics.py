@@ -49,6 +49,15 @@ def body_array(robot: Any) -> Any:
     )
 
 
+def path_arrays(robot: Any, spec: Any) -> tuple[int, Any, Any]:
+    """The leg family of :func:`~planar_tui.kernels.dynamics_robots.robots_path_efforts`
+    (PRR_LEGS), the leg rows and the body entries of ``robot`` in the working mode of
+    ``spec``: what :func:`solve_path` solves with."""
+    from planar_tui.kernels.dynamics_robots import PRR_LEGS
+
+    return PRR_LEGS, leg_rows(robot, spec.slider_modes), body_array(robot)
+
+
 def solve_path(robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any) -> PathSolution:
     """The strokes, their rates and accelerations and the slider forces at every platform
     state ``(x, y, phi)`` (SI) in the working mode ``spec.slider_modes``, within the
@@ -56,12 +65,12 @@ def solve_path(robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any) -
     from planar_tui.kernels.dynamics3prr import prr_path_dynamics
     from planar_tui.kernels.dynamics3rpr import solve_legs
 
-    legs = leg_rows(robot, spec.slider_modes)
+    _, legs, body = path_arrays(robot, spec)
     return PathSolution(
         *solve_legs(
             prr_path_dynamics,
             legs,
-            body_array(robot),
+            body,
             pose,
             rate,
             acceleration,

@@ -90,6 +90,11 @@ class Mechanism3PRR(LegMechanism):
 
         return solve_path(robot, spec, pose, rate, acceleration)
 
+    def path_arrays(self, robot: Any, spec: Any) -> tuple[int, Any, Any]:
+        from planar_tui.workspace.prr.dynamics import path_arrays  # numpy
+
+        return path_arrays(robot, spec)
+
     def direct_kinematics(self, robot: Any, actuators: Any) -> Any:
         """The poses at strokes ``actuators`` = :math:`s_i` (cm): the three-distance problem
         with bases the sliders' joints :math:`B_i + s_i u_i` and distances :math:`l_i`."""

@@ -46,17 +46,26 @@ def body_array(robot: Any) -> Any:
     )
 
 
+def path_arrays(robot: Any, spec: Any) -> tuple[int, Any, Any]:
+    """The leg family of :func:`~planar_tui.kernels.dynamics_robots.robots_path_efforts`
+    (RPR_LEGS), the leg rows and the body entries of ``robot`` in the working mode of
+    ``spec``: what :func:`solve_path` solves with."""
+    from planar_tui.kernels.dynamics_robots import RPR_LEGS
+
+    return RPR_LEGS, leg_rows(robot, spec.leg_limits_cm), body_array(robot)
+
+
 def solve_path(robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any) -> PathSolution:
     """The leg lengths, their rates and accelerations and the leg forces at every platform
     state ``(x, y, phi)`` (SI), within ``spec.leg_limits_cm``."""
     from planar_tui.kernels.dynamics3rpr import rpr_path_dynamics, solve_legs
 
-    legs = leg_rows(robot, spec.leg_limits_cm)
+    _, legs, body = path_arrays(robot, spec)
     return PathSolution(
         *solve_legs(
             rpr_path_dynamics,
             legs,
-            body_array(robot),
+            body,
             pose,
             rate,
             acceleration,

@@ -78,6 +78,11 @@ class Mechanism3RPR(LegMechanism):
 
         return solve_path(robot, spec, pose, rate, acceleration)
 
+    def path_arrays(self, robot: Any, spec: Any) -> tuple[int, Any, Any]:
+        from planar_tui.workspace.rpr.dynamics import path_arrays  # numpy
+
+        return path_arrays(robot, spec)
+
     def direct_kinematics(self, robot: Any, actuators: Any) -> Any:
         """The poses at leg lengths ``actuators`` = :math:`\\rho_i` (cm): the three-distance
         problem with bases :math:`A_i` and distances :math:`\\rho_i`."""

@@ -45,12 +45,19 @@ def body_array(robot: Any) -> Any:
     )
 
 
+def path_arrays(robot: Any, spec: Any) -> tuple[int, Any, Any]:
+    """The leg family of :func:`~planar_tui.kernels.dynamics_robots.robots_path_efforts`
+    (RR_LEGS), the leg rows and the body entries of ``robot`` in the working mode of
+    ``spec``: what :func:`solve_path` solves with."""
+    from planar_tui.kernels.dynamics_robots import RR_LEGS
+
+    return RR_LEGS, leg_rows(robot, spec.elbow, spec.limits_rad), body_array(robot)
+
+
 def solve_path(robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any) -> PathSolution:
     """The legs' angles, rates, accelerations and the torques at every platform state
     ``(x, y, phi)`` (SI) in the working mode ``spec.elbow``, within ``spec.limits_rad``."""
     from planar_tui.kernels.dynamics3rrr import solve_rr_path
 
-    legs = leg_rows(robot, spec.elbow, spec.limits_rad)
-    return PathSolution(
-        *solve_rr_path(legs, body_array(robot), pose, rate, acceleration, SINGULAR_RELATIVE)
-    )
+    _, legs, body = path_arrays(robot, spec)
+    return PathSolution(*solve_rr_path(legs, body, pose, rate, acceleration, SINGULAR_RELATIVE))

@@ -132,6 +132,11 @@ class Mechanism3RRR(Mechanism):
 
         return solve_path(robot, spec, pose, rate, acceleration)
 
+    def path_arrays(self, robot: Any, spec: Any) -> tuple[int, Any, Any]:
+        from planar_tui.workspace.rrr.dynamics import path_arrays  # numpy
+
+        return path_arrays(robot, spec)
+
     def linkage(self, robot: Any, pose: Any, actuators: Any) -> Linkage:
         """Legs :math:`A_i \\to A_i + l_1(\\cos\\theta_i, \\sin\\theta_i) \\to C_i`, the base
         triangle as the frame."""
