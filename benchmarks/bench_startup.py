@@ -59,10 +59,12 @@ def children_cpu_s() -> float:
 
 
 def timed(command: list[str], env: dict[str, str]) -> tuple[float, float]:
-    """(wall s, CPU s) of one fresh process running ``command`` (exit code checked)."""
+    """(wall s, CPU s) of one fresh process running ``command`` (exit code checked), started
+    in a neutral folder: ``python -m`` puts its working folder first on ``sys.path``, so in
+    the repository it would import this checkout's package whatever ``PYTHONPATH`` says."""
     cpu_before = children_cpu_s()
     started = time.perf_counter()
-    subprocess.run(command, check=True, capture_output=True, env=env, cwd=REPO)
+    subprocess.run(command, check=True, capture_output=True, env=env, cwd=tempfile.gettempdir())
     return time.perf_counter() - started, children_cpu_s() - cpu_before
 
 
