@@ -10,7 +10,6 @@ are never split, boundary boxes are halved down to ``precision_cm`` (and again d
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar
 
@@ -35,7 +34,6 @@ from planar_tui.workspace.fivebar.robot import Robot5R
 from planar_tui.workspace.fivebar.tolerance import (
     TOLERANCE_FIELDS_5R,
     TOLERANCE_KEYS_5R,
-    tolerant_level_kernel,
 )
 from planar_tui.workspace.paving.circle import read_centre, refuse_without_singularities
 from planar_tui.workspace.paving.columns import tolerance_names
@@ -51,6 +49,7 @@ from planar_tui.workspace.paving.result import (
     point_figures,
     render_workspace,
 )
+from planar_tui.workspace.paving.runner import compute_workspace
 from planar_tui.workspace.paving.settings import (
     boxes_setting,
     budget_setting,
@@ -205,63 +204,9 @@ class FiveBarResult(JobResult):
 
 
 def compute_fivebar(robot: Robot5R, spec: FiveBarSpec, budget: BoxBudget) -> WorkspaceOutcome:
-    """Pave the search box with the five-bar's exact test (module docstring)."""
-    import numpy as np
-
-    from planar_tui.kernels.workspace5r import level
-    from planar_tui.workspace.fivebar.robot import geometric_area
-    from planar_tui.workspace.fivebar.tolerance import reach_box_cm
-    from planar_tui.workspace.paving.levels import (
-        WorkspaceOutcome,
-        finished_outcome,
-        pave_in_levels,
-        square_about,
-    )
-
-    started = time.perf_counter()
-    box = spec.search_box_cm or square_about(reach_box_cm(robot, spec), spec.precision_cm)
-    extent = (box[0][0], box[0][1], box[1][0], box[1][1])
-    legs, limits = robot.leg_arrays()
-    level = tolerant_level_kernel(spec, level)
-    geometric = None
-    if spec.geometric_reference or spec.form == "geometric":
-        geometric = geometric_area(robot)
-    if spec.form == "geometric":
-        assert geometric is not None
-        return WorkspaceOutcome(
-            spec.form,
-            spec.precision_cm,
-            None,
-            np.zeros((0, 4)),
-            np.zeros(0, np.int64),
-            0,
-            geometric.outer_cm2,
-            geometric.inner_cm2,
-            geometric,
-            time.perf_counter() - started,
-            extent,
-        )
-
-    def pave(seeds, precision, inside_cm2=0.0):
-        def decide(rows, start, stop, children, outcome):
-            level(legs, limits, precision, rows, start, stop, children, outcome)
-
-        return pave_in_levels(seeds, budget, decide, inside_cm2)
-
-    budget.progress.start(1.0, "five-bar paving")
-    boxes, status = pave(np.array([extent]), spec.precision_cm)
-    return finished_outcome(
-        spec,
-        boxes,
-        status,
-        lambda seeds, inside: pave(seeds, spec.refine_precision_cm, inside),
-        budget,
-        geometric,
-        started,
-        extent,
-        form=spec.form,
-        disjoint=True,
-    )
+    """Pave the search box with the five-bar's exact test (module docstring):
+    :func:`~planar_tui.workspace.paving.runner.compute_workspace` with its Mechanism."""
+    return compute_workspace(MECHANISM, robot, spec, budget, label="five-bar paving")
 
 
 def pave_fivebar(job: Any, budget: BoxBudget) -> WorkspaceOutcome:

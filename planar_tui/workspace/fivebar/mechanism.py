@@ -8,7 +8,7 @@ from collections.abc import Callable
 from types import MappingProxyType
 from typing import Any
 
-from planar_tui.workspace.fivebar.robot import leg_angles, workspace_polygon
+from planar_tui.workspace.fivebar.robot import geometric_area, leg_angles, workspace_polygon
 from planar_tui.workspace.fivebar.tolerance import TOLERANCE_KEYS_5R, tolerant_level_kernel
 from planar_tui.workspace.path.model import PathModel, PathSolution
 from planar_tui.workspace.paving.linkage import Linkage, rotated
@@ -63,6 +63,11 @@ class MechanismFiveBar(Mechanism):
 
     def polygon(self, robot: Any, spec: Any, segments_per_turn: int, outward: bool) -> Any:
         return workspace_polygon(robot, segments_per_turn, outward)
+
+    def geometric_area(self, robot: Any, spec: Any) -> Any:
+        """:func:`~planar_tui.workspace.fivebar.robot.geometric_area` (at most 2^17
+        segments per turn)."""
+        return geometric_area(robot)
 
     def path_box_test(self, robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any, Any]]:
         import numpy as np

@@ -231,9 +231,16 @@ def check_circle_keys(values: dict[str, Any], reader: TableReader, names: tuple[
         raise reader.error("singularities", 'is true with form = "geometric"', "a form with boxes")
 
 
-def compute_planar(robot: Any, spec: PlanarSpec, budget: Any) -> Any:
-    """The paving of the module docstring for one robot and spec
-    (:class:`~planar_tui.workspace.paving.levels.WorkspaceOutcome`)."""
+def compute_workspace(
+    mechanism: Mechanism, robot: Any, spec: Any, budget: Any, label: str | None = None
+) -> Any:
+    """The paving of the module docstring for one robot, its ``mechanism`` and a spec
+    (:class:`~planar_tui.workspace.paving.levels.WorkspaceOutcome`): the search box (the
+    spec's, else a square about the reach box grown by
+    :func:`~planar_tui.workspace.paving.tolerance.reach_margin_cm`), the levels decided by
+    :meth:`Mechanism.decider`, the boundary refined, ``|inside| <= exact <= |kept|``; an
+    orientation range goes to :meth:`Mechanism.compute_range`. ``label`` names the stage in
+    the progress (default: the form's)."""
     import numpy as np
 
     from planar_tui.workspace.paving.levels import (
@@ -244,10 +251,8 @@ def compute_planar(robot: Any, spec: PlanarSpec, budget: Any) -> Any:
     )
     from planar_tui.workspace.paving.tolerance import grown, reach_margin_cm
 
-    mechanism: Mechanism = spec.mechanism
-    if isinstance(spec.orientation_deg, tuple):  # a range (the kind's check allowed it)
-        assert mechanism.has_orientation_ranges
-        return mechanism.compute_range(robot, spec, budget)
+    if mechanism.has_orientation_ranges and isinstance(spec.orientation_deg, tuple):
+        return mechanism.compute_range(robot, spec, budget)  # the kind's check allowed it
     started = time.perf_counter()
     reach = grown(mechanism.reach_box(robot, spec), reach_margin_cm(spec))  # "some": farther
     box = spec.search_box_cm or square_about(reach, spec.precision_cm)
@@ -275,7 +280,7 @@ def compute_planar(robot: Any, spec: PlanarSpec, budget: Any) -> Any:
     def decider(precision: float) -> Callable[..., None]:
         return mechanism.decider(robot, spec, precision)
 
-    budget.progress.start(1.0, f"{spec.form} paving")
+    budget.progress.start(1.0, label or f"{spec.form} paving")
     boxes, status = pave_in_levels(np.array([extent]), budget, decider(spec.precision_cm))
 
     def refine(seeds, inside_cm2):
@@ -294,6 +299,11 @@ def compute_planar(robot: Any, spec: PlanarSpec, budget: Any) -> Any:
         form=spec.form,
         disjoint=True,
     )
+
+
+def compute_planar(robot: Any, spec: PlanarSpec, budget: Any) -> Any:
+    """:func:`compute_workspace` with the spec's kind's Mechanism (a 3-RPR or 3-PRR)."""
+    return compute_workspace(spec.mechanism, robot, spec, budget)
 
 
 def pave_planar(job: Any, budget: Any) -> Any:
@@ -418,6 +428,7 @@ def planar_job_kind(
 __all__ = [
     "PlanarSpec",
     "compute_planar",
+    "compute_workspace",
     "extra_outputs",
     "planar_job_kind",
     "render_workspace",
