@@ -8,36 +8,27 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 from types import SimpleNamespace
-from typing import ClassVar
 
 from planar_tui.jobkind import Job
 from planar_tui.schema import plot_setting
 from planar_tui.workspace.path.certify import kappa_setting
 from planar_tui.workspace.path.job import (
+    PathSpec,
     constant_efforts_setting,
-    duration_setting,
     feed_forward_setting,
-    path_check,
     path_job_kind,
-    pose_setting,
     resolved_modes,
-    steps_setting,
 )
 from planar_tui.workspace.paving.dexterity import length_setting
-from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.paving.settings import modes_setting
 from planar_tui.workspace.prr.mechanism import MECHANISM
 from planar_tui.workspace.prr.robot import Robot3PRR
 
 
 @dataclass(frozen=True, kw_only=True)
-class Path3PRRSpec:
+class Path3PRRSpec(PathSpec):
     """A quintic rest-to-rest path of the 3-PRR's platform (cm, degrees, seconds)."""
 
-    from_pose: tuple[float, ...] = pose_setting(3, "the platform's pose at t = 0")
-    to_pose: tuple[float, ...] = pose_setting(3, "the platform's pose at t = duration_s")
-    duration_s: float = duration_setting()
-    steps: int = steps_setting()
     slider_modes: tuple[int, int, int] | None = modes_setting(
         name="slider_modes",
         default_doc="(the mode the strokes allow at from_pose)",
@@ -50,9 +41,7 @@ class Path3PRRSpec:
     characteristic_length_cm: float | None = length_setting()
     plot: str | None = plot_setting()
 
-    mechanism: ClassVar[Mechanism] = MECHANISM
-
-    check = path_check(MECHANISM)
+    mechanism = MECHANISM
 
 
 def prepare_path(job: Job[Path3PRRSpec, Robot3PRR]) -> Path3PRRSpec:
