@@ -195,8 +195,3 @@ def certify_circle(job, centre, extent, precision, budget) -> tuple[float, float
     dy = np.maximum(np.maximum(bad[:, 2] - cy, cy - bad[:, 3]), 0.0)
     nearest = float(np.hypot(dx, dy).min(initial=reach))
     return max(0.0, np.nextafter(np.nextafter(nearest, 0.0), 0.0)), min(upper)
-
-
-def singularity_columns(outcome: FiveBarSingularities | None) -> list:
-    """The summary's :data:`HEADER` cells (empty without ``singularities``)."""
-    return [""] * len(HEADER) if outcome is None else outcome.columns()

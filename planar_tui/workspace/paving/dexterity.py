@@ -280,11 +280,6 @@ def dexterity_names(job: Any) -> tuple[str, ...]:
     return HEADER if getattr(job.spec, "kappa_max", None) is not None else ()
 
 
-def dexterity_columns(outcome: DexterityOutcome | None) -> list:
-    """The summary's :data:`HEADER` cells (empty without ``kappa_max``)."""
-    return [""] * len(HEADER) if outcome is None else outcome.columns()
-
-
 class DexterityRows(Sequence):
     """The boxes CSV's rows with ``kappa_max``: the workspace's rows (``workspace``, a
     :class:`~planar_tui.workspace.paving.levels.BoxRows`) with empty κ cells, then the

@@ -23,7 +23,6 @@ from typing import TYPE_CHECKING, Any
 
 from planar_tui.errors import PresetError
 from planar_tui.workspace.paving.circle import (
-    HEADER,
     SINGULAR_RELATIVE,
     refuse_without_singularities,
 )
@@ -180,7 +179,7 @@ class SingularityOutcome:
         return self.boxes[self.status == SINGULAR]
 
     def columns(self) -> list:
-        """The summary's :data:`HEADER` cells (``elbow`` as ``"1 -1 1"``)."""
+        """The summary's :data:`~planar_tui.workspace.paving.circle.HEADER` cells (``elbow`` as ``"1 -1 1"``)."""
         elbow = " ".join(str(s) for s in self.elbow)
         return [*self.centre_cm, self.radius_lo_cm, self.radius_hi_cm, elbow]
 
@@ -293,8 +292,3 @@ def compute_singularities(
         boxes_processed=processed_here,
         seconds=time.perf_counter() - started,
     )
-
-
-def singularity_columns(outcome: SingularityOutcome | None) -> list:
-    """The summary's :data:`HEADER` cells (empty without ``singularities``)."""
-    return [""] * len(HEADER) if outcome is None else outcome.columns()
