@@ -54,7 +54,7 @@ def solve_path(robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any) -
     state ``(x, y, phi)`` (SI) in the working mode ``spec.slider_modes``, within the
     robot's strokes."""
     from planar_tui.kernels.dynamics3prr import prr_path_dynamics
-    from planar_tui.kernels.dynamics3rpr import solve_legs
+    from planar_tui.kernels.dynamics3rrr import solve_legs
 
     legs = leg_rows(robot, spec.slider_modes)
     return PathSolution(
