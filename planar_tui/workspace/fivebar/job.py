@@ -31,15 +31,26 @@ from planar_tui.schema import (
 )
 from planar_tui.workspace.fivebar.mechanism import MECHANISM
 from planar_tui.workspace.fivebar.robot import Robot5R
+from planar_tui.workspace.fivebar.singularity import HEADER, centre_problem, compute_singularities
 from planar_tui.workspace.fivebar.tolerance import (
     TOLERANCE_FIELDS_5R,
     TOLERANCE_KEYS_5R,
+    check_search_box,
 )
 from planar_tui.workspace.paving.circle import read_centre, refuse_without_singularities
 from planar_tui.workspace.paving.columns import tolerance_names
-from planar_tui.workspace.paving.dexterity import check_dexterity, kappa_setting
+from planar_tui.workspace.paving.dexterity import (
+    check_dexterity,
+    compute_dexterity,
+    dexterity_names,
+    kappa_setting,
+)
 from planar_tui.workspace.paving.estimate import check_needs, estimate, report_box_estimate
-from planar_tui.workspace.paving.interference import check_interference, width_setting
+from planar_tui.workspace.paving.interference import (
+    check_interference,
+    interference_names,
+    width_setting,
+)
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.paving.result import (
     BOXES_OPTION,
@@ -152,8 +163,6 @@ class FiveBarSpec:
         check_tolerance(values, reader, TOLERANCE_KEYS_5R, lengths)
         refuse_reference(values, reader)
         if values["search_box_cm"] is not None and values["tolerance_mode"] == "some":
-            from planar_tui.workspace.fivebar.tolerance import check_search_box
-
             check_search_box(values, reader, robot)
         if not values["singularities"]:
             refuse_without_singularities(
@@ -166,8 +175,6 @@ class FiveBarSpec:
                 'working_mode = "++", "+-", "-+" or "--" in [robot5r]',
             )
         elif values["singularity_free_circle"] is not None:
-            from planar_tui.workspace.fivebar.singularity import centre_problem
-
             problem = centre_problem(robot, values["singularity_free_circle"])
             if problem is not None:
                 raise reader.error(
@@ -229,8 +236,6 @@ def fivebar_head(job: Any, outcome: WorkspaceOutcome) -> SummaryRow:
 
 def fivebar_singularities(ready: Any, outcome: WorkspaceOutcome, budget: BoxBudget) -> Any:
     """The type I and II singularities' columns, computed with ``singularities``."""
-    from planar_tui.workspace.fivebar.singularity import HEADER, compute_singularities
-
     if not ready.job.spec.singularities:
         return HEADER, None
     return HEADER, compute_singularities(ready.job, outcome.extent_cm, budget)
@@ -243,8 +248,6 @@ def fivebar_elbow(ready: Any) -> str:
 
 def fivebar_dexterity(ready: Any, extent: Any, budget: BoxBudget) -> Any:
     """The dexterous region of a job with ``kappa_max`` (no characteristic length)."""
-    from planar_tui.workspace.paving.dexterity import compute_dexterity
-
     spec = ready.job.spec
     evaluate = MECHANISM.dexterity(ready.job, None)
     elbow = fivebar_elbow(ready)
@@ -274,9 +277,6 @@ def run_fivebar(
 
 def fivebar_figure_names(job: Any) -> tuple[str, ...]:
     """The columns of a five-bar job (:func:`planar_tui.workspace.fivebar.job.run_fivebar`)."""
-    from planar_tui.workspace.fivebar.singularity import HEADER
-    from planar_tui.workspace.paving.dexterity import dexterity_names
-    from planar_tui.workspace.paving.interference import interference_names
     from planar_tui.workspace.paving.levels import SUMMARY_HEADER
 
     return (

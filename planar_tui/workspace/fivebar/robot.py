@@ -47,6 +47,7 @@ from typing import Any
 
 from planar_tui.jobkind import RobotKind
 from planar_tui.schema import mass_setting, number, setting, string
+from planar_tui.workspace.paving.legs import branch_angles
 
 #: The working modes: both legs' elbow signs, or any branch.
 WORKING_MODES = ("any", "++", "+-", "-+", "--")
@@ -241,8 +242,6 @@ def geometric_area(robot: Robot5R, relative_tolerance: float = 2e-5, max_segment
 # -- float model ---------------------------------------------------------------------------
 def leg_angles(robot: Robot5R, point) -> list[dict[int, float] | None]:
     """Per leg, :func:`~planar_tui.workspace.paving.geometry.branch_angles` at ``point``."""
-    from planar_tui.workspace.paving.legs import branch_angles
-
     return [
         branch_angles(point[0] - ax, point[1] - ay, l1, l2)
         for (ax, ay), l1, l2 in zip(

@@ -46,6 +46,7 @@ from typing import TYPE_CHECKING, Any
 
 from planar_tui.csvio import CsvTable
 from planar_tui.schema import number, setting
+from planar_tui.workspace.path.quintic import quintic
 
 if TYPE_CHECKING:
     import numpy as np
@@ -189,8 +190,6 @@ def pose_boxes(start: Any, stop: Any, duration_s: float, t0: Any, t1: Any) -> An
     time intervals ``[t0, t1]`` (k,) of the path from ``start`` to ``stop`` (cm, cm[, rad]):
     the hull of the end poses, widened for round-off (module docstring)."""
     import numpy as np
-
-    from planar_tui.workspace.path.quintic import quintic
 
     start = np.asarray(start, dtype=np.float64)
     stop = np.asarray(stop, dtype=np.float64)

@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING, Any, ClassVar
 from planar_tui.csvio import CsvTable
 from planar_tui.errors import JobError, PresetError
 from planar_tui.jobkind import Command, Job, JobKind, JobResult, PreparedJob, Tab
+from planar_tui.limits import memory_problem, time_problem
 from planar_tui.progress import Progress
 from planar_tui.schema import boolean, integer, number, numbers, setting
 from planar_tui.workspace.path.certify import (
@@ -32,8 +33,9 @@ from planar_tui.workspace.path.certify import (
     certify,
     check_certificate,
 )
-from planar_tui.workspace.path.forward import PathFailure, constant_motion
+from planar_tui.workspace.path.forward import PathFailure, constant_motion, simulate
 from planar_tui.workspace.path.model import OK, PathModel, PathSolution, problem_text
+from planar_tui.workspace.path.quintic import quintic, sample_times
 
 if TYPE_CHECKING:
     from planar_tui.workspace.paving.mechanism import Mechanism
@@ -123,8 +125,6 @@ def estimate(job: Job[Any, Any]) -> tuple[float, float]:
 def check_path(values: dict[str, Any], reader: Any, robot: Any, mechanism: Any) -> dict[str, Any]:
     """A path job fits the time and memory limits (:func:`path_needs`,
     :mod:`planar_tui.limits`): one line on ``steps`` otherwise."""
-    from planar_tui.limits import memory_problem, time_problem
-
     steps = values["steps"]
     memory, seconds = path_needs(steps, forward_runs(values), mechanism.path_model(robot))
     problem = time_problem(seconds) or memory_problem(memory)
@@ -252,8 +252,6 @@ def run_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathResul
     where the legs close."""
     import numpy as np
 
-    from planar_tui.workspace.path.quintic import quintic, sample_times
-
     job, spec, robot = ready.job, ready.prepared, ready.robot
     mechanism = spec.mechanism
     model = mechanism.path_model(robot)
@@ -364,9 +362,6 @@ def feed_forward(
     (the inverse dynamics of the quintic at every RK4 stage's time): the largest deviation
     of the pose from the path (m and rad mixed, max-norm) and the closure drift (m)."""
     import numpy as np
-
-    from planar_tui.workspace.path.forward import simulate
-    from planar_tui.workspace.path.quintic import quintic
 
     def effort(t: float) -> Any:
         state = quintic(start, stop, spec.duration_s, np.array([t]))

@@ -31,6 +31,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from planar_tui.csvio import CsvTable
 from planar_tui.schema import TableReader, number, setting
 
 if TYPE_CHECKING:
@@ -316,8 +317,6 @@ class DexterityRows(Sequence):
 def boxes_table(workspace: Any, outcome: DexterityOutcome | None) -> Any:
     """The boxes CSV: the workspace's table ``workspace``, with ``kappa_max`` its rows and
     the dexterity boxes (:class:`DexterityRows`)."""
-    from planar_tui.csvio import CsvTable
-
     if outcome is None:
         return workspace
     return CsvTable((*workspace.header, *BOXES_COLUMNS), DexterityRows(workspace.rows, outcome))

@@ -27,6 +27,7 @@ from typing import Any, ClassVar
 from planar_tui.jobkind import Command, Job, JobKind, Option, OutputOption, PreparedJob, Tab
 from planar_tui.progress import Progress
 from planar_tui.schema import TableReader, number, plot_setting, setting, string
+from planar_tui.workspace.paving.circle import HEADER
 from planar_tui.workspace.paving.columns import planar_figure_names
 from planar_tui.workspace.paving.dexterity import (
     check_dexterity,
@@ -37,7 +38,14 @@ from planar_tui.workspace.paving.dexterity import (
 from planar_tui.workspace.paving.estimate import check_needs, estimate, report_box_estimate
 from planar_tui.workspace.paving.interference import check_interference, width_setting
 from planar_tui.workspace.paving.mechanism import Mechanism
-from planar_tui.workspace.paving.orientation import ORIENTATION_HEADER, orientation_columns
+from planar_tui.workspace.paving.orientation import (
+    ORIENTATION_HEADER,
+    check_orientation,
+    orientation_columns,
+    paved_range,
+    range_stage,
+)
+from planar_tui.workspace.paving.orientation import describe as describe_range
 from planar_tui.workspace.paving.result import (
     WorkspaceResult,
     extra_outputs,
@@ -58,6 +66,7 @@ from planar_tui.workspace.paving.settings import (
     singularity_precision_setting,
 )
 from planar_tui.workspace.paving.stages import Stages, SummaryRow, run_stages
+from planar_tui.workspace.paving.tolerance import grown, reach_margin_cm
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -138,7 +147,6 @@ class PlanarSpec:
         box = values["search_box_cm"]
         if box is not None:
             spec = cls(**values)
-            from planar_tui.workspace.paving.tolerance import grown, reach_margin_cm
 
             reach = grown(spec.mechanism.reach_box(robot, spec), reach_margin_cm(spec))
             rxlo, rxhi, rylo, ryhi = reach  # a "some" job's robots reach farther
@@ -171,8 +179,6 @@ def check_range_and_reference(values: dict[str, Any], reader: TableReader, form:
     ``form`` only, and no singularities; with a range or a tolerance the job has no geometric
     reference (one orientation's nominal area is not the job's: off by default, refused if
     asked for)."""
-    from planar_tui.workspace.paving.orientation import check_orientation
-
     check_orientation(values, reader, form)
     ranged = isinstance(values["orientation_deg"], tuple)
     if ranged and values["singularities"]:
@@ -192,7 +198,6 @@ def compute_range(robot: Any, spec: Any, budget: Any, g: Any, limits: Any, mecha
     (:func:`~planar_tui.workspace.paving.orientation.range_stage`) of the kernels' ``mechanism``
     with its arrays ``g`` (the platform points at ``g[2:8]``) and ``limits``."""
     from planar_tui.workspace.paving.levels import square_about
-    from planar_tui.workspace.paving.orientation import paved_range, range_stage
 
     started = time.perf_counter()
     box = spec.search_box_cm or square_about(
@@ -249,7 +254,6 @@ def compute_workspace(
         pave_in_levels,
         square_about,
     )
-    from planar_tui.workspace.paving.tolerance import grown, reach_margin_cm
 
     if mechanism.has_orientation_ranges and isinstance(spec.orientation_deg, tuple):
         return mechanism.compute_range(robot, spec, budget)  # the kind's check allowed it
@@ -317,7 +321,6 @@ def planar_head(job: Any, outcome: Any) -> SummaryRow:
     """The summary row of the paving: the 3-RRR's columns, its orientation's among them,
     and the range described where the orientation is one."""
     from planar_tui.workspace.paving.levels import SUMMARY_HEADER, summary_line  # numpy
-    from planar_tui.workspace.paving.orientation import describe as describe_range
 
     base, summary = outcome.summary_row(), summary_line(outcome)
     if isinstance(job.spec.orientation_deg, tuple):
@@ -329,8 +332,6 @@ def planar_head(job: Any, outcome: Any) -> SummaryRow:
 def planar_singularities(ready: Any, outcome: Any, budget: Any) -> Any:
     """The circle's columns where the Mechanism certifies singularities (computed where
     ``prepare`` resolved a centre); none where it does not."""
-    from planar_tui.workspace.paving.circle import HEADER
-
     mechanism: Mechanism = ready.job.spec.mechanism
     if not mechanism.has_singularities:
         return None

@@ -8,11 +8,17 @@ from collections.abc import Callable
 from types import MappingProxyType
 from typing import Any
 
+from planar_tui.workspace.path.certify import box_test
 from planar_tui.workspace.path.model import PathModel, PathSolution
+from planar_tui.workspace.paving.dexterity import circumradius_cm
 from planar_tui.workspace.paving.linkage import Linkage, platform_joints, rotated
 from planar_tui.workspace.paving.mechanism import LegMechanism
 from planar_tui.workspace.prr import orientation, singularity
 from planar_tui.workspace.prr import robot as prr
+from planar_tui.workspace.prr.dexterity import evaluator as dexterity_evaluator
+from planar_tui.workspace.prr.dexterity import working_modes
+from planar_tui.workspace.prr.dynamics import solve_path
+from planar_tui.workspace.prr.interference import evaluator as interference_evaluator
 from planar_tui.workspace.prr.tolerance import TOLERANCE_KEYS_3PRR
 
 
@@ -40,16 +46,12 @@ class Mechanism3PRR(LegMechanism):
         return singularity.resolve_circle(job)
 
     def dexterity(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
-        from planar_tui.workspace.prr.dexterity import evaluator, working_modes
-
-        return evaluator(job, working_modes(job, prepared))
+        return dexterity_evaluator(job, working_modes(job, prepared))
 
     def path_box_test(self, robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any, Any]]:
         import numpy as np
 
         from planar_tui.kernels.path_certify_prismatic import prr_pose_boxes  # numba
-        from planar_tui.workspace.path.certify import box_test
-        from planar_tui.workspace.paving.dexterity import circumradius_cm
 
         rows = [
             [bx, by, math.cos(math.radians(a)), math.sin(math.radians(a)), lo, hi, length]
@@ -68,10 +70,7 @@ class Mechanism3PRR(LegMechanism):
         return box_test(prr_pose_boxes, g, modes, q, length)
 
     def interference(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
-        from planar_tui.workspace.prr.dexterity import working_modes
-        from planar_tui.workspace.prr.interference import evaluator
-
-        return evaluator(job, working_modes(job, prepared))
+        return interference_evaluator(job, working_modes(job, prepared))
 
     def path_model(self, robot: Any) -> PathModel:
         return PathModel(pose_dimension=3, actuators=3, prismatic=True)
@@ -79,8 +78,6 @@ class Mechanism3PRR(LegMechanism):
     def inverse_dynamics(
         self, robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any
     ) -> PathSolution:
-        from planar_tui.workspace.prr.dynamics import solve_path  # numba
-
         return solve_path(robot, spec, pose, rate, acceleration)
 
     def direct_kinematics(self, robot: Any, actuators: Any) -> Any:

@@ -23,6 +23,7 @@ from planar_tui.workspace.paving.dexterity import length_setting
 from planar_tui.workspace.paving.settings import modes_setting
 from planar_tui.workspace.prr.mechanism import MECHANISM
 from planar_tui.workspace.prr.robot import Robot3PRR
+from planar_tui.workspace.prr.singularity import float_links
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -48,8 +49,6 @@ def prepare_path(job: Job[Path3PRRSpec, Robot3PRR]) -> Path3PRRSpec:
     """The spec with its working mode resolved: ``slider_modes`` as given, else per leg the
     mode the strokes allow at ``from_pose`` (a leg with both asks for ``slider_modes``:
     exit code 2; a leg with none is left to fail the run at t = 0)."""
-    from planar_tui.workspace.prr.singularity import float_links
-
     spec = job.spec
     if spec.slider_modes is not None:
         return spec

@@ -8,11 +8,16 @@ from collections.abc import Callable
 from types import MappingProxyType
 from typing import Any
 
+from planar_tui.workspace.path.certify import box_test
 from planar_tui.workspace.path.model import PathModel, PathSolution
+from planar_tui.workspace.paving.dexterity import circumradius_cm
 from planar_tui.workspace.paving.linkage import Linkage, platform_joints
 from planar_tui.workspace.paving.mechanism import LegMechanism
 from planar_tui.workspace.rpr import orientation, singularity
 from planar_tui.workspace.rpr import robot as rpr
+from planar_tui.workspace.rpr.dexterity import evaluator as dexterity_evaluator
+from planar_tui.workspace.rpr.dynamics import solve_path
+from planar_tui.workspace.rpr.interference import evaluator as interference_evaluator
 from planar_tui.workspace.rpr.tolerance import TOLERANCE_KEYS_3RPR
 
 
@@ -40,21 +45,15 @@ class Mechanism3RPR(LegMechanism):
         return singularity.resolve_centre(job)
 
     def interference(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
-        from planar_tui.workspace.rpr.interference import evaluator
-
-        return evaluator(job.robot, job.spec)
+        return interference_evaluator(job.robot, job.spec)
 
     def dexterity(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
-        from planar_tui.workspace.rpr.dexterity import evaluator
-
-        return evaluator(job.robot, job.spec)
+        return dexterity_evaluator(job.robot, job.spec)
 
     def path_box_test(self, robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any, Any]]:
         import numpy as np
 
         from planar_tui.kernels.path_certify_prismatic import rpr_pose_boxes  # numba
-        from planar_tui.workspace.path.certify import box_test
-        from planar_tui.workspace.paving.dexterity import circumradius_cm
 
         bases = np.array(robot.base_joints_cm, dtype=np.float64)
         q = np.array(robot.platform_points_cm, dtype=np.float64)
@@ -68,8 +67,6 @@ class Mechanism3RPR(LegMechanism):
     def inverse_dynamics(
         self, robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any
     ) -> PathSolution:
-        from planar_tui.workspace.rpr.dynamics import solve_path  # numba
-
         return solve_path(robot, spec, pose, rate, acceleration)
 
     def direct_kinematics(self, robot: Any, actuators: Any) -> Any:

@@ -15,10 +15,19 @@ from collections.abc import Callable
 from types import MappingProxyType
 from typing import Any
 
+from planar_tui.workspace.path.certify import box_test, open_limits
 from planar_tui.workspace.path.model import PathModel, PathSolution
 from planar_tui.workspace.paving.linkage import Linkage, platform_joints, rotated
 from planar_tui.workspace.paving.mechanism import Mechanism
-from planar_tui.workspace.rrr.orientation import compute_orientation_workspace, reach_box_for
+from planar_tui.workspace.rrr.dexterity import evaluator as dexterity_evaluator
+from planar_tui.workspace.rrr.dexterity import length_cm
+from planar_tui.workspace.rrr.dynamics import solve_path
+from planar_tui.workspace.rrr.interference import evaluator as interference_evaluator
+from planar_tui.workspace.rrr.orientation import (
+    compute_orientation_workspace,
+    geometry_vector,
+    reach_box_for,
+)
 from planar_tui.workspace.rrr.pose import leg_modes
 from planar_tui.workspace.rrr.robot import TOLERANCE_KEYS_3RRR
 from planar_tui.workspace.rrr.singularity import compute_singularities, resolve_circle
@@ -77,14 +86,10 @@ class Mechanism3RRR(Mechanism):
         return compute_singularities(job, prepared, extent, budget)
 
     def dexterity(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
-        from planar_tui.workspace.rrr.dexterity import evaluator
-
-        return evaluator(job.robot, job.spec, prepared.circle)
+        return dexterity_evaluator(job.robot, job.spec, prepared.circle)
 
     def interference(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
-        from planar_tui.workspace.rrr.interference import evaluator
-
-        return evaluator(job.robot, job.spec, prepared.circle)
+        return interference_evaluator(job.robot, job.spec, prepared.circle)
 
     def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:
         return compute_orientation_workspace(robot, spec, budget)
@@ -93,9 +98,6 @@ class Mechanism3RRR(Mechanism):
         import numpy as np
 
         from planar_tui.kernels.path_certify_rr import rr_pose_boxes  # numba
-        from planar_tui.workspace.path.certify import box_test, open_limits
-        from planar_tui.workspace.rrr.dexterity import length_cm
-        from planar_tui.workspace.rrr.orientation import geometry_vector
 
         rows = np.tile(geometry_vector(robot), (3, 1))  # one geometry row per leg
         q = np.array(robot.platform_points_cm(), dtype=np.float64)
@@ -122,8 +124,6 @@ class Mechanism3RRR(Mechanism):
     def inverse_dynamics(
         self, robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any
     ) -> PathSolution:
-        from planar_tui.workspace.rrr.dynamics import solve_path  # numba
-
         return solve_path(robot, spec, pose, rate, acceleration)
 
     def linkage(self, robot: Any, pose: Any, actuators: Any) -> Linkage:

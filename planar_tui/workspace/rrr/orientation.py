@@ -12,6 +12,7 @@ from planar_tui.workspace.paving.orientation import (
     range_reach_box,
     range_stage,
 )
+from planar_tui.workspace.rrr.orientation_reference import reference_area
 from planar_tui.workspace.rrr.robot import Robot3RRR
 
 
@@ -76,8 +77,6 @@ def compute_orientation_workspace(robot: Robot3RRR, spec, budget):
     extent = (box[0][0], box[0][1], box[1][0], box[1][1])
     geometric = None
     if spec.geometric_reference:
-        from planar_tui.workspace.rrr.orientation_reference import reference_area
-
         budget.progress.start(1.0, "sampled reference")
         geometric = budget.progress.wait_for(
             reference_area, robot, spec.limits_rad, spec.orientation_deg, spec.orientation_mode

@@ -27,6 +27,7 @@ from planar_tui.workspace.paving.circle import (
     refuse_without_singularities,
 )
 from planar_tui.workspace.paving.legs import branch_angles, on_arc
+from planar_tui.workspace.rrr.orientation import geometry_vector
 
 if TYPE_CHECKING:
     import numpy as np
@@ -197,7 +198,6 @@ def kernel_inputs(robot, spec, circle: Circle):
     import numpy as np
 
     from planar_tui.kernels.workspace_arc import limits_array
-    from planar_tui.workspace.rrr.orientation import geometry_vector
 
     c, s = math.cos(spec.orientation_rad), math.sin(spec.orientation_rad)
     r = np.array([[c * qx - s * qy, s * qx + c * qy] for qx, qy in robot.platform_points_cm()])
