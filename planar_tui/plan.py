@@ -30,9 +30,7 @@ from planar_tui.batch import (
 )
 from planar_tui.errors import PresetError
 from planar_tui.figures.dispatch import figure_problem
-from planar_tui.optimise.budget import check_optimise_budget
 from planar_tui.optimise.run import planned_files as optimise_files
-from planar_tui.optimise.spec import parse_optimisations
 from planar_tui.sweep.budget import check_sweep_budget
 from planar_tui.sweep.checkpoint import checkpoint_path, existing_fingerprint
 from planar_tui.sweep.points import make_points
@@ -163,6 +161,8 @@ def checkpoint_note(label: str, fingerprint: str, output: Path, resume: bool) ->
 def plan_optimisations(presets: Sequence[Preset], plot: Path | None = None) -> list[Optimisation]:
     """The presets' optimisations, checked; ``plot`` replaces their ``plot`` keys as
     :func:`plan_sweeps`' does."""
+    from planar_tui.optimise.spec import parse_optimisations
+
     found = [o for preset in presets for o in parse_optimisations(preset)]
     if plot is None:
         return found
@@ -199,6 +199,8 @@ def plan_run(
     (:func:`planar_tui.sweep.budget.check_sweep_budget`), the optimisations of
     ``optimise_of`` (their figures under ``optimise_plot``) and their checkpoints, then
     (``prepare``) every job prepared by its kind (:func:`planar_tui.batch.prepare_jobs`)."""
+    from planar_tui.optimise.budget import check_optimise_budget
+
     check_figures(jobs, plot)
     outputs = plan_outputs(jobs, out_dir, out, extra_out, plot)
     sweeps, sweep_plans = plan_sweeps(sweeps_of, sweep_plot) if sweeps_of else ([], [])

@@ -8,16 +8,15 @@ from collections.abc import Callable
 from types import MappingProxyType
 from typing import Any
 
-from planar_tui.workspace.fivebar.dexterity import evaluator as dexterity_evaluator
-from planar_tui.workspace.fivebar.dynamics import solve_path
-from planar_tui.workspace.fivebar.interference import evaluator as interference_evaluator
 from planar_tui.workspace.fivebar.robot import geometric_area, leg_angles, workspace_polygon
-from planar_tui.workspace.fivebar.singularity import kernel_inputs
 from planar_tui.workspace.fivebar.tolerance import TOLERANCE_KEYS_5R, tolerant_level_kernel
 from planar_tui.workspace.path.certify import box_test, open_limits
 from planar_tui.workspace.path.model import PathModel, PathSolution
 from planar_tui.workspace.paving.linkage import Linkage, rotated
 from planar_tui.workspace.paving.mechanism import Mechanism
+
+# The registry (so the CLI's help) loads this module: the capabilities' modules (dexterity,
+# interference, dynamics) are imported in the methods that use them.
 
 
 class MechanismFiveBar(Mechanism):
@@ -54,10 +53,14 @@ class MechanismFiveBar(Mechanism):
         return decide
 
     def dexterity(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
-        return dexterity_evaluator(job.robot)
+        from planar_tui.workspace.fivebar.dexterity import evaluator
+
+        return evaluator(job.robot)
 
     def interference(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
-        return interference_evaluator(job.robot, job.spec)
+        from planar_tui.workspace.fivebar.interference import evaluator
+
+        return evaluator(job.robot, job.spec)
 
     def reach_box(self, robot: Any, spec: Any) -> tuple[float, float, float, float]:
         return robot.reach_box_cm()
@@ -74,6 +77,7 @@ class MechanismFiveBar(Mechanism):
         import numpy as np
 
         from planar_tui.kernels.path_certify_rr import rr_pose_boxes  # numba
+        from planar_tui.workspace.fivebar.singularity import kernel_inputs
 
         g, q, _, limits, _ = kernel_inputs(robot)  # q: the point platform's zero offsets
         elbow = np.array(spec.elbow, dtype=np.float64)
@@ -100,6 +104,8 @@ class MechanismFiveBar(Mechanism):
     def inverse_dynamics(
         self, robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any
     ) -> PathSolution:
+        from planar_tui.workspace.fivebar.dynamics import solve_path
+
         return solve_path(robot, spec, pose, rate, acceleration)
 
     def linkage(self, robot: Any, pose: Any, actuators: Any) -> Linkage:

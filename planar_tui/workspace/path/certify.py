@@ -46,7 +46,6 @@ from typing import TYPE_CHECKING, Any
 
 from planar_tui.csvio import CsvTable
 from planar_tui.schema import number, setting
-from planar_tui.workspace.path.quintic import quintic
 
 if TYPE_CHECKING:
     import numpy as np
@@ -190,6 +189,8 @@ def pose_boxes(start: Any, stop: Any, duration_s: float, t0: Any, t1: Any) -> An
     time intervals ``[t0, t1]`` (k,) of the path from ``start`` to ``stop`` (cm, cm[, rad]):
     the hull of the end poses, widened for round-off (module docstring)."""
     import numpy as np
+
+    from planar_tui.workspace.path.quintic import quintic
 
     start = np.asarray(start, dtype=np.float64)
     stop = np.asarray(stop, dtype=np.float64)

@@ -35,7 +35,6 @@ from planar_tui.workspace.path.certify import (
 )
 from planar_tui.workspace.path.forward import PathFailure, constant_motion, simulate
 from planar_tui.workspace.path.model import OK, PathModel, PathSolution, problem_text
-from planar_tui.workspace.path.quintic import quintic, sample_times
 
 if TYPE_CHECKING:
     from planar_tui.workspace.paving.mechanism import Mechanism
@@ -252,6 +251,8 @@ def run_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathResul
     where the legs close."""
     import numpy as np
 
+    from planar_tui.workspace.path.quintic import quintic, sample_times
+
     job, spec, robot = ready.job, ready.prepared, ready.robot
     mechanism = spec.mechanism
     model = mechanism.path_model(robot)
@@ -362,6 +363,8 @@ def feed_forward(
     (the inverse dynamics of the quintic at every RK4 stage's time): the largest deviation
     of the pose from the path (m and rad mixed, max-norm) and the closure drift (m)."""
     import numpy as np
+
+    from planar_tui.workspace.path.quintic import quintic
 
     def effort(t: float) -> Any:
         state = quintic(start, stop, spec.duration_s, np.array([t]))

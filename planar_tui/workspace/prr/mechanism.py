@@ -15,11 +15,10 @@ from planar_tui.workspace.paving.linkage import Linkage, platform_joints, rotate
 from planar_tui.workspace.paving.mechanism import LegMechanism
 from planar_tui.workspace.prr import orientation, singularity
 from planar_tui.workspace.prr import robot as prr
-from planar_tui.workspace.prr.dexterity import evaluator as dexterity_evaluator
-from planar_tui.workspace.prr.dexterity import working_modes
-from planar_tui.workspace.prr.dynamics import solve_path
-from planar_tui.workspace.prr.interference import evaluator as interference_evaluator
 from planar_tui.workspace.prr.tolerance import TOLERANCE_KEYS_3PRR
+
+# The registry (so the CLI's help) loads this module: the capabilities' modules (dexterity,
+# interference, dynamics) are imported in the methods that use them.
 
 
 class Mechanism3PRR(LegMechanism):
@@ -46,7 +45,9 @@ class Mechanism3PRR(LegMechanism):
         return singularity.resolve_circle(job)
 
     def dexterity(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
-        return dexterity_evaluator(job, working_modes(job, prepared))
+        from planar_tui.workspace.prr.dexterity import evaluator, working_modes
+
+        return evaluator(job, working_modes(job, prepared))
 
     def path_box_test(self, robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any, Any]]:
         import numpy as np
@@ -70,7 +71,10 @@ class Mechanism3PRR(LegMechanism):
         return box_test(prr_pose_boxes, g, modes, q, length)
 
     def interference(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
-        return interference_evaluator(job, working_modes(job, prepared))
+        from planar_tui.workspace.prr.dexterity import working_modes
+        from planar_tui.workspace.prr.interference import evaluator
+
+        return evaluator(job, working_modes(job, prepared))
 
     def path_model(self, robot: Any) -> PathModel:
         return PathModel(pose_dimension=3, actuators=3, prismatic=True)
@@ -78,6 +82,8 @@ class Mechanism3PRR(LegMechanism):
     def inverse_dynamics(
         self, robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any
     ) -> PathSolution:
+        from planar_tui.workspace.prr.dynamics import solve_path
+
         return solve_path(robot, spec, pose, rate, acceleration)
 
     def direct_kinematics(self, robot: Any, actuators: Any) -> Any:

@@ -15,10 +15,10 @@ from planar_tui.workspace.paving.linkage import Linkage, platform_joints
 from planar_tui.workspace.paving.mechanism import LegMechanism
 from planar_tui.workspace.rpr import orientation, singularity
 from planar_tui.workspace.rpr import robot as rpr
-from planar_tui.workspace.rpr.dexterity import evaluator as dexterity_evaluator
-from planar_tui.workspace.rpr.dynamics import solve_path
-from planar_tui.workspace.rpr.interference import evaluator as interference_evaluator
 from planar_tui.workspace.rpr.tolerance import TOLERANCE_KEYS_3RPR
+
+# The registry (so the CLI's help) loads this module: the capabilities' modules (dexterity,
+# interference, dynamics) are imported in the methods that use them.
 
 
 class Mechanism3RPR(LegMechanism):
@@ -45,10 +45,14 @@ class Mechanism3RPR(LegMechanism):
         return singularity.resolve_centre(job)
 
     def interference(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
-        return interference_evaluator(job.robot, job.spec)
+        from planar_tui.workspace.rpr.interference import evaluator
+
+        return evaluator(job.robot, job.spec)
 
     def dexterity(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
-        return dexterity_evaluator(job.robot, job.spec)
+        from planar_tui.workspace.rpr.dexterity import evaluator
+
+        return evaluator(job.robot, job.spec)
 
     def path_box_test(self, robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any, Any]]:
         import numpy as np
@@ -67,6 +71,8 @@ class Mechanism3RPR(LegMechanism):
     def inverse_dynamics(
         self, robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any
     ) -> PathSolution:
+        from planar_tui.workspace.rpr.dynamics import solve_path
+
         return solve_path(robot, spec, pose, rate, acceleration)
 
     def direct_kinematics(self, robot: Any, actuators: Any) -> Any:

@@ -19,10 +19,6 @@ from planar_tui.workspace.path.certify import box_test, open_limits
 from planar_tui.workspace.path.model import PathModel, PathSolution
 from planar_tui.workspace.paving.linkage import Linkage, platform_joints, rotated
 from planar_tui.workspace.paving.mechanism import Mechanism
-from planar_tui.workspace.rrr.dexterity import evaluator as dexterity_evaluator
-from planar_tui.workspace.rrr.dexterity import length_cm
-from planar_tui.workspace.rrr.dynamics import solve_path
-from planar_tui.workspace.rrr.interference import evaluator as interference_evaluator
 from planar_tui.workspace.rrr.orientation import (
     compute_orientation_workspace,
     geometry_vector,
@@ -31,6 +27,9 @@ from planar_tui.workspace.rrr.orientation import (
 from planar_tui.workspace.rrr.pose import leg_modes
 from planar_tui.workspace.rrr.robot import TOLERANCE_KEYS_3RRR
 from planar_tui.workspace.rrr.singularity import compute_singularities, resolve_circle
+
+# The registry (so the CLI's help) loads this module: the capabilities' modules (dexterity,
+# interference, dynamics) are imported in the methods that use them.
 
 
 class Mechanism3RRR(Mechanism):
@@ -86,10 +85,14 @@ class Mechanism3RRR(Mechanism):
         return compute_singularities(job, prepared, extent, budget)
 
     def dexterity(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
-        return dexterity_evaluator(job.robot, job.spec, prepared.circle)
+        from planar_tui.workspace.rrr.dexterity import evaluator
+
+        return evaluator(job.robot, job.spec, prepared.circle)
 
     def interference(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
-        return interference_evaluator(job.robot, job.spec, prepared.circle)
+        from planar_tui.workspace.rrr.interference import evaluator
+
+        return evaluator(job.robot, job.spec, prepared.circle)
 
     def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:
         return compute_orientation_workspace(robot, spec, budget)
@@ -98,6 +101,7 @@ class Mechanism3RRR(Mechanism):
         import numpy as np
 
         from planar_tui.kernels.path_certify_rr import rr_pose_boxes  # numba
+        from planar_tui.workspace.rrr.dexterity import length_cm
 
         rows = np.tile(geometry_vector(robot), (3, 1))  # one geometry row per leg
         q = np.array(robot.platform_points_cm(), dtype=np.float64)
@@ -124,6 +128,8 @@ class Mechanism3RRR(Mechanism):
     def inverse_dynamics(
         self, robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any
     ) -> PathSolution:
+        from planar_tui.workspace.rrr.dynamics import solve_path
+
         return solve_path(robot, spec, pose, rate, acceleration)
 
     def linkage(self, robot: Any, pose: Any, actuators: Any) -> Linkage:

@@ -12,7 +12,6 @@ from planar_tui.workspace.paving.orientation import (
     range_reach_box,
     range_stage,
 )
-from planar_tui.workspace.rrr.orientation_reference import reference_area
 from planar_tui.workspace.rrr.robot import Robot3RRR
 
 
@@ -72,6 +71,8 @@ def compute_orientation_workspace(robot: Robot3RRR, spec, budget):
     """The maximal or total orientation workspace of ``spec`` (``orientation_deg`` a range)
     as a :class:`~planar_tui.workspace.paving.levels.WorkspaceOutcome`: the bisection down to
     ``precision_cm``, then the boundary boxes again down to ``refine_precision_cm``."""
+    from planar_tui.workspace.rrr.orientation_reference import reference_area
+
     started = time.perf_counter()
     box = search_box(robot, spec)
     extent = (box[0][0], box[0][1], box[1][0], box[1][1])
