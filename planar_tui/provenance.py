@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from planar_tui import __version__
+from planar_tui import __version__, csvio
 from planar_tui.reader import NAME_MAX_BYTES, read_bounded_text
 from planar_tui.registry import JOB_KINDS
 from planar_tui.schema import dump_settings
@@ -309,11 +309,10 @@ def point_provenance(
 def write_sidecar(csv_path: Path | str, record: Provenance) -> Path | None:
     """Write ``record`` beside ``csv_path`` atomically (temp file + rename); ``None``
     (nothing written) when the CSV's name leaves no room for one (:func:`has_sidecar`)."""
-    from planar_tui.csvio import write_text_atomic
 
     if not has_sidecar(csv_path):
         return None
-    return write_text_atomic(sidecar_path(csv_path), record.to_json())
+    return csvio.write_text_atomic(sidecar_path(csv_path), record.to_json())
 
 
 def read_sidecar(csv_path: Path | str) -> Provenance | None:

@@ -41,6 +41,7 @@ from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from planar_tui import runtime
 from planar_tui.presets import load_preset
 from planar_tui.progress import POLL_S, Progress
 from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
@@ -99,9 +100,8 @@ def kernel_sources_stamp() -> bytes:
     kernel under its source's path and keeps it only while the source's stamp is unchanged,
     so a fresh clone elsewhere (or a checkout touching ``kernels/``) compiles again even
     though the kernel cache folder (named by the sources' digest) is the same."""
-    from planar_tui.runtime import kernels_folder
 
-    folder = kernels_folder()
+    folder = runtime.kernels_folder()
     stamps = [str(folder)]
     for path in sorted(folder.glob("*.py")):
         stat = path.stat()

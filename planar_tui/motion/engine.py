@@ -27,6 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from planar_tui.dynamics import simulate
 from planar_tui.progress import Progress
 from planar_tui.sensitivity.engine import independent_rows, unit_design
 from planar_tui.sensitivity.engine import montecarlo_design as montecarlo_design  # re-export
@@ -258,7 +259,6 @@ def integrate(
     robots are sized by :func:`~planar_tui.dynamics.simulate.next_chunk_steps` (no step
     cap) from the slowest block's last call; ``progress`` counts robot-steps and is
     checked after each call."""
-    from planar_tui.dynamics.simulate import next_chunk_steps
 
     done = 0
     steps = 1
@@ -275,5 +275,5 @@ def integrate(
                     t_s = (done + n_steps) * step_s
                     progress.advance((block[1] - block[0]) * n_steps, f"t = {t_s:.4g} s")
             done += n_steps
-            steps = next_chunk_steps(n_steps, slowest, stops[-1] - done)
+            steps = simulate.next_chunk_steps(n_steps, slowest, stops[-1] - done)
         on_stop(stop, robots.angles())

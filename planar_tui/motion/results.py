@@ -19,6 +19,7 @@ import numpy as np
 
 from planar_tui.csvio import CsvTable
 from planar_tui.motion.engine import output_labels
+from planar_tui.sensitivity import engine
 from planar_tui.sensitivity.aggregate import trajectory_aggregates
 from planar_tui.sensitivity.results import (
     Analysis,
@@ -53,7 +54,6 @@ def analyse_times(design, at_outputs, spec, problem, labels, methods, progress):
     of ``at_outputs`` ({step: (S, n_out)}) and index method; outputs without variance over
     a method's robots have no indices (``defined`` false, zeros in the arrays) and a
     note."""
-    from planar_tui.sensitivity.engine import analyse
 
     analyses, notes = [], []
     num_vars = problem.num_vars
@@ -66,7 +66,9 @@ def analyse_times(design, at_outputs, spec, problem, labels, methods, progress):
             detail = f"{method} t = {t_s:g} s"
             if varying.any():
                 chosen = np.ascontiguousarray(outputs[:, varying])
-                indices[:, varying] = analyse(method, chosen, num_vars, spec.seed, progress, detail)
+                indices[:, varying] = engine.analyse(
+                    method, chosen, num_vars, spec.seed, progress, detail
+                )
             else:
                 progress.advance(1.0, detail)
             for k in np.flatnonzero(~varying):
