@@ -46,9 +46,8 @@ from .dynamics3rrr import (
     NO_CLOSURE,
     OK,
     OUT_OF_LIMITS,
-    PARALLEL_SINGULAR,
     SERIAL_SINGULAR,
-    _solve_transposed,
+    _finish_row,
 )
 
 #: Columns of a leg row: rail point, rail direction, platform point (platform frame), link
@@ -138,12 +137,17 @@ def prr_path_dynamics(
             f[1] += q_s * a[i, 1] + q_psi * (vy - uv * a[i, 1]) / link
             f[2] += q_s * a[i, 2] + q_psi * (rx * vy - ry * vx - uv * a[i, 2]) / link
             stroke[k, i], stroke_rate[k, i], stroke_acceleration[k, i] = st, sd, sdd
-        if code == OK and not _solve_transposed(a, f, effort, k, singular_relative):
-            code = PARALLEL_SINGULAR * 10
-        status[k] = code
-        closure[k] = worst
-        if code != OK:
-            for i in range(3):
-                stroke[k, i] = stroke_rate[k, i] = stroke_acceleration[k, i] = np.nan
-                effort[k, i] = np.nan
-            closure[k] = np.nan
+        _finish_row(
+            code,
+            worst,
+            a,
+            f,
+            k,
+            singular_relative,
+            stroke,
+            stroke_rate,
+            stroke_acceleration,
+            effort,
+            status,
+            closure,
+        )

@@ -47,9 +47,8 @@ from ._jit import kernel
 from .dynamics3rrr import (
     OK,
     OUT_OF_LIMITS,
-    PARALLEL_SINGULAR,
     SERIAL_SINGULAR,
-    _solve_transposed,
+    _finish_row,
 )
 
 #: Columns of a leg row: base joint, platform point (platform frame), stroke limits (m).
@@ -133,35 +132,17 @@ def rpr_path_dynamics(
             f[1] += q_rho * ey + q_psi * ny / length
             f[2] += q_rho * a[i, 2] + q_psi * (rx * ny - ry * nx) / length
             rho[k, i], rho_rate[k, i], rho_acceleration[k, i] = length, rhod, rhodd
-        if code == OK and not _solve_transposed(a, f, effort, k, singular_relative):
-            code = PARALLEL_SINGULAR * 10
-        status[k] = code
-        closure[k] = worst
-        if code != OK:
-            for i in range(3):
-                rho[k, i] = rho_rate[k, i] = rho_acceleration[k, i] = np.nan
-                effort[k, i] = np.nan
-            closure[k] = np.nan
-
-
-def solve_legs(dynamics, legs, body, pose, rate, acceleration, singular_relative):
-    """``dynamics`` (:func:`rpr_path_dynamics` or
-    :func:`kernels.dynamics3prr.prr_path_dynamics`) with its outputs allocated:
-    ``(coordinate, rate, acceleration, effort, status, closure)``."""
-    pose = np.ascontiguousarray(pose, dtype=np.float64)
-    n = pose.shape[0]
-    outputs = [np.empty((n, 3)) for _ in range(4)]
-    status = np.empty(n, dtype=np.int64)
-    closure = np.empty(n)
-    dynamics(
-        np.ascontiguousarray(legs, dtype=np.float64),
-        np.ascontiguousarray(body, dtype=np.float64),
-        pose,
-        np.ascontiguousarray(rate, dtype=np.float64),
-        np.ascontiguousarray(acceleration, dtype=np.float64),
-        singular_relative,
-        *outputs,
-        status,
-        closure,
-    )
-    return (*outputs, status, closure)
+        _finish_row(
+            code,
+            worst,
+            a,
+            f,
+            k,
+            singular_relative,
+            rho,
+            rho_rate,
+            rho_acceleration,
+            effort,
+            status,
+            closure,
+        )

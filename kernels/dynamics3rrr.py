@@ -101,6 +101,25 @@ def _solve_transposed(a, f, out, k, singular_relative):
     return True
 
 
+@kernel(inline=True)
+def _finish_row(
+    code, worst, a, f, k, singular_relative, q, q_rate, q_acceleration, effort, status, closure
+):
+    r"""Row ``k``'s end, shared by the path kernels: where every leg closed (``code`` is
+    ``OK``) the efforts :math:`\tau` from :math:`A^T\tau = F` (:func:`_solve_transposed`,
+    else ``PARALLEL_SINGULAR``); the row's ``status`` and ``closure``; a row with a problem
+    has NaN actuator coordinates ``q``, rates, accelerations, efforts and closure."""
+    if code == OK and not _solve_transposed(a, f, effort, k, singular_relative):
+        code = PARALLEL_SINGULAR * 10
+    status[k] = code
+    closure[k] = worst
+    if code != OK:
+        for i in range(q.shape[1]):
+            q[k, i] = q_rate[k, i] = q_acceleration[k, i] = np.nan
+            effort[k, i] = np.nan
+        closure[k] = np.nan
+
+
 @kernel
 def rr_path_dynamics(
     legs,
@@ -190,37 +209,47 @@ def rr_path_dynamics(
                 a[i, 2] = (rx * sp - ry * cp) * jt
                 f[2] += q_theta * a[i, 2] + q_psi * (rx * st - ry * ct) * jp
             theta[k, i], theta_rate[k, i], theta_acceleration[k, i] = th, thd, thdd
-        if code == OK and not _solve_transposed(a, f, effort, k, singular_relative):
-            code = PARALLEL_SINGULAR * 10
-        status[k] = code
-        closure[k] = worst
-        if code != OK:
-            for i in range(d):
-                theta[k, i] = theta_rate[k, i] = theta_acceleration[k, i] = np.nan
-                effort[k, i] = np.nan
-            closure[k] = np.nan
+        _finish_row(
+            code,
+            worst,
+            a,
+            f,
+            k,
+            singular_relative,
+            theta,
+            theta_rate,
+            theta_acceleration,
+            effort,
+            status,
+            closure,
+        )
 
 
-def solve_rr_path(legs, body, pose, rate, acceleration, singular_relative):
-    """:func:`rr_path_dynamics` with its outputs allocated: ``(theta, theta_rate,
-    theta_acceleration, effort, status, closure)``."""
+def solve_legs(dynamics, legs, body, pose, rate, acceleration, singular_relative):
+    """``dynamics`` (:func:`rr_path_dynamics`, :func:`kernels.dynamics3rpr.rpr_path_dynamics`
+    or :func:`kernels.dynamics3prr.prr_path_dynamics`) with its outputs allocated, one
+    column per pose coordinate: ``(coordinate, rate, acceleration, effort, status,
+    closure)``."""
     pose = np.ascontiguousarray(pose, dtype=np.float64)
     n, d = pose.shape
-    theta, theta_rate, theta_acceleration, effort = (np.empty((n, d)) for _ in range(4))
+    outputs = [np.empty((n, d)) for _ in range(4)]
     status = np.empty(n, dtype=np.int64)
     closure = np.empty(n)
-    rr_path_dynamics(
+    dynamics(
         np.ascontiguousarray(legs, dtype=np.float64),
         np.ascontiguousarray(body, dtype=np.float64),
         pose,
         np.ascontiguousarray(rate, dtype=np.float64),
         np.ascontiguousarray(acceleration, dtype=np.float64),
         singular_relative,
-        theta,
-        theta_rate,
-        theta_acceleration,
-        effort,
+        *outputs,
         status,
         closure,
     )
-    return theta, theta_rate, theta_acceleration, effort, status, closure
+    return (*outputs, status, closure)
+
+
+def solve_rr_path(legs, body, pose, rate, acceleration, singular_relative):
+    """:func:`rr_path_dynamics` with its outputs allocated (:func:`solve_legs`):
+    ``(theta, theta_rate, theta_acceleration, effort, status, closure)``."""
+    return solve_legs(rr_path_dynamics, legs, body, pose, rate, acceleration, singular_relative)

@@ -16,13 +16,15 @@ from pathlib import Path
 from typing import Any
 
 from planar_tui.csvio import write_csv_atomic
-from planar_tui.errors import JobError, OutputFailed, PresetError, writing
+from planar_tui.errors import Cancelled, JobError, OutputFailed, PresetError, writing
+from planar_tui.figures import save_result_figure
 from planar_tui.jobkind import Job, JobResult, PreparedJob
 from planar_tui.overrides import with_variant
 from planar_tui.progress import Progress
 from planar_tui.provenance import job_provenance, planned_sidecar, write_sidecar
 from planar_tui.reader import NAME_MAX_BYTES, file_name_problem
 from planar_tui.registry import JOB_KINDS
+from planar_tui.runtime import prepare_kernels
 
 #: A job as parsed or as prepared (:func:`prepare_jobs`): both read alike (``kind``,
 #: ``label``, ``spec`` ...).
@@ -312,8 +314,6 @@ def run_job(
     :class:`JobFailed` for a job that fails (its :class:`~planar_tui.errors.JobError`,
     e.g. a box budget, or anything unexpected).
     """
-    from planar_tui.errors import Cancelled
-    from planar_tui.runtime import prepare_kernels
     from planar_tui.warmup import units_for, warm_kernels
 
     prepare_kernels()
@@ -379,8 +379,6 @@ def write_result(
 def _write_figure(plan: OutputPlan, result: JobResult) -> Path:
     """Draw and write the job's figure; a result the figure cannot show (no varied column
     in a sweep, say) is :class:`OutputFailed`, never a traceback."""
-    from planar_tui.figures import save_result_figure
-
     figure = plan.figure
     assert figure is not None  # called for a plan with a figure only
     try:

@@ -41,6 +41,8 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import TextIO
 
+from planar_tui import __version__
+
 #: Moves the saved pages' folder (set empty: no cache).
 FOLDER_ENV_VAR = "PLANAR_TUI_HELP_CACHE_DIR"
 #: Environment variables read by Rich, Click or Typer when they render help.
@@ -127,8 +129,6 @@ def _terminal() -> list[object]:
 
 def help_key(arguments: Sequence[str]) -> str:
     """The key of the page printed for ``arguments`` here and now (see the module)."""
-    from planar_tui import __version__
-
     environment = sorted(
         (name, value)
         for name, value in os.environ.items()

@@ -29,6 +29,13 @@ from planar_tui.batch import (
     prepare_jobs,
 )
 from planar_tui.errors import PresetError
+from planar_tui.figures.dispatch import figure_problem
+from planar_tui.optimise.run import planned_files as optimise_files
+from planar_tui.sweep.budget import check_sweep_budget
+from planar_tui.sweep.checkpoint import checkpoint_path, existing_fingerprint
+from planar_tui.sweep.points import make_points
+from planar_tui.sweep.service import check_figure, check_point_outputs, output_path, planned_files
+from planar_tui.sweep.spec import parse_sweeps
 
 if TYPE_CHECKING:
     from planar_tui.jobkind import Job
@@ -64,9 +71,6 @@ class RunPlan:
     def files(self) -> list[PlannedFile]:
         """Every file the run writes (jobs' CSVs, extra tables and figures; sweeps' CSVs,
         checkpoints, figures and point-file folders)."""
-        from planar_tui.optimise.run import planned_files as optimise_files
-        from planar_tui.sweep.service import planned_files
-
         files = plan_files(self.jobs)
         if self.out_dir is not None:
             files += [f for entry in self.sweeps for f in planned_files(entry.sweep, self.out_dir)]
@@ -77,8 +81,6 @@ class RunPlan:
 def check_figures(jobs: Sequence[Job[Any, Any]], plot: Path | None) -> None:
     """Refuse a figure for a job whose kind draws none (:class:`PresetError`, one line),
     asked by ``--plot`` (``plot``) or by the job's ``plot`` key."""
-    from planar_tui.figures.dispatch import figure_problem
-
     for job in jobs:
         problem = figure_problem(job.kind)
         if problem is None:
@@ -101,9 +103,6 @@ def plan_sweeps(
     command line's) replaces their ``plot`` keys, numbered ``FILE-1.png`` ... for several,
     taken from the current folder as the jobs' ``--plot`` is (not from the output folder
     as the preset's key is)."""
-    from planar_tui.sweep.points import make_points
-    from planar_tui.sweep.spec import parse_sweeps
-
     sweeps = [sweep for preset in presets for sweep in parse_sweeps(preset)]
     if plot is not None:
         sweeps = [
@@ -117,8 +116,6 @@ def plan_sweeps(
 
 def plan_sweep(sweep: Sweep) -> SweepPlan:
     """One sweep built elsewhere (the app's sweep dialog), its points validated."""
-    from planar_tui.sweep.points import make_points
-
     return SweepPlan(sweep, make_points(sweep))
 
 
@@ -126,8 +123,6 @@ def checkpoint_notes(sweeps: Sequence[SweepPlan], out_dir: Path, resume: bool) -
     """Decide each sweep's checkpoint: none, or one to resume (with ``resume``) is fine;
     one of the same sweep without ``resume`` is refused (:class:`PresetError`); one of an
     earlier version of the sweep is replaced, and said in the note returned."""
-    from planar_tui.sweep.service import output_path
-
     return [
         note
         for entry in sweeps
@@ -146,8 +141,6 @@ def checkpoint_notes(sweeps: Sequence[SweepPlan], out_dir: Path, resume: bool) -
 def checkpoint_note(label: str, fingerprint: str, output: Path, resume: bool) -> str | None:
     """One study's checkpoint (a sweep's or an optimisation's, ``label``, writing
     ``output``) decided as :func:`checkpoint_notes` says: ``None``, a note, or refused."""
-    from planar_tui.sweep.checkpoint import checkpoint_path, existing_fingerprint
-
     checkpoint = checkpoint_path(output)
     found = existing_fingerprint(checkpoint)
     if found is None or (resume and found == fingerprint):
@@ -206,8 +199,7 @@ def plan_run(
     (:func:`planar_tui.sweep.budget.check_sweep_budget`), the optimisations of
     ``optimise_of`` (their figures under ``optimise_plot``) and their checkpoints, then
     (``prepare``) every job prepared by its kind (:func:`planar_tui.batch.prepare_jobs`)."""
-    from planar_tui.sweep.budget import check_sweep_budget
-    from planar_tui.sweep.service import check_figure, check_point_outputs
+    from planar_tui.optimise.budget import check_optimise_budget
 
     check_figures(jobs, plot)
     outputs = plan_outputs(jobs, out_dir, out, extra_out, plot)
@@ -224,8 +216,6 @@ def plan_run(
     if sweep_plans:
         check_sweep_budget([(e.sweep, e.points) for e in sweep_plans], workers, scheduler)
     if optimisations:
-        from planar_tui.optimise.budget import check_optimise_budget
-
         check_optimise_budget(optimisations, workers, scheduler)
     notes = checkpoint_notes(sweep_plans, out_dir, resume)
     for o in optimisations:

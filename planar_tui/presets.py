@@ -15,10 +15,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from planar_tui.csvio import write_new_text
 from planar_tui.errors import PresetError
 from planar_tui.jobkind import Job
 from planar_tui.reader import read_bounded_text
 from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
+from planar_tui.resources import bundled_preset
 from planar_tui.schema import TableReader, suggest, type_name
 
 #: The top-level table of sweeps (``[[sweep]]``): accepted here as tables, read and
@@ -201,9 +203,6 @@ def load_preset(path: Path | str) -> Preset:
 def copy_bundled_preset(name: str, target: Path) -> Path:
     """Write bundled preset ``name`` to ``target`` to start from; an existing ``target``
     is never overwritten (:class:`PresetError`)."""
-    from planar_tui.csvio import write_new_text
-    from planar_tui.resources import bundled_preset
-
     text = bundled_preset(name).read_text(encoding="utf-8")
     try:
         return write_new_text(target, text)

@@ -31,7 +31,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from planar_tui.reader import read_bounded_text
+from planar_tui import __version__, csvio
+from planar_tui.reader import NAME_MAX_BYTES, read_bounded_text
+from planar_tui.registry import JOB_KINDS
+from planar_tui.schema import dump_settings
 
 #: What a sidecar's name adds to its CSV's (``table3.csv`` -> ``table3.csv.json``).
 SUFFIX = ".json"
@@ -63,8 +66,6 @@ def sidecar_path(csv_path: Path | str) -> Path:
 def has_sidecar(csv_path: Path | str) -> bool:
     """Whether ``csv_path`` gets a sidecar: not when ``.json`` would make its name longer
     than a file name may be (255 bytes; the CSV's own name was accepted)."""
-    from planar_tui.reader import NAME_MAX_BYTES
-
     return len(os.fsencode(sidecar_path(csv_path).name)) <= NAME_MAX_BYTES
 
 
@@ -241,8 +242,6 @@ def _made(
     robot: Mapping[str, Any],
     timing: tuple[float, float] | None,
 ) -> Provenance:
-    from planar_tui import __version__
-
     started, seconds = timing if timing is not None else (None, None)
     return Provenance(
         kind=kind,
@@ -263,9 +262,6 @@ def job_provenance(job: Any, timing: tuple[float, float] | None = None) -> Prove
     """The provenance of one job's tables (a :class:`~planar_tui.jobkind.Job` or a prepared
     one): its kind's settings and robot dumped as TOML values; ``timing`` is ``(start
     epoch s, duration s)`` when known."""
-    from planar_tui.registry import JOB_KINDS
-    from planar_tui.schema import dump_settings
-
     settings = JOB_KINDS[job.kind].dump(job.spec)
     try:
         robot = dump_settings(job.robot)
@@ -313,11 +309,10 @@ def point_provenance(
 def write_sidecar(csv_path: Path | str, record: Provenance) -> Path | None:
     """Write ``record`` beside ``csv_path`` atomically (temp file + rename); ``None``
     (nothing written) when the CSV's name leaves no room for one (:func:`has_sidecar`)."""
-    from planar_tui.csvio import write_text_atomic
 
     if not has_sidecar(csv_path):
         return None
-    return write_text_atomic(sidecar_path(csv_path), record.to_json())
+    return csvio.write_text_atomic(sidecar_path(csv_path), record.to_json())
 
 
 def read_sidecar(csv_path: Path | str) -> Provenance | None:

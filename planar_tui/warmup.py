@@ -41,8 +41,11 @@ from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from planar_tui.progress import Progress
-from planar_tui.runtime import design_cache_suspended
+from planar_tui import runtime
+from planar_tui.presets import load_preset
+from planar_tui.progress import POLL_S, Progress
+from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
+from planar_tui.runtime import design_cache_suspended, prepare_kernels
 
 if TYPE_CHECKING:
     from planar_tui.jobkind import Job
@@ -54,8 +57,6 @@ def parts(kind: str) -> dict[str, str]:
     """The job tables (TOML) of ``kind``'s warm-up examples by part, as declared in the
     kind's module: ``{"": tables}`` for a kind with one example, ``{}`` for a kind without
     one (nothing to compile)."""
-    from planar_tui.registry import JOB_KINDS
-
     declared = JOB_KINDS.get(kind)
     if declared is None or declared.warmup is None:
         return {}
@@ -73,8 +74,6 @@ def units(kind: str) -> list[str]:
 def units_for(job: Job[Any, Any]) -> list[str]:
     """The warm-up units a run of ``job`` needs: the parts its kind's ``warmup_parts``
     names for it (so a cold run compiles only the kernels the job calls), else all."""
-    from planar_tui.registry import JOB_KINDS
-
     declared = JOB_KINDS[job.kind]
     if declared.warmup_parts is None or isinstance(declared.warmup, str):
         return units(job.kind)
@@ -85,8 +84,6 @@ def example(unit: str) -> str | None:
     """The TOML preset of a warm-up unit (``kind`` or ``kind:part``): its robot kind's
     ``example`` table, then the unit's job tables (a bare kind: every part's); ``None``
     where there is nothing to compile."""
-    from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
-
     kind, _, part = unit.partition(":")
     tables = parts(kind)
     chosen = [tables[part]] if part in tables else [] if ":" in unit else list(tables.values())
@@ -103,9 +100,8 @@ def kernel_sources_stamp() -> bytes:
     kernel under its source's path and keeps it only while the source's stamp is unchanged,
     so a fresh clone elsewhere (or a checkout touching ``kernels/``) compiles again even
     though the kernel cache folder (named by the sources' digest) is the same."""
-    from planar_tui.runtime import kernels_folder
 
-    folder = kernels_folder()
+    folder = runtime.kernels_folder()
     stamps = [str(folder)]
     for path in sorted(folder.glob("*.py")):
         stat = path.stat()
@@ -118,9 +114,6 @@ def marker(unit: str) -> Path:
     compiled into the current kernel cache: named by the unit, the kind's runner module,
     numba's version and :func:`kernel_sources_stamp`."""
     import numba
-
-    from planar_tui.registry import JOB_KINDS
-    from planar_tui.runtime import prepare_kernels
 
     kind, _, part = unit.partition(":")
     module = sys.modules[JOB_KINDS[kind].run.__module__]
@@ -177,9 +170,6 @@ class _CompileWatcher:
 def _run_example(unit: str) -> None:
     """Run a warm-up unit's example jobs (compiling and caching their kernels), then mark
     it; a bare kind with several parts runs each part (each marked)."""
-    from planar_tui.presets import load_preset
-    from planar_tui.registry import JOB_KINDS
-
     if ":" not in unit and units(unit) != [unit]:
         for part in units(unit):
             _run_example(part)
@@ -274,8 +264,6 @@ def child_main() -> None:
     handle (it ends this process); SIGTERM ends it at once, mid-compile included."""
     import signal
 
-    from planar_tui.runtime import prepare_kernels
-
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     prepare_kernels()
@@ -295,8 +283,6 @@ def warm_kernels_in_processes(
     Returns the units compiled; a child that fails raises :class:`RuntimeError` with the
     last line it wrote on stderr."""
     import time
-
-    from planar_tui.progress import POLL_S
 
     todo = missing(kinds_or_units)
     if not todo:

@@ -13,7 +13,8 @@ import math
 import numpy as np
 import pytest
 from planar_tui.kernels.dynamics3prr import prr_path_dynamics
-from planar_tui.kernels.dynamics3rpr import rpr_path_dynamics, solve_legs
+from planar_tui.kernels.dynamics3rpr import rpr_path_dynamics
+from planar_tui.kernels.dynamics3rrr import solve_legs
 
 from tests import closed_chain
 from tests.closed_chain import Chain

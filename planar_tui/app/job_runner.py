@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any
 from textual.message import Message
 from textual.worker import get_current_worker
 
+from planar_tui import batch
 from planar_tui.batch import JobFailed, run_plans
 from planar_tui.errors import Cancelled
 from planar_tui.optimise.run import run_optimisation
@@ -138,12 +139,13 @@ class JobRunner:
         """Run ``job`` for ``pane`` (:func:`planar_tui.batch.run_job`, as the CLI runs it);
         posts :class:`JobFinished` (carrying ``document_sha256``, the edited document's
         digest when the job ran from one)."""
-        from planar_tui.batch import run_job
 
         finished = JobFinished(pane, job, document_sha256)
 
         def compute(stopping: Callable[[], bool]) -> None:
-            finished.result = run_job(job, Progress(on_update=self._store, should_stop=stopping))
+            finished.result = batch.run_job(
+                job, Progress(on_update=self._store, should_stop=stopping)
+            )
 
         self._launch(job.label, finished, compute)
 

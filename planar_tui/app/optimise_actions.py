@@ -9,6 +9,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from planar_tui import csvio
 from planar_tui.app.job_runner import GenerationDone, OptimiseFinished
 from planar_tui.app.screens.dialogs import MessageDialog, PathDialog
 from planar_tui.app.screens.optimise import OptimiseScreen
@@ -140,7 +141,6 @@ class OptimiseActions:
         ``(file, CsvTable)``, atomically, each with its provenance sidecar (``record``,
         :mod:`planar_tui.provenance`), every file checked first (a sweep's CSV, an
         optimisation's two)."""
-        from planar_tui.csvio import write_csv_atomic
 
         def chosen(answer: str | None) -> None:
             if not answer:
@@ -152,7 +152,7 @@ class OptimiseActions:
                     if has_sidecar(path):
                         check_writable(sidecar_path(path), "provenance file")
                 for path, table in written:
-                    write_csv_atomic(path, table)
+                    csvio.write_csv_atomic(path, table)
                     write_sidecar(path, record)
             except (PresetError, OSError) as error:
                 self.push_screen(MessageDialog("Not exported", str(error)))

@@ -19,6 +19,7 @@ import json
 import os
 from pathlib import Path
 
+from planar_tui import csvio
 from planar_tui.app.settings import MAX_STATE_BYTES
 from planar_tui.reader import read_bounded_text
 
@@ -107,7 +108,6 @@ def remember(kind: str, path: Path | str) -> str | None:
     file that cannot be used is first renamed (:func:`_set_aside`), never overwritten:
     the line saying so is returned (else ``None``); when it cannot be renamed, the list is
     not written."""
-    from planar_tui.csvio import write_text_atomic
 
     state = recent_path()
     lists, problem = _problem(state)
@@ -121,7 +121,7 @@ def remember(kind: str, path: Path | str) -> str | None:
     entry = str(Path(path).absolute())
     lists[kind] = [entry, *(e for e in lists[kind] if e != entry)][:MAX_ENTRIES]
     with contextlib.suppress(OSError):
-        write_text_atomic(state, json.dumps(lists, indent=2))
+        csvio.write_text_atomic(state, json.dumps(lists, indent=2))
     return note
 
 

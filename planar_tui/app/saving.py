@@ -15,6 +15,7 @@ from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
+from planar_tui import csvio
 from planar_tui.batch import check_writable
 from planar_tui.errors import PresetError
 from planar_tui.preset_writer import dump_document
@@ -130,11 +131,10 @@ def check_target(path: Path) -> None:
 
 def write_preset(path: Path, text: str) -> Path:
     """Write ``text`` to ``path`` atomically; any failure is a :class:`SaveFailed`."""
-    from planar_tui.csvio import write_text_atomic
 
     check_target(path)
     try:
-        return write_text_atomic(path, text)
+        return csvio.write_text_atomic(path, text)
     except (OSError, ValueError) as error:
         reason = getattr(error, "strerror", None) or str(error)
         raise SaveFailed(f"{path}: cannot write: {reason}") from None

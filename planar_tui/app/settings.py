@@ -23,6 +23,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from planar_tui import csvio
 from planar_tui.reader import read_bounded_text
 
 #: The environment variable naming the folder of the settings file (instead of the
@@ -101,10 +102,9 @@ def load_settings(path: Path | None = None) -> tuple[Settings, str | None]:
 def save_settings(settings: Settings, path: Path | None = None) -> Path:
     """Write ``settings`` to ``path`` (default :func:`settings_path`) atomically,
     creating its folder; raises ``OSError`` when it cannot be written."""
-    from planar_tui.csvio import write_text_atomic
 
     path = settings_path() if path is None else path
-    write_text_atomic(path, json.dumps(dataclasses.asdict(settings), indent=2) + "\n")
+    csvio.write_text_atomic(path, json.dumps(dataclasses.asdict(settings), indent=2) + "\n")
     return path
 
 

@@ -20,6 +20,7 @@ from planar_tui.interop.files import write_new_text
 from planar_tui.interop.mjcf import robot_mjcf
 from planar_tui.interop.robot_import import ImportedRobot, preset_text, read_robot
 from planar_tui.interop.urdf import robot_urdf
+from planar_tui.presets import parse_preset
 from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
 
 #: ``--format`` of ``export``: the writer of each format.
@@ -129,8 +130,6 @@ def import_robot(source: Path) -> tuple[ImportedRobot, str]:
     """``(imported, preset text)`` of a URDF or MJCF file; the text is checked to load as
     a preset (a value outside ``[robot]``'s ranges is refused naming the source file)."""
     import tomllib
-
-    from planar_tui.presets import parse_preset
 
     if Path(source).is_dir():
         raise PresetError(source, "(file)", "is a folder", "a URDF or MJCF file")

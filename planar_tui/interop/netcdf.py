@@ -24,8 +24,10 @@ from typing import Any
 
 import numpy as np
 
+from planar_tui import __version__
 from planar_tui.errors import PresetError
 from planar_tui.interop.files import write_new
+from planar_tui.motion.results import BAND_STATISTICS
 
 #: The option that asks for it (named in messages), and the extra that installs it.
 OPTION = "--format"
@@ -52,8 +54,6 @@ def motion_dataset(result: Any, attributes: Mapping[str, Any]):
     """The Dataset of a :class:`~planar_tui.motion.runner.MotionResult`; ``attributes``
     (preset, job, version, seed ...) become the Dataset's attributes."""
     import xarray as xr
-
-    from planar_tui.motion.results import BAND_STATISTICS
 
     names = list(result.names)
     coords: dict[str, Any] = {
@@ -122,8 +122,6 @@ def netcdf_path(band_csv: Path) -> Path:
 def export_job(job: Any, result: Any, path: Path) -> Path:
     """Write a finished motion job's Dataset to ``path``, with the preset, the job, the
     version, the seed, N and the methods in its attributes."""
-    from planar_tui import __version__
-
     attributes = {
         "preset": str(job.preset_path),
         "job": job.label,

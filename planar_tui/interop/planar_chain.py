@@ -18,9 +18,11 @@ from pathlib import Path
 
 import numpy as np
 
-from planar_tui.dynamics.robot import SerialRobot
+from planar_tui import __version__
+from planar_tui.dynamics.robot import ROBOT_KIND, SerialRobot
 from planar_tui.errors import PresetError
 from planar_tui.interop.robot_xml import XmlReader
+from planar_tui.preset_writer import dump_document
 
 #: Relative tolerance of "parallel", "on the link line" and "at mid-link".
 TOLERANCE = 1e-9
@@ -281,10 +283,6 @@ def preset_name(model_name: str, n_links: int) -> str:
 
 def preset_text(imported: ImportedRobot, source: Path | str) -> str:
     """The ``[robot]`` preset of an imported robot, its notes as comments."""
-    from planar_tui import __version__
-    from planar_tui.dynamics.robot import ROBOT_KIND
-    from planar_tui.preset_writer import dump_document
-
     lines = [
         f"{imported.robot.label} imported from {Path(source).name} "
         f"({imported.source_format}) by planar-tui {__version__}."

@@ -33,7 +33,12 @@ from typing import Any
 
 import numpy as np
 
+from planar_tui import __version__
+from planar_tui.errors import PresetError
 from planar_tui.interop.files import refuse_existing, write_new, write_new_text
+from planar_tui.motion.engine import design_methods as motion_designs
+from planar_tui.sensitivity.engine import build_problem
+from planar_tui.sensitivity.spec import sample_sizes
 
 #: The option that asks for the hand-off (named in messages).
 OPTION = "--export-problem"
@@ -144,7 +149,6 @@ def sensitivity_runs(job: Any, result: Any) -> list[ModelRuns]:
     evaluate`: rows are independent, so the values are the job's, bit for bit); cheap next
     to the job's analysis."""
     from planar_tui.sensitivity.engine import build_problem, evaluate, unit_design
-    from planar_tui.sensitivity.spec import sample_sizes
 
     spec, robot = job.spec, job.robot
     problem = build_problem(
@@ -169,8 +173,6 @@ def sensitivity_runs(job: Any, result: Any) -> list[ModelRuns]:
 def motion_runs(job: Any, result: Any) -> list[ModelRuns]:
     """The model runs of a motion job that ran, per design (its ``design`` and the outputs
     of every robot at the times of ``at_s``, ``at_outputs``, kept by the runner)."""
-    from planar_tui.sensitivity.engine import build_problem
-
     spec, robot = job.spec, job.robot
     problem = build_problem(
         robot,
@@ -196,8 +198,6 @@ def design_methods(job: Any) -> tuple[str, ...]:
     :func:`planar_tui.motion.engine.design_methods`); PCE's regression rows are no SALib
     design and are not exported."""
     if job.kind == "motion_uncertainty":
-        from planar_tui.motion.engine import design_methods as motion_designs
-
         return tuple(m for m in motion_designs(job.spec.methods) if m in DESIGNS)
     return tuple(m for m in job.spec.methods if m in DESIGNS)
 
@@ -205,8 +205,6 @@ def design_methods(job: Any) -> tuple[str, ...]:
 def planned_files(job: Any, directory: Path) -> list[Path]:
     """Every file :func:`export_job` will write for ``job`` (checked before it runs);
     :class:`~planar_tui.errors.PresetError` when the job runs no SALib design (PCE alone)."""
-    from planar_tui.errors import PresetError
-
     methods = design_methods(job)
     if not methods:
         raise PresetError(
@@ -221,8 +219,6 @@ def planned_files(job: Any, directory: Path) -> list[Path]:
 
 def export_job(job: Any, result: Any, directory: Path) -> list[Path]:
     """Write the runs of a finished sensitivity or motion job to ``directory``."""
-    from planar_tui import __version__
-
     runs = (
         motion_runs(job, result)
         if job.kind == "motion_uncertainty"

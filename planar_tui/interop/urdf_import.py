@@ -24,6 +24,7 @@ from planar_tui.interop.planar_chain import (
     unit,
 )
 from planar_tui.interop.robot_xml import XmlReader, read_xml
+from planar_tui.interop.urdf import GRAVITY_ELEMENT
 
 #: The gravity assumed for a URDF without planar-tui's element (ROS: z up), m/s².
 ROS_GRAVITY = (0.0, 0.0, -9.81)
@@ -231,8 +232,6 @@ def read_urdf(path: Path | str) -> ImportedRobot:
 
 def _urdf_gravity(reader: XmlReader, root: ET.Element) -> tuple[np.ndarray, str]:
     """Gravity from planar-tui's ``<planar_tui>`` element, else ROS's (assumed)."""
-    from planar_tui.interop.urdf import GRAVITY_ELEMENT
-
     element = root.find(GRAVITY_ELEMENT)
     if element is None:
         return np.array(ROS_GRAVITY), "assumed: URDF has no gravity (ROS: z up)"

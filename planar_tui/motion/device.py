@@ -3,6 +3,8 @@
 
 from __future__ import annotations
 
+from planar_tui.runtime import prepare_kernels
+
 DEVICES = ("cpu", "cuda", "auto")
 #: How to get the GPU path.
 CUDA_HINT = "pip install 'planar-tui[cuda]' on a machine with an NVIDIA GPU"
@@ -12,8 +14,6 @@ def cuda_problem() -> str | None:
     """``None`` when the CUDA kernel can run here, else why not (one line): numba-cuda
     missing, no driver, no GPU. ``NUMBA_ENABLE_CUDASIM=1`` (numba's simulator) counts as
     usable."""
-    from planar_tui.runtime import prepare_kernels
-
     prepare_kernels()  # before the first kernel module is imported
     try:
         from planar_tui.kernels import motion_cuda

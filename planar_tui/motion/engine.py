@@ -27,8 +27,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from planar_tui.dynamics import simulate
 from planar_tui.progress import Progress
+from planar_tui.sensitivity.engine import independent_rows, unit_design
 from planar_tui.sensitivity.engine import montecarlo_design as montecarlo_design  # re-export
+from planar_tui.sensitivity.pce import pce_unit_design
 
 #: Robots per CPU kernel call at most (a call then stays well under a second per step).
 CPU_BLOCK_ROBOTS = 4096
@@ -54,8 +57,6 @@ class Design:
     def independent_rows(self, method: str) -> np.ndarray:
         """Rows (global indices) of ``method``'s independent uniform robots
         (:func:`~planar_tui.sensitivity.engine.independent_rows`: Sobol' A and B rows)."""
-        from planar_tui.sensitivity.engine import independent_rows
-
         rows = np.arange(self.samples)[self.rows[method]]
         return rows[independent_rows(method, len(rows), self.unit.shape[1])]
 
@@ -99,9 +100,6 @@ def build_design(
 ) -> Design:
     """The designs of :func:`design_methods` of ``methods`` stacked, in that order (sampling
     stage of ``progress``, one unit per design); the PCE's has ``pce_samples`` rows."""
-    from planar_tui.sensitivity.engine import unit_design
-    from planar_tui.sensitivity.pce import pce_unit_design
-
     parts, rows, start = [], {}, 0
     for method in design_methods(methods):
         if method in ("montecarlo", "pce"):
@@ -261,7 +259,6 @@ def integrate(
     robots are sized by :func:`~planar_tui.dynamics.simulate.next_chunk_steps` (no step
     cap) from the slowest block's last call; ``progress`` counts robot-steps and is
     checked after each call."""
-    from planar_tui.dynamics.simulate import next_chunk_steps
 
     done = 0
     steps = 1
@@ -278,5 +275,5 @@ def integrate(
                     t_s = (done + n_steps) * step_s
                     progress.advance((block[1] - block[0]) * n_steps, f"t = {t_s:.4g} s")
             done += n_steps
-            steps = next_chunk_steps(n_steps, slowest, stops[-1] - done)
+            steps = simulate.next_chunk_steps(n_steps, slowest, stops[-1] - done)
         on_stop(stop, robots.angles())

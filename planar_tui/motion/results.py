@@ -18,7 +18,15 @@ from typing import Any
 import numpy as np
 
 from planar_tui.csvio import CsvTable
-from planar_tui.sensitivity.results import time_indices_table
+from planar_tui.motion.engine import output_labels
+from planar_tui.sensitivity import engine
+from planar_tui.sensitivity.aggregate import trajectory_aggregates
+from planar_tui.sensitivity.results import (
+    Analysis,
+    aggregated_rows,
+    sensitivity_percent,
+    time_indices_table,
+)
 
 #: The band's statistics, in CSV column order.
 BAND_STATISTICS = ("mean", "std", "p5", "p50", "p95")
@@ -46,8 +54,6 @@ def analyse_times(design, at_outputs, spec, problem, labels, methods, progress):
     of ``at_outputs`` ({step: (S, n_out)}) and index method; outputs without variance over
     a method's robots have no indices (``defined`` false, zeros in the arrays) and a
     note."""
-    from planar_tui.sensitivity.engine import analyse
-    from planar_tui.sensitivity.results import Analysis, sensitivity_percent
 
     analyses, notes = [], []
     num_vars = problem.num_vars
@@ -60,7 +66,9 @@ def analyse_times(design, at_outputs, spec, problem, labels, methods, progress):
             detail = f"{method} t = {t_s:g} s"
             if varying.any():
                 chosen = np.ascontiguousarray(outputs[:, varying])
-                indices[:, varying] = analyse(method, chosen, num_vars, spec.seed, progress, detail)
+                indices[:, varying] = engine.analyse(
+                    method, chosen, num_vars, spec.seed, progress, detail
+                )
             else:
                 progress.advance(1.0, detail)
             for k in np.flatnonzero(~varying):
@@ -91,8 +99,6 @@ def aggregate_rows(
 ) -> list[tuple[Any, ...]]:
     """The aggregated-indices rows of one method: each output's trajectory (``aggregated``
     (M, 2, D)), then ``all outputs`` (``overall`` (2, D))."""
-    from planar_tui.sensitivity.results import aggregated_rows
-
     summary = [*zip(labels, aggregated, strict=True), ("all outputs", overall)]
     return [
         row
@@ -108,9 +114,6 @@ def index_trajectories(design, every, variances, at_analyses, spec, problem, lab
     ``variances`` {method: {step: (M,)}} the outputs' variances over independent uniform
     robots, the weights of each method's aggregated rows (:func:`aggregate_rows`); an
     output of zero variance at a stop has no indices there (``defined``)."""
-    from planar_tui.sensitivity.aggregate import trajectory_aggregates
-    from planar_tui.sensitivity.results import Analysis, sensitivity_percent
-
     at = {(a.method, a.speed_rad_s): a for a in at_analyses}
     analyses, rows = [], []
     for method, by_step in every.items():
@@ -146,8 +149,6 @@ def band_grid(result, row: int = -1):
     ``row`` (5 significant digits) with exact, unshrinkable columns, and its width."""
     from rich import box
     from rich.table import Table
-
-    from planar_tui.motion.engine import output_labels
 
     rows = [
         [label, *(f"{v:.5g}" for v in result.band[row, :, k])]

@@ -10,9 +10,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from planar_tui.csvio import CsvTable
 from planar_tui.dynamics.robot import SerialRobot
 from planar_tui.errors import PresetError
 from planar_tui.jobkind import JobResult, PreparedJob, option_or_key
+from planar_tui.motion.device import resolve
 from planar_tui.motion.spec import MotionJob, MotionSpec, check_resources, extra_band_note
 from planar_tui.progress import Progress
 
@@ -40,7 +42,6 @@ def _checked_device(job: MotionJob) -> MotionPrepared:
     --device``), not the preset's key: the device when ``--device`` set it, the resources
     (checked on the preset's values when it was read) when ``--samples`` or ``--method``
     changed them."""
-    from planar_tui.motion.device import resolve
 
     def error(name: str, problem: str, expected: str) -> PresetError:
         causes = ("methods",) if name == "samples" else ()
@@ -225,7 +226,6 @@ def analyse_motion(
     expansion per output), the band's and the indices' tables and the summary."""
     import numpy as np
 
-    from planar_tui.csvio import CsvTable
     from planar_tui.motion import engine
     from planar_tui.motion.results import (
         analyse_times,

@@ -16,6 +16,9 @@ from planar_tui.errors import JobError
 from planar_tui.jobkind import JobResult, PreparedJob
 from planar_tui.pathsensitivity.sizes import inputs_of, sample_sizes
 from planar_tui.progress import Progress
+from planar_tui.sensitivity.path import effort_names, path_labels, path_tables, path_variances
+from planar_tui.sensitivity.runner import analyse_outputs
+from planar_tui.workspace.path.model import OK, problem_text
 
 
 def path_context(spec: Any) -> str:
@@ -50,8 +53,6 @@ def nominal_efforts(ready: PreparedJob[Any, Any, Any], states: Any) -> Any:
     fails the job as its path job would (exit 1, the first failing time named)."""
     import numpy as np
 
-    from planar_tui.workspace.path.model import OK, problem_text
-
     spec = ready.prepared
     solution = spec.mechanism.inverse_dynamics(
         ready.robot, spec, states.pose, states.rate, states.acceleration
@@ -85,8 +86,6 @@ def analyse_varying(
     is still caught)."""
     import numpy as np
 
-    from planar_tui.sensitivity.runner import analyse_outputs
-
     varying = ~(values == values[:1]).all(axis=0)
     indices = np.zeros((4, values.shape[1], problem.num_vars))
     loo = np.zeros(values.shape[1]) if method == "pce" else None
@@ -113,12 +112,6 @@ def analyse_path(ready: PreparedJob[Any, Any, Any], progress: Progress) -> PathS
         scaled,
     )
     from planar_tui.sensitivity.engine import Problem, montecarlo_design, unit_design
-    from planar_tui.sensitivity.path import (
-        effort_names,
-        path_labels,
-        path_tables,
-        path_variances,
-    )
     from planar_tui.sensitivity.pce import pce_unit_design
     from planar_tui.sensitivity.results import Analysis, csv_table, sensitivity_percent
 

@@ -21,6 +21,9 @@ import numpy as np
 
 from planar_tui.pathsensitivity.inputs import Input, robot_at
 from planar_tui.progress import Progress
+from planar_tui.sensitivity.path import peak_and_rms
+from planar_tui.workspace.path.job import pose_si
+from planar_tui.workspace.path.quintic import quintic, sample_times
 
 #: Design rows per kernel call, progress report and cancel check: ~30-60 ms at 1 000 steps
 #: on two threads.
@@ -39,9 +42,6 @@ class PathStates:
 
 def path_states(spec: Any) -> PathStates:
     """The quintic of a path spec (``from_pose``, ``to_pose``, ``duration_s``, ``steps``)."""
-    from planar_tui.workspace.path.job import pose_si
-    from planar_tui.workspace.path.quintic import quintic, sample_times
-
     times = sample_times(spec.duration_s, spec.steps)
     pose, rate, acceleration = quintic(
         pose_si(spec.from_pose), pose_si(spec.to_pose), spec.duration_s, times
@@ -99,7 +99,5 @@ def design_efforts(
 def path_outputs(efforts: np.ndarray, times_s: np.ndarray) -> np.ndarray:
     """Outputs (S, 2k + (K + 1) k): peak |effort| and RMS effort of each actuator, then
     every effort at every step (step-major), the serial path study's layout."""
-    from planar_tui.sensitivity.path import peak_and_rms
-
     peak, rms = peak_and_rms(efforts, times_s)
     return np.concatenate([peak, rms, efforts.reshape(len(efforts), -1)], axis=1)

@@ -19,6 +19,7 @@ from typing import Any, ClassVar
 from planar_tui import uq
 from planar_tui.errors import PresetError
 from planar_tui.jobkind import Command, Job, JobKind
+from planar_tui.limits import memory_problem, time_problem
 from planar_tui.pathsensitivity.analysis import PathSensitivityResult, analyse_path
 from planar_tui.pathsensitivity.inputs import INERTIA, LENGTH, MASS
 from planar_tui.pathsensitivity.sizes import inputs_of, sample_sizes
@@ -119,8 +120,6 @@ def check_sensitivity(
     """No feed-forward; every tolerance below the smallest nominal value it spreads; a robot
     with a mass (else every effort is 0); sample sizes the methods accept; the run within
     the time and memory limits."""
-    from planar_tui.limits import memory_problem, time_problem
-
     if values.get("feed_forward"):
         raise reader.error(
             "feed_forward", "is true: a sensitivity job integrates no forward dynamics", "false"
@@ -210,7 +209,6 @@ def prepared_spec(prepare: Callable[[Job[Any, Any]], Any]) -> Callable[[Job[Any,
     def prepare_job(job: Job[Any, Any]) -> Any:
         spec = prepare(job)
         memory, seconds = resource_estimate(spec, job.robot)
-        from planar_tui.limits import memory_problem, time_problem
 
         problem = time_problem(seconds) or memory_problem(memory)
         if problem is not None:

@@ -16,6 +16,13 @@ import numpy as np
 
 from planar_tui.jobkind import resolve
 from planar_tui.progress import Progress
+from planar_tui.sensitivity.design_cache import cached_design, design_key
+from planar_tui.sensitivity.estimators import (
+    efast_indices,
+    efast_point_indices,
+    sobol_bootstrap_counts,
+    sobol_indices,
+)
 from planar_tui.uq import EFAST_HARMONICS as M_HARMONICS
 from planar_tui.uq import EFAST_MIN_SAMPLES, design_rows
 
@@ -137,8 +144,6 @@ def unit_design(
     ``progress`` advances by the fraction of the design drawn after each chunk (by 1 on a
     hit; its detail: the method) and is checked for a cancel, SciPy's import included;
     ``unit_design.cache_clear()`` empties the per-process memo."""
-    from planar_tui.sensitivity.design_cache import cached_design, design_key
-
     drawn: list[float] = []
 
     def chunk_done(fraction: float) -> None:
@@ -251,12 +256,6 @@ def analyse(
 ) -> np.ndarray:
     """(4, n, D) indices S1, S1 half-width, ST, ST half-width of every torque; ``progress``
     (if any) advances by the fraction done after each chunk of the analysis."""
-    from planar_tui.sensitivity.estimators import (
-        efast_indices,
-        sobol_bootstrap_counts,
-        sobol_indices,
-    )
-
     on_chunk = None if progress is None else (lambda fraction: progress.advance(fraction, detail))
     if method == "sobol":
         if progress is not None:  # the bootstrap draw: ~0.7 s at N = 2**18, then cached
@@ -273,7 +272,6 @@ def point_indices(method: str, outputs: np.ndarray, num_vars: int) -> np.ndarray
     For indices at many times (the motion job's every recorded time), where a bootstrap
     at each would cost more than the model runs."""
     from planar_tui.kernels.sensitivity_estimators import sobol_point
-    from planar_tui.sensitivity.estimators import efast_point_indices
 
     outputs = np.asarray(outputs, dtype=np.float64)
     result = np.zeros((4, outputs.shape[1], num_vars))

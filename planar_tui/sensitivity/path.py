@@ -22,6 +22,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from planar_tui.csvio import CsvTable
 from planar_tui.progress import Progress
 
 if TYPE_CHECKING:
@@ -165,7 +166,6 @@ def path_tables(
     (``variances``: method -> (((K+1) n,) step-major, runs): :func:`path_variances`)."""
     import numpy as np
 
-    from planar_tui.csvio import CsvTable
     from planar_tui.sensitivity.aggregate import aggregated_indices
     from planar_tui.sensitivity.results import (
         AGGREGATED_HEADER,

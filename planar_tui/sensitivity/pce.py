@@ -48,6 +48,7 @@ from statistics import NormalDist
 
 import numpy as np
 
+from planar_tui.sensitivity.design_cache import cached_design, sampler_versions
 from planar_tui.sensitivity.pce_compress import (
     Compressed,
     bootstrap_compressed,
@@ -460,7 +461,6 @@ def pce_unit_design(num_vars: int, samples: int, seed: int) -> np.ndarray:
     """The first ``samples`` points of a scrambled Sobol' sequence in D dimensions
     (``scipy.stats.qmc.Sobol(D, scramble=True, seed=seed)``, drawn as the next power of
     two so that SciPy's balance warning does not apply), read-only, kept on disk."""
-    from planar_tui.sensitivity.design_cache import cached_design, sampler_versions
 
     def draw() -> np.ndarray:
         from scipy.stats import qmc

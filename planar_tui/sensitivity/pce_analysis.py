@@ -10,6 +10,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from planar_tui.sensitivity.aggregate import trajectory_aggregates
+from planar_tui.sensitivity.failed_runs import check_failed_runs
 from planar_tui.sensitivity.pce import NUM_RESAMPLES, PceError, pce_indices
 
 
@@ -54,8 +56,6 @@ def trajectory_indices(
 ) -> TrajectoryIndices:
     """Indices of ``outputs`` (S, K, M) at every time and aggregated: one expansion per
     output with terms shared over its K times (:func:`pce_indices` with ``shared``)."""
-    from planar_tui.sensitivity.aggregate import trajectory_aggregates
-
     _, k_times, m_outputs = outputs.shape
     indices = np.empty((4, k_times, m_outputs, unit.shape[1]))
     loo = np.empty((k_times, m_outputs))
@@ -85,8 +85,6 @@ def job_indices(
     LOO errors checked against ``max_loo_error``. Returns the (4, T, D) indices, the LOO
     error of every output (T,) and a note (``""`` or the dropped runs' line); raises
     :class:`PceError` or :class:`~planar_tui.sensitivity.failed_runs.FailedRuns`."""
-    from planar_tui.sensitivity.failed_runs import check_failed_runs
-
     outputs = np.asarray(outputs, dtype=np.float64).reshape(len(unit), -1)
     keep, note = check_failed_runs(outputs, unit, input_names, allow_failed_runs, True)
     result, (fit,) = pce_indices(unit[keep], outputs[keep], seed, True, num_resamples)

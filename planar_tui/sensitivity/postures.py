@@ -25,6 +25,8 @@ from functools import lru_cache
 
 import numpy as np
 
+from planar_tui.sensitivity.optimise import levenberg_marquardt, nelder_mead
+
 
 @dataclass(frozen=True)
 class Posture:
@@ -129,8 +131,6 @@ def _starts(lengths) -> list[list[float]]:
 
 def _isotropic_with_orientation(lengths):
     """n ≥ 3: least squares on the isotropy residual from :func:`_starts` (deterministic)."""
-    from planar_tui.sensitivity.optimise import levenberg_marquardt
-
     best = None
     for start in _starts(lengths):
         x = levenberg_marquardt(lambda v: _isotropy_residual(v, lengths, True), start)
@@ -148,8 +148,6 @@ def minimum_condition(lengths_m: tuple[float, ...]):
     fixed starts, then Nelder-Mead on κ itself from the best of them (the residual's
     minimiser is κ's only when κ = 1).
     """
-    from planar_tui.sensitivity.optimise import nelder_mead
-
     lengths = np.asarray(lengths_m, dtype=np.float64)
     if len(lengths) == 2:
         return _isotropic_2r(lengths)

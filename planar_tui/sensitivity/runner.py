@@ -15,6 +15,13 @@ from planar_tui.dynamics.robot import SerialRobot
 from planar_tui.errors import PresetError
 from planar_tui.jobkind import Job, JobResult, PreparedJob, option_or_key
 from planar_tui.progress import Progress
+from planar_tui.sensitivity.path import (
+    path_context,
+    path_labels,
+    path_outputs,
+    path_tables,
+    path_variances,
+)
 from planar_tui.sensitivity.spec import SensitivitySpec, check_resources, sample_sizes
 
 if TYPE_CHECKING:
@@ -146,7 +153,6 @@ def evaluate_sensitivity(
     import numpy as np
 
     from planar_tui.sensitivity.engine import evaluate, montecarlo_design
-    from planar_tui.sensitivity.path import path_outputs
 
     spec, robot, posture = job.spec, job.robot, job.prepared.posture
     problem, designs, states = design.problem, design.units, design.states
@@ -191,7 +197,6 @@ def analyse_sensitivity(
 ) -> SensitivityResult:
     """Analysis: the indices of every state (:func:`analyse_outputs`), the torques'
     variances per speed, a path's per-step and aggregated tables, and the summary."""
-    from planar_tui.sensitivity.path import path_context, path_labels, path_tables, path_variances
     from planar_tui.sensitivity.results import Analysis, csv_table, sensitivity_percent
 
     spec, robot, posture = job.spec, job.robot, job.prepared.posture
@@ -279,8 +284,6 @@ def _summary(
 ) -> str:
     """The job's one line: robot, posture (κ), speeds or path, N per method, the largest
     Sobol' confidence half-width and PCE LOO error, and the analyses' notes."""
-    from planar_tui.sensitivity.path import path_context
-
     spec, posture = job.spec, job.prepared.posture
     kappa = posture.condition_number
     sobol_conf = [float(a.indices[[1, 3]].max()) for a in analyses if a.method == "sobol"]

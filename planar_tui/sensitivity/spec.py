@@ -9,6 +9,7 @@ from typing import Any
 
 from planar_tui import uq
 from planar_tui.dynamics.robot import SerialRobot
+from planar_tui.limits import memory_problem, time_problem
 from planar_tui.schema import (
     TableReader,
     boolean,
@@ -240,8 +241,6 @@ def resource_estimate(spec: SensitivitySpec, robot: SerialRobot) -> tuple[float,
 
 def check_resources(error: uq.ErrorFactory, spec: SensitivitySpec, robot: SerialRobot) -> None:
     """Refuse a job whose estimated memory or time exceeds :mod:`planar_tui.limits`."""
-    from planar_tui.limits import memory_problem, time_problem
-
     memory, seconds = resource_estimate(spec, robot)
     problem = memory_problem(memory) or time_problem(seconds)
     if problem is not None:

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any
 
 from planar_tui.csvio import CsvTable, write_csv_atomic
 from planar_tui.errors import OutputFailed, PresetError, writing
+from planar_tui.figures import dispatch
 from planar_tui.figures.sweep import split_columns
 from planar_tui.progress import Progress
 from planar_tui.provenance import (
@@ -105,11 +106,10 @@ def write_figure(run: SweepRun, path: Path) -> Path:
     """Draw the sweep's figure (:mod:`planar_tui.figures.sweep`: a line against one
     varied key, a heat map against two) into ``path``, atomically; a sweep the figure
     cannot show (no varied key) is :class:`~planar_tui.errors.OutputFailed`."""
-    from planar_tui.figures.dispatch import save_table_figure
 
     with writing(path):
         try:
-            return save_table_figure(run.table, path, title=run.sweep.label)
+            return dispatch.save_table_figure(run.table, path, title=run.sweep.label)
         except OSError:
             raise
         except Exception as error:

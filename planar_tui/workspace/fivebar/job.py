@@ -10,7 +10,6 @@ are never split, boundary boxes are halved down to ``precision_cm`` (and again d
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar
 
@@ -32,17 +31,27 @@ from planar_tui.schema import (
 )
 from planar_tui.workspace.fivebar.mechanism import MECHANISM
 from planar_tui.workspace.fivebar.robot import Robot5R
+from planar_tui.workspace.fivebar.singularity import HEADER, centre_problem, compute_singularities
 from planar_tui.workspace.fivebar.tolerance import (
     TOLERANCE_FIELDS_5R,
     TOLERANCE_KEYS_5R,
-    tolerant_level_kernel,
+    check_search_box,
 )
-from planar_tui.workspace.paving.accuracy import accuracy_setting, check_accuracy
+from planar_tui.workspace.paving.accuracy import accuracy_names, accuracy_setting, check_accuracy
 from planar_tui.workspace.paving.circle import read_centre, refuse_without_singularities
 from planar_tui.workspace.paving.columns import tolerance_names
-from planar_tui.workspace.paving.dexterity import check_dexterity, kappa_setting
+from planar_tui.workspace.paving.dexterity import (
+    check_dexterity,
+    compute_dexterity,
+    dexterity_names,
+    kappa_setting,
+)
 from planar_tui.workspace.paving.estimate import check_needs, estimate, report_box_estimate
-from planar_tui.workspace.paving.interference import check_interference, width_setting
+from planar_tui.workspace.paving.interference import (
+    check_interference,
+    interference_names,
+    width_setting,
+)
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.paving.result import (
     BOXES_OPTION,
@@ -52,6 +61,7 @@ from planar_tui.workspace.paving.result import (
     point_figures,
     render_workspace,
 )
+from planar_tui.workspace.paving.runner import compute_workspace
 from planar_tui.workspace.paving.settings import (
     boxes_setting,
     budget_setting,
@@ -156,8 +166,6 @@ class FiveBarSpec:
         check_tolerance(values, reader, TOLERANCE_KEYS_5R, lengths)
         refuse_reference(values, reader)
         if values["search_box_cm"] is not None and values["tolerance_mode"] == "some":
-            from planar_tui.workspace.fivebar.tolerance import check_search_box
-
             check_search_box(values, reader, robot)
         if not values["singularities"]:
             centre = () if values["kappa_max"] is not None else ("singularity_free_circle",)
@@ -169,8 +177,6 @@ class FiveBarSpec:
                 'working_mode = "++", "+-", "-+" or "--" in [robot5r]',
             )
         elif values["singularity_free_circle"] is not None:
-            from planar_tui.workspace.fivebar.singularity import centre_problem
-
             problem = centre_problem(robot, values["singularity_free_circle"])
             if problem is not None:
                 raise reader.error(
@@ -210,63 +216,9 @@ class FiveBarResult(JobResult):
 
 
 def compute_fivebar(robot: Robot5R, spec: FiveBarSpec, budget: BoxBudget) -> WorkspaceOutcome:
-    """Pave the search box with the five-bar's exact test (module docstring)."""
-    import numpy as np
-
-    from planar_tui.kernels.workspace5r import level
-    from planar_tui.workspace.fivebar.robot import geometric_area
-    from planar_tui.workspace.fivebar.tolerance import reach_box_cm
-    from planar_tui.workspace.paving.levels import (
-        WorkspaceOutcome,
-        finished_outcome,
-        pave_in_levels,
-        square_about,
-    )
-
-    started = time.perf_counter()
-    box = spec.search_box_cm or square_about(reach_box_cm(robot, spec), spec.precision_cm)
-    extent = (box[0][0], box[0][1], box[1][0], box[1][1])
-    legs, limits = robot.leg_arrays()
-    level = tolerant_level_kernel(spec, level)
-    geometric = None
-    if spec.geometric_reference or spec.form == "geometric":
-        geometric = geometric_area(robot)
-    if spec.form == "geometric":
-        assert geometric is not None
-        return WorkspaceOutcome(
-            spec.form,
-            spec.precision_cm,
-            None,
-            np.zeros((0, 4)),
-            np.zeros(0, np.int64),
-            0,
-            geometric.outer_cm2,
-            geometric.inner_cm2,
-            geometric,
-            time.perf_counter() - started,
-            extent,
-        )
-
-    def pave(seeds, precision, inside_cm2=0.0):
-        def decide(rows, start, stop, children, outcome):
-            level(legs, limits, precision, rows, start, stop, children, outcome)
-
-        return pave_in_levels(seeds, budget, decide, inside_cm2)
-
-    budget.progress.start(1.0, "five-bar paving")
-    boxes, status = pave(np.array([extent]), spec.precision_cm)
-    return finished_outcome(
-        spec,
-        boxes,
-        status,
-        lambda seeds, inside: pave(seeds, spec.refine_precision_cm, inside),
-        budget,
-        geometric,
-        started,
-        extent,
-        form=spec.form,
-        disjoint=True,
-    )
+    """Pave the search box with the five-bar's exact test (module docstring):
+    :func:`~planar_tui.workspace.paving.runner.compute_workspace` with its Mechanism."""
+    return compute_workspace(MECHANISM, robot, spec, budget, label="five-bar paving")
 
 
 def pave_fivebar(job: Any, budget: BoxBudget) -> WorkspaceOutcome:
@@ -289,8 +241,6 @@ def fivebar_head(job: Any, outcome: WorkspaceOutcome) -> SummaryRow:
 
 def fivebar_singularities(ready: Any, outcome: WorkspaceOutcome, budget: BoxBudget) -> Any:
     """The type I and II singularities' columns, computed with ``singularities``."""
-    from planar_tui.workspace.fivebar.singularity import HEADER, compute_singularities
-
     if not ready.job.spec.singularities:
         return HEADER, None
     return HEADER, compute_singularities(ready.job, outcome.extent_cm, budget)
@@ -303,8 +253,6 @@ def fivebar_elbow(ready: Any) -> str:
 
 def fivebar_dexterity(ready: Any, extent: Any, budget: BoxBudget) -> Any:
     """The dexterous region of a job with ``kappa_max`` (no characteristic length)."""
-    from planar_tui.workspace.paving.dexterity import compute_dexterity
-
     spec = ready.job.spec
     evaluate = MECHANISM.dexterity(ready.job, None)
     elbow = fivebar_elbow(ready)
@@ -334,10 +282,6 @@ def run_fivebar(
 
 def fivebar_figure_names(job: Any) -> tuple[str, ...]:
     """The columns of a five-bar job (:func:`planar_tui.workspace.fivebar.job.run_fivebar`)."""
-    from planar_tui.workspace.fivebar.singularity import HEADER
-    from planar_tui.workspace.paving.accuracy import accuracy_names
-    from planar_tui.workspace.paving.dexterity import dexterity_names
-    from planar_tui.workspace.paving.interference import interference_names
     from planar_tui.workspace.paving.levels import SUMMARY_HEADER
 
     return (

@@ -8,11 +8,15 @@ from collections.abc import Callable
 from types import MappingProxyType
 from typing import Any
 
-from planar_tui.workspace.fivebar.robot import leg_angles, workspace_polygon
+from planar_tui.workspace.fivebar.robot import geometric_area, leg_angles, workspace_polygon
 from planar_tui.workspace.fivebar.tolerance import TOLERANCE_KEYS_5R, tolerant_level_kernel
+from planar_tui.workspace.path.certify import box_test, open_limits
 from planar_tui.workspace.path.model import PathModel, PathSolution
 from planar_tui.workspace.paving.linkage import Linkage, rotated
 from planar_tui.workspace.paving.mechanism import Mechanism
+
+# The registry (so the CLI's help) loads this module: the capabilities' modules (dexterity,
+# interference, dynamics) are imported in the methods that use them.
 
 
 class MechanismFiveBar(Mechanism):
@@ -70,12 +74,16 @@ class MechanismFiveBar(Mechanism):
     def polygon(self, robot: Any, spec: Any, segments_per_turn: int, outward: bool) -> Any:
         return workspace_polygon(robot, segments_per_turn, outward)
 
+    def geometric_area(self, robot: Any, spec: Any) -> Any:
+        """:func:`~planar_tui.workspace.fivebar.robot.geometric_area` (at most 2^17
+        segments per turn)."""
+        return geometric_area(robot)
+
     def path_box_test(self, robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any, Any]]:
         import numpy as np
 
         from planar_tui.kernels.path_certify_rr import rr_pose_boxes  # numba
         from planar_tui.workspace.fivebar.singularity import kernel_inputs
-        from planar_tui.workspace.path.certify import box_test, open_limits
 
         g, q, _, limits, _ = kernel_inputs(robot)  # q: the point platform's zero offsets
         elbow = np.array(spec.elbow, dtype=np.float64)
@@ -102,7 +110,7 @@ class MechanismFiveBar(Mechanism):
     def inverse_dynamics(
         self, robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any
     ) -> PathSolution:
-        from planar_tui.workspace.fivebar.dynamics import solve_path  # numba
+        from planar_tui.workspace.fivebar.dynamics import solve_path
 
         return solve_path(robot, spec, pose, rate, acceleration)
 

@@ -5,7 +5,6 @@ end-effector joint ``P`` (:mod:`planar_tui.workspace.path.job`, the equations in
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import ClassVar
 
 from planar_tui.jobkind import Job
 from planar_tui.schema import TableReader, plot_setting, setting
@@ -13,17 +12,14 @@ from planar_tui.workspace.fivebar.mechanism import MECHANISM
 from planar_tui.workspace.fivebar.robot import Robot5R, leg_angles
 from planar_tui.workspace.path.certify import kappa_setting
 from planar_tui.workspace.path.job import (
+    PathSpec,
     constant_efforts_setting,
-    duration_setting,
     feed_forward_setting,
-    path_check,
     path_job_kind,
     pose_setting,
     resolved_modes,
-    steps_setting,
 )
 from planar_tui.workspace.paving.legs import closing_modes
-from planar_tui.workspace.paving.mechanism import Mechanism
 
 ELBOW_DOC = "2 signs, each 1 or -1"
 
@@ -39,13 +35,11 @@ def _elbow(reader: TableReader, name, default, robot, values):
 
 
 @dataclass(frozen=True, kw_only=True)
-class Path5RSpec:
+class Path5RSpec(PathSpec):
     """A quintic rest-to-rest path of the five-bar's end-effector joint (cm, seconds)."""
 
     from_pose: tuple[float, ...] = pose_setting(2, "the point P at t = 0")
     to_pose: tuple[float, ...] = pose_setting(2, "the point P at t = duration_s")
-    duration_s: float = duration_setting()
-    steps: int = steps_setting()
     elbow: tuple[int, int] | None = setting(
         _elbow,
         default=None,
@@ -58,9 +52,7 @@ class Path5RSpec:
     kappa_max: float | None = kappa_setting()
     plot: str | None = plot_setting()
 
-    mechanism: ClassVar[Mechanism] = MECHANISM
-
-    check = path_check(MECHANISM)
+    mechanism = MECHANISM
 
 
 def prepare_path(job: Job[Path5RSpec, Robot5R]) -> Path5RSpec:

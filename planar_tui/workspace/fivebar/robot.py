@@ -43,9 +43,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import Any
 
 from planar_tui.jobkind import RobotKind
 from planar_tui.schema import mass_setting, number, setting, string
+from planar_tui.workspace.paving.legs import branch_angles
 
 #: The working modes: both legs' elbow signs, or any branch.
 WORKING_MODES = ("any", "++", "+-", "-+", "--")
@@ -227,23 +229,19 @@ def workspace_polygon(robot: Robot5R, segments_per_turn: int, outward: bool):
 @lru_cache(maxsize=32)
 def geometric_area(robot: Robot5R, relative_tolerance: float = 2e-5, max_segments: int = 1 << 17):
     """Bracket the exact workspace area (:class:`~planar_tui.workspace.paving.geometry.GeometricArea`),
-    doubling the segments per turn until ``outer - inner <= relative_tolerance * outer``."""
-    from planar_tui.workspace.paving.geometry import GeometricArea
+    doubling the segments per turn until ``outer - inner <= relative_tolerance * outer``
+    (:func:`~planar_tui.workspace.paving.geometry.polygon_bracket`)."""
+    from planar_tui.workspace.paving.geometry import polygon_bracket
 
-    segments = 4096
-    while True:
-        inner = workspace_polygon(robot, segments, False).area
-        outer = workspace_polygon(robot, segments, True).area
-        if outer - inner <= relative_tolerance * max(outer, 1e-300) or segments >= max_segments:
-            return GeometricArea(float(min(inner, outer)), float(outer), segments)
-        segments *= 2
+    def polygon(segments: int, outward: bool) -> Any:
+        return workspace_polygon(robot, segments, outward)
+
+    return polygon_bracket(polygon, relative_tolerance, max_segments)
 
 
 # -- float model ---------------------------------------------------------------------------
 def leg_angles(robot: Robot5R, point) -> list[dict[int, float] | None]:
     """Per leg, :func:`~planar_tui.workspace.paving.geometry.branch_angles` at ``point``."""
-    from planar_tui.workspace.paving.legs import branch_angles
-
     return [
         branch_angles(point[0] - ax, point[1] - ay, l1, l2)
         for (ax, ay), l1, l2 in zip(

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from planar_tui.errors import JobError
+from planar_tui.workspace.fivebar.robot import det_at, leg_angles
 
 if TYPE_CHECKING:
     import numpy as np
@@ -41,8 +42,6 @@ SINGULAR_RELATIVE = 1e-9
 def centre_problem(robot: Robot5R, centre: tuple[float, float]) -> str | None:
     """Why ``centre`` cannot centre a singularity-free circle in the robot's working mode
     (float model), or ``None``."""
-    from planar_tui.workspace.fivebar.robot import det_at, leg_angles
-
     where = f"({centre[0]:.6g}, {centre[1]:.6g}) cm"
     for leg, (angles, (lo, hi), sign) in enumerate(
         zip(leg_angles(robot, centre), robot.limits_rad, robot.elbows, strict=True), start=1
@@ -195,8 +194,3 @@ def certify_circle(job, centre, extent, precision, budget) -> tuple[float, float
     dy = np.maximum(np.maximum(bad[:, 2] - cy, cy - bad[:, 3]), 0.0)
     nearest = float(np.hypot(dx, dy).min(initial=reach))
     return max(0.0, np.nextafter(np.nextafter(nearest, 0.0), 0.0)), min(upper)
-
-
-def singularity_columns(outcome: FiveBarSingularities | None) -> list:
-    """The summary's :data:`HEADER` cells (empty without ``singularities``)."""
-    return [""] * len(HEADER) if outcome is None else outcome.columns()

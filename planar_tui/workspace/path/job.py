@@ -19,11 +19,12 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, fields
-from typing import Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 from planar_tui.csvio import CsvTable
 from planar_tui.errors import JobError, PresetError
 from planar_tui.jobkind import Command, Job, JobKind, JobResult, PreparedJob, Tab
+from planar_tui.limits import memory_problem, time_problem
 from planar_tui.progress import Progress
 from planar_tui.schema import boolean, integer, number, numbers, setting
 from planar_tui.workspace.path.certify import (
@@ -32,8 +33,11 @@ from planar_tui.workspace.path.certify import (
     certify,
     check_certificate,
 )
-from planar_tui.workspace.path.forward import PathFailure, constant_motion
+from planar_tui.workspace.path.forward import PathFailure, constant_motion, simulate
 from planar_tui.workspace.path.model import OK, PathModel, PathSolution, problem_text
+
+if TYPE_CHECKING:
+    from planar_tui.workspace.paving.mechanism import Mechanism
 
 #: Most steps of one path (its CSV rows minus one).
 MAX_STEPS = 1_000_000
@@ -120,8 +124,6 @@ def estimate(job: Job[Any, Any]) -> tuple[float, float]:
 def check_path(values: dict[str, Any], reader: Any, robot: Any, mechanism: Any) -> dict[str, Any]:
     """A path job fits the time and memory limits (:func:`path_needs`,
     :mod:`planar_tui.limits`): one line on ``steps`` otherwise."""
-    from planar_tui.limits import memory_problem, time_problem
-
     steps = values["steps"]
     memory, seconds = path_needs(steps, forward_runs(values), mechanism.path_model(robot))
     problem = time_problem(seconds) or memory_problem(memory)
@@ -130,16 +132,27 @@ def check_path(values: dict[str, Any], reader: Any, robot: Any, mechanism: Any) 
     return values
 
 
-def path_check(mechanism: Any) -> Any:
-    """A path spec's ``check(values, reader, robot)`` (a staticmethod): ``kappa_max`` above 1
-    (:func:`~planar_tui.workspace.path.certify.check_certificate`) and the job within the
-    time and memory limits (:func:`check_path`) for ``mechanism``."""
+@dataclass(frozen=True, kw_only=True)
+class PathSpec:
+    """The keys every path job starts with: a quintic rest-to-rest path of the platform
+    (cm, degrees, seconds) from ``from_pose`` to ``to_pose``; a robot's spec adds its own
+    keys after these (a point robot declares ``from_pose`` and ``to_pose`` again, of
+    dimension 2) and sets its :attr:`mechanism`."""
 
-    def check(values: dict[str, Any], reader: Any, robot: Any) -> dict[str, Any]:
+    from_pose: tuple[float, ...] = pose_setting(3, "the platform's pose at t = 0")
+    to_pose: tuple[float, ...] = pose_setting(3, "the platform's pose at t = duration_s")
+    duration_s: float = duration_setting()
+    steps: int = steps_setting()
+
+    mechanism: ClassVar[Mechanism]
+
+    @classmethod
+    def check(cls, values: dict[str, Any], reader: Any, robot: Any) -> dict[str, Any]:
+        """``kappa_max`` above 1 (:func:`~planar_tui.workspace.path.certify.check_certificate`)
+        and the job within the time and memory limits (:func:`check_path`) for the spec's
+        :attr:`mechanism`."""
         check_certificate(values, reader)
-        return check_path(values, reader, robot, mechanism)
-
-    return staticmethod(check)
+        return check_path(values, reader, robot, cls.mechanism)
 
 
 def resolved_modes(job: Any, key: str, per_leg: Any, example: str) -> tuple[int, ...]:
@@ -351,7 +364,6 @@ def feed_forward(
     of the pose from the path (m and rad mixed, max-norm) and the closure drift (m)."""
     import numpy as np
 
-    from planar_tui.workspace.path.forward import simulate
     from planar_tui.workspace.path.quintic import quintic
 
     def effort(t: float) -> Any:

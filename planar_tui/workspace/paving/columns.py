@@ -18,15 +18,17 @@ from __future__ import annotations
 
 from typing import Any
 
+from planar_tui.workspace.paving.accuracy import accuracy_names
+from planar_tui.workspace.paving.circle import HEADER
+from planar_tui.workspace.paving.dexterity import dexterity_names
+from planar_tui.workspace.paving.interference import interference_names
+from planar_tui.workspace.paving.orientation import ORIENTATION_HEADER
+from planar_tui.workspace.paving.tolerance import spec_keys, tolerance_header, tolerance_of
+
 
 def planar_figure_names(job: Any) -> tuple[str, ...]:
     """The columns of a 3-RPR or 3-PRR job (:func:`planar_tui.workspace.paving.runner.run_planar`)."""
-    from planar_tui.workspace.paving.accuracy import accuracy_names
-    from planar_tui.workspace.paving.circle import HEADER
-    from planar_tui.workspace.paving.dexterity import dexterity_names
-    from planar_tui.workspace.paving.interference import interference_names
     from planar_tui.workspace.paving.levels import SUMMARY_HEADER
-    from planar_tui.workspace.paving.orientation import ORIENTATION_HEADER
 
     circle = HEADER if job.spec.mechanism.has_singularities else ()
     dexterous = (*dexterity_names(job), *interference_names(job), *accuracy_names(job))
@@ -36,8 +38,6 @@ def planar_figure_names(job: Any) -> tuple[str, ...]:
 def tolerance_names(job: Any) -> tuple[str, ...]:
     """A tolerance-certified job's last columns (:func:`~planar_tui.workspace.paving.tolerance.
     tolerance_header` of its kind's quantities; none without a tolerance)."""
-    from planar_tui.workspace.paving.tolerance import spec_keys, tolerance_header, tolerance_of
-
     if tolerance_of(job.spec) is None:
         return ()
     return tolerance_header(spec_keys(job.spec))

@@ -31,6 +31,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from planar_tui.csvio import CsvTable
 from planar_tui.schema import TableReader, number, setting
 
 if TYPE_CHECKING:
@@ -296,11 +297,6 @@ def dexterity_names(job: Any) -> tuple[str, ...]:
     return (*HEADER, *DISC_HEADER) if getattr(job.spec, "kappa_max", None) is not None else ()
 
 
-def dexterity_columns(outcome: DexterityOutcome | None) -> list:
-    """The summary's :data:`HEADER` cells (empty without ``kappa_max``)."""
-    return [""] * len(HEADER) if outcome is None else outcome.columns()
-
-
 class DexterityRows(Sequence):
     """The boxes CSV's rows with ``kappa_max``: the workspace's rows (``workspace``, a
     :class:`~planar_tui.workspace.paving.levels.BoxRows`) with empty κ cells, then the
@@ -337,8 +333,6 @@ class DexterityRows(Sequence):
 def boxes_table(workspace: Any, outcome: DexterityOutcome | None) -> Any:
     """The boxes CSV: the workspace's table ``workspace``, with ``kappa_max`` its rows and
     the dexterity boxes (:class:`DexterityRows`)."""
-    from planar_tui.csvio import CsvTable
-
     if outcome is None:
         return workspace
     return CsvTable((*workspace.header, *BOXES_COLUMNS), DexterityRows(workspace.rows, outcome))

@@ -37,6 +37,9 @@ import math
 import warnings
 from typing import TYPE_CHECKING, Any
 
+from planar_tui.limits import memory_problem, time_problem
+from planar_tui.workspace.paving.settings import BYTES_PER_BOX
+
 if TYPE_CHECKING:
     from planar_tui.reader import TableReader
 
@@ -121,8 +124,6 @@ def estimate_boxes(kind: str, robot: Any, spec: Any) -> int:
 
 def needs(kind: str, robot: Any, spec: Any) -> tuple[int, float, float]:
     """``(boxes, memory_bytes, seconds)`` of a job (module docstring)."""
-    from planar_tui.workspace.paving.settings import BYTES_PER_BOX
-
     boxes = estimate_boxes(kind, robot, spec)
     return boxes, float(boxes) * BYTES_PER_BOX, JOB_SECONDS + boxes * SECONDS_PER_BOX
 
@@ -151,8 +152,6 @@ def check_needs(kind: str, spec: Any, reader: TableReader, robot: Any) -> None:
     """Refuse a job whose estimated memory or time exceeds :mod:`planar_tui.limits`
     (:class:`~planar_tui.errors.PresetError` on ``precision_cm``, or ``command line:
     --precision`` when the option set it; one line with the estimate)."""
-    from planar_tui.limits import memory_problem, time_problem
-
     boxes, memory, seconds = needs(kind, robot, spec)
     problem = memory_problem(memory) or time_problem(seconds) or budget_problem(boxes, spec)
     if problem is not None:

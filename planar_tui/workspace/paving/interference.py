@@ -27,7 +27,9 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from planar_tui.csvio import CsvTable
 from planar_tui.schema import TableReader, number, setting
+from planar_tui.workspace.paving.dexterity import decider, refine_leaves
 
 if TYPE_CHECKING:
     import numpy as np
@@ -124,7 +126,6 @@ def compute_interference(
     import numpy as np
 
     from planar_tui.workspace.paving.boxes import xy_area
-    from planar_tui.workspace.paving.dexterity import decider, refine_leaves
     from planar_tui.workspace.paving.levels import pave_in_levels
 
     started = time.perf_counter()
@@ -195,8 +196,6 @@ class InterferenceRows(Sequence):
 def boxes_table(table: Any, outcome: InterferenceOutcome | None) -> Any:
     """The boxes CSV ``table`` with, with ``leg_width_cm``, the interference boxes
     (:class:`InterferenceRows`)."""
-    from planar_tui.csvio import CsvTable
-
     if outcome is None:
         return table
     return CsvTable(table.header, InterferenceRows(table.rows, len(table.header), outcome))

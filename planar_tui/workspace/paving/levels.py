@@ -39,7 +39,7 @@ from planar_tui.csvio import CsvTable
 from planar_tui.errors import JobError
 from planar_tui.jobkind import Job, option_or_key
 from planar_tui.progress import Progress, read_only
-from planar_tui.workspace.paving.boxes import xy_area
+from planar_tui.workspace.paving.boxes import append_rows, xy_area
 
 if TYPE_CHECKING:
     from planar_tui.workspace.paving.geometry import GeometricArea
@@ -193,7 +193,6 @@ def pave_in_levels(seeds, budget: BoxBudget, decide, inside_cm2: float = 0.0):
     kept boxes so far (read-only views): progress and Cancel/Ctrl-C within a fraction of a
     second. Returns the kept boxes and their status."""
     from planar_tui.kernels.workspace_arc import SPLIT
-    from planar_tui.workspace.paving.boxes import append_rows
 
     frontier = np.array(seeds, dtype=np.float64).reshape(-1, 4)
     root_area = xy_area(frontier)

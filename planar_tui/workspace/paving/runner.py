@@ -28,6 +28,7 @@ from planar_tui.jobkind import Command, Job, JobKind, Option, OutputOption, Prep
 from planar_tui.progress import Progress
 from planar_tui.schema import TableReader, number, plot_setting, setting, string
 from planar_tui.workspace.paving.accuracy import accuracy_setting, check_accuracy
+from planar_tui.workspace.paving.circle import HEADER
 from planar_tui.workspace.paving.columns import planar_figure_names
 from planar_tui.workspace.paving.dexterity import (
     check_dexterity,
@@ -38,7 +39,14 @@ from planar_tui.workspace.paving.dexterity import (
 from planar_tui.workspace.paving.estimate import check_needs, estimate, report_box_estimate
 from planar_tui.workspace.paving.interference import check_interference, width_setting
 from planar_tui.workspace.paving.mechanism import Mechanism
-from planar_tui.workspace.paving.orientation import ORIENTATION_HEADER, orientation_columns
+from planar_tui.workspace.paving.orientation import (
+    ORIENTATION_HEADER,
+    check_orientation,
+    orientation_columns,
+    paved_range,
+    range_stage,
+)
+from planar_tui.workspace.paving.orientation import describe as describe_range
 from planar_tui.workspace.paving.result import (
     WorkspaceResult,
     extra_outputs,
@@ -59,6 +67,7 @@ from planar_tui.workspace.paving.settings import (
     singularity_precision_setting,
 )
 from planar_tui.workspace.paving.stages import Stages, SummaryRow, run_stages
+from planar_tui.workspace.paving.tolerance import grown, reach_margin_cm
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -147,7 +156,6 @@ class PlanarSpec:
         box = values["search_box_cm"]
         if box is not None:
             spec = cls(**values)
-            from planar_tui.workspace.paving.tolerance import grown, reach_margin_cm
 
             reach = grown(spec.mechanism.reach_box(robot, spec), reach_margin_cm(spec))
             rxlo, rxhi, rylo, ryhi = reach  # a "some" job's robots reach farther
@@ -180,8 +188,6 @@ def check_range_and_reference(values: dict[str, Any], reader: TableReader, form:
     ``form`` only, and no singularities; with a range or a tolerance the job has no geometric
     reference (one orientation's nominal area is not the job's: off by default, refused if
     asked for)."""
-    from planar_tui.workspace.paving.orientation import check_orientation
-
     check_orientation(values, reader, form)
     ranged = isinstance(values["orientation_deg"], tuple)
     if ranged and values["singularities"]:
@@ -201,7 +207,6 @@ def compute_range(robot: Any, spec: Any, budget: Any, g: Any, limits: Any, mecha
     (:func:`~planar_tui.workspace.paving.orientation.range_stage`) of the kernels' ``mechanism``
     with its arrays ``g`` (the platform points at ``g[2:8]``) and ``limits``."""
     from planar_tui.workspace.paving.levels import square_about
-    from planar_tui.workspace.paving.orientation import paved_range, range_stage
 
     started = time.perf_counter()
     box = spec.search_box_cm or square_about(
@@ -240,9 +245,16 @@ def check_circle_keys(values: dict[str, Any], reader: TableReader, names: tuple[
         raise reader.error("singularities", 'is true with form = "geometric"', "a form with boxes")
 
 
-def compute_planar(robot: Any, spec: PlanarSpec, budget: Any) -> Any:
-    """The paving of the module docstring for one robot and spec
-    (:class:`~planar_tui.workspace.paving.levels.WorkspaceOutcome`)."""
+def compute_workspace(
+    mechanism: Mechanism, robot: Any, spec: Any, budget: Any, label: str | None = None
+) -> Any:
+    """The paving of the module docstring for one robot, its ``mechanism`` and a spec
+    (:class:`~planar_tui.workspace.paving.levels.WorkspaceOutcome`): the search box (the
+    spec's, else a square about the reach box grown by
+    :func:`~planar_tui.workspace.paving.tolerance.reach_margin_cm`), the levels decided by
+    :meth:`Mechanism.decider`, the boundary refined, ``|inside| <= exact <= |kept|``; an
+    orientation range goes to :meth:`Mechanism.compute_range`. ``label`` names the stage in
+    the progress (default: the form's)."""
     import numpy as np
 
     from planar_tui.workspace.paving.levels import (
@@ -251,12 +263,9 @@ def compute_planar(robot: Any, spec: PlanarSpec, budget: Any) -> Any:
         pave_in_levels,
         square_about,
     )
-    from planar_tui.workspace.paving.tolerance import grown, reach_margin_cm
 
-    mechanism: Mechanism = spec.mechanism
-    if isinstance(spec.orientation_deg, tuple):  # a range (the kind's check allowed it)
-        assert mechanism.has_orientation_ranges
-        return mechanism.compute_range(robot, spec, budget)
+    if mechanism.has_orientation_ranges and isinstance(spec.orientation_deg, tuple):
+        return mechanism.compute_range(robot, spec, budget)  # the kind's check allowed it
     started = time.perf_counter()
     reach = grown(mechanism.reach_box(robot, spec), reach_margin_cm(spec))  # "some": farther
     box = spec.search_box_cm or square_about(reach, spec.precision_cm)
@@ -284,7 +293,7 @@ def compute_planar(robot: Any, spec: PlanarSpec, budget: Any) -> Any:
     def decider(precision: float) -> Callable[..., None]:
         return mechanism.decider(robot, spec, precision)
 
-    budget.progress.start(1.0, f"{spec.form} paving")
+    budget.progress.start(1.0, label or f"{spec.form} paving")
     boxes, status = pave_in_levels(np.array([extent]), budget, decider(spec.precision_cm))
 
     def refine(seeds, inside_cm2):
@@ -305,6 +314,11 @@ def compute_planar(robot: Any, spec: PlanarSpec, budget: Any) -> Any:
     )
 
 
+def compute_planar(robot: Any, spec: PlanarSpec, budget: Any) -> Any:
+    """:func:`compute_workspace` with the spec's kind's Mechanism (a 3-RPR or 3-PRR)."""
+    return compute_workspace(spec.mechanism, robot, spec, budget)
+
+
 def pave_planar(job: Any, budget: Any) -> Any:
     """The pave stage of a parallel kind: its box estimate reported (warned of over the box
     budget), then :func:`compute_planar`."""
@@ -316,7 +330,6 @@ def planar_head(job: Any, outcome: Any) -> SummaryRow:
     """The summary row of the paving: the 3-RRR's columns, its orientation's among them,
     and the range described where the orientation is one."""
     from planar_tui.workspace.paving.levels import SUMMARY_HEADER, summary_line  # numpy
-    from planar_tui.workspace.paving.orientation import describe as describe_range
 
     base, summary = outcome.summary_row(), summary_line(outcome)
     if isinstance(job.spec.orientation_deg, tuple):
@@ -328,8 +341,6 @@ def planar_head(job: Any, outcome: Any) -> SummaryRow:
 def planar_singularities(ready: Any, outcome: Any, budget: Any) -> Any:
     """The circle's columns where the Mechanism certifies singularities (computed where
     ``prepare`` resolved a centre); none where it does not."""
-    from planar_tui.workspace.paving.circle import HEADER
-
     mechanism: Mechanism = ready.job.spec.mechanism
     if not mechanism.has_singularities:
         return None
@@ -429,6 +440,7 @@ def planar_job_kind(
 __all__ = [
     "PlanarSpec",
     "compute_planar",
+    "compute_workspace",
     "extra_outputs",
     "planar_job_kind",
     "render_workspace",

@@ -55,7 +55,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from planar_tui.schema import setting
+from planar_tui.schema import setting, string
 
 if TYPE_CHECKING:
     import numpy as np
@@ -111,8 +111,6 @@ def tolerance_fields(
 ) -> tuple[Any, Any, Any]:
     """The settings ``tolerance_cm`` (documented by ``uniform_doc``), ``tolerances_cm`` and
     ``tolerance_mode`` of a workspace spec whose robot's toleranced quantities are ``keys``."""
-    from planar_tui.schema import string
-
     listed = ", ".join(f"`{k}`" for k in keys)
     return (
         setting(

@@ -63,7 +63,7 @@ def solve_path(robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any) -
     state ``(x, y, phi)`` (SI) in the working mode ``spec.slider_modes``, within the
     robot's strokes."""
     from planar_tui.kernels.dynamics3prr import prr_path_dynamics
-    from planar_tui.kernels.dynamics3rpr import solve_legs
+    from planar_tui.kernels.dynamics3rrr import solve_legs
 
     _, legs, body = path_arrays(robot, spec)
     return PathSolution(

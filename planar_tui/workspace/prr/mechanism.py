@@ -8,12 +8,17 @@ from collections.abc import Callable
 from types import MappingProxyType
 from typing import Any
 
+from planar_tui.workspace.path.certify import box_test
 from planar_tui.workspace.path.model import PathModel, PathSolution
+from planar_tui.workspace.paving.dexterity import circumradius_cm
 from planar_tui.workspace.paving.linkage import Linkage, platform_joints, rotated
 from planar_tui.workspace.paving.mechanism import LegMechanism
 from planar_tui.workspace.prr import orientation, singularity
 from planar_tui.workspace.prr import robot as prr
 from planar_tui.workspace.prr.tolerance import TOLERANCE_KEYS_3PRR
+
+# The registry (so the CLI's help) loads this module: the capabilities' modules (dexterity,
+# interference, dynamics) are imported in the methods that use them.
 
 
 class Mechanism3PRR(LegMechanism):
@@ -55,8 +60,6 @@ class Mechanism3PRR(LegMechanism):
         import numpy as np
 
         from planar_tui.kernels.path_certify_prismatic import prr_pose_boxes  # numba
-        from planar_tui.workspace.path.certify import box_test
-        from planar_tui.workspace.paving.dexterity import circumradius_cm
 
         rows = [
             [bx, by, math.cos(math.radians(a)), math.sin(math.radians(a)), lo, hi, length]
@@ -86,7 +89,7 @@ class Mechanism3PRR(LegMechanism):
     def inverse_dynamics(
         self, robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any
     ) -> PathSolution:
-        from planar_tui.workspace.prr.dynamics import solve_path  # numba
+        from planar_tui.workspace.prr.dynamics import solve_path
 
         return solve_path(robot, spec, pose, rate, acceleration)
 

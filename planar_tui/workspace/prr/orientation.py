@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from planar_tui.workspace.paving import runner as planar
 from planar_tui.workspace.prr.robot import Robot3PRR
 
 
@@ -27,7 +28,6 @@ def compute_range(robot: Robot3PRR, spec: Any, budget: Any) -> Any:
     import numpy as np
 
     from planar_tui.kernels.workspace_orientation import PRR
-    from planar_tui.workspace.paving import runner as planar
 
     g = planar.platform_and_base_vector(robot.platform_points_cm, robot.slider_points_cm)
     rows = [

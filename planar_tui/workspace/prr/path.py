@@ -8,36 +8,28 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 from types import SimpleNamespace
-from typing import ClassVar
 
 from planar_tui.jobkind import Job
 from planar_tui.schema import plot_setting
 from planar_tui.workspace.path.certify import kappa_setting
 from planar_tui.workspace.path.job import (
+    PathSpec,
     constant_efforts_setting,
-    duration_setting,
     feed_forward_setting,
-    path_check,
     path_job_kind,
-    pose_setting,
     resolved_modes,
-    steps_setting,
 )
 from planar_tui.workspace.paving.dexterity import length_setting
-from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.paving.settings import modes_setting
 from planar_tui.workspace.prr.mechanism import MECHANISM
 from planar_tui.workspace.prr.robot import Robot3PRR
+from planar_tui.workspace.prr.singularity import float_links
 
 
 @dataclass(frozen=True, kw_only=True)
-class Path3PRRSpec:
+class Path3PRRSpec(PathSpec):
     """A quintic rest-to-rest path of the 3-PRR's platform (cm, degrees, seconds)."""
 
-    from_pose: tuple[float, ...] = pose_setting(3, "the platform's pose at t = 0")
-    to_pose: tuple[float, ...] = pose_setting(3, "the platform's pose at t = duration_s")
-    duration_s: float = duration_setting()
-    steps: int = steps_setting()
     slider_modes: tuple[int, int, int] | None = modes_setting(
         name="slider_modes",
         default_doc="(the mode the strokes allow at from_pose)",
@@ -50,17 +42,13 @@ class Path3PRRSpec:
     characteristic_length_cm: float | None = length_setting()
     plot: str | None = plot_setting()
 
-    mechanism: ClassVar[Mechanism] = MECHANISM
-
-    check = path_check(MECHANISM)
+    mechanism = MECHANISM
 
 
 def prepare_path(job: Job[Path3PRRSpec, Robot3PRR]) -> Path3PRRSpec:
     """The spec with its working mode resolved: ``slider_modes`` as given, else per leg the
     mode the strokes allow at ``from_pose`` (a leg with both asks for ``slider_modes``:
     exit code 2; a leg with none is left to fail the run at t = 0)."""
-    from planar_tui.workspace.prr.singularity import float_links
-
     spec = job.spec
     if spec.slider_modes is not None:
         return spec

@@ -30,6 +30,9 @@ from dataclasses import dataclass
 from planar_tui.jobkind import RobotKind
 from planar_tui.schema import mass_setting, numbers, setting, string
 from planar_tui.workspace.paving.layout import PAPER_B_BASE_CM, paper_b_points, platform_points
+from planar_tui.workspace.paving.orientation import arc_extent
+from planar_tui.workspace.paving.runner import single_orientation_rad
+from planar_tui.workspace.prr.tolerance import spec_thresholds
 
 
 def _three_strokes(reader, name, default, context, values):
@@ -118,8 +121,6 @@ def leg_parameters(robot: Robot3PRR, spec) -> object:
     ``l`` four times for the nominal robot)."""
     import numpy as np
 
-    from planar_tui.workspace.prr.tolerance import spec_thresholds
-
     ends = robot.shifted_ends_cm(spec.orientation_rad)
     thresholds = spec_thresholds(robot, spec)
     rows = [
@@ -133,13 +134,9 @@ def reach_box(robot: Robot3PRR, spec) -> tuple[float, float, float, float]:
     over a range of orientations each stadium's box is widened by the extent of
     :math:`-R(\\varphi) q_i` over the range
     (:func:`~planar_tui.workspace.paving.orientation.arc_extent`)."""
-    from planar_tui.workspace.paving.runner import single_orientation_rad
-
     phi = single_orientation_rad(spec)
     extents: list[tuple[float, ...]] = [(0.0, 0.0, 0.0, 0.0)] * 3  # one φ: ends shifted
     if phi is None:
-        from planar_tui.workspace.paving.orientation import arc_extent
-
         lo, hi = (math.radians(v) for v in spec.orientation_deg)
         extents = [arc_extent(q, lo, hi) for q in robot.platform_points_cm]
     ends = robot.shifted_ends_cm(0.0 if phi is None else phi)

@@ -40,7 +40,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from planar_tui.workspace.paving.tolerance import plus, shift_bounds_cm
+from planar_tui.workspace.paving.tolerance import plus, shift_bounds_cm, tolerance_of
 
 #: The 3-PRR's toleranced quantities (keys of ``tolerances_cm``).
 TOLERANCE_KEYS_3PRR = ("slider_points_cm", "platform_points_cm", "distal_cm")
@@ -69,8 +69,6 @@ def leg_thresholds(
 
 def spec_thresholds(robot: Any, spec: Any) -> list[tuple[float, float, float, float]]:
     """:func:`leg_thresholds` of every leg of a 3-PRR robot and spec."""
-    from planar_tui.workspace.paving.tolerance import tolerance_of
-
     tolerance = tolerance_of(spec, TOLERANCE_KEYS_3PRR)
     if tolerance is None:
         return [leg_thresholds(length, None, 0.0, 0.0, 0.0) for length in robot.distal_cm]

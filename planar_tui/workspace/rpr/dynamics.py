@@ -58,7 +58,8 @@ def path_arrays(robot: Any, spec: Any) -> tuple[int, Any, Any]:
 def solve_path(robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any) -> PathSolution:
     """The leg lengths, their rates and accelerations and the leg forces at every platform
     state ``(x, y, phi)`` (SI), within ``spec.leg_limits_cm``."""
-    from planar_tui.kernels.dynamics3rpr import rpr_path_dynamics, solve_legs
+    from planar_tui.kernels.dynamics3rpr import rpr_path_dynamics
+    from planar_tui.kernels.dynamics3rrr import solve_legs
 
     _, legs, body = path_arrays(robot, spec)
     return PathSolution(

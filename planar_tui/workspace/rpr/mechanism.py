@@ -8,12 +8,17 @@ from collections.abc import Callable
 from types import MappingProxyType
 from typing import Any
 
+from planar_tui.workspace.path.certify import box_test
 from planar_tui.workspace.path.model import PathModel, PathSolution
+from planar_tui.workspace.paving.dexterity import circumradius_cm
 from planar_tui.workspace.paving.linkage import Linkage, platform_joints
 from planar_tui.workspace.paving.mechanism import LegMechanism
 from planar_tui.workspace.rpr import orientation, singularity
 from planar_tui.workspace.rpr import robot as rpr
 from planar_tui.workspace.rpr.tolerance import TOLERANCE_KEYS_3RPR
+
+# The registry (so the CLI's help) loads this module: the capabilities' modules (dexterity,
+# interference, dynamics) are imported in the methods that use them.
 
 
 class Mechanism3RPR(LegMechanism):
@@ -59,8 +64,6 @@ class Mechanism3RPR(LegMechanism):
         import numpy as np
 
         from planar_tui.kernels.path_certify_prismatic import rpr_pose_boxes  # numba
-        from planar_tui.workspace.path.certify import box_test
-        from planar_tui.workspace.paving.dexterity import circumradius_cm
 
         bases = np.array(robot.base_joints_cm, dtype=np.float64)
         q = np.array(robot.platform_points_cm, dtype=np.float64)
@@ -74,7 +77,7 @@ class Mechanism3RPR(LegMechanism):
     def inverse_dynamics(
         self, robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any
     ) -> PathSolution:
-        from planar_tui.workspace.rpr.dynamics import solve_path  # numba
+        from planar_tui.workspace.rpr.dynamics import solve_path
 
         return solve_path(robot, spec, pose, rate, acceleration)
 

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from planar_tui.workspace.paving import runner as planar
 from planar_tui.workspace.rpr.robot import Robot3RPR
 
 
@@ -28,7 +29,6 @@ def compute_range(robot: Robot3RPR, spec: Any, budget: Any) -> Any:
     import numpy as np
 
     from planar_tui.kernels.workspace_orientation import RPR
-    from planar_tui.workspace.paving import runner as planar
 
     g = planar.platform_and_base_vector(robot.platform_points_cm, robot.base_joints_cm)
     limits = np.ascontiguousarray(spec.leg_limits_cm, dtype=np.float64)

@@ -5,22 +5,17 @@ its masses from ``[robot3rpr]``. The legs' lengths follow from the pose: no work
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import ClassVar
 
 from planar_tui.jobkind import Job
 from planar_tui.schema import TableReader, plot_setting, setting
 from planar_tui.workspace.path.certify import kappa_setting
 from planar_tui.workspace.path.job import (
+    PathSpec,
     constant_efforts_setting,
-    duration_setting,
     feed_forward_setting,
-    path_check,
     path_job_kind,
-    pose_setting,
-    steps_setting,
 )
 from planar_tui.workspace.paving.dexterity import length_setting
-from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.rpr.job import _leg_limits
 from planar_tui.workspace.rpr.mechanism import MECHANISM
 from planar_tui.workspace.rpr.robot import Robot3RPR
@@ -32,13 +27,9 @@ def _optional_leg_limits(reader: TableReader, name, default, robot, values):
 
 
 @dataclass(frozen=True, kw_only=True)
-class Path3RPRSpec:
+class Path3RPRSpec(PathSpec):
     """A quintic rest-to-rest path of the 3-RPR's platform (cm, degrees, seconds)."""
 
-    from_pose: tuple[float, ...] = pose_setting(3, "the platform's pose at t = 0")
-    to_pose: tuple[float, ...] = pose_setting(3, "the platform's pose at t = duration_s")
-    duration_s: float = duration_setting()
-    steps: int = steps_setting()
     leg_limits_cm: tuple[tuple[float, float], ...] | None = setting(
         _optional_leg_limits,
         default=None,
@@ -52,9 +43,7 @@ class Path3RPRSpec:
     characteristic_length_cm: float | None = length_setting()
     plot: str | None = plot_setting()
 
-    mechanism: ClassVar[Mechanism] = MECHANISM
-
-    check = path_check(MECHANISM)
+    mechanism = MECHANISM
 
 
 def prepare_path(job: Job[Path3RPRSpec, Robot3RPR]) -> Path3RPRSpec:

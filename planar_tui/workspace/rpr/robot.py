@@ -29,6 +29,9 @@ from dataclasses import dataclass
 from planar_tui.jobkind import RobotKind
 from planar_tui.schema import mass_setting, number, setting, string
 from planar_tui.workspace.paving.layout import PAPER_B_BASE_CM, paper_b_points, platform_points
+from planar_tui.workspace.paving.orientation import range_reach_box
+from planar_tui.workspace.paving.runner import single_orientation_rad
+from planar_tui.workspace.rpr.tolerance import spec_thresholds
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -80,8 +83,6 @@ def leg_parameters(robot: Robot3RPR, spec) -> object:
     rho_hi`` twice for the nominal robot)."""
     import numpy as np
 
-    from planar_tui.workspace.rpr.tolerance import spec_thresholds
-
     centres = robot.centres_cm(spec.orientation_rad)
     limits, thresholds = spec.leg_limits_cm, spec_thresholds(spec)
     rows = [
@@ -95,13 +96,9 @@ def reach_box(robot: Robot3RPR, spec) -> tuple[float, float, float, float]:
     """Bounding box of the intersection of the discs :math:`|p - c_i| \\le \\overline\\rho_i`
     (empty when ``lo > hi``), or of its union over a range of orientations
     (:func:`~planar_tui.workspace.paving.orientation.range_reach_box`)."""
-    from planar_tui.workspace.paving.runner import single_orientation_rad
-
     his = [hi for _, hi in spec.leg_limits_cm]
     phi = single_orientation_rad(spec)
     if phi is None:
-        from planar_tui.workspace.paving.orientation import range_reach_box
-
         bases, points = robot.base_joints_cm, robot.platform_points_cm
         return range_reach_box(bases, points, his, spec.orientation_deg)
     centres = robot.centres_cm(phi)

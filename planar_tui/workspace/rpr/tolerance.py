@@ -52,7 +52,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from planar_tui.workspace.paving.tolerance import plus, shift_bounds_cm
+from planar_tui.workspace.paving.tolerance import plus, shift_bounds_cm, tolerance_of
 
 #: The 3-RPR's toleranced quantities (keys of ``tolerances_cm``).
 TOLERANCE_KEYS_3RPR = ("base_joints_cm", "platform_points_cm")
@@ -81,8 +81,6 @@ def leg_thresholds(
 
 def spec_thresholds(spec: Any) -> list[tuple[float, float, float, float]]:
     """:func:`leg_thresholds` of every leg of a 3-RPR spec."""
-    from planar_tui.workspace.paving.tolerance import tolerance_of
-
     tolerance = tolerance_of(spec, TOLERANCE_KEYS_3RPR)
     if tolerance is None:
         return [(lo, hi, lo, hi) for lo, hi in spec.leg_limits_cm]

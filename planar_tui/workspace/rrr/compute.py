@@ -24,6 +24,9 @@ from planar_tui.workspace.paving.levels import (
 )
 from planar_tui.workspace.paving.tolerance import tolerant_vector
 from planar_tui.workspace.rrr.forms import INTERVAL_FORMS, kernel_form
+from planar_tui.workspace.rrr.geometry import geometric_area, outer_area_and_length
+from planar_tui.workspace.rrr.joint import joint_stage
+from planar_tui.workspace.rrr.legwise import legwise_stage
 from planar_tui.workspace.rrr.robot import Robot3RRR
 
 
@@ -47,8 +50,6 @@ LEAF_GRID = 8
 def _interval_stage(form_code, p, spec, box, budget) -> np.ndarray:
     """Paper's Algorithm 1 over 5-D boxes on every thread
     (:func:`planar_tui.workspace.rrr.joint.joint_stage`); the kept (x, y) boxes (may repeat)."""
-    from planar_tui.workspace.rrr.joint import joint_stage
-
     return joint_stage(
         form_code,
         p,
@@ -117,8 +118,6 @@ def estimate_boxes(robot: Robot3RRR, spec) -> int:
     a boundary refinement adds the latter at ``refine_precision_cm``. An estimate (within
     about 2x of the counts of paper B's tables), not a bound.
     """
-    from planar_tui.workspace.rrr.geometry import outer_area_and_length
-
     if spec.form == "geometric":
         return 0
     area, length = outer_area_and_length(robot, spec.limits_rad, spec.orientation_rad, 64)
@@ -168,8 +167,6 @@ def compute_workspace(robot: Robot3RRR, spec, budget: BoxBudget) -> WorkspaceOut
     limits = limits_array(spec.limits_rad)
     geometric = None
     if spec.geometric_reference or spec.form == "geometric":
-        from planar_tui.workspace.rrr.geometry import geometric_area
-
         geometric = geometric_area(robot, spec.limits_rad, spec.orientation_rad)
     if spec.form == "geometric":
         assert geometric is not None
@@ -205,7 +202,6 @@ def compute_workspace(robot: Robot3RRR, spec, budget: BoxBudget) -> WorkspaceOut
                 NO_TOLERANCE,
                 classify_boxes_parallel,
             )
-            from planar_tui.workspace.rrr.legwise import legwise_stage
 
             boxes, proved, xy_boxes = legwise_stage(code, p, spec, box, budget, tol)
             status = np.zeros(len(boxes), dtype=np.int64)

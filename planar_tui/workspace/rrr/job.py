@@ -32,7 +32,13 @@ from planar_tui.schema import (
 )
 from planar_tui.workspace.paving.accuracy import accuracy_setting, check_accuracy
 from planar_tui.workspace.paving.circle import HEADER as CIRCLE_HEADER
-from planar_tui.workspace.paving.dexterity import check_dexterity, kappa_setting, length_setting
+from planar_tui.workspace.paving.dexterity import (
+    check_dexterity,
+    compute_dexterity,
+    kappa_setting,
+    length_setting,
+)
+from planar_tui.workspace.paving.estimate import BUDGET_FACTOR, budget_problem, count_text
 from planar_tui.workspace.paving.interference import check_interference, width_setting
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.paving.orientation import (
@@ -68,14 +74,20 @@ from planar_tui.workspace.paving.settings import (
 )
 from planar_tui.workspace.paving.stages import Stages, SummaryRow, run_stages
 from planar_tui.workspace.paving.tolerance import check_tolerance, tolerance_fields
+from planar_tui.workspace.rrr.dexterity import length_cm
 from planar_tui.workspace.rrr.forms import FORMS
 from planar_tui.workspace.rrr.mechanism import MECHANISM
-from planar_tui.workspace.rrr.orientation import default_form, reach_box_for
+from planar_tui.workspace.rrr.orientation import (
+    compute_orientation_workspace,
+    default_form,
+    reach_box_for,
+)
 from planar_tui.workspace.rrr.robot import TOLERANCE_KEYS_3RRR, Robot3RRR
 from planar_tui.workspace.rrr.singularity import (
     MODED_KEYS,
     Circle,
     check_singularity,
+    compute_singularities,
     resolve_circle,
 )
 
@@ -237,7 +249,6 @@ def check_budget(spec: WorkspaceSpec, reader: TableReader, robot: Robot3RRR) -> 
     :data:`~planar_tui.workspace.paving.estimate.BUDGET_FACTOR` × ``box_budget``: it would
     only stop at its budget, minutes later. Single orientations only (a range of
     orientations is not estimated); one line on ``precision_cm`` (or ``--precision``)."""
-    from planar_tui.workspace.paving.estimate import BUDGET_FACTOR, budget_problem, count_text
     from planar_tui.workspace.rrr.compute import estimate_boxes
 
     if isinstance(spec.orientation_deg, tuple):
@@ -288,9 +299,6 @@ def prepare_workspace(job: WorkspaceJob) -> WorkspacePrepared:
 def rrr_dexterity(ready: PreparedJob[WorkspaceSpec, Robot3RRR, WorkspacePrepared], extent, budget):
     """The dexterous region of a job with ``kappa_max``
     (:func:`~planar_tui.workspace.paving.dexterity.compute_dexterity`) in the prepared mode."""
-    from planar_tui.workspace.paving.dexterity import compute_dexterity
-    from planar_tui.workspace.rrr.dexterity import length_cm
-
     job, circle = ready.job, ready.prepared.circle
     assert circle is not None  # prepared with the mode
     spec, elbow = job.spec, " ".join(str(s) for s in circle.elbow)
@@ -306,7 +314,6 @@ def pave_rrr(job: WorkspaceJob, budget: Any) -> Any:
     """The pave stage: one orientation (:func:`~planar_tui.workspace.rrr.compute.compute_workspace`)
     or a range of them."""
     from planar_tui.workspace.rrr.compute import compute_workspace
-    from planar_tui.workspace.rrr.orientation import compute_orientation_workspace
 
     if isinstance(job.spec.orientation_deg, tuple):
         return compute_orientation_workspace(job.robot, job.spec, budget)
@@ -334,8 +341,6 @@ def rrr_head(job: WorkspaceJob, outcome: Any) -> SummaryRow:
 
 def rrr_singularities(ready: Any, outcome: Any, budget: Any) -> tuple[tuple[str, ...], Any]:
     """The circle's columns, computed with ``singularities`` at one orientation."""
-    from planar_tui.workspace.rrr.singularity import compute_singularities
-
     job, circle = ready.job, ready.prepared.circle
     if circle is None or not job.spec.singularities or isinstance(job.spec.orientation_deg, tuple):
         return CIRCLE_HEADER, None

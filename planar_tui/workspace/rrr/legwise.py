@@ -15,6 +15,7 @@ import time
 
 import numpy as np
 
+from planar_tui.progress import read_only
 from planar_tui.workspace.paving.boxes import append_rows
 
 #: Boxes per kernel call: a slice takes well under 0.2 s (CHECK_INTERVAL_S) at a few µs
@@ -48,7 +49,6 @@ def legwise_stage(form_code, p, spec, box, budget, tol=None):
         pave_level,
         root_row,
     )
-    from planar_tui.progress import read_only
 
     limits = limits_array(spec.limits_rad)
     tol = NO_TOLERANCE if tol is None else tol

@@ -15,13 +15,21 @@ from collections.abc import Callable
 from types import MappingProxyType
 from typing import Any
 
+from planar_tui.workspace.path.certify import box_test, open_limits
 from planar_tui.workspace.path.model import PathModel, PathSolution
 from planar_tui.workspace.paving.linkage import Linkage, platform_joints, rotated
 from planar_tui.workspace.paving.mechanism import Mechanism
-from planar_tui.workspace.rrr.orientation import compute_orientation_workspace, reach_box_for
+from planar_tui.workspace.rrr.orientation import (
+    compute_orientation_workspace,
+    geometry_vector,
+    reach_box_for,
+)
 from planar_tui.workspace.rrr.pose import leg_modes
 from planar_tui.workspace.rrr.robot import TOLERANCE_KEYS_3RRR
 from planar_tui.workspace.rrr.singularity import compute_singularities, resolve_circle
+
+# The registry (so the CLI's help) loads this module: the capabilities' modules (dexterity,
+# interference, dynamics) are imported in the methods that use them.
 
 
 class Mechanism3RRR(Mechanism):
@@ -99,9 +107,7 @@ class Mechanism3RRR(Mechanism):
         import numpy as np
 
         from planar_tui.kernels.path_certify_rr import rr_pose_boxes  # numba
-        from planar_tui.workspace.path.certify import box_test, open_limits
         from planar_tui.workspace.rrr.dexterity import length_cm
-        from planar_tui.workspace.rrr.orientation import geometry_vector
 
         rows = np.tile(geometry_vector(robot), (3, 1))  # one geometry row per leg
         q = np.array(robot.platform_points_cm(), dtype=np.float64)
@@ -128,7 +134,7 @@ class Mechanism3RRR(Mechanism):
     def inverse_dynamics(
         self, robot: Any, spec: Any, pose: Any, rate: Any, acceleration: Any
     ) -> PathSolution:
-        from planar_tui.workspace.rrr.dynamics import solve_path  # numba
+        from planar_tui.workspace.rrr.dynamics import solve_path
 
         return solve_path(robot, spec, pose, rate, acceleration)
 

@@ -71,13 +71,13 @@ def compute_orientation_workspace(robot: Robot3RRR, spec, budget):
     """The maximal or total orientation workspace of ``spec`` (``orientation_deg`` a range)
     as a :class:`~planar_tui.workspace.paving.levels.WorkspaceOutcome`: the bisection down to
     ``precision_cm``, then the boundary boxes again down to ``refine_precision_cm``."""
+    from planar_tui.workspace.rrr.orientation_reference import reference_area
+
     started = time.perf_counter()
     box = search_box(robot, spec)
     extent = (box[0][0], box[0][1], box[1][0], box[1][1])
     geometric = None
     if spec.geometric_reference:
-        from planar_tui.workspace.rrr.orientation_reference import reference_area
-
         budget.progress.start(1.0, "sampled reference")
         geometric = budget.progress.wait_for(
             reference_area, robot, spec.limits_rad, spec.orientation_deg, spec.orientation_mode

@@ -6,24 +6,19 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import ClassVar
 
 from planar_tui.jobkind import Job
 from planar_tui.schema import TableReader, plot_setting, setting
 from planar_tui.workspace.path.certify import kappa_setting
 from planar_tui.workspace.path.job import (
+    PathSpec,
     constant_efforts_setting,
-    duration_setting,
     feed_forward_setting,
-    path_check,
     path_job_kind,
-    pose_setting,
     resolved_modes,
-    steps_setting,
 )
 from planar_tui.workspace.paving.dexterity import length_setting
 from planar_tui.workspace.paving.legs import closing_modes
-from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.paving.settings import modes_setting
 from planar_tui.workspace.rrr.job import _joint_limits
 from planar_tui.workspace.rrr.mechanism import MECHANISM
@@ -37,13 +32,9 @@ def _optional_limits(reader: TableReader, name, default, robot, values):
 
 
 @dataclass(frozen=True, kw_only=True)
-class Path3RRRSpec:
+class Path3RRRSpec(PathSpec):
     """A quintic rest-to-rest path of the 3-RRR's platform (cm, degrees, seconds)."""
 
-    from_pose: tuple[float, ...] = pose_setting(3, "the platform's pose at t = 0")
-    to_pose: tuple[float, ...] = pose_setting(3, "the platform's pose at t = duration_s")
-    duration_s: float = duration_setting()
-    steps: int = steps_setting()
     elbow: tuple[int, int, int] | None = modes_setting(
         default_doc="(the mode the limits allow at from_pose)"
     )
@@ -60,9 +51,7 @@ class Path3RRRSpec:
     characteristic_length_cm: float | None = length_setting()
     plot: str | None = plot_setting()
 
-    mechanism: ClassVar[Mechanism] = MECHANISM
-
-    check = path_check(MECHANISM)
+    mechanism = MECHANISM
 
     @property
     def limits_rad(self) -> tuple[tuple[float, float], ...] | None:

@@ -23,11 +23,11 @@ from typing import TYPE_CHECKING, Any
 
 from planar_tui.errors import PresetError
 from planar_tui.workspace.paving.circle import (
-    HEADER,
     SINGULAR_RELATIVE,
     refuse_without_singularities,
 )
 from planar_tui.workspace.paving.legs import branch_angles, on_arc
+from planar_tui.workspace.rrr.orientation import geometry_vector
 
 if TYPE_CHECKING:
     import numpy as np
@@ -183,7 +183,7 @@ class SingularityOutcome:
         return self.boxes[self.status == SINGULAR]
 
     def columns(self) -> list:
-        """The summary's :data:`HEADER` cells (``elbow`` as ``"1 -1 1"``)."""
+        """The summary's :data:`~planar_tui.workspace.paving.circle.HEADER` cells (``elbow`` as ``"1 -1 1"``)."""
         elbow = " ".join(str(s) for s in self.elbow)
         return [*self.centre_cm, self.radius_lo_cm, self.radius_hi_cm, elbow]
 
@@ -201,7 +201,6 @@ def kernel_inputs(robot, spec, circle: Circle):
     import numpy as np
 
     from planar_tui.kernels.workspace_arc import limits_array
-    from planar_tui.workspace.rrr.orientation import geometry_vector
 
     c, s = math.cos(spec.orientation_rad), math.sin(spec.orientation_rad)
     r = np.array([[c * qx - s * qy, s * qx + c * qy] for qx, qy in robot.platform_points_cm()])
@@ -296,8 +295,3 @@ def compute_singularities(
         boxes_processed=processed_here,
         seconds=time.perf_counter() - started,
     )
-
-
-def singularity_columns(outcome: SingularityOutcome | None) -> list:
-    """The summary's :data:`HEADER` cells (empty without ``singularities``)."""
-    return [""] * len(HEADER) if outcome is None else outcome.columns()
