@@ -1,16 +1,22 @@
 """Pilot tests of the workspace map's κ layer: a job with ``kappa_max`` offers it (``k``),
 each cell's glyph the band of the worst κ upper bound of the dexterity boxes over the cell
-(computed here from the boxes), ``k`` again hides it."""
+(computed here from the boxes), ``k`` again hides it; and of a certified path's tab: the
+trace at the CSV's poses, the failing stretch marked from the certificate's
+``first_failure_lo_s``, the verdict in words."""
 
 from __future__ import annotations
+
+import csv
 
 import numpy as np
 import pytest
 
 from planar_tui.app.app import WorkbenchApp
-from planar_tui.app.workbench import Workbench
+from planar_tui.app.widgets.robot_drawing import render_scene
 from planar_tui.app.widgets.workspace_explorer import LABEL_CELLS
-from tests.test_app import DATA, async_test, run_tab
+from planar_tui.app.workbench import Workbench
+from tests.test_app import DATA, async_test, finish, run_tab
+from tests.test_path3rrr import ROBOT
 
 pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
 
@@ -88,3 +94,63 @@ async def test_k_toggles_the_kappa_layer_drawn_from_the_boxes(tmp_path):
     for column, row, glyph in marked:
         assert glyph == expected[row][column], (column, row)
     assert not any(g in line for line in hidden for g in GLYPHS)
+
+
+#: A 3-RRR path whose κ rises above 20 (tests/test_certified_path.py's "kappa" path).
+FAILING_PATH = """[[path3rrr]]
+from_pose = [40, 7, 0]
+to_pose = [36, 5, -2]
+duration_s = 1.0
+steps = 40
+elbow = [1, -1, -1]
+joint_limits_deg = [[20, 70], [110, 160], [245, 295]]
+kappa_max = 20
+output = "p.csv"
+"""
+
+
+@async_test
+async def test_a_certified_path_job_draws_its_trace_with_the_failing_stretch_marked(tmp_path):
+    path = tmp_path / "path.toml"
+    path.write_text(ROBOT + FAILING_PATH, encoding="utf-8")
+    app = WorkbenchApp(Workbench.open(path), output_dir=tmp_path)
+    async with app.run_test(size=(110, 34)) as pilot:
+        app.action_show_tab("path3rrr")
+        await pilot.pause()
+        pane = app.query_one("#pane-path3rrr")
+        await pilot.press("f5")
+        await finish(app, pilot)
+        assert pane.result is not None, pane.query_one("#result-text").render().plain
+        files = app.export_csv(pane, tmp_path)
+        view = pane.query_one("#path-robot")
+        scene = view.scene
+        words = str(pane.query_one("#path-certificate").render())
+        drawn = "\n".join(render_scene(scene, 60, 20).lines())
+    (written,) = [f for f in files if not str(f).endswith("-certificate.csv")]
+    (certificate_csv,) = [f for f in files if str(f).endswith("-certificate.csv")]
+    with open(certificate_csv, newline="", encoding="utf-8") as handle:
+        (certificate,) = list(csv.DictReader(handle))
+    with open(written, newline="", encoding="utf-8") as handle:
+        rows = list(csv.DictReader(handle))
+    lo = float(certificate["first_failure_lo_s"])
+    assert certificate["certified"] == "no" and certificate["reason"] == "kappa"
+    trace = [(p, g) for p, g, _ in scene.joints if g in ("·", "x")]
+    assert len(trace) == len(rows) == 41
+    for (point, glyph), row in zip(trace, rows, strict=True):
+        assert point == pytest.approx((float(row["x_cm"]) / 100, float(row["y_cm"]) / 100))
+        assert glyph == ("x" if float(row["t_s"]) >= lo else "·")
+    assert "·" in drawn and "x" in drawn
+    assert words.startswith("Not certified") and "κ rises above kappa_max" in words
+    assert f"{lo:.6g}" in words
+
+
+def test_the_verdict_in_words_of_a_certified_path():
+    from planar_tui.app.widgets.path_pane import failing_stretch, verdict_words
+    from planar_tui.workspace.path.certify import Certificate
+
+    yes = Certificate("yes", None, None, "", 4.0, 2.1, 2.2, 10)
+    assert verdict_words(yes, 1.0).startswith("Certified: every leg closes")
+    assert "[2.1, 2.2]" in verdict_words(yes, 1.0) and failing_stretch(yes, 1.0) is None
+    unknown = Certificate("unknown", 0.25, None, "", 4.0, 2.1, 2.2, 10)
+    assert verdict_words(unknown, 1.0).startswith("Undecided")
+    assert failing_stretch(unknown, 1.0) == (0.25, 1.0)
