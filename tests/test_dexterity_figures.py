@@ -113,3 +113,24 @@ def test_the_five_bar_figure_has_the_panel_too(tmp_path):
     image = by_gid(fig, "kappa-image").get_array()
     drawn = np.unique(image.compressed())
     np.testing.assert_array_equal(drawn, np.unique(expected_bins(hi[np.isfinite(hi)], 3.0)))
+
+
+def test_a_failing_certified_path_figure_marks_the_stretch_from_the_first_failure(tmp_path):
+    from tests.test_app_dexterity import FAILING_PATH
+    from tests.test_path3rrr import ROBOT
+
+    job, result = run(tmp_path, ROBOT + FAILING_PATH)
+    fig = figure_for_result(job, result)
+    table = result.table
+    t = np.array([row[0] for row in table.rows])
+    xy = np.array([row[1:3] for row in table.rows])
+    cert = dict(
+        zip(result.certificate.table().header, result.certificate.table().rows[0], strict=True)
+    )
+    lo = cert["first_failure_lo_s"]
+    assert cert["certified"] == "no" and 0.0 < lo < 1.0
+    first = int(np.argmax(t >= lo))
+    good, bad = by_gid(fig, "trace-certified"), by_gid(fig, "trace-failing")
+    np.testing.assert_allclose(np.column_stack(good.get_data()), xy[: first + 1])
+    np.testing.assert_allclose(np.column_stack(bad.get_data()), xy[first - 1 :])
+    assert any(ax.get_title().startswith("not certified (kappa)") for ax in fig.axes)
