@@ -240,14 +240,16 @@ def compute_dexterity(
 
     from planar_tui.workspace.paving.boxes import xy_area
     from planar_tui.workspace.paving.levels import pave_in_levels
+    from planar_tui.workspace.paving.remembered import RememberingEvaluator
 
     started = time.perf_counter()
     processed = budget.processed
     budget.progress.start(1.0, f"dexterous region (κ ≤ {kappa_max:g})")
-    decide = decider(evaluate, kappa_max, precision_cm)
+    remembered = RememberingEvaluator(evaluate)  # the kept boxes' κ without a second pass
+    decide = decider(remembered, kappa_max, precision_cm)
     boxes, status = pave_in_levels(np.array([extent], dtype=float), budget, decide)
-    boxes, status = refine_leaves(evaluate, boxes, status, kappa_max, budget)
-    _, kappa = evaluate(boxes)
+    boxes, status = refine_leaves(remembered, boxes, status, kappa_max, budget)
+    kappa = remembered.enclosures(boxes)
     inside = xy_area(boxes[status == 2])
     return DexterityOutcome(
         boxes=boxes,
