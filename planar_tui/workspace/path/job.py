@@ -238,7 +238,8 @@ def point_figures(job: Job[Any, Any], result: PathResult) -> dict[str, float]:
     certificate = result.certificate
     if certificate is not None:
         yes = certificate.certified == "yes"
-        until = job.spec.duration_s if yes else float(certificate.failure_lo_s)
+        lo = certificate.failure_lo_s
+        until = job.spec.duration_s if yes or lo is None else lo
         found.update(
             path_certified=1.0 if yes else 0.0,
             certified_until_s=until,
