@@ -185,3 +185,27 @@ def add_kappa_panel(fig: Any, result: Any) -> Any:
     bar.ax.set_yticklabels([f"{e:.3g}" for e in edges])
     bar.set_label(f"κ upper bound (grey: > {outcome.kappa_max:g})")
     return fig
+
+
+def from_result(job: Any, result: Any) -> Any:
+    """A 3-RRR workspace job's figure
+    (:func:`planar_tui.figures.workspace.from_result`) with its κ panel."""
+    from planar_tui.figures.workspace import from_result as workspace_figure
+
+    return add_kappa_panel(workspace_figure(job, result), result)
+
+
+def from_planar_result(job: Any, result: Any) -> Any:
+    """A 3-RPR or 3-PRR workspace job's figure
+    (:func:`planar_tui.figures.workspace.from_planar_result`) with its κ panel."""
+    from planar_tui.figures.workspace import from_planar_result as planar_figure
+
+    return add_kappa_panel(planar_figure(job, result), result)
+
+
+def from_fivebar_result(job: Any, result: Any) -> Any:
+    """A five-bar workspace job's figure (:func:`planar_tui.figures.fivebar.from_result`)
+    with its κ panel."""
+    from planar_tui.figures.fivebar import from_result as fivebar_figure
+
+    return add_kappa_panel(fivebar_figure(job, result), result)

@@ -48,7 +48,6 @@ def from_result(job: Any, result: Any) -> Any:
     workspaces of :func:`~planar_tui.figures.workspace.draw_tolerance`)."""
     import numpy as np
 
-    from planar_tui.figures.dexterity import add_kappa_panel
     from planar_tui.workspace.paving.levels import INSIDE
 
     outcome = result.outcome
@@ -88,4 +87,4 @@ def from_result(job: Any, result: Any) -> Any:
     if not polygon.is_empty:
         inner = polygon.representative_point()
         draw_fivebar(ax, job, (inner.x, inner.y))
-    return add_kappa_panel(fig, result)
+    return fig

@@ -355,7 +355,6 @@ def from_result(job: Any, result: Any) -> Any:
     """The figure of a finished workspace job: boxes, exact boundary, the robot."""
     import numpy as np
 
-    from planar_tui.figures.dexterity import add_kappa_panel
     from planar_tui.workspace.paving.levels import INSIDE
 
     outcome = result.outcome
@@ -367,7 +366,7 @@ def from_result(job: Any, result: Any) -> Any:
     inside = np.asarray(outcome.status) == INSIDE
     if isinstance(job.spec.orientation_deg, tuple):  # a range of φ: no single exact boundary
         return draw(boxes, inside, map_title(job, outcome), summary=result.summary)
-    fig = draw(
+    return draw(
         boxes,
         inside,
         map_title(job, outcome),
@@ -376,7 +375,6 @@ def from_result(job: Any, result: Any) -> Any:
         result.summary,
         getattr(result, "singularity", None),
     )
-    return add_kappa_panel(fig, result)
 
 
 #: Tolerance figure layers, drawn bottom up: which outcome, which boxes, colour, label.
@@ -446,11 +444,9 @@ def draw_tolerance(job: Any, result: Any, exact: Any = None) -> Any:
 def from_planar_result(job: Any, result: Any) -> Any:
     """The figure of a finished 3-RPR or 3-PRR job (:mod:`planar_tui.workspace.paving.runner`):
     boxes and the exact boundary (the inner polygon of the kind's exact reference); with a
-    tolerance, :func:`draw_tolerance`; with ``kappa_max``, the κ panel
-    (:func:`~planar_tui.figures.dexterity.add_kappa_panel`)."""
+    tolerance, :func:`draw_tolerance`."""
     import numpy as np
 
-    from planar_tui.figures.dexterity import add_kappa_panel
     from planar_tui.workspace.paving.levels import INSIDE
 
     outcome = result.outcome
@@ -462,11 +458,10 @@ def from_planar_result(job: Any, result: Any) -> Any:
     )
     if getattr(result, "companions", None):
         return draw_tolerance(job, result, exact)
-    fig = draw(
+    return draw(
         boxes,
         np.asarray(outcome.status) == INSIDE,
         map_title(job, outcome),
         summary=result.summary,
         exact=exact,
     )
-    return add_kappa_panel(fig, result)
