@@ -207,3 +207,84 @@ def test_leg_width_without_kappa_max_is_one_line_and_exit_2(cli, tmp_path):
     assert result.exit_code == 2
     assert "leg_width_cm: is set without kappa_max" in result.output
     assert len(result.output.strip().splitlines()) == 1
+
+
+PRISMATIC = {
+    "3rpr-clash": (
+        "[robot3rpr]\n[[path3rpr]]\nleg_limits_cm = [[5, 100], [5, 100], [5, 100]]\n",
+        [29, 50, 0],
+        [29, 82, 0],
+        "no",
+    ),
+    "3rpr-clear": (
+        "[robot3rpr]\n[[path3rpr]]\nleg_limits_cm = [[5, 100], [5, 100], [5, 100]]\n",
+        [21, 21, 0],
+        [36, 13, 0],
+        "yes",
+    ),
+    "3prr-clash": (
+        "[robot3prr]\n[[path3prr]]\nslider_modes = [1, 1, 1]\n",
+        [33, 32, 0],
+        [63, 32, 0],
+        "no",
+    ),
+    "3prr-clear": (
+        "[robot3prr]\n[[path3prr]]\nslider_modes = [1, 1, 1]\n",
+        [29, 14, 0],
+        [51, 19, 0],
+        "yes",
+    ),
+}
+
+
+@pytest.mark.parametrize("name", sorted(PRISMATIC))
+def test_the_prismatic_robots_against_dense_sampling(tmp_path, name):
+    """The 3-RPR and 3-PRR at φ = 0 along the path (the references of
+    ``tests/test_interference.py``: leg lengths, sliders on their lines)."""
+    from planar_tui.batch import prepare_jobs, run_job
+    from planar_tui.presets import load_preset
+    from tests.test_interference import reference
+
+    head, start, stop, verdict = PRISMATIC[name]
+    text = f"{head}from_pose = {start}\nto_pose = {stop}\nsteps = 10\nkappa_max = 1e6\n"
+    text += f'leg_width_cm = {WIDTH_CM}\noutput = "p.csv"\n'
+    (tmp_path / "p.toml").write_text(text, encoding="utf-8")
+    (job,) = prepare_jobs(load_preset(tmp_path / "p.toml").jobs)
+    certificate = run_job(job).certificate
+    times = np.linspace(0.0, 1.0, SAMPLES + 1)
+
+    def gap(t):
+        poses = path_poses(start, stop, 1.0, np.atleast_1d(t))
+        return reference(job, poses[:, 0], poses[:, 1])
+
+    valid, sampled = gap(times)
+    assert valid.all()
+    assert certificate.certified == verdict
+    bad = np.flatnonzero(sampled < 0.0)
+    if verdict == "yes":
+        assert not len(bad)
+        return
+    k = int(bad[0])
+    t_star = brentq(lambda t: float(gap(t)[1][0]), times[k - 1], times[k], xtol=1e-12)
+    assert certificate.reason == "interference"
+    assert certificate.failure_lo_s - 1e-9 <= t_star <= certificate.failure_hi_s + 1e-9
+    assert certificate.failure_hi_s - certificate.failure_lo_s <= 1e-3
+
+
+@pytest.mark.parametrize("name", ["3rpr-clash", "3prr-clash"])
+def test_the_prismatic_check_fails_with_a_shrunk_gap(tmp_path, monkeypatch, name):
+    """The dense-sampling check above, with every gap enclosure shrunk by 1 % of the width
+    at each end: the bracket misses the first crossing (or the verdict changes)."""
+    original = certify_module.with_clearance
+
+    def with_clearance(test, clearance):
+        def narrowed(boxes):
+            verdict, gap = clearance(boxes)
+            shift = 0.01 * WIDTH_CM
+            return verdict, np.stack([gap[:, 0] + shift, gap[:, 1] - shift], axis=1)
+
+        return original(test, narrowed)
+
+    monkeypatch.setattr(certify_module, "with_clearance", with_clearance)
+    with pytest.raises(AssertionError):
+        test_the_prismatic_robots_against_dense_sampling(tmp_path, name)

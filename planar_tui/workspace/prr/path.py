@@ -12,7 +12,7 @@ from typing import ClassVar
 
 from planar_tui.jobkind import Job
 from planar_tui.schema import plot_setting
-from planar_tui.workspace.path.certify import kappa_setting
+from planar_tui.workspace.path.certify import kappa_setting, width_setting
 from planar_tui.workspace.path.job import (
     constant_efforts_setting,
     duration_setting,
@@ -48,6 +48,7 @@ class Path3PRRSpec:
     constant_efforts: tuple[float, ...] | None = constant_efforts_setting(3, "N")
     kappa_max: float | None = kappa_setting()
     characteristic_length_cm: float | None = length_setting()
+    leg_width_cm: float | None = width_setting()
     plot: str | None = plot_setting()
 
     mechanism: ClassVar[Mechanism] = MECHANISM
