@@ -33,10 +33,10 @@ elbow = [1, -1, 1]
 kappa_max = 4
 output = "w.csv"
 """
-OPTIMISE_DEXTEROUS = f"""
+OPTIMISE_DEXTEROUS = """
 [[optimise]]
 job = "workspace"
-variables."robot3rrr.proximal_cm" = {{ from = 24, to = 36, integer = true, fixed_sum = {{ "robot3rrr.distal_cm" = 60 }} }}
+variables."robot3rrr.proximal_cm" = { from = 24, to = 36, integer = true, fixed_sum = { "robot3rrr.distal_cm" = 60 } }
 maximise = "dexterous_area_inside_cm2"
 budget = 32
 population = 8
