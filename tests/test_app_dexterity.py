@@ -142,15 +142,3 @@ async def test_a_certified_path_job_draws_its_trace_with_the_failing_stretch_mar
     assert "·" in drawn and "x" in drawn
     assert words.startswith("Not certified") and "κ rises above kappa_max" in words
     assert f"{lo:.6g}" in words
-
-
-def test_the_verdict_in_words_of_a_certified_path():
-    from planar_tui.app.widgets.path_pane import failing_stretch, verdict_words
-    from planar_tui.workspace.path.certify import Certificate
-
-    yes = Certificate("yes", None, None, "", 4.0, 2.1, 2.2, 10)
-    assert verdict_words(yes, 1.0).startswith("Certified: every leg closes")
-    assert "[2.1, 2.2]" in verdict_words(yes, 1.0) and failing_stretch(yes, 1.0) is None
-    unknown = Certificate("unknown", 0.25, None, "", 4.0, 2.1, 2.2, 10)
-    assert verdict_words(unknown, 1.0).startswith("Undecided")
-    assert failing_stretch(unknown, 1.0) == (0.25, 1.0)

@@ -288,3 +288,24 @@ def test_the_prismatic_check_fails_with_a_shrunk_gap(tmp_path, monkeypatch, name
     monkeypatch.setattr(certify_module, "with_clearance", with_clearance)
     with pytest.raises(AssertionError):
         test_the_prismatic_robots_against_dense_sampling(tmp_path, name)
+
+
+def test_a_certified_path_reports_its_certificate_to_sweeps_and_optimisations(tmp_path):
+    """``path_certified``, ``certified_until_s`` and ``kappa_peak_hi`` among the job's
+    figure names, and their values from its certificate CSV's row."""
+    from planar_tui.batch import prepare_jobs, run_job
+    from planar_tui.presets import load_preset
+    from planar_tui.workspace.path.job import figure_names, point_figures
+
+    mode, start, stop, _ = FIVEBAR_PATHS["clash"]
+    text = FIVEBAR_PATH.format(mode=mode, start=start, stop=stop, extra="leg_width_cm = 6\n")
+    (tmp_path / "p.toml").write_text(text, encoding="utf-8")
+    (job,) = prepare_jobs(load_preset(tmp_path / "p.toml").jobs)
+    result = run_job(job)
+    table = result.extra_tables["certificate"]
+    row = dict(zip(table.header, table.rows[0], strict=True))
+    found = point_figures(job.job, result)
+    assert {"path_certified", "certified_until_s", "kappa_peak_hi"} <= set(figure_names(job.job))
+    assert found["path_certified"] == 0.0 and row["certified"] == "no"
+    assert found["certified_until_s"] == row["first_failure_lo_s"]
+    assert found["kappa_peak_hi"] == row["kappa_peak_hi"]

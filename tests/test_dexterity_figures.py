@@ -134,3 +134,32 @@ def test_a_failing_certified_path_figure_marks_the_stretch_from_the_first_failur
     np.testing.assert_allclose(np.column_stack(good.get_data()), xy[: first + 1])
     np.testing.assert_allclose(np.column_stack(bad.get_data()), xy[first - 1 :])
     assert any(ax.get_title().startswith("not certified (kappa)") for ax in fig.axes)
+
+
+def test_the_verdict_in_words_of_a_certified_path():
+    from planar_tui.app.widgets.path_pane import failing_stretch, verdict_words
+    from planar_tui.workspace.path.certify import Certificate
+
+    yes = Certificate("yes", None, None, "", 4.0, 2.1, 2.2, 10)
+    assert verdict_words(yes, 1.0).startswith("Certified: every leg closes")
+    assert "[2.1, 2.2]" in verdict_words(yes, 1.0) and failing_stretch(yes, 1.0) is None
+    unknown = Certificate("unknown", 0.25, None, "", 4.0, 2.1, 2.2, 10)
+    assert verdict_words(unknown, 1.0).startswith("Undecided")
+    assert failing_stretch(unknown, 1.0) == (0.25, 1.0)
+
+
+def test_a_zoomed_kappa_view_marks_only_the_boxes_in_it():
+    """The app's κ layer (:func:`~planar_tui.workspace.paving.kappa_map.view_cells`): a
+    box outside the view marks no cell (the terminal map's clipping would put it on the
+    edge), a box inside marks its cells with its kappa_hi."""
+    from types import SimpleNamespace
+
+    from planar_tui.workspace.paving.kappa_map import band_edges, cell_glyph, view_cells
+
+    boxes = np.array([[0.0, 1.0, 0.0, 1.0], [5.0, 6.0, 0.0, 1.0]])
+    kappa = np.array([[1.0, 1.5], [1.0, 3.9]])
+    worst = view_cells(SimpleNamespace(boxes=boxes, kappa=kappa), (0.0, 2.0, 0.0, 1.0), 4, 2)
+    assert np.nanmax(worst) == 1.5 and np.isnan(worst[:, 2:]).all()
+    assert cell_glyph(1.5, band_edges(4.0), 4.0) == "1"
+    assert cell_glyph(3.9, band_edges(4.0), 4.0) == "4"
+    assert cell_glyph(4.1, band_edges(4.0), 4.0) == "?"
