@@ -8,10 +8,17 @@ The drawing is the robot's own
 here), played back by :class:`~planar_tui.app.widgets.playback.PlaybackView` (its keys
 once the drawing has the focus: ``←``/``→``, ``home``/``end``, ``space``, ``[``/``]``), in
 a fixed extent (every drawn point of the path's thinned rows, so the scale stays put).
+
+With ``kappa_max`` (a certified path, :mod:`planar_tui.workspace.path.certify`) the drawing
+also shows the path's trace, the platform point at every sampled time: ``·`` where the
+certificate holds, ``x`` on the failing stretch from ``first_failure_lo_s`` (the end of the
+certified part) to the end of the path; and the certificate's verdict in words below
+(:func:`verdict_words`).
 """
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -44,6 +51,52 @@ from planar_tui.presets import Job
 M_PER_CM = 0.01
 #: The drawing's margin around the path's extent, a fraction of its larger side.
 MARGIN = 0.05
+#: The trace's glyphs: the certified part, the failing stretch; and their style.
+TRACE_GLYPH, FAILING_GLYPH = "·", "x"
+TRACE_STYLE, FAILING_STYLE = "grey50", "bold red"
+#: What each failure reason of a certificate means, in words.
+REASON_WORDS = {
+    "kappa": "κ rises above kappa_max",
+    "leg": "a leg cannot close",
+    "joint_limit": "a joint or leg leaves its limits",
+    "interference": "two links, or a link and the platform, come too close",
+}
+
+
+def failing_stretch(certificate: Any, duration_s: float) -> tuple[float, float] | None:
+    """The failing stretch ``[first_failure_lo_s, T]`` of a certificate (``None``: none,
+    the path is certified)."""
+    if certificate is None or certificate.certified == "yes":
+        return None
+    return (float(certificate.failure_lo_s), duration_s)
+
+
+def verdict_words(certificate: Any, duration_s: float) -> str:
+    """The certificate's verdict as a sentence (``""`` without one)."""
+    if certificate is None:
+        return ""
+    bound = f"κ ≤ {certificate.kappa_max:g}"
+    peak = ""
+    if not math.isnan(certificate.kappa_peak_hi):
+        peak = f" (largest κ in [{certificate.kappa_peak_lo:.4g}, {certificate.kappa_peak_hi:.4g}])"
+    if certificate.certified == "yes":
+        return (
+            f"Certified: every leg closes within its limits and {bound} for every t in "
+            f"[0, {duration_s:g}] s{peak}."
+        )
+    lo = certificate.failure_lo_s
+    if certificate.certified == "no":
+        hi = certificate.failure_hi_s
+        why = REASON_WORDS.get(certificate.reason, certificate.reason)
+        return (
+            f"Not certified: the path first fails between t = {lo:.6g} and {hi:.6g} s "
+            f"({why}); certified on [0, {lo:.6g}] s{peak}; {FAILING_GLYPH} marks the "
+            f"stretch from {lo:.6g} s to the end."
+        )
+    return (
+        f"Undecided: certified ({bound}) on [0, {lo:.6g}] s{peak}, no proof either way "
+        f"after it; {FAILING_GLYPH} marks the stretch from {lo:.6g} s to the end."
+    )
 
 
 def linkage_scene(linkage: Any, extent_m: tuple[float, float, float, float], caption: str) -> Scene:
@@ -84,7 +137,24 @@ class PathFrames:
     def __init__(self, job: Job, result: Any):
         self.mechanism, self.robot = job.spec.mechanism, job.robot
         header = list(result.table.header)
-        rows = np.asarray(result.table.rows, dtype=np.float64)
+        every = np.asarray(result.table.rows, dtype=np.float64)  # an empty cell: nan
+        trace = every[:, [header.index("x_cm"), header.index("y_cm")]] * M_PER_CM
+        stretch = failing_stretch(getattr(result, "certificate", None), job.spec.duration_s)
+        failing = np.zeros(len(every), dtype=bool)
+        if stretch is not None:
+            failing = every[:, 0] >= stretch[0]
+        #: The trace's glyphs (with ``kappa_max`` alone), each ``(point_m, glyph, style)``.
+        self.trace: list[tuple[tuple[float, float], str, str]] = []
+        if getattr(result, "certificate", None) is not None:
+            self.trace = [
+                (
+                    (float(x), float(y)),
+                    FAILING_GLYPH if bad else TRACE_GLYPH,
+                    FAILING_STYLE if bad else TRACE_STYLE,
+                )
+                for (x, y), bad in zip(trace, failing, strict=True)
+            ]
+        rows = every[np.isfinite(every[:, len(header) - 1])]  # the rows where the legs close
         poses = rows[:, [header.index("x_cm"), header.index("y_cm")]]
         if "phi_deg" in header:
             poses = np.column_stack([poses, np.radians(rows[:, header.index("phi_deg")])])
@@ -95,6 +165,8 @@ class PathFrames:
         points = np.array(
             [p for row in thin(len(self.poses)) for p in self.linkage(int(row)).points()]
         )
+        if self.trace:
+            points = np.concatenate([points, trace / M_PER_CM])
         lo, hi = points.min(axis=0) * M_PER_CM, points.max(axis=0) * M_PER_CM
         grow = MARGIN * float(max(hi - lo))
         self.extent_m = (lo[0] - grow, hi[0] + grow, lo[1] - grow, hi[1] + grow)
@@ -103,7 +175,10 @@ class PathFrames:
         return self.mechanism.linkage(self.robot, self.poses[row], self.actuators[row])
 
     def scene(self, row: int) -> Scene:
-        return linkage_scene(self.linkage(row), self.extent_m, f"t={self.times_s[row]:.3g} s")
+        """The robot at ``row`` over the path's trace (the robot's joints drawn last)."""
+        scene = linkage_scene(self.linkage(row), self.extent_m, f"t={self.times_s[row]:.3g} s")
+        scene.joints = [*self.trace, *scene.joints]
+        return scene
 
 
 class PathPane(JobPane):
@@ -115,6 +190,7 @@ class PathPane(JobPane):
     #path-robot { width: 1fr; min-width: 16; }
     #efforts-plot { width: 1fr; }
     #path-readout { height: auto; max-height: 3; }
+    #path-certificate { height: auto; }
     """
 
     def compose_results(self) -> ComposeResult:
@@ -123,6 +199,7 @@ class PathPane(JobPane):
             yield PlaybackView("(the robot: run the path)", id="path-robot")
             yield PlotextPlot(id="efforts-plot")
         yield Static("", id="path-readout", markup=False)
+        yield Static("", id="path-certificate", markup=False)
 
     def render_result(self, job: Job, result: JobResult) -> None:
         view = self.query_one("#path-robot", PlaybackView)
@@ -131,6 +208,8 @@ class PathPane(JobPane):
         frames = PathFrames(job, result)
         view.load(times, frames.scene, view.row if same_run else 0)
         self.query_one("#result-text", Static).update(result.summary)
+        words = verdict_words(getattr(result, "certificate", None), job.spec.duration_s)
+        self.query_one("#path-certificate", Static).update(words)
 
     def on_playback_view_moved(self, message: PlaybackView.Moved) -> None:
         self.draw_plot()

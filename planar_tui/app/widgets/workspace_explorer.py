@@ -6,7 +6,9 @@ The view is aspect-true (a cell is twice as tall as wide): :attr:`MapExplorer.ce
 per column and twice that per row, centred on :attr:`MapExplorer.centre_cm`. Keys (when
 the map has the focus): arrows move the cursor one cell, shift+arrows pan a quarter of
 the view, ``+``/``-`` zoom in/out about the cursor, ``0`` fits the map again, ``b`` shows
-the exact boundary, ``m`` the circle's working-mode region, ``r`` paves the visible region
+the exact boundary, ``m`` the circle's working-mode region, ``k`` the κ map of a job with
+``kappa_max`` (each cell the band of the worst certified κ upper bound of the dexterity
+boxes over it, :mod:`planar_tui.workspace.paving.kappa_map`, drawn over the boxes), ``r`` paves the visible region
 again at a finer precision (in a worker; ``r`` again or any zoom cancels it).
 """
 
@@ -22,6 +24,7 @@ from textual.binding import Binding
 from textual.message import Message
 from textual.widget import Widget
 
+from planar_tui.workspace.paving import kappa_map
 from planar_tui.workspace.paving.map import (
     BOUNDARY_GLYPH,
     OUTSIDE_GLYPH,
@@ -47,6 +50,7 @@ LEGEND_ITEMS = (
 )
 EXACT_ITEM = f"{EXACT_GLYPH} exact boundary"
 MODE_ITEM = f"{OTHER_MODE_GLYPH} not in the circle's working mode"
+KAPPA_ITEM = "k: κ map"
 
 
 def cell_status(point: tuple[float, float], boxes, status, singular=None) -> str:
@@ -101,6 +105,7 @@ class MapExplorer(Widget):
         Binding("0", "fit", "Fit", show=False),
         Binding("b", "toggle('exact')", "Exact", show=False),
         Binding("m", "toggle('mode')", "Mode", show=False),
+        Binding("k", "toggle('kappa')", "κ map", show=False),
         Binding("r", "repave", "Re-pave"),
     ]
 
@@ -130,6 +135,10 @@ class MapExplorer(Widget):
         self.fitted = False
         self.show_exact = False
         self.show_mode = False
+        self.show_kappa = False
+        #: The dexterity outcome whose κ map ``k`` shows (``None``: the job has no
+        #: ``kappa_max``; set by the pane).
+        self.kappa: Any = None
         #: Callables giving the exact boundary's rings and whether a point is in the
         #: circle's working mode (set by the pane; ``None`` when not available).
         self.exact_rings: Any = None
@@ -154,6 +163,7 @@ class MapExplorer(Widget):
         self.boxes = np.zeros((0, 4))
         self.status = np.zeros(0, dtype=np.int64)
         self.overlays = {}
+        self.kappa = None
         self.fitted = False
         self.text = text
         self.refresh()
@@ -229,6 +239,8 @@ class MapExplorer(Widget):
             self.show_exact = not self.show_exact
         elif what == "mode":
             self.show_mode = not self.show_mode
+        elif what == "kappa":
+            self.show_kappa = not self.show_kappa
         self.changed()
 
     def action_repave(self) -> None:
@@ -259,6 +271,14 @@ class MapExplorer(Widget):
                 for column in range(columns):
                     if not self.in_mode(self.cell_centre(column, row)):
                         mark(column, row, OTHER_MODE_GLYPH, ("█", BOUNDARY_GLYPH))
+        if self.show_kappa and self.kappa is not None:
+            worst = kappa_map.view_cells(self.kappa, self.extent(), columns, rows)
+            edges = kappa_map.band_edges(self.kappa.kappa_max)
+            for row in range(rows):
+                for column, value in enumerate(worst[rows - 1 - row]):
+                    if not np.isnan(value):
+                        glyph = kappa_map.cell_glyph(value, edges, self.kappa.kappa_max)
+                        grid[row][LABEL_CELLS + column] = glyph
         if self.show_exact and self.exact_rings is not None:
             x_lo, _, _, y_hi = self.extent()
             for ring in self.exact_rings():
@@ -299,6 +319,9 @@ class MapExplorer(Widget):
             items.append(EXACT_ITEM)
         if self.show_mode and self.in_mode is not None:
             items.append(MODE_ITEM)
+        if self.kappa is not None:
+            shown = self.show_kappa
+            items += kappa_map.legend_items(self.kappa.kappa_max) if shown else [KAPPA_ITEM]
         if "singular" in self.overlays or "circle" in self.overlays:
             items += SINGULAR_LEGEND_ITEMS
         items += [f"{glyph} {text}" for _, glyph, text in self.overlays.get("layers", ())]

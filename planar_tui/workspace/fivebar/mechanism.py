@@ -87,7 +87,15 @@ class MechanismFiveBar(Mechanism):
 
         g, q, _, limits, _ = kernel_inputs(robot)  # q: the point platform's zero offsets
         elbow = np.array(spec.elbow, dtype=np.float64)
-        return box_test(rr_pose_boxes, g, q, elbow, open_limits(limits), 0.0)
+        test = box_test(rr_pose_boxes, g, q, elbow, open_limits(limits), 0.0)
+        width = getattr(spec, "leg_width_cm", None)
+        if width is None:
+            return test
+        from planar_tui.kernels.path_interference_rr import rr_pose_clearance  # numba
+        from planar_tui.workspace.path.certify import clearance_test, with_clearance
+
+        inputs = (g, q, elbow, open_limits(limits), float(width))
+        return with_clearance(test, clearance_test(rr_pose_clearance, *inputs))
 
     def direct_kinematics(self, robot: Any, actuators: Any) -> Any:
         """The end points at joint angles ``actuators`` = :math:`\\theta_1, \\theta_2` (rad):

@@ -10,7 +10,7 @@ from planar_tui.jobkind import Job
 from planar_tui.schema import TableReader, plot_setting, setting
 from planar_tui.workspace.fivebar.mechanism import MECHANISM
 from planar_tui.workspace.fivebar.robot import Robot5R, leg_angles
-from planar_tui.workspace.path.certify import kappa_setting
+from planar_tui.workspace.path.certify import kappa_setting, width_setting
 from planar_tui.workspace.path.job import (
     PathSpec,
     constant_efforts_setting,
@@ -50,6 +50,7 @@ class Path5RSpec(PathSpec):
     feed_forward: bool = feed_forward_setting()
     constant_efforts: tuple[float, ...] | None = constant_efforts_setting(2, "N m")
     kappa_max: float | None = kappa_setting()
+    leg_width_cm: float | None = width_setting()
     plot: str | None = plot_setting()
 
     mechanism = MECHANISM

@@ -53,6 +53,7 @@ if TYPE_CHECKING:
 #: The box test's verdicts (as :mod:`planar_tui.kernels.dexterity`'s) and its reasons.
 OUT, UNSURE, IN = 0, 1, 2
 REASONS = {1: "leg", 2: "joint_limit", 3: "interference"}
+INTERFERENCE = 3
 KAPPA = "kappa"
 #: The narrowest time interval bisected, as a fraction of T.
 MIN_WIDTH_FRACTION = 2.0**-24
@@ -97,11 +98,13 @@ def kappa_setting() -> Any:
 
 
 def check_certificate(values: dict[str, Any], reader: Any) -> None:
-    """``kappa_max`` is above 1; ``characteristic_length_cm`` goes with it."""
+    """``kappa_max`` is above 1; ``characteristic_length_cm`` and ``leg_width_cm`` go with
+    it."""
     kappa = values.get("kappa_max")
     if kappa is None:
-        if values.get("characteristic_length_cm") is not None:
-            raise reader.error("characteristic_length_cm", "is set without kappa_max", "kappa_max")
+        for name in ("characteristic_length_cm", "leg_width_cm"):
+            if values.get(name) is not None:
+                raise reader.error(name, "is set without kappa_max", "kappa_max")
         return
     if not kappa > 1.0:
         raise reader.error("kappa_max", f"is {kappa:g}: κ is at least 1", "a number > 1")
@@ -171,6 +174,52 @@ def box_test(kernel: Callable[..., None], *inputs: Any) -> BoxTest:
         return verdict, reason, kappa
 
     return test
+
+
+def width_setting() -> Any:
+    """``leg_width_cm``: the links' capsule diameter a certified path keeps clear."""
+    return setting(
+        number(positive=True),
+        default=None,
+        default_doc="(no interference test)",
+        type_doc="number > 0",
+        doc="with kappa_max, also certify that no two links, nor a link and the platform, "
+        "come closer than allowed (links as capsules of this width, docs/interference.md)",
+    )
+
+
+def with_clearance(test: BoxTest, clearance: Any) -> BoxTest:
+    r"""``test`` with the clearance of ``clearance`` (pose boxes to ``(verdict, gap)``,
+    the gap :math:`\min(d - d_{req})` enclosed over the box's poses where the legs close):
+    a box whose gap is below 0 at every such pose fails (``OUT``, reason
+    ``interference``: every pose either leaves the legs open or interferes); one whose gap
+    may be below 0 is no longer ``IN`` (``UNSURE``)."""
+    import numpy as np
+
+    def test_clear(boxes: Any) -> tuple[Any, Any, Any]:
+        verdict, reason, kappa = test(boxes)
+        _, gap = clearance(boxes)
+        clash = (verdict != OUT) & (gap[:, 1] < 0.0)
+        verdict = np.where((verdict == IN) & ~(gap[:, 0] >= 0.0), UNSURE, verdict)
+        verdict[clash] = OUT
+        reason = np.where(clash, INTERFERENCE, reason)
+        return verdict, reason, kappa
+
+    return test_clear
+
+
+def clearance_test(kernel: Callable[..., None], *inputs: Any) -> Any:
+    """Pose boxes to ``(verdict, gap)`` by a robot's clearance kernel ``kernel(boxes,
+    *inputs, verdict, gap)`` (e.g. :func:`kernels.path_interference_rr.rr_pose_clearance`)."""
+    import numpy as np
+
+    def clearance(boxes: Any) -> tuple[Any, Any]:
+        verdict = np.empty(len(boxes), dtype=np.int64)
+        gap = np.empty((len(boxes), 2))
+        kernel(np.ascontiguousarray(boxes), *inputs, verdict, gap)
+        return verdict, gap
+
+    return clearance
 
 
 def open_limits(limits: Any) -> Any:

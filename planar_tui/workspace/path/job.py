@@ -226,6 +226,12 @@ def figures(model: PathModel, solution: PathSolution) -> dict[str, float]:
     return out
 
 
+#: A certified path's sweep and optimisation columns (with ``kappa_max``): 1 when the
+#: certificate says ``yes`` (else 0), the certified prefix's end (T when certified) and
+#: the upper end of the largest κ's bracket (nan where nothing is certified).
+CERTIFICATE_FIGURES = ("path_certified", "certified_until_s", "kappa_peak_hi")
+
+
 def figure_names(job: Job[Any, Any]) -> tuple[str, ...]:
     """The columns :func:`point_figures` reports, without running the job."""
     model = job.spec.mechanism.path_model(job.robot)
@@ -233,12 +239,26 @@ def figure_names(job: Job[Any, Any]) -> tuple[str, ...]:
     for i in range(1, model.actuators + 1):
         name, unit = f"{model.effort}{i}", model.effort_unit
         names += [f"{name}_abs_max_{unit}", f"{name}_rms_{unit}", f"power{i}_abs_max_W"]
+    if getattr(job.spec, "kappa_max", None) is not None:
+        names += CERTIFICATE_FIGURES
     return tuple(names)
 
 
 def point_figures(job: Job[Any, Any], result: PathResult) -> dict[str, float]:
-    """A sweep row's figures (:func:`figures`)."""
-    return figures(result.model, result.solution)
+    """A sweep row's figures (:func:`figures`; with a certificate,
+    :data:`CERTIFICATE_FIGURES`)."""
+    found = figures(result.model, result.solution)
+    certificate = result.certificate
+    if certificate is not None:
+        yes = certificate.certified == "yes"
+        lo = certificate.failure_lo_s
+        until = job.spec.duration_s if yes or lo is None else lo
+        found.update(
+            path_certified=1.0 if yes else 0.0,
+            certified_until_s=until,
+            kappa_peak_hi=float(certificate.kappa_peak_hi),
+        )
+    return found
 
 
 def _listed(values: Any) -> str:

@@ -237,16 +237,18 @@ def compute_dexterity(
 
     from planar_tui.workspace.paving.boxes import xy_area
     from planar_tui.workspace.paving.levels import pave_in_levels
+    from planar_tui.workspace.paving.remembered import RememberingEvaluator
 
     started = time.perf_counter()
     processed = budget.processed
     budget.progress.start(1.0, f"dexterous region (κ ≤ {kappa_max:g})")
+    remembered = RememberingEvaluator(evaluate)  # the kept boxes' κ without a second pass
     outside: list[np.ndarray] = []
-    recorded = recording_outside(evaluate, kappa_max, outside)
+    recorded = recording_outside(remembered, kappa_max, outside)
     decide = decider(recorded, kappa_max, precision_cm)
     boxes, status = pave_in_levels(np.array([extent], dtype=float), budget, decide)
     boxes, status = refine_leaves(recorded, boxes, status, kappa_max, budget)
-    _, kappa = evaluate(boxes)
+    kappa = remembered.enclosures(boxes)
     inside = xy_area(boxes[status == 2])
     return DexterityOutcome(
         boxes=boxes,

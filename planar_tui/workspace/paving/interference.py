@@ -127,14 +127,16 @@ def compute_interference(
 
     from planar_tui.workspace.paving.boxes import xy_area
     from planar_tui.workspace.paving.levels import pave_in_levels
+    from planar_tui.workspace.paving.remembered import RememberingEvaluator
 
     started = time.perf_counter()
     budget.progress.start(1.0, f"interference-free region (links {width_cm:g} cm wide)")
-    bound = as_bound(evaluate)
+    remembered = RememberingEvaluator(evaluate)  # the kept boxes' gaps without a second pass
+    bound = as_bound(remembered)
     decide = decider(bound, 0.0, precision_cm)
     boxes, status = pave_in_levels(np.array([extent], dtype=float), budget, decide)
     boxes, status = refine_leaves(bound, boxes, status, 0.0, budget)
-    _, gap = evaluate(boxes)
+    gap = remembered.enclosures(boxes)
     return InterferenceOutcome(
         boxes=boxes,
         status=status,

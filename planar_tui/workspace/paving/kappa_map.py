@@ -43,6 +43,38 @@ def worst_cells(boxes: Any, values: Any, extent, columns: int, rows: int) -> np.
     return worst.reshape(rows, columns)
 
 
+def band_edges(kappa_max: float) -> np.ndarray:
+    """The upper edges of the four bands of :math:`[1, \\kappa_{max}]`."""
+    return 1.0 + (kappa_max - 1.0) * np.arange(1, 5) / 4
+
+
+def cell_glyph(value: float, edges: np.ndarray, kappa_max: float) -> str:
+    """A cell's glyph: blank (``nan``: no box), its band, or ``?`` above ``kappa_max``."""
+    if np.isnan(value):
+        return " "
+    if value > kappa_max:
+        return UNPROVED_GLYPH
+    return BAND_GLYPHS[int(np.searchsorted(edges, value))]
+
+
+def legend_items(kappa_max: float) -> list[str]:
+    """The bands' legend items and the "not proved" item."""
+    bands = [f"{g} κ ≤ {e:.3g}" for g, e in zip(BAND_GLYPHS, band_edges(kappa_max), strict=True)]
+    return [*bands, f"{UNPROVED_GLYPH} not proved ≤ {kappa_max:g}"]
+
+
+def view_cells(outcome: Any, extent, columns: int, rows: int) -> np.ndarray:
+    """:func:`kappa_cells` of the boxes that overlap ``extent`` alone (a box outside a
+    zoomed view marks no cell at its edge)."""
+    from types import SimpleNamespace
+
+    xlo, xhi, ylo, yhi = extent
+    boxes = np.asarray(outcome.boxes).reshape(-1, 4)
+    seen = (boxes[:, 1] > xlo) & (boxes[:, 0] < xhi) & (boxes[:, 3] > ylo) & (boxes[:, 2] < yhi)
+    kappa = np.asarray(outcome.kappa).reshape(-1, 2)
+    return kappa_cells(SimpleNamespace(boxes=boxes[seen], kappa=kappa[seen]), extent, columns, rows)
+
+
 def render_kappa_map(outcome: Any, width: int = 80) -> list[str]:
     """The κ map of a :class:`~planar_tui.workspace.paving.dexterity.DexterityOutcome` as
     lines of at most ``width`` columns (module docstring), with its extent and legend."""
@@ -51,21 +83,13 @@ def render_kappa_map(outcome: Any, width: int = 80) -> list[str]:
     columns = max(10, width - 2)
     rows = int(min(40, max(5, round(columns * (yhi - ylo) / (xhi - xlo) / CELL_ASPECT))))
     worst = kappa_cells(outcome, extent, columns, rows)
-    edges = 1.0 + (outcome.kappa_max - 1.0) * np.arange(1, 5) / 4
+    edges = band_edges(outcome.kappa_max)
     lines = [
         f"κ map, x in [{xlo:.4g}, {xhi:.4g}] cm, y in [{ylo:.4g}, {yhi:.4g}] cm "
         "(worst certified upper bound per cell)"[:width]
     ]
     for j in range(rows - 1, -1, -1):
-        cells = []
-        for value in worst[j]:
-            if np.isnan(value):
-                cells.append(" ")
-            elif value > outcome.kappa_max:
-                cells.append(UNPROVED_GLYPH)
-            else:
-                cells.append(BAND_GLYPHS[int(np.searchsorted(edges, value))])
+        cells = [cell_glyph(value, edges, outcome.kappa_max) for value in worst[j]]
         lines.append("│" + "".join(cells))
-    bands = [f"{g} κ ≤ {e:.3g}" for g, e in zip(BAND_GLYPHS, edges, strict=True)]
-    legend = "  ".join([*bands, f"{UNPROVED_GLYPH} not proved ≤ {outcome.kappa_max:g}"])
+    legend = "  ".join(legend_items(outcome.kappa_max))
     return [*lines, legend[:width]]

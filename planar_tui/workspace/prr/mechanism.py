@@ -75,7 +75,15 @@ class Mechanism3PRR(LegMechanism):
         q = np.array(robot.platform_points_cm, dtype=np.float64)
         modes = np.array(spec.slider_modes, dtype=np.float64)
         length = spec.characteristic_length_cm or circumradius_cm(robot.platform_points_cm)
-        return box_test(prr_pose_boxes, g, modes, q, length)
+        test = box_test(prr_pose_boxes, g, modes, q, length)
+        width = getattr(spec, "leg_width_cm", None)
+        if width is None:
+            return test
+        from planar_tui.kernels.path_interference_prismatic import prr_pose_clearance  # numba
+        from planar_tui.workspace.path.certify import clearance_test, with_clearance
+
+        clearance = clearance_test(prr_pose_clearance, g, modes, q, float(width))
+        return with_clearance(test, clearance)
 
     def interference(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
         from planar_tui.workspace.prr.dexterity import working_modes

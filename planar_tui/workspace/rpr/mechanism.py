@@ -69,7 +69,15 @@ class Mechanism3RPR(LegMechanism):
         q = np.array(robot.platform_points_cm, dtype=np.float64)
         limits = np.array(spec.leg_limits_cm or ((0.0, math.inf),) * 3, dtype=np.float64)
         length = spec.characteristic_length_cm or circumradius_cm(robot.platform_points_cm)
-        return box_test(rpr_pose_boxes, bases, q, limits, length)
+        test = box_test(rpr_pose_boxes, bases, q, limits, length)
+        width = getattr(spec, "leg_width_cm", None)
+        if width is None:
+            return test
+        from planar_tui.kernels.path_interference_prismatic import rpr_pose_clearance  # numba
+        from planar_tui.workspace.path.certify import clearance_test, with_clearance
+
+        clearance = clearance_test(rpr_pose_clearance, bases, q, limits, float(width))
+        return with_clearance(test, clearance)
 
     def path_model(self, robot: Any) -> PathModel:
         return PathModel(pose_dimension=3, actuators=3, prismatic=True)

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 
 from planar_tui.jobkind import Job
 from planar_tui.schema import TableReader, plot_setting, setting
-from planar_tui.workspace.path.certify import kappa_setting
+from planar_tui.workspace.path.certify import kappa_setting, width_setting
 from planar_tui.workspace.path.job import (
     PathSpec,
     constant_efforts_setting,
@@ -41,6 +41,7 @@ class Path3RPRSpec(PathSpec):
     constant_efforts: tuple[float, ...] | None = constant_efforts_setting(3, "N")
     kappa_max: float | None = kappa_setting()
     characteristic_length_cm: float | None = length_setting()
+    leg_width_cm: float | None = width_setting()
     plot: str | None = plot_setting()
 
     mechanism = MECHANISM

@@ -113,7 +113,15 @@ class Mechanism3RRR(Mechanism):
         q = np.array(robot.platform_points_cm(), dtype=np.float64)
         limits = open_limits(spec.limits_rad or ((-np.pi, np.pi),) * 3)
         elbow = np.array(spec.elbow, dtype=np.float64)
-        return box_test(rr_pose_boxes, rows, q, elbow, limits, length_cm(robot, spec))
+        test = box_test(rr_pose_boxes, rows, q, elbow, limits, length_cm(robot, spec))
+        width = getattr(spec, "leg_width_cm", None)
+        if width is None:
+            return test
+        from planar_tui.kernels.path_interference_rr import rr_pose_clearance  # numba
+        from planar_tui.workspace.path.certify import clearance_test, with_clearance
+
+        clearance = clearance_test(rr_pose_clearance, rows, q, elbow, limits, float(width))
+        return with_clearance(test, clearance)
 
     def direct_kinematics(self, robot: Any, actuators: Any) -> Any:
         """The poses at active joint angles ``actuators`` = :math:`\\theta_i` (rad): the

@@ -1,0 +1,66 @@
+"""Certified clearance of platform pose boxes for the robots with RR legs (the 3-RRR and the
+five-bar): the interference part of a certified path's box test
+(:mod:`planar_tui.workspace.path.certify`, ``leg_width_cm``).
+
+Over a pose box :math:`X \\times Y \\times \\Phi` leg ``i``'s platform point :math:`C_i`
+lies in the box :math:`(X + r_{ix}) \\times (Y + r_{iy})` with :math:`r_i` the enclosure
+of :math:`R(\\varphi) q_i` (:func:`kernels.path_certify_rr.platform_offset`), and the leg
+depends on the pose only through :math:`C_i`. :func:`kernels.interference_rr.rr_links`
+over that box (its offsets zero) encloses the leg's two links' ends and the platform
+vertex; :func:`kernels.interference.clearance_gap` then encloses the gap
+:math:`\\min_{pairs}(d - d_{req})` for every choice of ends and vertices in their boxes, a
+superset of the rigid platform's poses: an outer enclosure over the pose box.
+"""
+
+import math
+
+import numba
+import numpy as np
+
+from ._jit import kernel
+from .dexterity import IN, OUT, UNSURE, combine
+from .interference import clearance_gap
+from .interference_rr import rr_links
+from .interval import iadd, isincos
+from .path_certify_rr import platform_offset
+
+
+@kernel(parallel=True)
+def rr_pose_clearance(boxes, g, q, elbow, limits, width_cm, verdict, gap):
+    """Per row ``x_lo, x_hi, y_lo, y_hi, phi_lo, phi_hi`` of ``boxes`` (cm, rad): the legs'
+    verdict (as :func:`kernels.interference_rr.rr_interference`'s) and ``gap[i] = (lo,
+    hi)`` enclosing the clearance gap over the box's poses where the legs close
+    (``(-inf, inf)`` where not bounded). ``g``: one geometry row per leg, ``q`` (legs, 2)
+    the platform points in the platform frame (zero for the five-bar)."""
+    n = len(g)
+    vertices = n if n == 3 else 0
+    zero = np.zeros((n, 2))
+    chain = np.repeat(np.arange(n), 2)
+    joint = np.full(2 * n, -1, dtype=np.int64)
+    for leg in range(n):
+        joint[2 * leg + 1] = leg if n == 3 else 0
+    for i in numba.prange(len(boxes)):
+        ends = np.empty((2 * n, 2, 2, 2))
+        platform = np.empty((vertices, 1, 2, 2))
+        centre = np.empty((2 * n + vertices, 5))
+        state = IN
+        defined = True
+        s_lo, s_hi, c_lo, c_hi = isincos(boxes[i, 4], boxes[i, 5])
+        for leg in range(n):
+            rx_lo, rx_hi, ry_lo, ry_hi = platform_offset(
+                q[leg, 0], q[leg, 1], s_lo, s_hi, c_lo, c_hi
+            )
+            cx_lo, cx_hi = iadd(boxes[i, 0], boxes[i, 1], rx_lo, rx_hi)
+            cy_lo, cy_hi = iadd(boxes[i, 2], boxes[i, 3], ry_lo, ry_hi)
+            v = rr_links(
+                cx_lo, cx_hi, cy_lo, cy_hi, leg, g[leg], zero, elbow, limits, ends, platform
+            )
+            if v < 0:
+                defined = False
+                v = UNSURE
+            state = combine(state, v)
+        verdict[i] = state
+        gap[i, 0] = -math.inf
+        gap[i, 1] = math.inf
+        if state != OUT and defined:
+            gap[i, 0], gap[i, 1] = clearance_gap(ends, chain, joint, platform, width_cm, centre)
