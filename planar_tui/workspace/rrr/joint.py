@@ -5,8 +5,9 @@ Algorithm 1 is a depth-first bisection: pop a box, discard it when some leg's en
 :math:`F_i` excludes 0, keep its (x, y) projection when its x and y widths are both
 :math:`\\le \\varepsilon`, else halve its widest side and push both halves
 (:func:`planar_tui.kernels.bisection3rrr.bisect_chunk`). Every box is decided from itself
-alone, so the boxes can be shared among threads in any way: each block (one per Numba
-thread) runs the bisection on its own stack
+alone, so the boxes can be shared among threads in any way. A paving starts on one stack
+in the calling thread (:func:`serial_blocks`) and, past :data:`SERIAL_BOXES` boxes, goes on
+with one block per Numba thread, each running the bisection on its own stack
 (:func:`~planar_tui.kernels.bisection3rrr.bisect_blocks`, ``prange``), at most
 ``CHUNK_BOXES / blocks`` boxes a block between two returns to Python so that progress and
 Cancel/Ctrl-C are honoured within a fraction of a second. A block whose stack runs empty
