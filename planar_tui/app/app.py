@@ -410,7 +410,8 @@ class WorkbenchApp(
             self.mark_problems([pane])
             if isinstance(pane, JobPane):
                 pane.update_stale()
-        self.sync_form(self.current_pane())
+        if name in self.tab_panes:  # this tab's: another may be shown by now
+            self.sync_form(self.tab_panes[name])
         self.refresh_bindings()
 
     async def action_pane_view(self, kind: str) -> None:
