@@ -29,13 +29,9 @@ from planar_tui.batch import (
     prepare_jobs,
 )
 from planar_tui.errors import PresetError
-from planar_tui.figures.dispatch import figure_problem
-from planar_tui.optimise.run import planned_files as optimise_files
-from planar_tui.sweep.budget import check_sweep_budget
-from planar_tui.sweep.checkpoint import checkpoint_path, existing_fingerprint
-from planar_tui.sweep.points import make_points
-from planar_tui.sweep.service import check_figure, check_point_outputs, output_path, planned_files
-from planar_tui.sweep.spec import parse_sweeps
+from planar_tui.optimise import TABLE as OPTIMISE_TABLE
+from planar_tui.registry import JOB_KINDS
+from planar_tui.sweep import TABLE as SWEEP_TABLE
 
 if TYPE_CHECKING:
     from planar_tui.jobkind import Job
@@ -72,8 +68,13 @@ class RunPlan:
         """Every file the run writes (jobs' CSVs, extra tables and figures; sweeps' CSVs,
         checkpoints, figures and point-file folders)."""
         files = plan_files(self.jobs)
-        if self.out_dir is not None:
+        if self.out_dir is not None and self.sweeps:
+            from planar_tui.sweep.service import planned_files
+
             files += [f for entry in self.sweeps for f in planned_files(entry.sweep, self.out_dir)]
+        if self.out_dir is not None and self.optimisations:
+            from planar_tui.optimise.run import planned_files as optimise_files
+
             files += [f for o in self.optimisations for f in optimise_files(o, self.out_dir)]
         return files
 
@@ -81,6 +82,8 @@ class RunPlan:
 def check_figures(jobs: Sequence[Job[Any, Any]], plot: Path | None) -> None:
     """Refuse a figure for a job whose kind draws none (:class:`PresetError`, one line),
     asked by ``--plot`` (``plot``) or by the job's ``plot`` key."""
+    from planar_tui.figures.dispatch import figure_problem
+
     for job in jobs:
         problem = figure_problem(job.kind)
         if problem is None:
@@ -96,6 +99,25 @@ def check_figures(jobs: Sequence[Job[Any, Any]], plot: Path | None) -> None:
             raise PresetError(job.preset_path, f"{job.key}.plot", problem, "no plot key")
 
 
+def check_has_work(preset: Preset) -> None:
+    """Refuse a preset with neither a job nor a sweep table (nothing to run:
+    :class:`PresetError`, exit code 2, rather than a silent success)."""
+    if not preset.jobs and preset.raw.get(SWEEP_TABLE) is None:
+        kinds = ", ".join(f"[{name}]" for name in JOB_KINDS)
+        raise PresetError(
+            preset.path,
+            "(file)",
+            "has no job and no [[sweep]] table: nothing to run",
+            f"a job table ({kinds}) or a [[sweep]] table",
+        )
+
+
+def has_studies(preset: Preset) -> bool:
+    """Whether ``preset`` holds a sweep or an optimisation table (a run of the others
+    imports no sweep or optimisation module)."""
+    return SWEEP_TABLE in preset.raw or OPTIMISE_TABLE in preset.raw
+
+
 def plan_sweeps(
     presets: Sequence[Preset], plot: Path | None = None
 ) -> tuple[list[Sweep], list[SweepPlan]]:
@@ -103,6 +125,9 @@ def plan_sweeps(
     command line's) replaces their ``plot`` keys, numbered ``FILE-1.png`` ... for several,
     taken from the current folder as the jobs' ``--plot`` is (not from the output folder
     as the preset's key is)."""
+    from planar_tui.sweep.points import make_points
+    from planar_tui.sweep.spec import parse_sweeps
+
     sweeps = [sweep for preset in presets for sweep in parse_sweeps(preset)]
     if plot is not None:
         sweeps = [
@@ -116,6 +141,8 @@ def plan_sweeps(
 
 def plan_sweep(sweep: Sweep) -> SweepPlan:
     """One sweep built elsewhere (the app's sweep dialog), its points validated."""
+    from planar_tui.sweep.points import make_points
+
     return SweepPlan(sweep, make_points(sweep))
 
 
@@ -123,6 +150,8 @@ def checkpoint_notes(sweeps: Sequence[SweepPlan], out_dir: Path, resume: bool) -
     """Decide each sweep's checkpoint: none, or one to resume (with ``resume``) is fine;
     one of the same sweep without ``resume`` is refused (:class:`PresetError`); one of an
     earlier version of the sweep is replaced, and said in the note returned."""
+    from planar_tui.sweep.service import output_path
+
     return [
         note
         for entry in sweeps
@@ -141,6 +170,8 @@ def checkpoint_notes(sweeps: Sequence[SweepPlan], out_dir: Path, resume: bool) -
 def checkpoint_note(label: str, fingerprint: str, output: Path, resume: bool) -> str | None:
     """One study's checkpoint (a sweep's or an optimisation's, ``label``, writing
     ``output``) decided as :func:`checkpoint_notes` says: ``None``, a note, or refused."""
+    from planar_tui.sweep.checkpoint import checkpoint_path, existing_fingerprint
+
     checkpoint = checkpoint_path(output)
     found = existing_fingerprint(checkpoint)
     if found is None or (resume and found == fingerprint):
@@ -199,25 +230,30 @@ def plan_run(
     (:func:`planar_tui.sweep.budget.check_sweep_budget`), the optimisations of
     ``optimise_of`` (their figures under ``optimise_plot``) and their checkpoints, then
     (``prepare``) every job prepared by its kind (:func:`planar_tui.batch.prepare_jobs`)."""
-    from planar_tui.optimise.budget import check_optimise_budget
-
     check_figures(jobs, plot)
     outputs = plan_outputs(jobs, out_dir, out, extra_out, plot)
+    sweeps_of = [preset for preset in sweeps_of if SWEEP_TABLE in preset.raw]
     sweeps, sweep_plans = plan_sweeps(sweeps_of, sweep_plot) if sweeps_of else ([], [])
-    optimisations = plan_optimisations(optimise_of, optimise_plot)
+    optimise_of = [preset for preset in optimise_of if OPTIMISE_TABLE in preset.raw]
+    optimisations = plan_optimisations(optimise_of, optimise_plot) if optimise_of else []
     plan = RunPlan(tuple(outputs), tuple(sweep_plans), tuple(optimisations), out_dir, resume)
     presets: dict[Path, str] = {job.preset_path: job.label for job in jobs}
     presets.update({sweep.preset_path: sweep.label for sweep in sweeps})
     presets.update({o.preset_path: o.label for o in optimisations})
     check_planned(plan.files(), presets)
-    for entry in sweep_plans:
-        check_figure(entry.sweep, entry.points)
-        check_point_outputs(entry.sweep, out_dir)
-    if sweep_plans:
+    if sweep_plans:  # a run of jobs alone imports no sweep module
+        from planar_tui.sweep.budget import check_sweep_budget
+        from planar_tui.sweep.service import check_figure, check_point_outputs
+
+        for entry in sweep_plans:
+            check_figure(entry.sweep, entry.points)
+            check_point_outputs(entry.sweep, out_dir)
         check_sweep_budget([(e.sweep, e.points) for e in sweep_plans], workers, scheduler)
     if optimisations:
+        from planar_tui.optimise.budget import check_optimise_budget
+
         check_optimise_budget(optimisations, workers, scheduler)
-    notes = checkpoint_notes(sweep_plans, out_dir, resume)
+    notes = checkpoint_notes(sweep_plans, out_dir, resume) if sweep_plans else []
     for o in optimisations:
         note = checkpoint_note(o.label, o.fingerprint(), out_dir / o.output, resume)
         notes += [note] if note is not None else []

@@ -16,6 +16,7 @@ from planar_tui.app.compare import compare_runs
 from planar_tui.app.history import COALESCE_S
 from planar_tui.app.runs import RunHistory
 from planar_tui.app.sweep_data import parse_values, values_text, varying_figures
+from planar_tui.app.widgets.fields import Field
 from planar_tui.app.workbench import Workbench
 from planar_tui.batch import run_job
 from planar_tui.csvio import CsvTable
@@ -265,6 +266,36 @@ async def test_a_preset_opens_on_the_tab_of_its_first_job(tmp_path):
         assert await app.open_preset(str(presets / "paper-a-table1.toml"))
         await pilot.pause()
         assert app.query_one(TabbedContent).active == "tab-simulate"
+
+
+@pytest.mark.slow
+@async_test
+async def test_opening_a_preset_builds_only_its_own_tabs_until_another_is_visited(tmp_path):
+    """The Robot tab and the tabs of the preset's job kinds are built when it opens; any
+    other tab's pane (its whole form) only when it is first shown, with the preset's
+    values and its form shown or hidden as the others'."""
+    presets = Path(__file__).resolve().parent.parent / "presets"
+    app = WorkbenchApp(Workbench.open(presets / "paper-b-table3.toml"), output_dir=tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        await pilot.pause()
+
+        def built() -> set[str]:
+            return {name for _, name in app.tabs() if app.query(f"#tab-{name} #pane-{name}")}
+
+        assert built() == {"robot", "workspace"}
+        assert not app.query_one("#tab-simulate").children
+        app.action_toggle_form()  # hidden on every tab, those not built yet too
+        app.action_show_tab("simulate")
+        await pilot.pause()
+        assert built() == {"robot", "workspace", "simulate"}
+        assert app.current_pane() is app.query_one("#pane-simulate")
+        assert app.query_one("#pane-simulate").has_class("hide-form")
+        assert app.query_one("#pane-simulate #field-duration_s", Field).value
+        assert await app.open_preset(str(presets / "paper-a-table1.toml"))
+        await pilot.pause()
+        kinds = {name for _, name in app.tabs() if app.workbench.has(name)}
+        assert kinds and "workspace" not in kinds
+        assert built() == {"robot", *kinds}
 
 
 @pytest.mark.slow

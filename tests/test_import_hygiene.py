@@ -296,3 +296,38 @@ def test_a_run_imports_only_the_kinds_of_its_jobs(tmp_path):
     # the probe sees a kind's module when one is loaded: every kind's command builds them
     everything = kinds_loaded_by("--help")
     assert everything["code"] == 0 and set(everything["modules"]) >= KIND_MODULES
+
+
+STUDY_PROBE = """
+import sys, tempfile
+from typer.testing import CliRunner
+from planar_tui.cli import app, commands
+
+commands.run_jobs = lambda plan, name: None  # planned and prepared, not run
+with tempfile.TemporaryDirectory() as out:
+    result = CliRunner().invoke(app, ["run", *sys.argv[1:], "--out-dir", out])
+studies = ("planar_tui.sweep.spec", "planar_tui.sweep.service", "planar_tui.optimise.run",
+           "planar_tui.optimise.problem", "planar_tui.sweep.execute")
+print(result.exit_code, *sorted(m for m in studies if m in sys.modules))
+"""
+
+
+@pytest.mark.parametrize(
+    ("arguments", "imported"),
+    [
+        (("paper-b-table3",), []),
+        (("paper-b-table3", "--job", "workspace[4]"), []),
+        (
+            ("sweep-3rrr-design",),
+            ["planar_tui.sweep.execute", "planar_tui.sweep.service", "planar_tui.sweep.spec"],
+        ),
+    ],
+)
+def test_a_run_of_jobs_imports_no_sweep_or_optimisation_module(arguments, imported):
+    """A preset without ``[[sweep]]`` or ``[[optimise]]`` tables (or a run with
+    ``--job``) plans and prepares its jobs without importing the studies' modules (they
+    cost the warm single job about a tenth of its CPU); a sweep preset imports them."""
+    assert words_printed_by(STUDY_PROBE.replace("sys.argv[1:]", repr(list(arguments)))) == [
+        "0",
+        *imported,
+    ]

@@ -244,3 +244,57 @@ def test_the_shared_paving_reproduces_table3_natural_area_bracket():
     kept = unique_rows(joint_stage(SLOPE, p, 120 / 2**8, 10.0, LIMITS_RAD, BOX, budget, 20000, 2))
     assert xy_area(kept) >= 106.75
     assert math.isfinite(xy_area(kept))
+
+
+@pytest.mark.parametrize("serial_boxes", [0, 700, 10**9])
+def test_a_serial_start_keeps_the_sequential_boxes(serial_boxes):
+    """The default start (``blocks`` ``None``): the first ``serial_boxes`` boxes on one
+    stack in this thread, then the rest shared among the threads (0: threads from the
+    start; 10⁹: never); the same distinct cells and processed count as Algorithm 1."""
+    p = parameters()
+    precision = 120 / 2**6
+    expected, expected_processed = sequential(MEAN_VALUE, p, precision, 0)
+    assert expected_processed > 2 * 700  # the serial start ends before the paving does
+    budget = Budget()
+    kept = joint_stage(
+        MEAN_VALUE, p, precision, 10.0, LIMITS_RAD, BOX, budget, 500, serial_boxes=serial_boxes
+    )
+    np.testing.assert_array_equal(unique_rows(kept), unique_rows(expected))
+    assert budget.processed == expected_processed
+    assert budget.fractions[-1] == pytest.approx(1.0)
+
+
+def test_a_small_paving_starts_no_thread_and_the_warmup_reaches_the_parallel_kernel():
+    """Table 3's size of paving runs in this thread: numba's threading layer is not
+    started (a fresh process); the joint warm-up's second example is large enough (by the
+    job's own estimate, within about 2x of the count) to go on in parallel, so that the
+    warm-up compiles the parallel kernel as well."""
+    import os
+    import subprocess
+    import sys
+
+    from planar_tui.presets import parse_preset, parse_toml
+    from planar_tui.warmup import example
+    from planar_tui.workspace.rrr.compute import estimate_boxes
+    from planar_tui.workspace.rrr.joint import SERIAL_BOXES
+    from tests.conftest import REPO
+
+    code = (
+        "from planar_tui.runtime import prepare_kernels\n"
+        "prepare_kernels()\n"
+        "import numba.np.ufunc.parallel as parallel\n"
+        "from tests.test_workspace_joint_parallel import *\n"
+        "kept = joint_stage(SLOPE, parameters(), 120 / 2**8, 10.0, LIMITS_RAD, BOX, Budget(),"
+        " 200_000)\n"
+        "print(len(unique_rows(kept)) > 300, parallel._is_initialized)\n"
+    )
+    env = dict(os.environ, PYTHONPATH=str(REPO))
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True, cwd=REPO
+    )
+    assert out.stdout.split() == ["True", "False"]
+    text = example("workspace:joint")
+    assert text is not None
+    jobs = parse_preset("warm-up", parse_toml("warm-up", text)).jobs
+    assert estimate_boxes(jobs[0].robot, jobs[0].spec) < SERIAL_BOXES // 2
+    assert estimate_boxes(jobs[1].robot, jobs[1].spec) > 2 * SERIAL_BOXES

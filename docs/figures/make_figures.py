@@ -3,7 +3,11 @@ preset's own settings (sweeps in this process), drawn as a small PNG in docs/fig
 the gallery part of docs/figures.md.
 
     python docs/figures/make_figures.py            # every preset (about a minute on 2 cores)
-    python docs/figures/make_figures.py paper-b-table3
+    python docs/figures/make_figures.py paper-b-table3 path-3rrr   # these presets only
+
+Named presets have their figures and their gallery sections written again (the others'
+sections kept as they are, every section in the bundled presets' order). A preset's
+optimisations are not run here (their jobs are).
 
 The PNGs are drawn at 80 dpi and reduced to a 64-colour palette (Pillow, which matplotlib
 installs) so that each stays a few tens of KB; the CLI's figures are full colour.
@@ -53,7 +57,7 @@ def main(names: list[str]) -> None:
 
     configure_process()
     presets = [p for p in bundled_presets() if not names or p.stem in names]
-    sections = []
+    sections = {}
     for path in presets:
         preset = load_preset(path)
         lines = [f"## `{path.stem}`", "", preset_description(path), ""]
@@ -80,13 +84,26 @@ def main(names: list[str]) -> None:
                 f"![{path.stem} {sweep.name}](figures/{stem}.png)",
                 "",
             ]
-        sections.append("\n".join(lines))
-    if names:
-        return
+        sections[path.stem] = "\n".join(lines)
     page = DOCS / "figures.md"
     text = page.read_text(encoding="utf-8")
-    kept = text[: text.index(MARKER) + len(MARKER)]
-    page.write_text(kept + "\n\n" + "\n".join(sections), encoding="utf-8")
+    order = [path.stem for path in bundled_presets()]
+    page.write_text(gallery_page(text, sections, order, keep=bool(names)), encoding="utf-8")
+
+
+def gallery_page(text: str, sections: dict[str, str], order: list[str], keep: bool) -> str:
+    """``text`` (docs/figures.md) with its gallery (below :data:`MARKER`) made of
+    ``sections`` by preset name, in ``order``; ``keep``: the page's other sections stay."""
+    head, _, gallery = text.partition(MARKER)
+    shown = {}
+    if keep:
+        for chunk in re.split(r"\n(?=## `)", gallery):
+            found = re.match(r"## `([^`]+)`", chunk)
+            if found:
+                shown[found.group(1)] = chunk.strip("\n")
+    shown.update({name: section.strip("\n") for name, section in sections.items()})
+    names = [name for name in order if name in shown]
+    return head + MARKER + "\n\n" + "\n\n".join(shown[name] for name in names) + "\n"
 
 
 if __name__ == "__main__":

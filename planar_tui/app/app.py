@@ -177,24 +177,32 @@ class WorkbenchApp(
         return panes
 
     def compose(self) -> ComposeResult:
-        panes = self.pane_classes()
-        #: The tabs' panes by name (kept: queried on every edit's check otherwise).
+        #: The tabs' panes built so far, by name (kept: queried on every edit's check
+        #: otherwise): the Robot tab's and those of the preset's job kinds now, any other
+        #: tab's when it is first shown (:meth:`on_tabbed_content_tab_activated`), so that
+        #: opening a preset composes and styles a few forms, not every kind's.
         self.tab_panes: dict[str, Any] = {}
         with TabbedContent(id="tabs"):
             for title, name in self.tabs():
                 with TabPane(title, id=f"tab-{name}"):
-                    pane = panes.get(name)
-                    if pane is None:
-                        pane_widget = JobPane(self.workbench, kind=name, id=f"pane-{name}")
-                    else:
-                        pane_widget = pane(self.workbench, id=f"pane-{name}")
-                    if isinstance(pane_widget, JobPane):  # styled once, when mounted
-                        pane_widget.set_class(self.form_hidden, "hide-form")
-                    self.tab_panes[name] = pane_widget
-                    yield pane_widget
+                    if name == "robot" or self.workbench.has(name):
+                        yield self.new_pane(name)
         self.validation_line = Static("", id="validation", markup=False)
         yield self.validation_line
         yield Footer(compact=True)
+
+    def new_pane(self, name: str) -> Any:
+        """The pane of tab ``name`` (its kind's own, else :class:`JobPane`), kept in
+        :attr:`tab_panes`, not mounted yet."""
+        pane = self.pane_classes().get(name)
+        if pane is None:
+            pane_widget = JobPane(self.workbench, kind=name, id=f"pane-{name}")
+        else:
+            pane_widget = pane(self.workbench, id=f"pane-{name}")
+        if isinstance(pane_widget, JobPane):  # styled once, when mounted
+            pane_widget.set_class(self.form_hidden, "hide-form")
+        self.tab_panes[name] = pane_widget
+        return pane_widget
 
     def on_mount(self) -> None:
         self.apply_settings()
@@ -259,14 +267,15 @@ class WorkbenchApp(
         bar.set_class(False, "invalid")
         return True
 
-    def mark_problems(self) -> None:
-        """Mark the fields the problems name, on every tab (each tab marks its own)."""
+    def mark_problems(self, panes: Iterable[Any] | None = None) -> None:
+        """Mark the fields the problems name, on every tab built (``panes``: these only;
+        each tab marks its own)."""
         located = [
             (where, reason(error))
             for error in self.problems
             if (where := locate(error, self.workbench.robot_kinds())) is not None
         ]
-        for pane in self.tab_panes.values():
+        for pane in self.tab_panes.values() if panes is None else panes:
             pane.mark_problems(located)
 
     async def action_goto_problem(self) -> None:
@@ -391,8 +400,18 @@ class WorkbenchApp(
 
         return len(self.screen_stack) > 1 and not isinstance(self.screen, ModalScreen)
 
-    def on_tabbed_content_tab_activated(self) -> None:
-        self.sync_form(self.current_pane())
+    async def on_tabbed_content_tab_activated(self, event: TabbedContent.TabActivated) -> None:
+        """A tab shown: its pane built and mounted on its first showing (its problems
+        marked, its results' staleness shown), its form shown or hidden as the others'."""
+        name = (event.pane.id or "").removeprefix("tab-")
+        if name not in self.tab_panes and name in {tab for _, tab in self.tabs()}:
+            pane = self.new_pane(name)
+            await event.pane.mount(pane)
+            self.mark_problems([pane])
+            if isinstance(pane, JobPane):
+                pane.update_stale()
+        if name in self.tab_panes:  # this tab's: another may be shown by now
+            self.sync_form(self.tab_panes[name])
         self.refresh_bindings()
 
     async def action_pane_view(self, kind: str) -> None:

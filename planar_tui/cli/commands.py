@@ -33,12 +33,10 @@ from planar_tui.figures import UnknownTable, figure_for_table, read_table
 from planar_tui.figures.canvas import display_notes, save
 from planar_tui.figures.dispatch import BOUNDED_FIGURES, is_same_file, recognise
 from planar_tui.overrides import select_jobs
-from planar_tui.plan import plan_run
+from planar_tui.plan import check_has_work, has_studies, plan_run
 from planar_tui.presets import copy_bundled_preset
 from planar_tui.registry import JOB_KINDS
 from planar_tui.resources import bundled_preset, bundled_presets, preset_description
-from planar_tui.sweep.execute import scheduler_address
-from planar_tui.sweep.spec import check_has_work
 
 
 def open_app(preset_argument: str | None, opened: tuple[str, ...] = ()) -> None:
@@ -94,12 +92,15 @@ def run(
     with reported_errors():
         check_figure_option(plot)
         check_workers(workers)
-        scheduler = scheduler_address(scheduler, workers)
         loaded = load_presets(presets)
         for preset in loaded:
             check_has_work(preset)
         jobs = select_jobs([job for preset in loaded for job in preset.jobs], job_name)
-        studies = [] if job_name else loaded
+        studies = [] if job_name else [preset for preset in loaded if has_studies(preset)]
+        if studies:  # a run of jobs alone imports no sweep module
+            from planar_tui.sweep.execute import scheduler_address
+
+            scheduler = scheduler_address(scheduler, workers)
         plan = plan_run(
             jobs,
             out_dir,
@@ -113,8 +114,10 @@ def run(
         print_notes(plan)
         if plan.jobs:
             run_jobs(plan, "run")
-        run_sweeps(plan, workers, scheduler)
-        run_optimisations(plan, workers, scheduler)
+        if plan.sweeps:
+            run_sweeps(plan, workers, scheduler)
+        if plan.optimisations:
+            run_optimisations(plan, workers, scheduler)
 
 
 #: Rows of a result CSV from which ``plot`` says, before drawing, that it can take
@@ -218,6 +221,8 @@ def run_studies(
     with reported_errors():
         check_figure_option(plot)
         check_workers(workers)
+        from planar_tui.sweep.execute import scheduler_address
+
         scheduler = scheduler_address(scheduler, workers)
         (loaded,) = load_presets([preset])
         sweeps = table == "sweep"

@@ -33,7 +33,6 @@ from planar_tui.presets import load_preset
 from planar_tui.progress import WAIT_FOR_THREAD, Progress
 from planar_tui.resources import resolve_preset
 from planar_tui.schema import FIGURE_SUFFIXES, figure_suffix_problem
-from planar_tui.sweep.budget import check_workers as check
 
 if TYPE_CHECKING:
     from planar_tui.presets import Preset
@@ -289,7 +288,10 @@ def check_figure_option(path: Path | None, option: str = "--plot") -> None:
 def check_workers(workers: int | None) -> None:
     """Refuse ``--workers`` out of range (:class:`PresetError`, exit 2), in one line as the
     job options' ranges are (checked here, not by Typer, whose usage box takes many lines)."""
-    check(workers)
+    if workers is not None:  # the sweep's modules only where a sweep may run
+        from planar_tui.sweep.budget import check_workers as check
+
+        check(workers)
 
 
 def load_presets(arguments: Sequence[str]) -> list[Preset]:

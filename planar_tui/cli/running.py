@@ -19,10 +19,7 @@ from planar_tui.cli.output import (
     stdout,
 )
 from planar_tui.errors import Cancelled, ExitCode, OutputFailed, Terminated
-from planar_tui.optimise.run import run_optimisation
 from planar_tui.registry import JOB_KINDS
-from planar_tui.sweep.execute import DaskTarget, dask_client, default_workers
-from planar_tui.sweep.service import resume_note, run_sweep
 
 if TYPE_CHECKING:
     from planar_tui.jobkind import Job
@@ -122,6 +119,8 @@ def study_client(stack: ExitStack, wanted: bool, workers: int | None, scheduler:
     ``None`` when there are none (``wanted`` false) or they run in this process (one
     worker, no scheduler); else a local cluster of ``workers`` processes (default: the
     cores) or the scheduler at ``scheduler``."""
+    from planar_tui.sweep.execute import DaskTarget, dask_client, default_workers
+
     count = workers or default_workers()
     if not wanted or (scheduler is None and count <= 1):
         return None
@@ -136,6 +135,8 @@ def run_sweeps(plan: RunPlan, workers: int | None, scheduler: str | None) -> Non
     checkpoint is kept until all of them are done, then those of the sweeps whose CSV was
     written are deleted: Ctrl-C keeps them all, so ``--resume`` rebuilds the finished
     sweeps from theirs and computes only what is left."""
+    from planar_tui.sweep.service import resume_note, run_sweep  # a plain run: no sweep
+
     failed = 0
     unwritten = 0
     done = []
@@ -204,6 +205,8 @@ def run_optimisations(plan: RunPlan, workers: int | None, scheduler: str | None)
     a failed one (the job broke) is counted too, the run goes on and its files are written,
     and the exit code is 1, as for a failed sweep point. Ctrl-C exits 130 with every
     finished evaluation in the checkpoint (``--resume``)."""
+    from planar_tui.optimise.run import run_optimisation  # a plain run: no optimiser
+
     unwritten = 0
     failed = 0
     try:

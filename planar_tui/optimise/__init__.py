@@ -11,3 +11,6 @@ its summary under constraints (``[[optimise]]`` tables), by pymoo on the sweep m
 
 Importing this package imports neither NumPy, pymoo nor Dask.
 """
+
+#: The preset's top-level table of optimisations.
+TABLE = "optimise"

@@ -11,11 +11,9 @@ from pathlib import Path
 from typing import Any
 
 from planar_tui.jobkind import Job
+from planar_tui.optimise import TABLE
 from planar_tui.sweep.paths import KeyPath
 from planar_tui.sweep.spec import Sweep, study_fingerprint
-
-#: The preset's top-level table of optimisations.
-TABLE = "optimise"
 
 
 @dataclass(frozen=True)

@@ -19,7 +19,8 @@ from pathlib import Path
 from typing import Any
 
 from planar_tui.errors import PresetError
-from planar_tui.optimise.problem import TABLE, Constraint, Objective, Optimisation, Variable
+from planar_tui.optimise import TABLE
+from planar_tui.optimise.problem import Constraint, Objective, Optimisation, Variable
 from planar_tui.presets import Preset
 from planar_tui.registry import JOB_KINDS
 from planar_tui.schema import (

@@ -16,3 +16,6 @@ The package sits between the front ends and the batch service:
 
 Importing this package imports neither NumPy nor Dask.
 """
+
+#: The preset's top-level table of sweeps.
+TABLE = "sweep"

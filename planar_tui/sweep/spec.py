@@ -24,6 +24,7 @@ from planar_tui.jobkind import Job
 from planar_tui.presets import Preset
 from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
 from planar_tui.schema import TableReader, figure_path, shown, suggest, type_name
+from planar_tui.sweep import TABLE
 from planar_tui.sweep.paths import (
     KeyPath,
     current_value,
@@ -49,8 +50,6 @@ SWEEP_KEYS = (
     "plot",
     "max_points",
 )
-#: The preset's top-level table of sweeps.
-TABLE = "sweep"
 
 
 @dataclass(frozen=True)
@@ -392,19 +391,6 @@ def _two_numbers(reader: TableReader, key: str, entry: list) -> tuple[float, flo
         for i, item in enumerate(entry, start=1)
     )
     return low, high
-
-
-def check_has_work(preset: Preset) -> None:
-    """Refuse a preset with neither a job nor a sweep table (nothing to run:
-    :class:`PresetError`, exit code 2, rather than a silent success)."""
-    if not preset.jobs and preset.raw.get(TABLE) is None:
-        kinds = ", ".join(f"[{name}]" for name in JOB_KINDS)
-        raise PresetError(
-            preset.path,
-            "(file)",
-            "has no job and no [[sweep]] table: nothing to run",
-            f"a job table ({kinds}) or a [[sweep]] table",
-        )
 
 
 def parse_sweeps(preset: Preset) -> tuple[Sweep, ...]:

@@ -378,11 +378,14 @@ _WARMUP_TABLE = (
     "[[workspace]]\njoint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n"
     "precision_cm = 8.0\ngeometric_reference = false\n"
 )
+#: A joint bisection long enough to go on in parallel after its serial start
+#: (:data:`planar_tui.workspace.rrr.joint.SERIAL_BOXES`): the parallel kernel compiled too.
+_PARALLEL_JOINT_TABLE = _WARMUP_TABLE.replace("8.0", "0.05") + 'strategy = "joint"\n'
 WARMUP_PARTS = {
-    **{
-        strategy: _WARMUP_TABLE + f'refine_precision_cm = 4.0\nstrategy = "{strategy}"\n'
-        for strategy in STRATEGIES
-    },
+    "legwise": _WARMUP_TABLE + 'refine_precision_cm = 4.0\nstrategy = "legwise"\n',
+    "joint": _WARMUP_TABLE
+    + 'refine_precision_cm = 4.0\nstrategy = "joint"\n'
+    + _PARALLEL_JOINT_TABLE,
     "arc-distance": _WARMUP_TABLE + 'form = "arc-distance"\n',
     "singularities": _WARMUP_TABLE + 'form = "arc-distance"\nsingularities = true\n'
     "elbow = [1, -1, 1]\n",
