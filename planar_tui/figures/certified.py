@@ -27,6 +27,7 @@ from planar_tui.figures.dexterity import (
     new_panel,
 )
 from planar_tui.figures.workspace import MAX_DRAWN_BOXES, RASTER_ABOVE
+from planar_tui.workspace.paving.accuracy import position_error
 
 INTERFERENCE_COLOUR = "#1f78b4"
 UNCERTIFIED_COLOUR = "#bdbdbd"
@@ -35,14 +36,6 @@ ERROR_CMAP = "magma_r"
 ERROR_LEVELS = 64
 #: The error panel's title (tests find the panel by it).
 PANEL_TITLE = "certified max(|Δx|, |Δy|) per box"
-
-
-def position_error(outcome: Any) -> Any:
-    """Each accuracy box's :math:`\\max(|\\Delta x|, |\\Delta y|)` bound in cm (``inf``
-    where not certified)."""
-    import numpy as np
-
-    return np.asarray(outcome.bound, dtype=float).reshape(len(outcome.boxes), -1)[:, :2].max(axis=1)
 
 
 def add_interference_layer(fig: Any, result: Any) -> Any:
