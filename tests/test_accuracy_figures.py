@@ -95,3 +95,24 @@ def test_past_the_drawn_boxes_the_errors_are_one_image_of_level_edges():
     assert drawn.max() == pytest.approx(top)
     assert drawn.min() >= error[1:].min() and len(drawn) <= ERROR_LEVELS
     assert len(drawn) > ERROR_LEVELS // 2
+
+
+@pytest.mark.parametrize("kind", ["fivebar", "rpr", "prr"])
+def test_the_other_robots_figures_have_the_error_panel(tmp_path, kind):
+    from planar_tui.batch import run_job
+    from tests.test_accuracy import PRISMATIC_ERROR_CM, fivebar_job, prismatic_job
+
+    if kind == "fivebar":
+        job = fivebar_job(tmp_path, precision=4.0)
+    else:
+        error = PRISMATIC_ERROR_CM[kind]
+        job = prismatic_job(tmp_path, kind, actuator=error, tolerance=error, precision=4.0)
+    result = run_job(job)
+    fig = figure_for_result(job, result)
+    assert "certified max(|Δx|, |Δy|) per box" in [ax.get_title() for ax in fig.axes]
+    boxes, rows = labelled(result.extra_tables["boxes"], "accuracy-certified")
+    error = np.array([max(float(r["dx_max_cm"]), float(r["dy_max_cm"])) for r in rows])
+    assert len(boxes)
+    heat = by_gid(fig, "accuracy")
+    np.testing.assert_allclose(corners(heat), boxes)
+    np.testing.assert_allclose(np.asarray(heat.get_array()), error, rtol=1e-12)
