@@ -60,15 +60,19 @@ def colour_map() -> tuple[Any, Any]:
     return cmap, BoundaryNorm(np.arange(KAPPA_BINS + 2) - 0.5, KAPPA_BINS + 1)
 
 
-def _verts(boxes: Any) -> Any:
+def box_verts(boxes: Any) -> Any:
+    """Each box ``x_lo, x_hi, y_lo, y_hi`` as its four corners (a PolyCollection's input)."""
     import numpy as np
 
     b = np.asarray(boxes).reshape(-1, 4)
     return np.stack([b[:, [0, 2]], b[:, [1, 2]], b[:, [1, 3]], b[:, [0, 3]]], axis=1)
 
 
-def _heat_image(ax: Any, boxes: Any, bins: Any, cmap: Any, norm: Any) -> None:
-    """The bounded boxes' bins painted on one image (worst bin over a pixel wins)."""
+def heat_image(
+    ax: Any, boxes: Any, bins: Any, cmap: Any, norm: Any, gid: str = "kappa-image", levels=None
+) -> None:
+    """The boxes' bins (``0 .. max``) painted on one image, the worst bin over a pixel
+    wins; each pixel holds its bin, or ``levels[bin]`` when given."""
     import numpy as np
 
     x0, x1 = float(boxes[:, 0].min()), float(boxes[:, 1].max())
@@ -76,8 +80,10 @@ def _heat_image(ax: Any, boxes: Any, bins: Any, cmap: Any, norm: Any) -> None:
     scale = IMAGE_PIXELS / max(x1 - x0, y1 - y0, 1e-300)
     shape = (max(1, math.ceil((y1 - y0) * scale)), max(1, math.ceil((x1 - x0) * scale)))
     image = np.full(shape, np.nan)
-    for b in range(KAPPA_BINS + 1):
-        image[coverage(boxes[bins == b], (x0, y0), scale, shape)] = b
+    for b in range(int(bins.max()) + 1 if len(bins) else 0):
+        image[coverage(boxes[bins == b], (x0, y0), scale, shape)] = (
+            b if levels is None else levels[b]
+        )
     ax.imshow(
         np.ma.masked_invalid(image),
         origin="lower",
@@ -85,12 +91,12 @@ def _heat_image(ax: Any, boxes: Any, bins: Any, cmap: Any, norm: Any) -> None:
         interpolation="nearest",
         cmap=cmap,
         norm=norm,
-        gid="kappa-image",
+        gid=gid,
     )
     ax.text(
         0.01,
         0.01,
-        f"{len(boxes):,} κ boxes drawn as one image",
+        f"{len(boxes):,} boxes drawn as one image",
         transform=ax.transAxes,
         fontsize="small",
         gid=DISPLAY_NOTE,
@@ -110,10 +116,10 @@ def draw_kappa(ax: Any, outcome: Any) -> Any:
     cmap, norm = colour_map()
     bounded = bins >= 0
     if np.count_nonzero(bounded) > MAX_DRAWN_BOXES:
-        _heat_image(ax, boxes[bounded], bins[bounded], cmap, norm)
+        heat_image(ax, boxes[bounded], bins[bounded], cmap, norm)
     else:
         heat = PolyCollection(
-            _verts(boxes[bounded]),
+            box_verts(boxes[bounded]),
             array=bins[bounded],
             cmap=cmap,
             norm=norm,
@@ -124,7 +130,7 @@ def draw_kappa(ax: Any, outcome: Any) -> Any:
         ax.add_collection(heat)
     ax.add_collection(
         PolyCollection(
-            _verts(boxes[~bounded]),
+            box_verts(boxes[~bounded]),
             facecolors="white",
             edgecolors="#c0392b",
             hatch="xxx",
@@ -143,6 +149,25 @@ def draw_kappa(ax: Any, outcome: Any) -> Any:
     return ScalarMappable(norm=norm, cmap=cmap)
 
 
+def box_axes(fig: Any) -> Any:
+    """The axes of a workspace figure that holds its boxes (else its first)."""
+    return next(
+        (ax for ax in fig.axes if any(a.get_gid() in BOX_GIDS for a in ax.get_children())),
+        fig.axes[0],
+    )
+
+
+def new_panel(fig: Any) -> Any:
+    """A new axes to the right of ``fig``'s panels, the figure 6 inches wider."""
+    axes = [ax for ax in fig.axes if ax.get_subplotspec() is not None]
+    width, height = fig.get_size_inches()
+    fig.set_size_inches(width + 6.0, height)
+    grid = fig.add_gridspec(1, len(axes) + 1)
+    for k, ax in enumerate(axes):
+        ax.set_subplotspec(grid[0, k])
+    return fig.add_subplot(grid[0, len(axes)])
+
+
 def add_kappa_panel(fig: Any, result: Any) -> Any:
     """``fig`` (a workspace figure, its first axes the boxes) with the dexterous layer on
     the boxes and a κ heat-map panel to the right, when ``result`` has a dexterity
@@ -155,13 +180,10 @@ def add_kappa_panel(fig: Any, result: Any) -> Any:
         return fig
     boxes = np.asarray(outcome.boxes).reshape(-1, 4)
     proved = boxes[np.asarray(outcome.status) == 2]
-    main = next(
-        (ax for ax in fig.axes if any(a.get_gid() in BOX_GIDS for a in ax.get_children())),
-        fig.axes[0],
-    )
+    main = box_axes(fig)
     main.add_collection(
         PolyCollection(
-            _verts(proved),
+            box_verts(proved),
             facecolors=DEXTEROUS_COLOUR,
             alpha=0.35,
             edgecolors="none",
@@ -172,40 +194,10 @@ def add_kappa_panel(fig: Any, result: Any) -> Any:
         )
     )
     main.legend(loc="upper right", fontsize="small")
-    axes = list(fig.axes)
-    width, height = fig.get_size_inches()
-    fig.set_size_inches(width + 6.0, height)
-    grid = fig.add_gridspec(1, len(axes) + 1)
-    for k, ax in enumerate(axes):
-        ax.set_subplotspec(grid[0, k])
-    panel = fig.add_subplot(grid[0, len(axes)])
+    panel = new_panel(fig)
     mappable = draw_kappa(panel, outcome)
     edges = 1.0 + (outcome.kappa_max - 1.0) * np.arange(KAPPA_BINS + 1) / KAPPA_BINS
     bar = fig.colorbar(mappable, ax=panel, ticks=np.arange(KAPPA_BINS + 1) - 0.5, shrink=0.8)
     bar.ax.set_yticklabels([f"{e:.3g}" for e in edges])
     bar.set_label(f"κ upper bound (grey: > {outcome.kappa_max:g})")
     return fig
-
-
-def from_result(job: Any, result: Any) -> Any:
-    """A 3-RRR workspace job's figure
-    (:func:`planar_tui.figures.workspace.from_result`) with its κ panel."""
-    from planar_tui.figures.workspace import from_result as workspace_figure
-
-    return add_kappa_panel(workspace_figure(job, result), result)
-
-
-def from_planar_result(job: Any, result: Any) -> Any:
-    """A 3-RPR or 3-PRR workspace job's figure
-    (:func:`planar_tui.figures.workspace.from_planar_result`) with its κ panel."""
-    from planar_tui.figures.workspace import from_planar_result as planar_figure
-
-    return add_kappa_panel(planar_figure(job, result), result)
-
-
-def from_fivebar_result(job: Any, result: Any) -> Any:
-    """A five-bar workspace job's figure (:func:`planar_tui.figures.fivebar.from_result`)
-    with its κ panel."""
-    from planar_tui.figures.fivebar import from_result as fivebar_figure
-
-    return add_kappa_panel(fivebar_figure(job, result), result)

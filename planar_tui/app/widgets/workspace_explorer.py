@@ -8,7 +8,10 @@ the map has the focus): arrows move the cursor one cell, shift+arrows pan a quar
 the view, ``+``/``-`` zoom in/out about the cursor, ``0`` fits the map again, ``b`` shows
 the exact boundary, ``m`` the circle's working-mode region, ``k`` the κ map of a job with
 ``kappa_max`` (each cell the band of the worst certified κ upper bound of the dexterity
-boxes over it, :mod:`planar_tui.workspace.paving.kappa_map`, drawn over the boxes), ``r`` paves the visible region
+boxes over it, :mod:`planar_tui.workspace.paving.kappa_map`, drawn over the boxes), ``a`` the
+error map of a job with ``accuracy`` (each cell the band of the worst certified
+:math:`\\max(|\\Delta x|, |\\Delta y|)` of the accuracy boxes over it, ``?`` where one is not
+certified, :func:`planar_tui.workspace.paving.accuracy.error_glyph`), ``r`` paves the visible region
 again at a finer precision (in a worker; ``r`` again or any zoom cancels it).
 """
 
@@ -24,6 +27,7 @@ from textual.binding import Binding
 from textual.message import Message
 from textual.widget import Widget
 
+from planar_tui.workspace.paving import accuracy as accuracy_map
 from planar_tui.workspace.paving import kappa_map
 from planar_tui.workspace.paving.map import (
     BOUNDARY_GLYPH,
@@ -51,6 +55,7 @@ LEGEND_ITEMS = (
 EXACT_ITEM = f"{EXACT_GLYPH} exact boundary"
 MODE_ITEM = f"{OTHER_MODE_GLYPH} not in the circle's working mode"
 KAPPA_ITEM = "k: κ map"
+ACCURACY_ITEM = "a: error map"
 
 
 def cell_status(point: tuple[float, float], boxes, status, singular=None) -> str:
@@ -106,6 +111,7 @@ class MapExplorer(Widget):
         Binding("b", "toggle('exact')", "Exact", show=False),
         Binding("m", "toggle('mode')", "Mode", show=False),
         Binding("k", "toggle('kappa')", "κ map", show=False),
+        Binding("a", "toggle('accuracy')", "Error map", show=False),
         Binding("r", "repave", "Re-pave"),
     ]
 
@@ -139,6 +145,10 @@ class MapExplorer(Widget):
         #: The dexterity outcome whose κ map ``k`` shows (``None``: the job has no
         #: ``kappa_max``; set by the pane).
         self.kappa: Any = None
+        self.show_accuracy = False
+        #: The accuracy outcome whose error map ``a`` shows (``None``: the job has no
+        #: ``accuracy``; set by the pane).
+        self.accuracy: Any = None
         #: Callables giving the exact boundary's rings and whether a point is in the
         #: circle's working mode (set by the pane; ``None`` when not available).
         self.exact_rings: Any = None
@@ -164,6 +174,7 @@ class MapExplorer(Widget):
         self.status = np.zeros(0, dtype=np.int64)
         self.overlays = {}
         self.kappa = None
+        self.accuracy = None
         self.fitted = False
         self.text = text
         self.refresh()
@@ -241,6 +252,8 @@ class MapExplorer(Widget):
             self.show_mode = not self.show_mode
         elif what == "kappa":
             self.show_kappa = not self.show_kappa
+        elif what == "accuracy":
+            self.show_accuracy = not self.show_accuracy
         self.changed()
 
     def action_repave(self) -> None:
@@ -271,14 +284,23 @@ class MapExplorer(Widget):
                 for column in range(columns):
                     if not self.in_mode(self.cell_centre(column, row)):
                         mark(column, row, OTHER_MODE_GLYPH, ("█", BOUNDARY_GLYPH))
+        layers = []
         if self.show_kappa and self.kappa is not None:
             worst = kappa_map.view_cells(self.kappa, self.extent(), columns, rows)
             edges = kappa_map.band_edges(self.kappa.kappa_max)
+            kappa_max = self.kappa.kappa_max
+            layers.append((worst, lambda v, e=edges, k=kappa_max: kappa_map.cell_glyph(v, e, k)))
+        if self.show_accuracy and self.accuracy is not None:
+            error = accuracy_map.position_error(self.accuracy)
+            boxes = self.accuracy.boxes
+            worst = kappa_map.view_worst_cells(boxes, error, self.extent(), columns, rows)
+            edges = accuracy_map.error_edges(self.accuracy)
+            layers.append((worst, lambda v, e=edges: accuracy_map.error_glyph(v, e)))
+        for worst, glyph_of in layers:
             for row in range(rows):
                 for column, value in enumerate(worst[rows - 1 - row]):
                     if not np.isnan(value):
-                        glyph = kappa_map.cell_glyph(value, edges, self.kappa.kappa_max)
-                        grid[row][LABEL_CELLS + column] = glyph
+                        grid[row][LABEL_CELLS + column] = glyph_of(value)
         if self.show_exact and self.exact_rings is not None:
             x_lo, _, _, y_hi = self.extent()
             for ring in self.exact_rings():
@@ -322,6 +344,10 @@ class MapExplorer(Widget):
         if self.kappa is not None:
             shown = self.show_kappa
             items += kappa_map.legend_items(self.kappa.kappa_max) if shown else [KAPPA_ITEM]
+        if self.accuracy is not None:
+            edges = accuracy_map.error_edges(self.accuracy)
+            shown = self.show_accuracy
+            items += accuracy_map.error_legend_items(edges) if shown else [ACCURACY_ITEM]
         if "singular" in self.overlays or "circle" in self.overlays:
             items += SINGULAR_LEGEND_ITEMS
         items += [f"{glyph} {text}" for _, glyph, text in self.overlays.get("layers", ())]

@@ -183,6 +183,7 @@ class WorkspacePane(JobPane):
             if status is None:  # the 5-D stage: kept boxes, none proved inside yet
                 status = np.ones(len(boxes), dtype=np.int64)
             self.explorer().kappa = None  # the last result's κ map is not this run's
+            self.explorer().accuracy = None
             self.draw_map(boxes, status, "(so far)")
 
     def draw_map(self, boxes, status, note: str = "", refit: bool = True, **overlays) -> None:
@@ -205,6 +206,7 @@ class WorkspacePane(JobPane):
         self._shown_job = job
         self.set_geometry(job, result)
         explorer.kappa = getattr(result, "dexterity", None)  # the κ map (``k``)
+        explorer.accuracy = getattr(result, "accuracy", None)  # the error map (``a``)
         boxes, status, drawn = map_content(job, result)  # as the CLI's map: layers too
         self.draw_map(boxes, status, "", refit, **drawn)
 

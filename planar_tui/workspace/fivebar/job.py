@@ -317,7 +317,7 @@ JOB_KIND = JobKind(
         view=MAP_VIEW,
     ),
     tab=Tab("5-bar", 8, "planar_tui.app.widgets.parallel_panes:FiveBarPane"),
-    figure="planar_tui.figures.dexterity:from_fivebar_result",
+    figure="planar_tui.figures.certified:from_fivebar_result",
     warmup=(
         "[[workspace5r]]\nprecision_cm = 8.0\n"
         "geometric_reference = false\nrefine_precision_cm = 4.0\nsingularities = true\n"

@@ -236,6 +236,46 @@ def job_accuracy(job: Any, prepared: Any, extent, budget: BoxBudget, elbow: str 
     return compute_accuracy(evaluate, extent, spec.precision_cm, errors, elbow, budget)
 
 
+def position_error(outcome: AccuracyOutcome) -> np.ndarray:
+    """Each accuracy box's bound of :math:`\\max(|\\Delta x|, |\\Delta y|)` in cm (``inf``
+    where not certified)."""
+    import numpy as np
+
+    bound = np.asarray(outcome.bound, dtype=float).reshape(len(outcome.boxes), -1)
+    return bound[:, :2].max(axis=1)
+
+
+def error_edges(outcome: AccuracyOutcome) -> np.ndarray:
+    """The upper edges of the error map's four bands: quarters of [0, the largest
+    certified :func:`position_error`] (of [0, 1] with none certified)."""
+    import numpy as np
+
+    error = position_error(outcome)
+    finite = error[np.isfinite(error)]
+    return (finite.max() if len(finite) else 1.0) * np.arange(1, 5) / 4
+
+
+def error_glyph(value: float, edges: np.ndarray) -> str:
+    """A cell's glyph: blank (``nan``: no box), ``?`` (``inf``: not certified) or its band."""
+    import numpy as np
+
+    from planar_tui.workspace.paving.kappa_map import BAND_GLYPHS, UNPROVED_GLYPH
+
+    if np.isnan(value):
+        return " "
+    if np.isinf(value):
+        return UNPROVED_GLYPH
+    return BAND_GLYPHS[min(3, int(np.searchsorted(edges, value)))]
+
+
+def error_legend_items(edges: np.ndarray) -> list[str]:
+    """The bands' legend items and the "not certified" item."""
+    from planar_tui.workspace.paving.kappa_map import BAND_GLYPHS, UNPROVED_GLYPH
+
+    bands = [f"{g} ≤ {e:.3g} cm" for g, e in zip(BAND_GLYPHS, edges, strict=True)]
+    return [*bands, f"{UNPROVED_GLYPH} not certified"]
+
+
 def render_error_map(outcome: AccuracyOutcome, width: int = 80) -> list[str]:
     """The position error map as lines of at most ``width`` columns: each cell the worst
     certified bound of :math:`\\max(|\\Delta x|, |\\Delta y|)` over the accuracy boxes
@@ -243,7 +283,7 @@ def render_error_map(outcome: AccuracyOutcome, width: int = 80) -> list[str]:
     it is not certified, blank where none is kept."""
     import numpy as np
 
-    from planar_tui.workspace.paving.kappa_map import BAND_GLYPHS, UNPROVED_GLYPH, worst_cells
+    from planar_tui.workspace.paving.kappa_map import worst_cells
     from planar_tui.workspace.paving.map import CELL_ASPECT, fit_extent
 
     boxes = np.asarray(outcome.boxes).reshape(-1, 4)
@@ -251,26 +291,15 @@ def render_error_map(outcome: AccuracyOutcome, width: int = 80) -> list[str]:
     xlo, xhi, ylo, yhi = extent
     columns = max(10, width - 2)
     rows = int(min(40, max(5, round(columns * (yhi - ylo) / (xhi - xlo) / CELL_ASPECT))))
-    error = outcome.bound[:, :2].max(axis=1)
-    worst = worst_cells(boxes, error, extent, columns, rows)
-    finite = error[np.isfinite(error)]
-    edges = (finite.max() if len(finite) else 1.0) * np.arange(1, 5) / 4
+    worst = worst_cells(boxes, position_error(outcome), extent, columns, rows)
+    edges = error_edges(outcome)
     lines = [
         f"error map, x in [{xlo:.4g}, {xhi:.4g}] cm, y in [{ylo:.4g}, {yhi:.4g}] cm "
         "(worst certified max(|Δx|, |Δy|) per cell)"[:width]
     ]
     for j in range(rows - 1, -1, -1):
-        cells = [
-            " "
-            if np.isnan(v)
-            else UNPROVED_GLYPH
-            if np.isinf(v)
-            else BAND_GLYPHS[min(3, int(np.searchsorted(edges, v)))]
-            for v in worst[j]
-        ]
-        lines.append("│" + "".join(cells))
-    bands = [f"{g} ≤ {e:.3g} cm" for g, e in zip(BAND_GLYPHS, edges, strict=True)]
-    legend = "  ".join([*bands, f"{UNPROVED_GLYPH} not certified"])
+        lines.append("│" + "".join(error_glyph(v, edges) for v in worst[j]))
+    legend = "  ".join(error_legend_items(edges))
     return [*lines, legend[:width]]
 
 

@@ -66,13 +66,18 @@ def legend_items(kappa_max: float) -> list[str]:
 def view_cells(outcome: Any, extent, columns: int, rows: int) -> np.ndarray:
     """:func:`kappa_cells` of the boxes that overlap ``extent`` alone (a box outside a
     zoomed view marks no cell at its edge)."""
-    from types import SimpleNamespace
 
+    kappa = np.asarray(outcome.kappa).reshape(-1, 2)[:, 1]
+    return view_worst_cells(outcome.boxes, kappa, extent, columns, rows)
+
+
+def view_worst_cells(boxes: Any, values: Any, extent, columns: int, rows: int) -> np.ndarray:
+    """:func:`worst_cells` of the boxes that overlap ``extent`` alone (a box outside a
+    zoomed view marks no cell at its edge)."""
     xlo, xhi, ylo, yhi = extent
-    boxes = np.asarray(outcome.boxes).reshape(-1, 4)
+    boxes = np.asarray(boxes).reshape(-1, 4)
     seen = (boxes[:, 1] > xlo) & (boxes[:, 0] < xhi) & (boxes[:, 3] > ylo) & (boxes[:, 2] < yhi)
-    kappa = np.asarray(outcome.kappa).reshape(-1, 2)
-    return kappa_cells(SimpleNamespace(boxes=boxes[seen], kappa=kappa[seen]), extent, columns, rows)
+    return worst_cells(boxes[seen], np.asarray(values)[seen], extent, columns, rows)
 
 
 def render_kappa_map(outcome: Any, width: int = 80) -> list[str]:

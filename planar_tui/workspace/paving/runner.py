@@ -430,7 +430,7 @@ def planar_job_kind(
             view=("--map/--no-map", "Print the character-cell map."),
         ),
         tab=tab,
-        figure="planar_tui.figures.dexterity:from_planar_result",
+        figure="planar_tui.figures.certified:from_planar_result",
         warmup=warmup,
         estimate=estimate,
         figure_names=planar_figure_names,

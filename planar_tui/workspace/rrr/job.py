@@ -461,7 +461,7 @@ JOB_KIND = JobKind(
         view=MAP_VIEW,
     ),
     tab=Tab("Workspace", 2, "planar_tui.app.widgets.workspace_pane:WorkspacePane"),
-    figure="planar_tui.figures.dexterity:from_result",
+    figure="planar_tui.figures.certified:from_result",
     warmup=WARMUP_PARTS,
     warmup_parts=warmup_parts,
     app_default={
