@@ -1,0 +1,69 @@
+"""Which warm-up process compiles which warm-up unit: :func:`schedule`.
+
+``planar-tui warmup`` compiles every kind's kernels in as many processes as cores
+(:func:`planar_tui.warmup.warm_kernels_in_processes`). On 2 cores its wall time is at
+least the larger of the longest process's CPU time and half the total, so the units
+(``kind`` or ``kind:part``, :func:`planar_tui.warmup.units`) are shared out by their known
+costs, longest first, and units whose kernels overlap run in one process, where the shared
+kernels compile once.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+#: Cold compile CPU seconds of each warm-up unit's example, alone in a fresh process with an
+#: empty kernel cache, less the process's start (imports: about 3.5 s), measured with
+#: ``benchmarks/bench_kernels.py`` (docs/performance.md, "Cold start"): relative costs for
+#: :func:`schedule`. A unit not listed counts :data:`DEFAULT_COST_S`.
+UNIT_COST_S: dict[str, float] = {}
+DEFAULT_COST_S = 10.0
+#: Units whose example compiles another unit's kernels too (the key's kernels are mostly the
+#: value's, or call them): the key runs after the value in the same process, where those
+#: kernels are compiled once (two processes side by side would both compile them), and
+#: costs only its own remainder (its :data:`UNIT_COST_S`).
+SHARES: dict[str, str] = {}
+
+
+def chains(todo: Iterable[str]) -> list[list[str]]:
+    """``todo``'s units in groups that run in one process, in order: each unit after the
+    unit it :data:`SHARES` kernels with (when that one is in ``todo`` too), so that every
+    shared kernel is compiled once."""
+    todo = list(dict.fromkeys(todo))
+    groups: dict[str, list[str]] = {}
+
+    def root(unit: str) -> str:
+        while unit in SHARES and SHARES[unit] in todo:
+            unit = SHARES[unit]
+        return unit
+
+    for unit in sorted(todo, key=depth):
+        groups.setdefault(root(unit), []).append(unit)
+    return list(groups.values())
+
+
+def depth(unit: str) -> int:
+    """How many :data:`SHARES` links lead from ``unit`` to a unit sharing nothing."""
+    count = 0
+    while unit in SHARES:
+        unit, count = SHARES[unit], count + 1
+    return count
+
+
+def cost_s(units_: Iterable[str]) -> float:
+    """The estimated compile CPU seconds of ``units_`` run in one process (:data:`UNIT_COST_S`)."""
+    return sum(UNIT_COST_S.get(unit, DEFAULT_COST_S) for unit in units_)
+
+
+def schedule(todo: Iterable[str], processes: int) -> list[list[str]]:
+    """The units of ``todo`` shared among at most ``processes`` warm-up processes, as each
+    process runs them: longest processing time first (:func:`chains` sorted by
+    :func:`cost_s`, longest first, each given to the process with the least estimated work so
+    far), so the processes finish close together; a process's chains longest first. No empty
+    process. With costs c and p processes the longest process is within
+    ``max(c) + sum(c) / p`` of the ideal (Graham's bound for list scheduling)."""
+    groups = sorted(chains(todo), key=cost_s, reverse=True)
+    bins: list[list[str]] = [[] for _ in range(max(1, min(processes, len(groups))))]
+    for group in groups:
+        min(bins, key=cost_s).extend(group)
+    return [units_ for units_ in bins if units_]
