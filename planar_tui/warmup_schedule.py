@@ -12,17 +12,51 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
-#: Cold compile CPU seconds of each warm-up unit's example, alone in a fresh process with an
-#: empty kernel cache, less the process's start (imports: about 3.5 s), measured with
-#: ``benchmarks/bench_kernels.py`` (docs/performance.md, "Cold start"): relative costs for
-#: :func:`schedule`. A unit not listed counts :data:`DEFAULT_COST_S`.
-UNIT_COST_S: dict[str, float] = {}
+#: Estimated CPU seconds of each warm-up unit's example compiling into an empty kernel cache
+#: (a unit that :data:`SHARES` kernels: its remainder after that unit), from
+#: ``benchmarks/bench_kernels.py`` (each unit alone in a fresh process, per-kernel compile
+#: times; docs/performance.md, "Cold start"): relative costs for :func:`schedule`, not
+#: promises. A unit not listed counts :data:`DEFAULT_COST_S`.
+UNIT_COST_S: dict[str, float] = {
+    "motion_uncertainty:fused": 68.0,  # the fused 6-link step, 49 s alone
+    "workspace:legwise": 23.7,
+    "motion_uncertainty:general": 21.0,
+    "workspace5r": 17.7,
+    "workspace:joint": 16.5,
+    "path3rrr": 14.1,
+    "path5r": 13.1,
+    "workspace:dexterity": 12.8,
+    "sensitivity": 12.1,
+    "path3prr": 11.1,
+    "path3rpr": 11.0,
+    "path3rrr_sensitivity": 10.8,
+    "path3rpr_sensitivity": 10.0,
+    "path3prr_sensitivity": 10.0,
+    "path5r_sensitivity": 10.1,
+    "workspace3prr": 9.9,
+    "workspace:interference": 9.0,
+    "workspace:orientation": 8.6,
+    "workspace:arc-distance": 7.4,
+    "workspace3rpr": 7.4,
+    "workspace:singularities": 7.2,
+    "simulate": 4.8,
+    "torques": 2.7,
+}
 DEFAULT_COST_S = 10.0
-#: Units whose example compiles another unit's kernels too (the key's kernels are mostly the
-#: value's, or call them): the key runs after the value in the same process, where those
-#: kernels are compiled once (two processes side by side would both compile them), and
-#: costs only its own remainder (its :data:`UNIT_COST_S`).
-SHARES: dict[str, str] = {}
+#: Units whose example compiles many of another unit's kernels (measured: the kernels both
+#: compile when alone): the key runs after the value in the same process, where those
+#: kernels are compiled once (two processes side by side would both compile them).
+SHARES: dict[str, str] = {
+    "motion_uncertainty:general": "sensitivity",  # the Sobol'/eFAST estimators
+    "workspace:joint": "workspace:legwise",  # the interval forms, the refinement
+    "workspace:singularities": "workspace:arc-distance",  # their jobs' arc-distance form
+    "workspace:dexterity": "workspace:arc-distance",
+    "workspace:interference": "workspace:arc-distance",
+    "path3rrr_sensitivity": "path3rrr",  # the path and its efforts
+    "path5r_sensitivity": "path5r",
+    "path3rpr_sensitivity": "path3rpr",
+    "path3prr_sensitivity": "path3prr",
+}
 
 
 def chains(todo: Iterable[str]) -> list[list[str]]:

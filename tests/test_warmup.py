@@ -340,3 +340,86 @@ def test_a_process_reports_each_unit_ready_as_it_is_done(monkeypatch):
     ready = details.index("simulate kernels ready")
     assert "torques: tau_rows" in details[ready:]  # still compiling, the unit named
     assert details[-1] == "torques kernels ready"
+
+
+#: Runs each warm-up unit's example (the arguments) in this process and prints one line per
+#: unit, ``UNIT: KERNEL...``, the kernels numba compiled for it (``numba:compile`` fires on a
+#: cache miss only).
+RUN_EXAMPLES_COUNTING_COMPILES = """
+import sys
+from numba.core import event
+from planar_tui import warmup
+from planar_tui.runtime import prepare_kernels
+
+compiled = []
+
+class Listener(event.Listener):
+    def on_start(self, ev):
+        compiled.append(getattr(ev.data.get("dispatcher"), "__name__", "?"))
+
+    def on_end(self, ev):
+        pass
+
+prepare_kernels()
+warmup.marker = lambda unit: prepare_kernels() / "never-warm"  # run every example again
+with event.install_listener("numba:compile", Listener()):
+    for unit in sys.argv[1:]:
+        compiled.clear()
+        warmup._run_example(unit)
+        print(unit + ":", *(name for name in compiled if name != "impl"))
+"""
+
+
+def warm_then_run_examples(
+    cache, units: list[str], then: list[str] | None = None
+) -> dict[str, list[str]]:
+    """``planar-tui warmup``'s processes compile ``units`` into the empty kernel cache
+    ``cache``; then a fresh process runs the examples of ``then`` (default ``units``)
+    there: the kernels each had to compile."""
+    import subprocess
+    import sys
+
+    from planar_tui.progress import Progress
+    from tests.conftest import REPO
+
+    done = warmup.warm_kernels_in_processes(units, Progress(), processes=2)
+    assert sorted(done) == sorted(units)
+    env = {**os.environ, "PYTHONPATH": str(REPO), "NUMBA_CACHE_DIR": str(cache)}
+    result = subprocess.run(
+        [sys.executable, "-c", RUN_EXAMPLES_COUNTING_COMPILES, *(then or units)],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=1800,
+    )
+    assert result.returncode == 0, result.stderr
+    lines = [line.split() for line in result.stdout.splitlines()]
+    return {line[0].removesuffix(":"): line[1:] for line in lines}
+
+
+@pytest.mark.slow  # every kind's kernels compiled: minutes of CPU
+def test_after_a_warmup_every_kinds_example_runs_without_compiling(tmp_path, monkeypatch):
+    """Whatever the schedule shares out (and leaves out as compiled by another unit),
+    every unit's example then finds all of its kernels in the cache."""
+    from planar_tui.registry import JOB_KINDS
+
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
+    monkeypatch.setattr(warmup, "missing", lambda names: list(names))
+    every = [unit for kind in JOB_KINDS for unit in warmup.units(kind)]
+    assert warm_then_run_examples(tmp_path, every) == {unit: [] for unit in every}
+
+
+@pytest.mark.slow
+def test_a_2_link_motion_job_compiles_no_fused_step(tmp_path, monkeypatch):
+    """The motion job's general part (a 2-link chain) leaves the fused 6-link step
+    uncompiled; the torques example run after it compiles its own kernels (the probe sees
+    a cache miss), the general part's example none (:func:`warm_then_run_examples`)."""
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
+    monkeypatch.setattr(warmup, "missing", lambda names: list(names))
+    general = ["motion_uncertainty:general"]
+    compiles = warm_then_run_examples(tmp_path, general, [*general, "torques"])
+    assert compiles["motion_uncertainty:general"] == []
+    assert compiles["torques"]
+    compiled = " ".join(p.name for p in tmp_path.rglob("*.nbi"))
+    assert "rk4_lanes_general" in compiled
+    assert "rk4_step_6" not in compiled and "rk4_lanes-" not in compiled
