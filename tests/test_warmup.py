@@ -361,7 +361,7 @@ class Listener(event.Listener):
         pass
 
 prepare_kernels()
-warmup.marker = lambda unit: prepare_kernels() / "never-warm"  # run every example again
+warmup.marker = lambda unit: prepare_kernels() / f"probe-{unit}"  # each example runs again
 with event.install_listener("numba:compile", Listener()):
     for unit in sys.argv[1:]:
         compiled.clear()
