@@ -414,6 +414,23 @@ def _general_steps(flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s, n_st
         )
 
 
+@kernel
+def _fused_steps(flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s, n_steps):
+    """``n_steps`` fused steps (:func:`kernels.motion_lanes_n6.rk4_step_6`) of one block of
+    :data:`FUSED_LINKS`-link chains in place; a step in which a lane's angle is past
+    :data:`~kernels.lane_trig.SINCOS_MAX_ABS` is redone by the general step."""
+    next_q = np.empty(flat_q.shape[0])
+    next_w = np.empty(flat_w.shape[0])
+    for _ in range(n_steps):
+        beyond = rk4_step_6(flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s, next_q, next_w)
+        if beyond == 0:
+            for k in range(flat_q.shape[0]):
+                flat_q[k] = next_q[k]
+                flat_w[k] = next_w[k]
+        else:
+            _general_steps(flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s, 1)
+
+
 @kernel(parallel=True)
 def rk4_lanes_general(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n_steps):
     r"""Advance every robot s of ``params`` (S, 3, n) by ``n_steps`` RK4 steps in place, in
@@ -445,19 +462,8 @@ def rk4_lanes(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n
         first = block * LANES
         count = min(LANES, samples - first)
         flat_p, flat_q, flat_w = _block_state(params, theta_rad, omega_rad_s, first, count)
-        if n != FUSED_LINKS:
-            _general_steps(flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s, n_steps)
+        if n == FUSED_LINKS:
+            _fused_steps(flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s, n_steps)
         else:
-            next_q = np.empty(n * LANES)
-            next_w = np.empty(n * LANES)
-            for _ in range(n_steps):
-                beyond = rk4_step_6(
-                    flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s, next_q, next_w
-                )
-                if beyond == 0:
-                    for k in range(n * LANES):
-                        flat_q[k] = next_q[k]
-                        flat_w[k] = next_w[k]
-                else:
-                    _general_steps(flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s, 1)
+            _general_steps(flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s, n_steps)
         _store_block(flat_q, flat_w, theta_rad, omega_rad_s, first, count)
