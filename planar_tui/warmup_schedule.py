@@ -18,29 +18,29 @@ from collections.abc import Iterable
 #: times; docs/performance.md, "Cold start"): relative costs for :func:`schedule`, not
 #: promises. A unit not listed counts :data:`DEFAULT_COST_S`.
 UNIT_COST_S: dict[str, float] = {
-    "motion_uncertainty:fused": 68.0,  # the fused 6-link step, 49 s alone
+    "motion_uncertainty:fused": 68.0,  # its kernels' sum: the fused 6-link step 49 s
+    "motion_uncertainty:general": 24.0,  # 31.7 alone, less the estimators' 5.8 and a start
     "workspace:legwise": 23.7,
-    "motion_uncertainty:general": 21.0,
-    "workspace5r": 17.7,
-    "workspace:joint": 16.5,
-    "path3rrr": 14.1,
-    "path5r": 13.1,
-    "workspace:dexterity": 12.8,
+    "workspace5r": 22.0,
+    "path3rrr": 20.7,
+    "path5r": 16.7,
+    "workspace:joint": 16.5,  # 22.5 alone, less the interval forms (legwise)
+    "path3prr": 15.2,
+    "path3rpr": 13.9,
+    "workspace:dexterity": 12.8,  # after arc-distance
     "sensitivity": 12.1,
-    "path3prr": 11.1,
-    "path3rpr": 11.0,
-    "path3rrr_sensitivity": 10.8,
-    "path3rpr_sensitivity": 10.0,
-    "path3prr_sensitivity": 10.0,
-    "path5r_sensitivity": 10.1,
     "workspace3prr": 9.9,
-    "workspace:interference": 9.0,
+    "path3rrr_sensitivity": 9.5,  # after path3rrr
+    "path5r_sensitivity": 9.1,  # after path5r
+    "workspace:interference": 9.0,  # not measured alone: as the other arc-distance parts
+    "path3rpr_sensitivity": 9.0,  # not measured alone: as the other path sensitivities
+    "path3prr_sensitivity": 9.0,
     "workspace:orientation": 8.6,
     "workspace:arc-distance": 7.4,
     "workspace3rpr": 7.4,
-    "workspace:singularities": 7.2,
-    "simulate": 4.8,
-    "torques": 2.7,
+    "workspace:singularities": 7.2,  # after arc-distance
+    "simulate": 6.4,
+    "torques": 3.4,
 }
 DEFAULT_COST_S = 10.0
 #: Units whose example compiles many of another unit's kernels (measured: the kernels both
