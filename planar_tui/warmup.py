@@ -308,7 +308,7 @@ def warm_kernels_in_processes(
     todo = missing(kinds_or_units)
     if not todo:
         return []
-    progress.start(len(todo), STAGE, f"{', '.join(todo)} kernels")
+    progress.start(len(todo), STAGE, f"{len(todo)} warm-up units")
     running: list[_Child] = []
     try:
         for units_ in schedule(todo, processes or compile_processes()):
