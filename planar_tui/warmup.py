@@ -371,9 +371,9 @@ class _Child:
 
     def latest(self) -> str:
         """The kernel compiling now (the last one named since the last unit started), or
-        ``""``."""
+        ``""`` (none yet, or the unit is ready)."""
         for line in reversed(list(self.lines)):
-            if line.startswith(("unit ", "kernel ")):
+            if line.startswith(("unit ", "kernel ", "ready ")):
                 return line.removeprefix("kernel ") if line.startswith("kernel ") else ""
         return ""
 
