@@ -12,7 +12,7 @@ Rows (kernels warmed first, baselines in the same process, each timing the best 
   ``--robots`` (2048) such robots, 1 thread and 2 threads: time per robot, ratios to the
   scalar kernels and to MuJoCo, 2-thread speed-up; the 6-link Table 1 chain takes its fused
   step (``kernels/motion_lanes_n6.py``);
-* the general lane kernel (``rk4_lanes(..., fused=False)``, what the motion job ran before
+* the general lane kernel (``rk4_lanes_general``, what the motion job ran before
   the fused step) on the same robots, 1 thread: the fused step's baseline;
 * MuJoCo's multi-robot ``mujoco.rollout`` (RK4, 1e-4 s, each robot its own ``MjModel``,
   the torques as ``qfrc_applied``) on ``--mujoco-robots`` (64) robots, one thread;
@@ -51,7 +51,7 @@ from planar_tui.runtime import prepare_kernels
 
 prepare_kernels()  # before any kernel is imported
 
-from planar_tui.kernels.motion_lanes import LANES, rk4_lanes
+from planar_tui.kernels.motion_lanes import LANES, rk4_lanes, rk4_lanes_general
 from planar_tui.kernels.motion_rk4 import design_parameters, rk4_batch
 from planar_tui.kernels.rk4 import rk4_integrate
 
@@ -105,11 +105,6 @@ def baseline_ms(robots: int = 8) -> float:
         )
         best = min(best, one_thread_clock() - started)
     return best * 1e3
-
-
-def rk4_lanes_general(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n_steps):
-    """The general lane kernel (no fused step): the fused step's baseline."""
-    rk4_lanes(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n_steps, False)
 
 
 def cpu_ms(
@@ -318,7 +313,7 @@ def main() -> None:
         f"{scalar / one:.2f} |"
     )
     print(
-        f"| rk4_lanes general (fused=False), {arguments.robots} robots, 1 thread | "
+        f"| rk4_lanes_general, {arguments.robots} robots, 1 thread | "
         f"{general:.3f} | {general / one:.2f} |"
     )
     print(

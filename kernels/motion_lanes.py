@@ -359,60 +359,111 @@ def rk4_step_lanes(params, gravity_m_s2, tau_Nm, q, w, step_s, work, matrix, dq,
             )
 
 
-@kernel(parallel=True)
-def rk4_lanes(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n_steps, fused=True):
-    r"""Advance every robot s of ``params`` (S, 3, n) by ``n_steps`` RK4 steps in place, in
-    blocks of :data:`LANES` robots (module docstring); same arguments and results (to
-    round-off) as :func:`kernels.motion_rk4.rk4_batch`. Chunking in time changes no bit.
+@kernel
+def _block_state(params, theta_rad, omega_rad_s, first, count):
+    """``(flat_p, flat_q, flat_w)``: the robots ``first`` … ``first + count - 1`` of
+    ``params`` (S, 3, n) and the states as structure of arrays, (3, n, LANES) parameters and
+    (n, LANES) angles and rates, flat; the missing lanes repeat the last robot."""
+    n = params.shape[2]
+    flat_p = np.empty(3 * n * LANES)
+    flat_q = np.empty(n * LANES)
+    flat_w = np.empty(n * LANES)
+    p = flat_p.reshape((3, n, LANES))
+    q = flat_q.reshape((n, LANES))
+    w = flat_w.reshape((n, LANES))
+    for lane in range(LANES):
+        s = first + min(lane, count - 1)
+        for i in range(n):
+            p[0, i, lane] = params[s, 0, i]
+            p[1, i, lane] = params[s, 1, i]
+            p[2, i, lane] = params[s, 2, i]
+            q[i, lane] = theta_rad[s, i]
+            w[i, lane] = omega_rad_s[s, i]
+    return flat_p, flat_q, flat_w
 
-    Chains of :data:`FUSED_LINKS` links take the fused step
-    (:func:`kernels.motion_lanes_n6.rk4_step_6`: one lane loop per step, fused multiply-adds),
-    unless ``fused=False`` (the general kernel, kept as the benchmark's baseline); a step in
-    which a lane's angle is past :data:`~kernels.lane_trig.SINCOS_MAX_ABS` is redone by the
-    general kernel."""
-    samples, _, n = params.shape
+
+@kernel
+def _store_block(flat_q, flat_w, theta_rad, omega_rad_s, first, count):
+    """Write the block's ``count`` real lanes back into the (S, n) states."""
+    n = theta_rad.shape[1]
+    for lane in range(count):
+        for i in range(n):
+            theta_rad[first + lane, i] = flat_q[i * LANES + lane]
+            omega_rad_s[first + lane, i] = flat_w[i * LANES + lane]
+
+
+@kernel
+def _general_steps(flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s, n_steps):
+    """``n_steps`` general steps (:func:`rk4_step_lanes`) of one block (:func:`_block_state`)
+    in place, its work arrays allocated once."""
+    n = flat_q.shape[0] // LANES
     size = 1 if n >= ABA_MIN_LINKS else n
-    n_blocks = (samples + LANES - 1) // LANES
-    for block in prange(n_blocks):
+    p = flat_p.reshape((3, n, LANES))
+    q = flat_q.reshape((n, LANES))
+    w = flat_w.reshape((n, LANES))
+    work = np.zeros(n * _WORK_STRIDE)
+    matrix = np.zeros((size, size, LANES))
+    dq = np.empty((4, n, LANES))
+    dw = np.empty((4, n, LANES))
+    qs = np.empty((n, LANES))
+    acc = np.empty(_ACC_ROWS * LANES)
+    trig = np.empty(3 * LANES)
+    for _ in range(n_steps):
+        rk4_step_lanes(
+            p, gravity_m_s2, torque_Nm, q, w, step_s, work, matrix, dq, dw, qs, acc, trig
+        )
+
+
+@kernel
+def _fused_steps(flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s, n_steps):
+    """``n_steps`` fused steps (:func:`kernels.motion_lanes_n6.rk4_step_6`) of one block of
+    :data:`FUSED_LINKS`-link chains in place; a step in which a lane's angle is past
+    :data:`~kernels.lane_trig.SINCOS_MAX_ABS` is redone by the general step."""
+    next_q = np.empty(flat_q.shape[0])
+    next_w = np.empty(flat_w.shape[0])
+    for _ in range(n_steps):
+        beyond = rk4_step_6(flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s, next_q, next_w)
+        if beyond == 0:
+            for k in range(flat_q.shape[0]):
+                flat_q[k] = next_q[k]
+                flat_w[k] = next_w[k]
+        else:
+            _general_steps(flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s, 1)
+
+
+@kernel(parallel=True)
+def rk4_lanes_general(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n_steps):
+    r"""Advance every robot s of ``params`` (S, 3, n) by ``n_steps`` RK4 steps in place, in
+    blocks of :data:`LANES` robots (module docstring), by the general lane step
+    (:func:`rk4_step_lanes`); same arguments and results (to round-off) as
+    :func:`kernels.motion_rk4.rk4_batch`. Chunking in time changes no bit. The motion job's
+    kernel for chains of other than :data:`FUSED_LINKS` links (it compiles without the
+    fused step: :func:`rk4_lanes`)."""
+    samples = params.shape[0]
+    for block in prange((samples + LANES - 1) // LANES):
         first = block * LANES
         count = min(LANES, samples - first)
-        flat_p = np.empty(3 * n * LANES)
-        flat_q = np.empty(n * LANES)
-        flat_w = np.empty(n * LANES)
-        p = flat_p.reshape((3, n, LANES))
-        q = flat_q.reshape((n, LANES))
-        w = flat_w.reshape((n, LANES))
-        for lane in range(LANES):
-            s = first + min(lane, count - 1)
-            for i in range(n):
-                p[0, i, lane] = params[s, 0, i]
-                p[1, i, lane] = params[s, 1, i]
-                p[2, i, lane] = params[s, 2, i]
-                q[i, lane] = theta_rad[s, i]
-                w[i, lane] = omega_rad_s[s, i]
-        work = np.zeros(n * _WORK_STRIDE)
-        matrix = np.zeros((size, size, LANES))
-        dq = np.empty((4, n, LANES))
-        dw = np.empty((4, n, LANES))
-        qs = np.empty((n, LANES))
-        acc = np.empty(_ACC_ROWS * LANES)
-        trig = np.empty(3 * LANES)
-        next_q = np.empty(n * LANES)
-        next_w = np.empty(n * LANES)
-        for _ in range(n_steps):
-            if fused and n == FUSED_LINKS:
-                beyond = rk4_step_6(
-                    flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s, next_q, next_w
-                )
-                if beyond == 0:
-                    for k in range(n * LANES):
-                        flat_q[k] = next_q[k]
-                        flat_w[k] = next_w[k]
-                    continue
-            rk4_step_lanes(
-                p, gravity_m_s2, torque_Nm, q, w, step_s, work, matrix, dq, dw, qs, acc, trig
-            )
-        for lane in range(count):
-            for i in range(n):
-                theta_rad[first + lane, i] = q[i, lane]
-                omega_rad_s[first + lane, i] = w[i, lane]
+        flat_p, flat_q, flat_w = _block_state(params, theta_rad, omega_rad_s, first, count)
+        _general_steps(flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s, n_steps)
+        _store_block(flat_q, flat_w, theta_rad, omega_rad_s, first, count)
+
+
+@kernel(parallel=True)
+def rk4_lanes(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n_steps):
+    r""":func:`rk4_lanes_general` where chains of :data:`FUSED_LINKS` links take the fused
+    step (:func:`kernels.motion_lanes_n6.rk4_step_6`: one lane loop per step, fused
+    multiply-adds); a step in which a lane's angle is past
+    :data:`~kernels.lane_trig.SINCOS_MAX_ABS` is redone by the general step. Other chains
+    take the general step throughout. The fused step is the costliest kernel to compile
+    (about two thirds of the motion job's cold start): the motion job calls this kernel for
+    :data:`FUSED_LINKS`-link chains only."""
+    samples, _, n = params.shape
+    for block in prange((samples + LANES - 1) // LANES):
+        first = block * LANES
+        count = min(LANES, samples - first)
+        flat_p, flat_q, flat_w = _block_state(params, theta_rad, omega_rad_s, first, count)
+        if n == FUSED_LINKS:
+            _fused_steps(flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s, n_steps)
+        else:
+            _general_steps(flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s, n_steps)
+        _store_block(flat_q, flat_w, theta_rad, omega_rad_s, first, count)

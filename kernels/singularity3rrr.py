@@ -53,6 +53,8 @@ offsets :math:`R(\\varphi) q_i`; ``elbow`` the three signs; ``limits`` (3, 2) ra
 
 import math
 
+import numpy as np
+
 from ._jit import kernel
 from .interval import down, iadd, iadd_scalar, imul, iscale, isincos, isqr, isqrt, isub, up
 from .workspace3rrr import DONE, keep_xy_box, pop_row, split_xy_widest
@@ -176,9 +178,16 @@ def box_status(xlo, xhi, ylo, yhi, g, r, elbow, limits):
     """``(in_w, out_w, det_lo, det_hi)`` of the box (module docstring): every leg *in*,
     some leg *out*, and an enclosure of :math:`\\det A` over the box's points in
     :math:`W_s` (unbounded when some leg is undefined)."""
-    v0, ax0, bx0, ay0, by0, am0, bm0 = leg_status(xlo, xhi, ylo, yhi, 0, g, r, elbow, limits)
-    v1, ax1, bx1, ay1, by1, am1, bm1 = leg_status(xlo, xhi, ylo, yhi, 1, g, r, elbow, limits)
-    v2, ax2, bx2, ay2, by2, am2, bm2 = leg_status(xlo, xhi, ylo, yhi, 2, g, r, elbow, limits)
+    # np.int64: a literal leg (Literal[int](0)) made numba compile leg_status once per leg
+    v0, ax0, bx0, ay0, by0, am0, bm0 = leg_status(
+        xlo, xhi, ylo, yhi, np.int64(0), g, r, elbow, limits
+    )
+    v1, ax1, bx1, ay1, by1, am1, bm1 = leg_status(
+        xlo, xhi, ylo, yhi, np.int64(1), g, r, elbow, limits
+    )
+    v2, ax2, bx2, ay2, by2, am2, bm2 = leg_status(
+        xlo, xhi, ylo, yhi, np.int64(2), g, r, elbow, limits
+    )
     if v0 == LEG_OUT or v1 == LEG_OUT or v2 == LEG_OUT:
         return False, True, -math.inf, math.inf
     in_w = v0 == LEG_IN and v1 == LEG_IN and v2 == LEG_IN
@@ -309,6 +318,6 @@ def singular_bisect_chunk(
             bounds[0] = min(bounds[0], bad)
             bounds[1] = min(bounds[1], witness)
             continue
-        split_xy_widest(stack, row, n_stack + 1, 4)
+        split_xy_widest(stack, row, n_stack + 1, np.int64(4))
         n_stack += 2
     return n_stack, n_kept, processed, DONE

@@ -38,6 +38,7 @@ the segment inside :math:`W_s`).
 import math
 
 import numba
+import numpy as np
 
 from ._jit import kernel
 from .interval import imul, isub, up
@@ -55,8 +56,13 @@ def mode_status(xlo, xhi, ylo, yhi, g, r, elbow, limits):
     """``(in_w, out_w, det_lo, det_hi)`` over the box in the mode ``elbow``: both legs
     *in*, some leg *out*, and an enclosure of :math:`u_1 \\times u_2` over its points in
     :math:`W_s` (unbounded when a box may hold a base joint)."""
-    v0, ax0, bx0, ay0, by0, _, _ = leg_status(xlo, xhi, ylo, yhi, 0, g[0], r, elbow, limits)
-    v1, ax1, bx1, ay1, by1, _, _ = leg_status(xlo, xhi, ylo, yhi, 1, g[1], r, elbow, limits)
+    # np.int64: a literal leg made numba compile leg_status once per leg
+    v0, ax0, bx0, ay0, by0, _, _ = leg_status(
+        xlo, xhi, ylo, yhi, np.int64(0), g[0], r, elbow, limits
+    )
+    v1, ax1, bx1, ay1, by1, _, _ = leg_status(
+        xlo, xhi, ylo, yhi, np.int64(1), g[1], r, elbow, limits
+    )
     if v0 == LEG_OUT or v1 == LEG_OUT:
         return False, True, -math.inf, math.inf
     if v0 == LEG_UNDEFINED or v1 == LEG_UNDEFINED:

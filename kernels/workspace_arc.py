@@ -163,7 +163,7 @@ def settle_xy_box(label, rows, r, children, c, precision):
     leaf = rows[r, 1] - rows[r, 0] <= precision and rows[r, 3] - rows[r, 2] <= precision
     if label == INSIDE or leaf:
         return label
-    split_xy_widest(children, c, c + 1, 4)
+    split_xy_widest(children, c, c + 1, np.int64(4))  # np.int64: one signature for every paving
     return SPLIT
 
 

@@ -197,7 +197,7 @@ def decide_box(form, p, precision, angle_scale, rows, r, children, c, limits, to
         return label, evaluations
     if wx <= precision and wy <= precision:
         return BOUNDARY, evaluations
-    split_xy_widest(children, c, c + 1, ROW_COLUMNS)
+    split_xy_widest(children, c, c + 1, np.int64(ROW_COLUMNS))  # one signature, not a literal's
     return SPLIT, evaluations
 
 

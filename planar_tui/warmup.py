@@ -46,6 +46,7 @@ from planar_tui.presets import load_preset
 from planar_tui.progress import POLL_S, Progress
 from planar_tui.registry import JOB_KINDS, ROBOT_KINDS
 from planar_tui.runtime import design_cache_suspended, prepare_kernels
+from planar_tui.warmup_schedule import schedule
 
 if TYPE_CHECKING:
     from planar_tui.jobkind import Job
@@ -82,14 +83,17 @@ def units_for(job: Job[Any, Any]) -> list[str]:
 
 def example(unit: str) -> str | None:
     """The TOML preset of a warm-up unit (``kind`` or ``kind:part``): its robot kind's
-    ``example`` table, then the unit's job tables (a bare kind: every part's); ``None``
+    ``example`` table (unless a part brings its own robot table: the motion job's
+    6-link chain), then the unit's job tables (a bare kind: every part's); ``None``
     where there is nothing to compile."""
     kind, _, part = unit.partition(":")
     tables = parts(kind)
     chosen = [tables[part]] if part in tables else [] if ":" in unit else list(tables.values())
     if not chosen:
         return None
-    return ROBOT_KINDS[JOB_KINDS[kind].robot_kind].example + "".join(chosen)
+    robot_kind = JOB_KINDS[kind].robot_kind
+    own = any(line == f"[{robot_kind}]" for table in chosen for line in table.splitlines())
+    return ("" if own else ROBOT_KINDS[robot_kind].example) + "".join(chosen)
 
 
 _lock = threading.Lock()
@@ -252,15 +256,16 @@ def compile_processes() -> int:
         return max(1, os.cpu_count() or 1)
 
 
-def _child_command(kind_units: list[str]) -> list[str]:
+def _child_command(units_: list[str]) -> list[str]:
     """The command of a warm-up process: this Python running :func:`child_main`."""
     code = "from planar_tui.warmup import child_main; child_main()"
-    return [sys.executable, "-c", code, *kind_units]
+    return [sys.executable, "-c", code, *units_]
 
 
 def child_main() -> None:
-    """A warm-up process (``python -c ... UNIT...``): run the units' examples, writing
-    ``kernel NAME`` on stdout as each kernel starts compiling. Ctrl-C is the parent's to
+    """A warm-up process (``python -c ... UNIT...``): run the units' examples in turn,
+    writing ``unit UNIT`` on stdout as each starts, ``kernel NAME`` as each kernel starts
+    compiling and ``ready UNIT`` as each is done. Ctrl-C is the parent's to
     handle (it ends this process); SIGTERM ends it at once, mid-compile included."""
     import signal
 
@@ -269,65 +274,66 @@ def child_main() -> None:
     prepare_kernels()
     with _CompileWatcher(on_change=lambda name: print(f"kernel {name}", flush=True)):
         for unit in sys.argv[1:]:
+            print(f"unit {unit}", flush=True)
             _run_example(unit)
+            print(f"ready {unit}", flush=True)
 
 
 def warm_kernels_in_processes(
     kinds_or_units: Iterable[str], progress: Progress, processes: int | None = None
 ) -> list[str]:
-    """:func:`warm_kernels` in child processes, one per job kind (its missing units in
-    turn), at most ``processes`` at once (default :func:`compile_processes`): the kinds'
-    compilations run side by side, and a cancel ends the children at once (SIGTERM: a
-    kernel compiling is cut, the cache keeps what was written whole) and raises
-    :class:`~planar_tui.errors.Cancelled` within :data:`~planar_tui.progress.POLL_S`.
-    Returns the units compiled; a child that fails raises :class:`RuntimeError` with the
-    last line it wrote on stderr."""
+    """:func:`warm_kernels` in at most ``processes`` child processes (default
+    :func:`compile_processes`), the units shared among them by :func:`schedule`: the
+    compilations run side by side, each process paying its start once, and a cancel ends
+    the children at once (SIGTERM: a kernel compiling is cut, the cache keeps what was
+    written whole) and raises :class:`~planar_tui.errors.Cancelled` within
+    :data:`~planar_tui.progress.POLL_S`. Returns the units compiled; a child that fails
+    raises :class:`RuntimeError` with the last line it wrote on stderr."""
     import time
 
     todo = missing(kinds_or_units)
     if not todo:
         return []
-    by_kind: dict[str, list[str]] = {}
-    for unit in todo:
-        by_kind.setdefault(unit.partition(":")[0], []).append(unit)
-    waiting = list(by_kind.items())
-    running: dict[str, _Child] = {}
-    limit = processes or compile_processes()
-    progress.start(len(todo), STAGE, f"{', '.join(by_kind)} kernels")
+    progress.start(len(todo), STAGE, f"{len(todo)} warm-up units")
+    running: list[_Child] = []
     try:
-        while waiting or running:
-            while waiting and len(running) < limit:
-                kind, kind_units = waiting.pop(0)
-                running[kind] = _Child(kind_units)
+        for units_ in schedule(todo, processes or compile_processes()):
+            running.append(_Child(units_))
+        while running:
             time.sleep(POLL_S)
-            for kind, child in list(running.items()):
-                detail = child.latest()
+            for child in list(running):
+                for unit in child.ready():
+                    progress.advance(1.0, f"{unit} kernels ready")
                 if child.process.poll() is None:
-                    if detail:
-                        progress.advance(0.0, f"{kind}: {detail}")
+                    if child.latest():
+                        progress.advance(0.0, f"{child.current()}: {child.latest()}")
                     continue
-                del running[kind]
+                running.remove(child)
                 child.finish()
-                progress.advance(len(child.units), f"{kind} kernels ready")
+                for unit in child.ready():
+                    progress.advance(1.0, f"{unit} kernels ready")
             progress.check()
     finally:
-        for child in running.values():
+        for child in running:
             child.end()
     return todo
 
 
 class _Child:
-    """One warm-up process, the kernel names it reports on stdout and the lines it writes
-    on stderr (each pipe read by a helper thread, so that neither fills up)."""
+    """One warm-up process running ``units`` in turn, the lines it writes on stdout
+    (``unit UNIT`` as a unit starts, ``kernel NAME`` as a kernel starts compiling, ``ready
+    UNIT`` as a unit is done) and on stderr (each pipe read by a helper thread, so that
+    neither fills up)."""
 
-    def __init__(self, kind_units: list[str]):
+    def __init__(self, units_: list[str]):
         import subprocess
 
-        self.units = kind_units
-        self.names: list[str] = []
+        self.units = units_
+        self.lines: list[str] = []
         self.errors: list[str] = []
+        self.reported = 0  # units reported ready by :meth:`ready`
         self.process = subprocess.Popen(
-            _child_command(kind_units),
+            _child_command(units_),
             stdin=subprocess.DEVNULL,
             stdout=subprocess.PIPE,
             stderr=subprocess.PIPE,
@@ -336,7 +342,7 @@ class _Child:
         self._readers = [
             threading.Thread(target=self._read, args=(pipe, lines), daemon=True)
             for pipe, lines in (
-                (self.process.stdout, self.names),
+                (self.process.stdout, self.lines),
                 (self.process.stderr, self.errors),
             )
         ]
@@ -350,8 +356,27 @@ class _Child:
                 lines.append(line.strip())
 
     def latest(self) -> str:
-        """The kernel compiling now (the last one named), or ``""``."""
-        return self.names[-1].removeprefix("kernel ") if self.names else ""
+        """The kernel compiling now (the last one named since the last unit started), or
+        ``""`` (none yet, or the unit is ready)."""
+        for line in reversed(list(self.lines)):
+            if line.startswith(("unit ", "kernel ", "ready ")):
+                return line.removeprefix("kernel ") if line.startswith("kernel ") else ""
+        return ""
+
+    def current(self) -> str:
+        """The unit being compiled (the last one started, else the first)."""
+        started = [line for line in list(self.lines) if line.startswith("unit ")]
+        return started[-1].removeprefix("unit ") if started else self.units[0]
+
+    def ready(self) -> list[str]:
+        """The units done since the last call: those the process said ``ready``, and every
+        one once it has exited with success."""
+        done = sum(line.startswith("ready ") for line in list(self.lines))
+        if self.process.poll() == 0:
+            done = len(self.units)
+        new = self.units[self.reported : done]
+        self.reported = max(self.reported, done)
+        return new
 
     def finish(self) -> None:
         """Raise :class:`RuntimeError` if the process failed (its last stderr line)."""

@@ -13,7 +13,7 @@ import pytest
 from planar_tui.kernels.aba_planar import ABA_MIN_LINKS
 from planar_tui.kernels.dynamics import energies
 from planar_tui.kernels.lane_trig import SINCOS_MAX_ABS, sincos
-from planar_tui.kernels.motion_lanes import FUSED_LINKS, LANES, rk4_lanes
+from planar_tui.kernels.motion_lanes import FUSED_LINKS, LANES, rk4_lanes, rk4_lanes_general
 from planar_tui.kernels.motion_lanes_codegen import fused_source
 from planar_tui.kernels.motion_rk4 import design_parameters, rk4_batch
 
@@ -126,7 +126,7 @@ def test_lanes_equal_the_scalar_kernel_after_one_second_on_table1_robots():
     assert np.abs(omega - ref_omega).max() <= 1e-12 * np.abs(ref_omega).max()
     # the fused 6-link step (FMA) against the general lane kernel (no FMA)
     general_theta, general_omega = np.zeros(shape), np.zeros(shape)
-    rk4_lanes(params, 9.81, TORQUES, general_theta, general_omega, 1e-4, 10_000, False)
+    rk4_lanes_general(params, 9.81, TORQUES, general_theta, general_omega, 1e-4, 10_000)
     assert 0.0 < np.abs(theta - general_theta).max() <= 1e-12 * np.abs(ref_theta).max()
     assert np.abs(omega - general_omega).max() <= 1e-12 * np.abs(ref_omega).max()
 
@@ -160,7 +160,7 @@ def test_long_chains_take_the_articulated_body_path_and_equal_the_scalar_kernel(
     theta0 = rng.uniform(-0.5, 0.5, (robots, n))
     torque = rng.normal(0.0, 0.5, n)
     theta, omega = theta0.copy(), np.zeros((robots, n))
-    rk4_lanes(params, 9.81, torque, theta, omega, 1e-4, 1000)
+    rk4_lanes_general(params, 9.81, torque, theta, omega, 1e-4, 1000)
     ref_theta, ref_omega = theta0.copy(), np.zeros((robots, n))
     rk4_batch(params, 9.81, torque, ref_theta, ref_omega, 1e-4, 1000)
     assert np.abs(theta - ref_theta).max() <= 1e-12 * np.abs(ref_theta).max()

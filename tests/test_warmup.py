@@ -284,3 +284,146 @@ def test_a_real_warm_up_process_compiles_a_kind_and_marks_it(tmp_path, monkeypat
     assert (child_cache / warmup.marker("torques").name).exists()
     assert any(child_cache.rglob("*.nbi"))  # numba's index files: kernels compiled there
     assert details[-1] == "torques kernels ready"
+
+
+def test_the_schedule_is_longest_first_and_balanced(monkeypatch):
+    """Longest processing time first: 7, 5, 4, 3, 1 on two processes is 7 + 3 against
+    5 + 4 + 1 (worked by hand); a chain stays whole and in order in one process."""
+    from planar_tui import warmup_schedule
+
+    costs = {"a": 7.0, "b": 5.0, "c": 4.0, "d": 3.0, "e": 1.0}
+    monkeypatch.setattr(warmup_schedule, "UNIT_COST_S", costs)
+    monkeypatch.setattr(warmup_schedule, "SHARES", {})
+    assert warmup.schedule(["e", "c", "a", "d", "b"], 2) == [["a", "d"], ["b", "c", "e"]]
+    assert warmup.schedule(["e", "c"], 4) == [["c"], ["e"]]  # no idle process
+    assert warmup.schedule(["e", "c", "a"], 1) == [["a", "c", "e"]]
+    # d shares a's kernels: after a, in a's process, the chain a + d (10) placed first
+    monkeypatch.setattr(warmup_schedule, "SHARES", {"d": "a", "e": "d"})
+    assert warmup.schedule(["e", "d", "c", "b", "a"], 2) == [["a", "d", "e"], ["b", "c"]]
+    # the unit it shares with not to be compiled: d goes alone
+    assert warmup.schedule(["d", "b"], 2) == [["b"], ["d"]]
+
+
+def test_every_unit_is_scheduled_once_balanced_and_shared_kernels_compile_once():
+    """The declared costs and shares of the real units, on two processes: every unit once,
+    each after the unit it shares kernels with and in the same process, the two processes'
+    estimates within the longest chain of each other (list scheduling's bound)."""
+    from planar_tui.registry import JOB_KINDS
+    from planar_tui.warmup_schedule import SHARES, UNIT_COST_S, chains, cost_s
+
+    every = [unit for kind in JOB_KINDS for unit in warmup.units(kind)]
+    assert set(UNIT_COST_S) == set(every)  # every unit has a measured cost, no stale one
+    assert set(SHARES) | set(SHARES.values()) <= set(every)
+    shares = warmup.schedule(every, 2)
+    assert sorted(u for units in shares for u in units) == sorted(every)
+    for units in shares:
+        for unit in units:
+            if unit in SHARES:
+                assert SHARES[unit] in units[: units.index(unit)]
+    longest = max(cost_s(chain) for chain in chains(every))
+    assert abs(cost_s(shares[0]) - cost_s(shares[1])) <= longest
+    for units in shares:  # each process's chains longest first
+        own = [chain for chain in chains(every) if chain[0] in units]
+        order = sorted(own, key=lambda chain: units.index(chain[0]))
+        assert [cost_s(c) for c in order] == sorted(map(cost_s, order), reverse=True)
+
+
+def test_a_process_reports_each_unit_ready_as_it_is_done(monkeypatch):
+    """Two units in one process: the first is ready while the second still compiles."""
+    from planar_tui.progress import Progress
+
+    code = (
+        "import sys, time; print('unit simulate', flush=True); "
+        "print('kernel rk4_step', flush=True); print('ready simulate', flush=True); "
+        "print('unit torques', flush=True); print('kernel tau_rows', flush=True); time.sleep(2)"
+    )
+    fake_children(monkeypatch, code)
+    details: list[str] = []
+    progress = Progress(on_update=lambda state: details.append(state.detail))
+    warmup.warm_kernels_in_processes(["simulate", "torques"], progress, processes=1)
+    ready = details.index("simulate kernels ready")
+    assert "torques: tau_rows" in details[ready:]  # still compiling, the unit named
+    assert details[-1] == "torques kernels ready"
+
+
+#: Runs each warm-up unit's example (the arguments) in this process and prints one line per
+#: unit, ``UNIT: KERNEL...``, the kernels numba compiled for it (``numba:compile`` fires on a
+#: cache miss only).
+RUN_EXAMPLES_COUNTING_COMPILES = """
+import sys
+from numba.core import event
+from planar_tui import warmup
+from planar_tui.runtime import prepare_kernels
+
+compiled = []
+
+class Listener(event.Listener):
+    def on_start(self, ev):
+        compiled.append(getattr(ev.data.get("dispatcher"), "__name__", "?"))
+
+    def on_end(self, ev):
+        pass
+
+prepare_kernels()
+warmup.marker = lambda unit: prepare_kernels() / f"probe-{unit}"  # each example runs again
+with event.install_listener("numba:compile", Listener()):
+    for unit in sys.argv[1:]:
+        compiled.clear()
+        warmup._run_example(unit)
+        print(unit + ":", *(name for name in compiled if name != "impl"))
+"""
+
+
+def warm_then_run_examples(
+    cache, units: list[str], then: list[str] | None = None
+) -> dict[str, list[str]]:
+    """``planar-tui warmup``'s processes compile ``units`` into the empty kernel cache
+    ``cache``; then a fresh process runs the examples of ``then`` (default ``units``)
+    there: the kernels each had to compile."""
+    import subprocess
+    import sys
+
+    from planar_tui.progress import Progress
+    from tests.conftest import REPO
+
+    done = warmup.warm_kernels_in_processes(units, Progress(), processes=2)
+    assert sorted(done) == sorted(units)
+    env = {**os.environ, "PYTHONPATH": str(REPO), "NUMBA_CACHE_DIR": str(cache)}
+    result = subprocess.run(
+        [sys.executable, "-c", RUN_EXAMPLES_COUNTING_COMPILES, *(then or units)],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=1800,
+    )
+    assert result.returncode == 0, result.stderr
+    lines = [line.split() for line in result.stdout.splitlines()]
+    return {line[0].removesuffix(":"): line[1:] for line in lines}
+
+
+@pytest.mark.slow  # every kind's kernels compiled: minutes of CPU
+def test_after_a_warmup_every_kinds_example_runs_without_compiling(tmp_path, monkeypatch):
+    """Whatever the schedule shares out (and leaves out as compiled by another unit),
+    every unit's example then finds all of its kernels in the cache."""
+    from planar_tui.registry import JOB_KINDS
+
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
+    monkeypatch.setattr(warmup, "missing", lambda names: list(names))
+    every = [unit for kind in JOB_KINDS for unit in warmup.units(kind)]
+    assert warm_then_run_examples(tmp_path, every) == {unit: [] for unit in every}
+
+
+@pytest.mark.slow
+def test_a_2_link_motion_job_compiles_no_fused_step(tmp_path, monkeypatch):
+    """The motion job's general part (a 2-link chain) leaves the fused 6-link step
+    uncompiled; the torques example run after it compiles its own kernels (the probe sees
+    a cache miss), the general part's example none (:func:`warm_then_run_examples`)."""
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
+    monkeypatch.setattr(warmup, "missing", lambda names: list(names))
+    general = ["motion_uncertainty:general"]
+    compiles = warm_then_run_examples(tmp_path, general, [*general, "torques"])
+    assert compiles["motion_uncertainty:general"] == []
+    assert compiles["torques"]
+    compiled = " ".join(p.name for p in tmp_path.rglob("*.nbi"))
+    assert "rk4_lanes_general" in compiled
+    assert "rk4_step_6" not in compiled and "rk4_lanes-" not in compiled

@@ -165,8 +165,10 @@ def band_statistics(values: np.ndarray) -> np.ndarray:
 
 class CpuRobots:
     """The robots on the CPU: parameters (S, 3, n) and states, the lane-batched
-    :func:`kernels.motion_lanes.rk4_lanes` in calls of at most :data:`CPU_BLOCK_ROBOTS`
-    robots."""
+    :func:`kernels.motion_lanes.rk4_lanes` (chains of
+    :data:`~kernels.motion_lanes.FUSED_LINKS` links: the fused step) or
+    :func:`~kernels.motion_lanes.rk4_lanes_general` (others: the fused step never compiled)
+    in calls of at most :data:`CPU_BLOCK_ROBOTS` robots."""
 
     device = "cpu"
 
@@ -183,10 +185,11 @@ class CpuRobots:
         ]
 
     def advance(self, block: tuple[int, int], step_s: float, n_steps: int) -> None:
-        from planar_tui.kernels.motion_lanes import rk4_lanes
+        from planar_tui.kernels.motion_lanes import FUSED_LINKS, rk4_lanes, rk4_lanes_general
 
         a, b = block
-        rk4_lanes(
+        kernel = rk4_lanes if self.params.shape[2] == FUSED_LINKS else rk4_lanes_general
+        kernel(
             self.params[a:b],
             self.gravity_m_s2,
             self.torque,

@@ -48,6 +48,31 @@ def extra_outputs(job: MotionJob) -> dict[str, str]:
     return files
 
 
+_WARMUP_JOB = (
+    "[[motion_uncertainty]]\nduration_s = 0.002\nstep_s = 0.001\nsamples = 128\n"
+    'methods = ["montecarlo", "sobol", "efast"]\n'
+)
+#: The warm-up examples (:mod:`planar_tui.warmup`): every method on the robot kind's
+#: 2-link example (the general lane kernel, the designs and estimators), and Monte Carlo on
+#: a :data:`~kernels.motion_lanes.FUSED_LINKS`-link chain, its own robot (the fused step,
+#: about two thirds of the whole cold compilation, in a process of its own).
+WARMUP_PARTS = {
+    "general": _WARMUP_JOB,
+    "fused": "[robot]\nlengths_m = [0.3, 0.25, 0.2, 0.2, 0.15, 0.15]\n"
+    "masses_kg = [0.5, 0.5, 0.4, 0.4, 0.3, 0.3]\n"
+    "[[motion_uncertainty]]\nduration_s = 0.002\nstep_s = 0.001\nsamples = 128\n"
+    'methods = ["montecarlo"]\n',
+}
+
+
+def warmup_parts(job: MotionJob) -> tuple[str, ...]:
+    """The warm-up parts a run of ``job`` needs: the fused step's too for a chain of
+    :data:`~kernels.motion_lanes.FUSED_LINKS` links."""
+    from planar_tui.kernels.motion_lanes import FUSED_LINKS
+
+    return ("general", "fused") if len(job.robot.lengths_m) == FUSED_LINKS else ("general",)
+
+
 def render_motion(job: MotionJob, result: MotionResult, console: Any) -> None:
     """The CLI view: the band at the end and a Table-4-shaped table per time."""
     from planar_tui.motion.results import render
@@ -96,8 +121,8 @@ JOB_KIND = JobKind(
         view_help="the next output (θ1…θn, tip x, tip y)",
     ),
     figure="planar_tui.figures.dispatch:from_main_table",
-    warmup="[motion_uncertainty]\nduration_s = 0.002\nstep_s = 0.001\nsamples = 128\n"
-    'methods = ["montecarlo", "sobol", "efast"]\n',
+    warmup=WARMUP_PARTS,
+    warmup_parts=warmup_parts,
     estimate=lambda job: resource_estimate(job.spec, job.robot),
     app_default={
         "duration_s": 0.5,
