@@ -27,6 +27,7 @@ UNIT_COST_S: dict[str, float] = {
     "workspace:joint": 16.5,  # 22.5 alone, less the interval forms (legwise)
     "path3prr": 15.2,
     "path3rpr": 13.9,
+    "workspace:accuracy": 14.0,  # 19.4 alone, less the arc-distance parts and a start
     "workspace:dexterity": 12.8,  # after arc-distance
     "sensitivity": 12.1,
     "workspace3prr": 9.9,
@@ -52,6 +53,7 @@ SHARES: dict[str, str] = {
     "workspace:singularities": "workspace:arc-distance",  # their jobs' arc-distance form
     "workspace:dexterity": "workspace:arc-distance",
     "workspace:interference": "workspace:arc-distance",
+    "workspace:accuracy": "workspace:arc-distance",
     "path3rrr_sensitivity": "path3rrr",  # the path and its efforts
     "path5r_sensitivity": "path5r",
     "path3rpr_sensitivity": "path3rpr",
