@@ -48,13 +48,17 @@ def tip_jacobian(lengths_m, theta_rad, length_m, out):
 def tip_kappa(lengths_m, theta_rad, length_m, kappa_out):
     """κ of each row of ``theta_rad`` (rows, n) into ``kappa_out`` (rows,): of the position
     Jacobian (2 x n) where ``length_m <= 0``, of the pose Jacobian (3 x n) weighted by
-    ``length_m`` otherwise."""
+    ``length_m`` otherwise; NaN where the row's angles are not all finite (a diverged
+    integration, which the job then refuses)."""
     n = lengths_m.shape[0]
     m = 3 if length_m > 0.0 else 2
     jac = np.empty((m, n))
     for row in range(theta_rad.shape[0]):
         if n < m:
             kappa_out[row] = np.inf
+            continue
+        if not np.all(np.isfinite(theta_rad[row])):
+            kappa_out[row] = np.nan
             continue
         tip_jacobian(lengths_m, theta_rad[row], length_m, jac)
         sigma = np.linalg.svd(jac, full_matrices=False)[1]

@@ -170,7 +170,7 @@ LIMIT_CASES = {
     "a simulation too long to hold in memory": (
         TWO_LINKS + "[simulate]\nduration_s = 1e3\nstep_s = 1e-6\n",
         "simulate.duration_s",
-        "1e+09 steps of 2 links needs about 358 GiB of memory (limit ",
+        "1e+09 steps of 2 links needs about 447 GiB of memory (limit ",
     ),
     "every = 10**30": (
         TWO_LINKS + "[simulate]\nduration_s = 1\nstep_s = 0.1\nevery = 1" + "0" * 30 + "\n",
