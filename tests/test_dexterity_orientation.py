@@ -27,14 +27,14 @@ platform_side_cm = 40
 proximal_cm = 30
 distal_cm = 30
 [workspace]
-joint_limits_deg = [[20, 70], [110, 160], [245, 295]]
+joint_limits_deg = [[-180, 180], [-180, 180], [-180, 180]]
 precision_cm = {precision}
 form = "arc-distance"
 geometric_reference = false
 orientation_deg = [-4, 6]
 orientation_mode = "total"
 elbow = [1, -1, 1]
-kappa_max = 4
+kappa_max = 6
 output = "ws.csv"
 """
 RPR = """

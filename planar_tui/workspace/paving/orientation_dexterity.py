@@ -16,8 +16,10 @@ the legs close). Per workspace box :math:`B`, the range is cut into ``SLICES`` s
 - a slice *fails* when its verdict is ``OUT`` (some leg closes at no pose: every point of
   :math:`B` misses some φ) or :math:`\kappa_{lo} >` ``kappa_max`` (every point where the
   legs close has :math:`\kappa > \kappa_{max}` at every φ of the slice);
-- an undecided slice is halved while :math:`L \cdot |\Phi_s| >` ``precision_cm`` and at
-  most ``MAX_HALVINGS`` times (:math:`L` the characteristic length).
+- an undecided slice is halved while the rotation it spans, :math:`L \cdot |\Phi_s|`
+  (:math:`L` the characteristic length), is wider than the box, and at most
+  ``MAX_HALVINGS`` times (the κ enclosure of a pose box grows with its rotation: a slice
+  much wider than its box leaves κ unbounded).
 
 The box's verdict is ``OUT`` when some slice fails, ``IN`` when every final slice is
 ``IN``, else unsure; its κ enclosure is :math:`[\max_s \kappa_{lo,s}, \max_s
@@ -39,23 +41,24 @@ from planar_tui.workspace.paving.dexterity import IN, OUT, UNSURE, Evaluator
 #: The range is first cut into SLICES equal slices.
 SLICES = 4
 #: An undecided slice is halved at most MAX_HALVINGS times.
-MAX_HALVINGS = 6
+MAX_HALVINGS = 7
 
 
 def range_evaluator(
     make_test: Callable[[], Any],
     phi_rad: tuple[float, float],
     kappa_max: float,
-    min_slice_rad: float,
+    length_cm: float,
 ) -> Evaluator:
     """Boxes (k, 4) to ``(verdict, kappa)`` over every orientation of ``phi_rad``
     (module docstring), by the test ``make_test()`` builds at the first call (pose boxes
     (k, 6) to ``(verdict, reason, kappa)``; its kernels import after ``prepare_kernels``);
-    undecided slices are halved down to ``min_slice_rad``."""
+    undecided slices are halved while :math:`L \\cdot |\\Phi_s|` (``length_cm``) is wider
+    than their box."""
     import numpy as np
 
     lo, hi = phi_rad
-    floor = max(min_slice_rad, (hi - lo) / SLICES / 2**MAX_HALVINGS)
+    finest = (hi - lo) / SLICES / 2**MAX_HALVINGS
     tests: list[Any] = []
 
     def evaluate(boxes: Any) -> tuple[Any, Any]:
@@ -64,6 +67,8 @@ def range_evaluator(
         test = tests[0]
         boxes = np.asarray(boxes, dtype=np.float64)
         k = len(boxes)
+        widths = np.maximum(boxes[:, 1] - boxes[:, 0], boxes[:, 3] - boxes[:, 2])
+        floor = np.maximum(widths / length_cm, finest)
         failed = np.zeros(k, dtype=bool)
         all_in = np.ones(k, dtype=bool)
         kappa = np.ones((k, 2))  # κ >= 1: the neutral lower ends
@@ -77,7 +82,7 @@ def range_evaluator(
             fails = (verdict == OUT) | (enclosure[:, 0] > kappa_max)
             failed[owner[fails]] = True
             np.maximum.at(kappa[:, 0], owner[~fails], enclosure[~fails, 0])
-            split = ~holds & ~fails & (s_hi - s_lo > 2.0 * floor) & ~failed[owner]
+            split = ~holds & ~fails & (s_hi - s_lo > floor[owner]) & ~failed[owner]
             final = ~fails & ~split
             np.maximum.at(kappa[:, 1], owner[final], enclosure[final, 1])
             all_in[owner[final & (verdict != IN)]] = False
@@ -96,7 +101,7 @@ def range_dexterity(mechanism: Any, job: Any, length_cm: float) -> Evaluator:
     """The evaluator of a job with ``kappa_max`` and ``orientation_deg = [lo, hi]``: its
     ``mechanism``'s pose-box test (``path_box_test``, without ``leg_width_cm``, built at the
     first call: its kernels import after ``prepare_kernels``) over the range, slices halved
-    down to :math:`L \\cdot |\\Phi_s| \\le` ``precision_cm``."""
+    while :math:`L \\cdot |\\Phi_s|` is wider than their box."""
     import dataclasses
 
     spec = job.spec
@@ -107,5 +112,5 @@ def range_dexterity(mechanism: Any, job: Any, length_cm: float) -> Evaluator:
         lambda: mechanism.path_box_test(job.robot, plain),
         phi,
         spec.kappa_max,
-        spec.precision_cm / length_cm,
+        length_cm,
     )
