@@ -85,7 +85,8 @@ def length_setting() -> Any:
 
 
 def check_dexterity(values: dict[str, Any], reader: TableReader) -> None:
-    """``kappa_max`` is above 1 and needs one orientation and a form with boxes;
+    """``kappa_max`` is above 1 and needs a form with boxes and no tolerance (with a range
+    of orientations, the working mode ``elbow`` or ``slider_modes`` given);
     ``characteristic_length_cm`` goes with it."""
     kappa = values["kappa_max"]
     length = values.get("characteristic_length_cm")
@@ -96,9 +97,13 @@ def check_dexterity(values: dict[str, Any], reader: TableReader) -> None:
     if not kappa > 1.0:
         raise reader.error("kappa_max", f"is {kappa:g}: κ is at least 1", "a number > 1")
     if isinstance(values.get("orientation_deg"), tuple):
-        raise reader.error(
-            "kappa_max", "is set with orientation_deg = [lo, hi]", "a single orientation_deg"
-        )
+        for mode in ("elbow", "slider_modes"):  # a range's working mode is given
+            if mode in values and values[mode] is None:
+                raise reader.error(
+                    mode,
+                    "is not set with kappa_max and orientation_deg = [lo, hi]",
+                    f"{mode} = [s1, s2, s3], each 1 or -1",
+                )
     if values.get("form") == "geometric":
         raise reader.error("kappa_max", 'is set with form = "geometric"', "a form with boxes")
     if values.get("tolerance_mode") is not None:

@@ -13,6 +13,7 @@ from planar_tui.workspace.path.model import PathModel, PathSolution
 from planar_tui.workspace.paving.dexterity import circumradius_cm
 from planar_tui.workspace.paving.linkage import Linkage, platform_joints, rotated
 from planar_tui.workspace.paving.mechanism import LegMechanism
+from planar_tui.workspace.paving.orientation_dexterity import range_dexterity
 from planar_tui.workspace.prr import orientation, singularity
 from planar_tui.workspace.prr import robot as prr
 from planar_tui.workspace.prr.tolerance import TOLERANCE_KEYS_3PRR
@@ -48,6 +49,11 @@ class Mechanism3PRR(LegMechanism):
     def dexterity(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
         from planar_tui.workspace.prr.dexterity import evaluator, working_modes
 
+        if isinstance(job.spec.orientation_deg, tuple):
+            length = job.spec.characteristic_length_cm or circumradius_cm(
+                job.robot.platform_points_cm
+            )
+            return range_dexterity(self, job, length)
         return evaluator(job, working_modes(job, prepared))
 
     def accuracy(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:

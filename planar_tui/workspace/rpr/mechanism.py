@@ -13,6 +13,7 @@ from planar_tui.workspace.path.model import PathModel, PathSolution
 from planar_tui.workspace.paving.dexterity import circumradius_cm
 from planar_tui.workspace.paving.linkage import Linkage, platform_joints
 from planar_tui.workspace.paving.mechanism import LegMechanism
+from planar_tui.workspace.paving.orientation_dexterity import range_dexterity
 from planar_tui.workspace.rpr import orientation, singularity
 from planar_tui.workspace.rpr import robot as rpr
 from planar_tui.workspace.rpr.tolerance import TOLERANCE_KEYS_3RPR
@@ -53,6 +54,11 @@ class Mechanism3RPR(LegMechanism):
     def dexterity(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
         from planar_tui.workspace.rpr.dexterity import evaluator
 
+        if isinstance(job.spec.orientation_deg, tuple):
+            length = job.spec.characteristic_length_cm or circumradius_cm(
+                job.robot.platform_points_cm
+            )
+            return range_dexterity(self, job, length)
         return evaluator(job.robot, job.spec)
 
     def accuracy(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:

@@ -291,7 +291,8 @@ def prepare_workspace(job: WorkspaceJob) -> WorkspacePrepared:
     (its working mode: :func:`resolve_circle`), refusing an unreachable or singular centre
     (:class:`PresetError`, exit code 2)."""
     spec = job.spec
-    if not spec.singularities and all(getattr(spec, k) is None for k in MODED_KEYS):
+    ranged = isinstance(spec.orientation_deg, tuple)  # its mode is the given elbow
+    if ranged or (not spec.singularities and all(getattr(spec, k) is None for k in MODED_KEYS)):
         return WorkspacePrepared(None)
     return WorkspacePrepared(resolve_circle(job))
 
@@ -300,8 +301,9 @@ def rrr_dexterity(ready: PreparedJob[WorkspaceSpec, Robot3RRR, WorkspacePrepared
     """The dexterous region of a job with ``kappa_max``
     (:func:`~planar_tui.workspace.paving.dexterity.compute_dexterity`) in the prepared mode."""
     job, circle = ready.job, ready.prepared.circle
-    assert circle is not None  # prepared with the mode
-    spec, elbow = job.spec, " ".join(str(s) for s in circle.elbow)
+    mode = job.spec.elbow if circle is None else circle.elbow  # a range's given elbow
+    assert mode is not None  # prepared with the mode, or given with a range
+    spec, elbow = job.spec, " ".join(str(s) for s in mode)
     evaluate = MECHANISM.dexterity(job, ready.prepared)
     length = length_cm(job.robot, spec)
     assert spec.kappa_max is not None

@@ -19,6 +19,7 @@ from planar_tui.workspace.path.certify import box_test, open_limits
 from planar_tui.workspace.path.model import PathModel, PathSolution
 from planar_tui.workspace.paving.linkage import Linkage, platform_joints, rotated
 from planar_tui.workspace.paving.mechanism import Mechanism
+from planar_tui.workspace.paving.orientation_dexterity import range_dexterity
 from planar_tui.workspace.rrr.orientation import (
     compute_orientation_workspace,
     geometry_vector,
@@ -86,8 +87,10 @@ class Mechanism3RRR(Mechanism):
         return compute_singularities(job, prepared, extent, budget)
 
     def dexterity(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
-        from planar_tui.workspace.rrr.dexterity import evaluator
+        from planar_tui.workspace.rrr.dexterity import evaluator, length_cm
 
+        if isinstance(job.spec.orientation_deg, tuple):
+            return range_dexterity(self, job, length_cm(job.robot, job.spec))
         return evaluator(job.robot, job.spec, prepared.circle)
 
     def interference(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
