@@ -312,11 +312,17 @@ async def test_tui_open_shows_the_result_in_the_history_with_its_settings(tmp_pa
         assert row[4] != "-" and row[5:9] == ["-", "-", "-", "-"]  # no seed, N, form, ε
         assert row[9] == digest[:8]
         words = squeezed(text)  # the detail wraps at the screen's width, even in a path
-        app.screen.query_one("#history-detail").scroll_end(animate=False)  # the robot last
-        await pilot.pause()
+        detail = app.screen.query_one("#history-detail")
+        command = squeezed(f"command: planar-tui run {preset} --job simulate")
+
+        def scrolled_to_the_command() -> bool:  # the robot last; under load the detail's
+            detail.scroll_end(animate=False)  # layout may grow after a first scroll_end
+            return command in squeezed(app.export_text())
+
+        await until(pilot, scrolled_to_the_command)
         end = squeezed(app.export_text())
         assert squeezed(f"preset: {preset.absolute()} (sha256 {digest})") in words + end
-        assert squeezed(f"command: planar-tui run {preset} --job simulate") in end
+        assert command in end
         for table, shown, where in ((written, "settings:", words), (robot, "robot:", end)):
             for key, value in table.items():
                 if key != "output":  # angles given as integers are floats in the job
