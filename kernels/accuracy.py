@@ -51,8 +51,11 @@ import math
 import numpy as np
 
 from ._jit import kernel
+from .dexterity import IN
 from .interval import down, iadd, imul, isincos, isqr, isub, up
 
+#: Rows of boxes a thread certifies with one set of leg scratch arrays (:func:`leg_scratch`).
+BLOCK_ROWS = 64
 #: Candidates tried per box before it is given up (not certified).
 ATTEMPTS = 12
 #: Contractions :math:`D \leftarrow T(D) \cap D` after the proof.
@@ -236,3 +239,29 @@ def krawczyk(w_lo, w_hi, r_lo, r_hi, rho, n, bound):
             if not (d_hi[a] - d_lo[a] < WIDEST):
                 return False
     return False
+
+
+@kernel
+def leg_scratch(n):
+    """The legs' terms of one box, filled by a robot's leg function and read by
+    :func:`settle`: ``w_lo, w_hi, r_lo, r_hi`` (n, 2) and :math:`\\rho` (n,). A leg
+    that closes (``IN``) writes all of its row, so the arrays serve box after box."""
+    return np.zeros((n, 2)), np.zeros((n, 2)), np.zeros((n, 2)), np.zeros((n, 2)), np.zeros(n)
+
+
+@kernel
+def block_rows(block, count):
+    """The rows ``start, stop`` of block ``block`` of :data:`BLOCK_ROWS` among ``count``."""
+    start = block * BLOCK_ROWS
+    return start, min(count, start + BLOCK_ROWS)
+
+
+@kernel
+def settle(state, w_lo, w_hi, r_lo, r_hi, rho, n, verdict, bound, i):
+    """Row ``i``'s verdict ``state`` and, where every leg closes (``IN``) and
+    :func:`krawczyk` proves it, the bounds of its pose error in ``bound[i]``; ``inf``
+    elsewhere."""
+    verdict[i] = state
+    bound[i, :] = math.inf
+    if state == IN:
+        krawczyk(w_lo, w_hi, r_lo, r_hi, rho, n, bound[i])

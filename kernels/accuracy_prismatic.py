@@ -21,13 +21,10 @@ uses the mode's distal link enclosure, moved by the errors of :math:`P_i` and
 :math:`s_i`.
 """
 
-import math
-
 import numba
-import numpy as np
 
 from ._jit import kernel
-from .accuracy import joint_terms, krawczyk, mag, widen
+from .accuracy import BLOCK_ROWS, block_rows, joint_terms, leg_scratch, mag, settle, widen
 from .dexterity import IN, OUT, UNSURE, combine
 from .dexterity_prismatic import TOLERANCE_CM, prr_parts, rpr_parts
 from .interval import iadd, iscale, isub, up
@@ -82,71 +79,57 @@ def rpr_accuracy(boxes, centres, r, limits, errors, verdict, bound):
     leg closes and the certificate of :mod:`kernels.accuracy` holds, the bounds of
     :math:`|\\Delta x|, |\\Delta y|` (cm), :math:`|\\Delta\\varphi|` (rad) in ``bound``
     (k, 3); ``inf`` elsewhere."""
-    for i in numba.prange(len(boxes)):
-        w_lo, w_hi, r_lo, r_hi, rho = (
-            np.zeros((3, 2)),
-            np.zeros((3, 2)),
-            np.zeros((3, 2)),
-            np.zeros((3, 2)),
-            np.zeros(3),
-        )
-        state = IN
-        for leg in range(3):
-            v = rpr_leg_terms(
-                boxes[i, 0],
-                boxes[i, 1],
-                boxes[i, 2],
-                boxes[i, 3],
-                leg,
-                centres,
-                r,
-                limits,
-                errors,
-                w_lo,
-                w_hi,
-                r_lo,
-                r_hi,
-                rho,
-            )
-            state = combine(state, v)
-        verdict[i] = state
-        bound[i, :] = math.inf
-        if state == IN:
-            krawczyk(w_lo, w_hi, r_lo, r_hi, rho, 3, bound[i])
+    for block in numba.prange((len(boxes) + BLOCK_ROWS - 1) // BLOCK_ROWS):
+        w_lo, w_hi, r_lo, r_hi, rho = leg_scratch(3)
+        start, stop = block_rows(block, len(boxes))
+        for i in range(start, stop):
+            state = IN
+            for leg in range(3):
+                v = rpr_leg_terms(
+                    boxes[i, 0],
+                    boxes[i, 1],
+                    boxes[i, 2],
+                    boxes[i, 3],
+                    leg,
+                    centres,
+                    r,
+                    limits,
+                    errors,
+                    w_lo,
+                    w_hi,
+                    r_lo,
+                    r_hi,
+                    rho,
+                )
+                state = combine(state, v)
+            settle(state, w_lo, w_hi, r_lo, r_hi, rho, 3, verdict, bound, i)
 
 
 @kernel(parallel=True)
 def prr_accuracy(boxes, g, modes, r, errors, verdict, bound):
     """Per row of ``boxes``: the 3-PRR's verdict in the slider ``modes`` and, as
     :func:`rpr_accuracy`'s, its bounds (k, 3)."""
-    for i in numba.prange(len(boxes)):
-        w_lo, w_hi, r_lo, r_hi, rho = (
-            np.zeros((3, 2)),
-            np.zeros((3, 2)),
-            np.zeros((3, 2)),
-            np.zeros((3, 2)),
-            np.zeros(3),
-        )
-        state = IN
-        for leg in range(3):
-            v = prr_leg_terms(
-                boxes[i, 0],
-                boxes[i, 1],
-                boxes[i, 2],
-                boxes[i, 3],
-                leg,
-                g,
-                modes,
-                r,
-                errors,
-                w_lo,
-                w_hi,
-                r_lo,
-                r_hi,
-                rho,
-            )
-            state = combine(state, v)
-        verdict[i] = state
-        bound[i, :] = math.inf
-        if state == IN:
-            krawczyk(w_lo, w_hi, r_lo, r_hi, rho, 3, bound[i])
+    for block in numba.prange((len(boxes) + BLOCK_ROWS - 1) // BLOCK_ROWS):
+        w_lo, w_hi, r_lo, r_hi, rho = leg_scratch(3)
+        start, stop = block_rows(block, len(boxes))
+        for i in range(start, stop):
+            state = IN
+            for leg in range(3):
+                v = prr_leg_terms(
+                    boxes[i, 0],
+                    boxes[i, 1],
+                    boxes[i, 2],
+                    boxes[i, 3],
+                    leg,
+                    g,
+                    modes,
+                    r,
+                    errors,
+                    w_lo,
+                    w_hi,
+                    r_lo,
+                    r_hi,
+                    rho,
+                )
+                state = combine(state, v)
+            settle(state, w_lo, w_hi, r_lo, r_hi, rho, 3, verdict, bound, i)

@@ -19,13 +19,10 @@ mode is :math:`(v_i - u_i) / l_1` (:math:`v_i = C_i - A_i`, :math:`u_i` enclosed
 hull of the box and the perturbed robots).
 """
 
-import math
-
 import numba
-import numpy as np
 
 from ._jit import kernel
-from .accuracy import joint_terms, krawczyk, mag, widen
+from .accuracy import BLOCK_ROWS, block_rows, joint_terms, leg_scratch, mag, settle, widen
 from .dexterity import IN, OUT, UNSURE, combine
 from .interval import iadd, iadd_scalar, imul, iscale, isincos, isub, up
 from .singularity3rrr import LEG_IN, LEG_OUT, TOLERANCE_CM, leg_status
@@ -81,33 +78,28 @@ def rr_accuracy(boxes, g, r, elbow, limits, errors, verdict, bound):
     ``limits`` as :func:`kernels.dexterity_rr.rr_dexterity` takes them, ``errors`` as
     :func:`rr_leg_terms`."""
     n = len(g)
-    for i in numba.prange(len(boxes)):
-        w_lo = np.zeros((n, 2))
-        w_hi = np.zeros((n, 2))
-        r_lo = np.zeros((n, 2))
-        r_hi = np.zeros((n, 2))
-        rho = np.zeros(n)
-        state = IN
-        for leg in range(n):
-            v = rr_leg_terms(
-                boxes[i, 0],
-                boxes[i, 1],
-                boxes[i, 2],
-                boxes[i, 3],
-                leg,
-                g[leg],
-                r,
-                elbow,
-                limits,
-                errors,
-                w_lo,
-                w_hi,
-                r_lo,
-                r_hi,
-                rho,
-            )
-            state = combine(state, v)
-        verdict[i] = state
-        bound[i, :] = math.inf
-        if state == IN:
-            krawczyk(w_lo, w_hi, r_lo, r_hi, rho, n, bound[i])
+    for block in numba.prange((len(boxes) + BLOCK_ROWS - 1) // BLOCK_ROWS):
+        w_lo, w_hi, r_lo, r_hi, rho = leg_scratch(n)
+        start, stop = block_rows(block, len(boxes))
+        for i in range(start, stop):
+            state = IN
+            for leg in range(n):
+                v = rr_leg_terms(
+                    boxes[i, 0],
+                    boxes[i, 1],
+                    boxes[i, 2],
+                    boxes[i, 3],
+                    leg,
+                    g[leg],
+                    r,
+                    elbow,
+                    limits,
+                    errors,
+                    w_lo,
+                    w_hi,
+                    r_lo,
+                    r_hi,
+                    rho,
+                )
+                state = combine(state, v)
+            settle(state, w_lo, w_hi, r_lo, r_hi, rho, n, verdict, bound, i)
