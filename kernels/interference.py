@@ -40,6 +40,7 @@ tighten linearly with the box, so bisection converges to the point value.
 import math
 
 from ._jit import kernel
+from .dexterity import OUT
 from .interval import down, up
 
 #: Slack on a floating-point distance, relative to the coordinates' magnitude (+ 1 cm).
@@ -181,3 +182,15 @@ def clearance_gap(ends, chain, joint, platform, width_cm, centre):
         spread = up(spread_k + platform_radius)
         gap_lo, gap_hi = pair_bounds(d, spread, 0.5 * width_cm, scale, gap_lo, gap_hi)
     return gap_lo, gap_hi
+
+
+@kernel
+def settle_gap(state, bounded, ends, chain, joint, platform, width_cm, centre, verdict, gap, i):
+    """Row ``i``'s verdict ``state`` and ``gap[i]``: :func:`clearance_gap` where the legs
+    may close (``state != OUT``) and their links are ``bounded``, ``(-inf, inf)``
+    elsewhere."""
+    verdict[i] = state
+    gap[i, 0] = -math.inf
+    gap[i, 1] = math.inf
+    if state != OUT and bounded:
+        gap[i, 0], gap[i, 1] = clearance_gap(ends, chain, joint, platform, width_cm, centre)

@@ -12,15 +12,13 @@ where the leg reaches); the slider lines themselves are fixed and not checked.
 Both platforms are the triangle :math:`C_1 C_2 C_3`, leg ``i`` jointed to it at vertex ``i``.
 """
 
-import math
-
 import numba
 import numpy as np
 
 from ._jit import kernel
 from .dexterity import IN, OUT, UNSURE, combine
 from .dexterity_prismatic import TOLERANCE_CM, prr_parts, rpr_parts
-from .interference import clearance_gap
+from .interference import settle_gap
 from .interval import iadd_scalar, isub
 
 
@@ -42,6 +40,40 @@ def set_joint(xlo, xhi, ylo, yhi, leg, r, ends, platform):
     return cx_lo, cx_hi, cy_lo, cy_hi
 
 
+@kernel
+def rpr_link(xlo, xhi, ylo, yhi, leg, bases, centres, r, limits, ends, platform):
+    """3-RPR leg ``leg``'s verdict over the box (its length within ``limits[leg]``:
+    ``IN``, outside: ``OUT``, else ``UNSURE``; :func:`kernels.dexterity_prismatic.rpr_parts`
+    about ``centres[leg]`` with the offset ``r[leg]``), writing its link from
+    :math:`A_i` (``bases[leg]``) to :math:`C_i` into ``ends[leg]`` and
+    :math:`C_i` into ``platform[leg]``."""
+    _, _, _, rho = rpr_parts(xlo, xhi, ylo, yhi, leg, centres, r, 0.0)
+    lo = limits[leg, 0]
+    hi = limits[leg, 1]
+    ends[leg, 0, 0, 0] = ends[leg, 0, 0, 1] = bases[leg, 0]
+    ends[leg, 0, 1, 0] = ends[leg, 0, 1, 1] = bases[leg, 1]
+    set_joint(xlo, xhi, ylo, yhi, leg, r, ends, platform)
+    if rho[1] < lo or rho[0] > hi:
+        return OUT
+    return IN if lo <= rho[0] and rho[1] <= hi else UNSURE
+
+
+@kernel
+def prr_link(xlo, xhi, ylo, yhi, leg, g, modes, r, ends, platform):
+    """3-PRR leg ``leg``'s verdict over the box in its slider mode ``modes[leg]`` (``OUT``
+    where it cannot reach or leaves its stroke), writing, where it may close, its moving
+    link from the slider :math:`S_i = C_i - d_i` to :math:`C_i` into ``ends[leg]`` and
+    :math:`C_i` into ``platform[leg]``."""
+    reach, s, _, root, dx, dy, _, _ = prr_parts(xlo, xhi, ylo, yhi, leg, g, modes[leg], r, 0.0)
+    if not reach or s[1] < g[leg, 4] or s[0] > g[leg, 5]:
+        return OUT
+    cx_lo, cx_hi, cy_lo, cy_hi = set_joint(xlo, xhi, ylo, yhi, leg, r, ends, platform)
+    ends[leg, 0, 0, 0], ends[leg, 0, 0, 1] = isub(cx_lo, cx_hi, *dx)
+    ends[leg, 0, 1, 0], ends[leg, 0, 1, 1] = isub(cy_lo, cy_hi, *dy)
+    inside = root[0] > 0.0 and g[leg, 4] <= s[0] and s[1] <= g[leg, 5]
+    return IN if inside else UNSURE
+
+
 @kernel(parallel=True)
 def rpr_interference(boxes, bases, centres, r, limits, width_cm, verdict, gap):
     """Per row ``x_lo, x_hi, y_lo, y_hi`` of ``boxes``: the verdict (every leg's length
@@ -58,19 +90,9 @@ def rpr_interference(boxes, bases, centres, r, limits, width_cm, verdict, gap):
         state = IN
         xlo, xhi, ylo, yhi = boxes[i, 0], boxes[i, 1], boxes[i, 2], boxes[i, 3]
         for leg in range(3):
-            _, _, _, rho = rpr_parts(xlo, xhi, ylo, yhi, leg, centres, r, 0.0)
-            lo = limits[leg, 0]
-            hi = limits[leg, 1]
-            v = IN if lo <= rho[0] and rho[1] <= hi else UNSURE
-            state = combine(state, OUT if rho[1] < lo or rho[0] > hi else v)
-            ends[leg, 0, 0, 0] = ends[leg, 0, 0, 1] = bases[leg, 0]
-            ends[leg, 0, 1, 0] = ends[leg, 0, 1, 1] = bases[leg, 1]
-            set_joint(xlo, xhi, ylo, yhi, leg, r, ends, platform)
-        verdict[i] = state
-        gap[i, 0] = -math.inf
-        gap[i, 1] = math.inf
-        if state != OUT:
-            gap[i, 0], gap[i, 1] = clearance_gap(ends, chain, joint, platform, width_cm, centre)
+            v = rpr_link(xlo, xhi, ylo, yhi, leg, bases, centres, r, limits, ends, platform)
+            state = combine(state, v)
+        settle_gap(state, True, ends, chain, joint, platform, width_cm, centre, verdict, gap, i)
 
 
 @kernel(parallel=True)
@@ -88,19 +110,7 @@ def prr_interference(boxes, g, modes, r, width_cm, verdict, gap):
         state = IN
         xlo, xhi, ylo, yhi = boxes[i, 0], boxes[i, 1], boxes[i, 2], boxes[i, 3]
         for leg in range(3):
-            reach, s, _, root, dx, dy, _, _ = prr_parts(
-                xlo, xhi, ylo, yhi, leg, g, modes[leg], r, 0.0
-            )
-            if not reach or s[1] < g[leg, 4] or s[0] > g[leg, 5]:
-                state = OUT
+            state = combine(state, prr_link(xlo, xhi, ylo, yhi, leg, g, modes, r, ends, platform))
+            if state == OUT:
                 break
-            inside = root[0] > 0.0 and g[leg, 4] <= s[0] and s[1] <= g[leg, 5]
-            state = combine(state, IN if inside else UNSURE)
-            cx_lo, cx_hi, cy_lo, cy_hi = set_joint(xlo, xhi, ylo, yhi, leg, r, ends, platform)
-            ends[leg, 0, 0, 0], ends[leg, 0, 0, 1] = isub(cx_lo, cx_hi, *dx)
-            ends[leg, 0, 1, 0], ends[leg, 0, 1, 1] = isub(cy_lo, cy_hi, *dy)
-        verdict[i] = state
-        gap[i, 0] = -math.inf
-        gap[i, 1] = math.inf
-        if state != OUT:
-            gap[i, 0], gap[i, 1] = clearance_gap(ends, chain, joint, platform, width_cm, centre)
+        settle_gap(state, True, ends, chain, joint, platform, width_cm, centre, verdict, gap, i)

@@ -11,15 +11,13 @@ platform is the triangle :math:`C_1 C_2 C_3`; the five-bar's two distal links me
 end point (one joint, not checked against each other) and it has no platform polygon.
 """
 
-import math
-
 import numba
 import numpy as np
 
 from ._jit import kernel
 from .dexterity import IN, OUT, UNSURE, combine
 from .dexterity_rr import FREE
-from .interference import clearance_gap
+from .interference import settle_gap
 from .interval import iadd_scalar, isub
 from .singularity3rrr import LEG_IN, LEG_OUT, LEG_UNDEFINED, TOLERANCE_CM, leg_status
 
@@ -67,6 +65,21 @@ def rr_links(xlo, xhi, ylo, yhi, leg, g, r, elbow, limits, ends, platform):
     return IN if verdict == LEG_IN else UNSURE
 
 
+@kernel
+def rr_topology(n):
+    """The links of ``n`` RR legs for :func:`kernels.interference.clearance_gap`: the
+    platform's vertices (three legs: the 3-RRR's triangle; two: the five-bar, none), each
+    link's leg (``chain``: proximal ``2 i``, distal ``2 i + 1``) and the platform vertex it
+    is jointed to (``joint``: a distal link at vertex ``i``, the five-bar's both at its end
+    point; ``-1`` for none)."""
+    vertices = n if n == 3 else 0
+    chain = np.repeat(np.arange(n), 2)
+    joint = np.full(2 * n, -1, dtype=np.int64)
+    for leg in range(n):
+        joint[2 * leg + 1] = leg if n == 3 else 0
+    return vertices, chain, joint
+
+
 @kernel(parallel=True)
 def rr_interference(boxes, g, r, elbow, limits, width_cm, verdict, gap):
     """Per row ``x_lo, x_hi, y_lo, y_hi`` of ``boxes``: the verdict in the mode ``elbow``
@@ -77,11 +90,7 @@ def rr_interference(boxes, g, r, elbow, limits, width_cm, verdict, gap):
     2) radians; three legs: the 3-RRR (its platform triangle, distal ``i`` at vertex ``i``),
     two legs: the five-bar (both distal links at one end point, no polygon)."""
     n = len(g)
-    vertices = n if n == 3 else 0
-    chain = np.repeat(np.arange(n), 2)
-    joint = np.full(2 * n, -1, dtype=np.int64)
-    for leg in range(n):
-        joint[2 * leg + 1] = leg if n == 3 else 0
+    vertices, chain, joint = rr_topology(n)
     for i in numba.prange(len(boxes)):
         ends = np.empty((2 * n, 2, 2, 2))
         platform = np.empty((vertices, 1, 2, 2))
@@ -95,8 +104,4 @@ def rr_interference(boxes, g, r, elbow, limits, width_cm, verdict, gap):
                 defined = False
                 v = UNSURE
             state = combine(state, v)
-        verdict[i] = state
-        gap[i, 0] = -math.inf
-        gap[i, 1] = math.inf
-        if state != OUT and defined:
-            gap[i, 0], gap[i, 1] = clearance_gap(ends, chain, joint, platform, width_cm, centre)
+        settle_gap(state, defined, ends, chain, joint, platform, width_cm, centre, verdict, gap, i)

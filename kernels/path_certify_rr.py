@@ -47,6 +47,16 @@ def platform_offset(qx, qy, s_lo, s_hi, c_lo, c_hi):
     return rx_lo, rx_hi, ry_lo, ry_hi
 
 
+@kernel
+def joint_box(boxes, i, q, leg, s_lo, s_hi, c_lo, c_hi):
+    """The box ``(x_lo, x_hi, y_lo, y_hi)`` of leg ``leg``'s platform point
+    :math:`C_i = p + R(\\varphi) q_i` over pose box ``i`` (:func:`platform_offset`)."""
+    rx_lo, rx_hi, ry_lo, ry_hi = platform_offset(q[leg, 0], q[leg, 1], s_lo, s_hi, c_lo, c_hi)
+    cx_lo, cx_hi = iadd(boxes[i, 0], boxes[i, 1], rx_lo, rx_hi)
+    cy_lo, cy_hi = iadd(boxes[i, 2], boxes[i, 3], ry_lo, ry_hi)
+    return cx_lo, cx_hi, cy_lo, cy_hi
+
+
 @kernel(parallel=True)
 def rr_pose_boxes(boxes, g, q, elbow, limits, length_cm, verdict, reason, kappa):
     """Per row ``x_lo, x_hi, y_lo, y_hi, phi_lo, phi_hi`` of ``boxes`` (cm, rad): the

@@ -12,17 +12,15 @@ vertex; :func:`kernels.interference.clearance_gap` then encloses the gap
 superset of the rigid platform's poses: an outer enclosure over the pose box.
 """
 
-import math
-
 import numba
 import numpy as np
 
 from ._jit import kernel
-from .dexterity import IN, OUT, UNSURE, combine
-from .interference import clearance_gap
-from .interference_rr import rr_links
-from .interval import iadd, isincos
-from .path_certify_rr import platform_offset
+from .dexterity import IN, UNSURE, combine
+from .interference import settle_gap
+from .interference_rr import rr_links, rr_topology
+from .interval import isincos
+from .path_certify_rr import joint_box
 
 
 @kernel(parallel=True)
@@ -33,12 +31,8 @@ def rr_pose_clearance(boxes, g, q, elbow, limits, width_cm, verdict, gap):
     (``(-inf, inf)`` where not bounded). ``g``: one geometry row per leg, ``q`` (legs, 2)
     the platform points in the platform frame (zero for the five-bar)."""
     n = len(g)
-    vertices = n if n == 3 else 0
+    vertices, chain, joint = rr_topology(n)
     zero = np.zeros((n, 2))
-    chain = np.repeat(np.arange(n), 2)
-    joint = np.full(2 * n, -1, dtype=np.int64)
-    for leg in range(n):
-        joint[2 * leg + 1] = leg if n == 3 else 0
     for i in numba.prange(len(boxes)):
         ends = np.empty((2 * n, 2, 2, 2))
         platform = np.empty((vertices, 1, 2, 2))
@@ -47,11 +41,7 @@ def rr_pose_clearance(boxes, g, q, elbow, limits, width_cm, verdict, gap):
         defined = True
         s_lo, s_hi, c_lo, c_hi = isincos(boxes[i, 4], boxes[i, 5])
         for leg in range(n):
-            rx_lo, rx_hi, ry_lo, ry_hi = platform_offset(
-                q[leg, 0], q[leg, 1], s_lo, s_hi, c_lo, c_hi
-            )
-            cx_lo, cx_hi = iadd(boxes[i, 0], boxes[i, 1], rx_lo, rx_hi)
-            cy_lo, cy_hi = iadd(boxes[i, 2], boxes[i, 3], ry_lo, ry_hi)
+            cx_lo, cx_hi, cy_lo, cy_hi = joint_box(boxes, i, q, leg, s_lo, s_hi, c_lo, c_hi)
             v = rr_links(
                 cx_lo, cx_hi, cy_lo, cy_hi, leg, g[leg], zero, elbow, limits, ends, platform
             )
@@ -59,8 +49,4 @@ def rr_pose_clearance(boxes, g, q, elbow, limits, width_cm, verdict, gap):
                 defined = False
                 v = UNSURE
             state = combine(state, v)
-        verdict[i] = state
-        gap[i, 0] = -math.inf
-        gap[i, 1] = math.inf
-        if state != OUT and defined:
-            gap[i, 0], gap[i, 1] = clearance_gap(ends, chain, joint, platform, width_cm, centre)
+        settle_gap(state, defined, ends, chain, joint, platform, width_cm, centre, verdict, gap, i)
