@@ -27,11 +27,12 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from planar_tui.schema import TableReader, setting
+from planar_tui.workspace.paving.rows import AppendedRows
 
 if TYPE_CHECKING:
     import numpy as np
@@ -308,38 +309,24 @@ def accuracy_names(job: Any) -> tuple[str, ...]:
     return HEADER if getattr(job.spec, "accuracy", None) is not None else ()
 
 
-class AccuracyRows(Sequence):
+class AccuracyRows(AppendedRows):
     """The boxes CSV's rows with ``accuracy``: the table's rows with empty bound cells, then
     the accuracy boxes labelled ``accuracy-certified`` (with their bounds: cm, cm, deg) or
-    ``accuracy-not-certified`` (the table's other extra columns empty); made when read."""
+    ``accuracy-not-certified`` (the table's other extra columns empty)."""
 
     def __init__(self, rows: Any, width: int, outcome: AccuracyOutcome):
-        self._rows = rows
+        super().__init__(rows, outcome)
         self._pad = [""] * (width - 5)
-        self._outcome = outcome
 
-    def __len__(self) -> int:
-        return len(self._rows) + len(self._outcome.boxes)
+    def table_row(self, row: Any) -> list:
+        return [*row, "", "", ""]
 
-    def _row(self, index: int) -> list:
-        n = len(self._rows)
-        if index < n:
-            return [*self._rows[index], "", "", ""]
-        i = index - n
+    def stage_row(self, i: int) -> list:
         out = self._outcome
         values = out.bound[i].tolist()
         values[2:] = [math.degrees(v) for v in values[2:]]
         cells = [v if math.isfinite(v) else "" for v in values] + [""] * (3 - len(values))
         return [*out.boxes[i].tolist(), STATUS_NAMES[int(out.status[i])], *self._pad, *cells]
-
-    def __getitem__(self, index):
-        if isinstance(index, slice):
-            return [self._row(i) for i in range(*index.indices(len(self)))]
-        return self._row(index % len(self) if index < 0 else index)
-
-    def non_finite_column(self) -> int | None:
-        """The table's test (the accuracy cells are finite or empty)."""
-        return self._rows.non_finite_column()
 
 
 def boxes_table(table: Any, outcome: AccuracyOutcome | None) -> Any:

@@ -33,6 +33,7 @@ from typing import TYPE_CHECKING, Any
 
 from planar_tui.csvio import CsvTable
 from planar_tui.schema import TableReader, number, setting
+from planar_tui.workspace.paving.rows import AppendedRows
 
 if TYPE_CHECKING:
     import numpy as np
@@ -304,37 +305,20 @@ def dexterity_names(job: Any) -> tuple[str, ...]:
     return (*HEADER, *DISC_HEADER) if getattr(job.spec, "kappa_max", None) is not None else ()
 
 
-class DexterityRows(Sequence):
-    """The boxes CSV's rows with ``kappa_max``: the workspace's rows (``workspace``, a
+class DexterityRows(AppendedRows):
+    """The boxes CSV's rows with ``kappa_max``: the workspace's rows (a
     :class:`~planar_tui.workspace.paving.levels.BoxRows`) with empty κ cells, then the
     dexterity boxes labelled ``dexterous`` or ``dexterous-boundary`` with their κ enclosure
-    (an empty ``kappa_hi``: unbounded); made when read."""
+    (an empty ``kappa_hi``: unbounded)."""
 
-    def __init__(self, workspace: Any, outcome: DexterityOutcome):
-        self._workspace = workspace
-        self._outcome = outcome
+    def table_row(self, row: Any) -> list:
+        return [*row, "", ""]
 
-    def __len__(self) -> int:
-        return len(self._workspace) + len(self._outcome.boxes)
-
-    def _row(self, index: int) -> list:
-        n = len(self._workspace)
-        if index < n:
-            return [*self._workspace[index], "", ""]
-        i = index - n
+    def stage_row(self, i: int) -> list:
         out = self._outcome
         lo, hi = (float(v) for v in out.kappa[i])
         name = STATUS_NAMES[int(out.status[i])]
         return [*out.boxes[i].tolist(), name, lo, hi if math.isfinite(hi) else ""]
-
-    def __getitem__(self, index):
-        if isinstance(index, slice):
-            return [self._row(i) for i in range(*index.indices(len(self)))]
-        return self._row(index % len(self) if index < 0 else index)
-
-    def non_finite_column(self) -> int | None:
-        """The workspace's test (the κ cells are finite or empty)."""
-        return self._workspace.non_finite_column()
 
 
 def boxes_table(workspace: Any, outcome: DexterityOutcome | None) -> Any:

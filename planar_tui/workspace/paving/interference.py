@@ -23,13 +23,14 @@ grid; so ``|inside| <= interference-free area <= |kept|``.
 from __future__ import annotations
 
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from planar_tui.csvio import CsvTable
 from planar_tui.schema import TableReader, number, setting
 from planar_tui.workspace.paving.dexterity import decider, refine_leaves
+from planar_tui.workspace.paving.rows import AppendedRows
 
 if TYPE_CHECKING:
     import numpy as np
@@ -164,35 +165,18 @@ def interference_names(job: Any) -> tuple[str, ...]:
     return HEADER if getattr(job.spec, "leg_width_cm", None) is not None else ()
 
 
-class InterferenceRows(Sequence):
+class InterferenceRows(AppendedRows):
     """The boxes CSV's rows with ``leg_width_cm``: the table's rows, then the interference
     boxes labelled ``interference-free`` or ``interference-boundary`` (the table's extra
-    columns empty); made when read."""
+    columns empty)."""
 
     def __init__(self, rows: Any, width: int, outcome: InterferenceOutcome):
-        self._rows = rows
+        super().__init__(rows, outcome)
         self._pad = [""] * (width - 5)
-        self._outcome = outcome
 
-    def __len__(self) -> int:
-        return len(self._rows) + len(self._outcome.boxes)
-
-    def _row(self, index: int) -> list:
-        n = len(self._rows)
-        if index < n:
-            return list(self._rows[index])
-        i = index - n
+    def stage_row(self, i: int) -> list:
         name = STATUS_NAMES[int(self._outcome.status[i])]
         return [*self._outcome.boxes[i].tolist(), name, *self._pad]
-
-    def __getitem__(self, index):
-        if isinstance(index, slice):
-            return [self._row(i) for i in range(*index.indices(len(self)))]
-        return self._row(index % len(self) if index < 0 else index)
-
-    def non_finite_column(self) -> int | None:
-        """The table's test (the interference rows are finite)."""
-        return self._rows.non_finite_column()
 
 
 def boxes_table(table: Any, outcome: InterferenceOutcome | None) -> Any:
