@@ -32,6 +32,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from planar_tui.schema import TableReader, setting
+from planar_tui.workspace.paving.dexterity import decider, refine_leaves, refuse_unpaved
 from planar_tui.workspace.paving.rows import AppendedRows
 
 if TYPE_CHECKING:
@@ -120,14 +121,7 @@ def check_accuracy(values: dict[str, Any], reader: TableReader, unit: str) -> No
             kind = "revolute" if unit == "deg" else "prismatic"
             found = f"is set: this robot's actuators are {kind}"
             raise reader.error(f"accuracy.{key}", found, f"{own} or tolerance_cm")
-    if isinstance(values.get("orientation_deg"), tuple):
-        raise reader.error(
-            "accuracy", "is set with orientation_deg = [lo, hi]", "a single orientation_deg"
-        )
-    if values.get("form") == "geometric":
-        raise reader.error("accuracy", 'is set with form = "geometric"', "a form with boxes")
-    if values.get("tolerance_mode") is not None:
-        raise reader.error("accuracy", "is set with a tolerance", "no tolerance_cm")
+    refuse_unpaved("accuracy", values, reader)
 
 
 @dataclass
@@ -215,7 +209,6 @@ def compute_accuracy(
     pose error down to ``precision_cm`` (module docstring)."""
     import numpy as np
 
-    from planar_tui.workspace.paving.dexterity import decider, refine_leaves
     from planar_tui.workspace.paving.levels import pave_in_levels
 
     started = time.perf_counter()

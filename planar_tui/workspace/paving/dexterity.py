@@ -105,10 +105,20 @@ def check_dexterity(values: dict[str, Any], reader: TableReader) -> None:
                     "is not set with kappa_max and orientation_deg = [lo, hi]",
                     f"{mode} = [s1, s2, s3], each 1 or -1",
                 )
+    refuse_unpaved("kappa_max", values, reader, ranges=True)
+
+
+def refuse_unpaved(key: str, values: dict[str, Any], reader: TableReader, ranges=False) -> None:
+    """A certifying stage's ``key`` needs a form with boxes, no tolerance and (unless
+    ``ranges``) a single orientation: one line naming what is set with it otherwise."""
+    if not ranges and isinstance(values.get("orientation_deg"), tuple):
+        raise reader.error(
+            key, "is set with orientation_deg = [lo, hi]", "a single orientation_deg"
+        )
     if values.get("form") == "geometric":
-        raise reader.error("kappa_max", 'is set with form = "geometric"', "a form with boxes")
+        raise reader.error(key, 'is set with form = "geometric"', "a form with boxes")
     if values.get("tolerance_mode") is not None:
-        raise reader.error("kappa_max", "is set with a tolerance", "no tolerance_cm")
+        raise reader.error(key, "is set with a tolerance", "no tolerance_cm")
 
 
 def circumradius_cm(points: Sequence[Sequence[float]]) -> float:

@@ -29,7 +29,7 @@ from typing import TYPE_CHECKING, Any
 
 from planar_tui.csvio import CsvTable
 from planar_tui.schema import TableReader, number, setting
-from planar_tui.workspace.paving.dexterity import decider, refine_leaves
+from planar_tui.workspace.paving.dexterity import decider, refine_leaves, refuse_unpaved
 from planar_tui.workspace.paving.rows import AppendedRows
 
 if TYPE_CHECKING:
@@ -62,16 +62,8 @@ def width_setting() -> Any:
 
 def check_interference(values: dict[str, Any], reader: TableReader) -> None:
     """``leg_width_cm`` needs one orientation, a form with boxes and no tolerance."""
-    if values.get("leg_width_cm") is None:
-        return
-    if isinstance(values.get("orientation_deg"), tuple):
-        raise reader.error(
-            "leg_width_cm", "is set with orientation_deg = [lo, hi]", "a single orientation_deg"
-        )
-    if values.get("form") == "geometric":
-        raise reader.error("leg_width_cm", 'is set with form = "geometric"', "a form with boxes")
-    if values.get("tolerance_mode") is not None:
-        raise reader.error("leg_width_cm", "is set with a tolerance", "no tolerance_cm")
+    if values.get("leg_width_cm") is not None:
+        refuse_unpaved("leg_width_cm", values, reader)
 
 
 @dataclass
