@@ -7,7 +7,6 @@ of :math:`|\\Delta x|, |\\Delta y|` only."""
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from typing import Any
 
@@ -22,9 +21,7 @@ def evaluator(robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any]]:
 
     g, r, _, limits, _ = kernel_inputs(robot)
     elbow = np.array(robot.elbows, dtype=float)
-    accuracy = AccuracySpec.of(spec.accuracy, "deg")
-    actuator = math.radians(accuracy.actuator)
-    errors = np.array([actuator, accuracy.tolerance_cm, 0.0, 1.0, 0.0])  # no platform
+    errors = np.array(AccuracySpec.of(spec.accuracy, "deg").kernel_errors(None))
 
     def evaluate(boxes: Any) -> tuple[Any, Any]:
         from planar_tui.kernels.accuracy_rr import rr_accuracy  # numba

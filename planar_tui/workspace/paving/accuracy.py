@@ -76,6 +76,17 @@ class AccuracySpec:
         values = dict(table)
         return cls(values.get(ACTUATOR_KEYS[unit], 0.0), unit, values.get("tolerance_cm", 0.0))
 
+    def kernel_errors(self, orientation_rad: float | None) -> tuple[float, ...]:
+        """The kernels' ``errors`` row (:mod:`kernels.accuracy`): the actuator error (rad or
+        cm), the tolerance of the joints and of the platform's points (cm), and
+        :math:`\\cos\\varphi, \\sin\\varphi` of the platform's orientation
+        (``None``: no platform, the five-bar's end point)."""
+        actuator = math.radians(self.actuator) if self.unit == "deg" else self.actuator
+        t = self.tolerance_cm
+        if orientation_rad is None:
+            return (actuator, t, 0.0, 1.0, 0.0)
+        return (actuator, t, t, math.cos(orientation_rad), math.sin(orientation_rad))
+
 
 def accuracy_setting() -> Any:
     """``accuracy``: the errors, sorted ``(key, value)`` pairs of ``actuator_deg``,

@@ -7,7 +7,6 @@ frame) and each distal length within ``tolerance_cm``."""
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from typing import Any
 
@@ -22,9 +21,7 @@ def evaluator(job: Any, modes: tuple[int, int, int]) -> Callable[[Any], tuple[An
     spec = job.spec
     g, offsets = kernel_inputs(job.robot, spec)
     sigma = np.array(modes, dtype=float)
-    accuracy = AccuracySpec.of(spec.accuracy, "cm")
-    t, phi = accuracy.tolerance_cm, spec.orientation_rad
-    errors = np.array([accuracy.actuator, t, t, math.cos(phi), math.sin(phi)])
+    errors = np.array(AccuracySpec.of(spec.accuracy, "cm").kernel_errors(spec.orientation_rad))
 
     def evaluate(boxes: Any) -> tuple[Any, Any]:
         from planar_tui.kernels.accuracy_prismatic import prr_accuracy  # numba

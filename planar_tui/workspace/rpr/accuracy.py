@@ -6,7 +6,6 @@ its own frame) within ``tolerance_cm``. Its legs have one branch: no working mod
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from typing import Any
 
@@ -22,9 +21,7 @@ def evaluator(robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any]]:
     centres = np.array(robot.centres_cm(phi), dtype=float)
     offsets = offsets_cm(robot, phi)
     limits = np.array(spec.leg_limits_cm, dtype=float)
-    accuracy = AccuracySpec.of(spec.accuracy, "cm")
-    t = accuracy.tolerance_cm
-    errors = np.array([accuracy.actuator, t, t, math.cos(phi), math.sin(phi)])
+    errors = np.array(AccuracySpec.of(spec.accuracy, "cm").kernel_errors(phi))
 
     def evaluate(boxes: Any) -> tuple[Any, Any]:
         from planar_tui.kernels.accuracy_prismatic import rpr_accuracy  # numba

@@ -7,7 +7,6 @@ leg's proximal and distal lengths within ``tolerance_cm``."""
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from typing import Any
 
@@ -21,10 +20,7 @@ def evaluator(robot: Any, spec: Any, circle: Circle) -> Callable[[Any], tuple[An
 
     g, r, elbow, limits = kernel_inputs(robot, spec, circle)
     rows = np.tile(g, (3, 1))  # one geometry row per leg
-    accuracy = AccuracySpec.of(spec.accuracy, "deg")
-    t, phi = accuracy.tolerance_cm, spec.orientation_rad
-    actuator = math.radians(accuracy.actuator)
-    errors = np.array([actuator, t, t, math.cos(phi), math.sin(phi)])
+    errors = np.array(AccuracySpec.of(spec.accuracy, "deg").kernel_errors(spec.orientation_rad))
 
     def evaluate(boxes: Any) -> tuple[Any, Any]:
         from planar_tui.kernels.accuracy_rr import rr_accuracy  # numba
