@@ -23,10 +23,10 @@ from planar_tui.figures.dexterity import (
     add_kappa_panel,
     box_axes,
     box_verts,
-    heat_image,
+    draw_heat,
     new_panel,
 )
-from planar_tui.figures.workspace import MAX_DRAWN_BOXES, RASTER_ABOVE
+from planar_tui.figures.workspace import RASTER_ABOVE
 from planar_tui.workspace.paving.accuracy import position_error
 
 INTERFERENCE_COLOUR = "#1f78b4"
@@ -74,51 +74,26 @@ def draw_errors(ax: Any, outcome: Any) -> Any:
     mappable for a colour bar."""
     import numpy as np
     from matplotlib import colormaps
-    from matplotlib.cm import ScalarMappable
-    from matplotlib.collections import PolyCollection
     from matplotlib.colors import Normalize
 
     boxes = np.asarray(outcome.boxes, dtype=float).reshape(-1, 4)
     error = position_error(outcome)
     certified = np.isfinite(error)
     top = float(error[certified].max()) if certified.any() else 1.0
-    cmap, norm = colormaps[ERROR_CMAP], Normalize(0.0, top if top > 0 else 1.0)
-    if np.count_nonzero(certified) > MAX_DRAWN_BOXES:
-        levels = np.ceil(ERROR_LEVELS * error[certified] / norm.vmax) - 1
-        levels = np.clip(levels, 0, ERROR_LEVELS - 1).astype(np.int64)
-        edges = norm.vmax * np.arange(1, ERROR_LEVELS + 1) / ERROR_LEVELS
-        heat_image(ax, boxes[certified], levels, cmap, norm, "accuracy-image", edges)
-    else:
-        ax.add_collection(
-            PolyCollection(
-                box_verts(boxes[certified]),
-                array=error[certified],
-                cmap=cmap,
-                norm=norm,
-                edgecolors="none",
-                gid="accuracy",
-                rasterized=len(boxes) > RASTER_ABOVE,
-            )
-        )
-    ax.add_collection(
-        PolyCollection(
-            box_verts(boxes[~certified]),
-            facecolors=UNCERTIFIED_COLOUR,
-            edgecolors="#7f7f7f",
-            hatch="xxx",
-            linewidths=0.3,
-            gid="accuracy-uncertified",
-            label="not certified",
-        )
+    norm = Normalize(0.0, top if top > 0 else 1.0)
+    levels = np.ceil(ERROR_LEVELS * np.nan_to_num(error, posinf=0.0) / norm.vmax) - 1
+    levels = np.clip(levels, 0, ERROR_LEVELS - 1).astype(np.int64)
+    edges = norm.vmax * np.arange(1, ERROR_LEVELS + 1) / ERROR_LEVELS
+    uncertified = {
+        "facecolors": UNCERTIFIED_COLOUR,
+        "edgecolors": "#7f7f7f",
+        "gid": "accuracy-uncertified",
+        "label": "not certified",
+    }
+    colours = (colormaps[ERROR_CMAP], norm)
+    return draw_heat(
+        ax, boxes, certified, error, levels, colours, "accuracy", uncertified, PANEL_TITLE, edges
     )
-    if len(boxes):
-        ax.set_xlim(boxes[:, 0].min(), boxes[:, 1].max())
-        ax.set_ylim(boxes[:, 2].min(), boxes[:, 3].max())
-    ax.set(xlabel="x (cm)", ylabel="y (cm)", aspect="equal", title=PANEL_TITLE)
-    ax.grid(alpha=0.3)
-    if np.any(~certified):
-        ax.legend(loc="upper right", fontsize="small")
-    return ScalarMappable(norm=norm, cmap=cmap)
 
 
 def add_error_panel(fig: Any, result: Any) -> Any:

@@ -103,50 +103,72 @@ def heat_image(
     )
 
 
+def draw_heat(
+    ax: Any,
+    boxes: Any,
+    known: Any,
+    values: Any,
+    levels: Any,
+    colours: tuple[Any, Any],
+    gid: str,
+    unknown: dict[str, Any],
+    title: str,
+    image_levels: Any = None,
+) -> Any:
+    """A heat-map panel on ``ax``: the ``known`` boxes coloured by ``values`` as one
+    collection (``gid``), or past :data:`MAX_DRAWN_BOXES` one image (``gid-image``) of
+    their integer ``levels`` (:func:`heat_image`, ``image_levels``), and the other boxes
+    hatched in their own collection (``unknown``: its colours, ``gid`` and label); returns
+    the mappable of ``colours`` (colour map, norm) for a colour bar."""
+    import numpy as np
+    from matplotlib.cm import ScalarMappable
+    from matplotlib.collections import PolyCollection
+
+    cmap, norm = colours
+    if np.count_nonzero(known) > MAX_DRAWN_BOXES:
+        heat_image(ax, boxes[known], levels[known], cmap, norm, f"{gid}-image", image_levels)
+    else:
+        ax.add_collection(
+            PolyCollection(
+                box_verts(boxes[known]),
+                array=values[known],
+                cmap=cmap,
+                norm=norm,
+                edgecolors="none",
+                gid=gid,
+                rasterized=len(boxes) > RASTER_ABOVE,
+            )
+        )
+    ax.add_collection(
+        PolyCollection(box_verts(boxes[~known]), hatch="xxx", linewidths=0.3, **unknown)
+    )
+    if len(boxes):
+        ax.set_xlim(boxes[:, 0].min(), boxes[:, 1].max())
+        ax.set_ylim(boxes[:, 2].min(), boxes[:, 3].max())
+    ax.set(xlabel="x (cm)", ylabel="y (cm)", aspect="equal", title=title)
+    ax.grid(alpha=0.3)
+    if np.any(~known):
+        ax.legend(loc="upper right", fontsize="small")
+    return ScalarMappable(norm=norm, cmap=cmap)
+
+
 def draw_kappa(ax: Any, outcome: Any) -> Any:
     """The κ heat map of ``outcome`` on ``ax``: the bounded boxes as one collection
     (``gid`` ``"kappa"``, its array the bins) or one image, the unbounded ones hatched
     (``gid`` ``"kappa-unbounded"``); returns the mappable for a colour bar."""
     import numpy as np
-    from matplotlib.cm import ScalarMappable
-    from matplotlib.collections import PolyCollection
 
     boxes = np.asarray(outcome.boxes, dtype=float).reshape(-1, 4)
     bins = kappa_bins(np.asarray(outcome.kappa).reshape(-1, 2)[:, 1], outcome.kappa_max)
-    cmap, norm = colour_map()
-    bounded = bins >= 0
-    if np.count_nonzero(bounded) > MAX_DRAWN_BOXES:
-        heat_image(ax, boxes[bounded], bins[bounded], cmap, norm)
-    else:
-        heat = PolyCollection(
-            box_verts(boxes[bounded]),
-            array=bins[bounded],
-            cmap=cmap,
-            norm=norm,
-            edgecolors="none",
-            gid="kappa",
-            rasterized=len(boxes) > RASTER_ABOVE,
-        )
-        ax.add_collection(heat)
-    ax.add_collection(
-        PolyCollection(
-            box_verts(boxes[~bounded]),
-            facecolors="white",
-            edgecolors="#c0392b",
-            hatch="xxx",
-            linewidths=0.3,
-            gid="kappa-unbounded",
-            label="κ unbounded (may be singular)",
-        )
+    unbounded = {
+        "facecolors": "white",
+        "edgecolors": "#c0392b",
+        "gid": "kappa-unbounded",
+        "label": "κ unbounded (may be singular)",
+    }
+    return draw_heat(
+        ax, boxes, bins >= 0, bins, bins, colour_map(), "kappa", unbounded, PANEL_TITLE
     )
-    if len(boxes):
-        ax.set_xlim(boxes[:, 0].min(), boxes[:, 1].max())
-        ax.set_ylim(boxes[:, 2].min(), boxes[:, 3].max())
-    ax.set(xlabel="x (cm)", ylabel="y (cm)", aspect="equal", title=PANEL_TITLE)
-    ax.grid(alpha=0.3)
-    if np.any(~bounded):
-        ax.legend(loc="upper right", fontsize="small")
-    return ScalarMappable(norm=norm, cmap=cmap)
 
 
 def box_axes(fig: Any) -> Any:
