@@ -8,40 +8,22 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from planar_tui.app.app import WorkbenchApp
-from planar_tui.app.workbench import Workbench
-from tests.test_app import DATA, async_test, run_tab
-from tests.test_app_dexterity import plot_cells
+from tests.test_app import async_test
+from tests.test_app_dexterity import GLYPHS, app_with, over_cell, toggle_layer
 
 pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
-
-GLYPHS = "1234?"
 
 
 def accurate_app(tmp_path):
     """The app on tiny.toml with ``accuracy`` in its workspace job."""
-    text = (DATA / "tiny.toml").read_text(encoding="utf-8")
-    text = text.replace(
-        'form = "arc-distance"\n',
-        'form = "arc-distance"\nelbow = [1, -1, 1]\n'
-        "accuracy = { actuator_deg = 0.1, tolerance_cm = 0.01 }\n",
-        1,
-    )
-    path = tmp_path / "tiny.toml"
-    path.write_text(text, encoding="utf-8")
-    return WorkbenchApp(Workbench.open(path), output_dir=tmp_path)
+    keys = "elbow = [1, -1, 1]\naccuracy = { actuator_deg = 0.1, tolerance_cm = 0.01 }\n"
+    return app_with(tmp_path, keys)
 
 
 def expected_glyph(explorer, column, row, accuracy):
     """The band of the worst bound of the boxes overlapping the cell's interior: quarters
     of [0, the largest certified bound]."""
-    x_lo, _, _, y_hi = explorer.extent()
-    cell = explorer.cell_cm
-    cx0, cx1 = x_lo + column * cell, x_lo + (column + 1) * cell
-    cy1 = y_hi - row * 2 * cell
-    cy0 = cy1 - 2 * cell
-    b = accuracy.boxes
-    over = (b[:, 1] > cx0) & (b[:, 0] < cx1) & (b[:, 3] > cy0) & (b[:, 2] < cy1)
+    over = over_cell(explorer, column, row, accuracy.boxes)
     if not over.any():
         return " "
     error = np.maximum(accuracy.bound[:, 0], accuracy.bound[:, 1])
@@ -56,34 +38,12 @@ def expected_glyph(explorer, column, row, accuracy):
 async def test_a_toggles_the_error_layer_drawn_from_the_boxes(tmp_path):
     app = accurate_app(tmp_path)
     async with app.run_test(size=(120, 40)) as pilot:
-        await run_tab(app, pilot, "workspace")
-        pane = app.query_one("#pane-workspace")
-        explorer = pane.query_one("#workspace-map")
-        accuracy = pane.result.accuracy
-        assert explorer.accuracy is accuracy and len(accuracy.boxes)
-        before = plot_cells(explorer)
-        assert "a: error map" in str(pane.query_one("#workspace-legend").render())
-        explorer.focus()
-        await pilot.press("a")
-        await pilot.pause()
-        shown = plot_cells(explorer)
-        legend = str(pane.query_one("#workspace-legend").render())
-        expected = [
-            [expected_glyph(explorer, column, row, accuracy) for column in range(len(line))]
-            for row, line in enumerate(shown)
-        ]
-        await pilot.press("a")
-        await pilot.pause()
-        hidden = plot_cells(explorer)
-    assert not any(g in line for line in before for g in GLYPHS)
-    assert "? not certified" in legend and " cm" in legend
-    marked = [
-        (column, row, glyph)
-        for row, line in enumerate(shown)
-        for column, glyph in enumerate(line)
-        if glyph in GLYPHS
-    ]
+        layer = await toggle_layer(app, pilot, "a", "accuracy", "accuracy", expected_glyph)
+    assert "a: error map" in layer.legend_before
+    assert not any(g in line for line in layer.before for g in GLYPHS)
+    assert "? not certified" in layer.legend and " cm" in layer.legend
+    marked = layer.marked()
     assert {"?"} < {g for _, _, g in marked} and len({g for _, _, g in marked}) >= 3
     for column, row, glyph in marked:
-        assert glyph == expected[row][column], (column, row)
-    assert not any(g in line for line in hidden for g in GLYPHS)
+        assert glyph == layer.expected[row][column], (column, row)
+    assert not any(g in line for line in layer.hidden for g in GLYPHS)

@@ -7,6 +7,7 @@ trace at the CSV's poses, the failing stretch marked from the certificate's
 from __future__ import annotations
 
 import csv
+from dataclasses import dataclass
 
 import numpy as np
 import pytest
@@ -23,15 +24,18 @@ pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
 GLYPHS = "1234?"
 
 
-def dexterous_app(tmp_path):
-    """The app on tiny.toml with ``kappa_max = 4`` in its workspace job."""
+def app_with(tmp_path, keys: str):
+    """The app on tiny.toml with ``keys`` (TOML lines) in its workspace job."""
     text = (DATA / "tiny.toml").read_text(encoding="utf-8")
-    text = text.replace(
-        'form = "arc-distance"\n', 'form = "arc-distance"\nkappa_max = 4\nelbow = [1, -1, 1]\n', 1
-    )
+    text = text.replace('form = "arc-distance"\n', 'form = "arc-distance"\n' + keys, 1)
     path = tmp_path / "tiny.toml"
     path.write_text(text, encoding="utf-8")
     return WorkbenchApp(Workbench.open(path), output_dir=tmp_path)
+
+
+def dexterous_app(tmp_path):
+    """The app on tiny.toml with ``kappa_max = 4`` in its workspace job."""
+    return app_with(tmp_path, "kappa_max = 4\nelbow = [1, -1, 1]\n")
 
 
 def plot_cells(explorer):
@@ -40,15 +44,67 @@ def plot_cells(explorer):
     return [line[LABEL_CELLS : LABEL_CELLS + columns] for line in explorer.map_lines()[:rows]]
 
 
-def expected_glyph(explorer, column, row, kappa):
-    """The band of the worst ``kappa_hi`` of the boxes overlapping the cell's interior."""
+def over_cell(explorer, column, row, boxes):
+    """Which of ``boxes`` overlap the interior of the map's cell ``(column, row)``."""
     x_lo, _, _, y_hi = explorer.extent()
     cell = explorer.cell_cm
     cx0, cx1 = x_lo + column * cell, x_lo + (column + 1) * cell
     cy1 = y_hi - row * 2 * cell
     cy0 = cy1 - 2 * cell
-    b = kappa.boxes
-    over = (b[:, 1] > cx0) & (b[:, 0] < cx1) & (b[:, 3] > cy0) & (b[:, 2] < cy1)
+    return (boxes[:, 1] > cx0) & (boxes[:, 0] < cx1) & (boxes[:, 3] > cy0) & (boxes[:, 2] < cy1)
+
+
+@dataclass
+class Toggled:
+    """A map layer's cells before it is shown, shown (with the legend then and the glyphs
+    each cell should hold) and hidden again."""
+
+    before: list
+    legend_before: str
+    shown: list
+    legend: str
+    expected: list
+    hidden: list
+
+    def marked(self) -> list:
+        """The shown cells holding a layer glyph: ``(column, row, glyph)``."""
+        return [
+            (column, row, glyph)
+            for row, line in enumerate(self.shown)
+            for column, glyph in enumerate(line)
+            if glyph in GLYPHS
+        ]
+
+
+async def toggle_layer(app, pilot, key, outcome, attribute, expected_glyph):
+    """Run the workspace tab, check its map holds the result's ``outcome`` as its
+    ``attribute`` and press ``key`` on it twice: the cells each time, and the glyph
+    :func:`expected_glyph` gives each cell from the outcome's boxes."""
+    await run_tab(app, pilot, "workspace")
+    pane = app.query_one("#pane-workspace")
+    explorer = pane.query_one("#workspace-map")
+    result = getattr(pane.result, outcome)
+    assert getattr(explorer, attribute) is result
+    assert len(result.boxes)
+    before = plot_cells(explorer)
+    legend_before = str(pane.query_one("#workspace-legend").render())
+    explorer.focus()
+    await pilot.press(key)
+    await pilot.pause()
+    shown = plot_cells(explorer)
+    legend = str(pane.query_one("#workspace-legend").render())
+    expected = [
+        [expected_glyph(explorer, column, row, result) for column in range(len(line))]
+        for row, line in enumerate(shown)
+    ]
+    await pilot.press(key)
+    await pilot.pause()
+    return Toggled(before, legend_before, shown, legend, expected, plot_cells(explorer))
+
+
+def expected_glyph(explorer, column, row, kappa):
+    """The band of the worst ``kappa_hi`` of the boxes overlapping the cell's interior."""
+    over = over_cell(explorer, column, row, kappa.boxes)
     if not over.any():
         return " "
     worst = kappa.kappa[over, 1].max()
@@ -62,38 +118,15 @@ def expected_glyph(explorer, column, row, kappa):
 async def test_k_toggles_the_kappa_layer_drawn_from_the_boxes(tmp_path):
     app = dexterous_app(tmp_path)
     async with app.run_test(size=(120, 40)) as pilot:
-        await run_tab(app, pilot, "workspace")
-        pane = app.query_one("#pane-workspace")
-        explorer = pane.query_one("#workspace-map")
-        kappa = pane.result.dexterity
-        assert explorer.kappa is kappa and len(kappa.boxes)
-        before = plot_cells(explorer)
-        legend = str(pane.query_one("#workspace-legend").render())
-        assert "k: κ map" in legend
-        explorer.focus()
-        await pilot.press("k")
-        await pilot.pause()
-        shown = plot_cells(explorer)
-        legend = str(pane.query_one("#workspace-legend").render())
-        expected = [
-            [expected_glyph(explorer, column, row, kappa) for column in range(len(line))]
-            for row, line in enumerate(shown)
-        ]
-        await pilot.press("k")
-        await pilot.pause()
-        hidden = plot_cells(explorer)
-    assert not any(g in line for line in before for g in GLYPHS)
-    assert "1 κ ≤ 1.75" in legend and "? not proved ≤ 4" in legend
-    marked = [
-        (column, row, glyph)
-        for row, line in enumerate(shown)
-        for column, glyph in enumerate(line)
-        if glyph in GLYPHS
-    ]
+        layer = await toggle_layer(app, pilot, "k", "dexterity", "kappa", expected_glyph)
+    assert "k: κ map" in layer.legend_before
+    assert not any(g in line for line in layer.before for g in GLYPHS)
+    assert "1 κ ≤ 1.75" in layer.legend and "? not proved ≤ 4" in layer.legend
+    marked = layer.marked()
     assert len({g for _, _, g in marked}) >= 2  # several bands drawn
     for column, row, glyph in marked:
-        assert glyph == expected[row][column], (column, row)
-    assert not any(g in line for line in hidden for g in GLYPHS)
+        assert glyph == layer.expected[row][column], (column, row)
+    assert not any(g in line for line in layer.hidden for g in GLYPHS)
 
 
 #: A 3-RRR path whose κ rises above 20 (tests/test_certified_path.py's "kappa" path).
