@@ -101,6 +101,54 @@ def first_crossing(start, stop):
     return brentq(at, times[k - 1], times[k], xtol=1e-12)
 
 
+def narrow_gaps(monkeypatch):
+    """Every gap enclosure a certificate sees moved inwards by 1 % of the width at each
+    end (a wrong change the tests must catch)."""
+    original = certify_module.with_clearance
+
+    def with_clearance(test, clearance):
+        def narrowed(boxes):
+            verdict, gap = clearance(boxes)
+            shift = 0.01 * WIDTH_CM
+            return verdict, np.stack([gap[:, 0] + shift, gap[:, 1] - shift], axis=1)
+
+        return original(test, narrowed)
+
+    monkeypatch.setattr(certify_module, "with_clearance", with_clearance)
+
+
+def check_job_against_sampling(tmp_path, text, start, stop, verdict):
+    """Run the path job of preset ``text`` (a point path ``start`` to ``stop`` in 1 s)
+    and check its certificate against ``tests/test_interference.py``'s reference sampled
+    densely: the ``verdict``, and a failure's reason and bracket holding the first
+    crossing (brentq), at most T/1000 wide."""
+    from planar_tui.batch import prepare_jobs, run_job
+    from planar_tui.presets import load_preset
+    from tests.test_interference import reference
+
+    (tmp_path / "p.toml").write_text(text, encoding="utf-8")
+    (job,) = prepare_jobs(load_preset(tmp_path / "p.toml").jobs)
+    certificate = run_job(job).certificate
+    times = np.linspace(0.0, 1.0, SAMPLES + 1)
+
+    def gap(t):
+        poses = path_poses(start, stop, 1.0, np.atleast_1d(t))
+        return reference(job, poses[:, 0], poses[:, 1])
+
+    valid, sampled = gap(times)
+    assert valid.all()
+    assert certificate.certified == verdict
+    bad = np.flatnonzero(sampled < 0.0)
+    if verdict == "yes":
+        assert not len(bad)
+        return
+    k = int(bad[0])
+    t_star = brentq(lambda t: float(gap(t)[1][0]), times[k - 1], times[k], xtol=1e-12)
+    assert certificate.reason == "interference"
+    assert certificate.failure_lo_s - 1e-9 <= t_star <= certificate.failure_hi_s + 1e-9
+    assert certificate.failure_hi_s - certificate.failure_lo_s <= 1e-3
+
+
 @pytest.mark.parametrize("name", sorted(PATHS))
 def test_the_verdict_and_the_first_crossing_against_dense_sampling(name):
     certificate, start, stop = certificate_of(name)
@@ -117,17 +165,7 @@ def test_the_verdict_and_the_first_crossing_against_dense_sampling(name):
 def test_a_gap_enclosure_shrunk_by_one_percent_moves_the_first_failure(monkeypatch):
     """Each end of every gap enclosure moved 1 % of the width inwards: the certificate's
     bracket no longer holds the reference's first crossing."""
-    original = certify_module.with_clearance
-
-    def with_clearance(test, clearance):
-        def narrowed(boxes):
-            verdict, gap = clearance(boxes)
-            shift = 0.01 * WIDTH_CM
-            return verdict, np.stack([gap[:, 0] + shift, gap[:, 1] - shift], axis=1)
-
-        return original(test, narrowed)
-
-    monkeypatch.setattr(certify_module, "with_clearance", with_clearance)
+    narrow_gaps(monkeypatch)
     certificate, start, stop = certificate_of("clash")
     t_star = first_crossing(start, stop)
     inside = certificate.failure_lo_s - 1e-9 <= t_star <= certificate.failure_hi_s + 1e-9
@@ -157,35 +195,11 @@ FIVEBAR_PATHS = {
 
 @pytest.mark.parametrize("name", sorted(FIVEBAR_PATHS))
 def test_the_five_bar_verdict_and_first_crossing_against_dense_sampling(tmp_path, name):
-    from planar_tui.batch import prepare_jobs, run_job
-    from planar_tui.presets import load_preset
-    from tests.test_interference import reference
-
     mode, start, stop, verdict = FIVEBAR_PATHS[name]
     text = FIVEBAR_PATH.format(
         mode=mode, start=start, stop=stop, extra=f"leg_width_cm = {WIDTH_CM}\n"
     )
-    (tmp_path / "p.toml").write_text(text, encoding="utf-8")
-    (job,) = prepare_jobs(load_preset(tmp_path / "p.toml").jobs)
-    certificate = run_job(job).certificate
-    times = np.linspace(0.0, 1.0, SAMPLES + 1)
-
-    def gap(t):
-        poses = path_poses(start, stop, 1.0, np.atleast_1d(t))
-        return reference(job, poses[:, 0], poses[:, 1])
-
-    valid, sampled = gap(times)
-    assert valid.all()
-    assert certificate.certified == verdict
-    bad = np.flatnonzero(sampled < 0.0)
-    if verdict == "yes":
-        assert not len(bad)
-        return
-    k = int(bad[0])
-    t_star = brentq(lambda t: float(gap(t)[1][0]), times[k - 1], times[k], xtol=1e-12)
-    assert certificate.reason == "interference"
-    assert certificate.failure_lo_s - 1e-9 <= t_star <= certificate.failure_hi_s + 1e-9
-    assert certificate.failure_hi_s - certificate.failure_lo_s <= 1e-3
+    check_job_against_sampling(tmp_path, text, start, stop, verdict)
 
 
 def test_the_job_writes_the_interference_certificate_and_exits_0(cli, tmp_path):
@@ -241,51 +255,17 @@ PRISMATIC = {
 def test_the_prismatic_robots_against_dense_sampling(tmp_path, name):
     """The 3-RPR and 3-PRR at φ = 0 along the path (the references of
     ``tests/test_interference.py``: leg lengths, sliders on their lines)."""
-    from planar_tui.batch import prepare_jobs, run_job
-    from planar_tui.presets import load_preset
-    from tests.test_interference import reference
-
     head, start, stop, verdict = PRISMATIC[name]
     text = f"{head}from_pose = {start}\nto_pose = {stop}\nsteps = 10\nkappa_max = 1e6\n"
     text += f'leg_width_cm = {WIDTH_CM}\noutput = "p.csv"\n'
-    (tmp_path / "p.toml").write_text(text, encoding="utf-8")
-    (job,) = prepare_jobs(load_preset(tmp_path / "p.toml").jobs)
-    certificate = run_job(job).certificate
-    times = np.linspace(0.0, 1.0, SAMPLES + 1)
-
-    def gap(t):
-        poses = path_poses(start, stop, 1.0, np.atleast_1d(t))
-        return reference(job, poses[:, 0], poses[:, 1])
-
-    valid, sampled = gap(times)
-    assert valid.all()
-    assert certificate.certified == verdict
-    bad = np.flatnonzero(sampled < 0.0)
-    if verdict == "yes":
-        assert not len(bad)
-        return
-    k = int(bad[0])
-    t_star = brentq(lambda t: float(gap(t)[1][0]), times[k - 1], times[k], xtol=1e-12)
-    assert certificate.reason == "interference"
-    assert certificate.failure_lo_s - 1e-9 <= t_star <= certificate.failure_hi_s + 1e-9
-    assert certificate.failure_hi_s - certificate.failure_lo_s <= 1e-3
+    check_job_against_sampling(tmp_path, text, start, stop, verdict)
 
 
 @pytest.mark.parametrize("name", ["3rpr-clash", "3prr-clash"])
 def test_the_prismatic_check_fails_with_a_shrunk_gap(tmp_path, monkeypatch, name):
     """The dense-sampling check above, with every gap enclosure shrunk by 1 % of the width
     at each end: the bracket misses the first crossing (or the verdict changes)."""
-    original = certify_module.with_clearance
-
-    def with_clearance(test, clearance):
-        def narrowed(boxes):
-            verdict, gap = clearance(boxes)
-            shift = 0.01 * WIDTH_CM
-            return verdict, np.stack([gap[:, 0] + shift, gap[:, 1] - shift], axis=1)
-
-        return original(test, narrowed)
-
-    monkeypatch.setattr(certify_module, "with_clearance", with_clearance)
+    narrow_gaps(monkeypatch)
     with pytest.raises(AssertionError):
         test_the_prismatic_robots_against_dense_sampling(tmp_path, name)
 
