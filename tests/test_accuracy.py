@@ -42,12 +42,16 @@ accuracy = {{ actuator_deg = {actuator}, tolerance_cm = {tolerance} }}
 CENTROID = (40.0, 7.15292951566201)
 
 
-def prepared(tmp_path, actuator=0.1, tolerance=0.01, precision=4.0, extra=""):
-    path = tmp_path / "a.toml"
-    text = TABLE3.format(precision=precision, actuator=actuator, tolerance=tolerance, extra=extra)
+def job_from_text(path, text):
+    """The one job of the preset ``text``, written to ``path``, prepared."""
     path.write_text(text, encoding="utf-8")
     (job,) = prepare_jobs(load_preset(path).jobs)
     return job
+
+
+def prepared(tmp_path, actuator=0.1, tolerance=0.01, precision=4.0, extra=""):
+    text = TABLE3.format(precision=precision, actuator=actuator, tolerance=tolerance, extra=extra)
+    return job_from_text(tmp_path / "a.toml", text)
 
 
 def rr_model(job, pose):
@@ -238,11 +242,8 @@ FIVEBAR_POINT = (0.0, 60.0)
 
 
 def fivebar_job(tmp_path, actuator=0.1, tolerance=0.01, precision=8.0, extra=""):
-    path = tmp_path / "f.toml"
     text = FIVEBAR.format(precision=precision, actuator=actuator, tolerance=tolerance, extra=extra)
-    path.write_text(text, encoding="utf-8")
-    (job,) = prepare_jobs(load_preset(path).jobs)
-    return job
+    return job_from_text(tmp_path / "f.toml", text)
 
 
 def fivebar_model(job, pose):
@@ -341,15 +342,12 @@ PRISMATIC_ERROR_CM = {"rpr": 0.002, "prr": 0.01}
 
 
 def prismatic_job(tmp_path, kind, actuator=0.01, tolerance=0.01, precision=8.0, extra=""):
-    path = tmp_path / f"{kind}.toml"
     text = PRISMATIC[kind] + (
         f"orientation_deg = 0\nprecision_cm = {precision}\ngeometric_reference = false\n"
         f"accuracy = {{ actuator_cm = {actuator}, tolerance_cm = {tolerance} }}\n"
         f'{extra}output = "{kind}.csv"\n'
     )
-    path.write_text(text, encoding="utf-8")
-    (job,) = prepare_jobs(load_preset(path).jobs)
-    return job
+    return job_from_text(tmp_path / f"{kind}.toml", text)
 
 
 def platform_points(x, y, phi, points):
