@@ -185,21 +185,22 @@ def check_bracket(outcome, legs, length_cm, step_cm):
 
 
 def shrunk(monkeypatch, lower_factor, upper_factor):
-    """Shrink every κ enclosure the paving sees: ``lo * lower_factor``, ``hi *
-    upper_factor`` (a mutation the checks must catch)."""
-    original = dexterity.label_boxes
+    """Shrink every κ enclosure the paving sees (its labels and the boxes it records as
+    outside): ``lo * lower_factor``, ``hi * upper_factor`` (a mutation the checks must
+    catch)."""
+    original = dexterity.recording_outside
 
-    def label(evaluate, boxes, kappa_max):
-        def narrowed(b):
-            verdict, kappa = evaluate(b)
+    def recording(evaluate, kappa_max, outside):
+        def narrowed(boxes):
+            verdict, kappa = evaluate(boxes)
             kappa = kappa.copy()
             kappa[:, 0] *= lower_factor
             kappa[:, 1] *= upper_factor
             return verdict, kappa
 
-        return original(narrowed, boxes, kappa_max)
+        return original(narrowed, kappa_max, outside)
 
-    monkeypatch.setattr(dexterity, "label_boxes", label)
+    monkeypatch.setattr(dexterity, "recording_outside", recording)
 
 
 @pytest.fixture(scope="module")

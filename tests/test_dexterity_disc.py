@@ -6,7 +6,7 @@ Checks: every point of a fine grid in the disc of the certified lower radius is 
 some grid point no farther than the upper radius (plus one grid step) is not; the radius
 over all centres brackets a grid estimate (each dexterous grid point's distance to the
 nearest non-dexterous one, the largest of them). Each check fails when the κ enclosure the
-paving sees is shrunk by 1 % (:func:`shrunk_paving`), or the disc's radius grown by 1 %.
+paving sees is shrunk by 1 % (:func:`shrunk`), or the disc's radius grown by 1 %.
 """
 
 from __future__ import annotations
@@ -16,8 +16,8 @@ import pytest
 from scipy.spatial import cKDTree
 
 import tests.test_dexterity as base
-from planar_tui.workspace.paving import dexterity, disc
-from tests.test_dexterity import FIVEBAR, TABLE3, fivebar_legs, rrr_legs, run
+from planar_tui.workspace.paving import disc
+from tests.test_dexterity import FIVEBAR, TABLE3, fivebar_legs, rrr_legs, run, shrunk
 from tests.test_dexterity_prismatic import (
     PRR,
     RPR,
@@ -94,24 +94,6 @@ def check_discs_about_a_grid(outcome, extent, legs, length_cm, step_cm):
     return len(centres)
 
 
-def shrunk_paving(monkeypatch, lower_factor, upper_factor):
-    """Shrink every κ enclosure the paving sees (its labels and the boxes it records as
-    outside): ``lo * lower_factor``, ``hi * upper_factor``."""
-    original = dexterity.recording_outside
-
-    def recording(evaluate, kappa_max, outside):
-        def narrowed(boxes):
-            verdict, kappa = evaluate(boxes)
-            kappa = kappa.copy()
-            kappa[:, 0] *= lower_factor
-            kappa[:, 1] *= upper_factor
-            return verdict, kappa
-
-        return original(narrowed, kappa_max, outside)
-
-    monkeypatch.setattr(dexterity, "recording_outside", recording)
-
-
 def table3(tmp_path, extra=""):
     centre = f"circle_centre_cm = [{CENTRE[0]}, {CENTRE[1]}]\n"
     return run(tmp_path, TABLE3.format(precision=0.2, kappa=4, extra=centre + extra))
@@ -159,7 +141,7 @@ def test_the_discs_about_a_grid_of_centres_are_dexterous(table3_run):
 
 
 def test_a_shrunk_enclosure_certifies_discs_that_are_not_dexterous(tmp_path, monkeypatch):
-    shrunk_paving(monkeypatch, 1.0, 0.99)
+    shrunk(monkeypatch, 1.0, 0.99)
     job, result = table3(tmp_path)
     extent = result.outcome.extent_cm
     with pytest.raises(AssertionError, match="not dexterous"):
