@@ -10,7 +10,7 @@ from typing import Any
 
 from planar_tui.workspace.fivebar.robot import geometric_area, leg_angles, workspace_polygon
 from planar_tui.workspace.fivebar.tolerance import TOLERANCE_KEYS_5R, tolerant_level_kernel
-from planar_tui.workspace.path.certify import box_test, open_limits
+from planar_tui.workspace.path.certify import box_test, open_limits, with_leg_width
 from planar_tui.workspace.path.model import PathModel, PathSolution
 from planar_tui.workspace.paving.linkage import Linkage, rotated
 from planar_tui.workspace.paving.mechanism import Mechanism
@@ -83,19 +83,13 @@ class MechanismFiveBar(Mechanism):
         import numpy as np
 
         from planar_tui.kernels.path_certify_rr import rr_pose_boxes  # numba
+        from planar_tui.kernels.path_interference_rr import rr_pose_clearance  # numba
         from planar_tui.workspace.fivebar.singularity import kernel_inputs
 
         g, q, _, limits, _ = kernel_inputs(robot)  # q: the point platform's zero offsets
         elbow = np.array(spec.elbow, dtype=np.float64)
         test = box_test(rr_pose_boxes, g, q, elbow, open_limits(limits), 0.0)
-        width = getattr(spec, "leg_width_cm", None)
-        if width is None:
-            return test
-        from planar_tui.kernels.path_interference_rr import rr_pose_clearance  # numba
-        from planar_tui.workspace.path.certify import clearance_test, with_clearance
-
-        inputs = (g, q, elbow, open_limits(limits), float(width))
-        return with_clearance(test, clearance_test(rr_pose_clearance, *inputs))
+        return with_leg_width(test, spec, rr_pose_clearance, g, q, elbow, open_limits(limits))
 
     def direct_kinematics(self, robot: Any, actuators: Any) -> Any:
         """The end points at joint angles ``actuators`` = :math:`\\theta_1, \\theta_2` (rad):

@@ -208,6 +208,16 @@ def with_clearance(test: BoxTest, clearance: Any) -> BoxTest:
     return test_clear
 
 
+def with_leg_width(test: BoxTest, spec: Any, kernel: Callable[..., None], *inputs: Any) -> BoxTest:
+    """``test``, with the spec's ``leg_width_cm`` :math:`w`, joined by the clearance of the
+    robot's kernel ``kernel(boxes, *inputs, w, verdict, gap)`` (:func:`with_clearance`);
+    ``test`` itself without it."""
+    width = getattr(spec, "leg_width_cm", None)
+    if width is None:
+        return test
+    return with_clearance(test, clearance_test(kernel, *inputs, float(width)))
+
+
 def clearance_test(kernel: Callable[..., None], *inputs: Any) -> Any:
     """Pose boxes to ``(verdict, gap)`` by a robot's clearance kernel ``kernel(boxes,
     *inputs, verdict, gap)`` (e.g. :func:`kernels.path_interference_rr.rr_pose_clearance`)."""

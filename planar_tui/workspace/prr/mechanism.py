@@ -8,7 +8,7 @@ from collections.abc import Callable
 from types import MappingProxyType
 from typing import Any
 
-from planar_tui.workspace.path.certify import box_test
+from planar_tui.workspace.path.certify import box_test, with_leg_width
 from planar_tui.workspace.path.model import PathModel, PathSolution
 from planar_tui.workspace.paving.dexterity import circumradius_cm
 from planar_tui.workspace.paving.linkage import Linkage, platform_joints, rotated
@@ -66,6 +66,7 @@ class Mechanism3PRR(LegMechanism):
         import numpy as np
 
         from planar_tui.kernels.path_certify_prismatic import prr_pose_boxes  # numba
+        from planar_tui.kernels.path_interference_prismatic import prr_pose_clearance  # numba
 
         rows = [
             [bx, by, math.cos(math.radians(a)), math.sin(math.radians(a)), lo, hi, length]
@@ -82,14 +83,7 @@ class Mechanism3PRR(LegMechanism):
         modes = np.array(spec.slider_modes, dtype=np.float64)
         length = spec.characteristic_length_cm or circumradius_cm(robot.platform_points_cm)
         test = box_test(prr_pose_boxes, g, modes, q, length)
-        width = getattr(spec, "leg_width_cm", None)
-        if width is None:
-            return test
-        from planar_tui.kernels.path_interference_prismatic import prr_pose_clearance  # numba
-        from planar_tui.workspace.path.certify import clearance_test, with_clearance
-
-        clearance = clearance_test(prr_pose_clearance, g, modes, q, float(width))
-        return with_clearance(test, clearance)
+        return with_leg_width(test, spec, prr_pose_clearance, g, modes, q)
 
     def interference(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
         from planar_tui.workspace.prr.dexterity import working_modes

@@ -8,7 +8,7 @@ from collections.abc import Callable
 from types import MappingProxyType
 from typing import Any
 
-from planar_tui.workspace.path.certify import box_test
+from planar_tui.workspace.path.certify import box_test, with_leg_width
 from planar_tui.workspace.path.model import PathModel, PathSolution
 from planar_tui.workspace.paving.dexterity import circumradius_cm
 from planar_tui.workspace.paving.linkage import Linkage, platform_joints
@@ -70,20 +70,14 @@ class Mechanism3RPR(LegMechanism):
         import numpy as np
 
         from planar_tui.kernels.path_certify_prismatic import rpr_pose_boxes  # numba
+        from planar_tui.kernels.path_interference_prismatic import rpr_pose_clearance  # numba
 
         bases = np.array(robot.base_joints_cm, dtype=np.float64)
         q = np.array(robot.platform_points_cm, dtype=np.float64)
         limits = np.array(spec.leg_limits_cm or ((0.0, math.inf),) * 3, dtype=np.float64)
         length = spec.characteristic_length_cm or circumradius_cm(robot.platform_points_cm)
         test = box_test(rpr_pose_boxes, bases, q, limits, length)
-        width = getattr(spec, "leg_width_cm", None)
-        if width is None:
-            return test
-        from planar_tui.kernels.path_interference_prismatic import rpr_pose_clearance  # numba
-        from planar_tui.workspace.path.certify import clearance_test, with_clearance
-
-        clearance = clearance_test(rpr_pose_clearance, bases, q, limits, float(width))
-        return with_clearance(test, clearance)
+        return with_leg_width(test, spec, rpr_pose_clearance, bases, q, limits)
 
     def path_model(self, robot: Any) -> PathModel:
         return PathModel(pose_dimension=3, actuators=3, prismatic=True)

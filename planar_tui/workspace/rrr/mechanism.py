@@ -15,7 +15,7 @@ from collections.abc import Callable
 from types import MappingProxyType
 from typing import Any
 
-from planar_tui.workspace.path.certify import box_test, open_limits
+from planar_tui.workspace.path.certify import box_test, open_limits, with_leg_width
 from planar_tui.workspace.path.model import PathModel, PathSolution
 from planar_tui.workspace.paving.linkage import Linkage, platform_joints, rotated
 from planar_tui.workspace.paving.mechanism import Mechanism
@@ -110,6 +110,7 @@ class Mechanism3RRR(Mechanism):
         import numpy as np
 
         from planar_tui.kernels.path_certify_rr import rr_pose_boxes  # numba
+        from planar_tui.kernels.path_interference_rr import rr_pose_clearance  # numba
         from planar_tui.workspace.rrr.dexterity import length_cm
 
         rows = np.tile(geometry_vector(robot), (3, 1))  # one geometry row per leg
@@ -117,14 +118,7 @@ class Mechanism3RRR(Mechanism):
         limits = open_limits(spec.limits_rad or ((-np.pi, np.pi),) * 3)
         elbow = np.array(spec.elbow, dtype=np.float64)
         test = box_test(rr_pose_boxes, rows, q, elbow, limits, length_cm(robot, spec))
-        width = getattr(spec, "leg_width_cm", None)
-        if width is None:
-            return test
-        from planar_tui.kernels.path_interference_rr import rr_pose_clearance  # numba
-        from planar_tui.workspace.path.certify import clearance_test, with_clearance
-
-        clearance = clearance_test(rr_pose_clearance, rows, q, elbow, limits, float(width))
-        return with_clearance(test, clearance)
+        return with_leg_width(test, spec, rr_pose_clearance, rows, q, elbow, limits)
 
     def direct_kinematics(self, robot: Any, actuators: Any) -> Any:
         """The poses at active joint angles ``actuators`` = :math:`\\theta_i` (rad): the
