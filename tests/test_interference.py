@@ -110,14 +110,21 @@ def legs_of(job):
     legs = zip(
         robot.base_joints_cm(),
         robot.platform_points_cm(),
-        job.prepared.circle.elbow,
+        job.spec.elbow if job.prepared.circle is None else job.prepared.circle.elbow,
         job.spec.limits_rad,
         strict=True,
     )
     return [(a, q, l1, l2, sign, lim) for a, q, sign, lim in legs], True
 
 
-def rpr_links(job, x, y):
+def turned(q, phi):
+    """The platform point ``q`` turned by ``phi`` (rad): its offset from the platform's
+    reference point."""
+    c, s = math.cos(phi), math.sin(phi)
+    return c * q[0] - s * q[1], s * q[0] + c * q[1]
+
+
+def rpr_links(job, x, y, phi=0.0):
     """A 3-RPR's validity (every leg's length within its limits) and links A_i C_i."""
     robot = job.robot
     valid = np.ones(np.shape(x), dtype=bool)
@@ -125,6 +132,7 @@ def rpr_links(job, x, y):
     for i, ((ax, ay), (qx, qy), (lo, hi)) in enumerate(
         zip(robot.base_joints_cm, robot.platform_points_cm, job.spec.leg_limits_cm, strict=True)
     ):
+        qx, qy = turned((qx, qy), phi)
         cx, cy = x + qx, y + qy
         rho = np.hypot(cx - ax, cy - ay)
         valid &= (lo <= rho) & (rho <= hi)
@@ -134,7 +142,7 @@ def rpr_links(job, x, y):
     return valid, links, c_
 
 
-def prr_links(job, x, y):
+def prr_links(job, x, y, phi=0.0):
     """A 3-PRR's validity (every slider in its mode within its stroke) and moving links
     S_i C_i: the slider S_i = b_i + s u_i on its line at distance l from C_i, ahead of
     (sign 1) or behind the foot of the perpendicular from C_i."""
@@ -152,6 +160,7 @@ def prr_links(job, x, y):
     )
     for i, ((bx, by), angle, (lo, hi), length, (qx, qy), sign) in enumerate(legs):
         ux, uy = math.cos(math.radians(angle)), math.sin(math.radians(angle))
+        qx, qy = turned((qx, qy), phi)
         cx, cy = x + qx, y + qy
         foot = (cx - bx) * ux + (cy - by) * uy
         off = -(cx - bx) * uy + (cy - by) * ux
@@ -163,19 +172,20 @@ def prr_links(job, x, y):
     return valid, links, c_
 
 
-def reference(job, x, y):
+def reference(job, x, y, phi=0.0):
     """Validity (every leg closes in its mode within its limits) and the gap
-    min(d - d_req) over the checked pairs at the points (x, y) (φ = 0)."""
+    min(d - d_req) over the checked pairs at the poses (x, y, phi) (phi in rad)."""
     if hasattr(job.robot, "centres_cm"):  # the 3-RPR
-        valid, links, c_ = rpr_links(job, x, y)
+        valid, links, c_ = rpr_links(job, x, y, phi)
         return valid, link_gap(links, c_, True)
     if hasattr(job.robot, "slider_points_cm"):  # the 3-PRR
-        valid, links, c_ = prr_links(job, x, y)
+        valid, links, c_ = prr_links(job, x, y, phi)
         return valid, link_gap(links, c_, True)
     legs, triangle = legs_of(job)
     valid = np.ones(np.shape(x), dtype=bool)
     a_, b_, c_ = [], [], []
-    for (ax, ay), (qx, qy), l1, l2, sign, (lo, hi) in legs:
+    for (ax, ay), q, l1, l2, sign, (lo, hi) in legs:
+        qx, qy = turned(q, phi)
         cx, cy = x + qx, y + qy
         dx, dy = cx - ax, cy - ay
         d = np.hypot(dx, dy)
@@ -441,7 +451,7 @@ def test_a_job_without_the_key_writes_the_columns_it_wrote_before(cli, tmp_path)
         ('leg_width_cm = 2\nform = "geometric"\n', 'leg_width_cm: is set with form = "geometric"'),
         (
             'leg_width_cm = 2\norientation_deg = [0, 5]\norientation_mode = "total"\n',
-            "leg_width_cm: is set with orientation",
+            "elbow: is not set with leg_width_cm and orientation_deg = [lo, hi]",
         ),
     ],
 )

@@ -97,24 +97,26 @@ def check_dexterity(values: dict[str, Any], reader: TableReader) -> None:
         return
     if not kappa > 1.0:
         raise reader.error("kappa_max", f"is {kappa:g}: κ is at least 1", "a number > 1")
-    if isinstance(values.get("orientation_deg"), tuple):
-        for mode in ("elbow", "slider_modes"):  # a range's working mode is given
-            if mode in values and values[mode] is None:
-                raise reader.error(
-                    mode,
-                    "is not set with kappa_max and orientation_deg = [lo, hi]",
-                    f"{mode} = [s1, s2, s3], each 1 or -1",
-                )
     refuse_unpaved("kappa_max", values, reader, ranges=True)
 
 
 def refuse_unpaved(key: str, values: dict[str, Any], reader: TableReader, ranges=False) -> None:
     """A certifying stage's ``key`` needs a form with boxes, no tolerance and (unless
-    ``ranges``) a single orientation: one line naming what is set with it otherwise."""
-    if not ranges and isinstance(values.get("orientation_deg"), tuple):
+    ``ranges``) a single orientation; with a range, its working mode given (``elbow``,
+    ``slider_modes``, where the kind has one): one line naming what is set with it
+    otherwise."""
+    ranged = isinstance(values.get("orientation_deg"), tuple)
+    if ranged and not ranges:
         raise reader.error(
             key, "is set with orientation_deg = [lo, hi]", "a single orientation_deg"
         )
+    for mode in ("elbow", "slider_modes") if ranged else ():  # a range's mode is given
+        if mode in values and values[mode] is None:
+            raise reader.error(
+                mode,
+                f"is not set with {key} and orientation_deg = [lo, hi]",
+                f"{mode} = [s1, s2, s3], each 1 or -1",
+            )
     if values.get("form") == "geometric":
         raise reader.error(key, 'is set with form = "geometric"', "a form with boxes")
     if values.get("tolerance_mode") is not None:

@@ -18,6 +18,15 @@ is the dexterity paving's (:mod:`planar_tui.workspace.paving.dexterity`) with th
 :math:`-gap \\le 0`: a box is *inside* when ``IN`` with ``gap_lo >= 0``, *outside* when
 ``OUT`` or ``gap_hi < 0``, else halved down to ``precision_cm`` and its leaves refined on a
 grid; so ``|inside| <= interference-free area <= |kept|``.
+
+Over an orientation range ``orientation_deg = [lo, hi]`` (the working mode given: the
+3-RRR's ``elbow``, the 3-PRR's ``slider_modes``) a point is interference-free when *every*
+φ of the range closes its legs in the mode and keeps the clearance; the evaluator
+(:func:`range_interference`) is the robot's pose-box clearance (its mechanism's
+``pose_clearance``, the certified paths' test) sliced over the range
+(:mod:`planar_tui.workspace.paving.orientation_dexterity`): a box's gap enclosure is the
+minimum over its slices, so the paving, the columns, the boxes and the map are the
+one-orientation ones.
 """
 
 from __future__ import annotations
@@ -29,7 +38,8 @@ from typing import TYPE_CHECKING, Any
 
 from planar_tui.csvio import CsvTable
 from planar_tui.schema import TableReader, number, setting
-from planar_tui.workspace.paving.dexterity import decider, refine_leaves, refuse_unpaved
+from planar_tui.workspace.paving.dexterity import IN, OUT, decider, refine_leaves, refuse_unpaved
+from planar_tui.workspace.paving.orientation_dexterity import range_phi_rad, sliced
 from planar_tui.workspace.paving.rows import AppendedRows
 
 if TYPE_CHECKING:
@@ -61,9 +71,10 @@ def width_setting() -> Any:
 
 
 def check_interference(values: dict[str, Any], reader: TableReader) -> None:
-    """``leg_width_cm`` needs one orientation, a form with boxes and no tolerance."""
+    """``leg_width_cm`` needs a form with boxes and no tolerance (with a range of
+    orientations, the working mode ``elbow`` or ``slider_modes`` given)."""
     if values.get("leg_width_cm") is not None:
-        refuse_unpaved("leg_width_cm", values, reader)
+        refuse_unpaved("leg_width_cm", values, reader, ranges=True)
 
 
 @dataclass
@@ -104,6 +115,43 @@ def as_bound(evaluate: Evaluator) -> Evaluator:
         return verdict, np.ascontiguousarray(-gap[:, ::-1])
 
     return bound
+
+
+def range_interference(mechanism: Any, job: Any) -> Evaluator:
+    r"""The evaluator of a job with ``leg_width_cm`` and ``orientation_deg = [lo, hi]``:
+    its ``mechanism``'s pose-box clearance (``pose_clearance``, built at the first call: its
+    kernels import after ``prepare_kernels``) sliced over the range
+    (:func:`~planar_tui.workspace.paving.orientation_dexterity.sliced`, on the bound
+    :math:`-gap \le 0`): a slice holds when ``IN`` with ``gap_lo >= 0``, fails when
+    ``OUT`` or ``gap_hi < 0``; a box's gap enclosure is ``(min_s gap_lo, min_s gap_hi)``
+    over its final and its tested slices."""
+    import numpy as np
+
+    robot, spec = job.robot, job.spec
+
+    def make_test() -> Any:
+        clearance = mechanism.pose_clearance(robot, spec)
+
+        def test(rows: Any) -> tuple[Any, Any, Any]:
+            verdict, gap = clearance(rows)
+            return verdict, -gap[:, 1:], -gap[:, :1]
+
+        return test
+
+    evaluate = sliced(
+        make_test,
+        range_phi_rad(spec),
+        mechanism.characteristic_length_cm(robot, spec),
+        1,
+        lambda verdict, lo, hi: (verdict == IN) & (hi[:, 0] <= 0.0),
+        lambda verdict, lo, hi: (verdict == OUT) | (lo[:, 0] > 0.0),
+    )
+
+    def evaluate_gap(boxes: Any) -> tuple[Any, Any]:
+        verdict, lower, upper = evaluate(boxes)
+        return verdict, np.column_stack([-upper[:, 0], -lower[:, 0]])
+
+    return evaluate_gap
 
 
 def compute_interference(

@@ -17,6 +17,8 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 
+from planar_tui.workspace.paving.dexterity import circumradius_cm
+
 if TYPE_CHECKING:
     from planar_tui.workspace.paving.geometry import GeometricArea
     from planar_tui.workspace.paving.linkage import Linkage
@@ -125,6 +127,21 @@ class Mechanism(Protocol):
         :meth:`dexterity`'s) and its certified gap enclosure (k, 2), cm
         (:mod:`planar_tui.workspace.paving.interference`)."""
         problem = f"{self.name} certifies no interference (has_interference is false)"
+        raise NotImplementedError(problem)
+
+    def characteristic_length_cm(self, robot: Any, spec: Any) -> float:
+        """:math:`L` weighting the platform's rotation: the spec's
+        ``characteristic_length_cm`` or the platform's circumradius (a robot with a
+        platform)."""
+        problem = f"{self.name} has no platform"
+        raise NotImplementedError(problem)
+
+    def pose_clearance(self, robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any]]:
+        """The certified clearance of platform pose boxes with the spec's ``leg_width_cm``
+        in its working mode: (k, 6) rows ``x_lo, x_hi, y_lo, y_hi, phi_lo, phi_hi`` (cm,
+        rad) to each box's verdict (as :meth:`dexterity`'s) and its gap enclosure (k, 2),
+        cm (:mod:`planar_tui.workspace.paving.interference`, over orientation ranges)."""
+        problem = f"{self.name} certifies no interference over pose boxes"
         raise NotImplementedError(problem)
 
     def accuracy(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
@@ -242,6 +259,9 @@ class LegMechanism(Mechanism):
 
     def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:
         return self.orientation_module.compute_range(robot, spec, budget)
+
+    def characteristic_length_cm(self, robot: Any, spec: Any) -> float:
+        return spec.characteristic_length_cm or circumradius_cm(robot.platform_points_cm)
 
 
 __all__ = ["LegMechanism", "Mechanism"]

@@ -8,9 +8,9 @@ from collections.abc import Callable
 from types import MappingProxyType
 from typing import Any
 
-from planar_tui.workspace.path.certify import box_test, with_leg_width
+from planar_tui.workspace.path.certify import box_test, clearance_test, with_leg_width
 from planar_tui.workspace.path.model import PathModel, PathSolution
-from planar_tui.workspace.paving.dexterity import circumradius_cm
+from planar_tui.workspace.paving.interference import range_interference
 from planar_tui.workspace.paving.linkage import Linkage, platform_joints, rotated
 from planar_tui.workspace.paving.mechanism import LegMechanism
 from planar_tui.workspace.paving.orientation_dexterity import range_dexterity
@@ -50,9 +50,7 @@ class Mechanism3PRR(LegMechanism):
         from planar_tui.workspace.prr.dexterity import evaluator, working_modes
 
         if isinstance(job.spec.orientation_deg, tuple):
-            length = job.spec.characteristic_length_cm or circumradius_cm(
-                job.robot.platform_points_cm
-            )
+            length = self.characteristic_length_cm(job.robot, job.spec)
             return range_dexterity(self, job, length)
         return evaluator(job, working_modes(job, prepared))
 
@@ -63,32 +61,25 @@ class Mechanism3PRR(LegMechanism):
         return evaluator(job, working_modes(job, prepared))
 
     def path_box_test(self, robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any, Any]]:
-        import numpy as np
-
         from planar_tui.kernels.path_certify_prismatic import prr_pose_boxes  # numba
         from planar_tui.kernels.path_interference_prismatic import prr_pose_clearance  # numba
 
-        rows = [
-            [bx, by, math.cos(math.radians(a)), math.sin(math.radians(a)), lo, hi, length]
-            for (bx, by), a, (lo, hi), length in zip(
-                robot.slider_points_cm,
-                robot.slider_angles_deg,
-                robot.strokes_cm,
-                robot.distal_cm,
-                strict=True,
-            )
-        ]
-        g = np.array(rows, dtype=np.float64)
-        q = np.array(robot.platform_points_cm, dtype=np.float64)
-        modes = np.array(spec.slider_modes, dtype=np.float64)
-        length = spec.characteristic_length_cm or circumradius_cm(robot.platform_points_cm)
-        test = box_test(prr_pose_boxes, g, modes, q, length)
-        return with_leg_width(test, spec, prr_pose_clearance, g, modes, q)
+        inputs = pose_inputs(robot, spec)
+        test = box_test(prr_pose_boxes, *inputs, self.characteristic_length_cm(robot, spec))
+        return with_leg_width(test, spec, prr_pose_clearance, *inputs)
+
+    def pose_clearance(self, robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any]]:
+        from planar_tui.kernels.path_interference_prismatic import prr_pose_clearance  # numba
+
+        width = float(spec.leg_width_cm)
+        return clearance_test(prr_pose_clearance, *pose_inputs(robot, spec), width)
 
     def interference(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
         from planar_tui.workspace.prr.dexterity import working_modes
         from planar_tui.workspace.prr.interference import evaluator
 
+        if isinstance(job.spec.orientation_deg, tuple):
+            return range_interference(self, job)
         return evaluator(job, working_modes(job, prepared))
 
     def path_model(self, robot: Any) -> PathModel:
@@ -126,6 +117,17 @@ class Mechanism3PRR(LegMechanism):
         platform = platform_joints(pose, robot.platform_points_cm)
         legs = tuple(zip(prr.slider_joints_cm(robot, actuators), platform, strict=True))
         return Linkage(frame=rails, legs=legs, platform=platform)
+
+
+def pose_inputs(robot: Any, spec: Any) -> tuple[Any, Any, Any]:
+    """The pose-box kernels' ``(g, modes, q)``: the slider lines' rows (unshifted,
+    :func:`~planar_tui.workspace.prr.singularity.slider_rows`), the spec's ``slider_modes``
+    and the platform points in its frame."""
+    import numpy as np
+
+    modes = np.array(spec.slider_modes, dtype=np.float64)
+    q = np.array(robot.platform_points_cm, dtype=np.float64)
+    return singularity.slider_rows(robot), modes, q
 
 
 MECHANISM = Mechanism3PRR()

@@ -28,24 +28,35 @@ from planar_tui.workspace.paving.circle import (
 from planar_tui.workspace.prr.robot import Robot3PRR, workspace_polygon
 
 
+def slider_rows(robot: Robot3PRR) -> Any:
+    """The slider lines' rows ``bx, by, ux, uy, s_lo, s_hi, l`` (3, 7) of the kernels:
+    each line's point and direction, its stroke and its distal length."""
+    import numpy as np
+
+    rows = [
+        [bx, by, math.cos(math.radians(a)), math.sin(math.radians(a)), lo, hi, length]
+        for (bx, by), a, (lo, hi), length in zip(
+            robot.slider_points_cm,
+            robot.slider_angles_deg,
+            robot.strokes_cm,
+            robot.distal_cm,
+            strict=True,
+        )
+    ]
+    return np.array(rows, dtype=np.float64)
+
+
 def kernel_inputs(robot: Robot3PRR, spec) -> tuple[Any, Any]:
-    """``(g, offsets)`` of :mod:`planar_tui.kernels.singularity3prr`."""
+    """``(g, offsets)`` of :mod:`planar_tui.kernels.singularity3prr`: the
+    :func:`slider_rows` with each line's point shifted by its leg's platform offset
+    :math:`R(\\varphi) q_i`."""
     import numpy as np
 
     c, s = math.cos(spec.orientation_rad), math.sin(spec.orientation_rad)
     offsets = np.array([[c * qx - s * qy, s * qx + c * qy] for qx, qy in robot.platform_points_cm])
-    rows = []
-    for (bx, by), angle, (lo, hi), length, (rx, ry) in zip(
-        robot.slider_points_cm,
-        robot.slider_angles_deg,
-        robot.strokes_cm,
-        robot.distal_cm,
-        offsets,
-        strict=True,
-    ):
-        ux, uy = math.cos(math.radians(angle)), math.sin(math.radians(angle))
-        rows.append([bx - rx, by - ry, ux, uy, lo, hi, length])
-    return np.array(rows), offsets
+    rows = slider_rows(robot)
+    rows[:, :2] -= offsets
+    return rows, offsets
 
 
 def float_links(robot: Robot3PRR, spec, point) -> list[list[tuple[float, float] | None]]:

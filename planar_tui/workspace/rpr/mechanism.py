@@ -8,9 +8,9 @@ from collections.abc import Callable
 from types import MappingProxyType
 from typing import Any
 
-from planar_tui.workspace.path.certify import box_test, with_leg_width
+from planar_tui.workspace.path.certify import box_test, clearance_test, with_leg_width
 from planar_tui.workspace.path.model import PathModel, PathSolution
-from planar_tui.workspace.paving.dexterity import circumradius_cm
+from planar_tui.workspace.paving.interference import range_interference
 from planar_tui.workspace.paving.linkage import Linkage, platform_joints
 from planar_tui.workspace.paving.mechanism import LegMechanism
 from planar_tui.workspace.paving.orientation_dexterity import range_dexterity
@@ -49,15 +49,15 @@ class Mechanism3RPR(LegMechanism):
     def interference(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
         from planar_tui.workspace.rpr.interference import evaluator
 
+        if isinstance(job.spec.orientation_deg, tuple):
+            return range_interference(self, job)
         return evaluator(job.robot, job.spec)
 
     def dexterity(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
         from planar_tui.workspace.rpr.dexterity import evaluator
 
         if isinstance(job.spec.orientation_deg, tuple):
-            length = job.spec.characteristic_length_cm or circumradius_cm(
-                job.robot.platform_points_cm
-            )
+            length = self.characteristic_length_cm(job.robot, job.spec)
             return range_dexterity(self, job, length)
         return evaluator(job.robot, job.spec)
 
@@ -67,17 +67,18 @@ class Mechanism3RPR(LegMechanism):
         return evaluator(job.robot, job.spec)
 
     def path_box_test(self, robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any, Any]]:
-        import numpy as np
-
         from planar_tui.kernels.path_certify_prismatic import rpr_pose_boxes  # numba
         from planar_tui.kernels.path_interference_prismatic import rpr_pose_clearance  # numba
 
-        bases = np.array(robot.base_joints_cm, dtype=np.float64)
-        q = np.array(robot.platform_points_cm, dtype=np.float64)
-        limits = np.array(spec.leg_limits_cm or ((0.0, math.inf),) * 3, dtype=np.float64)
-        length = spec.characteristic_length_cm or circumradius_cm(robot.platform_points_cm)
-        test = box_test(rpr_pose_boxes, bases, q, limits, length)
-        return with_leg_width(test, spec, rpr_pose_clearance, bases, q, limits)
+        inputs = pose_inputs(robot, spec)
+        test = box_test(rpr_pose_boxes, *inputs, self.characteristic_length_cm(robot, spec))
+        return with_leg_width(test, spec, rpr_pose_clearance, *inputs)
+
+    def pose_clearance(self, robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any]]:
+        from planar_tui.kernels.path_interference_prismatic import rpr_pose_clearance  # numba
+
+        width = float(spec.leg_width_cm)
+        return clearance_test(rpr_pose_clearance, *pose_inputs(robot, spec), width)
 
     def path_model(self, robot: Any) -> PathModel:
         return PathModel(pose_dimension=3, actuators=3, prismatic=True)
@@ -108,6 +109,17 @@ class Mechanism3RPR(LegMechanism):
         platform = platform_joints(pose, robot.platform_points_cm)
         legs = tuple(zip(base, platform, strict=True))
         return Linkage(frame=((*base, base[0]),), legs=legs, platform=platform)
+
+
+def pose_inputs(robot: Any, spec: Any) -> tuple[Any, Any, Any]:
+    """The pose-box kernels' ``(bases, q, limits)``: the base joints, the platform points in
+    its frame and the leg length limits (cm)."""
+    import numpy as np
+
+    bases = np.array(robot.base_joints_cm, dtype=np.float64)
+    q = np.array(robot.platform_points_cm, dtype=np.float64)
+    limits = np.array(spec.leg_limits_cm or ((0.0, math.inf),) * 3, dtype=np.float64)
+    return bases, q, limits
 
 
 MECHANISM = Mechanism3RPR()

@@ -300,10 +300,8 @@ def prepare_workspace(job: WorkspaceJob) -> WorkspacePrepared:
 def rrr_dexterity(ready: PreparedJob[WorkspaceSpec, Robot3RRR, WorkspacePrepared], extent, budget):
     """The dexterous region of a job with ``kappa_max``
     (:func:`~planar_tui.workspace.paving.dexterity.compute_dexterity`) in the prepared mode."""
-    job, circle = ready.job, ready.prepared.circle
-    mode = job.spec.elbow if circle is None else circle.elbow  # a range's given elbow
-    assert mode is not None  # prepared with the mode, or given with a range
-    spec, elbow = job.spec, " ".join(str(s) for s in mode)
+    job = ready.job
+    spec, elbow = job.spec, rrr_elbow(ready)
     evaluate = MECHANISM.dexterity(job, ready.prepared)
     length = length_cm(job.robot, spec)
     assert spec.kappa_max is not None
@@ -350,10 +348,11 @@ def rrr_singularities(ready: Any, outcome: Any, budget: Any) -> tuple[tuple[str,
 
 
 def rrr_elbow(ready: Any) -> str:
-    """The prepared working mode, ``1 -1 1``."""
+    """The prepared working mode (a range's given ``elbow``), ``1 -1 1``."""
     circle = ready.prepared.circle
-    assert circle is not None  # prepared with the mode
-    return " ".join(str(s) for s in circle.elbow)
+    mode = ready.job.spec.elbow if circle is None else circle.elbow
+    assert mode is not None  # prepared with the mode, or given with a range
+    return " ".join(str(s) for s in mode)
 
 
 #: The stages of a ``[workspace]`` job (:func:`~planar_tui.workspace.paving.stages.run_stages`).

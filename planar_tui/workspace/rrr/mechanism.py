@@ -15,8 +15,14 @@ from collections.abc import Callable
 from types import MappingProxyType
 from typing import Any
 
-from planar_tui.workspace.path.certify import box_test, open_limits, with_leg_width
+from planar_tui.workspace.path.certify import (
+    box_test,
+    clearance_test,
+    open_limits,
+    with_leg_width,
+)
 from planar_tui.workspace.path.model import PathModel, PathSolution
+from planar_tui.workspace.paving.interference import range_interference
 from planar_tui.workspace.paving.linkage import Linkage, platform_joints, rotated
 from planar_tui.workspace.paving.mechanism import Mechanism
 from planar_tui.workspace.paving.orientation_dexterity import range_dexterity
@@ -87,15 +93,17 @@ class Mechanism3RRR(Mechanism):
         return compute_singularities(job, prepared, extent, budget)
 
     def dexterity(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
-        from planar_tui.workspace.rrr.dexterity import evaluator, length_cm
+        from planar_tui.workspace.rrr.dexterity import evaluator
 
         if isinstance(job.spec.orientation_deg, tuple):
-            return range_dexterity(self, job, length_cm(job.robot, job.spec))
+            return range_dexterity(self, job, self.characteristic_length_cm(job.robot, job.spec))
         return evaluator(job.robot, job.spec, prepared.circle)
 
     def interference(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
         from planar_tui.workspace.rrr.interference import evaluator
 
+        if isinstance(job.spec.orientation_deg, tuple):
+            return range_interference(self, job)
         return evaluator(job.robot, job.spec, prepared.circle)
 
     def accuracy(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
@@ -106,19 +114,24 @@ class Mechanism3RRR(Mechanism):
     def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:
         return compute_orientation_workspace(robot, spec, budget)
 
-    def path_box_test(self, robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any, Any]]:
-        import numpy as np
-
-        from planar_tui.kernels.path_certify_rr import rr_pose_boxes  # numba
-        from planar_tui.kernels.path_interference_rr import rr_pose_clearance  # numba
+    def characteristic_length_cm(self, robot: Any, spec: Any) -> float:
         from planar_tui.workspace.rrr.dexterity import length_cm
 
-        rows = np.tile(geometry_vector(robot), (3, 1))  # one geometry row per leg
-        q = np.array(robot.platform_points_cm(), dtype=np.float64)
-        limits = open_limits(spec.limits_rad or ((-np.pi, np.pi),) * 3)
-        elbow = np.array(spec.elbow, dtype=np.float64)
-        test = box_test(rr_pose_boxes, rows, q, elbow, limits, length_cm(robot, spec))
-        return with_leg_width(test, spec, rr_pose_clearance, rows, q, elbow, limits)
+        return length_cm(robot, spec)
+
+    def path_box_test(self, robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any, Any]]:
+        from planar_tui.kernels.path_certify_rr import rr_pose_boxes  # numba
+        from planar_tui.kernels.path_interference_rr import rr_pose_clearance  # numba
+
+        inputs = pose_inputs(robot, spec)
+        test = box_test(rr_pose_boxes, *inputs, self.characteristic_length_cm(robot, spec))
+        return with_leg_width(test, spec, rr_pose_clearance, *inputs)
+
+    def pose_clearance(self, robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any]]:
+        from planar_tui.kernels.path_interference_rr import rr_pose_clearance  # numba
+
+        width = float(spec.leg_width_cm)
+        return clearance_test(rr_pose_clearance, *pose_inputs(robot, spec), width)
 
     def direct_kinematics(self, robot: Any, actuators: Any) -> Any:
         """The poses at active joint angles ``actuators`` = :math:`\\theta_i` (rad): the
@@ -170,6 +183,18 @@ class Mechanism3RRR(Mechanism):
         """:func:`~planar_tui.workspace.rrr.pose.leg_modes` at the spec's orientation and
         joint limits (``modes``: the working mode to prefer, the singularity-free circle's)."""
         return leg_modes(robot, spec.orientation_rad, point_cm, spec.limits_rad, modes)
+
+
+def pose_inputs(robot: Any, spec: Any) -> tuple[Any, Any, Any, Any]:
+    """The pose-box kernels' ``(g, q, elbow, limits)``: one geometry row per leg, the
+    platform points in its frame, the given ``elbow`` and the joint limits (radians; a full
+    turn cuts nothing, :func:`~planar_tui.workspace.path.certify.open_limits`)."""
+    import numpy as np
+
+    rows = np.tile(geometry_vector(robot), (3, 1))  # one geometry row per leg
+    q = np.array(robot.platform_points_cm(), dtype=np.float64)
+    limits = open_limits(spec.limits_rad or ((-np.pi, np.pi),) * 3)
+    return rows, q, np.array(spec.elbow, dtype=np.float64), limits
 
 
 MECHANISM = Mechanism3RRR()
