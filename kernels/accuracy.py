@@ -53,6 +53,7 @@ import numpy as np
 from ._jit import kernel
 from .dexterity import IN
 from .interval import down, iadd, imul, isincos, isqr, isub, up
+from .path_certify_rr import platform_offset
 
 #: Rows of boxes a thread certifies with one set of leg scratch arrays (:func:`leg_scratch`).
 BLOCK_ROWS = 64
@@ -83,26 +84,52 @@ def widen(lo, hi, t):
 
 
 @kernel
-def joint_terms(leg, r, errors, w_lo, w_hi, r_lo, r_hi):
-    """Leg ``leg``'s platform offset :math:`s_i = R(\\varphi)(c_i + \\Delta c_i)` written
-    to ``r_lo, r_hi`` (each coordinate of :math:`\\Delta c_i` in the platform's frame within
-    ``errors[2]``), and, with its row of ``w`` (:math:`p - B_i`) written before,
-    ``(dx, dy, joints)``: the enclosure of :math:`d_i = w_i + s_i` and the joints' share of
+def pose_offsets(boxes, i, q, n, r_lo, r_hi):
+    """Row ``i`` of the pose boxes ``boxes`` (``x_lo, x_hi, y_lo, y_hi, phi_lo, phi_hi``):
+    the enclosures of :math:`R(\\varphi) c_i` over its orientations written to rows
+    ``0 .. n-1`` of ``r_lo, r_hi`` (``q`` (n, 2) the :math:`c_i` in the platform's frame),
+    and ``trig = (s_lo, s_hi, c_lo, c_hi)``, the enclosures of :math:`\\sin\\varphi,
+    \\cos\\varphi` (:func:`kernels.interval.isincos`)."""
+    trig = isincos(boxes[i, 4], boxes[i, 5])
+    for leg in range(n):
+        r_lo[leg, 0], r_hi[leg, 0], r_lo[leg, 1], r_hi[leg, 1] = platform_offset(
+            q[leg, 0], q[leg, 1], *trig
+        )
+    return trig
+
+
+@kernel
+def joint_box(xlo, xhi, ylo, yhi, leg, r_lo, r_hi):
+    """The box ``(cx_lo, cx_hi, cy_lo, cy_hi)`` of leg ``leg``'s platform joint
+    :math:`C_i = p + R(\\varphi) c_i` over the (x, y) box and the offsets' enclosure."""
+    cx_lo, cx_hi = iadd(xlo, xhi, r_lo[leg, 0], r_hi[leg, 0])
+    cy_lo, cy_hi = iadd(ylo, yhi, r_lo[leg, 1], r_hi[leg, 1])
+    return cx_lo, cx_hi, cy_lo, cy_hi
+
+
+@kernel
+def joint_terms(leg, errors, trig, w_lo, w_hi, r_lo, r_hi):
+    """Leg ``leg``'s platform offset :math:`s_i = R(\\varphi)(c_i + \\Delta c_i)`: its
+    row of ``r_lo, r_hi`` (the enclosure of :math:`R(\\varphi) c_i`, :func:`pose_offsets`)
+    widened for :math:`\\Delta c_i` (each coordinate in the platform's frame within
+    ``errors[2]``), and, with its row of ``w`` (:math:`p - B_i`) written before, ``(dx, dy,
+    joints)``: the enclosure of :math:`d_i = w_i + s_i` and the joints' share of
     :math:`\\rho_i`, :math:`t\\,(|d_{ix}| + |d_{iy}|) + t_c\\,|R(\\varphi)^T d_i|_1` (the
     base joint's coordinates within :math:`t` = ``errors[1]``, the platform joint's within
-    :math:`t_c` = ``errors[2]``). ``errors`` = ``(actuator, t, t_c, cos_phi, sin_phi)``."""
-    t, tc, cos_phi, sin_phi = errors[1], errors[2], errors[3], errors[4]
-    spread = up(up(tc * (abs(cos_phi) + abs(sin_phi))) + 1e-10)  # and the offsets' round-off
-    r_lo[leg, 0], r_hi[leg, 0] = widen(r[leg, 0], r[leg, 0], spread)
-    r_lo[leg, 1], r_hi[leg, 1] = widen(r[leg, 1], r[leg, 1], spread)
+    :math:`t_c` = ``errors[2]``). ``errors`` = ``(actuator, t, t_c)``, ``trig`` the
+    enclosures of :math:`\\sin\\varphi, \\cos\\varphi` over the box's orientations."""
+    t, tc = errors[1], errors[2]
+    s_lo, s_hi, c_lo, c_hi = trig
+    spread = up(up(tc * up(mag(c_lo, c_hi) + mag(s_lo, s_hi))) + 1e-10)  # and round-off
+    r_lo[leg, 0], r_hi[leg, 0] = widen(r_lo[leg, 0], r_hi[leg, 0], spread)
+    r_lo[leg, 1], r_hi[leg, 1] = widen(r_lo[leg, 1], r_hi[leg, 1], spread)
     dx = iadd(w_lo[leg, 0], w_hi[leg, 0], r_lo[leg, 0], r_hi[leg, 0])
     dy = iadd(w_lo[leg, 1], w_hi[leg, 1], r_lo[leg, 1], r_hi[leg, 1])
-    local_x = iadd(*imul(cos_phi, cos_phi, *dx), *imul(sin_phi, sin_phi, *dy))  # R^T d
-    local_y = isub(*imul(cos_phi, cos_phi, *dy), *imul(sin_phi, sin_phi, *dx))
+    local_x = iadd(*imul(c_lo, c_hi, *dx), *imul(s_lo, s_hi, *dy))  # R^T d
+    local_y = isub(*imul(c_lo, c_hi, *dy), *imul(s_lo, s_hi, *dx))
     size = up(mag(*dx) + mag(*dy))
-    rounding = up(1e-15 * size)  # cos_phi, sin_phi rounded
     joints = up(t * size)
-    joints = up(joints + up(tc * up(up(mag(*local_x) + mag(*local_y)) + rounding)))
+    joints = up(joints + up(tc * up(mag(*local_x) + mag(*local_y))))
     return dx, dy, joints
 
 

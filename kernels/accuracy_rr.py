@@ -20,23 +20,37 @@ hull of the box and the perturbed robots).
 """
 
 import numba
+import numpy as np
 
 from ._jit import kernel
-from .accuracy import BLOCK_ROWS, block_rows, joint_terms, leg_scratch, mag, settle, widen
+from .accuracy import (
+    BLOCK_ROWS,
+    block_rows,
+    joint_box,
+    joint_terms,
+    leg_scratch,
+    mag,
+    pose_offsets,
+    settle,
+    widen,
+)
 from .dexterity import IN, OUT, UNSURE, combine
 from .interval import iadd, iadd_scalar, imul, iscale, isincos, isub, up
 from .singularity3rrr import LEG_IN, LEG_OUT, TOLERANCE_CM, leg_status
 
 
 @kernel
-def rr_leg_terms(xlo, xhi, ylo, yhi, leg, g, r, elbow, limits, errors, w_lo, w_hi, r_lo, r_hi, rho):
-    """Leg ``leg``'s verdict over the box (``OUT``, ``UNSURE``, ``IN``), writing, where
-    ``IN``, its rows of ``w`` (:math:`p - B_i`), ``r`` (:math:`R(\\varphi) c_i`) and
-    ``rho`` (module docstring). ``errors`` = ``(delta_theta_rad, t_cm, platform_cm,
-    cos_phi, sin_phi)``, ``platform_cm`` the platform joints' tolerance (0: the five-bar)."""
-    status, ux_lo, ux_hi, uy_lo, uy_hi, _, _ = leg_status(
-        xlo, xhi, ylo, yhi, leg, g, r, elbow, limits
-    )
+def rr_leg_terms(
+    xlo, xhi, ylo, yhi, leg, g, zero, elbow, limits, errors, trig, w_lo, w_hi, r_lo, r_hi, rho
+):
+    """Leg ``leg``'s verdict over the pose box (``OUT``, ``UNSURE``, ``IN``), writing,
+    where ``IN``, its rows of ``w`` (:math:`p - B_i`), ``r`` (:math:`R(\\varphi) c_i`, on
+    entry its enclosure over the box's orientations, :func:`kernels.accuracy.pose_offsets`)
+    and ``rho`` (module docstring). ``errors`` = ``(delta_theta_rad, t_cm, platform_cm)``,
+    ``platform_cm`` the platform joints' tolerance (0: the five-bar); ``zero`` (legs, 2)
+    zero offsets (the leg is tested over its platform joint's box)."""
+    cx = joint_box(xlo, xhi, ylo, yhi, leg, r_lo, r_hi)
+    status, ux_lo, ux_hi, uy_lo, uy_hi, _, _ = leg_status(*cx, leg, g, zero, elbow, limits)
     if status == LEG_OUT:
         return OUT
     if status != LEG_IN:
@@ -46,8 +60,8 @@ def rr_leg_terms(xlo, xhi, ylo, yhi, leg, g, r, elbow, limits, errors, w_lo, w_h
     l2 = g[1]
     ax = g[8 + 2 * leg]
     ay = g[9 + 2 * leg]
-    vx = widen(*iadd_scalar(xlo, xhi, r[leg, 0] - ax), TOLERANCE_CM)
-    vy = widen(*iadd_scalar(ylo, yhi, r[leg, 1] - ay), TOLERANCE_CM)
+    vx = widen(*iadd_scalar(cx[0], cx[1], -ax), TOLERANCE_CM)
+    vy = widen(*iadd_scalar(cx[2], cx[3], -ay), TOLERANCE_CM)
     ex_lo, ex_hi = widen(*iscale(*isub(*vx, ux_lo, ux_hi), 1.0 / l1), 1e-15)
     ey_lo, ey_hi = widen(*iscale(*isub(*vy, uy_lo, uy_hi), 1.0 / l1), 1e-15)
     ex_lo, ex_hi = max(ex_lo, -1.0), min(ex_hi, 1.0)
@@ -60,7 +74,7 @@ def rr_leg_terms(xlo, xhi, ylo, yhi, leg, g, r, elbow, limits, errors, w_lo, w_h
     by = iadd(*widen(ay, ay, t), *imul(*proximal, *py))
     w_lo[leg, 0], w_hi[leg, 0] = isub(xlo, xhi, *bx)
     w_lo[leg, 1], w_hi[leg, 1] = isub(ylo, yhi, *by)
-    dx, dy, joints = joint_terms(leg, r, errors, w_lo, w_hi, r_lo, r_hi)
+    dx, dy, joints = joint_terms(leg, errors, trig, w_lo, w_hi, r_lo, r_hi)
     turn = isub(*imul(*dy, *px), *imul(*dx, *py))  # d . E e
     along = iadd(*imul(*dx, *px), *imul(*dy, *py))  # d . e
     total = up(joints + up(up(mag(*proximal) * mag(*turn)) * delta))
@@ -70,18 +84,21 @@ def rr_leg_terms(xlo, xhi, ylo, yhi, leg, g, r, elbow, limits, errors, w_lo, w_h
 
 
 @kernel(parallel=True)
-def rr_accuracy(boxes, g, r, elbow, limits, errors, verdict, bound):
-    """Per row ``x_lo, x_hi, y_lo, y_hi`` of ``boxes``: the verdict in the mode ``elbow``
-    (:mod:`kernels.dexterity`) and, where every leg closes (``IN``) and the Krawczyk test
-    holds, the bounds of :math:`|\\Delta x|, |\\Delta y|` (cm) and, three legs,
-    :math:`|\\Delta\\varphi|` (rad) in ``bound`` (k, n); ``inf`` elsewhere. ``g``, ``r``,
-    ``limits`` as :func:`kernels.dexterity_rr.rr_dexterity` takes them, ``errors`` as
-    :func:`rr_leg_terms`."""
+def rr_accuracy(boxes, g, q, elbow, limits, errors, verdict, bound):
+    """Per row ``x_lo, x_hi, y_lo, y_hi, phi_lo, phi_hi`` of ``boxes`` (cm, rad): the
+    verdict in the mode ``elbow`` (:mod:`kernels.dexterity`) and, where every leg closes
+    (``IN``) at every pose of the box and the Krawczyk test holds, the bounds of
+    :math:`|\\Delta x|, |\\Delta y|` (cm) and, three legs, :math:`|\\Delta\\varphi|` (rad)
+    in ``bound`` (k, n); ``inf`` elsewhere. ``g`` and ``limits`` as
+    :func:`kernels.dexterity_rr.rr_dexterity` takes them, ``q`` (legs, 2) the platform
+    points in its frame (zero: the five-bar), ``errors`` as :func:`rr_leg_terms`."""
     n = len(g)
+    zero = np.zeros((n, 2))
     for block in numba.prange((len(boxes) + BLOCK_ROWS - 1) // BLOCK_ROWS):
         w_lo, w_hi, r_lo, r_hi, rho = leg_scratch(n)
         start, stop = block_rows(block, len(boxes))
         for i in range(start, stop):
+            trig = pose_offsets(boxes, i, q, n, r_lo, r_hi)
             state = IN
             for leg in range(n):
                 v = rr_leg_terms(
@@ -91,10 +108,11 @@ def rr_accuracy(boxes, g, r, elbow, limits, errors, verdict, bound):
                     boxes[i, 3],
                     leg,
                     g[leg],
-                    r,
+                    zero,
                     elbow,
                     limits,
                     errors,
+                    trig,
                     w_lo,
                     w_hi,
                     r_lo,

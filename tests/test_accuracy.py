@@ -58,7 +58,9 @@ def rr_model(job, pose):
     """The 3-RRR's :class:`Model` at ``pose`` (x, y, phi): per leg ``theta, A, c, l1, l2``
     with the nominal theta of the job's elbow signs."""
     robot, spec = job.robot, job.spec
-    acc, signs = AccuracySpec.of(spec.accuracy, "deg"), job.prepared.circle.elbow
+    circle = job.prepared.circle
+    acc = AccuracySpec.of(spec.accuracy, "deg")
+    signs = spec.elbow if circle is None else circle.elbow  # a range's given elbow
     l1, l2 = robot.proximal_cm, robot.distal_cm
     nominal, widths = [], []
     x, y, phi = pose

@@ -11,7 +11,7 @@ from collections.abc import Callable
 from typing import Any
 
 from planar_tui.workspace.fivebar.singularity import kernel_inputs
-from planar_tui.workspace.paving.accuracy import AccuracySpec
+from planar_tui.workspace.paving.accuracy import AccuracySpec, at_orientation
 
 
 def evaluator(robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any]]:
@@ -19,16 +19,16 @@ def evaluator(robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any]]:
     (not ``any``)."""
     import numpy as np
 
-    g, r, _, limits, _ = kernel_inputs(robot)
+    g, q, _, limits, _ = kernel_inputs(robot)  # q: the point platform's zero offsets
     elbow = np.array(robot.elbows, dtype=float)
-    errors = np.array(AccuracySpec.of(spec.accuracy, "deg").kernel_errors(None))
+    errors = np.array(AccuracySpec.of(spec.accuracy, "deg").kernel_errors(platform=False))
 
     def evaluate(boxes: Any) -> tuple[Any, Any]:
         from planar_tui.kernels.accuracy_rr import rr_accuracy  # numba
 
         verdict = np.empty(len(boxes), dtype=np.int64)
         bound = np.empty((len(boxes), 2))
-        rr_accuracy(np.ascontiguousarray(boxes), g, r, elbow, limits, errors, verdict, bound)
+        rr_accuracy(np.ascontiguousarray(boxes), g, q, elbow, limits, errors, verdict, bound)
         return verdict, bound
 
-    return evaluate
+    return at_orientation(evaluate, 0.0)

@@ -32,7 +32,8 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from planar_tui.schema import TableReader, setting
-from planar_tui.workspace.paving.dexterity import decider, refine_leaves, refuse_unpaved
+from planar_tui.workspace.paving.dexterity import IN, OUT, decider, refine_leaves, refuse_unpaved
+from planar_tui.workspace.paving.orientation_dexterity import range_phi_rad, sliced
 from planar_tui.workspace.paving.rows import AppendedRows
 
 if TYPE_CHECKING:
@@ -76,16 +77,13 @@ class AccuracySpec:
         values = dict(table)
         return cls(values.get(ACTUATOR_KEYS[unit], 0.0), unit, values.get("tolerance_cm", 0.0))
 
-    def kernel_errors(self, orientation_rad: float | None) -> tuple[float, ...]:
+    def kernel_errors(self, platform: bool = True) -> tuple[float, ...]:
         """The kernels' ``errors`` row (:mod:`kernels.accuracy`): the actuator error (rad or
-        cm), the tolerance of the joints and of the platform's points (cm), and
-        :math:`\\cos\\varphi, \\sin\\varphi` of the platform's orientation
-        (``None``: no platform, the five-bar's end point)."""
+        cm), the tolerance of the joints and of the platform's points (cm; 0 without a
+        platform, the five-bar's end point)."""
         actuator = math.radians(self.actuator) if self.unit == "deg" else self.actuator
         t = self.tolerance_cm
-        if orientation_rad is None:
-            return (actuator, t, 0.0, 1.0, 0.0)
-        return (actuator, t, t, math.cos(orientation_rad), math.sin(orientation_rad))
+        return (actuator, t, t if platform else 0.0)
 
 
 def accuracy_setting() -> Any:
@@ -121,8 +119,8 @@ def accuracy_setting() -> Any:
 
 def check_accuracy(values: dict[str, Any], reader: TableReader, unit: str) -> None:
     """``accuracy`` names the actuator error of the robot's actuators (``unit``: ``deg``
-    revolute, ``cm`` prismatic) and needs one orientation, a form with boxes and no
-    ``tolerance_cm``."""
+    revolute, ``cm`` prismatic) and needs a form with boxes and no ``tolerance_cm`` (with a
+    range of orientations, the working mode ``elbow`` or ``slider_modes`` given)."""
     table = values.get("accuracy")
     if table is None:
         return
@@ -132,7 +130,7 @@ def check_accuracy(values: dict[str, Any], reader: TableReader, unit: str) -> No
             kind = "revolute" if unit == "deg" else "prismatic"
             found = f"is set: this robot's actuators are {kind}"
             raise reader.error(f"accuracy.{key}", found, f"{own} or tolerance_cm")
-    refuse_unpaved("accuracy", values, reader)
+    refuse_unpaved("accuracy", values, reader, ranges=True)
 
 
 @dataclass
@@ -206,6 +204,55 @@ def as_bound(evaluate: Evaluator) -> Evaluator:
         return verdict, kappa
 
     return bound
+
+
+def at_orientation(evaluate: Evaluator, phi_rad: float) -> Evaluator:
+    """A pose-box evaluator (rows ``x_lo, x_hi, y_lo, y_hi, phi_lo, phi_hi``) at the one
+    orientation ``phi_rad``: (k, 4) boxes."""
+    import numpy as np
+
+    def at_phi(boxes: Any) -> tuple[Any, Any]:
+        boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 4)
+        phi = np.full((len(boxes), 2), phi_rad)
+        return evaluate(np.ascontiguousarray(np.column_stack([boxes, phi])))
+
+    return at_phi
+
+
+def range_accuracy(mechanism: Any, job: Any, make_test: Callable[[], Evaluator]) -> Evaluator:
+    """The evaluator of a job with ``accuracy`` and ``orientation_deg = [lo, hi]``: the
+    robot's pose-box evaluator ``make_test()`` (built at the first call: its kernels import
+    after ``prepare_kernels``) sliced over the range
+    (:func:`~planar_tui.workspace.paving.orientation_dexterity.sliced`): a slice holds when
+    ``IN`` and certified, fails when ``OUT``; a box's bounds are the largest over its final
+    slices, certified (finite) only where every final slice is."""
+    import numpy as np
+
+    robot, spec = job.robot, job.spec
+
+    def make_pose_test() -> Any:
+        test = make_test()
+
+        def pose_test(rows: Any) -> tuple[Any, Any, Any]:
+            verdict, bound = test(rows)
+            return verdict, bound, bound
+
+        return pose_test
+
+    evaluate = sliced(
+        make_pose_test,
+        range_phi_rad(spec),
+        mechanism.characteristic_length_cm(robot, spec),
+        3,
+        lambda verdict, lo, hi: (verdict == IN) & np.isfinite(hi).all(axis=1),
+        lambda verdict, lo, hi: verdict == OUT,
+    )
+
+    def evaluate_bound(boxes: Any) -> tuple[Any, Any]:
+        verdict, _, upper = evaluate(boxes)
+        return verdict, upper
+
+    return evaluate_bound
 
 
 def compute_accuracy(

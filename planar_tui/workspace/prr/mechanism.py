@@ -10,6 +10,7 @@ from typing import Any
 
 from planar_tui.workspace.path.certify import box_test, clearance_test, with_leg_width
 from planar_tui.workspace.path.model import PathModel, PathSolution
+from planar_tui.workspace.paving.accuracy import range_accuracy
 from planar_tui.workspace.paving.interference import range_interference
 from planar_tui.workspace.paving.linkage import Linkage, platform_joints, rotated
 from planar_tui.workspace.paving.mechanism import LegMechanism
@@ -55,9 +56,11 @@ class Mechanism3PRR(LegMechanism):
         return evaluator(job, working_modes(job, prepared))
 
     def accuracy(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
-        from planar_tui.workspace.prr.accuracy import evaluator
+        from planar_tui.workspace.prr.accuracy import evaluator, pose_evaluator
         from planar_tui.workspace.prr.dexterity import working_modes
 
+        if isinstance(job.spec.orientation_deg, tuple):
+            return range_accuracy(self, job, lambda: pose_evaluator(job, job.spec.slider_modes))
         return evaluator(job, working_modes(job, prepared))
 
     def path_box_test(self, robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any, Any]]:

@@ -10,6 +10,7 @@ from typing import Any
 
 from planar_tui.workspace.path.certify import box_test, clearance_test, with_leg_width
 from planar_tui.workspace.path.model import PathModel, PathSolution
+from planar_tui.workspace.paving.accuracy import range_accuracy
 from planar_tui.workspace.paving.interference import range_interference
 from planar_tui.workspace.paving.linkage import Linkage, platform_joints
 from planar_tui.workspace.paving.mechanism import LegMechanism
@@ -62,8 +63,10 @@ class Mechanism3RPR(LegMechanism):
         return evaluator(job.robot, job.spec)
 
     def accuracy(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
-        from planar_tui.workspace.rpr.accuracy import evaluator
+        from planar_tui.workspace.rpr.accuracy import evaluator, pose_evaluator
 
+        if isinstance(job.spec.orientation_deg, tuple):
+            return range_accuracy(self, job, lambda: pose_evaluator(job.robot, job.spec))
         return evaluator(job.robot, job.spec)
 
     def path_box_test(self, robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any, Any]]:

@@ -22,6 +22,7 @@ from planar_tui.workspace.path.certify import (
     with_leg_width,
 )
 from planar_tui.workspace.path.model import PathModel, PathSolution
+from planar_tui.workspace.paving.accuracy import range_accuracy
 from planar_tui.workspace.paving.interference import range_interference
 from planar_tui.workspace.paving.linkage import Linkage, platform_joints, rotated
 from planar_tui.workspace.paving.mechanism import Mechanism
@@ -107,9 +108,12 @@ class Mechanism3RRR(Mechanism):
         return evaluator(job.robot, job.spec, prepared.circle)
 
     def accuracy(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
-        from planar_tui.workspace.rrr.accuracy import evaluator
+        from planar_tui.workspace.rrr.accuracy import evaluator, pose_evaluator
 
-        return evaluator(job.robot, job.spec, prepared.circle)
+        robot, spec = job.robot, job.spec
+        if isinstance(spec.orientation_deg, tuple):
+            return range_accuracy(self, job, lambda: pose_evaluator(robot, spec, spec.elbow))
+        return evaluator(robot, spec, prepared.circle)
 
     def compute_range(self, robot: Any, spec: Any, budget: Any) -> Any:
         return compute_orientation_workspace(robot, spec, budget)
