@@ -85,10 +85,11 @@ def length_setting() -> Any:
     )
 
 
-def check_dexterity(values: dict[str, Any], reader: TableReader) -> None:
-    """``kappa_max`` is above 1 and needs a form with boxes and no tolerance (with a range
-    of orientations, the working mode ``elbow`` or ``slider_modes`` given);
-    ``characteristic_length_cm`` goes with it."""
+def check_dexterity(values: dict[str, Any], reader: TableReader, tolerances=False) -> None:
+    """``kappa_max`` is above 1 and needs a form with boxes (with a range of orientations,
+    the working mode ``elbow`` or ``slider_modes`` given) and, unless the kind certifies
+    them (``tolerances``, :mod:`~planar_tui.workspace.paving.tolerance_dexterity`), no
+    tolerance; ``characteristic_length_cm`` goes with it."""
     kappa = values["kappa_max"]
     length = values.get("characteristic_length_cm")
     if kappa is None:
@@ -105,19 +106,22 @@ def check_dexterity(values: dict[str, Any], reader: TableReader) -> None:
                     "is not set with kappa_max and orientation_deg = [lo, hi]",
                     f"{mode} = [s1, s2, s3], each 1 or -1",
                 )
-    refuse_unpaved("kappa_max", values, reader, ranges=True)
+    refuse_unpaved("kappa_max", values, reader, ranges=True, tolerances=tolerances)
 
 
-def refuse_unpaved(key: str, values: dict[str, Any], reader: TableReader, ranges=False) -> None:
-    """A certifying stage's ``key`` needs a form with boxes, no tolerance and (unless
-    ``ranges``) a single orientation: one line naming what is set with it otherwise."""
+def refuse_unpaved(
+    key: str, values: dict[str, Any], reader: TableReader, ranges=False, tolerances=False
+) -> None:
+    """A certifying stage's ``key`` needs a form with boxes and (unless ``ranges``) a single
+    orientation and (unless ``tolerances``) no tolerance: one line naming what is set with
+    it otherwise."""
     if not ranges and isinstance(values.get("orientation_deg"), tuple):
         raise reader.error(
             key, "is set with orientation_deg = [lo, hi]", "a single orientation_deg"
         )
     if values.get("form") == "geometric":
         raise reader.error(key, 'is set with form = "geometric"', "a form with boxes")
-    if values.get("tolerance_mode") is not None:
+    if not tolerances and values.get("tolerance_mode") is not None:
         raise reader.error(key, "is set with a tolerance", "no tolerance_cm")
 
 
