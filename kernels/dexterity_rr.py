@@ -35,16 +35,14 @@ from .dexterity import (
     set_row,
     slope_term,
 )
-from .interval import iadd, iadd_scalar, imul, iscale, isqr, isub, up
+from .interval import grown_box, iadd, iadd_scalar, imul, iscale, isqr, isub, up, widen
 from .singularity3rrr import (
     LEG_IN,
     LEG_OUT,
     LEG_UNDEFINED,
     TOLERANCE_CM,
-    grown_box,
     idiv_positive,
     leg_spread,
-    widen,
 )
 
 #: Joint limits that cut nothing (two turns either way): the enclosures over a whole box.

@@ -56,7 +56,7 @@ import math
 import numpy as np
 
 from ._jit import kernel
-from .interval import down, iadd, iadd_scalar, imul, isincos, isqr, isqrt, isub, up
+from .interval import down, iadd, iadd_scalar, imul, isincos, isqr, isqrt, isub, up, widen
 from .workspace3rrr import DONE, keep_xy_box, pop_row, split_xy_widest
 
 GOOD = 3
@@ -119,22 +119,6 @@ ANGLE_SLACK = 1e-12
 
 
 @kernel
-def widen(c, w):
-    """The interval :math:`[c - w, c + w]` rounded out (exactly ``(c, c)`` when ``w`` is 0)."""
-    if w == 0.0:
-        return c, c
-    return down(c - w), up(c + w)
-
-
-@kernel
-def grown_box(xlo, xhi, ylo, yhi, grow):
-    """The box grown by ``grow`` on every side, rounded out (as it is when ``grow`` is 0)."""
-    if grow == 0.0:
-        return xlo, xhi, ylo, yhi
-    return down(xlo - grow), up(xhi + grow), down(ylo - grow), up(yhi + grow)
-
-
-@kernel
 def leg_status(xlo, xhi, ylo, yhi, leg, g, r, elbow, limits):
     """``(verdict, ux_lo, ux_hi, uy_lo, uy_hi, m_lo, m_hi)`` of one leg over the box: the
     verdict (``LEG_OUT``, ``LEG_UNSURE``, ``LEG_IN``, ``LEG_UNDEFINED`` when the box may
@@ -150,10 +134,10 @@ def leg_spread(xlo, xhi, ylo, yhi, leg, g, r, elbow, limits, offset_cm, t1_cm, t
     :math:`l_2 \\pm t_2` intervals. The base joint's and the platform point's tolerances
     move :math:`v_i = p + r_i - A_i` as the position does, by at most :math:`t_A +
     t_q(|\\cos\\varphi| + |\\sin\\varphi|)` per axis: the caller grows the box by it
-    (:func:`grown_box`), so the leg over the grown box holds every such robot. ``LEG_IN``: every robot
-    closes at every point; ``LEG_OUT``: none closes at any; the enclosures hold every
-    robot's :math:`u_i` and :math:`u_i \\times r_i` at the box's points in its
-    :math:`W_s`."""
+    (:func:`kernels.interval.grown_box`), so the leg over the grown box holds every such
+    robot. ``LEG_IN``: every robot closes at every point; ``LEG_OUT``: none closes at any;
+    the enclosures hold every robot's :math:`u_i` and :math:`u_i \\times r_i` at the box's
+    points in its :math:`W_s`."""
     l1_lo, l1_hi = widen(g[0], t1_cm)
     l2_lo, l2_hi = widen(g[1], t2_cm)
     k_lo, k_hi = isub(*isqr(l1_lo, l1_hi), *isqr(l2_lo, l2_hi))

@@ -85,14 +85,14 @@ def tolerant_rows(
 ) -> Evaluator:
     """:func:`tolerant_evaluator` of a kernel taking one geometry row and one spread row
     per leg (``make(rows, spread)``, a zero spread: the robot of ``rows``): ``every`` with
-    ``spread``, the robots the nominal one and the two vertices with every link length
-    (``lengths``: its column in ``rows`` and its half-width's in ``spread``) at its upper or
-    its lower tolerance (times ``VERTEX_SHRINK``)."""
+    ``spread``, the robots the nominal one and (with ``lengths``) the two vertices with
+    every link length (``lengths``: its column in ``rows`` and its half-width's in
+    ``spread``) at its upper or its lower tolerance (times ``VERTEX_SHRINK``)."""
     import numpy as np
 
     zero = np.zeros_like(spread)
     robots = [make(rows, zero)]
-    for sign in (1.0, -1.0):
+    for sign in (1.0, -1.0) if lengths else ():
         vertex = np.array(rows, dtype=np.float64)
         for column, half_width in lengths:
             vertex[:, column] += sign * VERTEX_SHRINK * spread[:, half_width]
