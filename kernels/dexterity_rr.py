@@ -175,9 +175,9 @@ def length_terms(parts, e, u, v, t1, t2, c0, c1, c2):
     :math:`b = v \\times u = l_1\\, e \\times u`: :math:`\\partial_{l_1} u = -e + l_1
     \\frac{u \\cdot e}{b} e^\\perp` and :math:`\\partial_{l_2} u = \\frac{l_1 l_2}{b}
     e^\\perp` (:math:`e^\\perp = (-e_y, e_x)`), :math:`\\partial b = v \\times \\partial u`,
-    :math:`\\partial (u \\times r) = \\partial u \\times r`. ``parts``: ``(m_lo, m_hi,
-    row, b_lo, b_hi, l1, rx, ry, length_cm)``, ``e``, ``u``, ``v`` (x lo, x hi, y lo, y
-    hi) enclosures over the box and the robots."""
+    :math:`\\partial (u \\times r) = \\partial u \\times r` (the third entry only with a
+    length). ``parts``: ``(m_lo, m_hi, row, b_lo, b_hi, l1, l2, rx, ry, length_cm)``,
+    ``e``, ``u``, ``v`` (x lo, x hi, y lo, y hi) enclosures over the box and the robots."""
     m_lo, m_hi, row, b_lo, b_hi, l1, l2, rx, ry, length_cm = parts
     ex_lo, ex_hi, ey_lo, ey_hi = e
     ux_lo, ux_hi, uy_lo, uy_hi = u
@@ -189,21 +189,14 @@ def length_terms(parts, e, u, v, t1, t2, c0, c1, c2):
     k2 = idiv(*imul(*l1, *l2), b_lo, b_hi)
     d2x = imul(*k2, -ey_hi, -ey_lo)
     d2y = imul(*k2, ex_lo, ex_hi)
-    centres = (c0, c1, c2)
-    out = []
     for dx_, dy_, t in ((d1x, d1y, t1), (d2x, d2y, t2)):
         db = isub(*imul(vx_lo, vx_hi, *dy_), *imul(vy_lo, vy_hi, *dx_))
-        dt = (0.0, 0.0)
+        c0 = iadd(*c0, *slope_term(m_lo[row, 0], m_hi[row, 0], dx_, db, b_lo, b_hi, t))
+        c1 = iadd(*c1, *slope_term(m_lo[row, 1], m_hi[row, 1], dy_, db, b_lo, b_hi, t))
         if length_cm > 0.0:
             dt = iscale(*isub(*imul(*dx_, *ry), *imul(*dy_, *rx)), 1.0 / length_cm)
-        for k, da in enumerate((dx_, dy_, dt)):
-            term = slope_term(m_lo[row, k], m_hi[row, k], da, db, b_lo, b_hi, t)
-            out.append(term)
-    return (
-        iadd(*iadd(*centres[0], *out[0]), *out[3]),
-        iadd(*iadd(*centres[1], *out[1]), *out[4]),
-        iadd(*iadd(*centres[2], *out[2]), *out[5]),
-    )
+            c2 = iadd(*c2, *slope_term(m_lo[row, 2], m_hi[row, 2], dt, db, b_lo, b_hi, t))
+    return c0, c1, c2
 
 
 @kernel(parallel=True)
