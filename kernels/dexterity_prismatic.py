@@ -57,9 +57,15 @@ def rows_and_norm(m_lo, m_hi, norms, row, ax, ay, t, b, length_cm):
 
 
 @kernel
-def rpr_parts(xlo, xhi, ylo, yhi, leg, centres, r, length_cm, offset_cm):
-    """``(vx, vy, t, rho)`` enclosures over the box (module docstring), :math:`r_i` widened
-    by ``offset_cm`` in :math:`v_i \\times r_i`."""
+def rpr_parts(xlo, xhi, ylo, yhi, leg, centres, r, length_cm):
+    """``(vx, vy, t, rho)`` enclosures over the box (module docstring)."""
+    return rpr_spread(xlo, xhi, ylo, yhi, leg, centres, r, length_cm, 0.0)
+
+
+@kernel
+def rpr_spread(xlo, xhi, ylo, yhi, leg, centres, r, length_cm, offset_cm):
+    """:func:`rpr_parts` with :math:`r_i` widened by ``offset_cm`` in :math:`v_i \\times
+    r_i`."""
     vx_lo, vx_hi = iadd_scalar(xlo, xhi, -centres[leg, 0])
     vy_lo, vy_hi = iadd_scalar(ylo, yhi, -centres[leg, 1])
     vx = (vx_lo - TOLERANCE_CM, vx_hi + TOLERANCE_CM)
@@ -85,7 +91,7 @@ def rpr_leg(xlo, xhi, ylo, yhi, leg, centres, r, limits, m_lo, m_hi, norms, leng
     leg closes at every point; ``OUT``: none at any."""
     xlo, xhi, ylo, yhi = grown_box(xlo, xhi, ylo, yhi, spread[0])
     offset = spread[1]
-    vx, vy, t, rho = rpr_parts(xlo, xhi, ylo, yhi, leg, centres, r, length_cm, offset)
+    vx, vy, t, rho = rpr_spread(xlo, xhi, ylo, yhi, leg, centres, r, length_cm, offset)
     lo = limits[leg, 0]
     hi = limits[leg, 1]
     if rho[1] < lo or rho[0] > hi:
@@ -96,7 +102,7 @@ def rpr_leg(xlo, xhi, ylo, yhi, leg, centres, r, limits, m_lo, m_hi, norms, leng
         return result
     cx = 0.5 * (xlo + xhi)
     cy = 0.5 * (ylo + yhi)
-    cvx, cvy, ct, crho = rpr_parts(cx, cx, cy, cy, leg, centres, r, length_cm, offset)
+    cvx, cvy, ct, crho = rpr_spread(cx, cx, cy, cy, leg, centres, r, length_cm, offset)
     dx = up(max(cx - xlo, xhi - cx))
     dy = up(max(cy - ylo, yhi - cy))
     db_x = idiv(*vx, *rho)
@@ -151,11 +157,17 @@ def rpr_dexterity(boxes, centres, r, limits, length_cm, spread, verdict, kappa):
 
 
 @kernel
-def prr_parts(xlo, xhi, ylo, yhi, leg, g, sigma, r, length_cm, offset_cm, t_cm):
+def prr_parts(xlo, xhi, ylo, yhi, leg, g, sigma, r, length_cm):
     """``(reach, s, h, root, dx, dy, t, b)`` over the box (module docstring): ``reach``
     false where :math:`q < 0` everywhere, else enclosures (``root`` of :math:`q \\cap [0,
-    \\infty)`), :math:`r_i` widened by ``offset_cm`` in :math:`d \\times r_i`, the distal
-    :math:`l \\pm` ``t_cm``."""
+    \\infty)`)."""
+    return prr_spread(xlo, xhi, ylo, yhi, leg, g, sigma, r, length_cm, 0.0, 0.0)
+
+
+@kernel
+def prr_spread(xlo, xhi, ylo, yhi, leg, g, sigma, r, length_cm, offset_cm, t_cm):
+    """:func:`prr_parts` with :math:`r_i` widened by ``offset_cm`` in :math:`d \\times
+    r_i` and the distal :math:`l \\pm` ``t_cm``."""
     ux = g[leg, 2]
     uy = g[leg, 3]
     wx_lo, wx_hi = iadd_scalar(xlo, xhi, -g[leg, 0])
@@ -195,7 +207,7 @@ def prr_leg(xlo, xhi, ylo, yhi, leg, g, modes, r, m_lo, m_hi, norms, length_cm, 
     sigma = modes[leg]
     xlo, xhi, ylo, yhi = grown_box(xlo, xhi, ylo, yhi, spread[0])
     offset, t_l = spread[1], spread[2]
-    reach, s, h, root, dx, dy, t, b = prr_parts(
+    reach, s, h, root, dx, dy, t, b = prr_spread(
         xlo, xhi, ylo, yhi, leg, g, sigma, r, length_cm, offset, t_l
     )
     if not reach or s[1] < g[leg, 4] or s[0] > g[leg, 5]:
@@ -207,7 +219,7 @@ def prr_leg(xlo, xhi, ylo, yhi, leg, g, modes, r, m_lo, m_hi, norms, length_cm, 
         return result
     cx = 0.5 * (xlo + xhi)
     cy = 0.5 * (ylo + yhi)
-    ok, _, _, _, cdx, cdy, ct, cb = prr_parts(
+    ok, _, _, _, cdx, cdy, ct, cb = prr_spread(
         cx, cx, cy, cy, leg, g, sigma, r, length_cm, offset, 0.0
     )
     if not ok or cb[0] <= 0.0 <= cb[1]:

@@ -220,7 +220,7 @@ CASES = {
         rr_kappas(25.0),  # the Table-3 platform's circumradius
         lambda job, spec: rrr_evaluator(job.robot, spec, job.prepared.circle),
         (30.0, 42.0, 4.0, 16.0),
-        (0.25, 0.02, 0.05),
+        (0.25, 0.02, 0.1),
         (dexterity_rr, "rr_dexterity"),
     ),
     "five-bar": Case(
