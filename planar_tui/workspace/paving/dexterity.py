@@ -7,7 +7,10 @@ With ``kappa_max`` a single-orientation workspace job also paves its search box 
 actuated joint rates to the twist :math:`(\\dot x, \\dot y, L\\dot\\varphi)` (the five-bar:
 to :math:`(\\dot x, \\dot y)`) is at most ``kappa_max``; :math:`\\kappa = \\infty` where
 :math:`J` is singular. :math:`L` is ``characteristic_length_cm`` (default: the platform's
-circumradius, :func:`circumradius_cm`).
+circumradius, :func:`circumradius_cm`). With a range of orientations the evaluator is
+:mod:`~planar_tui.workspace.paving.orientation_dexterity`'s, with a tolerance
+:mod:`~planar_tui.workspace.paving.tolerance_dexterity`'s (every robot or some robot within
+it); the paving below is the same.
 
 A robot's :class:`~planar_tui.workspace.paving.mechanism.Mechanism` gives an *evaluator*
 (its ``dexterity`` method): for (k, 4) boxes, each box's verdict in the mode
