@@ -135,6 +135,15 @@ def extreme_singular_values(a, n):
 
 
 @kernel
+def slope_term(n_lo, n_hi, da, db, b_lo, b_hi, d):
+    """:math:`\\partial m(X)\\,[-d, d]` for the entry :math:`m = a / b` (natural
+    enclosure ``n``) along one direction: :math:`\\partial m = (\\partial a - m\\,\\partial
+    b) / b`, ``da``, ``db`` (lo, hi) enclosures of :math:`\\partial a`, :math:`\\partial b`."""
+    g_lo, g_hi = idiv(*isub(*da, *imul(n_lo, n_hi, *db)), b_lo, b_hi)
+    return imul(g_lo, g_hi, -d, d)
+
+
+@kernel
 def mean_value(m_lo, m_hi, row, k, c_lo, c_hi, b_lo, b_hi, da_x, da_y, db_x, db_y, dx, dy):
     """Meet entry ``(row, k)`` of :math:`M` (natural: ``m_lo, m_hi``) with its mean-value
     form :math:`m(c) + \\partial_x m(X)\\,(X - c_x) + \\partial_y m(X)\\,(Y - c_y)`,
@@ -142,9 +151,10 @@ def mean_value(m_lo, m_hi, row, k, c_lo, c_hi, b_lo, b_hi, da_x, da_y, db_x, db_
     centre, ``dx``, ``dy`` bounds of :math:`|X - c_x|`, :math:`|Y - c_y|`."""
     n_lo = m_lo[row, k]
     n_hi = m_hi[row, k]
-    gx_lo, gx_hi = idiv(*isub(*da_x, *imul(n_lo, n_hi, *db_x)), b_lo, b_hi)
-    gy_lo, gy_hi = idiv(*isub(*da_y, *imul(n_lo, n_hi, *db_y)), b_lo, b_hi)
-    v_lo, v_hi = iadd(*imul(gx_lo, gx_hi, -dx, dx), *imul(gy_lo, gy_hi, -dy, dy))
+    v_lo, v_hi = iadd(
+        *slope_term(n_lo, n_hi, da_x, db_x, b_lo, b_hi, dx),
+        *slope_term(n_lo, n_hi, da_y, db_y, b_lo, b_hi, dy),
+    )
     lo, hi = meet(n_lo, n_hi, *iadd(c_lo, c_hi, v_lo, v_hi))
     m_lo[row, k] = lo
     m_hi[row, k] = hi

@@ -127,6 +127,22 @@ def isqrt(alo, ahi):
 
 
 @kernel
+def widen(c, w):
+    """The interval :math:`[c - w, c + w]` rounded out (exactly ``(c, c)`` when ``w`` is 0)."""
+    if w == 0.0:
+        return c, c
+    return down(c - w), up(c + w)
+
+
+@kernel
+def grown_box(xlo, xhi, ylo, yhi, grow):
+    """The box grown by ``grow`` on every side, rounded out (as it is when ``grow`` is 0)."""
+    if grow == 0.0:
+        return xlo, xhi, ylo, yhi
+    return down(xlo - grow), up(xhi + grow), down(ylo - grow), up(yhi + grow)
+
+
+@kernel
 def _clamp_unit(lo, hi):
     return max(-1.0, down(down(lo))), min(1.0, up(up(hi)))
 

@@ -56,7 +56,7 @@ import math
 import numpy as np
 
 from ._jit import kernel
-from .interval import down, iadd, iadd_scalar, imul, iscale, isincos, isqr, isqrt, isub, up
+from .interval import down, iadd, iadd_scalar, imul, isincos, isqr, isqrt, isub, up, widen
 from .workspace3rrr import DONE, keep_xy_box, pop_row, split_xy_widest
 
 GOOD = 3
@@ -124,9 +124,23 @@ def leg_status(xlo, xhi, ylo, yhi, leg, g, r, elbow, limits):
     verdict (``LEG_OUT``, ``LEG_UNSURE``, ``LEG_IN``, ``LEG_UNDEFINED`` when the box may
     hold the base joint's direction singularity) and enclosures of :math:`u_i` and
     :math:`u_i \\times r_i` over the box's points in :math:`W_s` (module docstring)."""
-    l1 = g[0]
-    l2 = g[1]
-    k_lo, k_hi = isub(*isqr(l1, l1), *isqr(l2, l2))
+    return leg_spread(xlo, xhi, ylo, yhi, leg, g, r, elbow, limits, 0.0, 0.0, 0.0)
+
+
+@kernel
+def leg_spread(xlo, xhi, ylo, yhi, leg, g, r, elbow, limits, offset_cm, t1_cm, t2_cm):
+    """:func:`leg_status` over every robot within tolerances: :math:`r_i` widened by
+    ``offset_cm`` per axis in :math:`u_i \\times r_i`, :math:`l_1 \\pm t_1` and
+    :math:`l_2 \\pm t_2` intervals. The base joint's and the platform point's tolerances
+    move :math:`v_i = p + r_i - A_i` as the position does, by at most :math:`t_A +
+    t_q(|\\cos\\varphi| + |\\sin\\varphi|)` per axis: the caller grows the box by it
+    (:func:`kernels.interval.grown_box`), so the leg over the grown box holds every such
+    robot. ``LEG_IN``: every robot closes at every point; ``LEG_OUT``: none closes at any;
+    the enclosures hold every robot's :math:`u_i` and :math:`u_i \\times r_i` at the box's
+    points in its :math:`W_s`."""
+    l1_lo, l1_hi = widen(g[0], t1_cm)
+    l2_lo, l2_hi = widen(g[1], t2_cm)
+    k_lo, k_hi = isub(*isqr(l1_lo, l1_hi), *isqr(l2_lo, l2_hi))
     rx = r[leg, 0]
     ry = r[leg, 1]
     vx_lo, vx_hi = iadd_scalar(xlo, xhi, rx - g[8 + 2 * leg])
@@ -141,7 +155,7 @@ def leg_status(xlo, xhi, ylo, yhi, leg, g, r, elbow, limits):
     sq_lo, sq_hi = iadd(*isqr(vx_lo, vx_hi), *isqr(vy_lo, vy_hi))
     rho_lo, rho_hi = isqrt(sq_lo, sq_hi)
     num_lo, num_hi = iadd(sq_lo, sq_hi, k_lo, k_hi)
-    den_lo, den_hi = iscale(rho_lo, rho_hi, 2.0 * l1)
+    den_lo, den_hi = imul(rho_lo, rho_hi, 2.0 * l1_lo, 2.0 * l1_hi)
     c_lo, c_hi = idiv_positive(num_lo, num_hi, den_lo, den_hi)
     if c_lo > 1.0 or c_hi < -1.0:
         return LEG_OUT, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
@@ -165,10 +179,11 @@ def leg_status(xlo, xhi, ylo, yhi, leg, g, r, elbow, limits):
     if t_lo >= lim_lo and t_hi < lim_lo + _TWO_PI:
         t_hi = min(t_hi, lim_hi)
     s_lo, s_hi, co_lo, co_hi = isincos(t_lo, t_hi)
-    ux_lo, ux_hi = isub(vx_lo, vx_hi, *iscale(co_lo, co_hi, l1))
-    uy_lo, uy_hi = isub(vy_lo, vy_hi, *iscale(s_lo, s_hi, l1))
-    p_lo, p_hi = imul(ux_lo, ux_hi, ry - TOLERANCE_CM, ry + TOLERANCE_CM)
-    q_lo, q_hi = imul(uy_lo, uy_hi, rx - TOLERANCE_CM, rx + TOLERANCE_CM)
+    ux_lo, ux_hi = isub(vx_lo, vx_hi, *imul(co_lo, co_hi, l1_lo, l1_hi))
+    uy_lo, uy_hi = isub(vy_lo, vy_hi, *imul(s_lo, s_hi, l1_lo, l1_hi))
+    offset = TOLERANCE_CM + offset_cm
+    p_lo, p_hi = imul(ux_lo, ux_hi, ry - offset, ry + offset)
+    q_lo, q_hi = imul(uy_lo, uy_hi, rx - offset, rx + offset)
     m_lo, m_hi = isub(p_lo, p_hi, q_lo, q_hi)
     return verdict, ux_lo, ux_hi, uy_lo, uy_hi, m_lo, m_hi
 

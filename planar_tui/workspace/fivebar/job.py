@@ -184,7 +184,7 @@ class FiveBarSpec:
                     problem,
                     "a centre inside the workspace, off its singularities",
                 )
-        check_dexterity(values, reader)
+        check_dexterity(values, reader, tolerances=True)
         check_interference(values, reader)
         check_accuracy(values, reader, MECHANISM.accuracy_unit)
         for key in ("kappa_max", "leg_width_cm", "accuracy"):

@@ -56,7 +56,7 @@ class MechanismFiveBar(Mechanism):
     def dexterity(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
         from planar_tui.workspace.fivebar.dexterity import evaluator
 
-        return evaluator(job.robot)
+        return evaluator(job.robot, job.spec)
 
     def interference(self, job: Any, prepared: Any) -> Callable[[Any], tuple[Any, Any]]:
         from planar_tui.workspace.fivebar.interference import evaluator

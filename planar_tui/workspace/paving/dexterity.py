@@ -7,7 +7,10 @@ With ``kappa_max`` a single-orientation workspace job also paves its search box 
 actuated joint rates to the twist :math:`(\\dot x, \\dot y, L\\dot\\varphi)` (the five-bar:
 to :math:`(\\dot x, \\dot y)`) is at most ``kappa_max``; :math:`\\kappa = \\infty` where
 :math:`J` is singular. :math:`L` is ``characteristic_length_cm`` (default: the platform's
-circumradius, :func:`circumradius_cm`).
+circumradius, :func:`circumradius_cm`). With a range of orientations the evaluator is
+:mod:`~planar_tui.workspace.paving.orientation_dexterity`'s, with a tolerance
+:mod:`~planar_tui.workspace.paving.tolerance_dexterity`'s (every robot or some robot within
+it); the paving below is the same.
 
 A robot's :class:`~planar_tui.workspace.paving.mechanism.Mechanism` gives an *evaluator*
 (its ``dexterity`` method): for (k, 4) boxes, each box's verdict in the mode
@@ -85,10 +88,11 @@ def length_setting() -> Any:
     )
 
 
-def check_dexterity(values: dict[str, Any], reader: TableReader) -> None:
-    """``kappa_max`` is above 1 and needs a form with boxes and no tolerance (with a range
-    of orientations, the working mode ``elbow`` or ``slider_modes`` given);
-    ``characteristic_length_cm`` goes with it."""
+def check_dexterity(values: dict[str, Any], reader: TableReader, tolerances=False) -> None:
+    """``kappa_max`` is above 1 and needs a form with boxes (with a range of orientations,
+    the working mode ``elbow`` or ``slider_modes`` given) and, unless the kind certifies
+    them (``tolerances``, :mod:`~planar_tui.workspace.paving.tolerance_dexterity`), no
+    tolerance; ``characteristic_length_cm`` goes with it."""
     kappa = values["kappa_max"]
     length = values.get("characteristic_length_cm")
     if kappa is None:
@@ -97,14 +101,16 @@ def check_dexterity(values: dict[str, Any], reader: TableReader) -> None:
         return
     if not kappa > 1.0:
         raise reader.error("kappa_max", f"is {kappa:g}: κ is at least 1", "a number > 1")
-    refuse_unpaved("kappa_max", values, reader, ranges=True)
+    refuse_unpaved("kappa_max", values, reader, ranges=True, tolerances=tolerances)
 
 
-def refuse_unpaved(key: str, values: dict[str, Any], reader: TableReader, ranges=False) -> None:
-    """A certifying stage's ``key`` needs a form with boxes, no tolerance and (unless
-    ``ranges``) a single orientation; with a range, its working mode given (``elbow``,
-    ``slider_modes``, where the kind has one): one line naming what is set with it
-    otherwise."""
+def refuse_unpaved(
+    key: str, values: dict[str, Any], reader: TableReader, ranges=False, tolerances=False
+) -> None:
+    """A certifying stage's ``key`` needs a form with boxes, (unless ``ranges``) a single
+    orientation and (unless ``tolerances``) no tolerance; with a range, its working mode
+    given (``elbow``, ``slider_modes``, where the kind has one): one line naming what is
+    set with it otherwise."""
     ranged = isinstance(values.get("orientation_deg"), tuple)
     if ranged and not ranges:
         raise reader.error(
@@ -119,7 +125,7 @@ def refuse_unpaved(key: str, values: dict[str, Any], reader: TableReader, ranges
             )
     if values.get("form") == "geometric":
         raise reader.error(key, 'is set with form = "geometric"', "a form with boxes")
-    if values.get("tolerance_mode") is not None:
+    if not tolerances and values.get("tolerance_mode") is not None:
         raise reader.error(key, "is set with a tolerance", "no tolerance_cm")
 
 

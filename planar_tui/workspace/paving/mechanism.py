@@ -56,8 +56,10 @@ class Mechanism(Protocol):
     #: :meth:`compute_singularities`) and paves orientation ranges (:meth:`compute_range`).
     has_singularities: bool
     has_orientation_ranges: bool
-    #: Whether it certifies dexterous regions (``kappa_max``, :meth:`dexterity`).
+    #: Whether it certifies dexterous regions (``kappa_max``, :meth:`dexterity`), and with a
+    #: tolerance (:mod:`~planar_tui.workspace.paving.tolerance_dexterity`).
     has_dexterity: bool = False
+    has_tolerant_dexterity: bool = False
     #: Whether it certifies interference-free regions (``leg_width_cm``, :meth:`interference`).
     has_interference: bool = False
     #: Its actuators' unit where it certifies its worst-case accuracy (``accuracy``,

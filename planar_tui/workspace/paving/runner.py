@@ -138,7 +138,7 @@ class PlanarSpec:
         if values["kappa_max"] is not None:  # the dexterous disc's centre
             names = tuple(n for n in names if n != "circle_centre_cm")
         check_circle_keys(values, reader, names)
-        check_dexterity(values, reader)
+        check_dexterity(values, reader, cls.mechanism.has_tolerant_dexterity)
         if values["leg_width_cm"] is not None and not cls.mechanism.has_interference:
             found = f"is set: the {cls.mechanism.name}'s leg interference is not certified yet"
             raise reader.error("leg_width_cm", found, "no leg_width_cm")

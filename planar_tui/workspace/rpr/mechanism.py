@@ -32,6 +32,7 @@ class Mechanism3RPR(LegMechanism):
     singular_boxes_per_step = 10.0
     tolerance_boxes = MappingProxyType({"all": 5.0, "some": 5.0})
     has_dexterity = True
+    has_tolerant_dexterity = True
     robot_module = rpr
     singularity_module = singularity
     orientation_module = orientation

@@ -214,7 +214,7 @@ class WorkspaceSpec:
         precision cannot exceed the precision."""
         check_orientation(values, reader)
         check_singularity(values, reader)
-        check_dexterity(values, reader)
+        check_dexterity(values, reader, tolerances=True)
         check_interference(values, reader)
         check_accuracy(values, reader, MECHANISM.accuracy_unit)
         lengths = {"proximal_cm": robot.proximal_cm, "distal_cm": robot.distal_cm}
