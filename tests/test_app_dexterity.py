@@ -24,10 +24,14 @@ pytestmark = pytest.mark.slow  # end to end (see pyproject.toml's markers)
 GLYPHS = "1234?"
 
 
-def app_with(tmp_path, keys: str):
-    """The app on tiny.toml with ``keys`` (TOML lines) in its workspace job."""
+def app_with(tmp_path, keys: str, changes: tuple[tuple[str, str], ...] = ()):
+    """The app on tiny.toml with ``keys`` (TOML lines) in its workspace job and each of
+    its lines ``(old, new)`` of ``changes`` replaced."""
     text = (DATA / "tiny.toml").read_text(encoding="utf-8")
     text = text.replace('form = "arc-distance"\n', 'form = "arc-distance"\n' + keys, 1)
+    for old, new in changes:
+        assert old in text
+        text = text.replace(old, new, 1)
     path = tmp_path / "tiny.toml"
     path.write_text(text, encoding="utf-8")
     return WorkbenchApp(Workbench.open(path), output_dir=tmp_path)
@@ -175,3 +179,35 @@ async def test_a_certified_path_job_draws_its_trace_with_the_failing_stretch_mar
     assert "·" in drawn and "x" in drawn
     assert words.startswith("Not certified") and "κ rises above kappa_max" in words
     assert f"{lo:.6g}" in words
+
+
+#: tiny.toml's workspace job over φ ∈ [-4, 6]° (tests/test_dexterity_orientation.py's).
+RANGED = (
+    ("orientation_deg = 0\n", 'orientation_deg = [-4, 6]\norientation_mode = "total"\n'),
+    (
+        "joint_limits_deg = [[20, 70], [110, 160], [245, 295]]\n",
+        "joint_limits_deg = [[-180, 180], [-180, 180], [-180, 180]]\n",
+    ),
+    ("precision_cm = 0.9375\n", "precision_cm = 1.0\n"),
+)
+
+
+@async_test
+async def test_a_ranged_jobs_kappa_layer_is_drawn_from_its_boxes(tmp_path):
+    """``orientation_deg = [lo, hi]`` with ``kappa_max`` (κ the worst over the range):
+    the map offers the κ layer of the ranged result and draws each cell's band from its
+    boxes, bands up to ``?`` where a box over the cell is not proved ≤ kappa_max."""
+    app = app_with(tmp_path, "kappa_max = 6\nelbow = [1, -1, 1]\n", RANGED)
+    async with app.run_test(size=(120, 40)) as pilot:
+        layer = await toggle_layer(app, pilot, "k", "dexterity", "kappa", expected_glyph)
+        spec = app.query_one("#pane-workspace").job.spec
+    assert spec.orientation_deg == (-4.0, 6.0) and spec.kappa_max == 6
+    assert "k: κ map" in layer.legend_before and "? not proved ≤ 6" in layer.legend
+    marked = layer.marked()
+    glyphs = {g for _, _, g in marked}
+    assert "?" in glyphs and len(glyphs) >= 2
+    for column, row, glyph in marked:
+        assert glyph == layer.expected[row][column], (column, row)
+    drawn = sum(g != " " for row in layer.expected for g in row)
+    assert len(marked) == drawn  # every cell over a box holds its band
+    assert not any(g in line for line in layer.hidden for g in GLYPHS)

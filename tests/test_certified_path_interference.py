@@ -202,6 +202,15 @@ def test_the_five_bar_verdict_and_first_crossing_against_dense_sampling(tmp_path
     check_job_against_sampling(tmp_path, text, start, stop, verdict)
 
 
+def test_the_five_bar_check_fails_with_a_shrunk_gap(tmp_path, monkeypatch):
+    """The five-bar's dense-sampling check, with every gap enclosure shrunk by 1 % of the
+    width at each end: the bracket misses the first crossing (or the verdict changes), an
+    assertion on the certificate (not on the reference's sampling)."""
+    narrow_gaps(monkeypatch)
+    with pytest.raises(AssertionError, match=r"Certificate\("):
+        test_the_five_bar_verdict_and_first_crossing_against_dense_sampling(tmp_path, "clash")
+
+
 def test_the_job_writes_the_interference_certificate_and_exits_0(cli, tmp_path):
     mode, start, stop, _ = FIVEBAR_PATHS["clash"]
     text = FIVEBAR_PATH.format(mode=mode, start=start, stop=stop, extra="leg_width_cm = 6\n")

@@ -163,3 +163,29 @@ def test_a_zoomed_kappa_view_marks_only_the_boxes_in_it():
     assert cell_glyph(1.5, band_edges(4.0), 4.0) == "1"
     assert cell_glyph(3.9, band_edges(4.0), 4.0) == "4"
     assert cell_glyph(4.1, band_edges(4.0), 4.0) == "?"
+
+
+def test_a_ranged_jobs_figure_draws_its_kappa_panel_and_dexterous_layer(tmp_path):
+    """``orientation_deg = [lo, hi]`` (κ the worst over the range): the figure of the
+    ranged 3-RRR job has the κ panel, each bounded box of the boxes CSV in it with its
+    bin, the unbounded ones hatched, the proved boxes as the dexterous layer, and a colour
+    bar over [1, kappa_max]."""
+    from tests.test_dexterity_orientation import RRR
+
+    job, result = run(tmp_path, RRR.format(precision=1.0))
+    assert isinstance(job.spec.orientation_deg, tuple)
+    fig = figure_for_result(job, result)
+    assert "κ upper bound per box" in [ax.get_title() for ax in fig.axes]
+    boxes, hi, status = dexterity_rows(result.extra_tables["boxes"])
+    bounded = np.isfinite(hi)
+    assert bounded.any() and (~bounded).any() and (hi[bounded] <= 6).any()
+    heat = by_gid(fig, "kappa")
+    np.testing.assert_array_equal(np.asarray(heat.get_array()), expected_bins(hi[bounded], 6.0))
+    np.testing.assert_allclose(corners(heat), boxes[bounded])
+    np.testing.assert_allclose(corners(by_gid(fig, "kappa-unbounded")), boxes[~bounded])
+    proved = np.array([s == "dexterous" for s in status])
+    assert proved.any()
+    np.testing.assert_allclose(corners(by_gid(fig, "dexterous")), boxes[proved])
+    (bar,) = [ax for ax in fig.axes if ax.get_ylabel().startswith("κ upper bound (grey: > 6)")]
+    labels = [tick.get_text() for tick in bar.get_yticklabels()]
+    assert labels[0] == "1" and labels[-1] == "6"
