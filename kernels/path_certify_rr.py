@@ -106,6 +106,7 @@ def rr_pose_boxes(boxes, g, q, elbow, limits, length_cm, verdict, reason, kappa)
     platform frame, ``limits`` (legs, 2) radians; three legs: :math:`L` = ``length_cm``."""
     n = len(g)
     zero = np.zeros((n, 2))
+    nominal = np.zeros(4)  # rr_leg's spread: the robot as given
     for i in numba.prange(len(boxes)):
         m_lo = np.empty((n, n))
         m_hi = np.empty((n, n))
@@ -154,7 +155,7 @@ def rr_pose_boxes(boxes, g, q, elbow, limits, length_cm, verdict, reason, kappa)
             set_row(m_lo, m_hi, leg, 1, uy_lo, uy_hi, b_lo, b_hi)
             cbox = (cx_lo, cx_hi, cy_lo, cy_hi)
             mv, written = rr_leg(
-                *cbox, leg, g[leg], zero, elbow, limits, mv_lo, mv_hi, scratch, leg, 0.0
+                *cbox, leg, g[leg], zero, elbow, limits, mv_lo, mv_hi, scratch, leg, 0.0, nominal
             )
             if written and mv != OUT:  # its rows are written
                 r = (rx_lo, rx_hi, ry_lo, ry_hi)
