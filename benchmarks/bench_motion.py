@@ -207,8 +207,8 @@ def packed_instructions() -> str:
     from planar_tui.kernels import motion_lanes_n6
 
     function = njit(error_model="numpy", fastmath={"contract"})(motion_lanes_n6.rk4_step_6.py_func)
-    flat = [np.zeros(n * lanes) for _ in range(4)]
-    function(np.ones(3 * n * lanes), G, np.zeros(n), flat[0], flat[1], 1e-4, flat[2], flat[3])
+    state = np.zeros(motion_lanes_n6.STATE_ROWS * lanes)
+    function(np.ones(3 * n * lanes), G, np.zeros(n), state, 1e-4)
     counts = collections.Counter()
     for line in next(iter(function.inspect_asm().values())).splitlines():
         fields = line.split()
