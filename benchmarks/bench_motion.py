@@ -56,6 +56,7 @@ from planar_tui.kernels.motion_rk4 import design_parameters, rk4_batch
 from planar_tui.kernels.rk4 import rk4_integrate
 
 from benchmarks.mujoco_model import chain_model
+from planar_tui.motion.engine import run_lanes
 
 G = 9.81
 LENGTHS = np.array([0.25, 0.25, 0.20, 0.20, 0.15, 0.15])
@@ -110,7 +111,8 @@ def baseline_ms(robots: int = 8) -> float:
 def cpu_ms(
     robots: int, threads: int, kernel=rk4_lanes, repeats: int = 1
 ) -> tuple[float, np.ndarray]:
-    """Best time per robot (ms) of ``kernel`` on ``robots`` Table 1 robots, and their angles."""
+    """Best time per robot (ms) of ``kernel`` on ``robots`` Table 1 robots, and their angles
+    (on ``threads`` threads as the motion job runs it: :func:`planar_tui.motion.engine.run_lanes`)."""
     numba.set_num_threads(threads)
     unit, lower, upper = table1_design(robots)
     params = design_parameters(unit, lower, upper, INERTIAS, np.zeros(6, dtype=np.bool_))
@@ -119,7 +121,7 @@ def cpu_ms(
     for _ in range(repeats):
         theta, omega = np.zeros((robots, 6)), np.zeros((robots, 6))
         started = clock()
-        kernel(params, G, TORQUES, theta, omega, STEP_S, N_STEPS)
+        run_lanes(kernel, params, G, TORQUES, theta, omega, STEP_S, N_STEPS)
         best = min(best, clock() - started)
     return best / robots * 1e3, theta
 

@@ -19,15 +19,16 @@ below :data:`~kernels.aba_planar.ABA_MIN_LINKS` links, the articulated-body recu
 ``np.cos``), so a robot's trajectory equals the scalar kernel's to round-off (1 s of the
 Table 1 robot: ≤ 1e-12 relative, tested).
 
-Blocks run in parallel (``prange``); each allocates its structure-of-arrays copy of its
-robots' parameters and states and its work arrays once per call, and the steps allocate
-nothing. A block's missing lanes (the last block of S robots) repeat its last robot and are
+The blocks of one call run one after the other (the kernels release the GIL: the motion
+job runs ranges of whole blocks in threads, :func:`planar_tui.motion.engine.run_lanes`;
+a ``prange`` over the blocks cost 4-9 s more to compile than the whole serial kernel).
+Each block allocates its structure-of-arrays copy of its robots' parameters and states and
+its work arrays once per call, and the steps allocate nothing. A block's missing lanes (the last block of S robots) repeat its last robot and are
 not written back. A lane whose absolute angle leaves ``sincos``'s range
 (:data:`~kernels.lane_trig.SINCOS_MAX_ABS`) takes ``np.sin``/``np.cos`` for it.
 """
 
 import numpy as np
-from numba import prange
 
 from ._jit import kernel
 from .aba_planar import ABA_MIN_LINKS
@@ -434,7 +435,7 @@ def _fused_steps(flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s, n_step
     flat_w[:] = state[size : 2 * size]
 
 
-@kernel(parallel=True)
+@kernel
 def rk4_lanes_general(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n_steps):
     r"""Advance every robot s of ``params`` (S, 3, n) by ``n_steps`` RK4 steps in place, in
     blocks of :data:`LANES` robots (module docstring), by the general lane step
@@ -443,7 +444,7 @@ def rk4_lanes_general(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, s
     kernel for chains of other than :data:`FUSED_LINKS` links (it compiles without the
     fused step: :func:`rk4_lanes`)."""
     samples = params.shape[0]
-    for block in prange((samples + LANES - 1) // LANES):
+    for block in range((samples + LANES - 1) // LANES):
         first = block * LANES
         count = min(LANES, samples - first)
         flat_p, flat_q, flat_w = _block_state(params, theta_rad, omega_rad_s, first, count)
@@ -451,7 +452,7 @@ def rk4_lanes_general(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, s
         _store_block(flat_q, flat_w, theta_rad, omega_rad_s, first, count)
 
 
-@kernel(parallel=True)
+@kernel
 def rk4_lanes(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n_steps):
     r""":func:`rk4_lanes_general` where chains of :data:`FUSED_LINKS` links take the fused
     step (:func:`kernels.motion_lanes_n6.rk4_step_6`: one lane loop per RK4 stage, fused
@@ -461,7 +462,7 @@ def rk4_lanes(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n
     (about two thirds of the motion job's cold start): the motion job calls this kernel for
     :data:`FUSED_LINKS`-link chains only."""
     samples, _, n = params.shape
-    for block in prange((samples + LANES - 1) // LANES):
+    for block in range((samples + LANES - 1) // LANES):
         first = block * LANES
         count = min(LANES, samples - first)
         flat_p, flat_q, flat_w = _block_state(params, theta_rad, omega_rad_s, first, count)
