@@ -21,7 +21,11 @@ warmup`` ≤ 90 s, a bundled preset's first run ≤ 30 s, ``simulate paper-a-tab
 ``--against COMMIT`` runs every row also with that commit (a ``git worktree``,
 :func:`benchmarks.bench_startup.checkout_of`), the two sides alternating, and adds its
 times and the ratios. ``--only TEXT`` keeps the rows whose name contains TEXT. A full
-table takes long (tens of minutes on 2 cores): choose rows with ``--only``.
+table takes long (tens of minutes on 2 cores): choose rows with ``--only``. ``--warm``
+runs each row's command a second time with the kernels its cold run cached (the run
+itself: start, work, output) and adds its times and the difference of the CPU times (the
+compilation). ``--timeout S`` stops a process after S s of wall time; its row then shows
+the CPU time so far, marked ``>`` (a sweep's or an optimisation's long computation).
 """
 
 from __future__ import annotations
@@ -33,12 +37,13 @@ import platform
 import subprocess
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
 
-from benchmarks.bench_startup import checkout_of, load, median_of, timed
+from benchmarks.bench_startup import checkout_of, children_cpu_s, load, median_of
 
 PYTHON = sys.executable
 CLI = [PYTHON, "-m", "planar_tui"]
@@ -78,10 +83,39 @@ def cases(out: Path) -> dict[str, list[str]]:
     return rows
 
 
-def cold(command: list[str], env: dict[str, str], folder: Path) -> tuple[float, float]:
-    """(wall s, CPU s) of ``command`` with a new, empty kernel cache under ``folder``."""
-    cache = Path(tempfile.mkdtemp(prefix="kernels-", dir=folder))
-    return timed(command, dict(env, NUMBA_CACHE_DIR=str(cache)))
+def timed(command: list[str], env: dict[str, str], timeout_s: float | None) -> tuple[float, float]:
+    """(wall s, CPU s) of one fresh process running ``command`` (exit code checked) in a
+    neutral folder (:func:`benchmarks.bench_startup.timed`); stopped after ``timeout_s``:
+    then its CPU time so far, negated."""
+    cpu_before = children_cpu_s()
+    started = time.perf_counter()
+    try:
+        subprocess.run(
+            command,
+            check=True,
+            capture_output=True,
+            env=env,
+            cwd=tempfile.gettempdir(),
+            timeout=timeout_s,
+        )
+    except subprocess.TimeoutExpired:
+        return time.perf_counter() - started, -(children_cpu_s() - cpu_before)
+    return time.perf_counter() - started, children_cpu_s() - cpu_before
+
+
+def cold(
+    command: list[str], env: dict[str, str], folder: Path, warm: bool, timeout_s: float | None
+) -> tuple[tuple[float, float], tuple[float, float] | None]:
+    """(wall s, CPU s) of ``command`` with a new, empty kernel cache under ``folder``, and
+    with ``warm`` of a second run on the kernels the first cached (else None)."""
+    env = dict(env, NUMBA_CACHE_DIR=tempfile.mkdtemp(prefix="kernels-", dir=folder))
+    first = timed(command, env, timeout_s)
+    return first, timed(command, env, timeout_s) if warm and first[1] >= 0 else None
+
+
+def seconds(value: float, width: int) -> str:
+    """A CPU time, ``>`` before it when its process was stopped (negative)."""
+    return f"{'>' if value < 0 else ''}{abs(value):.1f}".rjust(width)
 
 
 def warm_byte_code(env: dict[str, str], checkout: Path) -> None:
@@ -106,6 +140,8 @@ def main() -> None:
     parser.add_argument("--runs", type=int, default=1, help="processes per row (median)")
     parser.add_argument("--against", metavar="COMMIT", help="pair every row with COMMIT's")
     parser.add_argument("--only", metavar="TEXT", default="", help="rows whose name has TEXT")
+    parser.add_argument("--warm", action="store_true", help="also a second, warm run")
+    parser.add_argument("--timeout", type=float, metavar="S", help="stop a process after S s")
     arguments = parser.parse_args()
     env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
     env["PLANAR_TUI_CACHE_DIR"] = ""
@@ -129,18 +165,27 @@ def main() -> None:
         header = f"{'cold':<{width}}  {'wall s':>7}  {'CPU s':>7}"
         if other:
             header += f"  {'their wall':>10}  {'their CPU':>9}  {'CPU ratio':>9}"
+        if arguments.warm:
+            header += f"  {'warm wall':>9}  {'warm CPU':>8}  {'compile CPU':>11}"
         print(f"{header}  {'goal s':>6}  load", flush=True)
         for row, command in chosen.items():
-            ours, theirs = [], []
+            ours, theirs, warm = [], [], []
             for _ in range(arguments.runs):  # the two sides alternate: the same load
-                ours.append(cold(command, env, folder))
+                first, second = cold(command, env, folder, arguments.warm, arguments.timeout)
+                ours.append(first)
+                warm += [second] if second else []
                 if theirs_env is not None:
-                    theirs.append(cold(command, theirs_env, folder))
+                    theirs.append(cold(command, theirs_env, folder, False, arguments.timeout)[0])
             wall, cpu = median_of(ours)
-            line = f"{row:<{width}}  {wall:7.1f}  {cpu:7.1f}"
+            line = f"{row:<{width}}  {wall:7.1f}  {seconds(cpu, 7)}"
             if theirs:
                 their_wall, their_cpu = median_of(theirs)
-                line += f"  {their_wall:10.1f}  {their_cpu:9.1f}  {cpu / their_cpu:9.3f}"
+                line += f"  {their_wall:10.1f}  {seconds(their_cpu, 9)}  {cpu / their_cpu:9.3f}"
+            if warm:
+                warm_wall, warm_cpu = median_of(warm)
+                line += f"  {warm_wall:9.1f}  {seconds(warm_cpu, 8)}  {cpu - warm_cpu:11.1f}"
+            elif arguments.warm:
+                line += f"  {'':>9}  {'':>8}  {'':>11}"
             goal = GOALS_S.get(row, PRESET_GOAL_S if row.startswith("planar-tui run") else None)
             print(f"{line}  {'' if goal is None else f'{goal:.0f}':>6}  {load():.2f}", flush=True)
     print(f"(median of {arguments.runs} processes each; 1-min load after {load():.2f})")

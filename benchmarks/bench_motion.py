@@ -56,6 +56,7 @@ from planar_tui.kernels.motion_rk4 import design_parameters, rk4_batch
 from planar_tui.kernels.rk4 import rk4_integrate
 
 from benchmarks.mujoco_model import chain_model
+from planar_tui.motion.engine import run_lanes
 
 G = 9.81
 LENGTHS = np.array([0.25, 0.25, 0.20, 0.20, 0.15, 0.15])
@@ -110,7 +111,8 @@ def baseline_ms(robots: int = 8) -> float:
 def cpu_ms(
     robots: int, threads: int, kernel=rk4_lanes, repeats: int = 1
 ) -> tuple[float, np.ndarray]:
-    """Best time per robot (ms) of ``kernel`` on ``robots`` Table 1 robots, and their angles."""
+    """Best time per robot (ms) of ``kernel`` on ``robots`` Table 1 robots, and their angles
+    (on ``threads`` threads as the motion job runs it: :func:`planar_tui.motion.engine.run_lanes`)."""
     numba.set_num_threads(threads)
     unit, lower, upper = table1_design(robots)
     params = design_parameters(unit, lower, upper, INERTIAS, np.zeros(6, dtype=np.bool_))
@@ -119,7 +121,7 @@ def cpu_ms(
     for _ in range(repeats):
         theta, omega = np.zeros((robots, 6)), np.zeros((robots, 6))
         started = clock()
-        kernel(params, G, TORQUES, theta, omega, STEP_S, N_STEPS)
+        run_lanes(kernel, params, G, TORQUES, theta, omega, STEP_S, N_STEPS)
         best = min(best, clock() - started)
     return best / robots * 1e3, theta
 
@@ -207,8 +209,8 @@ def packed_instructions() -> str:
     from planar_tui.kernels import motion_lanes_n6
 
     function = njit(error_model="numpy", fastmath={"contract"})(motion_lanes_n6.rk4_step_6.py_func)
-    flat = [np.zeros(n * lanes) for _ in range(4)]
-    function(np.ones(3 * n * lanes), G, np.zeros(n), flat[0], flat[1], 1e-4, flat[2], flat[3])
+    state = np.zeros(motion_lanes_n6.STATE_ROWS * lanes)
+    function(np.ones(3 * n * lanes), G, np.zeros(n), state, 1e-4)
     counts = collections.Counter()
     for line in next(iter(function.inspect_asm().values())).splitlines():
         fields = line.split()

@@ -19,20 +19,21 @@ below :data:`~kernels.aba_planar.ABA_MIN_LINKS` links, the articulated-body recu
 ``np.cos``), so a robot's trajectory equals the scalar kernel's to round-off (1 s of the
 Table 1 robot: ≤ 1e-12 relative, tested).
 
-Blocks run in parallel (``prange``); each allocates its structure-of-arrays copy of its
-robots' parameters and states and its work arrays once per call, and the steps allocate
-nothing. A block's missing lanes (the last block of S robots) repeat its last robot and are
+The blocks of one call run one after the other (the kernels release the GIL: the motion
+job runs ranges of whole blocks in threads, :func:`planar_tui.motion.engine.run_lanes`;
+a ``prange`` over the blocks cost 4-9 s more to compile than the whole serial kernel).
+Each block allocates its structure-of-arrays copy of its robots' parameters and states and
+its work arrays once per call, and the steps allocate nothing. A block's missing lanes (the last block of S robots) repeat its last robot and are
 not written back. A lane whose absolute angle leaves ``sincos``'s range
 (:data:`~kernels.lane_trig.SINCOS_MAX_ABS`) takes ``np.sin``/``np.cos`` for it.
 """
 
 import numpy as np
-from numba import prange
 
 from ._jit import kernel
 from .aba_planar import ABA_MIN_LINKS
 from .lane_trig import SINCOS_MAX_ABS, sincos
-from .motion_lanes_n6 import rk4_step_6
+from .motion_lanes_n6 import STATE_ROWS, rk4_step_6
 
 #: Robots per block (SIMD lanes of the innermost loops). Measured (CPU time, 1 thread,
 #: Table 1 robots) on the project's machine, a Zen 3 (AVX2) KVM guest in this session: 128
@@ -419,19 +420,22 @@ def _fused_steps(flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s, n_step
     """``n_steps`` fused steps (:func:`kernels.motion_lanes_n6.rk4_step_6`) of one block of
     :data:`FUSED_LINKS`-link chains in place; a step in which a lane's angle is past
     :data:`~kernels.lane_trig.SINCOS_MAX_ABS` is redone by the general step."""
-    next_q = np.empty(flat_q.shape[0])
-    next_w = np.empty(flat_w.shape[0])
+    size = flat_q.shape[0]
+    state = np.empty(STATE_ROWS * LANES)
+    state[:size] = flat_q
+    state[size : 2 * size] = flat_w
     for _ in range(n_steps):
-        beyond = rk4_step_6(flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s, next_q, next_w)
-        if beyond == 0:
-            for k in range(flat_q.shape[0]):
-                flat_q[k] = next_q[k]
-                flat_w[k] = next_w[k]
-        else:
-            _general_steps(flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s, 1)
+        if rk4_step_6(flat_p, gravity_m_s2, torque_Nm, state, step_s):
+            flat_q[:] = state[:size]
+            flat_w[:] = state[size : 2 * size]
+            _general_steps(flat_p, gravity_m_s2, torque_Nm, flat_q, flat_w, step_s, np.int64(1))
+            state[:size] = flat_q
+            state[size : 2 * size] = flat_w
+    flat_q[:] = state[:size]
+    flat_w[:] = state[size : 2 * size]
 
 
-@kernel(parallel=True)
+@kernel
 def rk4_lanes_general(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n_steps):
     r"""Advance every robot s of ``params`` (S, 3, n) by ``n_steps`` RK4 steps in place, in
     blocks of :data:`LANES` robots (module docstring), by the general lane step
@@ -440,7 +444,7 @@ def rk4_lanes_general(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, s
     kernel for chains of other than :data:`FUSED_LINKS` links (it compiles without the
     fused step: :func:`rk4_lanes`)."""
     samples = params.shape[0]
-    for block in prange((samples + LANES - 1) // LANES):
+    for block in range((samples + LANES - 1) // LANES):
         first = block * LANES
         count = min(LANES, samples - first)
         flat_p, flat_q, flat_w = _block_state(params, theta_rad, omega_rad_s, first, count)
@@ -448,17 +452,17 @@ def rk4_lanes_general(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, s
         _store_block(flat_q, flat_w, theta_rad, omega_rad_s, first, count)
 
 
-@kernel(parallel=True)
+@kernel
 def rk4_lanes(params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n_steps):
     r""":func:`rk4_lanes_general` where chains of :data:`FUSED_LINKS` links take the fused
-    step (:func:`kernels.motion_lanes_n6.rk4_step_6`: one lane loop per step, fused
+    step (:func:`kernels.motion_lanes_n6.rk4_step_6`: one lane loop per RK4 stage, fused
     multiply-adds); a step in which a lane's angle is past
     :data:`~kernels.lane_trig.SINCOS_MAX_ABS` is redone by the general step. Other chains
     take the general step throughout. The fused step is the costliest kernel to compile
     (about two thirds of the motion job's cold start): the motion job calls this kernel for
     :data:`FUSED_LINKS`-link chains only."""
     samples, _, n = params.shape
-    for block in prange((samples + LANES - 1) // LANES):
+    for block in range((samples + LANES - 1) // LANES):
         first = block * LANES
         count = min(LANES, samples - first)
         flat_p, flat_q, flat_w = _block_state(params, theta_rad, omega_rad_s, first, count)

@@ -8,6 +8,8 @@ from .lane_trig import SINCOS_MAX_ABS, sincos
 
 #: Lanes of the block (:data:`kernels.motion_lanes.LANES`, tested equal).
 LANES = 128
+#: Rows of :func:`rk4_step_6`'s state.
+STATE_ROWS = 36
 
 
 @kernel(inline=True)
@@ -323,39 +325,92 @@ def _fd(length, mass, inertia, tau, gravity_m_s2, q, w):
 
 
 @kernel(fma=True)
-def rk4_step_6(params, gravity_m_s2, tau_Nm, q_in, w_in, step_s, q_out, w_out):
-    """One RK4 step of the block (:func:`kernels.motion_lanes.rk4_step_lanes`, unrolled):
-    ``params`` (3·6·LANES), state ``q_in``, ``w_in`` (6·LANES) into ``q_out``, ``w_out``;
-    returns the number of angles past :data:`~kernels.lane_trig.SINCOS_MAX_ABS` (then the
-    caller redoes the step with the general kernel)."""
+def rk4_step_6(params, gravity_m_s2, tau_Nm, state, step_s):
+    """One RK4 step of the block (:func:`kernels.motion_lanes.rk4_step_lanes`, unrolled) in
+    place on the angles and rates x of ``state``, stage by stage: k_s = f(x + c_s h k_(s-1)),
+    S = sum of b_s k_s, x + h/6 S, with c = (0, 1/2, 1/2, 1) and b = (1, 2, 2, 1) (the sums in
+    the general step's order, the same doubles up to FMA contraction), in
+    one loop over the lanes per stage, whose body is the forward dynamics of one robot.
+    ``params`` (3·6·LANES); ``state`` (STATE_ROWS·LANES): rows of the angles, the rates,
+    the stage point's angles and rates, the sums of the stage rates and accelerations
+    (6 rows each). Returns the number of angles past
+    :data:`~kernels.lane_trig.SINCOS_MAX_ABS`; then the angles and rates are left as they
+    were (the caller redoes the step with the general kernel)."""
     half = 0.5 * step_s
     sixth = step_s / 6.0
     tau = (tau_Nm[0], tau_Nm[1], tau_Nm[2], tau_Nm[3], tau_Nm[4], tau_Nm[5],)
-    beyond = 0
     for lane in range(LANES):
-        length = (params[0 * LANES + lane], params[1 * LANES + lane], params[2 * LANES + lane], params[3 * LANES + lane], params[4 * LANES + lane], params[5 * LANES + lane],)
-        mass = (params[(6 + 0) * LANES + lane], params[(6 + 1) * LANES + lane], params[(6 + 2) * LANES + lane], params[(6 + 3) * LANES + lane], params[(6 + 4) * LANES + lane], params[(6 + 5) * LANES + lane],)
-        inertia = (params[(12 + 0) * LANES + lane], params[(12 + 1) * LANES + lane], params[(12 + 2) * LANES + lane], params[(12 + 3) * LANES + lane], params[(12 + 4) * LANES + lane], params[(12 + 5) * LANES + lane],)
-        q = (q_in[0 * LANES + lane], q_in[1 * LANES + lane], q_in[2 * LANES + lane], q_in[3 * LANES + lane], q_in[4 * LANES + lane], q_in[5 * LANES + lane],)
-        w = (w_in[0 * LANES + lane], w_in[1 * LANES + lane], w_in[2 * LANES + lane], w_in[3 * LANES + lane], w_in[4 * LANES + lane], w_in[5 * LANES + lane],)
-        a0, b0 = _fd(length, mass, inertia, tau, gravity_m_s2, q, w)
-        v1 = (w[0] + half * a0[0], w[1] + half * a0[1], w[2] + half * a0[2], w[3] + half * a0[3], w[4] + half * a0[4], w[5] + half * a0[5],)
-        a1, b1 = _fd(length, mass, inertia, tau, gravity_m_s2, (q[0] + half * w[0], q[1] + half * w[1], q[2] + half * w[2], q[3] + half * w[3], q[4] + half * w[4], q[5] + half * w[5],), v1)
-        v2 = (w[0] + half * a1[0], w[1] + half * a1[1], w[2] + half * a1[2], w[3] + half * a1[3], w[4] + half * a1[4], w[5] + half * a1[5],)
-        a2, b2 = _fd(length, mass, inertia, tau, gravity_m_s2, (q[0] + half * v1[0], q[1] + half * v1[1], q[2] + half * v1[2], q[3] + half * v1[3], q[4] + half * v1[4], q[5] + half * v1[5],), v2)
-        v3 = (w[0] + step_s * a2[0], w[1] + step_s * a2[1], w[2] + step_s * a2[2], w[3] + step_s * a2[3], w[4] + step_s * a2[4], w[5] + step_s * a2[5],)
-        a3, b3 = _fd(length, mass, inertia, tau, gravity_m_s2, (q[0] + step_s * v2[0], q[1] + step_s * v2[1], q[2] + step_s * v2[2], q[3] + step_s * v2[3], q[4] + step_s * v2[4], q[5] + step_s * v2[5],), v3)
-        q_out[0 * LANES + lane] = q[0] + sixth * (w[0] + 2.0 * v1[0] + 2.0 * v2[0] + v3[0])
-        w_out[0 * LANES + lane] = w[0] + sixth * (a0[0] + 2.0 * a1[0] + 2.0 * a2[0] + a3[0])
-        q_out[1 * LANES + lane] = q[1] + sixth * (w[1] + 2.0 * v1[1] + 2.0 * v2[1] + v3[1])
-        w_out[1 * LANES + lane] = w[1] + sixth * (a0[1] + 2.0 * a1[1] + 2.0 * a2[1] + a3[1])
-        q_out[2 * LANES + lane] = q[2] + sixth * (w[2] + 2.0 * v1[2] + 2.0 * v2[2] + v3[2])
-        w_out[2 * LANES + lane] = w[2] + sixth * (a0[2] + 2.0 * a1[2] + 2.0 * a2[2] + a3[2])
-        q_out[3 * LANES + lane] = q[3] + sixth * (w[3] + 2.0 * v1[3] + 2.0 * v2[3] + v3[3])
-        w_out[3 * LANES + lane] = w[3] + sixth * (a0[3] + 2.0 * a1[3] + 2.0 * a2[3] + a3[3])
-        q_out[4 * LANES + lane] = q[4] + sixth * (w[4] + 2.0 * v1[4] + 2.0 * v2[4] + v3[4])
-        w_out[4 * LANES + lane] = w[4] + sixth * (a0[4] + 2.0 * a1[4] + 2.0 * a2[4] + a3[4])
-        q_out[5 * LANES + lane] = q[5] + sixth * (w[5] + 2.0 * v1[5] + 2.0 * v2[5] + v3[5])
-        w_out[5 * LANES + lane] = w[5] + sixth * (a0[5] + 2.0 * a1[5] + 2.0 * a2[5] + a3[5])
-        beyond += b0 + b1 + b2 + b3
+        state[(12 + 0) * LANES + lane] = state[0 * LANES + lane]
+        state[(18 + 0) * LANES + lane] = state[(6 + 0) * LANES + lane]
+        state[(24 + 0) * LANES + lane] = 0.0
+        state[(30 + 0) * LANES + lane] = 0.0
+        state[(12 + 1) * LANES + lane] = state[1 * LANES + lane]
+        state[(18 + 1) * LANES + lane] = state[(6 + 1) * LANES + lane]
+        state[(24 + 1) * LANES + lane] = 0.0
+        state[(30 + 1) * LANES + lane] = 0.0
+        state[(12 + 2) * LANES + lane] = state[2 * LANES + lane]
+        state[(18 + 2) * LANES + lane] = state[(6 + 2) * LANES + lane]
+        state[(24 + 2) * LANES + lane] = 0.0
+        state[(30 + 2) * LANES + lane] = 0.0
+        state[(12 + 3) * LANES + lane] = state[3 * LANES + lane]
+        state[(18 + 3) * LANES + lane] = state[(6 + 3) * LANES + lane]
+        state[(24 + 3) * LANES + lane] = 0.0
+        state[(30 + 3) * LANES + lane] = 0.0
+        state[(12 + 4) * LANES + lane] = state[4 * LANES + lane]
+        state[(18 + 4) * LANES + lane] = state[(6 + 4) * LANES + lane]
+        state[(24 + 4) * LANES + lane] = 0.0
+        state[(30 + 4) * LANES + lane] = 0.0
+        state[(12 + 5) * LANES + lane] = state[5 * LANES + lane]
+        state[(18 + 5) * LANES + lane] = state[(6 + 5) * LANES + lane]
+        state[(24 + 5) * LANES + lane] = 0.0
+        state[(30 + 5) * LANES + lane] = 0.0
+    beyond = 0
+    for stage in range(4):
+        factor = step_s if stage == 2 else half  # c of the next stage
+        weight = 2.0 if stage == 1 or stage == 2 else 1.0  # b of this one
+        for lane in range(LANES):
+            length = (params[0 * LANES + lane], params[1 * LANES + lane], params[2 * LANES + lane], params[3 * LANES + lane], params[4 * LANES + lane], params[5 * LANES + lane],)
+            mass = (params[(6 + 0) * LANES + lane], params[(6 + 1) * LANES + lane], params[(6 + 2) * LANES + lane], params[(6 + 3) * LANES + lane], params[(6 + 4) * LANES + lane], params[(6 + 5) * LANES + lane],)
+            inertia = (params[(12 + 0) * LANES + lane], params[(12 + 1) * LANES + lane], params[(12 + 2) * LANES + lane], params[(12 + 3) * LANES + lane], params[(12 + 4) * LANES + lane], params[(12 + 5) * LANES + lane],)
+            v = (state[(18 + 0) * LANES + lane], state[(18 + 1) * LANES + lane], state[(18 + 2) * LANES + lane], state[(18 + 3) * LANES + lane], state[(18 + 4) * LANES + lane], state[(18 + 5) * LANES + lane],)
+            a, b = _fd(length, mass, inertia, tau, gravity_m_s2, (state[(12 + 0) * LANES + lane], state[(12 + 1) * LANES + lane], state[(12 + 2) * LANES + lane], state[(12 + 3) * LANES + lane], state[(12 + 4) * LANES + lane], state[(12 + 5) * LANES + lane],), v)
+            beyond += b
+            state[(24 + 0) * LANES + lane] += weight * v[0]
+            state[(30 + 0) * LANES + lane] += weight * a[0]
+            state[(12 + 0) * LANES + lane] = state[0 * LANES + lane] + factor * v[0]
+            state[(18 + 0) * LANES + lane] = state[(6 + 0) * LANES + lane] + factor * a[0]
+            state[(24 + 1) * LANES + lane] += weight * v[1]
+            state[(30 + 1) * LANES + lane] += weight * a[1]
+            state[(12 + 1) * LANES + lane] = state[1 * LANES + lane] + factor * v[1]
+            state[(18 + 1) * LANES + lane] = state[(6 + 1) * LANES + lane] + factor * a[1]
+            state[(24 + 2) * LANES + lane] += weight * v[2]
+            state[(30 + 2) * LANES + lane] += weight * a[2]
+            state[(12 + 2) * LANES + lane] = state[2 * LANES + lane] + factor * v[2]
+            state[(18 + 2) * LANES + lane] = state[(6 + 2) * LANES + lane] + factor * a[2]
+            state[(24 + 3) * LANES + lane] += weight * v[3]
+            state[(30 + 3) * LANES + lane] += weight * a[3]
+            state[(12 + 3) * LANES + lane] = state[3 * LANES + lane] + factor * v[3]
+            state[(18 + 3) * LANES + lane] = state[(6 + 3) * LANES + lane] + factor * a[3]
+            state[(24 + 4) * LANES + lane] += weight * v[4]
+            state[(30 + 4) * LANES + lane] += weight * a[4]
+            state[(12 + 4) * LANES + lane] = state[4 * LANES + lane] + factor * v[4]
+            state[(18 + 4) * LANES + lane] = state[(6 + 4) * LANES + lane] + factor * a[4]
+            state[(24 + 5) * LANES + lane] += weight * v[5]
+            state[(30 + 5) * LANES + lane] += weight * a[5]
+            state[(12 + 5) * LANES + lane] = state[5 * LANES + lane] + factor * v[5]
+            state[(18 + 5) * LANES + lane] = state[(6 + 5) * LANES + lane] + factor * a[5]
+    if beyond == 0:
+        for lane in range(LANES):
+            state[0 * LANES + lane] += sixth * state[(24 + 0) * LANES + lane]
+            state[(6 + 0) * LANES + lane] += sixth * state[(30 + 0) * LANES + lane]
+            state[1 * LANES + lane] += sixth * state[(24 + 1) * LANES + lane]
+            state[(6 + 1) * LANES + lane] += sixth * state[(30 + 1) * LANES + lane]
+            state[2 * LANES + lane] += sixth * state[(24 + 2) * LANES + lane]
+            state[(6 + 2) * LANES + lane] += sixth * state[(30 + 2) * LANES + lane]
+            state[3 * LANES + lane] += sixth * state[(24 + 3) * LANES + lane]
+            state[(6 + 3) * LANES + lane] += sixth * state[(30 + 3) * LANES + lane]
+            state[4 * LANES + lane] += sixth * state[(24 + 4) * LANES + lane]
+            state[(6 + 4) * LANES + lane] += sixth * state[(30 + 4) * LANES + lane]
+            state[5 * LANES + lane] += sixth * state[(24 + 5) * LANES + lane]
+            state[(6 + 5) * LANES + lane] += sixth * state[(30 + 5) * LANES + lane]
     return beyond

@@ -18,8 +18,8 @@ from collections.abc import Iterable
 #: times; docs/performance.md, "Cold start"): relative costs for :func:`schedule`, not
 #: promises. A unit not listed counts :data:`DEFAULT_COST_S`.
 UNIT_COST_S: dict[str, float] = {
-    "motion_uncertainty:fused": 68.0,  # its kernels' sum: the fused 6-link step 49 s
-    "motion_uncertainty:general": 24.0,  # 31.7 alone, less the estimators' 5.8 and a start
+    "motion_uncertainty:fused": 45.5,  # the fused 6-link step 22.5 s (load 9.3)
+    "motion_uncertainty:general": 6.4,  # 21.6 alone, less the lane kernels (12.7), a start
     "workspace:legwise": 23.7,
     "workspace5r": 22.0,
     "path3rrr": 20.7,
@@ -29,7 +29,7 @@ UNIT_COST_S: dict[str, float] = {
     "path3rpr": 13.9,
     "workspace:accuracy": 14.0,  # 19.4 alone, less the arc-distance parts and a start
     "workspace:dexterity": 12.8,  # after arc-distance
-    "sensitivity": 12.1,
+    "sensitivity": 5.2,  # 15.1 alone, less the estimators (7.4) and a start
     "workspace3prr": 9.9,
     "path3rrr_sensitivity": 9.5,  # after path3rrr
     "path5r_sensitivity": 9.1,  # after path5r
@@ -48,7 +48,8 @@ DEFAULT_COST_S = 10.0
 #: compile when alone): the key runs after the value in the same process, where those
 #: kernels are compiled once (two processes side by side would both compile them).
 SHARES: dict[str, str] = {
-    "motion_uncertainty:general": "sensitivity",  # the Sobol'/eFAST estimators
+    "motion_uncertainty:general": "motion_uncertainty:fused",  # the general lane kernels
+    "sensitivity": "motion_uncertainty:general",  # the Sobol'/eFAST estimators
     "workspace:joint": "workspace:legwise",  # the interval forms, the refinement
     "workspace:singularities": "workspace:arc-distance",  # their jobs' arc-distance form
     "workspace:dexterity": "workspace:arc-distance",

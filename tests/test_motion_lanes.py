@@ -231,3 +231,34 @@ def test_the_general_lane_step_compiles_its_forward_dynamics_once(tmp_path):
         check=True,
     )
     assert result.stdout.split() == ["1", "1", "1"]
+
+
+def test_the_job_runs_whole_blocks_in_threads_with_one_calls_bits(monkeypatch):
+    """The motion job shares the blocks among threads (``run_lanes``: a range of whole
+    blocks each, the last block short): the same bits as one call over every robot."""
+    import threading
+
+    import numba
+
+    from planar_tui.motion import engine
+
+    # 8 blocks in 3 threads: 2, 3 and 3 blocks, the last one short (1000 = 7·128 + 104)
+    assert engine.lane_ranges(1000, 3, LANES) == [(0, 256), (256, 640), (640, 1000)]
+    assert engine.lane_ranges(5, 2, LANES) == [(0, 5)]
+    params = table1_params(2 * LANES + 5, seed=3)
+    shape = (len(params), 6)
+    whole = np.zeros(shape), np.zeros(shape)
+    rk4_lanes(params, 9.81, TORQUES, *whole, 1e-4, 50)
+    calls = []
+
+    def spy(p, gravity_m_s2, torque_Nm, theta, omega, step_s, n_steps):
+        calls.append((len(p), threading.get_ident()))
+        rk4_lanes(p, gravity_m_s2, torque_Nm, theta, omega, step_s, n_steps)
+
+    monkeypatch.setattr(numba, "get_num_threads", lambda: 2)
+    parts = np.zeros(shape), np.zeros(shape)
+    engine.run_lanes(spy, params, 9.81, TORQUES, *parts, 1e-4, 50)
+    assert sorted(robots for robots, _ in calls) == [LANES, LANES + 5]
+    assert threading.get_ident() not in {thread for _, thread in calls}
+    assert np.abs(whole[0]).max() > 0.0
+    assert np.array_equal(parts[0], whole[0]) and np.array_equal(parts[1], whole[1])

@@ -21,6 +21,7 @@ recorded step to take the outputs: the relative joint angles
 
 from __future__ import annotations
 
+import itertools
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -163,12 +164,48 @@ def band_statistics(values: np.ndarray) -> np.ndarray:
     return np.vstack([values.mean(axis=0), std, np.percentile(values, PERCENTILES, axis=0)])
 
 
+def lane_ranges(robots: int, parts: int, lanes: int) -> list[tuple[int, int]]:
+    """``[0, robots)`` cut into at most ``parts`` ranges of whole blocks of ``lanes`` robots
+    (the last block may be short), as even as whole blocks allow: a block is the same robots
+    in any range, so the ranges' results are one call's, bit for bit."""
+    blocks = -(-robots // lanes)
+    parts = max(1, min(parts, blocks))
+    cuts = [min(robots, blocks * k // parts * lanes) for k in range(parts + 1)]
+    return [(a, b) for a, b in itertools.pairwise(cuts) if a < b]
+
+
+def run_lanes(kernel, params, gravity_m_s2, torque_Nm, theta_rad, omega_rad_s, step_s, n_steps):
+    """``kernel`` (:func:`kernels.motion_lanes.rk4_lanes` or
+    :func:`~kernels.motion_lanes.rk4_lanes_general`, serial over its blocks, GIL released)
+    on every robot of ``params`` (S, 3, n) in place, the blocks shared among numba's threads
+    (``numba.get_num_threads()``) as Python threads, a range of whole blocks each
+    (:func:`lane_ranges`)."""
+    import numba
+
+    from planar_tui.kernels.motion_lanes import LANES
+
+    def part(robots: tuple[int, int]) -> None:
+        a, b = robots
+        kernel(
+            params[a:b], gravity_m_s2, torque_Nm, theta_rad[a:b], omega_rad_s[a:b], step_s, n_steps
+        )
+
+    ranges = lane_ranges(params.shape[0], numba.get_num_threads(), LANES)
+    if len(ranges) == 1:
+        part(ranges[0])
+        return
+    from concurrent.futures import ThreadPoolExecutor
+
+    with ThreadPoolExecutor(max_workers=len(ranges)) as pool:
+        list(pool.map(part, ranges))
+
+
 class CpuRobots:
     """The robots on the CPU: parameters (S, 3, n) and states, the lane-batched
     :func:`kernels.motion_lanes.rk4_lanes` (chains of
     :data:`~kernels.motion_lanes.FUSED_LINKS` links: the fused step) or
     :func:`~kernels.motion_lanes.rk4_lanes_general` (others: the fused step never compiled)
-    in calls of at most :data:`CPU_BLOCK_ROBOTS` robots."""
+    in calls of at most :data:`CPU_BLOCK_ROBOTS` robots, on numba's threads (:func:`run_lanes`)."""
 
     device = "cpu"
 
@@ -188,8 +225,8 @@ class CpuRobots:
         from planar_tui.kernels.motion_lanes import FUSED_LINKS, rk4_lanes, rk4_lanes_general
 
         a, b = block
-        kernel = rk4_lanes if self.params.shape[2] == FUSED_LINKS else rk4_lanes_general
-        kernel(
+        run_lanes(
+            rk4_lanes if self.params.shape[2] == FUSED_LINKS else rk4_lanes_general,
             self.params[a:b],
             self.gravity_m_s2,
             self.torque,

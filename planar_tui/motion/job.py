@@ -54,8 +54,9 @@ _WARMUP_JOB = (
 )
 #: The warm-up examples (:mod:`planar_tui.warmup`): every method on the robot kind's
 #: 2-link example (the general lane kernel, the designs and estimators), and Monte Carlo on
-#: a :data:`~kernels.motion_lanes.FUSED_LINKS`-link chain, its own robot (the fused step,
-#: about two thirds of the whole cold compilation, in a process of its own).
+#: a :data:`~kernels.motion_lanes.FUSED_LINKS`-link chain, its own robot (the fused step;
+#: the general part runs after it in the same process, sharing the general lane kernels:
+#: :data:`planar_tui.warmup_schedule.SHARES`).
 WARMUP_PARTS = {
     "general": _WARMUP_JOB,
     "fused": "[robot]\nlengths_m = [0.3, 0.25, 0.2, 0.2, 0.15, 0.15]\n"
