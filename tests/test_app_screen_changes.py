@@ -7,7 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from textual.widgets import Label, Static
+from textual.widgets import Label, Static, TabbedContent
 
 from planar_tui.app.app import WorkbenchApp
 from planar_tui.app.widgets.fields import Field, TableForm
@@ -77,9 +77,10 @@ async def test_the_robot_tab_after_opening_is_the_robot_tab_of_the_preset_starte
         shown = {}
         for name in names:
             app.action_show_tab(name)
+            app.clear_notifications()  # "Opened ..." on one side only
             await pilot.pause()
             await pilot.wait_for_animation()
-            shown[name] = app.export_text()
+            shown[name] = "\n".join(app.export_text().splitlines()[2:])  # below the tab bar
         return shown
 
     running = WorkbenchApp(Workbench.open(PRESETS / "paper-b-table3.toml"), output_dir=tmp_path)
@@ -94,3 +95,19 @@ async def test_the_robot_tab_after_opening_is_the_robot_tab_of_the_preset_starte
             assert await running.open_preset(str(PRESETS / preset))
             await pilot.pause()
             assert await screens(running, pilot, names) == expected
+
+
+@async_test
+async def test_leaving_a_tab_from_a_focused_field_hands_the_focus_to_no_field_of_it(tmp_path):
+    # a form's fields are siblings: Textual handed the focus of a field hidden with its
+    # tab to the next field of that form, whose tab then came back
+    app = make_app(tmp_path)
+    async with app.run_test(size=SIZE) as pilot:
+        app.action_show_tab("sensitivity")
+        await pilot.pause()
+        app.query_one("#pane-sensitivity #field-seed", Field).focus()
+        await pilot.pause()
+        app.action_show_tab("workspace")
+        await pilot.pause()
+        assert app.query_one(TabbedContent).active == "tab-workspace"
+        assert app.focused is None

@@ -104,6 +104,14 @@ class Field(KeysInOrder, TextArea):
         super().__init__(value, soft_wrap=True, highlight_cursor_line=False, **kwargs)
 
     @property
+    def visible_siblings(self) -> list[Widget]:
+        """None: a field hidden while it has the focus (its tab left, its form hidden)
+        hands the focus to no other field. Textual hands it to a focusable sibling, the
+        next field of the same hidden form (a form's fields are siblings), and that
+        field's tab was shown again."""
+        return []
+
+    @property
     def value(self) -> str:
         """The text, as :class:`~textual.widgets.Input` calls it."""
         return self.text
