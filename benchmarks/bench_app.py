@@ -15,8 +15,12 @@ Screen changes (each within 1 s at load 8): ``--screens`` times, headless at
 120×40 as the Pilot tests drive the app, from the key's action until the app is idle
 again (every message handled, the screen laid out and drawn: ``pilot.pause()``):
 opening a preset into the running app (``ctrl+o``'s :meth:`open_preset`, each bundled
-preset of :data:`SCREEN_PRESETS` in turn, twice round), hiding and showing the form
-(``ctrl+f``), and the first and a later visit of every tab. ``--preview`` runs the
+preset of :data:`SCREEN_PRESETS` in turn), hiding and showing the form (``ctrl+f``), and
+the first and a later visit of every tab; wall and CPU seconds of the process (the CPU
+time a loaded machine inflates far less). ``--against COMMIT`` runs the screen changes
+in ``--processes N`` fresh processes a side (default 2), this checkout's and COMMIT's
+(a ``git worktree`` of it, as ``bench_startup.py --against`` makes) alternating, so both
+see the same load, and adds their medians and the CPU ratio. ``--preview`` runs the
 preview figures above alone; without either option both run.
 
 Options: ``--edits N`` (default 5), ``--rounds N`` (screen changes, default 3).
@@ -26,9 +30,11 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import json
 import os
 import shutil
 import statistics
+import subprocess
 import sys
 import tempfile
 import time
@@ -130,25 +136,26 @@ def row(name: str, values: list[float]) -> str:
 SCREEN_PRESETS = ("paper-b-table3.toml", "paper-a-table1.toml", "sweep-3rrr-design.toml")
 
 
-async def settled(pilot, action) -> float:
-    """Seconds from calling ``action()`` (awaited when it is a coroutine) until the app is
-    idle again (``pilot.pause()``: every pending message handled and the screen drawn)."""
-    start = time.perf_counter()
+async def settled(pilot, action) -> tuple[float, float]:
+    """Wall and CPU seconds from calling ``action()`` (awaited when it is a coroutine)
+    until the app is idle again (``pilot.pause()``: every pending message handled and the
+    screen drawn)."""
+    start, start_cpu = time.perf_counter(), time.process_time()
     outcome = action()
     if asyncio.iscoroutine(outcome):
         await outcome
     await pilot.pause()
-    return time.perf_counter() - start
+    return time.perf_counter() - start, time.process_time() - start_cpu
 
 
-async def screen_changes(rounds: int) -> dict[str, list[float]]:
-    """Seconds of each screen change, by name (see the module's docstring)."""
+async def screen_changes(rounds: int) -> dict[str, list[tuple[float, float]]]:
+    """(wall s, CPU s) of each screen change, by name (see the module's docstring)."""
     from planar_tui.app.app import WorkbenchApp
     from planar_tui.app.workbench import Workbench
 
-    seconds: dict[str, list[float]] = {}
+    seconds: dict[str, list[tuple[float, float]]] = {}
 
-    def keep(name: str, value: float) -> None:
+    def keep(name: str, value: tuple[float, float]) -> None:
         seconds.setdefault(name, []).append(value)
 
     with tempfile.TemporaryDirectory() as folder:
@@ -177,11 +184,45 @@ async def screen_changes(rounds: int) -> dict[str, list[float]]:
     return seconds
 
 
-def print_screen_changes(seconds: dict[str, list[float]]) -> None:
+def print_screen_changes(seconds: dict[str, list[tuple[float, float]]]) -> None:
     print("screen changes, headless at 120x40 (goal: each within 1 s at load 8)")
-    print(f"{'':<40} {'median s':>9} {'max s':>9}  n")
+    print(f"{'':<32} {'median wall s':>13} {'max wall s':>10} {'median CPU s':>12}  n")
     for name, values in seconds.items():
-        print(f"{row(name, values)}  {len(values)}")
+        wall, cpu = [v[0] for v in values], [v[1] for v in values]
+        print(
+            f"{name:<32} {statistics.median(wall):>13.3f} {max(wall):>10.3f}"
+            f" {statistics.median(cpu):>12.3f}  {len(values)}"
+        )
+
+
+def paired_screen_changes(commit: str, processes: int, rounds: int) -> None:
+    """The screen changes of this checkout and of ``commit`` in alternating fresh
+    processes (``--json`` children; COMMIT's package imported from its worktree)."""
+    from benchmarks.bench_startup import checkout_of
+
+    with tempfile.TemporaryDirectory() as folder:
+        other = checkout_of(commit, Path(folder) / "other")
+        with other as theirs_folder:
+            sides: dict[str, dict[str, list[tuple[float, float]]]] = {"ours": {}, "theirs": {}}
+            for _ in range(processes):
+                for side, package in (("ours", REPO), ("theirs", theirs_folder)):
+                    command = [sys.executable, __file__, "--screens", "--json"]
+                    command += ["--rounds", str(rounds), "--package", str(package)]
+                    out = subprocess.run(command, check=True, capture_output=True, text=True)
+                    for name, values in json.loads(out.stdout.splitlines()[-1]).items():
+                        sides[side].setdefault(name, []).extend(map(tuple, values))
+    print(f"screen changes, headless at 120x40, {processes} processes a side; theirs: {commit}")
+    print(
+        f"{'':<28} {'ours wall':>9} {'ours CPU':>8} {'their wall':>10} {'their CPU':>9}"
+        f" {'CPU ratio':>9}  n"
+    )
+    for name, ours in sides["ours"].items():
+        theirs = sides["theirs"].get(name, [(float("nan"), float("nan"))])
+        medians = [statistics.median(v[i] for v in side) for side in (ours, theirs) for i in (0, 1)]
+        print(
+            f"{name:<28} {medians[0]:>9.3f} {medians[1]:>8.3f} {medians[2]:>10.3f}"
+            f" {medians[3]:>9.3f} {medians[1] / medians[3]:>9.2f}  {len(ours)}"
+        )
 
 
 def main() -> None:
@@ -195,11 +236,22 @@ def main() -> None:
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--screens", action="store_true", help="the screen changes only")
     parser.add_argument("--preview", action="store_true", help="the live preview only")
+    parser.add_argument("--against", metavar="COMMIT", help="pair the screen changes")
+    parser.add_argument("--processes", type=int, default=2, help="with --against, a side")
+    parser.add_argument("--json", action="store_true", help=argparse.SUPPRESS)
+    parser.add_argument("--package", help=argparse.SUPPRESS)  # the checkout to import
     args = parser.parse_args()
+    if args.package:
+        sys.path.insert(0, args.package)
     load_before = os.getloadavg()[0]
-    if not args.preview:
+    if args.against:
+        paired_screen_changes(args.against, args.processes, args.rounds)
+    elif args.json:
+        print(json.dumps(asyncio.run(screen_changes(args.rounds))))
+        return
+    elif not args.preview:
         print_screen_changes(asyncio.run(screen_changes(args.rounds)))
-    if args.screens:
+    if args.screens or args.against:
         load_after = os.getloadavg()[0]
         print(
             f"1-min load: {load_before:.2f} before, {load_after:.2f} after ({os.cpu_count()} CPUs)"

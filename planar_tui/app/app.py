@@ -12,6 +12,7 @@ Export names and writes files as ``planar-tui run --out-dir DIR`` does
 
 from __future__ import annotations
 
+import asyncio
 from collections.abc import Iterable
 from pathlib import Path
 from typing import Any, ClassVar
@@ -203,6 +204,30 @@ class WorkbenchApp(
             pane_widget.set_class(self.form_hidden, "hide-form")
         self.tab_panes[name] = pane_widget
         return pane_widget
+
+    async def show_opened(self) -> None:
+        """Show the document just opened (:meth:`open_preset`): the Robot tab's fields take
+        its values in place (its forms rebuilt only where its robots' pickers or link
+        counts differ), every job tab's pane built so far is dropped (its results and runs
+        were the other document's) and those of the new preset's own kinds are built; the
+        tab bar, the footer and the validation line stay. Recomposing the whole app
+        rebuilt and restyled the Robot tab's 50 fields at each opening."""
+        self.screen.minimize()
+        robot = self.tab_panes["robot"]
+        robot.bench, robot.target = self.workbench, None
+        await robot.load_document()
+        robot.scroll_home(animate=False)
+        dropped = [pane for name, pane in self.tab_panes.items() if name != "robot"]
+        self.tab_panes = {"robot": robot}
+        for pane in dropped:
+            await pane.remove()
+        await asyncio.gather(
+            *(
+                self.query_one(f"#tab-{name}", TabPane).mount(self.new_pane(name))
+                for _, name in self.tabs()
+                if name != "robot" and self.workbench.has(name)
+            )
+        )
 
     def on_mount(self) -> None:
         self.apply_settings()

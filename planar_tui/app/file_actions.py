@@ -189,21 +189,21 @@ class FileActions:
             self.push_screen(MessageDialog("Cannot open preset", str(error)))
             return False
         self.workbench = bench
-        await self.recompose()
-        self.show_first_job_tab()
+        await self.show_opened()
+        self.show_first_job_tab(or_robot=True)
         self.show_document_state()
         if not is_bundled(bench.path):
             self.remember_recent("presets", bench.path)
         self.report_opened()
         return True
 
-    def show_first_job_tab(self) -> None:
-        """Show the tab of the preset's first job (in the file's order; a preset of a
-        robot alone stays on the Robot tab)."""
+    def show_first_job_tab(self, *, or_robot: bool = False) -> None:
+        """Show the tab of the preset's first job (in the file's order); a preset of a
+        robot alone stays on the tab shown, or shows the Robot tab (``or_robot``)."""
         names = {name for _, name in self.tabs()} - {"robot"}
         first = next((key for key in self.workbench.document if key in names), None)
-        if first is not None:
-            self.action_show_tab(first)
+        if first is not None or or_robot:
+            self.action_show_tab(first or "robot")
 
     def report_opened(self, *, say_valid: bool = True) -> None:
         """Validate the document just opened and say so: opened (unless ``say_valid`` is
