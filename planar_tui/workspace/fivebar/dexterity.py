@@ -16,7 +16,7 @@ from typing import Any
 
 from planar_tui.workspace.fivebar.singularity import kernel_inputs
 from planar_tui.workspace.paving.tolerance import tolerance_of
-from planar_tui.workspace.paving.tolerance_dexterity import tolerant_rows
+from planar_tui.workspace.paving.tolerance_dexterity import kappa_of, tolerant_rows
 
 #: The link lengths' columns in a geometry row and in a spread row (:func:`spread_rows`).
 LENGTHS = ((0, 2), (1, 3))
@@ -47,15 +47,8 @@ def evaluator(robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any]]:
         def evaluate(boxes: Any) -> tuple[Any, Any]:
             from planar_tui.kernels.dexterity_rr import rr_dexterity  # numba: after prepare
 
-            verdict = np.empty(len(boxes), dtype=np.int64)
-            kappa = np.empty((len(boxes), 2))
-            rr_dexterity(boxes, geometry, r, elbow, limits, 0.0, spread, verdict, kappa)
-            return verdict, kappa
+            return kappa_of(rr_dexterity, boxes, geometry, r, elbow, limits, 0.0, spread)
 
         return evaluate
 
-    tolerance = tolerance_of(spec)
-    if tolerance is None:
-        return make(g, np.zeros((2, 4)))
-    assert spec.kappa_max is not None
-    return tolerant_rows(make, g, spread_rows(spec), LENGTHS, tolerance.mode, spec.kappa_max)
+    return tolerant_rows(make, g, spread_rows(spec), LENGTHS, spec)

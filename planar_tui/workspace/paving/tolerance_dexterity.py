@@ -36,10 +36,12 @@ any point). κ: :math:`[\kappa_{lo}^{every}, \cdot]`, an enclosure of :math:`h`.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Sequence
 from typing import Any
 
 from planar_tui.workspace.paving.dexterity import IN, OUT, UNSURE, Evaluator, proved_outside
+from planar_tui.workspace.paving.tolerance import Tolerance, tolerance_of
 
 #: The vertex robots use ``(1 - 1e-6)`` of each tolerance (their float lengths stay inside).
 VERTEX_SHRINK = 1.0 - 1e-6
@@ -75,21 +77,44 @@ def tolerant_evaluator(
     return evaluate
 
 
+def kappa_of(kernel: Callable[..., None], boxes: Any, *inputs: Any) -> tuple[Any, Any]:
+    """``kernel(boxes, *inputs, verdict, kappa)`` on fresh outputs: the verdicts (k,) and
+    the κ enclosures (k, 2) of the boxes (k, 4)."""
+    import numpy as np
+
+    verdict = np.empty(len(boxes), dtype=np.int64)
+    kappa = np.empty((len(boxes), 2))
+    kernel(boxes, *inputs, verdict, kappa)
+    return verdict, kappa
+
+
+def platform_spread_cm(tolerance: Tolerance, orientation_rad: float) -> float:
+    """How far a platform point's tolerance moves it along x or y in the base frame:
+    :math:`t_q(|\\cos\\varphi| + |\\sin\\varphi|)`."""
+    turn = abs(math.cos(orientation_rad)) + abs(math.sin(orientation_rad))
+    return tolerance.of("platform_points_cm") * turn
+
+
 def tolerant_rows(
     make: Callable[[Any, Any], Evaluator],
     rows: Any,
     spread: Any,
     lengths: Sequence[tuple[int, int]],
-    mode: str,
-    kappa_max: float,
+    spec: Any,
 ) -> Evaluator:
-    """:func:`tolerant_evaluator` of a kernel taking one geometry row and one spread row
-    per leg (``make(rows, spread)``, a zero spread: the robot of ``rows``): ``every`` with
-    ``spread``, the robots the nominal one and (with ``lengths``) the two vertices with
-    every link length (``lengths``: its column in ``rows`` and its half-width's in
-    ``spread``) at its upper or its lower tolerance (times ``VERTEX_SHRINK``)."""
+    """The job's evaluator of a kernel taking one geometry row and one spread row per leg
+    (``make(rows, spread)``, a zero spread: the robot of ``rows``). Without a tolerance
+    (``spread`` zeros) ``make(rows, spread)``; with one, :func:`tolerant_evaluator` in its
+    mode: ``every`` with ``spread``, the robots the nominal one and (with ``lengths``) the
+    two vertices with every link length (``lengths``: its column in ``rows`` and its
+    half-width's in ``spread``) at its upper or its lower tolerance (times
+    ``VERTEX_SHRINK``)."""
     import numpy as np
 
+    tolerance = tolerance_of(spec)
+    if tolerance is None:
+        return make(rows, spread)
+    assert spec.kappa_max is not None
     zero = np.zeros_like(spread)
     robots = [make(rows, zero)]
     for sign in (1.0, -1.0) if lengths else ():
@@ -97,4 +122,4 @@ def tolerant_rows(
         for column, half_width in lengths:
             vertex[:, column] += sign * VERTEX_SHRINK * spread[:, half_width]
         robots.append(make(vertex, zero))
-    return tolerant_evaluator(make(rows, spread), robots, mode, kappa_max)
+    return tolerant_evaluator(make(rows, spread), robots, tolerance.mode, spec.kappa_max)

@@ -12,13 +12,16 @@ lower tolerance."""
 from __future__ import annotations
 
 import dataclasses
-import math
 from collections.abc import Callable
 from typing import Any
 
 from planar_tui.workspace.paving.dexterity import circumradius_cm
 from planar_tui.workspace.paving.tolerance import tolerance_of
-from planar_tui.workspace.paving.tolerance_dexterity import tolerant_rows
+from planar_tui.workspace.paving.tolerance_dexterity import (
+    kappa_of,
+    platform_spread_cm,
+    tolerant_rows,
+)
 from planar_tui.workspace.prr.singularity import kernel_inputs, resolve_circle
 
 #: The distal's column in a geometry row and in a spread row (:func:`spread_rows`).
@@ -46,8 +49,7 @@ def spread_rows(spec: Any) -> Any:
     if tolerance is None:
         return np.zeros((3, 3))
     t = tolerance.of
-    phi = spec.orientation_rad
-    offset = t("platform_points_cm") * (abs(math.cos(phi)) + abs(math.sin(phi)))
+    offset = platform_spread_cm(tolerance, spec.orientation_rad)
     row = [t("slider_points_cm") + offset, offset, t("distal_cm")]
     return np.tile(np.array(row, dtype=np.float64), (3, 1))
 
@@ -66,15 +68,8 @@ def evaluator(job: Any, modes: tuple[int, int, int]) -> Callable[[Any], tuple[An
         def evaluate(boxes: Any) -> tuple[Any, Any]:
             from planar_tui.kernels.dexterity_prismatic import prr_dexterity  # numba
 
-            verdict = np.empty(len(boxes), dtype=np.int64)
-            kappa = np.empty((len(boxes), 2))
-            prr_dexterity(boxes, geometry, sigma, offsets, length, spread, verdict, kappa)
-            return verdict, kappa
+            return kappa_of(prr_dexterity, boxes, geometry, sigma, offsets, length, spread)
 
         return evaluate
 
-    tolerance = tolerance_of(spec)
-    if tolerance is None:
-        return make(g, np.zeros((3, 3)))
-    assert spec.kappa_max is not None
-    return tolerant_rows(make, g, spread_rows(spec), LENGTHS, tolerance.mode, spec.kappa_max)
+    return tolerant_rows(make, g, spread_rows(spec), LENGTHS, spec)

@@ -10,13 +10,16 @@ the nominal robot (the 3-RPR tolerances no link length)."""
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from typing import Any
 
 from planar_tui.workspace.paving.dexterity import circumradius_cm
 from planar_tui.workspace.paving.tolerance import tolerance_of
-from planar_tui.workspace.paving.tolerance_dexterity import tolerant_rows
+from planar_tui.workspace.paving.tolerance_dexterity import (
+    kappa_of,
+    platform_spread_cm,
+    tolerant_rows,
+)
 from planar_tui.workspace.rpr.singularity import offsets_cm
 
 
@@ -29,8 +32,7 @@ def spread_rows(spec: Any) -> Any:
     tolerance = tolerance_of(spec)
     if tolerance is None:
         return np.zeros((3, 2))
-    phi = spec.orientation_rad
-    offset = tolerance.of("platform_points_cm") * (abs(math.cos(phi)) + abs(math.sin(phi)))
+    offset = platform_spread_cm(tolerance, spec.orientation_rad)
     row = [tolerance.of("base_joints_cm") + offset, offset]
     return np.tile(np.array(row, dtype=np.float64), (3, 1))
 
@@ -49,15 +51,8 @@ def evaluator(robot: Any, spec: Any) -> Callable[[Any], tuple[Any, Any]]:
         def evaluate(boxes: Any) -> tuple[Any, Any]:
             from planar_tui.kernels.dexterity_prismatic import rpr_dexterity  # numba
 
-            verdict = np.empty(len(boxes), dtype=np.int64)
-            kappa = np.empty((len(boxes), 2))
-            rpr_dexterity(boxes, geometry, offsets, limits, length, spread, verdict, kappa)
-            return verdict, kappa
+            return kappa_of(rpr_dexterity, boxes, geometry, offsets, limits, length, spread)
 
         return evaluate
 
-    tolerance = tolerance_of(spec)
-    if tolerance is None:
-        return make(centres, np.zeros((3, 2)))
-    assert spec.kappa_max is not None
-    return tolerant_rows(make, centres, spread_rows(spec), (), tolerance.mode, spec.kappa_max)
+    return tolerant_rows(make, centres, spread_rows(spec), (), spec)

@@ -11,13 +11,16 @@ upper or its lower tolerance)."""
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from typing import Any
 
 from planar_tui.workspace.paving.dexterity import circumradius_cm
 from planar_tui.workspace.paving.tolerance import tolerance_of
-from planar_tui.workspace.paving.tolerance_dexterity import tolerant_rows
+from planar_tui.workspace.paving.tolerance_dexterity import (
+    kappa_of,
+    platform_spread_cm,
+    tolerant_rows,
+)
 from planar_tui.workspace.rrr.singularity import Circle, kernel_inputs
 
 #: The link lengths' columns in a geometry row and in a spread row (:func:`spread_rows`).
@@ -31,22 +34,6 @@ def length_cm(robot: Any, spec: Any) -> float:
     return circumradius_cm(robot.platform_points_cm())
 
 
-def kernel_evaluator(rows: Any, r: Any, elbow: Any, limits: Any, length: float, spread: Any):
-    """Boxes (k, 4) to ``(verdict, kappa)`` of :func:`kernels.dexterity_rr.rr_dexterity`
-    with one geometry row and one ``spread`` row per leg."""
-    import numpy as np
-
-    def evaluate(boxes: Any) -> tuple[Any, Any]:
-        from planar_tui.kernels.dexterity_rr import rr_dexterity  # numba: after prepare_kernels
-
-        verdict = np.empty(len(boxes), dtype=np.int64)
-        kappa = np.empty((len(boxes), 2))
-        rr_dexterity(boxes, rows, r, elbow, limits, length, spread, verdict, kappa)
-        return verdict, kappa
-
-    return evaluate
-
-
 def spread_rows(spec: Any) -> Any:
     """One :func:`kernels.singularity3rrr.leg_spread` row per leg, ``(t_A + t_q(|\\cos
     \\varphi| + |\\sin\\varphi|), t_q(|\\cos\\varphi| + |\\sin\\varphi|), t_1, t_2)``: zeros
@@ -57,8 +44,7 @@ def spread_rows(spec: Any) -> Any:
     if tolerance is None:
         return np.zeros((3, 4))
     t = tolerance.of
-    phi = spec.orientation_rad
-    offset = t("platform_points_cm") * (abs(math.cos(phi)) + abs(math.sin(phi)))
+    offset = platform_spread_cm(tolerance, spec.orientation_rad)
     row = [t("base_joints_cm") + offset, offset, t("proximal_cm"), t("distal_cm")]
     return np.tile(np.array(row, dtype=np.float64), (3, 1))
 
@@ -73,10 +59,11 @@ def evaluator(robot: Any, spec: Any, circle: Circle) -> Callable[[Any], tuple[An
     length = length_cm(robot, spec)
 
     def make(geometry: Any, spread: Any) -> Callable[[Any], tuple[Any, Any]]:
-        return kernel_evaluator(geometry, r, elbow, limits, length, spread)
+        def evaluate(boxes: Any) -> tuple[Any, Any]:
+            from planar_tui.kernels.dexterity_rr import rr_dexterity  # numba: after prepare
 
-    tolerance = tolerance_of(spec)
-    if tolerance is None:
-        return make(rows, np.zeros((3, 4)))
-    assert spec.kappa_max is not None
-    return tolerant_rows(make, rows, spread_rows(spec), LENGTHS, tolerance.mode, spec.kappa_max)
+            return kappa_of(rr_dexterity, boxes, geometry, r, elbow, limits, length, spread)
+
+        return evaluate
+
+    return tolerant_rows(make, rows, spread_rows(spec), LENGTHS, spec)
